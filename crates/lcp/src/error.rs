@@ -1,0 +1,136 @@
+//! Errors of the pivoting engine: what went wrong, at which size and step, and
+//! what the caller can do about it.
+
+use crate::certificate::Certificate;
+
+/// Everything that can stop a solve of the engine.
+///
+/// Every message states the problem size and, where it applies, the pivot
+/// step at which the engine stopped, so a failure can be reproduced.
+#[derive(Debug, Clone, thiserror::Error)]
+#[non_exhaustive]
+pub enum LcpError {
+    /// An input array has the wrong size.
+    #[error("`{field}` has {found} {unit}, expected {expected}")]
+    DimensionMismatch {
+        /// The argument or field that is mis-sized.
+        field: &'static str,
+        /// The size the other inputs imply.
+        expected: usize,
+        /// The size that was given.
+        found: usize,
+        /// What is counted ("rows", "columns", "entries").
+        unit: &'static str,
+    },
+    /// An input holds NaN or an infinity.
+    #[error("`{field}` has a non-finite entry ({value}) at index {index}")]
+    NonFinite {
+        /// The argument or field.
+        field: &'static str,
+        /// Flat index (row-major `i * ncols + j` for matrices) of the first bad entry.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// The problem has no unknowns.
+    #[error("the problem is empty: `{field}` has size 0")]
+    Empty {
+        /// The argument that is empty.
+        field: &'static str,
+    },
+    /// An option is out of its range.
+    #[error("option `{field}` = {value}: {reason}")]
+    InvalidOption {
+        /// The option's name.
+        field: &'static str,
+        /// The given value, printed.
+        value: String,
+        /// Why it is rejected.
+        reason: &'static str,
+    },
+    /// A method was asked for a problem form it does not handle.
+    #[error("{method} cannot solve this problem: {reason}")]
+    Unsupported {
+        /// The method asked for.
+        method: &'static str,
+        /// What in the problem it does not support, and what to use instead.
+        reason: String,
+    },
+    /// Lemke's method ended on a secondary ray: for a copositive-plus matrix
+    /// (e.g. positive semidefinite) this proves the problem has no solution.
+    #[error(
+        "ray termination at pivot {pivot} (size {size}): the entering variable `{entering}` is unbounded; \
+         the problem has no solution if its matrix is copositive-plus (e.g. positive semidefinite)"
+    )]
+    RayTermination {
+        /// Number of unknowns.
+        size: usize,
+        /// Pivot step at which the ray was found.
+        pivot: usize,
+        /// Name of the entering variable.
+        entering: String,
+    },
+    /// Phase 1 of the restricted-entry simplex stopped with a positive
+    /// artificial sum and no admissible entering variable.
+    #[error(
+        "no feasible complementary solution found (size {size}, after {pivot} pivots): \
+         the artificial sum stays at {residual:.3e} relative and no admissible variable can enter"
+    )]
+    Infeasible {
+        /// Number of rows of the tableau.
+        size: usize,
+        /// Pivot step at which the method stopped.
+        pivot: usize,
+        /// Remaining sum of artificial variables, relative to the right-hand side's scale.
+        residual: f64,
+    },
+    /// The phase-2 objective decreases without bound along an admissible edge.
+    #[error(
+        "the objective is unbounded below along `{entering}` (size {size}, pivot {pivot}): add a bound on it"
+    )]
+    Unbounded {
+        /// Number of rows of the tableau.
+        size: usize,
+        /// Pivot step.
+        pivot: usize,
+        /// The variable along which the objective decreases without bound.
+        entering: String,
+    },
+    /// The caller's pivot limit was reached before a solution.
+    #[error("pivot limit {limit} reached (size {size}); raise `max_pivots` or check the problem")]
+    PivotLimit {
+        /// Number of unknowns or rows.
+        size: usize,
+        /// The limit that was reached.
+        limit: usize,
+    },
+    /// A basis met during the solve is numerically singular.
+    #[error(
+        "the basis at pivot {pivot} is numerically singular (size {size}, smallest/largest LU pivot {ratio:.2e}); \
+         the problem is too ill-conditioned for the dense tableau"
+    )]
+    SingularBasis {
+        /// Number of rows.
+        size: usize,
+        /// Pivot step.
+        pivot: usize,
+        /// Smallest over largest magnitude of U's diagonal.
+        ratio: f64,
+    },
+    /// The final solution does not satisfy its certificate to the tolerance
+    /// even after refactorization and refinement: it is not returned as solved.
+    #[error(
+        "the solution's certificate does not hold after {pivots} pivots (size {size}): worst relative residual \
+         {:.3e} > tolerance {:.1e} ({certificate})",
+        certificate.worst(),
+        certificate.tolerance
+    )]
+    Inaccurate {
+        /// Number of unknowns.
+        size: usize,
+        /// Pivots spent.
+        pivots: usize,
+        /// The certificate that failed.
+        certificate: Box<Certificate>,
+    },
+}

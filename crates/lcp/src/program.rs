@@ -1,0 +1,411 @@
+//! Linear programs with complementarity constraints: the general form the
+//! restricted-entry simplex solves, to which the mixed LCP and the design
+//! problem (extra columns for profile parameters, an objective) reduce.
+//!
+//! ```text
+//!     minimize   c^T x                      (optional: without c, any feasible point)
+//!     subject to A x = b
+//!                x_j >= 0  or  x_j free     (per unknown)
+//!                x_i x_j = 0                 (per complementary pair)
+//! ```
+//!
+//! Columns of `A` are added in named blocks, dense or unit (`coef * e_row`,
+//! for slacks), so a problem reads like its equations; see
+//! [`ProgramBuilder`].
+
+use std::ops::Range;
+use std::time::Instant;
+
+use faer::{Col, ColRef, Mat, MatRef};
+
+use crate::certificate::Certificate;
+use crate::problem::{Bound, Options, Statistics};
+use crate::system::{Column, check_finite_col, check_finite_mat};
+use crate::{LcpError, restricted};
+
+/// A linear program with complementarity constraints (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct ComplementaryProgram {
+    pub(crate) rows: usize,
+    pub(crate) dense: Mat<f64>,
+    pub(crate) columns: Vec<Column>,
+    pub(crate) bounds: Vec<Bound>,
+    pub(crate) complement: Vec<Option<usize>>,
+    pub(crate) b: Col<f64>,
+    pub(crate) cost: Option<Vec<f64>>,
+    blocks: Vec<(usize, String)>,
+}
+
+/// A certified solution of a [`ComplementaryProgram`].
+#[derive(Debug, Clone)]
+pub struct ProgramSolution {
+    /// Every unknown, in the order they were added.
+    pub x: Col<f64>,
+    /// `c^T x`, when the program has an objective.
+    pub objective: Option<f64>,
+    /// The basic unknowns of the final basis (warm-start data).
+    pub basis: Vec<usize>,
+    /// Residuals from the original data: of a complementary pair, the unknown
+    /// with the lower index counts as `z` and the other as `w`; unpaired
+    /// non-negative unknowns count as `u`. Each unknown is measured by its
+    /// activity `max_r |A_rj| |x_j|` relative to the constraint scale
+    /// `max_r (|A| |x| + |b|)_r`.
+    pub certificate: Certificate,
+    /// What the solve cost.
+    pub statistics: Statistics,
+}
+
+/// Builds a [`ComplementaryProgram`] block by block.
+///
+/// ```
+/// use elcon_lcp::{Bound, Options, ProgramBuilder};
+/// use faer::{col, mat};
+/// // minimize x0 + x1  s.t.  x0 - x1 + s = 1,  x0 + x1 - t = 1, all >= 0, x0 s = 0
+/// let mut p = ProgramBuilder::new(2);
+/// let x = p.dense_columns("x", mat![[1.0, -1.0], [1.0, 1.0]].as_ref(), Bound::NonNegative).unwrap();
+/// let s = p.unit_columns("s", 0..1, 1.0, Bound::NonNegative).unwrap();
+/// let t = p.unit_columns("t", 1..2, -1.0, Bound::NonNegative).unwrap();
+/// p.complementary(x.start, s.start).unwrap();
+/// p.cost(x.start, 1.0).unwrap();
+/// p.cost(x.start + 1, 1.0).unwrap();
+/// p.rhs(col![1.0, 1.0].as_ref()).unwrap();
+/// let sol = p.build().unwrap().solve(&Options::default()).unwrap();
+/// assert!(sol.certificate.holds());
+/// assert!((sol.objective.unwrap() - 1.0).abs() < 1e-12);
+/// # let _ = t;
+/// ```
+#[derive(Debug, Clone)]
+pub struct ProgramBuilder {
+    rows: usize,
+    dense_data: Vec<f64>,
+    dense_cols: usize,
+    columns: Vec<Column>,
+    bounds: Vec<Bound>,
+    complement: Vec<Option<usize>>,
+    b: Option<Col<f64>>,
+    cost: Vec<f64>,
+    has_cost: bool,
+    blocks: Vec<(usize, String)>,
+}
+
+impl ProgramBuilder {
+    /// A program with `rows` equality rows and no unknowns yet.
+    pub fn new(rows: usize) -> Self {
+        Self {
+            rows,
+            dense_data: Vec::new(),
+            dense_cols: 0,
+            columns: Vec::new(),
+            bounds: Vec::new(),
+            complement: Vec::new(),
+            b: None,
+            cost: Vec::new(),
+            has_cost: false,
+            blocks: Vec::new(),
+        }
+    }
+
+    /// Adds one unknown per column of `block` (`rows` x k); returns their indices.
+    pub fn dense_columns(
+        &mut self,
+        name: &str,
+        block: MatRef<'_, f64>,
+        bound: Bound,
+    ) -> Result<Range<usize>, LcpError> {
+        if block.nrows() != self.rows {
+            return Err(LcpError::DimensionMismatch {
+                field: "dense_columns block",
+                expected: self.rows,
+                found: block.nrows(),
+                unit: "rows",
+            });
+        }
+        check_finite_mat("dense_columns block", block)?;
+        let start = self.columns.len();
+        self.blocks.push((start, name.to_string()));
+        for j in 0..block.ncols() {
+            self.dense_data
+                .extend((0..self.rows).map(|i| block[(i, j)]));
+            self.columns.push(Column::Dense(self.dense_cols));
+            self.dense_cols += 1;
+            self.push_meta(bound);
+        }
+        Ok(start..self.columns.len())
+    }
+
+    /// Adds one unknown with the dense column `column` (length `rows`).
+    pub fn dense_column(
+        &mut self,
+        name: &str,
+        column: ColRef<'_, f64>,
+        bound: Bound,
+    ) -> Result<usize, LcpError> {
+        let r = self.dense_columns(name, column.as_mat(), bound)?;
+        Ok(r.start)
+    }
+
+    /// Adds one unknown per row in `rows`, with column `coef * e_row` (slacks).
+    pub fn unit_columns(
+        &mut self,
+        name: &str,
+        rows: Range<usize>,
+        coef: f64,
+        bound: Bound,
+    ) -> Result<Range<usize>, LcpError> {
+        if rows.end > self.rows || rows.start > rows.end {
+            return Err(LcpError::DimensionMismatch {
+                field: "unit_columns rows",
+                expected: self.rows,
+                found: rows.end,
+                unit: "rows",
+            });
+        }
+        if !coef.is_finite() {
+            return Err(LcpError::NonFinite {
+                field: "unit_columns coef",
+                index: 0,
+                value: coef,
+            });
+        }
+        let start = self.columns.len();
+        self.blocks.push((start, name.to_string()));
+        for row in rows {
+            self.columns.push(Column::Unit { row, coef });
+            self.push_meta(bound);
+        }
+        Ok(start..self.columns.len())
+    }
+
+    fn push_meta(&mut self, bound: Bound) {
+        self.bounds.push(bound);
+        self.complement.push(None);
+        self.cost.push(0.0);
+    }
+
+    fn check_var(&self, field: &'static str, var: usize) -> Result<(), LcpError> {
+        if var >= self.columns.len() {
+            return Err(LcpError::DimensionMismatch {
+                field,
+                expected: self.columns.len(),
+                found: var,
+                unit: "as an unknown's index (out of range)",
+            });
+        }
+        Ok(())
+    }
+
+    /// Declares `x_i x_j = 0`; both must be non-negative and not yet paired.
+    pub fn complementary(&mut self, i: usize, j: usize) -> Result<(), LcpError> {
+        self.check_var("complementary", i)?;
+        self.check_var("complementary", j)?;
+        if i == j || self.complement[i].is_some() || self.complement[j].is_some() {
+            return Err(LcpError::InvalidOption {
+                field: "complementary",
+                value: format!("({i}, {j})"),
+                reason: "an unknown has at most one complement, and not itself",
+            });
+        }
+        if self.bounds[i] != Bound::NonNegative || self.bounds[j] != Bound::NonNegative {
+            return Err(LcpError::InvalidOption {
+                field: "complementary",
+                value: format!("({i}, {j})"),
+                reason: "complementary unknowns must be non-negative",
+            });
+        }
+        self.complement[i] = Some(j);
+        self.complement[j] = Some(i);
+        Ok(())
+    }
+
+    /// Sets the cost of unknown `var` in the objective `c^T x` (to be minimized).
+    pub fn cost(&mut self, var: usize, value: f64) -> Result<(), LcpError> {
+        self.check_var("cost", var)?;
+        if !value.is_finite() {
+            return Err(LcpError::NonFinite {
+                field: "cost",
+                index: var,
+                value,
+            });
+        }
+        self.cost[var] = value;
+        self.has_cost = true;
+        Ok(())
+    }
+
+    /// Sets the right-hand side `b` (length `rows`).
+    pub fn rhs(&mut self, b: ColRef<'_, f64>) -> Result<(), LcpError> {
+        if b.nrows() != self.rows {
+            return Err(LcpError::DimensionMismatch {
+                field: "rhs",
+                expected: self.rows,
+                found: b.nrows(),
+                unit: "entries",
+            });
+        }
+        check_finite_col("rhs", b)?;
+        self.b = Some(b.to_owned());
+        Ok(())
+    }
+
+    /// Finishes the program.
+    pub fn build(self) -> Result<ComplementaryProgram, LcpError> {
+        if self.rows == 0 {
+            return Err(LcpError::Empty { field: "rows" });
+        }
+        if self.columns.is_empty() {
+            return Err(LcpError::Empty { field: "columns" });
+        }
+        let b = self.b.ok_or(LcpError::Empty { field: "rhs" })?;
+        let dense = MatRef::from_column_major_slice(&self.dense_data, self.rows, self.dense_cols)
+            .to_owned();
+        Ok(ComplementaryProgram {
+            rows: self.rows,
+            dense,
+            columns: self.columns,
+            bounds: self.bounds,
+            complement: self.complement,
+            b,
+            cost: self.has_cost.then_some(self.cost),
+            blocks: self.blocks,
+        })
+    }
+}
+
+impl ComplementaryProgram {
+    /// A program from already-validated parts (used by the mixed-LCP reduction).
+    pub(crate) fn from_parts(
+        rows: usize,
+        dense: Mat<f64>,
+        columns: Vec<Column>,
+        bounds: Vec<Bound>,
+        complement: Vec<Option<usize>>,
+        b: Col<f64>,
+    ) -> Self {
+        let n = columns.len();
+        Self {
+            rows,
+            dense,
+            columns,
+            bounds,
+            complement,
+            b,
+            cost: None,
+            blocks: vec![(0, "x".to_string())],
+        }
+        .with_len_check(n)
+    }
+
+    fn with_len_check(self, n: usize) -> Self {
+        debug_assert_eq!(self.bounds.len(), n);
+        debug_assert_eq!(self.complement.len(), n);
+        self
+    }
+
+    /// Number of equality rows.
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// Number of unknowns.
+    pub fn unknowns(&self) -> usize {
+        self.columns.len()
+    }
+
+    /// A readable name for unknown `var`: its block's name and its index in the block.
+    pub fn name(&self, var: usize) -> String {
+        match self.blocks.iter().rev().find(|(start, _)| *start <= var) {
+            Some((start, name)) => format!("{name}[{}]", var - start),
+            None => format!("x[{var}]"),
+        }
+    }
+
+    /// Solves by the restricted-entry simplex: phase 1 finds a feasible
+    /// complementary basic solution, phase 2 (when there is an objective)
+    /// lowers `c^T x` while keeping complementarity. Phase 2 ends at a point
+    /// no admissible pivot improves: a local optimum of the complementarity-
+    /// constrained program, not necessarily a global one.
+    pub fn solve(&self, options: &Options) -> Result<ProgramSolution, LcpError> {
+        options.validate()?;
+        let start = Instant::now();
+        let out = restricted::run(self, options)?;
+        let x = Col::from_fn(self.unknowns(), |j| out.x[j]);
+        let certificate = self.certify(x.as_ref(), options.tolerances.certificate);
+        let mut statistics = out.statistics;
+        statistics.seconds = start.elapsed().as_secs_f64();
+        if !certificate.holds() {
+            return Err(LcpError::Inaccurate {
+                size: self.rows,
+                pivots: statistics.pivots,
+                certificate: Box::new(certificate),
+            });
+        }
+        let objective = self
+            .cost
+            .as_ref()
+            .map(|c| c.iter().zip(x.iter()).map(|(c, x)| c * x).sum());
+        Ok(ProgramSolution {
+            x,
+            objective,
+            basis: out.basis,
+            certificate,
+            statistics,
+        })
+    }
+
+    /// The certificate of a candidate `x` (see [`ProgramSolution::certificate`]).
+    pub fn certify(&self, x: ColRef<'_, f64>, tolerance: f64) -> Certificate {
+        let m = self.rows;
+        let mut ax = Col::<f64>::zeros(m);
+        let mut terms = Col::<f64>::zeros(m);
+        let mut activity = vec![0.0f64; self.columns.len()];
+        for (var, col) in self.columns.iter().enumerate() {
+            let xv = x[var];
+            match *col {
+                Column::Dense(j) => {
+                    let mut cmax = 0.0f64;
+                    for i in 0..m {
+                        let a = self.dense[(i, j)];
+                        ax[i] += a * xv;
+                        terms[i] += (a * xv).abs();
+                        cmax = cmax.max(a.abs());
+                    }
+                    activity[var] = cmax * xv;
+                }
+                Column::Unit { row, coef } => {
+                    ax[row] += coef * xv;
+                    terms[row] += (coef * xv).abs();
+                    activity[var] = coef.abs() * xv;
+                }
+            }
+        }
+        for i in 0..m {
+            terms[i] += self.b[i].abs();
+        }
+        let scale = crate::dense::norm_inf(terms.as_ref());
+        let rel = |v: f64| if scale > 0.0 { v / scale } else { 0.0 };
+        let equality = rel((0..m).fold(0.0f64, |a, i| a.max((ax[i] - self.b[i]).abs())));
+        let (mut min_z, mut min_w, mut min_u, mut comp) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for var in 0..self.columns.len() {
+            if self.bounds[var] != Bound::NonNegative {
+                continue;
+            }
+            let a = rel(activity[var]);
+            match self.complement[var] {
+                Some(other) if var < other => {
+                    min_z = min_z.min(a);
+                    comp = comp.max((a * rel(activity[other])).abs());
+                }
+                Some(_) => min_w = min_w.min(a),
+                None => min_u = min_u.min(a),
+            }
+        }
+        Certificate {
+            min_z,
+            min_w,
+            min_u,
+            complementarity: comp,
+            equality,
+            tolerance,
+        }
+    }
+}

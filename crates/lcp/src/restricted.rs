@@ -1,0 +1,396 @@
+//! The restricted-entry (complementary) simplex: Wolfe (1959), as used by
+//! Conry & Seireg (1971) for the contact problem (their Fig. 2).
+//!
+//! On `A x = b` with complementary pairs `(x_i, x_j)`:
+//!
+//! 1. rows with `b_i < 0` are multiplied by -1;
+//! 2. each row starts with a basic slack (a `+1` unit column of a
+//!    non-negative unknown) when it has one, else with an artificial `Z_i`;
+//! 3. free unknowns (the approach `alpha`) are pivoted into the basis first
+//!    and never leave;
+//! 4. phase 1 minimizes `sum Z_i`: the entering unknown is the one with the
+//!    most negative reduced cost `d_s` SUBJECT TO the restricted-entry rule:
+//!    `x_s` may not enter while its complement is basic, unless the ratio
+//!    test makes that complement leave at this very pivot (it is preferred
+//!    whenever it ties); inadmissible candidates are removed from the choice
+//!    set and the next best is tried;
+//! 5. phase 1 ends when `sum Z_i = 0`: a feasible complementary basic
+//!    solution; or fails when no admissible candidate remains;
+//! 6. with an objective `c^T x`, phase 2 lowers it by the same rule, the
+//!    artificials left basic at level 0 held at 0 (the paper's design part).
+//!
+//! The ratio test is lexicographic (no basis repeats); every
+//! `refactor_interval` pivots the tableau is recomputed from the data.
+
+use faer::{Col, Mat};
+
+use crate::dense::norm_inf;
+use crate::lemke::EQUILIBRATION_PASSES;
+use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
+use crate::program::ComplementaryProgram;
+use crate::system::{Column, System};
+use crate::tableau::{Position, RowRule, Tableau};
+use crate::{LcpError, Method};
+
+/// What the restricted-entry simplex returns before certification.
+pub(crate) struct Outcome {
+    /// Every original unknown, in original units.
+    pub x: Vec<f64>,
+    /// Basic original unknowns.
+    pub basis: Vec<usize>,
+    pub statistics: Statistics,
+}
+
+/// Solves a mixed LCP by writing it as a program:
+/// `-M z - B u + w = q`, `C z + D u = -r`, pairs `(z_i, w_i)`.
+pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
+    let n = p.size();
+    let k = p.extras();
+    let me = p.equalities();
+    let rows = n + me;
+    let mut dense = Mat::<f64>::zeros(rows, n + k);
+    for j in 0..n {
+        for i in 0..n {
+            dense[(i, j)] = -p.m[(i, j)];
+        }
+        for e in 0..me {
+            dense[(n + e, j)] = p.c[(e, j)];
+        }
+    }
+    for j in 0..k {
+        for i in 0..n {
+            dense[(i, n + j)] = -p.b[(i, j)];
+        }
+        for e in 0..me {
+            dense[(n + e, n + j)] = p.d[(e, j)];
+        }
+    }
+    let mut columns: Vec<Column> = (0..n + k).map(Column::Dense).collect();
+    columns.extend((0..n).map(|i| Column::Unit { row: i, coef: 1.0 }));
+    let mut bounds = vec![Bound::NonNegative; n];
+    bounds.extend_from_slice(p.bounds);
+    bounds.extend(std::iter::repeat_n(Bound::NonNegative, n));
+    let mut complement: Vec<Option<usize>> = (0..n).map(|i| Some(n + k + i)).collect();
+    complement.extend(std::iter::repeat_n(None, k));
+    complement.extend((0..n).map(Some));
+    let b = Col::from_fn(rows, |i| if i < n { p.q[i] } else { -p.r[i - n] });
+    let program = ComplementaryProgram::from_parts(rows, dense, columns, bounds, complement, b);
+    let out = run(&program, opts)?;
+    let mut basic = vec![false; n];
+    for &v in &out.basis {
+        if v < n {
+            basic[v] = true;
+        }
+    }
+    Ok(RawSolution {
+        z: Col::from_fn(n, |i| out.x[i]),
+        u: Col::from_fn(k, |j| out.x[n + j]),
+        basic,
+        statistics: out.statistics,
+    })
+}
+
+/// Which objective row a phase works on.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// Minimize the sum of artificials (objective row 0).
+    Feasibility,
+    /// Minimize `c^T x` (objective row 1).
+    Objective,
+}
+
+struct Run<'a> {
+    sys: System,
+    tab: Tableau,
+    bounds: Vec<Bound>,
+    complement: &'a [Option<usize>],
+    artificial: Vec<bool>,
+    stats: Statistics,
+    opts: &'a Options,
+    zero_level: f64,
+    limit: usize,
+    refactor_every: usize,
+    names: &'a ComplementaryProgram,
+}
+
+/// Runs the restricted-entry simplex on a program.
+pub(crate) fn run(p: &ComplementaryProgram, opts: &Options) -> Result<Outcome, LcpError> {
+    let m = p.rows;
+    let nv = p.columns.len();
+    let mut stats = Statistics::new(Method::RestrictedSimplex);
+    let mut sys = System {
+        rows: m,
+        dense: p.dense.clone(),
+        columns: p.columns.clone(),
+        b: p.b.clone(),
+        costs: Vec::new(),
+        col_scale: vec![1.0; nv],
+        row_scale: vec![1.0; m],
+    };
+    // 1. Rows with a negative right-hand side are negated.
+    for i in 0..m {
+        if sys.b[i] < 0.0 {
+            sys.b[i] = -sys.b[i];
+            sys.row_scale[i] = -1.0;
+            for j in 0..sys.dense.ncols() {
+                sys.dense[(i, j)] = -sys.dense[(i, j)];
+            }
+        }
+    }
+    for col in sys.columns.iter_mut() {
+        if let Column::Unit { row, coef } = col {
+            *coef *= sys.row_scale[*row];
+        }
+    }
+    if opts.equilibrate {
+        sys.equilibrate(EQUILIBRATION_PASSES);
+    }
+    // 2. Initial basis: a +1 slack of a non-negative unknown, else an artificial.
+    let mut basis = vec![usize::MAX; m];
+    let mut in_basis = vec![false; nv];
+    for (var, col) in sys.columns.iter().enumerate() {
+        if let Column::Unit { row, coef } = *col
+            && coef == 1.0
+            && p.bounds[var] == Bound::NonNegative
+            && basis[row] == usize::MAX
+            && !p.complement[var].is_some_and(|c| in_basis[c])
+        {
+            basis[row] = var;
+            in_basis[var] = true;
+        }
+    }
+    let mut bounds = p.bounds.clone();
+    let mut artificial = vec![false; nv];
+    for (row, slot) in basis.iter_mut().enumerate() {
+        if *slot == usize::MAX {
+            *slot = sys.columns.len();
+            sys.columns.push(Column::Unit { row, coef: 1.0 });
+            sys.col_scale.push(1.0);
+            bounds.push(Bound::NonNegative);
+            artificial.push(true);
+        }
+    }
+    let total = sys.columns.len();
+    let phase1: Vec<f64> = artificial
+        .iter()
+        .map(|&a| if a { 1.0 } else { 0.0 })
+        .collect();
+    sys.costs.push(phase1);
+    if let Some(c) = &p.cost {
+        let mut c2 = vec![0.0; total];
+        for j in 0..nv {
+            c2[j] = c[j] * sys.col_scale[j];
+        }
+        sys.costs.push(c2);
+    }
+    let par = opts.par(m, total - m + 1);
+    let tab = Tableau::from_identity(&sys, basis, par);
+    stats.tableau_rows = m;
+    stats.tableau_columns = total - m + 1;
+    let zero_level = opts.tolerances.zero * norm_inf(sys.b.as_ref()).max(f64::MIN_POSITIVE);
+    let mut run = Run {
+        sys,
+        tab,
+        bounds,
+        complement: &p.complement,
+        artificial,
+        stats,
+        opts,
+        zero_level,
+        limit: opts.pivot_limit(m, nv),
+        refactor_every: opts.refactor_every(m),
+        names: p,
+    };
+    // 3. Free unknowns enter first.
+    run.enter_free()?;
+    // 4-5. Phase 1.
+    let artificials = run.artificial.iter().filter(|a| **a).count();
+    let stop = run.zero_level * artificials.max(1) as f64;
+    run.iterate(Phase::Feasibility, stop)?;
+    let residual = run.tab.objective_value(0);
+    if residual > stop {
+        // One refactorization to rule out drift before declaring failure.
+        run.refactor()?;
+        run.iterate(Phase::Feasibility, stop)?;
+        let residual = run.tab.objective_value(0);
+        if residual > stop {
+            return Err(LcpError::Infeasible {
+                size: m,
+                pivot: run.stats.pivots,
+                residual: residual / norm_inf(run.sys.b.as_ref()).max(f64::MIN_POSITIVE),
+            });
+        }
+    }
+    // 6. Phase 2.
+    if p.cost.is_some() {
+        run.iterate(Phase::Objective, f64::NEG_INFINITY)?;
+    }
+    // Final basic solution from the data, refined.
+    let (xb, steps) = run
+        .sys
+        .basic_solution(&run.tab.basic, par, opts.refinement_steps)
+        .map_err(|ratio| LcpError::SingularBasis {
+            size: m,
+            pivot: run.stats.pivots,
+            ratio,
+        })?;
+    run.stats.refinement_steps = steps;
+    let mut x = vec![0.0; nv];
+    let mut basis = Vec::new();
+    for (row, &var) in run.tab.basic.iter().enumerate() {
+        if var < nv {
+            x[var] = run.sys.col_scale[var] * xb[row];
+            basis.push(var);
+        }
+    }
+    Ok(Outcome {
+        x,
+        basis,
+        statistics: run.stats,
+    })
+}
+
+impl Run<'_> {
+    fn rule(&self, phase: Phase) -> impl Fn(usize) -> RowRule + '_ {
+        move |i| {
+            let v = self.tab.basic[i];
+            if self.bounds[v] == Bound::Free {
+                RowRule::Skip
+            } else if self.artificial[v] && phase == Phase::Objective {
+                RowRule::Fixed
+            } else {
+                RowRule::Bounded
+            }
+        }
+    }
+
+    fn pivot(&mut self, row: usize, col: usize, theta: f64) -> Result<(), LcpError> {
+        if theta == 0.0 {
+            self.stats.degenerate_pivots += 1;
+        }
+        self.tab.pivot(row, col);
+        self.stats.pivots += 1;
+        if self.stats.pivots >= self.limit {
+            return Err(LcpError::PivotLimit {
+                size: self.tab.m,
+                limit: self.limit,
+            });
+        }
+        if self.refactor_every > 0 && self.stats.pivots.is_multiple_of(self.refactor_every) {
+            self.refactor()?;
+        }
+        Ok(())
+    }
+
+    fn refactor(&mut self) -> Result<(), LcpError> {
+        self.tab
+            .refactor(&self.sys)
+            .map_err(|ratio| LcpError::SingularBasis {
+                size: self.tab.m,
+                pivot: self.stats.pivots,
+                ratio,
+            })?;
+        self.stats.refactorizations += 1;
+        Ok(())
+    }
+
+    /// Pivots every non-basic free unknown into the basis, in the direction
+    /// in which a row limits it (preferring the one that lowers the phase-1
+    /// objective). A free unknown no row limits stays non-basic at 0.
+    fn enter_free(&mut self) -> Result<(), LcpError> {
+        let free: Vec<usize> = (0..self.bounds.len())
+            .filter(|&v| self.bounds[v] == Bound::Free)
+            .collect();
+        for var in free {
+            let Position::Nonbasic(s) = self.tab.position[var] else {
+                continue;
+            };
+            let d = self.tab.reduced_cost(0, s);
+            let first = if d > 0.0 { -1.0 } else { 1.0 };
+            let mut chosen = None;
+            for sigma in [first, -first] {
+                if let Some(r) = self.tab.ratio_test(
+                    s,
+                    sigma,
+                    self.rule(Phase::Feasibility),
+                    None,
+                    &self.opts.tolerances,
+                    self.zero_level,
+                ) {
+                    chosen = Some(r);
+                    break;
+                }
+            }
+            if let Some(r) = chosen {
+                self.pivot(r.row, s, r.theta)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Pivots on objective row `phase` until no admissible candidate
+    /// improves it or its value falls to `stop`.
+    fn iterate(&mut self, phase: Phase, stop: f64) -> Result<(), LcpError> {
+        let k = match phase {
+            Phase::Feasibility => 0,
+            Phase::Objective => 1,
+        };
+        let tol = self.opts.tolerances;
+        let mut cost_scale = 0.0f64;
+        for j in 0..self.tab.n() {
+            cost_scale = cost_scale.max(self.tab.reduced_cost(k, j).abs());
+        }
+        let cost_tol = tol.cost * cost_scale.max(f64::MIN_POSITIVE);
+        let mut cands: Vec<(usize, f64, f64)> = Vec::new();
+        loop {
+            if self.tab.objective_value(k) <= stop {
+                return Ok(());
+            }
+            cands.clear();
+            for j in 0..self.tab.n() {
+                let var = self.tab.nonbasic[j];
+                if self.artificial[var] {
+                    continue;
+                }
+                let d = self.tab.reduced_cost(k, j);
+                match self.bounds[var] {
+                    Bound::NonNegative if d < -cost_tol => cands.push((j, 1.0, -d)),
+                    Bound::Free if d.abs() > cost_tol => cands.push((j, -d.signum(), d.abs())),
+                    _ => {}
+                }
+            }
+            cands.sort_by(|a, b| b.2.total_cmp(&a.2).then(a.0.cmp(&b.0)));
+            let mut chosen = None;
+            for &(j, sigma, _) in &cands {
+                let var = self.tab.nonbasic[j];
+                let prefer = self.complement[var].and_then(|c| match self.tab.position[c] {
+                    Position::Basic(r) => Some(r),
+                    Position::Nonbasic(_) => None,
+                });
+                match self
+                    .tab
+                    .ratio_test(j, sigma, self.rule(phase), prefer, &tol, self.zero_level)
+                {
+                    Some(r) if prefer.is_none_or(|rc| rc == r.row) => {
+                        chosen = Some((r, j));
+                        break;
+                    }
+                    Some(_) => continue,
+                    None if prefer.is_some() => continue,
+                    None if phase == Phase::Objective => {
+                        return Err(LcpError::Unbounded {
+                            size: self.tab.m,
+                            pivot: self.stats.pivots,
+                            entering: self.names.name(var),
+                        });
+                    }
+                    None => continue,
+                }
+            }
+            match chosen {
+                Some((r, j)) => self.pivot(r.row, j, r.theta)?,
+                None => return Ok(()),
+            }
+        }
+    }
+}

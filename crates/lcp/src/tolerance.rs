@@ -1,0 +1,77 @@
+//! Every tolerance of the engine, in one place.
+//!
+//! The engine works on a problem that has been equilibrated (rows and columns
+//! scaled by powers of two so that the largest entry of every row and column
+//! of the constraint matrix is about 1; see [`crate::scaling`]). The
+//! tolerances below are then *relative* factors: each is multiplied by a scale
+//! taken from the data before it is used.
+//!
+//! | tolerance | multiplies | meaning |
+//! |---|---|---|
+//! | [`pivot`](Tolerances::pivot) | the largest magnitude in the entering column | smaller entries are not pivots |
+//! | [`zero`](Tolerances::zero) | the right-hand side's scale, `max(‖b‖∞, ‖b̄‖∞)` | basic values below it are degenerate (0) |
+//! | [`cost`](Tolerances::cost) | the objective row's scale | reduced costs above `-cost` do not improve |
+//! | [`tie`](Tolerances::tie) | the smallest ratio of a ratio test | ratios within it are ties (lexicographic rule) |
+//! | [`certificate`](Tolerances::certificate) | (already relative) | largest accepted relative residual |
+//!
+//! Defaults are derived from the double-precision unit roundoff
+//! `u = f64::EPSILON / 2 ≈ 1.1e-16`: a tableau entry after `k` pivots carries
+//! a relative error of order `k u` times the growth of the basis inverse, so a
+//! pivot must stand well above `m u` of its column (`pivot = 2^-36 ≈ 1.5e-11`
+//! leaves five orders of headroom up to `m = 10^4`); basic values are compared
+//! to zero at `2^-42 ≈ 2.3e-13` of the right-hand side's scale, about `2^10 u`;
+//! and the certificate accepts `1e-12` relative residuals: the rounding error
+//! of a length-`n` dot product is about `sqrt(n) u` in practice (at most
+//! `n u`), i.e. below `1e-13` up to `n = 10^4` after refinement.
+
+use crate::LcpError;
+
+/// The relative tolerances of the engine (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerances {
+    /// Smallest accepted pivot, relative to the largest magnitude in the entering column.
+    pub pivot: f64,
+    /// Basic values at or below `zero * rhs_scale` count as zero (degenerate).
+    pub zero: f64,
+    /// An entering variable must have reduced cost below `-cost * cost_scale`.
+    pub cost: f64,
+    /// Ratios within `tie * ratio` of the smallest ratio are ties.
+    pub tie: f64,
+    /// Largest accepted relative residual of the final certificate.
+    pub certificate: f64,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Self {
+            pivot: 2f64.powi(-36),
+            zero: 2f64.powi(-42),
+            cost: 2f64.powi(-40),
+            tie: 2f64.powi(-40),
+            certificate: 1e-12,
+        }
+    }
+}
+
+impl Tolerances {
+    /// Checks that every tolerance is finite and in `[0, 1)`.
+    pub fn validate(&self) -> Result<(), LcpError> {
+        let fields = [
+            ("tolerances.pivot", self.pivot),
+            ("tolerances.zero", self.zero),
+            ("tolerances.cost", self.cost),
+            ("tolerances.tie", self.tie),
+            ("tolerances.certificate", self.certificate),
+        ];
+        for (field, value) in fields {
+            if !(value.is_finite() && (0.0..1.0).contains(&value)) {
+                return Err(LcpError::InvalidOption {
+                    field,
+                    value: format!("{value:e}"),
+                    reason: "a relative tolerance must be finite and in [0, 1)",
+                });
+            }
+        }
+        Ok(())
+    }
+}

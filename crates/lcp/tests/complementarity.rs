@@ -1,0 +1,154 @@
+//! Property tests of the engine: on random symmetric positive definite
+//! problems both methods return certified complementary solutions that agree
+//! with each other and, for small sizes, with brute-force enumeration of the
+//! complementary bases (the solution is unique for a positive definite M).
+
+use elcon_lcp::{Bound, Lcp, Method, MixedLcp, Options};
+use faer::linalg::solvers::Solve;
+use faer::{Col, Mat, Side};
+use proptest::prelude::*;
+
+/// M = A A^T + shift I from the entries of A (n x n, row-major).
+fn spd(n: usize, a: &[f64], shift: f64) -> Mat<f64> {
+    let a = Mat::from_fn(n, n, |i, j| a[i * n + j]);
+    let mut m = &a * a.transpose();
+    for i in 0..n {
+        m[(i, i)] += shift;
+    }
+    m
+}
+
+/// The solution of the LCP by trying every complementary basis (n <= 10).
+fn brute_force(m: &Mat<f64>, q: &Col<f64>) -> Option<Col<f64>> {
+    let n = q.nrows();
+    let scale = q.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
+    for mask in 0u32..(1 << n) {
+        let act: Vec<usize> = (0..n).filter(|i| mask & (1 << i) != 0).collect();
+        let k = act.len();
+        let mut z = Col::<f64>::zeros(n);
+        if k > 0 {
+            let mss = Mat::from_fn(k, k, |i, j| m[(act[i], act[j])]);
+            let Ok(llt) = mss.llt(Side::Lower) else {
+                continue;
+            };
+            let rhs = Col::from_fn(k, |i| -q[act[i]]);
+            let zs = llt.solve(&rhs);
+            for (i, &a) in act.iter().enumerate() {
+                z[a] = zs[i];
+            }
+        }
+        let w = m * &z + q;
+        let zmax = z.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
+        if z.iter().all(|&v| v >= -1e-10 * zmax) && w.iter().all(|&v| v >= -1e-10 * scale) {
+            return Some(z);
+        }
+    }
+    None
+}
+
+fn rel_diff(a: &Col<f64>, b: &Col<f64>) -> f64 {
+    let scale = a
+        .iter()
+        .chain(b.iter())
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(1e-300);
+    (a - b).iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
+}
+
+fn problem(n: usize) -> impl Strategy<Value = (Mat<f64>, Col<f64>)> {
+    (
+        proptest::collection::vec(-1.0f64..1.0, n * n),
+        proptest::collection::vec(-1.0f64..1.0, n),
+        0.01f64..1.0,
+    )
+        .prop_map(move |(a, q, shift)| (spd(n, &a, shift), Col::from_fn(n, |i| q[i])))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    /// n <= 8: both methods equal the enumerated solution.
+    #[test]
+    fn small_problems_match_enumeration((m, q) in (1usize..=8).prop_flat_map(problem)) {
+        let expect = brute_force(&m, &q).expect("an SPD LCP has a solution");
+        let lcp = Lcp::new(m, q).unwrap();
+        for method in Method::ALL {
+            let sol = lcp.solve(method, &Options::default()).unwrap();
+            prop_assert!(sol.certificate.holds(), "{method}: {}", sol.certificate);
+            // The enumerated solution comes from a Cholesky solve of the
+            // active block: both are backward stable, so they agree to a
+            // small multiple of the condition number times u; the random
+            // matrices have condition numbers below ~1e4 (shift >= 0.01).
+            prop_assert!(rel_diff(&sol.z, &expect) < 1e-9, "{method}: {:?} vs {:?}", sol.z, expect);
+        }
+    }
+
+    /// Larger problems: the methods agree with each other, both certified.
+    #[test]
+    fn methods_agree((m, q) in (9usize..=40).prop_flat_map(problem)) {
+        let lcp = Lcp::new(m, q).unwrap();
+        let a = lcp.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
+        let b = lcp.solve(Method::Lemke, &Options::default()).unwrap();
+        prop_assert!(a.certificate.holds() && b.certificate.holds());
+        prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
+        prop_assert_eq!(&a.basic, &b.basic);
+    }
+
+    /// The contact-shaped mixed form (w = M z - alpha e + q, e^T z = P, alpha free):
+    /// both methods agree and the certificate holds.
+    #[test]
+    fn mixed_contact_form((m, q) in (1usize..=30).prop_flat_map(problem), load in 0.01f64..100.0) {
+        let n = q.nrows();
+        let q = Col::from_fn(n, |i| q[i].abs());
+        let mixed = MixedLcp::new(
+            m,
+            Mat::from_fn(n, 1, |_, _| -1.0),
+            q,
+            Mat::from_fn(1, n, |_, _| 1.0),
+            Mat::zeros(1, 1),
+            Col::from_fn(1, |_| -load),
+            vec![Bound::Free],
+        ).unwrap();
+        let a = mixed.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
+        let b = mixed.solve(Method::Lemke, &Options::default()).unwrap();
+        prop_assert!(a.certificate.holds(), "{}", a.certificate);
+        prop_assert!(b.certificate.holds(), "{}", b.certificate);
+        let total: f64 = a.z.iter().sum();
+        prop_assert!((total - load).abs() <= 1e-12 * load);
+        prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
+        prop_assert!((a.u[0] - b.u[0]).abs() <= 1e-9 * a.u[0].abs().max(1e-300));
+    }
+}
+
+#[test]
+fn trivial_solution_when_q_is_non_negative() {
+    let lcp = Lcp::new(Mat::identity(3, 3), Col::from_fn(3, |i| i as f64)).unwrap();
+    for method in Method::ALL {
+        let sol = lcp.solve(method, &Options::default()).unwrap();
+        assert!(sol.z.iter().all(|&v| v == 0.0));
+        assert_eq!(sol.statistics.pivots, 0, "{method}");
+    }
+}
+
+#[test]
+fn known_two_by_two() {
+    // z = (4/3, 7/3): both active.
+    let m = faer::mat![[2.0, 1.0], [1.0, 2.0]];
+    let q = faer::col![-5.0, -6.0];
+    let lcp = Lcp::new(m, q).unwrap();
+    for method in Method::ALL {
+        let sol = lcp.solve(method, &Options::default()).unwrap();
+        assert!((sol.z[0] - 4.0 / 3.0).abs() < 1e-14);
+        assert!((sol.z[1] - 7.0 / 3.0).abs() < 1e-14);
+        assert!(sol.w.iter().all(|w| w.abs() < 1e-14));
+    }
+    // Only the second active: z = (0, 1/2), w0 = 1/2 - ... = q0 + 0.5 = 1.5.
+    let lcp = Lcp::new(faer::mat![[2.0, 1.0], [1.0, 2.0]], faer::col![1.0, -1.0]).unwrap();
+    for method in Method::ALL {
+        let sol = lcp.solve(method, &Options::default()).unwrap();
+        assert_eq!(sol.z[0], 0.0);
+        assert!((sol.z[1] - 0.5).abs() < 1e-15);
+        assert!((sol.w[0] - 1.5).abs() < 1e-15);
+        assert_eq!(sol.basic, vec![false, true]);
+    }
+}
