@@ -35,6 +35,10 @@ pub struct Certificate {
     pub complementarity: f64,
     /// Largest equality-row residual, over the scale of its terms (0 when there is no equality row).
     pub equality: f64,
+    /// The scale of `z` used above, `‖z‖∞`.
+    pub z_scale: f64,
+    /// The scale of `w` used above: the largest `(|M| |z| + |B| |u| + |q|)_i`.
+    pub w_scale: f64,
     /// The tolerance the certificate is judged against.
     pub tolerance: f64,
 }
@@ -129,6 +133,8 @@ impl Certificate {
             min_u,
             complementarity,
             equality,
+            z_scale,
+            w_scale,
             tolerance,
         };
         (cert, w)

@@ -110,3 +110,47 @@ pub(crate) fn first_non_finite(a: MatRef<'_, f64>) -> Option<(usize, f64)> {
     }
     None
 }
+
+/// Cholesky factorization `A = L L^T` of a symmetric positive definite matrix
+/// (lower triangle used), with an explicit parallelism.
+pub(crate) struct Cholesky {
+    l: Mat<f64>,
+    par: Par,
+}
+
+impl Cholesky {
+    /// Factors `a` (consumed); `Err(index)` at the first non-positive pivot.
+    pub(crate) fn new(mut a: Mat<f64>, par: Par) -> Result<Self, usize> {
+        use faer::linalg::cholesky::llt::factor::{
+            LltRegularization, cholesky_in_place, cholesky_in_place_scratch,
+        };
+        let n = a.nrows();
+        let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(n, par, Default::default()));
+        match cholesky_in_place(
+            a.as_mut(),
+            LltRegularization {
+                dynamic_regularization_delta: 0.0,
+                dynamic_regularization_epsilon: 0.0,
+            },
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        ) {
+            Ok(_) => Ok(Self { l: a, par }),
+            Err(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }) => {
+                Err(index)
+            }
+        }
+    }
+
+    /// Overwrites `rhs` with `A^{-1} rhs`.
+    pub(crate) fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+        let mut mem = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
+        faer::linalg::cholesky::llt::solve::solve_in_place(
+            self.l.as_ref(),
+            rhs,
+            self.par,
+            MemStack::new(&mut mem),
+        );
+    }
+}

@@ -15,7 +15,9 @@
 //! Methods ([`Method`]):
 //! - the restricted-entry (complementary) simplex of Wolfe (1959), the
 //!   method of Conry & Seireg (1971);
-//! - Lemke's method with a covering vector and a lexicographic ratio test.
+//! - Lemke's method with a covering vector and a lexicographic ratio test;
+//! - block principal pivoting for symmetric positive definite `M` (not a
+//!   tableau method: one Cholesky of the active block per iteration).
 //!
 //! Every solution carries a [`Certificate`] computed from the ORIGINAL data
 //! (smallest `z`, smallest `w`, largest `|z_i w_i|`, equality residual, each
@@ -39,6 +41,7 @@
 //! }
 //! ```
 
+mod block;
 mod certificate;
 mod dense;
 mod error;

@@ -25,7 +25,7 @@ use faer::{Col, ColRef, Mat, MatRef, Par};
 use crate::certificate::Certificate;
 use crate::system::{check_finite_col, check_finite_mat};
 use crate::tolerance::Tolerances;
-use crate::{LcpError, lemke, restricted};
+use crate::{LcpError, block, lemke, restricted};
 
 /// Sign restriction of an unknown that has no complementary partner.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -49,18 +49,39 @@ pub enum Method {
     /// lexicographic minimum-ratio test (Lemke 1965). Mixed forms are solved
     /// as the equivalent standard LCP with each free unknown split in two.
     Lemke,
+    /// Block principal pivoting (Júdice & Pires 1994) for a symmetric
+    /// positive definite `M`: guess the active set, solve the equilibrium on
+    /// it with a faer Cholesky, exchange every infeasible index at once;
+    /// safeguarded by single principal pivots and, past an iteration cap, by
+    /// Lemke's method. Not a tableau method: it needs `M` symmetric with
+    /// positive definite principal submatrices (contact problems with
+    /// half-space, foundation and beam models).
+    BlockPivoting,
 }
 
 impl Method {
     /// Every method, in a stable order.
-    pub const ALL: [Method; 2] = [Method::RestrictedSimplex, Method::Lemke];
+    pub const ALL: [Method; 3] = [
+        Method::RestrictedSimplex,
+        Method::Lemke,
+        Method::BlockPivoting,
+    ];
 
-    /// A short lower-case name ("restricted-simplex", "lemke").
+    /// The dense-tableau methods (they work for any matrix of their class).
+    pub const TABLEAU: [Method; 2] = [Method::RestrictedSimplex, Method::Lemke];
+
+    /// A short lower-case name ("restricted-simplex", "lemke", "block-pivoting").
     pub fn name(self) -> &'static str {
         match self {
             Method::RestrictedSimplex => "restricted-simplex",
             Method::Lemke => "lemke",
+            Method::BlockPivoting => "block-pivoting",
         }
+    }
+
+    /// The method of a name given by [`Method::name`].
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
     }
 }
 
@@ -91,6 +112,9 @@ pub struct Options {
     /// Parallelism of the pivots' rank-1 updates and of the factorizations
     /// (default: `Par::Seq` below 250,000 tableau entries, all threads above).
     pub parallelism: Option<Par>,
+    /// A warm start for block pivoting: `warm_start[i]` = `z_i` is expected
+    /// basic (e.g. [`LcpSolution::basic`] of a previous, similar solve).
+    pub warm_start: Option<Vec<bool>>,
 }
 
 impl Default for Options {
@@ -103,6 +127,7 @@ impl Default for Options {
             equilibrate: true,
             covering_vector: None,
             parallelism: None,
+            warm_start: None,
         }
     }
 }
@@ -151,6 +176,12 @@ pub struct Statistics {
     pub refactorizations: usize,
     /// Iterative-refinement steps of the final basic solution.
     pub refinement_steps: usize,
+    /// Block iterations (block pivoting; 0 for the tableau methods).
+    pub iterations: usize,
+    /// Matrix factorizations (Cholesky of block systems; 0 for the tableau methods).
+    pub factorizations: usize,
+    /// Whether block pivoting fell back to Lemke's method.
+    pub fell_back: bool,
     /// Rows of the tableau that was pivoted on.
     pub tableau_rows: usize,
     /// Columns of the tableau (non-basic unknowns plus the right-hand side).
@@ -167,6 +198,9 @@ impl Statistics {
             degenerate_pivots: 0,
             refactorizations: 0,
             refinement_steps: 0,
+            iterations: 0,
+            factorizations: 0,
+            fell_back: false,
             tableau_rows: 0,
             tableau_columns: 0,
             seconds: 0.0,
@@ -448,6 +482,7 @@ impl<'a> MixedLcpRef<'a> {
         let raw = match method {
             Method::RestrictedSimplex => restricted::solve_mixed(self, options)?,
             Method::Lemke => lemke::solve_mixed(self, options)?,
+            Method::BlockPivoting => block::solve_mixed(self, options)?,
         };
         let (certificate, w) = self.certify(
             raw.z.as_ref(),

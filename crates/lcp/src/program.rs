@@ -405,6 +405,8 @@ impl ComplementaryProgram {
             min_u,
             complementarity: comp,
             equality,
+            z_scale: scale,
+            w_scale: scale,
             tolerance,
         }
     }

@@ -22,6 +22,8 @@
 //! The ratio test is lexicographic (no basis repeats); every
 //! `refactor_interval` pivots the tableau is recomputed from the data.
 
+use std::collections::HashSet;
+
 use faer::{Col, Mat};
 
 use crate::dense::norm_inf;
@@ -330,6 +332,14 @@ impl Run<'_> {
 
     /// Pivots on objective row `phase` until no admissible candidate
     /// improves it or its value falls to `stop`.
+    ///
+    /// In phase 1, when no admissible candidate has a negative reduced cost
+    /// but the artificial sum is still positive, admissible candidates with
+    /// a zero reduced cost (within the cost tolerance) may enter: such a
+    /// move leaves the objective unchanged but can unlock the restricted
+    /// entry of another unknown (a non-negative extra unknown that no row
+    /// of the objective involves). A set of visited bases rules out cycling
+    /// among these moves.
     fn iterate(&mut self, phase: Phase, stop: f64) -> Result<(), LcpError> {
         let k = match phase {
             Phase::Feasibility => 0,
@@ -341,56 +351,82 @@ impl Run<'_> {
             cost_scale = cost_scale.max(self.tab.reduced_cost(k, j).abs());
         }
         let cost_tol = tol.cost * cost_scale.max(f64::MIN_POSITIVE);
-        let mut cands: Vec<(usize, f64, f64)> = Vec::new();
+        let mut visited: HashSet<Vec<usize>> = HashSet::new();
         loop {
             if self.tab.objective_value(k) <= stop {
                 return Ok(());
             }
-            cands.clear();
-            for j in 0..self.tab.n() {
-                let var = self.tab.nonbasic[j];
-                if self.artificial[var] {
-                    continue;
-                }
-                let d = self.tab.reduced_cost(k, j);
-                match self.bounds[var] {
-                    Bound::NonNegative if d < -cost_tol => cands.push((j, 1.0, -d)),
-                    Bound::Free if d.abs() > cost_tol => cands.push((j, -d.signum(), d.abs())),
-                    _ => {}
-                }
-            }
-            cands.sort_by(|a, b| b.2.total_cmp(&a.2).then(a.0.cmp(&b.0)));
-            let mut chosen = None;
-            for &(j, sigma, _) in &cands {
-                let var = self.tab.nonbasic[j];
-                let prefer = self.complement[var].and_then(|c| match self.tab.position[c] {
-                    Position::Basic(r) => Some(r),
-                    Position::Nonbasic(_) => None,
-                });
-                match self
-                    .tab
-                    .ratio_test(j, sigma, self.rule(phase), prefer, &tol, self.zero_level)
-                {
-                    Some(r) if prefer.is_none_or(|rc| rc == r.row) => {
-                        chosen = Some((r, j));
-                        break;
+            let chosen = match self.choose(k, phase, |d| d < -cost_tol, |d| d.abs() > cost_tol)? {
+                Some(c) => Some(c),
+                None if phase == Phase::Feasibility => {
+                    let mut key = self.tab.basic.clone();
+                    key.sort_unstable();
+                    if visited.insert(key) {
+                        self.choose(k, phase, |d| d.abs() <= cost_tol, |d| d.abs() <= cost_tol)?
+                    } else {
+                        None
                     }
-                    Some(_) => continue,
-                    None if prefer.is_some() => continue,
-                    None if phase == Phase::Objective => {
-                        return Err(LcpError::Unbounded {
-                            size: self.tab.m,
-                            pivot: self.stats.pivots,
-                            entering: self.names.name(var),
-                        });
-                    }
-                    None => continue,
                 }
-            }
+                None => None,
+            };
             match chosen {
                 Some((r, j)) => self.pivot(r.row, j, r.theta)?,
                 None => return Ok(()),
             }
         }
+    }
+
+    /// The admissible entering candidate of best reduced cost among those
+    /// whose reduced cost `d` passes `nonneg_ok(d)` (non-negative unknowns,
+    /// entering upwards) or `free_ok(d)` (free unknowns, entering against the
+    /// sign of `d`); with the row its ratio test picks.
+    fn choose(
+        &self,
+        k: usize,
+        phase: Phase,
+        nonneg_ok: impl Fn(f64) -> bool,
+        free_ok: impl Fn(f64) -> bool,
+    ) -> Result<Option<(crate::tableau::Ratio, usize)>, LcpError> {
+        let tol = self.opts.tolerances;
+        let mut cands: Vec<(usize, f64, f64)> = Vec::new();
+        for j in 0..self.tab.n() {
+            let var = self.tab.nonbasic[j];
+            if self.artificial[var] {
+                continue;
+            }
+            let d = self.tab.reduced_cost(k, j);
+            match self.bounds[var] {
+                Bound::NonNegative if nonneg_ok(d) => cands.push((j, 1.0, -d)),
+                Bound::Free if free_ok(d) => {
+                    cands.push((j, if d > 0.0 { -1.0 } else { 1.0 }, d.abs()))
+                }
+                _ => {}
+            }
+        }
+        cands.sort_by(|a, b| b.2.total_cmp(&a.2).then(a.0.cmp(&b.0)));
+        for &(j, sigma, _) in &cands {
+            let var = self.tab.nonbasic[j];
+            let prefer = self.complement[var].and_then(|c| match self.tab.position[c] {
+                Position::Basic(r) => Some(r),
+                Position::Nonbasic(_) => None,
+            });
+            match self
+                .tab
+                .ratio_test(j, sigma, self.rule(phase), prefer, &tol, self.zero_level)
+            {
+                Some(r) if prefer.is_none_or(|rc| rc == r.row) => return Ok(Some((r, j))),
+                Some(_) => continue,
+                None if prefer.is_some() => continue,
+                None if phase == Phase::Objective => {
+                    return Err(LcpError::Unbounded {
+                        size: self.tab.m,
+                        pivot: self.stats.pivots,
+                        entering: self.names.name(var),
+                    });
+                }
+                None => continue,
+            }
+        }
+        Ok(None)
     }
 }

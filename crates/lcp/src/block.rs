@@ -1,0 +1,298 @@
+//! Block principal pivoting for LCPs with a symmetric positive definite `M`
+//! (Júdice & Pires 1994; Kostreva 1978), extended to the mixed form with
+//! free unknowns and as many equality rows.
+//!
+//! Guess the set `J` of basic `z` (the contact set); solve the equilibrium on
+//! it with a faer Cholesky of `M_JJ`:
+//!
+//! ```text
+//!     M_JJ z_J + B_J u = -q_J              (w_J = 0)
+//!     C_J z_J + D u    = -r                (the equality rows)
+//!     =>  (D - C_J M_JJ^{-1} B_J) u = C_J M_JJ^{-1} q_J - r,   z_J = -M_JJ^{-1} (q_J + B_J u)
+//! ```
+//!
+//! then `w = M z + B u + q`. Every infeasible index (`z_i < 0` in `J`,
+//! `w_i < 0` outside) moves to the other side at once. Safeguard (finite
+//! termination): the number of infeasibilities must fall at least once every
+//! `1 + BLOCK_RETRIES` iterations; otherwise single principal pivots on the
+//! infeasible index of least number (Murty 1974), which terminate for a
+//! P-matrix; past an iteration cap, or when a block system is singular, the
+//! solve falls back to Lemke's method, which terminates on every problem of
+//! this class.
+
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Col, Mat};
+
+use crate::dense::{Cholesky, Lu, norm_inf};
+use crate::lemke;
+use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
+use crate::{LcpError, Method};
+
+/// Full block exchanges allowed without a fall in the infeasibility count.
+const BLOCK_RETRIES: usize = 3;
+
+/// Why a block iteration could not be solved.
+enum BlockFailure {
+    /// `M_JJ` is not positive definite.
+    NotPositiveDefinite,
+    /// The equality rows' Schur complement is singular for this `J`.
+    Singular,
+}
+
+pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
+    let n = p.size();
+    let k = p.extras();
+    if k != p.equalities() || p.bounds.iter().any(|b| *b != Bound::Free) {
+        return Err(LcpError::Unsupported {
+            method: "block principal pivoting",
+            reason: "it needs free extra unknowns and as many equality rows; use the restricted-entry simplex".into(),
+        });
+    }
+    let mscale = (0..n).fold(0.0f64, |a, i| a.max(p.m[(i, i)].abs()));
+    for j in 0..n {
+        for i in 0..j {
+            if (p.m[(i, j)] - p.m[(j, i)]).abs() > 1e3 * f64::EPSILON * mscale {
+                return Err(LcpError::Unsupported {
+                    method: "block principal pivoting",
+                    reason: format!("M is not symmetric (entry ({i}, {j})); use Lemke's method"),
+                });
+            }
+        }
+    }
+    let mut stats = Statistics::new(Method::BlockPivoting);
+    let par = opts.par(n, n);
+    let tol = opts.tolerances;
+    let mut active = initial_set(p, opts);
+    let cap = opts.max_pivots.unwrap_or(3 * n + 50);
+    let mut best = usize::MAX;
+    let mut retries = BLOCK_RETRIES;
+    let qscale = norm_inf(p.q).max(norm_inf(p.r));
+    loop {
+        stats.iterations += 1;
+        let (z, u) = match solve_block(p, &active, par, opts.refinement_steps, &mut stats) {
+            Ok(v) => v,
+            Err(BlockFailure::NotPositiveDefinite) => {
+                return Err(LcpError::Unsupported {
+                    method: "block principal pivoting",
+                    reason:
+                        "a principal submatrix of M is not positive definite; use Lemke's method"
+                            .into(),
+                });
+            }
+            Err(BlockFailure::Singular) => return fallback(p, opts, stats),
+        };
+        let w = residual_w(p, &z, &u, par);
+        let zscale = norm_inf(z.as_ref());
+        let wscale = qscale.max(norm_inf(w.as_ref()));
+        let infeasible: Vec<usize> = (0..n)
+            .filter(|&i| {
+                if active[i] {
+                    z[i] < -tol.zero * zscale
+                } else {
+                    w[i] < -tol.zero * wscale
+                }
+            })
+            .collect();
+        if infeasible.is_empty() {
+            let mut z = z;
+            for i in 0..n {
+                if !active[i] {
+                    z[i] = 0.0;
+                }
+            }
+            return Ok(RawSolution {
+                z,
+                u,
+                basic: active,
+                statistics: stats,
+            });
+        }
+        if stats.iterations >= cap {
+            return fallback(p, opts, stats);
+        }
+        if infeasible.len() < best {
+            best = infeasible.len();
+            retries = BLOCK_RETRIES;
+        } else if retries > 0 {
+            retries -= 1;
+        } else {
+            // Murty's least-index single principal pivot.
+            let i = infeasible[0];
+            active[i] = !active[i];
+            stats.pivots += 1;
+            continue;
+        }
+        for &i in &infeasible {
+            active[i] = !active[i];
+        }
+        stats.pivots += infeasible.len();
+    }
+}
+
+/// The initial active set: a warm start if given, else the indices where
+/// `w` would be negative with `z = 0` (and, with equality rows, at least the
+/// index of smallest `q` so the block system is solvable).
+fn initial_set(p: &MixedLcpRef<'_>, opts: &Options) -> Vec<bool> {
+    let n = p.size();
+    if let Some(a) = &opts.warm_start
+        && a.len() == n
+        && (p.extras() == 0 || a.iter().any(|&x| x))
+    {
+        return a.clone();
+    }
+    let mut active: Vec<bool> = (0..n).map(|i| p.q[i] < 0.0).collect();
+    if p.extras() > 0 && !active.iter().any(|&a| a) {
+        let imin = (0..n)
+            .min_by(|&a, &b| p.q[a].total_cmp(&p.q[b]))
+            .unwrap_or(0);
+        active[imin] = true;
+    }
+    active
+}
+
+/// Solves the block system for the active set; returns full `z` (0 off `J`) and `u`.
+fn solve_block(
+    p: &MixedLcpRef<'_>,
+    active: &[bool],
+    par: faer::Par,
+    refinement: usize,
+    stats: &mut Statistics,
+) -> Result<(Col<f64>, Col<f64>), BlockFailure> {
+    let n = p.size();
+    let k = p.extras();
+    let idx: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
+    let nj = idx.len();
+    let mjj = Mat::from_fn(nj, nj, |a, b| p.m[(idx[a], idx[b])]);
+    let chol = Cholesky::new(mjj, par).map_err(|_| BlockFailure::NotPositiveDefinite)?;
+    stats.factorizations += 1;
+    // G = M_JJ^{-1} B_J (nj x k), Schur = D - C_J G (k x k), factored once.
+    let mut g = Mat::from_fn(nj, k, |a, j| p.b[(idx[a], j)]);
+    chol.solve_in_place(g.as_mut());
+    let schur = if k > 0 {
+        let cj = Mat::from_fn(k, nj, |e, a| p.c[(e, idx[a])]);
+        let mut s = p.d.to_owned();
+        matmul(
+            s.as_mut(),
+            Accum::Add,
+            cj.as_ref(),
+            g.as_ref(),
+            -1.0,
+            faer::Par::Seq,
+        );
+        let lu = Lu::new(s, faer::Par::Seq);
+        if lu.pivot_ratio <= f64::EPSILON * k as f64 {
+            return Err(BlockFailure::Singular);
+        }
+        Some((lu, cj))
+    } else {
+        None
+    };
+    // Solve K [z_J; u] = [f; h] with K = [M_JJ B_J; C_J D].
+    let solve = |f: &Col<f64>, h: &Col<f64>| -> (Col<f64>, Col<f64>) {
+        let mut y = f.clone();
+        chol.solve_in_place(y.as_mat_mut());
+        match &schur {
+            Some((lu, cj)) => {
+                // u = S^{-1} (h - C_J M^{-1} f), z = M^{-1} f - G u
+                let mut u = h.clone();
+                matmul(
+                    u.as_mat_mut(),
+                    Accum::Add,
+                    cj.as_ref(),
+                    y.as_mat(),
+                    -1.0,
+                    faer::Par::Seq,
+                );
+                lu.solve_in_place(u.as_mat_mut());
+                matmul(
+                    y.as_mat_mut(),
+                    Accum::Add,
+                    g.as_ref(),
+                    u.as_mat(),
+                    -1.0,
+                    faer::Par::Seq,
+                );
+                (y, u)
+            }
+            None => (y, Col::zeros(0)),
+        }
+    };
+    let f = Col::from_fn(nj, |a| -p.q[idx[a]]);
+    let h = Col::from_fn(k, |e| -p.r[e]);
+    let (mut zj, mut u) = solve(&f, &h);
+    let scatter = |zj: &Col<f64>| {
+        let mut z = Col::<f64>::zeros(n);
+        for (a, &i) in idx.iter().enumerate() {
+            z[i] = zj[a];
+        }
+        z
+    };
+    // Iterative refinement: residuals of the block equations from the original data.
+    for _ in 0..refinement {
+        let z = scatter(&zj);
+        let w = residual_w(p, &z, &u, par);
+        let rf = Col::from_fn(nj, |a| -w[idx[a]]);
+        let mut rh = p.r.to_owned();
+        if k > 0 {
+            matmul(
+                rh.as_mat_mut(),
+                Accum::Add,
+                p.c,
+                z.as_mat(),
+                1.0,
+                faer::Par::Seq,
+            );
+            matmul(
+                rh.as_mat_mut(),
+                Accum::Add,
+                p.d,
+                u.as_mat(),
+                1.0,
+                faer::Par::Seq,
+            );
+        }
+        let rh = -rh;
+        let (dz, du) = solve(&rf, &rh);
+        zj += &dz;
+        u += &du;
+        stats.refinement_steps += 1;
+        if norm_inf(dz.as_ref()) <= f64::EPSILON * norm_inf(zj.as_ref()) {
+            break;
+        }
+    }
+    Ok((scatter(&zj), u))
+}
+
+/// `w = M z + B u + q`.
+fn residual_w(p: &MixedLcpRef<'_>, z: &Col<f64>, u: &Col<f64>, par: faer::Par) -> Col<f64> {
+    let mut w = p.q.to_owned();
+    matmul(w.as_mat_mut(), Accum::Add, p.m, z.as_mat(), 1.0, par);
+    if u.nrows() > 0 {
+        matmul(
+            w.as_mat_mut(),
+            Accum::Add,
+            p.b,
+            u.as_mat(),
+            1.0,
+            faer::Par::Seq,
+        );
+    }
+    w
+}
+
+/// Lemke's method, keeping the statistics of the block iterations so far.
+fn fallback(
+    p: &MixedLcpRef<'_>,
+    opts: &Options,
+    stats: Statistics,
+) -> Result<RawSolution, LcpError> {
+    let mut raw = lemke::solve_mixed(p, opts)?;
+    let s = &mut raw.statistics;
+    s.iterations += stats.iterations;
+    s.factorizations += stats.factorizations;
+    s.pivots += stats.pivots;
+    s.refinement_steps += stats.refinement_steps;
+    s.fell_back = true;
+    s.method = Method::BlockPivoting;
+    Ok(raw)
+}

@@ -1,0 +1,211 @@
+//! One test per error variant of the engine, checking the message a caller sees.
+
+use elcon_lcp::{Bound, Lcp, LcpError, Method, MixedLcp, Options, ProgramBuilder, Tolerances};
+use faer::{Col, Mat, col, mat};
+
+fn message(e: LcpError) -> String {
+    e.to_string()
+}
+
+#[test]
+fn dimension_mismatch_names_the_field() {
+    let e = Lcp::new(Mat::zeros(2, 3), Col::zeros(2)).unwrap_err();
+    assert!(matches!(e, LcpError::DimensionMismatch { field: "m", .. }));
+    assert_eq!(message(e), "`m` has 3 columns, expected 2");
+    let e = MixedLcp::new(
+        Mat::identity(2, 2),
+        Mat::zeros(2, 1),
+        Col::zeros(2),
+        Mat::zeros(1, 2),
+        Mat::zeros(1, 1),
+        Col::zeros(1),
+        vec![Bound::Free, Bound::Free],
+    )
+    .unwrap_err();
+    assert_eq!(message(e), "`b` has 1 columns, expected 2");
+}
+
+#[test]
+fn non_finite_input_is_located() {
+    let e = Lcp::new(Mat::identity(2, 2), col![1.0, f64::NAN]).unwrap_err();
+    assert_eq!(message(e), "`q` has a non-finite entry (NaN) at index 1");
+    let mut m = Mat::<f64>::identity(3, 3);
+    m[(1, 2)] = f64::INFINITY;
+    let e = Lcp::new(m, Col::zeros(3)).unwrap_err();
+    assert_eq!(message(e), "`m` has a non-finite entry (inf) at index 5");
+}
+
+#[test]
+fn empty_problem() {
+    let e = Lcp::new(Mat::zeros(0, 0), Col::zeros(0)).unwrap_err();
+    assert_eq!(message(e), "the problem is empty: `q` has size 0");
+}
+
+#[test]
+fn invalid_options() {
+    let lcp = Lcp::new(Mat::identity(1, 1), col![-1.0]).unwrap();
+    let opts = Options {
+        tolerances: Tolerances {
+            pivot: 2.0,
+            ..Tolerances::default()
+        },
+        ..Options::default()
+    };
+    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
+    assert_eq!(
+        message(e),
+        "option `tolerances.pivot` = 2e0: a relative tolerance must be finite and in [0, 1)"
+    );
+    let opts = Options {
+        max_pivots: Some(0),
+        ..Options::default()
+    };
+    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
+    assert_eq!(message(e), "option `max_pivots` = 0: must be at least 1");
+    let opts = Options {
+        covering_vector: Some(vec![-1.0]),
+        ..Options::default()
+    };
+    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
+    assert!(message(e).starts_with("option `covering_vector` = entry 0 = -1"));
+}
+
+#[test]
+fn unsupported_forms() {
+    // Non-negative extra unknown: not an LCP for Lemke or block pivoting.
+    let p = MixedLcp::new(
+        Mat::identity(1, 1),
+        mat![[-1.0]],
+        col![0.0],
+        mat![[1.0]],
+        Mat::zeros(1, 1),
+        col![-1.0],
+        vec![Bound::NonNegative],
+    )
+    .unwrap();
+    for method in [Method::Lemke, Method::BlockPivoting] {
+        let e = p.solve(method, &Options::default()).unwrap_err();
+        assert!(matches!(e, LcpError::Unsupported { .. }), "{method}");
+        assert!(message(e).contains("use the restricted-entry simplex"));
+    }
+    // ... while the restricted-entry simplex solves it: z = 1, u = 1.
+    let s = p
+        .solve(Method::RestrictedSimplex, &Options::default())
+        .unwrap();
+    assert!((s.z[0] - 1.0).abs() < 1e-15 && (s.u[0] - 1.0).abs() < 1e-15);
+    // Block pivoting needs a symmetric matrix.
+    let lcp = Lcp::new(mat![[2.0, 1.0], [0.0, 2.0]], col![-1.0, -1.0]).unwrap();
+    let e = lcp
+        .solve(Method::BlockPivoting, &Options::default())
+        .unwrap_err();
+    assert!(message(e).contains("M is not symmetric"));
+}
+
+#[test]
+fn ray_termination_on_an_unsolvable_lcp() {
+    // w = -z - 1 >= 0 has no solution with z >= 0.
+    let lcp = Lcp::new(mat![[-1.0]], col![-1.0]).unwrap();
+    let e = lcp.solve(Method::Lemke, &Options::default()).unwrap_err();
+    assert_eq!(
+        message(e),
+        "ray termination at pivot 1 (size 1): the entering variable `z[0]` is unbounded; \
+         the problem has no solution if its matrix is copositive-plus (e.g. positive semidefinite)"
+    );
+}
+
+#[test]
+fn restricted_simplex_reports_infeasibility() {
+    let lcp = Lcp::new(mat![[-1.0]], col![-1.0]).unwrap();
+    let e = lcp
+        .solve(Method::RestrictedSimplex, &Options::default())
+        .unwrap_err();
+    assert!(matches!(e, LcpError::Infeasible { size: 1, .. }));
+    assert!(
+        message(e).starts_with("no feasible complementary solution found (size 1, after 0 pivots)")
+    );
+}
+
+#[test]
+fn unbounded_objective() {
+    // minimize -x subject to x - s = 1, x, s >= 0.
+    let mut p = ProgramBuilder::new(1);
+    let x = p
+        .dense_column("x", col![1.0].as_ref(), Bound::NonNegative)
+        .unwrap();
+    p.unit_columns("s", 0..1, -1.0, Bound::NonNegative).unwrap();
+    p.cost(x, -1.0).unwrap();
+    p.rhs(col![1.0].as_ref()).unwrap();
+    let e = p.build().unwrap().solve(&Options::default()).unwrap_err();
+    assert!(matches!(e, LcpError::Unbounded { .. }));
+    assert!(message(e).starts_with("the objective is unbounded below along `s[0]`"));
+}
+
+#[test]
+fn pivot_limit() {
+    let n = 6;
+    let m = Mat::from_fn(n, n, |i, j| if i == j { 4.0 } else { 1.0 });
+    let lcp = Lcp::new(m, Col::from_fn(n, |_| -1.0)).unwrap();
+    let opts = Options {
+        max_pivots: Some(2),
+        ..Options::default()
+    };
+    for method in Method::TABLEAU {
+        let e = lcp.solve(method, &opts).unwrap_err();
+        assert_eq!(
+            message(e),
+            "pivot limit 2 reached (size 6); raise `max_pivots` or check the problem",
+            "{method}"
+        );
+    }
+}
+
+#[test]
+fn singular_basis_is_detected() {
+    // M = [[t, t], [t, t + 1]] with t = 2^52: its LU has pivots t and 1, a
+    // ratio of 2^-52 (condition ~ 2^54), below m u; the solution z = (1/2, 1/2)
+    // needs both columns. With no equilibration and no pivot tolerance the
+    // engine reaches that basis and must report it, not return it.
+    let t = 2f64.powi(52);
+    let m = mat![[t, t], [t, t + 1.0]];
+    let lcp = Lcp::new(m, col![-t, -t - 0.5]).unwrap();
+    let opts = Options {
+        equilibrate: false,
+        tolerances: Tolerances {
+            pivot: 0.0,
+            ..Tolerances::default()
+        },
+        ..Options::default()
+    };
+    let e = lcp.solve(Method::Lemke, &opts);
+    match e {
+        Err(e @ LcpError::SingularBasis { .. }) => {
+            assert!(message(e).contains("is numerically singular (size 2"));
+        }
+        Ok(sol) => panic!("a singular basis was accepted: z = {:?}", sol.z),
+        Err(other) => panic!("wrong error: {other}"),
+    }
+}
+
+#[test]
+fn inaccurate_solutions_are_not_returned() {
+    // A zero tolerance cannot be met by any rounded solution.
+    let n = 12;
+    let m = Mat::from_fn(n, n, |i, j| {
+        1.0 / (1.0 + i as f64 + j as f64) + if i == j { 1.0 } else { 0.0 }
+    });
+    let lcp = Lcp::new(m, Col::from_fn(n, |i| -(1.0 + (i as f64).sin()))).unwrap();
+    let opts = Options {
+        tolerances: Tolerances {
+            certificate: 0.0,
+            ..Tolerances::default()
+        },
+        ..Options::default()
+    };
+    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
+    let text = message(e);
+    assert!(
+        text.starts_with("the solution's certificate does not hold after"),
+        "{text}"
+    );
+    assert!(text.contains("> tolerance 0.0e0"), "{text}");
+}
