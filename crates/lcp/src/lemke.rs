@@ -36,8 +36,9 @@ use crate::system::{Column, System};
 use crate::tableau::{Position, RowRule, Tableau};
 use crate::{LcpError, Method};
 
-/// Ruiz iterations of the equilibration.
-pub(crate) const EQUILIBRATION_PASSES: usize = 8;
+/// Most Ruiz passes of the equilibration (it stops earlier once every row
+/// and column maximum is within a factor 2 of 1).
+pub(crate) const EQUILIBRATION_PASSES: usize = 40;
 
 /// Size of the standard LCP Lemke's method pivots on for a mixed problem.
 pub(crate) fn split_size(p: &MixedLcpRef<'_>) -> usize {

@@ -96,41 +96,99 @@ impl System {
         y
     }
 
-    /// Equilibrates in place (Ruiz on max-norms, rounded to powers of two).
+    /// Equilibrates in place: geometric-mean scaling, then Ruiz on max-norms,
+    /// rounded to powers of two.
     ///
-    /// Unit columns with `|coef| = 1` keep `|coef'| = 1` exactly, so slack and
-    /// artificial columns stay identity columns.
+    /// Only the dense columns take part: a unit column `coef * e_row` can be
+    /// given any scale, so it is scaled afterwards to keep `|coef'| = 1`
+    /// exactly (slack and artificial columns stay identity columns).
+    ///
+    /// Max-norm scaling alone is not enough: `[-S e; e^T 0]` with S in m/N
+    /// (entries ~1e-11) already has every row and column maximum equal to 1
+    /// (the ones), so Ruiz leaves S eleven orders of magnitude below the
+    /// pivot tolerance. Geometric scaling (`r_i = 1 / sqrt(max_j |a_ij| min_j
+    /// |a_ij|)` over the non-zeros, then the same for columns; Fulkerson &
+    /// Wolfe 1962, as in LP codes) brings the spread of every row and column
+    /// to its geometric middle; Ruiz passes then bring every maximum to
+    /// within a factor 2 of 1. `iterations` bounds the passes of each.
     pub fn equilibrate(&mut self, iterations: usize) {
         let m = self.rows;
         let nv = self.vars();
         let mut r = vec![1.0f64; m];
         let mut c = vec![1.0f64; nv];
+        // Geometric passes: stop when no row or column spread (max/min) shrinks by 10%.
+        let mut last_spread = f64::INFINITY;
         for _ in 0..iterations {
-            // r_i <- r_i / sqrt(max_j |a_ij r_i c_j|)
             let mut rmax = vec![0.0f64; m];
+            let mut rmin = vec![f64::INFINITY; m];
             for (var, col) in self.columns.iter().enumerate() {
-                match *col {
-                    Column::Dense(j) => {
-                        for i in 0..m {
-                            rmax[i] = rmax[i].max((self.dense[(i, j)] * r[i] * c[var]).abs());
+                if let Column::Dense(j) = *col {
+                    for i in 0..m {
+                        let a = (self.dense[(i, j)] * r[i] * c[var]).abs();
+                        if a > 0.0 {
+                            rmax[i] = rmax[i].max(a);
+                            rmin[i] = rmin[i].min(a);
                         }
-                    }
-                    Column::Unit { row, coef } => {
-                        rmax[row] = rmax[row].max((coef * r[row] * c[var]).abs());
                     }
                 }
             }
             for i in 0..m {
                 if rmax[i] > 0.0 {
+                    r[i] /= (rmax[i] * rmin[i]).sqrt();
+                }
+            }
+            let mut spread = 1.0f64;
+            for (var, col) in self.columns.iter().enumerate() {
+                if let Column::Dense(j) = *col {
+                    let (mut hi, mut lo) = (0.0f64, f64::INFINITY);
+                    for i in 0..m {
+                        let a = (self.dense[(i, j)] * r[i] * c[var]).abs();
+                        if a > 0.0 {
+                            hi = hi.max(a);
+                            lo = lo.min(a);
+                        }
+                    }
+                    if hi > 0.0 {
+                        c[var] /= (hi * lo).sqrt();
+                        spread = spread.max(hi / lo);
+                    }
+                }
+            }
+            if spread > 0.9 * last_spread {
+                break;
+            }
+            last_spread = spread;
+        }
+        // Ruiz passes on max-norms.
+        for _ in 0..iterations {
+            // r_i <- r_i / sqrt(max_j |a_ij r_i c_j|) over the dense columns
+            let mut rmax = vec![0.0f64; m];
+            for (var, col) in self.columns.iter().enumerate() {
+                if let Column::Dense(j) = *col {
+                    for i in 0..m {
+                        rmax[i] = rmax[i].max((self.dense[(i, j)] * r[i] * c[var]).abs());
+                    }
+                }
+            }
+            let mut balanced = true;
+            for i in 0..m {
+                if rmax[i] > 0.0 {
+                    balanced &= (0.5..=2.0).contains(&rmax[i]);
                     r[i] /= rmax[i].sqrt();
                 }
             }
             // c_j <- c_j / sqrt(max_i |a_ij r_i c_j|)
             for (var, col) in self.columns.iter().enumerate() {
-                let cmax = self.column_max(*col, &r) * c[var];
-                if cmax > 0.0 {
-                    c[var] /= cmax.sqrt();
+                if let Column::Dense(_) = col {
+                    let cmax = self.column_max(*col, &r) * c[var];
+                    if cmax > 0.0 {
+                        balanced &= (0.5..=2.0).contains(&cmax);
+                        c[var] /= cmax.sqrt();
+                    }
                 }
+            }
+            if balanced {
+                break;
             }
         }
         // Round to powers of two. Unit columns get exactly 1 / (r |coef|), so a
