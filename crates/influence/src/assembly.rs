@@ -1,0 +1,435 @@
+//! Assembly of the influence matrix of the bodies in contact,
+//!
+//! ```text
+//!     S = A(1) + A(2) (+ ...),    S_kj = sum_b a_kj^(b)
+//! ```
+//!
+//! into a dense faer matrix (column-major, N x N, length per force).
+//!
+//! Half-space bodies that share a kernel K (same model, same datum d0) are
+//! summed before any kernel is evaluated: `c1 K + c2 K = (c1 + c2) K`, with
+//! `c1 + c2 = 1/E*` the combined compliance. On a lattice the kernels depend
+//! only on the lattice offset `(|i_k - i_j|, |j_k - j_j|)` (translation
+//! invariance, and the cell's symmetry), so they are evaluated once per
+//! offset into a table that the matrix gathers from; without a lattice every
+//! entry of the lower triangle is evaluated and mirrored.
+
+use std::f64::consts::PI;
+
+use faer::Mat;
+
+use crate::error::InfluenceError;
+use crate::kernels::{boussinesq, love_rectangle, plane_strain_strip};
+use crate::models::{Body, Model};
+use crate::points::{Cell, Dimension, PointSet};
+
+/// A table may hold at most this many entries per point before the direct
+/// path is cheaper (a sparse set on a fine lattice).
+const TABLE_ENTRIES_PER_POINT: usize = 4;
+
+/// Tile size of the mirroring copy (64 x 64 doubles = 32 kB).
+const MIRROR_TILE: usize = 64;
+
+/// The influence matrix `A` of one body on `points`, or `None` for a rigid
+/// body (it contributes nothing). `A_kj` = deflection at k due to a unit force
+/// at j (length/force; per unit width on a line).
+///
+/// # Errors
+/// As [`assemble`], except that a rigid body is not an error here.
+pub fn influence(points: &PointSet, body: &Body) -> Result<Option<Mat<f64>>, InfluenceError> {
+    if body.is_rigid() {
+        return Ok(None);
+    }
+    assemble(points, &[body]).map(Some)
+}
+
+/// The influence matrix `S = sum_b A(b)` of the bodies in contact on
+/// `points`: `S_kj` = the total deflection at point k of all the bodies due to
+/// a unit force at point j (length/force; per unit width on a line). For the
+/// models of this crate S is symmetric positive definite.
+///
+/// A rigid body adds nothing. Half-space bodies sharing a kernel are
+/// assembled once with their summed compliance.
+///
+/// # Errors
+/// - [`InfluenceError::DimensionMismatch`]: a surface model (point force,
+///   uniform patch) on a line set, or the plane-strain model on a surface set;
+/// - [`InfluenceError::InvalidModel`]: a Winkler modulus that is not finite
+///   and positive, or a plane-strain reference distance that is not finite
+///   or is below the extent of the point set (`PointSet::extent().0`);
+/// - [`InfluenceError::AllRigid`]: no elastic body among `bodies` (also for
+///   an empty slice).
+pub fn assemble(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, InfluenceError> {
+    let terms = Terms::collect(points, bodies)?;
+    let mut s = match table_layout(points) {
+        Some(layout) => fill_from_table(points, &terms, &layout),
+        None => fill_direct(points, &terms),
+    };
+    if terms.winkler_compliance > 0.0 {
+        let diagonal = terms.winkler_compliance / points.cell().measure(points.dimension());
+        for k in 0..points.len() {
+            s[(k, k)] += diagonal;
+        }
+    }
+    Ok(s)
+}
+
+/// The same S as [`assemble`], always evaluating every entry of the lower
+/// triangle directly from the coordinates (no lattice table): the reference
+/// the table path is tested against, and a fallback for callers who want it.
+///
+/// # Errors
+/// As [`assemble`].
+pub fn assemble_direct(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, InfluenceError> {
+    let terms = Terms::collect(points, bodies)?;
+    let mut s = fill_direct(points, &terms);
+    if terms.winkler_compliance > 0.0 {
+        let diagonal = terms.winkler_compliance / points.cell().measure(points.dimension());
+        for k in 0..points.len() {
+            s[(k, k)] += diagonal;
+        }
+    }
+    Ok(s)
+}
+
+/// A translation-invariant kernel shared by half-space bodies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Kernel {
+    PointForce,
+    UniformPatch,
+    Strip { reference_distance: f64 },
+}
+
+/// The bodies reduced to distinct kernels with summed compliances, plus the
+/// summed Winkler compliance `sum 1/k`.
+#[derive(Debug)]
+struct Terms {
+    kernels: Vec<(Kernel, f64)>,
+    winkler_compliance: f64,
+    cell: Cell,
+    /// love_rectangle(0, 0, dx, dy): the point-force self-term's kernel.
+    centre: f64,
+}
+
+impl Terms {
+    /// Validates every body against the point set and groups the kernels.
+    fn collect(points: &PointSet, bodies: &[&Body]) -> Result<Self, InfluenceError> {
+        let dimension = points.dimension();
+        let cell = points.cell();
+        let mut kernels: Vec<(Kernel, f64)> = Vec::new();
+        let mut winkler_compliance = 0.0;
+        let mut elastic = 0;
+        for body in bodies {
+            let model = body.model();
+            let mismatch = |hint| InfluenceError::DimensionMismatch {
+                model: model.name(),
+                dimension,
+                hint,
+            };
+            let (kernel, compliance) = match *model {
+                Model::Rigid => continue,
+                Model::PointForce { material } | Model::UniformPatch { material } => {
+                    if dimension != Dimension::Surface {
+                        return Err(mismatch(
+                            "use Body::plane_strain on a line, or a surface point set \
+                             (PointSet::grid_disk, grid_rectangle)",
+                        ));
+                    }
+                    let kernel = if matches!(model, Model::PointForce { .. }) {
+                        Kernel::PointForce
+                    } else {
+                        Kernel::UniformPatch
+                    };
+                    (kernel, material.compliance())
+                }
+                Model::PlaneStrainStrip {
+                    material,
+                    reference_distance,
+                } => {
+                    if dimension != Dimension::Line {
+                        return Err(mismatch(
+                            "use Body::uniform_patch or Body::point_force on a surface, \
+                             or a line point set (PointSet::line)",
+                        ));
+                    }
+                    check_reference_distance(model.name(), reference_distance, points)?;
+                    (Kernel::Strip { reference_distance }, material.compliance())
+                }
+                Model::Winkler { modulus } => {
+                    let bad = |reason: &str| InfluenceError::InvalidModel {
+                        model: model.name(),
+                        field: "modulus",
+                        value: modulus,
+                        reason: reason.into(),
+                    };
+                    if !modulus.is_finite() {
+                        return Err(bad("must be finite"));
+                    }
+                    if modulus <= 0.0 {
+                        return Err(bad("must be positive"));
+                    }
+                    winkler_compliance += 1.0 / modulus;
+                    elastic += 1;
+                    continue;
+                }
+            };
+            elastic += 1;
+            match kernels.iter_mut().find(|(k, _)| *k == kernel) {
+                Some((_, c)) => *c += compliance,
+                None => kernels.push((kernel, compliance)),
+            }
+        }
+        if elastic == 0 {
+            return Err(InfluenceError::AllRigid {
+                bodies: bodies.len(),
+            });
+        }
+        Ok(Self {
+            kernels,
+            winkler_compliance,
+            cell,
+            centre: love_rectangle(0.0, 0.0, cell.dx, cell.dy),
+        })
+    }
+
+    /// The half-space part of S for an offset (x, y) = field point minus
+    /// loaded point; `same_point` selects the self-terms.
+    fn coefficient(&self, x: f64, y: f64, same_point: bool) -> f64 {
+        let Cell { dx, dy } = self.cell;
+        self.kernels
+            .iter()
+            .map(|&(kernel, compliance)| {
+                let k = match kernel {
+                    Kernel::PointForce if same_point => self.centre / PI,
+                    Kernel::PointForce => boussinesq(x, y) / PI,
+                    Kernel::UniformPatch => love_rectangle(x, y, dx, dy) / PI,
+                    Kernel::Strip { reference_distance } => {
+                        2.0 / PI * plane_strain_strip(x, dx, reference_distance)
+                    }
+                };
+                compliance * k
+            })
+            .sum()
+    }
+}
+
+/// d0 must be finite, positive and at least the extent of the set.
+fn check_reference_distance(
+    model: &'static str,
+    d0: f64,
+    points: &PointSet,
+) -> Result<(), InfluenceError> {
+    let bad = |reason: String| InfluenceError::InvalidModel {
+        model,
+        field: "reference_distance",
+        value: d0,
+        reason,
+    };
+    if !d0.is_finite() {
+        return Err(bad("must be finite".into()));
+    }
+    let extent = points.extent().0;
+    if !(d0 >= extent) {
+        return Err(bad(format!(
+            "must be at least the extent of the point set ({extent}): the 2D displacement is \
+             measured from a datum outside the loaded zone, and the logarithmic kernel is \
+             positive definite only when d0 exceeds a quarter of the extent"
+        )));
+    }
+    Ok(())
+}
+
+/// Where a lattice table applies: the points' lattice indices shifted to
+/// start at 0, and the table's extent.
+struct TableLayout {
+    i: Vec<usize>,
+    j: Vec<usize>,
+    ni: usize,
+    nj: usize,
+}
+
+/// The table layout if the set has a lattice and the table (one entry per
+/// offset in the bounding box) is not much larger than the set.
+fn table_layout(points: &PointSet) -> Option<TableLayout> {
+    let lattice = points.lattice()?;
+    let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
+    for &(i, j) in lattice {
+        i_min = i_min.min(i);
+        i_max = i_max.max(i);
+        j_min = j_min.min(j);
+        j_max = j_max.max(j);
+    }
+    let ni = u128::try_from(i128::from(i_max) - i128::from(i_min) + 1).ok()?;
+    let nj = u128::try_from(i128::from(j_max) - i128::from(j_min) + 1).ok()?;
+    let limit = (TABLE_ENTRIES_PER_POINT * points.len() + 64) as u128;
+    if ni.checked_mul(nj)? > limit {
+        return None;
+    }
+    Some(TableLayout {
+        i: lattice.iter().map(|&(i, _)| (i - i_min) as usize).collect(),
+        j: lattice.iter().map(|&(_, j)| (j - j_min) as usize).collect(),
+        ni: ni as usize,
+        nj: nj as usize,
+    })
+}
+
+/// S from one kernel evaluation per lattice offset `(di, dj) >= 0`, gathered
+/// column by column.
+fn fill_from_table(points: &PointSet, terms: &Terms, layout: &TableLayout) -> Mat<f64> {
+    let n = points.len();
+    let Cell { dx, dy } = points.cell();
+    let nj = layout.nj;
+    let table: Vec<f64> = (0..layout.ni * nj)
+        .map(|t| {
+            let (di, dj) = (t / nj, t % nj);
+            terms.coefficient(di as f64 * dx, dj as f64 * dy, t == 0)
+        })
+        .collect();
+    let mut s = Mat::<f64>::zeros(n, n);
+    for c in 0..n {
+        let (ic, jc) = (layout.i[c], layout.j[c]);
+        let column = s.col_as_slice_mut(c);
+        for ((entry, &ir), &jr) in column.iter_mut().zip(&layout.i).zip(&layout.j) {
+            *entry = table[ir.abs_diff(ic) * nj + jr.abs_diff(jc)];
+        }
+    }
+    s
+}
+
+/// S from a kernel evaluation per entry of the lower triangle, mirrored.
+fn fill_direct(points: &PointSet, terms: &Terms) -> Mat<f64> {
+    let n = points.len();
+    let (xs, ys) = (points.xs(), points.ys());
+    let mut s = Mat::<f64>::zeros(n, n);
+    for c in 0..n {
+        let (xc, yc) = (xs[c], ys[c]);
+        let column = s.col_as_slice_mut(c);
+        for r in c..n {
+            column[r] = terms.coefficient(xs[r] - xc, ys[r] - yc, r == c);
+        }
+    }
+    // Upper triangle from the lower, tile by tile to stay in cache.
+    for c0 in (0..n).step_by(MIRROR_TILE) {
+        for r0 in (0..=c0).step_by(MIRROR_TILE) {
+            for c in c0..(c0 + MIRROR_TILE).min(n) {
+                for r in r0..(r0 + MIRROR_TILE).min(c) {
+                    s[(r, c)] = s[(c, r)];
+                }
+            }
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Material;
+
+    fn steel() -> Material {
+        Material::new(30e6, 0.3).unwrap()
+    }
+
+    #[test]
+    fn self_term_of_love_and_point_force_is_the_square_closed_form() {
+        let h = 0.01;
+        let p = PointSet::grid_disk(h, 0.05).unwrap();
+        let centre = p
+            .lattice()
+            .unwrap()
+            .iter()
+            .position(|&l| l == (0, 0))
+            .unwrap();
+        let expected = steel().compliance() * 4.0 * (1.0 + 2f64.sqrt()).ln() / (PI * h);
+        for body in [Body::uniform_patch(steel()), Body::point_force(steel())] {
+            let a = influence(&p, &body).unwrap().unwrap();
+            for k in [0, centre] {
+                assert!((a[(k, k)] / expected - 1.0).abs() < 1e-14, "{body:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn point_force_off_diagonal_is_compliance_over_pi_d() {
+        let p = PointSet::grid_rectangle(1.0, 1.0, 4, 4).unwrap();
+        let a = influence(&p, &Body::point_force(steel())).unwrap().unwrap();
+        for (k, j) in [(0, 1), (0, 15), (5, 10), (3, 12)] {
+            let d = (p.x(k) - p.x(j)).hypot(p.y(k) - p.y(j));
+            let expected = steel().compliance() / (PI * d);
+            assert!((a[(k, j)] / expected - 1.0).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn winkler_is_diagonal_over_modulus_and_measure() {
+        let p = PointSet::grid_rectangle(1.0, 2.0, 4, 2).unwrap(); // cells 0.5 x 2
+        let a = influence(&p, &Body::winkler(8.0)).unwrap().unwrap();
+        for k in 0..p.len() {
+            for j in 0..p.len() {
+                let expected = if k == j { 1.0 / (8.0 * 1.0) } else { 0.0 };
+                assert_eq!(a[(k, j)], expected);
+            }
+        }
+        // On a line the measure is the cell length: 1 / (k dx).
+        let line = PointSet::line(0.0, 2.0, 8).unwrap();
+        let a = influence(&line, &Body::winkler(8.0)).unwrap().unwrap();
+        assert_eq!(a[(3, 3)], 1.0 / (8.0 * 0.25));
+        assert_eq!(a[(3, 4)], 0.0);
+    }
+
+    #[test]
+    fn shared_kernels_are_grouped_and_rigid_bodies_dropped() {
+        let aluminium = Material::new(10e6, 0.33).unwrap();
+        let p = PointSet::grid_disk(0.1, 0.3).unwrap();
+        let (b1, b2, rigid) = (
+            Body::uniform_patch(steel()),
+            Body::uniform_patch(aluminium),
+            Body::rigid(),
+        );
+        let terms = Terms::collect(&p, &[&b1, &rigid, &b2]).unwrap();
+        assert_eq!(terms.kernels.len(), 1);
+        assert_eq!(
+            terms.kernels[0].1,
+            steel().compliance() + aluminium.compliance()
+        );
+        let strip_a = Body::plane_strain(steel(), 10.0);
+        let strip_b = Body::plane_strain(steel(), 20.0);
+        let line = PointSet::line(-1.0, 1.0, 5).unwrap();
+        let terms = Terms::collect(&line, &[&strip_a, &strip_a, &strip_b]).unwrap();
+        assert_eq!(
+            terms.kernels.len(),
+            2,
+            "different datums are different kernels"
+        );
+        assert!(influence(&p, &rigid).unwrap().is_none());
+    }
+
+    #[test]
+    fn no_body_is_all_rigid() {
+        let p = PointSet::line(0.0, 1.0, 3).unwrap();
+        assert_eq!(
+            assemble(&p, &[]).unwrap_err(),
+            InfluenceError::AllRigid { bodies: 0 }
+        );
+    }
+
+    #[test]
+    fn sparse_lattice_falls_back_to_direct() {
+        // Two points 1000 cells apart: a 1001-entry table for 2 points.
+        let p = PointSet::from_points(
+            Dimension::Surface,
+            vec![0.0, 1000.0],
+            vec![0.0, 0.0],
+            Cell::square(1.0),
+        )
+        .unwrap();
+        assert!(p.lattice().is_some());
+        assert!(table_layout(&p).is_none());
+        let s = assemble(&p, &[&Body::uniform_patch(steel())]).unwrap();
+        let expected = steel().compliance() / PI * love_rectangle(1000.0, 0.0, 1.0, 1.0);
+        // Same kernel, same arguments (the direct path evaluates x_r - x_c):
+        // equal to the last bits of the kernel's evaluation.
+        assert!((s[(0, 1)] / expected - 1.0).abs() < 1e-15);
+        assert_eq!(s[(1, 0)], s[(0, 1)]);
+    }
+}

@@ -1,0 +1,203 @@
+//! The crate's one error type: every way a material, a point set or a body
+//! can be rejected, each message naming the field, the value and the reason.
+//!
+//! No equation here; the checks enforce the ranges under which the influence
+//! coefficients a_kj of the other modules are defined (E > 0, -1 < nu < 0.5,
+//! finite positive sizes, d0 at least the extent of the zone).
+
+use crate::points::Dimension;
+
+/// Everything that can stop the construction of a material, a point set or
+/// an influence matrix.
+///
+/// Every variant names what the caller has to change; the messages state the
+/// field, the value given and the admissible range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum InfluenceError {
+    /// A material constant is out of its physical range.
+    #[error("invalid material: {field} = {value}: {reason}")]
+    InvalidMaterial {
+        /// The constant: `youngs_modulus` or `poissons_ratio`.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// Why it is rejected (the admissible range).
+        reason: &'static str,
+    },
+    /// A parameter of a point-set constructor is out of range (a size, a
+    /// count, a coordinate, a cell).
+    #[error("invalid point set: {field} = {value}: {reason}")]
+    InvalidPoints {
+        /// The parameter, e.g. `spacing`, `n`, `xs[3]`.
+        field: String,
+        /// The value given, printed.
+        value: String,
+        /// Why it is rejected.
+        reason: String,
+    },
+    /// The parameters describe a point set with no point in it.
+    #[error("empty point set: {reason}")]
+    EmptyPointSet {
+        /// Which input is empty and what to give instead.
+        reason: String,
+    },
+    /// A model was used on a point set of the wrong dimension.
+    #[error("the {model} model does not apply to a {dimension} point set: {hint}")]
+    DimensionMismatch {
+        /// The model's name.
+        model: &'static str,
+        /// The dimension of the point set it was applied to.
+        dimension: Dimension,
+        /// Which model or point set to use instead.
+        hint: &'static str,
+    },
+    /// A parameter of an influence model is out of range (Winkler modulus,
+    /// plane-strain reference distance).
+    #[error("invalid {model} parameter: {field} = {value}: {reason}")]
+    InvalidModel {
+        /// The model's name.
+        model: &'static str,
+        /// The parameter.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// Why it is rejected (the admissible range).
+        reason: String,
+    },
+    /// Every body given to [`assemble`](crate::assemble) is rigid (or none
+    /// was given): there is no elasticity, the influence matrix would be zero.
+    #[error(
+        "no elastic body among the {bodies} bodies given (a rigid body contributes nothing): \
+         the influence matrix S would be zero; give at least one body an elastic model"
+    )]
+    AllRigid {
+        /// The number of bodies given.
+        bodies: usize,
+    },
+}
+
+impl InfluenceError {
+    /// An [`InfluenceError::InvalidPoints`] from displayable parts.
+    pub(crate) fn points(
+        field: impl Into<String>,
+        value: impl std::fmt::Display,
+        reason: impl Into<String>,
+    ) -> Self {
+        Self::InvalidPoints {
+            field: field.into(),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Body, Cell, Material, PointSet, assemble};
+
+    #[test]
+    fn invalid_material_names_field_and_range() {
+        let e = Material::new(30e6, 0.5).unwrap_err();
+        assert!(matches!(
+            e,
+            InfluenceError::InvalidMaterial {
+                field: "poissons_ratio",
+                ..
+            }
+        ));
+        assert_eq!(
+            e.to_string(),
+            "invalid material: poissons_ratio = 0.5: must be in (-1, 0.5)"
+        );
+        let e = Material::new(-1.0, 0.3).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid material: youngs_modulus = -1: must be positive"
+        );
+    }
+
+    #[test]
+    fn invalid_points_names_parameter() {
+        let e = PointSet::grid_disk(0.0, 1.0).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid point set: spacing = 0: must be positive"
+        );
+        let e = PointSet::line(0.0, 1.0, 0).unwrap_err();
+        assert!(
+            e.to_string().starts_with("invalid point set: n = 0:"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn empty_point_set_says_which_input() {
+        let e = PointSet::from_points(
+            crate::Dimension::Surface,
+            vec![],
+            vec![],
+            Cell { dx: 1.0, dy: 1.0 },
+        )
+        .unwrap_err();
+        assert!(matches!(e, InfluenceError::EmptyPointSet { .. }));
+        assert!(
+            e.to_string().starts_with("empty point set: xs and ys"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn dimension_mismatch_names_model_and_dimension() {
+        let steel = Material::new(30e6, 0.3).unwrap();
+        let line = PointSet::line(-1.0, 1.0, 5).unwrap();
+        let e = assemble(&line, &[&Body::uniform_patch(steel)]).unwrap_err();
+        assert!(
+            e.to_string().starts_with(
+                "the uniform-patch (Love) model does not apply to a line (2D) point set"
+            ),
+            "{e}"
+        );
+        let disk = PointSet::grid_disk(0.1, 0.3).unwrap();
+        let e = assemble(&disk, &[&Body::plane_strain(steel, 10.0)]).unwrap_err();
+        assert!(
+            e.to_string().starts_with(
+                "the plane-strain strip model does not apply to a surface (3D) point set"
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn invalid_model_names_parameter() {
+        let line = PointSet::line(-1.0, 1.0, 5).unwrap();
+        let e = assemble(&line, &[&Body::winkler(f64::NAN)]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid Winkler foundation parameter: modulus = NaN: must be finite"
+        );
+        let steel = Material::new(30e6, 0.3).unwrap();
+        let e = assemble(&line, &[&Body::plane_strain(steel, 1.5)]).unwrap_err();
+        assert!(
+            e.to_string().starts_with(
+                "invalid plane-strain strip parameter: reference_distance = 1.5: \
+                 must be at least the extent of the point set (2)"
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn all_rigid_counts_bodies() {
+        let line = PointSet::line(-1.0, 1.0, 5).unwrap();
+        let rigid = Body::rigid();
+        let e = assemble(&line, &[&rigid, &rigid]).unwrap_err();
+        assert_eq!(e, InfluenceError::AllRigid { bodies: 2 });
+        assert!(
+            e.to_string()
+                .starts_with("no elastic body among the 2 bodies given"),
+            "{e}"
+        );
+    }
+}

@@ -1,0 +1,172 @@
+//! Influence models and bodies: how one body deflects under unit forces at
+//! the candidate points, `a_kj` = deflection at k due to a unit force at j.
+//!
+//! | model | a_kj | dimension |
+//! |---|---|---|
+//! | [`Model::PointForce`] (Boussinesq, the paper's) | `(1 - nu^2) / (pi E d_kj)`; self-term: centre deflection of the own cell under a uniform pressure of unit resultant, `(1 - nu^2)/(pi E) * love_rectangle(0, 0, dx, dy)` | surface |
+//! | [`Model::UniformPatch`] (Love 1929) | `(1 - nu^2)/(pi E) * love_rectangle(x_k - x_j, y_k - y_j, dx, dy)` | surface |
+//! | [`Model::PlaneStrainStrip`] | `2 (1 - nu^2)/(pi E) * plane_strain_strip(x_k - x_j, dx, d0)` | line |
+//! | [`Model::Winkler`] | `delta_kj / (k A_k)` | both |
+//! | [`Model::Rigid`] | 0 | both |
+//!
+//! (kernels in [`crate::kernels`]). Units: with E in force/length^2 and
+//! lengths in length, every a_kj is in length/force (Surface) or
+//! length/(force per unit width) (Line); the Winkler modulus k is in
+//! force/length^3 (Surface: pressure per deflection) or force/length^2
+//! (Line: force per unit length per deflection, e.g. k_foundation * width).
+
+use crate::material::Material;
+
+/// How a body deflects: the influence model, with its material and
+/// parameters. New models (an Euler-Bernoulli beam) may be added, hence
+/// `#[non_exhaustive]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Model {
+    /// A rigid body: contributes nothing to S.
+    Rigid,
+    /// Boussinesq point forces on an elastic half-space, `a_kj = (1 - nu^2) /
+    /// (pi E d_kj)`, with the uniform-patch centre value as self-term
+    /// (Surface only).
+    PointForce {
+        /// The half-space's material.
+        material: Material,
+    },
+    /// Uniform pressure over each point's rectangular cell on an elastic
+    /// half-space, deflection taken at the cell centres (Love 1929; Surface
+    /// only).
+    UniformPatch {
+        /// The half-space's material.
+        material: Material,
+    },
+    /// Plane-strain (2D) half-space loaded by uniform pressure on each
+    /// point's strip, displacements relative to a datum at distance
+    /// `reference_distance` (Line only).
+    PlaneStrainStrip {
+        /// The half-space's material.
+        material: Material,
+        /// The datum distance d0 (length) at which the 2D displacement is
+        /// taken as zero; must be at least the extent of the point set.
+        reference_distance: f64,
+    },
+    /// A Winkler foundation: each point deflects by its own pressure over
+    /// `modulus`, independently of the others (either dimension).
+    Winkler {
+        /// The foundation modulus k: pressure per unit deflection
+        /// (force/length^3) on a surface, force per unit length per unit
+        /// deflection (force/length^2) on a line.
+        modulus: f64,
+    },
+}
+
+impl Model {
+    /// A short name for messages ("uniform-patch (Love)", ...).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Rigid => "rigid",
+            Self::PointForce { .. } => "point-force (Boussinesq)",
+            Self::UniformPatch { .. } => "uniform-patch (Love)",
+            Self::PlaneStrainStrip { .. } => "plane-strain strip",
+            Self::Winkler { .. } => "Winkler foundation",
+        }
+    }
+
+    /// The elastic material, for the half-space models.
+    pub fn material(&self) -> Option<&Material> {
+        match self {
+            Self::PointForce { material }
+            | Self::UniformPatch { material }
+            | Self::PlaneStrainStrip { material, .. } => Some(material),
+            Self::Rigid | Self::Winkler { .. } => None,
+        }
+    }
+}
+
+/// One of the bodies in contact: its influence model (with material).
+///
+/// Two bodies add: `S = A(1) + A(2)` ([`assemble`](crate::assemble)). The
+/// constructors do not validate the model parameters against a point set;
+/// [`assemble`](crate::assemble) and [`influence`](crate::influence) do.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Body {
+    model: Model,
+}
+
+impl Body {
+    /// A body of the given model.
+    pub fn new(model: Model) -> Self {
+        Self { model }
+    }
+
+    /// A rigid body (no deflection).
+    pub fn rigid() -> Self {
+        Self::new(Model::Rigid)
+    }
+
+    /// An elastic half-space with Boussinesq point-force coefficients (the
+    /// paper's model; Surface only).
+    pub fn point_force(material: Material) -> Self {
+        Self::new(Model::PointForce { material })
+    }
+
+    /// An elastic half-space with uniform pressure on each rectangular cell
+    /// (Love; Surface only).
+    pub fn uniform_patch(material: Material) -> Self {
+        Self::new(Model::UniformPatch { material })
+    }
+
+    /// An elastic plane-strain half-space with uniform pressure on each strip,
+    /// displacements relative to a datum at `reference_distance` d0 (Line only).
+    pub fn plane_strain(material: Material, reference_distance: f64) -> Self {
+        Self::new(Model::PlaneStrainStrip {
+            material,
+            reference_distance,
+        })
+    }
+
+    /// A Winkler foundation of modulus k (see [`Model::Winkler`] for units).
+    pub fn winkler(modulus: f64) -> Self {
+        Self::new(Model::Winkler { modulus })
+    }
+
+    /// The body's model.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The elastic material, for the half-space models.
+    pub fn material(&self) -> Option<&Material> {
+        self.model.material()
+    }
+
+    /// Whether the body is rigid (contributes nothing to S).
+    pub fn is_rigid(&self) -> bool {
+        matches!(self.model, Model::Rigid)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constructors_hold_their_model() {
+        let m = Material::new(2.0, 0.25).unwrap();
+        assert!(Body::rigid().is_rigid());
+        assert!(!Body::winkler(1.0).is_rigid());
+        assert_eq!(Body::point_force(m).material(), Some(&m));
+        assert_eq!(
+            Body::uniform_patch(m).model().name(),
+            "uniform-patch (Love)"
+        );
+        assert_eq!(
+            *Body::plane_strain(m, 3.0).model(),
+            Model::PlaneStrainStrip {
+                material: m,
+                reference_distance: 3.0
+            }
+        );
+        assert_eq!(Body::winkler(5.0).material(), None);
+        assert_eq!(Body::rigid().material(), None);
+    }
+}

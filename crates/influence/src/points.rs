@@ -1,0 +1,753 @@
+//! Candidate contact points and the measure each one stands for.
+//!
+//! The possible contact zone is covered by N cells, one per candidate point
+//! k, centred on it. A continuous pressure p is replaced by the forces
+//!
+//! ```text
+//!     F_k = p_k A_k,      A_k = dx dy (Surface, area)   or   A_k = dx (Line, length per unit width)
+//! ```
+//!
+//! so that `sum_k F_k` is the total load (per unit width for a line). All the
+//! cells of one set have the same shape ([`Cell`]). The grid constructors
+//! also record the integer lattice indices of the points, which lets the
+//! assembly evaluate a translation-invariant kernel once per lattice offset.
+
+use std::collections::{HashMap, HashSet};
+use std::fmt;
+
+use crate::error::InfluenceError;
+
+/// The largest number of points a set may hold. The influence matrix is
+/// dense (N x N doubles): at this size it already takes 34 GB.
+pub const MAX_POINTS: usize = 1 << 16;
+
+/// Relative tolerance on the radius of [`PointSet::grid_disk`], so that a
+/// radius of exactly m spacings keeps the boundary points despite rounding.
+const DISK_RADIUS_TOLERANCE: f64 = 1e-9;
+
+/// The geometric dimension of a contact problem.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Dimension {
+    /// A 2D plane (plane-strain) problem: points on the x axis, each standing
+    /// for a length `dx`; forces are per unit width (force / length).
+    Line,
+    /// A 3D problem: points in the x-y plane, each standing for an area
+    /// `dx dy`; forces are forces.
+    Surface,
+}
+
+impl fmt::Display for Dimension {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Line => "line (2D)",
+            Self::Surface => "surface (3D)",
+        })
+    }
+}
+
+/// The rectangular cell every point of a set stands for, centred on the
+/// point: `dx` along x, `dy` along y (length units).
+///
+/// For a [`Dimension::Line`] set `dy` is the unit width and is stored as 1.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cell {
+    /// Cell size along x (length).
+    pub dx: f64,
+    /// Cell size along y (length); 1 (unit width) for a line set.
+    pub dy: f64,
+}
+
+impl Cell {
+    /// A square cell of side `h`.
+    pub fn square(h: f64) -> Self {
+        Self { dx: h, dy: h }
+    }
+
+    /// The measure A_k of the cell: the area `dx dy` (Surface) or the length
+    /// `dx` (Line, per unit width).
+    pub fn measure(&self, dimension: Dimension) -> f64 {
+        match dimension {
+            Dimension::Line => self.dx,
+            Dimension::Surface => self.dx * self.dy,
+        }
+    }
+}
+
+/// A set of candidate contact points, each the centre of a cell of the same
+/// shape; see the [module documentation](self).
+///
+/// Built only by the validated constructors, so a `PointSet` is never empty,
+/// holds finite distinct coordinates and at most [`MAX_POINTS`] points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointSet {
+    dimension: Dimension,
+    cell: Cell,
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+    /// Integer indices (i, j) with `x_k - x_l = (i_k - i_l) dx` and
+    /// `y_k - y_l = (j_k - j_l) dy` (to rounding), when the set lies on a
+    /// lattice of the cell's spacing.
+    lattice: Option<Vec<(i64, i64)>>,
+    /// Whether an adjacent cell (x +- dx, y +- dy) holds no point of the set.
+    boundary: Vec<bool>,
+}
+
+/// `value` if finite and positive, else an InvalidPoints error for `field`.
+fn positive(field: &str, value: f64) -> Result<f64, InfluenceError> {
+    if !value.is_finite() {
+        Err(InfluenceError::points(field, value, "must be finite"))
+    } else if value <= 0.0 {
+        Err(InfluenceError::points(field, value, "must be positive"))
+    } else {
+        Ok(value)
+    }
+}
+
+/// `n` if 1 <= n <= MAX_POINTS.
+fn count(field: &str, n: usize) -> Result<usize, InfluenceError> {
+    if n == 0 {
+        Err(InfluenceError::points(field, n, "must be at least 1"))
+    } else if n > MAX_POINTS {
+        Err(InfluenceError::points(
+            field,
+            n,
+            format!("more than MAX_POINTS = {MAX_POINTS} points (the influence matrix is dense)"),
+        ))
+    } else {
+        Ok(n)
+    }
+}
+
+impl PointSet {
+    /// `n` cells tiling the segment `[start, end]` of the x axis (a 2D, line
+    /// problem): cell length `h = (end - start) / n`, points at the cell
+    /// centres `(start + end)/2 + (i - (n - 1)/2) h`, i = 0..n. With
+    /// `start = -end` the set is symmetric about 0 and the origin is a point
+    /// exactly when `n` is odd.
+    ///
+    /// # Errors
+    /// [`InfluenceError::InvalidPoints`] when `start` or `end` is not finite,
+    /// `end <= start`, `n == 0` or `n > MAX_POINTS`.
+    pub fn line(start: f64, end: f64, n: usize) -> Result<Self, InfluenceError> {
+        for (field, v) in [("start", start), ("end", end)] {
+            if !v.is_finite() {
+                return Err(InfluenceError::points(field, v, "must be finite"));
+            }
+        }
+        if end <= start {
+            return Err(InfluenceError::points(
+                "end",
+                end,
+                format!("must exceed start = {start}"),
+            ));
+        }
+        let n = count("n", n)?;
+        let h = positive("(end - start) / n", (end - start) / n as f64)?;
+        let mid = 0.5 * (start + end);
+        let xs: Vec<f64> = (0..n)
+            .map(|i| mid + (2.0 * i as f64 + 1.0 - n as f64) * (0.5 * h))
+            .collect();
+        let lattice: Vec<(i64, i64)> = (0..n as i64).map(|i| (i, 0)).collect();
+        Ok(Self::with_lattice(
+            Dimension::Line,
+            Cell { dx: h, dy: 1.0 },
+            xs,
+            vec![0.0; n],
+            lattice,
+        ))
+    }
+
+    /// The square lattice `(i h, j h)`, i and j integers, origin on a point,
+    /// clipped to the disk `i^2 + j^2 <= (radius / h)^2` (a 3D, surface
+    /// problem), `h = spacing`; cells `h x h`. A relative tolerance of 1e-9
+    /// on the radius keeps the boundary points of `radius = m h` despite
+    /// rounding. Points are ordered by i, then j.
+    ///
+    /// # Errors
+    /// [`InfluenceError::InvalidPoints`] when `spacing` or `radius` is not
+    /// finite and positive, or the disk holds more than [`MAX_POINTS`].
+    pub fn grid_disk(spacing: f64, radius: f64) -> Result<Self, InfluenceError> {
+        let h = positive("spacing", spacing)?;
+        let radius = positive("radius", radius)?;
+        let m_f = radius / h * (1.0 + DISK_RADIUS_TOLERANCE);
+        // pi m^2 points: refuse before looping over a huge square.
+        if !(std::f64::consts::PI * m_f * m_f <= 2.0 * MAX_POINTS as f64) {
+            return Err(InfluenceError::points(
+                "radius / spacing",
+                radius / h,
+                format!("the disk would hold more than MAX_POINTS = {MAX_POINTS} points"),
+            ));
+        }
+        let r2 = m_f * m_f;
+        let m = m_f.floor() as i64;
+        let (mut xs, mut ys, mut lattice) = (Vec::new(), Vec::new(), Vec::new());
+        for i in -m..=m {
+            for j in -m..=m {
+                if ((i * i + j * j) as f64) <= r2 {
+                    xs.push(i as f64 * h);
+                    ys.push(j as f64 * h);
+                    lattice.push((i, j));
+                }
+            }
+        }
+        count("number of points in the disk", xs.len())?;
+        Ok(Self::with_lattice(
+            Dimension::Surface,
+            Cell::square(h),
+            xs,
+            ys,
+            lattice,
+        ))
+    }
+
+    /// The `nx x ny` cell-centred grid on the rectangle
+    /// `[-half_x, half_x] x [-half_y, half_y]` (a 3D, surface problem):
+    /// cells `dx = 2 half_x / nx` by `dy = 2 half_y / ny` (for a roller, long
+    /// in y). Points are ordered by x, then y.
+    ///
+    /// # Errors
+    /// [`InfluenceError::InvalidPoints`] when a half-size is not finite and
+    /// positive, a count is 0, or `nx ny > MAX_POINTS`.
+    pub fn grid_rectangle(
+        half_x: f64,
+        half_y: f64,
+        nx: usize,
+        ny: usize,
+    ) -> Result<Self, InfluenceError> {
+        let half_x = positive("half_x", half_x)?;
+        let half_y = positive("half_y", half_y)?;
+        let nx = count("nx", nx)?;
+        let ny = count("ny", ny)?;
+        let n = nx.saturating_mul(ny);
+        count("nx * ny", n)?;
+        let dx = positive("2 half_x / nx", 2.0 * half_x / nx as f64)?;
+        let dy = positive("2 half_y / ny", 2.0 * half_y / ny as f64)?;
+        let centre = |i: usize, n: usize, d: f64| (2.0 * i as f64 + 1.0 - n as f64) * (0.5 * d);
+        let (mut xs, mut ys, mut lattice) = (
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+        );
+        for i in 0..nx {
+            for j in 0..ny {
+                xs.push(centre(i, nx, dx));
+                ys.push(centre(j, ny, dy));
+                lattice.push((i as i64, j as i64));
+            }
+        }
+        Ok(Self::with_lattice(
+            Dimension::Surface,
+            Cell { dx, dy },
+            xs,
+            ys,
+            lattice,
+        ))
+    }
+
+    /// Points at arbitrary positions `(xs[k], ys[k])`, all standing for the
+    /// same `cell`. For a [`Dimension::Line`] set the points lie on the x
+    /// axis: `ys` is either empty or all zeros, and `cell.dy` is ignored
+    /// (stored as the unit width 1).
+    ///
+    /// If every point lies (to a relative 1e-12) on the lattice
+    /// `(xs[0] + i dx, ys[0] + j dy)`, the set records its lattice indices
+    /// and the assembly uses the same translation-invariance speed-up as for
+    /// the grid constructors.
+    ///
+    /// # Errors
+    /// [`InfluenceError::EmptyPointSet`] for no point;
+    /// [`InfluenceError::InvalidPoints`] for lengths that differ, a
+    /// non-finite coordinate, a non-zero y on a line, a cell size that is not
+    /// finite and positive, two equal points, or more than [`MAX_POINTS`].
+    pub fn from_points(
+        dimension: Dimension,
+        xs: Vec<f64>,
+        ys: Vec<f64>,
+        cell: Cell,
+    ) -> Result<Self, InfluenceError> {
+        let ys = if dimension == Dimension::Line && ys.is_empty() {
+            vec![0.0; xs.len()]
+        } else {
+            ys
+        };
+        if xs.len() != ys.len() {
+            return Err(InfluenceError::points(
+                "ys.len()",
+                ys.len(),
+                format!("must equal xs.len() = {}", xs.len()),
+            ));
+        }
+        if xs.is_empty() {
+            return Err(InfluenceError::EmptyPointSet {
+                reason: "xs and ys hold no point; give at least one candidate point".into(),
+            });
+        }
+        count("xs.len()", xs.len())?;
+        let dx = positive("cell.dx", cell.dx)?;
+        let dy = match dimension {
+            Dimension::Line => 1.0,
+            Dimension::Surface => positive("cell.dy", cell.dy)?,
+        };
+        for (k, (&x, &y)) in xs.iter().zip(&ys).enumerate() {
+            if !x.is_finite() {
+                return Err(InfluenceError::points(
+                    format!("xs[{k}]"),
+                    x,
+                    "must be finite",
+                ));
+            }
+            if !y.is_finite() {
+                return Err(InfluenceError::points(
+                    format!("ys[{k}]"),
+                    y,
+                    "must be finite",
+                ));
+            }
+            if dimension == Dimension::Line && y != 0.0 {
+                return Err(InfluenceError::points(
+                    format!("ys[{k}]"),
+                    y,
+                    "must be 0: the points of a line set lie on the x axis",
+                ));
+            }
+        }
+        let mut order: Vec<usize> = (0..xs.len()).collect();
+        order.sort_by(|&a, &b| xs[a].total_cmp(&xs[b]).then(ys[a].total_cmp(&ys[b])));
+        for w in order.windows(2) {
+            let (a, b) = (w[0].min(w[1]), w[0].max(w[1]));
+            if xs[a] == xs[b] && ys[a] == ys[b] {
+                return Err(InfluenceError::points(
+                    format!("(xs[{b}], ys[{b}])"),
+                    format!("({}, {})", xs[b], ys[b]),
+                    format!("repeats point {a}: the points must be distinct"),
+                ));
+            }
+        }
+        let cell = Cell { dx, dy };
+        match detect_lattice(&xs, &ys, cell) {
+            Some(lattice) => Ok(Self::with_lattice(dimension, cell, xs, ys, lattice)),
+            None => {
+                let boundary = boundary_by_cells(dimension, cell, &xs, &ys);
+                Ok(Self {
+                    dimension,
+                    cell,
+                    xs,
+                    ys,
+                    lattice: None,
+                    boundary,
+                })
+            }
+        }
+    }
+
+    /// A validated set on a lattice: computes the boundary flags from the
+    /// lattice indices.
+    fn with_lattice(
+        dimension: Dimension,
+        cell: Cell,
+        xs: Vec<f64>,
+        ys: Vec<f64>,
+        lattice: Vec<(i64, i64)>,
+    ) -> Self {
+        let members: HashSet<(i64, i64)> = lattice.iter().copied().collect();
+        let boundary = lattice
+            .iter()
+            .map(|&(i, j)| {
+                neighbour_offsets(dimension)
+                    .iter()
+                    .any(|&(di, dj)| !members.contains(&(i + di, j + dj)))
+            })
+            .collect();
+        Self {
+            dimension,
+            cell,
+            xs,
+            ys,
+            lattice: Some(lattice),
+            boundary,
+        }
+    }
+
+    /// The number of points N (at least 1).
+    pub fn len(&self) -> usize {
+        self.xs.len()
+    }
+
+    /// Always false: a point set holds at least one point.
+    pub fn is_empty(&self) -> bool {
+        self.xs.is_empty()
+    }
+
+    /// Line (2D) or surface (3D).
+    pub fn dimension(&self) -> Dimension {
+        self.dimension
+    }
+
+    /// The cell every point stands for.
+    pub fn cell(&self) -> Cell {
+        self.cell
+    }
+
+    /// x coordinate of point `k` (length). Panics if `k >= len()`.
+    pub fn x(&self, k: usize) -> f64 {
+        self.xs[k]
+    }
+
+    /// y coordinate of point `k` (length; 0 on a line). Panics if `k >= len()`.
+    pub fn y(&self, k: usize) -> f64 {
+        self.ys[k]
+    }
+
+    /// All x coordinates.
+    pub fn xs(&self) -> &[f64] {
+        &self.xs
+    }
+
+    /// All y coordinates (zeros on a line).
+    pub fn ys(&self) -> &[f64] {
+        &self.ys
+    }
+
+    /// Distance of point `k` from the origin (length). Panics if `k >= len()`.
+    pub fn radius(&self, k: usize) -> f64 {
+        self.xs[k].hypot(self.ys[k])
+    }
+
+    /// The measure A_k of point `k`: area (Surface) or length per unit width
+    /// (Line). The same for every point of a set. Panics if `k >= len()`.
+    pub fn measure(&self, k: usize) -> f64 {
+        assert!(k < self.len(), "point {k} of {}", self.len());
+        self.cell.measure(self.dimension)
+    }
+
+    /// The measures A_k of all points.
+    pub fn measures(&self) -> Vec<f64> {
+        vec![self.cell.measure(self.dimension); self.len()]
+    }
+
+    /// The total measure `sum_k A_k` of the candidate zone.
+    pub fn total_measure(&self) -> f64 {
+        self.cell.measure(self.dimension) * self.len() as f64
+    }
+
+    /// The size of the smallest axis-aligned box holding every cell:
+    /// `(max x - min x + dx, max y - min y + dy)` (length); for a line the
+    /// second value is the unit width 1.
+    pub fn extent(&self) -> (f64, f64) {
+        let span = |v: &[f64]| {
+            let (lo, hi) = v
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+                    (lo.min(x), hi.max(x))
+                });
+            hi - lo
+        };
+        match self.dimension {
+            Dimension::Line => (span(&self.xs) + self.cell.dx, 1.0),
+            Dimension::Surface => (span(&self.xs) + self.cell.dx, span(&self.ys) + self.cell.dy),
+        }
+    }
+
+    /// Integer lattice indices `(i, j)` of the points (j = 0 on a line), when
+    /// the set lies on a lattice of spacing (dx, dy): then
+    /// `x_k - x_l = (i_k - i_l) dx` and `y_k - y_l = (j_k - j_l) dy`, to
+    /// rounding. The grid constructors always set it; [`PointSet::from_points`]
+    /// sets it when it detects a lattice.
+    pub fn lattice(&self) -> Option<&[(i64, i64)]> {
+        self.lattice.as_deref()
+    }
+
+    /// Whether point `k` lies on the edge of the candidate zone: one of the
+    /// adjacent cells, centred at `(x +- dx, y)` or `(x, y +- dy)` (on a
+    /// line: `x +- dx`), holds no point of the set. On a lattice this is the
+    /// lattice neighbour test; otherwise a point "holds" an adjacent cell when
+    /// its centre lies in that cell (closed, to a relative 1e-9).
+    /// Contact that reaches such a point may be cut off by the zone.
+    /// Panics if `k >= len()`.
+    pub fn is_on_boundary(&self, k: usize) -> bool {
+        self.boundary[k]
+    }
+}
+
+/// Offsets of the lattice neighbours checked by the boundary test.
+fn neighbour_offsets(dimension: Dimension) -> &'static [(i64, i64)] {
+    match dimension {
+        Dimension::Line => &[(1, 0), (-1, 0)],
+        Dimension::Surface => &[(1, 0), (-1, 0), (0, 1), (0, -1)],
+    }
+}
+
+/// Lattice indices relative to the first point, if every point lies on the
+/// lattice `(x0 + i dx, y0 + j dy)` to a relative 1e-12.
+fn detect_lattice(xs: &[f64], ys: &[f64], cell: Cell) -> Option<Vec<(i64, i64)>> {
+    let index = |v: f64, v0: f64, d: f64| -> Option<i64> {
+        let f = (v - v0) / d;
+        // Beyond 1e12 cells the lattice is useless (and i d loses digits).
+        if !(f.abs() <= 1e12) {
+            return None;
+        }
+        let i = f.round();
+        let tolerance = 1e-12 * (d + v.abs() + v0.abs());
+        ((v - (v0 + i * d)).abs() <= tolerance).then_some(i as i64)
+    };
+    let (x0, y0) = (xs[0], ys[0]);
+    xs.iter()
+        .zip(ys)
+        .map(|(&x, &y)| Some((index(x, x0, cell.dx)?, index(y, y0, cell.dy)?)))
+        .collect()
+}
+
+/// Boundary flags of a set without a lattice: a point is on the boundary
+/// when an adjacent cell contains no point centre. Points are bucketed by
+/// cell so the test is O(N).
+fn boundary_by_cells(dimension: Dimension, cell: Cell, xs: &[f64], ys: &[f64]) -> Vec<bool> {
+    let x_min = xs.iter().copied().fold(f64::INFINITY, f64::min);
+    let y_min = ys.iter().copied().fold(f64::INFINITY, f64::min);
+    // `as` saturates, so far-away buckets merely share a key.
+    let key = |x: f64, y: f64| {
+        (
+            ((x - x_min) / cell.dx).floor() as i64,
+            ((y - y_min) / cell.dy).floor() as i64,
+        )
+    };
+    let mut buckets: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    for (k, (&x, &y)) in xs.iter().zip(ys).enumerate() {
+        buckets.entry(key(x, y)).or_default().push(k);
+    }
+    let (hx, hy) = (0.5 * cell.dx * (1.0 + 1e-9), 0.5 * cell.dy * (1.0 + 1e-9));
+    let occupied = |tx: f64, ty: f64| {
+        let (i0, j0) = key(tx - hx, ty - hy);
+        let (i1, j1) = key(tx + hx, ty + hy);
+        (i0..=i1).any(|i| {
+            (j0..=j1).any(|j| {
+                buckets.get(&(i, j)).is_some_and(|ks| {
+                    ks.iter()
+                        .any(|&l| (xs[l] - tx).abs() <= hx && (ys[l] - ty).abs() <= hy)
+                })
+            })
+        })
+    };
+    xs.iter()
+        .zip(ys)
+        .map(|(&x, &y)| {
+            neighbour_offsets(dimension)
+                .iter()
+                .any(|&(di, dj)| !occupied(x + di as f64 * cell.dx, y + dj as f64 * cell.dy))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_is_cell_centred_and_symmetric() {
+        let p = PointSet::line(-1.0, 1.0, 5).unwrap();
+        assert_eq!(p.len(), 5);
+        assert_eq!(p.dimension(), Dimension::Line);
+        assert_eq!(p.cell(), Cell { dx: 0.4, dy: 1.0 });
+        // Centres -0.8, -0.4, 0, 0.4, 0.8: exact symmetry, apex on a point (n odd).
+        assert_eq!(p.xs(), &[-0.8, -0.4, 0.0, 0.4, 0.8]);
+        assert!(p.ys().iter().all(|&y| y == 0.0));
+        assert_eq!(p.measure(2), 0.4);
+        assert!((p.total_measure() - 2.0).abs() < 1e-15);
+        assert!((p.extent().0 - 2.0).abs() < 1e-15);
+        // n even: no point at the apex.
+        let q = PointSet::line(-1.0, 1.0, 4).unwrap();
+        assert!(q.xs().iter().all(|&x| x != 0.0));
+        assert_eq!(q.x(1), -q.x(2));
+        // Only the two end points are on the boundary.
+        let b: Vec<bool> = (0..5).map(|k| p.is_on_boundary(k)).collect();
+        assert_eq!(b, [true, false, false, false, true]);
+        // A single cell is all boundary.
+        let one = PointSet::line(2.0, 3.0, 1).unwrap();
+        assert_eq!(one.xs(), &[2.5]);
+        assert!(one.is_on_boundary(0));
+    }
+
+    #[test]
+    fn grid_disk_matches_the_peers_build() {
+        // qp_dense.py build(m): i, j in [-m, m], keep i^2 + j^2 <= m^2;
+        // count for m = 6 is the number of lattice points in a disk: 113.
+        let a = 0.0123_f64;
+        let m = 6;
+        let h = 1.3 * a / m as f64;
+        let p = PointSet::grid_disk(h, 1.3 * a).unwrap();
+        let expected = (-m..=m)
+            .flat_map(|i| (-m..=m).map(move |j| (i, j)))
+            .filter(|(i, j)| i * i + j * j <= m * m)
+            .count();
+        assert_eq!(expected, 113);
+        assert_eq!(p.len(), expected);
+        assert_eq!(p.cell(), Cell::square(h));
+        // The origin is a point; the four axis end points (radius m h) are kept.
+        let lat = p.lattice().unwrap();
+        assert!(lat.contains(&(0, 0)));
+        for t in [(m, 0), (-m, 0), (0, m), (0, -m)] {
+            let k = lat.iter().position(|&l| l == t).unwrap();
+            assert!((p.radius(k) / (1.3 * a) - 1.0).abs() < 1e-14);
+            assert!(p.is_on_boundary(k));
+        }
+        let centre = lat.iter().position(|&l| l == (0, 0)).unwrap();
+        assert!(!p.is_on_boundary(centre));
+        assert_eq!(p.x(centre), 0.0);
+        assert!((p.measure(0) - h * h).abs() < 1e-30);
+        // Every point with a missing lattice neighbour has radius > (m - 1) h.
+        for k in 0..p.len() {
+            if p.is_on_boundary(k) {
+                assert!(p.radius(k) > (m - 1) as f64 * h);
+            }
+        }
+    }
+
+    #[test]
+    fn grid_disk_smaller_than_a_cell_is_the_origin() {
+        let p = PointSet::grid_disk(1.0, 0.5).unwrap();
+        assert_eq!(p.len(), 1);
+        assert_eq!((p.x(0), p.y(0)), (0.0, 0.0));
+    }
+
+    #[test]
+    fn grid_rectangle_is_cell_centred() {
+        let p = PointSet::grid_rectangle(1.0, 3.0, 2, 3).unwrap();
+        assert_eq!(p.len(), 6);
+        assert_eq!(p.cell(), Cell { dx: 1.0, dy: 2.0 });
+        assert_eq!(p.xs(), &[-0.5, -0.5, -0.5, 0.5, 0.5, 0.5]);
+        assert_eq!(p.ys(), &[-2.0, 0.0, 2.0, -2.0, 0.0, 2.0]);
+        assert_eq!(p.measure(0), 2.0);
+        assert_eq!(p.total_measure(), 12.0);
+        assert_eq!(p.extent(), (2.0, 6.0));
+        // 2 columns: every point misses a neighbour.
+        assert!((0..6).all(|k| p.is_on_boundary(k)));
+        let q = PointSet::grid_rectangle(1.5, 1.5, 3, 3).unwrap();
+        let interior: Vec<usize> = (0..9).filter(|&k| !q.is_on_boundary(k)).collect();
+        assert_eq!(interior, [4]);
+        assert_eq!((q.x(4), q.y(4)), (0.0, 0.0));
+    }
+
+    #[test]
+    fn from_points_detects_a_lattice() {
+        let cell = Cell::square(0.5);
+        let xs = vec![0.0, 0.5, 1.0, 0.5];
+        let ys = vec![0.0, 0.0, 0.0, 0.5];
+        let p = PointSet::from_points(Dimension::Surface, xs, ys, cell).unwrap();
+        assert_eq!(p.lattice().unwrap(), &[(0, 0), (1, 0), (2, 0), (1, 1)]);
+        // Off-lattice by a tenth of a cell: no lattice.
+        let q = PointSet::from_points(Dimension::Surface, vec![0.0, 0.55], vec![0.0, 0.0], cell)
+            .unwrap();
+        assert!(q.lattice().is_none());
+    }
+
+    #[test]
+    fn from_points_boundary_without_lattice() {
+        // A 3 x 3 block of cells, jittered by 0.1 cell: only the centre is interior.
+        let h = 1.0;
+        let mut xs = Vec::new();
+        let mut ys = Vec::new();
+        for i in -1..=1 {
+            for j in -1..=1 {
+                let jitter = 0.1 * ((i * 3 + j) as f64).sin();
+                xs.push(i as f64 * h + jitter);
+                ys.push(j as f64 * h - jitter);
+            }
+        }
+        let p = PointSet::from_points(Dimension::Surface, xs, ys, Cell::square(h)).unwrap();
+        assert!(p.lattice().is_none());
+        let interior: Vec<usize> = (0..9).filter(|&k| !p.is_on_boundary(k)).collect();
+        assert_eq!(interior, [4]);
+    }
+
+    #[test]
+    fn from_points_line_accepts_empty_ys() {
+        let p = PointSet::from_points(
+            Dimension::Line,
+            vec![0.0, 1.0, 2.7],
+            vec![],
+            Cell { dx: 1.0, dy: 7.0 },
+        )
+        .unwrap();
+        assert_eq!(p.ys(), &[0.0, 0.0, 0.0]);
+        assert_eq!(p.cell().dy, 1.0);
+        assert!(p.lattice().is_none());
+        assert_eq!(p.measure(0), 1.0);
+        // 0 and 1 are adjacent; but 1's cell to the right ([1.5, 2.5]) and both of
+        // 2.7's ([1.2, 2.2], [3.2, 4.2]) hold no point.
+        assert_eq!(
+            (0..3).map(|k| p.is_on_boundary(k)).collect::<Vec<_>>(),
+            [true, true, true]
+        );
+    }
+
+    #[test]
+    fn constructors_reject_bad_input() {
+        let field = |r: Result<PointSet, InfluenceError>| match r {
+            Err(InfluenceError::InvalidPoints { field, .. }) => field,
+            other => panic!("expected InvalidPoints, got {other:?}"),
+        };
+        assert_eq!(field(PointSet::line(f64::NAN, 1.0, 3)), "start");
+        assert_eq!(field(PointSet::line(1.0, 1.0, 3)), "end");
+        assert_eq!(field(PointSet::line(0.0, 1.0, MAX_POINTS + 1)), "n");
+        assert_eq!(field(PointSet::grid_disk(-1.0, 1.0)), "spacing");
+        assert_eq!(field(PointSet::grid_disk(1.0, f64::INFINITY)), "radius");
+        assert_eq!(field(PointSet::grid_disk(1e-9, 1.0)), "radius / spacing");
+        assert_eq!(field(PointSet::grid_rectangle(1.0, 0.0, 2, 2)), "half_y");
+        assert_eq!(field(PointSet::grid_rectangle(1.0, 1.0, 0, 2)), "nx");
+        assert_eq!(
+            field(PointSet::grid_rectangle(1.0, 1.0, 1000, 1000)),
+            "nx * ny"
+        );
+        assert_eq!(
+            field(PointSet::grid_rectangle(1.0, 1.0, usize::MAX, 2)),
+            "nx"
+        );
+        let s = Dimension::Surface;
+        let c = Cell::square(1.0);
+        assert_eq!(
+            field(PointSet::from_points(s, vec![0.0], vec![], c)),
+            "ys.len()"
+        );
+        assert_eq!(
+            field(PointSet::from_points(
+                s,
+                vec![0.0, f64::NAN],
+                vec![0.0, 0.0],
+                c
+            )),
+            "xs[1]"
+        );
+        assert_eq!(
+            field(PointSet::from_points(
+                s,
+                vec![0.0, 1.0],
+                vec![0.0, f64::INFINITY],
+                c
+            )),
+            "ys[1]"
+        );
+        assert_eq!(
+            field(PointSet::from_points(
+                s,
+                vec![0.0],
+                vec![0.0],
+                Cell { dx: 1.0, dy: 0.0 }
+            )),
+            "cell.dy"
+        );
+        assert_eq!(
+            field(PointSet::from_points(
+                Dimension::Line,
+                vec![0.0],
+                vec![1.0],
+                c
+            )),
+            "ys[0]"
+        );
+        let dup = PointSet::from_points(s, vec![1.0, 0.0, 1.0], vec![2.0, 0.0, 2.0], c);
+        assert_eq!(field(dup.clone()), "(xs[2], ys[2])");
+        assert!(
+            dup.unwrap_err().to_string().contains("repeats point 0"),
+            "names both points"
+        );
+    }
+}
