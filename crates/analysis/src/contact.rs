@@ -1,0 +1,491 @@
+//! The discrete frictionless contact problem of Conry & Seireg (1971), its
+//! reduction to a (mixed) LCP, and its certified solution.
+//!
+//! N candidate points k with forces `F_k >= 0` (the paper's F), gaps after
+//! deformation `Y_k >= 0` (Y), initial separations `eps_k` (ε) and the
+//! rigid-body approach `alpha` (α); `S = A(1) + A(2)` the influence matrix:
+//!
+//! ```text
+//!     Y = S F + eps - alpha e        compatibility          (paper eq. 3, 6)
+//!     e^T F = P                      equilibrium            (eq. 2)
+//!     F >= 0, Y >= 0, F_k Y_k = 0    contact criterion      (eq. 4)
+//! ```
+//!
+//! Load control (P given) is the mixed LCP `w = S z + B u + q`,
+//! `0 = C z + D u + r` with `z = F`, `w = Y`, `u = alpha` (free), `B = -e`,
+//! `q = eps`, `C = e^T`, `D = 0`, `r = -P`. Displacement control (alpha
+//! given, P = e^T F follows) is the plain LCP `Y = S F + (eps - alpha e)`.
+
+use std::time::Instant;
+
+use elcon_influence::{Body, Dimension, PointSet, assemble};
+use elcon_lcp::{Bound, Certificate, LcpError, Method, MixedLcpRef, Options, Statistics};
+use faer::{Col, ColRef, Mat, MatRef};
+
+use crate::AnalysisError;
+
+/// The shape of one surface near the initial point of contact, as its height
+/// above the common tangent plane. Radii are positive for convex surfaces and
+/// negative for concave ones (a ball in a groove).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Surface {
+    /// A plane: height 0.
+    Plane,
+    /// A sphere of radius R: height `(x^2 + y^2) / (2R)` (Hertz's paraboloid).
+    Sphere {
+        /// Radius R (length; negative = concave).
+        radius: f64,
+    },
+    /// A cylinder of radius R with its axis along y: height `x^2 / (2R)`.
+    Cylinder {
+        /// Radius R (length; negative = concave).
+        radius: f64,
+    },
+}
+
+impl Surface {
+    fn height(&self, x: f64, y: f64) -> f64 {
+        match *self {
+            Surface::Plane => 0.0,
+            Surface::Sphere { radius } => (x * x + y * y) / (2.0 * radius),
+            Surface::Cylinder { radius } => x * x / (2.0 * radius),
+        }
+    }
+
+    fn validate(&self, field: &'static str, dimension: Dimension) -> Result<(), AnalysisError> {
+        let radius = match *self {
+            Surface::Plane => return Ok(()),
+            Surface::Sphere { radius } | Surface::Cylinder { radius } => radius,
+        };
+        if !(radius.is_finite() && radius != 0.0) {
+            return Err(AnalysisError::InvalidInput {
+                field,
+                value: radius,
+                reason: "a radius must be finite and non-zero (negative for a concave surface)",
+            });
+        }
+        if matches!(self, Surface::Sphere { .. }) && dimension == Dimension::Line {
+            return Err(AnalysisError::Incompatible {
+                field,
+                reason: "a sphere needs a surface point set; for a 2D line contact use a cylinder"
+                    .into(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Where the initial separations come from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Geometry {
+    /// Two surfaces: `eps_k = h1(x_k, y_k) + h2(x_k, y_k)`.
+    Surfaces(Surface, Surface),
+    /// Given separations, one per point (length).
+    Separation(Vec<f64>),
+}
+
+/// How the bodies are pressed together.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Loading {
+    /// Load control: the normal load P (force; force per unit length for a
+    /// line contact), > 0; the approach follows.
+    Load(f64),
+    /// Displacement control: the approach alpha (length); the load follows.
+    Approach(f64),
+}
+
+/// A warning about a solution that is certified but may not mean what it seems.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Warning {
+    /// The contact reaches the edge of the candidate zone: the true contact
+    /// may be larger, and the answer is truncated. Enlarge the zone.
+    ContactAtEdge {
+        /// Points in contact on the zone's boundary.
+        points: Vec<usize>,
+    },
+    /// Points where both the force and the gap are near zero (relative
+    /// `sqrt(u) ≈ 1.5e-8` of their scales): whether they touch is uncertain.
+    UncertainContact {
+        /// The points concerned.
+        points: Vec<usize>,
+    },
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Warning::ContactAtEdge { points } => write!(
+                f,
+                "contact reaches the edge of the candidate zone at {} point(s): the answer is truncated; enlarge the zone",
+                points.len()
+            ),
+            Warning::UncertainContact { points } => write!(
+                f,
+                "{} point(s) have both force and gap near zero: the contact set is uncertain there",
+                points.len()
+            ),
+        }
+    }
+}
+
+/// The residuals of a contact solution, computed from the original S, eps
+/// and P, each relative to the scale of the terms it is made of.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactCertificate {
+    /// `|e^T F - P|` over `P` (0 under displacement control).
+    pub equilibrium: f64,
+    /// Smallest force over the largest (negative = a tensile force).
+    pub min_force: f64,
+    /// Smallest gap over the scale of the gap's terms `max(|S| F + |eps| + |alpha|)` (negative = interpenetration).
+    pub min_gap: f64,
+    /// Largest `|F_k Y_k|` over (largest force x gap scale).
+    pub complementarity: f64,
+    /// The tolerance it is judged against.
+    pub tolerance: f64,
+}
+
+impl ContactCertificate {
+    fn from_engine(c: &Certificate) -> Self {
+        Self {
+            equilibrium: c.equality,
+            min_force: c.min_z,
+            min_gap: c.min_w,
+            complementarity: c.complementarity,
+            tolerance: c.tolerance,
+        }
+    }
+
+    /// The worst relative residual.
+    pub fn worst(&self) -> f64 {
+        [
+            self.equilibrium,
+            -self.min_force,
+            -self.min_gap,
+            self.complementarity,
+            0.0,
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+    }
+
+    /// Whether every residual is within the tolerance.
+    pub fn holds(&self) -> bool {
+        self.worst() <= self.tolerance
+    }
+}
+
+impl std::fmt::Display for ContactCertificate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "equilibrium {:.1e}, min force {:.1e}, min gap {:.1e}, complementarity {:.1e}",
+            self.equilibrium, self.min_force, self.min_gap, self.complementarity
+        )
+    }
+}
+
+/// A discrete contact problem: points, influence matrix, separations, loading.
+#[derive(Debug, Clone)]
+pub struct ContactProblem {
+    points: PointSet,
+    influence: Mat<f64>,
+    separation: Vec<f64>,
+    loading: Loading,
+    assembly_seconds: f64,
+}
+
+impl ContactProblem {
+    /// Assembles `S = A(1) + A(2)` of the two bodies on `points` and the
+    /// initial separations of `geometry`.
+    pub fn new(
+        points: PointSet,
+        body1: &Body,
+        body2: &Body,
+        geometry: &Geometry,
+        loading: Loading,
+    ) -> Result<Self, AnalysisError> {
+        let start = Instant::now();
+        let separation = separations(&points, geometry)?;
+        let influence = assemble(&points, &[body1, body2])?;
+        let assembly_seconds = start.elapsed().as_secs_f64();
+        let mut p = Self::from_parts(points, influence, separation, loading)?;
+        p.assembly_seconds = assembly_seconds;
+        Ok(p)
+    }
+
+    /// A problem from an influence matrix (N x N, length per force) and
+    /// separations (N, length) built elsewhere.
+    pub fn from_parts(
+        points: PointSet,
+        influence: Mat<f64>,
+        separation: Vec<f64>,
+        loading: Loading,
+    ) -> Result<Self, AnalysisError> {
+        let n = points.len();
+        if influence.nrows() != n || influence.ncols() != n {
+            return Err(AnalysisError::SizeMismatch {
+                field: "influence",
+                expected: n,
+                found: if influence.nrows() != n {
+                    influence.nrows()
+                } else {
+                    influence.ncols()
+                },
+            });
+        }
+        if separation.len() != n {
+            return Err(AnalysisError::SizeMismatch {
+                field: "separation",
+                expected: n,
+                found: separation.len(),
+            });
+        }
+        if let Some((k, &v)) = separation.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(AnalysisError::NonFinite {
+                field: "separation",
+                index: k,
+                value: v,
+            });
+        }
+        match loading {
+            Loading::Load(p) if !(p.is_finite() && p > 0.0) => {
+                return Err(AnalysisError::InvalidInput {
+                    field: "load",
+                    value: p,
+                    reason: "the normal load must be finite and > 0",
+                });
+            }
+            Loading::Approach(a) if !a.is_finite() => {
+                return Err(AnalysisError::InvalidInput {
+                    field: "approach",
+                    value: a,
+                    reason: "the approach must be finite",
+                });
+            }
+            _ => {}
+        }
+        Ok(Self {
+            points,
+            influence,
+            separation,
+            loading,
+            assembly_seconds: 0.0,
+        })
+    }
+
+    /// The candidate points.
+    pub fn points(&self) -> &PointSet {
+        &self.points
+    }
+
+    /// The influence matrix S (length per force).
+    pub fn influence(&self) -> MatRef<'_, f64> {
+        self.influence.as_ref()
+    }
+
+    /// The initial separations eps (length).
+    pub fn separation(&self) -> &[f64] {
+        &self.separation
+    }
+
+    /// The loading.
+    pub fn loading(&self) -> Loading {
+        self.loading
+    }
+
+    /// The same problem under another loading (S is reused).
+    pub fn with_loading(&self, loading: Loading) -> Result<Self, AnalysisError> {
+        let mut p = Self::from_parts(
+            self.points.clone(),
+            self.influence.clone(),
+            self.separation.clone(),
+            loading,
+        )?;
+        p.assembly_seconds = self.assembly_seconds;
+        Ok(p)
+    }
+
+    /// Seconds spent assembling S and eps.
+    pub fn assembly_seconds(&self) -> f64 {
+        self.assembly_seconds
+    }
+
+    /// Solves with the engine's `method`; the solution carries the
+    /// certificate computed from the original S, eps and P.
+    pub fn solve(
+        &self,
+        method: Method,
+        options: &Options,
+    ) -> Result<ContactSolution, AnalysisError> {
+        let n = self.points.len();
+        let start = Instant::now();
+        let eps = ColRef::from_slice(&self.separation);
+        let (forces, alpha, certificate, statistics) = match self.loading {
+            Loading::Load(p) => {
+                let b = Mat::<f64>::from_fn(n, 1, |_, _| -1.0);
+                let c = Mat::<f64>::from_fn(1, n, |_, _| 1.0);
+                let d = Mat::<f64>::zeros(1, 1);
+                let r = [-p];
+                let bounds = [Bound::Free];
+                let problem = MixedLcpRef::new(
+                    self.influence.as_ref(),
+                    b.as_ref(),
+                    eps,
+                    c.as_ref(),
+                    d.as_ref(),
+                    ColRef::from_slice(&r),
+                    &bounds,
+                )?;
+                let sol = problem.solve(method, options)?;
+                (sol.z, sol.u[0], sol.certificate, sol.statistics)
+            }
+            Loading::Approach(alpha) => {
+                let q = Col::from_fn(n, |k| self.separation[k] - alpha);
+                let empty = Mat::<f64>::zeros(n, 0);
+                let no_rows = Mat::<f64>::zeros(0, n);
+                let none = Mat::<f64>::zeros(0, 0);
+                let problem = MixedLcpRef::new(
+                    self.influence.as_ref(),
+                    empty.as_ref(),
+                    q.as_ref(),
+                    no_rows.as_ref(),
+                    none.as_ref(),
+                    ColRef::from_slice(&[]),
+                    &[],
+                )?;
+                let sol = problem.solve(method, options)?;
+                (sol.z, alpha, sol.certificate, sol.statistics)
+            }
+        };
+        let solve_seconds = start.elapsed().as_secs_f64();
+        Ok(self.finish(forces, alpha, &certificate, statistics, solve_seconds))
+    }
+
+    /// Builds the solution from forces and approach.
+    fn finish(
+        &self,
+        forces: Col<f64>,
+        approach: f64,
+        certificate: &Certificate,
+        statistics: Statistics,
+        solve_seconds: f64,
+    ) -> ContactSolution {
+        let n = self.points.len();
+        let sf = &self.influence * &forces;
+        let gaps: Vec<f64> = (0..n)
+            .map(|k| sf[k] + self.separation[k] - approach)
+            .collect();
+        let forces: Vec<f64> = forces.iter().copied().collect();
+        let pressures: Vec<f64> = (0..n).map(|k| forces[k] / self.points.measure(k)).collect();
+        let load: f64 = forces.iter().sum();
+        let fmax = forces.iter().fold(0.0f64, |a, f| a.max(*f));
+        let contact: Vec<usize> = (0..n).filter(|&k| forces[k] > 0.0).collect();
+        let contact_measure: f64 = contact.iter().map(|&k| self.points.measure(k)).sum();
+        let contact_extent = match self.points.dimension() {
+            Dimension::Surface => (contact_measure / std::f64::consts::PI).sqrt(),
+            Dimension::Line => contact_measure / 2.0,
+        };
+        // Scale of a gap's terms, max(|S| F + |eps| + |alpha|), from the certificate.
+        let gap_scale = certificate.w_scale;
+        let near = f64::EPSILON.sqrt();
+        let uncertain: Vec<usize> = (0..n)
+            .filter(|&k| fmax > 0.0 && forces[k] <= near * fmax && gaps[k] <= near * gap_scale)
+            .collect();
+        let edge: Vec<usize> = contact
+            .iter()
+            .copied()
+            .filter(|&k| self.points.is_on_boundary(k))
+            .collect();
+        let mut warnings = Vec::new();
+        if !edge.is_empty() {
+            warnings.push(Warning::ContactAtEdge { points: edge });
+        }
+        if !uncertain.is_empty() {
+            warnings.push(Warning::UncertainContact { points: uncertain });
+        }
+        let max_pressure = pressures.iter().fold(0.0f64, |a, p| a.max(*p));
+        ContactSolution {
+            forces,
+            pressures,
+            gaps,
+            approach,
+            load,
+            max_pressure,
+            contact,
+            contact_measure,
+            contact_extent,
+            certificate: ContactCertificate::from_engine(certificate),
+            statistics,
+            assembly_seconds: self.assembly_seconds,
+            solve_seconds,
+            warnings,
+        }
+    }
+}
+
+/// A certified contact solution.
+#[derive(Debug, Clone)]
+pub struct ContactSolution {
+    /// Contact force at each point, F_k (force; force per length in 2D).
+    pub forces: Vec<f64>,
+    /// Mean pressure over each point's cell, p_k = F_k / A_k (force per area; per length in 2D).
+    pub pressures: Vec<f64>,
+    /// Gap after deformation, Y_k (length).
+    pub gaps: Vec<f64>,
+    /// Rigid-body approach, alpha (length).
+    pub approach: f64,
+    /// Total load, e^T F (force; per length in 2D).
+    pub load: f64,
+    /// Largest p_k.
+    pub max_pressure: f64,
+    /// Indices of the points with F_k > 0.
+    pub contact: Vec<usize>,
+    /// Area (3D) or length (2D) of the contact set's cells.
+    pub contact_measure: f64,
+    /// Contact radius `sqrt(area / pi)` (3D) or half-width `length / 2` (2D).
+    pub contact_extent: f64,
+    /// Residuals from the original data.
+    pub certificate: ContactCertificate,
+    /// The engine's statistics.
+    pub statistics: Statistics,
+    /// Seconds spent assembling S and eps.
+    pub assembly_seconds: f64,
+    /// Seconds spent solving (engine, certificate, post-processing).
+    pub solve_seconds: f64,
+    /// Warnings: truncated zone, uncertain contact.
+    pub warnings: Vec<Warning>,
+}
+
+/// Initial separations of a geometry on a point set.
+pub fn separations(points: &PointSet, geometry: &Geometry) -> Result<Vec<f64>, AnalysisError> {
+    let n = points.len();
+    match geometry {
+        Geometry::Surfaces(s1, s2) => {
+            s1.validate("surface1.radius", points.dimension())?;
+            s2.validate("surface2.radius", points.dimension())?;
+            Ok((0..n)
+                .map(|k| {
+                    let (x, y) = (points.x(k), points.y(k));
+                    s1.height(x, y) + s2.height(x, y)
+                })
+                .collect())
+        }
+        Geometry::Separation(eps) => {
+            if eps.len() != n {
+                return Err(AnalysisError::SizeMismatch {
+                    field: "separation",
+                    expected: n,
+                    found: eps.len(),
+                });
+            }
+            Ok(eps.clone())
+        }
+    }
+}
+
+impl From<LcpError> for AnalysisError {
+    fn from(e: LcpError) -> Self {
+        AnalysisError::Engine(e)
+    }
+}

@@ -1,0 +1,55 @@
+//! The analysis crate's errors: bad input named by field, and the failures
+//! of the layers below, passed through.
+
+use elcon_influence::InfluenceError;
+use elcon_lcp::LcpError;
+
+/// Everything that can stop a contact analysis.
+#[derive(Debug, Clone, thiserror::Error)]
+#[non_exhaustive]
+pub enum AnalysisError {
+    /// A scalar input is out of its physical range.
+    #[error("`{field}` = {value}: {reason}")]
+    InvalidInput {
+        /// The field.
+        field: &'static str,
+        /// The given value.
+        value: f64,
+        /// Why it is rejected.
+        reason: &'static str,
+    },
+    /// A vector or matrix does not match the number of points.
+    #[error("`{field}` has {found} entries, expected {expected} (one per candidate point)")]
+    SizeMismatch {
+        /// The field.
+        field: &'static str,
+        /// The number of points.
+        expected: usize,
+        /// The size given.
+        found: usize,
+    },
+    /// A vector holds NaN or an infinity.
+    #[error("`{field}` has a non-finite value ({value}) at point {index}")]
+    NonFinite {
+        /// The field.
+        field: &'static str,
+        /// The point.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// Inputs that do not go together (a sphere on a line contact...).
+    #[error("`{field}`: {reason}")]
+    Incompatible {
+        /// The field.
+        field: &'static str,
+        /// Why, and what to use instead.
+        reason: String,
+    },
+    /// The influence models rejected the bodies or the points.
+    #[error(transparent)]
+    Influence(#[from] InfluenceError),
+    /// The pivoting engine failed (no solution, pivot limit, inaccuracy...).
+    #[error("the contact solve failed: {0}")]
+    Engine(LcpError),
+}

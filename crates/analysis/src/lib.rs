@@ -1,0 +1,49 @@
+//! # elcon-analysis: the contact analysis of Conry & Seireg (1971)
+//!
+//! Two elastic bodies, a set of candidate contact points, and either a load
+//! or an approach: assemble the influence matrix `S = A(1) + A(2)` and the
+//! initial separations `eps`, reduce the contact conditions
+//!
+//! ```text
+//!     Y = S F + eps - alpha e,   e^T F = P,   F >= 0,  Y >= 0,  F_k Y_k = 0
+//! ```
+//!
+//! to a (mixed) LCP, solve it with the pivoting engine of `elcon-lcp`, and
+//! return forces, pressures, gaps, the approach, the contact set and its
+//! extent, with a certificate computed from the original S, eps and P.
+//! [`references`] holds the closed forms (Hertz, flat punch) the results are
+//! checked against.
+//!
+//! Units: any consistent set (say inch, pound, psi; or metre, newton,
+//! pascal); forces are per unit length and pressures per unit length per
+//! unit width for a 2D line contact.
+//!
+//! ```
+//! use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
+//! use elcon_analysis::references::HertzSpheres;
+//! use elcon_influence::{Body, Material, PointSet, combined_modulus};
+//! use elcon_lcp::{Method, Options};
+//!
+//! // Two steel spheres, R1 = 1 in, R2 = 10 in, P = 100 lb (Conry & Seireg, Example 1).
+//! let steel = Material::new(30e6, 0.3).unwrap();
+//! let hertz = HertzSpheres::new(combined_modulus(&steel, &steel), 1.0 / (1.0 + 0.1), 100.0).unwrap();
+//! let a = hertz.contact_radius();
+//! let points = PointSet::grid_disk(a / 8.0, 1.3 * a).unwrap();
+//! let body = Body::uniform_patch(steel);
+//! let geometry = Geometry::Surfaces(Surface::Sphere { radius: 1.0 }, Surface::Sphere { radius: 10.0 });
+//! let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+//! let sol = problem.solve(Method::Lemke, &Options::default()).unwrap();
+//! assert!(sol.certificate.holds());
+//! assert!((sol.approach / hertz.approach() - 1.0).abs() < 0.01);
+//! ```
+
+mod contact;
+mod error;
+pub mod references;
+
+pub use contact::{
+    ContactCertificate, ContactProblem, ContactSolution, Geometry, Loading, Surface, Warning,
+    separations,
+};
+pub use elcon_lcp::{Method, Options};
+pub use error::AnalysisError;

@@ -1,0 +1,148 @@
+//! One test per `AnalysisError` variant: the error a user gets, and that its
+//! message names the field and the reason.
+
+use elcon_analysis::{AnalysisError, ContactProblem, Geometry, Loading, Method, Options, Surface};
+use elcon_influence::{Body, Material, PointSet};
+use elcon_lcp::LcpError;
+use faer::Mat;
+
+fn steel() -> Material {
+    Material::new(30e6, 0.3).unwrap()
+}
+
+fn disk() -> PointSet {
+    PointSet::grid_disk(0.01, 0.05).unwrap()
+}
+
+fn spheres() -> Geometry {
+    Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    )
+}
+
+#[test]
+fn invalid_input_names_the_field() {
+    let body = Body::uniform_patch(steel());
+    for (loading, field) in [
+        (Loading::Load(0.0), "load"),
+        (Loading::Load(-5.0), "load"),
+        (Loading::Load(f64::NAN), "load"),
+        (Loading::Approach(f64::INFINITY), "approach"),
+    ] {
+        let e = ContactProblem::new(disk(), &body, &body, &spheres(), loading).unwrap_err();
+        assert!(
+            matches!(e, AnalysisError::InvalidInput { field: f, .. } if f == field),
+            "{e:?}"
+        );
+        assert!(e.to_string().starts_with(&format!("`{field}` = ")), "{e}");
+    }
+    let flat = Geometry::Surfaces(Surface::Sphere { radius: 0.0 }, Surface::Plane);
+    let e = ContactProblem::new(disk(), &body, &body, &flat, Loading::Load(1.0)).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "`surface1.radius` = 0: a radius must be finite and non-zero (negative for a concave surface)"
+    );
+}
+
+#[test]
+fn size_mismatch_names_the_field_and_sizes() {
+    let body = Body::uniform_patch(steel());
+    let n = disk().len();
+    let e = ContactProblem::new(
+        disk(),
+        &body,
+        &body,
+        &Geometry::Separation(vec![0.0; 3]),
+        Loading::Load(1.0),
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!("`separation` has 3 entries, expected {n} (one per candidate point)")
+    );
+    let e = ContactProblem::from_parts(
+        disk(),
+        Mat::zeros(n, n + 1),
+        vec![0.0; n],
+        Loading::Load(1.0),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, AnalysisError::SizeMismatch { field: "influence", found, .. } if found == n + 1)
+    );
+}
+
+#[test]
+fn non_finite_separation_is_located() {
+    let body = Body::uniform_patch(steel());
+    let n = disk().len();
+    let mut eps = vec![0.0; n];
+    eps[4] = f64::NAN;
+    let e = ContactProblem::new(
+        disk(),
+        &body,
+        &body,
+        &Geometry::Separation(eps),
+        Loading::Load(1.0),
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "`separation` has a non-finite value (NaN) at point 4"
+    );
+}
+
+#[test]
+fn incompatible_geometry_says_what_to_use() {
+    let line = PointSet::line(-1.0, 1.0, 11).unwrap();
+    let body = Body::plane_strain(steel(), 10.0);
+    let e = ContactProblem::new(line, &body, &body, &spheres(), Loading::Load(1.0)).unwrap_err();
+    assert!(matches!(
+        e,
+        AnalysisError::Incompatible {
+            field: "surface1.radius",
+            ..
+        }
+    ));
+    assert!(e.to_string().contains("use a cylinder"), "{e}");
+}
+
+#[test]
+fn influence_errors_pass_through() {
+    let line = PointSet::line(-1.0, 1.0, 11).unwrap();
+    let body = Body::uniform_patch(steel());
+    let cylinders = Geometry::Surfaces(Surface::Cylinder { radius: 1.0 }, Surface::Plane);
+    let e = ContactProblem::new(line, &body, &body, &cylinders, Loading::Load(1.0)).unwrap_err();
+    assert!(matches!(e, AnalysisError::Influence(_)), "{e:?}");
+    assert!(
+        e.to_string()
+            .contains("does not apply to a line (2D) point set"),
+        "{e}"
+    );
+}
+
+#[test]
+fn engine_errors_pass_through() {
+    // A pivot limit of 1 cannot solve a contact that needs dozens of pivots.
+    let body = Body::uniform_patch(steel());
+    let problem =
+        ContactProblem::new(disk(), &body, &body, &spheres(), Loading::Load(100.0)).unwrap();
+    let options = Options {
+        max_pivots: Some(1),
+        ..Options::default()
+    };
+    let e = problem.solve(Method::Lemke, &options).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            AnalysisError::Engine(LcpError::PivotLimit { limit: 1, .. })
+        ),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string()
+            .starts_with("the contact solve failed: pivot limit 1 reached"),
+        "{e}"
+    );
+}

@@ -1,0 +1,15 @@
+//! # elcon: elastic bodies in contact by mathematical programming
+//!
+//! The root crate re-exports the workspace's layers, so a user can depend on
+//! `elcon` alone (or on any single crate below it):
+//!
+//! - [`lcp`] (`elcon-lcp`): the dense tableau pivoting engine: LCPs, mixed
+//!   LCPs and programs with complementarity constraints, certified;
+//! - [`influence`] (`elcon-influence`): materials, candidate points and
+//!   influence-coefficient models, assembled into `S = A(1) + A(2)`;
+//! - [`analysis`] (`elcon-analysis`): the contact problem of Conry & Seireg
+//!   (1971) and the closed-form references it is checked against.
+
+pub use elcon_analysis as analysis;
+pub use elcon_influence as influence;
+pub use elcon_lcp as lcp;
