@@ -272,12 +272,12 @@ fn hertz_cylinders_in_plane_strain() {
 fn rigid_flat_punch() {
     for (units, case) in cases() {
         let a = 0.1 * case.length;
-        let punch = FlatPunch::new(case.m1.plane_strain_modulus(), a).unwrap();
+        let punch = FlatPunch::new(case.m2.plane_strain_modulus(), a).unwrap();
         let points = PointSet::grid_disk(a / 20.0, a).unwrap();
         let n = points.len();
         let problem = ContactProblem::new(
             points,
-            &Body::uniform_patch(case.m1),
+            &Body::uniform_patch(case.m2),
             &Body::rigid(),
             &Geometry::Separation(vec![0.0; n]),
             Loading::Approach(1e-4 * case.length),
@@ -335,4 +335,35 @@ fn truncated_zone_warns() {
         .find(|w| matches!(w, Warning::ContactAtEdge { .. }))
         .expect("a truncated contact must warn");
     assert!(warning.to_string().contains("truncated"));
+}
+
+#[test]
+fn flat_punch_is_maximally_degenerate_and_every_method_agrees() {
+    // All separations equal: every ratio test of the tableau methods ties at
+    // the first pivot. 8 cells per radius keeps the tableau small.
+    for (units, case) in cases() {
+        let a = 0.1 * case.length;
+        let points = PointSet::grid_disk(a / 8.0, a).unwrap();
+        let n = points.len();
+        let problem = ContactProblem::new(
+            points,
+            &Body::uniform_patch(case.m2),
+            &Body::rigid(),
+            &Geometry::Separation(vec![0.0; n]),
+            Loading::Approach(1e-4 * case.length),
+        )
+        .unwrap();
+        let reference = problem
+            .solve(Method::BlockPivoting, &Options::default())
+            .unwrap();
+        for method in Method::TABLEAU {
+            let sol = problem.solve(method, &Options::default()).unwrap();
+            assert!(sol.certificate.holds(), "{units} {method}");
+            assert_eq!(sol.contact.len(), n, "{units} {method}");
+            assert!(
+                (sol.load / reference.load - 1.0).abs() < 1e-11,
+                "{units} {method}"
+            );
+        }
+    }
 }
