@@ -12,7 +12,15 @@
 //! only on the lattice offset `(|i_k - i_j|, |j_k - j_j|)` (translation
 //! invariance, and the cell's symmetry), so they are evaluated once per
 //! offset into a table that the matrix gathers from; without a lattice every
-//! entry of the lower triangle is evaluated and mirrored.
+//! entry of the lower triangle is evaluated and mirrored. Beams are not
+//! translation invariant (they depend on the distance from the loaded
+//! point): their cantilever coefficients
+//!
+//! ```text
+//!     a_kj = a^2 (3 b - a) / (6 E I),   a = min(|x_k - x0|, |x_j - x0|), b = max(...)
+//! ```
+//!
+//! (k and j on the same side of x0, else 0) are added entry by entry.
 
 use std::f64::consts::PI;
 
@@ -61,16 +69,15 @@ pub fn influence(points: &PointSet, body: &Body) -> Result<Option<Mat<f64>>, Inf
 ///   an empty slice).
 pub fn assemble(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, InfluenceError> {
     let terms = Terms::collect(points, bodies)?;
-    let mut s = match table_layout(points) {
-        Some(layout) => fill_from_table(points, &terms, &layout),
-        None => fill_direct(points, &terms),
-    };
-    if terms.winkler_compliance > 0.0 {
-        let diagonal = terms.winkler_compliance / points.cell().measure(points.dimension());
-        for k in 0..points.len() {
-            s[(k, k)] += diagonal;
+    let mut s = if terms.kernels.is_empty() {
+        Mat::zeros(points.len(), points.len())
+    } else {
+        match table_layout(points) {
+            Some(layout) => fill_from_table(points, &terms, &layout),
+            None => fill_direct(points, &terms),
         }
-    }
+    };
+    terms.add_local(points, &mut s);
     Ok(s)
 }
 
@@ -83,12 +90,7 @@ pub fn assemble(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, Influen
 pub fn assemble_direct(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, InfluenceError> {
     let terms = Terms::collect(points, bodies)?;
     let mut s = fill_direct(points, &terms);
-    if terms.winkler_compliance > 0.0 {
-        let diagonal = terms.winkler_compliance / points.cell().measure(points.dimension());
-        for k in 0..points.len() {
-            s[(k, k)] += diagonal;
-        }
-    }
+    terms.add_local(points, &mut s);
     Ok(s)
 }
 
@@ -101,11 +103,14 @@ enum Kernel {
 }
 
 /// The bodies reduced to distinct kernels with summed compliances, plus the
-/// summed Winkler compliance `sum 1/k`.
+/// summed Winkler compliance `sum 1/k` and the beams' summed flexibilities
+/// `sum 1/(E I)` per loaded point.
 #[derive(Debug)]
 struct Terms {
     kernels: Vec<(Kernel, f64)>,
     winkler_compliance: f64,
+    /// (x0, sum of 1/(E I)) per distinct loaded point.
+    beams: Vec<(f64, f64)>,
     cell: Cell,
     /// love_rectangle(0, 0, dx, dy): the point-force self-term's kernel.
     centre: f64,
@@ -118,6 +123,7 @@ impl Terms {
         let cell = points.cell();
         let mut kernels: Vec<(Kernel, f64)> = Vec::new();
         let mut winkler_compliance = 0.0;
+        let mut beams: Vec<(f64, f64)> = Vec::new();
         let mut elastic = 0;
         for body in bodies {
             let model = body.model();
@@ -172,6 +178,38 @@ impl Terms {
                     elastic += 1;
                     continue;
                 }
+                Model::Beam {
+                    flexural_rigidity,
+                    loaded_point,
+                } => {
+                    if dimension != Dimension::Line {
+                        return Err(mismatch(
+                            "a beam lies along x: use a line point set (PointSet::line)",
+                        ));
+                    }
+                    let bad = |field, value, reason: &str| InfluenceError::InvalidModel {
+                        model: model.name(),
+                        field,
+                        value,
+                        reason: reason.into(),
+                    };
+                    if !(flexural_rigidity.is_finite() && flexural_rigidity > 0.0) {
+                        return Err(bad(
+                            "flexural_rigidity",
+                            flexural_rigidity,
+                            "E I must be finite and positive",
+                        ));
+                    }
+                    if !loaded_point.is_finite() {
+                        return Err(bad("loaded_point", loaded_point, "must be finite"));
+                    }
+                    match beams.iter_mut().find(|(x0, _)| *x0 == loaded_point) {
+                        Some((_, f)) => *f += 1.0 / flexural_rigidity,
+                        None => beams.push((loaded_point, 1.0 / flexural_rigidity)),
+                    }
+                    elastic += 1;
+                    continue;
+                }
             };
             elastic += 1;
             match kernels.iter_mut().find(|(k, _)| *k == kernel) {
@@ -187,9 +225,39 @@ impl Terms {
         Ok(Self {
             kernels,
             winkler_compliance,
+            beams,
             cell,
             centre: love_rectangle(0.0, 0.0, cell.dx, cell.dy),
         })
+    }
+
+    /// Adds the terms that are not translation invariant: the Winkler
+    /// diagonal `1 / (k A_k)` and the beams' cantilever coefficients.
+    fn add_local(&self, points: &PointSet, s: &mut Mat<f64>) {
+        if self.winkler_compliance > 0.0 {
+            let diagonal = self.winkler_compliance / points.cell().measure(points.dimension());
+            for k in 0..points.len() {
+                s[(k, k)] += diagonal;
+            }
+        }
+        let xs = points.xs();
+        for &(x0, flexibility) in &self.beams {
+            for c in 0..xs.len() {
+                let dc = xs[c] - x0;
+                for r in c..xs.len() {
+                    let dr = xs[r] - x0;
+                    if dr * dc <= 0.0 {
+                        continue; // opposite sides, or at the clamp
+                    }
+                    let (a, b) = (dr.abs().min(dc.abs()), dr.abs().max(dc.abs()));
+                    let v = flexibility * a * a * (3.0 * b - a) / 6.0;
+                    s[(r, c)] += v;
+                    if r != c {
+                        s[(c, r)] += v;
+                    }
+                }
+            }
+        }
     }
 
     /// The half-space part of S for an offset (x, y) = field point minus
@@ -402,6 +470,53 @@ mod tests {
             "different datums are different kernels"
         );
         assert!(influence(&p, &rigid).unwrap().is_none());
+    }
+
+    #[test]
+    fn beam_is_two_cantilevers_clamped_at_the_loaded_point() {
+        let line = PointSet::line(-2.0, 2.0, 8).unwrap(); // x = -1.75 .. 1.75, h = 0.5
+        let ei = 3.0e4;
+        let a = influence(&line, &Body::beam(1.0e4, 3.0, 0.0))
+            .unwrap()
+            .unwrap();
+        // Tip of a cantilever under a tip load: L^3 / (3 E I).
+        assert!((a[(7, 7)] / (1.75f64.powi(3) / (3.0 * ei)) - 1.0).abs() < 1e-15);
+        // Maxwell-Betti: deflection at 0.25 due to a load at 1.75 is a^2 (3b - a) / 6EI.
+        let expected = 0.25f64.powi(2) * (3.0 * 1.75 - 0.25) / (6.0 * ei);
+        assert!((a[(4, 7)] / expected - 1.0).abs() < 1e-15);
+        assert_eq!(a[(4, 7)], a[(7, 4)]);
+        // The two halves do not interact; the set is symmetric about x0.
+        assert_eq!(a[(3, 4)], 0.0);
+        assert_eq!(a[(0, 0)], a[(7, 7)]);
+        // A beam on a foundation: S = beam + 1/(k A_k) on the diagonal.
+        let s = assemble(
+            &line,
+            &[&Body::beam(1.0e4, 3.0, 0.0), &Body::winkler(100.0)],
+        )
+        .unwrap();
+        assert!((s[(5, 5)] - a[(5, 5)] - 1.0 / (100.0 * 0.5)).abs() < 1e-18);
+        assert_eq!(s[(5, 6)], a[(5, 6)]);
+        // Off-centre loaded point: points on one side only.
+        let b = influence(&line, &Body::beam(1.0e4, 3.0, -2.0))
+            .unwrap()
+            .unwrap();
+        let expected = 0.25f64.powi(2) * (3.0 * 3.75 - 0.25) / (6.0 * ei);
+        assert!((b[(0, 7)] / expected - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn beam_parameters_are_validated() {
+        let line = PointSet::line(-1.0, 1.0, 4).unwrap();
+        let e = assemble(&line, &[&Body::beam(0.0, 1.0, 0.0)]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid Euler-Bernoulli beam parameter: flexural_rigidity = 0: E I must be finite and positive"
+        );
+        let e = assemble(&line, &[&Body::beam(1.0, 1.0, f64::NAN)]).unwrap_err();
+        assert!(e.to_string().contains("loaded_point = NaN"), "{e}");
+        let disk = PointSet::grid_disk(0.1, 0.3).unwrap();
+        let e = assemble(&disk, &[&Body::beam(1.0, 1.0, 0.0)]).unwrap_err();
+        assert!(matches!(e, InfluenceError::DimensionMismatch { .. }), "{e}");
     }
 
     #[test]

@@ -53,7 +53,7 @@ pub enum InfluenceError {
         hint: &'static str,
     },
     /// A parameter of an influence model is out of range (Winkler modulus,
-    /// plane-strain reference distance).
+    /// plane-strain reference distance, beam rigidity or loaded point).
     #[error("invalid {model} parameter: {field} = {value}: {reason}")]
     InvalidModel {
         /// The model's name.

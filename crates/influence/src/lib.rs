@@ -18,8 +18,9 @@
 //! - [`PointSet`]: the candidate points and the measure A_k (area, or length
 //!   per unit width) each one stands for, `F_k = p_k A_k`;
 //! - [`Model`] / [`Body`]: Boussinesq point forces, Love's uniform pressure on
-//!   rectangular cells, plane-strain strips, a Winkler foundation, a rigid
-//!   body; the unit kernels are in [`kernels`];
+//!   rectangular cells, plane-strain strips, a Winkler foundation, an
+//!   Euler-Bernoulli beam referenced at its loaded point, a rigid body; the
+//!   unit kernels are in [`kernels`];
 //! - [`assemble`]: S as a dense faer matrix (column-major), one kernel
 //!   evaluation per lattice offset on a grid, half-space bodies of the same
 //!   kernel summed into one combined compliance.

@@ -7,6 +7,7 @@
 //! | [`Model::UniformPatch`] (Love 1929) | `(1 - nu^2)/(pi E) * love_rectangle(x_k - x_j, y_k - y_j, dx, dy)` | surface |
 //! | [`Model::PlaneStrainStrip`] | `2 (1 - nu^2)/(pi E) * plane_strain_strip(x_k - x_j, dx, d0)` | line |
 //! | [`Model::Winkler`] | `delta_kj / (k A_k)` | both |
+//! | [`Model::Beam`] (Euler-Bernoulli, the paper's Example 2) | `a^2 (3 b - a) / (6 E I)`, a, b the smaller and larger distance of k and j from the loaded point x0, on the same side of it; 0 across it | line |
 //! | [`Model::Rigid`] | 0 | both |
 //!
 //! (kernels in [`crate::kernels`]). Units: with E in force/length^2 and
@@ -14,6 +15,15 @@
 //! length/(force per unit width) (Line); the Winkler modulus k is in
 //! force/length^3 (Surface: pressure per deflection) or force/length^2
 //! (Line: force per unit length per deflection, e.g. k_foundation * width).
+//!
+//! The beam is referenced at its loaded point x0 with its rotation there
+//! held, as in Conry & Seireg's Example 2: each side of x0 is a cantilever
+//! clamped at x0, and the approach alpha is the displacement of x0. Its
+//! deflections are relative to the loaded point, so a point at x0 itself
+//! does not deflect (the beam alone is then only positive semidefinite; a
+//! foundation under it makes S positive definite). On a beam the forces are
+//! forces (the beam's width is inside E I and k), and F_k / A_k is a load
+//! intensity per unit length.
 
 use crate::material::Material;
 
@@ -57,6 +67,15 @@ pub enum Model {
         /// deflection (force/length^2) on a line.
         modulus: f64,
     },
+    /// An Euler-Bernoulli beam along x of flexural rigidity E I, deflections
+    /// referenced at its loaded point `loaded_point` (x0) with its rotation
+    /// there held: each side is a cantilever clamped at x0 (Line only).
+    Beam {
+        /// The flexural rigidity E I (force length^2).
+        flexural_rigidity: f64,
+        /// The x coordinate x0 of the loaded point (length).
+        loaded_point: f64,
+    },
 }
 
 impl Model {
@@ -68,6 +87,7 @@ impl Model {
             Self::UniformPatch { .. } => "uniform-patch (Love)",
             Self::PlaneStrainStrip { .. } => "plane-strain strip",
             Self::Winkler { .. } => "Winkler foundation",
+            Self::Beam { .. } => "Euler-Bernoulli beam",
         }
     }
 
@@ -77,7 +97,7 @@ impl Model {
             Self::PointForce { material }
             | Self::UniformPatch { material }
             | Self::PlaneStrainStrip { material, .. } => Some(material),
-            Self::Rigid | Self::Winkler { .. } => None,
+            Self::Rigid | Self::Winkler { .. } | Self::Beam { .. } => None,
         }
     }
 }
@@ -129,6 +149,20 @@ impl Body {
         Self::new(Model::Winkler { modulus })
     }
 
+    /// An Euler-Bernoulli beam of Young's modulus `youngs_modulus` (E,
+    /// stress) and second moment of area `second_moment` (I, length^4),
+    /// deflections referenced at its loaded point `loaded_point` (x0, length)
+    /// with its rotation there held (Line only). For a rectangular section of
+    /// width w and depth d, `I = w d^3 / 12`. The constructor does not
+    /// validate; [`assemble`](crate::assemble) does (E I finite and > 0, x0
+    /// finite).
+    pub fn beam(youngs_modulus: f64, second_moment: f64, loaded_point: f64) -> Self {
+        Self::new(Model::Beam {
+            flexural_rigidity: youngs_modulus * second_moment,
+            loaded_point,
+        })
+    }
+
     /// The body's model.
     pub fn model(&self) -> &Model {
         &self.model
@@ -167,6 +201,13 @@ mod tests {
             }
         );
         assert_eq!(Body::winkler(5.0).material(), None);
+        assert_eq!(
+            *Body::beam(30e6, 4.0, 0.5).model(),
+            Model::Beam {
+                flexural_rigidity: 120e6,
+                loaded_point: 0.5
+            }
+        );
         assert_eq!(Body::rigid().material(), None);
     }
 }
