@@ -33,6 +33,9 @@ pub struct ComplementaryProgram {
     pub(crate) complement: Vec<Option<usize>>,
     pub(crate) b: Col<f64>,
     pub(crate) cost: Option<Vec<f64>>,
+    /// Unknowns held non-basic at 0 through phase 1 (they may enter only in
+    /// phase 2): design variables, in the paper's two-part design method.
+    pub(crate) deferred: Vec<bool>,
     blocks: Vec<(usize, String)>,
 }
 
@@ -85,6 +88,7 @@ pub struct ProgramBuilder {
     b: Option<Col<f64>>,
     cost: Vec<f64>,
     has_cost: bool,
+    deferred: Vec<bool>,
     blocks: Vec<(usize, String)>,
 }
 
@@ -101,6 +105,7 @@ impl ProgramBuilder {
             b: None,
             cost: Vec::new(),
             has_cost: false,
+            deferred: Vec::new(),
             blocks: Vec::new(),
         }
     }
@@ -177,6 +182,7 @@ impl ProgramBuilder {
     }
 
     fn push_meta(&mut self, bound: Bound) {
+        self.deferred.push(false);
         self.bounds.push(bound);
         self.complement.push(None);
         self.cost.push(0.0);
@@ -198,6 +204,13 @@ impl ProgramBuilder {
     pub fn complementary(&mut self, i: usize, j: usize) -> Result<(), LcpError> {
         self.check_var("complementary", i)?;
         self.check_var("complementary", j)?;
+        if self.deferred[i] || self.deferred[j] {
+            return Err(LcpError::InvalidOption {
+                field: "complementary",
+                value: format!("({i}, {j})"),
+                reason: "a deferred unknown cannot be complementary",
+            });
+        }
         if i == j || self.complement[i].is_some() || self.complement[j].is_some() {
             return Err(LcpError::InvalidOption {
                 field: "complementary",
@@ -214,6 +227,34 @@ impl ProgramBuilder {
         }
         self.complement[i] = Some(j);
         self.complement[j] = Some(i);
+        Ok(())
+    }
+
+    /// Holds the unknowns `vars` non-basic at 0 through phase 1: they may
+    /// enter only in phase 2, once a feasible complementary solution without
+    /// them has been found. This is the paper's two-part design method: first
+    /// a contact solution with no design separation, then the objective
+    /// lowered with the design parameters as extra columns. Deferred unknowns
+    /// cannot be complementary (their partner could not enter either).
+    pub fn defer(&mut self, vars: Range<usize>) -> Result<(), LcpError> {
+        if vars.start > vars.end {
+            return Err(LcpError::InvalidOption {
+                field: "defer",
+                value: format!("{vars:?}"),
+                reason: "an empty or reversed range",
+            });
+        }
+        for var in vars {
+            self.check_var("defer", var)?;
+            if self.complement[var].is_some() {
+                return Err(LcpError::InvalidOption {
+                    field: "defer",
+                    value: format!("{var}"),
+                    reason: "a complementary unknown cannot be deferred",
+                });
+            }
+            self.deferred[var] = true;
+        }
         Ok(())
     }
 
@@ -266,6 +307,7 @@ impl ProgramBuilder {
             complement: self.complement,
             b,
             cost: self.has_cost.then_some(self.cost),
+            deferred: self.deferred,
             blocks: self.blocks,
         })
     }
@@ -290,6 +332,7 @@ impl ComplementaryProgram {
             complement,
             b,
             cost: None,
+            deferred: vec![false; n],
             blocks: vec![(0, "x".to_string())],
         }
         .with_len_check(n)

@@ -17,7 +17,9 @@
 //! 5. phase 1 ends when `sum Z_i = 0`: a feasible complementary basic
 //!    solution; or fails when no admissible candidate remains;
 //! 6. with an objective `c^T x`, phase 2 lowers it by the same rule, the
-//!    artificials left basic at level 0 held at 0 (the paper's design part).
+//!    artificials left basic at level 0 held at 0 (the paper's design part);
+//!    unknowns marked deferred (design parameters) stay at 0 through phase 1
+//!    and may enter only here.
 //!
 //! The ratio test is lexicographic (no basis repeats); every
 //! `refactor_interval` pivots the tableau is recomputed from the data.
@@ -107,6 +109,7 @@ struct Run<'a> {
     bounds: Vec<Bound>,
     complement: &'a [Option<usize>],
     artificial: Vec<bool>,
+    deferred: Vec<bool>,
     stats: Statistics,
     opts: &'a Options,
     zero_level: f64,
@@ -173,6 +176,8 @@ pub(crate) fn run(p: &ComplementaryProgram, opts: &Options) -> Result<Outcome, L
         }
     }
     let total = sys.columns.len();
+    let mut deferred = p.deferred.clone();
+    deferred.resize(total, false);
     let phase1: Vec<f64> = artificial
         .iter()
         .map(|&a| if a { 1.0 } else { 0.0 })
@@ -196,6 +201,7 @@ pub(crate) fn run(p: &ComplementaryProgram, opts: &Options) -> Result<Outcome, L
         bounds,
         complement: &p.complement,
         artificial,
+        deferred,
         stats,
         opts,
         zero_level,
@@ -296,12 +302,12 @@ impl Run<'_> {
         Ok(())
     }
 
-    /// Pivots every non-basic free unknown into the basis, in the direction
+    /// Pivots every non-basic free unknown (but the deferred ones) into the basis, in the direction
     /// in which a row limits it (preferring the one that lowers the phase-1
     /// objective). A free unknown no row limits stays non-basic at 0.
     fn enter_free(&mut self) -> Result<(), LcpError> {
         let free: Vec<usize> = (0..self.bounds.len())
-            .filter(|&v| self.bounds[v] == Bound::Free)
+            .filter(|&v| self.bounds[v] == Bound::Free && !self.deferred[v])
             .collect();
         for var in free {
             let Position::Nonbasic(s) = self.tab.position[var] else {
@@ -391,7 +397,7 @@ impl Run<'_> {
         let mut cands: Vec<(usize, f64, f64)> = Vec::new();
         for j in 0..self.tab.n() {
             let var = self.tab.nonbasic[j];
-            if self.artificial[var] {
+            if self.artificial[var] || (self.deferred[var] && phase == Phase::Feasibility) {
                 continue;
             }
             let d = self.tab.reduced_cost(k, j);

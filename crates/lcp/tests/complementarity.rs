@@ -191,3 +191,37 @@ fn known_two_by_two() {
         assert_eq!(sol.basic, vec![false, true]);
     }
 }
+
+/// Deferred unknowns stay at 0 through phase 1 and enter only in phase 2.
+#[test]
+fn deferred_unknowns_enter_only_in_phase_two() {
+    use elcon_lcp::ProgramBuilder;
+    use faer::col;
+    let build = |with_cost: bool| {
+        // x + d = 1, x >= 0, d free and deferred; optionally minimize x.
+        let mut p = ProgramBuilder::new(1);
+        let x = p
+            .dense_column("x", col![1.0].as_ref(), Bound::NonNegative)
+            .unwrap();
+        let d = p
+            .dense_column("d", col![1.0].as_ref(), Bound::Free)
+            .unwrap();
+        p.defer(d..d + 1).unwrap();
+        if with_cost {
+            p.cost(x, 1.0).unwrap();
+        }
+        p.rhs(col![1.0].as_ref()).unwrap();
+        (p.build().unwrap(), x, d)
+    };
+    let (feasible, x, d) = build(false);
+    let sol = feasible.solve(&Options::default()).unwrap();
+    assert_eq!(
+        (sol.x[x], sol.x[d]),
+        (1.0, 0.0),
+        "phase 1 alone leaves d at 0"
+    );
+    let (optimal, x, d) = build(true);
+    let sol = optimal.solve(&Options::default()).unwrap();
+    assert!(sol.certificate.holds());
+    assert_eq!((sol.x[x], sol.x[d]), (0.0, 1.0), "phase 2 moves d");
+}

@@ -209,3 +209,32 @@ fn inaccurate_solutions_are_not_returned() {
     );
     assert!(text.contains("> tolerance 0.0e0"), "{text}");
 }
+
+#[test]
+fn deferred_unknowns_cannot_be_complementary() {
+    let mut p = ProgramBuilder::new(1);
+    let x = p
+        .dense_column("x", col![1.0].as_ref(), Bound::NonNegative)
+        .unwrap();
+    let y = p
+        .unit_columns("y", 0..1, 1.0, Bound::NonNegative)
+        .unwrap()
+        .start;
+    p.complementary(x, y).unwrap();
+    let e = p.defer(x..x + 1).unwrap_err();
+    assert!(matches!(e, LcpError::InvalidOption { field: "defer", .. }));
+    assert_eq!(
+        message(e),
+        "option `defer` = 0: a complementary unknown cannot be deferred"
+    );
+    let z = p
+        .dense_column("z", col![1.0].as_ref(), Bound::NonNegative)
+        .unwrap();
+    let w = p
+        .unit_columns("w", 0..1, 1.0, Bound::NonNegative)
+        .unwrap()
+        .start;
+    p.defer(z..z + 1).unwrap();
+    let e = p.complementary(z, w).unwrap_err();
+    assert!(message(e).ends_with("a deferred unknown cannot be complementary"));
+}
