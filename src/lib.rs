@@ -8,8 +8,11 @@
 //! - [`influence`] (`elcon-influence`): materials, candidate points and
 //!   influence-coefficient models, assembled into `S = A(1) + A(2)`;
 //! - [`analysis`] (`elcon-analysis`): the contact problem of Conry & Seireg
-//!   (1971) and the closed-form references it is checked against.
+//!   (1971) and the closed-form references it is checked against;
+//! - [`design`] (`elcon-design`): profile corrections, min-max load
+//!   intensity designs and target-pressure separations.
 
 pub use elcon_analysis as analysis;
+pub use elcon_design as design;
 pub use elcon_influence as influence;
 pub use elcon_lcp as lcp;

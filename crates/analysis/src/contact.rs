@@ -16,6 +16,7 @@
 //! `q = eps`, `C = e^T`, `D = 0`, `r = -P`. Displacement control (alpha
 //! given, P = e^T F follows) is the plain LCP `Y = S F + (eps - alpha e)`.
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use elcon_influence::{Body, Dimension, PointSet, assemble};
@@ -189,7 +190,8 @@ impl std::fmt::Display for ContactCertificate {
 #[derive(Debug, Clone)]
 pub struct ContactProblem {
     points: PointSet,
-    influence: Mat<f64>,
+    /// Shared between problems that differ only in loading or separation.
+    influence: Arc<Mat<f64>>,
     separation: Vec<f64>,
     loading: Loading,
     assembly_seconds: f64,
@@ -234,6 +236,18 @@ impl ContactProblem {
                 },
             });
         }
+        Self::check(n, &separation, loading)?;
+        Ok(Self {
+            points,
+            influence: Arc::new(influence),
+            separation,
+            loading,
+            assembly_seconds: 0.0,
+        })
+    }
+
+    /// Checks separations (size, finite) and loading (finite, P > 0).
+    fn check(n: usize, separation: &[f64], loading: Loading) -> Result<(), AnalysisError> {
         if separation.len() != n {
             return Err(AnalysisError::SizeMismatch {
                 field: "separation",
@@ -265,13 +279,7 @@ impl ContactProblem {
             }
             _ => {}
         }
-        Ok(Self {
-            points,
-            influence,
-            separation,
-            loading,
-            assembly_seconds: 0.0,
-        })
+        Ok(())
     }
 
     /// The candidate points.
@@ -281,7 +289,7 @@ impl ContactProblem {
 
     /// The influence matrix S (length per force).
     pub fn influence(&self) -> MatRef<'_, f64> {
-        self.influence.as_ref()
+        Mat::as_ref(&self.influence)
     }
 
     /// The initial separations eps (length).
@@ -294,16 +302,29 @@ impl ContactProblem {
         self.loading
     }
 
-    /// The same problem under another loading (S is reused).
+    /// The same problem under another loading (S is shared, not copied).
     pub fn with_loading(&self, loading: Loading) -> Result<Self, AnalysisError> {
-        let mut p = Self::from_parts(
-            self.points.clone(),
-            self.influence.clone(),
-            self.separation.clone(),
+        self.with(self.separation.clone(), loading)
+    }
+
+    /// The same problem with other initial separations (length, one per
+    /// point; S is shared, not copied): a profile correction added to the
+    /// geometry, a design's re-analysis.
+    pub fn with_separation(&self, separation: Vec<f64>) -> Result<Self, AnalysisError> {
+        self.with(separation, self.loading)
+    }
+
+    fn with(&self, separation: Vec<f64>, loading: Loading) -> Result<Self, AnalysisError> {
+        // Validate through from_parts' checks without copying S.
+        let n = self.points.len();
+        Self::check(n, &separation, loading)?;
+        Ok(Self {
+            points: self.points.clone(),
+            influence: Arc::clone(&self.influence),
+            separation,
             loading,
-        )?;
-        p.assembly_seconds = self.assembly_seconds;
-        Ok(p)
+            assembly_seconds: self.assembly_seconds,
+        })
     }
 
     /// Seconds spent assembling S and eps.
@@ -329,7 +350,7 @@ impl ContactProblem {
                 let r = [-p];
                 let bounds = [Bound::Free];
                 let problem = MixedLcpRef::new(
-                    self.influence.as_ref(),
+                    Mat::as_ref(&self.influence),
                     b.as_ref(),
                     eps,
                     c.as_ref(),
@@ -346,7 +367,7 @@ impl ContactProblem {
                 let no_rows = Mat::<f64>::zeros(0, n);
                 let none = Mat::<f64>::zeros(0, 0);
                 let problem = MixedLcpRef::new(
-                    self.influence.as_ref(),
+                    Mat::as_ref(&self.influence),
                     empty.as_ref(),
                     q.as_ref(),
                     no_rows.as_ref(),
@@ -372,7 +393,7 @@ impl ContactProblem {
         solve_seconds: f64,
     ) -> ContactSolution {
         let n = self.points.len();
-        let sf = &self.influence * &forces;
+        let sf = Mat::as_ref(&self.influence) * &forces;
         let gaps: Vec<f64> = (0..n)
             .map(|k| sf[k] + self.separation[k] - approach)
             .collect();

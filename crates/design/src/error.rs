@@ -1,0 +1,66 @@
+//! The design crate's errors: bad input named by field, the failures of the
+//! layers below passed through, and a design whose re-analysis disagrees
+//! with it (never returned as a result).
+
+use elcon_analysis::AnalysisError;
+use elcon_lcp::LcpError;
+
+/// Everything that can stop a design.
+#[derive(Debug, Clone, thiserror::Error)]
+#[non_exhaustive]
+pub enum DesignError {
+    /// A scalar parameter is out of its range.
+    #[error("`{field}` = {value}: {reason}")]
+    InvalidInput {
+        /// The parameter.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// Why it is rejected, and the admissible range.
+        reason: &'static str,
+    },
+    /// Inputs that do not go together (no load case, a displacement-controlled
+    /// case, a profile that cannot be evaluated where it is needed...).
+    #[error("`{field}`: {reason}")]
+    Incompatible {
+        /// The field.
+        field: &'static str,
+        /// Why, and what to give instead.
+        reason: String,
+    },
+    /// A contact analysis (of a start, a crown, a re-analysis) failed.
+    #[error("analysis of {stage} failed: {source}")]
+    Analysis {
+        /// Which analysis: "load case 2 of the re-analysis", ...
+        stage: String,
+        /// The analysis error.
+        source: AnalysisError,
+    },
+    /// The design program could not be built or solved by the engine.
+    #[error("the design program failed: {0}")]
+    Engine(#[from] LcpError),
+    /// The design's objective (its worst p_max) and that of its re-analysis
+    /// differ by more than the tolerance: the design is not returned.
+    #[error(
+        "the design's objective {design:.6e} and its re-analysis' {reanalysis:.6e} differ by {relative:.2e} relative \
+         (tolerance {tolerance:.1e})"
+    )]
+    Disagreement {
+        /// The objective of the design program.
+        design: f64,
+        /// The objective of the re-analysis.
+        reanalysis: f64,
+        /// Their relative difference.
+        relative: f64,
+        /// The tolerance it exceeded.
+        tolerance: f64,
+    },
+}
+
+impl DesignError {
+    /// An [`DesignError::Analysis`] for `stage`.
+    pub(crate) fn analysis(stage: impl Into<String>) -> impl FnOnce(AnalysisError) -> Self {
+        let stage = stage.into();
+        move |source| Self::Analysis { stage, source }
+    }
+}

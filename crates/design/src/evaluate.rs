@@ -1,0 +1,108 @@
+//! Analysis of a profile correction: every load case solved with the
+//! correction added to its initial separations,
+//!
+//! ```text
+//!     eps_k  ->  eps_k + y(s_k),     p_max = max_k F_k / A_k
+//! ```
+//!
+//! each solution certified by elcon-analysis. Used for the re-analysis of
+//! every design, for crowns, and for comparing profiles.
+
+use elcon_analysis::{ContactProblem, ContactSolution, Loading, Method, Options};
+
+use crate::{Axis, DesignError, Profile};
+
+/// The certified analysis of one profile under every load case.
+#[derive(Debug, Clone)]
+pub struct Evaluation {
+    /// The profile's drops at each case's points (length).
+    pub corrections: Vec<Vec<f64>>,
+    /// The contact solution of each load case, with its certificate.
+    pub solutions: Vec<ContactSolution>,
+    /// p_max = max_k F_k / A_k of each load case (force per length on a
+    /// line, per area on a surface).
+    pub max_intensities: Vec<f64>,
+    /// The worst p_max over the load cases.
+    pub worst: f64,
+}
+
+impl Evaluation {
+    /// The worst `p_max_l / r_l` over the cases (`references` one per case).
+    pub fn relative_worst(&self, references: &[f64]) -> f64 {
+        self.max_intensities
+            .iter()
+            .zip(references)
+            .map(|(p, r)| p / r)
+            .fold(0.0f64, f64::max)
+    }
+}
+
+/// The load of a case, or an error naming it when the case is displacement
+/// controlled (a design evens the pressure under a given load).
+pub(crate) fn load_of(case: &ContactProblem, index: usize) -> Result<f64, DesignError> {
+    match case.loading() {
+        Loading::Load(p) => Ok(p),
+        Loading::Approach(_) => Err(DesignError::Incompatible {
+            field: "cases",
+            reason: format!(
+                "load case {index} is displacement controlled; a design needs every case under a load (Loading::Load)"
+            ),
+        }),
+    }
+}
+
+/// The largest load intensity F_k / A_k of a solution.
+pub(crate) fn max_intensity(solution: &ContactSolution) -> f64 {
+    solution.pressures.iter().fold(0.0f64, |a, p| a.max(*p))
+}
+
+/// Solves every case with `profile` added to its separations.
+///
+/// # Errors
+/// [`DesignError::Incompatible`] for no case or a displacement-controlled
+/// case; the profile's own errors; [`DesignError::Analysis`] naming the case
+/// whose analysis failed.
+pub fn evaluate(
+    cases: &[ContactProblem],
+    axis: Axis,
+    profile: &Profile,
+    method: Method,
+    options: &Options,
+) -> Result<Evaluation, DesignError> {
+    if cases.is_empty() {
+        return Err(DesignError::Incompatible {
+            field: "cases",
+            reason: "no load case given".into(),
+        });
+    }
+    let mut corrections = Vec::with_capacity(cases.len());
+    let mut solutions = Vec::with_capacity(cases.len());
+    let mut max_intensities = Vec::with_capacity(cases.len());
+    for (l, case) in cases.iter().enumerate() {
+        load_of(case, l)?;
+        let y = profile.separations(&axis.positions(case.points()))?;
+        let eps: Vec<f64> = case
+            .separation()
+            .iter()
+            .zip(&y)
+            .map(|(e, y)| e + y)
+            .collect();
+        let stage = format!("load case {l} with the {} profile", profile.family());
+        let corrected = case
+            .with_separation(eps)
+            .map_err(DesignError::analysis(stage.clone()))?;
+        let solution = corrected
+            .solve(method, options)
+            .map_err(DesignError::analysis(stage))?;
+        max_intensities.push(max_intensity(&solution));
+        solutions.push(solution);
+        corrections.push(y);
+    }
+    let worst = max_intensities.iter().fold(0.0f64, |a, p| a.max(*p));
+    Ok(Evaluation {
+        corrections,
+        solutions,
+        max_intensities,
+        worst,
+    })
+}

@@ -1,0 +1,58 @@
+//! # elcon-design: profile corrections for elastic bodies in contact
+//!
+//! The design half of Conry & Seireg (1971): the initial separation (a
+//! crown, a profile correction) that makes the load distribution as uniform
+//! as possible, and what an engineer crowning a roller, a gear tooth or a
+//! beam on a foundation needs beyond it.
+//!
+//! - [`Profile`]: the families of corrections `y(s)` along the axial
+//!   position s (the paper's quadratic, polynomials, circular and
+//!   logarithmic crowns, a free profile), each reporting its separation as a
+//!   table;
+//! - [`design`]: the paper's problem, the correction of a linear family that
+//!   minimizes the maximum load intensity `p_max = max F_k / A_k`, for one
+//!   or several load cases (eq. 16), on the engine's restricted-entry
+//!   simplex, with every design re-analysed and certified;
+//! - [`target_separation`] / [`uniform_target`]: the correction that makes
+//!   the forces exactly a target distribution (the seed's Fig. 6 curve);
+//! - [`evaluate`]: the certified analysis of any profile under every load
+//!   case; [`crown_search`]: the best parameter of a one-parameter crown.
+//!
+//! ```
+//! use elcon_analysis::{ContactProblem, Geometry, Loading};
+//! use elcon_design::{Axis, DesignOptions, Family, design, uniform_target};
+//! use elcon_influence::{Body, PointSet};
+//!
+//! // A steel beam (E I = 1.6e8 lb in^2) on a Winkler foundation (1e7 lb/in/in),
+//! // 8.9 in long, 10 points per half, central load 50,000 lb.
+//! let points = PointSet::line(-4.45, 4.45, 20).unwrap();
+//! let case = ContactProblem::new(
+//!     points,
+//!     &Body::beam(30e6, 16.0 / 3.0, 0.0),
+//!     &Body::winkler(1e7),
+//!     &Geometry::Separation(vec![0.0; 20]),
+//!     Loading::Load(5e4),
+//! )
+//! .unwrap();
+//! let d = design(std::slice::from_ref(&case), Axis::X, Family::Quadratic, &DesignOptions::default()).unwrap();
+//! let mean = 5e4 / 8.9;
+//! assert!(d.max_intensity >= mean && d.max_intensity < 1.5 * mean);
+//! assert!(d.evaluation.solutions[0].certificate.holds());
+//! // The uniform-pressure correction reaches p = P / L exactly.
+//! let target = uniform_target(&case).unwrap();
+//! assert!(target.correction.iter().all(|&y| y >= 0.0));
+//! ```
+
+mod crown;
+mod error;
+mod evaluate;
+mod optimize;
+mod profile;
+mod target;
+
+pub use crown::{CrownSearch, SearchOptions, crown_search};
+pub use error::DesignError;
+pub use evaluate::{Evaluation, evaluate};
+pub use optimize::{Design, DesignOptions, Family, StartOutcome, design, fit_profile};
+pub use profile::{Axis, JOHNS_GOHAR, LogCrown, Profile};
+pub use target::{TargetSeparation, target_separation, uniform_target};

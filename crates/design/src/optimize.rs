@@ -1,0 +1,692 @@
+//! The paper's design problem: the profile correction of a family that
+//! minimizes the maximum load intensity (Conry & Seireg 1971, eq. 16),
+//! extended to several load cases at once.
+//!
+//! For load cases l = 1..L (points k of case l, influence matrix S_l,
+//! separations eps_l, load P_l, measures A_k) and a profile
+//! `y(s) = sum_i theta_i phi_i(s)` linear in its parameters:
+//!
+//! ```text
+//!     minimize    t                                   (t = the worst p_max_l / r_l over the cases)
+//!     subject to  -S_l F_l + Y_l + alpha_l e - Phi_l theta = eps_l     compatibility, per case
+//!                 F_l - r_l A_l t + s_l = 0                             F_k / A_k <= r_l t
+//!                 e^T F_l = P_l                                        equilibrium
+//!                 Phi theta >= 0 at every axial station                the correction is a separation
+//!                 theta_0 <= c_max                                     the constant (polynomial families)
+//!                 F_l, Y_l, s_l >= 0,  F_lk Y_lk = 0                   the contact criterion
+//! ```
+//!
+//! Linear but for the complementarity, solved as the paper does on the
+//! engine's restricted-entry simplex ([`elcon_lcp::ComplementaryProgram`]):
+//! part 1 finds the contact solution with the design parameters held at 0
+//! (deferred columns), part 2 lowers t with theta as extra columns, keeping
+//! `F_lk Y_lk = 0` by the restricted-entry rule.
+//!
+//! What is guaranteed: part 2 ends at a complementary basic solution that no
+//! admissible pivot improves, a local minimum of a non-convex problem;
+//! global optimality is not (the paper says so too). elcon therefore runs
+//! part 2 from more than one start (the uncorrected geometry, as in the
+//! paper, and for line contacts the least-squares fit of the uniform-pressure
+//! separation to the family, the paper's own comparison) and keeps the best.
+//! Every design is re-analysed with elcon-analysis; its p_max and the
+//! re-analysis' agree to [`DesignOptions::agreement`] or the design is an
+//! error. The constant c has an upper bound (the paper's c_max): a uniform
+//! separation only shifts the approach, and without a bound the program
+//! would have a ray along which c and alpha grow together.
+//!
+//! Several load cases share theta and t; the program has one block per case,
+//! so the correction found is a local minimum of the worst p_max over the
+//! cases, with the same guarantee as for one case. `r_l` are reference
+//! intensities ([`DesignOptions::reference_intensities`], default 1): with
+//! `r_l` = each load's Hertz or mean pressure the design evens the pressure
+//! relative to each load, so that a light load counts as much as a heavy one.
+
+use elcon_analysis::{ContactProblem, Method, Options};
+use elcon_influence::Dimension;
+use elcon_lcp::{Bound, Certificate, ProgramBuilder, Statistics};
+use faer::linalg::solvers::SolveLstsq;
+use faer::{Col, Mat};
+
+use crate::evaluate::{Evaluation, evaluate, load_of};
+use crate::target::uniform_target;
+use crate::{Axis, DesignError, Profile};
+
+/// A profile family linear in its parameters, for the design program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Family {
+    /// The paper's `a s^2 + b s + c`.
+    Quadratic,
+    /// `sum_{i <= degree} c_i s^i`.
+    Polynomial {
+        /// The degree d (at least 0).
+        degree: usize,
+    },
+    /// One drop per axial station.
+    Free,
+}
+
+/// Options of a design.
+#[derive(Debug, Clone)]
+pub struct DesignOptions {
+    /// The bound c_max on the constant of a polynomial family (length).
+    /// Default: ten times the largest elastic deflection under a uniform
+    /// pressure plus the largest initial separation, over the cases (and at
+    /// least twice the constant of the fitted start).
+    pub max_constant: Option<f64>,
+    /// Options of the engine for the design program.
+    pub engine: Options,
+    /// The method of the re-analysis (default: block principal pivoting).
+    pub reanalysis: Method,
+    /// Options of the re-analysis.
+    pub reanalysis_options: Options,
+    /// Also start part 2 from the least-squares fit of the uniform-pressure
+    /// separation (line contacts only; default true).
+    pub fitted_start: bool,
+    /// Largest accepted relative difference between the design's objective
+    /// and its re-analysis' (default 1e-9).
+    pub agreement: f64,
+    /// Reference intensities r_l, one per load case (force per length or per
+    /// area, > 0): the objective is the worst `p_max_l / r_l`. Default: all 1
+    /// (the worst p_max itself).
+    pub reference_intensities: Option<Vec<f64>>,
+}
+
+impl Default for DesignOptions {
+    fn default() -> Self {
+        Self {
+            max_constant: None,
+            engine: Options::default(),
+            reanalysis: Method::BlockPivoting,
+            reanalysis_options: Options::default(),
+            fitted_start: true,
+            agreement: 1e-9,
+            reference_intensities: None,
+        }
+    }
+}
+
+/// How one start of part 2 ended.
+#[derive(Debug, Clone)]
+pub struct StartOutcome {
+    /// "uncorrected" or "fitted uniform-pressure separation".
+    pub label: &'static str,
+    /// The objective it reached (the worst p_max_l / r_l), or why it failed.
+    pub result: Result<f64, String>,
+    /// Pivots of its solve.
+    pub pivots: usize,
+}
+
+/// A certified design.
+#[derive(Debug, Clone)]
+pub struct Design {
+    /// The correction, shifted so that its smallest drop over the stations is 0.
+    pub profile: Profile,
+    /// The axial stations (distinct axial positions of the points; length).
+    pub stations: Vec<f64>,
+    /// The design program's objective t: the worst `p_max_l / r_l` over the
+    /// cases (the worst p_max when every r_l = 1).
+    pub objective: f64,
+    /// The design program's worst load intensity over the cases, max_k F_k / A_k.
+    pub max_intensity: f64,
+    /// The re-analysis with elcon-analysis: each case's certified solution.
+    pub evaluation: Evaluation,
+    /// Every start of part 2 and where it ended.
+    pub starts: Vec<StartOutcome>,
+    /// The certificate of the chosen design program's solution.
+    pub certificate: Certificate,
+    /// The engine's statistics for the chosen start.
+    pub statistics: Statistics,
+    /// The bound c_max used (polynomial families).
+    pub max_constant: Option<f64>,
+    /// Whether the normalized constant (smallest drop 0) needs the whole of
+    /// c_max: the bound then limits the design; raise it.
+    pub constant_at_bound: bool,
+}
+
+/// The basis of a family at the stations: `Phi[st, i] = phi_i(s_st)`, in the
+/// normalized coordinate `s / scale` for polynomials.
+struct Basis {
+    phi: Mat<f64>,
+    /// Index of the constant parameter (polynomials).
+    constant: Option<usize>,
+    /// The length that normalizes s.
+    scale: f64,
+}
+
+impl Basis {
+    fn new(family: Family, stations: &[f64]) -> Result<Self, DesignError> {
+        let n = stations.len();
+        let scale = stations.iter().fold(0.0f64, |a, s| a.max(s.abs()));
+        let scale = if scale > 0.0 { scale } else { 1.0 };
+        match family {
+            Family::Quadratic => Self::polynomial(2, stations, scale),
+            Family::Polynomial { degree } => {
+                if degree + 1 > n {
+                    return Err(DesignError::Incompatible {
+                        field: "family.degree",
+                        reason: format!(
+                            "degree {degree} needs at least {} axial stations, the cases have {n}",
+                            degree + 1
+                        ),
+                    });
+                }
+                Self::polynomial(degree, stations, scale)
+            }
+            Family::Free => Ok(Self {
+                phi: Mat::identity(n, n),
+                constant: None,
+                scale,
+            }),
+        }
+    }
+
+    fn polynomial(degree: usize, stations: &[f64], scale: f64) -> Result<Self, DesignError> {
+        Ok(Self {
+            phi: Mat::from_fn(stations.len(), degree + 1, |st, i| {
+                (stations[st] / scale).powi(i as i32)
+            }),
+            constant: Some(0),
+            scale,
+        })
+    }
+
+    fn params(&self) -> usize {
+        self.phi.ncols()
+    }
+
+    /// The drops at the stations for parameters theta.
+    fn drops(&self, theta: &[f64]) -> Vec<f64> {
+        (0..self.phi.nrows())
+            .map(|st| (0..theta.len()).map(|i| self.phi[(st, i)] * theta[i]).sum())
+            .collect()
+    }
+
+    /// The profile of parameters theta, shifted so its smallest drop is 0.
+    fn profile(&self, family: Family, stations: &[f64], theta: &[f64]) -> Profile {
+        let lowest = self.drops(theta).into_iter().fold(f64::INFINITY, f64::min);
+        let mut theta = theta.to_vec();
+        match family {
+            Family::Free => {
+                return Profile::Free {
+                    positions: stations.to_vec(),
+                    drops: theta.iter().map(|t| t - lowest).collect(),
+                };
+            }
+            _ => theta[0] -= lowest,
+        }
+        let coefficients: Vec<f64> = theta
+            .iter()
+            .enumerate()
+            .map(|(i, t)| t / self.scale.powi(i as i32))
+            .collect();
+        match family {
+            Family::Quadratic => Profile::Quadratic {
+                a: coefficients[2],
+                b: coefficients[1],
+                c: coefficients[0],
+            },
+            _ => Profile::Polynomial { coefficients },
+        }
+    }
+
+    /// Least-squares parameters of drops `y` at the stations, shifted up so
+    /// every drop is >= 0.
+    fn fit(&self, y: &[f64]) -> Vec<f64> {
+        let rhs = Col::from_fn(y.len(), |st| y[st]);
+        let theta: Vec<f64> = match self.constant {
+            None => y.iter().map(|v| v.max(0.0)).collect(),
+            Some(c) => {
+                let sol = self.phi.qr().solve_lstsq(&rhs);
+                let mut theta: Vec<f64> = sol.iter().copied().collect();
+                let lowest = self.drops(&theta).into_iter().fold(f64::INFINITY, f64::min);
+                theta[c] -= lowest.min(0.0);
+                theta
+            }
+        };
+        theta
+    }
+}
+
+/// The least-squares fit of `drops` at `positions` (one per station, length)
+/// by a profile of `family`, shifted up so that every drop is >= 0 and the
+/// smallest is 0: the paper's curve-fitting approximation ("assume a
+/// uniform load distribution, compute the necessary initial separations and
+/// then fit these data to a curve"), which ignores the resulting loads.
+///
+/// # Errors
+/// [`DesignError::Incompatible`] for mismatched lengths, fewer than two
+/// positions, repeated positions or a degree the positions cannot carry;
+/// [`DesignError::InvalidInput`] for a non-finite value.
+pub fn fit_profile(
+    family: Family,
+    positions: &[f64],
+    drops: &[f64],
+) -> Result<Profile, DesignError> {
+    if positions.len() != drops.len() || positions.len() < 2 {
+        return Err(DesignError::Incompatible {
+            field: "drops",
+            reason: format!(
+                "needs one drop per position and at least two positions ({} positions, {} drops)",
+                positions.len(),
+                drops.len()
+            ),
+        });
+    }
+    if let Some(&v) = positions.iter().chain(drops).find(|v| !v.is_finite()) {
+        return Err(DesignError::InvalidInput {
+            field: "drops",
+            value: v,
+            reason: "positions and drops must be finite",
+        });
+    }
+    let mut order: Vec<usize> = (0..positions.len()).collect();
+    order.sort_by(|&a, &b| positions[a].total_cmp(&positions[b]));
+    let stations: Vec<f64> = order.iter().map(|&i| positions[i]).collect();
+    if stations.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(DesignError::Incompatible {
+            field: "positions",
+            reason: "positions must be distinct".into(),
+        });
+    }
+    let y: Vec<f64> = order.iter().map(|&i| drops[i]).collect();
+    let basis = Basis::new(family, &stations)?;
+    Ok(basis.profile(family, &stations, &basis.fit(&y)))
+}
+
+/// One load case, prepared: its points' stations, measures and load.
+struct Case<'a> {
+    problem: &'a ContactProblem,
+    station: Vec<usize>,
+    measures: Vec<f64>,
+    load: f64,
+    /// Reference intensity r_l.
+    reference: f64,
+}
+
+/// The distinct axial positions of all cases' points (merged within
+/// 1e-9 of their range) and, per case, each point's station.
+fn stations(cases: &[ContactProblem], axis: Axis) -> (Vec<f64>, Vec<Vec<usize>>) {
+    let all: Vec<Vec<f64>> = cases.iter().map(|c| axis.positions(c.points())).collect();
+    let mut sorted: Vec<f64> = all.iter().flatten().copied().collect();
+    sorted.sort_by(f64::total_cmp);
+    let range = sorted.last().copied().unwrap_or(0.0) - sorted.first().copied().unwrap_or(0.0);
+    let merge = 1e-9 * range.max(f64::MIN_POSITIVE);
+    let mut stations: Vec<f64> = Vec::new();
+    for s in sorted {
+        if stations.last().is_none_or(|&last| s - last > merge) {
+            stations.push(s);
+        }
+    }
+    let index = all
+        .iter()
+        .map(|positions| {
+            positions
+                .iter()
+                .map(|&s| {
+                    let i = stations.partition_point(|&st| st < s - merge);
+                    i.min(stations.len() - 1)
+                })
+                .collect()
+        })
+        .collect();
+    (stations, index)
+}
+
+/// Variables of the design program.
+struct Layout {
+    forces: Vec<std::ops::Range<usize>>,
+    theta: std::ops::Range<usize>,
+    t: usize,
+}
+
+/// Builds the design program around the start `theta0` (the program's
+/// parameters are `delta = theta - theta0`).
+fn program(
+    cases: &[Case<'_>],
+    basis: &Basis,
+    c_max: Option<f64>,
+    theta0: &[f64],
+) -> Result<(elcon_lcp::ComplementaryProgram, Layout), DesignError> {
+    let n_st = basis.phi.nrows();
+    let m = basis.params();
+    let mut rows = 0;
+    let mut starts = Vec::new();
+    for c in cases {
+        starts.push(rows);
+        rows += 2 * c.station.len() + 1;
+    }
+    let profile_rows = rows;
+    rows += n_st;
+    let bound_row = basis.constant.map(|_| rows);
+    if bound_row.is_some() {
+        rows += 1;
+    }
+    let drops0 = basis.drops(theta0);
+    let mut b = ProgramBuilder::new(rows);
+    let mut rhs = Col::<f64>::zeros(rows);
+    let mut forces = Vec::new();
+    for (l, c) in cases.iter().enumerate() {
+        let n = c.station.len();
+        let (rc, ri, re) = (starts[l], starts[l] + n, starts[l] + 2 * n);
+        let s = c.problem.influence();
+        let block = Mat::from_fn(rows, n, |r, j| {
+            if (rc..rc + n).contains(&r) {
+                -s[(r - rc, j)]
+            } else if r == ri + j || r == re {
+                1.0
+            } else {
+                0.0
+            }
+        });
+        let f = b.dense_columns(&format!("F{l}"), block.as_ref(), Bound::NonNegative)?;
+        let y = b.unit_columns(&format!("Y{l}"), rc..rc + n, 1.0, Bound::NonNegative)?;
+        for j in 0..n {
+            b.complementary(f.start + j, y.start + j)?;
+        }
+        forces.push(f);
+        let eps = c.problem.separation();
+        for k in 0..n {
+            rhs[rc + k] = eps[k] + drops0[c.station[k]];
+        }
+        rhs[re] = c.load;
+    }
+    let alpha = Mat::from_fn(rows, cases.len(), |r, l| {
+        let n = cases[l].station.len();
+        if (starts[l]..starts[l] + n).contains(&r) {
+            1.0
+        } else {
+            0.0
+        }
+    });
+    b.dense_columns("alpha", alpha.as_ref(), Bound::Free)?;
+    // theta: -Phi in the compatibility rows and the station rows, +1 in the bound row.
+    let mut theta_block = Mat::<f64>::zeros(rows, m);
+    for (l, c) in cases.iter().enumerate() {
+        for (k, &st) in c.station.iter().enumerate() {
+            for i in 0..m {
+                theta_block[(starts[l] + k, i)] = -basis.phi[(st, i)];
+            }
+        }
+    }
+    for st in 0..n_st {
+        for i in 0..m {
+            theta_block[(profile_rows + st, i)] = -basis.phi[(st, i)];
+        }
+        rhs[profile_rows + st] = drops0[st];
+    }
+    if let (Some(row), Some(ci), Some(c_max)) = (bound_row, basis.constant, c_max) {
+        theta_block[(row, ci)] = 1.0;
+        rhs[row] = c_max - theta0[ci];
+    }
+    let theta = b.dense_columns("theta", theta_block.as_ref(), Bound::Free)?;
+    b.defer(theta.clone())?;
+    let t_col = Mat::from_fn(rows, 1, |r, _| {
+        for (l, c) in cases.iter().enumerate() {
+            let n = c.station.len();
+            let ri = starts[l] + n;
+            if (ri..ri + n).contains(&r) {
+                return -c.reference * c.measures[r - ri];
+            }
+        }
+        0.0
+    });
+    let t = b.dense_column("p_max", t_col.col(0), Bound::Free)?;
+    b.cost(t, 1.0)?;
+    for (l, c) in cases.iter().enumerate() {
+        let n = c.station.len();
+        let ri = starts[l] + n;
+        b.unit_columns(&format!("s{l}"), ri..ri + n, 1.0, Bound::NonNegative)?;
+    }
+    b.unit_columns(
+        "u",
+        profile_rows..profile_rows + n_st,
+        1.0,
+        Bound::NonNegative,
+    )?;
+    if let Some(row) = bound_row {
+        b.unit_columns("v", row..row + 1, 1.0, Bound::NonNegative)?;
+    }
+    b.rhs(rhs.as_ref())?;
+    Ok((b.build()?, Layout { forces, theta, t }))
+}
+
+/// Designs the correction of `family` that minimizes the worst load
+/// intensity over `cases` (each under [`elcon_analysis::Loading::Load`]);
+/// see the [module documentation](self) for the method and what it guarantees.
+///
+/// # Errors
+/// [`DesignError::Incompatible`] for no case, a displacement-controlled case
+/// or a degree the stations cannot carry; [`DesignError::InvalidInput`] for
+/// a bad `max_constant` or `agreement`; [`DesignError::Engine`] or
+/// [`DesignError::Analysis`] when every start failed (the first start's
+/// error); [`DesignError::Disagreement`] when the best design's re-analysis
+/// does not reproduce its p_max.
+pub fn design(
+    cases: &[ContactProblem],
+    axis: Axis,
+    family: Family,
+    options: &DesignOptions,
+) -> Result<Design, DesignError> {
+    if cases.is_empty() {
+        return Err(DesignError::Incompatible {
+            field: "cases",
+            reason: "no load case given".into(),
+        });
+    }
+    if !(options.agreement.is_finite() && options.agreement > 0.0 && options.agreement < 1.0) {
+        return Err(DesignError::InvalidInput {
+            field: "agreement",
+            value: options.agreement,
+            reason: "must be in (0, 1)",
+        });
+    }
+    if let Some(c) = options.max_constant
+        && !(c.is_finite() && c > 0.0)
+    {
+        return Err(DesignError::InvalidInput {
+            field: "max_constant",
+            value: c,
+            reason: "must be finite and > 0",
+        });
+    }
+    let references = reference_intensities(options, cases.len())?;
+    let (stations, index) = stations(cases, axis);
+    let basis = Basis::new(family, &stations)?;
+    let prepared: Vec<Case<'_>> = cases
+        .iter()
+        .zip(index)
+        .enumerate()
+        .map(|(l, (problem, station))| {
+            Ok(Case {
+                problem,
+                measures: (0..station.len())
+                    .map(|k| problem.points().measure(k))
+                    .collect(),
+                station,
+                load: load_of(problem, l)?,
+                reference: references[l],
+            })
+        })
+        .collect::<Result<_, DesignError>>()?;
+
+    // Starts: the uncorrected geometry; for line contacts, the fit of the
+    // uniform-pressure separation of the heaviest case.
+    let mut starts: Vec<(&'static str, Vec<f64>)> =
+        vec![("uncorrected", vec![0.0; basis.params()])];
+    let heaviest = (0..prepared.len())
+        .max_by(|&a, &b| prepared[a].load.total_cmp(&prepared[b].load))
+        .unwrap_or(0);
+    let line = cases
+        .iter()
+        .all(|c| c.points().dimension() == Dimension::Line);
+    if options.fitted_start && line {
+        let target = uniform_target(&cases[heaviest])?;
+        let mut y = vec![0.0; stations.len()];
+        for (k, &st) in prepared[heaviest].station.iter().enumerate() {
+            y[st] = target.correction[k];
+        }
+        starts.push(("fitted uniform-pressure separation", basis.fit(&y)));
+    }
+    let c_max = basis.constant.map(|ci| {
+        options.max_constant.unwrap_or_else(|| {
+            let elastic = prepared
+                .iter()
+                .map(|c| deflection_scale(c))
+                .fold(0.0f64, f64::max);
+            let fitted = starts.iter().map(|(_, th)| th[ci]).fold(0.0f64, f64::max);
+            (10.0 * elastic).max(2.0 * fitted)
+        })
+    });
+
+    let mut outcomes = Vec::new();
+    let mut best: Option<(Design, usize)> = None;
+    let mut first_error = None;
+    for (label, theta0) in &starts {
+        match run_start(
+            cases, &prepared, &basis, family, axis, &stations, c_max, theta0, options,
+        ) {
+            Ok(d) => {
+                outcomes.push(StartOutcome {
+                    label,
+                    result: Ok(d.objective),
+                    pivots: d.statistics.pivots,
+                });
+                if best.as_ref().is_none_or(|(b, _)| d.objective < b.objective) {
+                    best = Some((d, outcomes.len() - 1));
+                }
+            }
+            Err(e) => {
+                outcomes.push(StartOutcome {
+                    label,
+                    result: Err(e.to_string()),
+                    pivots: 0,
+                });
+                first_error.get_or_insert(e);
+            }
+        }
+    }
+    match best {
+        Some((mut d, _)) => {
+            d.starts = outcomes;
+            Ok(d)
+        }
+        None => Err(first_error.expect("at least one start ran")),
+    }
+}
+
+/// The reference intensities r_l: given (one per case, finite, > 0) or all 1.
+fn reference_intensities(options: &DesignOptions, cases: usize) -> Result<Vec<f64>, DesignError> {
+    match &options.reference_intensities {
+        None => Ok(vec![1.0; cases]),
+        Some(r) if r.len() != cases => Err(DesignError::Incompatible {
+            field: "reference_intensities",
+            reason: format!(
+                "has {} entries, expected {cases} (one per load case)",
+                r.len()
+            ),
+        }),
+        Some(r) => match r.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+            Some(&v) => Err(DesignError::InvalidInput {
+                field: "reference_intensities",
+                value: v,
+                reason: "every reference intensity must be finite and > 0",
+            }),
+            None => Ok(r.clone()),
+        },
+    }
+}
+
+/// Largest elastic deflection under a uniform pressure plus the largest
+/// initial separation: the scale of the default c_max.
+fn deflection_scale(c: &Case<'_>) -> f64 {
+    let s = c.problem.influence();
+    let n = c.station.len();
+    let total: f64 = c.measures.iter().sum();
+    let deflection = (0..n)
+        .map(|k| {
+            (0..n)
+                .map(|j| s[(k, j)] * c.load * c.measures[j] / total)
+                .sum::<f64>()
+        })
+        .fold(0.0f64, f64::max);
+    let eps = c
+        .problem
+        .separation()
+        .iter()
+        .fold(0.0f64, |a, e| a.max(e.abs()));
+    deflection + eps
+}
+
+/// Part 1 and part 2 from one start, then the re-analysis.
+#[allow(clippy::too_many_arguments)]
+fn run_start(
+    cases: &[ContactProblem],
+    prepared: &[Case<'_>],
+    basis: &Basis,
+    family: Family,
+    axis: Axis,
+    stations: &[f64],
+    c_max: Option<f64>,
+    theta0: &[f64],
+    options: &DesignOptions,
+) -> Result<Design, DesignError> {
+    let (program, layout) = program(prepared, basis, c_max, theta0)?;
+    let solution = program.solve(&options.engine)?;
+    let theta: Vec<f64> = layout
+        .theta
+        .clone()
+        .map(|v| theta0[v - layout.theta.start] + solution.x[v])
+        .collect();
+    // The objective from the program's forces (t itself may sit above it at
+    // a degenerate vertex; the forces are what the re-analysis reproduces).
+    let (mut max_intensity, mut objective) = (0.0f64, 0.0f64);
+    for (l, range) in layout.forces.iter().enumerate() {
+        for (k, v) in range.clone().enumerate() {
+            let p = solution.x[v] / prepared[l].measures[k];
+            max_intensity = max_intensity.max(p);
+            objective = objective.max(p / prepared[l].reference);
+        }
+    }
+    debug_assert!(solution.x[layout.t] >= objective * (1.0 - 1e-9));
+    let profile = basis.profile(family, stations, &theta);
+    let evaluation = evaluate(
+        cases,
+        axis,
+        &profile,
+        options.reanalysis,
+        &options.reanalysis_options,
+    )?;
+    let references: Vec<f64> = prepared.iter().map(|c| c.reference).collect();
+    let reanalysed = evaluation.relative_worst(&references);
+    let relative = (reanalysed - objective).abs() / objective;
+    if !(relative <= options.agreement) {
+        return Err(DesignError::Disagreement {
+            design: objective,
+            reanalysis: reanalysed,
+            relative,
+            tolerance: options.agreement,
+        });
+    }
+    // A uniform shift of the profile only moves the approach, so the bound
+    // constrains the design only if the normalized profile (smallest drop 0)
+    // still needs the whole of it.
+    let constant_at_bound = match (&profile, c_max) {
+        (Profile::Quadratic { c, .. }, Some(c_max)) => *c >= (1.0 - 1e-9) * c_max,
+        (Profile::Polynomial { coefficients }, Some(c_max)) => {
+            coefficients[0] >= (1.0 - 1e-9) * c_max
+        }
+        _ => false,
+    };
+    Ok(Design {
+        profile,
+        stations: stations.to_vec(),
+        objective,
+        max_intensity,
+        evaluation,
+        starts: Vec::new(),
+        certificate: solution.certificate,
+        statistics: solution.statistics,
+        max_constant: c_max,
+        constant_at_bound,
+    })
+}

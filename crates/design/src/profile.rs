@@ -1,0 +1,419 @@
+//! Profile corrections: the initial separation `y(s)` a designer adds to the
+//! geometry, as a function of the axial position `s` (the paper's eq. 14 and
+//! the crowns of roller-bearing practice). At candidate point k the initial
+//! separation becomes `eps_k + y(s_k)`.
+//!
+//! | family | y(s) | parameters |
+//! |---|---|---|
+//! | [`Profile::Quadratic`] (the paper's) | `a s^2 + b s + c` | a, b, c |
+//! | [`Profile::Polynomial`] | `sum_i c_i s^i` | c_0 .. c_d |
+//! | [`Profile::CircularCrown`] | 0 on the flat middle, `R - sqrt(R^2 - t^2)` beyond it, `t = abs(s) - l_f/2` | R, l_f |
+//! | [`Profile::LogarithmicCrown`] | 0 on the flat middle, `Q / (pi l E*) ln(1 / (1 - (1 - 0.3033 b / a) (t / a)^2))` beyond it | Q, l, E*, R, l_f |
+//! | [`Profile::Free`] | one value per axial station, linear between | the values |
+//!
+//! The logarithmic crown is Lundberg's (1939) profile `Q / (pi l E*) ln(1 /
+//! (1 - (2 s / l)^2))` with the modification of Johns & Gohar (1981) that
+//! keeps the end drop finite: `b` is the Hertz half-width of a cylinder of
+//! length `l` under the design load `Q`, `a` the half-length of the crowned
+//! part (`(l - l_f) / 2`), `t` the distance into it. Its drop grows with `Q`:
+//! a logarithmic crown is designed for one load. With `l_f = 0` it is the
+//! Johns-Gohar profile; with `l_f > 0` the flat-middle variant, the same
+//! curve over the crowned ends only.
+//!
+//! Units: s, y, lengths in length; Q in force; E* in stress. Every family
+//! reports its separation as a table ([`Profile::table`]).
+
+use crate::DesignError;
+
+/// Which coordinate of the candidate points is the axial position `s`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Axis {
+    /// `s = x` (a beam, a line contact along x).
+    X,
+    /// `s = y` (a roller whose axis lies along y).
+    Y,
+}
+
+impl Axis {
+    /// The axial positions of the points of a set.
+    pub fn positions(self, points: &elcon_influence::PointSet) -> Vec<f64> {
+        match self {
+            Axis::X => points.xs().to_vec(),
+            Axis::Y => points.ys().to_vec(),
+        }
+    }
+}
+
+/// The constant of Johns & Gohar's (1981) logarithmic crown: the end drop
+/// is that of Lundberg's profile at `1 - 0.3033 b / a` of the half-length.
+pub const JOHNS_GOHAR: f64 = 0.3033;
+
+/// A logarithmic crown (Lundberg 1939, Johns & Gohar 1981); see the
+/// [module documentation](self).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LogCrown {
+    /// Design load Q (force): the crown evens the pressure at this load.
+    pub design_load: f64,
+    /// Effective length l of the roller (length).
+    pub length: f64,
+    /// Combined modulus E* of roller and raceway (stress).
+    pub combined_modulus: f64,
+    /// Combined transverse radius R of roller and raceway (length), for the
+    /// Hertz half-width `b = sqrt(4 (Q / l) R / (pi E*))`.
+    pub radius: f64,
+    /// Length of the flat middle l_f (0 for the Johns-Gohar profile).
+    pub flat_length: f64,
+}
+
+impl LogCrown {
+    /// The Hertz half-width `b` at the design load.
+    pub fn half_width(&self) -> f64 {
+        (4.0 * self.design_load / self.length * self.radius
+            / (std::f64::consts::PI * self.combined_modulus))
+            .sqrt()
+    }
+
+    /// The drop at the end of the crowned length (length).
+    pub fn end_drop(&self) -> f64 {
+        self.drop_at(0.5 * self.length)
+    }
+
+    fn drop_at(&self, s: f64) -> f64 {
+        let a = 0.5 * (self.length - self.flat_length);
+        let t = (s.abs() - 0.5 * self.flat_length).max(0.0);
+        if t == 0.0 {
+            return 0.0;
+        }
+        let k = 1.0 - JOHNS_GOHAR * self.half_width() / a;
+        let u = (t / a).min(1.0);
+        self.design_load / (std::f64::consts::PI * self.length * self.combined_modulus)
+            * -(1.0 - k * u * u).ln()
+    }
+
+    fn validate(&self) -> Result<(), DesignError> {
+        for (field, v) in [
+            ("log_crown.design_load", self.design_load),
+            ("log_crown.length", self.length),
+            ("log_crown.combined_modulus", self.combined_modulus),
+            ("log_crown.radius", self.radius),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(DesignError::InvalidInput {
+                    field,
+                    value: v,
+                    reason: "must be finite and > 0",
+                });
+            }
+        }
+        if !(self.flat_length.is_finite() && (0.0..self.length).contains(&self.flat_length)) {
+            return Err(DesignError::InvalidInput {
+                field: "log_crown.flat_length",
+                value: self.flat_length,
+                reason: "must be in [0, length)",
+            });
+        }
+        let a = 0.5 * (self.length - self.flat_length);
+        if JOHNS_GOHAR * self.half_width() >= a {
+            return Err(DesignError::InvalidInput {
+                field: "log_crown.design_load",
+                value: self.design_load,
+                reason: "the Hertz half-width at this load exceeds the crowned half-length / 0.3033: \
+                         the logarithmic profile is undefined; lengthen the crowned part or lower the load",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A profile correction `y(s)`; see the [module documentation](self).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Profile {
+    /// The paper's `y = a s^2 + b s + c` (eq. 14).
+    Quadratic {
+        /// a (1/length).
+        a: f64,
+        /// b (dimensionless).
+        b: f64,
+        /// c (length).
+        c: f64,
+    },
+    /// `y = sum_i coefficients[i] s^i`.
+    Polynomial {
+        /// c_0, c_1, ..., c_d (c_i in length^(1-i)).
+        coefficients: Vec<f64>,
+    },
+    /// A circular arc of radius R beyond a flat middle of length l_f.
+    CircularCrown {
+        /// Crown radius R (length).
+        radius: f64,
+        /// Length of the flat middle l_f (length, >= 0).
+        flat_length: f64,
+    },
+    /// A logarithmic crown (Lundberg, Johns-Gohar).
+    LogarithmicCrown(LogCrown),
+    /// One value per axial station, linear between stations, constant beyond
+    /// the first and last.
+    Free {
+        /// Station positions, strictly increasing (length).
+        positions: Vec<f64>,
+        /// The drop at each station (length).
+        drops: Vec<f64>,
+    },
+}
+
+impl Profile {
+    /// No correction: `y = 0`.
+    pub fn none() -> Self {
+        Profile::Polynomial {
+            coefficients: vec![0.0],
+        }
+    }
+
+    /// A short name of the family ("quadratic", "circular crown", ...).
+    pub fn family(&self) -> &'static str {
+        match self {
+            Profile::Quadratic { .. } => "quadratic",
+            Profile::Polynomial { .. } => "polynomial",
+            Profile::CircularCrown { .. } => "circular crown",
+            Profile::LogarithmicCrown(_) => "logarithmic crown",
+            Profile::Free { .. } => "free",
+        }
+    }
+
+    /// Checks the parameters (finite; positive radii and loads; stations
+    /// increasing and matched by drops).
+    pub fn validate(&self) -> Result<(), DesignError> {
+        let finite = |field: &'static str, v: f64| {
+            if v.is_finite() {
+                Ok(())
+            } else {
+                Err(DesignError::InvalidInput {
+                    field,
+                    value: v,
+                    reason: "must be finite",
+                })
+            }
+        };
+        match self {
+            Profile::Quadratic { a, b, c } => {
+                finite("quadratic.a", *a)?;
+                finite("quadratic.b", *b)?;
+                finite("quadratic.c", *c)
+            }
+            Profile::Polynomial { coefficients } => {
+                if coefficients.is_empty() {
+                    return Err(DesignError::Incompatible {
+                        field: "polynomial.coefficients",
+                        reason: "needs at least one coefficient".into(),
+                    });
+                }
+                coefficients
+                    .iter()
+                    .try_for_each(|&c| finite("polynomial.coefficients", c))
+            }
+            Profile::CircularCrown {
+                radius,
+                flat_length,
+            } => {
+                if !(radius.is_finite() && *radius > 0.0) {
+                    return Err(DesignError::InvalidInput {
+                        field: "circular_crown.radius",
+                        value: *radius,
+                        reason: "must be finite and > 0",
+                    });
+                }
+                if !(flat_length.is_finite() && *flat_length >= 0.0) {
+                    return Err(DesignError::InvalidInput {
+                        field: "circular_crown.flat_length",
+                        value: *flat_length,
+                        reason: "must be finite and >= 0",
+                    });
+                }
+                Ok(())
+            }
+            Profile::LogarithmicCrown(crown) => crown.validate(),
+            Profile::Free { positions, drops } => {
+                if positions.is_empty() || positions.len() != drops.len() {
+                    return Err(DesignError::Incompatible {
+                        field: "free.drops",
+                        reason: format!(
+                            "needs one drop per station and at least one station (got {} stations, {} drops)",
+                            positions.len(),
+                            drops.len()
+                        ),
+                    });
+                }
+                positions
+                    .iter()
+                    .try_for_each(|&p| finite("free.positions", p))?;
+                drops.iter().try_for_each(|&d| finite("free.drops", d))?;
+                if positions.windows(2).any(|w| w[1] <= w[0]) {
+                    return Err(DesignError::Incompatible {
+                        field: "free.positions",
+                        reason: "stations must be strictly increasing".into(),
+                    });
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// The drop `y(s)` at axial position `s` (length).
+    ///
+    /// # Errors
+    /// [`DesignError::InvalidInput`] for invalid parameters, and when a
+    /// circular crown is asked beyond its radius (`abs(s) - l_f/2 >= R`).
+    pub fn separation(&self, s: f64) -> Result<f64, DesignError> {
+        self.validate()?;
+        Ok(match self {
+            Profile::Quadratic { a, b, c } => a * s * s + b * s + c,
+            Profile::Polynomial { coefficients } => {
+                coefficients.iter().rev().fold(0.0, |acc, &c| acc * s + c)
+            }
+            Profile::CircularCrown {
+                radius,
+                flat_length,
+            } => {
+                let t = (s.abs() - 0.5 * flat_length).max(0.0);
+                if t >= *radius {
+                    return Err(DesignError::InvalidInput {
+                        field: "circular_crown.radius",
+                        value: *radius,
+                        reason: "the crown is asked beyond its radius: the radius must exceed the crowned half-length",
+                    });
+                }
+                // R - sqrt(R^2 - t^2) = t^2 / (R + sqrt(R^2 - t^2)), without cancellation.
+                t * t / (radius + (radius * radius - t * t).sqrt())
+            }
+            Profile::LogarithmicCrown(crown) => crown.drop_at(s),
+            Profile::Free { positions, drops } => {
+                let i = positions.partition_point(|&p| p <= s);
+                if i == 0 {
+                    drops[0]
+                } else if i == positions.len() {
+                    drops[drops.len() - 1]
+                } else {
+                    let (p0, p1) = (positions[i - 1], positions[i]);
+                    let w = (s - p0) / (p1 - p0);
+                    drops[i - 1] * (1.0 - w) + drops[i] * w
+                }
+            }
+        })
+    }
+
+    /// The separation at each position: `(position, drop)` rows, the table a
+    /// designer hands to manufacturing.
+    pub fn table(&self, positions: &[f64]) -> Result<Vec<(f64, f64)>, DesignError> {
+        positions
+            .iter()
+            .map(|&s| Ok((s, self.separation(s)?)))
+            .collect()
+    }
+
+    /// The separations at the axial positions of `positions` (one per point).
+    pub fn separations(&self, positions: &[f64]) -> Result<Vec<f64>, DesignError> {
+        positions.iter().map(|&s| self.separation(s)).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quadratic_and_polynomial_agree() {
+        let q = Profile::Quadratic {
+            a: 2.0,
+            b: -1.0,
+            c: 0.5,
+        };
+        let p = Profile::Polynomial {
+            coefficients: vec![0.5, -1.0, 2.0],
+        };
+        for s in [-1.5, 0.0, 0.3, 4.0] {
+            assert_eq!(q.separation(s).unwrap(), p.separation(s).unwrap());
+        }
+        assert_eq!(q.separation(2.0).unwrap(), 8.0 - 2.0 + 0.5);
+    }
+
+    #[test]
+    fn circular_crown_is_flat_then_an_arc() {
+        let c = Profile::CircularCrown {
+            radius: 100.0,
+            flat_length: 4.0,
+        };
+        assert_eq!(c.separation(1.9).unwrap(), 0.0);
+        let t: f64 = 3.0;
+        let exact = 100.0 - (100.0f64 * 100.0 - t * t).sqrt();
+        assert!((c.separation(-5.0).unwrap() / exact - 1.0).abs() < 1e-12);
+        assert!(c.separation(150.0).is_err());
+        let rows = c.table(&[0.0, 5.0]).unwrap();
+        assert_eq!(rows[0], (0.0, 0.0));
+    }
+
+    #[test]
+    fn log_crown_has_the_lundberg_shape_and_a_finite_end_drop() {
+        let crown = LogCrown {
+            design_load: 10e3,
+            length: 10.0,
+            combined_modulus: 115_384.6,
+            radius: 5.0,
+            flat_length: 0.0,
+        };
+        let b = crown.half_width();
+        assert!((b / 0.23487 - 1.0).abs() < 1e-3, "{b}");
+        let p = Profile::LogarithmicCrown(crown);
+        assert_eq!(p.separation(0.0).unwrap(), 0.0);
+        // Mid-way it follows Lundberg's ln(1 / (1 - k u^2)).
+        let k = 1.0 - JOHNS_GOHAR * b / 5.0;
+        let lundberg = 10e3 / (std::f64::consts::PI * 10.0 * 115_384.6) * -(1.0 - k * 0.25).ln();
+        assert!((p.separation(2.5).unwrap() / lundberg - 1.0).abs() < 1e-14);
+        // The end drop is finite: ln(a / (0.3033 b)).
+        let end = 10e3 / (std::f64::consts::PI * 10.0 * 115_384.6) * (5.0 / (JOHNS_GOHAR * b)).ln();
+        assert!((crown.end_drop() / end - 1.0).abs() < 1e-12);
+        // Symmetric and monotone in |s|.
+        assert_eq!(p.separation(-3.0).unwrap(), p.separation(3.0).unwrap());
+        assert!(p.separation(4.0).unwrap() > p.separation(3.0).unwrap());
+    }
+
+    #[test]
+    fn free_profile_interpolates() {
+        let f = Profile::Free {
+            positions: vec![-1.0, 0.0, 2.0],
+            drops: vec![3.0, 0.0, 1.0],
+        };
+        assert_eq!(f.separation(-2.0).unwrap(), 3.0);
+        assert_eq!(f.separation(-0.5).unwrap(), 1.5);
+        assert_eq!(f.separation(1.0).unwrap(), 0.5);
+        assert_eq!(f.separation(9.0).unwrap(), 1.0);
+    }
+
+    #[test]
+    fn invalid_parameters_are_named() {
+        let e = Profile::CircularCrown {
+            radius: -1.0,
+            flat_length: 0.0,
+        }
+        .validate()
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`circular_crown.radius` = -1: must be finite and > 0"
+        );
+        let e = Profile::Free {
+            positions: vec![0.0, 0.0],
+            drops: vec![1.0, 1.0],
+        }
+        .validate()
+        .unwrap_err();
+        assert!(e.to_string().contains("strictly increasing"), "{e}");
+        let e = Profile::Quadratic {
+            a: f64::NAN,
+            b: 0.0,
+            c: 0.0,
+        }
+        .separation(0.0)
+        .unwrap_err();
+        assert!(e.to_string().starts_with("`quadratic.a` = NaN"), "{e}");
+    }
+}

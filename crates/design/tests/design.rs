@@ -1,0 +1,289 @@
+//! Reference tests of the design: the design's p_max is its re-analysis'; a
+//! grid search over the quadratic family never beats it; the uniform-target
+//! separation gives p = P / L; designs do not depend on the units; several
+//! load cases at once.
+
+use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options};
+use elcon_design::{Axis, DesignOptions, Family, Profile, design, evaluate, uniform_target};
+use elcon_influence::{Body, PointSet};
+
+/// Example 2's beam: steel, 1 in x 4 in, on a foundation of 1e7 lb/in/in,
+/// `length` long, `per_half` points per half, loaded at `x0` by `load`.
+/// `length`, `force` convert from inch and pound (1 for inch-pound).
+fn beam(per_half: usize, x0: f64, load: f64, length: f64, force: f64) -> ContactProblem {
+    let l = 8.9 * length;
+    let n = 2 * per_half;
+    let points = PointSet::line(-0.5 * l, 0.5 * l, n).unwrap();
+    let e = 30e6 * force / (length * length);
+    let i = 64.0 / 12.0 * length.powi(4);
+    let k = 1e7 * force / (length * length);
+    ContactProblem::new(
+        points,
+        &Body::beam(e, i, x0 * length),
+        &Body::winkler(k),
+        &Geometry::Separation(vec![0.0; n]),
+        Loading::Load(load * force),
+    )
+    .unwrap()
+}
+
+#[test]
+fn design_equals_its_reanalysis_for_every_family() {
+    let case = beam(20, 0.0, 5e4, 1.0, 1.0);
+    for family in [
+        Family::Quadratic,
+        Family::Polynomial { degree: 4 },
+        Family::Free,
+    ] {
+        let d = design(
+            std::slice::from_ref(&case),
+            Axis::X,
+            family,
+            &DesignOptions::default(),
+        )
+        .unwrap();
+        assert!(d.certificate.holds(), "{family:?}: {}", d.certificate);
+        let sol = &d.evaluation.solutions[0];
+        assert!(sol.certificate.holds());
+        // The program's forces and the re-analysis' are two exact solutions of
+        // the same LCP: they agree to rounding times the conditioning of S.
+        let rel = (d.max_intensity - d.evaluation.worst).abs() / d.max_intensity;
+        assert!(rel < 1e-9, "{family:?}: {rel:e}");
+        // The correction is a separation: >= 0 at every point, 0 somewhere.
+        let y = &d.evaluation.corrections[0];
+        let lowest = y.iter().cloned().fold(f64::INFINITY, f64::min);
+        assert!(
+            lowest.abs() < 1e-12 * y.iter().cloned().fold(0.0, f64::max),
+            "{lowest:e}"
+        );
+    }
+}
+
+#[test]
+fn richer_families_do_at_least_as_well() {
+    // Nested families: the optimum cannot get worse from quadratic to
+    // quartic to free; the free profile reaches the lower bound P / L.
+    let case = beam(20, 0.0, 5e4, 1.0, 1.0);
+    let mean = 5e4 / 8.9;
+    let p = |family| {
+        design(
+            std::slice::from_ref(&case),
+            Axis::X,
+            family,
+            &DesignOptions::default(),
+        )
+        .unwrap()
+        .max_intensity
+    };
+    let (q, p4, free) = (
+        p(Family::Quadratic),
+        p(Family::Polynomial { degree: 4 }),
+        p(Family::Free),
+    );
+    assert!(
+        p4 <= q * (1.0 + 1e-12) && free <= p4 * (1.0 + 1e-12),
+        "{q} {p4} {free}"
+    );
+    assert!(
+        (free / mean - 1.0).abs() < 1e-12,
+        "free profile: {free} vs P/L {mean}"
+    );
+}
+
+/// The worst p_max of the quadratic `a s^2 + b s + c`, c the least that keeps
+/// the correction >= 0 (a larger c only shifts the approach).
+fn quadratic_pmax(case: &ContactProblem, a: f64, b: f64) -> f64 {
+    let xs = case.points().xs();
+    let lowest = xs
+        .iter()
+        .map(|&s| a * s * s + b * s)
+        .fold(f64::INFINITY, f64::min);
+    let profile = Profile::Quadratic { a, b, c: -lowest };
+    evaluate(
+        std::slice::from_ref(case),
+        Axis::X,
+        &profile,
+        Method::BlockPivoting,
+        &Options::default(),
+    )
+    .unwrap()
+    .worst
+}
+
+#[test]
+fn no_grid_point_beats_the_quadratic_design() {
+    // Centred and off-centre loads (the linear term b then matters), 8 points per half.
+    for x0 in [0.0, 1.3] {
+        let case = beam(8, x0, 5e4, 1.0, 1.0);
+        let d = design(
+            std::slice::from_ref(&case),
+            Axis::X,
+            Family::Quadratic,
+            &DesignOptions::default(),
+        )
+        .unwrap();
+        let Profile::Quadratic { a, b, .. } = d.profile else {
+            panic!()
+        };
+        // A 61 x 61 grid over a window four times the design's (a, b) on
+        // each side of 0; the design itself is on no grid line.
+        let (sa, sb) = (4.0 * a.abs().max(1e-6), 4.0 * b.abs().max(1e-5));
+        let mut best = f64::INFINITY;
+        for i in 0..61 {
+            for j in 0..61 {
+                let ga = -sa + 2.0 * sa * i as f64 / 60.0;
+                let gb = -sb + 2.0 * sb * j as f64 / 60.0;
+                best = best.min(quadratic_pmax(&case, ga, gb));
+            }
+        }
+        // The design is a vertex of the complementarity-constrained program;
+        // its p_max is reproduced by the re-analysis to 1e-9 (above).
+        assert!(
+            best >= d.max_intensity * (1.0 - 1e-9),
+            "x0 = {x0}: grid found {best}, design {}",
+            d.max_intensity
+        );
+        // And the grid comes close to it: the design is not an outlier.
+        assert!(
+            best <= d.max_intensity * 1.05,
+            "x0 = {x0}: {best} vs {}",
+            d.max_intensity
+        );
+    }
+}
+
+#[test]
+fn uniform_target_gives_the_mean_pressure_everywhere() {
+    for x0 in [0.0, -2.0] {
+        let case = beam(20, x0, 5e4, 1.0, 1.0);
+        let target = uniform_target(&case).unwrap();
+        let lowest = target
+            .correction
+            .iter()
+            .cloned()
+            .fold(f64::INFINITY, f64::min);
+        assert_eq!(lowest, 0.0);
+        let xs = case.points().xs().to_vec();
+        let profile = Profile::Free {
+            positions: xs,
+            drops: target.correction.clone(),
+        };
+        let e = evaluate(
+            std::slice::from_ref(&case),
+            Axis::X,
+            &profile,
+            Method::Lemke,
+            &Options::default(),
+        )
+        .unwrap();
+        let sol = &e.solutions[0];
+        assert!(sol.certificate.holds());
+        let mean = 5e4 / 8.9;
+        for (k, p) in sol.pressures.iter().enumerate() {
+            assert!((p / mean - 1.0).abs() < 1e-9, "x0 {x0} point {k}: {p}");
+        }
+        assert!((sol.approach / target.approach - 1.0).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn designs_do_not_depend_on_the_units() {
+    // inch-pound against metre-newton.
+    let (m, n) = (0.0254, 4.448_221_615_260_5);
+    let ip = beam(12, 0.7, 5e4, 1.0, 1.0);
+    let si = beam(12, 0.7, 5e4, m, n);
+    for family in [Family::Quadratic, Family::Free] {
+        let a = design(
+            std::slice::from_ref(&ip),
+            Axis::X,
+            family,
+            &DesignOptions::default(),
+        )
+        .unwrap();
+        let b = design(
+            std::slice::from_ref(&si),
+            Axis::X,
+            family,
+            &DesignOptions::default(),
+        )
+        .unwrap();
+        // p_max in force per length: lb/in -> N/m.
+        let ratio = b.max_intensity / (a.max_intensity * n / m);
+        assert!((ratio - 1.0).abs() < 1e-9, "{family:?}: {ratio}");
+        for (s, y) in a.profile.table(&a.stations).unwrap() {
+            let y_si = b.profile.separation(s * m).unwrap();
+            let scale = a.evaluation.corrections[0]
+                .iter()
+                .cloned()
+                .fold(0.0, f64::max);
+            assert!(
+                (y_si / m - y).abs() < 1e-9 * scale,
+                "{family:?} at {s}: {y} vs {}",
+                y_si / m
+            );
+        }
+    }
+}
+
+#[test]
+fn several_load_cases_at_once() {
+    let light = beam(12, 0.0, 1e4, 1.0, 1.0);
+    let heavy = beam(12, 0.0, 5e4, 1.0, 1.0);
+    let cases = [light.clone(), heavy.clone()];
+    let opts = DesignOptions::default();
+    let both = design(&cases, Axis::X, Family::Polynomial { degree: 4 }, &opts).unwrap();
+    assert_eq!(both.evaluation.solutions.len(), 2);
+    for sol in &both.evaluation.solutions {
+        assert!(sol.certificate.holds());
+    }
+    // The worst case over both loads, as a ratio to each load's mean
+    // intensity, is what t bounds: here p_max of the heavy case dominates.
+    assert!((both.max_intensity / both.evaluation.worst - 1.0).abs() < 1e-9);
+    // A design for one load, used under both, is no better than the joint one.
+    for single in [&light, &heavy] {
+        let d = design(
+            std::slice::from_ref(single),
+            Axis::X,
+            Family::Polynomial { degree: 4 },
+            &opts,
+        )
+        .unwrap();
+        let under_both = evaluate(
+            &cases,
+            Axis::X,
+            &d.profile,
+            Method::BlockPivoting,
+            &Options::default(),
+        )
+        .unwrap()
+        .worst;
+        assert!(
+            both.max_intensity <= under_both * (1.0 + 1e-9),
+            "{} vs {under_both}",
+            both.max_intensity
+        );
+    }
+}
+
+#[test]
+fn fitting_reproduces_a_profile_of_the_family() {
+    use elcon_design::fit_profile;
+    let xs: Vec<f64> = (0..9).map(|i| -2.0 + 0.5 * i as f64).collect();
+    let exact = Profile::Quadratic {
+        a: 0.3,
+        b: -0.2,
+        c: 0.0,
+    };
+    let ys: Vec<f64> = xs.iter().map(|&x| exact.separation(x).unwrap()).collect();
+    // The fit is shifted so its smallest drop is 0, like every design.
+    let lowest = ys.iter().cloned().fold(f64::INFINITY, f64::min);
+    let fit = fit_profile(Family::Quadratic, &xs, &ys).unwrap();
+    for (&x, &y) in xs.iter().zip(&ys) {
+        assert!(
+            (fit.separation(x).unwrap() - (y - lowest)).abs() < 1e-14,
+            "{x}"
+        );
+    }
+    let e = fit_profile(Family::Quadratic, &[0.0, 0.0, 1.0], &[1.0, 2.0, 3.0]).unwrap_err();
+    assert!(e.to_string().contains("distinct"), "{e}");
+}

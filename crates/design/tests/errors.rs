@@ -1,0 +1,172 @@
+//! One test per `DesignError` variant: the error a user gets, and that its
+//! message names the field and the reason.
+
+use elcon_analysis::{AnalysisError, ContactProblem, Geometry, Loading, Method, Options};
+use elcon_design::{
+    Axis, DesignError, DesignOptions, Family, Profile, design, evaluate, target_separation,
+};
+use elcon_influence::{Body, PointSet};
+use elcon_lcp::LcpError;
+
+fn beam(loading: Loading) -> ContactProblem {
+    let points = PointSet::line(-4.45, 4.45, 12).unwrap();
+    ContactProblem::new(
+        points,
+        &Body::beam(30e6, 64.0 / 12.0, 0.0),
+        &Body::winkler(1e7),
+        &Geometry::Separation(vec![0.0; 12]),
+        loading,
+    )
+    .unwrap()
+}
+
+#[test]
+fn invalid_input_names_the_field() {
+    let case = beam(Loading::Load(5e4));
+    let opts = DesignOptions {
+        max_constant: Some(-1.0),
+        ..DesignOptions::default()
+    };
+    let e = design(
+        std::slice::from_ref(&case),
+        Axis::X,
+        Family::Quadratic,
+        &opts,
+    )
+    .unwrap_err();
+    assert_eq!(e.to_string(), "`max_constant` = -1: must be finite and > 0");
+    let e = target_separation(&case, &[0.0; 12]).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            DesignError::InvalidInput {
+                field: "weights",
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let crown = Profile::CircularCrown {
+        radius: f64::INFINITY,
+        flat_length: 0.0,
+    };
+    let e = evaluate(&[case], Axis::X, &crown, Method::Lemke, &Options::default()).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "`circular_crown.radius` = inf: must be finite and > 0"
+    );
+}
+
+#[test]
+fn incompatible_inputs_say_what_to_give() {
+    let e = design(&[], Axis::X, Family::Free, &DesignOptions::default()).unwrap_err();
+    assert_eq!(e.to_string(), "`cases`: no load case given");
+    let e = design(
+        &[beam(Loading::Approach(1e-3))],
+        Axis::X,
+        Family::Free,
+        &DesignOptions::default(),
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("load case 0 is displacement controlled"),
+        "{e}"
+    );
+    let e = design(
+        &[beam(Loading::Load(1.0))],
+        Axis::X,
+        Family::Polynomial { degree: 12 },
+        &DesignOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "`family.degree`: degree 12 needs at least 13 axial stations, the cases have 12"
+    );
+}
+
+#[test]
+fn analysis_failures_name_the_stage() {
+    // A pivot limit of 1 in the re-analysis.
+    let opts = DesignOptions {
+        reanalysis: Method::Lemke,
+        reanalysis_options: Options {
+            max_pivots: Some(1),
+            ..Options::default()
+        },
+        ..DesignOptions::default()
+    };
+    let e = design(
+        &[beam(Loading::Load(5e4))],
+        Axis::X,
+        Family::Quadratic,
+        &opts,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            DesignError::Analysis {
+                source: AnalysisError::Engine(LcpError::PivotLimit { .. }),
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string()
+            .starts_with("analysis of load case 0 with the quadratic profile failed"),
+        "{e}"
+    );
+}
+
+#[test]
+fn engine_failures_pass_through() {
+    let opts = DesignOptions {
+        engine: Options {
+            max_pivots: Some(1),
+            ..Options::default()
+        },
+        ..DesignOptions::default()
+    };
+    let e = design(
+        &[beam(Loading::Load(5e4))],
+        Axis::X,
+        Family::Quadratic,
+        &opts,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            DesignError::Engine(LcpError::PivotLimit { limit: 1, .. })
+        ),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string()
+            .starts_with("the design program failed: pivot limit 1"),
+        "{e}"
+    );
+}
+
+#[test]
+fn disagreement_is_an_error_not_a_design() {
+    // An agreement tolerance below rounding: the two exact solutions differ
+    // in their last bits, and the design is refused.
+    let opts = DesignOptions {
+        agreement: 1e-300,
+        ..DesignOptions::default()
+    };
+    // (Measured: they differ by about 1e-16 relative on this beam.)
+    let e = design(
+        &[beam(Loading::Load(5e4))],
+        Axis::X,
+        Family::Quadratic,
+        &opts,
+    )
+    .unwrap_err();
+    assert!(matches!(e, DesignError::Disagreement { .. }), "{e:?}");
+    assert!(e.to_string().contains("differ by"), "{e}");
+}
