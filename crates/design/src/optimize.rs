@@ -24,10 +24,15 @@
 //!
 //! What is guaranteed: part 2 ends at a complementary basic solution that no
 //! admissible pivot improves, a local minimum of a non-convex problem;
-//! global optimality is not (the paper says so too). elcon therefore runs
-//! part 2 from more than one start (the uncorrected geometry, as in the
-//! paper, and for line contacts the least-squares fit of the uniform-pressure
-//! separation to the family, the paper's own comparison) and keeps the best.
+//! global optimality is not (the paper says so too). The local minima are
+//! real: on a flexible beam over a stiff foundation the uncorrected start
+//! ends with the load on the three points under it (p_max = 8 P/L with a
+//! free profile) because bringing the next point into contact needs a move
+//! that first raises p_max. elcon therefore runs part 2 from more than one
+//! start (the uncorrected geometry, as in the paper; for line contacts the
+//! least-squares fit of the uniform-pressure separation to the family, the
+//! paper's own comparison; and any profiles the caller gives) and keeps the
+//! best. Part 2 never ends worse than its start.
 //! Every design is re-analysed with elcon-analysis; its p_max and the
 //! re-analysis' agree to [`DesignOptions::agreement`] or the design is an
 //! error. The constant c has an upper bound (the paper's c_max): a uniform
@@ -82,6 +87,12 @@ pub struct DesignOptions {
     /// Also start part 2 from the least-squares fit of the uniform-pressure
     /// separation (line contacts only; default true).
     pub fitted_start: bool,
+    /// More starting profiles (any family: each is sampled at the stations
+    /// and fitted to the design's family by least squares, shifted to be
+    /// non-negative). A design from a start is never worse than the start
+    /// itself, so a known good crown given here bounds the result. Default
+    /// none.
+    pub starts: Vec<Profile>,
     /// Largest accepted relative difference between the design's objective
     /// and its re-analysis' (default 1e-9).
     pub agreement: f64,
@@ -99,6 +110,7 @@ impl Default for DesignOptions {
             reanalysis: Method::BlockPivoting,
             reanalysis_options: Options::default(),
             fitted_start: true,
+            starts: Vec::new(),
             agreement: 1e-9,
             reference_intensities: None,
         }
@@ -108,8 +120,8 @@ impl Default for DesignOptions {
 /// How one start of part 2 ended.
 #[derive(Debug, Clone)]
 pub struct StartOutcome {
-    /// "uncorrected" or "fitted uniform-pressure separation".
-    pub label: &'static str,
+    /// "uncorrected", "fitted uniform-pressure separation", or "given start i".
+    pub label: String,
     /// The objective it reached (the worst p_max_l / r_l), or why it failed.
     pub result: Result<f64, String>,
     /// Pivots of its solve.
@@ -511,8 +523,8 @@ pub fn design(
 
     // Starts: the uncorrected geometry; for line contacts, the fit of the
     // uniform-pressure separation of the heaviest case.
-    let mut starts: Vec<(&'static str, Vec<f64>)> =
-        vec![("uncorrected", vec![0.0; basis.params()])];
+    let mut starts: Vec<(String, Vec<f64>)> =
+        vec![("uncorrected".into(), vec![0.0; basis.params()])];
     let heaviest = (0..prepared.len())
         .max_by(|&a, &b| prepared[a].load.total_cmp(&prepared[b].load))
         .unwrap_or(0);
@@ -525,7 +537,14 @@ pub fn design(
         for (k, &st) in prepared[heaviest].station.iter().enumerate() {
             y[st] = target.correction[k];
         }
-        starts.push(("fitted uniform-pressure separation", basis.fit(&y)));
+        starts.push(("fitted uniform-pressure separation".into(), basis.fit(&y)));
+    }
+    for (i, profile) in options.starts.iter().enumerate() {
+        let y = profile.separations(&stations)?;
+        starts.push((
+            format!("given start {i} ({})", profile.family()),
+            basis.fit(&y),
+        ));
     }
     let c_max = basis.constant.map(|ci| {
         options.max_constant.unwrap_or_else(|| {
@@ -542,12 +561,13 @@ pub fn design(
     let mut best: Option<(Design, usize)> = None;
     let mut first_error = None;
     for (label, theta0) in &starts {
-        match run_start(
+        let run = run_start(
             cases, &prepared, &basis, family, axis, &stations, c_max, theta0, options,
-        ) {
+        );
+        match run.map(|(d, _)| d) {
             Ok(d) => {
                 outcomes.push(StartOutcome {
-                    label,
+                    label: label.clone(),
                     result: Ok(d.objective),
                     pivots: d.statistics.pivots,
                 });
@@ -557,7 +577,7 @@ pub fn design(
             }
             Err(e) => {
                 outcomes.push(StartOutcome {
-                    label,
+                    label: label.clone(),
                     result: Err(e.to_string()),
                     pivots: 0,
                 });
@@ -629,7 +649,7 @@ fn run_start(
     c_max: Option<f64>,
     theta0: &[f64],
     options: &DesignOptions,
-) -> Result<Design, DesignError> {
+) -> Result<(Design, Vec<f64>), DesignError> {
     let (program, layout) = program(prepared, basis, c_max, theta0)?;
     let solution = program.solve(&options.engine)?;
     let theta: Vec<f64> = layout
@@ -677,16 +697,19 @@ fn run_start(
         }
         _ => false,
     };
-    Ok(Design {
-        profile,
-        stations: stations.to_vec(),
-        objective,
-        max_intensity,
-        evaluation,
-        starts: Vec::new(),
-        certificate: solution.certificate,
-        statistics: solution.statistics,
-        max_constant: c_max,
-        constant_at_bound,
-    })
+    Ok((
+        Design {
+            profile,
+            stations: stations.to_vec(),
+            objective,
+            max_intensity,
+            evaluation,
+            starts: Vec::new(),
+            certificate: solution.certificate,
+            statistics: solution.statistics,
+            max_constant: c_max,
+            constant_at_bound,
+        },
+        theta,
+    ))
 }

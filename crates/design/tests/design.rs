@@ -287,3 +287,41 @@ fn fitting_reproduces_a_profile_of_the_family() {
     let e = fit_profile(Family::Quadratic, &[0.0, 0.0, 1.0], &[1.0, 2.0, 3.0]).unwrap_err();
     assert!(e.to_string().contains("distinct"), "{e}");
 }
+
+#[test]
+fn the_paper_start_can_end_at_a_local_minimum_and_the_fitted_start_escapes_it() {
+    // A flexible beam (E I = 1e4) on a stiff foundation (k = 6.4e7), 10.4
+    // long, 12 points per half (found by the property test): from the
+    // uncorrected geometry part 2 ends with the load on a few points under
+    // it, because bringing the next point into contact first raises p_max.
+    let n = 24;
+    let length = 10.438_276_617_514_97;
+    let points = PointSet::line(-0.5 * length, 0.5 * length, n).unwrap();
+    let case = ContactProblem::new(
+        points,
+        &Body::beam(1e4, 1.0, -0.0199 * length),
+        &Body::winkler(10f64.powf(7.804_685_818_363_645)),
+        &Geometry::Separation(vec![0.0; n]),
+        Loading::Load(10.0),
+    )
+    .unwrap();
+    let d = design(
+        std::slice::from_ref(&case),
+        Axis::X,
+        Family::Free,
+        &DesignOptions::default(),
+    )
+    .unwrap();
+    let mean = 10.0 / length;
+    let paper = d.starts[0].result.clone().unwrap();
+    let fitted = d.starts[1].result.clone().unwrap();
+    assert!(
+        paper > 5.0 * mean,
+        "the paper's start: {paper} vs P/L {mean}"
+    );
+    assert!(
+        (fitted / mean - 1.0).abs() < 1e-9,
+        "the fitted start: {fitted}"
+    );
+    assert!((d.max_intensity / mean - 1.0).abs() < 1e-9);
+}

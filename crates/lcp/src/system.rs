@@ -76,9 +76,10 @@ impl System {
         }
     }
 
-    /// `A x` for the full vector `x`.
-    pub fn apply(&self, x: &[f64]) -> Col<f64> {
+    /// `A x` for the full vector `x`, and the magnitude of its terms `|A| |x|`.
+    pub fn apply_with_terms(&self, x: &[f64]) -> (Col<f64>, Col<f64>) {
         let mut y = Col::<f64>::zeros(self.rows);
+        let mut terms = Col::<f64>::zeros(self.rows);
         for (var, col) in self.columns.iter().enumerate() {
             let xv = x[var];
             if xv == 0.0 {
@@ -87,13 +88,18 @@ impl System {
             match *col {
                 Column::Dense(j) => {
                     for i in 0..self.rows {
-                        y[i] += self.dense[(i, j)] * xv;
+                        let a = self.dense[(i, j)] * xv;
+                        y[i] += a;
+                        terms[i] += a.abs();
                     }
                 }
-                Column::Unit { row, coef } => y[row] += coef * xv,
+                Column::Unit { row, coef } => {
+                    y[row] += coef * xv;
+                    terms[row] += (coef * xv).abs();
+                }
             }
         }
-        y
+        (y, terms)
     }
 
     /// Equilibrates in place: geometric-mean scaling, then Ruiz on max-norms,
@@ -262,30 +268,40 @@ impl System {
         }
         let mut x = self.b.clone();
         lu.solve_in_place(x.as_mat_mut());
-        let bnorm = crate::dense::norm_inf(self.b.as_ref());
+        // Refine until the componentwise backward error
+        // max_i |b - B x|_i / (|B| |x| + |b|)_i is at rounding level (each row
+        // judged against its own terms: rows of very different scales, a
+        // force balance beside a compatibility row in length, must all be
+        // accurate), or stops improving; keep the best iterate.
+        let (mut best, mut best_error) = (x.clone(), f64::INFINITY);
         let mut steps = 0;
-        for _ in 0..max_steps {
-            // r = b - B x, from the data
+        for step in 0..=max_steps {
             let mut full = vec![0.0; self.vars()];
             for (k, &v) in basis.iter().enumerate() {
                 full[v] = x[k];
             }
-            let bx = self.apply(&full);
+            let (bx, terms) = self.apply_with_terms(&full);
             let mut res = Col::<f64>::from_fn(m, |i| self.b[i] - bx[i]);
-            let rn = crate::dense::norm_inf(res.as_ref());
-            if rn <= f64::EPSILON * bnorm || rn == 0.0 {
+            let error = (0..m)
+                .map(|i| {
+                    let t = terms[i] + self.b[i].abs();
+                    if t > 0.0 { res[i].abs() / t } else { 0.0 }
+                })
+                .fold(0.0f64, f64::max);
+            if error < best_error {
+                best.copy_from(&x);
+                best_error = error;
+            } else {
+                break; // no longer improving
+            }
+            if error <= 2.0 * f64::EPSILON || step == max_steps {
                 break;
             }
             lu.solve_in_place(res.as_mat_mut());
-            let dn = crate::dense::norm_inf(res.as_ref());
-            for i in 0..m {
-                x[i] += res[i];
-            }
+            x += &res;
             steps += 1;
-            if dn <= f64::EPSILON * crate::dense::norm_inf(x.as_ref()) {
-                break;
-            }
         }
+        let x = best;
         Ok((x, steps))
     }
 }
