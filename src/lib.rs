@@ -10,9 +10,14 @@
 //! - [`analysis`] (`elcon-analysis`): the contact problem of Conry & Seireg
 //!   (1971) and the closed-form references it is checked against;
 //! - [`design`] (`elcon-design`): profile corrections, min-max load
-//!   intensity designs and target-pressure separations.
+//!   intensity designs and target-pressure separations;
+//! - `scene` (`elcon-scene`, with the default `cli` feature): TOML scenes,
+//!   batch sweeps and their reports, behind the `elcon` command line.
 
 pub use elcon_analysis as analysis;
 pub use elcon_design as design;
 pub use elcon_influence as influence;
 pub use elcon_lcp as lcp;
+/// TOML scenes, batches and reports (with the default `cli` feature).
+#[cfg(feature = "cli")]
+pub use elcon_scene as scene;

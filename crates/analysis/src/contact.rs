@@ -19,7 +19,12 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use elcon_influence::{Body, Dimension, PointSet, assemble};
+use elcon_influence::{Body, Dimension, Folding, PointSet, assemble, assemble_folded};
+
+/// Separations equal to this fraction of their largest magnitude count as
+/// symmetric (they come from the same formula at mirrored points, so they
+/// are equal to rounding).
+const SYMMETRY_TOLERANCE: f64 = 1e-14;
 use elcon_lcp::{Bound, Certificate, LcpError, Method, MixedLcpRef, Options, Statistics};
 use faer::{Col, ColRef, Mat, MatRef};
 
@@ -99,8 +104,9 @@ pub enum Loading {
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum Warning {
-    /// The contact reaches the edge of the candidate zone: the true contact
-    /// may be larger, and the answer is truncated. Enlarge the zone.
+    /// The contact reaches an open edge of the candidate zone (not one
+    /// declared a body's own by [`ContactProblem::with_body_edges`]): the
+    /// true contact may be larger, and the answer is truncated. Enlarge the zone.
     ContactAtEdge {
         /// Points in contact on the zone's boundary.
         points: Vec<usize>,
@@ -195,6 +201,9 @@ pub struct ContactProblem {
     separation: Vec<f64>,
     loading: Loading,
     assembly_seconds: f64,
+    body_edges: (bool, bool),
+    /// The orbits of a mirror-symmetric problem, when it was folded.
+    folding: Option<Arc<Folding>>,
 }
 
 impl ContactProblem {
@@ -214,6 +223,50 @@ impl ContactProblem {
         let mut p = Self::from_parts(points, influence, separation, loading)?;
         p.assembly_seconds = assembly_seconds;
         Ok(p)
+    }
+
+    /// As [`ContactProblem::new`], but when the points, both bodies' models
+    /// and the separations are mirror symmetric (`elcon_influence::Folding`),
+    /// the problem is folded: one unknown per orbit of points, the folded
+    /// matrix assembled in place of S (never the full S), a quarter or an
+    /// eighth of the size. The solution is the same (the contact solution is
+    /// unique, hence symmetric) and is returned for every point; the
+    /// engine's certificate is that of the folded system, an exact
+    /// regrouping of the original sums. Without a symmetry it is
+    /// [`ContactProblem::new`].
+    pub fn symmetric(
+        points: PointSet,
+        body1: &Body,
+        body2: &Body,
+        geometry: &Geometry,
+        loading: Loading,
+    ) -> Result<Self, AnalysisError> {
+        let start = Instant::now();
+        let separation = separations(&points, geometry)?;
+        let folding = Folding::detect(&points, &[body1, body2])
+            .filter(|f| f.is_invariant(&separation, SYMMETRY_TOLERANCE));
+        let Some(folding) = folding else {
+            return Self::new(points, body1, body2, geometry, loading);
+        };
+        let influence = assemble_folded(&points, &[body1, body2], &folding)?;
+        let assembly_seconds = start.elapsed().as_secs_f64();
+        let n = points.len();
+        Self::check(n, &separation, loading)?;
+        Ok(Self {
+            points,
+            influence: Arc::new(influence),
+            separation,
+            loading,
+            assembly_seconds,
+            body_edges: (false, false),
+            folding: Some(Arc::new(folding)),
+        })
+    }
+
+    /// The orbits the problem was folded with ([`ContactProblem::symmetric`]),
+    /// or `None` for a problem solved in full.
+    pub fn folding(&self) -> Option<&Folding> {
+        self.folding.as_deref()
     }
 
     /// A problem from an influence matrix (N x N, length per force) and
@@ -243,6 +296,8 @@ impl ContactProblem {
             separation,
             loading,
             assembly_seconds: 0.0,
+            body_edges: (false, false),
+            folding: None,
         })
     }
 
@@ -287,7 +342,9 @@ impl ContactProblem {
         &self.points
     }
 
-    /// The influence matrix S (length per force).
+    /// The influence matrix S (length per force), N x N; for a folded
+    /// problem ([`ContactProblem::symmetric`]) the folded matrix M of the
+    /// representatives instead (see [`ContactProblem::folding`]).
     pub fn influence(&self) -> MatRef<'_, f64> {
         Mat::as_ref(&self.influence)
     }
@@ -318,13 +375,42 @@ impl ContactProblem {
         // Validate through from_parts' checks without copying S.
         let n = self.points.len();
         Self::check(n, &separation, loading)?;
+        if let Some(f) = &self.folding
+            && !f.is_invariant(&separation, SYMMETRY_TOLERANCE)
+        {
+            return Err(AnalysisError::Incompatible {
+                field: "separation",
+                reason: format!(
+                    "breaks the symmetry ({}) the problem was folded with; build it with \
+                     ContactProblem::new to solve it in full",
+                    f.group()
+                ),
+            });
+        }
         Ok(Self {
             points: self.points.clone(),
             influence: Arc::clone(&self.influence),
             separation,
             loading,
             assembly_seconds: self.assembly_seconds,
+            body_edges: self.body_edges,
+            folding: self.folding.clone(),
         })
+    }
+
+    /// Declares that the candidate zone's extent along x (`along_x`), resp.
+    /// y (`along_y`), is the bodies' own: contact that reaches those edges
+    /// (a beam's ends, a roller's ends, a punch's rim) is real, not cut off
+    /// by the zone, and raises no [`Warning::ContactAtEdge`]. By default
+    /// every edge of the zone is an open one.
+    pub fn with_body_edges(mut self, along_x: bool, along_y: bool) -> Self {
+        self.body_edges = (along_x, along_y);
+        self
+    }
+
+    /// The edges declared by [`ContactProblem::with_body_edges`].
+    pub fn body_edges(&self) -> (bool, bool) {
+        self.body_edges
     }
 
     /// Seconds spent assembling S and eps.
@@ -339,20 +425,32 @@ impl ContactProblem {
         method: Method,
         options: &Options,
     ) -> Result<ContactSolution, AnalysisError> {
-        let n = self.points.len();
         let start = Instant::now();
-        let eps = ColRef::from_slice(&self.separation);
-        let (forces, alpha, certificate, statistics) = match self.loading {
+        // The unknowns: every point, or one representative per orbit of a
+        // folded problem, whose rows are scaled by 1 / s_a (docs of
+        // `elcon_influence::Folding`): w_a = Y_a / s_a, and the equilibrium
+        // row by 1 / |G|, which keeps [B; D] and [C D] a skew pair.
+        let n = self.influence.nrows();
+        let (scale, order): (Vec<f64>, f64) = match &self.folding {
+            Some(f) => ((0..n).map(|a| f.stabilizer(a)).collect(), f.order() as f64),
+            None => (vec![1.0; n], 1.0),
+        };
+        let eps_of = |a: usize| match &self.folding {
+            Some(f) => self.separation[f.rep(a)],
+            None => self.separation[a],
+        };
+        let (z, alpha, certificate, statistics) = match self.loading {
             Loading::Load(p) => {
-                let b = Mat::<f64>::from_fn(n, 1, |_, _| -1.0);
-                let c = Mat::<f64>::from_fn(1, n, |_, _| 1.0);
+                let q = Col::from_fn(n, |a| eps_of(a) / scale[a]);
+                let b = Mat::<f64>::from_fn(n, 1, |a, _| -1.0 / scale[a]);
+                let c = Mat::<f64>::from_fn(1, n, |_, a| 1.0 / scale[a]);
                 let d = Mat::<f64>::zeros(1, 1);
-                let r = [-p];
+                let r = [-p / order];
                 let bounds = [Bound::Free];
                 let problem = MixedLcpRef::new(
                     Mat::as_ref(&self.influence),
                     b.as_ref(),
-                    eps,
+                    q.as_ref(),
                     c.as_ref(),
                     d.as_ref(),
                     ColRef::from_slice(&r),
@@ -362,7 +460,7 @@ impl ContactProblem {
                 (sol.z, sol.u[0], sol.certificate, sol.statistics)
             }
             Loading::Approach(alpha) => {
-                let q = Col::from_fn(n, |k| self.separation[k] - alpha);
+                let q = Col::from_fn(n, |a| (eps_of(a) - alpha) / scale[a]);
                 let empty = Mat::<f64>::zeros(n, 0);
                 let no_rows = Mat::<f64>::zeros(0, n);
                 let none = Mat::<f64>::zeros(0, 0);
@@ -379,25 +477,31 @@ impl ContactProblem {
                 (sol.z, alpha, sol.certificate, sol.statistics)
             }
         };
+        // Gaps from the original data: Y = S F + eps - alpha e (folded:
+        // Y_a = s_a (M z)_a + eps_a - alpha, the same sums regrouped).
+        let mz = Mat::as_ref(&self.influence) * &z;
+        let folded_gaps: Vec<f64> = (0..n)
+            .map(|a| scale[a] * mz[a] + eps_of(a) - alpha)
+            .collect();
+        let z: Vec<f64> = z.iter().copied().collect();
+        let (forces, gaps) = match &self.folding {
+            Some(f) => (f.unfold(&z), f.unfold(&folded_gaps)),
+            None => (z, folded_gaps),
+        };
         let solve_seconds = start.elapsed().as_secs_f64();
-        Ok(self.finish(forces, alpha, &certificate, statistics, solve_seconds))
+        Ok(self.finish(forces, gaps, alpha, &certificate, statistics, solve_seconds))
     }
 
-    /// Builds the solution from forces and approach.
     fn finish(
         &self,
-        forces: Col<f64>,
+        forces: Vec<f64>,
+        gaps: Vec<f64>,
         approach: f64,
         certificate: &Certificate,
         statistics: Statistics,
         solve_seconds: f64,
     ) -> ContactSolution {
         let n = self.points.len();
-        let sf = Mat::as_ref(&self.influence) * &forces;
-        let gaps: Vec<f64> = (0..n)
-            .map(|k| sf[k] + self.separation[k] - approach)
-            .collect();
-        let forces: Vec<f64> = forces.iter().copied().collect();
         let pressures: Vec<f64> = (0..n).map(|k| forces[k] / self.points.measure(k)).collect();
         let load: f64 = forces.iter().sum();
         let fmax = forces.iter().fold(0.0f64, |a, f| a.max(*f));
@@ -413,10 +517,14 @@ impl ContactProblem {
         let uncertain: Vec<usize> = (0..n)
             .filter(|&k| fmax > 0.0 && forces[k] <= near * fmax && gaps[k] <= near * gap_scale)
             .collect();
+        let (body_x, body_y) = self.body_edges;
         let edge: Vec<usize> = contact
             .iter()
             .copied()
-            .filter(|&k| self.points.is_on_boundary(k))
+            .filter(|&k| {
+                let (x, y) = self.points.open_sides(k);
+                (x && !body_x) || (y && !body_y)
+            })
             .collect();
         let mut warnings = Vec::new();
         if !edge.is_empty() {

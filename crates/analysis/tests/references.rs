@@ -289,8 +289,20 @@ fn rigid_flat_punch() {
             .solve(Method::BlockPivoting, &Options::default())
             .unwrap();
         assert!(sol.certificate.holds(), "{units}: {}", sol.certificate);
-        // Every point touches, and the zone is the punch: the edge warning fires.
+        // Every point touches, and the zone is the punch: the edge warning
+        // fires, unless the zone's edge is declared the punch's own rim.
         assert_eq!(sol.contact.len(), n);
+        let rim = problem.clone().with_body_edges(true, true);
+        let quiet = rim
+            .solve(Method::BlockPivoting, &Options::default())
+            .unwrap();
+        assert!(
+            quiet
+                .warnings
+                .iter()
+                .all(|w| !matches!(w, Warning::ContactAtEdge { .. }))
+        );
+        assert_eq!(quiet.forces, sol.forces);
         assert!(
             sol.warnings
                 .iter()
@@ -423,4 +435,119 @@ fn beam_on_winkler_foundation_matches_hetenyi() {
         );
         previous = err_alpha;
     }
+}
+
+#[test]
+fn folded_problems_agree_with_full_ones() {
+    let steel = Material::new(30e6, 0.3).unwrap();
+    let sphere = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    let cylinder = Geometry::Surfaces(Surface::Cylinder { radius: 2.0 }, Surface::Plane);
+    let a = 0.016;
+    let cases: Vec<(PointSet, Body, Body, Geometry, Loading, usize)> = vec![
+        (
+            PointSet::grid_disk(a / 6.0, 1.3 * a).unwrap(),
+            Body::uniform_patch(steel),
+            Body::uniform_patch(steel),
+            sphere.clone(),
+            Loading::Load(100.0),
+            8,
+        ),
+        (
+            PointSet::grid_disk(a / 5.0, 1.4 * a).unwrap(),
+            Body::point_force(steel),
+            Body::point_force(steel),
+            sphere,
+            Loading::Approach(2e-4),
+            8,
+        ),
+        (
+            PointSet::grid_rectangle(0.01, 0.1, 7, 12).unwrap(),
+            Body::uniform_patch(steel),
+            Body::rigid(),
+            cylinder.clone(),
+            Loading::Load(300.0),
+            4,
+        ),
+        (
+            PointSet::line(-0.02, 0.02, 41).unwrap(),
+            Body::plane_strain(steel, 1.0),
+            Body::plane_strain(steel, 1.0),
+            cylinder,
+            Loading::Load(1e3),
+            2,
+        ),
+        (
+            PointSet::line(-4.45, 4.45, 30).unwrap(),
+            Body::beam(30e6, 16.0 / 3.0, 0.0),
+            Body::winkler(1e7),
+            Geometry::Separation(vec![0.0; 30]),
+            Loading::Load(5e4),
+            2,
+        ),
+    ];
+    for (points, b1, b2, geometry, loading, order) in cases {
+        let full = ContactProblem::new(points.clone(), &b1, &b2, &geometry, loading).unwrap();
+        let folded = ContactProblem::symmetric(points, &b1, &b2, &geometry, loading).unwrap();
+        let f = folded.folding().expect("a symmetric scene folds");
+        assert_eq!(f.order(), order);
+        assert_eq!(folded.influence().nrows(), f.len());
+        for method in Method::ALL {
+            let x = full.solve(method, &Options::default()).unwrap();
+            let y = folded.solve(method, &Options::default()).unwrap();
+            assert!(y.certificate.holds(), "{method}: {}", y.certificate);
+            let fmax = x.forces.iter().cloned().fold(0.0, f64::max);
+            for k in 0..x.forces.len() {
+                assert!(
+                    (x.forces[k] - y.forces[k]).abs() <= 1e-10 * fmax,
+                    "{method} point {k}"
+                );
+                assert!(
+                    (x.gaps[k] - y.gaps[k]).abs() <= 1e-10 * x.approach.abs(),
+                    "{method} gap {k}"
+                );
+            }
+            assert!(
+                (x.approach - y.approach).abs() <= 1e-11 * x.approach.abs(),
+                "{method}"
+            );
+            assert_eq!(x.contact, y.contact, "{method}");
+            assert!((x.load - y.load).abs() <= 1e-11 * x.load, "{method}");
+        }
+    }
+}
+
+#[test]
+fn a_folded_problem_refuses_an_asymmetric_separation() {
+    let steel = Material::new(30e6, 0.3).unwrap();
+    let points = PointSet::line(-1.0, 1.0, 6).unwrap();
+    let body = Body::plane_strain(steel, 10.0);
+    let p = ContactProblem::symmetric(
+        points,
+        &body,
+        &body,
+        &Geometry::Separation(vec![0.0; 6]),
+        Loading::Load(1.0),
+    )
+    .unwrap();
+    assert!(p.folding().is_some());
+    let e = p
+        .with_separation(vec![0.0, 0.0, 0.0, 0.0, 0.0, 1e-6])
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("breaks the symmetry (mirror x)"),
+        "{e}"
+    );
+    // An asymmetric geometry is simply not folded.
+    let q = ContactProblem::symmetric(
+        PointSet::line(-1.0, 1.0, 6).unwrap(),
+        &body,
+        &body,
+        &Geometry::Separation(vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0]),
+        Loading::Load(1.0),
+    )
+    .unwrap();
+    assert!(q.folding().is_none());
 }

@@ -38,8 +38,19 @@ impl Evaluation {
 }
 
 /// The load of a case, or an error naming it when the case is displacement
-/// controlled (a design evens the pressure under a given load).
+/// controlled (a design evens the pressure under a given load) or folded (a
+/// design needs every point's influence coefficients).
 pub(crate) fn load_of(case: &ContactProblem, index: usize) -> Result<f64, DesignError> {
+    if let Some(f) = case.folding() {
+        return Err(DesignError::Incompatible {
+            field: "cases",
+            reason: format!(
+                "load case {index} is folded by its symmetry ({}); a design may break the symmetry and \
+                 needs the full problem: build it with ContactProblem::new",
+                f.group()
+            ),
+        });
+    }
     match case.loading() {
         Loading::Load(p) => Ok(p),
         Loading::Approach(_) => Err(DesignError::Incompatible {

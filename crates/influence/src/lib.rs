@@ -23,7 +23,9 @@
 //!   unit kernels are in [`kernels`];
 //! - [`assemble`]: S as a dense faer matrix (column-major), one kernel
 //!   evaluation per lattice offset on a grid, half-space bodies of the same
-//!   kernel summed into one combined compliance.
+//!   kernel summed into one combined compliance;
+//! - [`Folding`] / [`assemble_folded`]: for a mirror-symmetric problem, one
+//!   unknown per orbit and the folded matrix, never forming the full S.
 //!
 //! Units: any consistent set. With lengths in inches and E in psi, S is in
 //! inches per pound; with metres and pascals, metres per newton. On a line
@@ -64,10 +66,12 @@ pub mod kernels;
 mod material;
 mod models;
 mod points;
+mod symmetry;
 
-pub use assembly::{assemble, assemble_direct, influence};
+pub use assembly::{assemble, assemble_direct, assemble_folded, influence};
 pub use error::InfluenceError;
 pub use kernels::{boussinesq, love_rectangle, plane_strain_strip};
 pub use material::{Material, combined_modulus, combined_modulus_of};
 pub use models::{Body, Model};
 pub use points::{Cell, Dimension, MAX_POINTS, PointSet};
+pub use symmetry::Folding;

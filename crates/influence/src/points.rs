@@ -88,8 +88,9 @@ pub struct PointSet {
     /// `y_k - y_l = (j_k - j_l) dy` (to rounding), when the set lies on a
     /// lattice of the cell's spacing.
     lattice: Option<Vec<(i64, i64)>>,
-    /// Whether an adjacent cell (x +- dx, y +- dy) holds no point of the set.
-    boundary: Vec<bool>,
+    /// Whether an adjacent cell along x (x +- dx), resp. along y (y +- dy),
+    /// holds no point of the set.
+    boundary: Vec<(bool, bool)>,
 }
 
 /// `value` if finite and positive, else an InvalidPoints error for `field`.
@@ -352,11 +353,7 @@ impl PointSet {
         let members: HashSet<(i64, i64)> = lattice.iter().copied().collect();
         let boundary = lattice
             .iter()
-            .map(|&(i, j)| {
-                neighbour_offsets(dimension)
-                    .iter()
-                    .any(|&(di, dj)| !members.contains(&(i + di, j + dj)))
-            })
+            .map(|&(i, j)| open_sides(dimension, |di, dj| members.contains(&(i + di, j + dj))))
             .collect();
         Self {
             dimension,
@@ -465,16 +462,26 @@ impl PointSet {
     /// Contact that reaches such a point may be cut off by the zone.
     /// Panics if `k >= len()`.
     pub fn is_on_boundary(&self, k: usize) -> bool {
+        let (x, y) = self.boundary[k];
+        x || y
+    }
+
+    /// Which sides of point `k` are open (see [`PointSet::is_on_boundary`]):
+    /// `(along x, along y)`, true when the adjacent cell at `x +- dx`, resp.
+    /// `y +- dy`, holds no point. Lets a caller tell an edge of the
+    /// candidate zone that is a body's own edge (a beam's end, a roller's
+    /// end) from one that truncates the contact. Panics if `k >= len()`.
+    pub fn open_sides(&self, k: usize) -> (bool, bool) {
         self.boundary[k]
     }
 }
 
-/// Offsets of the lattice neighbours checked by the boundary test.
-fn neighbour_offsets(dimension: Dimension) -> &'static [(i64, i64)] {
-    match dimension {
-        Dimension::Line => &[(1, 0), (-1, 0)],
-        Dimension::Surface => &[(1, 0), (-1, 0), (0, 1), (0, -1)],
-    }
+/// `(along x, along y)`: whether a neighbour cell is missing, given a test
+/// `present(di, dj)` of the lattice neighbour at offset (di, dj).
+fn open_sides(dimension: Dimension, present: impl Fn(i64, i64) -> bool) -> (bool, bool) {
+    let x = !present(1, 0) || !present(-1, 0);
+    let y = dimension == Dimension::Surface && (!present(0, 1) || !present(0, -1));
+    (x, y)
 }
 
 /// Lattice indices relative to the first point, if every point lies on the
@@ -500,7 +507,12 @@ fn detect_lattice(xs: &[f64], ys: &[f64], cell: Cell) -> Option<Vec<(i64, i64)>>
 /// Boundary flags of a set without a lattice: a point is on the boundary
 /// when an adjacent cell contains no point centre. Points are bucketed by
 /// cell so the test is O(N).
-fn boundary_by_cells(dimension: Dimension, cell: Cell, xs: &[f64], ys: &[f64]) -> Vec<bool> {
+fn boundary_by_cells(
+    dimension: Dimension,
+    cell: Cell,
+    xs: &[f64],
+    ys: &[f64],
+) -> Vec<(bool, bool)> {
     let x_min = xs.iter().copied().fold(f64::INFINITY, f64::min);
     let y_min = ys.iter().copied().fold(f64::INFINITY, f64::min);
     // `as` saturates, so far-away buckets merely share a key.
@@ -530,9 +542,9 @@ fn boundary_by_cells(dimension: Dimension, cell: Cell, xs: &[f64], ys: &[f64]) -
     xs.iter()
         .zip(ys)
         .map(|(&x, &y)| {
-            neighbour_offsets(dimension)
-                .iter()
-                .any(|&(di, dj)| !occupied(x + di as f64 * cell.dx, y + dj as f64 * cell.dy))
+            open_sides(dimension, |di, dj| {
+                occupied(x + di as f64 * cell.dx, y + dj as f64 * cell.dy)
+            })
         })
         .collect()
 }
@@ -618,8 +630,10 @@ mod tests {
         assert_eq!(p.measure(0), 2.0);
         assert_eq!(p.total_measure(), 12.0);
         assert_eq!(p.extent(), (2.0, 6.0));
-        // 2 columns: every point misses a neighbour.
+        // 2 columns: every point misses a neighbour along x; along y only the ends.
         assert!((0..6).all(|k| p.is_on_boundary(k)));
+        assert_eq!(p.open_sides(0), (true, true));
+        assert_eq!(p.open_sides(1), (true, false));
         let q = PointSet::grid_rectangle(1.5, 1.5, 3, 3).unwrap();
         let interior: Vec<usize> = (0..9).filter(|&k| !q.is_on_boundary(k)).collect();
         assert_eq!(interior, [4]);

@@ -1,0 +1,710 @@
+//! Running a scene: assemble `S = A(1) + A(2)` and eps, solve the contact
+//! problem (`Y = S F + eps - alpha e`, `e^T F = P`, `F, Y >= 0`,
+//! `F_k Y_k = 0`) with the scene's method, compare with the closed form
+//! that applies, and run the design stage if the scene has one. The result
+//! is what result.json holds (schema in docs/results.md).
+
+use std::time::Instant;
+
+use elcon_analysis::{ContactProblem, ContactSolution, Loading};
+use elcon_design::{
+    DesignOptions, Evaluation, LogCrown, Profile, SearchOptions, crown_search, design, evaluate,
+};
+use elcon_influence::{Dimension, combined_modulus_of};
+use serde::Serialize;
+
+use crate::error::SceneError;
+use crate::scene::{DesignFamily, PointsSpec, Reference, RelativeTo, Scene, Units};
+
+/// The engine's statistics, as written.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StatisticsJson {
+    /// Pivots (basis exchanges; index exchanges for block pivoting).
+    pub pivots: usize,
+    /// Pivots of step length zero.
+    pub degenerate_pivots: usize,
+    /// Recomputations of the tableau from the data.
+    pub refactorizations: usize,
+    /// Iterative-refinement steps.
+    pub refinement_steps: usize,
+    /// Block iterations (block pivoting).
+    pub iterations: usize,
+    /// Cholesky factorizations (block pivoting).
+    pub factorizations: usize,
+}
+
+/// A folded problem's symmetry.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SymmetryJson {
+    /// The reflections ("mirror x, mirror y", ...).
+    pub group: String,
+    /// The group's order.
+    pub order: usize,
+    /// Unknowns of the folded problem (one per orbit).
+    pub unknowns: usize,
+}
+
+/// Wall-clock seconds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Seconds {
+    /// Assembling S and eps.
+    pub assembly: f64,
+    /// The engine's solve, certificate included.
+    pub solve: f64,
+    /// The whole run (assembly, solve, reference, design).
+    pub total: f64,
+}
+
+/// The certificate, as written.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CertificateJson {
+    /// |e^T F - P| / P.
+    pub equilibrium: f64,
+    /// Smallest force over the largest.
+    pub min_force: f64,
+    /// Smallest gap over the gap's scale.
+    pub min_gap: f64,
+    /// Largest |F_k Y_k| over (largest force x gap scale).
+    pub complementarity: f64,
+    /// The worst of the above (as violations).
+    pub worst: f64,
+    /// The tolerance it is judged against.
+    pub tolerance: f64,
+    /// worst <= tolerance.
+    pub holds: bool,
+}
+
+/// Relative errors against the closed form, signed (computed / reference - 1),
+/// except `pressure_l2` (a norm ratio). Absent where not meaningful.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Errors {
+    /// Approach.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub approach: Option<f64>,
+    /// Largest pressure (intensity).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure: Option<f64>,
+    /// Contact radius or half-width.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_extent: Option<f64>,
+    /// Load (under displacement control).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub load: Option<f64>,
+    /// `||p - p_ref||_2 / ||p_ref||_2` over the points.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_l2: Option<f64>,
+}
+
+/// The closed form's values and the errors against it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ReferenceJson {
+    /// "hertz-spheres", "hertz-cylinders", "flat-punch", "hetenyi-beam".
+    pub kind: String,
+    /// Reference approach (length).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub approach: Option<f64>,
+    /// Reference peak pressure (intensity unit).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure: Option<f64>,
+    /// Reference contact radius or half-width (length).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_extent: Option<f64>,
+    /// Reference load (force).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub load: Option<f64>,
+    /// Relative errors.
+    pub errors: Errors,
+}
+
+/// One load case of a design, before and after.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DesignCaseJson {
+    /// The load (force).
+    pub load: f64,
+    /// The reference intensity r_l the objective divides by.
+    pub reference_intensity: f64,
+    /// p_max without the correction.
+    pub max_pressure_before: f64,
+    /// p_max with it (re-analysed).
+    pub max_pressure_after: f64,
+    /// The re-analysis' certificate, worst residual.
+    pub certificate_worst: f64,
+    /// Whether it holds.
+    pub certificate_holds: bool,
+}
+
+/// The design stage's result.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DesignJson {
+    /// The family.
+    pub family: String,
+    /// The axial coordinate, "x" or "y".
+    pub axis: String,
+    /// "absolute", "mean" or "hertz".
+    pub relative_to: String,
+    /// The profile's parameters by name (a, b, c; c0..cd; radius; design_load...).
+    pub parameters: std::collections::BTreeMap<String, f64>,
+    /// The objective reached: the worst p_max_l / r_l.
+    pub objective: f64,
+    /// The same before the correction.
+    pub objective_before: f64,
+    /// Per load case.
+    pub cases: Vec<DesignCaseJson>,
+    /// The correction as a table: (axial position, drop), lengths.
+    pub table: Vec<(f64, f64)>,
+    /// How each start of the design program ended (linear families).
+    pub starts: Vec<String>,
+    /// Seconds of the design stage.
+    pub seconds: f64,
+}
+
+/// What result.json holds (docs/results.md documents every field).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunResult {
+    /// The scene's name.
+    pub scene: String,
+    /// The scene file.
+    pub file: String,
+    /// Its description.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Unit labels.
+    pub units: Units,
+    /// The engine's method.
+    pub method: String,
+    /// "surface" or "line".
+    pub dimension: String,
+    /// Number of candidate points N.
+    pub points: usize,
+    /// The mirror symmetry the problem was folded with, if it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub symmetry: Option<SymmetryJson>,
+    /// The engine's statistics.
+    pub statistics: StatisticsJson,
+    /// Seconds.
+    pub seconds: Seconds,
+    /// The approach alpha (length).
+    pub approach: f64,
+    /// The load e^T F (force).
+    pub load: f64,
+    /// The largest load intensity max F_k / A_k (intensity unit).
+    pub max_pressure: f64,
+    /// Points in contact.
+    pub contact_points: usize,
+    /// Contact radius (surface) or half-width (line), from the contact cells' measure (length).
+    pub contact_extent: f64,
+    /// Residuals from the original data.
+    pub certificate: CertificateJson,
+    /// Warnings (truncated zone, uncertain contact).
+    pub warnings: Vec<String>,
+    /// The closed-form comparison, where one applies.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ReferenceJson>,
+    /// The design stage, if the scene has one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub design: Option<DesignJson>,
+}
+
+/// A run's result with what the outputs need beyond result.json.
+#[derive(Debug, Clone)]
+pub struct Run {
+    /// The scene.
+    pub scene: Scene,
+    /// The contact problem as solved.
+    pub problem: ContactProblem,
+    /// Its solution.
+    pub solution: ContactSolution,
+    /// Reference pressure at each point, where a closed form applies.
+    pub reference_pressures: Option<Vec<f64>>,
+    /// The design stage's profile and evaluations (before, after), if any.
+    pub design: Option<DesignRun>,
+    /// The written result.
+    pub result: RunResult,
+}
+
+/// The design stage's data for plots.
+#[derive(Debug, Clone)]
+pub struct DesignRun {
+    /// The correction.
+    pub profile: Profile,
+    /// Every case without correction.
+    pub before: Evaluation,
+    /// Every case with it.
+    pub after: Evaluation,
+    /// The load cases' problems.
+    pub cases: Vec<ContactProblem>,
+}
+
+fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError {
+    SceneError::Run {
+        scene: scene.name.clone(),
+        reason: e.to_string(),
+    }
+}
+
+/// Runs a validated scene.
+///
+/// # Errors
+/// [`SceneError::Run`] naming the scene when the assembly, the solve, or the
+/// design stage fails.
+pub fn run(scene: &Scene) -> Result<Run, SceneError> {
+    let start = Instant::now();
+    let [b1, b2] = &scene.bodies;
+    let build = if scene.fold {
+        ContactProblem::symmetric
+    } else {
+        ContactProblem::new
+    };
+    let problem = build(
+        scene.points.clone(),
+        &b1.body,
+        &b2.body,
+        &scene.geometry,
+        scene.loading,
+    )
+    .map_err(|e| run_error(scene, e))?
+    .with_body_edges(scene.body_edges.0, scene.body_edges.1);
+    let solution = problem
+        .solve(scene.method, &scene.options)
+        .map_err(|e| run_error(scene, e))?;
+    let (reference, reference_pressures) = match &scene.reference {
+        Some(r) => {
+            let (json, p) = compare(r, &problem, &solution, scene.loading);
+            (Some(json), p)
+        }
+        None => (None, None),
+    };
+    let design = match &scene.design {
+        Some(_) => Some(design_stage(scene)?),
+        None => None,
+    };
+    let st = &solution.statistics;
+    let c = &solution.certificate;
+    let result = RunResult {
+        scene: scene.name.clone(),
+        file: scene.file.display().to_string(),
+        description: scene.description.clone(),
+        units: scene.units.clone(),
+        method: scene.method.name().to_string(),
+        dimension: match scene.points.dimension() {
+            Dimension::Surface => "surface".into(),
+            Dimension::Line => "line".into(),
+        },
+        points: scene.points.len(),
+        symmetry: problem.folding().map(|f| SymmetryJson {
+            group: f.group().to_string(),
+            order: f.order(),
+            unknowns: f.len(),
+        }),
+        statistics: StatisticsJson {
+            pivots: st.pivots,
+            degenerate_pivots: st.degenerate_pivots,
+            refactorizations: st.refactorizations,
+            refinement_steps: st.refinement_steps,
+            iterations: st.iterations,
+            factorizations: st.factorizations,
+        },
+        seconds: Seconds {
+            assembly: problem.assembly_seconds(),
+            solve: solution.solve_seconds,
+            total: start.elapsed().as_secs_f64(),
+        },
+        approach: solution.approach,
+        load: solution.load,
+        max_pressure: solution.max_pressure,
+        contact_points: solution.contact.len(),
+        contact_extent: solution.contact_extent,
+        certificate: CertificateJson {
+            equilibrium: c.equilibrium,
+            min_force: c.min_force,
+            min_gap: c.min_gap,
+            complementarity: c.complementarity,
+            worst: c.worst(),
+            tolerance: c.tolerance,
+            holds: c.holds(),
+        },
+        warnings: solution.warnings.iter().map(|w| w.to_string()).collect(),
+        reference,
+        design: design.as_ref().map(|(json, _)| json.clone()),
+    };
+    Ok(Run {
+        scene: scene.clone(),
+        problem,
+        solution,
+        reference_pressures,
+        design: design.map(|(_, d)| d),
+        result,
+    })
+}
+
+/// The closed form's values, errors, and per-point reference pressures.
+fn compare(
+    reference: &Reference,
+    problem: &ContactProblem,
+    sol: &ContactSolution,
+    loading: Loading,
+) -> (ReferenceJson, Option<Vec<f64>>) {
+    let rel = |x: f64, r: f64| x / r - 1.0;
+    let points = problem.points();
+    let l2 = |p_ref: &[f64]| {
+        let (mut num, mut den) = (0.0, 0.0);
+        for (p, q) in sol.pressures.iter().zip(p_ref) {
+            num += (p - q) * (p - q);
+            den += q * q;
+        }
+        (num / den).sqrt()
+    };
+    let mut json = ReferenceJson {
+        kind: reference.kind().to_string(),
+        approach: None,
+        max_pressure: None,
+        contact_extent: None,
+        load: None,
+        errors: Errors::default(),
+    };
+    let pressures = match *reference {
+        Reference::HertzSpheres(h) => {
+            let p: Vec<f64> = (0..points.len())
+                .map(|k| h.pressure(points.radius(k)))
+                .collect();
+            json.approach = Some(h.approach());
+            json.max_pressure = Some(h.peak_pressure());
+            json.contact_extent = Some(h.contact_radius());
+            json.errors.max_pressure = Some(rel(sol.max_pressure, h.peak_pressure()));
+            json.errors.contact_extent = Some(rel(sol.contact_extent, h.contact_radius()));
+            json.errors.pressure_l2 = Some(l2(&p));
+            match loading {
+                Loading::Load(_) => json.errors.approach = Some(rel(sol.approach, h.approach())),
+                Loading::Approach(_) => {
+                    json.load = Some(h.load);
+                    json.errors.load = Some(rel(sol.load, h.load));
+                }
+            }
+            Some(p)
+        }
+        Reference::HertzCylinders { hertz, datum } => {
+            let p: Vec<f64> = (0..points.len())
+                .map(|k| hertz.pressure(points.x(k)))
+                .collect();
+            json.max_pressure = Some(hertz.peak_pressure());
+            json.contact_extent = Some(hertz.half_width());
+            json.errors.max_pressure = Some(rel(sol.max_pressure, hertz.peak_pressure()));
+            json.errors.contact_extent = Some(rel(sol.contact_extent, hertz.half_width()));
+            json.errors.pressure_l2 = Some(l2(&p));
+            if let Some(d0) = datum
+                && let Ok(a) = hertz.approach(d0)
+            {
+                json.approach = Some(a);
+                json.errors.approach = Some(rel(sol.approach, a));
+            }
+            Some(p)
+        }
+        Reference::FlatPunch(punch) => {
+            json.contact_extent = Some(punch.radius);
+            match loading {
+                Loading::Approach(d) => {
+                    let p = punch.load(d);
+                    json.load = Some(p);
+                    json.errors.load = Some(rel(sol.load, p));
+                }
+                Loading::Load(p) => {
+                    let d = punch.approach(p);
+                    json.approach = Some(d);
+                    json.errors.approach = Some(rel(sol.approach, d));
+                }
+            }
+            // The pressure is singular at the edge: no peak or L2 comparison.
+            None
+        }
+        Reference::Hetenyi(beam) => {
+            let p: Vec<f64> = (0..points.len())
+                .map(|k| beam.load_intensity(points.x(k)))
+                .collect();
+            json.approach = Some(beam.centre_deflection());
+            json.max_pressure = Some(beam.load_intensity(0.0));
+            json.errors.approach = Some(rel(sol.approach, beam.centre_deflection()));
+            json.errors.max_pressure = Some(rel(sol.max_pressure, beam.load_intensity(0.0)));
+            json.errors.pressure_l2 = Some(l2(&p));
+            Some(p)
+        }
+    };
+    (json, pressures)
+}
+
+/// The reference intensity r_l of a load case.
+fn reference_intensity(scene: &Scene, case: &ContactProblem, load: f64) -> Result<f64, SceneError> {
+    let spec = scene.design.as_ref().expect("a design stage");
+    Ok(match spec.relative_to {
+        RelativeTo::Absolute => 1.0,
+        RelativeTo::Mean => load / case.points().total_measure(),
+        RelativeTo::Hertz => {
+            let e = combined_modulus_of(
+                scene.bodies[0].material.as_ref(),
+                scene.bodies[1].material.as_ref(),
+            );
+            let scale_error = || {
+                run_error(
+                    scene,
+                    "design.relative_to = \"hertz\" needs a Hertz contact (curved surfaces, half-space bodies)",
+                )
+            };
+            let r = match &scene.geometry {
+                elcon_analysis::Geometry::Surfaces(a, b) => {
+                    let k = |s: &elcon_analysis::Surface| match *s {
+                        elcon_analysis::Surface::Plane => 0.0,
+                        elcon_analysis::Surface::Sphere { radius }
+                        | elcon_analysis::Surface::Cylinder { radius } => 1.0 / radius,
+                    };
+                    let k = k(a) + k(b);
+                    if k > 0.0 {
+                        1.0 / k
+                    } else {
+                        return Err(scale_error());
+                    }
+                }
+                _ => return Err(scale_error()),
+            };
+            if !e.is_finite() {
+                return Err(scale_error());
+            }
+            match scene.points_spec {
+                PointsSpec::Rectangle { half_y, .. } => {
+                    elcon_analysis::references::HertzCylinders::new(e, r, load / (2.0 * half_y))
+                        .map_err(|e| run_error(scene, e))?
+                        .peak_pressure()
+                }
+                PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+                    elcon_analysis::references::HertzCylinders::new(e, r, load)
+                        .map_err(|e| run_error(scene, e))?
+                        .peak_pressure()
+                }
+                _ => elcon_analysis::references::HertzSpheres::new(e, r, load)
+                    .map_err(|e| run_error(scene, e))?
+                    .peak_pressure(),
+            }
+        }
+    })
+}
+
+/// The design stage: every load case analysed without and with the
+/// correction the family's method finds.
+fn design_stage(scene: &Scene) -> Result<(DesignJson, DesignRun), SceneError> {
+    let spec = scene.design.as_ref().expect("a design stage");
+    let start = Instant::now();
+    let [b1, b2] = &scene.bodies;
+    let mut cases = Vec::new();
+    let mut references = Vec::new();
+    for &load in &spec.loads {
+        let points = scene.points_for(load)?;
+        let case = ContactProblem::new(
+            points,
+            &b1.body,
+            &b2.body,
+            &scene.geometry,
+            Loading::Load(load),
+        )
+        .map_err(|e| run_error(scene, e))?
+        .with_body_edges(scene.body_edges.0, scene.body_edges.1);
+        references.push(reference_intensity(scene, &case, load)?);
+        cases.push(case);
+    }
+    let fail = |e: elcon_design::DesignError| run_error(scene, e);
+    let before = evaluate(
+        &cases,
+        spec.axis,
+        &Profile::none(),
+        scene.method,
+        &scene.options,
+    )
+    .map_err(fail)?;
+    let (profile, after, starts) = match &spec.family {
+        DesignFamily::Linear(family) => {
+            let d = design(
+                &cases,
+                spec.axis,
+                *family,
+                &DesignOptions {
+                    max_constant: spec.max_constant,
+                    reanalysis: scene.method,
+                    reanalysis_options: scene.options.clone(),
+                    reference_intensities: Some(references.clone()),
+                    ..DesignOptions::default()
+                },
+            )
+            .map_err(fail)?;
+            let starts = d
+                .starts
+                .iter()
+                .map(|s| match &s.result {
+                    Ok(v) => format!("{}: objective {v:.6e} ({} pivots)", s.label, s.pivots),
+                    Err(e) => format!("{}: failed: {e}", s.label),
+                })
+                .collect();
+            (d.profile, d.evaluation, starts)
+        }
+        DesignFamily::CircularCrown {
+            radius_range,
+            flat_length,
+        } => {
+            let flat = *flat_length;
+            let search = crown_search(
+                &cases,
+                spec.axis,
+                |radius| {
+                    Ok(Profile::CircularCrown {
+                        radius,
+                        flat_length: flat,
+                    })
+                },
+                radius_range.0,
+                radius_range.1,
+                &SearchOptions {
+                    method: scene.method,
+                    options: scene.options.clone(),
+                    reference_intensities: Some(references.clone()),
+                    ..SearchOptions::default()
+                },
+            )
+            .map_err(fail)?;
+            let n = search.samples.len();
+            (
+                search.profile,
+                search.evaluation,
+                vec![format!("searched: {n} analyses")],
+            )
+        }
+        DesignFamily::LogarithmicCrown {
+            design_load,
+            flat_length,
+        } => {
+            let e = combined_modulus_of(b1.material.as_ref(), b2.material.as_ref());
+            let (radius, length) = match (&scene.geometry, &scene.points_spec) {
+                (
+                    elcon_analysis::Geometry::Surfaces(a, b),
+                    PointsSpec::Rectangle { half_y, .. },
+                ) => {
+                    let k = |s: &elcon_analysis::Surface| match *s {
+                        elcon_analysis::Surface::Cylinder { radius } => 1.0 / radius,
+                        _ => 0.0,
+                    };
+                    (1.0 / (k(a) + k(b)), 2.0 * half_y)
+                }
+                _ => {
+                    return Err(run_error(
+                        scene,
+                        "a logarithmic crown needs a cylinder on a rectangle grid",
+                    ));
+                }
+            };
+            let profile = Profile::LogarithmicCrown(LogCrown {
+                design_load: *design_load,
+                length,
+                combined_modulus: e,
+                radius,
+                flat_length: *flat_length,
+            });
+            let after = evaluate(&cases, spec.axis, &profile, scene.method, &scene.options)
+                .map_err(fail)?;
+            (
+                profile,
+                after,
+                vec!["set from the design load (Johns-Gohar)".into()],
+            )
+        }
+    };
+    let objective = after.relative_worst(&references);
+    let objective_before = before.relative_worst(&references);
+    let positions = stations(&cases, spec.axis);
+    let table = profile.table(&positions).map_err(fail)?;
+    let json = DesignJson {
+        family: family_name(&spec.family),
+        axis: match spec.axis {
+            elcon_design::Axis::X => "x".into(),
+            elcon_design::Axis::Y => "y".into(),
+        },
+        relative_to: match spec.relative_to {
+            RelativeTo::Absolute => "absolute".into(),
+            RelativeTo::Mean => "mean".into(),
+            RelativeTo::Hertz => "hertz".into(),
+        },
+        parameters: parameters(&profile),
+        objective,
+        objective_before,
+        cases: (0..cases.len())
+            .map(|l| DesignCaseJson {
+                load: spec.loads[l],
+                reference_intensity: references[l],
+                max_pressure_before: before.max_intensities[l],
+                max_pressure_after: after.max_intensities[l],
+                certificate_worst: after.solutions[l].certificate.worst(),
+                certificate_holds: after.solutions[l].certificate.holds(),
+            })
+            .collect(),
+        table,
+        starts,
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    Ok((
+        json,
+        DesignRun {
+            profile,
+            before,
+            after,
+            cases,
+        },
+    ))
+}
+
+/// The distinct axial positions of the cases' points, increasing.
+fn stations(cases: &[ContactProblem], axis: elcon_design::Axis) -> Vec<f64> {
+    let mut s: Vec<f64> = cases
+        .iter()
+        .flat_map(|c| axis.positions(c.points()))
+        .collect();
+    s.sort_by(f64::total_cmp);
+    s.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs().max(1e-300));
+    s
+}
+
+fn family_name(f: &DesignFamily) -> String {
+    match f {
+        DesignFamily::Linear(elcon_design::Family::Quadratic) => "quadratic".into(),
+        DesignFamily::Linear(elcon_design::Family::Polynomial { degree }) => {
+            format!("polynomial (degree {degree})")
+        }
+        DesignFamily::Linear(elcon_design::Family::Free) => "free".into(),
+        DesignFamily::CircularCrown { .. } => "circular-crown".into(),
+        DesignFamily::LogarithmicCrown { .. } => "logarithmic-crown".into(),
+    }
+}
+
+fn parameters(p: &Profile) -> std::collections::BTreeMap<String, f64> {
+    let list: Vec<(String, f64)> = match p {
+        Profile::Quadratic { a, b, c } => {
+            vec![("a".into(), *a), ("b".into(), *b), ("c".into(), *c)]
+        }
+        Profile::Polynomial { coefficients } => coefficients
+            .iter()
+            .enumerate()
+            .map(|(i, c)| (format!("c{i}"), *c))
+            .collect(),
+        Profile::CircularCrown {
+            radius,
+            flat_length,
+        } => {
+            vec![
+                ("radius".into(), *radius),
+                ("flat_length".into(), *flat_length),
+            ]
+        }
+        Profile::LogarithmicCrown(c) => vec![
+            ("design_load".into(), c.design_load),
+            ("end_drop".into(), c.end_drop()),
+            ("flat_length".into(), c.flat_length),
+        ],
+        Profile::Free { drops, .. } => {
+            vec![("max_drop".into(), drops.iter().cloned().fold(0.0, f64::max))]
+        }
+    };
+    list.into_iter().collect()
+}

@@ -1,0 +1,1563 @@
+//! A validated scene: the TOML file turned into the objects of the solver
+//! crates, every value checked against its physical range with a message
+//! that names the file, the line and column, and the field.
+//!
+//! The scene's equations are those of elcon-analysis (compatibility
+//! `Y = S F + eps - alpha e`, equilibrium `e^T F = P`, the contact
+//! criterion) and, with a `[design]` section, elcon-design. What a scene
+//! does not ask for is neither read nor computed: no design stage without
+//! `[design]`, no reference where no closed form applies, no plot not asked.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam};
+use elcon_analysis::{Geometry, Loading, Method, Options, Surface};
+use elcon_design::{Axis, Family};
+use elcon_influence::{Body, Dimension, Material, PointSet, combined_modulus_of};
+use toml::Spanned;
+
+use crate::error::{Location, SceneError};
+use crate::schema::{
+    BodyToml, DesignToml, GeometryToml, LoadingToml, PointsToml, SceneFile, SurfaceToml,
+};
+
+/// The unit labels of a scene (any consistent system; the labels are
+/// repeated in every output, never used in arithmetic).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Units {
+    /// Length, e.g. "in", "m", "mm".
+    pub length: String,
+    /// Force, e.g. "lbf", "N".
+    pub force: String,
+    /// Stress and pressure (default `force/length^2`), e.g. "psi", "Pa", "MPa".
+    pub pressure: String,
+    /// The unit of the load intensity F_k / A_k of this scene: the pressure
+    /// unit, or `force/length` on a beam.
+    pub intensity: String,
+}
+
+/// One body of a scene: the influence model and, for the half-space
+/// models, the material (the references need it).
+#[derive(Debug, Clone)]
+pub struct BodySpec {
+    /// The model's name in the scene ("uniform-patch", ...).
+    pub model: String,
+    /// The body for elcon-influence.
+    pub body: Body,
+    /// The material of a half-space model.
+    pub material: Option<Material>,
+}
+
+/// How the candidate points are laid out.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PointsSpec {
+    /// Square grid of `spacing`, clipped to a disk of `radius`.
+    Disk {
+        /// Spacing (length).
+        spacing: f64,
+        /// Radius of the candidate zone (length).
+        radius: f64,
+    },
+    /// Square grid with `across` points across the Hertz contact diameter,
+    /// clipped to `zone` Hertz radii.
+    DiskHertz {
+        /// Points across the Hertz diameter (odd: the centre is a point).
+        across: usize,
+        /// Candidate zone over the Hertz radius (> 1).
+        zone: f64,
+    },
+    /// `nx x ny` cells on `[-half_x, half_x] x [-half_y, half_y]`;
+    /// `half_x` absolute, or `zone` Hertz half-widths of the case's load.
+    Rectangle {
+        /// Half-size along x (length), if absolute.
+        half_x: Option<f64>,
+        /// Half-size along x over the Hertz half-width, if relative.
+        zone: Option<f64>,
+        /// Half-size along y (length).
+        half_y: f64,
+        /// Cells along x.
+        nx: usize,
+        /// Cells along y.
+        ny: usize,
+    },
+    /// `n` cells on `[start, end]` of the x axis.
+    Line {
+        /// Start (length).
+        start: f64,
+        /// End (length).
+        end: f64,
+        /// Number of cells.
+        n: usize,
+    },
+    /// Cells with `across` points across the Hertz contact width, out to
+    /// `zone` Hertz half-widths.
+    LineHertz {
+        /// Points across the Hertz width.
+        across: usize,
+        /// Candidate zone over the Hertz half-width (> 1).
+        zone: f64,
+    },
+}
+
+/// The closed form a scene is compared with, when one applies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Reference {
+    /// Hertz, two spheres or a sphere on a plane.
+    HertzSpheres(HertzSpheres),
+    /// Hertz line contact (plane strain); the approach is compared when the
+    /// datum distance d0 is the same for the elastic bodies.
+    HertzCylinders {
+        /// The closed form.
+        hertz: HertzCylinders,
+        /// The common datum distance d0.
+        datum: Option<f64>,
+    },
+    /// A rigid flat circular punch whose face is the candidate disk.
+    FlatPunch(FlatPunch),
+    /// A free-free beam on a Winkler foundation under a central load.
+    Hetenyi(HetenyiBeam),
+}
+
+impl Reference {
+    /// A short name: "hertz-spheres", "hertz-cylinders", "flat-punch", "hetenyi-beam".
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Reference::HertzSpheres(_) => "hertz-spheres",
+            Reference::HertzCylinders { .. } => "hertz-cylinders",
+            Reference::FlatPunch(_) => "flat-punch",
+            Reference::Hetenyi(_) => "hetenyi-beam",
+        }
+    }
+}
+
+/// The profile family of a design section.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DesignFamily {
+    /// A family linear in its parameters (quadratic, polynomial, free).
+    Linear(Family),
+    /// A circular crown, its radius searched in `radius_range`.
+    CircularCrown {
+        /// The search bracket (length).
+        radius_range: (f64, f64),
+        /// Flat middle (length).
+        flat_length: f64,
+    },
+    /// A logarithmic crown (Johns-Gohar) for `design_load`.
+    LogarithmicCrown {
+        /// The design load (force; default the largest load).
+        design_load: f64,
+        /// Flat middle (length).
+        flat_length: f64,
+    },
+}
+
+/// What the design is relative to, per load case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RelativeTo {
+    /// The worst p_max itself.
+    Absolute,
+    /// p_max over the mean intensity P / (sum of A_k) of each load.
+    Mean,
+    /// p_max over each load's Hertz peak (line contact for a roller).
+    Hertz,
+}
+
+/// A validated `[design]` section.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DesignSpec {
+    /// The family.
+    pub family: DesignFamily,
+    /// The axial coordinate.
+    pub axis: Axis,
+    /// The load cases (force).
+    pub loads: Vec<f64>,
+    /// The reference intensities.
+    pub relative_to: RelativeTo,
+    /// The bound c_max (length), if given.
+    pub max_constant: Option<f64>,
+}
+
+/// A plot a scene asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plot {
+    /// Pressure against position, with the closed form overlaid.
+    Pressure,
+    /// Separations and pressures before and after the design.
+    Design,
+}
+
+/// What to write.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outputs {
+    /// The plots asked for (default none).
+    pub plots: Vec<Plot>,
+    /// Whether to write pressure.csv (default true).
+    pub pressure_csv: bool,
+}
+
+/// A validated scene.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The scene's name (default: the file's stem).
+    pub name: String,
+    /// The file it came from.
+    pub file: PathBuf,
+    /// Its description.
+    pub description: Option<String>,
+    /// Unit labels.
+    pub units: Units,
+    /// The two bodies.
+    pub bodies: [BodySpec; 2],
+    /// The initial separations' source.
+    pub geometry: Geometry,
+    /// The point layout.
+    pub points_spec: PointsSpec,
+    /// The candidate points for the scene's loading.
+    pub points: PointSet,
+    /// Load or approach.
+    pub loading: Loading,
+    /// The engine's method.
+    pub method: Method,
+    /// The engine's options.
+    pub options: Options,
+    /// Whether to fold a mirror-symmetric problem (`solver.symmetry`,
+    /// "auto" (default) or "none").
+    pub fold: bool,
+    /// The design stage, if asked for.
+    pub design: Option<DesignSpec>,
+    /// The outputs.
+    pub outputs: Outputs,
+    /// The closed form that applies, if any.
+    pub reference: Option<Reference>,
+    /// The zone's edges that are the bodies' own (along x, along y):
+    /// contact reaching them raises no truncation warning. Inferred: a
+    /// beam's ends (x), a roller's ends on a rectangle grid (y), a flat
+    /// punch's rim (both).
+    pub body_edges: (bool, bool),
+}
+
+/// Validation context: the file and its text, for locations.
+pub(crate) struct Ctx<'a> {
+    pub file: &'a Path,
+    pub text: &'a str,
+}
+
+impl Ctx<'_> {
+    fn at(&self, span: Range<usize>) -> Location {
+        Location::of(self.text, span.start)
+    }
+
+    /// An `Invalid` error at `span`.
+    pub(crate) fn invalid(
+        &self,
+        span: Range<usize>,
+        field: impl Into<String>,
+        value: impl std::fmt::Display,
+        reason: impl Into<String>,
+    ) -> SceneError {
+        SceneError::Invalid {
+            file: self.file.to_path_buf(),
+            at: self.at(span),
+            field: field.into(),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+
+    /// A value that must be finite and > 0.
+    fn positive(&self, v: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
+        let x = *v.get_ref();
+        if !x.is_finite() {
+            return Err(self.invalid(v.span(), field, x, "must be a finite number"));
+        }
+        if x <= 0.0 {
+            return Err(self.invalid(v.span(), field, x, "must be > 0"));
+        }
+        Ok(x)
+    }
+
+    /// A value that must be finite.
+    fn finite(&self, v: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
+        let x = *v.get_ref();
+        if !x.is_finite() {
+            return Err(self.invalid(v.span(), field, x, "must be a finite number"));
+        }
+        Ok(x)
+    }
+
+    /// A count that must be >= `min`.
+    fn count(&self, v: &Spanned<i64>, field: &str, min: i64) -> Result<usize, SceneError> {
+        let x = *v.get_ref();
+        if x < min {
+            let why = if field.starts_with("points.") && min == 1 {
+                format!("must be at least {min} (an empty point set)")
+            } else {
+                format!("must be at least {min}")
+            };
+            return Err(self.invalid(v.span(), field, x, why));
+        }
+        usize::try_from(x).map_err(|_| self.invalid(v.span(), field, x, "too large"))
+    }
+
+    fn required<'s, T>(
+        &self,
+        v: &'s Option<Spanned<T>>,
+        section: Range<usize>,
+        field: &str,
+        why: &str,
+    ) -> Result<&'s Spanned<T>, SceneError> {
+        v.as_ref()
+            .ok_or_else(|| self.invalid(section, field, "(missing)", format!("is required {why}")))
+    }
+
+    fn forbid<T>(&self, v: &Option<Spanned<T>>, field: &str, why: &str) -> Result<(), SceneError>
+    where
+        T: std::fmt::Debug,
+    {
+        match v {
+            Some(s) => Err(self.invalid(
+                s.span(),
+                field,
+                format!("{:?}", s.get_ref()),
+                why.to_string(),
+            )),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Parses TOML text into `T`, turning a parser error into a located
+/// [`SceneError::Syntax`].
+pub(crate) fn parse<T: serde::de::DeserializeOwned>(
+    file: &Path,
+    text: &str,
+) -> Result<T, SceneError> {
+    toml::from_str(text).map_err(|e| SceneError::Syntax {
+        file: file.to_path_buf(),
+        at: Location::of(text, e.span().map_or(0, |s| s.start)),
+        message: e.message().trim().to_string(),
+    })
+}
+
+impl Scene {
+    /// Reads and validates a scene file.
+    ///
+    /// # Errors
+    /// [`SceneError::Io`] if it cannot be read; [`SceneError::Syntax`] for
+    /// invalid TOML, unknown or missing keys and wrong types;
+    /// [`SceneError::Invalid`] for values out of their physical range.
+    pub fn from_file(path: &Path) -> Result<Self, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError::io(path, e))?;
+        Self::from_str(path, &text)
+    }
+
+    /// Validates a scene given as text; `file` names it in messages and
+    /// gives the default name.
+    ///
+    /// # Errors
+    /// As [`Scene::from_file`], without the I/O.
+    pub fn from_str(file: &Path, text: &str) -> Result<Self, SceneError> {
+        let raw: SceneFile = parse(file, text)?;
+        let ctx = Ctx { file, text };
+        validate(&ctx, raw)
+    }
+
+    /// The candidate points for a load case of `load` (the scene's own
+    /// points unless they are laid out relative to the Hertz contact).
+    pub fn points_for(&self, load: f64) -> Result<PointSet, SceneError> {
+        let scale = self.hertz_scale(load);
+        build_points(&self.points_spec, scale).map_err(|reason| SceneError::Run {
+            scene: self.name.clone(),
+            reason,
+        })
+    }
+
+    /// The Hertz length scale (contact radius or half-width) at `load`.
+    fn hertz_scale(&self, load: f64) -> Option<f64> {
+        hertz_scale(&self.bodies, &self.geometry, &self.points_spec, load)
+    }
+}
+
+fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
+    let name = match raw.scene.as_ref().and_then(|m| m.name.as_ref()) {
+        Some(n) if n.get_ref().trim().is_empty() => {
+            return Err(ctx.invalid(n.span(), "scene.name", "\"\"", "must not be empty"));
+        }
+        Some(n) => n.get_ref().clone(),
+        None => ctx
+            .file
+            .file_stem()
+            .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned()),
+    };
+    if name.contains(['/', '\\']) || name == "." || name == ".." {
+        let span = raw
+            .scene
+            .as_ref()
+            .and_then(|m| m.name.as_ref())
+            .map_or(0..0, |n| n.span());
+        return Err(ctx.invalid(
+            span,
+            "scene.name",
+            &name,
+            "names an output directory: no path separators",
+        ));
+    }
+    let description = raw.scene.and_then(|m| m.description);
+    let bodies = [
+        body(ctx, raw.body1.get_ref(), "body1")?,
+        body(ctx, raw.body2.get_ref(), "body2")?,
+    ];
+    if bodies.iter().all(|b| b.body.is_rigid()) {
+        return Err(ctx.invalid(
+            raw.body2.get_ref().model.span(),
+            "body2.model",
+            "\"rigid\"",
+            "both bodies are rigid: there is no elasticity to solve for; give one an elastic model",
+        ));
+    }
+    let line_models = bodies
+        .iter()
+        .any(|b| matches!(b.model.as_str(), "plane-strain" | "beam"));
+    let surface_models = bodies
+        .iter()
+        .any(|b| matches!(b.model.as_str(), "point-force" | "uniform-patch"));
+    if line_models && surface_models {
+        return Err(ctx.invalid(
+            raw.body2.get_ref().model.span(),
+            "body2.model",
+            format!("\"{}\"", bodies[1].model),
+            format!(
+                "does not go with body1's \"{}\": line models (plane-strain, beam) and surface models \
+                 (point-force, uniform-patch) cannot share a point set",
+                bodies[0].model
+            ),
+        ));
+    }
+    let units = units(
+        ctx,
+        raw.units.get_ref(),
+        bodies.iter().any(|b| b.model == "beam"),
+    )?;
+    let loading = loading(ctx, &raw.loading)?;
+    let (points_spec, dimension) = points_spec(ctx, &raw.points)?;
+    if line_models && dimension != Dimension::Line {
+        return Err(ctx.invalid(
+            raw.points.get_ref().grid.span(),
+            "points.grid",
+            format!("\"{}\"", raw.points.get_ref().grid.get_ref()),
+            "the bodies' models (plane-strain, beam) need grid = \"line\"",
+        ));
+    }
+    if surface_models && dimension != Dimension::Surface {
+        return Err(ctx.invalid(
+            raw.points.get_ref().grid.span(),
+            "points.grid",
+            "\"line\"",
+            "the bodies' models (point-force, uniform-patch) need grid = \"disk\" or \"rectangle\"",
+        ));
+    }
+    let geometry = geometry(ctx, raw.geometry.as_ref(), dimension)?;
+    // The load that sizes Hertz-relative grids: the load, or under
+    // displacement control the Hertz load of that approach.
+    let sizing_load = match loading {
+        Loading::Load(p) => Some(p),
+        Loading::Approach(_) => None,
+    };
+    let scale = sizing_load.and_then(|p| hertz_scale(&bodies, &geometry, &points_spec, p));
+    let relative = matches!(
+        points_spec,
+        PointsSpec::DiskHertz { .. } | PointsSpec::LineHertz { .. }
+    ) || matches!(points_spec, PointsSpec::Rectangle { zone: Some(_), .. });
+    if relative && scale.is_none() {
+        return Err(ctx.invalid(
+            raw.points.span(),
+            "points",
+            "across/zone",
+            "points relative to the Hertz contact (across, zone) need a Hertz contact under a load: \
+             sphere or cylinder surfaces, elastic half-space bodies, and loading.load; give absolute \
+             sizes instead",
+        ));
+    }
+    let points = build_points(&points_spec, scale)
+        .map_err(|reason| ctx.invalid(raw.points.span(), "points", "", reason))?;
+    if let Geometry::Separation(eps) = &geometry
+        && eps.len() != points.len()
+    {
+        let span = raw
+            .geometry
+            .as_ref()
+            .and_then(|g| g.get_ref().separation.as_ref())
+            .map_or(0..0, |s| s.span());
+        return Err(ctx.invalid(
+            span,
+            "geometry.separation",
+            format!("{} values", eps.len()),
+            format!(
+                "needs one value per candidate point: the grid has {}",
+                points.len()
+            ),
+        ));
+    }
+    let reference = reference(&bodies, &geometry, &points_spec, &points, loading);
+    check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
+    let (method, options) = solver(ctx, raw.solver.as_ref())?;
+    let fold = match raw.solver.as_ref().and_then(|s| s.symmetry.as_ref()) {
+        Some(v) => match v.get_ref().as_str() {
+            "auto" => true,
+            "none" => false,
+            other => {
+                return Err(ctx.invalid(
+                    v.span(),
+                    "solver.symmetry",
+                    format!("\"{other}\""),
+                    "one of auto, none",
+                ));
+            }
+        },
+        None => true,
+    };
+    let design = match &raw.design {
+        Some(d) => Some(design(ctx, d, loading, dimension, &bodies)?),
+        None => None,
+    };
+    let outputs = outputs(ctx, raw.outputs.as_ref(), design.is_some())?;
+    let body_edges = if matches!(reference, Some(Reference::FlatPunch(_))) {
+        (true, true)
+    } else if bodies.iter().any(|b| b.model == "beam") {
+        (true, false)
+    } else if matches!(points_spec, PointsSpec::Rectangle { .. }) {
+        (false, true)
+    } else {
+        (false, false)
+    };
+    Ok(Scene {
+        name,
+        file: ctx.file.to_path_buf(),
+        description,
+        units,
+        bodies,
+        geometry,
+        points_spec,
+        points,
+        loading,
+        method,
+        options,
+        fold,
+        design,
+        outputs,
+        reference,
+        body_edges,
+    })
+}
+
+fn units(ctx: &Ctx<'_>, u: &crate::schema::UnitsToml, beam: bool) -> Result<Units, SceneError> {
+    for (v, field) in [(&u.length, "units.length"), (&u.force, "units.force")] {
+        if v.get_ref().trim().is_empty() {
+            return Err(ctx.invalid(v.span(), field, "\"\"", "must name the unit"));
+        }
+    }
+    let length = u.length.get_ref().clone();
+    let force = u.force.get_ref().clone();
+    let pressure = u
+        .pressure
+        .as_ref()
+        .map_or_else(|| format!("{force}/{length}^2"), |p| p.get_ref().clone());
+    let intensity = if beam {
+        format!("{force}/{length}")
+    } else {
+        pressure.clone()
+    };
+    Ok(Units {
+        length,
+        force,
+        pressure,
+        intensity,
+    })
+}
+
+/// The models a body may have, with the keys each one takes.
+const MODELS: [(&str, &[&str]); 6] = [
+    ("rigid", &[]),
+    ("point-force", &["youngs_modulus", "poissons_ratio"]),
+    ("uniform-patch", &["youngs_modulus", "poissons_ratio"]),
+    (
+        "plane-strain",
+        &["youngs_modulus", "poissons_ratio", "reference_distance"],
+    ),
+    ("winkler", &["modulus"]),
+    (
+        "beam",
+        &[
+            "youngs_modulus",
+            "second_moment",
+            "width",
+            "depth",
+            "loaded_point",
+        ],
+    ),
+];
+
+fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneError> {
+    let model = b.model.get_ref().as_str();
+    let Some((_, keys)) = MODELS.iter().find(|(m, _)| *m == model) else {
+        return Err(ctx.invalid(
+            b.model.span(),
+            format!("{section}.model"),
+            format!("\"{model}\""),
+            "unknown model; one of rigid, point-force, uniform-patch, plane-strain, winkler, beam",
+        ));
+    };
+    let given: [(&str, Option<&Spanned<f64>>); 8] = [
+        ("youngs_modulus", b.youngs_modulus.as_ref()),
+        ("poissons_ratio", b.poissons_ratio.as_ref()),
+        ("reference_distance", b.reference_distance.as_ref()),
+        ("modulus", b.modulus.as_ref()),
+        ("second_moment", b.second_moment.as_ref()),
+        ("width", b.width.as_ref()),
+        ("depth", b.depth.as_ref()),
+        ("loaded_point", b.loaded_point.as_ref()),
+    ];
+    for (key, v) in given {
+        if let Some(v) = v
+            && !keys.contains(&key)
+        {
+            return Err(ctx.invalid(
+                v.span(),
+                format!("{section}.{key}"),
+                v.get_ref(),
+                format!(
+                    "is not a parameter of the {model} model (it takes: {})",
+                    keys.join(", ")
+                ),
+            ));
+        }
+    }
+    let section_span = b.model.span();
+    let field = |k: &str| format!("{section}.{k}");
+    let material = |ctx: &Ctx<'_>| -> Result<Material, SceneError> {
+        let e = ctx.required(
+            &b.youngs_modulus,
+            section_span.clone(),
+            &field("youngs_modulus"),
+            "by this model",
+        )?;
+        let nu = ctx.required(
+            &b.poissons_ratio,
+            section_span.clone(),
+            &field("poissons_ratio"),
+            "by this model",
+        )?;
+        let e_value = ctx.positive(e, &field("youngs_modulus"))?;
+        let nu_value = *nu.get_ref();
+        if !(nu_value.is_finite() && nu_value > -1.0 && nu_value < 0.5) {
+            return Err(ctx.invalid(
+                nu.span(),
+                field("poissons_ratio"),
+                nu_value,
+                "must be in (-1, 0.5): outside it the elastic energy is not positive definite",
+            ));
+        }
+        Material::new(e_value, nu_value)
+            .map_err(|err| ctx.invalid(e.span(), field("youngs_modulus"), e_value, err.to_string()))
+    };
+    let (body, material) = match model {
+        "rigid" => (Body::rigid(), None),
+        "point-force" => {
+            let m = material(ctx)?;
+            (Body::point_force(m), Some(m))
+        }
+        "uniform-patch" => {
+            let m = material(ctx)?;
+            (Body::uniform_patch(m), Some(m))
+        }
+        "plane-strain" => {
+            let m = material(ctx)?;
+            let d0 = ctx.required(
+                &b.reference_distance,
+                section_span.clone(),
+                &field("reference_distance"),
+                "by the plane-strain model (the datum distance d0 of the 2D displacements)",
+            )?;
+            (
+                Body::plane_strain(m, ctx.positive(d0, &field("reference_distance"))?),
+                Some(m),
+            )
+        }
+        "winkler" => {
+            let k = ctx.required(
+                &b.modulus,
+                section_span.clone(),
+                &field("modulus"),
+                "by the Winkler model",
+            )?;
+            (Body::winkler(ctx.positive(k, &field("modulus"))?), None)
+        }
+        _ => {
+            let e = ctx.required(
+                &b.youngs_modulus,
+                section_span.clone(),
+                &field("youngs_modulus"),
+                "by the beam model",
+            )?;
+            let e = ctx.positive(e, &field("youngs_modulus"))?;
+            let i = match (&b.second_moment, &b.width, &b.depth) {
+                (Some(i), None, None) => ctx.positive(i, &field("second_moment"))?,
+                (None, Some(w), Some(d)) => {
+                    ctx.positive(w, &field("width"))? * ctx.positive(d, &field("depth"))?.powi(3)
+                        / 12.0
+                }
+                _ => {
+                    return Err(ctx.invalid(
+                        section_span,
+                        field("second_moment"),
+                        "",
+                        "give either second_moment, or width and depth (a rectangular section, I = w d^3 / 12)",
+                    ));
+                }
+            };
+            let x0 = match &b.loaded_point {
+                Some(v) => ctx.finite(v, &field("loaded_point"))?,
+                None => 0.0,
+            };
+            (Body::beam(e, i, x0), None)
+        }
+    };
+    Ok(BodySpec {
+        model: model.to_string(),
+        body,
+        material,
+    })
+}
+
+fn loading(ctx: &Ctx<'_>, l: &Spanned<LoadingToml>) -> Result<Loading, SceneError> {
+    match (&l.get_ref().load, &l.get_ref().approach) {
+        (Some(p), None) => Ok(Loading::Load(ctx.positive(p, "loading.load")?)),
+        (None, Some(a)) => Ok(Loading::Approach(ctx.finite(a, "loading.approach")?)),
+        _ => Err(ctx.invalid(
+            l.span(),
+            "loading",
+            "",
+            "give exactly one of load (force; load control) and approach (length; displacement control)",
+        )),
+    }
+}
+
+fn points_spec(
+    ctx: &Ctx<'_>,
+    p: &Spanned<PointsToml>,
+) -> Result<(PointsSpec, Dimension), SceneError> {
+    let t = p.get_ref();
+    let s = p.span();
+    let grid = t.grid.get_ref().as_str();
+    let allowed: &[&str] = match grid {
+        "disk" => &["spacing", "radius", "across", "zone"],
+        "rectangle" => &["half_x", "half_y", "nx", "ny", "zone"],
+        "line" => &["start", "end", "n", "across", "zone"],
+        _ => {
+            return Err(ctx.invalid(
+                t.grid.span(),
+                "points.grid",
+                format!("\"{grid}\""),
+                "unknown grid; one of disk, rectangle, line",
+            ));
+        }
+    };
+    let floats: [(&str, Option<&Spanned<f64>>); 7] = [
+        ("spacing", t.spacing.as_ref()),
+        ("radius", t.radius.as_ref()),
+        ("zone", t.zone.as_ref()),
+        ("half_x", t.half_x.as_ref()),
+        ("half_y", t.half_y.as_ref()),
+        ("start", t.start.as_ref()),
+        ("end", t.end.as_ref()),
+    ];
+    let ints: [(&str, Option<&Spanned<i64>>); 4] = [
+        ("across", t.across.as_ref()),
+        ("nx", t.nx.as_ref()),
+        ("ny", t.ny.as_ref()),
+        ("n", t.n.as_ref()),
+    ];
+    for (key, span) in floats
+        .iter()
+        .filter_map(|(k, v)| v.map(|v| (*k, v.span())))
+        .chain(ints.iter().filter_map(|(k, v)| v.map(|v| (*k, v.span()))))
+    {
+        if !allowed.contains(&key) {
+            return Err(ctx.invalid(
+                span,
+                format!("points.{key}"),
+                "",
+                format!(
+                    "is not a parameter of grid = \"{grid}\" (it takes: {})",
+                    allowed.join(", ")
+                ),
+            ));
+        }
+    }
+    let zone = |ctx: &Ctx<'_>| -> Result<f64, SceneError> {
+        let z = ctx.required(&t.zone, s.clone(), "points.zone", "with across")?;
+        let v = ctx.positive(z, "points.zone")?;
+        if v <= 1.0 {
+            return Err(ctx.invalid(
+                z.span(),
+                "points.zone",
+                v,
+                "the candidate zone must extend beyond the Hertz contact (zone > 1), or the contact is cut off",
+            ));
+        }
+        Ok(v)
+    };
+    let across = |ctx: &Ctx<'_>, a: &Spanned<i64>| -> Result<usize, SceneError> {
+        let n = ctx.count(a, "points.across", 3)?;
+        if n % 2 == 0 {
+            return Err(ctx.invalid(
+                a.span(),
+                "points.across",
+                n,
+                "must be odd (the centre is a point)",
+            ));
+        }
+        Ok(n)
+    };
+    let spec = match grid {
+        "disk" => match &t.across {
+            Some(a) => {
+                ctx.forbid(
+                    &t.spacing,
+                    "points.spacing",
+                    "give either across and zone, or spacing and radius",
+                )?;
+                ctx.forbid(
+                    &t.radius,
+                    "points.radius",
+                    "give either across and zone, or spacing and radius",
+                )?;
+                PointsSpec::DiskHertz {
+                    across: across(ctx, a)?,
+                    zone: zone(ctx)?,
+                }
+            }
+            None => {
+                ctx.forbid(
+                    &t.zone,
+                    "points.zone",
+                    "zone goes with across (points across the Hertz diameter)",
+                )?;
+                let h = ctx.required(
+                    &t.spacing,
+                    s.clone(),
+                    "points.spacing",
+                    "for a disk (or across and zone)",
+                )?;
+                let r = ctx.required(
+                    &t.radius,
+                    s.clone(),
+                    "points.radius",
+                    "for a disk (or across and zone)",
+                )?;
+                PointsSpec::Disk {
+                    spacing: ctx.positive(h, "points.spacing")?,
+                    radius: ctx.positive(r, "points.radius")?,
+                }
+            }
+        },
+        "rectangle" => {
+            let (half_x, zone_x) = match (&t.half_x, &t.zone) {
+                (Some(h), None) => (Some(ctx.positive(h, "points.half_x")?), None),
+                (None, Some(_)) => (None, Some(zone(ctx)?)),
+                _ => {
+                    return Err(ctx.invalid(
+                        s,
+                        "points.half_x",
+                        "",
+                        "give either half_x (length) or zone (Hertz half-widths of the load)",
+                    ));
+                }
+            };
+            let hy = ctx.required(&t.half_y, s.clone(), "points.half_y", "for a rectangle")?;
+            let nx = ctx.required(&t.nx, s.clone(), "points.nx", "for a rectangle")?;
+            let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
+            PointsSpec::Rectangle {
+                half_x,
+                zone: zone_x,
+                half_y: ctx.positive(hy, "points.half_y")?,
+                nx: ctx.count(nx, "points.nx", 1)?,
+                ny: ctx.count(ny, "points.ny", 1)?,
+            }
+        }
+        _ => match &t.across {
+            Some(a) => PointsSpec::LineHertz {
+                across: across(ctx, a)?,
+                zone: zone(ctx)?,
+            },
+            None => {
+                ctx.forbid(
+                    &t.zone,
+                    "points.zone",
+                    "zone goes with across (points across the Hertz width)",
+                )?;
+                let a = ctx.required(
+                    &t.start,
+                    s.clone(),
+                    "points.start",
+                    "for a line (or across and zone)",
+                )?;
+                let b = ctx.required(
+                    &t.end,
+                    s.clone(),
+                    "points.end",
+                    "for a line (or across and zone)",
+                )?;
+                let n = ctx.required(
+                    &t.n,
+                    s.clone(),
+                    "points.n",
+                    "for a line (or across and zone)",
+                )?;
+                let (start, end) = (ctx.finite(a, "points.start")?, ctx.finite(b, "points.end")?);
+                if end <= start {
+                    return Err(ctx.invalid(
+                        b.span(),
+                        "points.end",
+                        end,
+                        format!("must exceed points.start = {start}"),
+                    ));
+                }
+                PointsSpec::Line {
+                    start,
+                    end,
+                    n: ctx.count(n, "points.n", 1)?,
+                }
+            }
+        },
+    };
+    let dimension = if grid == "line" {
+        Dimension::Line
+    } else {
+        Dimension::Surface
+    };
+    Ok((spec, dimension))
+}
+
+/// Builds the point set; `scale` is the Hertz radius or half-width for the
+/// relative layouts.
+pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, String> {
+    let need = || {
+        scale.ok_or_else(|| {
+            "the layout is relative to a Hertz contact that does not apply".to_string()
+        })
+    };
+    let r = match *spec {
+        PointsSpec::Disk { spacing, radius } => PointSet::grid_disk(spacing, radius),
+        PointsSpec::DiskHertz { across, zone } => {
+            let a = need()?;
+            let h = 2.0 * a / (across - 1) as f64;
+            PointSet::grid_disk(h, zone * a)
+        }
+        PointsSpec::Rectangle {
+            half_x,
+            zone,
+            half_y,
+            nx,
+            ny,
+        } => {
+            let hx = match (half_x, zone) {
+                (Some(h), _) => h,
+                (None, Some(z)) => z * need()?,
+                (None, None) => unreachable!("validated: half_x or zone"),
+            };
+            PointSet::grid_rectangle(hx, half_y, nx, ny)
+        }
+        PointsSpec::Line { start, end, n } => PointSet::line(start, end, n),
+        PointsSpec::LineHertz { across, zone } => {
+            let b = need()?;
+            let h = 2.0 * b / (across - 1) as f64;
+            let m = (zone * b / h).round().max(1.0);
+            PointSet::line(-(m + 0.5) * h, (m + 0.5) * h, 2 * m as usize + 1)
+        }
+    };
+    r.map_err(|e| e.to_string())
+}
+
+fn surface(
+    ctx: &Ctx<'_>,
+    s: &Spanned<SurfaceToml>,
+    field: &str,
+    dimension: Dimension,
+) -> Result<Surface, SceneError> {
+    let t = s.get_ref();
+    let shape = t.shape.get_ref().as_str();
+    let radius = |ctx: &Ctx<'_>| -> Result<f64, SceneError> {
+        let r = ctx.required(
+            &t.radius,
+            s.span(),
+            &format!("{field}.radius"),
+            "for a curved surface",
+        )?;
+        let v = ctx.finite(r, &format!("{field}.radius"))?;
+        if v == 0.0 {
+            return Err(ctx.invalid(
+                r.span(),
+                format!("{field}.radius"),
+                v,
+                "must be non-zero (negative for a concave surface)",
+            ));
+        }
+        Ok(v)
+    };
+    match shape {
+        "plane" => {
+            ctx.forbid(
+                &t.radius,
+                &format!("{field}.radius"),
+                "a plane has no radius",
+            )?;
+            Ok(Surface::Plane)
+        }
+        "sphere" => {
+            if dimension == Dimension::Line {
+                return Err(ctx.invalid(
+                    t.shape.span(),
+                    format!("{field}.shape"),
+                    "\"sphere\"",
+                    "a sphere needs a surface grid; on a line use a cylinder",
+                ));
+            }
+            Ok(Surface::Sphere {
+                radius: radius(ctx)?,
+            })
+        }
+        "cylinder" => Ok(Surface::Cylinder {
+            radius: radius(ctx)?,
+        }),
+        _ => Err(ctx.invalid(
+            t.shape.span(),
+            format!("{field}.shape"),
+            format!("\"{shape}\""),
+            "unknown shape; one of plane, sphere, cylinder (axis along y)",
+        )),
+    }
+}
+
+fn geometry(
+    ctx: &Ctx<'_>,
+    g: Option<&Spanned<GeometryToml>>,
+    dimension: Dimension,
+) -> Result<Geometry, SceneError> {
+    let Some(g) = g else {
+        return Ok(Geometry::Surfaces(Surface::Plane, Surface::Plane));
+    };
+    let t: &GeometryToml = g.get_ref();
+    match &t.separation {
+        Some(sep) => {
+            for (f, name) in [
+                (&t.surface1, "geometry.surface1"),
+                (&t.surface2, "geometry.surface2"),
+            ] {
+                if let Some(f) = f {
+                    return Err(ctx.invalid(
+                        f.span(),
+                        name,
+                        "",
+                        "give either surfaces or a separation, not both",
+                    ));
+                }
+            }
+            let values = sep
+                .get_ref()
+                .iter()
+                .enumerate()
+                .map(|(k, v)| ctx.finite(v, &format!("geometry.separation[{k}]")))
+                .collect::<Result<Vec<f64>, _>>()?;
+            Ok(Geometry::Separation(values))
+        }
+        None => {
+            let s1 = match &t.surface1 {
+                Some(s) => surface(ctx, s, "geometry.surface1", dimension)?,
+                None => Surface::Plane,
+            };
+            let s2 = match &t.surface2 {
+                Some(s) => surface(ctx, s, "geometry.surface2", dimension)?,
+                None => Surface::Plane,
+            };
+            Ok(Geometry::Surfaces(s1, s2))
+        }
+    }
+}
+
+/// Curvature radius of the surfaces' sum (`1/R = 1/R1 + 1/R2`) if both are
+/// spheres/planes (`spheres`) or cylinders/planes, and not both planes.
+fn combined(geometry: &Geometry, spheres: bool) -> Option<f64> {
+    let Geometry::Surfaces(a, b) = geometry else {
+        return None;
+    };
+    let curvature = |s: &Surface| match (*s, spheres) {
+        (Surface::Plane, _) => Some(0.0),
+        (Surface::Sphere { radius }, true) | (Surface::Cylinder { radius }, false) => {
+            Some(1.0 / radius)
+        }
+        _ => None,
+    };
+    let k = curvature(a)? + curvature(b)?;
+    (k > 0.0).then(|| 1.0 / k)
+}
+
+/// E* of the bodies if they are half-space models (or rigid) of `models`.
+fn half_space_modulus(bodies: &[BodySpec; 2], models: &[&str]) -> Option<f64> {
+    if !bodies
+        .iter()
+        .all(|b| b.model == "rigid" || models.contains(&b.model.as_str()))
+    {
+        return None;
+    }
+    let e = combined_modulus_of(bodies[0].material.as_ref(), bodies[1].material.as_ref());
+    e.is_finite().then_some(e)
+}
+
+/// The Hertz length scale at `load`: the contact radius (disk) or the
+/// half-width (line; rectangle of a roller, per unit length `2 half_y`).
+fn hertz_scale(
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    spec: &PointsSpec,
+    load: f64,
+) -> Option<f64> {
+    match spec {
+        PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            let r = combined(geometry, true)?;
+            HertzSpheres::new(e, r, load)
+                .ok()
+                .map(|h| h.contact_radius())
+        }
+        PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+            let e = half_space_modulus(bodies, &["plane-strain"])?;
+            let r = combined(geometry, false)?;
+            HertzCylinders::new(e, r, load).ok().map(|h| h.half_width())
+        }
+        PointsSpec::Rectangle { half_y, .. } => {
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            let r = combined(geometry, false)?;
+            HertzCylinders::new(e, r, load / (2.0 * half_y))
+                .ok()
+                .map(|h| h.half_width())
+        }
+    }
+}
+
+/// The closed form that applies to the scene, if one does.
+fn reference(
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    spec: &PointsSpec,
+    points: &PointSet,
+    loading: Loading,
+) -> Option<Reference> {
+    let flat = match geometry {
+        Geometry::Surfaces(Surface::Plane, Surface::Plane) => true,
+        Geometry::Separation(eps) => eps.iter().all(|&e| e == eps[0]),
+        _ => false,
+    };
+    match spec {
+        PointsSpec::Disk { radius, .. } if flat => {
+            // A rigid flat punch: one rigid body, the candidate disk its face.
+            let rigid = bodies.iter().filter(|b| b.body.is_rigid()).count() == 1;
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            rigid.then(|| FlatPunch::new(e, *radius).ok().map(Reference::FlatPunch))?
+        }
+        PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            let r = combined(geometry, true)?;
+            let load = match loading {
+                Loading::Load(p) => p,
+                // The Hertz load of the approach: P = 4 E* a^3 / (3 R), a = sqrt(R delta).
+                Loading::Approach(d) if d > 0.0 => 4.0 * e * (r * d).powf(1.5) / (3.0 * r),
+                Loading::Approach(_) => return None,
+            };
+            HertzSpheres::new(e, r, load)
+                .ok()
+                .map(Reference::HertzSpheres)
+        }
+        PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+            if let Some(r) = combined(geometry, false) {
+                let e = half_space_modulus(bodies, &["plane-strain"])?;
+                let Loading::Load(p) = loading else {
+                    return None;
+                };
+                let datums: Vec<f64> = bodies
+                    .iter()
+                    .filter_map(|b| match b.body.model() {
+                        elcon_influence::Model::PlaneStrainStrip {
+                            reference_distance, ..
+                        } => Some(*reference_distance),
+                        _ => None,
+                    })
+                    .collect();
+                let datum = datums.iter().all(|&d| d == datums[0]).then(|| datums[0]);
+                return HertzCylinders::new(e, r, p)
+                    .ok()
+                    .map(|hertz| Reference::HertzCylinders { hertz, datum });
+            }
+            // A beam on a Winkler foundation, central load, no separation.
+            if !flat {
+                return None;
+            }
+            let Loading::Load(p) = loading else {
+                return None;
+            };
+            let (mut ei, mut k, mut x0) = (None, None, None);
+            for b in bodies {
+                match *b.body.model() {
+                    elcon_influence::Model::Beam {
+                        flexural_rigidity,
+                        loaded_point,
+                    } => {
+                        ei = Some(flexural_rigidity);
+                        x0 = Some(loaded_point);
+                    }
+                    elcon_influence::Model::Winkler { modulus } => k = Some(modulus),
+                    _ => return None,
+                }
+            }
+            let (lo, hi) = (points.xs()[0], points.xs()[points.len() - 1]);
+            let h = points.cell().dx;
+            let centred = (x0? - 0.5 * (lo + hi)).abs() <= 1e-9 * (hi - lo + h);
+            centred
+                .then(|| {
+                    HetenyiBeam::new(ei?, k?, hi - lo + h, p)
+                        .ok()
+                        .map(Reference::Hetenyi)
+                })
+                .flatten()
+        }
+        PointsSpec::Rectangle { .. } => None,
+    }
+}
+
+/// An absolute grid that cannot hold the Hertz contact is an error.
+fn check_zone(
+    ctx: &Ctx<'_>,
+    p: &Spanned<PointsToml>,
+    reference: Option<&Reference>,
+    points: &PointSet,
+) -> Result<(), SceneError> {
+    let t = p.get_ref();
+    match reference {
+        Some(Reference::HertzSpheres(h)) => {
+            if let Some(r) = &t.radius
+                && *r.get_ref() <= h.contact_radius()
+            {
+                return Err(ctx.invalid(
+                    r.span(),
+                    "points.radius",
+                    r.get_ref(),
+                    format!(
+                        "the candidate disk cannot hold the contact: the Hertz contact radius is {:.4e}; \
+                         give a radius beyond it (1.2 to 1.5 times)",
+                        h.contact_radius()
+                    ),
+                ));
+            }
+        }
+        Some(Reference::HertzCylinders { hertz, .. }) => {
+            let (lo, hi) = (points.xs()[0], points.xs()[points.len() - 1]);
+            let b = hertz.half_width();
+            if let (Some(s), true) = (&t.start, lo > -b || hi < b) {
+                return Err(ctx.invalid(
+                    s.span(),
+                    "points.start",
+                    s.get_ref(),
+                    format!("the line [{lo:.4e}, {hi:.4e}] cannot hold the contact: the Hertz half-width is {b:.4e}"),
+                ));
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+fn solver(
+    ctx: &Ctx<'_>,
+    s: Option<&crate::schema::SolverToml>,
+) -> Result<(Method, Options), SceneError> {
+    let mut options = Options::default();
+    let Some(s) = s else {
+        return Ok((Method::BlockPivoting, options));
+    };
+    let method = match &s.method {
+        Some(m) => Method::from_name(m.get_ref()).ok_or_else(|| {
+            ctx.invalid(
+                m.span(),
+                "solver.method",
+                format!("\"{}\"", m.get_ref()),
+                "unknown method; one of restricted-simplex, lemke, block-pivoting",
+            )
+        })?,
+        None => Method::BlockPivoting,
+    };
+    if let Some(p) = &s.max_pivots {
+        options.max_pivots = Some(ctx.count(p, "solver.max_pivots", 1)?);
+    }
+    if let Some(t) = &s.certificate_tolerance {
+        let v = ctx.positive(t, "solver.certificate_tolerance")?;
+        if v >= 1.0 {
+            return Err(ctx.invalid(
+                t.span(),
+                "solver.certificate_tolerance",
+                v,
+                "a relative tolerance must be < 1",
+            ));
+        }
+        options.tolerances.certificate = v;
+    }
+    if let Some(r) = &s.refinement_steps {
+        options.refinement_steps = ctx.count(r, "solver.refinement_steps", 0)?;
+    }
+    Ok((method, options))
+}
+
+fn design(
+    ctx: &Ctx<'_>,
+    d: &Spanned<DesignToml>,
+    loading: Loading,
+    dimension: Dimension,
+    bodies: &[BodySpec; 2],
+) -> Result<DesignSpec, SceneError> {
+    let t = d.get_ref();
+    let Loading::Load(load) = loading else {
+        return Err(ctx.invalid(
+            d.span(),
+            "design",
+            "",
+            "a design evens the pressure under a load: use loading.load",
+        ));
+    };
+    let family_name = t.family.get_ref().as_str();
+    let only = |v: &Option<Spanned<f64>>, field: &str, fam: &str| {
+        ctx.forbid(v, field, &format!("only for family = \"{fam}\""))
+    };
+    if family_name != "polynomial" {
+        ctx.forbid(
+            &t.degree,
+            "design.degree",
+            "only for family = \"polynomial\"",
+        )?;
+    }
+    if family_name != "circular-crown"
+        && let Some(r) = &t.radius_range
+    {
+        return Err(ctx.invalid(
+            r.span(),
+            "design.radius_range",
+            "",
+            "only for family = \"circular-crown\"",
+        ));
+    }
+    if family_name != "logarithmic-crown" {
+        only(&t.design_load, "design.design_load", "logarithmic-crown")?;
+    }
+    if !matches!(family_name, "circular-crown" | "logarithmic-crown") {
+        ctx.forbid(&t.flat_length, "design.flat_length", "only for the crowns")?;
+    } else {
+        ctx.forbid(
+            &t.max_constant,
+            "design.max_constant",
+            "only for the polynomial families",
+        )?;
+    }
+    let flat = match &t.flat_length {
+        Some(f) => {
+            let v = ctx.finite(f, "design.flat_length")?;
+            if v < 0.0 {
+                return Err(ctx.invalid(f.span(), "design.flat_length", v, "must be >= 0"));
+            }
+            v
+        }
+        None => 0.0,
+    };
+    let loads = match &t.loads {
+        Some(l) => {
+            if l.get_ref().is_empty() {
+                return Err(ctx.invalid(l.span(), "design.loads", "[]", "give at least one load"));
+            }
+            l.get_ref()
+                .iter()
+                .enumerate()
+                .map(|(i, v)| ctx.positive(v, &format!("design.loads[{i}]")))
+                .collect::<Result<Vec<f64>, _>>()?
+        }
+        None => vec![load],
+    };
+    let family = match family_name {
+        "quadratic" => DesignFamily::Linear(Family::Quadratic),
+        "free" => DesignFamily::Linear(Family::Free),
+        "polynomial" => {
+            let deg = ctx.required(
+                &t.degree,
+                t.family.span(),
+                "design.degree",
+                "for family = \"polynomial\"",
+            )?;
+            DesignFamily::Linear(Family::Polynomial {
+                degree: ctx.count(deg, "design.degree", 0)?,
+            })
+        }
+        "circular-crown" => {
+            let (lo, hi) = match &t.radius_range {
+                Some(r) => {
+                    let v = r.get_ref();
+                    if v.len() != 2 {
+                        return Err(ctx.invalid(
+                            r.span(),
+                            "design.radius_range",
+                            format!("{} values", v.len()),
+                            "give [smallest, largest] radius",
+                        ));
+                    }
+                    let lo = ctx.positive(&v[0], "design.radius_range[0]")?;
+                    let hi = ctx.positive(&v[1], "design.radius_range[1]")?;
+                    if hi <= lo {
+                        return Err(ctx.invalid(
+                            v[1].span(),
+                            "design.radius_range[1]",
+                            hi,
+                            "must exceed the smallest radius",
+                        ));
+                    }
+                    (lo, hi)
+                }
+                None => {
+                    return Err(ctx.invalid(
+                        t.family.span(),
+                        "design.radius_range",
+                        "(missing)",
+                        "is required for family = \"circular-crown\" (the search bracket)",
+                    ));
+                }
+            };
+            DesignFamily::CircularCrown {
+                radius_range: (lo, hi),
+                flat_length: flat,
+            }
+        }
+        "logarithmic-crown" => {
+            if dimension != Dimension::Surface
+                || half_space_modulus(bodies, &["point-force", "uniform-patch"]).is_none()
+            {
+                return Err(ctx.invalid(
+                    t.family.span(),
+                    "design.family",
+                    "\"logarithmic-crown\"",
+                    "a logarithmic crown is for a roller: half-space bodies on a rectangle grid",
+                ));
+            }
+            let q = match &t.design_load {
+                Some(q) => ctx.positive(q, "design.design_load")?,
+                None => loads.iter().cloned().fold(0.0, f64::max),
+            };
+            DesignFamily::LogarithmicCrown {
+                design_load: q,
+                flat_length: flat,
+            }
+        }
+        other => {
+            return Err(ctx.invalid(
+                t.family.span(),
+                "design.family",
+                format!("\"{other}\""),
+                "unknown family; one of quadratic, polynomial, free, circular-crown, logarithmic-crown",
+            ));
+        }
+    };
+    let axis = match &t.axis {
+        Some(a) => match a.get_ref().as_str() {
+            "x" => Axis::X,
+            "y" => Axis::Y,
+            other => {
+                return Err(ctx.invalid(
+                    a.span(),
+                    "design.axis",
+                    format!("\"{other}\""),
+                    "one of x, y",
+                ));
+            }
+        },
+        None if dimension == Dimension::Line => Axis::X,
+        None => Axis::Y,
+    };
+    if dimension == Dimension::Line && axis == Axis::Y {
+        let span = t.axis.as_ref().map_or(d.span(), |a| a.span());
+        return Err(ctx.invalid(span, "design.axis", "\"y\"", "a line grid lies along x"));
+    }
+    let relative_to = match &t.relative_to {
+        Some(r) => match r.get_ref().as_str() {
+            "absolute" => RelativeTo::Absolute,
+            "mean" => RelativeTo::Mean,
+            "hertz" => RelativeTo::Hertz,
+            other => {
+                return Err(ctx.invalid(
+                    r.span(),
+                    "design.relative_to",
+                    format!("\"{other}\""),
+                    "one of absolute, mean, hertz",
+                ));
+            }
+        },
+        None => RelativeTo::Absolute,
+    };
+    let max_constant = match &t.max_constant {
+        Some(c) => Some(ctx.positive(c, "design.max_constant")?),
+        None => None,
+    };
+    Ok(DesignSpec {
+        family,
+        axis,
+        loads,
+        relative_to,
+        max_constant,
+    })
+}
+
+fn outputs(
+    ctx: &Ctx<'_>,
+    o: Option<&crate::schema::OutputsToml>,
+    has_design: bool,
+) -> Result<Outputs, SceneError> {
+    let mut out = Outputs {
+        plots: Vec::new(),
+        pressure_csv: true,
+    };
+    let Some(o) = o else { return Ok(out) };
+    if let Some(c) = o.pressure_csv {
+        out.pressure_csv = c;
+    }
+    if let Some(plots) = &o.plots {
+        for p in plots.get_ref() {
+            let plot = match p.get_ref().as_str() {
+                "pressure" => Plot::Pressure,
+                "design" if has_design => Plot::Design,
+                "design" => {
+                    return Err(ctx.invalid(
+                        p.span(),
+                        "outputs.plots",
+                        "\"design\"",
+                        "needs a [design] section",
+                    ));
+                }
+                other => {
+                    return Err(ctx.invalid(
+                        p.span(),
+                        "outputs.plots",
+                        format!("\"{other}\""),
+                        "one of pressure, design",
+                    ));
+                }
+            };
+            if !out.plots.contains(&plot) {
+                out.plots.push(plot);
+            }
+        }
+    }
+    Ok(out)
+}

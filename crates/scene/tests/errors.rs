@@ -1,0 +1,113 @@
+//! One test per `SceneError` variant, through the library: the message a
+//! user gets names the file, the line and column, and the field.
+
+use std::path::Path;
+
+use elcon_scene::{Location, Scene, SceneError, run};
+
+const BASE: &str = r#"
+[units]
+length = "in"
+force = "lbf"
+
+[body1]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+
+[body2]
+model = "rigid"
+
+[geometry]
+surface1 = { shape = "sphere", radius = 1.0 }
+
+[points]
+grid = "disk"
+across = 11
+zone = 1.3
+
+[loading]
+load = 100.0
+"#;
+
+fn scene(text: &str) -> Result<Scene, SceneError> {
+    Scene::from_str(Path::new("test.toml"), text)
+}
+
+#[test]
+fn location_counts_lines_and_characters() {
+    let text = "a = 1\nbé = 2\n";
+    assert_eq!(Location::of(text, 0), Location { line: 1, column: 1 });
+    assert_eq!(Location::of(text, 6), Location { line: 2, column: 1 });
+    // 'é' is two bytes, one column.
+    assert_eq!(Location::of(text, 9), Location { line: 2, column: 3 });
+}
+
+#[test]
+fn io_names_the_file() {
+    let e = Scene::from_file(Path::new("no/such/file.toml")).unwrap_err();
+    assert!(matches!(e, SceneError::Io { .. }));
+    assert!(e.to_string().starts_with("no/such/file.toml: "), "{e}");
+    assert!(!e.is_input_error());
+}
+
+#[test]
+fn syntax_names_line_column_and_key() {
+    let e = scene(&BASE.replace("[body2]", "[body2]\ncolour = 1")).unwrap_err();
+    assert!(matches!(e, SceneError::Syntax { .. }));
+    assert!(
+        e.to_string()
+            .starts_with("test.toml:12:1: unknown field `colour`"),
+        "{e}"
+    );
+    let e = scene(&BASE.replace("[loading]\nload = 100.0", "[loading]")).unwrap_err();
+    assert!(e.to_string().contains("test.toml:"), "{e}");
+    let e = scene(&BASE.replace("[units]\nlength = \"in\"\nforce = \"lbf\"\n", "")).unwrap_err();
+    assert!(e.to_string().contains("missing field `units`"), "{e}");
+    assert!(e.is_input_error());
+}
+
+#[test]
+fn invalid_names_the_field_and_the_reason() {
+    let e = scene(&BASE.replace("poissons_ratio = 0.3", "poissons_ratio = -1.0")).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "test.toml:9:18: `body1.poissons_ratio` = -1: must be in (-1, 0.5): outside it the elastic energy is not positive definite"
+    );
+    let e =
+        scene(&BASE.replace("model = \"rigid\"", "model = \"rigid\"\nmodulus = 3.0")).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("`body2.modulus` = 3: is not a parameter of the rigid model"),
+        "{e}"
+    );
+    let e = scene(&BASE.replace("across = 11", "across = 11\nnx = 4")).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("`points.nx` = : is not a parameter of grid = \"disk\""),
+        "{e}"
+    );
+    let e =
+        scene(&BASE.replace("shape = \"sphere\", radius = 1.0", "shape = \"plane\"")).unwrap_err();
+    assert!(
+        e.to_string().contains("need a Hertz contact under a load"),
+        "{e}"
+    );
+    assert!(e.is_input_error());
+}
+
+#[test]
+fn run_failures_name_the_scene() {
+    let s = scene(&format!(
+        "{BASE}\n[solver]\nmethod = \"lemke\"\nmax_pivots = 1\n"
+    ))
+    .unwrap();
+    let e = run(&s).unwrap_err();
+    assert!(matches!(e, SceneError::Run { .. }));
+    assert!(
+        e.to_string()
+            .starts_with("scene `test`: the contact solve failed: pivot limit 1"),
+        "{e}"
+    );
+    assert!(!e.is_input_error());
+}

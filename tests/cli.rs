@@ -1,0 +1,431 @@
+//! The `elcon` command line, run as a user runs it: every example scene
+//! runs and writes the documented fields; malformed scenes fail with the
+//! file, line, column and field and the documented exit code; a batch with a
+//! broken run still writes the others; shards merge; and `run` agrees with
+//! the library bit for bit.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface};
+use elcon::influence::{Body, Material, PointSet};
+
+fn elcon(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_elcon"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the elcon binary runs")
+}
+
+/// A fresh directory for one test's files.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("elcon-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// The fields docs/results.md documents for every result.json.
+const FIELDS: [&str; 16] = [
+    "scene",
+    "file",
+    "units",
+    "method",
+    "dimension",
+    "points",
+    "statistics",
+    "seconds",
+    "approach",
+    "load",
+    "max_pressure",
+    "contact_points",
+    "contact_extent",
+    "certificate",
+    "warnings",
+    "reference",
+];
+
+#[test]
+fn every_example_scene_runs_and_writes_the_documented_fields() {
+    let out = scratch("examples");
+    let scenes = [
+        (
+            "example1-spheres",
+            Some("hertz-spheres"),
+            &["pressure.svg"][..],
+        ),
+        ("example1-paper-model", Some("hertz-spheres"), &[][..]),
+        (
+            "example2-beam-design",
+            Some("hetenyi-beam"),
+            &["pressure.svg", "design.svg"][..],
+        ),
+        (
+            "hertz-cylinders",
+            Some("hertz-cylinders"),
+            &["pressure.svg"][..],
+        ),
+        ("flat-punch", Some("flat-punch"), &["pressure.svg"][..]),
+        ("crowned-roller", None, &["pressure.svg", "design.svg"][..]),
+    ];
+    let mut args = vec!["run".to_string()];
+    args.extend(
+        scenes
+            .iter()
+            .map(|(s, _, _)| format!("examples/scenes/{s}.toml")),
+    );
+    args.extend(["--out".into(), out.display().to_string()]);
+    let o = elcon(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    for (scene, reference, plots) in scenes {
+        let dir = out.join(scene);
+        let r = json(&dir.join("result.json"));
+        for field in FIELDS {
+            let present = r.get(field).is_some();
+            // `reference` is present exactly where a closed form applies.
+            let expected = field != "reference" || reference.is_some();
+            assert_eq!(present, expected, "{scene}: field {field}");
+        }
+        if let Some(kind) = reference {
+            assert_eq!(r["reference"]["kind"], kind, "{scene}");
+            assert!(
+                r["reference"]["errors"]
+                    .as_object()
+                    .is_some_and(|e| !e.is_empty()),
+                "{scene}"
+            );
+        }
+        assert_eq!(r["certificate"]["holds"], true, "{scene}");
+        assert!(
+            r["certificate"]["worst"].as_f64().unwrap() <= 1e-12,
+            "{scene}"
+        );
+        assert_eq!(
+            r.get("design").is_some(),
+            scene.contains("design") || scene == "crowned-roller",
+            "{scene}"
+        );
+        assert!(dir.join("pressure.csv").exists(), "{scene}");
+        for file in ["pressure.svg", "design.svg"] {
+            assert_eq!(
+                dir.join(file).exists(),
+                plots.contains(&file),
+                "{scene}: {file}"
+            );
+        }
+    }
+    // The paper's Example 1 numbers, through the command line.
+    let e1 = json(&out.join("example1-paper-model/result.json"));
+    let err = e1["reference"]["errors"]["approach"].as_f64().unwrap();
+    assert!((err + 5.73e-3).abs() < 1e-5, "{err}");
+    let e2 = json(&out.join("example2-beam-design/result.json"));
+    let d = &e2["design"];
+    let ratio = d["objective"].as_f64().unwrap() / d["objective_before"].as_f64().unwrap();
+    assert!((ratio - 0.6924).abs() < 1e-3, "{ratio}");
+    // The units are repeated in the outputs.
+    assert_eq!(e2["units"]["intensity"], "lbf/in");
+    let csv = std::fs::read_to_string(out.join("hertz-cylinders/pressure.csv")).unwrap();
+    assert!(
+        csv.starts_with("x_mm,length_mm,force_N,intensity_MPa,gap_mm,separation_mm,reference_MPa"),
+        "{csv}"
+    );
+}
+
+/// Writes a scene derived from example1-spheres.toml with one line replaced.
+fn broken(dir: &Path, name: &str, from: &str, to: &str) -> PathBuf {
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/example1-spheres.toml"),
+    )
+    .unwrap();
+    assert!(base.contains(from), "the base scene has `{from}`");
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, base.replacen(from, to, 1)).unwrap();
+    path
+}
+
+#[test]
+fn malformed_scenes_name_file_line_column_and_field() {
+    let dir = scratch("malformed");
+    // (name, replaced text, replacement, expected message fragment, line)
+    let cases = [
+        ("syntax", "load = 100.0", "load = = 100.0", "extra `=`", 52),
+        (
+            "unknown-key",
+            "poissons_ratio = 0.3\n\n[body2]",
+            "poissons_ratio = 0.3\ncolour = \"red\"\n\n[body2]",
+            "unknown field `colour`",
+            30,
+        ),
+        (
+            "modulus",
+            "youngs_modulus = 30e6                        # psi",
+            "youngs_modulus = -30e6",
+            "`body1.youngs_modulus` = -30000000: must be > 0",
+            28,
+        ),
+        (
+            "poisson",
+            "poissons_ratio = 0.3\n\n[body2]",
+            "poissons_ratio = 0.5\n\n[body2]",
+            "`body1.poissons_ratio` = 0.5: must be in (-1, 0.5)",
+            29,
+        ),
+        (
+            "non-finite",
+            "radius = 10.0 }",
+            "radius = inf }",
+            "`geometry.surface2.radius` = inf: must be a finite number",
+            40,
+        ),
+        (
+            "load",
+            "load = 100.0",
+            "load = 0.0",
+            "`loading.load` = 0: must be > 0",
+            52,
+        ),
+        (
+            "negative-load",
+            "load = 100.0",
+            "load = -1.0",
+            "`loading.load` = -1: must be > 0",
+            52,
+        ),
+        (
+            "zone",
+            "zone = 1.15",
+            "zone = 0.9",
+            "`points.zone` = 0.9: the candidate zone must extend beyond the Hertz contact",
+            48,
+        ),
+        (
+            "empty",
+            "grid = \"disk\"\nacross = 41\nzone = 1.15",
+            "grid = \"rectangle\"\nhalf_x = 0.02\nhalf_y = 0.02\nnx = 0\nny = 5",
+            "`points.nx` = 0: must be at least 1 (an empty point set)",
+            49,
+        ),
+        (
+            "too-small",
+            "across = 41\nzone = 1.15",
+            "spacing = 0.001\nradius = 0.01",
+            "`points.radius` = 0.01: the candidate disk cannot hold the contact",
+            48,
+        ),
+        (
+            "method",
+            "method = \"block-pivoting\"",
+            "method = \"simplex\"",
+            "`solver.method` = \"simplex\": unknown method",
+            56,
+        ),
+    ];
+    for (name, from, to, message, line) in cases {
+        let path = broken(&dir, name, from, to);
+        for command in ["check", "run"] {
+            let o = elcon(
+                &[
+                    command,
+                    path.to_str().unwrap(),
+                    "--out",
+                    dir.join("out").to_str().unwrap(),
+                ][..if command == "check" { 2 } else { 4 }],
+            );
+            let t = text(&o);
+            assert_eq!(o.status.code(), Some(1), "{name} {command}: {t}");
+            assert!(t.contains(message), "{name} {command}: {t}");
+            assert!(
+                t.contains(&format!("{}:", path.display())),
+                "{name}: names the file: {t}"
+            );
+            if line > 0 {
+                assert!(
+                    t.contains(&format!("{}:{line}:", path.display())),
+                    "{name}: line {line}: {t}"
+                );
+            }
+        }
+    }
+    // A missing file is a failed scene (exit 1); a usage error is exit 2.
+    assert_eq!(elcon(&["run", "no/such/scene.toml"]).status.code(), Some(1));
+    assert_eq!(elcon(&["run"]).status.code(), Some(2));
+    assert_eq!(elcon(&["frobnicate"]).status.code(), Some(2));
+    assert_eq!(
+        elcon(&[
+            "batch",
+            "examples/scenes/convergence.toml",
+            "--shard",
+            "4/3"
+        ])
+        .status
+        .code(),
+        Some(2)
+    );
+}
+
+#[test]
+fn a_batch_with_a_broken_run_still_writes_the_others() {
+    let dir = scratch("batch");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/example1-spheres.toml"),
+        dir.join("base.toml"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("sweep.toml"),
+        "[batch]\nscene = \"base.toml\"\n[[batch.group]]\n\"points.across\" = [11, 12, 21]\n\"solver.method\" = [\"lemke\", \"block-pivoting\"]\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = elcon(&[
+        "batch",
+        dir.join("sweep.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--jobs",
+        "2",
+    ]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(t.contains("6 runs, 2 failed"), "{t}");
+    assert!(t.contains("`points.across` = 12: must be odd"), "{t}");
+    let results = json(&out.join("sweep/results.json"));
+    let rows = results["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 6);
+    for row in rows {
+        let ok = row["status"] == "ok";
+        assert_eq!(
+            ok,
+            !row["overrides"].as_str().unwrap().contains("=12"),
+            "{row}"
+        );
+        if ok {
+            let slug = row["scene"].as_str().unwrap();
+            assert!(
+                out.join("sweep").join(slug).join("result.json").exists(),
+                "{slug}"
+            );
+        }
+    }
+    for file in ["results.csv", "results.md", "error-time.svg"] {
+        assert!(out.join("sweep").join(file).exists(), "{file}");
+    }
+    // Shards: two halves, merged, give the same rows.
+    for k in ["1/2", "2/2"] {
+        let o = elcon(&[
+            "batch",
+            dir.join("sweep.toml").to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--shard",
+            k,
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    }
+    let merged = dir.join("merged");
+    let o = elcon(&[
+        "merge",
+        out.join("sweep-shard-1-of-2").to_str().unwrap(),
+        out.join("sweep-shard-2-of-2").to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "the merged table has the failed runs: {}",
+        text(&o)
+    );
+    let m = json(&merged.join("results.json"));
+    let indices: Vec<u64> = m["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["index"].as_u64().unwrap())
+        .collect();
+    assert_eq!(indices, [0, 1, 2, 3, 4, 5]);
+    for (a, b) in m["rows"].as_array().unwrap().iter().zip(rows) {
+        assert_eq!(a["status"], b["status"]);
+        assert_eq!(a["approach"], b["approach"]);
+    }
+}
+
+#[test]
+fn the_convergence_batch_checks_and_a_shard_of_it_runs() {
+    let out = scratch("convergence");
+    let o = elcon(&["check", "examples/scenes/convergence.toml"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(text(&o).contains("15 runs, all valid"));
+    // Shard 1 of 5 holds runs 0, 5 and 10: every method at 11 across.
+    let o = elcon(&[
+        "batch",
+        "examples/scenes/convergence.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--shard",
+        "1/5",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let r = json(&out.join("convergence-shard-1-of-5/results.json"));
+    assert_eq!(r["rows"].as_array().unwrap().len(), 3);
+}
+
+#[test]
+fn the_command_line_and_the_library_agree_bit_for_bit() {
+    let out = scratch("bits");
+    let o = elcon(&[
+        "run",
+        "examples/scenes/example1-spheres.toml",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let r = json(&out.join("example1-spheres/result.json"));
+    // The same scene through the library: Love patches, 41 across, zone 1.15.
+    let steel = Material::new(30e6, 0.3).unwrap();
+    let hertz = elcon::analysis::references::HertzSpheres::new(
+        elcon::influence::combined_modulus(&steel, &steel),
+        elcon::analysis::references::combined_radius(1.0, 10.0),
+        100.0,
+    )
+    .unwrap();
+    let a = hertz.contact_radius();
+    let points = PointSet::grid_disk(2.0 * a / 40.0, 1.15 * a).unwrap();
+    let body = Body::uniform_patch(steel);
+    let geometry = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    let problem =
+        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+    let sol = problem
+        .solve(Method::BlockPivoting, &Options::default())
+        .unwrap();
+    assert_eq!(
+        r["approach"].as_f64().unwrap().to_bits(),
+        sol.approach.to_bits()
+    );
+    assert_eq!(
+        r["max_pressure"].as_f64().unwrap().to_bits(),
+        sol.max_pressure.to_bits()
+    );
+    assert_eq!(r["load"].as_f64().unwrap().to_bits(), sol.load.to_bits());
+    let csv = std::fs::read_to_string(out.join("example1-spheres/pressure.csv")).unwrap();
+    for (line, force) in csv.lines().skip(1).zip(&sol.forces) {
+        let f: f64 = line.split(',').nth(4).unwrap().parse().unwrap();
+        assert_eq!(f.to_bits(), force.to_bits());
+    }
+}
