@@ -637,6 +637,22 @@ fn deflection_scale(c: &Case<'_>) -> f64 {
     deflection + eps
 }
 
+/// The design's objective and its re-analysis' must agree to `tolerance`
+/// (relative), or the design is refused.
+fn agree(design: f64, reanalysis: f64, tolerance: f64) -> Result<(), DesignError> {
+    let relative = (reanalysis - design).abs() / design;
+    if relative <= tolerance {
+        Ok(())
+    } else {
+        Err(DesignError::Disagreement {
+            design,
+            reanalysis,
+            relative,
+            tolerance,
+        })
+    }
+}
+
 /// Part 1 and part 2 from one start, then the re-analysis.
 #[allow(clippy::too_many_arguments)]
 fn run_start(
@@ -677,16 +693,11 @@ fn run_start(
         &options.reanalysis_options,
     )?;
     let references: Vec<f64> = prepared.iter().map(|c| c.reference).collect();
-    let reanalysed = evaluation.relative_worst(&references);
-    let relative = (reanalysed - objective).abs() / objective;
-    if !(relative <= options.agreement) {
-        return Err(DesignError::Disagreement {
-            design: objective,
-            reanalysis: reanalysed,
-            relative,
-            tolerance: options.agreement,
-        });
-    }
+    agree(
+        objective,
+        evaluation.relative_worst(&references),
+        options.agreement,
+    )?;
     // A uniform shift of the profile only moves the approach, so the bound
     // constrains the design only if the normalized profile (smallest drop 0)
     // still needs the whole of it.
@@ -712,4 +723,22 @@ fn run_start(
         },
         theta,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_reanalysis_that_disagrees_refuses_the_design() {
+        assert!(agree(100.0, 100.0 * (1.0 + 1e-12), 1e-9).is_ok());
+        let e = agree(100.0, 101.0, 1e-9).unwrap_err();
+        assert!(matches!(e, DesignError::Disagreement { .. }));
+        assert_eq!(
+            e.to_string(),
+            "the design's objective 1.000000e2 and its re-analysis' 1.010000e2 differ by 1.00e-2 relative (tolerance 1.0e-9)"
+        );
+        // NaN never agrees.
+        assert!(agree(100.0, f64::NAN, 1e-9).is_err());
+    }
 }

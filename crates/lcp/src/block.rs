@@ -23,7 +23,9 @@
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Col, Mat};
 
-use crate::dense::{Cholesky, Lu, norm_inf};
+use faer::dyn_stack::{MemBuffer, MemStack};
+
+use crate::dense::{Lu, norm_inf};
 use crate::lemke;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
 use crate::{LcpError, Method};
@@ -48,16 +50,11 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
             reason: "it needs free extra unknowns and as many equality rows; use the restricted-entry simplex".into(),
         });
     }
-    let mscale = (0..n).fold(0.0f64, |a, i| a.max(p.m[(i, i)].abs()));
-    for j in 0..n {
-        for i in 0..j {
-            if (p.m[(i, j)] - p.m[(j, i)]).abs() > 1e3 * f64::EPSILON * mscale {
-                return Err(LcpError::Unsupported {
-                    method: "block principal pivoting",
-                    reason: format!("M is not symmetric (entry ({i}, {j})); use Lemke's method"),
-                });
-            }
-        }
+    if let Some((i, j)) = asymmetry(p.m) {
+        return Err(LcpError::Unsupported {
+            method: "block principal pivoting",
+            reason: format!("M is not symmetric (entry ({i}, {j})); use Lemke's method"),
+        });
     }
     let mut stats = Statistics::new(Method::BlockPivoting);
     let par = opts.par(n, n);
@@ -67,9 +64,24 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
     let mut best = usize::MAX;
     let mut retries = BLOCK_RETRIES;
     let qscale = norm_inf(p.q).max(norm_inf(p.r));
+    // The order in which indices join the factor: by the threshold q_i /
+    // |B_i| (for one extra unknown: the approach at which point i touches),
+    // else by q_i.
+    let key: Vec<f64> = (0..n)
+        .map(|i| {
+            let b = (0..k).fold(0.0f64, |a, j| a.max(p.b[(i, j)].abs()));
+            if b > 0.0 { p.q[i] / b } else { p.q[i] }
+        })
+        .collect();
+    let mut factor = Factor::new();
     loop {
         stats.iterations += 1;
-        let (z, u) = match solve_block(p, &active, par, opts.refinement_steps, &mut stats) {
+        // Iterations only need the signs of z and w; the solution is refined
+        // once the active set is found (below).
+        let solved = factor
+            .update(p, &active, &key, par, &mut stats)
+            .and_then(|()| solve_block(p, &factor, par, 0, &mut stats));
+        let (z, u) = match solved {
             Ok(v) => v,
             Err(BlockFailure::NotPositiveDefinite) => {
                 return Err(LcpError::Unsupported {
@@ -94,7 +106,31 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
             })
             .collect();
         if infeasible.is_empty() {
-            let mut z = z;
+            // The active set is found: solve again with iterative refinement
+            // from the original data; if that moves a sign, iterate on.
+            let (mut z, u) = match solve_block(p, &factor, par, opts.refinement_steps, &mut stats) {
+                Ok(v) => v,
+                Err(_) => return fallback(p, opts, stats),
+            };
+            let w = residual_w(p, &z, &u, par);
+            let zscale = norm_inf(z.as_ref());
+            let wscale = qscale.max(norm_inf(w.as_ref()));
+            let moved: Vec<usize> = (0..n)
+                .filter(|&i| {
+                    if active[i] {
+                        z[i] < -tol.zero * zscale
+                    } else {
+                        w[i] < -tol.zero * wscale
+                    }
+                })
+                .collect();
+            if !moved.is_empty() && stats.iterations < cap {
+                for &i in &moved {
+                    active[i] = !active[i];
+                }
+                stats.pivots += moved.len();
+                continue;
+            }
             for i in 0..n {
                 if !active[i] {
                     z[i] = 0.0;
@@ -129,6 +165,28 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
     }
 }
 
+/// An entry `(i, j)` where `M` is not symmetric (to `1e3 u` of its largest
+/// diagonal entry), compared tile by tile so that the transposed reads stay
+/// in cache.
+fn asymmetry(m: faer::MatRef<'_, f64>) -> Option<(usize, usize)> {
+    const TILE: usize = 64;
+    let n = m.nrows();
+    let scale = (0..n).fold(0.0f64, |a, i| a.max(m[(i, i)].abs()));
+    let tolerance = 1e3 * f64::EPSILON * scale;
+    for j0 in (0..n).step_by(TILE) {
+        for i0 in (0..=j0).step_by(TILE) {
+            for j in j0..(j0 + TILE).min(n) {
+                for i in i0..(i0 + TILE).min(j) {
+                    if (m[(i, j)] - m[(j, i)]).abs() > tolerance {
+                        return Some((i, j));
+                    }
+                }
+            }
+        }
+    }
+    None
+}
+
 /// The initial active set: a warm start if given, else the indices where
 /// `w` would be negative with `z = 0` (and, with equality rows, at least the
 /// index of smallest `q` so the block system is solvable).
@@ -150,24 +208,143 @@ fn initial_set(p: &MixedLcpRef<'_>, opts: &Options) -> Vec<bool> {
     active
 }
 
-/// Solves the block system for the active set; returns full `z` (0 off `J`) and `u`.
+/// The Cholesky factor `L L^T = M_JJ` of the active block, its rows in the
+/// order `order`, kept between iterations.
+///
+/// Active indices are ordered by a key (the threshold `q_i / |B_i|` at which
+/// index i would activate, ascending), and a new active set keeps the
+/// longest prefix of the old order that stays active; only the rest R is
+/// factored, against the kept prefix P:
+///
+/// ```text
+///     L_RP = M_RP L_PP^{-T}                   a triangular solve
+///     L_RR L_RR^T = M_RR - L_RP L_RP^T        a Cholesky of order |R|
+/// ```
+///
+/// In a contact problem the points that leave the contact set are those
+/// with the largest separations, last in that order, so a shrinking contact
+/// set keeps almost all of its factor.
+struct Factor {
+    order: Vec<usize>,
+    l: Mat<f64>,
+}
+
+impl Factor {
+    fn new() -> Self {
+        Self {
+            order: Vec::new(),
+            l: Mat::zeros(0, 0),
+        }
+    }
+
+    /// Refactors for `active`; `key` orders the indices that join.
+    fn update(
+        &mut self,
+        p: &MixedLcpRef<'_>,
+        active: &[bool],
+        key: &[f64],
+        par: faer::Par,
+        stats: &mut Statistics,
+    ) -> Result<(), BlockFailure> {
+        use faer::linalg::cholesky::llt::factor::{
+            LltRegularization, cholesky_in_place, cholesky_in_place_scratch,
+        };
+        use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
+        let keep = self.order.iter().take_while(|&&i| active[i]).count();
+        let mut rest: Vec<usize> = (0..active.len())
+            .filter(|&i| active[i] && !self.order[..keep].contains(&i))
+            .collect();
+        if keep == self.order.len() && rest.is_empty() {
+            return Ok(());
+        }
+        rest.sort_by(|&a, &b| key[a].total_cmp(&key[b]).then(a.cmp(&b)));
+        let (np, nr) = (keep, rest.len());
+        let mut l = Mat::<f64>::zeros(np + nr, np + nr);
+        l.as_mut()
+            .submatrix_mut(0, 0, np, np)
+            .copy_from(self.l.as_ref().submatrix(0, 0, np, np));
+        if nr > 0 {
+            let prefix = &self.order[..keep];
+            // L_RP^T = L_PP^{-1} M_PR.
+            let mut lrp_t = Mat::from_fn(np, nr, |a, b| p.m[(prefix[a], rest[b])]);
+            if np > 0 {
+                solve_lower_triangular_in_place(
+                    self.l.as_ref().submatrix(0, 0, np, np),
+                    lrp_t.as_mut(),
+                    par,
+                );
+            }
+            let mut srr = Mat::from_fn(nr, nr, |a, b| p.m[(rest[a], rest[b])]);
+            if np > 0 {
+                matmul(
+                    srr.as_mut(),
+                    Accum::Add,
+                    lrp_t.transpose(),
+                    lrp_t.as_ref(),
+                    -1.0,
+                    par,
+                );
+            }
+            let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(
+                nr,
+                par,
+                Default::default(),
+            ));
+            cholesky_in_place(
+                srr.as_mut(),
+                LltRegularization {
+                    dynamic_regularization_delta: 0.0,
+                    dynamic_regularization_epsilon: 0.0,
+                },
+                par,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .map_err(|_| BlockFailure::NotPositiveDefinite)?;
+            l.as_mut()
+                .submatrix_mut(np, 0, nr, np)
+                .copy_from(lrp_t.transpose());
+            for j in 0..nr {
+                for i in j..nr {
+                    l[(np + i, np + j)] = srr[(i, j)];
+                }
+            }
+            stats.factorizations += 1;
+        }
+        self.order.truncate(keep);
+        self.order.extend(rest);
+        self.l = l;
+        Ok(())
+    }
+
+    /// Overwrites `rhs` (in `order`) with `M_JJ^{-1} rhs`.
+    fn solve_in_place(&self, rhs: faer::MatMut<'_, f64>, par: faer::Par) {
+        let mut mem = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
+        faer::linalg::cholesky::llt::solve::solve_in_place(
+            self.l.as_ref(),
+            rhs,
+            par,
+            MemStack::new(&mut mem),
+        );
+    }
+}
+
+/// Solves the block system for the active set (factored in `factor`);
+/// returns full `z` (0 off `J`) and `u`.
 fn solve_block(
     p: &MixedLcpRef<'_>,
-    active: &[bool],
+    factor: &Factor,
     par: faer::Par,
     refinement: usize,
     stats: &mut Statistics,
 ) -> Result<(Col<f64>, Col<f64>), BlockFailure> {
     let n = p.size();
     let k = p.extras();
-    let idx: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
+    let idx: &[usize] = &factor.order;
     let nj = idx.len();
-    let mjj = Mat::from_fn(nj, nj, |a, b| p.m[(idx[a], idx[b])]);
-    let chol = Cholesky::new(mjj, par).map_err(|_| BlockFailure::NotPositiveDefinite)?;
-    stats.factorizations += 1;
     // G = M_JJ^{-1} B_J (nj x k), Schur = D - C_J G (k x k), factored once.
     let mut g = Mat::from_fn(nj, k, |a, j| p.b[(idx[a], j)]);
-    chol.solve_in_place(g.as_mut());
+    factor.solve_in_place(g.as_mut(), par);
     let schur = if k > 0 {
         let cj = Mat::from_fn(k, nj, |e, a| p.c[(e, idx[a])]);
         let mut s = p.d.to_owned();
@@ -190,7 +367,7 @@ fn solve_block(
     // Solve K [z_J; u] = [f; h] with K = [M_JJ B_J; C_J D].
     let solve = |f: &Col<f64>, h: &Col<f64>| -> (Col<f64>, Col<f64>) {
         let mut y = f.clone();
-        chol.solve_in_place(y.as_mat_mut());
+        factor.solve_in_place(y.as_mat_mut(), par);
         match &schur {
             Some((lu, cj)) => {
                 // u = S^{-1} (h - C_J M^{-1} f), z = M^{-1} f - G u

@@ -28,7 +28,7 @@
 //! skew pair (`C = -B^T`, `D = 0`, as in the contact problem with its sign
 //! conventions up to a symmetric scaling), so the method's guarantee carries over.
 
-use faer::{Col, Mat, MatRef};
+use faer::{Col, Mat};
 
 use crate::dense::norm_inf;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
@@ -65,38 +65,41 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
                 .into(),
         });
     }
-    let (z_full, basic_full, statistics) = if k == 0 {
-        core(p.m, p.q.as_ref().to_owned(), opts)?
-    } else {
-        let ns = n + 2 * k;
-        let mut m = Mat::<f64>::zeros(ns, ns);
-        let mut q = Col::<f64>::zeros(ns);
+    // The tableau's dense block [-M' | -d] is written directly (no copy of M'
+    // is kept): column j of -M' for j < ns, the covering vector after.
+    let ns = n + 2 * k;
+    let mut dense = Mat::<f64>::zeros(ns, ns + 1);
+    let mut q = Col::<f64>::zeros(ns);
+    for j in 0..n {
+        let col = dense.col_as_slice_mut(j);
         for i in 0..n {
-            for j in 0..n {
-                m[(i, j)] = p.m[(i, j)];
-            }
-            for j in 0..k {
-                m[(i, n + j)] = p.b[(i, j)];
-                m[(i, n + k + j)] = -p.b[(i, j)];
-            }
-            q[i] = p.q[i];
+            col[i] = -p.m[(i, j)];
         }
         for e in 0..me {
-            for j in 0..n {
-                m[(n + e, j)] = p.c[(e, j)];
-                m[(n + k + e, j)] = -p.c[(e, j)];
-            }
-            for j in 0..k {
-                m[(n + e, n + j)] = p.d[(e, j)];
-                m[(n + e, n + k + j)] = -p.d[(e, j)];
-                m[(n + k + e, n + j)] = -p.d[(e, j)];
-                m[(n + k + e, n + k + j)] = p.d[(e, j)];
-            }
-            q[n + e] = p.r[e];
-            q[n + k + e] = -p.r[e];
+            col[n + e] = -p.c[(e, j)];
+            col[n + k + e] = p.c[(e, j)];
         }
-        core(m.as_ref(), q, opts)?
-    };
+    }
+    for j in 0..k {
+        for i in 0..n {
+            dense[(i, n + j)] = -p.b[(i, j)];
+            dense[(i, n + k + j)] = p.b[(i, j)];
+        }
+        for e in 0..me {
+            dense[(n + e, n + j)] = -p.d[(e, j)];
+            dense[(n + e, n + k + j)] = p.d[(e, j)];
+            dense[(n + k + e, n + j)] = p.d[(e, j)];
+            dense[(n + k + e, n + k + j)] = -p.d[(e, j)];
+        }
+    }
+    for i in 0..n {
+        q[i] = p.q[i];
+    }
+    for e in 0..me {
+        q[n + e] = p.r[e];
+        q[n + k + e] = -p.r[e];
+    }
+    let (z_full, basic_full, statistics) = core(dense, q, opts)?;
     let z = Col::from_fn(n, |i| z_full[i]);
     let u = Col::from_fn(k, |j| z_full[n + j] - z_full[n + k + j]);
     Ok(RawSolution {
@@ -107,9 +110,11 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
     })
 }
 
-/// Lemke on the standard LCP `(m, q)`: returns `z`, which `z_i` are basic, and statistics.
+/// Lemke on the standard LCP `w = M z + q` given as the tableau's dense
+/// block `[-M | *]` (n x (n + 1), the last column overwritten with the
+/// covering vector): returns `z`, which `z_i` are basic, and statistics.
 fn core(
-    m: MatRef<'_, f64>,
+    dense: Mat<f64>,
     q: Col<f64>,
     opts: &Options,
 ) -> Result<(Col<f64>, Vec<bool>, Statistics), LcpError> {
@@ -122,12 +127,7 @@ fn core(
     }
     // Variables: w_i = i, z_j = n + j, z0 = 2n. A = [I, -M, -d], b = q.
     let z0 = 2 * n;
-    let mut dense = Mat::<f64>::zeros(n, n + 1);
-    for j in 0..n {
-        for i in 0..n {
-            dense[(i, j)] = -m[(i, j)];
-        }
-    }
+    debug_assert_eq!((dense.nrows(), dense.ncols()), (n, n + 1));
     let columns: Vec<Column> = (0..n)
         .map(|i| Column::Unit { row: i, coef: 1.0 })
         .chain((0..=n).map(Column::Dense))
@@ -164,7 +164,8 @@ fn core(
         Position::Nonbasic(j) => j,
         Position::Basic(_) => unreachable!("z0 starts non-basic"),
     };
-    let rows: Vec<(usize, f64)> = (0..n).map(|i| (i, tab.t[(i, s0)])).collect();
+    let column0 = tab.column(s0);
+    let rows: Vec<(usize, f64)> = (0..n).map(|i| (i, column0[i])).collect();
     let theta_min = rows
         .iter()
         .map(|&(i, d)| tab.rhs(i) / d)

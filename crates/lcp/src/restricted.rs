@@ -78,8 +78,11 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
     complement.extend(std::iter::repeat_n(None, k));
     complement.extend((0..n).map(Some));
     let b = Col::from_fn(rows, |i| if i < n { p.q[i] } else { -p.r[i - n] });
-    let program = ComplementaryProgram::from_parts(rows, dense, columns, bounds, complement, b);
-    let out = run(&program, opts)?;
+    let mut program = ComplementaryProgram::from_parts(rows, dense, columns, bounds, complement, b);
+    // The program is used once: its dense block moves into the engine
+    // instead of being copied (one N x N matrix fewer).
+    let dense = std::mem::replace(&mut program.dense, Mat::zeros(0, 0));
+    let out = run_with(&program, dense, opts)?;
     let mut basic = vec![false; n];
     for &v in &out.basis {
         if v < n {
@@ -120,12 +123,22 @@ struct Run<'a> {
 
 /// Runs the restricted-entry simplex on a program.
 pub(crate) fn run(p: &ComplementaryProgram, opts: &Options) -> Result<Outcome, LcpError> {
+    run_with(p, p.dense.clone(), opts)
+}
+
+/// [`run`] on the program's constraints with `dense` as its dense block
+/// (a copy of `p.dense`, or the block itself moved out of a one-use program).
+fn run_with(
+    p: &ComplementaryProgram,
+    dense: Mat<f64>,
+    opts: &Options,
+) -> Result<Outcome, LcpError> {
     let m = p.rows;
     let nv = p.columns.len();
     let mut stats = Statistics::new(Method::RestrictedSimplex);
     let mut sys = System {
         rows: m,
-        dense: p.dense.clone(),
+        dense,
         columns: p.columns.clone(),
         b: p.b.clone(),
         costs: Vec::new(),
@@ -137,9 +150,8 @@ pub(crate) fn run(p: &ComplementaryProgram, opts: &Options) -> Result<Outcome, L
         if sys.b[i] < 0.0 {
             sys.b[i] = -sys.b[i];
             sys.row_scale[i] = -1.0;
-            for j in 0..sys.dense.ncols() {
-                sys.dense[(i, j)] = -sys.dense[(i, j)];
-            }
+            let mut row = sys.dense.as_mut().row_mut(i);
+            row *= -1.0;
         }
     }
     for col in sys.columns.iter_mut() {

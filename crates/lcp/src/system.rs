@@ -15,6 +15,10 @@ use faer::{Col, Mat, MatMut, Par};
 use crate::LcpError;
 use crate::dense::Lu;
 
+/// Most geometric-mean passes of the equilibration (two bring a spread of
+/// 1e11 between blocks down to the data's own; Ruiz passes finish).
+const GEOMETRIC_PASSES: usize = 4;
+
 /// One column of `A`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Column {
@@ -122,75 +126,68 @@ impl System {
         let nv = self.vars();
         let mut r = vec![1.0f64; m];
         let mut c = vec![1.0f64; nv];
-        // Geometric passes: stop when no row or column spread (max/min) shrinks by 10%.
+        let dense: Vec<(usize, usize)> = self
+            .columns
+            .iter()
+            .enumerate()
+            .filter_map(|(var, col)| match *col {
+                Column::Dense(j) => Some((var, j)),
+                Column::Unit { .. } => None,
+            })
+            .collect();
+        // A symmetric positive definite block (an influence matrix) is
+        // balanced by its diagonal: with r_i = c_i = |a_ii|^(-1/2) every
+        // entry is at most 1 in magnitude and the diagonal is 1. The rows and
+        // columns without a diagonal (equality rows, the approach's column)
+        // are then scaled by their own largest entry. When that guess holds,
+        // one Ruiz sweep confirms it and the geometric stage is not needed.
+        let guessed = self.diagonal_guess(&dense, &mut r, &mut c);
+        // Both stages update rows and columns together from one sweep over
+        // the block (as Ruiz's algorithm does), so a pass costs one read of
+        // the matrix. Geometric passes (at most GEOMETRIC_PASSES) bring every
+        // row's and column's largest and smallest entry to reciprocal values;
+        // they stop early when the largest spread no longer halves.
         let mut last_spread = f64::INFINITY;
-        for _ in 0..iterations {
-            let mut rmax = vec![0.0f64; m];
-            let mut rmin = vec![f64::INFINITY; m];
-            for (var, col) in self.columns.iter().enumerate() {
-                if let Column::Dense(j) = *col {
-                    for i in 0..m {
-                        let a = (self.dense[(i, j)] * r[i] * c[var]).abs();
-                        if a > 0.0 {
-                            rmax[i] = rmax[i].max(a);
-                            rmin[i] = rmin[i].min(a);
-                        }
-                    }
-                }
-            }
-            for i in 0..m {
-                if rmax[i] > 0.0 {
-                    r[i] /= (rmax[i] * rmin[i]).sqrt();
-                }
-            }
+        let geometric = if guessed {
+            0
+        } else {
+            iterations.min(GEOMETRIC_PASSES)
+        };
+        for _ in 0..geometric {
+            let (rows, cols) = self.extremes(&dense, &r, &c);
             let mut spread = 1.0f64;
-            for (var, col) in self.columns.iter().enumerate() {
-                if let Column::Dense(j) = *col {
-                    let (mut hi, mut lo) = (0.0f64, f64::INFINITY);
-                    for i in 0..m {
-                        let a = (self.dense[(i, j)] * r[i] * c[var]).abs();
-                        if a > 0.0 {
-                            hi = hi.max(a);
-                            lo = lo.min(a);
-                        }
-                    }
-                    if hi > 0.0 {
-                        c[var] /= (hi * lo).sqrt();
-                        spread = spread.max(hi / lo);
-                    }
+            for (i, &(hi, lo)) in rows.iter().enumerate() {
+                if hi > 0.0 {
+                    r[i] /= (hi * lo).sqrt().sqrt();
+                    spread = spread.max(hi / lo);
                 }
             }
-            if spread > 0.9 * last_spread {
+            for (&(var, _), &(hi, lo)) in dense.iter().zip(&cols) {
+                if hi > 0.0 {
+                    c[var] /= (hi * lo).sqrt().sqrt();
+                    spread = spread.max(hi / lo);
+                }
+            }
+            if spread > 0.5 * last_spread {
                 break;
             }
             last_spread = spread;
         }
-        // Ruiz passes on max-norms.
+        // Ruiz passes on max-norms, until every row and column maximum is
+        // within a factor 2 of 1.
         for _ in 0..iterations {
-            // r_i <- r_i / sqrt(max_j |a_ij r_i c_j|) over the dense columns
-            let mut rmax = vec![0.0f64; m];
-            for (var, col) in self.columns.iter().enumerate() {
-                if let Column::Dense(j) = *col {
-                    for i in 0..m {
-                        rmax[i] = rmax[i].max((self.dense[(i, j)] * r[i] * c[var]).abs());
-                    }
-                }
-            }
+            let (rows, cols) = self.extremes(&dense, &r, &c);
             let mut balanced = true;
-            for i in 0..m {
-                if rmax[i] > 0.0 {
-                    balanced &= (0.5..=2.0).contains(&rmax[i]);
-                    r[i] /= rmax[i].sqrt();
+            for (i, &(hi, _)) in rows.iter().enumerate() {
+                if hi > 0.0 {
+                    balanced &= (0.5..=2.0).contains(&hi);
+                    r[i] /= hi.sqrt();
                 }
             }
-            // c_j <- c_j / sqrt(max_i |a_ij r_i c_j|)
-            for (var, col) in self.columns.iter().enumerate() {
-                if let Column::Dense(_) = col {
-                    let cmax = self.column_max(*col, &r) * c[var];
-                    if cmax > 0.0 {
-                        balanced &= (0.5..=2.0).contains(&cmax);
-                        c[var] /= cmax.sqrt();
-                    }
+            for (&(var, _), &(hi, _)) in dense.iter().zip(&cols) {
+                if hi > 0.0 {
+                    balanced &= (0.5..=2.0).contains(&hi);
+                    c[var] /= hi.sqrt();
                 }
             }
             if balanced {
@@ -213,14 +210,130 @@ impl System {
         self.apply_scaling(&r, &c);
     }
 
-    /// Largest `|a_ij r_i|` of a column.
-    fn column_max(&self, col: Column, r: &[f64]) -> f64 {
-        match col {
-            Column::Dense(j) => {
-                (0..self.rows).fold(0.0f64, |a, i| a.max((self.dense[(i, j)] * r[i]).abs()))
+    /// The diagonal scaling guess (see `equilibrate`); false, leaving `r`
+    /// and `c` at 1, when fewer than 9 in 10 rows have a non-zero diagonal
+    /// entry in the dense block (then the block has no such structure).
+    fn diagonal_guess(&self, dense: &[(usize, usize)], r: &mut [f64], c: &mut [f64]) -> bool {
+        let m = self.rows;
+        let diag = m.min(dense.len());
+        let mut has = vec![false; m];
+        let mut col_has = vec![false; dense.len()];
+        for i in 0..diag {
+            let (var, j) = dense[i];
+            let a = self.dense[(i, j)].abs();
+            if a > 0.0 && a.is_finite() {
+                r[i] = 1.0 / a.sqrt();
+                c[var] = 1.0 / a.sqrt();
+                has[i] = true;
+                col_has[i] = true;
             }
-            Column::Unit { row, coef } => (coef * r[row]).abs(),
         }
+        if has.iter().filter(|&&h| h).count() * 10 < 9 * m {
+            r.fill(1.0);
+            c.fill(1.0);
+            return false;
+        }
+        // Columns without a diagonal: their largest entry over the scaled rows.
+        for (slot, &(var, j)) in dense.iter().enumerate() {
+            if !col_has[slot] {
+                let hi = self
+                    .dense
+                    .col_as_slice(j)
+                    .iter()
+                    .zip(r.iter())
+                    .fold(0.0f64, |acc, (&a, &ri)| acc.max((a * ri).abs()));
+                if hi > 0.0 {
+                    c[var] = 1.0 / hi;
+                }
+            }
+        }
+        // Rows without a diagonal: their largest entry over the scaled columns.
+        for i in (0..m).filter(|&i| !has[i]) {
+            let hi = dense.iter().fold(0.0f64, |acc, &(var, j)| {
+                acc.max((self.dense[(i, j)] * c[var]).abs())
+            });
+            if hi > 0.0 {
+                r[i] = 1.0 / hi;
+            }
+        }
+        true
+    }
+
+    /// Threads for a sweep over the dense block: one below 2^18 entries (a
+    /// sweep is then faster than starting a thread), else the machine's.
+    fn sweep_threads(&self) -> usize {
+        if self.rows * self.dense.ncols() < 1 << 18 {
+            1
+        } else {
+            std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
+        }
+    }
+
+    /// Largest and smallest non-zero `|a_ij r_i c_j|` of every row and of
+    /// every dense column (in the order of `dense`), in one sweep; zeros
+    /// count for neither (a row or column without a non-zero gets (0, inf)).
+    /// Columns are split over threads, the rows' results merged.
+    #[allow(clippy::type_complexity)]
+    fn extremes(
+        &self,
+        dense: &[(usize, usize)],
+        r: &[f64],
+        c: &[f64],
+    ) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+        let m = self.rows;
+        let sweep = |part: &[(usize, usize)]| {
+            let (mut hi, mut lo) = (vec![0.0f64; m], vec![f64::INFINITY; m]);
+            let mut cols = Vec::with_capacity(part.len());
+            for &(var, j) in part {
+                let cj = c[var];
+                let (mut chi, mut clo) = (0.0f64, f64::INFINITY);
+                for (((&a, &ri), h), l) in self
+                    .dense
+                    .col_as_slice(j)
+                    .iter()
+                    .zip(r)
+                    .zip(&mut hi)
+                    .zip(&mut lo)
+                {
+                    // Branch-free, so the loop vectorizes.
+                    let v = (a * ri * cj).abs();
+                    let nz = if v > 0.0 { v } else { f64::INFINITY };
+                    *h = h.max(v);
+                    *l = l.min(nz);
+                    chi = chi.max(v);
+                    clo = clo.min(nz);
+                }
+                cols.push((chi, clo));
+            }
+            (hi, lo, cols)
+        };
+        let threads = self.sweep_threads();
+        let (hi, lo, cols) = if threads == 1 || dense.len() < 2 * threads {
+            sweep(dense)
+        } else {
+            let chunk = dense.len().div_ceil(threads);
+            let parts: Vec<_> = std::thread::scope(|scope| {
+                let handles: Vec<_> = dense
+                    .chunks(chunk)
+                    .map(|part| scope.spawn(move || sweep(part)))
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| h.join().expect("a sweep thread does not panic"))
+                    .collect()
+            });
+            let mut parts = parts.into_iter();
+            let (mut hi, mut lo, mut cols) = parts.next().expect("at least one part");
+            for (h2, l2, c2) in parts {
+                for i in 0..m {
+                    hi[i] = hi[i].max(h2[i]);
+                    lo[i] = lo[i].min(l2[i]);
+                }
+                cols.extend(c2);
+            }
+            (hi, lo, cols)
+        };
+        (hi.into_iter().zip(lo).collect(), cols)
     }
 
     fn apply_scaling(&mut self, r: &[f64], c: &[f64]) {
@@ -228,9 +341,9 @@ impl System {
         for (var, col) in self.columns.iter_mut().enumerate() {
             match col {
                 Column::Dense(j) => {
-                    let j = *j;
-                    for i in 0..m {
-                        self.dense[(i, j)] *= r[i] * c[var];
+                    let cj = c[var];
+                    for (a, &ri) in self.dense.col_as_slice_mut(*j).iter_mut().zip(r) {
+                        *a *= ri * cj;
                     }
                 }
                 Column::Unit { row, coef } => *coef *= r[*row] * c[var],
@@ -260,14 +373,9 @@ impl System {
         max_steps: usize,
     ) -> Result<(Col<f64>, usize), f64> {
         let m = self.rows;
-        let mut bmat = Mat::<f64>::zeros(m, m);
-        self.gather(basis, bmat.as_mut(), 1.0);
-        let lu = Lu::new(bmat, par);
-        if lu.pivot_ratio <= f64::EPSILON * m as f64 {
-            return Err(lu.pivot_ratio);
-        }
+        let factor = BasisFactor::new(self, basis, par)?;
         let mut x = self.b.clone();
-        lu.solve_in_place(x.as_mat_mut());
+        factor.solve_in_place(x.as_mat_mut(), par);
         // Refine until the componentwise backward error
         // max_i |b - B x|_i / (|B| |x| + |b|)_i is at rounding level (each row
         // judged against its own terms: rows of very different scales, a
@@ -297,12 +405,116 @@ impl System {
             if error <= 2.0 * f64::EPSILON || step == max_steps {
                 break;
             }
-            lu.solve_in_place(res.as_mat_mut());
+            factor.solve_in_place(res.as_mat_mut(), par);
             x += &res;
             steps += 1;
         }
         let x = best;
         Ok((x, steps))
+    }
+}
+
+/// A factorization of a basis `B` (columns of `A` for the basic variables,
+/// in row order) that exploits its unit columns: a unit column `coef e_i`
+/// covers row i, and with the rows `R_u` they cover and the rest `R_d`,
+///
+/// ```text
+///     B_dd x_D = y_{R_d}                                (an LU of order d = dense basic columns)
+///     x_u = (y_i - B_{i,D} x_D) / coef_u,   i = row(u) in R_u
+/// ```
+///
+/// For a contact basis (the forces of the contact set, the approach, the
+/// gaps of the other points) d is the contact set's size plus one, not N:
+/// the factorization costs (d / N)^3 of a full LU.
+pub(crate) struct BasisFactor {
+    /// The dense basic columns' positions in the basis, and their rows R_d.
+    dense_slots: Vec<usize>,
+    dense_rows: Vec<usize>,
+    /// (slot, row, coef) of the unit basic columns.
+    units: Vec<(usize, usize, f64)>,
+    /// LU of B_dd.
+    lu: Option<Lu>,
+    /// B_{R_u, D}: the dense columns restricted to the rows the unit columns cover.
+    coupling: Mat<f64>,
+    /// Smallest over largest |U_ii| of B_dd's LU (1 if there is no dense column).
+    pub pivot_ratio: f64,
+}
+
+impl BasisFactor {
+    /// Factors the basis `basis` of `system`; `Err(ratio)` when it is
+    /// numerically singular (a row covered twice, or a singular B_dd).
+    pub(crate) fn new(system: &System, basis: &[usize], par: Par) -> Result<Self, f64> {
+        let m = system.rows;
+        let mut covered = vec![false; m];
+        let (mut dense_slots, mut units) = (Vec::new(), Vec::new());
+        for (slot, &v) in basis.iter().enumerate() {
+            match system.columns[v] {
+                Column::Unit { row, coef } if coef != 0.0 && !covered[row] => {
+                    covered[row] = true;
+                    units.push((slot, row, coef));
+                }
+                _ => dense_slots.push(slot),
+            }
+        }
+        let dense_rows: Vec<usize> = (0..m).filter(|&i| !covered[i]).collect();
+        if dense_rows.len() != dense_slots.len() {
+            return Err(0.0);
+        }
+        let d = dense_slots.len();
+        let mut block = Mat::<f64>::zeros(m, d);
+        for (c, &slot) in dense_slots.iter().enumerate() {
+            system.write_column(basis[slot], block.as_mut().col_mut(c), 1.0);
+        }
+        let bdd = Mat::from_fn(d, d, |i, j| block[(dense_rows[i], j)]);
+        let coupling = Mat::from_fn(units.len(), d, |u, j| block[(units[u].1, j)]);
+        let (lu, pivot_ratio) = if d > 0 {
+            let lu = Lu::new(bdd, par);
+            let ratio = lu.pivot_ratio;
+            if ratio <= f64::EPSILON * d as f64 {
+                return Err(ratio);
+            }
+            (Some(lu), ratio)
+        } else {
+            (None, 1.0)
+        };
+        Ok(Self {
+            dense_slots,
+            dense_rows,
+            units,
+            lu,
+            coupling,
+            pivot_ratio,
+        })
+    }
+
+    /// Overwrites each column of `y` (m rows) with `B^{-1}` times it
+    /// (entries in basis-slot order).
+    pub(crate) fn solve_in_place(&self, mut y: MatMut<'_, f64>, par: Par) {
+        let k = y.ncols();
+        let d = self.dense_slots.len();
+        let mut xd = Mat::from_fn(d, k, |i, j| y[(self.dense_rows[i], j)]);
+        if let Some(lu) = &self.lu {
+            lu.solve_in_place(xd.as_mut());
+        }
+        let mut yu = Mat::from_fn(self.units.len(), k, |u, j| y[(self.units[u].1, j)]);
+        if d > 0 && !self.units.is_empty() {
+            faer::linalg::matmul::matmul(
+                yu.as_mut(),
+                faer::Accum::Add,
+                self.coupling.as_ref(),
+                xd.as_ref(),
+                -1.0,
+                par,
+            );
+        }
+        for j in 0..k {
+            for (c, &slot) in self.dense_slots.iter().enumerate() {
+                y[(slot, j)] = xd[(c, j)];
+            }
+            for (u, &(slot, _, coef)) in self.units.iter().enumerate() {
+                y[(slot, j)] = yu[(u, j)] / coef;
+            }
+        }
     }
 }
 

@@ -1,4 +1,4 @@
-//! The compact (Tucker) tableau and its pivot.
+//! The compact (Tucker) tableau and its pivot, with delayed updates.
 //!
 //! For a basis `B` of `A x = b`, the basic variables are affine functions of
 //! the non-basic ones:
@@ -8,16 +8,26 @@
 //!     c^T x = c_B^T b̄ + (c_N + c_B^T T) x_N      (one extra row per objective)
 //! ```
 //!
-//! Only the non-basic columns are stored (the basic ones are the identity), as
-//! one column-major faer matrix `(m + objectives) x (n_N + 1)` whose last
-//! column is `b̄`. A pivot exchanges basic `x_B[r]` with non-basic `x_N[s]`
-//! (`p = T[r, s]`):
+//! Only the non-basic columns are stored (the basic ones are the identity).
+//! A pivot exchanges basic `x_B[r]` with non-basic `x_N[s]` (`p = T[r, s]`,
+//! `c = T[:, s]`, `ρ = T[r, :]`):
 //!
 //! ```text
-//!     T'[i, j] = T[i, j] - T[i, s] T[r, j] / p    (i != r, j != s)   rank-1 update, by faer
-//!     T'[i, s] = T[i, s] / p                       (i != r)
-//!     T'[r, j] = -T[r, j] / p                      (j != s),   T'[r, s] = 1 / p
+//!     T'[i, j] = T[i, j] - c_i ρ_j / p    (i != r, j != s)   a rank-1 update
+//!     T'[i, s] = c_i / p                   (i != r)
+//!     T'[r, j] = -ρ_j / p                  (j != s),   T'[r, s] = 1 / p
 //! ```
+//!
+//! The rank-1 updates are not applied to the whole matrix at each pivot (a
+//! pass over all of `T` per pivot, bound by memory bandwidth): the tableau is
+//! kept as `T = T0 - U V^T`, `U` and `V` holding the last k updates (k up to
+//! [`UPDATE_BLOCK`]), and every `UPDATE_BLOCK` pivots `T0 -= U V^T` is done
+//! as one faer matrix product, at the speed of a matrix multiply. A pivot
+//! reads only what it needs through the correction: the entering column, the
+//! pivot row, entries of the lexicographic rule; the right-hand side and the
+//! objective rows, read at every step, are kept current explicitly. Row r
+//! and column s are written into `T0` exactly as above (their `U`, `V`
+//! entries zeroed), so a pivot's arithmetic is that of the explicit tableau.
 //!
 //! The ratio test is lexicographic: ties in the step length are broken by the
 //! rows of `[b̄, B^{-1}]` divided by the pivot column, where `B^{-1}` is taken
@@ -26,10 +36,9 @@
 
 use faer::linalg::matmul::matmul;
 use faer::prelude::*;
-use faer::{Accum, Mat, Par};
+use faer::{Accum, Col, Mat, Par, Row};
 
-use crate::dense::Lu;
-use crate::system::System;
+use crate::system::{BasisFactor, System};
 use crate::tolerance::Tolerances;
 
 /// Where a variable stands in the tableau.
@@ -61,10 +70,27 @@ pub(crate) struct Ratio {
     pub theta: f64,
 }
 
-/// The compact tableau.
+/// Pivots kept as a delayed rank-k correction before it is applied to the
+/// whole tableau by one matrix product. The product costs `2 rows cols`
+/// flops per pivot whatever the block; a larger block costs more per read
+/// of a column or row (`rows k`, `cols k`). 64 balances the two from a few
+/// hundred rows up (benches/tableau.rs).
+pub(crate) const UPDATE_BLOCK: usize = 64;
+
+/// The compact tableau, as `T = T0 - U V^T` (see the module documentation).
 pub(crate) struct Tableau {
-    /// `(m + objectives) x (n_N + 1)`; the last column is `b̄`.
-    pub t: Mat<f64>,
+    /// `T0`: `(m + objectives) x (n_N + 1)`; the last column is `b̄`.
+    t0: Mat<f64>,
+    /// The delayed updates' left factors, `(m + objectives) x UPDATE_BLOCK`.
+    u: Mat<f64>,
+    /// The delayed updates' right factors, transposed: `UPDATE_BLOCK x (n_N + 1)`.
+    vt: Mat<f64>,
+    /// Number of delayed updates held.
+    k: usize,
+    /// The current right-hand side column (objective values included).
+    rhs: Vec<f64>,
+    /// The current objective rows, `objectives x (n_N + 1)`.
+    objectives: Mat<f64>,
     /// Number of constraint rows `m`.
     pub m: usize,
     /// Basic variable of each row.
@@ -75,10 +101,8 @@ pub(crate) struct Tableau {
     pub position: Vec<Position>,
     /// The initial basis (its `B^{-1}` columns drive the lexicographic rule).
     pub reference: Vec<usize>,
-    /// Parallelism of the rank-1 update.
+    /// Parallelism of the block updates.
     pub par: Par,
-    scratch_u: Mat<f64>,
-    scratch_v: Mat<f64>,
 }
 
 impl Tableau {
@@ -100,23 +124,26 @@ impl Tableau {
         }
         let nobj = system.costs.len();
         let n = nonbasic.len();
-        let mut t = Mat::<f64>::zeros(m + nobj, n + 1);
+        let mut t0 = Mat::<f64>::zeros(m + nobj, n + 1);
         for (j, &v) in nonbasic.iter().enumerate() {
-            system.write_column(v, t.as_mut().col_mut(j).subrows_mut(0, m), -1.0);
+            system.write_column(v, t0.as_mut().col_mut(j).subrows_mut(0, m), -1.0);
         }
         for i in 0..m {
-            t[(i, n)] = system.b[i];
+            t0[(i, n)] = system.b[i];
         }
         let mut tab = Self {
-            t,
+            u: Mat::zeros(m + nobj, UPDATE_BLOCK),
+            vt: Mat::zeros(UPDATE_BLOCK, n + 1),
+            k: 0,
+            rhs: Vec::new(),
+            objectives: Mat::zeros(nobj, n + 1),
+            t0,
             m,
             basic: basis.clone(),
             nonbasic,
             position,
             reference: basis,
             par,
-            scratch_u: Mat::zeros(m + nobj, 1),
-            scratch_v: Mat::zeros(1, n + 1),
         };
         tab.recompute_objectives(system);
         tab
@@ -129,22 +156,81 @@ impl Tableau {
 
     /// Current value `b̄_i` of the basic variable of row `i`.
     pub fn rhs(&self, i: usize) -> f64 {
-        self.t[(i, self.nonbasic.len())]
+        self.rhs[i]
     }
 
     /// Objective row `k`: its current value.
     pub fn objective_value(&self, k: usize) -> f64 {
-        self.t[(self.m + k, self.nonbasic.len())]
+        self.objectives[(k, self.nonbasic.len())]
     }
 
     /// Objective row `k`: reduced cost of non-basic column `j`.
     pub fn reduced_cost(&self, k: usize, j: usize) -> f64 {
-        self.t[(self.m + k, j)]
+        self.objectives[(k, j)]
     }
 
-    /// Recomputes the objective rows from the cost vectors and the current
-    /// constraint rows: `d = c_N + c_B^T T`, value `c_B^T b̄`.
+    /// Entry `(i, j)` of the current tableau (constraint rows).
+    pub fn entry(&self, i: usize, j: usize) -> f64 {
+        let mut v = self.t0[(i, j)];
+        for l in 0..self.k {
+            v -= self.u[(i, l)] * self.vt[(l, j)];
+        }
+        v
+    }
+
+    /// Column `j` of the current tableau, all rows (objective rows included).
+    pub fn column(&self, j: usize) -> Col<f64> {
+        let mut c = self.t0.col(j).to_owned();
+        if self.k > 0 {
+            matmul(
+                c.as_mat_mut(),
+                Accum::Add,
+                self.u.as_ref().subcols(0, self.k),
+                self.vt.as_ref().subrows(0, self.k).col(j).as_mat(),
+                -1.0,
+                Par::Seq,
+            );
+        }
+        c
+    }
+
+    /// Constraint row `i` of the current tableau, all columns.
+    fn row(&self, i: usize) -> Row<f64> {
+        let mut r = self.t0.row(i).to_owned();
+        if self.k > 0 {
+            matmul(
+                r.as_mat_mut(),
+                Accum::Add,
+                self.u.as_ref().subcols(0, self.k).row(i).as_mat(),
+                self.vt.as_ref().subrows(0, self.k),
+                -1.0,
+                Par::Seq,
+            );
+        }
+        r
+    }
+
+    /// Applies the delayed updates to `T0` (one matrix product).
+    fn flush(&mut self) {
+        if self.k == 0 {
+            return;
+        }
+        matmul(
+            self.t0.as_mut(),
+            Accum::Add,
+            self.u.as_ref().subcols(0, self.k),
+            self.vt.as_ref().subrows(0, self.k),
+            -1.0,
+            self.par,
+        );
+        self.k = 0;
+    }
+
+    /// Recomputes the right-hand side and the objective rows from `T0` (with
+    /// no delayed update held) and the cost vectors: `d = c_N + c_B^T T`,
+    /// value `c_B^T b̄`.
     pub fn recompute_objectives(&mut self, system: &System) {
+        self.flush();
         let m = self.m;
         let ncol = self.nonbasic.len() + 1;
         for (k, cost) in system.costs.iter().enumerate() {
@@ -157,44 +243,71 @@ impl Tableau {
                 row.as_mut(),
                 Accum::Add,
                 cb.as_ref(),
-                self.t.as_ref().subrows(0, m),
+                self.t0.as_ref().subrows(0, m),
                 1.0,
                 Par::Seq,
             );
             for j in 0..ncol {
-                self.t[(m + k, j)] = row[(0, j)];
+                self.t0[(m + k, j)] = row[(0, j)];
+                self.objectives[(k, j)] = row[(0, j)];
             }
         }
+        let n = self.nonbasic.len();
+        self.rhs = (0..self.t0.nrows()).map(|i| self.t0[(i, n)]).collect();
     }
 
     /// Exchanges the basic variable of row `r` with the non-basic variable of
     /// column `s`. Returns the variable that left.
     pub fn pivot(&mut self, r: usize, s: usize) -> usize {
-        let rows = self.t.nrows();
-        let ncol = self.t.ncols();
-        let p = self.t[(r, s)];
+        let rows = self.t0.nrows();
+        let n = self.nonbasic.len();
+        let c = self.column(s);
+        let rho = self.row(r);
+        let p = c[r];
         let inv = 1.0 / p;
-        for i in 0..rows {
-            self.scratch_u[(i, 0)] = self.t[(i, s)];
+        if self.k == UPDATE_BLOCK {
+            self.flush();
         }
-        for j in 0..ncol {
-            self.scratch_v[(0, j)] = self.t[(r, j)] * inv;
-        }
-        matmul(
-            self.t.as_mut(),
-            Accum::Add,
-            self.scratch_u.as_ref(),
-            self.scratch_v.as_ref(),
-            -1.0,
-            self.par,
-        );
-        for j in 0..ncol {
-            self.t[(r, j)] = -self.scratch_v[(0, j)];
+        // Row r and column s are written exactly; their delayed entries are
+        // cleared so the correction leaves them alone.
+        let k = self.k;
+        for l in 0..k {
+            self.u[(r, l)] = 0.0;
+            self.vt[(l, s)] = 0.0;
         }
         for i in 0..rows {
-            self.t[(i, s)] = self.scratch_u[(i, 0)] * inv;
+            self.u[(i, k)] = if i == r { 0.0 } else { c[i] };
         }
-        self.t[(r, s)] = inv;
+        for j in 0..=n {
+            self.vt[(k, j)] = if j == s { 0.0 } else { rho[j] * inv };
+        }
+        self.k += 1;
+        for j in 0..=n {
+            self.t0[(r, j)] = -rho[j] * inv;
+        }
+        for i in 0..rows {
+            self.t0[(i, s)] = c[i] * inv;
+        }
+        self.t0[(r, s)] = inv;
+        // The explicit copies: right-hand side and objective rows.
+        let rho_n = rho[n] * inv;
+        for i in 0..rows {
+            self.rhs[i] = if i == r {
+                -rho_n
+            } else {
+                self.rhs[i] - c[i] * rho_n
+            };
+        }
+        for o in 0..self.objectives.nrows() {
+            let ci = c[self.m + o];
+            for j in 0..=n {
+                self.objectives[(o, j)] = if j == s {
+                    ci * inv
+                } else {
+                    self.objectives[(o, j)] - ci * rho[j] * inv
+                };
+            }
+        }
         let entering = self.nonbasic[s];
         let leaving = self.basic[r];
         self.basic[r] = entering;
@@ -215,7 +328,7 @@ impl Tableau {
                     0.0
                 }
             }
-            Position::Nonbasic(j) => -self.t[(i, j)],
+            Position::Nonbasic(j) => -self.entry(i, j),
         }
     }
 
@@ -237,7 +350,7 @@ impl Tableau {
         zero_level: f64,
     ) -> Option<Ratio> {
         let m = self.m;
-        let col = self.t.col(s);
+        let col = self.column(s);
         let colmax = (0..m).fold(0.0f64, |a, i| a.max(col[i].abs()));
         if colmax == 0.0 {
             return None;
@@ -335,26 +448,23 @@ impl Tableau {
 
     /// Recomputes the whole tableau from the system's data for the current
     /// basis: `T = -B^{-1} A_N`, `b̄ = B^{-1} b`, objective rows from the costs.
-    /// Returns the LU pivot ratio of `B` (small = ill-conditioned) or an error
-    /// ratio when `B` is singular.
+    /// `B` is factored through its unit columns ([`BasisFactor`]). Returns the
+    /// LU pivot ratio (small = ill-conditioned) or an error ratio when `B` is
+    /// singular.
     pub fn refactor(&mut self, system: &System) -> Result<f64, f64> {
         let m = self.m;
         let n = self.nonbasic.len();
-        let mut bmat = Mat::<f64>::zeros(m, m);
-        system.gather(&self.basic, bmat.as_mut(), 1.0);
-        let lu = Lu::new(bmat, self.par);
-        if lu.pivot_ratio <= f64::EPSILON * m as f64 {
-            return Err(lu.pivot_ratio);
-        }
+        let factor = BasisFactor::new(system, &self.basic, self.par)?;
+        self.k = 0;
         {
-            let mut body = self.t.as_mut().subrows_mut(0, m);
+            let mut body = self.t0.as_mut().subrows_mut(0, m);
             system.gather(&self.nonbasic, body.rb_mut().subcols_mut(0, n), -1.0);
             for i in 0..m {
                 body[(i, n)] = system.b[i];
             }
-            lu.solve_in_place(body);
+            factor.solve_in_place(body, self.par);
         }
         self.recompute_objectives(system);
-        Ok(lu.pivot_ratio)
+        Ok(factor.pivot_ratio)
     }
 }
