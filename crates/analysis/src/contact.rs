@@ -418,6 +418,41 @@ impl ContactProblem {
         self.assembly_seconds
     }
 
+    /// Solves starting from the contact set of `previous` (a solution of a
+    /// similar problem: the previous load step, a neighbouring design), as
+    /// `options.warm_start`. Block principal pivoting then starts from that
+    /// set and typically needs one or two iterations; the tableau methods
+    /// start from their usual basis (the option does not apply to them).
+    /// The answer does not depend on the start.
+    ///
+    /// # Errors
+    /// As [`ContactProblem::solve`]; a `previous` with another number of
+    /// points is [`AnalysisError::SizeMismatch`].
+    pub fn solve_from(
+        &self,
+        previous: &ContactSolution,
+        method: Method,
+        options: &Options,
+    ) -> Result<ContactSolution, AnalysisError> {
+        let n = self.points.len();
+        if previous.forces.len() != n {
+            return Err(AnalysisError::SizeMismatch {
+                field: "previous.forces",
+                expected: n,
+                found: previous.forces.len(),
+            });
+        }
+        let start: Vec<bool> = match &self.folding {
+            Some(f) => (0..f.len())
+                .map(|a| previous.forces[f.rep(a)] > 0.0)
+                .collect(),
+            None => previous.forces.iter().map(|&f| f > 0.0).collect(),
+        };
+        let mut options = options.clone();
+        options.warm_start = Some(start);
+        self.solve(method, &options)
+    }
+
     /// Solves with the engine's `method`; the solution carries the
     /// certificate computed from the original S, eps and P.
     pub fn solve(

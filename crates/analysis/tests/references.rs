@@ -551,3 +551,51 @@ fn a_folded_problem_refuses_an_asymmetric_separation() {
     .unwrap();
     assert!(q.folding().is_none());
 }
+
+#[test]
+fn a_warm_start_from_the_previous_load_step_saves_iterations() {
+    let steel = Material::new(30e6, 0.3).unwrap();
+    let a = 0.016;
+    let geometry = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    let body = Body::uniform_patch(steel);
+    for fold in [false, true] {
+        let points = PointSet::grid_disk(a / 8.0, 1.4 * a).unwrap();
+        let build = if fold {
+            ContactProblem::symmetric
+        } else {
+            ContactProblem::new
+        };
+        let light = build(points, &body, &body, &geometry, Loading::Load(90.0)).unwrap();
+        let heavy = light.with_loading(Loading::Load(100.0)).unwrap();
+        let first = light
+            .solve(Method::BlockPivoting, &Options::default())
+            .unwrap();
+        let cold = heavy
+            .solve(Method::BlockPivoting, &Options::default())
+            .unwrap();
+        let warm = heavy
+            .solve_from(&first, Method::BlockPivoting, &Options::default())
+            .unwrap();
+        assert!(warm.certificate.holds());
+        assert_eq!(warm.contact, cold.contact);
+        let fmax = cold.forces.iter().cloned().fold(0.0, f64::max);
+        for k in 0..cold.forces.len() {
+            assert!((warm.forces[k] - cold.forces[k]).abs() <= 1e-12 * fmax);
+        }
+        // The step from 90 to 100 lb adds a ring of points: one or two iterations instead of several.
+        assert!(
+            warm.statistics.iterations < cold.statistics.iterations,
+            "fold {fold}: warm {} cold {}",
+            warm.statistics.iterations,
+            cold.statistics.iterations
+        );
+        assert!(
+            warm.statistics.iterations <= 3,
+            "{}",
+            warm.statistics.iterations
+        );
+    }
+}

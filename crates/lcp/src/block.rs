@@ -251,8 +251,12 @@ impl Factor {
         };
         use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
         let keep = self.order.iter().take_while(|&&i| active[i]).count();
+        let mut kept = vec![false; active.len()];
+        for &i in &self.order[..keep] {
+            kept[i] = true;
+        }
         let mut rest: Vec<usize> = (0..active.len())
-            .filter(|&i| active[i] && !self.order[..keep].contains(&i))
+            .filter(|&i| active[i] && !kept[i])
             .collect();
         if keep == self.order.len() && rest.is_empty() {
             return Ok(());
@@ -304,10 +308,11 @@ impl Factor {
             l.as_mut()
                 .submatrix_mut(np, 0, nr, np)
                 .copy_from(lrp_t.transpose());
+            // The factor's lower triangle (cholesky_in_place leaves the upper
+            // triangle as it was).
             for j in 0..nr {
-                for i in j..nr {
-                    l[(np + i, np + j)] = srr[(i, j)];
-                }
+                let tail = &srr.col_as_slice(j)[j..];
+                l.col_as_slice_mut(np + j)[np + j..].copy_from_slice(tail);
             }
             stats.factorizations += 1;
         }

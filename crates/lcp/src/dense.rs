@@ -88,9 +88,19 @@ pub(crate) fn matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {
 /// `y = |a| |x|` entry-wise absolute values: the magnitude of the terms that
 /// sum to `a x`, the scale against which a residual of `a x` is judged.
 pub(crate) fn abs_matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {
-    let abs_a = Mat::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)].abs());
-    let abs_x = Col::from_fn(x.nrows(), |i| x[i].abs());
-    matvec(abs_a.as_ref(), abs_x.as_ref())
+    // Column by column, without forming |a| (an N x N copy).
+    let mut y = Col::<f64>::zeros(a.nrows());
+    for j in 0..a.ncols() {
+        let xj = x[j].abs();
+        if xj == 0.0 {
+            continue;
+        }
+        let col = a.col(j);
+        for i in 0..a.nrows() {
+            y[i] += col[i].abs() * xj;
+        }
+    }
+    y
 }
 
 /// Largest magnitude of a column vector (0 for an empty one).

@@ -421,8 +421,14 @@ impl Run<'_> {
                 _ => {}
             }
         }
-        cands.sort_by(|a, b| b.2.total_cmp(&a.2).then(a.0.cmp(&b.0)));
-        for &(j, sigma, _) in &cands {
+        // Best first (largest improvement, then lowest column): usually the
+        // first or second candidate is admissible, so candidates are taken
+        // out one by one rather than sorted (a sort per pivot cost more than
+        // the pivot's own bookkeeping).
+        let better =
+            |a: &(usize, f64, f64), b: &(usize, f64, f64)| b.2.total_cmp(&a.2).then(a.0.cmp(&b.0));
+        while let Some(best) = (0..cands.len()).min_by(|&x, &y| better(&cands[x], &cands[y])) {
+            let (j, sigma, _) = cands.swap_remove(best);
             let var = self.tab.nonbasic[j];
             let prefer = self.complement[var].and_then(|c| match self.tab.position[c] {
                 Position::Basic(r) => Some(r),

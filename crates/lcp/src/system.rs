@@ -461,12 +461,20 @@ impl BasisFactor {
             return Err(0.0);
         }
         let d = dense_slots.len();
-        let mut block = Mat::<f64>::zeros(m, d);
+        // Each dense column is written once into a scratch column and split
+        // into B_dd and the coupling rows (no m x d copy).
+        let mut bdd = Mat::<f64>::zeros(d, d);
+        let mut coupling = Mat::<f64>::zeros(units.len(), d);
+        let mut column = Col::<f64>::zeros(m);
         for (c, &slot) in dense_slots.iter().enumerate() {
-            system.write_column(basis[slot], block.as_mut().col_mut(c), 1.0);
+            system.write_column(basis[slot], column.as_mut(), 1.0);
+            for (i, &row) in dense_rows.iter().enumerate() {
+                bdd[(i, c)] = column[row];
+            }
+            for (u, &(_, row, _)) in units.iter().enumerate() {
+                coupling[(u, c)] = column[row];
+            }
         }
-        let bdd = Mat::from_fn(d, d, |i, j| block[(dense_rows[i], j)]);
-        let coupling = Mat::from_fn(units.len(), d, |u, j| block[(units[u].1, j)]);
         let (lu, pivot_ratio) = if d > 0 {
             let lu = Lu::new(bdd, par);
             let ratio = lu.pivot_ratio;
