@@ -24,7 +24,8 @@
 
 use std::f64::consts::PI;
 
-use faer::Mat;
+use faer::prelude::*;
+use faer::{Mat, MatMut};
 
 use crate::error::InfluenceError;
 use crate::kernels::{boussinesq, love_rectangle, plane_strain_strip};
@@ -407,14 +408,60 @@ fn fill_from_table(points: &PointSet, terms: &Terms, layout: &TableLayout) -> Ma
         })
         .collect();
     let mut s = Mat::<f64>::zeros(n, n);
-    for c in 0..n {
-        let (ic, jc) = (layout.i[c], layout.j[c]);
-        let column = s.col_as_slice_mut(c);
-        for ((entry, &ir), &jr) in column.iter_mut().zip(&layout.i).zip(&layout.j) {
-            *entry = table[ir.abs_diff(ic) * nj + jr.abs_diff(jc)];
+    let threads = threads_for(n);
+    let splits: Vec<usize> = (0..=threads).map(|t| t * n / threads).collect();
+    fill_columns(s.as_mut(), &splits, |first, mut block| {
+        for k in 0..block.ncols() {
+            let c = first + k;
+            let (ic, jc) = (layout.i[c], layout.j[c]);
+            let column = block
+                .rb_mut()
+                .col_mut(k)
+                .try_as_col_major_mut()
+                .expect("a column of an owned matrix is contiguous")
+                .as_slice_mut();
+            for ((entry, &ir), &jr) in column.iter_mut().zip(&layout.i).zip(&layout.j) {
+                *entry = table[ir.abs_diff(ic) * nj + jr.abs_diff(jc)];
+            }
         }
-    }
+    });
     s
+}
+
+/// Threads worth using to fill an n x n matrix: one below 2^18 entries, else
+/// the machine's (at most 8).
+fn threads_for(n: usize) -> usize {
+    if n * n < 1 << 18 {
+        1
+    } else {
+        std::thread::available_parallelism().map_or(1, |t| t.get().min(8))
+    }
+}
+
+/// Calls `fill(first_column, columns)` on the column ranges
+/// `splits[t]..splits[t + 1]` of `s`, each in its own thread (disjoint
+/// columns: no synchronisation).
+fn fill_columns(
+    mut s: MatMut<'_, f64>,
+    splits: &[usize],
+    fill: impl Fn(usize, MatMut<'_, f64>) + Sync,
+) {
+    if splits.len() <= 2 {
+        fill(0, s);
+        return;
+    }
+    std::thread::scope(|scope| {
+        let fill = &fill;
+        let mut rest = s.rb_mut();
+        let mut done = 0;
+        for w in splits.windows(2) {
+            let (block, tail) = rest.split_at_col_mut(w[1] - done);
+            let first = done;
+            scope.spawn(move || fill(first, block));
+            rest = tail;
+            done = w[1];
+        }
+    });
 }
 
 /// S from a kernel evaluation per entry of the lower triangle, mirrored.
@@ -422,13 +469,22 @@ fn fill_direct(points: &PointSet, terms: &Terms) -> Mat<f64> {
     let n = points.len();
     let (xs, ys) = (points.xs(), points.ys());
     let mut s = Mat::<f64>::zeros(n, n);
-    for c in 0..n {
-        let (xc, yc) = (xs[c], ys[c]);
-        let column = s.col_as_slice_mut(c);
-        for r in c..n {
-            column[r] = terms.coefficient(xs[r] - xc, ys[r] - yc, r == c);
+    // Column c of the lower triangle has n - c entries: split where each
+    // thread gets an equal share of the triangle, c_t = n (1 - sqrt(1 - t/T)).
+    let threads = threads_for(n);
+    let splits: Vec<usize> = (0..=threads)
+        .map(|t| ((n as f64) * (1.0 - (1.0 - t as f64 / threads as f64).sqrt())).round() as usize)
+        .collect();
+    fill_columns(s.as_mut(), &splits, |first, mut block| {
+        for k in 0..block.ncols() {
+            let c = first + k;
+            let (xc, yc) = (xs[c], ys[c]);
+            let mut column = block.rb_mut().col_mut(k);
+            for r in c..n {
+                column[r] = terms.coefficient(xs[r] - xc, ys[r] - yc, r == c);
+            }
         }
-    }
+    });
     // Upper triangle from the lower, tile by tile to stay in cache.
     for c0 in (0..n).step_by(MIRROR_TILE) {
         for r0 in (0..=c0).step_by(MIRROR_TILE) {
