@@ -83,6 +83,39 @@ proptest! {
         }
     }
 
+    /// Problems that need more pivots than the tableau's delayed-update
+    /// block (64) and its periodic refactorization (every 100 pivots): the
+    /// tableau methods agree with block pivoting.
+    #[test]
+    fn past_the_update_block(
+        (n, a, q) in (70usize..=140).prop_flat_map(|n| (
+            Just(n),
+            proptest::collection::vec(-1.0f64..1.0, n * n),
+            proptest::collection::vec(-2.0f64..-0.2, n),
+        )),
+    ) {
+        // M = A A^T / n + I and q < 0: a well-conditioned M whose solution has
+        // most indices basic, about one pivot each.
+        let mut m = spd(n, &a, 1.0);
+        for j in 0..n {
+            for i in 0..n {
+                if i != j {
+                    m[(i, j)] /= n as f64;
+                } else {
+                    m[(i, i)] = 1.0 + (m[(i, i)] - 1.0) / n as f64;
+                }
+            }
+        }
+        let lcp = Lcp::new(m, Col::from_fn(n, |i| q[i])).unwrap();
+        let reference = lcp.solve(Method::BlockPivoting, &Options::default()).unwrap();
+        for method in Method::TABLEAU {
+            let sol = lcp.solve(method, &Options::default()).unwrap();
+            prop_assert!(sol.statistics.pivots > 64, "{method}: {} pivots", sol.statistics.pivots);
+            prop_assert!(sol.certificate.holds(), "{method}: {}", sol.certificate);
+            prop_assert!(rel_diff(&sol.z, &reference.z) < 1e-9, "{method}");
+        }
+    }
+
     /// Larger problems: the methods agree with each other, both certified.
     #[test]
     fn methods_agree((m, q) in (9usize..=40).prop_flat_map(problem)) {
