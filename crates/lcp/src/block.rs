@@ -200,10 +200,14 @@ fn initial_set(p: &MixedLcpRef<'_>, opts: &Options) -> Vec<bool> {
     }
     let mut active: Vec<bool> = (0..n).map(|i| p.q[i] < 0.0).collect();
     if p.extras() > 0 && !active.iter().any(|&a| a) {
-        let imin = (0..n)
-            .min_by(|&a, &b| p.q[a].total_cmp(&p.q[b]))
-            .unwrap_or(0);
-        active[imin] = true;
+        // With a free approach and no index active at z = 0, the indices of
+        // smallest q activate first (the points of least separation touch
+        // first): all of them when they tie (a flat contact).
+        let qmin = (0..n).map(|i| p.q[i]).fold(f64::INFINITY, f64::min);
+        let qscale = norm_inf(p.q);
+        for i in 0..n {
+            active[i] = p.q[i] <= qmin + f64::EPSILON * qscale;
+        }
     }
     active
 }

@@ -43,6 +43,7 @@
 
 mod block;
 mod certificate;
+mod conditioning;
 mod dense;
 mod error;
 mod lemke;
@@ -54,6 +55,7 @@ mod tableau;
 pub mod tolerance;
 
 pub use certificate::Certificate;
+pub use conditioning::condition_estimate;
 pub use error::LcpError;
 pub use problem::{Bound, Lcp, LcpSolution, Method, MixedLcp, MixedLcpRef, Options, Statistics};
 pub use program::{ComplementaryProgram, ProgramBuilder, ProgramSolution};

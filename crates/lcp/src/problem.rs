@@ -36,6 +36,12 @@ pub enum Bound {
     NonNegative,
 }
 
+/// Refactorization interval (pivots) of the retry after a failed certificate.
+const RETRY_REFACTOR: usize = 10;
+
+/// Refinement steps of the retry after a failed certificate.
+const RETRY_REFINEMENT: usize = 10;
+
 /// A pivoting method of the engine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
@@ -182,6 +188,10 @@ pub struct Statistics {
     pub factorizations: usize,
     /// Whether block pivoting fell back to Lemke's method.
     pub fell_back: bool,
+    /// Whether the first attempt's certificate failed and the solve was
+    /// repeated with frequent refactorization from the data (the counts
+    /// above add both attempts).
+    pub retried: bool,
     /// Rows of the tableau that was pivoted on.
     pub tableau_rows: usize,
     /// Columns of the tableau (non-basic unknowns plus the right-hand side).
@@ -201,6 +211,7 @@ impl Statistics {
             iterations: 0,
             factorizations: 0,
             fell_back: false,
+            retried: false,
             tableau_rows: 0,
             tableau_columns: 0,
             seconds: 0.0,
@@ -479,16 +490,47 @@ impl<'a> MixedLcpRef<'a> {
             }
         }
         let start = Instant::now();
-        let raw = match method {
-            Method::RestrictedSimplex => restricted::solve_mixed(self, options)?,
-            Method::Lemke => lemke::solve_mixed(self, options)?,
-            Method::BlockPivoting => block::solve_mixed(self, options)?,
+        let run = |options: &Options| match method {
+            Method::RestrictedSimplex => restricted::solve_mixed(self, options),
+            Method::Lemke => lemke::solve_mixed(self, options),
+            Method::BlockPivoting => block::solve_mixed(self, options),
         };
-        let (certificate, w) = self.certify(
+        let mut raw = run(options)?;
+        let (mut certificate, mut w) = self.certify(
             raw.z.as_ref(),
             raw.u.as_ref(),
             options.tolerances.certificate,
         );
+        if !certificate.holds() {
+            // The certificate degraded (rounding drift steered a pivot or an
+            // active set wrong): solve once more refactoring from the original
+            // data every RETRY_REFACTOR pivots and refining harder; the
+            // statistics count both attempts.
+            let retry = Options {
+                refactor_interval: Some(RETRY_REFACTOR),
+                refinement_steps: options.refinement_steps.max(RETRY_REFINEMENT),
+                ..options.clone()
+            };
+            if let Ok(second) = run(&retry) {
+                let (c2, w2) = self.certify(
+                    second.z.as_ref(),
+                    second.u.as_ref(),
+                    options.tolerances.certificate,
+                );
+                let first = raw.statistics;
+                raw = second;
+                let s = &mut raw.statistics;
+                s.pivots += first.pivots;
+                s.degenerate_pivots += first.degenerate_pivots;
+                s.refactorizations += first.refactorizations;
+                s.refinement_steps += first.refinement_steps;
+                s.iterations += first.iterations;
+                s.factorizations += first.factorizations;
+                s.retried = true;
+                certificate = c2;
+                w = w2;
+            }
+        }
         let mut statistics = raw.statistics;
         statistics.seconds = start.elapsed().as_secs_f64();
         if !certificate.holds() {

@@ -1,0 +1,3 @@
+//! Shared cases of the per-crate tests.
+
+pub mod stability_cases;

@@ -1,0 +1,251 @@
+//! The stability suite: stiff and extreme cases (tests/common/stability_cases.rs)
+//! solved by every method. For every case the certificate (equilibrium,
+//! feasibility, complementarity, from the original data) holds at 1e-12, or
+//! the solve is an error saying why; never a "solved" that does not hold.
+//! docs/stability.md tabulates the same cases at larger sizes.
+
+mod common;
+
+use common::stability_cases::{Expect, Reference, catalogue, error};
+use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface, Warning};
+use elcon_influence::{Body, Material, PointSet};
+use proptest::prelude::*;
+
+#[test]
+fn every_case_is_certified_by_every_method() {
+    let cases = catalogue(21, &[256, 1024]);
+    for case in &cases {
+        let mut first: Option<Vec<f64>> = None;
+        for method in Method::ALL {
+            let label = format!("{} / {} / {method}", case.family, case.name);
+            let sol = match case.problem.solve(method, &Options::default()) {
+                Ok(s) => s,
+                Err(e) => panic!("{label}: {e}"),
+            };
+            assert!(sol.certificate.holds(), "{label}: {}", sol.certificate);
+            assert!(sol.certificate.worst() <= 1e-12, "{label}");
+            match case.expect {
+                Expect::Solved => {}
+                Expect::EdgeWarning => assert!(
+                    sol.warnings
+                        .iter()
+                        .any(|w| matches!(w, Warning::ContactAtEdge { .. })),
+                    "{label}: a truncated contact must warn"
+                ),
+                Expect::OnePoint => {
+                    assert_eq!(sol.contact.len(), 1, "{label}");
+                    let load = sol.load;
+                    assert!(
+                        (sol.forces[sol.contact[0]] / load - 1.0).abs() < 1e-12,
+                        "{label}"
+                    );
+                }
+            }
+            // The discretization errors of these grids (21 points across,
+            // measured): Hertz within 1 %, the punch's staircase within 2 %,
+            // Hetenyi within 1e-3 at 40 points.
+            if let Some(err) = error(case.reference, sol.approach, sol.load) {
+                let bound = match case.reference {
+                    Reference::Punch(..) => 0.02,
+                    Reference::Hetenyi(_) => 1e-3,
+                    _ => 0.01,
+                };
+                assert!(err.abs() < bound, "{label}: error {err:e}");
+            }
+            // Every method returns the same solution.
+            match &first {
+                None => first = Some(sol.forces.clone()),
+                Some(f) => {
+                    let fmax = f.iter().cloned().fold(0.0, f64::max);
+                    for k in 0..f.len() {
+                        assert!(
+                            (f[k] - sol.forces[k]).abs() <= 1e-9 * fmax,
+                            "{label}: point {k}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn extreme_materials_and_radii_give_the_same_dimensionless_answer() {
+    // Scaled by the Hertz values, the discrete problem is the same whatever
+    // the moduli, Poisson's ratios and radii (only E* and R enter): the
+    // dimensionless forces agree to rounding times the conditioning.
+    let cases = catalogue(21, &[]);
+    let hertz: Vec<_> = cases
+        .iter()
+        .filter(|c| {
+            matches!(
+                c.family,
+                "modulus ratio" | "Poisson's ratio" | "radius ratio" | "conformal"
+            )
+        })
+        .collect();
+    let shape = |c: &common::stability_cases::Case| -> (Vec<f64>, f64) {
+        let sol = c
+            .problem
+            .solve(Method::BlockPivoting, &Options::default())
+            .unwrap();
+        let Reference::Hertz(h) = c.reference else {
+            unreachable!()
+        };
+        (
+            sol.forces.iter().map(|f| f / h.load).collect(),
+            sol.approach / h.approach(),
+        )
+    };
+    let (f0, d0) = shape(hertz[0]);
+    for c in &hertz[1..] {
+        let (f, d) = shape(c);
+        assert_eq!(f.len(), f0.len(), "{}", c.name);
+        for k in 0..f.len() {
+            assert!(
+                (f[k] - f0[k]).abs() < 1e-11,
+                "{}: point {k}: {} vs {}",
+                c.name,
+                f[k],
+                f0[k]
+            );
+        }
+        assert!((d / d0 - 1.0).abs() < 1e-11, "{}", c.name);
+    }
+}
+
+#[test]
+fn three_unit_systems_give_the_same_answer_to_1e_12() {
+    // Example 1 in inch-pound, SI and millimetre-newton.
+    let run = |length: f64, force: f64| {
+        let stress = force / (length * length);
+        let steel = Material::new(30e6 * stress, 0.3).unwrap();
+        let a = 0.016 * length;
+        let points = PointSet::grid_disk(a / 8.0, 1.3 * a).unwrap();
+        let geometry = Geometry::Surfaces(
+            Surface::Sphere { radius: length },
+            Surface::Sphere {
+                radius: 10.0 * length,
+            },
+        );
+        let body = Body::uniform_patch(steel);
+        let p = ContactProblem::new(
+            points,
+            &body,
+            &body,
+            &geometry,
+            Loading::Load(100.0 * force),
+        )
+        .unwrap();
+        let sol = p.solve(Method::Lemke, &Options::default()).unwrap();
+        (
+            sol.forces
+                .iter()
+                .map(|f| f / (100.0 * force))
+                .collect::<Vec<f64>>(),
+            sol.approach / length,
+        )
+    };
+    let inch_pound = run(1.0, 1.0);
+    for (name, length, force) in [
+        ("SI", 0.0254, 4.448_221_615_260_5),
+        ("mm-N", 25.4, 4.448_221_615_260_5),
+    ] {
+        let other = run(length, force);
+        for k in 0..inch_pound.0.len() {
+            assert!(
+                (inch_pound.0[k] - other.0[k]).abs() < 1e-12,
+                "{name}: point {k}"
+            );
+        }
+        assert!((inch_pound.1 / other.1 - 1.0).abs() < 1e-12, "{name}");
+    }
+}
+
+#[test]
+fn the_condition_estimate_grows_with_refinement() {
+    let cases = catalogue(21, &[64, 256, 1024]);
+    let sizes: Vec<(usize, f64)> = cases
+        .iter()
+        .filter(|c| c.family == "size")
+        .map(|c| {
+            (
+                c.problem.points().len(),
+                elcon_lcp::condition_estimate(c.problem.influence()),
+            )
+        })
+        .collect();
+    for w in sizes.windows(2) {
+        assert!(w[1].1 > w[0].1, "{sizes:?}");
+    }
+    // S of Love patches is well conditioned: below 1e3 at N ~ 1000 here.
+    assert!(sizes.iter().all(|s| s.1 < 1e3), "{sizes:?}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
+
+    /// Scenes drawn from the extreme ranges: moduli ratios 1e-6..1e6, Poisson's
+    /// ratios (-0.999, 0.4999), radius ratios 1e-3..1e3 (convex or concave
+    /// but not inverted), loads 1e-6..1e6 of the grid's nominal load.
+    #[test]
+    fn extreme_scenes_are_certified_or_refused(
+        log_ratio in -6.0f64..6.0,
+        nu1 in -0.999f64..0.4999,
+        nu2 in -0.999f64..0.4999,
+        log_radius in -3.0f64..3.0,
+        concave in proptest::bool::ANY,
+        log_load in -6.0f64..6.0,
+        method in prop_oneof![Just(Method::RestrictedSimplex), Just(Method::Lemke), Just(Method::BlockPivoting)],
+    ) {
+        let m1 = Material::new(200e9, nu1).unwrap();
+        let m2 = Material::new(200e9 * 10f64.powf(log_ratio), nu2).unwrap();
+        let r1 = 0.01;
+        let mut r2 = r1 * 10f64.powf(log_radius);
+        if concave && r2 > 1.01 * r1 {
+            r2 = -r2; // a groove larger than the ball
+        }
+        let nominal = 100.0;
+        let e = elcon_influence::combined_modulus(&m1, &m2);
+        let hertz = elcon_analysis::references::HertzSpheres::new(e, elcon_analysis::references::combined_radius(r1, r2), nominal).unwrap();
+        let a = hertz.contact_radius();
+        let points = PointSet::grid_disk(a / 6.0, 1.3 * a).unwrap();
+        let geometry = Geometry::Surfaces(Surface::Sphere { radius: r1 }, Surface::Sphere { radius: r2 });
+        let problem = ContactProblem::new(points, &Body::uniform_patch(m1), &Body::uniform_patch(m2), &geometry,
+            Loading::Load(nominal * 10f64.powf(log_load))).unwrap();
+        match problem.solve(method, &Options::default()) {
+            Ok(sol) => {
+                prop_assert!(sol.certificate.holds(), "{method}: {}", sol.certificate);
+                prop_assert!(sol.certificate.worst() <= 1e-12);
+            }
+            // A refusal must say why; a certified answer is the norm.
+            Err(e) => prop_assert!(false, "{method}: refused: {e}"),
+        }
+    }
+}
+
+#[test]
+fn a_point_that_just_touches_is_reported_uncertain() {
+    // A Winkler foundation under a rigid flat pressed to exactly the second
+    // point's separation: that point has zero force and zero gap, and which
+    // side of contact it is on is uncertain. Every method names it.
+    let points = PointSet::line(-1.0, 1.0, 3).unwrap();
+    let problem = ContactProblem::new(
+        points,
+        &Body::winkler(1e6),
+        &Body::rigid(),
+        &Geometry::Separation(vec![0.0, 1e-3, 2e-3]),
+        Loading::Approach(1e-3),
+    )
+    .unwrap();
+    for method in Method::ALL {
+        let sol = problem.solve(method, &Options::default()).unwrap();
+        assert!(sol.certificate.holds(), "{method}");
+        let uncertain = sol.warnings.iter().find_map(|w| match w {
+            Warning::UncertainContact { points } => Some(points.clone()),
+            _ => None,
+        });
+        assert_eq!(uncertain, Some(vec![1]), "{method}: {:?}", sol.warnings);
+        assert_eq!(sol.contact, vec![0], "{method}");
+    }
+}
