@@ -37,7 +37,7 @@
 //! assert!((sol.approach / hertz.approach() - 1.0).abs() < 0.01);
 //! ```
 
-mod contact;
+pub mod contact;
 mod error;
 pub mod references;
 

@@ -15,7 +15,7 @@
 //!   simplex, with every design re-analysed and certified;
 //! - [`target_separation`] / [`uniform_target`]: the correction that makes
 //!   the forces exactly a target distribution (the seed's Fig. 6 curve);
-//! - [`evaluate`]: the certified analysis of any profile under every load
+//! - [`evaluate()`]: the certified analysis of any profile under every load
 //!   case; [`crown_search`]: the best parameter of a one-parameter crown.
 //!
 //! ```
@@ -43,12 +43,12 @@
 //! assert!(target.correction.iter().all(|&y| y >= 0.0));
 //! ```
 
-mod crown;
+pub mod crown;
 mod error;
-mod evaluate;
-mod optimize;
-mod profile;
-mod target;
+pub mod evaluate;
+pub mod optimize;
+pub mod profile;
+pub mod target;
 
 pub use crown::{CrownSearch, SearchOptions, crown_search};
 pub use error::DesignError;

@@ -60,13 +60,13 @@
 //! semi-infinite solid by pressure on part of the boundary", Phil. Trans. R.
 //! Soc. A 228, 377-420; Johnson, K. L. (1985), Contact Mechanics, ch. 2-3.
 
-mod assembly;
+pub mod assembly;
 mod error;
 pub mod kernels;
-mod material;
-mod models;
-mod points;
-mod symmetry;
+pub mod material;
+pub mod models;
+pub mod points;
+pub mod symmetry;
 
 pub use assembly::{assemble, assemble_direct, assemble_folded, influence};
 pub use error::InfluenceError;

@@ -2,7 +2,7 @@
 //!
 //! The engine works on a problem that has been equilibrated (rows and columns
 //! scaled by powers of two so that the largest entry of every row and column
-//! of the constraint matrix is about 1; see [`crate::scaling`]). The
+//! of the constraint matrix is about 1; see docs/stability.md). The
 //! tolerances below are then *relative* factors: each is multiplied by a scale
 //! taken from the data before it is used.
 //!
