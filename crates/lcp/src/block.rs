@@ -230,6 +230,9 @@ fn initial_set(p: &MixedLcpRef<'_>, opts: &Options) -> Vec<bool> {
 /// set keeps almost all of its factor.
 struct Factor {
     order: Vec<usize>,
+    /// The factor in its leading `order.len()` rows and columns; the matrix
+    /// may be larger (its capacity), so a shrinking or slowly growing
+    /// active set reuses it in place.
     l: Mat<f64>,
 }
 
@@ -262,75 +265,87 @@ impl Factor {
         let mut rest: Vec<usize> = (0..active.len())
             .filter(|&i| active[i] && !kept[i])
             .collect();
-        if keep == self.order.len() && rest.is_empty() {
+        self.order.truncate(keep);
+        if rest.is_empty() {
+            // The active set shrank to a prefix of the order: its factor is
+            // the leading block, already in place.
             return Ok(());
         }
         rest.sort_by(|&a, &b| key[a].total_cmp(&key[b]).then(a.cmp(&b)));
         let (np, nr) = (keep, rest.len());
-        let mut l = Mat::<f64>::zeros(np + nr, np + nr);
-        l.as_mut()
-            .submatrix_mut(0, 0, np, np)
-            .copy_from(self.l.as_ref().submatrix(0, 0, np, np));
-        if nr > 0 {
-            let prefix = &self.order[..keep];
-            // L_RP^T = L_PP^{-1} M_PR.
-            let mut lrp_t = Mat::from_fn(np, nr, |a, b| p.m[(prefix[a], rest[b])]);
-            if np > 0 {
-                solve_lower_triangular_in_place(
-                    self.l.as_ref().submatrix(0, 0, np, np),
-                    lrp_t.as_mut(),
-                    par,
-                );
-            }
-            let mut srr = Mat::from_fn(nr, nr, |a, b| p.m[(rest[a], rest[b])]);
-            if np > 0 {
-                matmul(
-                    srr.as_mut(),
-                    Accum::Add,
-                    lrp_t.transpose(),
-                    lrp_t.as_ref(),
-                    -1.0,
-                    par,
-                );
-            }
-            let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(
-                nr,
-                par,
-                Default::default(),
-            ));
-            cholesky_in_place(
-                srr.as_mut(),
-                LltRegularization {
-                    dynamic_regularization_delta: 0.0,
-                    dynamic_regularization_epsilon: 0.0,
-                },
-                par,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .map_err(|_| BlockFailure::NotPositiveDefinite)?;
+        if self.l.nrows() < np + nr {
+            // Grow: a new matrix with the kept prefix copied (at most a few
+            // times per solve, the first iteration being the largest).
+            let mut l = Mat::<f64>::zeros(np + nr, np + nr);
             l.as_mut()
-                .submatrix_mut(np, 0, nr, np)
-                .copy_from(lrp_t.transpose());
-            // The factor's lower triangle (cholesky_in_place leaves the upper
-            // triangle as it was).
-            for j in 0..nr {
-                let tail = &srr.col_as_slice(j)[j..];
-                l.col_as_slice_mut(np + j)[np + j..].copy_from_slice(tail);
-            }
-            stats.factorizations += 1;
+                .submatrix_mut(0, 0, np, np)
+                .copy_from(self.l.as_ref().submatrix(0, 0, np, np));
+            self.l = l;
         }
-        self.order.truncate(keep);
+        let prefix = &self.order[..keep];
+        // L_RP^T = L_PP^{-1} M_PR.
+        let mut lrp_t = Mat::from_fn(np, nr, |a, b| p.m[(prefix[a], rest[b])]);
+        if np > 0 {
+            solve_lower_triangular_in_place(
+                self.l.as_ref().submatrix(0, 0, np, np),
+                lrp_t.as_mut(),
+                par,
+            );
+        }
+        let mut srr = Mat::from_fn(nr, nr, |a, b| p.m[(rest[a], rest[b])]);
+        if np > 0 {
+            matmul(
+                srr.as_mut(),
+                Accum::Add,
+                lrp_t.transpose(),
+                lrp_t.as_ref(),
+                -1.0,
+                par,
+            );
+        }
+        let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(
+            nr,
+            par,
+            Default::default(),
+        ));
+        cholesky_in_place(
+            srr.as_mut(),
+            LltRegularization {
+                dynamic_regularization_delta: 0.0,
+                dynamic_regularization_epsilon: 0.0,
+            },
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .map_err(|_| BlockFailure::NotPositiveDefinite)?;
+        self.l
+            .as_mut()
+            .submatrix_mut(np, 0, nr, np)
+            .copy_from(lrp_t.transpose());
+        // The new diagonal block's lower triangle (cholesky_in_place leaves
+        // the upper triangle as it was); above it stays zero.
+        for j in 0..nr {
+            let tail = &srr.col_as_slice(j)[j..];
+            self.l.col_as_slice_mut(np + j)[np + j..np + nr].copy_from_slice(tail);
+            self.l.col_as_slice_mut(np + j)[np..np + j].fill(0.0);
+        }
+        stats.factorizations += 1;
         self.order.extend(rest);
-        self.l = l;
         Ok(())
+    }
+
+    /// The factor of the current active block.
+    fn factor(&self) -> faer::MatRef<'_, f64> {
+        let n = self.order.len();
+        self.l.as_ref().submatrix(0, 0, n, n)
     }
 
     /// Overwrites `rhs` (in `order`) with `M_JJ^{-1} rhs`.
     fn solve_in_place(&self, rhs: faer::MatMut<'_, f64>, par: faer::Par) {
         let mut mem = MemBuffer::new(faer::dyn_stack::StackReq::EMPTY);
         faer::linalg::cholesky::llt::solve::solve_in_place(
-            self.l.as_ref(),
+            self.factor(),
             rhs,
             par,
             MemStack::new(&mut mem),

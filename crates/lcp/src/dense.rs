@@ -110,13 +110,21 @@ pub(crate) fn norm_inf(x: ColRef<'_, f64>) -> f64 {
 
 /// The first non-finite entry of a matrix, as (row-major flat index, value).
 pub(crate) fn first_non_finite(a: MatRef<'_, f64>) -> Option<(usize, f64)> {
-    for i in 0..a.nrows() {
-        for j in 0..a.ncols() {
-            let v = a[(i, j)];
+    // Scanned by columns (contiguous in faer's layout); the entry reported
+    // is the first in row-major order among the non-finite ones.
+    let mut first: Option<(usize, f64)> = None;
+    for j in 0..a.ncols() {
+        let col = a.col(j);
+        for i in 0..a.nrows() {
+            let v = col[i];
             if !v.is_finite() {
-                return Some((i * a.ncols() + j, v));
+                let flat = i * a.ncols() + j;
+                if first.is_none_or(|(f, _)| flat < f) {
+                    first = Some((flat, v));
+                }
+                break;
             }
         }
     }
-    None
+    first
 }
