@@ -140,7 +140,8 @@ impl std::fmt::Display for Warning {
 /// and P, each relative to the scale of the terms it is made of.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactCertificate {
-    /// `|e^T F - P|` over `P` (0 under displacement control).
+    /// `|e^T F - P|` over the scale of its terms, `sum |F_k| + P` (about
+    /// `2 P`; 0 under displacement control).
     pub equilibrium: f64,
     /// Smallest force over the largest (negative = a tensile force).
     pub min_force: f64,
@@ -155,7 +156,8 @@ pub struct ContactCertificate {
 impl ContactCertificate {
     fn from_engine(c: &Certificate) -> Self {
         Self {
-            equilibrium: c.equality,
+            // A non-finite solution reads as an infinite equilibrium residual.
+            equilibrium: if c.finite { c.equality } else { f64::INFINITY },
             min_force: c.min_z,
             min_gap: c.min_w,
             complementarity: c.complementarity,
@@ -163,17 +165,18 @@ impl ContactCertificate {
         }
     }
 
-    /// The worst relative residual.
+    /// The worst relative residual (infinite if any residual is not finite).
     pub fn worst(&self) -> f64 {
-        [
+        let parts = [
             self.equilibrium,
             -self.min_force,
             -self.min_gap,
             self.complementarity,
-            0.0,
-        ]
-        .into_iter()
-        .fold(0.0, f64::max)
+        ];
+        if parts.iter().any(|v| !v.is_finite()) {
+            return f64::INFINITY;
+        }
+        parts.into_iter().fold(0.0, f64::max)
     }
 
     /// Whether every residual is within the tolerance.
@@ -243,8 +246,10 @@ impl ContactProblem {
     ) -> Result<Self, AnalysisError> {
         let start = Instant::now();
         let separation = separations(&points, geometry)?;
-        let folding = Folding::detect(&points, &[body1, body2])
-            .filter(|f| f.is_invariant(&separation, SYMMETRY_TOLERANCE));
+        // The largest group the separations respect too.
+        let folding = Folding::detect_all(&points, &[body1, body2])
+            .into_iter()
+            .find(|f| f.is_invariant(&separation, SYMMETRY_TOLERANCE));
         let Some(folding) = folding else {
             return Self::new(points, body1, body2, geometry, loading);
         };

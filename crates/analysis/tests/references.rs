@@ -599,3 +599,34 @@ fn a_warm_start_from_the_previous_load_step_saves_iterations() {
         );
     }
 }
+
+#[test]
+fn a_cylinder_on_a_square_grid_folds_by_its_two_mirrors() {
+    // x^2 / 2R is not invariant under the swap of x and y, but is under both
+    // mirrors: the problem folds by 4, not 8, and not by 1.
+    let steel = Material::new(30e6, 0.3).unwrap();
+    let points = PointSet::grid_disk(0.002, 0.02).unwrap();
+    let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 1.0 }, Surface::Plane);
+    let body = Body::uniform_patch(steel);
+    let folded = ContactProblem::symmetric(
+        points.clone(),
+        &body,
+        &body,
+        &geometry,
+        Loading::Load(100.0),
+    )
+    .unwrap();
+    assert_eq!(folded.folding().map(|f| f.order()), Some(4));
+    let full = ContactProblem::new(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+    let (a, b) = (
+        folded
+            .solve(Method::BlockPivoting, &Options::default())
+            .unwrap(),
+        full.solve(Method::BlockPivoting, &Options::default())
+            .unwrap(),
+    );
+    let fmax = b.forces.iter().cloned().fold(0.0, f64::max);
+    for k in 0..a.forces.len() {
+        assert!((a.forces[k] - b.forces[k]).abs() <= 1e-10 * fmax);
+    }
+}

@@ -249,3 +249,32 @@ fn a_point_that_just_touches_is_reported_uncertain() {
         assert_eq!(sol.contact, vec![0], "{method}");
     }
 }
+
+#[test]
+fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
+    // The loaded point is a candidate point: its row of S is zero (the beam
+    // is clamped there), so S is only semidefinite and block pivoting's
+    // Cholesky fails; it falls back to Lemke's method. The clamped point
+    // carries the whole load.
+    let points = PointSet::line(-1.0, 1.0, 21).unwrap();
+    let problem = ContactProblem::new(
+        points,
+        &Body::beam(1e6, 1.0, 0.0),
+        &Body::rigid(),
+        &Geometry::Separation(vec![0.0; 21]),
+        Loading::Load(10.0),
+    )
+    .unwrap();
+    for method in Method::ALL {
+        let sol = problem.solve(method, &Options::default()).unwrap();
+        assert!(sol.certificate.holds(), "{method}: {}", sol.certificate);
+        assert!(
+            (sol.forces[10] - 10.0).abs() < 1e-12,
+            "{method}: {:?}",
+            sol.forces
+        );
+        if method == Method::BlockPivoting {
+            assert!(sol.statistics.fell_back);
+        }
+    }
+}

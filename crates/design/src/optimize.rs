@@ -171,8 +171,11 @@ impl Basis {
         let scale = stations.iter().fold(0.0f64, |a, s| a.max(s.abs()));
         let scale = if scale > 0.0 { scale } else { 1.0 };
         match family {
-            Family::Quadratic => Self::polynomial(2, stations, scale),
-            Family::Polynomial { degree } => {
+            Family::Quadratic | Family::Polynomial { .. } => {
+                let degree = match family {
+                    Family::Polynomial { degree } => degree,
+                    _ => 2,
+                };
                 if degree + 1 > n {
                     return Err(DesignError::Incompatible {
                         field: "family.degree",

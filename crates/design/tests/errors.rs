@@ -84,6 +84,13 @@ fn incompatible_inputs_say_what_to_give() {
         e.to_string(),
         "`family.degree`: degree 12 needs at least 13 axial stations, the cases have 12"
     );
+    // The quadratic family too (a least-squares fit needs three stations).
+    let two = elcon_design::fit_profile(Family::Quadratic, &[0.0, 1.0], &[0.0, 1.0]).unwrap_err();
+    assert!(
+        two.to_string()
+            .contains("degree 2 needs at least 3 axial stations"),
+        "{two}"
+    );
 }
 
 #[test]

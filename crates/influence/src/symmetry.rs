@@ -37,9 +37,10 @@ struct Element {
 }
 
 impl Element {
-    fn apply(self, (u, v): (i64, i64)) -> (i64, i64) {
+    /// `None` when a coordinate does not fit (points beyond 4.6e18 cells).
+    fn apply(self, (u, v): (i64, i64)) -> Option<(i64, i64)> {
         let (a, b) = if self.swap { (v, u) } else { (u, v) };
-        (self.su * a, self.sv * b)
+        Some((self.su.checked_mul(a)?, self.sv.checked_mul(b)?))
     }
 
     fn apply_xy(self, (x, y): (f64, f64)) -> (f64, f64) {
@@ -100,6 +101,15 @@ impl Folding {
     /// beam is invariant under the mirror about its loaded point only if that
     /// point is x = 0.
     pub fn detect(points: &PointSet, bodies: &[&Body]) -> Option<Self> {
+        Self::detect_all(points, bodies).into_iter().next()
+    }
+
+    /// Every reflection group (of at least two elements) under which
+    /// `points` and the models are invariant, largest first: a caller whose
+    /// data (separations) break the largest can fold by a smaller one (a
+    /// cylinder on a square grid: both mirrors, not the swap of x and y).
+    pub fn detect_all(points: &PointSet, bodies: &[&Body]) -> Vec<Self> {
+        let mut found = Vec::new();
         let cell = points.cell();
         let square = cell.dx == cell.dy;
         let beam_at_origin = bodies.iter().all(|b| match b.model() {
@@ -107,7 +117,7 @@ impl Folding {
             _ => true,
         });
         if !beam_at_origin {
-            return None;
+            return found;
         }
         let key = |k: usize| {
             (
@@ -117,12 +127,12 @@ impl Folding {
         };
         let index: HashMap<(i64, i64), usize> = (0..points.len()).map(|k| (key(k), k)).collect();
         if index.len() != points.len() {
-            return None;
+            return found;
         }
         let tolerance = 1e-12 * cell.dx.max(cell.dy);
         for (group, elements) in candidates(points.dimension(), square) {
             let image = |g: Element, k: usize| -> Option<usize> {
-                let j = *index.get(&g.apply(key(k)))?;
+                let j = *index.get(&g.apply(key(k))?)?;
                 let (x, y) = g.apply_xy((points.x(k), points.y(k)));
                 ((points.x(j) - x).abs() <= tolerance && (points.y(j) - y).abs() <= tolerance)
                     .then_some(j)
@@ -157,7 +167,7 @@ impl Folding {
                 orbits.push(orbit);
             }
             if ok && reps.len() < points.len() {
-                return Some(Self {
+                found.push(Self {
                     group,
                     order: elements.len(),
                     reps,
@@ -166,7 +176,7 @@ impl Folding {
                 });
             }
         }
-        None
+        found
     }
 
     /// The group's name ("mirror x, mirror y", ...).
@@ -268,6 +278,16 @@ mod tests {
         // An asymmetric set does not fold.
         let shifted = PointSet::line(-2.0, 3.0, 10).unwrap();
         assert!(Folding::detect(&shifted, &[&Body::winkler(1.0)]).is_none());
+    }
+
+    #[test]
+    fn every_group_is_offered_largest_first() {
+        let p = PointSet::grid_disk(1.0, 3.0).unwrap();
+        let groups: Vec<usize> = Folding::detect_all(&p, &[&Body::winkler(1.0)])
+            .iter()
+            .map(|f| f.order())
+            .collect();
+        assert_eq!(groups, [8, 4, 2, 2]);
     }
 
     #[test]

@@ -63,7 +63,6 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
     let cap = opts.max_pivots.unwrap_or(3 * n + 50);
     let mut best = usize::MAX;
     let mut retries = BLOCK_RETRIES;
-    let qscale = norm_inf(p.q).max(norm_inf(p.r));
     // The order in which indices join the factor: by the threshold q_i /
     // |B_i| (for one extra unknown: the approach at which point i touches),
     // else by q_i.
@@ -83,19 +82,16 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
             .and_then(|()| solve_block(p, &factor, par, 0, &mut stats));
         let (z, u) = match solved {
             Ok(v) => v,
-            Err(BlockFailure::NotPositiveDefinite) => {
-                return Err(LcpError::Unsupported {
-                    method: "block principal pivoting",
-                    reason:
-                        "a principal submatrix of M is not positive definite; use Lemke's method"
-                            .into(),
-                });
+            // A principal block that is not positive definite (a beam's
+            // clamped point has a zero row) or a singular Schur complement:
+            // Lemke's method solves what block pivoting cannot.
+            Err(BlockFailure::NotPositiveDefinite | BlockFailure::Singular) => {
+                return fallback(p, opts, stats);
             }
-            Err(BlockFailure::Singular) => return fallback(p, opts, stats),
         };
         let w = residual_w(p, &z, &u, par);
         let zscale = norm_inf(z.as_ref());
-        let wscale = qscale.max(norm_inf(w.as_ref()));
+        let wscale = w_scale(p, &w, &u);
         let infeasible: Vec<usize> = (0..n)
             .filter(|&i| {
                 if active[i] {
@@ -114,7 +110,7 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
             };
             let w = residual_w(p, &z, &u, par);
             let zscale = norm_inf(z.as_ref());
-            let wscale = qscale.max(norm_inf(w.as_ref()));
+            let wscale = w_scale(p, &w, &u);
             let moved: Vec<usize> = (0..n)
                 .filter(|&i| {
                     if active[i] {
@@ -462,6 +458,20 @@ fn solve_block(
         }
     }
     Ok((scatter(&zj), u))
+}
+
+/// The scale of w's terms, `max_i (|M z|_i + |B u|_i + |q_i|)` (with M z
+/// recovered as `w - B u - q`): what a w_i is compared with to call it
+/// negative. In w's own units (a gap, for contact), never mixed with the
+/// equality rows' (a load).
+fn w_scale(p: &MixedLcpRef<'_>, w: &Col<f64>, u: &Col<f64>) -> f64 {
+    let n = p.size();
+    (0..n)
+        .map(|i| {
+            let bu: f64 = (0..u.nrows()).map(|j| p.b[(i, j)] * u[j]).sum();
+            (w[i] - bu - p.q[i]).abs() + bu.abs() + p.q[i].abs()
+        })
+        .fold(0.0f64, f64::max)
 }
 
 /// `w = M z + B u + q`.

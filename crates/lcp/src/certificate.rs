@@ -41,22 +41,30 @@ pub struct Certificate {
     pub w_scale: f64,
     /// The tolerance the certificate is judged against.
     pub tolerance: f64,
+    /// Whether every entry of z, u and w is finite (a NaN or an overflow
+    /// never certifies, whatever the ratios above say).
+    pub finite: bool,
 }
 
 impl Certificate {
     /// The worst relative residual: the largest of `-min_z`, `-min_w`,
     /// `-min_u`, `complementarity`, `equality` (and 0).
     pub fn worst(&self) -> f64 {
-        [
+        let parts = [
             -self.min_z,
             -self.min_w,
             -self.min_u,
             self.complementarity,
             self.equality,
-            0.0,
-        ]
-        .into_iter()
-        .fold(0.0, f64::max)
+            self.z_scale,
+            self.w_scale,
+        ];
+        // A non-finite solution, residual or scale never certifies: f64::max
+        // would silently drop a NaN.
+        if !self.finite || parts.iter().any(|v| !v.is_finite()) {
+            return f64::INFINITY;
+        }
+        parts[..5].iter().copied().fold(0.0, f64::max)
     }
 
     /// Whether every residual is within the tolerance.
@@ -136,6 +144,11 @@ impl Certificate {
             z_scale,
             w_scale,
             tolerance,
+            finite: z
+                .iter()
+                .chain(u.iter())
+                .chain(w.iter())
+                .all(|v| v.is_finite()),
         };
         (cert, w)
     }

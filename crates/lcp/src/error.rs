@@ -117,6 +117,17 @@ pub enum LcpError {
         /// Smallest over largest magnitude of U's diagonal.
         ratio: f64,
     },
+    /// The arithmetic broke down: a value overflowed or became NaN (data
+    /// spanning more than double precision can hold).
+    #[error("numerical breakdown at pivot {pivot} (size {size}): {reason}")]
+    NumericalBreakdown {
+        /// Number of unknowns or rows.
+        size: usize,
+        /// Pivot step.
+        pivot: usize,
+        /// What broke, and what to do.
+        reason: &'static str,
+    },
     /// The final solution does not satisfy its certificate to the tolerance
     /// even after refactorization and refinement: it is not returned as solved.
     #[error(

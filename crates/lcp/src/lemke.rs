@@ -175,7 +175,13 @@ fn core(
         .into_iter()
         .filter(|&(i, d)| tab.rhs(i) / d <= limit_theta)
         .collect();
-    let r0 = tab.lex_select(ties, &tol);
+    let r0 = tab
+        .lex_select(ties, &tol)
+        .ok_or(LcpError::NumericalBreakdown {
+            size: n,
+            pivot: 0,
+            reason: "no row limits the covering variable: the data's scale exceeds double precision; rescale q and M",
+        })?;
     let mut leaving = tab.pivot(r0, s0);
     stats.pivots = 1;
 
@@ -240,4 +246,35 @@ fn core(
         }
     }
     Ok((z, basic, stats))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_non_finite_right_hand_side_is_a_breakdown_not_a_panic() {
+        // Validated inputs are finite; this reaches the guard directly.
+        let dense = Mat::from_fn(2, 3, |i, j| if i == j { -1.0 } else { 0.0 });
+        let q = Col::from_fn(2, |_| f64::NAN);
+        let options = Options {
+            equilibrate: false,
+            ..Options::default()
+        };
+        // q >= 0 fails for NaN, so the pivoting starts.
+        let e = core(dense, q, &options).unwrap_err();
+        assert!(matches!(
+            e,
+            LcpError::NumericalBreakdown {
+                size: 2,
+                pivot: 0,
+                ..
+            }
+        ));
+        assert!(
+            e.to_string()
+                .starts_with("numerical breakdown at pivot 0 (size 2): no row limits"),
+            "{e}"
+        );
+    }
 }

@@ -59,9 +59,10 @@ pub enum Method {
     /// positive definite `M`: guess the active set, solve the equilibrium on
     /// it with a faer Cholesky, exchange every infeasible index at once;
     /// safeguarded by single principal pivots and, past an iteration cap, by
-    /// Lemke's method. Not a tableau method: it needs `M` symmetric with
-    /// positive definite principal submatrices (contact problems with
-    /// half-space, foundation and beam models).
+    /// Lemke's method. Not a tableau method: it needs `M` symmetric (an
+    /// asymmetric M is refused); when a principal block turns out not to be
+    /// positive definite (a beam's clamped point alone has a zero row) it
+    /// falls back to Lemke's method.
     BlockPivoting,
 }
 
@@ -100,8 +101,10 @@ impl std::fmt::Display for Method {
 /// Options of a solve. `Options::default()` suits well-posed problems.
 #[derive(Debug, Clone)]
 pub struct Options {
-    /// Stop with [`LcpError::PivotLimit`] after this many pivots
-    /// (default: `20 (rows + unknowns) + 100`).
+    /// The tableau methods stop with [`LcpError::PivotLimit`] when a solve
+    /// needs more than this many pivots (default: `20 (rows + unknowns) +
+    /// 100`); block pivoting takes at most this many iterations (default
+    /// `3 n + 50`) and then finishes by Lemke's method.
     pub max_pivots: Option<usize>,
     /// Recompute the tableau from the original data every this many pivots
     /// (default: `max(100, rows)`; 0 disables periodic refactorization; the
@@ -465,8 +468,9 @@ impl<'a> MixedLcpRef<'a> {
     pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
         options.validate()?;
         if let Some(d) = &options.covering_vector {
+            // Lemke's size also for block pivoting, which may fall back to it.
             let expect = match method {
-                Method::Lemke => lemke::split_size(self),
+                Method::Lemke | Method::BlockPivoting => lemke::split_size(self),
                 _ => d.len(),
             };
             if d.len() != expect {
@@ -503,32 +507,49 @@ impl<'a> MixedLcpRef<'a> {
         );
         if !certificate.holds() {
             // The certificate degraded (rounding drift steered a pivot or an
-            // active set wrong): solve once more refactoring from the original
-            // data every RETRY_REFACTOR pivots and refining harder; the
-            // statistics count both attempts.
+            // active set wrong): solve once more, the tableau methods
+            // refactoring from the original data every RETRY_REFACTOR pivots
+            // and refining harder, block pivoting by Lemke's method; keep the
+            // better certificate. The statistics count both attempts.
             let retry = Options {
                 refactor_interval: Some(RETRY_REFACTOR),
                 refinement_steps: options.refinement_steps.max(RETRY_REFINEMENT),
                 ..options.clone()
             };
-            if let Ok(second) = run(&retry) {
+            let second = match method {
+                Method::BlockPivoting => lemke::solve_mixed(self, &retry),
+                _ => run(&retry),
+            };
+            if let Ok(second) = second {
                 let (c2, w2) = self.certify(
                     second.z.as_ref(),
                     second.u.as_ref(),
                     options.tolerances.certificate,
                 );
                 let first = raw.statistics;
-                raw = second;
+                let keep_second = c2.worst() < certificate.worst();
+                if keep_second {
+                    raw = second;
+                    certificate = c2;
+                    w = w2;
+                } else {
+                    let s2 = second.statistics;
+                    let s = &mut raw.statistics;
+                    s.pivots += s2.pivots;
+                    s.refactorizations += s2.refactorizations;
+                    s.refinement_steps += s2.refinement_steps;
+                }
                 let s = &mut raw.statistics;
-                s.pivots += first.pivots;
-                s.degenerate_pivots += first.degenerate_pivots;
-                s.refactorizations += first.refactorizations;
-                s.refinement_steps += first.refinement_steps;
-                s.iterations += first.iterations;
-                s.factorizations += first.factorizations;
+                if keep_second {
+                    s.pivots += first.pivots;
+                    s.degenerate_pivots += first.degenerate_pivots;
+                    s.refactorizations += first.refactorizations;
+                    s.refinement_steps += first.refinement_steps;
+                    s.iterations += first.iterations;
+                    s.factorizations += first.factorizations;
+                }
+                s.method = method;
                 s.retried = true;
-                certificate = c2;
-                w = w2;
             }
         }
         let mut statistics = raw.statistics;

@@ -451,6 +451,7 @@ impl ComplementaryProgram {
             z_scale: scale,
             w_scale: scale,
             tolerance,
+            finite: x.iter().all(|v| v.is_finite()),
         }
     }
 }

@@ -285,17 +285,19 @@ impl Run<'_> {
     }
 
     fn pivot(&mut self, row: usize, col: usize, theta: f64) -> Result<(), LcpError> {
-        if theta == 0.0 {
-            self.stats.degenerate_pivots += 1;
-        }
-        self.tab.pivot(row, col);
-        self.stats.pivots += 1;
+        // At most `limit` pivots: refuse the one after (not the last one,
+        // which may finish the solve; Lemke's method counts the same way).
         if self.stats.pivots >= self.limit {
             return Err(LcpError::PivotLimit {
                 size: self.tab.m,
                 limit: self.limit,
             });
         }
+        if theta == 0.0 {
+            self.stats.degenerate_pivots += 1;
+        }
+        self.tab.pivot(row, col);
+        self.stats.pivots += 1;
         if self.refactor_every > 0 && self.stats.pivots.is_multiple_of(self.refactor_every) {
             self.refactor()?;
         }

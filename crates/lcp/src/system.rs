@@ -207,6 +207,13 @@ impl System {
                 Column::Dense(_) => pow2(c[var]),
             };
         }
+        // Scales that would overflow the right-hand side or a scale itself
+        // (data spanning more than double precision) are not applied.
+        let finite = r.iter().chain(&c).all(|v| v.is_finite() && *v > 0.0)
+            && (0..self.rows).all(|i| (self.b[i] * r[i]).is_finite());
+        if !finite {
+            return;
+        }
         self.apply_scaling(&r, &c);
     }
 

@@ -411,17 +411,16 @@ impl Tableau {
         {
             return Some(pick(best.0));
         }
-        Some(pick(self.lex_select(
-            ties.into_iter().map(|t| (t.0, t.1)).collect(),
-            tol,
-        )))
+        let first = ties[0].0;
+        let rows = ties.into_iter().map(|t| (t.0, t.1)).collect();
+        Some(pick(self.lex_select(rows, tol).unwrap_or(first)))
     }
 
     /// Among rows tied on the step length, the one whose row of `B^{-1}`
     /// divided by its pivot magnitude (`rows` = (row, divisor)) is
     /// lexicographically smallest; numerically indistinguishable rows go to
-    /// the largest divisor (the stablest pivot).
-    pub fn lex_select(&self, mut rows: Vec<(usize, f64)>, tol: &Tolerances) -> usize {
+    /// the largest divisor (the stablest pivot). `None` only for no row.
+    pub fn lex_select(&self, mut rows: Vec<(usize, f64)>, tol: &Tolerances) -> Option<usize> {
         for k in 0..self.reference.len() {
             if rows.len() <= 1 {
                 break;
@@ -433,17 +432,20 @@ impl Tableau {
             let vmin = vals.iter().cloned().fold(f64::INFINITY, f64::min);
             let vscale = vals.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             let keep = vmin + tol.tie * vscale;
-            let mut idx = 0;
-            rows.retain(|_| {
-                let ok = vals[idx] <= keep;
-                idx += 1;
-                ok
-            });
+            let kept: Vec<(usize, f64)> = rows
+                .iter()
+                .zip(&vals)
+                .filter(|(_, v)| **v <= keep)
+                .map(|(r, _)| *r)
+                .collect();
+            // A level that keeps no row (non-finite entries) decides nothing.
+            if !kept.is_empty() {
+                rows = kept;
+            }
         }
         rows.iter()
             .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
             .map(|r| r.0)
-            .unwrap_or(usize::MAX)
     }
 
     /// Recomputes the whole tableau from the system's data for the current

@@ -246,3 +246,28 @@ fn deferred_unknowns_cannot_be_complementary() {
     let e = p.complementary(z, w).unwrap_err();
     assert!(message(e).ends_with("a deferred unknown cannot be complementary"));
 }
+
+#[test]
+fn a_non_finite_solution_never_certifies() {
+    let lcp = MixedLcp::new(
+        mat![[1.0]],
+        Mat::zeros(1, 0),
+        col![-1.0],
+        Mat::zeros(0, 1),
+        Mat::zeros(0, 0),
+        Col::zeros(0),
+        vec![],
+    )
+    .unwrap();
+    for z in [f64::NAN, f64::INFINITY] {
+        let (c, _) = lcp.certify(col![z].as_ref(), Col::<f64>::zeros(0).as_ref(), 1e-12);
+        assert!(!c.finite);
+        assert!(!c.holds(), "z = {z}");
+        assert_eq!(c.worst(), f64::INFINITY);
+    }
+    // Data spanning more than double precision: an error, never a panic.
+    let lcp = Lcp::new(mat![[1e-300]], col![-1e300]).unwrap();
+    for method in Method::ALL {
+        assert!(lcp.solve(method, &Options::default()).is_err(), "{method}");
+    }
+}

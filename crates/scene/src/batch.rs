@@ -276,7 +276,18 @@ impl Batch {
         };
         let b = raw.batch;
         let name = match &b.name {
-            Some(n) => n.get_ref().clone(),
+            Some(n) => {
+                let v = n.get_ref();
+                if v.trim().is_empty() || v.contains(['/', '\\']) || v == "." || v == ".." {
+                    return Err(ctx.invalid(
+                        n.span(),
+                        "batch.name",
+                        format!("\"{v}\""),
+                        "names the output directory: not empty, no path separators",
+                    ));
+                }
+                v.clone()
+            }
             None => path
                 .file_stem()
                 .map_or_else(|| "batch".into(), |s| s.to_string_lossy().into_owned()),

@@ -974,6 +974,13 @@ pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<Poin
             let b = need()?;
             let h = 2.0 * b / (across - 1) as f64;
             let m = (zone * b / h).round().max(1.0);
+            if !(m <= elcon_influence::MAX_POINTS as f64) {
+                return Err(format!(
+                    "{} points across the line: more than MAX_POINTS = {}",
+                    2.0 * m + 1.0,
+                    elcon_influence::MAX_POINTS
+                ));
+            }
             PointSet::line(-(m + 0.5) * h, (m + 0.5) * h, 2 * m as usize + 1)
         }
     };

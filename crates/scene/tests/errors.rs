@@ -111,3 +111,20 @@ fn run_failures_name_the_scene() {
     );
     assert!(!e.is_input_error());
 }
+
+#[test]
+fn a_batch_name_cannot_leave_the_output_directory() {
+    let dir = std::env::temp_dir().join(format!("elcon-batch-name-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("base.toml"), BASE).unwrap();
+    for bad in ["../escape", "", "/tmp/x"] {
+        std::fs::write(
+            dir.join("b.toml"),
+            format!("[batch]\nname = \"{bad}\"\nscene = \"base.toml\"\n[[batch.group]]\n\"loading.load\" = [1.0]\n"),
+        )
+        .unwrap();
+        let e = elcon_scene::Batch::from_file(&dir.join("b.toml")).unwrap_err();
+        assert!(e.to_string().contains("`batch.name`"), "{bad}: {e}");
+        assert!(e.to_string().contains("no path separators"), "{bad}: {e}");
+    }
+}
