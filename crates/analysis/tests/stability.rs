@@ -7,8 +7,9 @@
 mod common;
 
 use common::stability_cases::{Expect, Reference, catalogue, error};
+use elcon_analysis::references::{HertzSpheres, combined_radius};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface, Warning};
-use elcon_influence::{Body, Material, PointSet};
+use elcon_influence::{Body, Material, PointSet, combined_modulus};
 use proptest::prelude::*;
 
 #[test]
@@ -277,4 +278,37 @@ fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
             assert!(sol.statistics.fell_back);
         }
     }
+}
+
+#[test]
+fn lemke_ends_when_the_covering_variable_reaches_zero_without_a_tie() {
+    // Folded Hertz spheres at 131 points across (a split LCP of 2261 rows):
+    // at pivot 1726 the second row of the split load equation leaves while
+    // z0 is at zero in exact arithmetic, but rounding put z0's ratio just
+    // outside the tie, so z0 stayed basic and the next entering variable
+    // (u- with u+ basic) was a ray. An almost-complementary basis with z0 at
+    // the zero level is a solution, and Lemke now stops there.
+    let steel = Material::new(30e6, 0.3).unwrap();
+    let a = HertzSpheres::new(
+        combined_modulus(&steel, &steel),
+        combined_radius(1.0, 10.0),
+        100.0,
+    )
+    .unwrap()
+    .contact_radius();
+    let points = PointSet::grid_disk(2.0 * a / 130.0, 1.15 * a).unwrap();
+    let body = Body::uniform_patch(steel);
+    let geometry = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    let problem =
+        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+    let lemke = problem.solve(Method::Lemke, &Options::default()).unwrap();
+    assert!(lemke.certificate.holds(), "{}", lemke.certificate);
+    let bp = problem
+        .solve(Method::BlockPivoting, &Options::default())
+        .unwrap();
+    assert!((lemke.approach / bp.approach - 1.0).abs() < 1e-12);
+    assert_eq!(lemke.contact, bp.contact);
 }
