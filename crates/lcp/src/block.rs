@@ -28,6 +28,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use crate::dense::{Lu, norm_inf};
 use crate::lemke;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
+use crate::tolerance::Tolerances;
 use crate::{LcpError, Method};
 
 /// Full block exchanges allowed without a fall in the infeasibility count.
@@ -79,8 +80,8 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
         // once the active set is found (below).
         let solved = factor
             .update(p, &active, &key, par, &mut stats)
-            .and_then(|()| solve_block(p, &factor, par, 0, &mut stats));
-        let (z, u) = match solved {
+            .and_then(|()| BlockSystem::new(p, &factor, par));
+        let system = match solved {
             Ok(v) => v,
             // A principal block that is not positive definite (a beam's
             // clamped point has a zero row) or a singular Schur complement:
@@ -89,55 +90,21 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
                 return fallback(p, opts, stats);
             }
         };
-        let w = residual_w(p, &z, &u, par);
-        let zscale = norm_inf(z.as_ref());
-        let wscale = w_scale(p, &w, &u);
-        let infeasible: Vec<usize> = (0..n)
-            .filter(|&i| {
-                if active[i] {
-                    z[i] < -tol.zero * zscale
-                } else {
-                    w[i] < -tol.zero * wscale
-                }
-            })
-            .collect();
+        let (mut z, mut u) = system.solution(p);
+        let mut infeasible = violations(p, &active, &z, &u, &tol, par);
         if infeasible.is_empty() {
-            // The active set is found: solve again with iterative refinement
-            // from the original data; if that moves a sign, iterate on.
-            let (mut z, u) = match solve_block(p, &factor, par, opts.refinement_steps, &mut stats) {
-                Ok(v) => v,
-                Err(_) => return fallback(p, opts, stats),
-            };
-            let w = residual_w(p, &z, &u, par);
-            let zscale = norm_inf(z.as_ref());
-            let wscale = w_scale(p, &w, &u);
-            let moved: Vec<usize> = (0..n)
-                .filter(|&i| {
-                    if active[i] {
-                        z[i] < -tol.zero * zscale
-                    } else {
-                        w[i] < -tol.zero * wscale
-                    }
-                })
-                .collect();
-            if !moved.is_empty() && stats.iterations < cap {
-                for &i in &moved {
-                    active[i] = !active[i];
-                }
-                stats.pivots += moved.len();
-                continue;
+            // The active set is found: refine its solution from the original
+            // data; if that moves a sign, the safeguarded exchange goes on.
+            system.refine(p, &mut z, &mut u, opts.refinement_steps, &mut stats);
+            infeasible = violations(p, &active, &z, &u, &tol, par);
+            if infeasible.is_empty() {
+                return Ok(RawSolution {
+                    z,
+                    u,
+                    basic: active,
+                    statistics: stats,
+                });
             }
-            for i in 0..n {
-                if !active[i] {
-                    z[i] = 0.0;
-                }
-            }
-            return Ok(RawSolution {
-                z,
-                u,
-                basic: active,
-                statistics: stats,
-            });
         }
         if stats.iterations >= cap {
             return fallback(p, opts, stats);
@@ -198,11 +165,13 @@ fn initial_set(p: &MixedLcpRef<'_>, opts: &Options) -> Vec<bool> {
     if p.extras() > 0 && !active.iter().any(|&a| a) {
         // With a free approach and no index active at z = 0, the indices of
         // smallest q activate first (the points of least separation touch
-        // first): all of them when they tie (a flat contact).
+        // first): all of them when they tie (a flat contact), to the zero
+        // tolerance of q's scale, since equal separations computed from a
+        // geometry differ in their last bits.
         let qmin = (0..n).map(|i| p.q[i]).fold(f64::INFINITY, f64::min);
         let qscale = norm_inf(p.q);
         for i in 0..n {
-            active[i] = p.q[i] <= qmin + f64::EPSILON * qscale;
+            active[i] = p.q[i] <= qmin + opts.tolerances.zero * qscale;
         }
     }
     active
@@ -349,115 +318,151 @@ impl Factor {
     }
 }
 
-/// Solves the block system for the active set (factored in `factor`);
-/// returns full `z` (0 off `J`) and `u`.
-fn solve_block(
-    p: &MixedLcpRef<'_>,
-    factor: &Factor,
+/// The block system of an active set `J`, factored:
+///
+/// ```text
+///     K [z_J; u] = [-q_J; -r],   K = [M_JJ  B_J]
+///                                    [C_J   D  ]
+/// ```
+///
+/// through the Cholesky factor of `M_JJ` and the Schur complement
+/// `D - C_J M_JJ^{-1} B_J` (k x k, LU), both formed once per active set.
+struct BlockSystem<'f> {
+    factor: &'f Factor,
+    /// `G = M_JJ^{-1} B_J` (nj x k).
+    g: Mat<f64>,
+    /// The Schur complement's LU and `C_J` (None without equality rows).
+    schur: Option<(Lu, Mat<f64>)>,
     par: faer::Par,
-    refinement: usize,
-    stats: &mut Statistics,
-) -> Result<(Col<f64>, Col<f64>), BlockFailure> {
-    let n = p.size();
-    let k = p.extras();
-    let idx: &[usize] = &factor.order;
-    let nj = idx.len();
-    // G = M_JJ^{-1} B_J (nj x k), Schur = D - C_J G (k x k), factored once.
-    let mut g = Mat::from_fn(nj, k, |a, j| p.b[(idx[a], j)]);
-    factor.solve_in_place(g.as_mut(), par);
-    let schur = if k > 0 {
-        let cj = Mat::from_fn(k, nj, |e, a| p.c[(e, idx[a])]);
-        let mut s = p.d.to_owned();
+}
+
+impl<'f> BlockSystem<'f> {
+    /// Forms `G` and the Schur complement for the active set of `factor`.
+    fn new(p: &MixedLcpRef<'_>, factor: &'f Factor, par: faer::Par) -> Result<Self, BlockFailure> {
+        let idx: &[usize] = &factor.order;
+        let nj = idx.len();
+        let k = p.extras();
+        let mut g = Mat::from_fn(nj, k, |a, j| p.b[(idx[a], j)]);
+        factor.solve_in_place(g.as_mut(), par);
+        let schur = if k > 0 {
+            let cj = Mat::from_fn(k, nj, |e, a| p.c[(e, idx[a])]);
+            let mut s = p.d.to_owned();
+            matmul(
+                s.as_mut(),
+                Accum::Add,
+                cj.as_ref(),
+                g.as_ref(),
+                -1.0,
+                faer::Par::Seq,
+            );
+            let lu = Lu::new(s, faer::Par::Seq);
+            if lu.pivot_ratio <= f64::EPSILON * k as f64 {
+                return Err(BlockFailure::Singular);
+            }
+            Some((lu, cj))
+        } else {
+            None
+        };
+        Ok(Self {
+            factor,
+            g,
+            schur,
+            par,
+        })
+    }
+
+    /// Solves `K [z_J; u] = [f; h]`: `u = S^{-1} (h - C_J M^{-1} f)`,
+    /// `z_J = M^{-1} f - G u`.
+    fn solve(&self, f: &Col<f64>, h: &Col<f64>) -> (Col<f64>, Col<f64>) {
+        let mut y = f.clone();
+        self.factor.solve_in_place(y.as_mat_mut(), self.par);
+        let Some((lu, cj)) = &self.schur else {
+            return (y, Col::zeros(0));
+        };
+        let mut u = h.clone();
         matmul(
-            s.as_mut(),
+            u.as_mat_mut(),
             Accum::Add,
             cj.as_ref(),
-            g.as_ref(),
+            y.as_mat(),
             -1.0,
             faer::Par::Seq,
         );
-        let lu = Lu::new(s, faer::Par::Seq);
-        if lu.pivot_ratio <= f64::EPSILON * k as f64 {
-            return Err(BlockFailure::Singular);
-        }
-        Some((lu, cj))
-    } else {
-        None
-    };
-    // Solve K [z_J; u] = [f; h] with K = [M_JJ B_J; C_J D].
-    let solve = |f: &Col<f64>, h: &Col<f64>| -> (Col<f64>, Col<f64>) {
-        let mut y = f.clone();
-        factor.solve_in_place(y.as_mat_mut(), par);
-        match &schur {
-            Some((lu, cj)) => {
-                // u = S^{-1} (h - C_J M^{-1} f), z = M^{-1} f - G u
-                let mut u = h.clone();
-                matmul(
-                    u.as_mat_mut(),
-                    Accum::Add,
-                    cj.as_ref(),
-                    y.as_mat(),
-                    -1.0,
-                    faer::Par::Seq,
-                );
-                lu.solve_in_place(u.as_mat_mut());
-                matmul(
-                    y.as_mat_mut(),
-                    Accum::Add,
-                    g.as_ref(),
-                    u.as_mat(),
-                    -1.0,
-                    faer::Par::Seq,
-                );
-                (y, u)
-            }
-            None => (y, Col::zeros(0)),
-        }
-    };
-    let f = Col::from_fn(nj, |a| -p.q[idx[a]]);
-    let h = Col::from_fn(k, |e| -p.r[e]);
-    let (mut zj, mut u) = solve(&f, &h);
-    let scatter = |zj: &Col<f64>| {
+        lu.solve_in_place(u.as_mat_mut());
+        matmul(
+            y.as_mat_mut(),
+            Accum::Add,
+            self.g.as_ref(),
+            u.as_mat(),
+            -1.0,
+            faer::Par::Seq,
+        );
+        (y, u)
+    }
+
+    /// The active set's solution, `z` scattered to full length (0 off `J`).
+    fn solution(&self, p: &MixedLcpRef<'_>) -> (Col<f64>, Col<f64>) {
+        let idx: &[usize] = &self.factor.order;
+        let f = Col::from_fn(idx.len(), |a| -p.q[idx[a]]);
+        let h = Col::from_fn(p.extras(), |e| -p.r[e]);
+        let (zj, u) = self.solve(&f, &h);
+        (self.scatter(p.size(), &zj), u)
+    }
+
+    fn scatter(&self, n: usize, zj: &Col<f64>) -> Col<f64> {
         let mut z = Col::<f64>::zeros(n);
-        for (a, &i) in idx.iter().enumerate() {
+        for (a, &i) in self.factor.order.iter().enumerate() {
             z[i] = zj[a];
         }
         z
-    };
-    // Iterative refinement: residuals of the block equations from the original data.
-    for _ in 0..refinement {
-        let z = scatter(&zj);
-        let w = residual_w(p, &z, &u, par);
-        let rf = Col::from_fn(nj, |a| -w[idx[a]]);
-        let mut rh = p.r.to_owned();
-        if k > 0 {
-            matmul(
-                rh.as_mat_mut(),
-                Accum::Add,
-                p.c,
-                z.as_mat(),
-                1.0,
-                faer::Par::Seq,
-            );
-            matmul(
-                rh.as_mat_mut(),
-                Accum::Add,
-                p.d,
-                u.as_mat(),
-                1.0,
-                faer::Par::Seq,
-            );
-        }
-        let rh = -rh;
-        let (dz, du) = solve(&rf, &rh);
-        zj += &dz;
-        u += &du;
-        stats.refinement_steps += 1;
-        if norm_inf(dz.as_ref()) <= f64::EPSILON * norm_inf(zj.as_ref()) {
-            break;
+    }
+
+    /// Iterative refinement of a solution in place: residuals of the block
+    /// equations from the original data, corrections from the factors.
+    fn refine(
+        &self,
+        p: &MixedLcpRef<'_>,
+        z: &mut Col<f64>,
+        u: &mut Col<f64>,
+        steps: usize,
+        stats: &mut Statistics,
+    ) {
+        let idx: &[usize] = &self.factor.order;
+        let k = p.extras();
+        for _ in 0..steps {
+            let w = residual_w(p, z, u, self.par);
+            let rf = Col::from_fn(idx.len(), |a| -w[idx[a]]);
+            let mut rh = p.r.to_owned();
+            if k > 0 {
+                matmul(
+                    rh.as_mat_mut(),
+                    Accum::Add,
+                    p.c,
+                    z.as_mat(),
+                    1.0,
+                    faer::Par::Seq,
+                );
+                matmul(
+                    rh.as_mat_mut(),
+                    Accum::Add,
+                    p.d,
+                    u.as_mat(),
+                    1.0,
+                    faer::Par::Seq,
+                );
+            }
+            let rh = -rh;
+            let (dz, du) = self.solve(&rf, &rh);
+            for (a, &i) in idx.iter().enumerate() {
+                z[i] += dz[a];
+            }
+            *u += &du;
+            stats.refinement_steps += 1;
+            if norm_inf(dz.as_ref()) <= f64::EPSILON * norm_inf(z.as_ref()) {
+                break;
+            }
         }
     }
-    Ok((scatter(&zj), u))
 }
 
 /// The scale of w's terms, `max_i (|M z|_i + |B u|_i + |q_i|)` (with M z
@@ -472,6 +477,31 @@ fn w_scale(p: &MixedLcpRef<'_>, w: &Col<f64>, u: &Col<f64>) -> f64 {
             (w[i] - bu - p.q[i]).abs() + bu.abs() + p.q[i].abs()
         })
         .fold(0.0f64, f64::max)
+}
+
+/// The indices whose sign is wrong for the active set: active with
+/// `z_i < 0`, inactive with `w_i < 0`, each below the zero tolerance of its
+/// own scale (`|z|` and [`w_scale`]).
+fn violations(
+    p: &MixedLcpRef<'_>,
+    active: &[bool],
+    z: &Col<f64>,
+    u: &Col<f64>,
+    tol: &Tolerances,
+    par: faer::Par,
+) -> Vec<usize> {
+    let w = residual_w(p, z, u, par);
+    let zscale = norm_inf(z.as_ref());
+    let wscale = w_scale(p, &w, u);
+    (0..p.size())
+        .filter(|&i| {
+            if active[i] {
+                z[i] < -tol.zero * zscale
+            } else {
+                w[i] < -tol.zero * wscale
+            }
+        })
+        .collect()
 }
 
 /// `w = M z + B u + q`.
