@@ -281,13 +281,14 @@ fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
 }
 
 #[test]
-fn lemke_ends_when_the_covering_variable_reaches_zero_without_a_tie() {
+fn lemke_ends_when_the_covering_variable_reaches_zero_outside_the_relative_tie() {
     // Folded Hertz spheres at 131 points across (a split LCP of 2261 rows):
     // at pivot 1726 the second row of the split load equation leaves while
     // z0 is at zero in exact arithmetic, but rounding put z0's ratio just
-    // outside the tie, so z0 stayed basic and the next entering variable
-    // (u- with u+ basic) was a ray. An almost-complementary basis with z0 at
-    // the zero level is a solution, and Lemke now stops there.
+    // outside the relative tie, so z0 stayed basic at the zero level and the
+    // next entering variable (u- with u+ basic) was a ray. The ratio test now
+    // also ties every row that the step brings to the zero level, so z0 is
+    // preferred and leaves.
     let steel = Material::new(30e6, 0.3).unwrap();
     let a = HertzSpheres::new(
         combined_modulus(&steel, &steel),

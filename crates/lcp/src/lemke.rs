@@ -9,9 +9,7 @@
 //! (`z0 = max_i -q_i / d_i`), the row attaining it leaving; then the
 //! complement of the variable that just left enters, the lexicographic ratio
 //! test picks the leaving one (preferring `z0` whenever it ties), until `z0`
-//! leaves or reaches the zero level (either is a solution: an
-//! almost-complementary basis with `z0 = 0` is complementary) or no row
-//! limits the entering variable (a secondary
+//! leaves (a solution) or no row limits the entering variable (a secondary
 //! ray: for copositive-plus `M`, e.g. positive semidefinite, this proves that
 //! no solution exists).
 //!
@@ -187,16 +185,7 @@ fn core(
     let mut leaving = tab.pivot(r0, s0);
     stats.pivots = 1;
 
-    // An almost-complementary basis with z0 at level 0 is already a solution
-    // (the one complementary pair out of the basis is at 0 too). In exact
-    // arithmetic z0 would leave on a tie there; in rounding the tie can be
-    // missed, and with the split free unknowns the next step is then a ray
-    // (u+ basic, u- entering), so z0 at the zero level ends the path.
-    let z0_at_zero = |tab: &Tableau| match tab.position[z0] {
-        Position::Basic(r) => tab.rhs(r) <= zero_level,
-        Position::Nonbasic(_) => true,
-    };
-    while leaving != z0 && !z0_at_zero(&tab) {
+    while leaving != z0 {
         let entering = if leaving < n {
             leaving + n
         } else {
@@ -226,14 +215,10 @@ fn core(
         }
         leaving = tab.pivot(ratio.row, s);
         stats.pivots += 1;
-        if leaving != z0 && !z0_at_zero(&tab) && stats.pivots >= limit {
+        if leaving != z0 && stats.pivots >= limit {
             return Err(LcpError::PivotLimit { size: n, limit });
         }
-        if refactor_every > 0
-            && stats.pivots.is_multiple_of(refactor_every)
-            && leaving != z0
-            && !z0_at_zero(&tab)
-        {
+        if refactor_every > 0 && stats.pivots.is_multiple_of(refactor_every) && leaving != z0 {
             tab.refactor(&sys)
                 .map_err(|ratio| LcpError::SingularBasis {
                     size: n,

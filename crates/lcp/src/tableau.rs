@@ -29,10 +29,11 @@
 //! and column s are written into `T0` exactly as above (their `U`, `V`
 //! entries zeroed), so a pivot's arithmetic is that of the explicit tableau.
 //!
-//! The ratio test is lexicographic: ties in the step length are broken by the
-//! rows of `[b̄, B^{-1}]` divided by the pivot column, where `B^{-1}` is taken
-//! relative to the initial basis (an identity in the scaled system), which
-//! makes the sequence of bases non-repeating.
+//! The ratio test is lexicographic: ties in the step length (ratios within a
+//! relative `tie` of the smallest, or rows the smallest step brings to the
+//! zero level) are broken by the rows of `[b̄, B^{-1}]` divided by the pivot
+//! column, where `B^{-1}` is taken relative to the initial basis (an identity
+//! in the scaled system), which makes the sequence of bases non-repeating.
 
 use faer::linalg::matmul::matmul;
 use faer::prelude::*;
@@ -356,11 +357,11 @@ impl Tableau {
             return None;
         }
         let piv = tol.pivot * colmax;
-        // (row, theta, pivot magnitude, fixed)
-        let mut cand: Vec<(usize, f64, f64, bool)> = Vec::new();
+        // (row, theta, pivot magnitude, fixed, basic value)
+        let mut cand: Vec<(usize, f64, f64, bool, f64)> = Vec::new();
         let mut theta_min = f64::INFINITY;
         for i in 0..m {
-            let (theta, a, fixed) = match rule(i) {
+            let (theta, a, fixed, b) = match rule(i) {
                 RowRule::Skip => continue,
                 RowRule::Bounded => {
                     let a = -sigma * col[i];
@@ -369,26 +370,30 @@ impl Tableau {
                     }
                     let b = self.rhs(i);
                     let b = if b <= zero_level { 0.0 } else { b };
-                    (b / a, a, false)
+                    (b / a, a, false, b)
                 }
                 RowRule::Fixed => {
                     let a = col[i].abs();
                     if a <= piv {
                         continue;
                     }
-                    (0.0, a, true)
+                    (0.0, a, true, 0.0)
                 }
             };
             theta_min = theta_min.min(theta);
-            cand.push((i, theta, a, fixed));
+            cand.push((i, theta, a, fixed, b));
         }
         if cand.is_empty() {
             return None;
         }
+        // A row ties when its ratio is within `tie` of the smallest, or when
+        // the step of the smallest brings its basic value to the zero level:
+        // a ratio is a quotient of rounded values, and a row that reaches
+        // zero with the step is a leaving candidate whatever its rounding.
         let limit = theta_min + tol.tie * theta_min;
         let ties: Vec<(usize, f64, bool)> = cand
             .into_iter()
-            .filter(|c| c.1 <= limit)
+            .filter(|c| c.1 <= limit || c.4 - theta_min * c.2 <= zero_level)
             .map(|c| (c.0, c.2, c.3))
             .collect();
         let pick = |row: usize| Ratio {
