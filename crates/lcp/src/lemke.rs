@@ -182,7 +182,7 @@ fn core(
             pivot: 0,
             reason: "no row limits the covering variable: the data's scale exceeds double precision; rescale q and M",
         })?;
-    let mut leaving = tab.pivot(r0, s0);
+    let mut leaving = tab.pivot(r0, s0, column0);
     stats.pivots = 1;
 
     while leaving != z0 {
@@ -213,7 +213,7 @@ fn core(
         if ratio.theta == 0.0 {
             stats.degenerate_pivots += 1;
         }
-        leaving = tab.pivot(ratio.row, s);
+        leaving = tab.pivot(ratio.row, s, ratio.column);
         stats.pivots += 1;
         if leaving != z0 && stats.pivots >= limit {
             return Err(LcpError::PivotLimit { size: n, limit });

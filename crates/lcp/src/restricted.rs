@@ -33,7 +33,7 @@ use crate::lemke::EQUILIBRATION_PASSES;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
 use crate::program::ComplementaryProgram;
 use crate::system::{Column, System};
-use crate::tableau::{Position, RowRule, Tableau};
+use crate::tableau::{Position, Ratio, RowRule, Tableau};
 use crate::{LcpError, Method};
 
 /// What the restricted-entry simplex returns before certification.
@@ -284,7 +284,7 @@ impl Run<'_> {
         }
     }
 
-    fn pivot(&mut self, row: usize, col: usize, theta: f64) -> Result<(), LcpError> {
+    fn pivot(&mut self, ratio: Ratio, col: usize) -> Result<(), LcpError> {
         // At most `limit` pivots: refuse the one after (not the last one,
         // which may finish the solve; Lemke's method counts the same way).
         if self.stats.pivots >= self.limit {
@@ -293,10 +293,10 @@ impl Run<'_> {
                 limit: self.limit,
             });
         }
-        if theta == 0.0 {
+        if ratio.theta == 0.0 {
             self.stats.degenerate_pivots += 1;
         }
-        self.tab.pivot(row, col);
+        self.tab.pivot(ratio.row, col, ratio.column);
         self.stats.pivots += 1;
         if self.refactor_every > 0 && self.stats.pivots.is_multiple_of(self.refactor_every) {
             self.refactor()?;
@@ -344,7 +344,7 @@ impl Run<'_> {
                 }
             }
             if let Some(r) = chosen {
-                self.pivot(r.row, s, r.theta)?;
+                self.pivot(r, s)?;
             }
         }
         Ok(())
@@ -390,7 +390,7 @@ impl Run<'_> {
                 None => None,
             };
             match chosen {
-                Some((r, j)) => self.pivot(r.row, j, r.theta)?,
+                Some((r, j)) => self.pivot(r, j)?,
                 None => return Ok(()),
             }
         }
@@ -406,7 +406,7 @@ impl Run<'_> {
         phase: Phase,
         nonneg_ok: impl Fn(f64) -> bool,
         free_ok: impl Fn(f64) -> bool,
-    ) -> Result<Option<(crate::tableau::Ratio, usize)>, LcpError> {
+    ) -> Result<Option<(Ratio, usize)>, LcpError> {
         let tol = self.opts.tolerances;
         let mut cands: Vec<(usize, f64, f64)> = Vec::new();
         for j in 0..self.tab.n() {

@@ -63,12 +63,14 @@ pub(crate) enum RowRule {
 }
 
 /// Result of a ratio test.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone)]
 pub(crate) struct Ratio {
     /// The leaving row.
     pub row: usize,
     /// The step length (entering variable's new magnitude), in scaled units.
     pub theta: f64,
+    /// The entering column the test read (all rows), handed on to the pivot.
+    pub column: Col<f64>,
 }
 
 /// Pivots kept as a delayed rank-k correction before it is applied to the
@@ -258,11 +260,12 @@ impl Tableau {
     }
 
     /// Exchanges the basic variable of row `r` with the non-basic variable of
-    /// column `s`. Returns the variable that left.
-    pub fn pivot(&mut self, r: usize, s: usize) -> usize {
+    /// column `s`, given that column as the current tableau has it (all rows,
+    /// from [`column`](Self::column) or a [`Ratio`]). Returns the variable
+    /// that left.
+    pub fn pivot(&mut self, r: usize, s: usize, c: Col<f64>) -> usize {
         let rows = self.t0.nrows();
         let n = self.nonbasic.len();
-        let c = self.column(s);
         let rho = self.row(r);
         let p = c[r];
         let inv = 1.0 / p;
@@ -396,9 +399,10 @@ impl Tableau {
             .filter(|c| c.1 <= limit || c.4 - theta_min * c.2 <= zero_level)
             .map(|c| (c.0, c.2, c.3))
             .collect();
-        let pick = |row: usize| Ratio {
+        let pick = move |row: usize| Ratio {
             row,
             theta: theta_min,
+            column: col,
         };
         if ties.len() == 1 {
             return Some(pick(ties[0].0));
