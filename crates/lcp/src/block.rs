@@ -522,17 +522,14 @@ fn residual_w(p: &MixedLcpRef<'_>, z: &Col<f64>, u: &Col<f64>, par: faer::Par) -
 }
 
 /// Lemke's method, keeping the statistics of the block iterations so far.
-fn fallback(
+pub(crate) fn fallback(
     p: &MixedLcpRef<'_>,
     opts: &Options,
     stats: Statistics,
 ) -> Result<RawSolution, LcpError> {
     let mut raw = lemke::solve_mixed(p, opts)?;
     let s = &mut raw.statistics;
-    s.iterations += stats.iterations;
-    s.factorizations += stats.factorizations;
-    s.pivots += stats.pivots;
-    s.refinement_steps += stats.refinement_steps;
+    s.absorb(&stats);
     s.fell_back = true;
     s.method = Method::BlockPivoting;
     Ok(raw)

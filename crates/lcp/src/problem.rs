@@ -192,8 +192,9 @@ pub struct Statistics {
     /// Whether block pivoting fell back to Lemke's method.
     pub fell_back: bool,
     /// Whether the first attempt's certificate failed and the solve was
-    /// repeated with frequent refactorization from the data (the counts
-    /// above add both attempts).
+    /// repeated (tableau methods: frequent refactorization from the data;
+    /// block pivoting: Lemke's method). The counts above add both attempts
+    /// when the second one reached an answer.
     pub retried: bool,
     /// Rows of the tableau that was pivoted on.
     pub tableau_rows: usize,
@@ -204,6 +205,20 @@ pub struct Statistics {
 }
 
 impl Statistics {
+    /// Adds the work of another attempt at the same problem (a fallback, a
+    /// retry): its counts are summed and its flags kept; the method, the
+    /// tableau's shape and the seconds stay this attempt's.
+    pub(crate) fn absorb(&mut self, other: &Statistics) {
+        self.pivots += other.pivots;
+        self.degenerate_pivots += other.degenerate_pivots;
+        self.refactorizations += other.refactorizations;
+        self.refinement_steps += other.refinement_steps;
+        self.iterations += other.iterations;
+        self.factorizations += other.factorizations;
+        self.fell_back |= other.fell_back;
+        self.retried |= other.retried;
+    }
+
     pub(crate) fn new(method: Method) -> Self {
         Self {
             method,
@@ -517,40 +532,31 @@ impl<'a> MixedLcpRef<'a> {
                 ..options.clone()
             };
             let second = match method {
-                Method::BlockPivoting => lemke::solve_mixed(self, &retry),
+                Method::BlockPivoting => {
+                    block::fallback(self, &retry, Statistics::new(Method::BlockPivoting))
+                }
                 _ => run(&retry),
             };
+            // A failed second attempt leaves the first (its error is not the
+            // answer: the first attempt's certificate says what went wrong).
             if let Ok(second) = second {
                 let (c2, w2) = self.certify(
                     second.z.as_ref(),
                     second.u.as_ref(),
                     options.tolerances.certificate,
                 );
-                let first = raw.statistics;
-                let keep_second = c2.worst() < certificate.worst();
-                if keep_second {
+                if c2.worst() < certificate.worst() {
+                    let first = raw.statistics;
                     raw = second;
+                    raw.statistics.absorb(&first);
                     certificate = c2;
                     w = w2;
                 } else {
-                    let s2 = second.statistics;
-                    let s = &mut raw.statistics;
-                    s.pivots += s2.pivots;
-                    s.refactorizations += s2.refactorizations;
-                    s.refinement_steps += s2.refinement_steps;
+                    raw.statistics.absorb(&second.statistics);
                 }
-                let s = &mut raw.statistics;
-                if keep_second {
-                    s.pivots += first.pivots;
-                    s.degenerate_pivots += first.degenerate_pivots;
-                    s.refactorizations += first.refactorizations;
-                    s.refinement_steps += first.refinement_steps;
-                    s.iterations += first.iterations;
-                    s.factorizations += first.factorizations;
-                }
-                s.method = method;
-                s.retried = true;
             }
+            raw.statistics.method = method;
+            raw.statistics.retried = true;
         }
         let mut statistics = raw.statistics;
         statistics.seconds = start.elapsed().as_secs_f64();
