@@ -142,7 +142,7 @@ fn core(
         row_scale: vec![1.0; n],
     };
     if opts.equilibrate {
-        sys.equilibrate(EQUILIBRATION_PASSES);
+        sys.equilibrate(EQUILIBRATION_PASSES, opts.par(sys.rows, sys.dense.ncols()));
     }
     // Covering vector, in the scaled problem: d' = R d (ones by default).
     for i in 0..n {

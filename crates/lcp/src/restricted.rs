@@ -160,7 +160,7 @@ fn run_with(
         }
     }
     if opts.equilibrate {
-        sys.equilibrate(EQUILIBRATION_PASSES);
+        sys.equilibrate(EQUILIBRATION_PASSES, opts.par(sys.rows, sys.dense.ncols()));
     }
     // 2. Initial basis: a +1 slack of a non-negative unknown, else an artificial.
     let mut basis = vec![usize::MAX; m];

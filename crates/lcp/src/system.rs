@@ -120,8 +120,10 @@ impl System {
     /// |a_ij|)` over the non-zeros, then the same for columns; Fulkerson &
     /// Wolfe 1962, as in LP codes) brings the spread of every row and column
     /// to its geometric middle; Ruiz passes then bring every maximum to
-    /// within a factor 2 of 1. `iterations` bounds the passes of each.
-    pub fn equilibrate(&mut self, iterations: usize) {
+    /// within a factor 2 of 1. `iterations` bounds the passes of each; the
+    /// sweeps over the dense block use up to `par`'s threads.
+    pub fn equilibrate(&mut self, iterations: usize, par: Par) {
+        let threads = self.sweep_threads(par);
         let m = self.rows;
         let nv = self.vars();
         let mut r = vec![1.0f64; m];
@@ -154,7 +156,7 @@ impl System {
             iterations.min(GEOMETRIC_PASSES)
         };
         for _ in 0..geometric {
-            let (rows, cols) = self.extremes(&dense, &r, &c);
+            let (rows, cols) = self.extremes(&dense, &r, &c, threads);
             let mut spread = 1.0f64;
             for (i, &(hi, lo)) in rows.iter().enumerate() {
                 if hi > 0.0 {
@@ -176,7 +178,7 @@ impl System {
         // Ruiz passes on max-norms, until every row and column maximum is
         // within a factor 2 of 1.
         for _ in 0..iterations {
-            let (rows, cols) = self.extremes(&dense, &r, &c);
+            let (rows, cols) = self.extremes(&dense, &r, &c, threads);
             let mut balanced = true;
             for (i, &(hi, _)) in rows.iter().enumerate() {
                 if hi > 0.0 {
@@ -267,12 +269,12 @@ impl System {
     }
 
     /// Threads for a sweep over the dense block: one below 2^18 entries (a
-    /// sweep is then faster than starting a thread), else the machine's.
-    fn sweep_threads(&self) -> usize {
+    /// sweep is then faster than starting a thread), else `par`'s degree.
+    fn sweep_threads(&self, par: Par) -> usize {
         if self.rows * self.dense.ncols() < 1 << 18 {
             1
         } else {
-            std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
+            par.degree()
         }
     }
 
@@ -286,6 +288,7 @@ impl System {
         dense: &[(usize, usize)],
         r: &[f64],
         c: &[f64],
+        threads: usize,
     ) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
         let m = self.rows;
         let sweep = |part: &[(usize, usize)]| {
@@ -314,8 +317,7 @@ impl System {
             }
             (hi, lo, cols)
         };
-        let threads = self.sweep_threads();
-        let (hi, lo, cols) = if threads == 1 || dense.len() < 2 * threads {
+        let (hi, lo, cols) = if threads <= 1 || dense.len() < 2 * threads {
             sweep(dense)
         } else {
             let chunk = dense.len().div_ceil(threads);
