@@ -112,7 +112,8 @@ pub enum Warning {
         points: Vec<usize>,
     },
     /// Points where both the force and the gap are near zero (relative
-    /// `sqrt(u) ≈ 1.5e-8` of their scales): whether they touch is uncertain.
+    /// `sqrt(eps) ≈ 1.5e-8`, eps = `f64::EPSILON`, of their scales): whether
+    /// they touch is uncertain.
     UncertainContact {
         /// The points concerned.
         points: Vec<usize>,
