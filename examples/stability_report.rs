@@ -7,7 +7,8 @@
 //! error returned. "pass" means the certificate holds at 1e-12 and the
 //! case's expectation (a truncation warning, a single point) is met.
 //!
-//! Run: `cargo run --release --example stability_report` (about a minute)
+//! Run: `cargo run --release --example stability_report` (about 35 s on the
+//! 2-core test machine, build included)
 
 #[path = "../crates/analysis/tests/common/stability_cases.rs"]
 mod stability_cases;

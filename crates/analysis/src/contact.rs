@@ -112,7 +112,8 @@ pub enum Warning {
         points: Vec<usize>,
     },
     /// Points where both the force and the gap are near zero (relative
-    /// `sqrt(u) ≈ 1.5e-8` of their scales): whether they touch is uncertain.
+    /// `sqrt(eps) ≈ 1.5e-8`, eps = `f64::EPSILON`, of their scales): whether
+    /// they touch is uncertain.
     UncertainContact {
         /// The points concerned.
         points: Vec<usize>,
@@ -426,8 +427,10 @@ impl ContactProblem {
     /// Solves starting from the contact set of `previous` (a solution of a
     /// similar problem: the previous load step, a neighbouring design), as
     /// `options.warm_start`. Block principal pivoting then starts from that
-    /// set and typically needs one or two iterations; the tableau methods
-    /// start from their usual basis (the option does not apply to them).
+    /// set (on Hertz spheres, a load step from 90 to 100 lb is tested to take
+    /// at most three iterations and fewer than a cold start); the tableau
+    /// methods start from their usual basis (the option does not apply to
+    /// them).
     /// The answer does not depend on the start.
     ///
     /// # Errors

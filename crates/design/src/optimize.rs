@@ -26,10 +26,11 @@
 //! admissible pivot improves, a local minimum of a non-convex problem;
 //! global optimality is not (the paper says so too). The local minima are
 //! real: on a flexible beam over a stiff foundation the uncorrected start
-//! ends with the load on the three points under it (p_max = 8 P/L with a
-//! free profile) because bringing the next point into contact needs a move
-//! that first raises p_max. elcon therefore runs part 2 from more than one
-//! start (the uncorrected geometry, as in the paper; for line contacts the
+//! ends with the load on the few points under it (p_max more than 5 P/L
+//! with a free profile, the bound the test checks) because bringing the
+//! next point into contact needs a move that first raises p_max. elcon
+//! therefore runs part 2 from more than one start (the uncorrected
+//! geometry, as in the paper; for line contacts the
 //! least-squares fit of the uniform-pressure separation to the family, the
 //! paper's own comparison; and any profiles the caller gives) and keeps the
 //! best. Part 2 never ends worse than its start.

@@ -76,8 +76,9 @@ pub(crate) struct Ratio {
 /// Pivots kept as a delayed rank-k correction before it is applied to the
 /// whole tableau by one matrix product. The product costs `2 rows cols`
 /// flops per pivot whatever the block; a larger block costs more per read
-/// of a column or row (`rows k`, `cols k`). 64 balances the two from a few
-/// hundred rows up (benches/tableau.rs).
+/// of a column or row (`rows k`, `cols k`). 64 was chosen to balance the
+/// two from a few hundred rows up; no benchmark in the repository compares
+/// block sizes (benches/ holds only the scaling benchmark).
 pub(crate) const UPDATE_BLOCK: usize = 64;
 
 /// The compact tableau, as `T = T0 - U V^T` (see the module documentation).

@@ -18,8 +18,9 @@
 //! `u = f64::EPSILON / 2 ≈ 1.1e-16`: a tableau entry after `k` pivots carries
 //! a relative error of order `k u` times the growth of the basis inverse, so a
 //! pivot must stand well above `m u` of its column (`pivot = 2^-36 ≈ 1.5e-11`
-//! leaves five orders of headroom up to `m = 10^4`); basic values are compared
-//! to zero at `2^-42 ≈ 2.3e-13` of the right-hand side's scale, about `2^10 u`;
+//! is about 13 times `m u ≈ 1.1e-12` at `m = 10^4`: about one order of
+//! headroom there, more for smaller `m`); basic values are compared to zero
+//! at `2^-42 ≈ 2.3e-13` of the right-hand side's scale, `2^11 u`;
 //! and the certificate accepts `1e-12` relative residuals: the rounding error
 //! of a length-`n` dot product is about `sqrt(n) u` in practice (at most
 //! `n u`), i.e. below `1e-13` up to `n = 10^4` after refinement.
