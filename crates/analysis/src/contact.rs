@@ -25,7 +25,7 @@ use elcon_influence::{Body, Dimension, Folding, PointSet, assemble, assemble_fol
 /// symmetric (they come from the same formula at mirrored points, so they
 /// are equal to rounding).
 const SYMMETRY_TOLERANCE: f64 = 1e-14;
-use elcon_lcp::{Bound, Certificate, LcpError, Method, MixedLcpRef, Options, Statistics};
+use elcon_lcp::{Bound, Certificate, Method, MixedLcpRef, Options, Statistics};
 use faer::{Col, ColRef, Mat, MatRef};
 
 use crate::AnalysisError;
@@ -650,11 +650,5 @@ pub fn separations(points: &PointSet, geometry: &Geometry) -> Result<Vec<f64>, A
             }
             Ok(eps.clone())
         }
-    }
-}
-
-impl From<LcpError> for AnalysisError {
-    fn from(e: LcpError) -> Self {
-        AnalysisError::Engine(e)
     }
 }

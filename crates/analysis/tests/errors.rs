@@ -145,4 +145,13 @@ fn engine_errors_pass_through() {
             .starts_with("the contact solve failed: pivot limit 1 reached"),
         "{e}"
     );
+    // The engine's error is also the source of the chain.
+    let source = std::error::Error::source(&e).expect("an engine error has a source");
+    assert!(
+        matches!(
+            source.downcast_ref::<LcpError>(),
+            Some(LcpError::PivotLimit { limit: 1, .. })
+        ),
+        "{source:?}"
+    );
 }
