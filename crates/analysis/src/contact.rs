@@ -20,15 +20,15 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use elcon_influence::{Body, Dimension, Folding, PointSet, assemble, assemble_folded};
+use elcon_lcp::{Bound, Certificate, Method, MixedLcpRef, Options, Statistics};
+use faer::{Col, ColRef, Mat, MatRef};
+
+use crate::AnalysisError;
 
 /// Separations equal to this fraction of their largest magnitude count as
 /// symmetric (they come from the same formula at mirrored points, so they
 /// are equal to rounding).
 const SYMMETRY_TOLERANCE: f64 = 1e-14;
-use elcon_lcp::{Bound, Certificate, Method, MixedLcpRef, Options, Statistics};
-use faer::{Col, ColRef, Mat, MatRef};
-
-use crate::AnalysisError;
 
 /// The shape of one surface near the initial point of contact, as its height
 /// above the common tangent plane. Radii are positive for convex surfaces and
@@ -219,13 +219,7 @@ impl ContactProblem {
         geometry: &Geometry,
         loading: Loading,
     ) -> Result<Self, AnalysisError> {
-        let start = Instant::now();
-        let separation = separations(&points, geometry)?;
-        let influence = assemble(&points, &[body1, body2])?;
-        let assembly_seconds = start.elapsed().as_secs_f64();
-        let mut p = Self::from_parts(points, influence, separation, loading)?;
-        p.assembly_seconds = assembly_seconds;
-        Ok(p)
+        Self::build(points, [body1, body2], geometry, loading, false)
     }
 
     /// As [`ContactProblem::new`], but when the points, both bodies' models
@@ -244,27 +238,43 @@ impl ContactProblem {
         geometry: &Geometry,
         loading: Loading,
     ) -> Result<Self, AnalysisError> {
+        Self::build(points, [body1, body2], geometry, loading, true)
+    }
+
+    /// [`ContactProblem::new`] (`fold` false) and
+    /// [`ContactProblem::symmetric`] (`fold` true): the separations and the
+    /// loading are validated before the O(N^2) assembly, then, if asked, the
+    /// largest symmetry group the separations respect too is looked for, and
+    /// the folded or the full matrix is assembled.
+    fn build(
+        points: PointSet,
+        bodies: [&Body; 2],
+        geometry: &Geometry,
+        loading: Loading,
+        fold: bool,
+    ) -> Result<Self, AnalysisError> {
         let start = Instant::now();
         let separation = separations(&points, geometry)?;
-        // The largest group the separations respect too.
-        let folding = Folding::detect_all(&points, &[body1, body2])
-            .into_iter()
-            .find(|f| f.is_invariant(&separation, SYMMETRY_TOLERANCE));
-        let Some(folding) = folding else {
-            return Self::new(points, body1, body2, geometry, loading);
+        Self::check(points.len(), &separation, loading)?;
+        let folding = if fold {
+            Folding::detect_all(&points, &bodies)
+                .into_iter()
+                .find(|f| f.is_invariant(&separation, SYMMETRY_TOLERANCE))
+        } else {
+            None
         };
-        let influence = assemble_folded(&points, &[body1, body2], &folding)?;
-        let assembly_seconds = start.elapsed().as_secs_f64();
-        let n = points.len();
-        Self::check(n, &separation, loading)?;
+        let influence = match &folding {
+            Some(f) => assemble_folded(&points, &bodies, f)?,
+            None => assemble(&points, &bodies)?,
+        };
         Ok(Self {
             points,
             influence: Arc::new(influence),
             separation,
             loading,
-            assembly_seconds,
+            assembly_seconds: start.elapsed().as_secs_f64(),
             body_edges: (false, false),
-            folding: Some(Arc::new(folding)),
+            folding: folding.map(Arc::new),
         })
     }
 
