@@ -489,7 +489,7 @@ impl ContactProblem {
             Some(f) => self.separation[f.rep(a)],
             None => self.separation[a],
         };
-        let (z, alpha, certificate, statistics) = match self.loading {
+        let (z, w, alpha, certificate, statistics) = match self.loading {
             Loading::Load(p) => {
                 let q = Col::from_fn(n, |a| eps_of(a) / scale[a]);
                 let b = Mat::<f64>::from_fn(n, 1, |a, _| -1.0 / scale[a]);
@@ -507,7 +507,7 @@ impl ContactProblem {
                     &bounds,
                 )?;
                 let sol = problem.solve(method, options)?;
-                (sol.z, sol.u[0], sol.certificate, sol.statistics)
+                (sol.z, sol.w, sol.u[0], sol.certificate, sol.statistics)
             }
             Loading::Approach(alpha) => {
                 let q = Col::from_fn(n, |a| (eps_of(a) - alpha) / scale[a]);
@@ -524,28 +524,41 @@ impl ContactProblem {
                     &[],
                 )?;
                 let sol = problem.solve(method, options)?;
-                (sol.z, alpha, sol.certificate, sol.statistics)
+                (sol.z, sol.w, alpha, sol.certificate, sol.statistics)
             }
         };
-        // Gaps from the original data: Y = S F + eps - alpha e (folded:
-        // Y_a = s_a (M z)_a + eps_a - alpha, the same sums regrouped).
-        let mz = Mat::as_ref(&self.influence) * &z;
-        let folded_gaps: Vec<f64> = (0..n)
-            .map(|a| scale[a] * mz[a] + eps_of(a) - alpha)
-            .collect();
+        // The gaps are the engine's w = M z + B u + q, computed from the data
+        // above: Y = S F + eps - alpha e; folded, row a is scaled by 1 / s_a,
+        // so w_a = Y_a / s_a (the same sums regrouped) and Y_a = s_a w_a,
+        // exactly (s_a is a power of two).
         let z: Vec<f64> = z.iter().copied().collect();
-        let (forces, gaps) = match &self.folding {
-            Some(f) => (f.unfold(&z), f.unfold(&folded_gaps)),
-            None => (z, folded_gaps),
+        let w: Vec<f64> = w.iter().copied().collect();
+        let folded_gaps: Vec<f64> = (0..n).map(|a| scale[a] * w[a]).collect();
+        let (forces, gaps, slack) = match &self.folding {
+            Some(f) => (f.unfold(&z), f.unfold(&folded_gaps), f.unfold(&w)),
+            None => (z, folded_gaps, w),
         };
         let solve_seconds = start.elapsed().as_secs_f64();
-        Ok(self.finish(forces, gaps, alpha, &certificate, statistics, solve_seconds))
+        Ok(self.finish(
+            forces,
+            gaps,
+            &slack,
+            alpha,
+            &certificate,
+            statistics,
+            solve_seconds,
+        ))
     }
 
+    /// The solution from the forces and gaps of every point; `slack` is the
+    /// engine's w at every point (the gap, or for a folded problem the gap
+    /// over its orbit's s_a): the scaling the certificate's `w_scale` measures.
+    #[allow(clippy::too_many_arguments)]
     fn finish(
         &self,
         forces: Vec<f64>,
         gaps: Vec<f64>,
+        slack: &[f64],
         approach: f64,
         certificate: &Certificate,
         statistics: Statistics,
@@ -561,11 +574,14 @@ impl ContactProblem {
             Dimension::Surface => (contact_measure / std::f64::consts::PI).sqrt(),
             Dimension::Line => contact_measure / 2.0,
         };
-        // Scale of a gap's terms, max(|S| F + |eps| + |alpha|), from the certificate.
+        // A gap is near zero relative to the scale of the gaps' terms (the
+        // largest |S| F plus the sizes of eps and alpha), the certificate's
+        // w_scale. Both are in the engine's scaling: a folded row is divided
+        // by its s_a, and so is the precision of its w (its terms over s_a).
         let gap_scale = certificate.w_scale;
         let near = f64::EPSILON.sqrt();
         let uncertain: Vec<usize> = (0..n)
-            .filter(|&k| fmax > 0.0 && forces[k] <= near * fmax && gaps[k] <= near * gap_scale)
+            .filter(|&k| fmax > 0.0 && forces[k] <= near * fmax && slack[k] <= near * gap_scale)
             .collect();
         let (body_x, body_y) = self.body_edges;
         let edge: Vec<usize> = contact

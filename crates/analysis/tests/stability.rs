@@ -252,6 +252,57 @@ fn a_point_that_just_touches_is_reported_uncertain() {
 }
 
 #[test]
+fn a_folded_problem_reports_the_uncertain_points_of_the_full_one() {
+    // The same just-touching point on a symmetric line, folded about x = 0:
+    // once on an orbit of two points (s = 1), once at the centre, an orbit
+    // of its own (s = 2, its folded row halved).
+    let points = PointSet::line(-1.0, 1.0, 5).unwrap();
+    for (eps, uncertain, contact) in [
+        (vec![2e-3, 1e-3, 0.0, 1e-3, 2e-3], vec![1, 3], vec![2]),
+        (
+            vec![0.0, 0.5e-3, 1e-3, 0.5e-3, 0.0],
+            vec![2],
+            vec![0, 1, 3, 4],
+        ),
+    ] {
+        let build = |fold: bool| {
+            let build = if fold {
+                ContactProblem::symmetric
+            } else {
+                ContactProblem::new
+            };
+            build(
+                points.clone(),
+                &Body::winkler(1e6),
+                &Body::rigid(),
+                &Geometry::Separation(eps.clone()),
+                Loading::Approach(1e-3),
+            )
+            .unwrap()
+        };
+        let (full, folded) = (build(false), build(true));
+        assert_eq!(folded.folding().map(|f| f.order()), Some(2));
+        for method in Method::ALL {
+            for problem in [&full, &folded] {
+                let sol = problem.solve(method, &Options::default()).unwrap();
+                let found = sol.warnings.iter().find_map(|w| match w {
+                    Warning::UncertainContact { points } => Some(points.clone()),
+                    _ => None,
+                });
+                let label = format!("{method}, folded {}", problem.folding().is_some());
+                assert_eq!(
+                    found.as_ref(),
+                    Some(&uncertain),
+                    "{label}: {:?}",
+                    sol.warnings
+                );
+                assert_eq!(sol.contact, contact, "{label}");
+            }
+        }
+    }
+}
+
+#[test]
 fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
     // The loaded point is a candidate point: its row of S is zero (the beam
     // is clamped there), so S is only semidefinite and block pivoting's
