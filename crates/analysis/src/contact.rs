@@ -20,15 +20,15 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use elcon_influence::{Body, Dimension, Folding, PointSet, assemble, assemble_folded};
+use elcon_lcp::{Bound, Certificate, Method, MixedLcpRef, Options, Statistics};
+use faer::{Col, ColRef, Mat, MatRef};
+
+use crate::AnalysisError;
 
 /// Separations equal to this fraction of their largest magnitude count as
 /// symmetric (they come from the same formula at mirrored points, so they
 /// are equal to rounding).
 const SYMMETRY_TOLERANCE: f64 = 1e-14;
-use elcon_lcp::{Bound, Certificate, LcpError, Method, MixedLcpRef, Options, Statistics};
-use faer::{Col, ColRef, Mat, MatRef};
-
-use crate::AnalysisError;
 
 /// The shape of one surface near the initial point of contact, as its height
 /// above the common tangent plane. Radii are positive for convex surfaces and
@@ -220,13 +220,7 @@ impl ContactProblem {
         geometry: &Geometry,
         loading: Loading,
     ) -> Result<Self, AnalysisError> {
-        let start = Instant::now();
-        let separation = separations(&points, geometry)?;
-        let influence = assemble(&points, &[body1, body2])?;
-        let assembly_seconds = start.elapsed().as_secs_f64();
-        let mut p = Self::from_parts(points, influence, separation, loading)?;
-        p.assembly_seconds = assembly_seconds;
-        Ok(p)
+        Self::build(points, [body1, body2], geometry, loading, false)
     }
 
     /// As [`ContactProblem::new`], but when the points, both bodies' models
@@ -245,27 +239,43 @@ impl ContactProblem {
         geometry: &Geometry,
         loading: Loading,
     ) -> Result<Self, AnalysisError> {
+        Self::build(points, [body1, body2], geometry, loading, true)
+    }
+
+    /// [`ContactProblem::new`] (`fold` false) and
+    /// [`ContactProblem::symmetric`] (`fold` true): the separations and the
+    /// loading are validated before the O(N^2) assembly, then, if asked, the
+    /// largest symmetry group the separations respect too is looked for, and
+    /// the folded or the full matrix is assembled.
+    fn build(
+        points: PointSet,
+        bodies: [&Body; 2],
+        geometry: &Geometry,
+        loading: Loading,
+        fold: bool,
+    ) -> Result<Self, AnalysisError> {
         let start = Instant::now();
         let separation = separations(&points, geometry)?;
-        // The largest group the separations respect too.
-        let folding = Folding::detect_all(&points, &[body1, body2])
-            .into_iter()
-            .find(|f| f.is_invariant(&separation, SYMMETRY_TOLERANCE));
-        let Some(folding) = folding else {
-            return Self::new(points, body1, body2, geometry, loading);
+        Self::check(points.len(), &separation, loading)?;
+        let folding = if fold {
+            Folding::detect_all(&points, &bodies)
+                .into_iter()
+                .find(|f| f.is_invariant(&separation, SYMMETRY_TOLERANCE))
+        } else {
+            None
         };
-        let influence = assemble_folded(&points, &[body1, body2], &folding)?;
-        let assembly_seconds = start.elapsed().as_secs_f64();
-        let n = points.len();
-        Self::check(n, &separation, loading)?;
+        let influence = match &folding {
+            Some(f) => assemble_folded(&points, &bodies, f)?,
+            None => assemble(&points, &bodies)?,
+        };
         Ok(Self {
             points,
             influence: Arc::new(influence),
             separation,
             loading,
-            assembly_seconds,
+            assembly_seconds: start.elapsed().as_secs_f64(),
             body_edges: (false, false),
-            folding: Some(Arc::new(folding)),
+            folding: folding.map(Arc::new),
         })
     }
 
@@ -482,7 +492,7 @@ impl ContactProblem {
             Some(f) => self.separation[f.rep(a)],
             None => self.separation[a],
         };
-        let (z, alpha, certificate, statistics) = match self.loading {
+        let (z, w, alpha, certificate, statistics) = match self.loading {
             Loading::Load(p) => {
                 let q = Col::from_fn(n, |a| eps_of(a) / scale[a]);
                 let b = Mat::<f64>::from_fn(n, 1, |a, _| -1.0 / scale[a]);
@@ -500,7 +510,7 @@ impl ContactProblem {
                     &bounds,
                 )?;
                 let sol = problem.solve(method, options)?;
-                (sol.z, sol.u[0], sol.certificate, sol.statistics)
+                (sol.z, sol.w, sol.u[0], sol.certificate, sol.statistics)
             }
             Loading::Approach(alpha) => {
                 let q = Col::from_fn(n, |a| (eps_of(a) - alpha) / scale[a]);
@@ -517,28 +527,41 @@ impl ContactProblem {
                     &[],
                 )?;
                 let sol = problem.solve(method, options)?;
-                (sol.z, alpha, sol.certificate, sol.statistics)
+                (sol.z, sol.w, alpha, sol.certificate, sol.statistics)
             }
         };
-        // Gaps from the original data: Y = S F + eps - alpha e (folded:
-        // Y_a = s_a (M z)_a + eps_a - alpha, the same sums regrouped).
-        let mz = Mat::as_ref(&self.influence) * &z;
-        let folded_gaps: Vec<f64> = (0..n)
-            .map(|a| scale[a] * mz[a] + eps_of(a) - alpha)
-            .collect();
+        // The gaps are the engine's w = M z + B u + q, computed from the data
+        // above: Y = S F + eps - alpha e; folded, row a is scaled by 1 / s_a,
+        // so w_a = Y_a / s_a (the same sums regrouped) and Y_a = s_a w_a,
+        // exactly (s_a is a power of two).
         let z: Vec<f64> = z.iter().copied().collect();
-        let (forces, gaps) = match &self.folding {
-            Some(f) => (f.unfold(&z), f.unfold(&folded_gaps)),
-            None => (z, folded_gaps),
+        let w: Vec<f64> = w.iter().copied().collect();
+        let folded_gaps: Vec<f64> = (0..n).map(|a| scale[a] * w[a]).collect();
+        let (forces, gaps, slack) = match &self.folding {
+            Some(f) => (f.unfold(&z), f.unfold(&folded_gaps), f.unfold(&w)),
+            None => (z, folded_gaps, w),
         };
         let solve_seconds = start.elapsed().as_secs_f64();
-        Ok(self.finish(forces, gaps, alpha, &certificate, statistics, solve_seconds))
+        Ok(self.finish(
+            forces,
+            gaps,
+            &slack,
+            alpha,
+            &certificate,
+            statistics,
+            solve_seconds,
+        ))
     }
 
+    /// The solution from the forces and gaps of every point; `slack` is the
+    /// engine's w at every point (the gap, or for a folded problem the gap
+    /// over its orbit's s_a): the scaling the certificate's `w_scale` measures.
+    #[allow(clippy::too_many_arguments)]
     fn finish(
         &self,
         forces: Vec<f64>,
         gaps: Vec<f64>,
+        slack: &[f64],
         approach: f64,
         certificate: &Certificate,
         statistics: Statistics,
@@ -554,11 +577,14 @@ impl ContactProblem {
             Dimension::Surface => (contact_measure / std::f64::consts::PI).sqrt(),
             Dimension::Line => contact_measure / 2.0,
         };
-        // Scale of a gap's terms, max(|S| F + |eps| + |alpha|), from the certificate.
+        // A gap is near zero relative to the scale of the gaps' terms (the
+        // largest |S| F plus the sizes of eps and alpha), the certificate's
+        // w_scale. Both are in the engine's scaling: a folded row is divided
+        // by its s_a, and so is the precision of its w (its terms over s_a).
         let gap_scale = certificate.w_scale;
         let near = f64::EPSILON.sqrt();
         let uncertain: Vec<usize> = (0..n)
-            .filter(|&k| fmax > 0.0 && forces[k] <= near * fmax && gaps[k] <= near * gap_scale)
+            .filter(|&k| fmax > 0.0 && forces[k] <= near * fmax && slack[k] <= near * gap_scale)
             .collect();
         let (body_x, body_y) = self.body_edges;
         let edge: Vec<usize> = contact
@@ -653,11 +679,5 @@ pub fn separations(points: &PointSet, geometry: &Geometry) -> Result<Vec<f64>, A
             }
             Ok(eps.clone())
         }
-    }
-}
-
-impl From<LcpError> for AnalysisError {
-    fn from(e: LcpError) -> Self {
-        AnalysisError::Engine(e)
     }
 }

@@ -51,5 +51,5 @@ pub enum AnalysisError {
     Influence(#[from] InfluenceError),
     /// The pivoting engine failed (no solution, pivot limit, inaccuracy...).
     #[error("the contact solve failed: {0}")]
-    Engine(LcpError),
+    Engine(#[from] LcpError),
 }

@@ -145,4 +145,29 @@ fn engine_errors_pass_through() {
             .starts_with("the contact solve failed: pivot limit 1 reached"),
         "{e}"
     );
+    // The engine's error is also the source of the chain.
+    let source = std::error::Error::source(&e).expect("an engine error has a source");
+    assert!(
+        matches!(
+            source.downcast_ref::<LcpError>(),
+            Some(LcpError::PivotLimit { limit: 1, .. })
+        ),
+        "{source:?}"
+    );
+}
+
+#[test]
+fn the_loading_is_checked_before_the_assembly() {
+    // A bad load is reported even when the bodies would be refused by the
+    // assembly too: the cheap checks come before the O(N^2) work.
+    let line = PointSet::line(-1.0, 1.0, 11).unwrap();
+    let body = Body::uniform_patch(steel()); // a surface model on a line
+    let cylinders = Geometry::Surfaces(Surface::Cylinder { radius: 1.0 }, Surface::Plane);
+    for build in [ContactProblem::new, ContactProblem::symmetric] {
+        let e = build(line.clone(), &body, &body, &cylinders, Loading::Load(-1.0)).unwrap_err();
+        assert!(
+            matches!(e, AnalysisError::InvalidInput { field: "load", .. }),
+            "{e:?}"
+        );
+    }
 }

@@ -1,66 +1,18 @@
 //! Property tests on random contact scenes: whatever the materials, radii,
 //! load, grid and model, every method returns forces with sum F = P, F >= 0,
-//! gaps Y = S F + eps - alpha e >= 0 and F_k Y_k = 0, checked here from the
-//! problem's own S and eps (not from the engine's certificate), and the
-//! methods agree.
+//! gaps Y = S F + eps - alpha e >= 0 and F_k Y_k = 0, checked from the
+//! problem's own S and eps (not from the engine's certificate; the check is
+//! tests/common/checks.rs), and the methods agree.
 
+mod common;
+
+use common::checks::check;
 use elcon_analysis::references::{HertzSpheres, combined_radius};
 use elcon_analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface,
 };
 use elcon_influence::{Body, Material, PointSet, combined_modulus};
 use proptest::prelude::*;
-
-/// Tolerance of the checks below, relative to the scale of each quantity:
-/// the engine certifies 1e-12; a recomputation here adds a dot product's
-/// rounding (N u with N <= 200).
-const TOL: f64 = 1e-11;
-
-/// Checks the contact conditions from the problem's data.
-fn check(
-    problem: &ContactProblem,
-    sol: &ContactSolution,
-    load: Option<f64>,
-) -> Result<(), TestCaseError> {
-    let s = problem.influence();
-    let eps = problem.separation();
-    let n = eps.len();
-    let fmax = sol.forces.iter().fold(0.0f64, |a, f| a.max(*f));
-    let mut gap_scale = 0.0f64;
-    let mut gaps = vec![0.0; n];
-    for k in 0..n {
-        let mut sf = 0.0;
-        let mut terms = 0.0;
-        for j in 0..n {
-            sf += s[(k, j)] * sol.forces[j];
-            terms += (s[(k, j)] * sol.forces[j]).abs();
-        }
-        gaps[k] = sf + eps[k] - sol.approach;
-        gap_scale = gap_scale.max(terms + eps[k].abs() + sol.approach.abs());
-    }
-    for k in 0..n {
-        prop_assert!(sol.forces[k] >= -TOL * fmax, "F[{k}] = {}", sol.forces[k]);
-        prop_assert!(
-            gaps[k] >= -TOL * gap_scale,
-            "Y[{k}] = {} (scale {gap_scale})",
-            gaps[k]
-        );
-        prop_assert!(
-            (sol.forces[k] * gaps[k]).abs() <= TOL * fmax * gap_scale,
-            "F Y at {k}: {} {}",
-            sol.forces[k],
-            gaps[k]
-        );
-        prop_assert!((gaps[k] - sol.gaps[k]).abs() <= TOL * gap_scale);
-    }
-    let total: f64 = sol.forces.iter().sum();
-    if let Some(p) = load {
-        prop_assert!((total - p).abs() <= TOL * p, "sum F = {total}, P = {p}");
-    }
-    prop_assert!((total - sol.load).abs() <= TOL * total.abs().max(f64::MIN_POSITIVE));
-    prop_assert!(sol.certificate.holds(), "{}", sol.certificate);
-    Ok(())
-}
 
 fn agree(a: &ContactSolution, b: &ContactSolution) -> Result<(), TestCaseError> {
     let fmax = a.forces.iter().fold(0.0f64, |m, f| m.max(*f));
@@ -105,10 +57,10 @@ proptest! {
             points, &Body::uniform_patch(m1), &Body::uniform_patch(m2), &geometry, Loading::Load(load),
         ).unwrap();
         let reference = problem.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
-        check(&problem, &reference, Some(load))?;
+        check(&problem, &reference)?;
         for method in [Method::Lemke, Method::BlockPivoting] {
             let sol = problem.solve(method, &Options::default()).unwrap();
-            check(&problem, &sol, Some(load))?;
+            check(&problem, &sol)?;
             agree(&reference, &sol)?;
         }
     }
@@ -137,10 +89,10 @@ proptest! {
             points, &elastic, &second, &Geometry::Separation(eps), Loading::Approach(approach * scale),
         ).unwrap();
         let reference = problem.solve(Method::Lemke, &Options::default()).unwrap();
-        check(&problem, &reference, None)?;
+        check(&problem, &reference)?;
         for method in [Method::RestrictedSimplex, Method::BlockPivoting] {
             let sol = problem.solve(method, &Options::default()).unwrap();
-            check(&problem, &sol, None)?;
+            check(&problem, &sol)?;
             agree(&reference, &sol)?;
         }
     }

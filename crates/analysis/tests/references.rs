@@ -6,9 +6,11 @@
 //! discrete model converges to the closed form as the cell size h -> 0), with
 //! a margin of about 2x; each is stated where it is used.
 
-use elcon_analysis::references::{
-    FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam, combined_radius,
-};
+mod common;
+
+use common::checks::assert_solves;
+use common::scenes;
+use elcon_analysis::references::{HertzCylinders, HertzSpheres, HetenyiBeam, combined_radius};
 use elcon_analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface, Warning,
 };
@@ -55,29 +57,27 @@ fn cases() -> Vec<(&'static str, Case)> {
     out
 }
 
+/// Example 1's spheres (R1 = 1 in, R2 = 10 in, P = 100 lb, in the case's
+/// units and materials) on a zone of `zone` Hertz radii.
+fn sphere_problem(case: &Case, cells_per_radius: f64, zone: f64) -> (ContactProblem, HertzSpheres) {
+    scenes::spheres(
+        case.m1,
+        case.m2,
+        1.0 * case.length,
+        10.0 * case.length,
+        100.0 * case.force,
+        cells_per_radius,
+        zone,
+    )
+}
+
+/// The spheres on a zone of 1.25 Hertz radii, solved by `method` and
+/// checked from the problem's data.
 fn spheres(case: &Case, cells_per_radius: f64, method: Method) -> (ContactSolution, HertzSpheres) {
-    let (r1, r2, load) = (1.0 * case.length, 10.0 * case.length, 100.0 * case.force);
-    let hertz = HertzSpheres::new(
-        combined_modulus(&case.m1, &case.m2),
-        combined_radius(r1, r2),
-        load,
-    )
-    .unwrap();
-    let a = hertz.contact_radius();
-    let points = PointSet::grid_disk(a / cells_per_radius, 1.25 * a).unwrap();
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: r1 },
-        Surface::Sphere { radius: r2 },
-    );
-    let problem = ContactProblem::new(
-        points,
-        &Body::uniform_patch(case.m1),
-        &Body::uniform_patch(case.m2),
-        &geometry,
-        Loading::Load(load),
-    )
-    .unwrap();
-    (problem.solve(method, &Options::default()).unwrap(), hertz)
+    let (problem, hertz) = sphere_problem(case, cells_per_radius, 1.25);
+    let sol = problem.solve(method, &Options::default()).unwrap();
+    assert_solves(&problem, &sol, &format!("spheres, {method}"));
+    (sol, hertz)
 }
 
 #[test]
@@ -181,29 +181,17 @@ fn methods_agree_on_a_contact_problem() {
 
 #[test]
 fn load_and_displacement_control_agree() {
+    // Inch-pound steel on steel: P = 100 lb.
     let (_, case) = cases().swap_remove(0);
-    let (r1, r2) = (1.0, 10.0);
-    let hertz = HertzSpheres::new(
-        combined_modulus(&case.m1, &case.m2),
-        combined_radius(r1, r2),
-        100.0,
-    )
-    .unwrap();
-    let a = hertz.contact_radius();
-    let points = PointSet::grid_disk(a / 6.0, 1.3 * a).unwrap();
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: r1 },
-        Surface::Sphere { radius: r2 },
-    );
-    let body = Body::uniform_patch(case.m1);
-    let load = ContactProblem::new(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+    let (load, _) = sphere_problem(&case, 6.0, 1.3);
     let by_load = load.solve(Method::Lemke, &Options::default()).unwrap();
-    let by_approach = load
+    assert_solves(&load, &by_load, "by load");
+    let approach = load
         .with_loading(Loading::Approach(by_load.approach))
-        .unwrap()
-        .solve(Method::Lemke, &Options::default())
         .unwrap();
+    let by_approach = approach.solve(Method::Lemke, &Options::default()).unwrap();
     assert!(by_approach.certificate.holds());
+    assert_solves(&approach, &by_approach, "by approach");
     assert!(
         (by_approach.load / 100.0 - 1.0).abs() < 1e-10,
         "{}",
@@ -248,6 +236,7 @@ fn hertz_cylinders_in_plane_strain() {
                 "{units} {method}: {}",
                 sol.certificate
             );
+            assert_solves(&problem, &sol, &format!("{units} {method}"));
             let err_b = sol.contact_extent / b - 1.0;
             let err_p0 = sol.max_pressure / hertz.peak_pressure() - 1.0;
             let err_delta = sol.approach / hertz.approach(d0).unwrap() - 1.0;
@@ -273,22 +262,14 @@ fn hertz_cylinders_in_plane_strain() {
 #[test]
 fn rigid_flat_punch() {
     for (units, case) in cases() {
-        let a = 0.1 * case.length;
-        let punch = FlatPunch::new(case.m2.plane_strain_modulus(), a).unwrap();
-        let points = PointSet::grid_disk(a / 20.0, a).unwrap();
-        let n = points.len();
-        let problem = ContactProblem::new(
-            points,
-            &Body::uniform_patch(case.m2),
-            &Body::rigid(),
-            &Geometry::Separation(vec![0.0; n]),
-            Loading::Approach(1e-4 * case.length),
-        )
-        .unwrap();
+        let (problem, punch) =
+            scenes::flat_punch(case.m2, 0.1 * case.length, 20.0, 1e-4 * case.length);
+        let n = problem.points().len();
         let sol = problem
             .solve(Method::BlockPivoting, &Options::default())
             .unwrap();
         assert!(sol.certificate.holds(), "{units}: {}", sol.certificate);
+        assert_solves(&problem, &sol, units);
         // Every point touches, and the zone is the punch: the edge warning
         // fires, unless the zone's edge is declared the punch's own rim.
         assert_eq!(sol.contact.len(), n);
@@ -296,6 +277,7 @@ fn rigid_flat_punch() {
         let quiet = rim
             .solve(Method::BlockPivoting, &Options::default())
             .unwrap();
+        assert_solves(&rim, &quiet, units);
         assert!(
             quiet
                 .warnings
@@ -325,24 +307,11 @@ fn rigid_flat_punch() {
 #[test]
 fn truncated_zone_warns() {
     let (_, case) = cases().swap_remove(0);
-    let hertz = HertzSpheres::new(
-        combined_modulus(&case.m1, &case.m2),
-        combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .unwrap();
-    let a = hertz.contact_radius();
     // Candidate zone smaller than the contact: the answer is truncated.
-    let points = PointSet::grid_disk(a / 6.0, 0.7 * a).unwrap();
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
-    let body = Body::uniform_patch(case.m1);
-    let problem =
-        ContactProblem::new(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+    let (problem, _) = sphere_problem(&case, 6.0, 0.7);
     let sol = problem.solve(Method::Lemke, &Options::default()).unwrap();
     assert!(sol.certificate.holds());
+    assert_solves(&problem, &sol, "truncated");
     let warning = sol
         .warnings
         .iter()
@@ -356,23 +325,15 @@ fn flat_punch_is_maximally_degenerate_and_every_method_agrees() {
     // All separations equal: every ratio test of the tableau methods ties at
     // the first pivot. 8 cells per radius keeps the tableau small.
     for (units, case) in cases() {
-        let a = 0.1 * case.length;
-        let points = PointSet::grid_disk(a / 8.0, a).unwrap();
-        let n = points.len();
-        let problem = ContactProblem::new(
-            points,
-            &Body::uniform_patch(case.m2),
-            &Body::rigid(),
-            &Geometry::Separation(vec![0.0; n]),
-            Loading::Approach(1e-4 * case.length),
-        )
-        .unwrap();
+        let (problem, _) = scenes::flat_punch(case.m2, 0.1 * case.length, 8.0, 1e-4 * case.length);
+        let n = problem.points().len();
         let reference = problem
             .solve(Method::BlockPivoting, &Options::default())
             .unwrap();
         for method in Method::TABLEAU {
             let sol = problem.solve(method, &Options::default()).unwrap();
             assert!(sol.certificate.holds(), "{units} {method}");
+            assert_solves(&problem, &sol, &format!("{units} {method}"));
             assert_eq!(sol.contact.len(), n, "{units} {method}");
             assert!(
                 (sol.load / reference.load - 1.0).abs() < 1e-11,
@@ -400,6 +361,7 @@ fn hetenyi_case(per_half: usize, length: f64) -> (ContactSolution, HetenyiBeam, 
     let sol = problem
         .solve(Method::BlockPivoting, &Options::default())
         .unwrap();
+    assert_solves(&problem, &sol, &format!("Hetenyi, {per_half} per half"));
     (
         sol,
         HetenyiBeam::new(e * i, k, length, load).unwrap(),
@@ -498,6 +460,9 @@ fn folded_problems_agree_with_full_ones() {
             let x = full.solve(method, &Options::default()).unwrap();
             let y = folded.solve(method, &Options::default()).unwrap();
             assert!(y.certificate.holds(), "{method}: {}", y.certificate);
+            // Both from the full S and eps: the folded answer too.
+            assert_solves(&full, &x, &format!("{method}, full"));
+            assert_solves(&full, &y, &format!("{method}, folded"));
             let fmax = x.forces.iter().cloned().fold(0.0, f64::max);
             for k in 0..x.forces.len() {
                 assert!(
@@ -561,14 +526,23 @@ fn a_warm_start_from_the_previous_load_step_saves_iterations() {
         Surface::Sphere { radius: 10.0 },
     );
     let body = Body::uniform_patch(steel);
+    let points = PointSet::grid_disk(a / 8.0, 1.4 * a).unwrap();
+    // The data the warm solutions are checked against (folded or not).
+    let full = ContactProblem::new(
+        points.clone(),
+        &body,
+        &body,
+        &geometry,
+        Loading::Load(100.0),
+    )
+    .unwrap();
     for fold in [false, true] {
-        let points = PointSet::grid_disk(a / 8.0, 1.4 * a).unwrap();
         let build = if fold {
             ContactProblem::symmetric
         } else {
             ContactProblem::new
         };
-        let light = build(points, &body, &body, &geometry, Loading::Load(90.0)).unwrap();
+        let light = build(points.clone(), &body, &body, &geometry, Loading::Load(90.0)).unwrap();
         let heavy = light.with_loading(Loading::Load(100.0)).unwrap();
         let first = light
             .solve(Method::BlockPivoting, &Options::default())
@@ -580,6 +554,7 @@ fn a_warm_start_from_the_previous_load_step_saves_iterations() {
             .solve_from(&first, Method::BlockPivoting, &Options::default())
             .unwrap();
         assert!(warm.certificate.holds());
+        assert_solves(&full, &warm, &format!("warm, fold {fold}"));
         assert_eq!(warm.contact, cold.contact);
         let fmax = cold.forces.iter().cloned().fold(0.0, f64::max);
         for k in 0..cold.forces.len() {

@@ -89,7 +89,8 @@ fn candidates(dimension: Dimension, square: bool) -> Vec<(&'static str, Vec<Elem
 pub struct Folding {
     group: &'static str,
     order: usize,
-    reps: Vec<usize>,
+    /// The orbits, each sorted; its first point is its representative
+    /// (the first point of the set not in an earlier orbit).
     orbits: Vec<Vec<usize>>,
     rep_of: Vec<usize>,
 }
@@ -140,40 +141,12 @@ impl Folding {
                 ((points.x(j) - x).abs() <= tolerance && (points.y(j) - y).abs() <= tolerance)
                     .then_some(j)
             };
-            let mut rep_of = vec![usize::MAX; points.len()];
-            let mut reps = Vec::new();
-            let mut orbits = Vec::new();
-            let mut ok = true;
-            'points: for k in 0..points.len() {
-                if rep_of[k] != usize::MAX {
-                    continue;
-                }
-                let mut orbit = Vec::new();
-                for &g in &elements {
-                    match image(g, k) {
-                        Some(j) => {
-                            if !orbit.contains(&j) {
-                                orbit.push(j);
-                            }
-                        }
-                        None => {
-                            ok = false;
-                            break 'points;
-                        }
-                    }
-                }
-                orbit.sort_unstable();
-                for &j in &orbit {
-                    rep_of[j] = reps.len();
-                }
-                reps.push(k);
-                orbits.push(orbit);
-            }
-            if ok && reps.len() < points.len() {
+            if let Some((orbits, rep_of)) = orbits_of(points.len(), &elements, image)
+                && orbits.len() < points.len()
+            {
                 found.push(Self {
                     group,
                     order: elements.len(),
-                    reps,
                     orbits,
                     rep_of,
                 });
@@ -194,17 +167,17 @@ impl Folding {
 
     /// The number of representatives (the folded problem's size).
     pub fn len(&self) -> usize {
-        self.reps.len()
+        self.orbits.len()
     }
 
     /// Whether there is no representative (never: a point set is not empty).
     pub fn is_empty(&self) -> bool {
-        self.reps.is_empty()
+        self.orbits.is_empty()
     }
 
-    /// The point that represents orbit `a`.
+    /// The point that represents orbit `a`: its smallest index.
     pub fn rep(&self, a: usize) -> usize {
-        self.reps[a]
+        self.orbits[a][0]
     }
 
     /// The points of orbit `a`.
@@ -240,6 +213,42 @@ impl Folding {
     }
 }
 
+/// The orbits of the points `0..n` under `elements` (a group: the identity
+/// first), each sorted, and the orbit of every point; `None` as soon as a
+/// point has no image under some element.
+///
+/// The points are visited in order and a point not yet in an orbit starts
+/// one, so every orbit's first (smallest) point is the one that started it:
+/// any smaller point of the orbit would have been visited earlier and put
+/// this one in its orbit (orbits of a group are disjoint).
+fn orbits_of(
+    n: usize,
+    elements: &[Element],
+    image: impl Fn(Element, usize) -> Option<usize>,
+) -> Option<(Vec<Vec<usize>>, Vec<usize>)> {
+    let mut rep_of = vec![usize::MAX; n];
+    let mut orbits: Vec<Vec<usize>> = Vec::new();
+    for k in 0..n {
+        if rep_of[k] != usize::MAX {
+            continue;
+        }
+        let mut orbit = Vec::with_capacity(elements.len());
+        for &g in elements {
+            let j = image(g, k)?;
+            if !orbit.contains(&j) {
+                orbit.push(j);
+            }
+        }
+        orbit.sort_unstable();
+        debug_assert_eq!(orbit[0], k, "an orbit starts at its smallest point");
+        for &j in &orbit {
+            rep_of[j] = orbits.len();
+        }
+        orbits.push(orbit);
+    }
+    Some((orbits, rep_of))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -261,6 +270,29 @@ mod tests {
         // 29 points of radius <= 3: orbits of the octant 0 <= y <= x.
         assert_eq!(p.len(), 29);
         assert_eq!(f.len(), 7); // (0,0), (1,0), (2,0), (3,0), (1,1), (2,1), (2,2)
+    }
+
+    #[test]
+    fn each_representative_is_the_smallest_point_of_its_orbit() {
+        let steel = Material::new(30e6, 0.3).unwrap();
+        let disk = PointSet::grid_disk(1.0, 4.0).unwrap();
+        let rectangle = PointSet::grid_rectangle(1.0, 5.0, 4, 7).unwrap();
+        let line = PointSet::line(-2.0, 2.0, 9).unwrap();
+        let patch = Body::uniform_patch(steel);
+        let winkler = Body::winkler(1.0);
+        for (p, body) in [(&disk, &patch), (&rectangle, &patch), (&line, &winkler)] {
+            for f in Folding::detect_all(p, &[body]) {
+                for a in 0..f.len() {
+                    let orbit = f.orbit(a);
+                    assert_eq!(f.rep(a), *orbit.iter().min().unwrap(), "{}", f.group());
+                    assert!(orbit.iter().all(|&j| f.rep_of(j) == a));
+                }
+                // Every point is in the orbit it is filed under.
+                for k in 0..p.len() {
+                    assert!(f.orbit(f.rep_of(k)).contains(&k));
+                }
+            }
+        }
     }
 
     #[test]

@@ -7,6 +7,12 @@
 
 #![allow(dead_code)]
 
+// The problem builders shared with the other tests (common::scenes), declared
+// here so that examples/stability_report.rs, which includes this file alone,
+// has them too; the path is relative to this file's directory.
+#[path = "scenes.rs"]
+pub mod scenes;
+
 use elcon_analysis::references::{FlatPunch, HertzSpheres, HetenyiBeam, combined_radius};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
 use elcon_influence::{Body, Material, PointSet, combined_modulus};
@@ -66,23 +72,9 @@ fn spheres(
     across: usize,
     zone: f64,
 ) -> (ContactProblem, HertzSpheres) {
-    let hertz = HertzSpheres::new(combined_modulus(&m1, &m2), combined_radius(r1, r2), load)
-        .expect("Hertz");
-    let a = hertz.contact_radius();
-    let points = PointSet::grid_disk(2.0 * a / (across - 1) as f64, zone * a).expect("grid");
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: r1 },
-        Surface::Sphere { radius: r2 },
-    );
-    let problem = ContactProblem::new(
-        points,
-        &Body::uniform_patch(m1),
-        &Body::uniform_patch(m2),
-        &geometry,
-        Loading::Load(load),
-    )
-    .expect("problem");
-    (problem, hertz)
+    // A spacing of 2a / (across - 1): (across - 1) / 2 is exact, so
+    // a / ((across - 1) / 2) rounds the same quotient, to the same grid.
+    scenes::spheres(m1, m2, r1, r2, load, (across - 1) as f64 / 2.0, zone)
 }
 
 fn hertz_case(
@@ -155,18 +147,7 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
         across,
     ));
     {
-        let a = 0.001;
-        let points = PointSet::grid_disk(a / 10.0, a).expect("grid");
-        let n = points.len();
-        let punch = FlatPunch::new(steel().plane_strain_modulus(), a).expect("punch");
-        let problem = ContactProblem::new(
-            points,
-            &Body::uniform_patch(steel()),
-            &Body::rigid(),
-            &Geometry::Separation(vec![0.0; n]),
-            Loading::Approach(1e-6),
-        )
-        .expect("punch problem");
+        let (problem, punch) = scenes::flat_punch(steel(), 0.001, 10.0, 1e-6);
         cases.push(Case {
             family: "flat punch",
             name: "all separations equal (every ratio test ties)".into(),
