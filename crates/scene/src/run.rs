@@ -10,11 +10,11 @@ use elcon_analysis::{ContactProblem, ContactSolution, Loading};
 use elcon_design::{
     DesignOptions, Evaluation, LogCrown, Profile, SearchOptions, crown_search, design, evaluate,
 };
-use elcon_influence::{Dimension, combined_modulus_of};
+use elcon_influence::Dimension;
 use serde::Serialize;
 
 use crate::error::SceneError;
-use crate::scene::{DesignFamily, PointsSpec, Reference, RelativeTo, Scene, Units};
+use crate::scene::{DesignFamily, Hertz, PointsSpec, Reference, RelativeTo, Scene, Units};
 
 /// The engine's statistics, as written.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -437,52 +437,16 @@ fn reference_intensity(scene: &Scene, case: &ContactProblem, load: f64) -> Resul
     Ok(match spec.relative_to {
         RelativeTo::Absolute => 1.0,
         RelativeTo::Mean => load / case.points().total_measure(),
-        RelativeTo::Hertz => {
-            let e = combined_modulus_of(
-                scene.bodies[0].material.as_ref(),
-                scene.bodies[1].material.as_ref(),
-            );
-            let scale_error = || {
+        // Validation refuses relative_to = "hertz" without a Hertz contact.
+        RelativeTo::Hertz => scene
+            .hertz(load)
+            .ok_or_else(|| {
                 run_error(
                     scene,
-                    "design.relative_to = \"hertz\" needs a Hertz contact (curved surfaces, half-space bodies)",
+                    "design.relative_to = \"hertz\" needs a Hertz contact at every design load",
                 )
-            };
-            let r = match &scene.geometry {
-                elcon_analysis::Geometry::Surfaces(a, b) => {
-                    let k = |s: &elcon_analysis::Surface| match *s {
-                        elcon_analysis::Surface::Plane => 0.0,
-                        elcon_analysis::Surface::Sphere { radius }
-                        | elcon_analysis::Surface::Cylinder { radius } => 1.0 / radius,
-                    };
-                    let k = k(a) + k(b);
-                    if k > 0.0 {
-                        1.0 / k
-                    } else {
-                        return Err(scale_error());
-                    }
-                }
-                _ => return Err(scale_error()),
-            };
-            if !e.is_finite() {
-                return Err(scale_error());
-            }
-            match scene.points_spec {
-                PointsSpec::Rectangle { half_y, .. } => {
-                    elcon_analysis::references::HertzCylinders::new(e, r, load / (2.0 * half_y))
-                        .map_err(|e| run_error(scene, e))?
-                        .peak_pressure()
-                }
-                PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
-                    elcon_analysis::references::HertzCylinders::new(e, r, load)
-                        .map_err(|e| run_error(scene, e))?
-                        .peak_pressure()
-                }
-                _ => elcon_analysis::references::HertzSpheres::new(e, r, load)
-                    .map_err(|e| run_error(scene, e))?
-                    .peak_pressure(),
-            }
-        }
+            })?
+            .peak_pressure(),
     })
 }
 
@@ -577,30 +541,23 @@ fn design_stage(scene: &Scene) -> Result<(DesignJson, DesignRun), SceneError> {
             design_load,
             flat_length,
         } => {
-            let e = combined_modulus_of(b1.material.as_ref(), b2.material.as_ref());
-            let (radius, length) = match (&scene.geometry, &scene.points_spec) {
-                (
-                    elcon_analysis::Geometry::Surfaces(a, b),
-                    PointsSpec::Rectangle { half_y, .. },
-                ) => {
-                    let k = |s: &elcon_analysis::Surface| match *s {
-                        elcon_analysis::Surface::Cylinder { radius } => 1.0 / radius,
-                        _ => 0.0,
-                    };
-                    (1.0 / (k(a) + k(b)), 2.0 * half_y)
+            // Validation refuses a logarithmic crown but for a roller.
+            let (roller, length) = match (scene.hertz(*design_load), &scene.points_spec) {
+                (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => {
+                    (h, 2.0 * half_y)
                 }
                 _ => {
                     return Err(run_error(
                         scene,
-                        "a logarithmic crown needs a cylinder on a rectangle grid",
+                        "design.family: a logarithmic crown needs a cylinder on a rectangle grid",
                     ));
                 }
             };
             let profile = Profile::LogarithmicCrown(LogCrown {
                 design_load: *design_load,
                 length,
-                combined_modulus: e,
-                radius,
+                combined_modulus: roller.combined_modulus,
+                radius: roller.radius,
                 flat_length: *flat_length,
             });
             let after = evaluate(&cases, spec.axis, &profile, scene.method, &scene.options)
