@@ -62,11 +62,6 @@ pub(crate) fn load_of(case: &ContactProblem, index: usize) -> Result<f64, Design
     }
 }
 
-/// The largest load intensity F_k / A_k of a solution.
-pub(crate) fn max_intensity(solution: &ContactSolution) -> f64 {
-    solution.pressures.iter().fold(0.0f64, |a, p| a.max(*p))
-}
-
 /// Solves every case with `profile` added to its separations.
 ///
 /// # Errors
@@ -105,7 +100,7 @@ pub fn evaluate(
         let solution = corrected
             .solve(method, options)
             .map_err(DesignError::analysis(stage))?;
-        max_intensities.push(max_intensity(&solution));
+        max_intensities.push(solution.max_pressure);
         solutions.push(solution);
         corrections.push(y);
     }
