@@ -47,7 +47,7 @@
 //! relative to each load, so that a light load counts as much as a heavy one.
 
 use elcon_analysis::{ContactProblem, Method, Options};
-use elcon_influence::Dimension;
+use elcon_influence::{Dimension, PointSet};
 use elcon_lcp::{Bound, Certificate, ProgramBuilder, Statistics};
 use faer::linalg::solvers::SolveLstsq;
 use faer::{Col, Mat};
@@ -317,10 +317,17 @@ struct Case<'a> {
     reference: f64,
 }
 
-/// The distinct axial positions of all cases' points (merged within
-/// 1e-9 of their range) and, per case, each point's station.
-fn stations(cases: &[ContactProblem], axis: Axis) -> (Vec<f64>, Vec<Vec<usize>>) {
-    let all: Vec<Vec<f64>> = cases.iter().map(|c| axis.positions(c.points())).collect();
+/// The axial stations of point sets (the load cases' points, say): the
+/// distinct axial positions of all their points, increasing, positions
+/// within 1e-9 of the whole range merged into the first of them; and, per
+/// set, each point's station (an index into the stations). These are the
+/// stations a design's free profile has one drop at ([`Design::stations`])
+/// and its table is written at.
+pub fn axial_stations<'a>(
+    sets: impl IntoIterator<Item = &'a PointSet>,
+    axis: Axis,
+) -> (Vec<f64>, Vec<Vec<usize>>) {
+    let all: Vec<Vec<f64>> = sets.into_iter().map(|p| axis.positions(p)).collect();
     let mut sorted: Vec<f64> = all.iter().flatten().copied().collect();
     sorted.sort_by(f64::total_cmp);
     let range = sorted.last().copied().unwrap_or(0.0) - sorted.first().copied().unwrap_or(0.0);
@@ -504,7 +511,7 @@ pub fn design(
         });
     }
     let references = reference_intensities(options.reference_intensities.as_deref(), cases.len())?;
-    let (stations, index) = stations(cases, axis);
+    let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), axis);
     let basis = Basis::new(family, &stations)?;
     let prepared: Vec<Case<'_>> = cases
         .iter()

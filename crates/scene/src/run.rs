@@ -8,7 +8,8 @@ use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading};
 use elcon_design::{
-    DesignOptions, Evaluation, LogCrown, Profile, SearchOptions, crown_search, design, evaluate,
+    DesignOptions, Evaluation, LogCrown, Profile, SearchOptions, axial_stations, crown_search,
+    design, evaluate,
 };
 use elcon_influence::Dimension;
 use serde::Serialize;
@@ -571,7 +572,7 @@ fn design_stage(scene: &Scene) -> Result<(DesignJson, DesignRun), SceneError> {
     };
     let objective = after.relative_worst(&references);
     let objective_before = before.relative_worst(&references);
-    let positions = stations(&cases, spec.axis);
+    let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis);
     let table = profile.table(&positions).map_err(fail)?;
     let json = DesignJson {
         family: family_name(&spec.family),
@@ -610,17 +611,6 @@ fn design_stage(scene: &Scene) -> Result<(DesignJson, DesignRun), SceneError> {
             cases,
         },
     ))
-}
-
-/// The distinct axial positions of the cases' points, increasing.
-fn stations(cases: &[ContactProblem], axis: elcon_design::Axis) -> Vec<f64> {
-    let mut s: Vec<f64> = cases
-        .iter()
-        .flat_map(|c| axis.positions(c.points()))
-        .collect();
-    s.sort_by(f64::total_cmp);
-    s.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs().max(1e-300));
-    s
 }
 
 fn family_name(f: &DesignFamily) -> String {
