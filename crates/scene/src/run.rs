@@ -9,7 +9,7 @@ use std::time::Instant;
 use elcon_analysis::{ContactProblem, ContactSolution, Loading};
 use elcon_design::{
     DesignOptions, Evaluation, LogCrown, Profile, SearchOptions, axial_stations, crown_search,
-    design, evaluate,
+    design, evaluate, evaluate_known,
 };
 use elcon_influence::Dimension;
 use serde::Serialize;
@@ -276,7 +276,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         None => (None, None),
     };
     let design = match &scene.design {
-        Some(_) => Some(design_stage(scene)?),
+        Some(_) => Some(design_stage(scene, &problem, &solution)?),
         None => None,
     };
     let st = &solution.statistics;
@@ -453,33 +453,49 @@ fn reference_intensity(scene: &Scene, case: &ContactProblem, load: f64) -> Resul
 
 /// The design stage: every load case analysed without and with the
 /// correction the family's method finds.
-fn design_stage(scene: &Scene) -> Result<(DesignJson, DesignRun), SceneError> {
+fn design_stage(
+    scene: &Scene,
+    problem: &ContactProblem,
+    solution: &ContactSolution,
+) -> Result<(DesignJson, DesignRun), SceneError> {
     let spec = scene.design.as_ref().expect("a design stage");
     let start = Instant::now();
     let [b1, b2] = &scene.bodies;
     let mut cases = Vec::new();
+    let mut known = Vec::new();
     let mut references = Vec::new();
     for &load in &spec.loads {
         let points = scene.points_for(load)?;
-        let case = ContactProblem::new(
-            points,
-            &b1.body,
-            &b2.body,
-            &scene.geometry,
-            Loading::Load(load),
-        )
-        .map_err(|e| run_error(scene, e))?
-        .with_body_edges(scene.body_edges.0, scene.body_edges.1);
+        // On the scene's own points, a problem solved in full shares its S
+        // (a folded one has no full S to share); at the scene's own load its
+        // solution is the uncorrected analysis.
+        let own = problem.folding().is_none() && points == *problem.points();
+        let case = if own {
+            problem.with_loading(Loading::Load(load))
+        } else {
+            ContactProblem::new(
+                points,
+                &b1.body,
+                &b2.body,
+                &scene.geometry,
+                Loading::Load(load),
+            )
+            .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1))
+        }
+        .map_err(|e| run_error(scene, e))?;
+        let solved = matches!(problem.loading(), Loading::Load(p) if own && p == load);
+        known.push(solved.then_some(solution));
         references.push(reference_intensity(scene, &case, load)?);
         cases.push(case);
     }
     let fail = |e: elcon_design::DesignError| run_error(scene, e);
-    let before = evaluate(
+    let before = evaluate_known(
         &cases,
         spec.axis,
         &Profile::none(),
         scene.method,
         &scene.options,
+        &known,
     )
     .map_err(fail)?;
     let (profile, after, starts) = match &spec.family {
