@@ -520,9 +520,7 @@ pub fn design(
         .map(|(l, (problem, station))| {
             Ok(Case {
                 problem,
-                measures: (0..station.len())
-                    .map(|k| problem.points().measure(k))
-                    .collect(),
+                measures: problem.points().measures(),
                 station,
                 load: load_of(problem, l)?,
                 reference: references[l],

@@ -275,10 +275,11 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         }
         None => (None, None),
     };
-    let design = match &scene.design {
+    let (design_json, design) = match &scene.design {
         Some(_) => Some(design_stage(scene, &problem, &solution)?),
         None => None,
-    };
+    }
+    .unzip();
     let st = &solution.statistics;
     let c = &solution.certificate;
     let result = RunResult {
@@ -326,14 +327,14 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         },
         warnings: solution.warnings.iter().map(|w| w.to_string()).collect(),
         reference,
-        design: design.as_ref().map(|(json, _)| json.clone()),
+        design: design_json,
     };
     Ok(Run {
         scene: scene.clone(),
         problem,
         solution,
         reference_pressures,
-        design: design.map(|(_, d)| d),
+        design,
         result,
     })
 }

@@ -1284,12 +1284,13 @@ fn reference(
                     _ => return None,
                 }
             }
+            // The beam is the zone: its cells end to end.
             let (lo, hi) = (points.xs()[0], points.xs()[points.len() - 1]);
-            let h = points.cell().dx;
-            let centred = (x0? - 0.5 * (lo + hi)).abs() <= 1e-9 * (hi - lo + h);
+            let length = points.extent().0;
+            let centred = (x0? - 0.5 * (lo + hi)).abs() <= 1e-9 * length;
             centred
                 .then(|| {
-                    HetenyiBeam::new(ei?, k?, hi - lo + h, p)
+                    HetenyiBeam::new(ei?, k?, length, p)
                         .ok()
                         .map(Reference::Hetenyi)
                 })
