@@ -288,10 +288,7 @@ fn batch_command(path: &Path, out: &Path, jobs: Option<usize>, shard: Option<Sha
             if let Some(bar) = &report.bar {
                 bar.finish_and_clear();
             }
-            let dir = match shard {
-                Some(s) => out.join(format!("{}-shard-{}-of-{}", batch.name, s.index, s.count)),
-                None => out.join(&batch.name),
-            };
+            let dir = batch.output_dir(out, shard);
             println!(
                 "batch `{}`: {} runs, {} failed; tables in {}",
                 o.batch,

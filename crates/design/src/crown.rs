@@ -18,6 +18,7 @@
 use elcon_analysis::{ContactProblem, Method, Options};
 
 use crate::evaluate::{Evaluation, evaluate};
+use crate::optimize::reference_intensities;
 use crate::{Axis, DesignError, Profile};
 
 /// Golden-section steps of the refinement: the bracket shrinks by 0.618 per
@@ -65,9 +66,10 @@ pub struct CrownSearch {
 /// crown `make(q)` with the least worst-case `p_max_l / r_l` over `cases`.
 ///
 /// # Errors
-/// [`DesignError::InvalidInput`] for a bad bracket or `samples < 3`,
+/// [`DesignError::InvalidInput`] for a bad bracket, `samples < 3` or a
+/// reference intensity that is not finite and > 0,
 /// [`DesignError::Incompatible`] for references that do not match the
-/// cases; the errors of `make` and of the analyses.
+/// cases in number; the errors of `make` and of the analyses.
 pub fn crown_search(
     cases: &[ContactProblem],
     axis: Axis,
@@ -77,22 +79,7 @@ pub fn crown_search(
     search: &SearchOptions,
 ) -> Result<CrownSearch, DesignError> {
     let (samples, method, options) = (search.samples, search.method, &search.options);
-    let references = match &search.reference_intensities {
-        None => vec![1.0; cases.len()],
-        Some(r) if r.len() == cases.len() && r.iter().all(|v| v.is_finite() && *v > 0.0) => {
-            r.clone()
-        }
-        Some(r) => {
-            return Err(DesignError::Incompatible {
-                field: "reference_intensities",
-                reason: format!(
-                    "needs one finite, positive intensity per load case ({} cases, {} given)",
-                    cases.len(),
-                    r.len()
-                ),
-            });
-        }
-    };
+    let references = reference_intensities(search.reference_intensities.as_deref(), cases.len())?;
     if !(low.is_finite() && low > 0.0) {
         return Err(DesignError::InvalidInput {
             field: "low",
@@ -115,11 +102,21 @@ pub fn crown_search(
         });
     }
     let mut tried = Vec::new();
+    // The best so far (the first of equal objectives): parameter, objective,
+    // profile, and its evaluation, kept rather than recomputed.
+    let mut found: Option<(f64, f64, Profile, Evaluation)> = None;
     let mut worst_at = |log_q: f64| -> Result<f64, DesignError> {
         let q = log_q.exp();
-        let e = evaluate(cases, axis, &make(q)?, method, options)?;
+        let profile = make(q)?;
+        let e = evaluate(cases, axis, &profile, method, options)?;
         let objective = e.relative_worst(&references);
         tried.push((q, objective));
+        if found
+            .as_ref()
+            .is_none_or(|b| objective.total_cmp(&b.1).is_lt())
+        {
+            found = Some((q, objective, profile, e));
+        }
         Ok(objective)
     };
     let (a, b) = (low.ln(), high.ln());
@@ -157,13 +154,7 @@ pub fn crown_search(
             f2 = worst_at(x2)?;
         }
     }
-    let (parameter, _) = tried
-        .iter()
-        .copied()
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .expect("samples were tried");
-    let profile = make(parameter)?;
-    let evaluation = evaluate(cases, axis, &profile, method, options)?;
+    let (parameter, _, profile, evaluation) = found.expect("samples were tried");
     Ok(CrownSearch {
         parameter,
         profile,

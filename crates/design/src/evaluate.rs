@@ -62,11 +62,6 @@ pub(crate) fn load_of(case: &ContactProblem, index: usize) -> Result<f64, Design
     }
 }
 
-/// The largest load intensity F_k / A_k of a solution.
-pub(crate) fn max_intensity(solution: &ContactSolution) -> f64 {
-    solution.pressures.iter().fold(0.0f64, |a, p| a.max(*p))
-}
-
 /// Solves every case with `profile` added to its separations.
 ///
 /// # Errors
@@ -80,32 +75,83 @@ pub fn evaluate(
     method: Method,
     options: &Options,
 ) -> Result<Evaluation, DesignError> {
+    evaluate_known(
+        cases,
+        axis,
+        profile,
+        method,
+        options,
+        &vec![None; cases.len()],
+    )
+}
+
+/// As [`evaluate`], with some solutions already known: `known[l]`, when
+/// given, is case l's solution with `profile` added (solved with `method`
+/// and `options`, e.g. the scene's own analysis as the uncorrected case) and
+/// is taken as it is instead of being solved again.
+///
+/// # Errors
+/// As [`evaluate`]; [`DesignError::Incompatible`] when `known` does not have
+/// one entry per case or a known solution not one value per point.
+pub fn evaluate_known(
+    cases: &[ContactProblem],
+    axis: Axis,
+    profile: &Profile,
+    method: Method,
+    options: &Options,
+    known: &[Option<&ContactSolution>],
+) -> Result<Evaluation, DesignError> {
     if cases.is_empty() {
         return Err(DesignError::Incompatible {
             field: "cases",
             reason: "no load case given".into(),
         });
     }
+    if known.len() != cases.len() {
+        return Err(DesignError::Incompatible {
+            field: "known",
+            reason: format!(
+                "has {} entries, expected {} (one per load case)",
+                known.len(),
+                cases.len()
+            ),
+        });
+    }
     let mut corrections = Vec::with_capacity(cases.len());
     let mut solutions = Vec::with_capacity(cases.len());
     let mut max_intensities = Vec::with_capacity(cases.len());
-    for (l, case) in cases.iter().enumerate() {
+    for (l, (case, known)) in cases.iter().zip(known).enumerate() {
         load_of(case, l)?;
         let y = profile.separations(&axis.positions(case.points()))?;
-        let eps: Vec<f64> = case
-            .separation()
-            .iter()
-            .zip(&y)
-            .map(|(e, y)| e + y)
-            .collect();
-        let stage = format!("load case {l} with the {} profile", profile.family());
-        let corrected = case
-            .with_separation(eps)
-            .map_err(DesignError::analysis(stage.clone()))?;
-        let solution = corrected
-            .solve(method, options)
-            .map_err(DesignError::analysis(stage))?;
-        max_intensities.push(max_intensity(&solution));
+        let solution = match known {
+            Some(solution) if solution.pressures.len() == y.len() => (*solution).clone(),
+            Some(solution) => {
+                return Err(DesignError::Incompatible {
+                    field: "known",
+                    reason: format!(
+                        "the solution of load case {l} has {} values, the case {} points",
+                        solution.pressures.len(),
+                        y.len()
+                    ),
+                });
+            }
+            None => {
+                let eps: Vec<f64> = case
+                    .separation()
+                    .iter()
+                    .zip(&y)
+                    .map(|(e, y)| e + y)
+                    .collect();
+                let stage = format!("load case {l} with the {} profile", profile.family());
+                let corrected = case
+                    .with_separation(eps)
+                    .map_err(DesignError::analysis(stage.clone()))?;
+                corrected
+                    .solve(method, options)
+                    .map_err(DesignError::analysis(stage))?
+            }
+        };
+        max_intensities.push(solution.max_pressure);
         solutions.push(solution);
         corrections.push(y);
     }

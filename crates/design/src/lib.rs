@@ -52,7 +52,9 @@ pub mod target;
 
 pub use crown::{CrownSearch, SearchOptions, crown_search};
 pub use error::DesignError;
-pub use evaluate::{Evaluation, evaluate};
-pub use optimize::{Design, DesignOptions, Family, StartOutcome, design, fit_profile};
+pub use evaluate::{Evaluation, evaluate, evaluate_known};
+pub use optimize::{
+    Design, DesignOptions, Family, StartOutcome, axial_stations, design, fit_profile,
+};
 pub use profile::{Axis, JOHNS_GOHAR, LogCrown, Profile};
 pub use target::{TargetSeparation, target_separation, uniform_target};

@@ -48,7 +48,7 @@
 //! relative to each load, so that a light load counts as much as a heavy one.
 
 use elcon_analysis::{ContactProblem, Method, Options};
-use elcon_influence::Dimension;
+use elcon_influence::{Dimension, PointSet};
 use elcon_lcp::{Bound, Certificate, ProgramBuilder, Statistics};
 use faer::linalg::solvers::SolveLstsq;
 use faer::{Col, Mat};
@@ -186,7 +186,7 @@ impl Basis {
                         ),
                     });
                 }
-                Self::polynomial(degree, stations, scale)
+                Ok(Self::polynomial(degree, stations, scale))
             }
             Family::Free => Ok(Self {
                 phi: Mat::identity(n, n),
@@ -196,14 +196,14 @@ impl Basis {
         }
     }
 
-    fn polynomial(degree: usize, stations: &[f64], scale: f64) -> Result<Self, DesignError> {
-        Ok(Self {
+    fn polynomial(degree: usize, stations: &[f64], scale: f64) -> Self {
+        Self {
             phi: Mat::from_fn(stations.len(), degree + 1, |st, i| {
                 (stations[st] / scale).powi(i as i32)
             }),
             constant: Some(0),
             scale,
-        })
+        }
     }
 
     fn params(&self) -> usize {
@@ -248,18 +248,17 @@ impl Basis {
     /// Least-squares parameters of drops `y` at the stations, shifted up so
     /// every drop is >= 0.
     fn fit(&self, y: &[f64]) -> Vec<f64> {
-        let rhs = Col::from_fn(y.len(), |st| y[st]);
-        let theta: Vec<f64> = match self.constant {
+        match self.constant {
             None => y.iter().map(|v| v.max(0.0)).collect(),
             Some(c) => {
+                let rhs = Col::from_fn(y.len(), |st| y[st]);
                 let sol = self.phi.qr().solve_lstsq(&rhs);
                 let mut theta: Vec<f64> = sol.iter().copied().collect();
                 let lowest = self.drops(&theta).into_iter().fold(f64::INFINITY, f64::min);
                 theta[c] -= lowest.min(0.0);
                 theta
             }
-        };
-        theta
+        }
     }
 }
 
@@ -319,10 +318,17 @@ struct Case<'a> {
     reference: f64,
 }
 
-/// The distinct axial positions of all cases' points (merged within
-/// 1e-9 of their range) and, per case, each point's station.
-fn stations(cases: &[ContactProblem], axis: Axis) -> (Vec<f64>, Vec<Vec<usize>>) {
-    let all: Vec<Vec<f64>> = cases.iter().map(|c| axis.positions(c.points())).collect();
+/// The axial stations of point sets (the load cases' points, say): the
+/// distinct axial positions of all their points, increasing, positions
+/// within 1e-9 of the whole range merged into the first of them; and, per
+/// set, each point's station (an index into the stations). These are the
+/// stations a design's free profile has one drop at ([`Design::stations`])
+/// and its table is written at.
+pub fn axial_stations<'a>(
+    sets: impl IntoIterator<Item = &'a PointSet>,
+    axis: Axis,
+) -> (Vec<f64>, Vec<Vec<usize>>) {
+    let all: Vec<Vec<f64>> = sets.into_iter().map(|p| axis.positions(p)).collect();
     let mut sorted: Vec<f64> = all.iter().flatten().copied().collect();
     sorted.sort_by(f64::total_cmp);
     let range = sorted.last().copied().unwrap_or(0.0) - sorted.first().copied().unwrap_or(0.0);
@@ -505,8 +511,8 @@ pub fn design(
             reason: "must be finite and > 0",
         });
     }
-    let references = reference_intensities(options, cases.len())?;
-    let (stations, index) = stations(cases, axis);
+    let references = reference_intensities(options.reference_intensities.as_deref(), cases.len())?;
+    let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), axis);
     let basis = Basis::new(family, &stations)?;
     let prepared: Vec<Case<'_>> = cases
         .iter()
@@ -515,9 +521,7 @@ pub fn design(
         .map(|(l, (problem, station))| {
             Ok(Case {
                 problem,
-                measures: (0..station.len())
-                    .map(|k| problem.points().measure(k))
-                    .collect(),
+                measures: problem.points().measures(),
                 station,
                 load: load_of(problem, l)?,
                 reference: references[l],
@@ -562,21 +566,21 @@ pub fn design(
     });
 
     let mut outcomes = Vec::new();
-    let mut best: Option<(Design, usize)> = None;
+    let mut best: Option<Design> = None;
     let mut first_error = None;
     for (label, theta0) in &starts {
         let run = run_start(
             cases, &prepared, &basis, family, axis, &stations, c_max, theta0, options,
         );
-        match run.map(|(d, _)| d) {
+        match run {
             Ok(d) => {
                 outcomes.push(StartOutcome {
                     label: label.clone(),
                     result: Ok(d.objective),
                     pivots: d.statistics.pivots,
                 });
-                if best.as_ref().is_none_or(|(b, _)| d.objective < b.objective) {
-                    best = Some((d, outcomes.len() - 1));
+                if best.as_ref().is_none_or(|b| d.objective < b.objective) {
+                    best = Some(d);
                 }
             }
             Err(e) => {
@@ -590,7 +594,7 @@ pub fn design(
         }
     }
     match best {
-        Some((mut d, _)) => {
+        Some(mut d) => {
             d.starts = outcomes;
             Ok(d)
         }
@@ -598,9 +602,13 @@ pub fn design(
     }
 }
 
-/// The reference intensities r_l: given (one per case, finite, > 0) or all 1.
-fn reference_intensities(options: &DesignOptions, cases: usize) -> Result<Vec<f64>, DesignError> {
-    match &options.reference_intensities {
+/// The reference intensities r_l: given (one per case, finite, > 0) or all
+/// 1 (the design program's and the crown search's).
+pub(crate) fn reference_intensities(
+    given: Option<&[f64]>,
+    cases: usize,
+) -> Result<Vec<f64>, DesignError> {
+    match given {
         None => Ok(vec![1.0; cases]),
         Some(r) if r.len() != cases => Err(DesignError::Incompatible {
             field: "reference_intensities",
@@ -615,7 +623,7 @@ fn reference_intensities(options: &DesignOptions, cases: usize) -> Result<Vec<f6
                 value: v,
                 reason: "every reference intensity must be finite and > 0",
             }),
-            None => Ok(r.clone()),
+            None => Ok(r.to_vec()),
         },
     }
 }
@@ -669,7 +677,7 @@ fn run_start(
     c_max: Option<f64>,
     theta0: &[f64],
     options: &DesignOptions,
-) -> Result<(Design, Vec<f64>), DesignError> {
+) -> Result<Design, DesignError> {
     let (program, layout) = program(prepared, basis, c_max, theta0)?;
     let solution = program.solve(&options.engine)?;
     let theta: Vec<f64> = layout
@@ -712,21 +720,18 @@ fn run_start(
         }
         _ => false,
     };
-    Ok((
-        Design {
-            profile,
-            stations: stations.to_vec(),
-            objective,
-            max_intensity,
-            evaluation,
-            starts: Vec::new(),
-            certificate: solution.certificate,
-            statistics: solution.statistics,
-            max_constant: c_max,
-            constant_at_bound,
-        },
-        theta,
-    ))
+    Ok(Design {
+        profile,
+        stations: stations.to_vec(),
+        objective,
+        max_intensity,
+        evaluation,
+        starts: Vec::new(),
+        certificate: solution.certificate,
+        statistics: solution.statistics,
+        max_constant: c_max,
+        constant_at_bound,
+    })
 }
 
 #[cfg(test)]

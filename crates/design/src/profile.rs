@@ -265,6 +265,12 @@ impl Profile {
     /// circular crown is asked beyond its radius (`abs(s) - l_f/2 >= R`).
     pub fn separation(&self, s: f64) -> Result<f64, DesignError> {
         self.validate()?;
+        self.drop_unchecked(s)
+    }
+
+    /// The drop at `s` of a validated profile (the one check left is the
+    /// circular crown's reach).
+    fn drop_unchecked(&self, s: f64) -> Result<f64, DesignError> {
         Ok(match self {
             Profile::Quadratic { a, b, c } => a * s * s + b * s + c,
             Profile::Polynomial { coefficients } => {
@@ -303,16 +309,24 @@ impl Profile {
 
     /// The separation at each position: `(position, drop)` rows, the table a
     /// designer hands to manufacturing.
+    ///
+    /// # Errors
+    /// As [`Profile::separation`].
     pub fn table(&self, positions: &[f64]) -> Result<Vec<(f64, f64)>, DesignError> {
+        self.validate()?;
         positions
             .iter()
-            .map(|&s| Ok((s, self.separation(s)?)))
+            .map(|&s| Ok((s, self.drop_unchecked(s)?)))
             .collect()
     }
 
     /// The separations at the axial positions of `positions` (one per point).
+    ///
+    /// # Errors
+    /// As [`Profile::separation`].
     pub fn separations(&self, positions: &[f64]) -> Result<Vec<f64>, DesignError> {
-        positions.iter().map(|&s| self.separation(s)).collect()
+        self.validate()?;
+        positions.iter().map(|&s| self.drop_unchecked(s)).collect()
     }
 }
 

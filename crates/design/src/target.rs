@@ -17,7 +17,7 @@
 //! definite).
 
 use elcon_analysis::ContactProblem;
-use faer::{Col, Mat};
+use faer::Col;
 
 use crate::DesignError;
 use crate::evaluate::load_of;
@@ -39,8 +39,7 @@ pub struct TargetSeparation {
 /// As [`target_separation`].
 pub fn uniform_target(case: &ContactProblem) -> Result<TargetSeparation, DesignError> {
     let points = case.points();
-    let weights: Vec<f64> = (0..points.len()).map(|k| points.measure(k)).collect();
-    target_separation(case, &weights)
+    target_separation(case, &points.measures())
 }
 
 /// The correction that gives the forces `F = P w / sum w`.
@@ -80,23 +79,13 @@ pub fn target_separation(
         });
     }
     let forces = Col::<f64>::from_fn(n, |k| load * weights[k] / total);
-    let s = case.influence();
-    let mut deflection = Mat::<f64>::zeros(n, 1);
-    faer::linalg::matmul::matmul(
-        deflection.as_mut(),
-        faer::Accum::Replace,
-        s,
-        forces.as_mat(),
-        1.0,
-        faer::Par::Seq,
-    );
+    // The elastic deflection under the target forces, S F.
+    let deflection = case.influence() * &forces;
     let eps = case.separation();
     let approach = (0..n)
-        .map(|k| deflection[(k, 0)] + eps[k])
+        .map(|k| deflection[k] + eps[k])
         .fold(f64::NEG_INFINITY, f64::max);
-    let correction = (0..n)
-        .map(|k| approach - deflection[(k, 0)] - eps[k])
-        .collect();
+    let correction = (0..n).map(|k| approach - deflection[k] - eps[k]).collect();
     Ok(TargetSeparation {
         correction,
         forces: forces.iter().copied().collect(),

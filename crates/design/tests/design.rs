@@ -27,6 +27,25 @@ fn beam(per_half: usize, x0: f64, load: f64, length: f64, force: f64) -> Contact
     .unwrap()
 }
 
+/// Largest relative difference accepted between a design's p_max and an
+/// independent re-analysis by Lemke's method: the agreement design()
+/// demands of its own re-analysis ([`DesignOptions::agreement`]). For a
+/// positive definite S the contact solution is unique, so both find the
+/// same contact set and solve the same linear system on it; they differ by
+/// rounding amplified by the conditioning of S on the contact set (measured
+/// here: below 1e-15).
+const INDEPENDENT: f64 = 1e-9;
+
+/// The worst p_max over `cases` with `profile`, by Lemke's method (not the
+/// block pivoting design() re-analyses with), certified.
+fn lemke_worst(cases: &[ContactProblem], profile: &Profile) -> f64 {
+    let e = evaluate(cases, Axis::X, profile, Method::Lemke, &Options::default()).unwrap();
+    for s in &e.solutions {
+        assert!(s.certificate.holds(), "{}", s.certificate);
+    }
+    e.worst
+}
+
 #[test]
 fn design_equals_its_reanalysis_for_every_family() {
     let case = beam(20, 0.0, 5e4, 1.0, 1.0);
@@ -49,6 +68,15 @@ fn design_equals_its_reanalysis_for_every_family() {
         // the same LCP: they agree to rounding times the conditioning of S.
         let rel = (d.max_intensity - d.evaluation.worst).abs() / d.max_intensity;
         assert!(rel < 1e-9, "{family:?}: {rel:e}");
+        // design() checks its program against its own re-analysis (block
+        // pivoting); check it independently too, with another method.
+        let lemke = lemke_worst(std::slice::from_ref(&case), &d.profile);
+        let rel = (lemke - d.max_intensity).abs() / d.max_intensity;
+        assert!(
+            rel < INDEPENDENT,
+            "{family:?}: Lemke {lemke} vs {}: {rel:e}",
+            d.max_intensity
+        );
         // The correction is a separation: >= 0 at every point, 0 somewhere.
         let y = &d.evaluation.corrections[0];
         let lowest = y.iter().cloned().fold(f64::INFINITY, f64::min);
@@ -239,6 +267,13 @@ fn several_load_cases_at_once() {
     // The worst case over both loads, as a ratio to each load's mean
     // intensity, is what t bounds: here p_max of the heavy case dominates.
     assert!((both.max_intensity / both.evaluation.worst - 1.0).abs() < 1e-9);
+    let lemke = lemke_worst(&cases, &both.profile);
+    let rel = (lemke - both.max_intensity).abs() / both.max_intensity;
+    assert!(
+        rel < INDEPENDENT,
+        "Lemke {lemke} vs {}: {rel:e}",
+        both.max_intensity
+    );
     // A design for one load, used under both, is no better than the joint one.
     for single in [&light, &heavy] {
         let d = design(

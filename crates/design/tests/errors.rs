@@ -84,6 +84,44 @@ fn incompatible_inputs_say_what_to_give() {
         e.to_string(),
         "`family.degree`: degree 12 needs at least 13 axial stations, the cases have 12"
     );
+    // Known solutions: one entry per case, one value per point.
+    let case = beam(Loading::Load(5e4));
+    let e = elcon_design::evaluate_known(
+        std::slice::from_ref(&case),
+        Axis::X,
+        &Profile::none(),
+        Method::Lemke,
+        &Options::default(),
+        &[],
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "`known`: has 0 entries, expected 1 (one per load case)"
+    );
+    let other = ContactProblem::new(
+        PointSet::line(-4.45, 4.45, 8).unwrap(),
+        &Body::beam(30e6, 64.0 / 12.0, 0.0),
+        &Body::winkler(1e7),
+        &Geometry::Separation(vec![0.0; 8]),
+        Loading::Load(5e4),
+    )
+    .unwrap()
+    .solve(Method::Lemke, &Options::default())
+    .unwrap();
+    let e = elcon_design::evaluate_known(
+        std::slice::from_ref(&case),
+        Axis::X,
+        &Profile::none(),
+        Method::Lemke,
+        &Options::default(),
+        &[Some(&other)],
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "`known`: the solution of load case 0 has 8 values, the case 12 points"
+    );
     // The quadratic family too (a least-squares fit needs three stations).
     let two = elcon_design::fit_profile(Family::Quadratic, &[0.0, 1.0], &[0.0, 1.0]).unwrap_err();
     assert!(

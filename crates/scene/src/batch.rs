@@ -43,7 +43,8 @@ pub struct Batch {
     pub scene_file: PathBuf,
     /// The error plotted against run time (default "approach").
     pub error: String,
-    base_text: String,
+    /// The base scene, parsed once; each run edits a copy.
+    base: toml_edit::DocumentMut,
     groups: Vec<Vec<(String, Vec<toml::Value>)>>,
 }
 
@@ -144,8 +145,8 @@ pub trait Progress: Sync {
 /// No progress reporting.
 impl Progress for () {}
 
-/// One row of a batch's results table.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// One row of a batch's results table (the default: every value absent).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Row {
     /// Run index in the expanded sweep.
     pub index: usize,
@@ -213,19 +214,7 @@ impl Row {
             overrides,
             scene,
             status: format!("failed: {e}"),
-            method: None,
-            points: None,
-            pivots: None,
-            seconds_total: None,
-            seconds_solve: None,
-            approach: None,
-            max_pressure: None,
-            certificate_worst: None,
-            error_approach: None,
-            error_max_pressure: None,
-            error_contact_extent: None,
-            error_pressure_l2: None,
-            error_load: None,
+            ..Self::default()
         }
     }
 
@@ -300,6 +289,14 @@ impl Batch {
             std::fs::read_to_string(&scene_file).map_err(|e| SceneError::io(&scene_file, e))?;
         // The base scene must be valid on its own.
         Scene::from_str(&scene_file, &base_text)?;
+        let base: toml_edit::DocumentMut =
+            base_text
+                .parse()
+                .map_err(|e: toml_edit::TomlError| SceneError::Syntax {
+                    file: scene_file.clone(),
+                    at: Location::of(&base_text, e.span().map_or(0, |s| s.start)),
+                    message: e.message().trim().to_string(),
+                })?;
         let error = match &b.error {
             Some(e) if METRICS.contains(&e.get_ref().as_str()) => e.get_ref().clone(),
             Some(e) => {
@@ -345,7 +342,7 @@ impl Batch {
             file: path.to_path_buf(),
             scene_file,
             error,
-            base_text,
+            base,
             groups,
         };
         // Every key must apply to the base scene (values are checked per run).
@@ -385,10 +382,7 @@ impl Batch {
     /// The base scene's text with the run's overrides applied (formatting
     /// and the line of every other key kept).
     fn text(&self, run: &BatchRun) -> Result<String, String> {
-        let mut doc: toml_edit::DocumentMut = self
-            .base_text
-            .parse()
-            .map_err(|e| format!("the base scene does not parse: {e}"))?;
+        let mut doc = self.base.clone();
         for (key, value) in &run.overrides {
             let parts: Vec<&str> = key.split('.').collect();
             let mut table = doc.as_table_mut() as &mut dyn toml_edit::TableLike;
@@ -405,6 +399,15 @@ impl Batch {
             table.insert(parts[parts.len() - 1], toml_edit::Item::Value(v));
         }
         Ok(doc.to_string())
+    }
+
+    /// The directory a batch (or one shard of it) writes under `out`:
+    /// `out/<name>`, or `out/<name>-shard-K-of-N` for a shard.
+    pub fn output_dir(&self, out: &Path, shard: Option<Shard>) -> PathBuf {
+        match shard {
+            Some(s) => out.join(format!("{}-shard-{}-of-{}", self.name, s.index, s.count)),
+            None => out.join(&self.name),
+        }
     }
 
     /// The validated scene of a run, named `<batch>/<run slug>`.
@@ -443,10 +446,7 @@ pub fn run_batch(
     shard: Option<Shard>,
     progress: &dyn Progress,
 ) -> Result<BatchOutcome, SceneError> {
-    let dir = match shard {
-        Some(s) => out.join(format!("{}-shard-{}-of-{}", batch.name, s.index, s.count)),
-        None => out.join(&batch.name),
-    };
+    let dir = batch.output_dir(out, shard);
     let runs: Vec<BatchRun> = batch
         .runs()
         .into_iter()

@@ -123,19 +123,13 @@ fn along(
     points: &elcon_influence::PointSet,
     values: &[f64],
 ) -> Vec<(f64, f64)> {
-    let positions = axis.positions(points);
-    let mut rows: Vec<(f64, f64)> = Vec::new();
-    let mut order: Vec<usize> = (0..positions.len()).collect();
-    order.sort_by(|&a, &b| positions[a].total_cmp(&positions[b]));
-    for k in order {
-        match rows.last_mut() {
-            Some(last)
-                if (last.0 - positions[k]).abs() <= 1e-12 * positions[k].abs().max(1e-300) =>
-            {
-                last.1 = last.1.max(values[k]);
-            }
-            _ => rows.push((positions[k], values[k])),
-        }
+    let (stations, index) = elcon_design::axial_stations([points], axis);
+    let mut rows: Vec<(f64, f64)> = stations
+        .into_iter()
+        .map(|s| (s, f64::NEG_INFINITY))
+        .collect();
+    for (&st, &v) in index[0].iter().zip(values) {
+        rows[st].1 = rows[st].1.max(v);
     }
     rows
 }

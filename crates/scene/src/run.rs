@@ -8,13 +8,14 @@ use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading};
 use elcon_design::{
-    DesignOptions, Evaluation, LogCrown, Profile, SearchOptions, crown_search, design, evaluate,
+    DesignOptions, Evaluation, LogCrown, Profile, SearchOptions, axial_stations, crown_search,
+    design, evaluate, evaluate_known,
 };
-use elcon_influence::{Dimension, combined_modulus_of};
+use elcon_influence::Dimension;
 use serde::Serialize;
 
 use crate::error::SceneError;
-use crate::scene::{DesignFamily, PointsSpec, Reference, RelativeTo, Scene, Units};
+use crate::scene::{DesignFamily, Hertz, PointsSpec, Reference, RelativeTo, Scene, Units};
 
 /// The engine's statistics, as written.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -274,10 +275,11 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         }
         None => (None, None),
     };
-    let design = match &scene.design {
-        Some(_) => Some(design_stage(scene)?),
+    let (design_json, design) = match &scene.design {
+        Some(_) => Some(design_stage(scene, &problem, &solution)?),
         None => None,
-    };
+    }
+    .unzip();
     let st = &solution.statistics;
     let c = &solution.certificate;
     let result = RunResult {
@@ -325,14 +327,14 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         },
         warnings: solution.warnings.iter().map(|w| w.to_string()).collect(),
         reference,
-        design: design.as_ref().map(|(json, _)| json.clone()),
+        design: design_json,
     };
     Ok(Run {
         scene: scene.clone(),
         problem,
         solution,
         reference_pressures,
-        design: design.map(|(_, d)| d),
+        design,
         result,
     })
 }
@@ -437,84 +439,64 @@ fn reference_intensity(scene: &Scene, case: &ContactProblem, load: f64) -> Resul
     Ok(match spec.relative_to {
         RelativeTo::Absolute => 1.0,
         RelativeTo::Mean => load / case.points().total_measure(),
-        RelativeTo::Hertz => {
-            let e = combined_modulus_of(
-                scene.bodies[0].material.as_ref(),
-                scene.bodies[1].material.as_ref(),
-            );
-            let scale_error = || {
+        // Validation refuses relative_to = "hertz" without a Hertz contact.
+        RelativeTo::Hertz => scene
+            .hertz(load)
+            .ok_or_else(|| {
                 run_error(
                     scene,
-                    "design.relative_to = \"hertz\" needs a Hertz contact (curved surfaces, half-space bodies)",
+                    "design.relative_to = \"hertz\" needs a Hertz contact at every design load",
                 )
-            };
-            let r = match &scene.geometry {
-                elcon_analysis::Geometry::Surfaces(a, b) => {
-                    let k = |s: &elcon_analysis::Surface| match *s {
-                        elcon_analysis::Surface::Plane => 0.0,
-                        elcon_analysis::Surface::Sphere { radius }
-                        | elcon_analysis::Surface::Cylinder { radius } => 1.0 / radius,
-                    };
-                    let k = k(a) + k(b);
-                    if k > 0.0 {
-                        1.0 / k
-                    } else {
-                        return Err(scale_error());
-                    }
-                }
-                _ => return Err(scale_error()),
-            };
-            if !e.is_finite() {
-                return Err(scale_error());
-            }
-            match scene.points_spec {
-                PointsSpec::Rectangle { half_y, .. } => {
-                    elcon_analysis::references::HertzCylinders::new(e, r, load / (2.0 * half_y))
-                        .map_err(|e| run_error(scene, e))?
-                        .peak_pressure()
-                }
-                PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
-                    elcon_analysis::references::HertzCylinders::new(e, r, load)
-                        .map_err(|e| run_error(scene, e))?
-                        .peak_pressure()
-                }
-                _ => elcon_analysis::references::HertzSpheres::new(e, r, load)
-                    .map_err(|e| run_error(scene, e))?
-                    .peak_pressure(),
-            }
-        }
+            })?
+            .peak_pressure(),
     })
 }
 
 /// The design stage: every load case analysed without and with the
 /// correction the family's method finds.
-fn design_stage(scene: &Scene) -> Result<(DesignJson, DesignRun), SceneError> {
+fn design_stage(
+    scene: &Scene,
+    problem: &ContactProblem,
+    solution: &ContactSolution,
+) -> Result<(DesignJson, DesignRun), SceneError> {
     let spec = scene.design.as_ref().expect("a design stage");
     let start = Instant::now();
     let [b1, b2] = &scene.bodies;
     let mut cases = Vec::new();
+    let mut known = Vec::new();
     let mut references = Vec::new();
     for &load in &spec.loads {
         let points = scene.points_for(load)?;
-        let case = ContactProblem::new(
-            points,
-            &b1.body,
-            &b2.body,
-            &scene.geometry,
-            Loading::Load(load),
-        )
-        .map_err(|e| run_error(scene, e))?
-        .with_body_edges(scene.body_edges.0, scene.body_edges.1);
+        // On the scene's own points, a problem solved in full shares its S
+        // (a folded one has no full S to share); at the scene's own load its
+        // solution is the uncorrected analysis.
+        let own = problem.folding().is_none() && points == *problem.points();
+        let case = if own {
+            problem.with_loading(Loading::Load(load))
+        } else {
+            ContactProblem::new(
+                points,
+                &b1.body,
+                &b2.body,
+                &scene.geometry,
+                Loading::Load(load),
+            )
+            .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1))
+        }
+        .map_err(|e| run_error(scene, e))?;
+        let solved = matches!(problem.loading(), Loading::Load(p) if own && p == load);
+        known.push(solved.then_some(solution));
         references.push(reference_intensity(scene, &case, load)?);
         cases.push(case);
     }
     let fail = |e: elcon_design::DesignError| run_error(scene, e);
-    let before = evaluate(
+    let before = evaluate_known(
         &cases,
         spec.axis,
         &Profile::none(),
         scene.method,
         &scene.options,
+        &known,
     )
     .map_err(fail)?;
     let (profile, after, starts) = match &spec.family {
@@ -577,30 +559,23 @@ fn design_stage(scene: &Scene) -> Result<(DesignJson, DesignRun), SceneError> {
             design_load,
             flat_length,
         } => {
-            let e = combined_modulus_of(b1.material.as_ref(), b2.material.as_ref());
-            let (radius, length) = match (&scene.geometry, &scene.points_spec) {
-                (
-                    elcon_analysis::Geometry::Surfaces(a, b),
-                    PointsSpec::Rectangle { half_y, .. },
-                ) => {
-                    let k = |s: &elcon_analysis::Surface| match *s {
-                        elcon_analysis::Surface::Cylinder { radius } => 1.0 / radius,
-                        _ => 0.0,
-                    };
-                    (1.0 / (k(a) + k(b)), 2.0 * half_y)
+            // Validation refuses a logarithmic crown but for a roller.
+            let (roller, length) = match (scene.hertz(*design_load), &scene.points_spec) {
+                (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => {
+                    (h, 2.0 * half_y)
                 }
                 _ => {
                     return Err(run_error(
                         scene,
-                        "a logarithmic crown needs a cylinder on a rectangle grid",
+                        "design.family: a logarithmic crown needs a cylinder on a rectangle grid",
                     ));
                 }
             };
             let profile = Profile::LogarithmicCrown(LogCrown {
                 design_load: *design_load,
                 length,
-                combined_modulus: e,
-                radius,
+                combined_modulus: roller.combined_modulus,
+                radius: roller.radius,
                 flat_length: *flat_length,
             });
             let after = evaluate(&cases, spec.axis, &profile, scene.method, &scene.options)
@@ -614,7 +589,7 @@ fn design_stage(scene: &Scene) -> Result<(DesignJson, DesignRun), SceneError> {
     };
     let objective = after.relative_worst(&references);
     let objective_before = before.relative_worst(&references);
-    let positions = stations(&cases, spec.axis);
+    let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis);
     let table = profile.table(&positions).map_err(fail)?;
     let json = DesignJson {
         family: family_name(&spec.family),
@@ -653,17 +628,6 @@ fn design_stage(scene: &Scene) -> Result<(DesignJson, DesignRun), SceneError> {
             cases,
         },
     ))
-}
-
-/// The distinct axial positions of the cases' points, increasing.
-fn stations(cases: &[ContactProblem], axis: elcon_design::Axis) -> Vec<f64> {
-    let mut s: Vec<f64> = cases
-        .iter()
-        .flat_map(|c| axis.positions(c.points()))
-        .collect();
-    s.sort_by(f64::total_cmp);
-    s.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs().max(1e-300));
-    s
 }
 
 fn family_name(f: &DesignFamily) -> String {

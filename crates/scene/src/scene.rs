@@ -377,6 +377,12 @@ impl Scene {
     fn hertz_scale(&self, load: f64) -> Option<f64> {
         hertz_scale(&self.bodies, &self.geometry, &self.points_spec, load)
     }
+
+    /// The Hertz contact at `load`, where one applies (the layout, bodies
+    /// and surfaces of a Hertz contact).
+    pub(crate) fn hertz(&self, load: f64) -> Option<Hertz> {
+        hertz(&self.bodies, &self.geometry, &self.points_spec, load)
+    }
 }
 
 fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
@@ -518,7 +524,17 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         None => true,
     };
     let design = match &raw.design {
-        Some(d) => Some(design(ctx, d, loading, dimension, &bodies)?),
+        Some(d) => Some(design(
+            ctx,
+            d,
+            &DesignContext {
+                loading,
+                dimension,
+                bodies: &bodies,
+                geometry: &geometry,
+                points_spec: &points_spec,
+            },
+        )?),
         None => None,
     };
     let outputs = outputs(ctx, raw.outputs.as_ref(), design.is_some())?;
@@ -1122,6 +1138,67 @@ fn half_space_modulus(bodies: &[BodySpec; 2], models: &[&str]) -> Option<f64> {
     e.is_finite().then_some(e)
 }
 
+/// The Hertz contact of a scene at one load: the closed form its layout,
+/// bodies and surfaces call for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Hertz {
+    /// Point contact: spheres (or a sphere on a plane) on a disk grid.
+    Spheres(HertzSpheres),
+    /// Line contact: cylinders (or a cylinder on a plane) on a line, or a
+    /// roller along y on a rectangle grid (per unit length `2 half_y`).
+    Cylinders(HertzCylinders),
+}
+
+impl Hertz {
+    /// The length scale: the contact radius or the half-width.
+    pub(crate) fn scale(&self) -> f64 {
+        match self {
+            Hertz::Spheres(h) => h.contact_radius(),
+            Hertz::Cylinders(h) => h.half_width(),
+        }
+    }
+
+    /// The peak pressure (intensity unit).
+    pub(crate) fn peak_pressure(&self) -> f64 {
+        match self {
+            Hertz::Spheres(h) => h.peak_pressure(),
+            Hertz::Cylinders(h) => h.peak_pressure(),
+        }
+    }
+}
+
+/// The Hertz contact at `load`, if one applies: spheres/planes and
+/// half-space surface bodies on a disk; cylinders/planes and plane-strain
+/// bodies on a line; cylinders/planes and half-space surface bodies on a
+/// rectangle (a roller along y, per unit length `2 half_y`). Rigid bodies
+/// count as half-spaces; the surfaces must not both be planes.
+fn hertz(
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    spec: &PointsSpec,
+    load: f64,
+) -> Option<Hertz> {
+    match spec {
+        PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            let r = combined(geometry, true)?;
+            HertzSpheres::new(e, r, load).ok().map(Hertz::Spheres)
+        }
+        PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+            let e = half_space_modulus(bodies, &["plane-strain"])?;
+            let r = combined(geometry, false)?;
+            HertzCylinders::new(e, r, load).ok().map(Hertz::Cylinders)
+        }
+        PointsSpec::Rectangle { half_y, .. } => {
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            let r = combined(geometry, false)?;
+            HertzCylinders::new(e, r, load / (2.0 * half_y))
+                .ok()
+                .map(Hertz::Cylinders)
+        }
+    }
+}
+
 /// The Hertz length scale at `load`: the contact radius (disk) or the
 /// half-width (line; rectangle of a roller, per unit length `2 half_y`).
 fn hertz_scale(
@@ -1130,27 +1207,7 @@ fn hertz_scale(
     spec: &PointsSpec,
     load: f64,
 ) -> Option<f64> {
-    match spec {
-        PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
-            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
-            let r = combined(geometry, true)?;
-            HertzSpheres::new(e, r, load)
-                .ok()
-                .map(|h| h.contact_radius())
-        }
-        PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
-            let e = half_space_modulus(bodies, &["plane-strain"])?;
-            let r = combined(geometry, false)?;
-            HertzCylinders::new(e, r, load).ok().map(|h| h.half_width())
-        }
-        PointsSpec::Rectangle { half_y, .. } => {
-            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
-            let r = combined(geometry, false)?;
-            HertzCylinders::new(e, r, load / (2.0 * half_y))
-                .ok()
-                .map(|h| h.half_width())
-        }
-    }
+    hertz(bodies, geometry, spec, load).map(|h| h.scale())
 }
 
 /// The closed form that applies to the scene, if one does.
@@ -1227,12 +1284,13 @@ fn reference(
                     _ => return None,
                 }
             }
+            // The beam is the zone: its cells end to end.
             let (lo, hi) = (points.xs()[0], points.xs()[points.len() - 1]);
-            let h = points.cell().dx;
-            let centred = (x0? - 0.5 * (lo + hi)).abs() <= 1e-9 * (hi - lo + h);
+            let length = points.extent().0;
+            let centred = (x0? - 0.5 * (lo + hi)).abs() <= 1e-9 * length;
             centred
                 .then(|| {
-                    HetenyiBeam::new(ei?, k?, hi - lo + h, p)
+                    HetenyiBeam::new(ei?, k?, length, p)
                         .ok()
                         .map(Reference::Hetenyi)
                 })
@@ -1324,13 +1382,27 @@ fn solver(
     Ok((method, options))
 }
 
+/// The scene's parts a `[design]` section is checked against.
+struct DesignContext<'a> {
+    loading: Loading,
+    dimension: Dimension,
+    bodies: &'a [BodySpec; 2],
+    geometry: &'a Geometry,
+    points_spec: &'a PointsSpec,
+}
+
 fn design(
     ctx: &Ctx<'_>,
     d: &Spanned<DesignToml>,
-    loading: Loading,
-    dimension: Dimension,
-    bodies: &[BodySpec; 2],
+    scene: &DesignContext<'_>,
 ) -> Result<DesignSpec, SceneError> {
+    let DesignContext {
+        loading,
+        dimension,
+        bodies,
+        geometry,
+        points_spec,
+    } = *scene;
     let t = d.get_ref();
     let Loading::Load(load) = loading else {
         return Err(ctx.invalid(
@@ -1449,20 +1521,26 @@ fn design(
             }
         }
         "logarithmic-crown" => {
-            if dimension != Dimension::Surface
-                || half_space_modulus(bodies, &["point-force", "uniform-patch"]).is_none()
-            {
-                return Err(ctx.invalid(
-                    t.family.span(),
-                    "design.family",
-                    "\"logarithmic-crown\"",
-                    "a logarithmic crown is for a roller: half-space bodies on a rectangle grid",
-                ));
-            }
             let q = match &t.design_load {
                 Some(q) => ctx.positive(q, "design.design_load")?,
                 None => loads.iter().cloned().fold(0.0, f64::max),
             };
+            // Its radius, modulus and length are those of the roller's
+            // Hertz line contact.
+            let roller = matches!(points_spec, PointsSpec::Rectangle { .. })
+                && matches!(
+                    hertz(bodies, geometry, points_spec, q),
+                    Some(Hertz::Cylinders(_))
+                );
+            if !roller {
+                return Err(ctx.invalid(
+                    t.family.span(),
+                    "design.family",
+                    "\"logarithmic-crown\"",
+                    "a logarithmic crown is for a roller: half-space bodies on a rectangle grid, \
+                     a cylinder (axis along y) on a plane or a cylinder",
+                ));
+            }
             DesignFamily::LogarithmicCrown {
                 design_load: q,
                 flat_length: flat,
@@ -1513,6 +1591,23 @@ fn design(
         },
         None => RelativeTo::Absolute,
     };
+    if relative_to == RelativeTo::Hertz
+        && let Some(&load) = loads
+            .iter()
+            .find(|&&p| hertz(bodies, geometry, points_spec, p).is_none())
+    {
+        let span = t.relative_to.as_ref().map_or(d.span(), |r| r.span());
+        return Err(ctx.invalid(
+            span,
+            "design.relative_to",
+            "\"hertz\"",
+            format!(
+                "needs a Hertz contact at every design load ({load} has none): sphere or cylinder \
+                 surfaces (not both planes) and elastic half-space bodies, spheres on a disk grid, \
+                 cylinders on a line or a rectangle grid; use \"mean\" or \"absolute\""
+            ),
+        ));
+    }
     let max_constant = match &t.max_constant {
         Some(c) => Some(ctx.positive(c, "design.max_constant")?),
         None => None,

@@ -128,3 +128,139 @@ fn a_batch_name_cannot_leave_the_output_directory() {
         assert!(e.to_string().contains("no path separators"), "{bad}: {e}");
     }
 }
+
+/// A roller along y on a plane, on an absolute rectangle grid.
+const ROLLER: &str = r#"
+[units]
+length = "mm"
+force = "N"
+
+[body1]
+model = "uniform-patch"
+youngs_modulus = 210e3
+poissons_ratio = 0.3
+
+[body2]
+model = "uniform-patch"
+youngs_modulus = 210e3
+poissons_ratio = 0.3
+
+[geometry]
+surface1 = { shape = "cylinder", radius = 5.0 }
+
+[points]
+grid = "rectangle"
+half_x = 0.4
+half_y = 5.0
+nx = 5
+ny = 8
+
+[loading]
+load = 1000.0
+"#;
+
+#[test]
+fn relative_to_hertz_without_a_hertz_contact_is_refused_by_validation() {
+    // Valid: spheres on a disk, a cylinder on a rectangle.
+    scene(&format!(
+        "{BASE}\n[design]\nfamily = \"quadratic\"\nrelative_to = \"hertz\"\n"
+    ))
+    .unwrap();
+    scene(&format!(
+        "{ROLLER}\n[design]\nfamily = \"free\"\nrelative_to = \"hertz\"\n"
+    ))
+    .unwrap();
+    // A sphere on a rectangle grid has no line contact to compare with:
+    // `elcon check` says so, not only `elcon run`.
+    let text = format!(
+        "{}\n[design]\nfamily = \"free\"\nrelative_to = \"hertz\"\n",
+        ROLLER.replace("shape = \"cylinder\"", "shape = \"sphere\"")
+    );
+    let e = scene(&text).unwrap_err();
+    assert!(matches!(e, SceneError::Invalid { .. }), "{e}");
+    assert!(e.is_input_error());
+    assert!(
+        e.to_string()
+            .contains("`design.relative_to` = \"hertz\": needs a Hertz contact at every design load (1000 has none)"),
+        "{e}"
+    );
+    // The location is the value's.
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("relative_to"))
+        .unwrap()
+        + 1;
+    assert!(
+        e.to_string().starts_with(&format!("test.toml:{line}:15: ")),
+        "{e}"
+    );
+    // A beam on a foundation has no Hertz contact at all.
+    let beam = r#"
+[units]
+length = "in"
+force = "lbf"
+
+[body1]
+model = "beam"
+youngs_modulus = 30e6
+second_moment = 5.0
+
+[body2]
+model = "winkler"
+modulus = 1e7
+
+[points]
+grid = "line"
+start = -4.0
+end = 4.0
+n = 16
+
+[loading]
+load = 1000.0
+
+[design]
+family = "quadratic"
+relative_to = "hertz"
+"#;
+    let e = scene(beam).unwrap_err();
+    assert!(e.to_string().contains("`design.relative_to`"), "{e}");
+}
+
+#[test]
+fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
+    let crown = "\n[design]\nfamily = \"logarithmic-crown\"\n";
+    let s = scene(&format!("{ROLLER}{crown}")).unwrap();
+    assert!(matches!(
+        s.design.as_ref().unwrap().family,
+        elcon_scene::DesignFamily::LogarithmicCrown { .. }
+    ));
+    let refused = |text: String| {
+        let e = scene(&text).unwrap_err();
+        assert!(matches!(e, SceneError::Invalid { .. }), "{e}");
+        assert!(
+            e.to_string().contains(
+                "`design.family` = \"logarithmic-crown\": a logarithmic crown is for a roller"
+            ),
+            "{e}"
+        );
+    };
+    // A sphere on the rectangle: no roller radius (it used to pass `check`
+    // and fail in `run`).
+    refused(format!(
+        "{}{crown}",
+        ROLLER.replace("shape = \"cylinder\"", "shape = \"sphere\"")
+    ));
+    // Two planes.
+    refused(format!(
+        "{}{crown}",
+        ROLLER.replace("surface1 = { shape = \"cylinder\", radius = 5.0 }", "")
+    ));
+    // A cylinder on a disk grid: no roller length.
+    refused(format!(
+        "{}{crown}",
+        ROLLER.replace(
+            "grid = \"rectangle\"\nhalf_x = 0.4\nhalf_y = 5.0\nnx = 5\nny = 8",
+            "grid = \"disk\"\nspacing = 0.1\nradius = 0.5"
+        )
+    ));
+}
