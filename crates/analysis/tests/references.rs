@@ -560,7 +560,7 @@ fn a_warm_start_from_the_previous_load_step_saves_iterations() {
         for k in 0..cold.forces.len() {
             assert!((warm.forces[k] - cold.forces[k]).abs() <= 1e-12 * fmax);
         }
-        // The step from 90 to 100 lb adds a ring of points: one or two iterations instead of several.
+        // The step from 90 to 100 lb adds a ring of points: at most three iterations, fewer than cold.
         assert!(
             warm.statistics.iterations < cold.statistics.iterations,
             "fold {fold}: warm {} cold {}",
