@@ -19,6 +19,12 @@
 //! P-matrix; past an iteration cap, or when a block system is singular, the
 //! solve falls back to Lemke's method, which terminates on every problem of
 //! this class.
+//!
+//! The first guess, without a warm start, comes from a prefix search: the
+//! indices in the order in which they would activate, grown by a fixed
+//! ratio until the block solution turns negative somewhere, so that the
+//! factorization work is about that of the final contact set rather than of
+//! the whole of `M` (see `prefix_search`).
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Col, Mat};
@@ -60,7 +66,6 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
     let mut stats = Statistics::new(Method::BlockPivoting);
     let par = opts.par(n, n);
     let tol = opts.tolerances;
-    let mut active = initial_set(p, opts);
     let cap = opts.max_pivots.unwrap_or(3 * n + 50);
     let mut best = usize::MAX;
     let mut retries = BLOCK_RETRIES;
@@ -73,7 +78,11 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
             if b > 0.0 { p.q[i] / b } else { p.q[i] }
         })
         .collect();
-    let mut factor = Factor::new();
+    let mut factor = Factor::new(n);
+    let mut active = match warm_start(p, opts) {
+        Some(a) => a,
+        None => prefix_search(p, &key, &mut factor, &tol, par, &mut stats),
+    };
     loop {
         stats.iterations += 1;
         // Iterations only need the signs of z and w; the solution is refined
@@ -150,29 +159,84 @@ fn asymmetry(m: faer::MatRef<'_, f64>) -> Option<(usize, usize)> {
     None
 }
 
-/// The initial active set: a warm start if given, else the indices where
-/// `w` would be negative with `z = 0` (and, with equality rows, at least the
-/// index of smallest `q` so the block system is solvable).
-fn initial_set(p: &MixedLcpRef<'_>, opts: &Options) -> Vec<bool> {
+/// The warm start, if one was given and fits (with equality rows it must
+/// activate at least one index, or the block system is singular).
+fn warm_start(p: &MixedLcpRef<'_>, opts: &Options) -> Option<Vec<bool>> {
+    let a = opts.warm_start.as_ref()?;
+    (a.len() == p.size() && (p.extras() == 0 || a.iter().any(|&x| x))).then(|| a.clone())
+}
+
+/// Growth of the prefix per step of [`prefix_search`] (its size times this,
+/// plus [`PREFIX_STEP`]).
+const PREFIX_GROWTH: f64 = 1.15;
+/// The first prefix's size, and the fixed part of each step.
+const PREFIX_STEP: usize = 32;
+
+/// The initial active set without a warm start: the shortest prefix of the
+/// indices in `key` order whose block solution has a negative `z`.
+///
+/// In a contact problem `key` is the approach at which each point touches,
+/// and a prefix is the set of points of least separation. A prefix smaller
+/// than the contact set pushes everywhere (`z > 0`) but leaves points outside
+/// it interpenetrating, and the whole-set exchange of the first iterations
+/// would jump from it to nearly every index: one factorization of the
+/// whole of `M`. Growing the prefix by a fixed ratio instead, each step
+/// factoring only the indices that join (the factor keeps the prefix), stops
+/// at a prefix at most [`PREFIX_GROWTH`] times the contact set, which the
+/// block iterations then shrink (a shrinking prefix keeps its factor): the
+/// factorization work is that of the contact set, not of `M`.
+///
+/// Without equality rows the prefix is capped at the indices with `q_i < 0`
+/// (where `w` is negative at `z = 0`: the old initial guess); with them, the
+/// first prefix holds at least the indices whose key ties the smallest (a
+/// flat contact touches everywhere at once) to the zero tolerance of the
+/// keys' scale, since equal separations computed from a geometry differ in
+/// their last bits.
+fn prefix_search(
+    p: &MixedLcpRef<'_>,
+    key: &[f64],
+    factor: &mut Factor,
+    tol: &Tolerances,
+    par: faer::Par,
+    stats: &mut Statistics,
+) -> Vec<bool> {
     let n = p.size();
-    if let Some(a) = &opts.warm_start
-        && a.len() == n
-        && (p.extras() == 0 || a.iter().any(|&x| x))
-    {
-        return a.clone();
-    }
-    let mut active: Vec<bool> = (0..n).map(|i| p.q[i] < 0.0).collect();
-    if p.extras() > 0 && !active.iter().any(|&a| a) {
-        // With a free approach and no index active at z = 0, the indices of
-        // smallest q activate first (the points of least separation touch
-        // first): all of them when they tie (a flat contact), to the zero
-        // tolerance of q's scale, since equal separations computed from a
-        // geometry differ in their last bits.
-        let qmin = (0..n).map(|i| p.q[i]).fold(f64::INFINITY, f64::min);
-        let qscale = norm_inf(p.q);
-        for i in 0..n {
-            active[i] = p.q[i] <= qmin + opts.tolerances.zero * qscale;
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| key[a].total_cmp(&key[b]).then(a.cmp(&b)));
+    let (first, cap) = if p.extras() == 0 {
+        let negative = (0..n).filter(|&i| p.q[i] < 0.0).count();
+        (negative.min(PREFIX_STEP), negative)
+    } else {
+        let kmin = key.iter().copied().fold(f64::INFINITY, f64::min);
+        let kscale = key.iter().fold(0.0f64, |a, k| a.max(k.abs()));
+        let ties = key
+            .iter()
+            .filter(|&&k| k <= kmin + tol.zero * kscale)
+            .count();
+        (ties.max(PREFIX_STEP.min(n)), n)
+    };
+    let mut active = vec![false; n];
+    let mut size = 0;
+    let mut next = first;
+    while next > size {
+        for &i in &order[size..next] {
+            active[i] = true;
         }
+        size = next;
+        if size == cap {
+            break;
+        }
+        let solved = factor
+            .update(p, &active, key, par, stats)
+            .and_then(|()| BlockSystem::new(p, factor, par));
+        // A failure is the block iterations' to handle (they fall back).
+        let Ok(system) = solved else { break };
+        let (z, _) = system.solution(p);
+        let zscale = norm_inf(z.as_ref());
+        if z.iter().any(|&v| v < -tol.zero * zscale) {
+            break;
+        }
+        next = cap.min((size as f64 * PREFIX_GROWTH) as usize + PREFIX_STEP);
     }
     active
 }
@@ -202,10 +266,11 @@ struct Factor {
 }
 
 impl Factor {
-    fn new() -> Self {
+    /// An empty factor with room for `n` indices.
+    fn new(n: usize) -> Self {
         Self {
             order: Vec::new(),
-            l: Mat::zeros(0, 0),
+            l: Mat::with_capacity(n, n),
         }
     }
 
@@ -239,13 +304,10 @@ impl Factor {
         rest.sort_by(|&a, &b| key[a].total_cmp(&key[b]).then(a.cmp(&b)));
         let (np, nr) = (keep, rest.len());
         if self.l.nrows() < np + nr {
-            // Grow: a new matrix with the kept prefix copied (at most a few
-            // times per solve, the first iteration being the largest).
-            let mut l = Mat::<f64>::zeros(np + nr, np + nr);
-            l.as_mut()
-                .submatrix_mut(0, 0, np, np)
-                .copy_from(self.l.as_ref().submatrix(0, 0, np, np));
-            self.l = l;
+            // Grow in place: the matrix was made with the capacity of all
+            // of M (address space only: pages are touched as they fill), so
+            // the kept prefix does not move.
+            self.l.resize_with(np + nr, np + nr, |_, _| 0.0);
         }
         let prefix = &self.order[..keep];
         // L_RP^T = L_PP^{-1} M_PR.
@@ -533,4 +595,90 @@ pub(crate) fn fallback(
     s.fell_back = true;
     s.method = Method::BlockPivoting;
     Ok(raw)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::ColRef;
+
+    /// A contact-shaped problem on a 2-D grid of `side^2` points, spacing h:
+    /// M the Boussinesq kernel h / (pi r) off the diagonal and a uniformly
+    /// loaded square's 4 ln(1 + sqrt 2) / pi at its centre on it (the
+    /// paper's own discretization, in units of the compliance), q the parabolic
+    /// separation |x|^2 / 2, one free approach and the load row sum z = P.
+    fn contact(side: usize) -> (Mat<f64>, Mat<f64>, Col<f64>, Mat<f64>) {
+        let n = side * side;
+        let x = |i: usize| {
+            let h = 2.0 / (side - 1) as f64;
+            (-1.0 + h * (i % side) as f64, -1.0 + h * (i / side) as f64)
+        };
+        let m = Mat::from_fn(n, n, |i, j| {
+            let ((a, b), (c, d)) = (x(i), x(j));
+            let h = 2.0 / (side - 1) as f64;
+            if i == j {
+                4.0 * (1.0 + 2f64.sqrt()).ln() / std::f64::consts::PI
+            } else {
+                h / (std::f64::consts::PI * (a - c).hypot(b - d))
+            }
+        });
+        let q = Col::from_fn(n, |i| {
+            let (a, b) = x(i);
+            (a * a + b * b) / 2.0
+        });
+        (
+            m,
+            Mat::from_fn(n, 1, |_, _| -1.0),
+            q,
+            Mat::from_fn(1, n, |_, _| 1.0),
+        )
+    }
+
+    #[test]
+    fn prefix_search_stops_just_past_the_contact_set() {
+        let side = 31;
+        let load = 4.0;
+        let (m, b, q, c) = contact(side);
+        let d = Mat::<f64>::zeros(1, 1);
+        let r = [-load];
+        let bounds = [Bound::Free];
+        let p = MixedLcpRef::new(
+            m.as_ref(),
+            b.as_ref(),
+            q.as_ref(),
+            c.as_ref(),
+            d.as_ref(),
+            ColRef::from_slice(&r),
+            &bounds,
+        )
+        .unwrap();
+        let opts = Options::default();
+        let n = p.size();
+        let key: Vec<f64> = (0..n).map(|i| p.q[i]).collect();
+        let mut factor = Factor::new(n);
+        let mut stats = Statistics::new(Method::BlockPivoting);
+        let prefix = prefix_search(
+            &p,
+            &key,
+            &mut factor,
+            &opts.tolerances,
+            faer::Par::Seq,
+            &mut stats,
+        );
+        let solution = solve_mixed(&p, &opts).unwrap();
+        let contact: Vec<usize> = (0..n).filter(|&i| solution.basic[i]).collect();
+        let size = prefix.iter().filter(|&&a| a).count();
+        // Several growth steps were taken, and the prefix holds the
+        // contact set and ends within one growth step past it.
+        assert!(stats.factorizations > 3, "{} steps", stats.factorizations);
+        assert!(contact.len() > 2 * PREFIX_STEP && contact.len() < n / 2);
+        assert!(contact.iter().all(|&i| prefix[i]));
+        let bound = (contact.len() as f64 * PREFIX_GROWTH) as usize + PREFIX_STEP;
+        assert!(size <= bound, "prefix {size}, contact {}", contact.len());
+        // The prefix is one: every index in it has a key no larger than
+        // every index outside.
+        let inside = (0..n).filter(|&i| prefix[i]).map(|i| key[i]);
+        let outside = (0..n).filter(|&i| !prefix[i]).map(|i| key[i]);
+        assert!(inside.fold(f64::MIN, f64::max) <= outside.fold(f64::MAX, f64::min));
+    }
 }

@@ -158,6 +158,37 @@ proptest! {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// The mixed contact form past block pivoting's first prefix (32
+    /// indices), so that its prefix search grows the factor in steps on
+    /// random orders of the keys: it agrees with Lemke's method.
+    #[test]
+    fn mixed_contact_form_past_the_first_prefix(
+        (m, q) in (40usize..=120).prop_flat_map(problem),
+        load in 0.01f64..100.0,
+    ) {
+        let n = q.nrows();
+        let q = Col::from_fn(n, |i| q[i].abs());
+        let mixed = MixedLcp::new(
+            m,
+            Mat::from_fn(n, 1, |_, _| -1.0),
+            q,
+            Mat::from_fn(1, n, |_, _| 1.0),
+            Mat::zeros(1, 1),
+            Col::from_fn(1, |_| -load),
+            vec![Bound::Free],
+        ).unwrap();
+        let a = mixed.solve(Method::Lemke, &Options::default()).unwrap();
+        let b = mixed.solve(Method::BlockPivoting, &Options::default()).unwrap();
+        prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
+        prop_assert!(!b.statistics.fell_back);
+        prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
+        prop_assert!((a.u[0] - b.u[0]).abs() <= 1e-9 * a.u[0].abs().max(1e-300));
+    }
+}
+
+proptest! {
     #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
 
     /// The paper's own form: the approach alpha >= 0 is a NON-NEGATIVE extra
