@@ -230,7 +230,12 @@ fn core(
     }
 
     let (xb, steps) = sys
-        .basic_solution(&tab.basic, par, opts.refinement_steps)
+        .basic_solution(
+            &tab.basic.clone(),
+            Some(&mut tab),
+            par,
+            opts.refinement_steps,
+        )
         .map_err(|ratio| LcpError::SingularBasis {
             size: n,
             pivot: stats.pivots,

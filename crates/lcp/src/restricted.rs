@@ -248,7 +248,12 @@ fn run_with(
     // Final basic solution from the data, refined.
     let (xb, steps) = run
         .sys
-        .basic_solution(&run.tab.basic, par, opts.refinement_steps)
+        .basic_solution(
+            &run.tab.basic.clone(),
+            Some(&mut run.tab),
+            par,
+            opts.refinement_steps,
+        )
         .map_err(|ratio| LcpError::SingularBasis {
             size: m,
             pivot: run.stats.pivots,

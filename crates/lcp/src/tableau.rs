@@ -337,6 +337,64 @@ impl Tableau {
         }
     }
 
+    /// Overwrites `r` with `B^{-1} r`, read from the tableau: the reference
+    /// basis is the identity (its variable `k` has the unit column `e_k`), so
+    /// `B^{-1} e_k` is `e_row` while that variable is basic at `row`, and
+    /// `-T[:, j]` while it is non-basic at column `j`. Applies the delayed
+    /// updates first.
+    pub fn solve_basis(&mut self, r: &mut Col<f64>) {
+        self.flush();
+        let m = self.m;
+        let mut y = Col::<f64>::zeros(m);
+        for (k, &v) in self.reference.iter().enumerate() {
+            let rk = r[k];
+            if rk == 0.0 {
+                continue;
+            }
+            match self.position[v] {
+                Position::Basic(row) => y[row] += rk,
+                Position::Nonbasic(j) => {
+                    let col = &self.t0.col_as_slice(j)[..m];
+                    for (yi, ti) in y.as_mut().iter_mut().zip(col) {
+                        *yi -= rk * ti;
+                    }
+                }
+            }
+        }
+        r.copy_from(&y);
+    }
+
+    /// `|B^{-1}|_1`, the largest column sum of magnitudes of `B^{-1}` (its
+    /// columns as in [`solve_basis`](Self::solve_basis)). Applies the delayed
+    /// updates first.
+    pub fn basis_inverse_norm_1(&mut self) -> f64 {
+        self.flush();
+        let m = self.m;
+        self.reference
+            .iter()
+            .map(|&v| match self.position[v] {
+                Position::Basic(_) => 1.0,
+                Position::Nonbasic(j) => self.t0.col_as_slice(j)[..m].iter().map(|x| x.abs()).sum(),
+            })
+            .fold(0.0f64, f64::max)
+    }
+
+    /// Multiplies every non-basic column and the right-hand side by `factor`
+    /// (a drifted tableau, for tests of what notices one).
+    #[cfg(test)]
+    pub(crate) fn scale_columns(&mut self, factor: f64) {
+        self.flush();
+        let (m, n) = (self.m, self.n());
+        for j in 0..n {
+            for v in &mut self.t0.col_as_slice_mut(j)[..m] {
+                *v *= factor;
+            }
+        }
+        for v in &mut self.rhs {
+            *v *= factor;
+        }
+    }
+
     /// Lexicographic minimum-ratio test for non-basic column `s` moving in
     /// direction `sigma` (+1 increases it, -1 decreases it).
     ///
