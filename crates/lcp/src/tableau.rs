@@ -21,7 +21,7 @@
 //! The rank-1 updates are not applied to the whole matrix at each pivot (a
 //! pass over all of `T` per pivot, bound by memory bandwidth): the tableau is
 //! kept as `T = T0 - U V^T`, `U` and `V` holding the last k updates (k up to
-//! [`UPDATE_BLOCK`]), and every `UPDATE_BLOCK` pivots `T0 -= U V^T` is done
+//! [`update_block`]), and every k pivots `T0 -= U V^T` is done
 //! as one faer matrix product, at the speed of a matrix multiply. A pivot
 //! reads only what it needs through the correction: the entering column, the
 //! pivot row, entries of the lexicographic rule; the right-hand side and the
@@ -74,21 +74,27 @@ pub(crate) struct Ratio {
 }
 
 /// Pivots kept as a delayed rank-k correction before it is applied to the
-/// whole tableau by one matrix product. The product costs `2 rows cols`
-/// flops per pivot whatever the block; a larger block costs more per read
-/// of a column or row (`rows k`, `cols k`). 64 was chosen to balance the
-/// two from a few hundred rows up; no benchmark in the repository compares
-/// block sizes (benches/ holds only the scaling benchmark).
-pub(crate) const UPDATE_BLOCK: usize = 64;
+/// whole tableau by one matrix product, by the tableau's row count. The
+/// product costs `2 rows cols` flops per pivot whatever the block, but
+/// reads and writes all of `T0` once per block; a larger block costs more
+/// per read of a column or row (`rows k`, `cols k`). Measured with
+/// `scaling_probe --method lemke` (Hertz, Love patches, 2-core Zen 4): at
+/// N = 529 and 1009, 64 beat 128 by 20-35 %; at N = 1961 and 4053, 128 beat
+/// 64 by about 10 % (the product's pass over `T0`, 31 MB at N = 1961, is
+/// bound by memory).
+pub(crate) fn update_block(rows: usize) -> usize {
+    if rows >= 1500 { 128 } else { 64 }
+}
 
 /// The compact tableau, as `T = T0 - U V^T` (see the module documentation).
 pub(crate) struct Tableau {
     /// `T0`: `(m + objectives) x (n_N + 1)`; the last column is `b̄`.
     t0: Mat<f64>,
-    /// The delayed updates' left factors, `(m + objectives) x UPDATE_BLOCK`.
+    /// The delayed updates' left factors, `(m + objectives) x block`.
     u: Mat<f64>,
-    /// The delayed updates' right factors, transposed: `UPDATE_BLOCK x (n_N + 1)`.
-    vt: Mat<f64>,
+    /// The delayed updates' right factors, `(n_N + 1) x block` (a
+    /// pivot writes one of its columns, contiguous).
+    v: Mat<f64>,
     /// Number of delayed updates held.
     k: usize,
     /// The current right-hand side column (objective values included).
@@ -136,8 +142,8 @@ impl Tableau {
             t0[(i, n)] = system.b[i];
         }
         let mut tab = Self {
-            u: Mat::zeros(m + nobj, UPDATE_BLOCK),
-            vt: Mat::zeros(UPDATE_BLOCK, n + 1),
+            u: Mat::zeros(m + nobj, update_block(m)),
+            v: Mat::zeros(n + 1, update_block(m)),
             k: 0,
             rhs: Vec::new(),
             objectives: Mat::zeros(nobj, n + 1),
@@ -177,7 +183,7 @@ impl Tableau {
     pub fn entry(&self, i: usize, j: usize) -> f64 {
         let mut v = self.t0[(i, j)];
         for l in 0..self.k {
-            v -= self.u[(i, l)] * self.vt[(l, j)];
+            v -= self.u[(i, l)] * self.v[(j, l)];
         }
         v
     }
@@ -190,7 +196,12 @@ impl Tableau {
                 c.as_mat_mut(),
                 Accum::Add,
                 self.u.as_ref().subcols(0, self.k),
-                self.vt.as_ref().subrows(0, self.k).col(j).as_mat(),
+                self.v
+                    .as_ref()
+                    .subcols(0, self.k)
+                    .row(j)
+                    .transpose()
+                    .as_mat(),
                 -1.0,
                 Par::Seq,
             );
@@ -206,7 +217,7 @@ impl Tableau {
                 r.as_mat_mut(),
                 Accum::Add,
                 self.u.as_ref().subcols(0, self.k).row(i).as_mat(),
-                self.vt.as_ref().subrows(0, self.k),
+                self.v.as_ref().subcols(0, self.k).transpose(),
                 -1.0,
                 Par::Seq,
             );
@@ -223,7 +234,7 @@ impl Tableau {
             self.t0.as_mut(),
             Accum::Add,
             self.u.as_ref().subcols(0, self.k),
-            self.vt.as_ref().subrows(0, self.k),
+            self.v.as_ref().subcols(0, self.k).transpose(),
             -1.0,
             self.par,
         );
@@ -270,7 +281,7 @@ impl Tableau {
         let rho = self.row(r);
         let p = c[r];
         let inv = 1.0 / p;
-        if self.k == UPDATE_BLOCK {
+        if self.k == self.u.ncols() {
             self.flush();
         }
         // Row r and column s are written exactly; their delayed entries are
@@ -278,13 +289,13 @@ impl Tableau {
         let k = self.k;
         for l in 0..k {
             self.u[(r, l)] = 0.0;
-            self.vt[(l, s)] = 0.0;
+            self.v[(s, l)] = 0.0;
         }
         for i in 0..rows {
             self.u[(i, k)] = if i == r { 0.0 } else { c[i] };
         }
-        for j in 0..=n {
-            self.vt[(k, j)] = if j == s { 0.0 } else { rho[j] * inv };
+        for (j, v) in self.v.col_as_slice_mut(k).iter_mut().enumerate() {
+            *v = if j == s { 0.0 } else { rho[j] * inv };
         }
         self.k += 1;
         for j in 0..=n {
@@ -492,6 +503,13 @@ impl Tableau {
         for k in 0..self.reference.len() {
             if rows.len() <= 1 {
                 break;
+            }
+            // A reference variable basic outside the tied rows has a zero in
+            // each of them: no decision, and no need to read the tableau.
+            if let Position::Basic(row) = self.position[self.reference[k]]
+                && rows.iter().all(|&(i, _)| i != row)
+            {
+                continue;
             }
             let vals: Vec<f64> = rows
                 .iter()
