@@ -63,8 +63,18 @@ impl System {
     pub fn write_column(&self, var: usize, mut out: faer::ColMut<'_, f64>, factor: f64) {
         match self.columns[var] {
             Column::Dense(j) => {
-                for i in 0..self.rows {
-                    out[i] = factor * self.dense[(i, j)];
+                let src = &self.dense.col_as_slice(j)[..self.rows];
+                match out.rb_mut().try_as_col_major_mut() {
+                    Some(out) => {
+                        for (o, a) in out.as_slice_mut().iter_mut().zip(src) {
+                            *o = factor * a;
+                        }
+                    }
+                    None => {
+                        for (i, a) in src.iter().enumerate() {
+                            out[i] = factor * a;
+                        }
+                    }
                 }
             }
             Column::Unit { row, coef } => {
