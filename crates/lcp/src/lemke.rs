@@ -33,7 +33,7 @@ use faer::{Col, Mat};
 use crate::dense::norm_inf;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
 use crate::system::{Column, System};
-use crate::tableau::{Position, RowRule, Tableau};
+use crate::tableau::{Position, RowRule, Tableau, lemke_update_block};
 use crate::{LcpError, Method};
 
 /// Most Ruiz passes of the equilibration (it stops earlier once every row
@@ -157,7 +157,7 @@ fn core(
     let zero_level = tol.zero * norm_inf(sys.b.as_ref()).max(f64::MIN_POSITIVE);
     let limit = opts.pivot_limit(n, n);
     let refactor_every = opts.refactor_every(n);
-    let mut tab = Tableau::from_identity(&sys, (0..n).collect(), par);
+    let mut tab = Tableau::from_identity(&sys, (0..n).collect(), par, lemke_update_block(n));
 
     // First pivot: z0 enters, the row of lexicographically smallest [b̄_i, β_i] / d_i leaves.
     let s0 = match tab.position[z0] {

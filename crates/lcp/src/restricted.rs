@@ -33,7 +33,7 @@ use crate::lemke::EQUILIBRATION_PASSES;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
 use crate::program::ComplementaryProgram;
 use crate::system::{Column, System};
-use crate::tableau::{Position, Ratio, RowRule, Tableau};
+use crate::tableau::{Position, Ratio, RowRule, Tableau, UPDATE_BLOCK};
 use crate::{LcpError, Method};
 
 /// What the restricted-entry simplex returns before certification.
@@ -203,7 +203,7 @@ fn run_with(
         sys.costs.push(c2);
     }
     let par = opts.par(m, total - m + 1);
-    let tab = Tableau::from_identity(&sys, basis, par);
+    let tab = Tableau::from_identity(&sys, basis, par, UPDATE_BLOCK);
     stats.tableau_rows = m;
     stats.tableau_columns = total - m + 1;
     let zero_level = opts.tolerances.zero * norm_inf(sys.b.as_ref()).max(f64::MIN_POSITIVE);

@@ -21,7 +21,8 @@
 //! The rank-1 updates are not applied to the whole matrix at each pivot (a
 //! pass over all of `T` per pivot, bound by memory bandwidth): the tableau is
 //! kept as `T = T0 - U V^T`, `U` and `V` holding the last k updates (k up to
-//! [`update_block`]), and every k pivots `T0 -= U V^T` is done
+//! [`UPDATE_BLOCK`], or [`lemke_update_block`]), and every k pivots
+//! `T0 -= U V^T` is done
 //! as one faer matrix product, at the speed of a matrix multiply. A pivot
 //! reads only what it needs through the correction: the entering column, the
 //! pivot row, entries of the lexicographic rule; the right-hand side and the
@@ -74,16 +75,21 @@ pub(crate) struct Ratio {
 }
 
 /// Pivots kept as a delayed rank-k correction before it is applied to the
-/// whole tableau by one matrix product, by the tableau's row count. The
-/// product costs `2 rows cols` flops per pivot whatever the block, but
-/// reads and writes all of `T0` once per block; a larger block costs more
-/// per read of a column or row (`rows k`, `cols k`). Measured with
-/// `scaling_probe --method lemke` (Hertz, Love patches, 2-core Zen 4): at
-/// N = 529 and 1009, 64 beat 128 by 20-35 %; at N = 1961 and 4053, 128 beat
-/// 64 by about 10 % (the product's pass over `T0`, 31 MB at N = 1961, is
-/// bound by memory).
-pub(crate) fn update_block(rows: usize) -> usize {
-    if rows >= 1500 { 128 } else { 64 }
+/// whole tableau by one matrix product. The product costs `2 rows cols`
+/// flops per pivot whatever the block, but reads and writes all of `T0`
+/// once per block; a larger block costs more per read of a column or row
+/// (`rows k`, `cols k`). The restricted-entry simplex reads several
+/// candidate columns per pivot and keeps 64: at 128 the roller design LP
+/// (2203 rows) took 0.95 s per start against 0.72 s.
+pub(crate) const UPDATE_BLOCK: usize = 64;
+
+/// The block for Lemke's method, which reads one column and one row per
+/// pivot, by the tableau's row count. Measured with `scaling_probe --method
+/// lemke` (Hertz, Love patches, 2-core Zen 4): at N = 529 and 1009, 64 beat
+/// 128 by 20-35 %; at N = 1961 and 4053, 128 beat 64 by about 10 % (the
+/// product's pass over `T0`, 31 MB at N = 1961, is bound by memory).
+pub(crate) fn lemke_update_block(rows: usize) -> usize {
+    if rows >= 1500 { 128 } else { UPDATE_BLOCK }
 }
 
 /// The compact tableau, as `T = T0 - U V^T` (see the module documentation).
@@ -118,8 +124,9 @@ pub(crate) struct Tableau {
 impl Tableau {
     /// Builds the tableau of an initial basis whose columns in `system` are
     /// `+1` unit columns (an identity after ordering by row): `T = -A_N`,
-    /// `b̄ = b`, and one objective row per cost vector of the system.
-    pub fn from_identity(system: &System, basis: Vec<usize>, par: Par) -> Self {
+    /// `b̄ = b`, and one objective row per cost vector of the system; `block`
+    /// pending updates at most.
+    pub fn from_identity(system: &System, basis: Vec<usize>, par: Par, block: usize) -> Self {
         let m = system.rows;
         let nv = system.vars();
         let mut position = vec![Position::Nonbasic(usize::MAX); nv];
@@ -142,8 +149,8 @@ impl Tableau {
             t0[(i, n)] = system.b[i];
         }
         let mut tab = Self {
-            u: Mat::zeros(m + nobj, update_block(m)),
-            v: Mat::zeros(n + 1, update_block(m)),
+            u: Mat::zeros(m + nobj, block),
+            v: Mat::zeros(n + 1, block),
             k: 0,
             rhs: Vec::new(),
             objectives: Mat::zeros(nobj, n + 1),
