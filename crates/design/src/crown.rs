@@ -17,7 +17,7 @@
 
 use elcon_analysis::{ContactProblem, Method, Options};
 
-use crate::evaluate::{Evaluation, evaluate};
+use crate::evaluate::{Evaluation, evaluate, evaluate_from};
 use crate::optimize::reference_intensities;
 use crate::{Axis, DesignError, Profile};
 
@@ -108,7 +108,12 @@ pub fn crown_search(
     let mut worst_at = |log_q: f64| -> Result<f64, DesignError> {
         let q = log_q.exp();
         let profile = make(q)?;
-        let e = evaluate(cases, axis, &profile, method, options)?;
+        // Warm-started from the best evaluation so far: the samples close in
+        // on it, so its contact sets are the nearest at hand.
+        let e = match &found {
+            Some((.., best)) => evaluate_from(cases, axis, &profile, method, options, best)?,
+            None => evaluate(cases, axis, &profile, method, options)?,
+        };
         let objective = e.relative_worst(&references);
         tried.push((q, objective));
         if found

@@ -101,6 +101,57 @@ pub fn evaluate_known(
     options: &Options,
     known: &[Option<&ContactSolution>],
 ) -> Result<Evaluation, DesignError> {
+    evaluate_cases(cases, axis, profile, method, options, known, None)
+}
+
+/// As [`evaluate`], each case's solve warm-started from its solution in
+/// `start` (the evaluation of a neighbouring profile: a crown search's
+/// previous sample). Block principal pivoting then starts from that contact
+/// set ([`ContactProblem::solve_from`]); the answer does not depend on the
+/// start.
+///
+/// # Errors
+/// As [`evaluate`]; [`DesignError::Incompatible`] when `start` does not have
+/// one solution per case, each with one value per point.
+pub fn evaluate_from(
+    cases: &[ContactProblem],
+    axis: Axis,
+    profile: &Profile,
+    method: Method,
+    options: &Options,
+    start: &Evaluation,
+) -> Result<Evaluation, DesignError> {
+    if start.solutions.len() != cases.len() {
+        return Err(DesignError::Incompatible {
+            field: "start",
+            reason: format!(
+                "has {} solutions, expected {} (one per load case)",
+                start.solutions.len(),
+                cases.len()
+            ),
+        });
+    }
+    evaluate_cases(
+        cases,
+        axis,
+        profile,
+        method,
+        options,
+        &vec![None; cases.len()],
+        Some(&start.solutions),
+    )
+}
+
+/// [`evaluate_known`] with optional warm starts (one solution per case).
+fn evaluate_cases(
+    cases: &[ContactProblem],
+    axis: Axis,
+    profile: &Profile,
+    method: Method,
+    options: &Options,
+    known: &[Option<&ContactSolution>],
+    starts: Option<&[ContactSolution]>,
+) -> Result<Evaluation, DesignError> {
     if cases.is_empty() {
         return Err(DesignError::Incompatible {
             field: "cases",
@@ -146,9 +197,11 @@ pub fn evaluate_known(
                 let corrected = case
                     .with_separation(eps)
                     .map_err(DesignError::analysis(stage.clone()))?;
-                corrected
-                    .solve(method, options)
-                    .map_err(DesignError::analysis(stage))?
+                match starts.map(|s| &s[l]) {
+                    Some(start) => corrected.solve_from(start, method, options),
+                    None => corrected.solve(method, options),
+                }
+                .map_err(DesignError::analysis(stage))?
             }
         };
         max_intensities.push(solution.max_pressure);

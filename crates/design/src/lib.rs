@@ -52,7 +52,7 @@ pub mod target;
 
 pub use crown::{CrownSearch, SearchOptions, crown_search};
 pub use error::DesignError;
-pub use evaluate::{Evaluation, evaluate, evaluate_known};
+pub use evaluate::{Evaluation, evaluate, evaluate_from, evaluate_known};
 pub use optimize::{
     Design, DesignOptions, Family, StartOutcome, axial_stations, design, fit_profile,
 };
