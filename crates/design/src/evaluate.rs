@@ -131,6 +131,18 @@ pub fn evaluate_from(
             ),
         });
     }
+    for (l, (case, solution)) in cases.iter().zip(&start.solutions).enumerate() {
+        if solution.forces.len() != case.points().len() {
+            return Err(DesignError::Incompatible {
+                field: "start",
+                reason: format!(
+                    "the solution of load case {l} has {} values, the case {} points",
+                    solution.forces.len(),
+                    case.points().len()
+                ),
+            });
+        }
+    }
     evaluate_cases(
         cases,
         axis,

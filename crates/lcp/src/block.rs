@@ -182,9 +182,12 @@ const PREFIX_STEP: usize = 32;
 /// would jump from it to nearly every index: one factorization of the
 /// whole of `M`. Growing the prefix by a fixed ratio instead, each step
 /// factoring only the indices that join (the factor keeps the prefix), stops
-/// at a prefix at most [`PREFIX_GROWTH`] times the contact set, which the
-/// block iterations then shrink (a shrinking prefix keeps its factor): the
-/// factorization work is that of the contact set, not of `M`.
+/// one step past the first prefix whose solution turns negative: on a
+/// contact problem about [`PREFIX_GROWTH`] times the contact set plus
+/// [`PREFIX_STEP`], which the block iterations then shrink (a shrinking
+/// prefix keeps its factor), so the factorization work is about that of the
+/// contact set, not of `M`. It is a heuristic first guess: the iterations
+/// correct any guess.
 ///
 /// Without equality rows the prefix is capped at the indices with `q_i < 0`
 /// (where `w` is negative at `z = 0`: the old initial guess); with them, the
@@ -226,17 +229,26 @@ fn prefix_search(
         if size == cap {
             break;
         }
+        let grown = cap.min((size as f64 * PREFIX_GROWTH) as usize + PREFIX_STEP);
         let solved = factor
             .update(p, &active, key, par, stats)
             .and_then(|()| BlockSystem::new(p, factor, par));
-        // A failure is the block iterations' to handle (they fall back).
-        let Ok(system) = solved else { break };
-        let (z, _) = system.solution(p);
-        let zscale = norm_inf(z.as_ref());
-        if z.iter().any(|&v| v < -tol.zero * zscale) {
-            break;
+        match solved {
+            Ok(system) => {
+                let (z, _) = system.solution(p);
+                let zscale = norm_inf(z.as_ref());
+                if z.iter().any(|&v| v < -tol.zero * zscale) {
+                    break;
+                }
+            }
+            // A singular Schur complement of the equality rows (a prefix
+            // that does not yet reach every extra unknown): a larger prefix
+            // may cure it.
+            Err(BlockFailure::Singular) => {}
+            // Not positive definite: the block iterations fall back.
+            Err(BlockFailure::NotPositiveDefinite) => break,
         }
-        next = cap.min((size as f64 * PREFIX_GROWTH) as usize + PREFIX_STEP);
+        next = grown;
     }
     active
 }
@@ -260,17 +272,23 @@ fn prefix_search(
 struct Factor {
     order: Vec<usize>,
     /// The factor in its leading `order.len()` rows and columns; the matrix
-    /// may be larger (its capacity), so a shrinking or slowly growing
-    /// active set reuses it in place.
+    /// may be larger, and its capacity larger still, so a shrinking or
+    /// growing active set reuses it in place.
     l: Mat<f64>,
+    /// The rows and columns reserved for `l`.
+    capacity: usize,
+    /// The largest order the factor can reach.
+    n: usize,
 }
 
 impl Factor {
-    /// An empty factor with room for `n` indices.
+    /// An empty factor for at most `n` indices.
     fn new(n: usize) -> Self {
         Self {
             order: Vec::new(),
-            l: Mat::with_capacity(n, n),
+            l: Mat::zeros(0, 0),
+            capacity: 0,
+            n,
         }
     }
 
@@ -304,9 +322,12 @@ impl Factor {
         rest.sort_by(|&a, &b| key[a].total_cmp(&key[b]).then(a.cmp(&b)));
         let (np, nr) = (keep, rest.len());
         if self.l.nrows() < np + nr {
-            // Grow in place: the matrix was made with the capacity of all
-            // of M (address space only: pages are touched as they fill), so
-            // the kept prefix does not move.
+            // Grow in place, the capacity at least doubling (capped at n) so
+            // that the kept prefix moves O(log n) times over a prefix search.
+            if self.capacity < np + nr {
+                self.capacity = (2 * self.capacity).max(np + nr).min(self.n);
+                self.l.reserve(self.capacity, self.capacity);
+            }
             self.l.resize_with(np + nr, np + nr, |_, _| 0.0);
         }
         let prefix = &self.order[..keep];

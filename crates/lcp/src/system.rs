@@ -384,16 +384,16 @@ impl System {
     }
 
     /// Solves `B x_B = b` for the basis `basis` (variables, in row order) from
-    /// this system's data, with iterative refinement. Returns `x_B` and the
-    /// number of refinement steps taken; `Err` holds the LU pivot ratio of a
-    /// singular basis.
+    /// this system's data, with up to `max_steps` steps of iterative
+    /// refinement. Returns `x_B` and the number of refinement steps taken;
+    /// `Err` holds the LU pivot ratio of a singular basis.
     ///
-    /// With a `tableau` for this basis, its right-hand side is the first
-    /// iterate and its columns (`B^{-1}`, read from the columns of the
-    /// reference basis) correct it: a matrix-vector product per step instead
-    /// of an LU of the basis. The LU path runs only when those corrections do
-    /// not bring the backward error to a few units of rounding
-    /// ([`TABLEAU_ACCEPT`]; a tableau that drifted).
+    /// With a `tableau` for this basis, [`refine_from_tableau`](Self::refine_from_tableau)
+    /// runs first: a matrix-vector product per step instead of an LU of the
+    /// basis. The LU path runs when it declines (a basis near singularity)
+    /// or does not bring the backward error to a few units of rounding
+    /// ([`TABLEAU_ACCEPT`]: a tableau that drifted); the better of the two
+    /// iterates is kept.
     pub fn basic_solution(
         &self,
         basis: &[usize],
@@ -401,30 +401,44 @@ impl System {
         par: Par,
         max_steps: usize,
     ) -> Result<(Col<f64>, usize), f64> {
-        // A basis near singularity (a reciprocal condition estimate
-        // 1 / (|B|_1 |B^{-1}|_1) at or below m u) goes to the LU path, which
-        // reports it (the tableau's refinement can reach a small backward
-        // error on a singular basis).
-        if let Some(tab) = tableau
-            && 1.0 / (self.basis_norm_1(basis) * tab.basis_inverse_norm_1())
-                > f64::EPSILON * self.rows as f64
+        let from_tableau = tableau.and_then(|tab| self.refine_from_tableau(basis, tab, max_steps));
+        if let Some((x, error, steps)) = &from_tableau
+            && *error <= TABLEAU_ACCEPT
         {
-            let x = Col::from_fn(self.rows, |i| tab.rhs(i));
-            let (x, error, steps) =
-                self.refine_basic(basis, x, max_steps.max(TABLEAU_REFINEMENT), |r| {
-                    tab.solve_basis(r)
-                });
-            if error <= TABLEAU_ACCEPT {
-                return Ok((x, steps));
-            }
+            return Ok((x.clone(), *steps));
         }
+        // Rejects a basis whose LU pivot ratio is at or below d u.
         let factor = BasisFactor::new(self, basis, par)?;
         let mut x = self.b.clone();
         factor.solve_in_place(x.as_mat_mut(), par);
-        let (x, _, steps) = self.refine_basic(basis, x, max_steps, |r| {
+        let (x, error, steps) = self.refine_basic(basis, x, max_steps, |r| {
             factor.solve_in_place(r.as_mat_mut(), par);
         });
-        Ok((x, steps))
+        Ok(match from_tableau {
+            Some((y, e, s)) if e < error => (y, s),
+            _ => (x, steps),
+        })
+    }
+
+    /// The basic solution refined from the tableau's right-hand side with
+    /// the `B^{-1}` the tableau holds ([`Tableau::solve_basis`]): the best
+    /// iterate, its componentwise backward error and the steps taken. `None`
+    /// for a basis near singularity (a reciprocal condition estimate
+    /// `1 / (|B|_1 |B^{-1}|_1)` at or below `m u`), on which refinement can
+    /// reach a small backward error and a meaningless answer: the LU path
+    /// then decides.
+    pub(crate) fn refine_from_tableau(
+        &self,
+        basis: &[usize],
+        tab: &mut Tableau,
+        max_steps: usize,
+    ) -> Option<(Col<f64>, f64, usize)> {
+        let rcond = 1.0 / (self.basis_norm_1(basis) * tab.basis_inverse_norm_1());
+        if rcond <= f64::EPSILON * self.rows as f64 {
+            return None;
+        }
+        let x = Col::from_fn(self.rows, |i| tab.rhs(i));
+        Some(self.refine_basic(basis, x, max_steps, |r| tab.solve_basis(r)))
     }
 
     /// `|B|_1`, the largest column sum of the basis's magnitudes.
@@ -493,10 +507,6 @@ const ROUNDING_LEVEL: f64 = 2.0 * f64::EPSILON;
 /// residual itself is computed in floating point): on the stability report's
 /// cases both the tableau and the LU path end between 0.2 and 12 u.
 const TABLEAU_ACCEPT: f64 = 64.0 * f64::EPSILON;
-
-/// Refinement steps allowed to the tableau's `B^{-1}` (each one a product
-/// with part of the tableau) before the LU path takes over.
-const TABLEAU_REFINEMENT: usize = 4;
 
 /// A factorization of a basis `B` (columns of `A` for the basic variables,
 /// in row order) that exploits its unit columns: a unit column `coef e_i`
@@ -683,19 +693,42 @@ mod tests {
         (system, tab)
     }
 
+    fn max_abs(v: &Col<f64>) -> f64 {
+        v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+    }
+
     #[test]
-    fn the_tableau_basic_solution_equals_the_lu_one() {
+    fn the_tableau_inverse_equals_an_lu_solve() {
+        let (system, mut tab) = pivoted(150, 100);
+        let basis = tab.basic.clone();
+        let factor = BasisFactor::new(&system, &basis, Par::Seq).unwrap();
+        let r = Col::from_fn(150, |i| (1.0 + i as f64).sqrt().sin());
+        let mut from_lu = r.clone();
+        factor.solve_in_place(from_lu.as_mat_mut(), Par::Seq);
+        let mut from_tableau = r.clone();
+        tab.solve_basis(&mut from_tableau);
+        let diff = max_abs(&(&from_lu - &from_tableau));
+        assert!(diff <= 1e-12 * max_abs(&from_lu), "{diff:e}");
+    }
+
+    #[test]
+    fn the_tableau_path_refines_a_perturbed_solution_to_the_lu_one() {
         let (system, mut tab) = pivoted(150, 100);
         let basis = tab.basic.clone();
         let (lu, _) = system.basic_solution(&basis, None, Par::Seq, 3).unwrap();
-        let (from_tableau, _) = system
+        // A right-hand side off by 1e-9 (relative): refinement must repair it.
+        tab.drift(1.0, 1.0 + 1e-9);
+        let (x, error, steps) = system.refine_from_tableau(&basis, &mut tab, 3).unwrap();
+        assert!(
+            steps >= 1 && error <= TABLEAU_ACCEPT,
+            "{steps} steps, error {error:e}"
+        );
+        let diff = max_abs(&(&lu - &x));
+        assert!(diff <= 64.0 * f64::EPSILON * max_abs(&lu), "{diff:e}");
+        let (y, _) = system
             .basic_solution(&basis, Some(&mut tab), Par::Seq, 3)
             .unwrap();
-        let scale = lu.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        let diff = (&lu - &from_tableau)
-            .iter()
-            .fold(0.0f64, |a, v| a.max(v.abs()));
-        assert!(diff <= 64.0 * f64::EPSILON * scale, "{diff:e} of {scale:e}");
+        assert_eq!(x, y);
     }
 
     #[test]
@@ -704,14 +737,14 @@ mod tests {
         let basis = tab.basic.clone();
         let (lu, _) = system.basic_solution(&basis, None, Par::Seq, 3).unwrap();
         // Corrupt the tableau's B^{-1} and right-hand side far past what
-        // refinement can repair in its steps.
-        tab.scale_columns(3.0);
-        assert!((tab.rhs(0) - 3.0 * lu[0]).abs() <= 1e-12 * lu[0].abs());
+        // refinement can repair: its own answer is rejected.
+        tab.drift(3.0, 3.0);
+        let (_, error, _) = system.refine_from_tableau(&basis, &mut tab, 3).unwrap();
+        assert!(error > TABLEAU_ACCEPT, "{error:e}");
         let (x, _) = system
             .basic_solution(&basis, Some(&mut tab), Par::Seq, 3)
             .unwrap();
-        let scale = lu.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        let diff = (&lu - &x).iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        assert!(diff <= 64.0 * f64::EPSILON * scale, "{diff:e} of {scale:e}");
+        let diff = max_abs(&(&lu - &x));
+        assert!(diff <= 64.0 * f64::EPSILON * max_abs(&lu), "{diff:e}");
     }
 }

@@ -397,19 +397,19 @@ impl Tableau {
             .fold(0.0f64, f64::max)
     }
 
-    /// Multiplies every non-basic column and the right-hand side by `factor`
-    /// (a drifted tableau, for tests of what notices one).
+    /// Multiplies every non-basic column by `columns` and the right-hand side
+    /// by `rhs` (a drifted tableau, for tests of what notices one).
     #[cfg(test)]
-    pub(crate) fn scale_columns(&mut self, factor: f64) {
+    pub(crate) fn drift(&mut self, columns: f64, rhs: f64) {
         self.flush();
         let (m, n) = (self.m, self.n());
         for j in 0..n {
             for v in &mut self.t0.col_as_slice_mut(j)[..m] {
-                *v *= factor;
+                *v *= columns;
             }
         }
         for v in &mut self.rhs {
-            *v *= factor;
+            *v *= rhs;
         }
     }
 
