@@ -159,6 +159,17 @@ impl Options {
         self.max_pivots.unwrap_or(20 * (rows + unknowns) + 100)
     }
 
+    /// The options of the one retry after a numerical failure (a singular
+    /// basis, a certificate that does not hold): the tableau refactored
+    /// from the original data every `RETRY_REFACTOR` pivots, refined harder.
+    pub(crate) fn retry(&self) -> Options {
+        Options {
+            refactor_interval: Some(RETRY_REFACTOR),
+            refinement_steps: self.refinement_steps.max(RETRY_REFINEMENT),
+            ..self.clone()
+        }
+    }
+
     pub(crate) fn refactor_every(&self, rows: usize) -> usize {
         self.refactor_interval.unwrap_or(rows.max(100))
     }
@@ -514,23 +525,29 @@ impl<'a> MixedLcpRef<'a> {
             Method::Lemke => lemke::solve_mixed(self, options),
             Method::BlockPivoting => block::solve_mixed(self, options),
         };
-        let mut raw = run(options)?;
+        // A basis the tableau's drift made singular: solve once more,
+        // refactoring from the data (the first error stands if that fails).
+        let (mut raw, retried) = match run(options) {
+            Ok(raw) => (raw, false),
+            Err(first @ LcpError::SingularBasis { .. }) => match run(&options.retry()) {
+                Ok(raw) => (raw, true),
+                Err(_) => return Err(first),
+            },
+            Err(e) => return Err(e),
+        };
+        raw.statistics.retried |= retried;
         let (mut certificate, mut w) = self.certify(
             raw.z.as_ref(),
             raw.u.as_ref(),
             options.tolerances.certificate,
         );
-        if !certificate.holds() {
+        if !certificate.holds() && !retried {
             // The certificate degraded (rounding drift steered a pivot or an
             // active set wrong): solve once more, the tableau methods
             // refactoring from the original data every RETRY_REFACTOR pivots
             // and refining harder, block pivoting by Lemke's method; keep the
             // better certificate. The statistics count both attempts.
-            let retry = Options {
-                refactor_interval: Some(RETRY_REFACTOR),
-                refinement_steps: options.refinement_steps.max(RETRY_REFINEMENT),
-                ..options.clone()
-            };
+            let retry = options.retry();
             let second = match method {
                 Method::BlockPivoting => {
                     block::fallback(self, &retry, Statistics::new(Method::BlockPivoting))
