@@ -171,6 +171,8 @@ fn warm_start(p: &MixedLcpRef<'_>, opts: &Options) -> Option<Vec<bool>> {
 const PREFIX_GROWTH: f64 = 1.15;
 /// The first prefix's size, and the fixed part of each step.
 const PREFIX_STEP: usize = 32;
+/// Steps in a row a prefix search grows past a singular Schur complement.
+const SINGULAR_STEPS: usize = 3;
 
 /// The initial active set without a warm start: the shortest prefix of the
 /// indices in `key` order whose block solution has a negative `z`.
@@ -182,8 +184,8 @@ const PREFIX_STEP: usize = 32;
 /// would jump from it to nearly every index: one factorization of the
 /// whole of `M`. Growing the prefix by a fixed ratio instead, each step
 /// factoring only the indices that join (the factor keeps the prefix), stops
-/// one step past the first prefix whose solution turns negative: on a
-/// contact problem about [`PREFIX_GROWTH`] times the contact set plus
+/// at the first prefix whose solution turns negative: on a contact problem
+/// at most about [`PREFIX_GROWTH`] times the contact set plus
 /// [`PREFIX_STEP`], which the block iterations then shrink (a shrinking
 /// prefix keeps its factor), so the factorization work is about that of the
 /// contact set, not of `M`. It is a heuristic first guess: the iterations
@@ -221,6 +223,7 @@ fn prefix_search(
     let mut active = vec![false; n];
     let mut size = 0;
     let mut next = first;
+    let mut singular = 0;
     while next > size {
         for &i in &order[size..next] {
             active[i] = true;
@@ -235,6 +238,7 @@ fn prefix_search(
             .and_then(|()| BlockSystem::new(p, factor, par));
         match solved {
             Ok(system) => {
+                singular = 0;
                 let (z, _) = system.solution(p);
                 let zscale = norm_inf(z.as_ref());
                 if z.iter().any(|&v| v < -tol.zero * zscale) {
@@ -243,8 +247,14 @@ fn prefix_search(
             }
             // A singular Schur complement of the equality rows (a prefix
             // that does not yet reach every extra unknown): a larger prefix
-            // may cure it.
-            Err(BlockFailure::Singular) => {}
+            // may cure it, a few steps in a row at most (badly posed extra
+            // unknowns would otherwise grow it to all of M for nothing).
+            Err(BlockFailure::Singular) => {
+                singular += 1;
+                if singular > SINGULAR_STEPS {
+                    break;
+                }
+            }
             // Not positive definite: the block iterations fall back.
             Err(BlockFailure::NotPositiveDefinite) => break,
         }

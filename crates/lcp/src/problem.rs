@@ -162,12 +162,20 @@ impl Options {
     /// The options of the one retry after a numerical failure (a singular
     /// basis, a certificate that does not hold): the tableau refactored
     /// from the original data every `RETRY_REFACTOR` pivots, refined harder.
-    pub(crate) fn retry(&self) -> Options {
-        Options {
-            refactor_interval: Some(RETRY_REFACTOR),
-            refinement_steps: self.refinement_steps.max(RETRY_REFINEMENT),
-            ..self.clone()
-        }
+    /// `None` when these options already are that (the retry would repeat
+    /// the same computation).
+    pub(crate) fn retry(&self) -> Option<Options> {
+        let refactor = self
+            .refactor_interval
+            .map_or(RETRY_REFACTOR, |r| r.min(RETRY_REFACTOR));
+        let steps = self.refinement_steps.max(RETRY_REFINEMENT);
+        (self.refactor_interval != Some(refactor) || self.refinement_steps != steps).then(|| {
+            Options {
+                refactor_interval: Some(refactor),
+                refinement_steps: steps,
+                ..self.clone()
+            }
+        })
     }
 
     pub(crate) fn refactor_every(&self, rows: usize) -> usize {
@@ -526,13 +534,30 @@ impl<'a> MixedLcpRef<'a> {
             Method::BlockPivoting => block::solve_mixed(self, options),
         };
         // A basis the tableau's drift made singular: solve once more,
-        // refactoring from the data (the first error stands if that fails).
+        // refactoring from the data (block pivoting, whose singular bases
+        // come from its Lemke fallback, by that fallback directly); the
+        // first error stands if that fails. The first attempt's pivots
+        // (the error's count) are added to the statistics.
         let (mut raw, retried) = match run(options) {
             Ok(raw) => (raw, false),
-            Err(first @ LcpError::SingularBasis { .. }) => match run(&options.retry()) {
-                Ok(raw) => (raw, true),
-                Err(_) => return Err(first),
-            },
+            Err(first @ LcpError::SingularBasis { pivot, .. }) => {
+                let Some(retry) = options.retry() else {
+                    return Err(first);
+                };
+                let second = match method {
+                    Method::BlockPivoting => {
+                        block::fallback(self, &retry, Statistics::new(Method::BlockPivoting))
+                    }
+                    _ => run(&retry),
+                };
+                match second {
+                    Ok(mut raw) => {
+                        raw.statistics.pivots += pivot;
+                        (raw, true)
+                    }
+                    Err(_) => return Err(first),
+                }
+            }
             Err(e) => return Err(e),
         };
         raw.statistics.retried |= retried;
@@ -547,16 +572,21 @@ impl<'a> MixedLcpRef<'a> {
             // refactoring from the original data every RETRY_REFACTOR pivots
             // and refining harder, block pivoting by Lemke's method; keep the
             // better certificate. The statistics count both attempts.
-            let retry = options.retry();
-            let second = match method {
-                Method::BlockPivoting => {
-                    block::fallback(self, &retry, Statistics::new(Method::BlockPivoting))
-                }
-                _ => run(&retry),
+            // (Options that already are the retry's: the tableau methods
+            // would repeat the same computation, so only block pivoting's
+            // fallback runs.)
+            let second = match (method, options.retry()) {
+                (Method::BlockPivoting, retry) => Some(block::fallback(
+                    self,
+                    retry.as_ref().unwrap_or(options),
+                    Statistics::new(Method::BlockPivoting),
+                )),
+                (_, Some(retry)) => Some(run(&retry)),
+                (_, None) => None,
             };
             // A failed second attempt leaves the first (its error is not the
             // answer: the first attempt's certificate says what went wrong).
-            if let Ok(second) = second {
+            if let Some(Ok(second)) = second {
                 let (c2, w2) = self.certify(
                     second.z.as_ref(),
                     second.u.as_ref(),
@@ -627,4 +657,33 @@ fn check_dims(
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_retry_tightens_the_options_or_is_none() {
+        let retry = Options::default().retry().expect("the defaults are looser");
+        assert_eq!(retry.refactor_interval, Some(RETRY_REFACTOR));
+        assert!(retry.refinement_steps >= RETRY_REFINEMENT);
+        // Options that already are the retry's: nothing to repeat.
+        assert!(retry.retry().is_none());
+        let tighter = Options {
+            refactor_interval: Some(5),
+            refinement_steps: 20,
+            ..Options::default()
+        };
+        assert!(tighter.retry().is_none());
+        // A tighter refactorization is kept, the refinement raised.
+        let mixed = Options {
+            refactor_interval: Some(5),
+            refinement_steps: 1,
+            ..Options::default()
+        };
+        let retry = mixed.retry().expect("more refinement");
+        assert_eq!(retry.refactor_interval, Some(5));
+        assert_eq!(retry.refinement_steps, RETRY_REFINEMENT);
+    }
 }

@@ -382,9 +382,10 @@ impl ComplementaryProgram {
                 (out, x, certificate)
             })
         };
+        let retry = options.retry();
         let (out, x, certificate) = match attempt(options) {
-            Ok(first) if first.2.holds() => first,
-            Ok(first) => match attempt(&options.retry()) {
+            Ok(first) if first.2.holds() || retry.is_none() => first,
+            Ok(first) => match attempt(retry.as_ref().unwrap_or(options)) {
                 Ok(mut second) if second.2.worst() < first.2.worst() => {
                     second.0.statistics.absorb(&first.0.statistics);
                     second.0.statistics.retried = true;
@@ -398,12 +399,14 @@ impl ComplementaryProgram {
                 }
                 Err(_) => first,
             },
-            Err(e @ LcpError::SingularBasis { .. }) => match attempt(&options.retry()) {
-                Ok(mut second) => {
+            Err(e @ LcpError::SingularBasis { pivot, .. }) => match retry.as_ref().map(attempt) {
+                Some(Ok(mut second)) => {
+                    // The first attempt's pivots: the error's count.
+                    second.0.statistics.pivots += pivot;
                     second.0.statistics.retried = true;
                     second
                 }
-                Err(_) => return Err(e),
+                _ => return Err(e),
             },
             Err(e) => return Err(e),
         };
