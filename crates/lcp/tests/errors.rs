@@ -271,3 +271,24 @@ fn a_non_finite_solution_never_certifies() {
         assert!(lcp.solve(method, &Options::default()).is_err(), "{method}");
     }
 }
+
+#[test]
+fn a_negative_multiplier_for_a_non_negative_extra_unknown_is_infeasible() {
+    // w = z - u - 2 >= 0, z w = 0, z = 1, u >= 0: z = 1 > 0 forces w = 0,
+    // so u = -1 < 0. The free-multiplier solve the engine falls back to
+    // finds that u and must not return it.
+    let mixed = MixedLcp::new(
+        mat![[1.0]],
+        mat![[-1.0]],
+        col![-2.0],
+        mat![[1.0]],
+        mat![[0.0]],
+        col![-1.0],
+        vec![Bound::NonNegative],
+    )
+    .unwrap();
+    let e = mixed
+        .solve(Method::RestrictedSimplex, &Options::default())
+        .unwrap_err();
+    assert!(matches!(e, LcpError::Infeasible { .. }), "{e}");
+}
