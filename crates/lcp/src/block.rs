@@ -424,19 +424,32 @@ struct BlockSystem<'f> {
     factor: &'f Factor,
     /// `G = M_JJ^{-1} B_J` (nj x k).
     g: Mat<f64>,
+    /// `M_JJ^{-1} (-q_J)`, the data's part of the solution.
+    data: Col<f64>,
     /// The Schur complement's LU and `C_J` (None without equality rows).
     schur: Option<(Lu, Mat<f64>)>,
     par: faer::Par,
 }
 
 impl<'f> BlockSystem<'f> {
-    /// Forms `G` and the Schur complement for the active set of `factor`.
+    /// Forms `G` and the Schur complement for the active set of `factor`,
+    /// and `M_JJ^{-1} (-q_J)` for [`solution`](Self::solution) in the same
+    /// triangular solves (one pass over the factor, not two: the solves are
+    /// bound by reading it).
     fn new(p: &MixedLcpRef<'_>, factor: &'f Factor, par: faer::Par) -> Result<Self, BlockFailure> {
         let idx: &[usize] = &factor.order;
         let nj = idx.len();
         let k = p.extras();
-        let mut g = Mat::from_fn(nj, k, |a, j| p.b[(idx[a], j)]);
-        factor.solve_in_place(g.as_mut(), par);
+        let mut both = Mat::from_fn(nj, k + 1, |a, j| {
+            if j < k {
+                p.b[(idx[a], j)]
+            } else {
+                -p.q[idx[a]]
+            }
+        });
+        factor.solve_in_place(both.as_mut(), par);
+        let data = both.col(k).to_owned();
+        let g = both.subcols(0, k).to_owned();
         let schur = if k > 0 {
             let cj = Mat::from_fn(k, nj, |e, a| p.c[(e, idx[a])]);
             let mut s = p.d.to_owned();
@@ -459,6 +472,7 @@ impl<'f> BlockSystem<'f> {
         Ok(Self {
             factor,
             g,
+            data,
             schur,
             par,
         })
@@ -469,6 +483,11 @@ impl<'f> BlockSystem<'f> {
     fn solve(&self, f: &Col<f64>, h: &Col<f64>) -> (Col<f64>, Col<f64>) {
         let mut y = f.clone();
         self.factor.solve_in_place(y.as_mat_mut(), self.par);
+        self.finish(y, h)
+    }
+
+    /// [`solve`](Self::solve) from `y = M_JJ^{-1} f`.
+    fn finish(&self, mut y: Col<f64>, h: &Col<f64>) -> (Col<f64>, Col<f64>) {
         let Some((lu, cj)) = &self.schur else {
             return (y, Col::zeros(0));
         };
@@ -495,10 +514,8 @@ impl<'f> BlockSystem<'f> {
 
     /// The active set's solution, `z` scattered to full length (0 off `J`).
     fn solution(&self, p: &MixedLcpRef<'_>) -> (Col<f64>, Col<f64>) {
-        let idx: &[usize] = &self.factor.order;
-        let f = Col::from_fn(idx.len(), |a| -p.q[idx[a]]);
         let h = Col::from_fn(p.extras(), |e| -p.r[e]);
-        let (zj, u) = self.solve(&f, &h);
+        let (zj, u) = self.finish(self.data.clone(), &h);
         (self.scatter(p.size(), &zj), u)
     }
 
