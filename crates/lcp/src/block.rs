@@ -539,8 +539,15 @@ impl<'f> BlockSystem<'f> {
     ) {
         let idx: &[usize] = &self.factor.order;
         let k = p.extras();
+        let mut sorted = idx.to_vec();
+        sorted.sort_unstable();
+        let mut w = Col::<f64>::zeros(p.size());
         for _ in 0..steps {
-            let w = residual_w(p, z, u, self.par);
+            // The block equations' rows only (w off J is not needed here).
+            let wj = residual_w_at(p, z, u, &sorted, self.par);
+            for (t, &i) in sorted.iter().enumerate() {
+                w[i] = wj[t];
+            }
             let rf = Col::from_fn(idx.len(), |a| -w[idx[a]]);
             let mut rh = p.r.to_owned();
             if k > 0 {
@@ -575,23 +582,13 @@ impl<'f> BlockSystem<'f> {
     }
 }
 
-/// The scale of w's terms, `max_i (|M z|_i + |B u|_i + |q_i|)` (with M z
-/// recovered as `w - B u - q`): what a w_i is compared with to call it
-/// negative. In w's own units (a gap, for contact), never mixed with the
-/// equality rows' (a load).
-fn w_scale(p: &MixedLcpRef<'_>, w: &Col<f64>, u: &Col<f64>) -> f64 {
-    let n = p.size();
-    (0..n)
-        .map(|i| {
-            let bu: f64 = (0..u.nrows()).map(|j| p.b[(i, j)] * u[j]).sum();
-            (w[i] - bu - p.q[i]).abs() + bu.abs() + p.q[i].abs()
-        })
-        .fold(0.0f64, f64::max)
-}
-
 /// The indices whose sign is wrong for the active set: active with
 /// `z_i < 0`, inactive with `w_i < 0`, each below the zero tolerance of its
-/// own scale (`|z|` and [`w_scale`]).
+/// own scale: `|z|`, and for w the scale of its terms,
+/// `max_i (|M z|_i + |B u|_i + |q_i|)` (with `M z` recovered as
+/// `w - B u - q`, and `w_i = 0` on the active rows, where the block solve
+/// makes it zero), in w's own units (a gap, for contact), never mixed with
+/// the equality rows' (a load). Only the inactive rows of `w` are computed.
 fn violations(
     p: &MixedLcpRef<'_>,
     active: &[bool],
@@ -600,10 +597,21 @@ fn violations(
     tol: &Tolerances,
     par: faer::Par,
 ) -> Vec<usize> {
-    let w = residual_w(p, z, u, par);
+    let n = p.size();
+    let inactive: Vec<usize> = (0..n).filter(|&i| !active[i]).collect();
+    let w_inactive = residual_w_at(p, z, u, &inactive, par);
+    let mut w = Col::<f64>::zeros(n);
+    for (t, &i) in inactive.iter().enumerate() {
+        w[i] = w_inactive[t];
+    }
     let zscale = norm_inf(z.as_ref());
-    let wscale = w_scale(p, &w, u);
-    (0..p.size())
+    let wscale = (0..n)
+        .map(|i| {
+            let bu: f64 = (0..u.nrows()).map(|j| p.b[(i, j)] * u[j]).sum();
+            (w[i] - bu - p.q[i]).abs() + bu.abs() + p.q[i].abs()
+        })
+        .fold(0.0f64, f64::max);
+    (0..n)
         .filter(|&i| {
             if active[i] {
                 z[i] < -tol.zero * zscale
@@ -614,19 +622,38 @@ fn violations(
         .collect()
 }
 
-/// `w = M z + B u + q`.
-fn residual_w(p: &MixedLcpRef<'_>, z: &Col<f64>, u: &Col<f64>, par: faer::Par) -> Col<f64> {
-    let mut w = p.q.to_owned();
-    matmul(w.as_mat_mut(), Accum::Add, p.m, z.as_mat(), 1.0, par);
-    if u.nrows() > 0 {
+/// `w_i = (M z)_i + (B u)_i + q_i` for the indices `rows` (ascending), in
+/// that order. `M` is symmetric (checked before block pivoting starts), so
+/// `(M z)_i` is column i of M against z: a run of consecutive indices is one
+/// product with contiguous columns, and the rows not asked for cost nothing.
+fn residual_w_at(
+    p: &MixedLcpRef<'_>,
+    z: &Col<f64>,
+    u: &Col<f64>,
+    rows: &[usize],
+    par: faer::Par,
+) -> Col<f64> {
+    let mut w = Col::<f64>::zeros(rows.len());
+    let mut start = 0;
+    while start < rows.len() {
+        let mut end = start + 1;
+        while end < rows.len() && rows[end] == rows[end - 1] + 1 {
+            end += 1;
+        }
+        let (first, len) = (rows[start], end - start);
         matmul(
-            w.as_mat_mut(),
-            Accum::Add,
-            p.b,
-            u.as_mat(),
+            w.as_mut().subrows_mut(start, len).as_mat_mut(),
+            Accum::Replace,
+            p.m.subcols(first, len).transpose(),
+            z.as_mat(),
             1.0,
-            faer::Par::Seq,
+            par,
         );
+        start = end;
+    }
+    for (t, &i) in rows.iter().enumerate() {
+        let bu: f64 = (0..u.nrows()).map(|j| p.b[(i, j)] * u[j]).sum();
+        w[t] += bu + p.q[i];
     }
     w
 }
