@@ -371,9 +371,12 @@ impl ComplementaryProgram {
         options.validate()?;
         let start = Instant::now();
         // A numerical failure (a basis the tableau's drift made singular, a
-        // certificate that does not hold) gets one more solve, refactoring
-        // from the data every few pivots; the first error stands if that
-        // fails, and of two answers the better certified is kept.
+        // certificate that does not hold, or a phase that ends unbounded or
+        // infeasible, which drift can fake: reduced costs and pivots read
+        // through many updates) gets one more solve, refactoring from the
+        // data every few pivots; the first error stands if that fails too
+        // (a program that really is unbounded or infeasible), and of two
+        // answers the better certified is kept.
         let tolerance = options.tolerances.certificate;
         let attempt = |options: &Options| {
             restricted::run(self, options).map(|out| {
@@ -399,7 +402,11 @@ impl ComplementaryProgram {
                 }
                 Err(_) => first,
             },
-            Err(e @ LcpError::SingularBasis { pivot, .. }) => match retry.as_ref().map(attempt) {
+            Err(
+                e @ (LcpError::SingularBasis { pivot, .. }
+                | LcpError::Unbounded { pivot, .. }
+                | LcpError::Infeasible { pivot, .. }),
+            ) => match retry.as_ref().map(attempt) {
                 Some(Ok(mut second)) => {
                     // The first attempt's pivots: the error's count.
                     second.0.statistics.pivots += pivot;
