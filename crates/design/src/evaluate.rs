@@ -101,7 +101,8 @@ pub fn evaluate_known(
     options: &Options,
     known: &[Option<&ContactSolution>],
 ) -> Result<Evaluation, DesignError> {
-    evaluate_cases(cases, axis, profile, method, options, known, None)
+    let none = vec![None; cases.len()];
+    evaluate_cases(cases, axis, profile, method, options, known, &none)
 }
 
 /// As [`evaluate`], each case's solve warm-started from its solution in
@@ -121,28 +122,7 @@ pub fn evaluate_from(
     options: &Options,
     start: &Evaluation,
 ) -> Result<Evaluation, DesignError> {
-    if start.solutions.len() != cases.len() {
-        return Err(DesignError::Incompatible {
-            field: "start",
-            reason: format!(
-                "has {} solutions, expected {} (one per load case)",
-                start.solutions.len(),
-                cases.len()
-            ),
-        });
-    }
-    for (l, (case, solution)) in cases.iter().zip(&start.solutions).enumerate() {
-        if solution.forces.len() != case.points().len() {
-            return Err(DesignError::Incompatible {
-                field: "start",
-                reason: format!(
-                    "the solution of load case {l} has {} values, the case {} points",
-                    solution.forces.len(),
-                    case.points().len()
-                ),
-            });
-        }
-    }
+    let starts: Vec<Option<&ContactSolution>> = start.solutions.iter().map(Some).collect();
     evaluate_cases(
         cases,
         axis,
@@ -150,11 +130,47 @@ pub fn evaluate_from(
         method,
         options,
         &vec![None; cases.len()],
-        Some(&start.solutions),
+        &starts,
     )
 }
 
-/// [`evaluate_known`] with optional warm starts (one solution per case).
+/// Solutions given per case (`known`, or warm starts): one entry per case,
+/// each with one value per point, or a [`DesignError::Incompatible`] naming
+/// `field`.
+fn check_given(
+    field: &'static str,
+    given: &[Option<&ContactSolution>],
+    cases: &[ContactProblem],
+) -> Result<(), DesignError> {
+    if given.len() != cases.len() {
+        return Err(DesignError::Incompatible {
+            field,
+            reason: format!(
+                "has {} entries, expected {} (one per load case)",
+                given.len(),
+                cases.len()
+            ),
+        });
+    }
+    for (l, (case, solution)) in cases.iter().zip(given).enumerate() {
+        if let Some(solution) = solution
+            && solution.pressures.len() != case.points().len()
+        {
+            return Err(DesignError::Incompatible {
+                field,
+                reason: format!(
+                    "the solution of load case {l} has {} values, the case {} points",
+                    solution.pressures.len(),
+                    case.points().len()
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// [`evaluate_known`] with warm starts: a known solution is taken as it
+/// is, a start begins the solve.
 fn evaluate_cases(
     cases: &[ContactProblem],
     axis: Axis,
@@ -162,7 +178,7 @@ fn evaluate_cases(
     method: Method,
     options: &Options,
     known: &[Option<&ContactSolution>],
-    starts: Option<&[ContactSolution]>,
+    starts: &[Option<&ContactSolution>],
 ) -> Result<Evaluation, DesignError> {
     if cases.is_empty() {
         return Err(DesignError::Incompatible {
@@ -170,34 +186,16 @@ fn evaluate_cases(
             reason: "no load case given".into(),
         });
     }
-    if known.len() != cases.len() {
-        return Err(DesignError::Incompatible {
-            field: "known",
-            reason: format!(
-                "has {} entries, expected {} (one per load case)",
-                known.len(),
-                cases.len()
-            ),
-        });
-    }
+    check_given("known", known, cases)?;
+    check_given("start", starts, cases)?;
     let mut corrections = Vec::with_capacity(cases.len());
     let mut solutions = Vec::with_capacity(cases.len());
     let mut max_intensities = Vec::with_capacity(cases.len());
-    for (l, (case, known)) in cases.iter().zip(known).enumerate() {
+    for (l, ((case, known), start)) in cases.iter().zip(known).zip(starts).enumerate() {
         load_of(case, l)?;
         let y = profile.separations(&axis.positions(case.points()))?;
         let solution = match known {
-            Some(solution) if solution.pressures.len() == y.len() => (*solution).clone(),
-            Some(solution) => {
-                return Err(DesignError::Incompatible {
-                    field: "known",
-                    reason: format!(
-                        "the solution of load case {l} has {} values, the case {} points",
-                        solution.pressures.len(),
-                        y.len()
-                    ),
-                });
-            }
+            Some(solution) => (*solution).clone(),
             None => {
                 let eps: Vec<f64> = case
                     .separation()
@@ -209,7 +207,7 @@ fn evaluate_cases(
                 let corrected = case
                     .with_separation(eps)
                     .map_err(DesignError::analysis(stage.clone()))?;
-                match starts.map(|s| &s[l]) {
+                match start {
                     Some(start) => corrected.solve_from(start, method, options),
                     None => corrected.solve(method, options),
                 }
