@@ -55,6 +55,22 @@ fn rel_diff(a: &Col<f64>, b: &Col<f64>) -> f64 {
     (a - b).iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
 }
 
+/// The contact-shaped mixed form of `(m, q)`: w = M z - alpha e + |q|,
+/// e^T z = `load`, alpha free.
+fn contact_form(m: Mat<f64>, q: &Col<f64>, load: f64) -> MixedLcp {
+    let n = q.nrows();
+    MixedLcp::new(
+        m,
+        Mat::from_fn(n, 1, |_, _| -1.0),
+        Col::from_fn(n, |i| q[i].abs()),
+        Mat::from_fn(1, n, |_, _| 1.0),
+        Mat::zeros(1, 1),
+        Col::from_fn(1, |_| -load),
+        vec![Bound::Free],
+    )
+    .unwrap()
+}
+
 fn problem(n: usize) -> impl Strategy<Value = (Mat<f64>, Col<f64>)> {
     (
         proptest::collection::vec(-1.0f64..1.0, n * n),
@@ -133,17 +149,7 @@ proptest! {
     /// both methods agree and the certificate holds.
     #[test]
     fn mixed_contact_form((m, q) in (1usize..=30).prop_flat_map(problem), load in 0.01f64..100.0) {
-        let n = q.nrows();
-        let q = Col::from_fn(n, |i| q[i].abs());
-        let mixed = MixedLcp::new(
-            m,
-            Mat::from_fn(n, 1, |_, _| -1.0),
-            q,
-            Mat::from_fn(1, n, |_, _| 1.0),
-            Mat::zeros(1, 1),
-            Col::from_fn(1, |_| -load),
-            vec![Bound::Free],
-        ).unwrap();
+        let mixed = contact_form(m, &q, load);
         let a = mixed.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
         prop_assert!(a.certificate.holds(), "{}", a.certificate);
         let total: f64 = a.z.iter().sum();
@@ -168,17 +174,7 @@ proptest! {
         (m, q) in (40usize..=120).prop_flat_map(problem),
         load in 0.01f64..100.0,
     ) {
-        let n = q.nrows();
-        let q = Col::from_fn(n, |i| q[i].abs());
-        let mixed = MixedLcp::new(
-            m,
-            Mat::from_fn(n, 1, |_, _| -1.0),
-            q,
-            Mat::from_fn(1, n, |_, _| 1.0),
-            Mat::zeros(1, 1),
-            Col::from_fn(1, |_| -load),
-            vec![Bound::Free],
-        ).unwrap();
+        let mixed = contact_form(m, &q, load);
         let a = mixed.solve(Method::Lemke, &Options::default()).unwrap();
         let b = mixed.solve(Method::BlockPivoting, &Options::default()).unwrap();
         prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
