@@ -481,16 +481,6 @@ impl<'a> MixedLcpRef<'a> {
         self.r.nrows()
     }
 
-    /// Whether every non-negative extra unknown of `u` is, to the zero
-    /// tolerance of `u`'s scale.
-    fn extras_admissible(&self, u: &Col<f64>, tol: &Tolerances) -> bool {
-        let scale = crate::dense::norm_inf(u.as_ref()).max(f64::MIN_POSITIVE);
-        self.bounds
-            .iter()
-            .zip(u.iter())
-            .all(|(b, &v)| *b == Bound::Free || v >= -tol.zero * scale)
-    }
-
     /// The certificate of `(z, u)` and `w = M z + B u + q`.
     pub fn certify(
         &self,
@@ -566,29 +556,6 @@ impl<'a> MixedLcpRef<'a> {
                         (raw, true)
                     }
                     Err(_) => return Err(first),
-                }
-            }
-            // The restricted-entry rule can stall in phase 1 when an extra
-            // unknown is non-negative (its convergence theory is for free
-            // multipliers): solve with the extra unknowns free and keep that
-            // answer when they come out non-negative, which makes it a
-            // solution of this problem too (the certificate below checks
-            // it); otherwise the first error stands.
-            Err(first @ LcpError::Infeasible { pivot, .. })
-                if method == Method::RestrictedSimplex
-                    && self.bounds.contains(&Bound::NonNegative) =>
-            {
-                let free = vec![Bound::Free; self.bounds.len()];
-                let relaxed = MixedLcpRef {
-                    bounds: &free,
-                    ..*self
-                };
-                match restricted::solve_mixed(&relaxed, options) {
-                    Ok(mut raw) if self.extras_admissible(&raw.u, &options.tolerances) => {
-                        raw.statistics.pivots += pivot;
-                        (raw, true)
-                    }
-                    _ => return Err(first),
                 }
             }
             Err(e) => return Err(e),

@@ -34,6 +34,7 @@ use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
 use crate::program::ComplementaryProgram;
 use crate::system::{Column, System};
 use crate::tableau::{Position, Ratio, RowRule, Tableau, UPDATE_BLOCK};
+use crate::tolerance::Tolerances;
 use crate::{LcpError, Method};
 
 /// What the restricted-entry simplex returns before certification.
@@ -47,7 +48,48 @@ pub(crate) struct Outcome {
 
 /// Solves a mixed LCP by writing it as a program:
 /// `-M z - B u + w = q`, `C z + D u = -r`, pairs `(z_i, w_i)`.
+///
+/// The restricted-entry rule can stall in phase 1 when an extra unknown is
+/// non-negative (its convergence theory is for free multipliers): the
+/// problem is then solved with the extra unknowns free, and that answer
+/// kept when they come out non-negative, which makes it a solution of this
+/// problem too (`Statistics::retried`, the pivots of both attempts);
+/// otherwise the first error stands.
 pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
+    match solve_as_given(p, opts) {
+        Err(first @ LcpError::Infeasible { pivot, .. })
+            if p.bounds.contains(&Bound::NonNegative) =>
+        {
+            let free = vec![Bound::Free; p.bounds.len()];
+            let relaxed = MixedLcpRef {
+                bounds: &free,
+                ..*p
+            };
+            match solve_as_given(&relaxed, opts) {
+                Ok(mut raw) if extras_admissible(p.bounds, &raw.u, &opts.tolerances) => {
+                    raw.statistics.pivots += pivot;
+                    raw.statistics.retried = true;
+                    Ok(raw)
+                }
+                _ => Err(first),
+            }
+        }
+        other => other,
+    }
+}
+
+/// Whether every non-negative extra unknown of `u` is, to the zero
+/// tolerance of `u`'s scale.
+fn extras_admissible(bounds: &[Bound], u: &Col<f64>, tol: &Tolerances) -> bool {
+    let scale = norm_inf(u.as_ref()).max(f64::MIN_POSITIVE);
+    bounds
+        .iter()
+        .zip(u.iter())
+        .all(|(b, &v)| *b == Bound::Free || v >= -tol.zero * scale)
+}
+
+/// [`solve_mixed`] with the extra unknowns' bounds as given.
+fn solve_as_given(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
     let n = p.size();
     let k = p.extras();
     let me = p.equalities();
