@@ -505,7 +505,8 @@ const ROUNDING_LEVEL: f64 = 2.0 * f64::EPSILON;
 /// The backward error at which the tableau's solution is kept: a few units
 /// of rounding. Refinement plateaus there whichever `B^{-1}` corrects it (the
 /// residual itself is computed in floating point): on the stability report's
-/// cases both the tableau and the LU path end between 0.2 and 12 u.
+/// cases both the tableau and the LU path ended between 0.2 and 12 u (printed
+/// once with a temporary trace on 2026-11-23, not stored).
 const TABLEAU_ACCEPT: f64 = 64.0 * f64::EPSILON;
 
 /// A factorization of a basis `B` (columns of `A` for the basic variables,

@@ -80,14 +80,17 @@ pub(crate) struct Ratio {
 /// once per block; a larger block costs more per read of a column or row
 /// (`rows k`, `cols k`). The restricted-entry simplex reads several
 /// candidate columns per pivot and keeps 64: at 128 the roller design LP
-/// (2203 rows) took 0.95 s per start against 0.72 s.
+/// (2203 rows) took 0.95 s per start against 0.72 s (`cargo run --release
+/// --example crowned_roller` with this constant changed; one measurement on
+/// 2026-11-23, not stored).
 pub(crate) const UPDATE_BLOCK: usize = 64;
 
 /// The block for Lemke's method, which reads one column and one row per
 /// pivot, by the tableau's row count. Measured with `scaling_probe --method
-/// lemke` (Hertz, Love patches, 2-core Zen 4): at N = 529 and 1009, 64 beat
-/// 128 by 20-35 %; at N = 1961 and 4053, 128 beat 64 by about 10 % (the
-/// product's pass over `T0`, 31 MB at N = 1961, is bound by memory).
+/// lemke` (Hertz, Love patches, 2-core Zen 4; one set of runs on
+/// 2026-11-23 with the threshold changed, not stored): at N = 529 and 1009,
+/// 64 beat 128 by 20-35 %; at N = 1961 and 4053, 128 beat 64 by about 10 %
+/// (the product's pass over `T0`, 31 MB at N = 1961, is bound by memory).
 pub(crate) fn lemke_update_block(rows: usize) -> usize {
     if rows >= 1500 { 128 } else { UPDATE_BLOCK }
 }
