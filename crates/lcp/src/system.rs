@@ -401,12 +401,11 @@ impl System {
         par: Par,
         max_steps: usize,
     ) -> Result<(Col<f64>, usize), f64> {
-        let from_tableau = tableau.and_then(|tab| self.refine_from_tableau(basis, tab, max_steps));
-        if let Some((x, error, steps)) = &from_tableau
-            && *error <= TABLEAU_ACCEPT
-        {
-            return Ok((x.clone(), *steps));
-        }
+        let from_tableau =
+            match tableau.and_then(|tab| self.refine_from_tableau(basis, tab, max_steps)) {
+                Some((x, error, steps)) if error <= TABLEAU_ACCEPT => return Ok((x, steps)),
+                other => other,
+            };
         // Rejects a basis whose LU pivot ratio is at or below d u.
         let factor = BasisFactor::new(self, basis, par)?;
         let mut x = self.b.clone();
