@@ -69,15 +69,7 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
     let cap = opts.max_pivots.unwrap_or(3 * n + 50);
     let mut best = usize::MAX;
     let mut retries = BLOCK_RETRIES;
-    // The order in which indices join the factor: by the threshold q_i /
-    // |B_i| (for one extra unknown: the approach at which point i touches),
-    // else by q_i.
-    let key: Vec<f64> = (0..n)
-        .map(|i| {
-            let b = (0..k).fold(0.0f64, |a, j| a.max(p.b[(i, j)].abs()));
-            if b > 0.0 { p.q[i] / b } else { p.q[i] }
-        })
-        .collect();
+    let key = keys(p);
     let mut factor = Factor::new(n);
     let mut active = match warm_start(p, opts) {
         Some(a) => a,
@@ -137,10 +129,43 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
     }
 }
 
+/// The order in which indices join the factor: by the threshold `q_i /
+/// |B_i|` (for one extra unknown: the approach at which point i touches),
+/// else by `q_i`.
+fn keys(p: &MixedLcpRef<'_>) -> Vec<f64> {
+    (0..p.size())
+        .map(|i| {
+            let b = (0..p.extras()).fold(0.0f64, |a, j| a.max(p.b[(i, j)].abs()));
+            if b > 0.0 { p.q[i] / b } else { p.q[i] }
+        })
+        .collect()
+}
+
+/// The solution on a given active set, from the original data: one
+/// Cholesky of `M_JJ`, the block system, iterative refinement. `None` when
+/// `M_JJ` is not positive definite, the equality rows' Schur complement is
+/// singular, or a sign is wrong (the set does not solve the problem). The
+/// final basic solution of a method that found the set by other means.
+pub(crate) fn solve_active_set(
+    p: &MixedLcpRef<'_>,
+    active: &[bool],
+    opts: &Options,
+    stats: &mut Statistics,
+) -> Option<(Col<f64>, Col<f64>)> {
+    let par = opts.par(p.size(), p.size());
+    let factor = Factor::of(p, active, par, stats).ok()?;
+    let system = BlockSystem::new(p, &factor, par).ok()?;
+    let (mut z, mut u) = system.solution(p);
+    system.refine(p, &mut z, &mut u, opts.refinement_steps, stats);
+    violations(p, active, &z, &u, &opts.tolerances, par)
+        .is_empty()
+        .then_some((z, u))
+}
+
 /// An entry `(i, j)` where `M` is not symmetric (to `1e3 u` of its largest
 /// diagonal entry), compared tile by tile so that the transposed reads stay
 /// in cache.
-fn asymmetry(m: faer::MatRef<'_, f64>) -> Option<(usize, usize)> {
+pub(crate) fn asymmetry(m: faer::MatRef<'_, f64>) -> Option<(usize, usize)> {
     const TILE: usize = 64;
     let n = m.nrows();
     let scale = (0..n).fold(0.0f64, |a, i| a.max(m[(i, i)].abs()));
@@ -300,6 +325,51 @@ impl Factor {
             capacity: 0,
             n,
         }
+    }
+
+    /// The factor of the block `active`, in one factorization (indices in
+    /// ascending order, gathered straight into the factor's storage).
+    fn of(
+        p: &MixedLcpRef<'_>,
+        active: &[bool],
+        par: faer::Par,
+        stats: &mut Statistics,
+    ) -> Result<Self, BlockFailure> {
+        use faer::linalg::cholesky::llt::factor::{
+            LltRegularization, cholesky_in_place, cholesky_in_place_scratch,
+        };
+        let order: Vec<usize> = (0..active.len()).filter(|&i| active[i]).collect();
+        let nj = order.len();
+        let mut l = Mat::from_fn(nj, nj, |a, b| {
+            if a >= b {
+                p.m[(order[a], order[b])]
+            } else {
+                0.0
+            }
+        });
+        let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(
+            nj,
+            par,
+            Default::default(),
+        ));
+        cholesky_in_place(
+            l.as_mut(),
+            LltRegularization {
+                dynamic_regularization_delta: 0.0,
+                dynamic_regularization_epsilon: 0.0,
+            },
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .map_err(|_| BlockFailure::NotPositiveDefinite)?;
+        stats.factorizations += 1;
+        Ok(Self {
+            order,
+            l,
+            capacity: nj,
+            n: active.len(),
+        })
     }
 
     /// Refactors for `active`; `key` orders the indices that join.

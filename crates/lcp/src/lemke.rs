@@ -27,6 +27,16 @@
 //! `M'` is positive semidefinite whenever `M` is and `[B; D]`, `[C D]` form a
 //! skew pair (`C = -B^T`, `D = 0`, as in the contact problem with its sign
 //! conventions up to a symmetric scaling), so the method's guarantee carries over.
+//!
+//! A symmetric `M` with a positive diagonal, in the standard form or the
+//! contact form (one free unknown whose column `b <= 0` is proportional to
+//! minus its equality row), is first solved on the symmetric tableau of
+//! [`crate::sweep`]: Lemke's path in its parametric principal-pivoting form,
+//! the covering vector being the approach's column, which halves the work
+//! of the delayed updates and reads one column per pivot. What that form
+//! cannot finish (a matrix that is not positive definite where the path
+//! goes) continues here, its pivots counted; an explicit covering vector or
+//! refactorization interval (the retry's options) comes here directly.
 
 use faer::{Col, Mat};
 
@@ -34,7 +44,7 @@ use crate::dense::norm_inf;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
 use crate::system::{Column, System};
 use crate::tableau::{Position, RowRule, Tableau, lemke_update_block};
-use crate::{LcpError, Method};
+use crate::{LcpError, Method, sweep};
 
 /// Most Ruiz passes of the equilibration (it stops earlier once every row
 /// and column maximum is within a factor 2 of 1).
@@ -64,6 +74,15 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
             reason: "non-negative extra unknowns without complementary rows are not an LCP; use the restricted-entry simplex"
                 .into(),
         });
+    }
+    // A symmetric M: the parametric form on the symmetric tableau; anything
+    // it cannot finish goes on below, its pivots counted.
+    let mut before = None;
+    if let Some(stop) = sweep::applies(p, opts) {
+        match sweep::solve(p, opts, stop) {
+            Ok(raw) => return Ok(raw),
+            Err(stats) => before = Some(stats),
+        }
     }
     // The tableau's dense block [-M' | -d] is written directly (no copy of M'
     // is kept): column j of -M' for j < ns, the covering vector after.
@@ -99,7 +118,10 @@ pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolu
         q[n + e] = p.r[e];
         q[n + k + e] = -p.r[e];
     }
-    let (z_full, basic_full, statistics) = core(dense, q, opts)?;
+    let (z_full, basic_full, mut statistics) = core(dense, q, opts)?;
+    if let Some(before) = before {
+        statistics.absorb(&before);
+    }
     let z = Col::from_fn(n, |i| z_full[i]);
     let u = Col::from_fn(k, |j| z_full[n + j] - z_full[n + k + j]);
     Ok(RawSolution {

@@ -15,7 +15,9 @@
 //! Methods ([`Method`]):
 //! - the restricted-entry (complementary) simplex of Wolfe (1959), the
 //!   method of Conry & Seireg (1971);
-//! - Lemke's method with a covering vector and a lexicographic ratio test;
+//! - Lemke's method with a covering vector and a lexicographic ratio test
+//!   (for a symmetric `M`, in its parametric principal-pivoting form on a
+//!   symmetric tableau);
 //! - block principal pivoting for symmetric positive definite `M` (not a
 //!   tableau method: one Cholesky of the active block per iteration).
 //!
@@ -50,6 +52,7 @@ mod lemke;
 mod problem;
 mod program;
 mod restricted;
+mod sweep;
 mod system;
 mod tableau;
 pub mod tolerance;

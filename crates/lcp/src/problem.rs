@@ -54,6 +54,11 @@ pub enum Method {
     /// Lemke's complementary pivoting method with a covering vector and a
     /// lexicographic minimum-ratio test (Lemke 1965). Mixed forms are solved
     /// as the equivalent standard LCP with each free unknown split in two.
+    /// A symmetric `M` (the standard form, or the contact form with one load
+    /// row) runs first on a symmetric tableau, as the parametric principal
+    /// pivoting form of the same path, with the approach's column as the
+    /// covering vector: half the update work, and a Cholesky of the contact
+    /// block for the final basic solution.
     Lemke,
     /// Block principal pivoting (Júdice & Pires 1994) for a symmetric
     /// positive definite `M`: guess the active set, solve the equilibrium on
@@ -206,7 +211,9 @@ pub struct Statistics {
     pub refinement_steps: usize,
     /// Block iterations (block pivoting; 0 for the tableau methods).
     pub iterations: usize,
-    /// Matrix factorizations (Cholesky of block systems; 0 for the tableau methods).
+    /// Matrix factorizations (Cholesky of block systems; 0 for the general
+    /// tableau; 1 for Lemke's method on the symmetric tableau, whose final
+    /// basic solution is solved by a Cholesky of the contact block).
     pub factorizations: usize,
     /// Whether block pivoting fell back to Lemke's method.
     pub fell_back: bool,

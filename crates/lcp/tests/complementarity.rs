@@ -285,3 +285,74 @@ fn deferred_unknowns_enter_only_in_phase_two() {
     assert!(sol.certificate.holds());
     assert_eq!((sol.x[x], sol.x[d]), (0.0, 1.0), "phase 2 moves d");
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// Lemke's method on the symmetric tableau (a symmetric M, the default
+    /// options; it ends with one Cholesky) against the general tableau (an
+    /// explicit covering vector selects it), in the standard and the
+    /// contact forms, up to past the symmetric tableau's update block (64
+    /// pivots). Random A A^T + shift I have off-diagonal entries of both
+    /// signs, so indices also leave the active set along the path.
+    #[test]
+    fn symmetric_tableau_matches_the_general_one(
+        (m, q) in (2usize..=110).prop_flat_map(problem),
+        load in 0.01f64..100.0,
+    ) {
+        let n = q.nrows();
+        let general = |size: usize| Options {
+            covering_vector: Some(vec![1.0; size]),
+            ..Options::default()
+        };
+        let lcp = Lcp::new(m.clone(), q.clone()).unwrap();
+        let a = lcp.solve(Method::Lemke, &Options::default()).unwrap();
+        let b = lcp.solve(Method::Lemke, &general(n)).unwrap();
+        if q.iter().any(|&v| v < 0.0) {
+            prop_assert_eq!(a.statistics.factorizations, 1, "the symmetric tableau ran");
+        }
+        prop_assert_eq!(b.statistics.factorizations, 0);
+        prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
+        prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
+        let mixed = contact_form(m, &q, load);
+        let a = mixed.solve(Method::Lemke, &Options::default()).unwrap();
+        let b = mixed.solve(Method::Lemke, &general(n + 2)).unwrap();
+        prop_assert_eq!(a.statistics.factorizations, 1, "the symmetric tableau ran");
+        prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
+        prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
+        prop_assert!((a.u[0] - b.u[0]).abs() <= 1e-9 * a.u[0].abs().max(1e-300));
+    }
+}
+
+#[test]
+fn the_symmetric_tableau_follows_a_point_out_of_contact() {
+    // Three points in a row, M = tridiag(0.6, 1, 0.6) (positive definite),
+    // gaps (1, 0, 1), load 20. The middle point touches at alpha = 0 and
+    // carries z_1 = alpha; the outer two touch together at alpha = 2.5 (a tie:
+    // one pivot of length 0). Then dz/dalpha = M^{-1} e = (10, -5, 10) / 7, so the
+    // middle point unloads and leaves at alpha = 6 (load 10); on {0, 2}, M = I:
+    // z_0 = z_2 = alpha - 1 = 10 at alpha = 11, and w_1 = 0.6 * 20 - 11 = 1.
+    let m = faer::mat![[1.0, 0.6, 0.0], [0.6, 1.0, 0.6], [0.0, 0.6, 1.0]];
+    let mixed = MixedLcp::new(
+        m,
+        Mat::from_fn(3, 1, |_, _| -1.0),
+        faer::col![1.0, 0.0, 1.0],
+        Mat::from_fn(1, 3, |_, _| 1.0),
+        Mat::zeros(1, 1),
+        faer::col![-20.0],
+        vec![Bound::Free],
+    )
+    .unwrap();
+    let sol = mixed.solve(Method::Lemke, &Options::default()).unwrap();
+    let s = sol.statistics;
+    assert_eq!(s.factorizations, 1, "the symmetric tableau ran");
+    // In: 1, 0, 2 (after a step of length 0); out: 1.
+    assert_eq!((s.pivots, s.degenerate_pivots), (4, 1), "{s:?}");
+    assert_eq!(sol.basic, vec![true, false, true]);
+    let expect = [10.0, 0.0, 10.0];
+    for i in 0..3 {
+        assert!((sol.z[i] - expect[i]).abs() <= 1e-13 * 10.0, "{:?}", sol.z);
+    }
+    assert!((sol.u[0] - 11.0).abs() <= 1e-13 * 11.0);
+    assert!((sol.w[1] - 1.0).abs() <= 1e-13);
+}

@@ -164,12 +164,16 @@ fn singular_basis_is_detected() {
     // M = [[t, t], [t, t + 1]] with t = 2^52: its LU has pivots t and 1, a
     // ratio of 2^-52 (condition ~ 2^54), below m u; the solution z = (1/2, 1/2)
     // needs both columns. With no equilibration and no pivot tolerance the
-    // engine reaches that basis and must report it, not return it.
+    // engine reaches that basis and must report it, not return it. (An
+    // explicit covering vector selects the general tableau: for a symmetric
+    // M, Lemke's method otherwise runs on the symmetric tableau and ends with
+    // a Cholesky of the contact block.)
     let t = 2f64.powi(52);
     let m = mat![[t, t], [t, t + 1.0]];
     let lcp = Lcp::new(m, col![-t, -t - 0.5]).unwrap();
     let opts = Options {
         equilibrate: false,
+        covering_vector: Some(vec![1.0, 1.0]),
         tolerances: Tolerances {
             pivot: 0.0,
             ..Tolerances::default()
@@ -203,11 +207,23 @@ fn inaccurate_solutions_are_not_returned() {
     };
     let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
     // Before giving up, the engine solved once more, refactoring from the
-    // data every 10 pivots: the error counts the pivots of both attempts.
+    // data every 10 pivots (the general tableau; the first attempt ran on the
+    // symmetric one): the error counts the pivots of both attempts.
     let once = lcp.solve(Method::Lemke, &Options::default()).unwrap();
     assert!(!once.statistics.retried);
+    // The symmetric tableau ends with one Cholesky, the general one with none.
+    assert_eq!(once.statistics.factorizations, 1, "the symmetric tableau");
+    let retry = Options {
+        refactor_interval: Some(10),
+        refinement_steps: 10,
+        ..Options::default()
+    };
+    let again = lcp.solve(Method::Lemke, &retry).unwrap();
+    assert_eq!(again.statistics.factorizations, 0, "the general tableau");
     match &e {
-        LcpError::Inaccurate { pivots, .. } => assert_eq!(*pivots, 2 * once.statistics.pivots),
+        LcpError::Inaccurate { pivots, .. } => {
+            assert_eq!(*pivots, once.statistics.pivots + again.statistics.pivots)
+        }
         other => panic!("{other:?}"),
     }
     let text = message(e);

@@ -1,0 +1,579 @@
+//! Lemke's method for a symmetric `M`, in its parametric principal-pivoting
+//! form on a symmetric (swept) tableau with delayed updates.
+//!
+//! For a P-matrix, Lemke's method with a covering vector `d` follows the
+//! solution path of the parametric LCP `w = M z + q + d z0` as its
+//! artificial `z0` falls (Cottle, Pang & Stone 1992, ch. 4): every basis on
+//! the path is complementary for the parametric problem, and every pivot a
+//! principal pivot. For a symmetric `M` this form keeps the tableau
+//! symmetric, so a pivot reads one column (its row is the same numbers) and
+//! needs no lexicographic bookkeeping of `B^{-1}`. The path is
+//!
+//! ```text
+//!     w = M z + q + b α,   z >= 0, w >= 0, z^T w = 0,   α rising from the first contact
+//!     stop:  c^T z = P    (the contact form: c = -κ b, α the approach, P the load)
+//!       or:  α = 0        (a standard LCP: b = -1, α = -z0)
+//! ```
+//!
+//! With `J` the basic `z` and `K` the rest, the tableau is the swept matrix
+//! (Goodnight 1979)
+//!
+//! ```text
+//!     A = [ -M_JJ^{-1}          M_JJ^{-1} M_JK             ]
+//!         [  M_KJ M_JJ^{-1}     M_KK - M_KJ M_JJ^{-1} M_JK ]
+//! ```
+//!
+//! and the basic values are `x_i = σ_i (q̄_i + α b̄_i)` (`σ = -1` on `J`,
+//! `z_J = x_J`, `w_K = x_K`), with `q̄`, `b̄` the swept `q` and `b`. A
+//! principal pivot on `p` (into `J`, or out of it), `a = A_pp`, `c = A[:, p]`:
+//!
+//! ```text
+//!     A'_ij = A_ij - c_i c_j / a   (i, j != p),   A'_ip = A'_pi = ±c_i / a,   A'_pp = -1 / a
+//! ```
+//!
+//! (`+` into `J`, `-` out): a symmetric rank-1 update. As in the general
+//! tableau, the updates are delayed, `A = A0 - U Λ U^T` with up to
+//! [`SWEEP_BLOCK`] pivots, and applied every block as one faer product;
+//! here only to the lower triangle of `A0`, `n^2 k` flops per block instead
+//! of the general tableau's `2 n (n + 1) k`. A pivot writes row and column
+//! `p` of that triangle exactly (the part left of the diagonal along row
+//! `p`) and reads column `p` (its part above the diagonal along row `p`).
+//! The indices are held in the order in which they would touch, so that the
+//! pivots mostly come in increasing position and those row parts are short.
+//! The pivot needs no lexicographic rule on `B^{-1}`, and the rows of the
+//! general tableau's rule are not kept.
+//!
+//! The pivot rule: while some index at level zero has a value falling with
+//! `α`, pivot on the least such index (a step of length 0: Murty's
+//! least-index rule, finite for a P-matrix, on the tied indices); otherwise
+//! step `α` to the next index reaching zero, or to the stop, whichever is
+//! first. The final basic solution is computed from the original data on
+//! the found active set (a Cholesky of `M_JJ` and iterative refinement,
+//! [`block::solve_active_set`]).
+//!
+//! The form applies when `M` is symmetric with a positive diagonal, `b <= 0`
+//! (each index reached as `α` rises), and, with a load, `c = -κ b` (the load
+//! rises with `α` for a positive definite `M`). Anything else, a breakdown
+//! (a principal block that is not positive definite), or explicit options
+//! (a covering vector, a refactorization interval: the retry's) go to the
+//! general tableau (`lemke::solve_mixed`).
+
+use faer::linalg::matmul::matmul;
+use faer::linalg::matmul::triangular::{self, BlockStructure};
+use faer::{Accum, Col, Mat, MatMut, MatRef, Par};
+
+use crate::Method;
+use crate::block;
+use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
+
+/// Where the parametric path stops.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Stop {
+    /// `c^T z = load`, `c = -kappa b` (the mixed contact form).
+    Load {
+        /// `P = -r`.
+        load: f64,
+    },
+    /// `α = 0` (a standard LCP, `b = -1` in the scaled problem).
+    Parameter,
+}
+
+/// The stop of the parametric form when it applies to `p` with `opts`.
+pub(crate) fn applies(p: &MixedLcpRef<'_>, opts: &Options) -> Option<Stop> {
+    if opts.covering_vector.is_some() || opts.refactor_interval.is_some() {
+        return None;
+    }
+    let n = p.size();
+    let stop = match (p.extras(), p.equalities()) {
+        (0, 0) => Stop::Parameter,
+        (1, 1) => {
+            if p.bounds[0] != Bound::Free || p.d[(0, 0)] != 0.0 || !(p.r[0] < 0.0) {
+                return None;
+            }
+            let b = p.b.col(0);
+            let c = p.c.row(0);
+            // c = -kappa b, kappa > 0, each index reached as α rises.
+            let imax = (0..n).max_by(|&i, &j| b[i].abs().total_cmp(&b[j].abs()))?;
+            if !(b[imax] < 0.0) {
+                return None;
+            }
+            let kappa = -c[imax] / b[imax];
+            let proportional = (0..n).all(|i| {
+                b[i] <= 0.0
+                    && (c[i] + kappa * b[i]).abs()
+                        <= 1e3 * f64::EPSILON * (c[i].abs() + kappa * b[i].abs())
+                    && (b[i] < 0.0 || p.q[i] >= 0.0)
+            });
+            if !(kappa > 0.0) || !proportional {
+                return None;
+            }
+            Stop::Load { load: -p.r[0] }
+        }
+        _ => return None,
+    };
+    let positive_diagonal = (0..n).all(|i| p.m[(i, i)] > 0.0);
+    (positive_diagonal && block::asymmetry(p.m).is_none()).then_some(stop)
+}
+
+/// Pivots delayed before they are applied to the tableau. A pivot reads one
+/// column through the correction (`n k` flops); 64 against 128 roughly halved
+/// those reads and left the products' time unchanged at N = 1961
+/// (`scaling_probe --method lemke` with temporary timers, 2026-11-23, not stored).
+const SWEEP_BLOCK: usize = 64;
+
+/// The swept matrix `A = A0 - U Λ U^T` (see the module documentation),
+/// its lower triangle stored: entry `(i, j)`, `i >= j`, at `(i, j)` of `A0`.
+struct Swept {
+    /// `A0`, column-major `n x n`, lower triangle (the upper one is zero and
+    /// never touched: its pages are not even mapped).
+    a0: Vec<f64>,
+    n: usize,
+    /// The delayed updates' vectors, `n x block`.
+    u: Mat<f64>,
+    /// Their weights `1 / a`.
+    lambda: Vec<f64>,
+    /// Number of delayed updates held.
+    k: usize,
+    par: Par,
+}
+
+impl Swept {
+    /// The tableau of `J = {}`: `A0 = D M D` with rows and columns in the
+    /// positions `order` (`order[t]` is the index at position t), its lower
+    /// triangle gathered column by column on up to `par`'s threads.
+    fn gather(m: MatRef<'_, f64>, order: &[usize], d: &[f64], block: usize, par: Par) -> Self {
+        let n = order.len();
+        // Zeroed by the allocator (fresh pages), so the upper triangle costs nothing.
+        let mut a0 = vec![0.0; n * n];
+        let fill = |first: usize, columns: &mut [f64]| {
+            for (t, col) in columns.chunks_mut(n.max(1)).enumerate() {
+                let j = first + t;
+                let src = m.col(order[j]);
+                let dj = d[j];
+                for (i, v) in col.iter_mut().enumerate().skip(j) {
+                    *v = d[i] * src[order[i]] * dj;
+                }
+            }
+        };
+        let threads = if n * n < 1 << 18 {
+            1
+        } else {
+            par.degree().max(1)
+        };
+        if threads == 1 {
+            fill(0, &mut a0);
+        } else {
+            // Equal shares of the triangle: column boundaries n (1 - sqrt(1 - t / threads)).
+            let bounds: Vec<usize> = (0..=threads)
+                .map(|t| {
+                    let f = 1.0 - (1.0 - t as f64 / threads as f64).sqrt();
+                    ((n as f64 * f).round() as usize).min(n)
+                })
+                .collect();
+            std::thread::scope(|scope| {
+                let mut rest: &mut [f64] = &mut a0;
+                for t in 0..threads {
+                    let (part, tail) = rest.split_at_mut((bounds[t + 1] - bounds[t]) * n);
+                    rest = tail;
+                    let first = bounds[t];
+                    let fill = &fill;
+                    scope.spawn(move || fill(first, part));
+                }
+            });
+        }
+        Self {
+            a0,
+            n,
+            u: Mat::zeros(n, block),
+            lambda: vec![0.0; block],
+            k: 0,
+            par,
+        }
+    }
+
+    fn a(&self) -> MatRef<'_, f64> {
+        MatRef::from_column_major_slice(&self.a0, self.n, self.n)
+    }
+
+    /// Column `p` of the current `A`: rows from `p` down from column `p`,
+    /// the rows above from row `p`.
+    fn column(&self, p: usize) -> Col<f64> {
+        let n = self.n;
+        let a = self.a();
+        let below = &self.a0[p * n + p..(p + 1) * n];
+        let mut c = Col::from_fn(n, |i| if i < p { a[(p, i)] } else { below[i - p] });
+        if self.k > 0 {
+            let weights = Col::from_fn(self.k, |l| self.lambda[l] * self.u[(p, l)]);
+            matmul(
+                c.as_mat_mut(),
+                Accum::Add,
+                self.u.as_ref().subcols(0, self.k),
+                weights.as_mat(),
+                -1.0,
+                Par::Seq,
+            );
+        }
+        c
+    }
+
+    /// Entry `(i, i)` of the current `A`.
+    fn diagonal(&self, i: usize) -> f64 {
+        (0..self.k).fold(self.a0[i * self.n + i], |v, l| {
+            v - self.lambda[l] * self.u[(i, l)] * self.u[(i, l)]
+        })
+    }
+
+    /// Applies the delayed updates to the lower triangle of `A0` (one
+    /// triangular matrix product: half the flops of a full one).
+    fn flush(&mut self) {
+        if self.k == 0 {
+            return;
+        }
+        let k = self.k;
+        let n = self.n;
+        let weighted = Mat::from_fn(n, k, |i, l| self.lambda[l] * self.u[(i, l)]);
+        let (u, w) = (self.u.as_ref().subcols(0, k), weighted.as_ref());
+        triangular::matmul(
+            MatMut::from_column_major_slice_mut(&mut self.a0, n, n),
+            BlockStructure::TriangularLower,
+            Accum::Add,
+            u,
+            BlockStructure::Rectangular,
+            w.transpose(),
+            BlockStructure::Rectangular,
+            -1.0,
+            self.par,
+        );
+        self.k = 0;
+    }
+
+    /// The principal pivot on `p`, given its current column `c`; `into`
+    /// says whether `p` joins `J`.
+    fn pivot(&mut self, p: usize, c: &Col<f64>, into: bool) {
+        let n = self.n;
+        let a = c[p];
+        if self.k == self.u.ncols() {
+            self.flush();
+        }
+        let k = self.k;
+        // Row and column p are written exactly; their delayed entries are
+        // cleared so the correction leaves them alone.
+        for l in 0..k {
+            self.u[(p, l)] = 0.0;
+        }
+        for (i, v) in self.u.col_as_slice_mut(k).iter_mut().enumerate() {
+            *v = if i == p { 0.0 } else { c[i] };
+        }
+        self.lambda[k] = 1.0 / a;
+        self.k += 1;
+        let s = if into { 1.0 / a } else { -1.0 / a };
+        for (i, v) in self.a0[p * n + p..(p + 1) * n].iter_mut().enumerate() {
+            *v = s * c[p + i];
+        }
+        for j in 0..p {
+            self.a0[j * n + p] = s * c[j];
+        }
+        self.a0[p * n + p] = -1.0 / a;
+    }
+}
+
+/// The path's state: the swept `q` and `b`, the active set, and the basic
+/// values and their rates at the current `α`.
+struct Path {
+    qbar: Vec<f64>,
+    bbar: Vec<f64>,
+    into: Vec<bool>,
+    /// `x_i = σ_i (q̄_i + α b̄_i)`: `z_i` on the active set, `w_i` off it.
+    x: Vec<f64>,
+    /// `dx_i / dα = σ_i b̄_i`.
+    rate: Vec<f64>,
+    /// The largest term `|q̄_i| + |α b̄_i|` on and off the active set, and the
+    /// largest rate: the scales of the zero tests.
+    scales: (f64, f64, f64),
+}
+
+impl Path {
+    /// Recomputes the values, rates and scales at `α`, first applying a
+    /// principal pivot `(p, column p of A, p joins)` to `q̄` and `b̄`, in one pass.
+    fn measure(&mut self, alpha: f64, pivot: Option<(usize, &Col<f64>, bool)>) {
+        let n = self.x.len();
+        let (p, qp, bp, a, c) = match pivot {
+            Some((p, c, joins)) => {
+                let a = c[p];
+                let s = if joins { 1.0 / a } else { -1.0 / a };
+                let (qp, bp) = (self.qbar[p], self.bbar[p]);
+                self.qbar[p] = s * qp;
+                self.bbar[p] = s * bp;
+                self.into[p] = joins;
+                (p, qp, bp, a, Some(c))
+            }
+            None => (usize::MAX, 0.0, 0.0, 1.0, None),
+        };
+        let (mut zscale, mut wscale, mut rscale) = (0.0f64, 0.0f64, 0.0f64);
+        for i in 0..n {
+            if let Some(c) = c
+                && i != p
+            {
+                self.qbar[i] -= c[i] * qp / a;
+                self.bbar[i] -= c[i] * bp / a;
+            }
+            let (q, b) = (self.qbar[i], self.bbar[i]);
+            let sigma = if self.into[i] { -1.0 } else { 1.0 };
+            self.x[i] = sigma * (q + alpha * b);
+            self.rate[i] = sigma * b;
+            let size = q.abs() + (alpha * b).abs();
+            if self.into[i] {
+                zscale = zscale.max(size);
+            } else {
+                wscale = wscale.max(size);
+            }
+            rscale = rscale.max(b.abs());
+        }
+        self.scales = (zscale, wscale, rscale);
+    }
+}
+
+/// Follows the parametric path; on success, the final basic solution on its
+/// active set from the original data. `Err` is the attempt's statistics
+/// when the path cannot finish (a ray, the pivot limit, a principal pivot
+/// or a load slope that is not positive: `M` not positive definite where
+/// the path went) or its active set does not solve the problem from the
+/// data: the caller goes on with the general tableau, whose own errors
+/// then say what is wrong.
+pub(crate) fn solve(
+    p: &MixedLcpRef<'_>,
+    opts: &Options,
+    stop: Stop,
+) -> Result<RawSolution, Statistics> {
+    let n = p.size();
+    let mut stats = Statistics::new(Method::Lemke);
+    stats.tableau_rows = n;
+    stats.tableau_columns = n + 2;
+    let tol = opts.tolerances;
+    // Symmetric scaling by powers of two, D M D with a diagonal in [1/2, 2)
+    // (unless `equilibrate` is off): exact, so the scaled data is the
+    // original in other units.
+    let scale: Vec<f64> = (0..n)
+        .map(|i| {
+            if opts.equilibrate {
+                2f64.powi(-(p.m[(i, i)].log2() / 2.0).round() as i32)
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let b_of = |i: usize| match stop {
+        Stop::Load { .. } => scale[i] * p.b[(i, 0)],
+        Stop::Parameter => -1.0,
+    };
+    // The indices in the order in which they would touch (the pivots then
+    // mostly come in increasing position, and a column's part above the
+    // diagonal, read along a row, is short); `order[t]` is the index at
+    // position t, and everything below is in positions.
+    let touch = |i: usize| {
+        let b = b_of(i);
+        if b < 0.0 {
+            scale[i] * p.q[i] / -b
+        } else {
+            f64::INFINITY
+        }
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&i, &j| touch(i).total_cmp(&touch(j)).then(i.cmp(&j)));
+    let d: Vec<f64> = order.iter().map(|&i| scale[i]).collect();
+    let par = opts.par(n, n);
+    let mut tab = Swept::gather(p.m, &order, &d, SWEEP_BLOCK, par);
+    let qbar: Vec<f64> = (0..n).map(|t| d[t] * p.q[order[t]]).collect();
+    let bbar: Vec<f64> = order.iter().map(|&i| b_of(i)).collect();
+    // Load weights on the scaled z: c^T z = (c D)^T z'.
+    let weight: Vec<f64> = match stop {
+        Stop::Load { .. } => (0..n).map(|t| d[t] * p.c[(0, order[t])]).collect(),
+        Stop::Parameter => Vec::new(),
+    };
+    let into = vec![false; n];
+    // The first contact: the least α at which some w_i = q_i + b_i α is 0.
+    let mut alpha = (0..n)
+        .filter(|&i| bbar[i] < 0.0)
+        .map(|i| qbar[i] / -bbar[i])
+        .fold(f64::INFINITY, f64::min);
+    if stop == Stop::Parameter && alpha >= 0.0 {
+        // q >= 0: z = 0 solves it.
+        return Ok(RawSolution {
+            z: Col::zeros(n),
+            u: Col::zeros(0),
+            basic: vec![false; n],
+            statistics: stats,
+        });
+    }
+    let limit = opts.pivot_limit(n, n);
+    let mut path = Path {
+        qbar,
+        bbar,
+        into,
+        x: vec![0.0; n],
+        rate: vec![0.0; n],
+        scales: (0.0, 0.0, 0.0),
+    };
+    path.measure(alpha, None);
+    loop {
+        // One pass: the least index at zero whose value would fall (it
+        // pivots now, a step of length 0), the first index to reach zero as
+        // α rises, and the load on the contact set.
+        let (zscale, wscale, rscale) = path.scales;
+        let (zero_z, zero_w, falls) = (tol.zero * zscale, tol.zero * wscale, -tol.zero * rscale);
+        let (mut degenerate, mut step, mut next) = (None, f64::INFINITY, None);
+        let (mut value, mut slope) = (0.0, 0.0);
+        for i in 0..n {
+            let (xi, ri, joined) = (path.x[i], path.rate[i], path.into[i]);
+            if joined && !weight.is_empty() {
+                value += weight[i] * xi;
+                slope += weight[i] * ri;
+            }
+            if ri < falls {
+                if xi <= if joined { zero_z } else { zero_w } {
+                    degenerate = Some(i);
+                    break;
+                }
+                let s = xi / -ri;
+                if s < step {
+                    (step, next) = (s, Some(i));
+                }
+            }
+        }
+        let pivot_on = match degenerate {
+            Some(i) => {
+                // (The path starts at the first contact: its first pivot
+                // is Lemke's first, not a step of length 0.)
+                if stats.pivots > 0 {
+                    stats.degenerate_pivots += 1;
+                }
+                i
+            }
+            None => {
+                let to_stop = match stop {
+                    Stop::Load { load } => {
+                        if slope > 0.0 {
+                            (load - value) / slope
+                        } else if path.into.iter().any(|&j| j) {
+                            // The load does not rise with the approach: M
+                            // is not positive definite on the contact set.
+                            return Err(stats);
+                        } else {
+                            f64::INFINITY
+                        }
+                    }
+                    Stop::Parameter => -alpha,
+                };
+                if to_stop <= step {
+                    break;
+                }
+                // Nothing limits the path before the stop: a ray.
+                let Some(i) = next else {
+                    return Err(stats);
+                };
+                alpha += step;
+                i
+            }
+        };
+        if stats.pivots >= limit {
+            return Err(stats);
+        }
+        let joins = !path.into[pivot_on];
+        let c = tab.column(pivot_on);
+        let a = c[pivot_on];
+        // Into J the pivot is a Schur complement of a positive definite
+        // block (> 0); out of J, minus a diagonal entry of its inverse (< 0).
+        let scale = tab.diagonal(pivot_on).abs().max(1.0);
+        if !(if joins { a } else { -a } > tol.pivot * scale) {
+            return Err(stats);
+        }
+        tab.pivot(pivot_on, &c, joins);
+        path.measure(alpha, Some((pivot_on, &c, joins)));
+        stats.pivots += 1;
+    }
+    let into = path.into;
+    let mut basic = vec![false; n];
+    for (t, &i) in order.iter().enumerate() {
+        basic[i] = into[t];
+    }
+    match block::solve_active_set(p, &basic, opts, &mut stats) {
+        Some((z, u)) => Ok(RawSolution {
+            z,
+            u,
+            basic,
+            statistics: stats,
+        }),
+        // The path's active set does not solve the problem from the data.
+        None => Err(stats),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The swept matrix by definition, for the set `into`.
+    fn swept_explicitly(m: &Mat<f64>, into: &[bool]) -> Mat<f64> {
+        let mut a = m.clone();
+        let n = m.nrows();
+        for p in (0..n).filter(|&p| into[p]) {
+            let c = a.col(p).to_owned();
+            let piv = c[p];
+            for j in 0..n {
+                for i in 0..n {
+                    if i != p && j != p {
+                        a[(i, j)] -= c[i] * c[j] / piv;
+                    }
+                }
+            }
+            for i in 0..n {
+                if i != p {
+                    a[(i, p)] = c[i] / piv;
+                    a[(p, i)] = c[i] / piv;
+                }
+            }
+            a[(p, p)] = -1.0 / piv;
+        }
+        a
+    }
+
+    #[test]
+    fn delayed_sweeps_in_and_out_read_the_explicit_swept_matrix() {
+        let n = 9;
+        // Symmetric positive definite: every principal pivot exists.
+        let g = Mat::from_fn(n, n, |i, j| ((i * 7 + j * 3) % 5) as f64 - 2.0);
+        let mut m = Mat::<f64>::identity(n, n) * 4.0;
+        matmul(
+            m.as_mut(),
+            Accum::Add,
+            g.as_ref(),
+            g.transpose(),
+            0.3,
+            Par::Seq,
+        );
+        // Block 2: flushes between pivots, and indices pivoted in one block
+        // and read in the next.
+        let order: Vec<usize> = (0..n).collect();
+        let mut tab = Swept::gather(m.as_ref(), &order, &vec![1.0; n], 2, Par::Seq);
+        let mut into = vec![false; n];
+        for &p in &[3, 0, 7, 3, 5, 1, 0, 8, 2, 5, 3, 4] {
+            let c = tab.column(p);
+            let joins = !into[p];
+            tab.pivot(p, &c, joins);
+            into[p] = joins;
+            let expect = swept_explicitly(&m, &into);
+            for j in 0..n {
+                let col = tab.column(j);
+                for i in 0..n {
+                    assert!(
+                        (col[i] - expect[(i, j)]).abs() <= 1e-12 * expect.norm_max(),
+                        "entry ({i}, {j}) after pivot on {p}: {} against {}",
+                        col[i],
+                        expect[(i, j)]
+                    );
+                }
+                assert!((tab.diagonal(j) - expect[(j, j)]).abs() <= 1e-12 * expect.norm_max());
+            }
+        }
+    }
+}
