@@ -30,6 +30,16 @@ fn every_case_is_certified_by_every_method() {
             assert!(sol.certificate.holds(), "{label}: {}", sol.certificate);
             assert!(sol.certificate.worst() <= 1e-12, "{label}");
             assert_solves(&case.problem, &sol, &label);
+            if method == Method::Lemke {
+                // Every S here is symmetric positive definite: Lemke's
+                // symmetric tableau finishes (one Cholesky at the end), with
+                // no fall back to the general tableau, and in about a pivot
+                // a point (a beam whose every point touches at once took
+                // the pivot limit under a least-index rule for ties).
+                let s = sol.statistics;
+                assert_eq!(s.factorizations, 1, "{label}: {s:?}");
+                assert!(s.pivots <= 2 * sol.forces.len(), "{label}: {s:?}");
+            }
             match case.expect {
                 Expect::Solved => {}
                 Expect::EdgeWarning => assert!(
