@@ -318,39 +318,31 @@ impl Path {
     /// principal pivot `(p, column p of A, p joins)` to `q̄` and `b̄`, in one pass.
     fn measure(&mut self, alpha: f64, pivot: Option<(usize, &Col<f64>, bool)>) {
         let n = self.x.len();
-        let (p, qp, bp, gp, a, c) = match pivot {
-            Some((p, c, joins)) => {
-                let a = c[p];
-                let s = if joins { 1.0 / a } else { -1.0 / a };
-                let (qp, bp, gp) = (self.qbar[p], self.bbar[p], self.gbar[p]);
-                self.qbar[p] = s * qp;
-                self.bbar[p] = s * bp;
-                self.gbar[p] = s * gp;
-                self.into[p] = joins;
-                (p, qp, bp, gp, a, Some(c))
+        if let Some((p, c, joins)) = pivot {
+            let a = c[p];
+            let (qp, bp, gp) = (self.qbar[p], self.bbar[p], self.gbar[p]);
+            // Multipliers, not divisions, in the loop (which vectorizes).
+            let (fq, fb, fg) = (qp / a, bp / a, gp / a);
+            for (i, &ci) in c.iter().enumerate() {
+                self.qbar[i] -= ci * fq;
+                self.bbar[i] -= ci * fb;
+                self.gbar[i] -= ci * fg;
             }
-            None => (usize::MAX, 0.0, 0.0, 0.0, 1.0, None),
-        };
+            let s = if joins { 1.0 } else { -1.0 };
+            (self.qbar[p], self.bbar[p], self.gbar[p]) = (s * fq, s * fb, s * fg);
+            self.into[p] = joins;
+        }
         let (mut zscale, mut wscale, mut rscale) = (0.0f64, 0.0f64, 0.0f64);
         for i in 0..n {
-            if let Some(c) = c
-                && i != p
-            {
-                self.qbar[i] -= c[i] * qp / a;
-                self.bbar[i] -= c[i] * bp / a;
-                self.gbar[i] -= c[i] * gp / a;
-            }
-            let (q, b) = (self.qbar[i], self.bbar[i]);
-            let sigma = if self.into[i] { -1.0 } else { 1.0 };
+            let (q, b, joined) = (self.qbar[i], self.bbar[i], self.into[i]);
+            let sigma = if joined { -1.0 } else { 1.0 };
             self.x[i] = sigma * (q + alpha * b);
             self.rate[i] = sigma * b;
             self.perturbation[i] = sigma * self.gbar[i];
             let size = q.abs() + (alpha * b).abs();
-            if self.into[i] {
-                zscale = zscale.max(size);
-            } else {
-                wscale = wscale.max(size);
-            }
+            let (on, off) = if joined { (size, 0.0) } else { (0.0, size) };
+            zscale = zscale.max(on);
+            wscale = wscale.max(off);
             rscale = rscale.max(b.abs());
         }
         self.scales = (zscale, wscale, rscale);
