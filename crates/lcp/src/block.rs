@@ -288,6 +288,31 @@ fn prefix_search(
     active
 }
 
+/// The Cholesky factor of the lower triangle of `a`, in place (the upper
+/// triangle is left as it was).
+fn cholesky_lower(a: faer::MatMut<'_, f64>, par: faer::Par) -> Result<(), BlockFailure> {
+    use faer::linalg::cholesky::llt::factor::{
+        LltRegularization, cholesky_in_place, cholesky_in_place_scratch,
+    };
+    let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(
+        a.nrows(),
+        par,
+        Default::default(),
+    ));
+    cholesky_in_place(
+        a,
+        LltRegularization {
+            dynamic_regularization_delta: 0.0,
+            dynamic_regularization_epsilon: 0.0,
+        },
+        par,
+        MemStack::new(&mut mem),
+        Default::default(),
+    )
+    .map(|_| ())
+    .map_err(|_| BlockFailure::NotPositiveDefinite)
+}
+
 /// The Cholesky factor `L L^T = M_JJ` of the active block, its rows in the
 /// order `order`, kept between iterations.
 ///
@@ -335,9 +360,6 @@ impl Factor {
         par: faer::Par,
         stats: &mut Statistics,
     ) -> Result<Self, BlockFailure> {
-        use faer::linalg::cholesky::llt::factor::{
-            LltRegularization, cholesky_in_place, cholesky_in_place_scratch,
-        };
         let order: Vec<usize> = (0..active.len()).filter(|&i| active[i]).collect();
         let nj = order.len();
         let mut l = Mat::from_fn(nj, nj, |a, b| {
@@ -347,22 +369,7 @@ impl Factor {
                 0.0
             }
         });
-        let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(
-            nj,
-            par,
-            Default::default(),
-        ));
-        cholesky_in_place(
-            l.as_mut(),
-            LltRegularization {
-                dynamic_regularization_delta: 0.0,
-                dynamic_regularization_epsilon: 0.0,
-            },
-            par,
-            MemStack::new(&mut mem),
-            Default::default(),
-        )
-        .map_err(|_| BlockFailure::NotPositiveDefinite)?;
+        cholesky_lower(l.as_mut(), par)?;
         stats.factorizations += 1;
         Ok(Self {
             order,
@@ -381,9 +388,6 @@ impl Factor {
         par: faer::Par,
         stats: &mut Statistics,
     ) -> Result<(), BlockFailure> {
-        use faer::linalg::cholesky::llt::factor::{
-            LltRegularization, cholesky_in_place, cholesky_in_place_scratch,
-        };
         use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
         let keep = self.order.iter().take_while(|&&i| active[i]).count();
         let mut kept = vec![false; active.len()];
@@ -431,22 +435,7 @@ impl Factor {
                 par,
             );
         }
-        let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(
-            nr,
-            par,
-            Default::default(),
-        ));
-        cholesky_in_place(
-            srr.as_mut(),
-            LltRegularization {
-                dynamic_regularization_delta: 0.0,
-                dynamic_regularization_epsilon: 0.0,
-            },
-            par,
-            MemStack::new(&mut mem),
-            Default::default(),
-        )
-        .map_err(|_| BlockFailure::NotPositiveDefinite)?;
+        cholesky_lower(srr.as_mut(), par)?;
         self.l
             .as_mut()
             .submatrix_mut(np, 0, nr, np)
