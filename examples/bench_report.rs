@@ -6,8 +6,10 @@
 //! against N; writes the log-log plot to docs/img/scaling.svg.
 //!
 //! Effective GFLOP/s: for the tableau methods, pivots x 2 x rows x columns
-//! (the work of the rank-1 updates, delayed or not) over the time; for block
-//! pivoting and the Cholesky, N^3 / 3 (one Cholesky of S) over the time.
+//! (the work of the rank-1 updates, delayed or not) over the time, and for
+//! Lemke's symmetric tableau (N rows) pivots x N^2 (the lower triangle's);
+//! for block pivoting and the Cholesky, N^3 / 3 (one Cholesky of S) over
+//! the time.
 //!
 //! Run after `cargo bench --bench scaling`:
 //! `cargo run --release --example bench_report`
@@ -94,7 +96,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     let p = r["pivots"].as_u64().unwrap_or(0) as f64;
                     let rows = r["tableau_rows"].as_u64().unwrap_or(0) as f64;
                     let cols = r["tableau_columns"].as_u64().unwrap_or(0) as f64;
-                    let work = if rows > 0.0 {
+                    // Lemke's symmetric tableau (N rows; the general one
+                    // has N + 2 for the contact form) updates only the lower
+                    // triangle of its N x N swept matrix: N^2 flops a pivot.
+                    let work = if rows > 0.0 && rows == n as f64 {
+                        p * rows * rows
+                    } else if rows > 0.0 {
                         p * 2.0 * rows * cols
                     } else {
                         cube
