@@ -47,11 +47,12 @@
 //! length 0 when one at zero is falling), or to the stop, whichever is
 //! first; ties go to the first under a perturbation `q + ε g` with a fixed
 //! irregular `g > 0` ([`perturbation`]), which keeps the path of the
-//! perturbed problem free of degenerate cycles; a run of zero steps longer
-//! than every index joining and leaving once is a breakdown. The pivot is
-//! then on that value's index (in or out of `J`). The final basic solution is computed from the original data on
-//! the found active set (a Cholesky of `M_JJ` and iterative refinement,
-//! [`block::solve_active_set`]).
+//! perturbed problem free of degenerate cycles. A run of zero steps longer
+//! than `2 n + 10` (a rule of thumb: a tie's own path can be longer, at the
+//! cost of a fall back) and a step that is not finite are breakdowns. The
+//! pivot is then on that value's index (in or out of `J`). The final basic
+//! solution is computed from the original data on the found active set (a
+//! Cholesky of `M_JJ` and iterative refinement, [`block::solve_active_set`]).
 //!
 //! The form applies when `M` is symmetric with a positive diagonal, `b <= 0`
 //! (each index reached as `α` rises), and, with a load, `c = -κ b` (the load
@@ -220,6 +221,7 @@ impl Swept {
     }
 
     /// Entry `(i, i)` of the current `A`.
+    #[cfg(test)]
     fn diagonal(&self, i: usize) -> f64 {
         (0..self.k).fold(self.a0[i * self.n + i], |v, l| {
             v - self.lambda[l] * self.u[(i, l)] * self.u[(i, l)]
@@ -309,8 +311,9 @@ struct Path {
     /// Each value's step to zero (scratch of the pivot rule).
     reach: Vec<f64>,
     /// The largest term `|q̄_i| + |α b̄_i|` on and off the active set, and the
-    /// largest rate: the scales of the zero tests.
-    scales: (f64, f64, f64),
+    /// largest rate on and off it (forces and gaps have their own units):
+    /// the scales of the zero tests.
+    scales: [f64; 4],
 }
 
 impl Path {
@@ -332,7 +335,8 @@ impl Path {
             (self.qbar[p], self.bbar[p], self.gbar[p]) = (s * fq, s * fb, s * fg);
             self.into[p] = joins;
         }
-        let (mut zscale, mut wscale, mut rscale) = (0.0f64, 0.0f64, 0.0f64);
+        let (mut zscale, mut wscale) = (0.0f64, 0.0f64);
+        let (mut zrates, mut wrates) = (0.0f64, 0.0f64);
         for i in 0..n {
             let (q, b, joined) = (self.qbar[i], self.bbar[i], self.into[i]);
             let sigma = if joined { -1.0 } else { 1.0 };
@@ -343,9 +347,15 @@ impl Path {
             let (on, off) = if joined { (size, 0.0) } else { (0.0, size) };
             zscale = zscale.max(on);
             wscale = wscale.max(off);
-            rscale = rscale.max(b.abs());
+            let (on, off) = if joined {
+                (b.abs(), 0.0)
+            } else {
+                (0.0, b.abs())
+            };
+            zrates = zrates.max(on);
+            wrates = wrates.max(off);
         }
-        self.scales = (zscale, wscale, rscale);
+        self.scales = [zscale, wscale, zrates, wrates];
     }
 }
 
@@ -399,6 +409,7 @@ pub(crate) fn solve(
     let d: Vec<f64> = order.iter().map(|&i| scale[i]).collect();
     let par = opts.par(n, n);
     let mut tab = Swept::gather(p.m, &order, &d, SWEEP_BLOCK, par);
+    let diagonal: Vec<f64> = (0..n).map(|t| tab.a()[(t, t)]).collect();
     let qbar: Vec<f64> = (0..n).map(|t| d[t] * p.q[order[t]]).collect();
     let bbar: Vec<f64> = order.iter().map(|&i| b_of(i)).collect();
     // Load weights on the scaled z: c^T z = (c D)^T z'.
@@ -431,7 +442,7 @@ pub(crate) fn solve(
         rate: vec![0.0; n],
         perturbation: vec![0.0; n],
         reach: vec![0.0; n],
-        scales: (0.0, 0.0, 0.0),
+        scales: [0.0; 4],
     };
     path.measure(alpha, None);
     // Pivots of length 0 in a row: the perturbation below orders ties, so
@@ -440,8 +451,7 @@ pub(crate) fn solve(
     loop {
         // Each falling value's step to zero (0 at the zero level), the
         // least of them, and the load on the contact set.
-        let (zscale, wscale, rscale) = path.scales;
-        let (zero_z, zero_w, falls) = (tol.zero * zscale, tol.zero * wscale, -tol.zero * rscale);
+        let [zscale, wscale, zrates, wrates] = path.scales.map(|v| tol.zero * v);
         let (mut step, mut value, mut slope) = (f64::INFINITY, 0.0, 0.0);
         for i in 0..n {
             let (xi, ri, joined) = (path.x[i], path.rate[i], path.into[i]);
@@ -449,12 +459,13 @@ pub(crate) fn solve(
                 value += weight[i] * xi;
                 slope += weight[i] * ri;
             }
+            let (zero, falls) = if joined {
+                (zscale, -zrates)
+            } else {
+                (wscale, -wrates)
+            };
             path.reach[i] = if ri < falls {
-                let s = if xi <= if joined { zero_z } else { zero_w } {
-                    0.0
-                } else {
-                    xi / -ri
-                };
+                let s = if xi <= zero { 0.0 } else { xi / -ri };
                 step = step.min(s);
                 s
             } else {
@@ -475,8 +486,9 @@ pub(crate) fn solve(
             }
             Stop::Parameter => -alpha,
         };
-        if step == f64::INFINITY && to_stop == f64::INFINITY {
-            // Nothing limits the path and it never reaches the stop: a ray.
+        if to_stop.is_nan() || (!step.is_finite() && !(to_stop < f64::INFINITY)) {
+            // Nothing limits the path and it never reaches the stop (a ray),
+            // or the data's scale overflowed (a NaN load).
             return Err(stats);
         }
         if to_stop <= step {
@@ -485,12 +497,14 @@ pub(crate) fn solve(
         // Among the values whose steps tie the least (those at zero, when
         // it is 0), the first to reach zero under the perturbation q + ε g.
         let tied = step + tol.tie * step;
-        let pivot_on = (0..n)
+        let first = (0..n)
             .filter(|&i| path.reach[i] <= tied)
             .map(|i| (i, path.perturbation[i].max(0.0) / -path.rate[i]))
-            .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
-            .map(|(i, _)| i)
-            .expect("the least step is some index's");
+            .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        // A step that is not finite (overflow, a NaN bound) is a breakdown.
+        let (Some((pivot_on, _)), true) = (first, step.is_finite()) else {
+            return Err(stats);
+        };
         if step == 0.0 {
             // (The path starts at the first contact: its first pivot is
             // Lemke's first, not a step of length 0.)
@@ -512,9 +526,15 @@ pub(crate) fn solve(
         let c = tab.column(pivot_on);
         let a = c[pivot_on];
         // Into J the pivot is a Schur complement of a positive definite
-        // block (> 0); out of J, minus a diagonal entry of its inverse (< 0).
-        let scale = tab.diagonal(pivot_on).abs().max(1.0);
-        if !(if joins { a } else { -a } > tol.pivot * scale) {
+        // block, in (0, M_pp]; out of J, minus a diagonal entry of its
+        // inverse, at most -1 / M_pp. Each is judged against that bound
+        // (scaled M: its diagonal, kept from the start).
+        let bound = if joins {
+            a / diagonal[pivot_on]
+        } else {
+            -a * diagonal[pivot_on]
+        };
+        if !(bound > tol.pivot) {
             return Err(stats);
         }
         tab.pivot(pivot_on, &c, joins);

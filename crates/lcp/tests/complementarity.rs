@@ -356,3 +356,36 @@ fn the_symmetric_tableau_follows_a_point_out_of_contact() {
     assert!((sol.u[0] - 11.0).abs() <= 1e-13 * 11.0);
     assert!((sol.w[1] - 1.0).abs() <= 1e-13);
 }
+
+#[test]
+fn the_symmetric_tableau_judges_pivots_in_the_data_s_own_units() {
+    // Without equilibration the data keep their units. A pivot test against
+    // an absolute 1 (found by review) refused the first pivot of a matrix of
+    // order 1e-12, and an index leaving the set at order 1e12; each is a
+    // positive definite problem the symmetric tableau must finish.
+    let raw = Options {
+        equilibrate: false,
+        ..Options::default()
+    };
+    let small = faer::mat![[2.0, 1.0, 1.0], [1.0, 2.0, 1.0], [1.0, 1.0, 2.0]] * 1e-12;
+    let large = faer::mat![
+        [1.875, 1.0625, 0.75],
+        [1.0625, 1.0625, 0.5625],
+        [0.75, 0.5625, 1.4375]
+    ] * 1e12;
+    for (m, q) in [
+        (small, faer::col![-1.0, -0.9, -0.05] * 1e-12),
+        (large, faer::col![-1.25, -1.25, -1.25] * 1e12),
+    ] {
+        let expect = brute_force(&m, &q).expect("an SPD LCP has a solution");
+        let sol = Lcp::new(m, q).unwrap().solve(Method::Lemke, &raw).unwrap();
+        assert_eq!(sol.statistics.factorizations, 1, "{:?}", sol.statistics);
+        assert!(sol.certificate.holds(), "{}", sol.certificate);
+        assert!(
+            rel_diff(&sol.z, &expect) < 1e-12,
+            "{:?} vs {:?}",
+            sol.z,
+            expect
+        );
+    }
+}
