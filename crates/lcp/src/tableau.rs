@@ -473,12 +473,19 @@ impl Tableau {
         // the step of the smallest brings its basic value to the zero level:
         // a ratio is a quotient of rounded values, and a row that reaches
         // zero with the step is a leaving candidate whatever its rounding.
-        let limit = theta_min + tol.tie * theta_min;
+        // (|theta_min|: a basic value that drifted below the zero level
+        // gives a negative least step, which must tie with itself.)
+        let limit = theta_min + tol.tie * theta_min.abs();
         let ties: Vec<(usize, f64, bool)> = cand
             .into_iter()
             .filter(|c| c.1 <= limit || c.4 - theta_min * c.2 <= zero_level)
             .map(|c| (c.0, c.2, c.3))
             .collect();
+        if ties.is_empty() {
+            // Every ratio is NaN (an overflow: the data's scale exceeds
+            // double precision): no row can be trusted to limit the step.
+            return None;
+        }
         let pick = move |row: usize| Ratio {
             row,
             theta: theta_min,

@@ -308,3 +308,46 @@ fn a_negative_multiplier_for_a_non_negative_extra_unknown_is_infeasible() {
         .unwrap_err();
     assert!(matches!(e, LcpError::Infeasible { .. }), "{e}");
 }
+
+#[test]
+fn data_at_the_edge_of_double_precision_is_an_error_or_an_answer_never_a_panic() {
+    // Found by review: scales of 1e-309 .. 1e93 in one problem drove the
+    // general tableau's ratio test to a negative least step, whose relative
+    // tie bound excluded every row (an index panic); the symmetric tableau
+    // could take an infinite step at an overflowing load slope.
+    let m = mat![
+        [1.461798185296942e-120, -3.605672395070396e-251],
+        [-3.605672395070396e-251, 3.640705763412097e-309]
+    ];
+    let lcp = Lcp::new(m, col![2.7907475697212115e93, -0.808799592029067]).unwrap();
+    for method in Method::ALL {
+        if let Ok(sol) = lcp.solve(method, &Options::default()) {
+            assert!(sol.certificate.holds(), "{method}");
+        }
+    }
+    let mixed = MixedLcp::new(
+        mat![[2.0210095273828205e-268]],
+        mat![[-5.905823572589658e129]],
+        col![45.78984165975658],
+        mat![[1.1603547368363403e119]],
+        mat![[0.0]],
+        col![-2.4758498208489555e117],
+        vec![Bound::Free],
+    )
+    .unwrap();
+    let exact = Options {
+        tolerances: Tolerances {
+            zero: 0.0,
+            tie: 0.0,
+            ..Tolerances::default()
+        },
+        ..Options::default()
+    };
+    for options in [Options::default(), exact] {
+        for method in Method::ALL {
+            if let Ok(sol) = mixed.solve(method, &options) {
+                assert!(sol.certificate.holds(), "{method}");
+            }
+        }
+    }
+}
