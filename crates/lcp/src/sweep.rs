@@ -159,11 +159,8 @@ impl Swept {
                 }
             }
         };
-        let threads = if n * n < 1 << 18 {
-            1
-        } else {
-            par.degree().max(1)
-        };
+        // (`Options::par` is already sequential for small matrices.)
+        let threads = par.degree().clamp(1, n.max(1));
         if threads == 1 {
             fill(0, &mut a0);
         } else {
@@ -302,12 +299,6 @@ struct Path {
     /// The swept perturbation `g` (see [`perturbation`]).
     gbar: Vec<f64>,
     into: Vec<bool>,
-    /// `x_i = σ_i (q̄_i + α b̄_i)`: `z_i` on the active set, `w_i` off it.
-    x: Vec<f64>,
-    /// `dx_i / dα = σ_i b̄_i`.
-    rate: Vec<f64>,
-    /// `dx_i / dε = σ_i ḡ_i`: the values' perturbation, which orders ties.
-    perturbation: Vec<f64>,
     /// Each value's step to zero (scratch of the pivot rule).
     reach: Vec<f64>,
     /// The largest term `|q̄_i| + |α b̄_i|` on and off the active set, and the
@@ -317,10 +308,24 @@ struct Path {
 }
 
 impl Path {
-    /// Recomputes the values, rates and scales at `α`, first applying a
-    /// principal pivot `(p, column p of A, p joins)` to `q̄` and `b̄`, in one pass.
+    /// Value `i` at `α`, `x_i = σ_i (q̄_i + α b̄_i)` (`z_i` on the active
+    /// set, `w_i` off it), and its rate `dx_i / dα = σ_i b̄_i`.
+    fn value(&self, i: usize, alpha: f64) -> (f64, f64) {
+        let sigma = if self.into[i] { -1.0 } else { 1.0 };
+        let b = self.bbar[i];
+        (sigma * (self.qbar[i] + alpha * b), sigma * b)
+    }
+
+    /// The order of ties: `dx_i / dε` over the value's fall with `α`
+    /// (`σ_i` cancels), the ε-step at which value `i` reaches zero.
+    fn tie_key(&self, i: usize) -> f64 {
+        let sigma = if self.into[i] { -1.0 } else { 1.0 };
+        (sigma * self.gbar[i]).max(0.0) / (-sigma * self.bbar[i])
+    }
+
+    /// Recomputes the zero tests' scales at `α`, first applying a principal
+    /// pivot `(p, column p of A, p joins)` to `q̄`, `b̄` and `ḡ`.
     fn measure(&mut self, alpha: f64, pivot: Option<(usize, &Col<f64>, bool)>) {
-        let n = self.x.len();
         if let Some((p, c, joins)) = pivot {
             let a = c[p];
             let (qp, bp, gp) = (self.qbar[p], self.bbar[p], self.gbar[p]);
@@ -337,12 +342,7 @@ impl Path {
         }
         let (mut zscale, mut wscale) = (0.0f64, 0.0f64);
         let (mut zrates, mut wrates) = (0.0f64, 0.0f64);
-        for i in 0..n {
-            let (q, b, joined) = (self.qbar[i], self.bbar[i], self.into[i]);
-            let sigma = if joined { -1.0 } else { 1.0 };
-            self.x[i] = sigma * (q + alpha * b);
-            self.rate[i] = sigma * b;
-            self.perturbation[i] = sigma * self.gbar[i];
+        for ((&q, &b), &joined) in self.qbar.iter().zip(&self.bbar).zip(&self.into) {
             let size = q.abs() + (alpha * b).abs();
             let (on, off) = if joined { (size, 0.0) } else { (0.0, size) };
             zscale = zscale.max(on);
@@ -438,9 +438,6 @@ pub(crate) fn solve(
         bbar,
         gbar: (0..n).map(perturbation).collect(),
         into,
-        x: vec![0.0; n],
-        rate: vec![0.0; n],
-        perturbation: vec![0.0; n],
         reach: vec![0.0; n],
         scales: [0.0; 4],
     };
@@ -454,7 +451,7 @@ pub(crate) fn solve(
         let [zscale, wscale, zrates, wrates] = path.scales.map(|v| tol.zero * v);
         let (mut step, mut value, mut slope) = (f64::INFINITY, 0.0, 0.0);
         for i in 0..n {
-            let (xi, ri, joined) = (path.x[i], path.rate[i], path.into[i]);
+            let ((xi, ri), joined) = (path.value(i, alpha), path.into[i]);
             if joined && !weight.is_empty() {
                 value += weight[i] * xi;
                 slope += weight[i] * ri;
@@ -499,7 +496,7 @@ pub(crate) fn solve(
         let tied = step + tol.tie * step;
         let first = (0..n)
             .filter(|&i| path.reach[i] <= tied)
-            .map(|i| (i, path.perturbation[i].max(0.0) / -path.rate[i]))
+            .map(|i| (i, path.tie_key(i)))
             .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
         // A step that is not finite (overflow, a NaN bound) is a breakdown.
         let (Some((pivot_on, _)), true) = (first, step.is_finite()) else {
