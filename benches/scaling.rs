@@ -47,13 +47,14 @@ fn scaling(c: &mut Criterion) {
                 .expect("the benchmark problem solves");
             let st = sol.statistics;
             records.push(format!(
-                "{{\"method\":\"{}\",\"n\":{size},\"pivots\":{},\"iterations\":{},\"contact\":{},\"tableau_rows\":{},\"tableau_columns\":{}}}",
+                "{{\"method\":\"{}\",\"n\":{size},\"pivots\":{},\"iterations\":{},\"contact\":{},\"tableau_rows\":{},\"tableau_columns\":{},\"factorizations\":{}}}",
                 method.name(),
                 st.pivots,
                 st.iterations,
                 sol.contact.len(),
                 st.tableau_rows,
-                st.tableau_columns
+                st.tableau_columns,
+                st.factorizations
             ));
             group.throughput(Throughput::Elements(st.pivots.max(1) as u64));
             group.bench_with_input(BenchmarkId::new(method.name(), size), &problem, |b, p| {

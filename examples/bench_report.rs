@@ -7,7 +7,8 @@
 //!
 //! Effective GFLOP/s: for the tableau methods, pivots x 2 x rows x columns
 //! (the work of the rank-1 updates, delayed or not) over the time, and for
-//! Lemke's symmetric tableau (N rows) pivots x N^2 (the lower triangle's);
+//! Lemke's symmetric tableau (recorded `factorizations` = 1) pivots x N^2
+//! (the lower triangle's);
 //! for block pivoting and the Cholesky, N^3 / 3 (one Cholesky of S) over
 //! the time.
 //!
@@ -96,10 +97,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     let p = r["pivots"].as_u64().unwrap_or(0) as f64;
                     let rows = r["tableau_rows"].as_u64().unwrap_or(0) as f64;
                     let cols = r["tableau_columns"].as_u64().unwrap_or(0) as f64;
-                    // Lemke's symmetric tableau (N rows; the general one
-                    // has N + 2 for the contact form) updates only the lower
-                    // triangle of its N x N swept matrix: N^2 flops a pivot.
-                    let work = if rows > 0.0 && rows == n as f64 {
+                    // Lemke's symmetric tableau (the solve that ends with
+                    // one Cholesky, `Statistics::factorizations`) updates
+                    // only the lower triangle of its N x N swept matrix:
+                    // N^2 flops a pivot.
+                    let symmetric = series == "lemke" && r["factorizations"].as_u64() == Some(1);
+                    let work = if symmetric {
                         p * rows * rows
                     } else if rows > 0.0 {
                         p * 2.0 * rows * cols
