@@ -285,8 +285,9 @@ impl Swept {
 /// tie (a grid, a flat punch) do not tie under it. The path is that of the
 /// perturbed problem as `ε -> 0+`: ties in the step are broken by `ε`'s
 /// coefficient, which for a P-matrix leaves no degenerate cycle (Murty's
-/// least-index rule, finite but exponential in the worst case, took more
-/// than 1700 pivots on a 40-point beam whose every point touched at once).
+/// least-index rule, finite but exponential in the worst case, reached the
+/// pivot limit of 1700 on a 40-point beam whose every point touched at
+/// once: `stability_report` on 2026-11-23 before this rule, not stored).
 fn perturbation(t: usize) -> f64 {
     1.0 + (t as f64 * 0.618_033_988_749_894_9).fract()
 }
