@@ -30,12 +30,15 @@ fn every_case_is_certified_by_every_method() {
             assert!(sol.certificate.holds(), "{label}: {}", sol.certificate);
             assert!(sol.certificate.worst() <= 1e-12, "{label}");
             assert_solves(&case.problem, &sol, &label);
-            if method == Method::Lemke {
-                // Every S here is symmetric positive definite: Lemke's
-                // symmetric tableau finishes (one Cholesky at the end), with
-                // no fall back to the general tableau, and in about a pivot
-                // a point (a beam whose every point touches at once took
-                // the pivot limit under a least-index rule for ties).
+            // Every S here is symmetric positive definite: Lemke's method,
+            // and under load control (where no point starts in
+            // interference) the restricted-entry simplex, finish on the
+            // symmetric tableau (one Cholesky at the end), with no fall back
+            // to the general tableau, and in about a pivot a point (a beam
+            // whose every point touches at once took Lemke's method to the
+            // pivot limit under a least-index rule for ties).
+            let load_control = matches!(case.problem.loading(), Loading::Load(_));
+            if method == Method::Lemke || (method == Method::RestrictedSimplex && load_control) {
                 let s = sol.statistics;
                 assert_eq!(s.factorizations, 1, "{label}: {s:?}");
                 assert!(s.pivots <= 2 * sol.forces.len(), "{label}: {s:?}");

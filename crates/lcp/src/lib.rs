@@ -14,7 +14,8 @@
 //!
 //! Methods ([`Method`]):
 //! - the restricted-entry (complementary) simplex of Wolfe (1959), the
-//!   method of Conry & Seireg (1971);
+//!   method of Conry & Seireg (1971) (for the contact form with a
+//!   symmetric `M`, on the symmetric tableau of Lemke's method below);
 //! - Lemke's method with a covering vector and a lexicographic ratio test
 //!   (for a symmetric `M`, in its parametric principal-pivoting form on a
 //!   symmetric tableau);
@@ -53,6 +54,7 @@ mod problem;
 mod program;
 mod restricted;
 mod sweep;
+mod swept_simplex;
 mod system;
 mod tableau;
 pub mod tolerance;

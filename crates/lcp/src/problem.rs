@@ -49,7 +49,12 @@ pub enum Method {
     /// The restricted-entry (complementary) simplex of Wolfe (1959) as used by
     /// Conry & Seireg (1971): phase 1 minimizes the sum of artificial
     /// variables, and a variable may enter only if its complement is
-    /// non-basic or leaves at the same pivot.
+    /// non-basic or leaves at the same pivot. The contact form with a
+    /// symmetric `M` and no initial interference (`q >= 0`) runs first on
+    /// the symmetric tableau of Lemke's method below, whose bases are the
+    /// simplex's own (a contact set and one point pinning the approach):
+    /// the same rule at half the update work, and a Cholesky of the contact
+    /// block for the final basic solution.
     RestrictedSimplex,
     /// Lemke's complementary pivoting method with a covering vector and a
     /// lexicographic minimum-ratio test (Lemke 1965). Mixed forms are solved
@@ -212,8 +217,8 @@ pub struct Statistics {
     /// Block iterations (block pivoting; 0 for the tableau methods).
     pub iterations: usize,
     /// Matrix factorizations (Cholesky of block systems; 0 for the general
-    /// tableau; 1 for Lemke's method on the symmetric tableau, whose final
-    /// basic solution is solved by a Cholesky of the contact block).
+    /// tableau; 1 for a tableau method on the symmetric tableau, whose
+    /// final basic solution is solved by a Cholesky of the contact block).
     pub factorizations: usize,
     /// Whether block pivoting fell back to Lemke's method.
     pub fell_back: bool,

@@ -23,6 +23,11 @@
 //!
 //! The ratio test is lexicographic (no basis repeats); every
 //! `refactor_interval` pivots the tableau is recomputed from the data.
+//!
+//! The contact form with a symmetric `M` and `q >= 0` runs the same rule on
+//! the symmetric tableau first ([`crate::swept_simplex`]); what it cannot
+//! finish comes here, its pivots counted. An explicit refactorization
+//! interval (the retry's option) comes here directly.
 
 use std::collections::HashSet;
 
@@ -35,7 +40,7 @@ use crate::program::ComplementaryProgram;
 use crate::system::{Column, System};
 use crate::tableau::{Position, Ratio, RowRule, Tableau, UPDATE_BLOCK};
 use crate::tolerance::Tolerances;
-use crate::{LcpError, Method};
+use crate::{LcpError, Method, swept_simplex};
 
 /// What the restricted-entry simplex returns before certification.
 pub(crate) struct Outcome {
@@ -44,6 +49,25 @@ pub(crate) struct Outcome {
     /// Basic original unknowns.
     pub basis: Vec<usize>,
     pub statistics: Statistics,
+}
+
+/// Solves a mixed LCP: on the symmetric tableau when it applies, else (or
+/// when that attempt breaks down) by [`solve_general`].
+pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
+    // The contact form with a symmetric M: the same rule on the symmetric
+    // tableau; what it cannot finish goes on below, its pivots counted.
+    let before = match swept_simplex::applies(p, opts) {
+        Some(load) => match swept_simplex::solve(p, opts, load) {
+            Ok(raw) => return Ok(raw),
+            Err(stats) => Some(stats),
+        },
+        None => None,
+    };
+    let mut result = solve_general(p, opts);
+    if let (Ok(raw), Some(before)) = (&mut result, before) {
+        raw.statistics.absorb(&before);
+    }
+    result
 }
 
 /// Solves a mixed LCP by writing it as a program:
@@ -55,7 +79,7 @@ pub(crate) struct Outcome {
 /// kept when they come out non-negative, which makes it a solution of this
 /// problem too (`Statistics::retried`, the pivots of both attempts);
 /// otherwise the first error stands.
-pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
+fn solve_general(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
     match solve_as_given(p, opts) {
         Err(first @ LcpError::Infeasible { pivot, .. })
             if p.bounds.contains(&Bound::NonNegative) =>

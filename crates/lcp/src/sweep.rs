@@ -60,6 +60,11 @@
 //! (a principal block that is not positive definite), or explicit options
 //! (a covering vector, a refactorization interval: the retry's) go to the
 //! general tableau (`lemke::solve_mixed`).
+//!
+//! The tableau and the start ([`Swept`], [`start`], [`finish`]) are shared
+//! with the restricted-entry simplex on the symmetric tableau
+//! ([`crate::swept_simplex`]), whose bases are those of this path with the
+//! approach pinned by one more index.
 
 use faer::linalg::matmul::matmul;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
@@ -126,7 +131,7 @@ const SWEEP_BLOCK: usize = 64;
 
 /// The swept matrix `A = A0 - U Λ U^T` (see the module documentation),
 /// its lower triangle stored: entry `(i, j)`, `i >= j`, at `(i, j)` of `A0`.
-struct Swept {
+pub(crate) struct Swept {
     /// `A0`, column-major `n x n`, lower triangle (the upper one is zeroed
     /// by the allocator and never written: for a large matrix, fresh pages
     /// that are never touched).
@@ -198,7 +203,7 @@ impl Swept {
 
     /// Column `p` of the current `A`: rows from `p` down from column `p`,
     /// the rows above from row `p`.
-    fn column(&self, p: usize) -> Col<f64> {
+    pub(crate) fn column(&self, p: usize) -> Col<f64> {
         let n = self.n;
         let a = self.a();
         let below = &self.a0[p * n + p..(p + 1) * n];
@@ -251,7 +256,7 @@ impl Swept {
 
     /// The principal pivot on `p`, given its current column `c`; `into`
     /// says whether `p` joins `J`.
-    fn pivot(&mut self, p: usize, c: &Col<f64>, into: bool) {
+    pub(crate) fn pivot(&mut self, p: usize, c: &Col<f64>, into: bool) {
         let n = self.n;
         let a = c[p];
         if self.k == self.u.ncols() {
@@ -294,24 +299,27 @@ fn perturbation(t: usize) -> f64 {
 
 /// The path's state: the swept `q` and `b`, the active set, and the basic
 /// values and their rates at the current `α`.
-struct Path {
-    qbar: Vec<f64>,
-    bbar: Vec<f64>,
+pub(crate) struct Path {
+    /// The swept `q`.
+    pub qbar: Vec<f64>,
+    /// The swept `b`.
+    pub bbar: Vec<f64>,
     /// The swept perturbation `g` (see [`perturbation`]).
-    gbar: Vec<f64>,
-    into: Vec<bool>,
+    pub gbar: Vec<f64>,
+    /// Whether each position is on the active set `J`.
+    pub into: Vec<bool>,
     /// Each value's step to zero (scratch of the pivot rule).
     reach: Vec<f64>,
     /// The largest term `|q̄_i| + |α b̄_i|` on and off the active set, and the
     /// largest rate on and off it (forces and gaps have their own units):
     /// the scales of the zero tests.
-    scales: [f64; 4],
+    pub scales: [f64; 4],
 }
 
 impl Path {
     /// Value `i` at `α`, `x_i = σ_i (q̄_i + α b̄_i)` (`z_i` on the active
     /// set, `w_i` off it), and its rate `dx_i / dα = σ_i b̄_i`.
-    fn value(&self, i: usize, alpha: f64) -> (f64, f64) {
+    pub(crate) fn value(&self, i: usize, alpha: f64) -> (f64, f64) {
         let sigma = if self.into[i] { -1.0 } else { 1.0 };
         let b = self.bbar[i];
         (sigma * (self.qbar[i] + alpha * b), sigma * b)
@@ -324,23 +332,25 @@ impl Path {
         (sigma * self.gbar[i]).max(0.0) / (-sigma * self.bbar[i])
     }
 
-    /// Recomputes the zero tests' scales at `α`, first applying a principal
-    /// pivot `(p, column p of A, p joins)` to `q̄`, `b̄` and `ḡ`.
-    fn measure(&mut self, alpha: f64, pivot: Option<(usize, &Col<f64>, bool)>) {
-        if let Some((p, c, joins)) = pivot {
-            let a = c[p];
-            let (qp, bp, gp) = (self.qbar[p], self.bbar[p], self.gbar[p]);
-            // Multipliers, not divisions, in the loop (which vectorizes).
-            let (fq, fb, fg) = (qp / a, bp / a, gp / a);
-            for (i, &ci) in c.iter().enumerate() {
-                self.qbar[i] -= ci * fq;
-                self.bbar[i] -= ci * fb;
-                self.gbar[i] -= ci * fg;
-            }
-            let s = if joins { 1.0 } else { -1.0 };
-            (self.qbar[p], self.bbar[p], self.gbar[p]) = (s * fq, s * fb, s * fg);
-            self.into[p] = joins;
+    /// Applies the principal pivot on `p` (column `p` of `A` before it is
+    /// `c`; `p` joins the active set or leaves it) to `q̄`, `b̄` and `ḡ`.
+    pub(crate) fn sweep(&mut self, p: usize, c: &Col<f64>, joins: bool) {
+        let a = c[p];
+        let (qp, bp, gp) = (self.qbar[p], self.bbar[p], self.gbar[p]);
+        // Multipliers, not divisions, in the loop (which vectorizes).
+        let (fq, fb, fg) = (qp / a, bp / a, gp / a);
+        for (i, &ci) in c.iter().enumerate() {
+            self.qbar[i] -= ci * fq;
+            self.bbar[i] -= ci * fb;
+            self.gbar[i] -= ci * fg;
         }
+        let s = if joins { 1.0 } else { -1.0 };
+        (self.qbar[p], self.bbar[p], self.gbar[p]) = (s * fq, s * fb, s * fg);
+        self.into[p] = joins;
+    }
+
+    /// Recomputes the zero tests' scales at `α`.
+    pub(crate) fn rescale(&mut self, alpha: f64) {
         let (mut zscale, mut wscale) = (0.0f64, 0.0f64);
         let (mut zrates, mut wrates) = (0.0f64, 0.0f64);
         for ((&q, &b), &joined) in self.qbar.iter().zip(&self.bbar).zip(&self.into) {
@@ -357,6 +367,106 @@ impl Path {
             wrates = wrates.max(off);
         }
         self.scales = [zscale, wscale, zrates, wrates];
+    }
+}
+
+/// The symmetric tableau of the empty active set (`A = D M D`, in the order
+/// in which the indices would touch) and the path's state there: what both
+/// pivot rules on it (this module's and [`crate::swept_simplex`]) start from.
+pub(crate) struct Start {
+    /// `order[t]` is the index at position `t`; everything else is in positions.
+    pub order: Vec<usize>,
+    /// The tableau.
+    pub tab: Swept,
+    /// The scaled `M`'s diagonal, `D_t^2 M_tt` in `[1/2, 2)` (the scale of a
+    /// pivot's test).
+    pub diagonal: Vec<f64>,
+    /// `q̄ = D q`, `b̄ = D b` (or `-1`), the perturbation, no index active.
+    pub path: Path,
+    /// The load's weights on the scaled `z`, `D c` (empty for [`Stop::Parameter`]).
+    pub weight: Vec<f64>,
+}
+
+/// The start of the path for `p` (see [`Start`]).
+pub(crate) fn start(p: &MixedLcpRef<'_>, opts: &Options, stop: Stop) -> Start {
+    let n = p.size();
+    // Symmetric scaling by powers of two, D M D with a diagonal in [1/2, 2)
+    // (unless `equilibrate` is off): exact, so the scaled data is the
+    // original in other units.
+    let scale: Vec<f64> = (0..n)
+        .map(|i| {
+            if opts.equilibrate {
+                2f64.powi(-(p.m[(i, i)].log2() / 2.0).round() as i32)
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let b_of = |i: usize| match stop {
+        Stop::Load { .. } => scale[i] * p.b[(i, 0)],
+        Stop::Parameter => -1.0,
+    };
+    // The indices in the order in which they would touch (the pivots then
+    // mostly come in increasing position, and a column's part above the
+    // diagonal, read along a row, is short).
+    let touch = |i: usize| {
+        let b = b_of(i);
+        if b < 0.0 {
+            scale[i] * p.q[i] / -b
+        } else {
+            f64::INFINITY
+        }
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&i, &j| touch(i).total_cmp(&touch(j)).then(i.cmp(&j)));
+    let d: Vec<f64> = order.iter().map(|&i| scale[i]).collect();
+    let tab = Swept::gather(p.m, &order, &d, SWEEP_BLOCK, opts.par(n, n));
+    let diagonal: Vec<f64> = (0..n).map(|t| tab.a()[(t, t)]).collect();
+    let path = Path {
+        qbar: (0..n).map(|t| d[t] * p.q[order[t]]).collect(),
+        bbar: order.iter().map(|&i| b_of(i)).collect(),
+        gbar: (0..n).map(perturbation).collect(),
+        into: vec![false; n],
+        reach: vec![0.0; n],
+        scales: [0.0; 4],
+    };
+    // Load weights on the scaled z: c^T z = (c D)^T z'.
+    let weight: Vec<f64> = match stop {
+        Stop::Load { .. } => (0..n).map(|t| d[t] * p.c[(0, order[t])]).collect(),
+        Stop::Parameter => Vec::new(),
+    };
+    Start {
+        order,
+        tab,
+        diagonal,
+        path,
+        weight,
+    }
+}
+
+/// The final basic solution on the active set `into` (in positions) from
+/// the original data; `Err` (the statistics) when it does not solve the
+/// problem.
+pub(crate) fn finish(
+    p: &MixedLcpRef<'_>,
+    opts: &Options,
+    order: &[usize],
+    into: &[bool],
+    mut stats: Statistics,
+) -> Result<RawSolution, Statistics> {
+    let mut basic = vec![false; p.size()];
+    for (t, &i) in order.iter().enumerate() {
+        basic[i] = into[t];
+    }
+    match block::solve_active_set(p, &basic, opts, &mut stats) {
+        Some((z, u)) => Ok(RawSolution {
+            z,
+            u,
+            basic,
+            statistics: stats,
+        }),
+        // The path's active set does not solve the problem from the data.
+        None => Err(stats),
     }
 }
 
@@ -377,52 +487,17 @@ pub(crate) fn solve(
     stats.tableau_rows = n;
     stats.tableau_columns = n + 2;
     let tol = opts.tolerances;
-    // Symmetric scaling by powers of two, D M D with a diagonal in [1/2, 2)
-    // (unless `equilibrate` is off): exact, so the scaled data is the
-    // original in other units.
-    let scale: Vec<f64> = (0..n)
-        .map(|i| {
-            if opts.equilibrate {
-                2f64.powi(-(p.m[(i, i)].log2() / 2.0).round() as i32)
-            } else {
-                1.0
-            }
-        })
-        .collect();
-    let b_of = |i: usize| match stop {
-        Stop::Load { .. } => scale[i] * p.b[(i, 0)],
-        Stop::Parameter => -1.0,
-    };
-    // The indices in the order in which they would touch (the pivots then
-    // mostly come in increasing position, and a column's part above the
-    // diagonal, read along a row, is short); `order[t]` is the index at
-    // position t, and everything below is in positions.
-    let touch = |i: usize| {
-        let b = b_of(i);
-        if b < 0.0 {
-            scale[i] * p.q[i] / -b
-        } else {
-            f64::INFINITY
-        }
-    };
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&i, &j| touch(i).total_cmp(&touch(j)).then(i.cmp(&j)));
-    let d: Vec<f64> = order.iter().map(|&i| scale[i]).collect();
-    let par = opts.par(n, n);
-    let mut tab = Swept::gather(p.m, &order, &d, SWEEP_BLOCK, par);
-    let diagonal: Vec<f64> = (0..n).map(|t| tab.a()[(t, t)]).collect();
-    let qbar: Vec<f64> = (0..n).map(|t| d[t] * p.q[order[t]]).collect();
-    let bbar: Vec<f64> = order.iter().map(|&i| b_of(i)).collect();
-    // Load weights on the scaled z: c^T z = (c D)^T z'.
-    let weight: Vec<f64> = match stop {
-        Stop::Load { .. } => (0..n).map(|t| d[t] * p.c[(0, order[t])]).collect(),
-        Stop::Parameter => Vec::new(),
-    };
-    let into = vec![false; n];
+    let Start {
+        order,
+        mut tab,
+        diagonal,
+        mut path,
+        weight,
+    } = start(p, opts, stop);
     // The first contact: the least α at which some w_i = q_i + b_i α is 0.
     let mut alpha = (0..n)
-        .filter(|&i| bbar[i] < 0.0)
-        .map(|i| qbar[i] / -bbar[i])
+        .filter(|&i| path.bbar[i] < 0.0)
+        .map(|i| path.qbar[i] / -path.bbar[i])
         .fold(f64::INFINITY, f64::min);
     if stop == Stop::Parameter && alpha >= 0.0 {
         // q >= 0: z = 0 solves it.
@@ -434,15 +509,7 @@ pub(crate) fn solve(
         });
     }
     let limit = opts.pivot_limit(n, n);
-    let mut path = Path {
-        qbar,
-        bbar,
-        gbar: (0..n).map(perturbation).collect(),
-        into,
-        reach: vec![0.0; n],
-        scales: [0.0; 4],
-    };
-    path.measure(alpha, None);
+    path.rescale(alpha);
     // Pivots of length 0 in a row: the perturbation below orders ties, so
     // a run longer than every index joining and leaving once is a breakdown.
     let mut zero_run = 0;
@@ -536,24 +603,11 @@ pub(crate) fn solve(
             return Err(stats);
         }
         tab.pivot(pivot_on, &c, joins);
-        path.measure(alpha, Some((pivot_on, &c, joins)));
+        path.sweep(pivot_on, &c, joins);
+        path.rescale(alpha);
         stats.pivots += 1;
     }
-    let into = path.into;
-    let mut basic = vec![false; n];
-    for (t, &i) in order.iter().enumerate() {
-        basic[i] = into[t];
-    }
-    match block::solve_active_set(p, &basic, opts, &mut stats) {
-        Some((z, u)) => Ok(RawSolution {
-            z,
-            u,
-            basic,
-            statistics: stats,
-        }),
-        // The path's active set does not solve the problem from the data.
-        None => Err(stats),
-    }
+    finish(p, opts, &order, &path.into, stats)
 }
 
 #[cfg(test)]

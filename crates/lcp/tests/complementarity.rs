@@ -324,6 +324,38 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// The restricted-entry simplex on the symmetric tableau (the contact
+    /// form with a symmetric M and q >= 0, the default options; it ends
+    /// with one Cholesky) against the same rule on the general tableau (a
+    /// refactorization interval selects it), up to past the symmetric
+    /// tableau's update block. Off-diagonal entries of both signs make
+    /// indices leave the active set, and some separated indices admissible
+    /// to a restricted entry.
+    #[test]
+    fn symmetric_tableau_runs_the_restricted_simplex_as_the_general_one(
+        (m, q) in (2usize..=110).prop_flat_map(problem),
+        load in 0.01f64..100.0,
+    ) {
+        let n = q.nrows();
+        let general = Options {
+            refactor_interval: Some(4 * n),
+            ..Options::default()
+        };
+        let mixed = contact_form(m, &q, load);
+        let a = mixed.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
+        let b = mixed.solve(Method::RestrictedSimplex, &general).unwrap();
+        prop_assert_eq!(a.statistics.factorizations, 1, "the symmetric tableau ran: {:?}", a.statistics);
+        prop_assert_eq!(b.statistics.factorizations, 0);
+        prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
+        prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
+        prop_assert!((a.u[0] - b.u[0]).abs() <= 1e-9 * a.u[0].abs().max(1e-300));
+        prop_assert!(a.statistics.pivots <= 4 * n + 1, "{:?}", a.statistics);
+    }
+}
+
 #[test]
 fn the_symmetric_tableau_follows_a_point_out_of_contact() {
     // Three points in a row, M = tridiag(0.6, 1, 0.6) (positive definite),
@@ -355,6 +387,86 @@ fn the_symmetric_tableau_follows_a_point_out_of_contact() {
     }
     assert!((sol.u[0] - 11.0).abs() <= 1e-13 * 11.0);
     assert!((sol.w[1] - 1.0).abs() <= 1e-13);
+}
+
+#[test]
+fn the_restricted_simplex_on_the_symmetric_tableau_takes_the_general_one_s_pivots() {
+    // The three points of the test above, under the paper's rule. The
+    // approach enters at the first contact (alpha = 0, a step of length 0);
+    // z_1 enters and w_0 leaves at alpha = 2.5 (tied with w_2, which leaves
+    // at the next pivot, of length 0); z_0 enters; z_2 enters and z_1
+    // leaves at alpha = 6; w_1 enters and the load row's artificial leaves.
+    let m = faer::mat![[1.0, 0.6, 0.0], [0.6, 1.0, 0.6], [0.0, 0.6, 1.0]];
+    let mixed = MixedLcp::new(
+        m,
+        Mat::from_fn(3, 1, |_, _| -1.0),
+        faer::col![1.0, 0.0, 1.0],
+        Mat::from_fn(1, 3, |_, _| 1.0),
+        Mat::zeros(1, 1),
+        faer::col![-20.0],
+        vec![Bound::Free],
+    )
+    .unwrap();
+    let swept = mixed
+        .solve(Method::RestrictedSimplex, &Options::default())
+        .unwrap();
+    let general = Options {
+        refactor_interval: Some(100),
+        ..Options::default()
+    };
+    let general = mixed.solve(Method::RestrictedSimplex, &general).unwrap();
+    let (s, g) = (swept.statistics, general.statistics);
+    assert_eq!((s.factorizations, g.factorizations), (1, 0), "{s:?}");
+    assert_eq!((s.pivots, s.degenerate_pivots), (5, 2), "{s:?}");
+    assert_eq!(
+        (s.pivots, s.degenerate_pivots),
+        (g.pivots, g.degenerate_pivots),
+        "{g:?}"
+    );
+    assert_eq!(swept.basic, vec![true, false, true]);
+    let expect = [10.0, 0.0, 10.0];
+    for i in 0..3 {
+        assert!(
+            (swept.z[i] - expect[i]).abs() <= 1e-13 * 10.0,
+            "{:?}",
+            swept.z
+        );
+    }
+    assert!((swept.u[0] - 11.0).abs() <= 1e-13 * 11.0);
+}
+
+#[test]
+fn the_restricted_simplex_leaves_the_symmetric_tableau_where_m_is_not_positive_definite() {
+    // M = [[1, -2], [-2, 1]] (symmetric, indefinite), gaps (0, 0.5), load 10:
+    // point 0 carries the load until point 1 touches at alpha = 1/6, whose
+    // Schur complement 1 - 4 < 0 is no pivot of a positive definite block.
+    // The general tableau finishes (the pivots of both attempts counted).
+    let mixed = MixedLcp::new(
+        faer::mat![[1.0, -2.0], [-2.0, 1.0]],
+        Mat::from_fn(2, 1, |_, _| -1.0),
+        faer::col![0.0, 0.5],
+        Mat::from_fn(1, 2, |_, _| 1.0),
+        Mat::zeros(1, 1),
+        faer::col![-10.0],
+        vec![Bound::Free],
+    )
+    .unwrap();
+    let general = Options {
+        refactor_interval: Some(100),
+        ..Options::default()
+    };
+    let a = mixed.solve(Method::RestrictedSimplex, &Options::default());
+    let b = mixed.solve(Method::RestrictedSimplex, &general);
+    match (a, b) {
+        (Ok(a), Ok(b)) => {
+            assert_eq!(a.statistics.factorizations, 0, "{:?}", a.statistics);
+            assert!(a.certificate.holds(), "{}", a.certificate);
+            // The symmetric tableau's two pivots: the approach, then z_0.
+            assert_eq!(a.statistics.pivots, b.statistics.pivots + 2);
+            assert!(rel_diff(&a.z, &b.z) < 1e-12);
+        }
+        (a, b) => panic!("{a:?} / {b:?}"),
+    }
 }
 
 #[test]
