@@ -47,14 +47,15 @@ fn scaling(c: &mut Criterion) {
                 .expect("the benchmark problem solves");
             let st = sol.statistics;
             records.push(format!(
-                "{{\"method\":\"{}\",\"n\":{size},\"pivots\":{},\"iterations\":{},\"contact\":{},\"tableau_rows\":{},\"tableau_columns\":{},\"factorizations\":{}}}",
+                "{{\"method\":\"{}\",\"n\":{size},\"pivots\":{},\"iterations\":{},\"contact\":{},\"tableau_rows\":{},\"tableau_columns\":{},\"factorizations\":{},\"symmetric_tableau\":{}}}",
                 method.name(),
                 st.pivots,
                 st.iterations,
                 sol.contact.len(),
                 st.tableau_rows,
                 st.tableau_columns,
-                st.factorizations
+                st.factorizations,
+                st.symmetric_tableau
             ));
             group.throughput(Throughput::Elements(st.pivots.max(1) as u64));
             group.bench_with_input(BenchmarkId::new(method.name(), size), &problem, |b, p| {

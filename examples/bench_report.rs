@@ -7,9 +7,8 @@
 //!
 //! Effective GFLOP/s: for the tableau methods, pivots x 2 x rows x columns
 //! (the work of the rank-1 updates, delayed or not) over the time, and for
-//! a tableau method on the symmetric tableau (Lemke's method or the
-//! restricted-entry simplex with a recorded `factorizations` = 1) pivots x
-//! N^2 (the lower triangle's);
+//! a tableau method that finished on the symmetric tableau (recorded
+//! `symmetric_tableau`) pivots x N^2 (the lower triangle's);
 //! for block pivoting and the Cholesky, N^3 / 3 (one Cholesky of S) over
 //! the time.
 //!
@@ -98,12 +97,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     let p = r["pivots"].as_u64().unwrap_or(0) as f64;
                     let rows = r["tableau_rows"].as_u64().unwrap_or(0) as f64;
                     let cols = r["tableau_columns"].as_u64().unwrap_or(0) as f64;
-                    // The symmetric tableau (a tableau method's solve that
-                    // ends with one Cholesky, `Statistics::factorizations`)
+                    // The symmetric tableau (`Statistics::symmetric_tableau`)
                     // updates only the lower triangle of its N x N swept
                     // matrix: N^2 flops a pivot.
-                    let symmetric = matches!(series, "lemke" | "restricted-simplex")
-                        && r["factorizations"].as_u64() == Some(1);
+                    let symmetric = r["symmetric_tableau"].as_bool() == Some(true);
                     let work = if symmetric {
                         p * rows * rows
                     } else if rows > 0.0 {

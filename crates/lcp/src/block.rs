@@ -31,7 +31,7 @@ use faer::{Accum, Col, Mat};
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 
-use crate::dense::{Lu, norm_inf};
+use crate::dense::{Lu, norm_inf, unit_of};
 use crate::lemke;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
 use crate::tolerance::Tolerances;
@@ -152,6 +152,29 @@ pub(crate) fn solve_active_set(
     opts: &Options,
     stats: &mut Statistics,
 ) -> Option<(Col<f64>, Col<f64>)> {
+    // The extra unknowns' columns and the equality rows in units where each
+    // is of order 1 (powers of two, exact; `B u` and `C z` unchanged with
+    // u in units of 1 / b_unit): with b and c near 1e154 the Schur
+    // complement C M^{-1} B would overflow in the data's own units.
+    let (b_unit, c_unit) = if opts.equilibrate {
+        (unit_of(p.b.norm_max()), unit_of(p.c.norm_max()))
+    } else {
+        (1.0, 1.0)
+    };
+    let (b, c, d, r) = (
+        p.b * b_unit,
+        p.c * c_unit,
+        p.d * (b_unit * c_unit),
+        p.r * c_unit,
+    );
+    let scaled = MixedLcpRef {
+        b: b.as_ref(),
+        c: c.as_ref(),
+        d: d.as_ref(),
+        r: r.as_ref(),
+        ..*p
+    };
+    let p = &scaled;
     let par = opts.par(p.size(), p.size());
     let factor = Factor::of(p, active, par, stats).ok()?;
     let system = BlockSystem::new(p, &factor, par).ok()?;
@@ -159,7 +182,7 @@ pub(crate) fn solve_active_set(
     system.refine(p, &mut z, &mut u, opts.refinement_steps, stats);
     violations(p, active, &z, &u, &opts.tolerances, par)
         .is_empty()
-        .then_some((z, u))
+        .then(|| (z, u * b_unit))
 }
 
 /// An entry `(i, j)` where `M` is not symmetric (to `1e3 u` of its largest

@@ -128,3 +128,13 @@ pub(crate) fn first_non_finite(a: MatRef<'_, f64>) -> Option<(usize, f64)> {
     }
     first
 }
+
+/// The power of two nearest `1 / v` (1 when `v` is 0 or not finite): an
+/// exact change of units that brings a magnitude `v` to order 1.
+pub(crate) fn unit_of(v: f64) -> f64 {
+    if v > 0.0 && v.is_finite() {
+        2f64.powi(-v.log2().round() as i32)
+    } else {
+        1.0
+    }
+}

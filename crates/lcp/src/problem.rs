@@ -220,6 +220,11 @@ pub struct Statistics {
     /// tableau; 1 for a tableau method on the symmetric tableau, whose
     /// final basic solution is solved by a Cholesky of the contact block).
     pub factorizations: usize,
+    /// Whether a tableau method finished on the symmetric tableau (see
+    /// [`Method::Lemke`], [`Method::RestrictedSimplex`]); `false` when it
+    /// ran on the general tableau, also after an attempt on the symmetric
+    /// one that broke down (whose pivots and factorization are counted).
+    pub symmetric_tableau: bool,
     /// Whether block pivoting fell back to Lemke's method.
     pub fell_back: bool,
     /// Whether the first attempt's certificate failed and the solve was
@@ -259,6 +264,7 @@ impl Statistics {
             refinement_steps: 0,
             iterations: 0,
             factorizations: 0,
+            symmetric_tableau: false,
             fell_back: false,
             retried: false,
             tableau_rows: 0,

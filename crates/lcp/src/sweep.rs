@@ -72,6 +72,7 @@ use faer::{Accum, Col, Mat, MatMut, MatRef, Par};
 
 use crate::Method;
 use crate::block;
+use crate::dense::unit_of;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
 
 /// Where the parametric path stops.
@@ -383,8 +384,11 @@ pub(crate) struct Start {
     pub diagonal: Vec<f64>,
     /// `q̄ = D q`, `b̄ = D b` (or `-1`), the perturbation, no index active.
     pub path: Path,
-    /// The load's weights on the scaled `z`, `D c` (empty for [`Stop::Parameter`]).
+    /// The load's weights on the scaled `z`, `D c` in the load row's unit
+    /// (empty for [`Stop::Parameter`]).
     pub weight: Vec<f64>,
+    /// The load of [`Stop::Load`] in that unit (0 for [`Stop::Parameter`]).
+    pub load: f64,
 }
 
 /// The start of the path for `p` (see [`Start`]).
@@ -402,8 +406,17 @@ pub(crate) fn start(p: &MixedLcpRef<'_>, opts: &Options, stop: Stop) -> Start {
             }
         })
         .collect();
+    // The approach's column and the load row in units where each is of
+    // order 1 (powers of two again: the approach and the load are only
+    // read in these units, so data near the overflow threshold still has
+    // products, slopes and loads in range).
+    let unit = |v: f64| if opts.equilibrate { unit_of(v) } else { 1.0 };
+    let (b_unit, c_unit) = match stop {
+        Stop::Load { .. } => (unit(p.b.norm_max()), unit(p.c.norm_max())),
+        Stop::Parameter => (1.0, 1.0),
+    };
     let b_of = |i: usize| match stop {
-        Stop::Load { .. } => scale[i] * p.b[(i, 0)],
+        Stop::Load { .. } => scale[i] * (b_unit * p.b[(i, 0)]),
         Stop::Parameter => -1.0,
     };
     // The indices in the order in which they would touch (the pivots then
@@ -431,9 +444,14 @@ pub(crate) fn start(p: &MixedLcpRef<'_>, opts: &Options, stop: Stop) -> Start {
         scales: [0.0; 4],
     };
     // Load weights on the scaled z: c^T z = (c D)^T z'.
-    let weight: Vec<f64> = match stop {
-        Stop::Load { .. } => (0..n).map(|t| d[t] * p.c[(0, order[t])]).collect(),
-        Stop::Parameter => Vec::new(),
+    let (weight, load) = match stop {
+        Stop::Load { load } => (
+            (0..n)
+                .map(|t| d[t] * (c_unit * p.c[(0, order[t])]))
+                .collect(),
+            c_unit * load,
+        ),
+        Stop::Parameter => (Vec::new(), 0.0),
     };
     Start {
         order,
@@ -441,6 +459,7 @@ pub(crate) fn start(p: &MixedLcpRef<'_>, opts: &Options, stop: Stop) -> Start {
         diagonal,
         path,
         weight,
+        load,
     }
 }
 
@@ -463,7 +482,10 @@ pub(crate) fn finish(
             z,
             u,
             basic,
-            statistics: stats,
+            statistics: Statistics {
+                symmetric_tableau: true,
+                ..stats
+            },
         }),
         // The path's active set does not solve the problem from the data.
         None => Err(stats),
@@ -493,6 +515,7 @@ pub(crate) fn solve(
         diagonal,
         mut path,
         weight,
+        load,
     } = start(p, opts, stop);
     // The first contact: the least α at which some w_i = q_i + b_i α is 0.
     let mut alpha = (0..n)
@@ -505,7 +528,10 @@ pub(crate) fn solve(
             z: Col::zeros(n),
             u: Col::zeros(0),
             basic: vec![false; n],
-            statistics: stats,
+            statistics: Statistics {
+                symmetric_tableau: true,
+                ..stats
+            },
         });
     }
     let limit = opts.pivot_limit(n, n);
@@ -538,7 +564,7 @@ pub(crate) fn solve(
             };
         }
         let to_stop = match stop {
-            Stop::Load { load } => {
+            Stop::Load { .. } => {
                 if slope > 0.0 {
                     (load - value) / slope
                 } else if path.into.iter().any(|&j| j) {

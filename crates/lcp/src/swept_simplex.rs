@@ -40,7 +40,9 @@
 //!   `z_i` sweeps `i` out and pins it, a leaving `w_k` pins `k`, and a
 //!   leaving `Z` ends phase 1. `w_s` entering (a release of the pin) leaves
 //!   the same ways without the first sweep. `z_k` entering is a sweep of
-//!   `k` in, `w_j` entering a sweep of `j` out;
+//!   `k` in, `w_j` entering a sweep of `j` out. Phase 1 also ends when `Z`
+//!   reaches zero while basic (a tie it lost), as the general simplex's
+//!   does, before any further pivot;
 //! - ties in the ratio test (other than a restricted entry's) go to the
 //!   first under the perturbation `q + ε g` of [`crate::sweep`], in place of
 //!   the general tableau's lexicographic rule on `B^{-1}`, which this form
@@ -146,15 +148,15 @@ pub(crate) fn solve(
         diagonal,
         mut path,
         weight,
+        load,
     } = sweep::start(p, opts, Stop::Load { load });
-    // c = -κ b (scaled alike, so also D c = -κ D b).
-    let (num, den) = (0..n).fold((0.0, 0.0), |(a, b), t| {
-        (
-            a - weight[t] * path.bbar[t],
-            b + path.bbar[t] * path.bbar[t],
-        )
-    });
-    let kappa = num / den;
+    // c = -κ b (scaled alike, so also D c = -κ D b), read where b is
+    // largest as `sweep::applies` does (no squares: b may be near the
+    // overflow threshold).
+    let largest = (0..n).max_by(|&i, &j| path.bbar[i].abs().total_cmp(&path.bbar[j].abs()));
+    let Some(kappa) = largest.map(|t| weight[t] / -path.bbar[t]) else {
+        return Err(stats);
+    };
     // The approach enters: the first contact, ties to the first under the
     // perturbation. Nothing ever touching is for the general tableau to report.
     let touch = |t: usize| path.qbar[t].max(0.0) / -path.bbar[t];
@@ -208,6 +210,11 @@ pub(crate) fn solve(
         });
         let (zzero, wzero) = (tol.zero * zscale, tol.zero * wscale);
         let (excess, excess_g) = (load - carried, -carried_g);
+        if excess <= tol.zero * load {
+            // The artificial is at zero, basic or not: phase 1 ends (as the
+            // general simplex's does), the pin's force and gap both zero.
+            break;
+        }
         let lift = slope * inv_bs;
         let release = -lift;
         let ctol = *cost_tol.get_or_insert_with(|| {
@@ -297,11 +304,7 @@ pub(crate) fn solve(
                     f64::INFINITY
                 };
             }
-            let to_load = if excess <= tol.zero * load {
-                0.0
-            } else {
-                excess / -d
-            };
+            let to_load = excess / -d;
             least = least.min(to_load);
             if !least.is_finite() {
                 continue;

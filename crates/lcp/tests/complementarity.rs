@@ -309,15 +309,15 @@ proptest! {
         let a = lcp.solve(Method::Lemke, &Options::default()).unwrap();
         let b = lcp.solve(Method::Lemke, &general(n)).unwrap();
         if q.iter().any(|&v| v < 0.0) {
-            prop_assert_eq!(a.statistics.factorizations, 1, "the symmetric tableau ran");
+            prop_assert!(a.statistics.symmetric_tableau, "the symmetric tableau ran");
         }
-        prop_assert_eq!(b.statistics.factorizations, 0);
+        prop_assert!(!b.statistics.symmetric_tableau);
         prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
         prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
         let mixed = contact_form(m, &q, load);
         let a = mixed.solve(Method::Lemke, &Options::default()).unwrap();
         let b = mixed.solve(Method::Lemke, &general(n + 2)).unwrap();
-        prop_assert_eq!(a.statistics.factorizations, 1, "the symmetric tableau ran");
+        prop_assert!(a.statistics.symmetric_tableau, "the symmetric tableau ran");
         prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
         prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
         prop_assert!((a.u[0] - b.u[0]).abs() <= 1e-9 * a.u[0].abs().max(1e-300));
@@ -347,8 +347,8 @@ proptest! {
         let mixed = contact_form(m, &q, load);
         let a = mixed.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
         let b = mixed.solve(Method::RestrictedSimplex, &general).unwrap();
-        prop_assert_eq!(a.statistics.factorizations, 1, "the symmetric tableau ran: {:?}", a.statistics);
-        prop_assert_eq!(b.statistics.factorizations, 0);
+        prop_assert!(a.statistics.symmetric_tableau, "the symmetric tableau ran: {:?}", a.statistics);
+        prop_assert!(!b.statistics.symmetric_tableau);
         prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
         prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
         prop_assert!((a.u[0] - b.u[0]).abs() <= 1e-9 * a.u[0].abs().max(1e-300));
@@ -377,7 +377,7 @@ fn the_symmetric_tableau_follows_a_point_out_of_contact() {
     .unwrap();
     let sol = mixed.solve(Method::Lemke, &Options::default()).unwrap();
     let s = sol.statistics;
-    assert_eq!(s.factorizations, 1, "the symmetric tableau ran");
+    assert!(s.symmetric_tableau, "the symmetric tableau ran");
     // In: 1, 0, 2 (after a step of length 0); out: 1.
     assert_eq!((s.pivots, s.degenerate_pivots), (4, 1), "{s:?}");
     assert_eq!(sol.basic, vec![true, false, true]);
@@ -416,7 +416,7 @@ fn the_restricted_simplex_on_the_symmetric_tableau_takes_the_general_one_s_pivot
     };
     let general = mixed.solve(Method::RestrictedSimplex, &general).unwrap();
     let (s, g) = (swept.statistics, general.statistics);
-    assert_eq!((s.factorizations, g.factorizations), (1, 0), "{s:?}");
+    assert!(s.symmetric_tableau && !g.symmetric_tableau, "{s:?}");
     assert_eq!((s.pivots, s.degenerate_pivots), (5, 2), "{s:?}");
     assert_eq!(
         (s.pivots, s.degenerate_pivots),
@@ -433,6 +433,85 @@ fn the_restricted_simplex_on_the_symmetric_tableau_takes_the_general_one_s_pivot
         );
     }
     assert!((swept.u[0] - 11.0).abs() <= 1e-13 * 11.0);
+}
+
+/// The contact form `w = M z + b alpha + q`, `c^T z = load` with `c = -b`.
+fn loaded(m: Mat<f64>, b: [f64; 2], q: [f64; 2], load: f64) -> MixedLcp {
+    MixedLcp::new(
+        m,
+        Mat::from_fn(2, 1, |i, _| b[i]),
+        Col::from_fn(2, |i| q[i]),
+        Mat::from_fn(1, 2, |_, j| -b[j]),
+        Mat::zeros(1, 1),
+        faer::col![-load],
+        vec![Bound::Free],
+    )
+    .unwrap()
+}
+
+#[test]
+fn the_restricted_simplex_on_the_symmetric_tableau_stops_where_the_load_is_met() {
+    // Loads met exactly when point 1 touches (found by review): the load
+    // row's artificial reaches zero in a tie with w_1, which leaves instead.
+    // Phase 1 ends there, as on the general tableau; it used to go on with
+    // a step of length 0 (one pivot more), and on the singular M below to
+    // try the singular block {0, 1} and fall back.
+    let general = Options {
+        refactor_interval: Some(100),
+        ..Options::default()
+    };
+    let m = faer::mat![[1.0, 0.75], [0.75, 1.0]];
+    // z_0 = alpha until w_1 = 1 + 0.75 alpha - 2 alpha = 0: alpha = 0.8, load 0.8.
+    let mixed = loaded(m, [-1.0, -2.0], [0.0, 1.0], 0.8);
+    let a = mixed
+        .solve(Method::RestrictedSimplex, &Options::default())
+        .unwrap();
+    let b = mixed.solve(Method::RestrictedSimplex, &general).unwrap();
+    let (s, g) = (a.statistics, b.statistics);
+    assert!(s.symmetric_tableau, "{s:?}");
+    assert_eq!(
+        (s.pivots, s.degenerate_pivots),
+        (g.pivots, g.degenerate_pivots),
+        "{s:?} / {g:?}"
+    );
+    assert_eq!(a.basic, vec![true, false]);
+    assert!((a.z[0] - 0.8).abs() <= 1e-15 && a.z[1] == 0.0 && (a.u[0] - 0.8).abs() <= 1e-15);
+    // M singular: z_0 = alpha / 1, w_1 = 1 + alpha - 2 alpha = 0 at alpha = 1 = load.
+    let singular = loaded(
+        faer::mat![[1.0, 1.0], [1.0, 1.0]],
+        [-1.0, -2.0],
+        [0.0, 1.0],
+        1.0,
+    );
+    let a = singular
+        .solve(Method::RestrictedSimplex, &Options::default())
+        .unwrap();
+    assert!(a.statistics.symmetric_tableau, "{:?}", a.statistics);
+    assert_eq!(a.statistics.pivots, 2, "{:?}", a.statistics);
+    assert!((a.z[0] - 1.0).abs() <= 1e-15 && a.z[1] == 0.0);
+}
+
+#[test]
+fn the_restricted_simplex_on_the_symmetric_tableau_reads_kappa_without_squares() {
+    // b and c of order 1e154 and up (found by review): kappa as
+    // sum(c b) / sum(b b) overflowed to inf / inf, every reduced cost was
+    // NaN, and the final solve's Schur complement c M^{-1} b overflowed too;
+    // the solve fell back to the general tableau. Kappa is now read as
+    // c_i / -b_i at the largest b, and b and c are taken in units of their
+    // largest entries (powers of two) by the tableau and the final solve.
+    for scale in [1.0, 1e153, 1e154, 1e200, 1e300] {
+        let m = faer::mat![[2.0, 0.5], [0.5, 1.0]];
+        let mixed = loaded(m, [-scale, -2.0 * scale], [0.1, 0.03], scale);
+        let a = mixed
+            .solve(Method::RestrictedSimplex, &Options::default())
+            .unwrap();
+        assert!(
+            a.statistics.symmetric_tableau,
+            "{scale:e}: {:?}",
+            a.statistics
+        );
+        assert!(a.certificate.holds(), "{scale:e}: {}", a.certificate);
+    }
 }
 
 #[test]
@@ -459,7 +538,7 @@ fn the_restricted_simplex_leaves_the_symmetric_tableau_where_m_is_not_positive_d
     let b = mixed.solve(Method::RestrictedSimplex, &general);
     match (a, b) {
         (Ok(a), Ok(b)) => {
-            assert_eq!(a.statistics.factorizations, 0, "{:?}", a.statistics);
+            assert!(!a.statistics.symmetric_tableau, "{:?}", a.statistics);
             assert!(a.certificate.holds(), "{}", a.certificate);
             // The symmetric tableau's two pivots: the approach, then z_0.
             assert_eq!(a.statistics.pivots, b.statistics.pivots + 2);
@@ -491,7 +570,7 @@ fn the_symmetric_tableau_judges_pivots_in_the_data_s_own_units() {
     ] {
         let expect = brute_force(&m, &q).expect("an SPD LCP has a solution");
         let sol = Lcp::new(m, q).unwrap().solve(Method::Lemke, &raw).unwrap();
-        assert_eq!(sol.statistics.factorizations, 1, "{:?}", sol.statistics);
+        assert!(sol.statistics.symmetric_tableau, "{:?}", sol.statistics);
         assert!(sol.certificate.holds(), "{}", sol.certificate);
         assert!(
             rel_diff(&sol.z, &expect) < 1e-12,

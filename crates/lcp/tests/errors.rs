@@ -212,14 +212,14 @@ fn inaccurate_solutions_are_not_returned() {
     let once = lcp.solve(Method::Lemke, &Options::default()).unwrap();
     assert!(!once.statistics.retried);
     // The symmetric tableau ends with one Cholesky, the general one with none.
-    assert_eq!(once.statistics.factorizations, 1, "the symmetric tableau");
+    assert!(once.statistics.symmetric_tableau, "the symmetric tableau");
     let retry = Options {
         refactor_interval: Some(10),
         refinement_steps: 10,
         ..Options::default()
     };
     let again = lcp.solve(Method::Lemke, &retry).unwrap();
-    assert_eq!(again.statistics.factorizations, 0, "the general tableau");
+    assert!(!again.statistics.symmetric_tableau, "the general tableau");
     match &e {
         LcpError::Inaccurate { pivots, .. } => {
             assert_eq!(*pivots, once.statistics.pivots + again.statistics.pivots)

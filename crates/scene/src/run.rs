@@ -30,8 +30,12 @@ pub struct StatisticsJson {
     pub refinement_steps: usize,
     /// Block iterations (block pivoting).
     pub iterations: usize,
-    /// Cholesky factorizations (block pivoting).
+    /// Cholesky factorizations (block pivoting; 1 for a tableau method
+    /// that finished on the symmetric tableau).
     pub factorizations: usize,
+    /// Whether a tableau method finished on the symmetric tableau (half
+    /// the update work; the general tableau otherwise).
+    pub symmetric_tableau: bool,
 }
 
 /// A folded problem's symmetry.
@@ -305,6 +309,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
             refinement_steps: st.refinement_steps,
             iterations: st.iterations,
             factorizations: st.factorizations,
+            symmetric_tableau: st.symmetric_tableau,
         },
         seconds: Seconds {
             assembly: problem.assembly_seconds(),
