@@ -192,21 +192,24 @@ pub(crate) fn solve(
         if !(alpha.is_finite() && alpha_g.is_finite()) {
             return Err(stats);
         }
-        // The values and their ε coefficients, the load on J and its slope
-        // with α (the artificial is Z = P - L), and the zero tests' scales.
-        let (mut carried, mut carried_g, mut slope) = (0.0, 0.0, 0.0);
-        for i in 0..n {
+        // One pass: the values and their ε coefficients, the load on J and
+        // its slope with α (the artificial is Z = P - L), and the zero
+        // tests' scales (the largest term on J and off it).
+        let [carried, carried_g, slope, zscale, wscale] = in_lanes(n, |i, lane| {
             let (q, b) = (path.qbar[i], path.bbar[i]);
             let (x, e) = (q + alpha * b, path.gbar[i] + alpha_g * b);
-            let (x, e) = if path.into[i] { (-x, -e) } else { (x, e) };
-            (xs[i], es[i]) = (x, e);
-            let w = if path.into[i] { weight[i] } else { 0.0 };
-            carried += w * x;
-            carried_g += w * e;
-            slope -= w * b;
-        }
-        let (zscale, wscale) = largest_by_kind(&path.into, |i| {
-            path.qbar[i].abs() + (alpha * path.bbar[i]).abs()
+            let size = q.abs() + (alpha * b).abs();
+            if path.into[i] {
+                (xs[i], es[i]) = (-x, -e);
+                let w = weight[i];
+                lane[0] -= w * x;
+                lane[1] -= w * e;
+                lane[2] -= w * b;
+                lane[3] = if size > lane[3] { size } else { lane[3] };
+            } else {
+                (xs[i], es[i]) = (x, e);
+                lane[4] = if size > lane[4] { size } else { lane[4] };
+            }
         });
         let (zzero, wzero) = (tol.zero * zscale, tol.zero * wscale);
         let (excess, excess_g) = (load - carried, -carried_g);
@@ -264,27 +267,28 @@ pub(crate) fn solve(
             rejected.push(entering);
             // The entering column's rates (column j of A when it is read),
             // and the largest of each kind (forces and gaps have their own
-            // units).
-            let column = match entering {
+            // units), in one pass.
+            let (column, f) = match entering {
                 Entering::Index(j) => {
                     let col = if j == s { cs.clone() } else { tab.column(j) };
                     let f = cs[j] * inv_bs;
-                    for i in 0..n {
-                        let r = col[i] - path.bbar[i] * f;
-                        rates[i] = if path.into[i] { -r } else { r };
-                    }
-                    Some(col)
+                    (Some(col), f)
                 }
-                Entering::Release => {
-                    for i in 0..n {
-                        let r = path.bbar[i] * inv_bs;
-                        rates[i] = if path.into[i] { -r } else { r };
-                    }
-                    None
-                }
+                Entering::Release => (None, -inv_bs),
             };
-            rates[s] = 0.0;
-            let (zmax, wmax) = largest_by_kind(&path.into, |i| rates[i].abs());
+            let [.., zmax, wmax] = in_lanes(n, |i, lane| {
+                // The release's column is b̄ / b̄_s: as a swept column of 0.
+                let a = column.as_ref().map_or(0.0, |c| c[i]);
+                let r = a - path.bbar[i] * f;
+                let r = if i == s { 0.0 } else { r };
+                if path.into[i] {
+                    rates[i] = -r;
+                    lane[3] = if r.abs() > lane[3] { r.abs() } else { lane[3] };
+                } else {
+                    rates[i] = r;
+                    lane[4] = if r.abs() > lane[4] { r.abs() } else { lane[4] };
+                }
+            });
             let (zsmall, wsmall) = (tol.pivot * zmax, tol.pivot * wmax);
             // The ratio test: each falling value's step to zero, the load
             // row's (position n) last.
@@ -393,28 +397,24 @@ pub(crate) fn solve(
     sweep::finish(p, opts, &order, &path.into, stats)
 }
 
-/// The largest `size(i)` on the active set `into` and off it: four lanes
-/// of plain comparisons (the sizes are finite or the step that follows
-/// fails), which keep the loop from waiting on one running maximum.
-fn largest_by_kind(into: &[bool], size: impl Fn(usize) -> f64) -> (f64, f64) {
-    let (mut on, mut off) = ([0.0f64; 4], [0.0f64; 4]);
-    let whole = into.len() / 4 * 4;
+/// Five sums or maxima over `0..n`, each lane of four accumulating its own
+/// (`body(i, lane)`; lanes start at 0): the additions and comparisons of
+/// one index then do not wait on the previous one's. Returns the lanes'
+/// sums for the first three and their maxima for the last two.
+fn in_lanes(n: usize, mut body: impl FnMut(usize, &mut [f64; 5])) -> [f64; 5] {
+    let mut lanes = [[0.0f64; 5]; 4];
+    let whole = n / 4 * 4;
     for base in (0..whole).step_by(4) {
-        for l in 0..4 {
-            let v = size(base + l);
-            let (a, b) = if into[base + l] { (v, 0.0) } else { (0.0, v) };
-            on[l] = if a > on[l] { a } else { on[l] };
-            off[l] = if b > off[l] { b } else { off[l] };
+        for (l, lane) in lanes.iter_mut().enumerate() {
+            body(base + l, lane);
         }
     }
-    for i in whole..into.len() {
-        let v = size(i);
-        let (a, b) = if into[i] { (v, 0.0) } else { (0.0, v) };
-        on[0] = if a > on[0] { a } else { on[0] };
-        off[0] = if b > off[0] { b } else { off[0] };
+    for i in whole..n {
+        body(i, &mut lanes[0]);
     }
-    let top = |x: [f64; 4]| x.into_iter().fold(0.0, f64::max);
-    (top(on), top(off))
+    let sum = |k: usize| lanes.iter().map(|l| l[k]).sum::<f64>();
+    let top = |k: usize| lanes.iter().map(|l| l[k]).fold(0.0, f64::max);
+    [sum(0), sum(1), sum(2), top(3), top(4)]
 }
 
 /// Among the positions `tied` (those whose steps tie the least), the first
