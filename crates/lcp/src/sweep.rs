@@ -74,6 +74,7 @@ use crate::Method;
 use crate::block;
 use crate::dense::unit_of;
 use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
+use crate::tolerance::Tolerances;
 
 /// Where the parametric path stops.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -285,6 +286,41 @@ impl Swept {
     }
 }
 
+/// Steps of length 0 in a row. The perturbation orders ties, so a run
+/// longer than every index joining and leaving once, `2 n + 10` (a rule of
+/// thumb: a tie's own path can be longer, at the cost of a fall back), is
+/// a breakdown.
+pub(crate) struct ZeroRun {
+    run: usize,
+    cap: usize,
+}
+
+impl ZeroRun {
+    /// No step yet, for `n` indices.
+    pub(crate) fn new(n: usize) -> Self {
+        Self {
+            run: 0,
+            cap: 2 * n + 10,
+        }
+    }
+
+    /// Records a step (`zero`: of length 0); `false` on a breakdown.
+    pub(crate) fn record(&mut self, zero: bool) -> bool {
+        self.run = if zero { self.run + 1 } else { 0 };
+        self.run <= self.cap
+    }
+}
+
+/// Whether `a`, the pivot of a principal pivot on an index whose scaled
+/// diagonal entry is `m_pp`, is that of a positive definite `M`: into the
+/// active set it is a Schur complement of a positive definite block, in
+/// `(0, M_pp]`; out of it, minus a diagonal entry of its inverse, at most
+/// `-1 / M_pp`. Each is judged against that bound.
+pub(crate) fn definite_pivot(a: f64, m_pp: f64, joins: bool, tol: &Tolerances) -> bool {
+    let bound = if joins { a / m_pp } else { -a * m_pp };
+    bound > tol.pivot
+}
+
 /// The perturbation `g` of `q'` (scaled units) at position `t`, in [1, 2):
 /// positive, so the first basis stays feasible under `q' + ε g`, and
 /// irregular (the golden ratio's multiples), so that points a symmetry makes
@@ -389,11 +425,17 @@ pub(crate) struct Start {
     pub weight: Vec<f64>,
     /// The load of [`Stop::Load`] in that unit (0 for [`Stop::Parameter`]).
     pub load: f64,
+    /// The statistics of a solve by `method` on this tableau, before its
+    /// first pivot.
+    pub stats: Statistics,
 }
 
-/// The start of the path for `p` (see [`Start`]).
-pub(crate) fn start(p: &MixedLcpRef<'_>, opts: &Options, stop: Stop) -> Start {
+/// The start of the path for `p`, solved by `method` (see [`Start`]).
+pub(crate) fn start(p: &MixedLcpRef<'_>, opts: &Options, stop: Stop, method: Method) -> Start {
     let n = p.size();
+    let mut stats = Statistics::new(method);
+    stats.tableau_rows = n;
+    stats.tableau_columns = n + 2;
     // Symmetric scaling by powers of two, D M D with a diagonal in [1/2, 2)
     // (unless `equilibrate` is off): exact, so the scaled data is the
     // original in other units.
@@ -460,6 +502,7 @@ pub(crate) fn start(p: &MixedLcpRef<'_>, opts: &Options, stop: Stop) -> Start {
         path,
         weight,
         load,
+        stats,
     }
 }
 
@@ -505,9 +548,6 @@ pub(crate) fn solve(
     stop: Stop,
 ) -> Result<RawSolution, Statistics> {
     let n = p.size();
-    let mut stats = Statistics::new(Method::Lemke);
-    stats.tableau_rows = n;
-    stats.tableau_columns = n + 2;
     let tol = opts.tolerances;
     let Start {
         order,
@@ -516,7 +556,8 @@ pub(crate) fn solve(
         mut path,
         weight,
         load,
-    } = start(p, opts, stop);
+        mut stats,
+    } = start(p, opts, stop, Method::Lemke);
     // The first contact: the least α at which some w_i = q_i + b_i α is 0.
     let mut alpha = (0..n)
         .filter(|&i| path.bbar[i] < 0.0)
@@ -536,9 +577,7 @@ pub(crate) fn solve(
     }
     let limit = opts.pivot_limit(n, n);
     path.rescale(alpha);
-    // Pivots of length 0 in a row: the perturbation below orders ties, so
-    // a run longer than every index joining and leaving once is a breakdown.
-    let mut zero_run = 0;
+    let mut zero_run = ZeroRun::new(n);
     loop {
         // Each falling value's step to zero (0 at the zero level), the
         // least of them, and the load on the contact set.
@@ -602,30 +641,19 @@ pub(crate) fn solve(
             if stats.pivots > 0 {
                 stats.degenerate_pivots += 1;
             }
-            zero_run += 1;
-            if zero_run > 2 * n + 10 {
-                return Err(stats);
-            }
         } else {
-            zero_run = 0;
             alpha += step;
+        }
+        if !zero_run.record(step == 0.0) {
+            return Err(stats);
         }
         if stats.pivots >= limit {
             return Err(stats);
         }
         let joins = !path.into[pivot_on];
         let c = tab.column(pivot_on);
-        let a = c[pivot_on];
-        // Into J the pivot is a Schur complement of a positive definite
-        // block, in (0, M_pp]; out of J, minus a diagonal entry of its
-        // inverse, at most -1 / M_pp. Each is judged against that bound
-        // (scaled M: its diagonal, kept from the start).
-        let bound = if joins {
-            a / diagonal[pivot_on]
-        } else {
-            -a * diagonal[pivot_on]
-        };
-        if !(bound > tol.pivot) {
+        // (Scaled M: its diagonal, kept from the start.)
+        if !definite_pivot(c[pivot_on], diagonal[pivot_on], joins, &tol) {
             return Err(stats);
         }
         tab.pivot(pivot_on, &c, joins);

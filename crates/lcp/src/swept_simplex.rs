@@ -110,15 +110,10 @@ fn sweep_on(
     joins: bool,
     tol: &Tolerances,
 ) -> bool {
-    let a = c[p];
-    let bound = if joins {
-        a / diagonal[p]
-    } else {
-        -a * diagonal[p]
-    };
-    if !(bound > tol.pivot) {
+    if !sweep::definite_pivot(c[p], diagonal[p], joins, tol) {
         return false;
     }
+    let a = c[p];
     tab.pivot(p, c, joins);
     path.sweep(p, c, joins);
     let inv = 1.0 / a;
@@ -138,9 +133,6 @@ pub(crate) fn solve(
     load: f64,
 ) -> Result<RawSolution, Statistics> {
     let n = p.size();
-    let mut stats = Statistics::new(Method::RestrictedSimplex);
-    stats.tableau_rows = n;
-    stats.tableau_columns = n + 2;
     let tol = opts.tolerances;
     let Start {
         order,
@@ -149,7 +141,8 @@ pub(crate) fn solve(
         mut path,
         weight,
         load,
-    } = sweep::start(p, opts, Stop::Load { load });
+        mut stats,
+    } = sweep::start(p, opts, Stop::Load { load }, Method::RestrictedSimplex);
     // c = -κ b (scaled alike, so also D c = -κ D b), read where b is
     // largest as `sweep::applies` does (no squares: b may be near the
     // overflow threshold).
@@ -175,7 +168,7 @@ pub(crate) fn solve(
     let limit = opts.pivot_limit(n + 1, 2 * n + 1);
     let mut diag = diagonal.clone();
     let mut cost_tol = None;
-    let mut zero_run = 0;
+    let mut zero_run = sweep::ZeroRun::new(n);
     // Per iteration: the basic values and their ε coefficients, the
     // entering column's rates, and each falling value's step to zero.
     let (mut xs, mut es) = (vec![0.0; n], vec![0.0; n]);
@@ -369,12 +362,9 @@ pub(crate) fn solve(
         // the second half of one that was.)
         if theta == 0.0 {
             stats.degenerate_pivots += 1;
-            zero_run += 1;
-            if zero_run > 2 * n + 10 {
-                return Err(stats);
-            }
-        } else {
-            zero_run = 0;
+        }
+        if !zero_run.record(theta == 0.0) {
+            return Err(stats);
         }
         stats.pivots += 1;
         match after {

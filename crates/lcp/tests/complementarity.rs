@@ -55,20 +55,27 @@ fn rel_diff(a: &Col<f64>, b: &Col<f64>) -> f64 {
     (a - b).iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
 }
 
+/// The contact form `w = M z + b alpha + q`, `c^T z = load` with `c = -b`.
+fn loaded(m: Mat<f64>, b: &[f64], q: &[f64], load: f64) -> MixedLcp {
+    let n = q.len();
+    MixedLcp::new(
+        m,
+        Mat::from_fn(n, 1, |i, _| b[i]),
+        Col::from_fn(n, |i| q[i]),
+        Mat::from_fn(1, n, |_, j| -b[j]),
+        Mat::zeros(1, 1),
+        faer::col![-load],
+        vec![Bound::Free],
+    )
+    .unwrap()
+}
+
 /// The contact-shaped mixed form of `(m, q)`: w = M z - alpha e + |q|,
 /// e^T z = `load`, alpha free.
 fn contact_form(m: Mat<f64>, q: &Col<f64>, load: f64) -> MixedLcp {
     let n = q.nrows();
-    MixedLcp::new(
-        m,
-        Mat::from_fn(n, 1, |_, _| -1.0),
-        Col::from_fn(n, |i| q[i].abs()),
-        Mat::from_fn(1, n, |_, _| 1.0),
-        Mat::zeros(1, 1),
-        Col::from_fn(1, |_| -load),
-        vec![Bound::Free],
-    )
-    .unwrap()
+    let gaps: Vec<f64> = q.iter().map(|v| v.abs()).collect();
+    loaded(m, &vec![-1.0; n], &gaps, load)
 }
 
 fn problem(n: usize) -> impl Strategy<Value = (Mat<f64>, Col<f64>)> {
@@ -361,6 +368,13 @@ proptest! {
     }
 }
 
+/// Three points in a row, M = tridiag(0.6, 1, 0.6) (positive definite),
+/// gaps (1, 0, 1), load 20: a point leaves the contact set on the way.
+fn three_in_a_row() -> MixedLcp {
+    let m = faer::mat![[1.0, 0.6, 0.0], [0.6, 1.0, 0.6], [0.0, 0.6, 1.0]];
+    loaded(m, &[-1.0; 3], &[1.0, 0.0, 1.0], 20.0)
+}
+
 #[test]
 fn the_symmetric_tableau_follows_a_point_out_of_contact() {
     // Three points in a row, M = tridiag(0.6, 1, 0.6) (positive definite),
@@ -369,17 +383,7 @@ fn the_symmetric_tableau_follows_a_point_out_of_contact() {
     // one pivot of length 0). Then dz/dalpha = M^{-1} e = (10, -5, 10) / 7, so the
     // middle point unloads and leaves at alpha = 6 (load 10); on {0, 2}, M = I:
     // z_0 = z_2 = alpha - 1 = 10 at alpha = 11, and w_1 = 0.6 * 20 - 11 = 1.
-    let m = faer::mat![[1.0, 0.6, 0.0], [0.6, 1.0, 0.6], [0.0, 0.6, 1.0]];
-    let mixed = MixedLcp::new(
-        m,
-        Mat::from_fn(3, 1, |_, _| -1.0),
-        faer::col![1.0, 0.0, 1.0],
-        Mat::from_fn(1, 3, |_, _| 1.0),
-        Mat::zeros(1, 1),
-        faer::col![-20.0],
-        vec![Bound::Free],
-    )
-    .unwrap();
+    let mixed = three_in_a_row();
     let sol = mixed.solve(Method::Lemke, &Options::default()).unwrap();
     let s = sol.statistics;
     assert!(s.symmetric_tableau, "the symmetric tableau ran");
@@ -401,17 +405,7 @@ fn the_restricted_simplex_on_the_symmetric_tableau_takes_the_general_one_s_pivot
     // z_1 enters and w_0 leaves at alpha = 2.5 (tied with w_2, which leaves
     // at the next pivot, of length 0); z_0 enters; z_2 enters and z_1
     // leaves at alpha = 6; w_1 enters and the load row's artificial leaves.
-    let m = faer::mat![[1.0, 0.6, 0.0], [0.6, 1.0, 0.6], [0.0, 0.6, 1.0]];
-    let mixed = MixedLcp::new(
-        m,
-        Mat::from_fn(3, 1, |_, _| -1.0),
-        faer::col![1.0, 0.0, 1.0],
-        Mat::from_fn(1, 3, |_, _| 1.0),
-        Mat::zeros(1, 1),
-        faer::col![-20.0],
-        vec![Bound::Free],
-    )
-    .unwrap();
+    let mixed = three_in_a_row();
     let swept = mixed
         .solve(Method::RestrictedSimplex, &Options::default())
         .unwrap();
@@ -440,20 +434,6 @@ fn the_restricted_simplex_on_the_symmetric_tableau_takes_the_general_one_s_pivot
     assert!((swept.u[0] - 11.0).abs() <= 1e-13 * 11.0);
 }
 
-/// The contact form `w = M z + b alpha + q`, `c^T z = load` with `c = -b`.
-fn loaded(m: Mat<f64>, b: [f64; 2], q: [f64; 2], load: f64) -> MixedLcp {
-    MixedLcp::new(
-        m,
-        Mat::from_fn(2, 1, |i, _| b[i]),
-        Col::from_fn(2, |i| q[i]),
-        Mat::from_fn(1, 2, |_, j| -b[j]),
-        Mat::zeros(1, 1),
-        faer::col![-load],
-        vec![Bound::Free],
-    )
-    .unwrap()
-}
-
 #[test]
 fn the_restricted_simplex_on_the_symmetric_tableau_stops_where_the_load_is_met() {
     // Loads met exactly when point 1 touches (found by review): the load
@@ -467,7 +447,7 @@ fn the_restricted_simplex_on_the_symmetric_tableau_stops_where_the_load_is_met()
     };
     let m = faer::mat![[1.0, 0.75], [0.75, 1.0]];
     // z_0 = alpha until w_1 = 1 + 0.75 alpha - 2 alpha = 0: alpha = 0.8, load 0.8.
-    let mixed = loaded(m, [-1.0, -2.0], [0.0, 1.0], 0.8);
+    let mixed = loaded(m, &[-1.0, -2.0], &[0.0, 1.0], 0.8);
     let a = mixed
         .solve(Method::RestrictedSimplex, &Options::default())
         .unwrap();
@@ -484,8 +464,8 @@ fn the_restricted_simplex_on_the_symmetric_tableau_stops_where_the_load_is_met()
     // M singular: z_0 = alpha / 1, w_1 = 1 + alpha - 2 alpha = 0 at alpha = 1 = load.
     let singular = loaded(
         faer::mat![[1.0, 1.0], [1.0, 1.0]],
-        [-1.0, -2.0],
-        [0.0, 1.0],
+        &[-1.0, -2.0],
+        &[0.0, 1.0],
         1.0,
     );
     let a = singular
@@ -506,7 +486,7 @@ fn the_restricted_simplex_on_the_symmetric_tableau_reads_kappa_without_squares()
     // largest entries (powers of two) by the tableau and the final solve.
     for scale in [1.0, 1e153, 1e154, 1e200, 1e300] {
         let m = faer::mat![[2.0, 0.5], [0.5, 1.0]];
-        let mixed = loaded(m, [-scale, -2.0 * scale], [0.1, 0.03], scale);
+        let mixed = loaded(m, &[-scale, -2.0 * scale], &[0.1, 0.03], scale);
         let a = mixed
             .solve(Method::RestrictedSimplex, &Options::default())
             .unwrap();
@@ -525,16 +505,12 @@ fn the_restricted_simplex_leaves_the_symmetric_tableau_where_m_is_not_positive_d
     // point 0 carries the load until point 1 touches at alpha = 1/6, whose
     // Schur complement 1 - 4 < 0 is no pivot of a positive definite block.
     // The general tableau finishes (the pivots of both attempts counted).
-    let mixed = MixedLcp::new(
+    let mixed = loaded(
         faer::mat![[1.0, -2.0], [-2.0, 1.0]],
-        Mat::from_fn(2, 1, |_, _| -1.0),
-        faer::col![0.0, 0.5],
-        Mat::from_fn(1, 2, |_, _| 1.0),
-        Mat::zeros(1, 1),
-        faer::col![-10.0],
-        vec![Bound::Free],
-    )
-    .unwrap();
+        &[-1.0, -1.0],
+        &[0.0, 0.5],
+        10.0,
+    );
     let general = Options {
         refactor_interval: Some(100),
         ..Options::default()
