@@ -188,22 +188,26 @@ pub(crate) fn solve(
         // One pass: the values and their ε coefficients, the load on J and
         // its slope with α (the artificial is Z = P - L), and the zero
         // tests' scales (the largest term on J and off it).
-        let [carried, carried_g, slope, zscale, wscale] = in_lanes(n, |i, lane| {
-            let (q, b) = (path.qbar[i], path.bbar[i]);
-            let (x, e) = (q + alpha * b, path.gbar[i] + alpha_g * b);
-            let size = q.abs() + (alpha * b).abs();
-            if path.into[i] {
-                (xs[i], es[i]) = (-x, -e);
-                let w = weight[i];
-                lane[0] -= w * x;
-                lane[1] -= w * e;
-                lane[2] -= w * b;
-                lane[3] = if size > lane[3] { size } else { lane[3] };
-            } else {
-                (xs[i], es[i]) = (x, e);
-                lane[4] = if size > lane[4] { size } else { lane[4] };
-            }
-        });
+        let [carried, carried_g, slope, zscale, wscale] = in_lanes(
+            n,
+            #[inline(always)]
+            |i, lane| {
+                let (q, b) = (path.qbar[i], path.bbar[i]);
+                let (x, e) = (q + alpha * b, path.gbar[i] + alpha_g * b);
+                let size = q.abs() + (alpha * b).abs();
+                if path.into[i] {
+                    (xs[i], es[i]) = (-x, -e);
+                    let w = weight[i];
+                    lane[0] -= w * x;
+                    lane[1] -= w * e;
+                    lane[2] -= w * b;
+                    lane[3] = if size > lane[3] { size } else { lane[3] };
+                } else {
+                    (xs[i], es[i]) = (x, e);
+                    lane[4] = if size > lane[4] { size } else { lane[4] };
+                }
+            },
+        );
         let (zzero, wzero) = (tol.zero * zscale, tol.zero * wscale);
         let (excess, excess_g) = (load - carried, -carried_g);
         if excess <= tol.zero * load {
@@ -225,10 +229,10 @@ pub(crate) fn solve(
             // the lowest position, the release last); a restricted entry's
             // complement must fall, tested only for a candidate that would
             // be the best so far.
-            let mut best: Option<(Entering, f64)> = None;
+            let (mut best_d, mut best_j) = (-ctol, usize::MAX);
             for j in 0..n {
                 let d = kappa * path.bbar[j] + lift * cs[j];
-                if !(d < -ctol && best.is_none_or(|(_, e)| d < e)) {
+                if !(d < best_d) {
                     continue;
                 }
                 if j != s {
@@ -242,10 +246,11 @@ pub(crate) fn solve(
                         continue;
                     }
                 }
-                if !rejected.contains(&Entering::Index(j)) {
-                    best = Some((Entering::Index(j), d));
+                if rejected.is_empty() || !rejected.contains(&Entering::Index(j)) {
+                    (best_d, best_j) = (d, j);
                 }
             }
+            let mut best = (best_j != usize::MAX).then_some((Entering::Index(best_j), best_d));
             if release < -ctol
                 && best.is_none_or(|(_, e)| release < e)
                 && !rejected.contains(&Entering::Release)
@@ -269,19 +274,23 @@ pub(crate) fn solve(
                 }
                 Entering::Release => (None, -inv_bs),
             };
-            let [.., zmax, wmax] = in_lanes(n, |i, lane| {
-                // The release's column is b̄ / b̄_s: as a swept column of 0.
-                let a = column.as_ref().map_or(0.0, |c| c[i]);
-                let r = a - path.bbar[i] * f;
-                let r = if i == s { 0.0 } else { r };
-                if path.into[i] {
-                    rates[i] = -r;
-                    lane[3] = if r.abs() > lane[3] { r.abs() } else { lane[3] };
-                } else {
-                    rates[i] = r;
-                    lane[4] = if r.abs() > lane[4] { r.abs() } else { lane[4] };
-                }
-            });
+            let [.., zmax, wmax] = in_lanes(
+                n,
+                #[inline(always)]
+                |i, lane| {
+                    // The release's column is b̄ / b̄_s: as a swept column of 0.
+                    let a = column.as_ref().map_or(0.0, |c| c[i]);
+                    let r = a - path.bbar[i] * f;
+                    let r = if i == s { 0.0 } else { r };
+                    if path.into[i] {
+                        rates[i] = -r;
+                        lane[3] = if r.abs() > lane[3] { r.abs() } else { lane[3] };
+                    } else {
+                        rates[i] = r;
+                        lane[4] = if r.abs() > lane[4] { r.abs() } else { lane[4] };
+                    }
+                },
+            );
             let (zsmall, wsmall) = (tol.pivot * zmax, tol.pivot * wmax);
             // The ratio test: each falling value's step to zero, the load
             // row's (position n) last.
@@ -295,7 +304,9 @@ pub(crate) fn solve(
                 let r = rates[i];
                 reach[i] = if r < -small {
                     let theta = if xs[i] <= zero { 0.0 } else { xs[i] / -r };
-                    least = least.min(theta);
+                    // (A plain comparison: a NaN step is left out here and
+                    // caught below, where no least step is finite.)
+                    least = if theta < least { theta } else { least };
                     theta
                 } else {
                     f64::INFINITY
@@ -391,6 +402,7 @@ pub(crate) fn solve(
 /// (`body(i, lane)`; lanes start at 0): the additions and comparisons of
 /// one index then do not wait on the previous one's. Returns the lanes'
 /// sums for the first three and their maxima for the last two.
+#[inline(always)]
 fn in_lanes(n: usize, mut body: impl FnMut(usize, &mut [f64; 5])) -> [f64; 5] {
     let mut lanes = [[0.0f64; 5]; 4];
     let whole = n / 4 * 4;
