@@ -39,7 +39,10 @@
 //! `p` of that triangle exactly (the part left of the diagonal along row
 //! `p`) and reads column `p` (its part above the diagonal along row `p`).
 //! The indices are held in the order in which they would touch, so that the
-//! pivots mostly come in increasing position and those row parts are short.
+//! pivots mostly come in increasing position: the row part of the pivot at
+//! position `p` has `p` entries, about `|J|^2 / 2` over a path that
+//! activates the first `|J|` positions, against `|J| (2 n - |J|) / 2` in
+//! the reverse order (arithmetic, not a timing).
 //! The pivot needs no lexicographic rule on `B^{-1}`, and the rows of the
 //! general tableau's rule are not kept.
 //!
@@ -350,13 +353,13 @@ pub(crate) struct Path {
     /// The largest term `|q̄_i| + |α b̄_i|` on and off the active set, and the
     /// largest rate on and off it (forces and gaps have their own units):
     /// the scales of the zero tests.
-    pub scales: [f64; 4],
+    scales: [f64; 4],
 }
 
 impl Path {
     /// Value `i` at `α`, `x_i = σ_i (q̄_i + α b̄_i)` (`z_i` on the active
     /// set, `w_i` off it), and its rate `dx_i / dα = σ_i b̄_i`.
-    pub(crate) fn value(&self, i: usize, alpha: f64) -> (f64, f64) {
+    fn value(&self, i: usize, alpha: f64) -> (f64, f64) {
         let sigma = if self.into[i] { -1.0 } else { 1.0 };
         let b = self.bbar[i];
         (sigma * (self.qbar[i] + alpha * b), sigma * b)
@@ -390,7 +393,7 @@ impl Path {
     /// throughout the pivot rules' passes: they leave a NaN out as `f64::max`
     /// and `f64::min` do, without their extra instructions on the loop's
     /// critical path, which made those passes several times slower.)
-    pub(crate) fn rescale(&mut self, alpha: f64) {
+    fn rescale(&mut self, alpha: f64) {
         let larger = |a: f64, v: f64| if v > a { v } else { a };
         let (mut zscale, mut wscale) = (0.0f64, 0.0f64);
         let (mut zrates, mut wrates) = (0.0f64, 0.0f64);
@@ -466,8 +469,9 @@ pub(crate) fn start(p: &MixedLcpRef<'_>, opts: &Options, stop: Stop, method: Met
         Stop::Parameter => -1.0,
     };
     // The indices in the order in which they would touch (the pivots then
-    // mostly come in increasing position, and a column's part above the
-    // diagonal, read along a row, is short).
+    // mostly come in increasing position, which keeps the strided parts of
+    // the column reads, along rows left of the diagonal, the least in total:
+    // see the module documentation).
     let touch = |i: usize| {
         let b = b_of(i);
         if b < 0.0 {

@@ -263,23 +263,23 @@ pub(crate) fn solve(
                 return Err(stats);
             };
             rejected.push(entering);
-            // The entering column's rates (column j of A when it is read),
-            // and the largest of each kind (forces and gaps have their own
-            // units), in one pass.
-            let (column, f) = match entering {
-                Entering::Index(j) => {
-                    let col = if j == s { cs.clone() } else { tab.column(j) };
-                    let f = cs[j] * inv_bs;
-                    (Some(col), f)
-                }
+            // The entering column's rates (column j of A, read unless it is
+            // the pin's), and the largest of each kind (forces and gaps have
+            // their own units), in one pass.
+            let (read, f) = match entering {
+                Entering::Index(j) => ((j != s).then(|| tab.column(j)), cs[j] * inv_bs),
                 Entering::Release => (None, -inv_bs),
+            };
+            let column = match entering {
+                Entering::Index(j) if j == s => Some(&cs),
+                _ => read.as_ref(),
             };
             let [.., zmax, wmax] = in_lanes(
                 n,
                 #[inline(always)]
                 |i, lane| {
                     // The release's column is b̄ / b̄_s: as a swept column of 0.
-                    let a = column.as_ref().map_or(0.0, |c| c[i]);
+                    let a = column.map_or(0.0, |c| c[i]);
                     let r = a - path.bbar[i] * f;
                     let r = if i == s { 0.0 } else { r };
                     if path.into[i] {
@@ -346,9 +346,9 @@ pub(crate) fn solve(
                     }
                 }
             };
-            break (entering, leaving, least, column);
+            break (entering, leaving, least, read);
         };
-        let (entering, leaving, theta, column) = chosen;
+        let (entering, leaving, theta, read) = chosen;
         if stats.pivots >= limit || !theta.is_finite() {
             return Err(stats);
         }
@@ -356,7 +356,7 @@ pub(crate) fn solve(
         let mut sweep = |q: usize, c: &Col<f64>, joins: bool, path: &mut Path| {
             sweep_on(&mut tab, path, &mut diag, &diagonal, q, c, joins, &tol)
         };
-        let after = match (entering, column) {
+        let after = match (entering, read) {
             (Entering::Index(j), Some(c)) if j != s => {
                 // A restricted entry: its complement leaves, j joins or leaves J.
                 let joins = !path.into[j];
