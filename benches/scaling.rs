@@ -45,19 +45,19 @@ fn scaling(c: &mut Criterion) {
             let sol = problem
                 .solve(method, &Options::default())
                 .expect("the benchmark problem solves");
-            let st = sol.statistics;
+            let st = &sol.statistics;
             records.push(format!(
                 "{{\"method\":\"{}\",\"n\":{size},\"pivots\":{},\"iterations\":{},\"contact\":{},\"tableau_rows\":{},\"tableau_columns\":{},\"factorizations\":{},\"symmetric_tableau\":{}}}",
                 method.name(),
-                st.pivots,
-                st.iterations,
+                st.pivots(),
+                st.iterations(),
                 sol.contact.len(),
-                st.tableau_rows,
-                st.tableau_columns,
-                st.factorizations,
-                st.symmetric_tableau
+                st.tableau_rows(),
+                st.tableau_columns(),
+                st.factorizations(),
+                st.symmetric_tableau()
             ));
-            group.throughput(Throughput::Elements(st.pivots.max(1) as u64));
+            group.throughput(Throughput::Elements(st.pivots().max(1) as u64));
             group.bench_with_input(BenchmarkId::new(method.name(), size), &problem, |b, p| {
                 b.iter(|| p.solve(method, &Options::default()).expect("solves"))
             });

@@ -146,7 +146,7 @@ fn print_row(
         across,
         method.name(),
         problem.points().len(),
-        sol.statistics.pivots,
+        sol.statistics.pivots(),
         problem.assembly_seconds() + sol.solve_seconds,
         sol.approach,
         rel(sol.approach, hertz.approach()),

@@ -187,7 +187,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         1e3 * designed
             .profile
             .separation(designed.stations[designed.stations.len() - 1])?,
-        designed.statistics.pivots,
+        designed.statistics.pivots(),
         designed.statistics.seconds
     );
     for start in &designed.starts {

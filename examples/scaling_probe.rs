@@ -57,14 +57,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             last = Some(sol);
         }
         let sol = last.expect("at least one solve");
-        let st = sol.statistics;
+        let st = &sol.statistics;
         println!(
             "{:<20} solve {:>9.4} s  pivots {:>6}  iterations {:>3}  {:>8.2} us/pivot  contact {:>6}  certificate {:.1e}",
             method.name(),
             best,
-            st.pivots,
-            st.iterations,
-            1e6 * best / st.pivots.max(1) as f64,
+            st.pivots(),
+            st.iterations(),
+            1e6 * best / st.pivots().max(1) as f64,
             sol.contact.len(),
             sol.certificate.worst()
         );

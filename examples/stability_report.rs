@@ -41,7 +41,7 @@ fn main() {
             };
             match case.problem.solve(method, &Options::default()) {
                 Ok(sol) => {
-                    let st = sol.statistics;
+                    let st = &sol.statistics;
                     let expectation = match case.expect {
                         Expect::Solved => true,
                         Expect::EdgeWarning => sol
@@ -59,9 +59,9 @@ fn main() {
                         Expect::OnePoint => " (one point)",
                     };
                     row(
-                        st.pivots.to_string(),
-                        st.refactorizations.to_string(),
-                        if st.retried { "yes" } else { "no" }.into(),
+                        st.pivots().to_string(),
+                        st.refactorizations().to_string(),
+                        if st.retried() { "yes" } else { "no" }.into(),
                         format!("{:.1e}", sol.certificate.worst()),
                         error(case.reference, sol.approach, sol.load)
                             .map_or("-".into(), |e| format!("{e:+.2e}")),

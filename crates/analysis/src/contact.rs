@@ -11,17 +11,17 @@
 //!     F >= 0, Y >= 0, F_k Y_k = 0    contact criterion      (eq. 4)
 //! ```
 //!
-//! Load control (P given) is the mixed LCP `w = S z + B u + q`,
-//! `0 = C z + D u + r` with `z = F`, `w = Y`, `u = alpha` (free), `B = -e`,
-//! `q = eps`, `C = e^T`, `D = 0`, `r = -P`. Displacement control (alpha
-//! given, P = e^T F follows) is the plain LCP `Y = S F + (eps - alpha e)`.
+//! Load control (P given) is the engine's bordered LCP `w = S z - B λ + q`,
+//! `B^T z = b` with `z = F`, `w = Y`, `λ = alpha`, `B = e`, `q = eps`,
+//! `b = P`. Displacement control (alpha given, P = e^T F follows) is the
+//! plain LCP `Y = S F + (eps - alpha e)`.
 
 use std::sync::Arc;
 use std::time::Instant;
 
 use elcon_influence::{Body, Dimension, Folding, PointSet, assemble, assemble_folded};
-use elcon_lcp::{Bound, Certificate, Method, MixedLcpRef, Options, Statistics};
-use faer::{Col, ColRef, Mat, MatRef};
+use elcon_lcp::{BorderedLcpRef, Certificate, Method, Options, Statistics};
+use faer::{Col, Mat, MatRef};
 
 use crate::AnalysisError;
 
@@ -492,45 +492,30 @@ impl ContactProblem {
             Some(f) => self.separation[f.rep(a)],
             None => self.separation[a],
         };
-        let (z, w, alpha, certificate, statistics) = match self.loading {
-            Loading::Load(p) => {
-                let q = Col::from_fn(n, |a| eps_of(a) / scale[a]);
-                let b = Mat::<f64>::from_fn(n, 1, |a, _| -1.0 / scale[a]);
-                let c = Mat::<f64>::from_fn(1, n, |_, a| 1.0 / scale[a]);
-                let d = Mat::<f64>::zeros(1, 1);
-                let r = [-p / order];
-                let bounds = [Bound::Free];
-                let problem = MixedLcpRef::new(
-                    Mat::as_ref(&self.influence),
-                    b.as_ref(),
-                    q.as_ref(),
-                    c.as_ref(),
-                    d.as_ref(),
-                    ColRef::from_slice(&r),
-                    &bounds,
-                )?;
-                let sol = problem.solve(method, options)?;
-                (sol.z, sol.w, sol.u[0], sol.certificate, sol.statistics)
-            }
-            Loading::Approach(alpha) => {
-                let q = Col::from_fn(n, |a| (eps_of(a) - alpha) / scale[a]);
-                let empty = Mat::<f64>::zeros(n, 0);
-                let no_rows = Mat::<f64>::zeros(0, n);
-                let none = Mat::<f64>::zeros(0, 0);
-                let problem = MixedLcpRef::new(
-                    Mat::as_ref(&self.influence),
-                    empty.as_ref(),
-                    q.as_ref(),
-                    no_rows.as_ref(),
-                    none.as_ref(),
-                    ColRef::from_slice(&[]),
-                    &[],
-                )?;
-                let sol = problem.solve(method, options)?;
-                (sol.z, sol.w, alpha, sol.certificate, sol.statistics)
-            }
+        // Load control is the bordered form with the approach's column of
+        // ones (1 / s_a folded) and the load as its resultant; displacement
+        // control the plain LCP with the approach in q.
+        let (q, border, resultant) = match self.loading {
+            Loading::Load(p) => (
+                Col::from_fn(n, |a| eps_of(a) / scale[a]),
+                Mat::<f64>::from_fn(n, 1, |a, _| 1.0 / scale[a]),
+                Col::from_fn(1, |_| p / order),
+            ),
+            Loading::Approach(alpha) => (
+                Col::from_fn(n, |a| (eps_of(a) - alpha) / scale[a]),
+                Mat::<f64>::zeros(n, 0),
+                Col::zeros(0),
+            ),
         };
-        // The gaps are the engine's w = M z + B u + q, computed from the data
+        let problem = BorderedLcpRef::new(Mat::as_ref(&self.influence), q.as_ref())?
+            .with_border(border.as_ref(), resultant.as_ref())?;
+        let sol = problem.solve(method, options)?;
+        let (z, w, certificate, statistics) = (sol.z, sol.w, sol.certificate, sol.statistics);
+        let alpha = match self.loading {
+            Loading::Load(_) => sol.u[0],
+            Loading::Approach(alpha) => alpha,
+        };
+        // The gaps are the engine's w = M z - B λ + q, computed from the data
         // above: Y = S F + eps - alpha e; folded, row a is scaled by 1 / s_a,
         // so w_a = Y_a / s_a (the same sums regrouped) and Y_a = s_a w_a,
         // exactly (s_a is a power of two).

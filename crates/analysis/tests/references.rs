@@ -562,15 +562,15 @@ fn a_warm_start_from_the_previous_load_step_saves_iterations() {
         }
         // The step from 90 to 100 lb adds a ring of points: at most three iterations, fewer than cold.
         assert!(
-            warm.statistics.iterations < cold.statistics.iterations,
+            warm.statistics.iterations() < cold.statistics.iterations(),
             "fold {fold}: warm {} cold {}",
-            warm.statistics.iterations,
-            cold.statistics.iterations
+            warm.statistics.iterations(),
+            cold.statistics.iterations()
         );
         assert!(
-            warm.statistics.iterations <= 3,
+            warm.statistics.iterations() <= 3,
             "{}",
-            warm.statistics.iterations
+            warm.statistics.iterations()
         );
     }
 }

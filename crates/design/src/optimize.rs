@@ -577,7 +577,7 @@ pub fn design(
                 outcomes.push(StartOutcome {
                     label: label.clone(),
                     result: Ok(d.objective),
-                    pivots: d.statistics.pivots,
+                    pivots: d.statistics.pivots(),
                 });
                 if best.as_ref().is_none_or(|b| d.objective < b.objective) {
                     best = Some(d);

@@ -413,10 +413,10 @@ fn a_warm_started_evaluation_equals_a_cold_one_in_fewer_iterations() {
         assert!((a - b).abs() <= INDEPENDENT * scale, "{a} vs {b}");
     }
     assert!(
-        w.statistics.iterations < c.statistics.iterations,
+        w.statistics.iterations() < c.statistics.iterations(),
         "warm {} iterations, cold {}",
-        w.statistics.iterations,
-        c.statistics.iterations
+        w.statistics.iterations(),
+        c.statistics.iterations()
     );
     // A start with the wrong number of cases is refused, naming the field.
     let two = [case.clone(), case.clone()];

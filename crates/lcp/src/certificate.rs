@@ -20,7 +20,19 @@ use std::fmt;
 
 use faer::{Col, ColRef, MatRef};
 
-use crate::dense::{abs_matvec, matvec, norm_inf};
+use crate::linalg::{abs_matvec, matvec, norm_inf};
+
+/// The data of a mixed form `w = M z + B u + q`, `0 = C z + D u + r`, as
+/// the certificate reads it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct MixedData<'a> {
+    pub m: MatRef<'a, f64>,
+    pub b: MatRef<'a, f64>,
+    pub q: ColRef<'a, f64>,
+    pub c: MatRef<'a, f64>,
+    pub d: MatRef<'a, f64>,
+    pub r: ColRef<'a, f64>,
+}
 
 /// Relative residuals of a solution, computed from the original data.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,20 +84,16 @@ impl Certificate {
         self.worst() <= self.tolerance
     }
 
-    /// Certificate of `(z, u)` for the mixed form; also returns `w = M z + B u + q`.
-    #[allow(clippy::too_many_arguments)]
+    /// Certificate of `(z, u)` for the mixed form `data`; also returns
+    /// `w = M z + B u + q`.
     pub(crate) fn mixed(
-        m: MatRef<'_, f64>,
-        b: MatRef<'_, f64>,
-        q: ColRef<'_, f64>,
-        c: MatRef<'_, f64>,
-        d: MatRef<'_, f64>,
-        r: ColRef<'_, f64>,
+        data: &MixedData<'_>,
         nonneg_u: &[bool],
         z: ColRef<'_, f64>,
         u: ColRef<'_, f64>,
         tolerance: f64,
     ) -> (Self, Col<f64>) {
+        let MixedData { m, b, q, c, d, r } = *data;
         let n = z.nrows();
         let mut w = matvec(m, z);
         let mut w_terms = abs_matvec(m, z);

@@ -7,7 +7,7 @@ use crate::certificate::Certificate;
 ///
 /// Every message states the problem size and, where it applies, the pivot
 /// step at which the engine stopped, so a failure can be reproduced.
-#[derive(Debug, Clone, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum LcpError {
     /// An input array has the wrong size.
@@ -31,6 +31,17 @@ pub enum LcpError {
         index: usize,
         /// The offending value.
         value: f64,
+    },
+    /// The columns of a border are linearly dependent: each free unknown
+    /// must move the gaps differently (a rigid-body mode given twice).
+    #[error(
+        "column {column} of `{field}` depends linearly on the ones before it: each free unknown must move the gaps differently"
+    )]
+    RankDeficient {
+        /// The argument.
+        field: &'static str,
+        /// The first dependent column.
+        column: usize,
     },
     /// The problem has no unknowns.
     #[error("the problem is empty: `{field}` has size 0")]
@@ -127,6 +138,21 @@ pub enum LcpError {
         pivot: usize,
         /// What broke, and what to do.
         reason: &'static str,
+    },
+    /// The only attempt allowed (an explicit tableau) broke down without an
+    /// answer.
+    #[error(
+        "{method} broke down after {pivots} pivots (size {size}): {reason}; let the engine choose the tableau (`Tableau::Auto`) or use another method"
+    )]
+    BrokeDown {
+        /// The method and tableau that ran.
+        method: String,
+        /// Number of unknowns.
+        size: usize,
+        /// Pivots spent.
+        pivots: usize,
+        /// What happened.
+        reason: String,
     },
     /// The final solution does not satisfy its certificate to the tolerance
     /// even after refactorization and refinement: it is not returned as solved.

@@ -1,31 +1,46 @@
-//! Problem forms, options, statistics and solutions.
+//! The problem forms, as data.
 //!
-//! Standard LCP: find `z`, `w` with
+//! Standard LCP ([`Lcp`]): find `z`, `w` with
 //!
 //! ```text
 //!     w = M z + q,   z >= 0,   w >= 0,   z^T w = 0
 //! ```
 //!
-//! Mixed LCP: `n` complementary pairs, `m_e` equality rows and `k` extra
-//! unknowns `u` that are free or non-negative (but not complementary):
+//! Bordered LCP ([`BorderedLcp`], [`BorderedLcpRef`]): `k` free unknowns
+//! `λ` and as many equality rows, with a symmetric border `B` (n x k, full
+//! column rank):
+//!
+//! ```text
+//!     w = M z - B λ + q,   B^T z = b,   z >= 0, w >= 0, z^T w = 0,   λ free
+//! ```
+//!
+//! the optimality conditions of `min 1/2 z^T M z + q^T z` subject to
+//! `B^T z = b`, `z >= 0` (λ the multipliers). The contact problem of Conry &
+//! Seireg is this form with `z = F`, `w = Y`, `M = S`, `q = ε`: one column
+//! of ones (the approach α, its row the load P), and with tilts two more,
+//! the points' coordinates (their rows the moments).
+//!
+//! Mixed LCP ([`MixedLcp`]): `n` complementary pairs, `m_e` equality rows
+//! and `k` extra unknowns `u` that are free or non-negative:
 //!
 //! ```text
 //!     w = M z + B u + q,   z >= 0, w >= 0, z^T w = 0
 //!     0 = C z + D u + r
 //! ```
 //!
-//! The contact problem of Conry & Seireg is the mixed form with `z = F`,
-//! `w = Y`, `M = S`, `u = alpha` (free), `B = -e`, `q = eps`, `C = e^T`,
-//! `D = 0`, `r = -P`.
+//! (a bordered LCP is the mixed form with `B -> -B`, `C = B^T`, `D = 0`,
+//! `r = -b`, every `u` free). Which methods and tableaus apply to which form
+//! is the strategy's business (the `strategy` module); this module only holds
+//! and validates the data.
 
-use std::time::Instant;
+use std::cell::OnceCell;
 
-use faer::{Col, ColRef, Mat, MatRef, Par};
+use faer::{Col, ColRef, Mat, MatRef};
 
-use crate::certificate::Certificate;
-use crate::system::{check_finite_col, check_finite_mat};
-use crate::tolerance::Tolerances;
-use crate::{LcpError, block, lemke, restricted};
+use crate::LcpError;
+use crate::certificate::{Certificate, MixedData};
+use crate::linalg::{asymmetry, first_non_finite};
+use crate::tolerance::BORDER_RANK;
 
 /// Sign restriction of an unknown that has no complementary partner.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -34,262 +49,6 @@ pub enum Bound {
     Free,
     /// `>= 0`.
     NonNegative,
-}
-
-/// Refactorization interval (pivots) of the retry after a failed certificate.
-const RETRY_REFACTOR: usize = 10;
-
-/// Refinement steps of the retry after a failed certificate.
-const RETRY_REFINEMENT: usize = 10;
-
-/// A pivoting method of the engine.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum Method {
-    /// The restricted-entry (complementary) simplex of Wolfe (1959) as used by
-    /// Conry & Seireg (1971): phase 1 minimizes the sum of artificial
-    /// variables, and a variable may enter only if its complement is
-    /// non-basic or leaves at the same pivot. The contact form with a
-    /// symmetric `M` and no initial interference (`q >= 0`) runs first on
-    /// the symmetric tableau of Lemke's method below, whose bases are the
-    /// simplex's own (a contact set and one point pinning the approach):
-    /// the same rule at half the update work, and a Cholesky of the contact
-    /// block for the final basic solution.
-    RestrictedSimplex,
-    /// Lemke's complementary pivoting method with a covering vector and a
-    /// lexicographic minimum-ratio test (Lemke 1965). Mixed forms are solved
-    /// as the equivalent standard LCP with each free unknown split in two.
-    /// A symmetric `M` (the standard form, or the contact form with one load
-    /// row) runs first on a symmetric tableau, as the parametric principal
-    /// pivoting form of the same path, with the approach's column as the
-    /// covering vector: half the update work, and a Cholesky of the contact
-    /// block for the final basic solution.
-    Lemke,
-    /// Block principal pivoting (Júdice & Pires 1994) for a symmetric
-    /// positive definite `M`: guess the active set, solve the equilibrium on
-    /// it with a faer Cholesky, exchange every infeasible index at once;
-    /// safeguarded by single principal pivots and, past an iteration cap, by
-    /// Lemke's method. Not a tableau method: it needs `M` symmetric (an
-    /// asymmetric M is refused); when a principal block turns out not to be
-    /// positive definite (a beam's clamped point alone has a zero row) it
-    /// falls back to Lemke's method.
-    BlockPivoting,
-}
-
-impl Method {
-    /// Every method, in a stable order.
-    pub const ALL: [Method; 3] = [
-        Method::RestrictedSimplex,
-        Method::Lemke,
-        Method::BlockPivoting,
-    ];
-
-    /// The dense-tableau methods (they work for any matrix of their class).
-    pub const TABLEAU: [Method; 2] = [Method::RestrictedSimplex, Method::Lemke];
-
-    /// A short lower-case name ("restricted-simplex", "lemke", "block-pivoting").
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::RestrictedSimplex => "restricted-simplex",
-            Method::Lemke => "lemke",
-            Method::BlockPivoting => "block-pivoting",
-        }
-    }
-
-    /// The method of a name given by [`Method::name`].
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
-    }
-}
-
-impl std::fmt::Display for Method {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// Options of a solve. `Options::default()` suits well-posed problems.
-#[derive(Debug, Clone)]
-pub struct Options {
-    /// The tableau methods stop with [`LcpError::PivotLimit`] when a solve
-    /// needs more than this many pivots (default: `20 (rows + unknowns) +
-    /// 100`); block pivoting takes at most this many iterations (default
-    /// `3 n + 50`) and then finishes by Lemke's method.
-    pub max_pivots: Option<usize>,
-    /// Recompute the tableau from the original data every this many pivots
-    /// (default: `max(100, rows)`; 0 disables periodic refactorization; the
-    /// final basic solution is always recomputed from the data).
-    pub refactor_interval: Option<usize>,
-    /// Iterative-refinement steps of the final basic solution (default 3).
-    pub refinement_steps: usize,
-    /// The engine's relative tolerances.
-    pub tolerances: Tolerances,
-    /// Equilibrate rows and columns by powers of two before pivoting (default true).
-    pub equilibrate: bool,
-    /// Lemke's covering vector `d > 0` (default: all ones in the equilibrated problem).
-    pub covering_vector: Option<Vec<f64>>,
-    /// Parallelism of the pivots' rank-1 updates and of the factorizations
-    /// (default: `Par::Seq` below 250,000 tableau entries, all threads above).
-    pub parallelism: Option<Par>,
-    /// A warm start for block pivoting: `warm_start[i]` = `z_i` is expected
-    /// basic (e.g. [`LcpSolution::basic`] of a previous, similar solve).
-    pub warm_start: Option<Vec<bool>>,
-}
-
-impl Default for Options {
-    fn default() -> Self {
-        Self {
-            max_pivots: None,
-            refactor_interval: None,
-            refinement_steps: 3,
-            tolerances: Tolerances::default(),
-            equilibrate: true,
-            covering_vector: None,
-            parallelism: None,
-            warm_start: None,
-        }
-    }
-}
-
-impl Options {
-    /// Checks the options against a problem with `rows` rows and `unknowns` unknowns.
-    pub(crate) fn validate(&self) -> Result<(), LcpError> {
-        self.tolerances.validate()?;
-        if let Some(0) = self.max_pivots {
-            return Err(LcpError::InvalidOption {
-                field: "max_pivots",
-                value: "0".into(),
-                reason: "must be at least 1",
-            });
-        }
-        Ok(())
-    }
-
-    pub(crate) fn pivot_limit(&self, rows: usize, unknowns: usize) -> usize {
-        self.max_pivots.unwrap_or(20 * (rows + unknowns) + 100)
-    }
-
-    /// The options of the one retry after a numerical failure (a singular
-    /// basis, a certificate that does not hold): the tableau refactored
-    /// from the original data every `RETRY_REFACTOR` pivots, refined harder.
-    /// `None` when these options already are that (the retry would repeat
-    /// the same computation).
-    pub(crate) fn retry(&self) -> Option<Options> {
-        let refactor = self
-            .refactor_interval
-            .map_or(RETRY_REFACTOR, |r| r.min(RETRY_REFACTOR));
-        let steps = self.refinement_steps.max(RETRY_REFINEMENT);
-        (self.refactor_interval != Some(refactor) || self.refinement_steps != steps).then(|| {
-            Options {
-                refactor_interval: Some(refactor),
-                refinement_steps: steps,
-                ..self.clone()
-            }
-        })
-    }
-
-    pub(crate) fn refactor_every(&self, rows: usize) -> usize {
-        self.refactor_interval.unwrap_or(rows.max(100))
-    }
-
-    pub(crate) fn par(&self, rows: usize, cols: usize) -> Par {
-        self.parallelism.unwrap_or(if rows * cols > 250_000 {
-            Par::rayon(0)
-        } else {
-            Par::Seq
-        })
-    }
-}
-
-/// What a solve cost.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Statistics {
-    /// The method that ran.
-    pub method: Method,
-    /// Pivots (basis exchanges) done.
-    pub pivots: usize,
-    /// Pivots whose step length was zero.
-    pub degenerate_pivots: usize,
-    /// Recomputations of the whole tableau from the original data.
-    pub refactorizations: usize,
-    /// Iterative-refinement steps of the final basic solution.
-    pub refinement_steps: usize,
-    /// Block iterations (block pivoting; 0 for the tableau methods).
-    pub iterations: usize,
-    /// Matrix factorizations (Cholesky of block systems; 0 for the general
-    /// tableau; 1 for a tableau method on the symmetric tableau, whose
-    /// final basic solution is solved by a Cholesky of the contact block).
-    pub factorizations: usize,
-    /// Whether a tableau method finished on the symmetric tableau (see
-    /// [`Method::Lemke`], [`Method::RestrictedSimplex`]); `false` when it
-    /// ran on the general tableau, also after an attempt on the symmetric
-    /// one that broke down (whose pivots and factorization are counted).
-    pub symmetric_tableau: bool,
-    /// Whether block pivoting fell back to Lemke's method.
-    pub fell_back: bool,
-    /// Whether the first attempt's certificate failed and the solve was
-    /// repeated (tableau methods: frequent refactorization from the data;
-    /// block pivoting: Lemke's method). The counts above add both attempts
-    /// when the second one reached an answer.
-    pub retried: bool,
-    /// Rows of the tableau that was pivoted on.
-    pub tableau_rows: usize,
-    /// Columns of the tableau (non-basic unknowns plus the right-hand side).
-    pub tableau_columns: usize,
-    /// Wall-clock seconds of the solve (setup, pivoting, refinement, certificate).
-    pub seconds: f64,
-}
-
-impl Statistics {
-    /// Adds the work of another attempt at the same problem (a fallback, a
-    /// retry): its counts are summed and its flags kept; the method, the
-    /// tableau's shape and the seconds stay this attempt's.
-    pub(crate) fn absorb(&mut self, other: &Statistics) {
-        self.pivots += other.pivots;
-        self.degenerate_pivots += other.degenerate_pivots;
-        self.refactorizations += other.refactorizations;
-        self.refinement_steps += other.refinement_steps;
-        self.iterations += other.iterations;
-        self.factorizations += other.factorizations;
-        self.fell_back |= other.fell_back;
-        self.retried |= other.retried;
-    }
-
-    pub(crate) fn new(method: Method) -> Self {
-        Self {
-            method,
-            pivots: 0,
-            degenerate_pivots: 0,
-            refactorizations: 0,
-            refinement_steps: 0,
-            iterations: 0,
-            factorizations: 0,
-            symmetric_tableau: false,
-            fell_back: false,
-            retried: false,
-            tableau_rows: 0,
-            tableau_columns: 0,
-            seconds: 0.0,
-        }
-    }
-}
-
-/// A certified solution of an LCP or mixed LCP.
-#[derive(Debug, Clone)]
-pub struct LcpSolution {
-    /// The complementary unknowns `z`.
-    pub z: Col<f64>,
-    /// `w = M z + B u + q`, computed from the original data.
-    pub w: Col<f64>,
-    /// The extra unknowns `u` (empty for a standard LCP).
-    pub u: Col<f64>,
-    /// `basic[i]` is true when `z_i` (rather than `w_i`) is basic in the
-    /// final complementary basis: the active set, for warm starts.
-    pub basic: Vec<bool>,
-    /// Residuals from the original data.
-    pub certificate: Certificate,
-    /// What the solve cost.
-    pub statistics: Statistics,
 }
 
 /// The standard LCP `w = M z + q, z >= 0, w >= 0, z^T w = 0`.
@@ -302,13 +61,7 @@ pub struct Lcp {
 impl Lcp {
     /// A standard LCP; `m` must be square with the size of `q`, all finite.
     pub fn new(m: Mat<f64>, q: Col<f64>) -> Result<Self, LcpError> {
-        let n = q.nrows();
-        if n == 0 {
-            return Err(LcpError::Empty { field: "q" });
-        }
-        check_dims("m", m.nrows(), m.ncols(), n, n)?;
-        check_finite_mat("m", m.as_ref())?;
-        check_finite_col("q", q.as_ref())?;
+        check_square(m.as_ref(), q.as_ref())?;
         Ok(Self { m, q })
     }
 
@@ -327,61 +80,69 @@ impl Lcp {
         self.q.as_ref()
     }
 
-    /// Solves with `method`; the solution carries its certificate, and an
-    /// uncertified solution is an error ([`LcpError::Inaccurate`]).
-    pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
-        MixedLcpRef::standard(self.m.as_ref(), self.q.as_ref()).solve(method, options)
+    /// A borrowed view (no border).
+    pub fn as_ref(&self) -> BorderedLcpRef<'_> {
+        BorderedLcpRef::new_unchecked(self.m.as_ref(), self.q.as_ref())
     }
 }
 
-/// The mixed LCP (see the module documentation).
-#[derive(Debug, Clone)]
-pub struct MixedLcp {
-    m: Mat<f64>,
-    b: Mat<f64>,
-    q: Col<f64>,
-    c: Mat<f64>,
-    d: Mat<f64>,
-    r: Col<f64>,
-    bounds: Vec<Bound>,
+/// A borrowed bordered LCP (see the module documentation): build it with
+/// [`BorderedLcpRef::new`] and, for `k > 0` rigid-body rows,
+/// [`BorderedLcpRef::with_border`]. Nothing large is copied.
+#[derive(Debug, Clone, Copy)]
+pub struct BorderedLcpRef<'a> {
+    m: MatRef<'a, f64>,
+    q: ColRef<'a, f64>,
+    border: MatRef<'a, f64>,
+    resultant: ColRef<'a, f64>,
 }
 
-impl MixedLcp {
-    /// A mixed LCP. Sizes: `m` n x n, `b` n x k, `q` n, `c` m_e x n, `d`
-    /// m_e x k, `r` m_e, `bounds` k. All entries finite.
-    pub fn new(
-        m: Mat<f64>,
-        b: Mat<f64>,
-        q: Col<f64>,
-        c: Mat<f64>,
-        d: Mat<f64>,
-        r: Col<f64>,
-        bounds: Vec<Bound>,
-    ) -> Result<Self, LcpError> {
+impl<'a> BorderedLcpRef<'a> {
+    /// The LCP `w = M z + q` with no border yet; `m` square with the size of
+    /// `q`, all finite.
+    pub fn new(m: MatRef<'a, f64>, q: ColRef<'a, f64>) -> Result<Self, LcpError> {
+        check_square(m, q)?;
+        Ok(Self::new_unchecked(m, q))
+    }
+
+    fn new_unchecked(m: MatRef<'a, f64>, q: ColRef<'a, f64>) -> Self {
         let n = q.nrows();
-        let k = bounds.len();
-        let me = r.nrows();
-        if n == 0 {
-            return Err(LcpError::Empty { field: "q" });
-        }
-        check_dims("m", m.nrows(), m.ncols(), n, n)?;
-        check_dims("b", b.nrows(), b.ncols(), n, k)?;
-        check_dims("c", c.nrows(), c.ncols(), me, n)?;
-        check_dims("d", d.nrows(), d.ncols(), me, k)?;
-        check_finite_mat("m", m.as_ref())?;
-        check_finite_mat("b", b.as_ref())?;
-        check_finite_col("q", q.as_ref())?;
-        check_finite_mat("c", c.as_ref())?;
-        check_finite_mat("d", d.as_ref())?;
-        check_finite_col("r", r.as_ref())?;
-        Ok(Self {
+        Self {
             m,
-            b,
             q,
-            c,
-            d,
-            r,
-            bounds,
+            border: MatRef::from_column_major_slice(&[], n, 0),
+            resultant: ColRef::from_slice(&[]),
+        }
+    }
+
+    /// Adds the border: `border` is `B` (n x k, full column rank), its
+    /// columns the unknowns `λ`; `resultant` is `b` (k), the right-hand side
+    /// of `B^T z = b`.
+    pub fn with_border(
+        self,
+        border: MatRef<'a, f64>,
+        resultant: ColRef<'a, f64>,
+    ) -> Result<Self, LcpError> {
+        let n = self.q.nrows();
+        check_dims(
+            "border",
+            border.nrows(),
+            border.ncols(),
+            n,
+            resultant.nrows(),
+        )?;
+        check_finite_mat("border", border)?;
+        check_finite_col("resultant", resultant)?;
+        if let Some(column) = dependent_column(border) {
+            return Err(LcpError::RankDeficient {
+                field: "border",
+                column,
+            });
+        }
+        Ok(Self {
+            border,
+            resultant,
+            ..self
         })
     }
 
@@ -390,100 +151,162 @@ impl MixedLcp {
         self.q.nrows()
     }
 
-    /// A borrowed view of the problem's data.
-    pub fn as_ref(&self) -> MixedLcpRef<'_> {
-        MixedLcpRef {
-            m: self.m.as_ref(),
-            b: self.b.as_ref(),
-            q: self.q.as_ref(),
-            c: self.c.as_ref(),
-            d: self.d.as_ref(),
-            r: self.r.as_ref(),
-            bounds: &self.bounds,
-        }
+    /// Number of border columns (free unknowns) `k`.
+    pub fn border_size(&self) -> usize {
+        self.border.ncols()
     }
 
-    /// Solves with `method` (see [`Lcp::solve`]).
-    pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
-        self.as_ref().solve(method, options)
+    /// The matrix `M`.
+    pub fn matrix(&self) -> MatRef<'a, f64> {
+        self.m
     }
 
-    /// The certificate of a candidate `(z, u)` against this problem's data,
-    /// with `w = M z + B u + q`.
-    pub fn certify(
-        &self,
-        z: ColRef<'_, f64>,
-        u: ColRef<'_, f64>,
-        tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
-        self.as_ref().certify(z, u, tolerance)
+    /// The vector `q`.
+    pub fn q(&self) -> ColRef<'a, f64> {
+        self.q
+    }
+
+    /// The border `B` (n x k).
+    pub fn border(&self) -> MatRef<'a, f64> {
+        self.border
+    }
+
+    /// The resultants `b` (k).
+    pub fn resultant(&self) -> ColRef<'a, f64> {
+        self.resultant
     }
 }
 
-/// A borrowed mixed LCP: what the methods read. Build one with
-/// [`MixedLcpRef::new`] to solve without copying large matrices.
-#[derive(Debug, Clone, Copy)]
-pub struct MixedLcpRef<'a> {
-    pub(crate) m: MatRef<'a, f64>,
-    pub(crate) b: MatRef<'a, f64>,
-    pub(crate) q: ColRef<'a, f64>,
-    pub(crate) c: MatRef<'a, f64>,
-    pub(crate) d: MatRef<'a, f64>,
-    pub(crate) r: ColRef<'a, f64>,
-    pub(crate) bounds: &'a [Bound],
+/// An owned bordered LCP (see [`BorderedLcpRef`]).
+#[derive(Debug, Clone)]
+pub struct BorderedLcp {
+    m: Mat<f64>,
+    q: Col<f64>,
+    border: Mat<f64>,
+    resultant: Col<f64>,
 }
 
-impl<'a> MixedLcpRef<'a> {
-    /// Validates and wraps borrowed data (same rules as [`MixedLcp::new`]).
-    pub fn new(
-        m: MatRef<'a, f64>,
-        b: MatRef<'a, f64>,
-        q: ColRef<'a, f64>,
-        c: MatRef<'a, f64>,
-        d: MatRef<'a, f64>,
-        r: ColRef<'a, f64>,
-        bounds: &'a [Bound],
-    ) -> Result<Self, LcpError> {
+impl BorderedLcp {
+    /// The LCP `w = M z + q` with no border yet (see [`BorderedLcpRef::new`]).
+    pub fn new(m: Mat<f64>, q: Col<f64>) -> Result<Self, LcpError> {
+        check_square(m.as_ref(), q.as_ref())?;
         let n = q.nrows();
-        let k = bounds.len();
-        let me = r.nrows();
-        if n == 0 {
-            return Err(LcpError::Empty { field: "q" });
-        }
-        check_dims("m", m.nrows(), m.ncols(), n, n)?;
-        check_dims("b", b.nrows(), b.ncols(), n, k)?;
-        check_dims("c", c.nrows(), c.ncols(), me, n)?;
-        check_dims("d", d.nrows(), d.ncols(), me, k)?;
-        check_finite_mat("m", m)?;
-        check_finite_mat("b", b)?;
-        check_finite_col("q", q)?;
-        check_finite_mat("c", c)?;
-        check_finite_mat("d", d)?;
-        check_finite_col("r", r)?;
         Ok(Self {
             m,
-            b,
             q,
-            c,
-            d,
-            r,
-            bounds,
+            border: Mat::zeros(n, 0),
+            resultant: Col::zeros(0),
         })
     }
 
-    fn standard(m: MatRef<'a, f64>, q: ColRef<'a, f64>) -> Self {
-        let n = q.nrows();
-        Self {
-            m,
-            b: MatRef::from_column_major_slice(&[], n, 0),
-            q,
-            c: MatRef::from_column_major_slice(&[], 0, n),
-            d: MatRef::from_column_major_slice(&[], 0, 0),
-            r: ColRef::from_slice(&[]),
-            bounds: &[],
+    /// Adds the border `B` and the resultants `b` (see [`BorderedLcpRef::with_border`]).
+    pub fn with_border(self, border: Mat<f64>, resultant: Col<f64>) -> Result<Self, LcpError> {
+        BorderedLcpRef::new_unchecked(self.m.as_ref(), self.q.as_ref())
+            .with_border(border.as_ref(), resultant.as_ref())?;
+        Ok(Self {
+            border,
+            resultant,
+            ..self
+        })
+    }
+
+    /// A borrowed view of the problem's data.
+    pub fn as_ref(&self) -> BorderedLcpRef<'_> {
+        BorderedLcpRef {
+            m: self.m.as_ref(),
+            q: self.q.as_ref(),
+            border: self.border.as_ref(),
+            resultant: self.resultant.as_ref(),
         }
     }
 
+    /// Number of complementary pairs `n`.
+    pub fn size(&self) -> usize {
+        self.q.nrows()
+    }
+}
+
+/// The data of a mixed LCP, by name (see the module documentation). Sizes:
+/// `m` n x n, `b` n x k, `q` n, `c` m_e x n, `d` m_e x k, `r` m_e, `bounds`
+/// k; all entries finite.
+#[derive(Debug, Clone)]
+pub struct MixedLcpParts {
+    /// `M` (n x n).
+    pub m: Mat<f64>,
+    /// `B` (n x k), the extra unknowns' columns in the complementary rows.
+    pub b: Mat<f64>,
+    /// `q` (n).
+    pub q: Col<f64>,
+    /// `C` (m_e x n), the equality rows on `z`.
+    pub c: Mat<f64>,
+    /// `D` (m_e x k), the equality rows on `u`.
+    pub d: Mat<f64>,
+    /// `r` (m_e).
+    pub r: Col<f64>,
+    /// The sign restriction of each extra unknown (k).
+    pub bounds: Vec<Bound>,
+}
+
+/// A validated mixed LCP (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct MixedLcp {
+    parts: MixedLcpParts,
+}
+
+impl MixedLcp {
+    /// Validates the parts: sizes consistent, every entry finite.
+    pub fn new(parts: MixedLcpParts) -> Result<Self, LcpError> {
+        let p = &parts;
+        check_square(p.m.as_ref(), p.q.as_ref())?;
+        let (n, k, me) = (p.q.nrows(), p.bounds.len(), p.r.nrows());
+        check_dims("b", p.b.nrows(), p.b.ncols(), n, k)?;
+        check_dims("c", p.c.nrows(), p.c.ncols(), me, n)?;
+        check_dims("d", p.d.nrows(), p.d.ncols(), me, k)?;
+        check_finite_mat("b", p.b.as_ref())?;
+        check_finite_mat("c", p.c.as_ref())?;
+        check_finite_mat("d", p.d.as_ref())?;
+        check_finite_col("r", p.r.as_ref())?;
+        Ok(Self { parts })
+    }
+
+    /// Number of complementary pairs `n`.
+    pub fn size(&self) -> usize {
+        self.parts.q.nrows()
+    }
+
+    /// The problem's data.
+    pub fn parts(&self) -> &MixedLcpParts {
+        &self.parts
+    }
+
+    pub(crate) fn view(&self) -> MixedRef<'_> {
+        let p = &self.parts;
+        MixedRef {
+            m: p.m.as_ref(),
+            b: p.b.as_ref(),
+            q: p.q.as_ref(),
+            c: p.c.as_ref(),
+            d: p.d.as_ref(),
+            r: p.r.as_ref(),
+            bounds: &p.bounds,
+        }
+    }
+}
+
+/// The mixed form every method reads (see the module documentation); for
+/// a bordered problem `b = -B`, `c = B^T`, `d = 0`, `r = -b`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct MixedRef<'a> {
+    pub m: MatRef<'a, f64>,
+    pub b: MatRef<'a, f64>,
+    pub q: ColRef<'a, f64>,
+    pub c: MatRef<'a, f64>,
+    pub d: MatRef<'a, f64>,
+    pub r: ColRef<'a, f64>,
+    pub bounds: &'a [Bound],
+}
+
+impl MixedRef<'_> {
     /// Number of complementary pairs `n`.
     pub fn size(&self) -> usize {
         self.q.nrows()
@@ -498,9 +321,116 @@ impl<'a> MixedLcpRef<'a> {
     pub fn equalities(&self) -> usize {
         self.r.nrows()
     }
+}
 
+/// The mixed parts of a bordered problem: `-B`, `B^T`, `D = 0`, `r = -b`,
+/// every extra unknown free (n x k data, small beside `M`).
+pub(crate) struct MixedBorder {
+    b: Mat<f64>,
+    c: Mat<f64>,
+    d: Mat<f64>,
+    r: Col<f64>,
+    bounds: Vec<Bound>,
+}
+
+impl MixedBorder {
+    pub fn of(p: &BorderedLcpRef<'_>) -> Self {
+        let k = p.border_size();
+        Self {
+            b: -p.border,
+            c: p.border.transpose().to_owned(),
+            d: Mat::zeros(k, k),
+            r: -p.resultant,
+            bounds: vec![Bound::Free; k],
+        }
+    }
+
+    pub fn view<'a>(&'a self, p: &BorderedLcpRef<'a>) -> MixedRef<'a> {
+        MixedRef {
+            m: p.m,
+            b: self.b.as_ref(),
+            q: p.q,
+            c: self.c.as_ref(),
+            d: self.d.as_ref(),
+            r: self.r.as_ref(),
+            bounds: &self.bounds,
+        }
+    }
+}
+
+/// The border of a bordered problem, in its own sign: `w = M z - B λ + q`,
+/// `B^T z = b`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Border<'a> {
+    /// `B` (n x k).
+    pub columns: MatRef<'a, f64>,
+    /// `b` (k).
+    pub resultant: ColRef<'a, f64>,
+}
+
+/// A problem as the strategy hands it to the methods: its mixed form, the
+/// border when it is a bordered problem (`None` for a general mixed LCP),
+/// and facts about `M` computed once, when first asked for.
+pub(crate) struct Problem<'a> {
+    /// The mixed form (every problem has one).
+    pub mixed: MixedRef<'a>,
+    /// The bordered form, for a standard (`k = 0`) or bordered LCP.
+    pub border: Option<Border<'a>>,
+    symmetric: OnceCell<bool>,
+}
+
+impl<'a> Problem<'a> {
+    /// A bordered (or standard, `k = 0`) problem; `parts` its mixed parts.
+    pub fn bordered(p: &BorderedLcpRef<'a>, parts: &'a MixedBorder) -> Self {
+        Self {
+            mixed: parts.view(p),
+            border: Some(Border {
+                columns: p.border,
+                resultant: p.resultant,
+            }),
+            symmetric: OnceCell::new(),
+        }
+    }
+
+    /// A general mixed problem.
+    pub fn mixed(p: MixedRef<'a>) -> Self {
+        Self {
+            mixed: p,
+            border: None,
+            symmetric: OnceCell::new(),
+        }
+    }
+
+    /// Number of complementary pairs `n`.
+    pub fn size(&self) -> usize {
+        self.mixed.size()
+    }
+
+    /// Whether `M` is symmetric (to `SYMMETRY` of its largest diagonal entry).
+    pub fn symmetric(&self) -> bool {
+        *self
+            .symmetric
+            .get_or_init(|| asymmetry(self.mixed.m).is_none())
+    }
+
+    /// Whether every diagonal entry of `M` is positive.
+    pub fn positive_diagonal(&self) -> bool {
+        let m = self.mixed.m;
+        (0..self.size()).all(|i| m[(i, i)] > 0.0)
+    }
+
+    /// Whether every extra unknown is free and there are as many equality
+    /// rows (an LCP once the free unknowns are split; what Lemke's method
+    /// and block pivoting solve).
+    pub fn free_square(&self) -> bool {
+        self.mixed.extras() == self.mixed.equalities()
+            && self.mixed.bounds.iter().all(|b| *b == Bound::Free)
+    }
+}
+
+impl MixedRef<'_> {
     /// The certificate of `(z, u)` and `w = M z + B u + q`.
-    pub fn certify(
+    pub(crate) fn certify(
         &self,
         z: ColRef<'_, f64>,
         u: ColRef<'_, f64>,
@@ -511,144 +441,80 @@ impl<'a> MixedLcpRef<'a> {
             .iter()
             .map(|b| *b == Bound::NonNegative)
             .collect();
-        Certificate::mixed(
-            self.m, self.b, self.q, self.c, self.d, self.r, &nonneg, z, u, tolerance,
-        )
-    }
-
-    /// Solves with `method` (see [`Lcp::solve`]).
-    pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
-        options.validate()?;
-        if let Some(d) = &options.covering_vector {
-            // Lemke's size also for block pivoting, which may fall back to it.
-            let expect = match method {
-                Method::Lemke | Method::BlockPivoting => lemke::split_size(self),
-                _ => d.len(),
-            };
-            if d.len() != expect {
-                return Err(LcpError::DimensionMismatch {
-                    field: "covering_vector",
-                    expected: expect,
-                    found: d.len(),
-                    unit: "entries",
-                });
-            }
-            if let Some((index, &value)) = d
-                .iter()
-                .enumerate()
-                .find(|(_, v)| !(v.is_finite() && **v > 0.0))
-            {
-                return Err(LcpError::InvalidOption {
-                    field: "covering_vector",
-                    value: format!("entry {index} = {value}"),
-                    reason: "every entry must be finite and > 0",
-                });
-            }
-        }
-        let start = Instant::now();
-        let run = |options: &Options| match method {
-            Method::RestrictedSimplex => restricted::solve_mixed(self, options),
-            Method::Lemke => lemke::solve_mixed(self, options),
-            Method::BlockPivoting => block::solve_mixed(self, options),
+        let data = MixedData {
+            m: self.m,
+            b: self.b,
+            q: self.q,
+            c: self.c,
+            d: self.d,
+            r: self.r,
         };
-        // A basis the tableau's drift made singular: solve once more,
-        // refactoring from the data (block pivoting, whose singular bases
-        // come from its Lemke fallback, by that fallback directly); the
-        // first error stands if that fails. The first attempt's pivots
-        // (the error's count) are added to the statistics.
-        let (mut raw, retried) = match run(options) {
-            Ok(raw) => (raw, false),
-            Err(first @ LcpError::SingularBasis { pivot, .. }) => {
-                let Some(retry) = options.retry() else {
-                    return Err(first);
-                };
-                let second = match method {
-                    Method::BlockPivoting => {
-                        block::fallback(self, &retry, Statistics::new(Method::BlockPivoting))
-                    }
-                    _ => run(&retry),
-                };
-                match second {
-                    Ok(mut raw) => {
-                        raw.statistics.pivots += pivot;
-                        (raw, true)
-                    }
-                    Err(_) => return Err(first),
-                }
-            }
-            Err(e) => return Err(e),
-        };
-        raw.statistics.retried |= retried;
-        let (mut certificate, mut w) = self.certify(
-            raw.z.as_ref(),
-            raw.u.as_ref(),
-            options.tolerances.certificate,
-        );
-        if !certificate.holds() && !retried {
-            // The certificate degraded (rounding drift steered a pivot or an
-            // active set wrong): solve once more, the tableau methods
-            // refactoring from the original data every RETRY_REFACTOR pivots
-            // and refining harder, block pivoting by Lemke's method; keep the
-            // better certificate. The statistics count both attempts.
-            // (Options that already are the retry's: the tableau methods
-            // would repeat the same computation, so only block pivoting's
-            // fallback runs.)
-            let second = match (method, options.retry()) {
-                (Method::BlockPivoting, retry) => Some(block::fallback(
-                    self,
-                    retry.as_ref().unwrap_or(options),
-                    Statistics::new(Method::BlockPivoting),
-                )),
-                (_, Some(retry)) => Some(run(&retry)),
-                (_, None) => None,
-            };
-            // A failed second attempt leaves the first (its error is not the
-            // answer: the first attempt's certificate says what went wrong).
-            if let Some(Ok(second)) = second {
-                let (c2, w2) = self.certify(
-                    second.z.as_ref(),
-                    second.u.as_ref(),
-                    options.tolerances.certificate,
-                );
-                if c2.worst() < certificate.worst() {
-                    let first = raw.statistics;
-                    raw = second;
-                    raw.statistics.absorb(&first);
-                    certificate = c2;
-                    w = w2;
-                } else {
-                    raw.statistics.absorb(&second.statistics);
-                }
-            }
-            raw.statistics.method = method;
-            raw.statistics.retried = true;
-        }
-        let mut statistics = raw.statistics;
-        statistics.seconds = start.elapsed().as_secs_f64();
-        if !certificate.holds() {
-            return Err(LcpError::Inaccurate {
-                size: self.size(),
-                pivots: statistics.pivots,
-                certificate: Box::new(certificate),
-            });
-        }
-        Ok(LcpSolution {
-            z: raw.z,
-            w,
-            u: raw.u,
-            basic: raw.basic,
-            certificate,
-            statistics,
-        })
+        Certificate::mixed(&data, &nonneg, z, u, tolerance)
     }
 }
 
-/// What a method returns before certification.
-pub(crate) struct RawSolution {
-    pub z: Col<f64>,
-    pub u: Col<f64>,
-    pub basic: Vec<bool>,
-    pub statistics: Statistics,
+impl BorderedLcpRef<'_> {
+    /// The certificate of a candidate `(z, λ)` against this problem's data,
+    /// with `w = M z - B λ + q`.
+    pub fn certify(
+        &self,
+        z: ColRef<'_, f64>,
+        lambda: ColRef<'_, f64>,
+        tolerance: f64,
+    ) -> (Certificate, Col<f64>) {
+        let parts = MixedBorder::of(self);
+        parts.view(self).certify(z, lambda, tolerance)
+    }
+}
+
+impl MixedLcp {
+    /// The certificate of a candidate `(z, u)` against this problem's data,
+    /// with `w = M z + B u + q`.
+    pub fn certify(
+        &self,
+        z: ColRef<'_, f64>,
+        u: ColRef<'_, f64>,
+        tolerance: f64,
+    ) -> (Certificate, Col<f64>) {
+        self.view().certify(z, u, tolerance)
+    }
+}
+
+/// The first column of `border` that depends linearly on the ones before
+/// it, if any: a Cholesky of the Gram matrix of the columns scaled to unit
+/// length (each column in its own units), whose pivot `j` is the squared
+/// distance of column `j` from the span of the ones before it; a pivot at
+/// most `BORDER_RANK` is a dependent column.
+fn dependent_column(border: MatRef<'_, f64>) -> Option<usize> {
+    use faer::linalg::cholesky::llt::factor::LltError;
+    let k = border.ncols();
+    let mut unit = border.to_owned();
+    for j in 0..k {
+        let norm = unit.col(j).norm_l2();
+        if !(norm > 0.0) {
+            return Some(j);
+        }
+        let mut col = unit.col_mut(j);
+        col /= norm;
+    }
+    let gram = unit.transpose() * &unit;
+    match gram.llt(faer::Side::Lower) {
+        Ok(llt) => {
+            let l = llt.L();
+            (0..k).find(|&j| !(l[(j, j)] * l[(j, j)] > BORDER_RANK))
+        }
+        Err(LltError::NonPositivePivot { index }) => Some(index),
+    }
+}
+
+fn check_square(m: MatRef<'_, f64>, q: ColRef<'_, f64>) -> Result<(), LcpError> {
+    let n = q.nrows();
+    if n == 0 {
+        return Err(LcpError::Empty { field: "q" });
+    }
+    check_dims("m", m.nrows(), m.ncols(), n, n)?;
+    check_finite_mat("m", m)?;
+    check_finite_col("q", q)
 }
 
 fn check_dims(
@@ -677,31 +543,52 @@ fn check_dims(
     Ok(())
 }
 
+/// Checks a matrix for NaN/inf, naming the field.
+pub(crate) fn check_finite_mat(field: &'static str, a: MatRef<'_, f64>) -> Result<(), LcpError> {
+    match first_non_finite(a) {
+        Some((index, value)) => Err(LcpError::NonFinite {
+            field,
+            index,
+            value,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Checks a vector for NaN/inf, naming the field.
+pub(crate) fn check_finite_col(field: &'static str, a: ColRef<'_, f64>) -> Result<(), LcpError> {
+    match a.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(LcpError::NonFinite {
+            field,
+            index,
+            value: a[index],
+        }),
+        None => Ok(()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use faer::{col, mat};
 
     #[test]
-    fn the_retry_tightens_the_options_or_is_none() {
-        let retry = Options::default().retry().expect("the defaults are looser");
-        assert_eq!(retry.refactor_interval, Some(RETRY_REFACTOR));
-        assert!(retry.refinement_steps >= RETRY_REFINEMENT);
-        // Options that already are the retry's: nothing to repeat.
-        assert!(retry.retry().is_none());
-        let tighter = Options {
-            refactor_interval: Some(5),
-            refinement_steps: 20,
-            ..Options::default()
-        };
-        assert!(tighter.retry().is_none());
-        // A tighter refactorization is kept, the refinement raised.
-        let mixed = Options {
-            refactor_interval: Some(5),
-            refinement_steps: 1,
-            ..Options::default()
-        };
-        let retry = mixed.retry().expect("more refinement");
-        assert_eq!(retry.refactor_interval, Some(5));
-        assert_eq!(retry.refinement_steps, RETRY_REFINEMENT);
+    fn a_border_with_dependent_columns_is_refused() {
+        let m = Mat::<f64>::identity(3, 3);
+        let q = col![1.0, 2.0, 3.0];
+        let p = BorderedLcpRef::new(m.as_ref(), q.as_ref()).unwrap();
+        let b = col![1.0, 1.0];
+        let dependent = mat![[1.0, 2.0], [1.0, 2.0], [1.0, 2.0]];
+        let e = p.with_border(dependent.as_ref(), b.as_ref()).unwrap_err();
+        assert!(matches!(
+            e,
+            LcpError::RankDeficient {
+                field: "border",
+                column: 1
+            }
+        ));
+        let independent = mat![[1.0, -1.0], [1.0, 0.0], [1.0, 1.0]];
+        let p = p.with_border(independent.as_ref(), b.as_ref()).unwrap();
+        assert_eq!(p.border_size(), 2);
     }
 }

@@ -14,14 +14,26 @@
 //! [`ProgramBuilder`].
 
 use std::ops::Range;
-use std::time::Instant;
 
 use faer::{Col, ColRef, Mat, MatRef};
 
+use crate::LcpError;
 use crate::certificate::Certificate;
-use crate::problem::{Bound, Options, Statistics};
-use crate::system::{Column, check_finite_col, check_finite_mat};
-use crate::{LcpError, restricted};
+use crate::problem::{Bound, check_finite_col, check_finite_mat};
+
+/// One column of a program's constraint matrix `A`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Column {
+    /// Column `j` of the dense block.
+    Dense(usize),
+    /// `coef * e_row`.
+    Unit {
+        /// The row of the single non-zero.
+        row: usize,
+        /// Its value.
+        coef: f64,
+    },
+}
 
 /// A linear program with complementarity constraints (see the module documentation).
 #[derive(Debug, Clone)]
@@ -37,25 +49,6 @@ pub struct ComplementaryProgram {
     /// phase 2): design variables, in the paper's two-part design method.
     pub(crate) deferred: Vec<bool>,
     blocks: Vec<(usize, String)>,
-}
-
-/// A certified solution of a [`ComplementaryProgram`].
-#[derive(Debug, Clone)]
-pub struct ProgramSolution {
-    /// Every unknown, in the order they were added.
-    pub x: Col<f64>,
-    /// `c^T x`, when the program has an objective.
-    pub objective: Option<f64>,
-    /// The basic unknowns of the final basis (warm-start data).
-    pub basis: Vec<usize>,
-    /// Residuals from the original data: of a complementary pair, the unknown
-    /// with the lower index counts as `z` and the other as `w`; unpaired
-    /// non-negative unknowns count as `u`. Each unknown is measured by its
-    /// activity `max_r |A_rj| |x_j|` relative to the constraint scale
-    /// `max_r (|A| |x| + |b|)_r`.
-    pub certificate: Certificate,
-    /// What the solve cost.
-    pub statistics: Statistics,
 }
 
 /// Builds a [`ComplementaryProgram`] block by block.
@@ -362,84 +355,15 @@ impl ComplementaryProgram {
         }
     }
 
-    /// Solves by the restricted-entry simplex: phase 1 finds a feasible
-    /// complementary basic solution, phase 2 (when there is an objective)
-    /// lowers `c^T x` while keeping complementarity. Phase 2 ends at a point
-    /// no admissible pivot improves: a local optimum of the complementarity-
-    /// constrained program, not necessarily a global one.
-    pub fn solve(&self, options: &Options) -> Result<ProgramSolution, LcpError> {
-        options.validate()?;
-        let start = Instant::now();
-        // A numerical failure (a basis the tableau's drift made singular, a
-        // certificate that does not hold, or a phase that ends unbounded or
-        // infeasible, which drift can fake: reduced costs and pivots read
-        // through many updates) gets one more solve, refactoring from the
-        // data every few pivots; the first error stands if that fails too
-        // (a program that really is unbounded or infeasible), and of two
-        // answers the better certified is kept.
-        let tolerance = options.tolerances.certificate;
-        let attempt = |options: &Options| {
-            restricted::run(self, options).map(|out| {
-                let x = Col::from_fn(self.unknowns(), |j| out.x[j]);
-                let certificate = self.certify(x.as_ref(), tolerance);
-                (out, x, certificate)
-            })
-        };
-        let retry = options.retry();
-        let (out, x, certificate) = match attempt(options) {
-            Ok(first) if first.2.holds() || retry.is_none() => first,
-            Ok(first) => match attempt(retry.as_ref().unwrap_or(options)) {
-                Ok(mut second) if second.2.worst() < first.2.worst() => {
-                    second.0.statistics.absorb(&first.0.statistics);
-                    second.0.statistics.retried = true;
-                    second
-                }
-                Ok(second) => {
-                    let mut first = first;
-                    first.0.statistics.absorb(&second.0.statistics);
-                    first.0.statistics.retried = true;
-                    first
-                }
-                Err(_) => first,
-            },
-            Err(
-                e @ (LcpError::SingularBasis { pivot, .. }
-                | LcpError::Unbounded { pivot, .. }
-                | LcpError::Infeasible { pivot, .. }),
-            ) => match retry.as_ref().map(attempt) {
-                Some(Ok(mut second)) => {
-                    // The first attempt's pivots: the error's count.
-                    second.0.statistics.pivots += pivot;
-                    second.0.statistics.retried = true;
-                    second
-                }
-                _ => return Err(e),
-            },
-            Err(e) => return Err(e),
-        };
-        let mut statistics = out.statistics;
-        statistics.seconds = start.elapsed().as_secs_f64();
-        if !certificate.holds() {
-            return Err(LcpError::Inaccurate {
-                size: self.rows,
-                pivots: statistics.pivots,
-                certificate: Box::new(certificate),
-            });
-        }
-        let objective = self
-            .cost
+    /// `c^T x`, when the program has an objective.
+    pub fn objective(&self, x: ColRef<'_, f64>) -> Option<f64> {
+        self.cost
             .as_ref()
-            .map(|c| c.iter().zip(x.iter()).map(|(c, x)| c * x).sum());
-        Ok(ProgramSolution {
-            x,
-            objective,
-            basis: out.basis,
-            certificate,
-            statistics,
-        })
+            .map(|c| c.iter().zip(x.iter()).map(|(c, x)| c * x).sum())
     }
 
-    /// The certificate of a candidate `x` (see [`ProgramSolution::certificate`]).
+    /// The certificate of a candidate `x` (see
+    /// [`ProgramSolution::certificate`](crate::ProgramSolution::certificate)).
     pub fn certify(&self, x: ColRef<'_, f64>, tolerance: f64) -> Certificate {
         let m = self.rows;
         let mut ax = Col::<f64>::zeros(m);
@@ -468,7 +392,7 @@ impl ComplementaryProgram {
         for i in 0..m {
             terms[i] += self.b[i].abs();
         }
-        let scale = crate::dense::norm_inf(terms.as_ref());
+        let scale = crate::linalg::norm_inf(terms.as_ref());
         let rel = |v: f64| if scale > 0.0 { v / scale } else { 0.0 };
         let equality = rel((0..m).fold(0.0f64, |a, i| a.max((ax[i] - self.b[i]).abs())));
         let (mut min_z, mut min_w, mut min_u, mut comp) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);

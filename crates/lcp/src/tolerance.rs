@@ -76,3 +76,41 @@ impl Tolerances {
         Ok(())
     }
 }
+
+/// `M` counts as symmetric when `|m_ij - m_ji|` is at most this times its
+/// largest diagonal entry (`1e3 u`: the rounding of assembling the two
+/// entries by different sums, with room).
+pub(crate) const SYMMETRY: f64 = 1e3 * f64::EPSILON;
+
+/// An LU factor (a basis, a border's Schur complement) is numerically
+/// singular when its smallest over largest pivot is at most this times its
+/// order (`u` per row: below it the factor's own rounding swamps the
+/// smallest pivot).
+pub(crate) const SINGULAR_PER_ROW: f64 = f64::EPSILON;
+
+/// A basis is near singular when the reciprocal condition estimate
+/// `1 / (|B|_1 |B^{-1}|_1)` is at most this times its rows: refinement with
+/// the tableau's `B^{-1}` could then reach a small backward error and a
+/// meaningless answer, so a fresh LU decides instead.
+pub(crate) const NEAR_SINGULAR_PER_ROW: f64 = f64::EPSILON;
+
+/// A componentwise backward error at rounding level (`2 u`): refinement
+/// stops there.
+pub(crate) const ROUNDING_LEVEL: f64 = 2.0 * f64::EPSILON;
+
+/// The backward error at which the tableau's own basic solution is kept
+/// (`64 u`): refinement plateaus a few units of rounding above
+/// [`ROUNDING_LEVEL`] whichever `B^{-1}` corrects it, since the residual is
+/// itself computed in floating point; above this the tableau drifted and a
+/// fresh LU of the basis decides.
+pub(crate) const TABLEAU_ACCEPT: f64 = 64.0 * f64::EPSILON;
+
+/// Iterative refinement on an active set stops when the correction is at
+/// most this times the solution (`u`: nothing left to correct).
+pub(crate) const REFINED: f64 = f64::EPSILON;
+
+/// A border column depends on the ones before it when its squared distance
+/// from their span, in units of its own length, is at most this (`2^-40`:
+/// a distance of about 1e-6, past which the border's Schur complement has a
+/// condition number near `1 / u`).
+pub(crate) const BORDER_RANK: f64 = 1.0 / (1u64 << 40) as f64;

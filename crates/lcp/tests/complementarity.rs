@@ -3,7 +3,7 @@
 //! with each other and, for small sizes, with brute-force enumeration of the
 //! complementary bases (the solution is unique for a positive definite M).
 
-use elcon_lcp::{Bound, Lcp, Method, MixedLcp, Options};
+use elcon_lcp::{BorderedLcp, Bound, Lcp, Method, MixedLcp, MixedLcpParts, Options, Tableau};
 use faer::linalg::solvers::Solve;
 use faer::{Col, Mat, Side};
 use proptest::prelude::*;
@@ -55,24 +55,19 @@ fn rel_diff(a: &Col<f64>, b: &Col<f64>) -> f64 {
     (a - b).iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
 }
 
-/// The contact form `w = M z + b alpha + q`, `c^T z = load` with `c = -b`.
-fn loaded(m: Mat<f64>, b: &[f64], q: &[f64], load: f64) -> MixedLcp {
+/// The contact form `w = M z + b alpha + q`, `c^T z = load` with `c = -b`,
+/// as a bordered LCP (`B = -b`).
+fn loaded(m: Mat<f64>, b: &[f64], q: &[f64], load: f64) -> BorderedLcp {
     let n = q.len();
-    MixedLcp::new(
-        m,
-        Mat::from_fn(n, 1, |i, _| b[i]),
-        Col::from_fn(n, |i| q[i]),
-        Mat::from_fn(1, n, |_, j| -b[j]),
-        Mat::zeros(1, 1),
-        faer::col![-load],
-        vec![Bound::Free],
-    )
-    .unwrap()
+    BorderedLcp::new(m, Col::from_fn(n, |i| q[i]))
+        .unwrap()
+        .with_border(Mat::from_fn(n, 1, |i, _| -b[i]), faer::col![load])
+        .unwrap()
 }
 
 /// The contact-shaped mixed form of `(m, q)`: w = M z - alpha e + |q|,
 /// e^T z = `load`, alpha free.
-fn contact_form(m: Mat<f64>, q: &Col<f64>, load: f64) -> MixedLcp {
+fn contact_form(m: Mat<f64>, q: &Col<f64>, load: f64) -> BorderedLcp {
     let n = q.nrows();
     let gaps: Vec<f64> = q.iter().map(|v| v.abs()).collect();
     loaded(m, &vec![-1.0; n], &gaps, load)
@@ -138,7 +133,7 @@ proptest! {
         prop_assume!(reference.z.iter().filter(|&&v| v > 0.0).count() > 64);
         for method in Method::TABLEAU {
             let sol = lcp.solve(method, &Options::default()).unwrap();
-            prop_assert!(sol.statistics.pivots > 64, "{method}: {} pivots", sol.statistics.pivots);
+            prop_assert!(sol.statistics.pivots() > 64, "{method}: {} pivots", sol.statistics.pivots());
             prop_assert!(sol.certificate.holds(), "{method}: {}", sol.certificate);
             prop_assert!(rel_diff(&sol.z, &reference.z) < 1e-9, "{method}");
         }
@@ -190,7 +185,7 @@ proptest! {
         let a = mixed.solve(Method::Lemke, &Options::default()).unwrap();
         let b = mixed.solve(Method::BlockPivoting, &Options::default()).unwrap();
         prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
-        prop_assert!(!b.statistics.fell_back);
+        prop_assert!(!b.statistics.fell_back());
         prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
         prop_assert!((a.u[0] - b.u[0]).abs() <= 1e-9 * a.u[0].abs().max(1e-300));
     }
@@ -216,15 +211,15 @@ proptest! {
         // w = M z - e u + q'  =>  q' = w* - M z* + e u*;   e^T z = P
         let qq = &w_star - &m * &z_star + Col::from_fn(n, |_| u_star);
         let load: f64 = z_star.iter().sum();
-        let mixed = MixedLcp::new(
-            m,
-            Mat::from_fn(n, 1, |_, _| -1.0),
-            qq,
-            Mat::from_fn(1, n, |_, _| 1.0),
-            Mat::zeros(1, 1),
-            Col::from_fn(1, |_| -load),
-            vec![Bound::NonNegative],
-        ).unwrap();
+        let mixed = MixedLcp::new(MixedLcpParts {
+m,
+b: Mat::from_fn(n, 1, |_, _| -1.0),
+q: qq,
+c: Mat::from_fn(1, n, |_, _| 1.0),
+d: Mat::zeros(1, 1),
+r: Col::from_fn(1, |_| -load),
+bounds: vec![Bound::NonNegative],
+}).unwrap();
         let sol = mixed.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
         prop_assert!(sol.certificate.holds(), "{}", sol.certificate);
         prop_assert!(rel_diff(&sol.z, &z_star) < 1e-9, "{:?} vs {:?}", sol.z, z_star);
@@ -237,7 +232,7 @@ fn trivial_solution_when_q_is_non_negative() {
     for method in Method::ALL {
         let sol = lcp.solve(method, &Options::default()).unwrap();
         assert!(sol.z.iter().all(|&v| v == 0.0));
-        assert_eq!(sol.statistics.pivots, 0, "{method}");
+        assert_eq!(sol.statistics.pivots(), 0, "{method}");
     }
 }
 
@@ -302,8 +297,8 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
 
     /// Lemke's method on the symmetric tableau (a symmetric M, the default
-    /// options; it ends with one Cholesky) against the general tableau (an
-    /// explicit covering vector selects it), in the standard and the
+    /// options; it ends with one Cholesky) against the general tableau
+    /// (`Tableau::General`), in the standard and the
     /// contact forms, up to past the symmetric tableau's update block (64
     /// pivots). Random A A^T + shift I have off-diagonal entries of both
     /// signs, so indices also leave the active set along the path.
@@ -312,24 +307,23 @@ proptest! {
         (m, q) in (2usize..=110).prop_flat_map(problem),
         load in 0.01f64..100.0,
     ) {
-        let n = q.nrows();
-        let general = |size: usize| Options {
-            covering_vector: Some(vec![1.0; size]),
+        let general = Options {
+            tableau: Tableau::General,
             ..Options::default()
         };
         let lcp = Lcp::new(m.clone(), q.clone()).unwrap();
         let a = lcp.solve(Method::Lemke, &Options::default()).unwrap();
-        let b = lcp.solve(Method::Lemke, &general(n)).unwrap();
+        let b = lcp.solve(Method::Lemke, &general).unwrap();
         if q.iter().any(|&v| v < 0.0) {
-            prop_assert!(a.statistics.symmetric_tableau, "the symmetric tableau ran");
+            prop_assert!(a.statistics.symmetric_tableau(), "the symmetric tableau ran");
         }
-        prop_assert!(!b.statistics.symmetric_tableau);
+        prop_assert!(!b.statistics.symmetric_tableau());
         prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
         prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
         let mixed = contact_form(m, &q, load);
         let a = mixed.solve(Method::Lemke, &Options::default()).unwrap();
-        let b = mixed.solve(Method::Lemke, &general(n + 2)).unwrap();
-        prop_assert!(a.statistics.symmetric_tableau, "the symmetric tableau ran");
+        let b = mixed.solve(Method::Lemke, &general).unwrap();
+        prop_assert!(a.statistics.symmetric_tableau(), "the symmetric tableau ran");
         prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
         prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
         prop_assert!((a.u[0] - b.u[0]).abs() <= 1e-9 * a.u[0].abs().max(1e-300));
@@ -341,8 +335,8 @@ proptest! {
 
     /// The restricted-entry simplex on the symmetric tableau (the contact
     /// form with a symmetric M and q >= 0, the default options; it ends
-    /// with one Cholesky) against the same rule on the general tableau (a
-    /// refactorization interval selects it), up to past the symmetric
+    /// with one Cholesky) against the same rule on the general tableau
+    /// (`Tableau::General`), up to past the symmetric
     /// tableau's update block. Off-diagonal entries of both signs make
     /// indices leave the active set, and some separated indices admissible
     /// to a restricted entry.
@@ -353,24 +347,25 @@ proptest! {
     ) {
         let n = q.nrows();
         let general = Options {
+            tableau: Tableau::General,
             refactor_interval: Some(4 * n),
             ..Options::default()
         };
         let mixed = contact_form(m, &q, load);
         let a = mixed.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
         let b = mixed.solve(Method::RestrictedSimplex, &general).unwrap();
-        prop_assert!(a.statistics.symmetric_tableau, "the symmetric tableau ran: {:?}", a.statistics);
-        prop_assert!(!b.statistics.symmetric_tableau);
+        prop_assert!(a.statistics.symmetric_tableau(), "the symmetric tableau ran: {:?}", a.statistics);
+        prop_assert!(!b.statistics.symmetric_tableau());
         prop_assert!(a.certificate.holds() && b.certificate.holds(), "{} / {}", a.certificate, b.certificate);
         prop_assert!(rel_diff(&a.z, &b.z) < 1e-9);
         prop_assert!((a.u[0] - b.u[0]).abs() <= 1e-9 * a.u[0].abs().max(1e-300));
-        prop_assert!(a.statistics.pivots <= 4 * n + 1, "{:?}", a.statistics);
+        prop_assert!(a.statistics.pivots() <= 4 * n + 1, "{:?}", a.statistics);
     }
 }
 
 /// Three points in a row, M = tridiag(0.6, 1, 0.6) (positive definite),
 /// gaps (1, 0, 1), load 20: a point leaves the contact set on the way.
-fn three_in_a_row() -> MixedLcp {
+fn three_in_a_row() -> BorderedLcp {
     let m = faer::mat![[1.0, 0.6, 0.0], [0.6, 1.0, 0.6], [0.0, 0.6, 1.0]];
     loaded(m, &[-1.0; 3], &[1.0, 0.0, 1.0], 20.0)
 }
@@ -385,10 +380,10 @@ fn the_symmetric_tableau_follows_a_point_out_of_contact() {
     // z_0 = z_2 = alpha - 1 = 10 at alpha = 11, and w_1 = 0.6 * 20 - 11 = 1.
     let mixed = three_in_a_row();
     let sol = mixed.solve(Method::Lemke, &Options::default()).unwrap();
-    let s = sol.statistics;
-    assert!(s.symmetric_tableau, "the symmetric tableau ran");
+    let s = &sol.statistics;
+    assert!(s.symmetric_tableau(), "the symmetric tableau ran");
     // In: 1, 0, 2 (after a step of length 0); out: 1.
-    assert_eq!((s.pivots, s.degenerate_pivots), (4, 1), "{s:?}");
+    assert_eq!((s.pivots(), s.degenerate_pivots()), (4, 1), "{s:?}");
     assert_eq!(sol.basic, vec![true, false, true]);
     let expect = [10.0, 0.0, 10.0];
     for i in 0..3 {
@@ -410,16 +405,17 @@ fn the_restricted_simplex_on_the_symmetric_tableau_takes_the_general_one_s_pivot
         .solve(Method::RestrictedSimplex, &Options::default())
         .unwrap();
     let general = Options {
+        tableau: Tableau::General,
         refactor_interval: Some(100),
         ..Options::default()
     };
     let general = mixed.solve(Method::RestrictedSimplex, &general).unwrap();
-    let (s, g) = (swept.statistics, general.statistics);
-    assert!(s.symmetric_tableau && !g.symmetric_tableau, "{s:?}");
-    assert_eq!((s.pivots, s.degenerate_pivots), (5, 2), "{s:?}");
+    let (s, g) = (&swept.statistics, &general.statistics);
+    assert!(s.symmetric_tableau() && !g.symmetric_tableau(), "{s:?}");
+    assert_eq!((s.pivots(), s.degenerate_pivots()), (5, 2), "{s:?}");
     assert_eq!(
-        (s.pivots, s.degenerate_pivots),
-        (g.pivots, g.degenerate_pivots),
+        (s.pivots(), s.degenerate_pivots()),
+        (g.pivots(), g.degenerate_pivots()),
         "{g:?}"
     );
     assert_eq!(swept.basic, vec![true, false, true]);
@@ -442,6 +438,7 @@ fn the_restricted_simplex_on_the_symmetric_tableau_stops_where_the_load_is_met()
     // a step of length 0 (one pivot more), and on the singular M below to
     // try the singular block {0, 1} and fall back.
     let general = Options {
+        tableau: Tableau::General,
         refactor_interval: Some(100),
         ..Options::default()
     };
@@ -452,11 +449,11 @@ fn the_restricted_simplex_on_the_symmetric_tableau_stops_where_the_load_is_met()
         .solve(Method::RestrictedSimplex, &Options::default())
         .unwrap();
     let b = mixed.solve(Method::RestrictedSimplex, &general).unwrap();
-    let (s, g) = (a.statistics, b.statistics);
-    assert!(s.symmetric_tableau, "{s:?}");
+    let (s, g) = (&a.statistics, &b.statistics);
+    assert!(s.symmetric_tableau(), "{s:?}");
     assert_eq!(
-        (s.pivots, s.degenerate_pivots),
-        (g.pivots, g.degenerate_pivots),
+        (s.pivots(), s.degenerate_pivots()),
+        (g.pivots(), g.degenerate_pivots()),
         "{s:?} / {g:?}"
     );
     assert_eq!(a.basic, vec![true, false]);
@@ -471,8 +468,8 @@ fn the_restricted_simplex_on_the_symmetric_tableau_stops_where_the_load_is_met()
     let a = singular
         .solve(Method::RestrictedSimplex, &Options::default())
         .unwrap();
-    assert!(a.statistics.symmetric_tableau, "{:?}", a.statistics);
-    assert_eq!(a.statistics.pivots, 2, "{:?}", a.statistics);
+    assert!(a.statistics.symmetric_tableau(), "{:?}", a.statistics);
+    assert_eq!(a.statistics.pivots(), 2, "{:?}", a.statistics);
     assert!((a.z[0] - 1.0).abs() <= 1e-15 && a.z[1] == 0.0);
 }
 
@@ -491,7 +488,7 @@ fn the_restricted_simplex_on_the_symmetric_tableau_reads_kappa_without_squares()
             .solve(Method::RestrictedSimplex, &Options::default())
             .unwrap();
         assert!(
-            a.statistics.symmetric_tableau,
+            a.statistics.symmetric_tableau(),
             "{scale:e}: {:?}",
             a.statistics
         );
@@ -512,6 +509,7 @@ fn the_restricted_simplex_leaves_the_symmetric_tableau_where_m_is_not_positive_d
         10.0,
     );
     let general = Options {
+        tableau: Tableau::General,
         refactor_interval: Some(100),
         ..Options::default()
     };
@@ -519,10 +517,10 @@ fn the_restricted_simplex_leaves_the_symmetric_tableau_where_m_is_not_positive_d
     let b = mixed.solve(Method::RestrictedSimplex, &general);
     match (a, b) {
         (Ok(a), Ok(b)) => {
-            assert!(!a.statistics.symmetric_tableau, "{:?}", a.statistics);
+            assert!(!a.statistics.symmetric_tableau(), "{:?}", a.statistics);
             assert!(a.certificate.holds(), "{}", a.certificate);
             // The symmetric tableau's two pivots: the approach, then z_0.
-            assert_eq!(a.statistics.pivots, b.statistics.pivots + 2);
+            assert_eq!(a.statistics.pivots(), b.statistics.pivots() + 2);
             assert!(rel_diff(&a.z, &b.z) < 1e-12);
         }
         (a, b) => panic!("{a:?} / {b:?}"),
@@ -551,7 +549,7 @@ fn the_symmetric_tableau_judges_pivots_in_the_data_s_own_units() {
     ] {
         let expect = brute_force(&m, &q).expect("an SPD LCP has a solution");
         let sol = Lcp::new(m, q).unwrap().solve(Method::Lemke, &raw).unwrap();
-        assert!(sol.statistics.symmetric_tableau, "{:?}", sol.statistics);
+        assert!(sol.statistics.symmetric_tableau(), "{:?}", sol.statistics);
         assert!(sol.certificate.holds(), "{}", sol.certificate);
         assert!(
             rel_diff(&sol.z, &expect) < 1e-12,

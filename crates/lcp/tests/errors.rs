@@ -1,6 +1,9 @@
 //! One test per error variant of the engine, checking the message a caller sees.
 
-use elcon_lcp::{Bound, Lcp, LcpError, Method, MixedLcp, Options, ProgramBuilder, Tolerances};
+use elcon_lcp::{
+    BorderedLcp, Bound, Lcp, LcpError, Method, MixedLcp, MixedLcpParts, Options, ProgramBuilder,
+    Tableau, Tolerances,
+};
 use faer::{Col, Mat, col, mat};
 
 fn message(e: LcpError) -> String {
@@ -12,15 +15,15 @@ fn dimension_mismatch_names_the_field() {
     let e = Lcp::new(Mat::zeros(2, 3), Col::zeros(2)).unwrap_err();
     assert!(matches!(e, LcpError::DimensionMismatch { field: "m", .. }));
     assert_eq!(message(e), "`m` has 3 columns, expected 2");
-    let e = MixedLcp::new(
-        Mat::identity(2, 2),
-        Mat::zeros(2, 1),
-        Col::zeros(2),
-        Mat::zeros(1, 2),
-        Mat::zeros(1, 1),
-        Col::zeros(1),
-        vec![Bound::Free, Bound::Free],
-    )
+    let e = MixedLcp::new(MixedLcpParts {
+        m: Mat::identity(2, 2),
+        b: Mat::zeros(2, 1),
+        q: Col::zeros(2),
+        c: Mat::zeros(1, 2),
+        d: Mat::zeros(1, 1),
+        r: Col::zeros(1),
+        bounds: vec![Bound::Free, Bound::Free],
+    })
     .unwrap_err();
     assert_eq!(message(e), "`b` has 1 columns, expected 2");
 }
@@ -63,25 +66,91 @@ fn invalid_options() {
     let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
     assert_eq!(message(e), "option `max_pivots` = 0: must be at least 1");
     let opts = Options {
+        tableau: Tableau::General,
         covering_vector: Some(vec![-1.0]),
         ..Options::default()
     };
     let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
     assert!(message(e).starts_with("option `covering_vector` = entry 0 = -1"));
+    // A covering vector is the general tableau's: with another tableau it
+    // is refused, not silently ignored or used to pick the tableau.
+    let opts = Options {
+        covering_vector: Some(vec![1.0]),
+        ..Options::default()
+    };
+    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
+    assert_eq!(
+        message(e),
+        "option `covering_vector` = given with tableau = auto: a covering vector applies to the \
+         general tableau only: set `tableau` to General"
+    );
+}
+
+#[test]
+fn a_border_with_dependent_columns_names_the_column() {
+    let e = BorderedLcp::new(Mat::identity(2, 2), col![1.0, 1.0])
+        .unwrap()
+        .with_border(mat![[1.0, 2.0], [1.0, 2.0]], col![1.0, 2.0])
+        .unwrap_err();
+    assert_eq!(
+        message(e),
+        "column 1 of `border` depends linearly on the ones before it: each free unknown must move the gaps differently"
+    );
+    let e = BorderedLcp::new(Mat::identity(2, 2), col![1.0, 1.0])
+        .unwrap()
+        .with_border(mat![[1.0], [1.0], [1.0]], col![1.0])
+        .unwrap_err();
+    assert_eq!(message(e), "`border` has 3 rows, expected 2");
+}
+
+#[test]
+fn an_explicit_tableau_that_cannot_finish_is_an_error() {
+    // M = [[1, -2], [-2, 1]] (symmetric, indefinite): the symmetric tableau
+    // meets a pivot no positive definite M gives. Asked for explicitly, it
+    // does not hand over to the general tableau.
+    let p = BorderedLcp::new(mat![[1.0, -2.0], [-2.0, 1.0]], col![0.0, 0.5])
+        .unwrap()
+        .with_border(mat![[1.0], [1.0]], col![10.0])
+        .unwrap();
+    let opts = Options {
+        tableau: Tableau::Symmetric,
+        ..Options::default()
+    };
+    let e = p.solve(Method::Lemke, &opts).unwrap_err();
+    assert!(matches!(e, LcpError::BrokeDown { size: 2, .. }), "{e}");
+    assert!(
+        message(e).starts_with(
+            "lemke on the symmetric tableau broke down after 1 pivots (size 2): a pivot a positive definite matrix would not give"
+        ),
+    );
+    // A mixed form has no symmetric tableau at all.
+    let mixed = MixedLcp::new(MixedLcpParts {
+        m: Mat::identity(1, 1),
+        b: mat![[-1.0]],
+        q: col![0.0],
+        c: mat![[1.0]],
+        d: Mat::zeros(1, 1),
+        r: col![-1.0],
+        bounds: vec![Bound::Free],
+    })
+    .unwrap();
+    let e = mixed.solve(Method::Lemke, &opts).unwrap_err();
+    assert!(matches!(e, LcpError::Unsupported { .. }));
+    assert!(message(e).contains("the symmetric tableau takes a standard or bordered LCP"));
 }
 
 #[test]
 fn unsupported_forms() {
     // Non-negative extra unknown: not an LCP for Lemke or block pivoting.
-    let p = MixedLcp::new(
-        Mat::identity(1, 1),
-        mat![[-1.0]],
-        col![0.0],
-        mat![[1.0]],
-        Mat::zeros(1, 1),
-        col![-1.0],
-        vec![Bound::NonNegative],
-    )
+    let p = MixedLcp::new(MixedLcpParts {
+        m: Mat::identity(1, 1),
+        b: mat![[-1.0]],
+        q: col![0.0],
+        c: mat![[1.0]],
+        d: Mat::zeros(1, 1),
+        r: col![-1.0],
+        bounds: vec![Bound::NonNegative],
+    })
     .unwrap();
     for method in [Method::Lemke, Method::BlockPivoting] {
         let e = p.solve(method, &Options::default()).unwrap_err();
@@ -164,14 +233,15 @@ fn singular_basis_is_detected() {
     // M = [[t, t], [t, t + 1]] with t = 2^52: its LU has pivots t and 1, a
     // ratio of 2^-52 (condition ~ 2^54), below m u; the solution z = (1/2, 1/2)
     // needs both columns. With no equilibration and no pivot tolerance the
-    // engine reaches that basis and must report it, not return it. (An
-    // explicit covering vector selects the general tableau: for a symmetric
-    // M, Lemke's method otherwise runs on the symmetric tableau and ends with
-    // a Cholesky of the contact block.)
+    // engine reaches that basis and must report it, not return it. (The
+    // general tableau explicitly: for a symmetric M, Lemke's method
+    // otherwise runs on the symmetric tableau and ends with a Cholesky of
+    // the contact block.)
     let t = 2f64.powi(52);
     let m = mat![[t, t], [t, t + 1.0]];
     let lcp = Lcp::new(m, col![-t, -t - 0.5]).unwrap();
     let opts = Options {
+        tableau: Tableau::General,
         equilibrate: false,
         covering_vector: Some(vec![1.0, 1.0]),
         tolerances: Tolerances {
@@ -210,19 +280,22 @@ fn inaccurate_solutions_are_not_returned() {
     // data every 10 pivots (the general tableau; the first attempt ran on the
     // symmetric one): the error counts the pivots of both attempts.
     let once = lcp.solve(Method::Lemke, &Options::default()).unwrap();
-    assert!(!once.statistics.retried);
-    // The symmetric tableau ends with one Cholesky, the general one with none.
-    assert!(once.statistics.symmetric_tableau, "the symmetric tableau");
+    assert!(!once.statistics.retried());
+    assert!(once.statistics.symmetric_tableau(), "the symmetric tableau");
     let retry = Options {
+        tableau: Tableau::General,
         refactor_interval: Some(10),
         refinement_steps: 10,
         ..Options::default()
     };
     let again = lcp.solve(Method::Lemke, &retry).unwrap();
-    assert!(!again.statistics.symmetric_tableau, "the general tableau");
+    assert!(!again.statistics.symmetric_tableau(), "the general tableau");
     match &e {
         LcpError::Inaccurate { pivots, .. } => {
-            assert_eq!(*pivots, once.statistics.pivots + again.statistics.pivots)
+            assert_eq!(
+                *pivots,
+                once.statistics.pivots() + again.statistics.pivots()
+            )
         }
         other => panic!("{other:?}"),
     }
@@ -265,15 +338,15 @@ fn deferred_unknowns_cannot_be_complementary() {
 
 #[test]
 fn a_non_finite_solution_never_certifies() {
-    let lcp = MixedLcp::new(
-        mat![[1.0]],
-        Mat::zeros(1, 0),
-        col![-1.0],
-        Mat::zeros(0, 1),
-        Mat::zeros(0, 0),
-        Col::zeros(0),
-        vec![],
-    )
+    let lcp = MixedLcp::new(MixedLcpParts {
+        m: mat![[1.0]],
+        b: Mat::zeros(1, 0),
+        q: col![-1.0],
+        c: Mat::zeros(0, 1),
+        d: Mat::zeros(0, 0),
+        r: Col::zeros(0),
+        bounds: vec![],
+    })
     .unwrap();
     for z in [f64::NAN, f64::INFINITY] {
         let (c, _) = lcp.certify(col![z].as_ref(), Col::<f64>::zeros(0).as_ref(), 1e-12);
@@ -293,15 +366,15 @@ fn a_negative_multiplier_for_a_non_negative_extra_unknown_is_infeasible() {
     // w = z - u - 2 >= 0, z w = 0, z = 1, u >= 0: z = 1 > 0 forces w = 0,
     // so u = -1 < 0. The free-multiplier solve the engine falls back to
     // finds that u and must not return it.
-    let mixed = MixedLcp::new(
-        mat![[1.0]],
-        mat![[-1.0]],
-        col![-2.0],
-        mat![[1.0]],
-        mat![[0.0]],
-        col![-1.0],
-        vec![Bound::NonNegative],
-    )
+    let mixed = MixedLcp::new(MixedLcpParts {
+        m: mat![[1.0]],
+        b: mat![[-1.0]],
+        q: col![-2.0],
+        c: mat![[1.0]],
+        d: mat![[0.0]],
+        r: col![-1.0],
+        bounds: vec![Bound::NonNegative],
+    })
     .unwrap();
     let e = mixed
         .solve(Method::RestrictedSimplex, &Options::default())
@@ -325,15 +398,15 @@ fn data_at_the_edge_of_double_precision_is_an_error_or_an_answer_never_a_panic()
             assert!(sol.certificate.holds(), "{method}");
         }
     }
-    let mixed = MixedLcp::new(
-        mat![[2.0210095273828205e-268]],
-        mat![[-5.905823572589658e129]],
-        col![45.78984165975658],
-        mat![[1.1603547368363403e119]],
-        mat![[0.0]],
-        col![-2.4758498208489555e117],
-        vec![Bound::Free],
-    )
+    let mixed = MixedLcp::new(MixedLcpParts {
+        m: mat![[2.0210095273828205e-268]],
+        b: mat![[-5.905823572589658e129]],
+        q: col![45.78984165975658],
+        c: mat![[1.1603547368363403e119]],
+        d: mat![[0.0]],
+        r: col![-2.4758498208489555e117],
+        bounds: vec![Bound::Free],
+    })
     .unwrap();
     let exact = Options {
         tolerances: Tolerances {

@@ -26,8 +26,8 @@ pub use batch::{Batch, BatchOutcome, BatchRun, Progress, Shard, merge, run_batch
 pub use error::{Location, SceneError};
 pub use output::{write_atomic, write_run};
 pub use run::{
-    CertificateJson, DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson, Run, RunResult,
-    Seconds, StatisticsJson, SymmetryJson, run,
+    AttemptJson, CertificateJson, DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson,
+    Run, RunResult, Seconds, StatisticsJson, SymmetryJson, run,
 };
 pub use scene::{
     BodySpec, DesignFamily, DesignSpec, Outputs, Plot, PointsSpec, Reference, RelativeTo, Scene,

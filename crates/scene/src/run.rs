@@ -36,6 +36,55 @@ pub struct StatisticsJson {
     /// Whether a tableau method finished on the symmetric tableau (half
     /// the update work; the general tableau otherwise).
     pub symmetric_tableau: bool,
+    /// Every attempt of the solve, in order (the counts above are their sums).
+    pub attempts: Vec<AttemptJson>,
+}
+
+/// One attempt of a solve, as written.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AttemptJson {
+    /// The method ("lemke", "restricted-simplex", "block-pivoting").
+    pub method: String,
+    /// The tableau ("symmetric", "general"; absent for block pivoting).
+    pub tableau: Option<String>,
+    /// Why it ran ("first", "fallback", "relaxed-bounds", "retry").
+    pub reason: String,
+    /// Its pivots (index exchanges for block pivoting).
+    pub pivots: usize,
+    /// Its block iterations (block pivoting).
+    pub iterations: usize,
+    /// Its wall-clock seconds.
+    pub seconds: f64,
+    /// How it ended ("returned", "rejected (certificate ...)", "breakdown: ...").
+    pub outcome: String,
+}
+
+impl StatisticsJson {
+    /// The statistics of a solve, as written.
+    pub fn of(st: &elcon_lcp::Statistics) -> Self {
+        Self {
+            pivots: st.pivots(),
+            degenerate_pivots: st.degenerate_pivots(),
+            refactorizations: st.refactorizations(),
+            refinement_steps: st.refinement_steps(),
+            iterations: st.iterations(),
+            factorizations: st.factorizations(),
+            symmetric_tableau: st.symmetric_tableau(),
+            attempts: st
+                .attempts
+                .iter()
+                .map(|a| AttemptJson {
+                    method: a.method.name().to_string(),
+                    tableau: a.tableau.map(|t| t.name().to_string()),
+                    reason: a.reason.to_string(),
+                    pivots: a.work.pivots,
+                    iterations: a.work.iterations,
+                    seconds: a.seconds,
+                    outcome: a.outcome.to_string(),
+                })
+                .collect(),
+        }
+    }
 }
 
 /// A folded problem's symmetry.
@@ -284,7 +333,6 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         None => None,
     }
     .unzip();
-    let st = &solution.statistics;
     let c = &solution.certificate;
     let result = RunResult {
         scene: scene.name.clone(),
@@ -302,15 +350,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
             order: f.order(),
             unknowns: f.len(),
         }),
-        statistics: StatisticsJson {
-            pivots: st.pivots,
-            degenerate_pivots: st.degenerate_pivots,
-            refactorizations: st.refactorizations,
-            refinement_steps: st.refinement_steps,
-            iterations: st.iterations,
-            factorizations: st.factorizations,
-            symmetric_tableau: st.symmetric_tableau,
-        },
+        statistics: StatisticsJson::of(&solution.statistics),
         seconds: Seconds {
             assembly: problem.assembly_seconds(),
             solve: solution.solve_seconds,

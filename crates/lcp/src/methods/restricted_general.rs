@@ -1,5 +1,6 @@
-//! The restricted-entry (complementary) simplex: Wolfe (1959), as used by
-//! Conry & Seireg (1971) for the contact problem (their Fig. 2).
+//! The restricted-entry (complementary) simplex on the general tableau:
+//! Wolfe (1959), as used by Conry & Seireg (1971) for the contact problem
+//! (their Fig. 2).
 //!
 //! On `A x = b` with complementary pairs `(x_i, x_j)`:
 //!
@@ -24,99 +25,43 @@
 //! The ratio test is lexicographic (no basis repeats); every
 //! `refactor_interval` pivots the tableau is recomputed from the data.
 //!
-//! The contact form with a symmetric `M` and `q >= 0` runs the same rule on
-//! the symmetric tableau first ([`crate::swept_simplex`]); what it cannot
-//! finish comes here, its pivots counted. An explicit refactorization
-//! interval (the retry's option) comes here directly.
+//! A mixed LCP `w = M z + B u + q`, `0 = C z + D u + r` is solved as the
+//! program `-M z - B u + w = q`, `C z + D u = -r`, pairs `(z_i, w_i)`; any
+//! border, non-negative extra unknowns included.
 
 use std::collections::HashSet;
 
 use faer::{Col, Mat};
 
-use crate::dense::norm_inf;
-use crate::lemke::EQUILIBRATION_PASSES;
-use crate::problem::{Bound, MixedLcpRef, Options, RawSolution, Statistics};
-use crate::program::ComplementaryProgram;
-use crate::system::{Column, System};
-use crate::tableau::{Position, Ratio, RowRule, Tableau, UPDATE_BLOCK};
-use crate::tolerance::Tolerances;
-use crate::{LcpError, Method, swept_simplex};
+use crate::LcpError;
+use crate::linalg::norm_inf;
+use crate::methods::{Answer, Attempted, Failure};
+use crate::options::Options;
+use crate::problem::{Bound, Problem};
+use crate::program::{Column, ComplementaryProgram};
+use crate::statistics::Work;
+use crate::tableau::basic::basic_solution;
+use crate::tableau::general::{GeneralTableau, Position, Ratio, RowRule, UPDATE_BLOCK};
+use crate::tableau::system::{EQUILIBRATION_PASSES, System};
 
-/// What the restricted-entry simplex returns before certification.
-pub(crate) struct Outcome {
+/// The answer of the restricted-entry simplex on a program, before
+/// certification.
+pub(crate) struct ProgramAnswer {
     /// Every original unknown, in original units.
     pub x: Vec<f64>,
     /// Basic original unknowns.
     pub basis: Vec<usize>,
-    pub statistics: Statistics,
+    /// The attempt's counts.
+    pub work: Work,
 }
 
-/// Solves a mixed LCP: on the symmetric tableau when it applies, else (or
-/// when that attempt breaks down) by [`solve_general`].
-pub(crate) fn solve_mixed(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
-    // The contact form with a symmetric M: the same rule on the symmetric
-    // tableau; what it cannot finish goes on below, its pivots counted.
-    let before = match swept_simplex::applies(p, opts) {
-        Some(load) => match swept_simplex::solve(p, opts, load) {
-            Ok(raw) => return Ok(raw),
-            Err(stats) => Some(stats),
-        },
-        None => None,
-    };
-    let mut result = solve_general(p, opts);
-    if let (Ok(raw), Some(before)) = (&mut result, before) {
-        raw.statistics.absorb(&before);
-    }
-    result
-}
-
-/// Solves a mixed LCP by writing it as a program:
-/// `-M z - B u + w = q`, `C z + D u = -r`, pairs `(z_i, w_i)`.
-///
-/// The restricted-entry rule can stall in phase 1 when an extra unknown is
-/// non-negative (its convergence theory is for free multipliers): the
-/// problem is then solved with the extra unknowns free, and that answer
-/// kept when they come out non-negative, which makes it a solution of this
-/// problem too (`Statistics::retried`, the pivots of both attempts);
-/// otherwise the first error stands.
-fn solve_general(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
-    match solve_as_given(p, opts) {
-        Err(first @ LcpError::Infeasible { pivot, .. })
-            if p.bounds.contains(&Bound::NonNegative) =>
-        {
-            let free = vec![Bound::Free; p.bounds.len()];
-            let relaxed = MixedLcpRef {
-                bounds: &free,
-                ..*p
-            };
-            match solve_as_given(&relaxed, opts) {
-                Ok(mut raw) if extras_admissible(p.bounds, &raw.u, &opts.tolerances) => {
-                    raw.statistics.pivots += pivot;
-                    raw.statistics.retried = true;
-                    Ok(raw)
-                }
-                _ => Err(first),
-            }
-        }
-        other => other,
-    }
-}
-
-/// Whether every non-negative extra unknown of `u` is, to the zero
-/// tolerance of `u`'s scale.
-fn extras_admissible(bounds: &[Bound], u: &Col<f64>, tol: &Tolerances) -> bool {
-    let scale = norm_inf(u.as_ref()).max(f64::MIN_POSITIVE);
-    bounds
-        .iter()
-        .zip(u.iter())
-        .all(|(b, &v)| *b == Bound::Free || v >= -tol.zero * scale)
-}
-
-/// [`solve_mixed`] with the extra unknowns' bounds as given.
-fn solve_as_given(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, LcpError> {
-    let n = p.size();
-    let k = p.extras();
-    let me = p.equalities();
+/// The restricted-entry simplex on the program of a mixed problem; with
+/// `relaxed`, every extra unknown free (the strategy's answer to a stalled
+/// phase 1 with non-negative extra unknowns: an answer whose extras come out
+/// non-negative solves the problem as given, which its certificate checks).
+pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options, relaxed: bool) -> Attempted {
+    let p = &problem.mixed;
+    let (n, k, me) = (p.size(), p.extras(), p.equalities());
     let rows = n + me;
     let mut dense = Mat::<f64>::zeros(rows, n + k);
     for j in 0..n {
@@ -138,7 +83,11 @@ fn solve_as_given(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, Lc
     let mut columns: Vec<Column> = (0..n + k).map(Column::Dense).collect();
     columns.extend((0..n).map(|i| Column::Unit { row: i, coef: 1.0 }));
     let mut bounds = vec![Bound::NonNegative; n];
-    bounds.extend_from_slice(p.bounds);
+    if relaxed {
+        bounds.extend(std::iter::repeat_n(Bound::Free, k));
+    } else {
+        bounds.extend_from_slice(p.bounds);
+    }
     bounds.extend(std::iter::repeat_n(Bound::NonNegative, n));
     let mut complement: Vec<Option<usize>> = (0..n).map(|i| Some(n + k + i)).collect();
     complement.extend(std::iter::repeat_n(None, k));
@@ -155,12 +104,28 @@ fn solve_as_given(p: &MixedLcpRef<'_>, opts: &Options) -> Result<RawSolution, Lc
             basic[v] = true;
         }
     }
-    Ok(RawSolution {
+    Ok(Answer {
         z: Col::from_fn(n, |i| out.x[i]),
         u: Col::from_fn(k, |j| out.x[n + j]),
         basic,
-        statistics: out.statistics,
+        work: out.work,
     })
+}
+
+/// The restricted-entry simplex on a program (its dense block copied).
+pub(crate) fn attempt_program(
+    p: &ComplementaryProgram,
+    opts: &Options,
+) -> Result<ProgramAnswer, Failure> {
+    run_with(p, p.dense.clone(), opts)
+}
+
+/// An entering candidate: its column, its direction (+1 up, -1 down for a
+/// free unknown) and the improvement rate of its reduced cost.
+struct Candidate {
+    column: usize,
+    sigma: f64,
+    gain: f64,
 }
 
 /// Which objective row a phase works on.
@@ -172,14 +137,15 @@ enum Phase {
     Objective,
 }
 
+/// The state of one run of the simplex.
 struct Run<'a> {
     sys: System,
-    tab: Tableau,
+    tab: GeneralTableau,
     bounds: Vec<Bound>,
     complement: &'a [Option<usize>],
     artificial: Vec<bool>,
     deferred: Vec<bool>,
-    stats: Statistics,
+    work: Work,
     opts: &'a Options,
     zero_level: f64,
     limit: usize,
@@ -187,21 +153,19 @@ struct Run<'a> {
     names: &'a ComplementaryProgram,
 }
 
-/// Runs the restricted-entry simplex on a program.
-pub(crate) fn run(p: &ComplementaryProgram, opts: &Options) -> Result<Outcome, LcpError> {
-    run_with(p, p.dense.clone(), opts)
+/// The program's constraints scaled for pivoting: negative right-hand
+/// sides negated, equilibrated, and the initial basis (a `+1` slack of a
+/// non-negative unknown, else an artificial appended).
+struct Setup {
+    sys: System,
+    basis: Vec<usize>,
+    bounds: Vec<Bound>,
+    artificial: Vec<bool>,
 }
 
-/// [`run`] on the program's constraints with `dense` as its dense block
-/// (a copy of `p.dense`, or the block itself moved out of a one-use program).
-fn run_with(
-    p: &ComplementaryProgram,
-    dense: Mat<f64>,
-    opts: &Options,
-) -> Result<Outcome, LcpError> {
+fn setup(p: &ComplementaryProgram, dense: Mat<f64>, opts: &Options) -> Setup {
     let m = p.rows;
     let nv = p.columns.len();
-    let mut stats = Statistics::new(Method::RestrictedSimplex);
     let mut sys = System {
         rows: m,
         dense,
@@ -254,8 +218,6 @@ fn run_with(
         }
     }
     let total = sys.columns.len();
-    let mut deferred = p.deferred.clone();
-    deferred.resize(total, false);
     let phase1: Vec<f64> = artificial
         .iter()
         .map(|&a| if a { 1.0 } else { 0.0 })
@@ -268,10 +230,40 @@ fn run_with(
         }
         sys.costs.push(c2);
     }
+    Setup {
+        sys,
+        basis,
+        bounds,
+        artificial,
+    }
+}
+
+/// Runs the restricted-entry simplex on the program's constraints with
+/// `dense` as its dense block (a copy of `p.dense`, or the block itself
+/// moved out of a one-use program).
+fn run_with(
+    p: &ComplementaryProgram,
+    dense: Mat<f64>,
+    opts: &Options,
+) -> Result<ProgramAnswer, Failure> {
+    let m = p.rows;
+    let nv = p.columns.len();
+    let Setup {
+        sys,
+        basis,
+        bounds,
+        artificial,
+    } = setup(p, dense, opts);
+    let total = sys.columns.len();
+    let mut deferred = p.deferred.clone();
+    deferred.resize(total, false);
     let par = opts.par(m, total - m + 1);
-    let tab = Tableau::from_identity(&sys, basis, par, UPDATE_BLOCK);
-    stats.tableau_rows = m;
-    stats.tableau_columns = total - m + 1;
+    let tab = GeneralTableau::from_identity(&sys, basis, par, UPDATE_BLOCK);
+    let work = Work {
+        tableau_rows: m,
+        tableau_columns: total - m + 1,
+        ..Work::default()
+    };
     let zero_level = opts.tolerances.zero * norm_inf(sys.b.as_ref()).max(f64::MIN_POSITIVE);
     let mut run = Run {
         sys,
@@ -280,52 +272,33 @@ fn run_with(
         complement: &p.complement,
         artificial,
         deferred,
-        stats,
+        work,
         opts,
         zero_level,
         limit: opts.pivot_limit(m, nv),
         refactor_every: opts.refactor_every(m),
         names: p,
     };
-    // 3. Free unknowns enter first.
-    run.enter_free()?;
-    // 4-5. Phase 1.
-    let artificials = run.artificial.iter().filter(|a| **a).count();
-    let stop = run.zero_level * artificials.max(1) as f64;
-    run.iterate(Phase::Feasibility, stop)?;
-    let residual = run.tab.objective_value(0);
-    if residual > stop {
-        // One refactorization to rule out drift before declaring failure.
-        run.refactor()?;
-        run.iterate(Phase::Feasibility, stop)?;
-        let residual = run.tab.objective_value(0);
-        if residual > stop {
-            return Err(LcpError::Infeasible {
-                size: m,
-                pivot: run.stats.pivots,
-                residual: residual / norm_inf(run.sys.b.as_ref()).max(f64::MIN_POSITIVE),
-            });
-        }
-    }
-    // 6. Phase 2.
-    if p.cost.is_some() {
-        run.iterate(Phase::Objective, f64::NEG_INFINITY)?;
+    match run.phases(p.cost.is_some()) {
+        Ok(()) => {}
+        Err(e) => return Err(Failure::error(e, run.work)),
     }
     // Final basic solution from the data, refined.
-    let (xb, steps) = run
-        .sys
-        .basic_solution(
-            &run.tab.basic.clone(),
-            Some(&mut run.tab),
-            par,
-            opts.refinement_steps,
-        )
-        .map_err(|ratio| LcpError::SingularBasis {
-            size: m,
-            pivot: run.stats.pivots,
-            ratio,
-        })?;
-    run.stats.refinement_steps = steps;
+    let basis = run.tab.basic.clone();
+    let (xb, steps) = match basic_solution(
+        &run.sys,
+        &basis,
+        Some(&mut run.tab),
+        par,
+        opts.refinement_steps,
+    ) {
+        Ok(v) => v,
+        Err(singular) => {
+            let e = singular.at(m, run.work.pivots);
+            return Err(Failure::error(e, run.work));
+        }
+    };
+    run.work.refinement_steps = steps;
     let mut x = vec![0.0; nv];
     let mut basis = Vec::new();
     for (row, &var) in run.tab.basic.iter().enumerate() {
@@ -334,14 +307,40 @@ fn run_with(
             basis.push(var);
         }
     }
-    Ok(Outcome {
+    Ok(ProgramAnswer {
         x,
         basis,
-        statistics: run.stats,
+        work: run.work,
     })
 }
 
 impl Run<'_> {
+    /// Steps 3 to 6: the free unknowns enter, phase 1, and phase 2 when
+    /// the program has an objective.
+    fn phases(&mut self, objective: bool) -> Result<(), LcpError> {
+        self.enter_free()?;
+        let artificials = self.artificial.iter().filter(|a| **a).count();
+        let stop = self.zero_level * artificials.max(1) as f64;
+        self.iterate(Phase::Feasibility, stop)?;
+        if self.tab.objective_value(0) > stop {
+            // One refactorization to rule out drift before declaring failure.
+            self.refactor()?;
+            self.iterate(Phase::Feasibility, stop)?;
+            let residual = self.tab.objective_value(0);
+            if residual > stop {
+                return Err(LcpError::Infeasible {
+                    size: self.tab.m,
+                    pivot: self.work.pivots,
+                    residual: residual / norm_inf(self.sys.b.as_ref()).max(f64::MIN_POSITIVE),
+                });
+            }
+        }
+        if objective {
+            self.iterate(Phase::Objective, f64::NEG_INFINITY)?;
+        }
+        Ok(())
+    }
+
     fn rule(&self, phase: Phase) -> impl Fn(usize) -> RowRule + '_ {
         move |i| {
             let v = self.tab.basic[i];
@@ -358,18 +357,18 @@ impl Run<'_> {
     fn pivot(&mut self, ratio: Ratio, col: usize) -> Result<(), LcpError> {
         // At most `limit` pivots: refuse the one after (not the last one,
         // which may finish the solve; Lemke's method counts the same way).
-        if self.stats.pivots >= self.limit {
+        if self.work.pivots >= self.limit {
             return Err(LcpError::PivotLimit {
                 size: self.tab.m,
                 limit: self.limit,
             });
         }
         if ratio.theta == 0.0 {
-            self.stats.degenerate_pivots += 1;
+            self.work.degenerate_pivots += 1;
         }
         self.tab.pivot(ratio.row, col, ratio.column);
-        self.stats.pivots += 1;
-        if self.refactor_every > 0 && self.stats.pivots.is_multiple_of(self.refactor_every) {
+        self.work.pivots += 1;
+        if self.refactor_every > 0 && self.work.pivots.is_multiple_of(self.refactor_every) {
             self.refactor()?;
         }
         Ok(())
@@ -378,12 +377,8 @@ impl Run<'_> {
     fn refactor(&mut self) -> Result<(), LcpError> {
         self.tab
             .refactor(&self.sys)
-            .map_err(|ratio| LcpError::SingularBasis {
-                size: self.tab.m,
-                pivot: self.stats.pivots,
-                ratio,
-            })?;
-        self.stats.refactorizations += 1;
+            .map_err(|singular| singular.at(self.tab.m, self.work.pivots))?;
+        self.work.refactorizations += 1;
         Ok(())
     }
 
@@ -479,18 +474,24 @@ impl Run<'_> {
         free_ok: impl Fn(f64) -> bool,
     ) -> Result<Option<(Ratio, usize)>, LcpError> {
         let tol = self.opts.tolerances;
-        let mut cands: Vec<(usize, f64, f64)> = Vec::new();
-        for j in 0..self.tab.n() {
-            let var = self.tab.nonbasic[j];
+        let mut cands: Vec<Candidate> = Vec::new();
+        for column in 0..self.tab.n() {
+            let var = self.tab.nonbasic[column];
             if self.artificial[var] || (self.deferred[var] && phase == Phase::Feasibility) {
                 continue;
             }
-            let d = self.tab.reduced_cost(k, j);
+            let d = self.tab.reduced_cost(k, column);
             match self.bounds[var] {
-                Bound::NonNegative if nonneg_ok(d) => cands.push((j, 1.0, -d)),
-                Bound::Free if free_ok(d) => {
-                    cands.push((j, if d > 0.0 { -1.0 } else { 1.0 }, d.abs()))
-                }
+                Bound::NonNegative if nonneg_ok(d) => cands.push(Candidate {
+                    column,
+                    sigma: 1.0,
+                    gain: -d,
+                }),
+                Bound::Free if free_ok(d) => cands.push(Candidate {
+                    column,
+                    sigma: if d > 0.0 { -1.0 } else { 1.0 },
+                    gain: d.abs(),
+                }),
                 _ => {}
             }
         }
@@ -499,9 +500,11 @@ impl Run<'_> {
         // out one by one rather than sorted (a sort per pivot cost more than
         // the pivot's own bookkeeping).
         let better =
-            |a: &(usize, f64, f64), b: &(usize, f64, f64)| b.2.total_cmp(&a.2).then(a.0.cmp(&b.0));
+            |a: &Candidate, b: &Candidate| b.gain.total_cmp(&a.gain).then(a.column.cmp(&b.column));
         while let Some(best) = (0..cands.len()).min_by(|&x, &y| better(&cands[x], &cands[y])) {
-            let (j, sigma, _) = cands.swap_remove(best);
+            let Candidate {
+                column: j, sigma, ..
+            } = cands.swap_remove(best);
             let var = self.tab.nonbasic[j];
             let prefer = self.complement[var].and_then(|c| match self.tab.position[c] {
                 Position::Basic(r) => Some(r),
@@ -517,7 +520,7 @@ impl Run<'_> {
                 None if phase == Phase::Objective => {
                     return Err(LcpError::Unbounded {
                         size: self.tab.m,
-                        pivot: self.stats.pivots,
+                        pivot: self.work.pivots,
                         entering: self.names.name(var),
                     });
                 }

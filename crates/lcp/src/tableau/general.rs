@@ -40,7 +40,7 @@ use faer::linalg::matmul::matmul;
 use faer::prelude::*;
 use faer::{Accum, Col, Mat, Par, Row};
 
-use crate::system::{BasisFactor, System};
+use crate::tableau::system::{BasisFactor, Singular, System};
 use crate::tolerance::Tolerances;
 
 /// Where a variable stands in the tableau.
@@ -74,29 +74,48 @@ pub(crate) struct Ratio {
     pub column: Col<f64>,
 }
 
+/// A row that limits the entering variable in a ratio test.
+struct Limit {
+    row: usize,
+    /// The step at which its basic value reaches its bound.
+    theta: f64,
+    /// The magnitude of its pivot entry.
+    pivot: f64,
+    /// Whether its basic value is held at exactly 0 (an artificial).
+    fixed: bool,
+    /// Its basic value (0 at or below the zero level).
+    value: f64,
+}
+
+/// A row tied on the step length, for the lexicographic rule.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Tied {
+    /// The row.
+    pub row: usize,
+    /// The magnitude of its pivot entry (the rule's divisor).
+    pub pivot: f64,
+}
+
 /// Pivots kept as a delayed rank-k correction before it is applied to the
 /// whole tableau by one matrix product. The product costs `2 rows cols`
 /// flops per pivot whatever the block, but reads and writes all of `T0`
 /// once per block; a larger block costs more per read of a column or row
 /// (`rows k`, `cols k`). The restricted-entry simplex reads several
-/// candidate columns per pivot and keeps 64: at 128 the roller design LP
-/// (2203 rows) took 0.95 s per start against 0.72 s (`cargo run --release
-/// --example crowned_roller` with this constant changed; one measurement on
-/// 2026-11-23, not stored).
+/// candidate columns per pivot: 64 suits it (128 was slower on the
+/// crowned roller's design program, 2203 rows).
 pub(crate) const UPDATE_BLOCK: usize = 64;
 
 /// The block for Lemke's method, which reads one column and one row per
-/// pivot, by the tableau's row count. Measured with `scaling_probe --method
-/// lemke` (Hertz, Love patches, 2-core Zen 4; one set of runs on
-/// 2026-11-23 with the threshold changed, not stored): at N = 529 and 1009,
-/// 64 beat 128 by 20-35 %; at N = 1961 and 4053, 128 beat 64 by about 10 %
-/// (the product's pass over `T0`, 31 MB at N = 1961, is bound by memory).
+/// pivot, by the tableau's row count: 64 while the tableau stays in cache,
+/// 128 from 1500 rows up, where the product's pass over `T0` (31 MB at
+/// N = 1961) is bound by memory and fewer passes pay (`scaling_probe
+/// --method lemke`, Hertz on Love patches, 2-core Zen 4).
 pub(crate) fn lemke_update_block(rows: usize) -> usize {
     if rows >= 1500 { 128 } else { UPDATE_BLOCK }
 }
 
 /// The compact tableau, as `T = T0 - U V^T` (see the module documentation).
-pub(crate) struct Tableau {
+pub(crate) struct GeneralTableau {
     /// `T0`: `(m + objectives) x (n_N + 1)`; the last column is `b̄`.
     t0: Mat<f64>,
     /// The delayed updates' left factors, `(m + objectives) x block`.
@@ -124,7 +143,7 @@ pub(crate) struct Tableau {
     pub par: Par,
 }
 
-impl Tableau {
+impl GeneralTableau {
     /// Builds the tableau of an initial basis whose columns in `system` are
     /// `+1` unit columns (an identity after ordering by row): `T = -A_N`,
     /// `b̄ = b`, and one objective row per cost vector of the system; `block`
@@ -440,31 +459,42 @@ impl Tableau {
             return None;
         }
         let piv = tol.pivot * colmax;
-        // (row, theta, pivot magnitude, fixed, basic value)
-        let mut cand: Vec<(usize, f64, f64, bool, f64)> = Vec::new();
+        let mut cand: Vec<Limit> = Vec::new();
         let mut theta_min = f64::INFINITY;
-        for i in 0..m {
-            let (theta, a, fixed, b) = match rule(i) {
+        for row in 0..m {
+            let limit = match rule(row) {
                 RowRule::Skip => continue,
                 RowRule::Bounded => {
-                    let a = -sigma * col[i];
-                    if a <= piv {
+                    let pivot = -sigma * col[row];
+                    if pivot <= piv {
                         continue;
                     }
-                    let b = self.rhs(i);
-                    let b = if b <= zero_level { 0.0 } else { b };
-                    (b / a, a, false, b)
+                    let value = self.rhs(row);
+                    let value = if value <= zero_level { 0.0 } else { value };
+                    Limit {
+                        row,
+                        theta: value / pivot,
+                        pivot,
+                        fixed: false,
+                        value,
+                    }
                 }
                 RowRule::Fixed => {
-                    let a = col[i].abs();
-                    if a <= piv {
+                    let pivot = col[row].abs();
+                    if pivot <= piv {
                         continue;
                     }
-                    (0.0, a, true, 0.0)
+                    Limit {
+                        row,
+                        theta: 0.0,
+                        pivot,
+                        fixed: true,
+                        value: 0.0,
+                    }
                 }
             };
-            theta_min = theta_min.min(theta);
-            cand.push((i, theta, a, fixed, b));
+            theta_min = theta_min.min(limit.theta);
+            cand.push(limit);
         }
         if cand.is_empty() {
             return None;
@@ -475,11 +505,10 @@ impl Tableau {
         // zero with the step is a leaving candidate whatever its rounding.
         // (|theta_min|: a basic value that drifted below the zero level
         // gives a negative least step, which must tie with itself.)
-        let limit = theta_min + tol.tie * theta_min.abs();
-        let ties: Vec<(usize, f64, bool)> = cand
+        let bound = theta_min + tol.tie * theta_min.abs();
+        let ties: Vec<Limit> = cand
             .into_iter()
-            .filter(|c| c.1 <= limit || c.4 - theta_min * c.2 <= zero_level)
-            .map(|c| (c.0, c.2, c.3))
+            .filter(|c| c.theta <= bound || c.value - theta_min * c.pivot <= zero_level)
             .collect();
         if ties.is_empty() {
             // Every ratio is NaN (an overflow: the data's scale exceeds
@@ -492,31 +521,37 @@ impl Tableau {
             column: col,
         };
         if ties.len() == 1 {
-            return Some(pick(ties[0].0));
+            return Some(pick(ties[0].row));
         }
         if let Some(p) = prefer
-            && ties.iter().any(|t| t.0 == p)
+            && ties.iter().any(|t| t.row == p)
         {
             return Some(pick(p));
         }
         // An artificial held at zero leaves first: it must not become positive.
         if let Some(best) = ties
             .iter()
-            .filter(|t| t.2)
-            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .filter(|t| t.fixed)
+            .max_by(|a, b| a.pivot.total_cmp(&b.pivot))
         {
-            return Some(pick(best.0));
+            return Some(pick(best.row));
         }
-        let first = ties[0].0;
-        let rows = ties.into_iter().map(|t| (t.0, t.1)).collect();
+        let first = ties[0].row;
+        let rows = ties
+            .into_iter()
+            .map(|t| Tied {
+                row: t.row,
+                pivot: t.pivot,
+            })
+            .collect();
         Some(pick(self.lex_select(rows, tol).unwrap_or(first)))
     }
 
     /// Among rows tied on the step length, the one whose row of `B^{-1}`
-    /// divided by its pivot magnitude (`rows` = (row, divisor)) is
-    /// lexicographically smallest; numerically indistinguishable rows go to
-    /// the largest divisor (the stablest pivot). `None` only for no row.
-    pub fn lex_select(&self, mut rows: Vec<(usize, f64)>, tol: &Tolerances) -> Option<usize> {
+    /// divided by its pivot magnitude is lexicographically smallest;
+    /// numerically indistinguishable rows go to the largest pivot (the
+    /// stablest). `None` only for no row.
+    pub fn lex_select(&self, mut rows: Vec<Tied>, tol: &Tolerances) -> Option<usize> {
         for k in 0..self.reference.len() {
             if rows.len() <= 1 {
                 break;
@@ -524,22 +559,22 @@ impl Tableau {
             // A reference variable basic outside the tied rows has a zero in
             // each of them: no decision, and no need to read the tableau.
             if let Position::Basic(row) = self.position[self.reference[k]]
-                && rows.iter().all(|&(i, _)| i != row)
+                && rows.iter().all(|t| t.row != row)
             {
                 continue;
             }
             let vals: Vec<f64> = rows
                 .iter()
-                .map(|&(i, a)| self.basis_inverse(i, k) / a)
+                .map(|t| self.basis_inverse(t.row, k) / t.pivot)
                 .collect();
             let vmin = vals.iter().cloned().fold(f64::INFINITY, f64::min);
             let vscale = vals.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             let keep = vmin + tol.tie * vscale;
-            let kept: Vec<(usize, f64)> = rows
+            let kept: Vec<Tied> = rows
                 .iter()
                 .zip(&vals)
                 .filter(|(_, v)| **v <= keep)
-                .map(|(r, _)| *r)
+                .map(|(t, _)| *t)
                 .collect();
             // A level that keeps no row (non-finite entries) decides nothing.
             if !kept.is_empty() {
@@ -547,16 +582,16 @@ impl Tableau {
             }
         }
         rows.iter()
-            .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
-            .map(|r| r.0)
+            .max_by(|a, b| a.pivot.total_cmp(&b.pivot).then(b.row.cmp(&a.row)))
+            .map(|t| t.row)
     }
 
     /// Recomputes the whole tableau from the system's data for the current
     /// basis: `T = -B^{-1} A_N`, `b̄ = B^{-1} b`, objective rows from the costs.
     /// `B` is factored through its unit columns ([`BasisFactor`]). Returns the
-    /// LU pivot ratio (small = ill-conditioned) or an error ratio when `B` is
-    /// singular.
-    pub fn refactor(&mut self, system: &System) -> Result<f64, f64> {
+    /// LU pivot ratio (small = ill-conditioned), or `Err` when `B` is
+    /// numerically singular.
+    pub fn refactor(&mut self, system: &System) -> Result<f64, Singular> {
         let m = self.m;
         let n = self.nonbasic.len();
         let factor = BasisFactor::new(system, &self.basic, self.par)?;

@@ -12,26 +12,36 @@
 use faer::prelude::*;
 use faer::{Col, Mat, MatMut, Par};
 
-use crate::LcpError;
-use crate::dense::Lu;
-use crate::tableau::Tableau;
+use crate::linalg::Lu;
+pub(crate) use crate::program::Column;
+use crate::tolerance::ROUNDING_LEVEL;
 
 /// Most geometric-mean passes of the equilibration (two bring a spread of
 /// 1e11 between blocks down to the data's own; Ruiz passes finish).
 const GEOMETRIC_PASSES: usize = 4;
 
-/// One column of `A`.
+/// Most Ruiz passes of the equilibration (it stops earlier once every row
+/// and column maximum is within a factor 2 of 1).
+pub(crate) const EQUILIBRATION_PASSES: usize = 40;
+
+/// A basis, or a block, that is numerically singular: its LU's smallest
+/// over largest pivot magnitude (0 when a row is covered twice).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Column {
-    /// Column `j` of the dense block.
-    Dense(usize),
-    /// `coef * e_row`.
-    Unit {
-        /// The row of the single non-zero.
-        row: usize,
-        /// Its value.
-        coef: f64,
-    },
+pub(crate) struct Singular {
+    /// Smallest over largest magnitude on U's diagonal.
+    pub ratio: f64,
+}
+
+impl Singular {
+    /// The engine's error for a singular basis met at `pivot` in a tableau
+    /// of `size` rows.
+    pub fn at(self, size: usize, pivot: usize) -> crate::LcpError {
+        crate::LcpError::SingularBasis {
+            size,
+            pivot,
+            ratio: self.ratio,
+        }
+    }
 }
 
 /// `A x = b` with optional cost vectors (one per objective row).
@@ -383,65 +393,8 @@ impl System {
         }
     }
 
-    /// Solves `B x_B = b` for the basis `basis` (variables, in row order) from
-    /// this system's data, with up to `max_steps` steps of iterative
-    /// refinement. Returns `x_B` and the number of refinement steps taken;
-    /// `Err` holds the LU pivot ratio of a singular basis.
-    ///
-    /// With a `tableau` for this basis, [`refine_from_tableau`](Self::refine_from_tableau)
-    /// runs first: a matrix-vector product per step instead of an LU of the
-    /// basis. The LU path runs when it declines (a basis near singularity)
-    /// or does not bring the backward error to a few units of rounding
-    /// ([`TABLEAU_ACCEPT`]: a tableau that drifted); the better of the two
-    /// iterates is kept.
-    pub fn basic_solution(
-        &self,
-        basis: &[usize],
-        tableau: Option<&mut Tableau>,
-        par: Par,
-        max_steps: usize,
-    ) -> Result<(Col<f64>, usize), f64> {
-        let from_tableau =
-            match tableau.and_then(|tab| self.refine_from_tableau(basis, tab, max_steps)) {
-                Some((x, error, steps)) if error <= TABLEAU_ACCEPT => return Ok((x, steps)),
-                other => other,
-            };
-        // Rejects a basis whose LU pivot ratio is at or below d u.
-        let factor = BasisFactor::new(self, basis, par)?;
-        let mut x = self.b.clone();
-        factor.solve_in_place(x.as_mat_mut(), par);
-        let (x, error, steps) = self.refine_basic(basis, x, max_steps, |r| {
-            factor.solve_in_place(r.as_mat_mut(), par);
-        });
-        Ok(match from_tableau {
-            Some((y, e, s)) if e < error => (y, s),
-            _ => (x, steps),
-        })
-    }
-
-    /// The basic solution refined from the tableau's right-hand side with
-    /// the `B^{-1}` the tableau holds ([`Tableau::solve_basis`]): the best
-    /// iterate, its componentwise backward error and the steps taken. `None`
-    /// for a basis near singularity (a reciprocal condition estimate
-    /// `1 / (|B|_1 |B^{-1}|_1)` at or below `m u`), on which refinement can
-    /// reach a small backward error and a meaningless answer: the LU path
-    /// then decides.
-    pub(crate) fn refine_from_tableau(
-        &self,
-        basis: &[usize],
-        tab: &mut Tableau,
-        max_steps: usize,
-    ) -> Option<(Col<f64>, f64, usize)> {
-        let rcond = 1.0 / (self.basis_norm_1(basis) * tab.basis_inverse_norm_1());
-        if rcond <= f64::EPSILON * self.rows as f64 {
-            return None;
-        }
-        let x = Col::from_fn(self.rows, |i| tab.rhs(i));
-        Some(self.refine_basic(basis, x, max_steps, |r| tab.solve_basis(r)))
-    }
-
     /// `|B|_1`, the largest column sum of the basis's magnitudes.
-    fn basis_norm_1(&self, basis: &[usize]) -> f64 {
+    pub(crate) fn basis_norm_1(&self, basis: &[usize]) -> f64 {
         basis
             .iter()
             .map(|&v| match self.columns[v] {
@@ -458,13 +411,13 @@ impl System {
     /// different scales, a force balance beside a compatibility row in
     /// length, must all be accurate), or stops improving, or after
     /// `max_steps`. Returns the best iterate, its error and the steps taken.
-    fn refine_basic(
+    pub(crate) fn refine_basic(
         &self,
         basis: &[usize],
         mut x: Col<f64>,
         max_steps: usize,
         mut solve: impl FnMut(&mut Col<f64>),
-    ) -> (Col<f64>, f64, usize) {
+    ) -> Refined {
         let m = self.rows;
         let (mut best, mut best_error) = (x.clone(), f64::INFINITY);
         let mut steps = 0;
@@ -494,19 +447,23 @@ impl System {
             x += &res;
             steps += 1;
         }
-        (best, best_error, steps)
+        Refined {
+            x: best,
+            error: best_error,
+            steps,
+        }
     }
 }
 
-/// A componentwise backward error at rounding level.
-const ROUNDING_LEVEL: f64 = 2.0 * f64::EPSILON;
-
-/// The backward error at which the tableau's solution is kept: a few units
-/// of rounding. Refinement plateaus there whichever `B^{-1}` corrects it (the
-/// residual itself is computed in floating point): on the stability report's
-/// cases both the tableau and the LU path ended between 0.2 and 12 u (printed
-/// once with a temporary trace on 2026-11-23, not stored).
-const TABLEAU_ACCEPT: f64 = 64.0 * f64::EPSILON;
+/// A refined basic solution.
+pub(crate) struct Refined {
+    /// The best iterate.
+    pub x: Col<f64>,
+    /// Its componentwise backward error.
+    pub error: f64,
+    /// The refinement steps taken.
+    pub steps: usize,
+}
 
 /// A factorization of a basis `B` (columns of `A` for the basic variables,
 /// in row order) that exploits its unit columns: a unit column `coef e_i`
@@ -535,9 +492,9 @@ pub(crate) struct BasisFactor {
 }
 
 impl BasisFactor {
-    /// Factors the basis `basis` of `system`; `Err(ratio)` when it is
-    /// numerically singular (a row covered twice, or a singular B_dd).
-    pub(crate) fn new(system: &System, basis: &[usize], par: Par) -> Result<Self, f64> {
+    /// Factors the basis `basis` of `system`; `Err` when it is numerically
+    /// singular (a row covered twice, or a singular B_dd).
+    pub(crate) fn new(system: &System, basis: &[usize], par: Par) -> Result<Self, Singular> {
         let m = system.rows;
         let mut covered = vec![false; m];
         let (mut dense_slots, mut units) = (Vec::new(), Vec::new());
@@ -552,7 +509,7 @@ impl BasisFactor {
         }
         let dense_rows: Vec<usize> = (0..m).filter(|&i| !covered[i]).collect();
         if dense_rows.len() != dense_slots.len() {
-            return Err(0.0);
+            return Err(Singular { ratio: 0.0 });
         }
         let d = dense_slots.len();
         // Each dense column is written once into a scratch column and split
@@ -572,8 +529,8 @@ impl BasisFactor {
         let (lu, pivot_ratio) = if d > 0 {
             let lu = Lu::new(bdd, par);
             let ratio = lu.pivot_ratio;
-            if ratio <= f64::EPSILON * d as f64 {
-                return Err(ratio);
+            if lu.is_singular() {
+                return Err(Singular { ratio });
             }
             (Some(lu), ratio)
         } else {
@@ -617,134 +574,5 @@ impl BasisFactor {
                 y[(slot, j)] = yu[(u, j)] / coef;
             }
         }
-    }
-}
-
-/// Checks a matrix for NaN/inf, naming the field.
-pub(crate) fn check_finite_mat(
-    field: &'static str,
-    a: faer::MatRef<'_, f64>,
-) -> Result<(), LcpError> {
-    match crate::dense::first_non_finite(a) {
-        Some((index, value)) => Err(LcpError::NonFinite {
-            field,
-            index,
-            value,
-        }),
-        None => Ok(()),
-    }
-}
-
-/// Checks a vector for NaN/inf, naming the field.
-pub(crate) fn check_finite_col(
-    field: &'static str,
-    a: faer::ColRef<'_, f64>,
-) -> Result<(), LcpError> {
-    for (index, &value) in a.iter().enumerate() {
-        if !value.is_finite() {
-            return Err(LcpError::NonFinite {
-                field,
-                index,
-                value,
-            });
-        }
-    }
-    Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::tableau::Position;
-
-    /// `[I, -M] x = q` with M = tridiag(-1, 4, -1) + a rank-one coupling
-    /// (non-symmetric), its identity basis pivoted to the dense columns of
-    /// the first `pivots` rows.
-    fn pivoted(n: usize, pivots: usize) -> (System, Tableau) {
-        let dense = Mat::from_fn(n, n, |i, j| {
-            let band = match i.abs_diff(j) {
-                0 => 4.0,
-                1 => -1.0,
-                _ => 0.0,
-            };
-            -(band + 0.1 * (i as f64 + 1.0) / (j as f64 + 2.0))
-        });
-        let columns = (0..n)
-            .map(|i| Column::Unit { row: i, coef: 1.0 })
-            .chain((0..n).map(Column::Dense))
-            .collect();
-        let system = System {
-            rows: n,
-            dense,
-            columns,
-            b: Col::from_fn(n, |i| 1.0 + (i as f64).sin()),
-            costs: Vec::new(),
-            col_scale: vec![1.0; 2 * n],
-            row_scale: vec![1.0; n],
-        };
-        let mut tab = Tableau::from_identity(&system, (0..n).collect(), Par::Seq, 64);
-        for r in 0..pivots {
-            let Position::Nonbasic(s) = tab.position[n + r] else {
-                unreachable!()
-            };
-            let column = tab.column(s);
-            tab.pivot(r, s, column);
-        }
-        (system, tab)
-    }
-
-    fn max_abs(v: &Col<f64>) -> f64 {
-        v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
-    }
-
-    #[test]
-    fn the_tableau_inverse_equals_an_lu_solve() {
-        let (system, mut tab) = pivoted(150, 100);
-        let basis = tab.basic.clone();
-        let factor = BasisFactor::new(&system, &basis, Par::Seq).unwrap();
-        let r = Col::from_fn(150, |i| (1.0 + i as f64).sqrt().sin());
-        let mut from_lu = r.clone();
-        factor.solve_in_place(from_lu.as_mat_mut(), Par::Seq);
-        let mut from_tableau = r.clone();
-        tab.solve_basis(&mut from_tableau);
-        let diff = max_abs(&(&from_lu - &from_tableau));
-        assert!(diff <= 1e-12 * max_abs(&from_lu), "{diff:e}");
-    }
-
-    #[test]
-    fn the_tableau_path_refines_a_perturbed_solution_to_the_lu_one() {
-        let (system, mut tab) = pivoted(150, 100);
-        let basis = tab.basic.clone();
-        let (lu, _) = system.basic_solution(&basis, None, Par::Seq, 3).unwrap();
-        // A right-hand side off by 1e-9 (relative): refinement must repair it.
-        tab.drift(1.0, 1.0 + 1e-9);
-        let (x, error, steps) = system.refine_from_tableau(&basis, &mut tab, 3).unwrap();
-        assert!(
-            steps >= 1 && error <= TABLEAU_ACCEPT,
-            "{steps} steps, error {error:e}"
-        );
-        let diff = max_abs(&(&lu - &x));
-        assert!(diff <= 64.0 * f64::EPSILON * max_abs(&lu), "{diff:e}");
-        let (y, _) = system
-            .basic_solution(&basis, Some(&mut tab), Par::Seq, 3)
-            .unwrap();
-        assert_eq!(x, y);
-    }
-
-    #[test]
-    fn a_drifted_tableau_falls_back_to_the_lu_solution() {
-        let (system, mut tab) = pivoted(150, 100);
-        let basis = tab.basic.clone();
-        let (lu, _) = system.basic_solution(&basis, None, Par::Seq, 3).unwrap();
-        // Corrupt the tableau's B^{-1} and right-hand side far past what
-        // refinement can repair: its own answer is rejected.
-        tab.drift(3.0, 3.0);
-        let (_, error, _) = system.refine_from_tableau(&basis, &mut tab, 3).unwrap();
-        assert!(error > TABLEAU_ACCEPT, "{error:e}");
-        let (x, _) = system
-            .basic_solution(&basis, Some(&mut tab), Par::Seq, 3)
-            .unwrap();
-        let diff = max_abs(&(&lu - &x));
-        assert!(diff <= 64.0 * f64::EPSILON * max_abs(&lu), "{diff:e}");
     }
 }

@@ -1,0 +1,301 @@
+//! The choices of a solve: the method, the tableau, limits and tolerances.
+//!
+//! Every choice is explicit: the tableau a method runs on is
+//! [`Options::tableau`], never a side effect of another option.
+
+use faer::Par;
+
+use crate::LcpError;
+use crate::tolerance::Tolerances;
+
+/// A pivoting method of the engine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Method {
+    /// The restricted-entry (complementary) simplex of Wolfe (1959) as used by
+    /// Conry & Seireg (1971): phase 1 minimizes the sum of artificial
+    /// variables, and a variable may enter only if its complement is
+    /// non-basic or leaves at the same pivot. On the symmetric tableau
+    /// (a symmetric `M`, a border of one row, no initial interference) its
+    /// bases are a contact set and one point pinning the approach: the same
+    /// rule at half the update work, and a Cholesky of the contact block for
+    /// the final basic solution. Otherwise on the general tableau, which
+    /// also solves non-negative extra unknowns and any border.
+    RestrictedSimplex,
+    /// Lemke's complementary pivoting method (Lemke 1965). On the symmetric
+    /// tableau (a symmetric `M` with a positive diagonal, the standard form
+    /// or a border of k rigid-body rows): the parametric principal-pivoting
+    /// form of the path, half the update work and a Cholesky of the contact
+    /// block at the end. On the general tableau: a covering vector and a
+    /// lexicographic minimum-ratio test on the standard LCP with each free
+    /// unknown split in two.
+    Lemke,
+    /// Block principal pivoting (Júdice & Pires 1994) for a symmetric
+    /// positive definite `M`: guess the active set, solve the equilibrium on
+    /// it with a faer Cholesky, exchange every infeasible index at once,
+    /// safeguarded by single principal pivots. Not a tableau method; where
+    /// it breaks down (a principal block that is not positive definite, its
+    /// iteration cap) the strategy finishes by Lemke's method.
+    BlockPivoting,
+}
+
+impl Method {
+    /// Every method, in a stable order.
+    pub const ALL: [Method; 3] = [
+        Method::RestrictedSimplex,
+        Method::Lemke,
+        Method::BlockPivoting,
+    ];
+
+    /// The dense-tableau methods (they work for any matrix of their class).
+    pub const TABLEAU: [Method; 2] = [Method::RestrictedSimplex, Method::Lemke];
+
+    /// A short lower-case name ("restricted-simplex", "lemke", "block-pivoting").
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::RestrictedSimplex => "restricted-simplex",
+            Method::Lemke => "lemke",
+            Method::BlockPivoting => "block-pivoting",
+        }
+    }
+
+    /// The method of a name given by [`Method::name`].
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Which tableau a tableau method runs on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
+pub enum Tableau {
+    /// The symmetric tableau where the method and the problem allow it,
+    /// the general tableau otherwise and after a breakdown there; a retry
+    /// after a numerical failure runs on the general tableau.
+    #[default]
+    Auto,
+    /// Only the symmetric (swept) tableau: an error where it does not
+    /// apply, no fallback and no retry elsewhere.
+    Symmetric,
+    /// Only the general (Tucker) tableau.
+    General,
+}
+
+impl Tableau {
+    /// A short lower-case name ("auto", "symmetric", "general").
+    pub fn name(self) -> &'static str {
+        match self {
+            Tableau::Auto => "auto",
+            Tableau::Symmetric => "symmetric",
+            Tableau::General => "general",
+        }
+    }
+}
+
+/// Refactorization interval (pivots) of the retry after a numerical failure.
+const RETRY_REFACTOR: usize = 10;
+
+/// Refinement steps of the retry after a numerical failure.
+const RETRY_REFINEMENT: usize = 10;
+
+/// Options of a solve. `Options::default()` suits well-posed problems.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// The tableau of the tableau methods, and of block pivoting's
+    /// fallback (default [`Tableau::Auto`]).
+    pub tableau: Tableau,
+    /// The tableau methods stop with [`LcpError::PivotLimit`] when a solve
+    /// needs more than this many pivots (default: `20 (rows + unknowns) +
+    /// 100`); block pivoting takes at most this many iterations (default
+    /// `3 n + 50`) before it breaks down.
+    pub max_pivots: Option<usize>,
+    /// The general tableau is recomputed from the original data every this
+    /// many pivots (default: `max(100, rows)`; 0 disables periodic
+    /// refactorization; the final basic solution is always recomputed from
+    /// the data). The symmetric tableau does not refactor: its final
+    /// solution is computed from the data on the active set.
+    pub refactor_interval: Option<usize>,
+    /// Iterative-refinement steps of the final basic solution (default 3).
+    pub refinement_steps: usize,
+    /// The engine's relative tolerances.
+    pub tolerances: Tolerances,
+    /// Equilibrate rows and columns by powers of two before pivoting (default true).
+    pub equilibrate: bool,
+    /// Lemke's covering vector `d > 0` on the general tableau (default: all
+    /// ones in the equilibrated problem). Needs [`Tableau::General`]: the
+    /// symmetric tableau's covering vector is the approach's column.
+    pub covering_vector: Option<Vec<f64>>,
+    /// Parallelism of the pivots' rank-1 updates and of the factorizations
+    /// (default: `Par::Seq` below 250,000 tableau entries, all threads above).
+    pub parallelism: Option<Par>,
+    /// A warm start for block pivoting: `warm_start[i]` = `z_i` is expected
+    /// basic (e.g. [`LcpSolution::basic`](crate::LcpSolution::basic) of a
+    /// previous, similar solve).
+    pub warm_start: Option<Vec<bool>>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            tableau: Tableau::Auto,
+            max_pivots: None,
+            refactor_interval: None,
+            refinement_steps: 3,
+            tolerances: Tolerances::default(),
+            equilibrate: true,
+            covering_vector: None,
+            parallelism: None,
+            warm_start: None,
+        }
+    }
+}
+
+impl Options {
+    /// Checks the options on their own; `split_size` is the size of the
+    /// standard LCP Lemke's general tableau pivots on (the covering
+    /// vector's length).
+    pub(crate) fn validate(&self, split_size: usize) -> Result<(), LcpError> {
+        self.tolerances.validate()?;
+        if let Some(0) = self.max_pivots {
+            return Err(LcpError::InvalidOption {
+                field: "max_pivots",
+                value: "0".into(),
+                reason: "must be at least 1",
+            });
+        }
+        let Some(d) = &self.covering_vector else {
+            return Ok(());
+        };
+        if self.tableau != Tableau::General {
+            return Err(LcpError::InvalidOption {
+                field: "covering_vector",
+                value: format!("given with tableau = {}", self.tableau.name()),
+                reason: "a covering vector applies to the general tableau only: set `tableau` to General",
+            });
+        }
+        if d.len() != split_size {
+            return Err(LcpError::DimensionMismatch {
+                field: "covering_vector",
+                expected: split_size,
+                found: d.len(),
+                unit: "entries",
+            });
+        }
+        if let Some((index, &value)) = d
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(v.is_finite() && **v > 0.0))
+        {
+            return Err(LcpError::InvalidOption {
+                field: "covering_vector",
+                value: format!("entry {index} = {value}"),
+                reason: "every entry must be finite and > 0",
+            });
+        }
+        Ok(())
+    }
+
+    /// The pivot limit of a tableau with `rows` rows and `unknowns` unknowns.
+    pub(crate) fn pivot_limit(&self, rows: usize, unknowns: usize) -> usize {
+        self.max_pivots.unwrap_or(20 * (rows + unknowns) + 100)
+    }
+
+    /// The options of the one retry after a numerical failure: the general
+    /// tableau, refactored from the original data every `RETRY_REFACTOR`
+    /// pivots, refined harder. `None` when these options already are that
+    /// (the retry would repeat the same computation).
+    pub(crate) fn retry(&self) -> Option<Options> {
+        let refactor = self
+            .refactor_interval
+            .map_or(RETRY_REFACTOR, |r| r.min(RETRY_REFACTOR));
+        let steps = self.refinement_steps.max(RETRY_REFINEMENT);
+        let same = self.tableau == Tableau::General
+            && self.refactor_interval == Some(refactor)
+            && self.refinement_steps == steps;
+        (!same).then(|| Options {
+            tableau: Tableau::General,
+            refactor_interval: Some(refactor),
+            refinement_steps: steps,
+            ..self.clone()
+        })
+    }
+
+    /// Pivots between refactorizations of a general tableau of `rows` rows.
+    pub(crate) fn refactor_every(&self, rows: usize) -> usize {
+        self.refactor_interval.unwrap_or(rows.max(100))
+    }
+
+    /// The parallelism of work on a `rows x cols` matrix.
+    pub(crate) fn par(&self, rows: usize, cols: usize) -> Par {
+        self.parallelism.unwrap_or(if rows * cols > 250_000 {
+            Par::rayon(0)
+        } else {
+            Par::Seq
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_retry_is_the_general_tableau_refactored_or_none() {
+        let retry = Options::default().retry().expect("the defaults are looser");
+        assert_eq!(retry.tableau, Tableau::General);
+        assert_eq!(retry.refactor_interval, Some(RETRY_REFACTOR));
+        assert!(retry.refinement_steps >= RETRY_REFINEMENT);
+        // Options that already are the retry's: nothing to repeat.
+        assert!(retry.retry().is_none());
+        let tighter = Options {
+            tableau: Tableau::General,
+            refactor_interval: Some(5),
+            refinement_steps: 20,
+            ..Options::default()
+        };
+        assert!(tighter.retry().is_none());
+        // The same numbers on the symmetric tableau: the retry moves to the general one.
+        let symmetric = Options {
+            tableau: Tableau::Auto,
+            ..tighter.clone()
+        };
+        assert_eq!(symmetric.retry().unwrap().tableau, Tableau::General);
+        // A tighter refactorization is kept, the refinement raised.
+        let mixed = Options {
+            refactor_interval: Some(5),
+            refinement_steps: 1,
+            ..Options::default()
+        };
+        let retry = mixed.retry().expect("more refinement");
+        assert_eq!(retry.refactor_interval, Some(5));
+        assert_eq!(retry.refinement_steps, RETRY_REFINEMENT);
+    }
+
+    #[test]
+    fn a_covering_vector_needs_the_general_tableau() {
+        let auto = Options {
+            covering_vector: Some(vec![1.0]),
+            ..Options::default()
+        };
+        let e = auto.validate(1).unwrap_err();
+        assert!(e.to_string().contains("set `tableau` to General"), "{e}");
+        let general = Options {
+            tableau: Tableau::General,
+            ..auto
+        };
+        general.validate(1).unwrap();
+        assert!(matches!(
+            general.validate(2),
+            Err(LcpError::DimensionMismatch {
+                field: "covering_vector",
+                ..
+            })
+        ));
+    }
+}

@@ -1,0 +1,324 @@
+//! What a solve cost, attempt by attempt.
+//!
+//! A solve is a sequence of attempts chosen by the strategy
+//! (the `strategy` module): a method on one tableau, possibly a fallback after a
+//! breakdown, possibly a retry refactoring from the data after a failed
+//! certificate. [`Statistics`] keeps the log of those attempts, each with its
+//! own counts and [`Outcome`]; the totals (pivots, refactorizations, ...)
+//! are derived from the log, never kept by hand.
+
+use std::fmt;
+
+use crate::error::LcpError;
+use crate::options::{Method, Tableau};
+
+/// Why an attempt was made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Reason {
+    /// The first attempt of the method asked for.
+    First,
+    /// The attempt before it broke down: the next one on the route (the
+    /// general tableau after the symmetric one, Lemke's method after block
+    /// pivoting).
+    Fallback,
+    /// The restricted-entry simplex stalled in phase 1 with non-negative
+    /// extra unknowns: solved with them free, kept only when the answer
+    /// certifies against the original bounds.
+    RelaxedBounds,
+    /// A numerical failure (a certificate that did not hold, a singular
+    /// basis, a phase ending infeasible or unbounded, which rounding drift
+    /// can fake): solved once more on the general tableau, refactoring from
+    /// the original data every few pivots and refining harder.
+    Retry,
+}
+
+impl fmt::Display for Reason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Reason::First => "first",
+            Reason::Fallback => "fallback",
+            Reason::RelaxedBounds => "relaxed-bounds",
+            Reason::Retry => "retry",
+        })
+    }
+}
+
+/// How an attempt broke down (it returned no answer).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Breakdown {
+    /// A principal pivot or block that a positive definite `M` would not
+    /// give (a semidefinite influence matrix: a beam's clamped point), or a
+    /// load that stopped rising with the approach.
+    NotPositiveDefinite,
+    /// The border's Schur complement `C_J M_JJ^{-1} B_J` (k x k) is singular
+    /// on the active set: the contact set cannot carry the resultants.
+    SingularBorder,
+    /// No rigid position touches without interference under the given
+    /// resultants (the first-contact linear program has no solution), so
+    /// the parametric path has no start.
+    NoStart,
+    /// More steps of length zero in a row than the cap.
+    DegenerateRun,
+    /// A step, a value or a load that is not finite (data spanning more than
+    /// double precision).
+    NonFinite,
+    /// Nothing limits the path and it never reaches its end.
+    Ray,
+    /// No admissible entering candidate is left.
+    NoCandidate,
+    /// The final active set does not solve the problem from the original data.
+    ActiveSetRejected,
+    /// Block pivoting's iteration cap was reached.
+    IterationCap,
+    /// The engine's own error (pivot limit, singular basis, infeasible,
+    /// unbounded, ray termination).
+    Error(Box<LcpError>),
+}
+
+impl fmt::Display for Breakdown {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Breakdown::NotPositiveDefinite => {
+                f.write_str("a pivot a positive definite matrix would not give")
+            }
+            Breakdown::SingularBorder => {
+                f.write_str("the border's Schur complement is singular on the active set")
+            }
+            Breakdown::NoStart => f.write_str("no first contact: the path has no start"),
+            Breakdown::DegenerateRun => f.write_str("too many steps of length zero in a row"),
+            Breakdown::NonFinite => f.write_str("a step, value or load that is not finite"),
+            Breakdown::Ray => f.write_str("nothing limits the path"),
+            Breakdown::NoCandidate => f.write_str("no admissible candidate left"),
+            Breakdown::ActiveSetRejected => {
+                f.write_str("the final active set does not solve the problem from the data")
+            }
+            Breakdown::IterationCap => f.write_str("the iteration cap was reached"),
+            Breakdown::Error(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+/// How an attempt ended.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Outcome {
+    /// Its answer is the solution returned.
+    Returned,
+    /// It answered, but its answer was not returned: its certificate's
+    /// worst relative residual `worst` did not hold, or a later attempt's
+    /// certified better.
+    Rejected {
+        /// The worst relative residual of its certificate.
+        worst: f64,
+    },
+    /// It broke down without an answer.
+    Breakdown(Breakdown),
+}
+
+impl fmt::Display for Outcome {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Outcome::Returned => f.write_str("returned"),
+            Outcome::Rejected { worst } => write!(f, "rejected (certificate {worst:.1e})"),
+            Outcome::Breakdown(b) => write!(f, "breakdown: {b}"),
+        }
+    }
+}
+
+/// The counts of one attempt's work.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Work {
+    /// Pivots (basis exchanges; index exchanges for block pivoting).
+    pub pivots: usize,
+    /// Pivots whose step length was zero.
+    pub degenerate_pivots: usize,
+    /// Recomputations of the whole tableau from the original data.
+    pub refactorizations: usize,
+    /// Iterative-refinement steps of the final basic solution.
+    pub refinement_steps: usize,
+    /// Block iterations (block pivoting).
+    pub iterations: usize,
+    /// Matrix factorizations (Cholesky factors of active blocks; 1 for a
+    /// symmetric-tableau attempt, whose final solution is one Cholesky of
+    /// the contact block; 0 for the general tableau).
+    pub factorizations: usize,
+    /// Rows of the tableau pivoted on (0 for block pivoting).
+    pub tableau_rows: usize,
+    /// Columns of the tableau: non-basic unknowns plus the right-hand side.
+    pub tableau_columns: usize,
+}
+
+/// One attempt of a solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Attempt {
+    /// The method that ran.
+    pub method: Method,
+    /// The tableau it ran on ([`Tableau::Symmetric`] or
+    /// [`Tableau::General`]; `None` for block pivoting).
+    pub tableau: Option<Tableau>,
+    /// Why it ran.
+    pub reason: Reason,
+    /// Its counts.
+    pub work: Work,
+    /// Wall-clock seconds of the attempt (and of its certificate).
+    pub seconds: f64,
+    /// How it ended.
+    pub outcome: Outcome,
+}
+
+/// What a solve cost: the method asked for and the log of its attempts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Statistics {
+    /// The method asked for.
+    pub method: Method,
+    /// Every attempt, in order.
+    pub attempts: Vec<Attempt>,
+    /// Wall-clock seconds of the whole solve (setup, attempts, certificates).
+    pub seconds: f64,
+}
+
+impl Statistics {
+    /// An empty log for `method`.
+    pub(crate) fn new(method: Method) -> Self {
+        Self {
+            method,
+            attempts: Vec::new(),
+            seconds: 0.0,
+        }
+    }
+
+    fn total(&self, count: impl Fn(&Work) -> usize) -> usize {
+        self.attempts.iter().map(|a| count(&a.work)).sum()
+    }
+
+    /// Pivots of every attempt.
+    pub fn pivots(&self) -> usize {
+        self.total(|w| w.pivots)
+    }
+
+    /// Degenerate pivots of every attempt.
+    pub fn degenerate_pivots(&self) -> usize {
+        self.total(|w| w.degenerate_pivots)
+    }
+
+    /// Refactorizations of every attempt.
+    pub fn refactorizations(&self) -> usize {
+        self.total(|w| w.refactorizations)
+    }
+
+    /// Refinement steps of every attempt.
+    pub fn refinement_steps(&self) -> usize {
+        self.total(|w| w.refinement_steps)
+    }
+
+    /// Block iterations of every attempt.
+    pub fn iterations(&self) -> usize {
+        self.total(|w| w.iterations)
+    }
+
+    /// Factorizations of every attempt.
+    pub fn factorizations(&self) -> usize {
+        self.total(|w| w.factorizations)
+    }
+
+    /// The attempt whose answer was returned.
+    pub fn returned(&self) -> Option<&Attempt> {
+        self.attempts
+            .iter()
+            .find(|a| a.outcome == Outcome::Returned)
+    }
+
+    /// Whether the answer came from an attempt on the symmetric tableau.
+    pub fn symmetric_tableau(&self) -> bool {
+        self.returned()
+            .is_some_and(|a| a.tableau == Some(Tableau::Symmetric))
+    }
+
+    /// Whether the answer came from another method than the one asked for
+    /// (block pivoting finished by Lemke's method).
+    pub fn fell_back(&self) -> bool {
+        self.returned().is_some_and(|a| a.method != self.method)
+    }
+
+    /// Whether a retry ran (after a failed certificate or a numerical
+    /// breakdown).
+    pub fn retried(&self) -> bool {
+        self.attempts.iter().any(|a| a.reason == Reason::Retry)
+    }
+
+    /// Rows of the tableau of the returned attempt (0 for block pivoting).
+    pub fn tableau_rows(&self) -> usize {
+        self.returned().map_or(0, |a| a.work.tableau_rows)
+    }
+
+    /// Columns of the tableau of the returned attempt.
+    pub fn tableau_columns(&self) -> usize {
+        self.returned().map_or(0, |a| a.work.tableau_columns)
+    }
+}
+
+impl fmt::Display for Attempt {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let tableau = match self.tableau {
+            Some(t) => format!(" ({} tableau)", t.name()),
+            None => String::new(),
+        };
+        write!(
+            f,
+            "{}{tableau}, {}: {} pivots, {}",
+            self.method, self.reason, self.work.pivots, self.outcome
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn attempt(
+        method: Method,
+        tableau: Option<Tableau>,
+        pivots: usize,
+        outcome: Outcome,
+    ) -> Attempt {
+        Attempt {
+            method,
+            tableau,
+            reason: Reason::First,
+            work: Work {
+                pivots,
+                ..Work::default()
+            },
+            seconds: 0.0,
+            outcome,
+        }
+    }
+
+    #[test]
+    fn totals_and_flags_derive_from_the_log() {
+        let mut s = Statistics::new(Method::BlockPivoting);
+        s.attempts.push(attempt(
+            Method::BlockPivoting,
+            None,
+            7,
+            Outcome::Breakdown(Breakdown::NotPositiveDefinite),
+        ));
+        let mut lemke = attempt(
+            Method::Lemke,
+            Some(Tableau::Symmetric),
+            5,
+            Outcome::Returned,
+        );
+        lemke.reason = Reason::Fallback;
+        s.attempts.push(lemke);
+        assert_eq!(s.pivots(), 12);
+        assert!(s.fell_back() && s.symmetric_tableau() && !s.retried());
+        assert_eq!(s.returned().unwrap().work.pivots, 5);
+        assert_eq!(
+            s.attempts[1].to_string(),
+            "lemke (symmetric tableau), fallback: 5 pivots, returned"
+        );
+    }
+}

@@ -1,0 +1,657 @@
+//! The one owner of routing: which attempts a solve makes, in which order,
+//! and which retry follows. The methods (`crate::methods`) only attempt.
+//!
+//! A solve of `method` with [`Options::tableau`] follows a route:
+//!
+//! | method | route (`Tableau::Auto`) |
+//! |---|---|
+//! | Lemke | symmetric tableau (a symmetric `M` with a positive diagonal, standard or bordered), then the general tableau |
+//! | restricted simplex | symmetric tableau (a border of one row, `q >= 0`), then the general tableau; a general attempt that stalls in phase 1 with non-negative extra unknowns is followed by one with them free |
+//! | block pivoting | block pivoting, then Lemke's route (a principal block not positive definite, a singular border, the iteration cap) |
+//!
+//! `Tableau::Symmetric` keeps only the symmetric attempts (an error where
+//! they do not apply), `Tableau::General` only the general ones. The first
+//! attempt that answers is certified from the original data. Then, once:
+//! when its certificate does not hold, or the route ended at a singular
+//! basis or a phase ending infeasible or unbounded (which the tableau's
+//! drift can fake), the method's general tableau solves again, refactoring
+//! from the data every 10 pivots and refining harder ([`Options::retry`],
+//! not on an explicit symmetric tableau, nor where the options already are
+//! the retry's); of two answers the better certified is kept. An answer
+//! whose certificate does not hold is [`LcpError::Inaccurate`]; without
+//! an answer, the error of the route's last general attempt (which says
+//! what is wrong) stands. Every attempt is in [`Statistics::attempts`].
+//!
+//! Programs with complementarity constraints
+//! ([`ComplementaryProgram`](crate::ComplementaryProgram)) take the route of
+//! the restricted simplex's general tableau, with the same retry.
+
+use std::time::Instant;
+
+use faer::Col;
+
+use crate::LcpError;
+use crate::certificate::Certificate;
+use crate::methods::{
+    Answer, Failure, NotApplicable, block, lemke_general, lemke_symmetric, restricted_general,
+    restricted_symmetric,
+};
+use crate::options::{Method, Options, Tableau};
+use crate::problem::{BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedBorder, MixedLcp, Problem};
+use crate::program::ComplementaryProgram;
+use crate::solution::{LcpSolution, ProgramSolution};
+use crate::statistics::{Attempt, Breakdown, Outcome, Reason, Statistics, Work};
+
+/// One kind of attempt: a method on a tableau.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    LemkeSymmetric,
+    LemkeGeneral,
+    RestrictedSymmetric,
+    RestrictedGeneral,
+    BlockPivoting,
+}
+
+impl Kind {
+    fn method(self) -> Method {
+        match self {
+            Kind::LemkeSymmetric | Kind::LemkeGeneral => Method::Lemke,
+            Kind::RestrictedSymmetric | Kind::RestrictedGeneral => Method::RestrictedSimplex,
+            Kind::BlockPivoting => Method::BlockPivoting,
+        }
+    }
+
+    fn tableau(self) -> Option<Tableau> {
+        match self {
+            Kind::LemkeSymmetric | Kind::RestrictedSymmetric => Some(Tableau::Symmetric),
+            Kind::LemkeGeneral | Kind::RestrictedGeneral => Some(Tableau::General),
+            Kind::BlockPivoting => None,
+        }
+    }
+
+    /// The general-tableau attempt of a method (the retry's).
+    fn general(method: Method) -> Self {
+        match method {
+            Method::RestrictedSimplex => Kind::RestrictedGeneral,
+            Method::Lemke | Method::BlockPivoting => Kind::LemkeGeneral,
+        }
+    }
+
+    fn name(self) -> String {
+        match self.tableau() {
+            Some(t) => format!("{} on the {} tableau", self.method(), t.name()),
+            None => self.method().to_string(),
+        }
+    }
+}
+
+/// What the strategy drives: a problem whose attempts it can run and
+/// certify.
+trait Routed {
+    /// A certified-to-be answer: the method's answer and what its
+    /// certificate computed along with it.
+    type Answer;
+
+    /// Runs one attempt.
+    fn attempt(
+        &self,
+        kind: Kind,
+        options: &Options,
+        relaxed: bool,
+    ) -> Result<Self::Answer, Failure>;
+
+    /// The answer's certificate, from the original data.
+    fn certify(&self, answer: &mut Self::Answer, tolerance: f64) -> Certificate;
+
+    /// The answer's counts.
+    fn work(answer: &Self::Answer) -> Work;
+
+    /// Whether an attempt that stalled in phase 1 may be repeated with the
+    /// extra unknowns free.
+    fn relaxable(&self) -> bool;
+
+    /// Number of unknowns (for error messages).
+    fn size(&self) -> usize;
+}
+
+/// An LCP's answer with `w`, filled by its certificate.
+struct Solved {
+    answer: Answer,
+    w: Col<f64>,
+}
+
+impl Routed for Problem<'_> {
+    type Answer = Solved;
+
+    fn attempt(&self, kind: Kind, options: &Options, relaxed: bool) -> Result<Solved, Failure> {
+        let answer = match kind {
+            Kind::LemkeSymmetric => lemke_symmetric::attempt(self, options),
+            Kind::LemkeGeneral => lemke_general::attempt(self, options),
+            Kind::RestrictedSymmetric => restricted_symmetric::attempt(self, options),
+            Kind::RestrictedGeneral => restricted_general::attempt(self, options, relaxed),
+            Kind::BlockPivoting => block::attempt(self, options),
+        }?;
+        Ok(Solved {
+            answer,
+            w: Col::zeros(0),
+        })
+    }
+
+    fn certify(&self, solved: &mut Solved, tolerance: f64) -> Certificate {
+        let (certificate, w) = self.mixed.certify(
+            solved.answer.z.as_ref(),
+            solved.answer.u.as_ref(),
+            tolerance,
+        );
+        solved.w = w;
+        certificate
+    }
+
+    fn work(solved: &Solved) -> Work {
+        solved.answer.work
+    }
+
+    fn relaxable(&self) -> bool {
+        self.mixed.bounds.contains(&Bound::NonNegative)
+    }
+
+    fn size(&self) -> usize {
+        Problem::size(self)
+    }
+}
+
+impl Routed for ComplementaryProgram {
+    type Answer = restricted_general::ProgramAnswer;
+
+    fn attempt(
+        &self,
+        _kind: Kind,
+        options: &Options,
+        _relaxed: bool,
+    ) -> Result<Self::Answer, Failure> {
+        restricted_general::attempt_program(self, options)
+    }
+
+    fn certify(&self, answer: &mut Self::Answer, tolerance: f64) -> Certificate {
+        let x = Col::from_fn(self.unknowns(), |j| answer.x[j]);
+        ComplementaryProgram::certify(self, x.as_ref(), tolerance)
+    }
+
+    fn work(answer: &Self::Answer) -> Work {
+        answer.work
+    }
+
+    fn relaxable(&self) -> bool {
+        false
+    }
+
+    fn size(&self) -> usize {
+        self.rows()
+    }
+}
+
+/// The attempts of `method` on `problem` before any retry, in order.
+fn route(problem: &Problem<'_>, method: Method, options: &Options) -> Result<Vec<Kind>, LcpError> {
+    let unsupported = |kind: Kind, e: NotApplicable| LcpError::Unsupported {
+        method: match kind.method() {
+            Method::Lemke => "Lemke's method",
+            Method::RestrictedSimplex => "the restricted-entry simplex",
+            Method::BlockPivoting => "block principal pivoting",
+        },
+        reason: e.reason,
+    };
+    let tableau_route = |symmetric: Kind, general: Kind| -> Result<Vec<Kind>, LcpError> {
+        let sym = match symmetric {
+            Kind::LemkeSymmetric => lemke_symmetric::applies(problem).map(|_| ()),
+            _ => restricted_symmetric::applies(problem),
+        };
+        let general_ok = match general {
+            Kind::LemkeGeneral => lemke_general::applies(problem),
+            _ => Ok(()),
+        };
+        match options.tableau {
+            Tableau::Symmetric => sym
+                .map(|()| vec![symmetric])
+                .map_err(|e| unsupported(symmetric, e)),
+            Tableau::General => general_ok
+                .map(|()| vec![general])
+                .map_err(|e| unsupported(general, e)),
+            Tableau::Auto => {
+                general_ok.map_err(|e| unsupported(general, e))?;
+                Ok(sym
+                    .is_ok()
+                    .then_some(symmetric)
+                    .into_iter()
+                    .chain([general])
+                    .collect())
+            }
+        }
+    };
+    match method {
+        Method::Lemke => tableau_route(Kind::LemkeSymmetric, Kind::LemkeGeneral),
+        Method::RestrictedSimplex => {
+            tableau_route(Kind::RestrictedSymmetric, Kind::RestrictedGeneral)
+        }
+        Method::BlockPivoting => {
+            block::applies(problem).map_err(|e| unsupported(Kind::BlockPivoting, e))?;
+            let mut route = vec![Kind::BlockPivoting];
+            route.extend(tableau_route(Kind::LemkeSymmetric, Kind::LemkeGeneral)?);
+            Ok(route)
+        }
+    }
+}
+
+/// A certified answer and its attempt's place in the log.
+struct Kept<A> {
+    answer: A,
+    certificate: Certificate,
+    index: usize,
+}
+
+/// The solve's progress: the log and the best answer so far.
+struct Ladder<'r, R: Routed> {
+    problem: &'r R,
+    options: &'r Options,
+    statistics: Statistics,
+    best: Option<Kept<R::Answer>>,
+    /// The error of the route's last general attempt, reported when nothing answers.
+    error: Option<LcpError>,
+    /// The kind of the last attempt.
+    last: Option<Kind>,
+}
+
+impl<'r, R: Routed> Ladder<'r, R> {
+    /// Runs and logs one attempt; keeps its answer when it certifies better
+    /// than the best so far. Returns whether an answer now certifies.
+    fn run(&mut self, kind: Kind, reason: Reason, options: &Options, relaxed: bool) -> bool {
+        let start = Instant::now();
+        let result = self.problem.attempt(kind, options, relaxed);
+        let index = self.statistics.attempts.len();
+        let (work, outcome) = match result {
+            Ok(mut answer) => {
+                let certificate = self
+                    .problem
+                    .certify(&mut answer, self.options.tolerances.certificate);
+                let worst = certificate.worst();
+                let work = R::work(&answer);
+                // A relaxed attempt's answer counts only when it certifies
+                // against the original bounds; otherwise the stall stands.
+                let admissible = reason != Reason::RelaxedBounds || certificate.holds();
+                let better = admissible
+                    && self
+                        .best
+                        .as_ref()
+                        .is_none_or(|b| worst < b.certificate.worst());
+                if better {
+                    if let Some(old) = &self.best {
+                        let previous = old.certificate.worst();
+                        self.statistics.attempts[old.index].outcome =
+                            Outcome::Rejected { worst: previous };
+                    }
+                    self.best = Some(Kept {
+                        answer,
+                        certificate,
+                        index,
+                    });
+                    (work, Outcome::Returned)
+                } else {
+                    (work, Outcome::Rejected { worst })
+                }
+            }
+            Err(Failure { breakdown, work }) => {
+                if let Breakdown::Error(e) = &breakdown
+                    && reason != Reason::Retry
+                    && reason != Reason::RelaxedBounds
+                {
+                    self.error = Some((**e).clone());
+                }
+                (work, Outcome::Breakdown(breakdown))
+            }
+        };
+        self.statistics.attempts.push(Attempt {
+            method: kind.method(),
+            tableau: kind.tableau(),
+            reason,
+            work,
+            seconds: start.elapsed().as_secs_f64(),
+            outcome,
+        });
+        self.last = Some(kind);
+        self.certified()
+    }
+
+    fn certified(&self) -> bool {
+        self.best.as_ref().is_some_and(|b| b.certificate.holds())
+    }
+
+    /// The route, until an attempt answers; a general attempt that stalls
+    /// in phase 1 with non-negative extra unknowns is repeated with them free.
+    fn follow(&mut self, route: &[Kind]) {
+        for (i, &kind) in route.iter().enumerate() {
+            let reason = if i == 0 {
+                Reason::First
+            } else {
+                Reason::Fallback
+            };
+            self.run(kind, reason, self.options, false);
+            if self.best.is_some() {
+                return;
+            }
+            let stalled = matches!(self.error, Some(LcpError::Infeasible { .. }))
+                && kind == Kind::RestrictedGeneral
+                && self.problem.relaxable();
+            if stalled {
+                self.run(kind, Reason::RelaxedBounds, self.options, true);
+                if self.certified() {
+                    return;
+                }
+            }
+        }
+    }
+
+    /// The one retry after a numerical failure (see the module documentation).
+    fn retry(&mut self, method: Method) {
+        let drift = matches!(
+            self.error,
+            Some(
+                LcpError::SingularBasis { .. }
+                    | LcpError::Infeasible { .. }
+                    | LcpError::Unbounded { .. }
+            )
+        );
+        let failed = match &self.best {
+            Some(kept) => !kept.certificate.holds(),
+            None => drift,
+        };
+        if !failed || self.options.tableau == Tableau::Symmetric {
+            return;
+        }
+        let kind = Kind::general(method);
+        let options = match self.options.retry() {
+            Some(retry) => retry,
+            // Options that already are the retry's: only a different
+            // attempt is worth running.
+            None if self.last != Some(kind) => self.options.clone(),
+            None => return,
+        };
+        self.run(kind, Reason::Retry, &options, false);
+    }
+
+    /// The certified answer, or the error that says why there is none.
+    fn finish(
+        mut self,
+        started: Instant,
+    ) -> Result<(R::Answer, Certificate, Statistics), LcpError> {
+        self.statistics.seconds = started.elapsed().as_secs_f64();
+        match self.best {
+            Some(kept) if kept.certificate.holds() => {
+                Ok((kept.answer, kept.certificate, self.statistics))
+            }
+            Some(kept) => {
+                if let Some(a) = self.statistics.attempts.get_mut(kept.index) {
+                    a.outcome = Outcome::Rejected {
+                        worst: kept.certificate.worst(),
+                    };
+                }
+                Err(LcpError::Inaccurate {
+                    size: self.problem.size(),
+                    pivots: self.statistics.pivots(),
+                    certificate: Box::new(kept.certificate),
+                })
+            }
+            None => Err(self.error.unwrap_or_else(|| {
+                let last = self.statistics.attempts.last();
+                LcpError::BrokeDown {
+                    method: self.last.map_or_else(String::new, Kind::name),
+                    size: self.problem.size(),
+                    pivots: self.statistics.pivots(),
+                    reason: last.map_or_else(String::new, |a| match &a.outcome {
+                        Outcome::Breakdown(b) => b.to_string(),
+                        other => other.to_string(),
+                    }),
+                }
+            })),
+        }
+    }
+}
+
+/// Runs `route` for `method`, then the retry, on `problem`.
+fn solve_routed<R: Routed>(
+    problem: &R,
+    method: Method,
+    route: &[Kind],
+    options: &Options,
+) -> Result<(R::Answer, Certificate, Statistics), LcpError> {
+    let started = Instant::now();
+    let mut ladder = Ladder {
+        problem,
+        options,
+        statistics: Statistics::new(method),
+        best: None,
+        error: None,
+        last: None,
+    };
+    ladder.follow(route);
+    ladder.retry(method);
+    ladder.finish(started)
+}
+
+/// Solves a prepared problem by `method`.
+fn solve_problem(
+    problem: &Problem<'_>,
+    method: Method,
+    options: &Options,
+) -> Result<LcpSolution, LcpError> {
+    options.validate(lemke_general::split_size(&problem.mixed))?;
+    let route = route(problem, method, options)?;
+    let (solved, certificate, statistics) = solve_routed(problem, method, &route, options)?;
+    let Solved { answer, w } = solved;
+    Ok(LcpSolution {
+        z: answer.z,
+        w,
+        u: answer.u,
+        basic: answer.basic,
+        certificate,
+        statistics,
+    })
+}
+
+impl BorderedLcpRef<'_> {
+    /// Solves with `method`; the solution carries its certificate from the
+    /// original data, and an uncertified solution is an error
+    /// ([`LcpError::Inaccurate`]). See the crate documentation for the
+    /// route each method takes.
+    pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
+        let parts = MixedBorder::of(self);
+        solve_problem(&Problem::bordered(self, &parts), method, options)
+    }
+}
+
+impl BorderedLcp {
+    /// Solves with `method` (see [`BorderedLcpRef::solve`]).
+    pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
+        self.as_ref().solve(method, options)
+    }
+}
+
+impl Lcp {
+    /// Solves with `method` (see [`BorderedLcpRef::solve`]).
+    pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
+        self.as_ref().solve(method, options)
+    }
+}
+
+impl MixedLcp {
+    /// Solves with `method` (see [`BorderedLcpRef::solve`]): the general
+    /// tableau or block pivoting (a mixed form has no symmetric tableau;
+    /// write a symmetric border as a [`BorderedLcp`] for it).
+    pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
+        solve_problem(&Problem::mixed(self.view()), method, options)
+    }
+}
+
+impl ComplementaryProgram {
+    /// Solves by the restricted-entry simplex: phase 1 finds a feasible
+    /// complementary basic solution, phase 2 (when there is an objective)
+    /// lowers `c^T x` while keeping complementarity. Phase 2 ends at a point
+    /// no admissible pivot improves: a local optimum of the complementarity-
+    /// constrained program, not necessarily a global one. The retry after a
+    /// numerical failure is the strategy's (see the module documentation).
+    pub fn solve(&self, options: &Options) -> Result<ProgramSolution, LcpError> {
+        options.validate(0)?;
+        let route = [Kind::RestrictedGeneral];
+        let options = Options {
+            tableau: Tableau::General,
+            ..options.clone()
+        };
+        let (answer, certificate, statistics) =
+            solve_routed(self, Method::RestrictedSimplex, &route, &options)?;
+        let x = Col::from_fn(self.unknowns(), |j| answer.x[j]);
+        let objective = self.objective(x.as_ref());
+        Ok(ProgramSolution {
+            x,
+            objective,
+            basis: answer.basis,
+            certificate,
+            statistics,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::problem::MixedLcpParts;
+    use faer::{Mat, col, mat};
+
+    fn contact(k: usize) -> BorderedLcp {
+        let m = mat![[2.0, 0.5, 0.1], [0.5, 2.0, 0.5], [0.1, 0.5, 2.0]];
+        let border = Mat::from_fn(3, k, |i, l| if l == 0 { 1.0 } else { i as f64 - 1.0 });
+        let resultant = Col::from_fn(k, |l| if l == 0 { 3.0 } else { 0.2 });
+        BorderedLcp::new(m, col![0.1, 0.0, 0.1])
+            .unwrap()
+            .with_border(border, resultant)
+            .unwrap()
+    }
+
+    fn route_of(p: &BorderedLcp, method: Method, tableau: Tableau) -> Result<Vec<Kind>, LcpError> {
+        let view = p.as_ref();
+        let parts = MixedBorder::of(&view);
+        let problem = Problem::bordered(&view, &parts);
+        route(
+            &problem,
+            method,
+            &Options {
+                tableau,
+                ..Options::default()
+            },
+        )
+    }
+
+    #[test]
+    fn the_routes_of_the_table() {
+        use Kind::*;
+        let one = contact(1);
+        let two = contact(2);
+        assert_eq!(
+            route_of(&one, Method::Lemke, Tableau::Auto).unwrap(),
+            [LemkeSymmetric, LemkeGeneral]
+        );
+        assert_eq!(
+            route_of(&one, Method::RestrictedSimplex, Tableau::Auto).unwrap(),
+            [RestrictedSymmetric, RestrictedGeneral]
+        );
+        assert_eq!(
+            route_of(&one, Method::BlockPivoting, Tableau::Auto).unwrap(),
+            [BlockPivoting, LemkeSymmetric, LemkeGeneral]
+        );
+        // Two rows: Lemke keeps the symmetric tableau, the restricted
+        // simplex's needs one pin.
+        assert_eq!(
+            route_of(&two, Method::Lemke, Tableau::Auto).unwrap(),
+            [LemkeSymmetric, LemkeGeneral]
+        );
+        assert_eq!(
+            route_of(&two, Method::RestrictedSimplex, Tableau::Auto).unwrap(),
+            [RestrictedGeneral]
+        );
+        assert!(matches!(
+            route_of(&two, Method::RestrictedSimplex, Tableau::Symmetric),
+            Err(LcpError::Unsupported { .. })
+        ));
+        assert_eq!(
+            route_of(&two, Method::BlockPivoting, Tableau::General).unwrap(),
+            [BlockPivoting, LemkeGeneral]
+        );
+        assert_eq!(
+            route_of(&one, Method::Lemke, Tableau::Symmetric).unwrap(),
+            [LemkeSymmetric]
+        );
+    }
+
+    #[test]
+    fn a_mixed_form_goes_to_the_general_tableau() {
+        let mixed = MixedLcp::new(MixedLcpParts {
+            m: Mat::identity(2, 2),
+            b: mat![[-1.0], [-1.0]],
+            q: col![0.0, 1.0],
+            c: mat![[1.0, 1.0]],
+            d: Mat::zeros(1, 1),
+            r: col![-1.0],
+            bounds: vec![Bound::Free],
+        })
+        .unwrap();
+        let problem = Problem::mixed(mixed.view());
+        assert_eq!(
+            route(&problem, Method::Lemke, &Options::default()).unwrap(),
+            [Kind::LemkeGeneral]
+        );
+    }
+
+    #[test]
+    fn the_log_shows_each_attempt_and_why_it_ran() {
+        // M = [[1, -2], [-2, 1]] (indefinite): the symmetric tableau breaks
+        // down and the general one answers.
+        let p = BorderedLcp::new(mat![[1.0, -2.0], [-2.0, 1.0]], col![0.0, 0.5])
+            .unwrap()
+            .with_border(mat![[1.0], [1.0]], col![10.0])
+            .unwrap();
+        let sol = p.solve(Method::Lemke, &Options::default()).unwrap();
+        let log = &sol.statistics.attempts;
+        assert_eq!(log.len(), 2, "{log:?}");
+        assert_eq!(
+            (log[0].reason, log[1].reason),
+            (Reason::First, Reason::Fallback)
+        );
+        assert_eq!(
+            log[0].outcome,
+            Outcome::Breakdown(Breakdown::NotPositiveDefinite)
+        );
+        assert_eq!(log[1].outcome, Outcome::Returned);
+        assert_eq!(log[1].tableau, Some(Tableau::General));
+        // A certificate no rounded answer meets: the retry runs on the
+        // general tableau, refactored, and both answers are rejected.
+        let strict = Options {
+            tolerances: crate::Tolerances {
+                certificate: 0.0,
+                ..crate::Tolerances::default()
+            },
+            ..Options::default()
+        };
+        let e = contact(1).solve(Method::Lemke, &strict).unwrap_err();
+        assert!(matches!(e, LcpError::Inaccurate { .. }), "{e}");
+        // On an explicit symmetric tableau there is no retry elsewhere.
+        let symmetric = Options {
+            tableau: Tableau::Symmetric,
+            ..strict
+        };
+        let e = contact(1).solve(Method::Lemke, &symmetric).unwrap_err();
+        let LcpError::Inaccurate { pivots, .. } = e else {
+            panic!("{e}")
+        };
+        let once = contact(1)
+            .solve(Method::Lemke, &Options::default())
+            .unwrap();
+        assert_eq!(pivots, once.statistics.pivots());
+    }
+}

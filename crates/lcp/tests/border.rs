@@ -1,0 +1,275 @@
+//! Bordered LCPs with k = 1, 2, 3 free unknowns and rows (the contact
+//! problem's approach and two tilts): `w = M z - B λ + q`, `B^T z = b`. On
+//! random symmetric positive definite problems built around a known
+//! solution, every method on every tableau returns that solution, certified
+//! from the original data: against brute-force enumeration of the active
+//! sets for small n, against Lemke's general tableau for larger n.
+
+use elcon_lcp::{BorderedLcp, LcpError, Method, Options, Tableau};
+use faer::{Col, Mat};
+use proptest::prelude::*;
+
+/// M = A A^T / n + shift I from the entries of A (n x n, row-major).
+fn spd(n: usize, a: &[f64], shift: f64) -> Mat<f64> {
+    let a = Mat::from_fn(n, n, |i, j| a[i * n + j]);
+    let mut m = &a * a.transpose() * (1.0 / n as f64);
+    for i in 0..n {
+        m[(i, i)] += shift;
+    }
+    m
+}
+
+/// A bordered problem and its solution.
+struct Known {
+    problem: BorderedLcp,
+    z: Col<f64>,
+    lambda: Col<f64>,
+    m: Mat<f64>,
+    border: Mat<f64>,
+    q: Col<f64>,
+    resultant: Col<f64>,
+}
+
+/// A problem around a known solution: the border's first column is ones
+/// (an approach), the others `coords` (tilts' lever arms); the active set
+/// holds at least k indices, `z* > 0` on it, `w* > 0` off it, `λ*` given;
+/// then `q = w* - M z* + B λ*` and `b = B^T z*`.
+fn known(m: Mat<f64>, k: usize, draw: &Draw) -> Known {
+    let n = m.nrows();
+    let border = Mat::from_fn(n, k, |i, l| {
+        if l == 0 {
+            1.0
+        } else {
+            draw.coords[(l - 1) * 60 + i]
+        }
+    });
+    let active: Vec<bool> = (0..n).map(|i| i < k || draw.active[i]).collect();
+    let z = Col::from_fn(n, |i| if active[i] { 0.1 + draw.values[i] } else { 0.0 });
+    let w = Col::from_fn(n, |i| if active[i] { 0.0 } else { 0.1 + draw.values[i] });
+    let lambda = Col::from_fn(k, |l| draw.lambda[l]);
+    let q = &w - &m * &z + &border * &lambda;
+    let resultant = border.transpose() * &z;
+    let problem = BorderedLcp::new(m.clone(), q.clone())
+        .unwrap()
+        .with_border(border.clone(), resultant.clone())
+        .unwrap();
+    Known {
+        problem,
+        z,
+        lambda,
+        m,
+        border,
+        q,
+        resultant,
+    }
+}
+
+/// The random draws a problem is made of (up to 60 points, 3 columns).
+#[derive(Debug, Clone)]
+struct Draw {
+    coords: Vec<f64>,
+    active: Vec<bool>,
+    values: Vec<f64>,
+    lambda: Vec<f64>,
+}
+
+fn draw() -> impl Strategy<Value = Draw> {
+    (
+        proptest::collection::vec(-1.0f64..1.0, 120),
+        proptest::collection::vec(any::<bool>(), 60),
+        proptest::collection::vec(0.0f64..1.0, 60),
+        proptest::collection::vec(-1.0f64..1.0, 3),
+    )
+        .prop_map(|(coords, active, values, lambda)| Draw {
+            coords,
+            active,
+            values,
+            lambda,
+        })
+}
+
+/// The solution by trying every active set J with |J| >= k: the KKT
+/// system `[M_JJ -B_J; B_J^T 0] [z_J; λ] = [-q_J; b]` by an LU, kept
+/// when `z_J >= 0` and `w >= 0` (n <= 10).
+fn brute_force(k: &Known) -> Option<(Col<f64>, Col<f64>)> {
+    use faer::linalg::solvers::Solve;
+    let n = k.q.nrows();
+    let kb = k.border.ncols();
+    let scale = k.q.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
+    for mask in 0u32..(1 << n) {
+        let act: Vec<usize> = (0..n).filter(|i| mask & (1 << i) != 0).collect();
+        let j = act.len();
+        if j < kb {
+            continue;
+        }
+        let kkt = Mat::from_fn(j + kb, j + kb, |r, c| match (r < j, c < j) {
+            (true, true) => k.m[(act[r], act[c])],
+            (true, false) => -k.border[(act[r], c - j)],
+            (false, true) => k.border[(act[c], r - j)],
+            (false, false) => 0.0,
+        });
+        let rhs = Col::from_fn(j + kb, |r| {
+            if r < j {
+                -k.q[act[r]]
+            } else {
+                k.resultant[r - j]
+            }
+        });
+        let lu = kkt.partial_piv_lu();
+        let x = lu.solve(&rhs);
+        if !x.iter().all(|v| v.is_finite()) {
+            continue;
+        }
+        let mut z = Col::<f64>::zeros(n);
+        for (r, &i) in act.iter().enumerate() {
+            z[i] = x[r];
+        }
+        let lambda = Col::from_fn(kb, |l| x[j + l]);
+        let w = &k.m * &z - &k.border * &lambda + &k.q;
+        let residual = &kkt * &x - &rhs;
+        let solved = residual.iter().all(|v| v.abs() <= 1e-9 * scale.max(1.0));
+        let zmax = z.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-300);
+        if solved && z.iter().all(|&v| v >= -1e-10 * zmax) && w.iter().all(|&v| v >= -1e-10 * scale)
+        {
+            return Some((z, lambda));
+        }
+    }
+    None
+}
+
+fn rel_diff(a: &Col<f64>, b: &Col<f64>) -> f64 {
+    let scale = a
+        .iter()
+        .chain(b.iter())
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(1e-300);
+    (a - b).iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
+}
+
+/// Every method with every tableau that applies: `(method, tableau)`.
+const ROUTES: [(Method, Tableau); 7] = [
+    (Method::Lemke, Tableau::Auto),
+    (Method::Lemke, Tableau::Symmetric),
+    (Method::Lemke, Tableau::General),
+    (Method::RestrictedSimplex, Tableau::Auto),
+    (Method::RestrictedSimplex, Tableau::General),
+    (Method::BlockPivoting, Tableau::Auto),
+    (Method::BlockPivoting, Tableau::General),
+];
+
+/// Solves `k` by every route; each answer certified and equal to `(z, λ)`
+/// to `tolerance`. The symmetric tableau alone may break down (a border
+/// singular on the active set met along the path), never answer wrongly.
+fn check_routes(k: &Known, z: &Col<f64>, lambda: &Col<f64>, tolerance: f64) -> Result<(), String> {
+    for (method, tableau) in ROUTES {
+        let options = Options {
+            tableau,
+            ..Options::default()
+        };
+        let sol = match k.problem.solve(method, &options) {
+            Ok(sol) => sol,
+            Err(LcpError::BrokeDown { .. }) if tableau == Tableau::Symmetric => continue,
+            Err(e) => return Err(format!("{method} / {}: {e}", tableau.name())),
+        };
+        let label = format!("{method} / {}", tableau.name());
+        if !sol.certificate.holds() {
+            return Err(format!("{label}: {}", sol.certificate));
+        }
+        if rel_diff(&sol.z, z) > tolerance || rel_diff(&sol.u, lambda) > tolerance {
+            return Err(format!(
+                "{label}: z {:?} against {:?}, λ {:?} against {:?}",
+                sol.z, z, sol.u, lambda
+            ));
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    /// n <= 8, k = 1, 2, 3: every route equals the enumerated solution,
+    /// which equals the known one.
+    #[test]
+    fn small_bordered_problems_match_enumeration(
+        (n, k, a, shift) in (1usize..=3).prop_flat_map(|k| (k..=8).prop_flat_map(move |n| (
+            Just(n),
+            Just(k),
+            proptest::collection::vec(-1.0f64..1.0, n * n),
+            0.05f64..1.0,
+        ))),
+        draw in draw(),
+    ) {
+        let known = known(spd(n, &a, shift), k, &draw);
+        let (z, lambda) = brute_force(&known).expect("the known solution is one");
+        prop_assert!(rel_diff(&z, &known.z) < 1e-9 && rel_diff(&lambda, &known.lambda) < 1e-8);
+        if let Err(e) = check_routes(&known, &z, &lambda, 1e-8) {
+            prop_assert!(false, "{}", e);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// 9 <= n <= 60, k = 1, 2, 3: every route equals Lemke's general
+    /// tableau's answer and the known solution.
+    #[test]
+    fn larger_bordered_problems_agree_with_the_general_tableau(
+        (n, k, a, shift) in (1usize..=3).prop_flat_map(|k| (9usize..=60).prop_flat_map(move |n| (
+            Just(n),
+            Just(k),
+            proptest::collection::vec(-1.0f64..1.0, n * n),
+            0.05f64..1.0,
+        ))),
+        draw in draw(),
+    ) {
+        let known = known(spd(n, &a, shift), k, &draw);
+        let general = Options { tableau: Tableau::General, ..Options::default() };
+        let reference = known.problem.solve(Method::Lemke, &general).unwrap();
+        prop_assert!(rel_diff(&reference.z, &known.z) < 1e-8);
+        if let Err(e) = check_routes(&known, &reference.z, &reference.u, 1e-8) {
+            prop_assert!(false, "{}", e);
+        }
+    }
+}
+
+/// The symmetric tableau finishes borders of two and three rows, not only
+/// one: over a fixed set of random problems, nearly every Lemke solve
+/// returns from it.
+#[test]
+fn the_symmetric_tableau_solves_borders_of_several_rows() {
+    let mut rng = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for k in [2, 3] {
+        let mut symmetric = 0;
+        let trials = 40;
+        for _ in 0..trials {
+            let n = 20 + (next() * 30.0) as usize;
+            let a: Vec<f64> = (0..n * n).map(|_| 2.0 * next() - 1.0).collect();
+            let draw = Draw {
+                coords: (0..120).map(|_| 2.0 * next() - 1.0).collect(),
+                active: (0..60).map(|_| next() < 0.5).collect(),
+                values: (0..60).map(|_| next()).collect(),
+                lambda: (0..3).map(|_| 2.0 * next() - 1.0).collect(),
+            };
+            let known = known(spd(n, &a, 0.3), k, &draw);
+            let sol = known
+                .problem
+                .solve(Method::Lemke, &Options::default())
+                .unwrap();
+            assert!(sol.certificate.holds());
+            assert!(rel_diff(&sol.z, &known.z) < 1e-8);
+            symmetric += usize::from(sol.statistics.symmetric_tableau());
+        }
+        assert!(
+            symmetric * 10 >= trials * 9,
+            "k = {k}: {symmetric} of {trials} on the symmetric tableau"
+        );
+    }
+}
