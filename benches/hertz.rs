@@ -55,6 +55,6 @@ pub fn bodies() -> (Body, Geometry) {
 /// The benchmark problem of about `n` points, in full.
 pub fn problem(n: usize) -> ContactProblem {
     let (body, geometry) = bodies();
-    ContactProblem::new(points(n), &body, &body, &geometry, Loading::Load(100.0))
+    ContactProblem::new(points(n), &body, &body, &geometry, Loading::load(100.0))
         .expect("the benchmark problem")
 }

@@ -111,7 +111,7 @@ fn main() -> Result<(), AnalysisError> {
         // `across` points span the Hertz diameter: spacing 2a / (across - 1).
         let spacing = 2.0 * a / (across - 1) as f64;
         let points = PointSet::grid_disk(spacing, zone * a)?;
-        let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::Load(LOAD))?;
+        let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::load(LOAD))?;
         for &method in methods {
             let sol = problem.solve(method, &Options::default())?;
             print_row(model, across, method, &problem, &sol, &hertz);

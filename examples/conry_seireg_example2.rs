@@ -95,7 +95,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         &Body::beam(E_STEEL, second_moment, 0.0),
         &Body::winkler(FOUNDATION),
         &Geometry::Separation(vec![0.0; n]),
-        Loading::Load(a.load),
+        Loading::load(a.load),
     )?;
     let mean = a.load / LENGTH;
     println!("Conry & Seireg (1971) Example 2: beam on an elastic foundation (inch, pound)");

@@ -95,7 +95,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             &body,
             &body,
             &geometry,
-            Loading::Load(load),
+            Loading::load(load),
         )?);
     }
     println!(

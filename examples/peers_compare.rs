@@ -51,7 +51,7 @@ fn run(
             &body,
             &body,
             &geometry,
-            Loading::Load(100.0),
+            Loading::load(100.0),
         )
         .expect("builds");
         let sol = problem.solve(method, &Options::default()).expect("solves");

@@ -410,7 +410,7 @@ fn the_command_line_and_the_library_agree_bit_for_bit() {
         Surface::Sphere { radius: 10.0 },
     );
     let problem =
-        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
     let sol = problem
         .solve(Method::BlockPivoting, &Options::default())
         .unwrap();

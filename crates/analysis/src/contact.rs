@@ -19,11 +19,13 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use elcon_influence::{Body, Dimension, Folding, PointSet, assemble, assemble_folded};
+use elcon_influence::{Body, Dimension, Folding, Model, PointSet, assemble, assemble_folded};
 use elcon_lcp::{BorderedLcpRef, Certificate, Method, Options, Statistics};
 use faer::{Col, Mat, MatRef};
 
 use crate::AnalysisError;
+use crate::loading::Loading;
+use crate::rigid::{Rigid, RigidMode, point};
 
 /// Separations equal to this fraction of their largest magnitude count as
 /// symmetric (they come from the same formula at mirrored points, so they
@@ -88,16 +90,6 @@ pub enum Geometry {
     Surfaces(Surface, Surface),
     /// Given separations, one per point (length).
     Separation(Vec<f64>),
-}
-
-/// How the bodies are pressed together.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Loading {
-    /// Load control: the normal load P (force; force per unit length for a
-    /// line contact), > 0; the approach follows.
-    Load(f64),
-    /// Displacement control: the approach alpha (length); the load follows.
-    Approach(f64),
 }
 
 /// A warning about a solution that is certified but may not mean what it seems.
@@ -204,10 +196,16 @@ pub struct ContactProblem {
     influence: Arc<Mat<f64>>,
     separation: Vec<f64>,
     loading: Loading,
+    /// The rigid-body unknowns of `loading` (folded with the problem).
+    rigid: Rigid,
     assembly_seconds: f64,
     body_edges: (bool, bool),
     /// The orbits of a mirror-symmetric problem, when it was folded.
     folding: Option<Arc<Folding>>,
+    /// The mirror groups the points and the models respect, largest first:
+    /// a free rotation that is odd under one the separations respect too
+    /// is zero at the solution and not an unknown, folded or not.
+    groups: Arc<Vec<Folding>>,
 }
 
 impl ContactProblem {
@@ -245,8 +243,9 @@ impl ContactProblem {
     /// [`ContactProblem::new`] (`fold` false) and
     /// [`ContactProblem::symmetric`] (`fold` true): the separations and the
     /// loading are validated before the O(N^2) assembly, then, if asked, the
-    /// largest symmetry group the separations respect too is looked for, and
-    /// the folded or the full matrix is assembled.
+    /// largest symmetry group the separations (shifted by the prescribed
+    /// motions) and the free rigid motions respect too is looked for
+    /// (`crate::rigid`), and the folded or the full matrix is assembled.
     fn build(
         points: PointSet,
         bodies: [&Body; 2],
@@ -256,13 +255,13 @@ impl ContactProblem {
     ) -> Result<Self, AnalysisError> {
         let start = Instant::now();
         let separation = separations(&points, geometry)?;
-        Self::check(points.len(), &separation, loading)?;
-        let folding = if fold {
-            Folding::detect_all(&points, &bodies)
-                .into_iter()
-                .find(|f| f.is_invariant(&separation, SYMMETRY_TOLERANCE))
-        } else {
-            None
+        let rigid = Self::check(&points, &separation, &loading, load_point(&bodies))?;
+        let groups = Folding::detect_all(&points, &bodies);
+        let symmetric = symmetric_rigid(&groups, &points, &separation, &rigid);
+        let (folding, rigid) = match symmetric {
+            Some((f, r)) if fold => (Some(f.clone()), r),
+            Some((_, r)) => (None, r),
+            None => (None, rigid),
         };
         let influence = match &folding {
             Some(f) => assemble_folded(&points, &bodies, f)?,
@@ -273,9 +272,11 @@ impl ContactProblem {
             influence: Arc::new(influence),
             separation,
             loading,
+            rigid,
             assembly_seconds: start.elapsed().as_secs_f64(),
             body_edges: (false, false),
             folding: folding.map(Arc::new),
+            groups: Arc::new(groups),
         })
     }
 
@@ -286,7 +287,8 @@ impl ContactProblem {
     }
 
     /// A problem from an influence matrix (N x N, length per force) and
-    /// separations (N, length) built elsewhere.
+    /// separations (N, length) built elsewhere; moments and rotations are
+    /// about the origin.
     pub fn from_parts(
         points: PointSet,
         influence: Mat<f64>,
@@ -305,20 +307,29 @@ impl ContactProblem {
                 },
             });
         }
-        Self::check(n, &separation, loading)?;
+        let rigid = Self::check(&points, &separation, &loading, (0.0, 0.0))?;
         Ok(Self {
             points,
             influence: Arc::new(influence),
             separation,
             loading,
+            rigid,
             assembly_seconds: 0.0,
             body_edges: (false, false),
             folding: None,
+            groups: Arc::new(Vec::new()),
         })
     }
 
-    /// Checks separations (size, finite) and loading (finite, P > 0).
-    fn check(n: usize, separation: &[f64], loading: Loading) -> Result<(), AnalysisError> {
+    /// Checks separations (size, finite) and loading (finite, P > 0) and
+    /// returns the rigid unknowns of the loading about `load_point`.
+    fn check(
+        points: &PointSet,
+        separation: &[f64],
+        loading: &Loading,
+        load_point: (f64, f64),
+    ) -> Result<Rigid, AnalysisError> {
+        let n = points.len();
         if separation.len() != n {
             return Err(AnalysisError::SizeMismatch {
                 field: "separation",
@@ -333,24 +344,8 @@ impl ContactProblem {
                 value: v,
             });
         }
-        match loading {
-            Loading::Load(p) if !(p.is_finite() && p > 0.0) => {
-                return Err(AnalysisError::InvalidInput {
-                    field: "load",
-                    value: p,
-                    reason: "the normal load must be finite and > 0",
-                });
-            }
-            Loading::Approach(a) if !a.is_finite() => {
-                return Err(AnalysisError::InvalidInput {
-                    field: "approach",
-                    value: a,
-                    reason: "the approach must be finite",
-                });
-            }
-            _ => {}
-        }
-        Ok(())
+        loading.validate()?;
+        Rigid::of(loading, points, load_point)
     }
 
     /// The candidate points.
@@ -389,29 +384,51 @@ impl ContactProblem {
 
     fn with(&self, separation: Vec<f64>, loading: Loading) -> Result<Self, AnalysisError> {
         // Validate through from_parts' checks without copying S.
-        let n = self.points.len();
-        Self::check(n, &separation, loading)?;
-        if let Some(f) = &self.folding
-            && !f.is_invariant(&separation, SYMMETRY_TOLERANCE)
-        {
-            return Err(AnalysisError::Incompatible {
-                field: "separation",
-                reason: format!(
-                    "breaks the symmetry ({}) the problem was folded with; build it with \
-                     ContactProblem::new to solve it in full",
-                    f.group()
-                ),
-            });
-        }
+        let rigid = Self::check(&self.points, &separation, &loading, self.rigid.load_point)?;
+        let rigid = match &self.folding {
+            Some(f) => {
+                let groups = std::slice::from_ref(f.as_ref());
+                match symmetric_rigid(groups, &self.points, &separation, &rigid) {
+                    Some((_, rigid)) => rigid,
+                    None => {
+                        return Err(AnalysisError::Incompatible {
+                            field: "separation",
+                            reason: format!(
+                                "the separations or the loading break the symmetry ({}) the problem \
+                                 was folded with; build it with ContactProblem::new to solve it in full",
+                                f.group()
+                            ),
+                        });
+                    }
+                }
+            }
+            None => symmetric_rigid(&self.groups, &self.points, &separation, &rigid)
+                .map_or(rigid, |(_, r)| r),
+        };
         Ok(Self {
             points: self.points.clone(),
             influence: Arc::clone(&self.influence),
             separation,
             loading,
+            rigid,
             assembly_seconds: self.assembly_seconds,
             body_edges: self.body_edges,
             folding: self.folding.clone(),
+            groups: Arc::clone(&self.groups),
         })
+    }
+
+    /// The rigid-body unknowns of the loading: which motions are free (the
+    /// border of the engine's problem), prescribed, or zero by symmetry.
+    pub fn rigid(&self) -> &Rigid {
+        &self.rigid
+    }
+
+    /// The rigid-body unknowns of the loading before symmetry drops any:
+    /// what a change of the separations (a design's correction, which may
+    /// break the symmetry) has to keep free.
+    pub fn rigid_without_symmetry(&self) -> Result<Rigid, AnalysisError> {
+        Rigid::of(&self.loading, &self.points, self.rigid.load_point)
     }
 
     /// Declares that the candidate zone's extent along x (`along_x`), resp.
@@ -488,70 +505,62 @@ impl ContactProblem {
             Some(f) => ((0..n).map(|a| f.stabilizer(a)).collect(), f.order() as f64),
             None => (vec![1.0; n], 1.0),
         };
-        let eps_of = |a: usize| match &self.folding {
-            Some(f) => self.separation[f.rep(a)],
-            None => self.separation[a],
-        };
-        // Load control is the bordered form with the approach's column of
-        // ones (1 / s_a folded) and the load as its resultant; displacement
-        // control the plain LCP with the approach in q.
-        let (q, border, resultant) = match self.loading {
-            Loading::Load(p) => (
-                Col::from_fn(n, |a| eps_of(a) / scale[a]),
-                Mat::<f64>::from_fn(n, 1, |a, _| 1.0 / scale[a]),
-                Col::from_fn(1, |_| p / order),
-            ),
-            Loading::Approach(alpha) => (
-                Col::from_fn(n, |a| (eps_of(a) - alpha) / scale[a]),
-                Mat::<f64>::zeros(n, 0),
-                Col::zeros(0),
-            ),
-        };
+        let rep = |a: usize| self.folding.as_ref().map_or(a, |f| f.rep(a));
+        // The bordered form: q the separations shifted by the prescribed
+        // rigid motions, a column per free motion (its lever; 1 for the
+        // approach), each scaled by 1 / s_a when folded, and the resultants
+        // (load, moments) over |G|.
+        let rigid = &self.rigid;
+        let q = Col::from_fn(n, |a| {
+            let k = rep(a);
+            (self.separation[k] + rigid.shift(point(&self.points, k))) / scale[a]
+        });
+        let border = Mat::<f64>::from_fn(n, rigid.free.len(), |a, j| {
+            rigid.free[j]
+                .0
+                .lever(point(&self.points, rep(a)), rigid.load_point)
+                / scale[a]
+        });
+        let resultant = Col::from_fn(rigid.free.len(), |j| rigid.free[j].1 / order);
         let problem = BorderedLcpRef::new(Mat::as_ref(&self.influence), q.as_ref())?
             .with_border(border.as_ref(), resultant.as_ref())?;
         let sol = problem.solve(method, options)?;
-        let (z, w, certificate, statistics) = (sol.z, sol.w, sol.certificate, sol.statistics);
-        let alpha = match self.loading {
-            Loading::Load(_) => sol.u[0],
-            Loading::Approach(alpha) => alpha,
-        };
+        let lambda: Vec<f64> = sol.u.iter().copied().collect();
         // The gaps are the engine's w = M z - B λ + q, computed from the data
-        // above: Y = S F + eps - alpha e; folded, row a is scaled by 1 / s_a,
-        // so w_a = Y_a / s_a (the same sums regrouped) and Y_a = s_a w_a,
-        // exactly (s_a is a power of two).
-        let z: Vec<f64> = z.iter().copied().collect();
-        let w: Vec<f64> = w.iter().copied().collect();
+        // above: Y = S F + eps - (rigid motion); folded, row a is scaled by
+        // 1 / s_a, so w_a = Y_a / s_a (the same sums regrouped) and
+        // Y_a = s_a w_a, exactly (s_a is a power of two).
+        let z: Vec<f64> = sol.z.iter().copied().collect();
+        let w: Vec<f64> = sol.w.iter().copied().collect();
         let folded_gaps: Vec<f64> = (0..n).map(|a| scale[a] * w[a]).collect();
         let (forces, gaps, slack) = match &self.folding {
             Some(f) => (f.unfold(&z), f.unfold(&folded_gaps), f.unfold(&w)),
             None => (z, folded_gaps, w),
         };
-        let solve_seconds = start.elapsed().as_secs_f64();
-        Ok(self.finish(
+        let engine = Engine {
             forces,
             gaps,
-            &slack,
-            alpha,
-            &certificate,
-            statistics,
-            solve_seconds,
-        ))
+            slack,
+            lambda,
+            certificate: sol.certificate,
+            statistics: sol.statistics,
+            solve_seconds: start.elapsed().as_secs_f64(),
+        };
+        Ok(self.finish(engine))
     }
 
-    /// The solution from the forces and gaps of every point; `slack` is the
-    /// engine's w at every point (the gap, or for a folded problem the gap
-    /// over its orbit's s_a): the scaling the certificate's `w_scale` measures.
-    #[allow(clippy::too_many_arguments)]
-    fn finish(
-        &self,
-        forces: Vec<f64>,
-        gaps: Vec<f64>,
-        slack: &[f64],
-        approach: f64,
-        certificate: &Certificate,
-        statistics: Statistics,
-        solve_seconds: f64,
-    ) -> ContactSolution {
+    /// The solution from the engine's answer at every point.
+    fn finish(&self, engine: Engine) -> ContactSolution {
+        let Engine {
+            forces,
+            gaps,
+            slack,
+            lambda,
+            certificate,
+            statistics,
+            solve_seconds,
+        } = engine;
+        let certificate = &certificate;
         let n = self.points.len();
         let pressures: Vec<f64> = (0..n).map(|k| forces[k] / self.points.measure(k)).collect();
         let load: f64 = forces.iter().sum();
@@ -588,11 +597,23 @@ impl ContactProblem {
             warnings.push(Warning::UncertainContact { points: uncertain });
         }
         let max_pressure = pressures.iter().fold(0.0f64, |a, p| a.max(*p));
+        let value = |mode| self.rigid.value(mode, &lambda);
+        let (x0, y0) = self.rigid.load_point;
+        let first_moment =
+            |lever: &dyn Fn(usize) -> f64| -> f64 { (0..n).map(|k| forces[k] * lever(k)).sum() };
+        let moment_x = first_moment(&|k| self.points.y(k) - y0);
+        let moment_y = -first_moment(&|k| self.points.x(k) - x0);
+        let centre = |moment: f64| if load > 0.0 { moment / load } else { 0.0 };
         ContactSolution {
             forces,
             pressures,
             gaps,
-            approach,
+            approach: value(RigidMode::Approach),
+            tilt_x: value(RigidMode::TiltX),
+            tilt_y: value(RigidMode::TiltY),
+            moment_x,
+            moment_y,
+            load_centre: (x0 - centre(moment_y), y0 + centre(moment_x)),
             load,
             max_pressure,
             contact,
@@ -607,6 +628,21 @@ impl ContactProblem {
     }
 }
 
+/// The engine's answer at every point, before the solution's reading.
+struct Engine {
+    forces: Vec<f64>,
+    gaps: Vec<f64>,
+    /// The engine's w at every point (the gap, or for a folded problem the
+    /// gap over its orbit's s_a): the scaling the certificate's `w_scale`
+    /// measures.
+    slack: Vec<f64>,
+    /// The free rigid motions, in the order of `Rigid::free`.
+    lambda: Vec<f64>,
+    certificate: Certificate,
+    statistics: Statistics,
+    solve_seconds: f64,
+}
+
 /// A certified contact solution.
 #[derive(Debug, Clone)]
 pub struct ContactSolution {
@@ -618,6 +654,20 @@ pub struct ContactSolution {
     pub gaps: Vec<f64>,
     /// Rigid-body approach, alpha (length).
     pub approach: f64,
+    /// Rotation of body 1 about the x axis through the load point, `θ_x`
+    /// (radians; `crate::loading`).
+    pub tilt_x: f64,
+    /// Rotation of body 1 about the y axis through the load point, `θ_y` (radians).
+    pub tilt_y: f64,
+    /// Moment of the contact forces about the x axis through the load
+    /// point, `sum F (y - y0)` (force length; it balances `M_x`).
+    pub moment_x: f64,
+    /// Moment of the contact forces about the y axis through the load
+    /// point, `-sum F (x - x0)` (it balances `M_y`).
+    pub moment_y: f64,
+    /// The centre of the contact forces (where their resultant acts),
+    /// `(sum F x, sum F y) / sum F`.
+    pub load_centre: (f64, f64),
     /// Total load, e^T F (force; per length in 2D).
     pub load: f64,
     /// Largest p_k.
@@ -638,6 +688,42 @@ pub struct ContactSolution {
     pub solve_seconds: f64,
     /// Warnings: truncated zone, uncertain contact.
     pub warnings: Vec<Warning>,
+}
+
+/// The point the load acts at: a beam's loaded point, else the origin.
+fn load_point(bodies: &[&Body]) -> (f64, f64) {
+    bodies
+        .iter()
+        .find_map(|b| match b.model() {
+            Model::Beam { loaded_point, .. } => Some((*loaded_point, 0.0)),
+            _ => None,
+        })
+        .unwrap_or((0.0, 0.0))
+}
+
+/// The first of `groups` (largest first) that the separations, shifted by
+/// the prescribed motions, and the free rotations respect, with the
+/// rotations odd under it dropped (`Rigid::folded`); `None` if none does.
+fn symmetric_rigid<'g>(
+    groups: &'g [Folding],
+    points: &PointSet,
+    separation: &[f64],
+    rigid: &Rigid,
+) -> Option<(&'g Folding, Rigid)> {
+    let shifted = shifted(points, separation, rigid);
+    groups.iter().find_map(|f| {
+        let folded = rigid.folded(f, points)?;
+        f.is_invariant(&shifted, SYMMETRY_TOLERANCE)
+            .then_some((f, folded))
+    })
+}
+
+/// The separations shifted by the prescribed rigid motions (what the
+/// engine's `q` holds at every point).
+fn shifted(points: &PointSet, separation: &[f64], rigid: &Rigid) -> Vec<f64> {
+    (0..points.len())
+        .map(|k| separation[k] + rigid.shift(point(points, k)))
+        .collect()
 }
 
 /// Initial separations of a geometry on a point set.

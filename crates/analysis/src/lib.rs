@@ -31,7 +31,7 @@
 //! let points = PointSet::grid_disk(a / 8.0, 1.3 * a).unwrap();
 //! let body = Body::uniform_patch(steel);
 //! let geometry = Geometry::Surfaces(Surface::Sphere { radius: 1.0 }, Surface::Sphere { radius: 10.0 });
-//! let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+//! let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
 //! let sol = problem.solve(Method::Lemke, &Options::default()).unwrap();
 //! assert!(sol.certificate.holds());
 //! assert!((sol.approach / hertz.approach() - 1.0).abs() < 0.01);
@@ -39,11 +39,14 @@
 
 pub mod contact;
 mod error;
+pub mod loading;
 pub mod references;
+pub mod rigid;
 
 pub use contact::{
-    ContactCertificate, ContactProblem, ContactSolution, Geometry, Loading, Surface, Warning,
-    separations,
+    ContactCertificate, ContactProblem, ContactSolution, Geometry, Surface, Warning, separations,
 };
 pub use elcon_lcp::{Method, Options};
 pub use error::AnalysisError;
+pub use loading::{Loading, Normal, Tilt};
+pub use rigid::{Rigid, RigidMode};

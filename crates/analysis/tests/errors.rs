@@ -25,10 +25,10 @@ fn spheres() -> Geometry {
 fn invalid_input_names_the_field() {
     let body = Body::uniform_patch(steel());
     for (loading, field) in [
-        (Loading::Load(0.0), "load"),
-        (Loading::Load(-5.0), "load"),
-        (Loading::Load(f64::NAN), "load"),
-        (Loading::Approach(f64::INFINITY), "approach"),
+        (Loading::load(0.0), "load"),
+        (Loading::load(-5.0), "load"),
+        (Loading::load(f64::NAN), "load"),
+        (Loading::approach(f64::INFINITY), "approach"),
     ] {
         let e = ContactProblem::new(disk(), &body, &body, &spheres(), loading).unwrap_err();
         assert!(
@@ -38,7 +38,7 @@ fn invalid_input_names_the_field() {
         assert!(e.to_string().starts_with(&format!("`{field}` = ")), "{e}");
     }
     let flat = Geometry::Surfaces(Surface::Sphere { radius: 0.0 }, Surface::Plane);
-    let e = ContactProblem::new(disk(), &body, &body, &flat, Loading::Load(1.0)).unwrap_err();
+    let e = ContactProblem::new(disk(), &body, &body, &flat, Loading::load(1.0)).unwrap_err();
     assert_eq!(
         e.to_string(),
         "`surface1.radius` = 0: a radius must be finite and non-zero (negative for a concave surface)"
@@ -54,7 +54,7 @@ fn size_mismatch_names_the_field_and_sizes() {
         &body,
         &body,
         &Geometry::Separation(vec![0.0; 3]),
-        Loading::Load(1.0),
+        Loading::load(1.0),
     )
     .unwrap_err();
     assert_eq!(
@@ -65,7 +65,7 @@ fn size_mismatch_names_the_field_and_sizes() {
         disk(),
         Mat::zeros(n, n + 1),
         vec![0.0; n],
-        Loading::Load(1.0),
+        Loading::load(1.0),
     )
     .unwrap_err();
     assert!(
@@ -84,7 +84,7 @@ fn non_finite_separation_is_located() {
         &body,
         &body,
         &Geometry::Separation(eps),
-        Loading::Load(1.0),
+        Loading::load(1.0),
     )
     .unwrap_err();
     assert_eq!(
@@ -97,7 +97,7 @@ fn non_finite_separation_is_located() {
 fn incompatible_geometry_says_what_to_use() {
     let line = PointSet::line(-1.0, 1.0, 11).unwrap();
     let body = Body::plane_strain(steel(), 10.0);
-    let e = ContactProblem::new(line, &body, &body, &spheres(), Loading::Load(1.0)).unwrap_err();
+    let e = ContactProblem::new(line, &body, &body, &spheres(), Loading::load(1.0)).unwrap_err();
     assert!(matches!(
         e,
         AnalysisError::Incompatible {
@@ -113,7 +113,7 @@ fn influence_errors_pass_through() {
     let line = PointSet::line(-1.0, 1.0, 11).unwrap();
     let body = Body::uniform_patch(steel());
     let cylinders = Geometry::Surfaces(Surface::Cylinder { radius: 1.0 }, Surface::Plane);
-    let e = ContactProblem::new(line, &body, &body, &cylinders, Loading::Load(1.0)).unwrap_err();
+    let e = ContactProblem::new(line, &body, &body, &cylinders, Loading::load(1.0)).unwrap_err();
     assert!(matches!(e, AnalysisError::Influence(_)), "{e:?}");
     assert!(
         e.to_string()
@@ -127,7 +127,7 @@ fn engine_errors_pass_through() {
     // A pivot limit of 1 cannot solve a contact that needs dozens of pivots.
     let body = Body::uniform_patch(steel());
     let problem =
-        ContactProblem::new(disk(), &body, &body, &spheres(), Loading::Load(100.0)).unwrap();
+        ContactProblem::new(disk(), &body, &body, &spheres(), Loading::load(100.0)).unwrap();
     let options = Options {
         max_pivots: Some(1),
         ..Options::default()
@@ -164,7 +164,7 @@ fn the_loading_is_checked_before_the_assembly() {
     let body = Body::uniform_patch(steel()); // a surface model on a line
     let cylinders = Geometry::Surfaces(Surface::Cylinder { radius: 1.0 }, Surface::Plane);
     for build in [ContactProblem::new, ContactProblem::symmetric] {
-        let e = build(line.clone(), &body, &body, &cylinders, Loading::Load(-1.0)).unwrap_err();
+        let e = build(line.clone(), &body, &body, &cylinders, Loading::load(-1.0)).unwrap_err();
         assert!(
             matches!(e, AnalysisError::InvalidInput { field: "load", .. }),
             "{e:?}"

@@ -54,7 +54,7 @@ proptest! {
         let points = PointSet::grid_disk(a / cells, zone * a).unwrap();
         let geometry = Geometry::Surfaces(Surface::Sphere { radius: r1 }, Surface::Sphere { radius: r2 });
         let problem = ContactProblem::new(
-            points, &Body::uniform_patch(m1), &Body::uniform_patch(m2), &geometry, Loading::Load(load),
+            points, &Body::uniform_patch(m1), &Body::uniform_patch(m2), &geometry, Loading::load(load),
         ).unwrap();
         let reference = problem.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
         check(&problem, &reference)?;
@@ -86,7 +86,7 @@ proptest! {
             None => Body::rigid(),
         };
         let problem = ContactProblem::new(
-            points, &elastic, &second, &Geometry::Separation(eps), Loading::Approach(approach * scale),
+            points, &elastic, &second, &Geometry::Separation(eps), Loading::approach(approach * scale),
         ).unwrap();
         let reference = problem.solve(Method::Lemke, &Options::default()).unwrap();
         check(&problem, &reference)?;

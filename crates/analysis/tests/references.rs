@@ -187,7 +187,7 @@ fn load_and_displacement_control_agree() {
     let by_load = load.solve(Method::Lemke, &Options::default()).unwrap();
     assert_solves(&load, &by_load, "by load");
     let approach = load
-        .with_loading(Loading::Approach(by_load.approach))
+        .with_loading(Loading::approach(by_load.approach))
         .unwrap();
     let by_approach = approach.solve(Method::Lemke, &Options::default()).unwrap();
     assert!(by_approach.certificate.holds());
@@ -224,7 +224,7 @@ fn hertz_cylinders_in_plane_strain() {
             &Body::plane_strain(case.m1, d0),
             &Body::plane_strain(case.m2, d0),
             &geometry,
-            Loading::Load(load),
+            Loading::load(load),
         )
         .unwrap();
         for method in Method::ALL {
@@ -355,7 +355,7 @@ fn hetenyi_case(per_half: usize, length: f64) -> (ContactSolution, HetenyiBeam, 
         &Body::beam(e, i, 0.0),
         &Body::winkler(k),
         &Geometry::Separation(vec![0.0; n]),
-        Loading::Load(load),
+        Loading::load(load),
     )
     .unwrap();
     let sol = problem
@@ -414,7 +414,7 @@ fn folded_problems_agree_with_full_ones() {
             Body::uniform_patch(steel),
             Body::uniform_patch(steel),
             sphere.clone(),
-            Loading::Load(100.0),
+            Loading::load(100.0),
             8,
         ),
         (
@@ -422,7 +422,7 @@ fn folded_problems_agree_with_full_ones() {
             Body::point_force(steel),
             Body::point_force(steel),
             sphere,
-            Loading::Approach(2e-4),
+            Loading::approach(2e-4),
             8,
         ),
         (
@@ -430,7 +430,7 @@ fn folded_problems_agree_with_full_ones() {
             Body::uniform_patch(steel),
             Body::rigid(),
             cylinder.clone(),
-            Loading::Load(300.0),
+            Loading::load(300.0),
             4,
         ),
         (
@@ -438,7 +438,7 @@ fn folded_problems_agree_with_full_ones() {
             Body::plane_strain(steel, 1.0),
             Body::plane_strain(steel, 1.0),
             cylinder,
-            Loading::Load(1e3),
+            Loading::load(1e3),
             2,
         ),
         (
@@ -446,7 +446,7 @@ fn folded_problems_agree_with_full_ones() {
             Body::beam(30e6, 16.0 / 3.0, 0.0),
             Body::winkler(1e7),
             Geometry::Separation(vec![0.0; 30]),
-            Loading::Load(5e4),
+            Loading::load(5e4),
             2,
         ),
     ];
@@ -494,7 +494,7 @@ fn a_folded_problem_refuses_an_asymmetric_separation() {
         &body,
         &body,
         &Geometry::Separation(vec![0.0; 6]),
-        Loading::Load(1.0),
+        Loading::load(1.0),
     )
     .unwrap();
     assert!(p.folding().is_some());
@@ -502,7 +502,7 @@ fn a_folded_problem_refuses_an_asymmetric_separation() {
         .with_separation(vec![0.0, 0.0, 0.0, 0.0, 0.0, 1e-6])
         .unwrap_err();
     assert!(
-        e.to_string().contains("breaks the symmetry (mirror x)"),
+        e.to_string().contains("break the symmetry (mirror x)"),
         "{e}"
     );
     // An asymmetric geometry is simply not folded.
@@ -511,7 +511,7 @@ fn a_folded_problem_refuses_an_asymmetric_separation() {
         &body,
         &body,
         &Geometry::Separation(vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0]),
-        Loading::Load(1.0),
+        Loading::load(1.0),
     )
     .unwrap();
     assert!(q.folding().is_none());
@@ -533,7 +533,7 @@ fn a_warm_start_from_the_previous_load_step_saves_iterations() {
         &body,
         &body,
         &geometry,
-        Loading::Load(100.0),
+        Loading::load(100.0),
     )
     .unwrap();
     for fold in [false, true] {
@@ -542,8 +542,8 @@ fn a_warm_start_from_the_previous_load_step_saves_iterations() {
         } else {
             ContactProblem::new
         };
-        let light = build(points.clone(), &body, &body, &geometry, Loading::Load(90.0)).unwrap();
-        let heavy = light.with_loading(Loading::Load(100.0)).unwrap();
+        let light = build(points.clone(), &body, &body, &geometry, Loading::load(90.0)).unwrap();
+        let heavy = light.with_loading(Loading::load(100.0)).unwrap();
         let first = light
             .solve(Method::BlockPivoting, &Options::default())
             .unwrap();
@@ -588,11 +588,11 @@ fn a_cylinder_on_a_square_grid_folds_by_its_two_mirrors() {
         &body,
         &body,
         &geometry,
-        Loading::Load(100.0),
+        Loading::load(100.0),
     )
     .unwrap();
     assert_eq!(folded.folding().map(|f| f.order()), Some(4));
-    let full = ContactProblem::new(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+    let full = ContactProblem::new(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
     let (a, b) = (
         folded
             .solve(Method::BlockPivoting, &Options::default())

@@ -37,7 +37,10 @@ fn every_case_is_certified_by_every_method() {
             // to the general tableau, and in about a pivot a point (a beam
             // whose every point touches at once took Lemke's method to the
             // pivot limit under a least-index rule for ties).
-            let load_control = matches!(case.problem.loading(), Loading::Load(_));
+            let load_control = matches!(
+                case.problem.loading().normal,
+                elcon_analysis::Normal::Load(_)
+            );
             if method == Method::Lemke || (method == Method::RestrictedSimplex && load_control) {
                 let s = &sol.statistics;
                 assert!(s.symmetric_tableau(), "{label}: {s:?}");
@@ -153,7 +156,7 @@ fn three_unit_systems_give_the_same_answer_to_1e_12() {
             &body,
             &body,
             &geometry,
-            Loading::Load(100.0 * force),
+            Loading::load(100.0 * force),
         )
         .unwrap();
         let sol = p.solve(Method::Lemke, &Options::default()).unwrap();
@@ -233,7 +236,7 @@ proptest! {
         let points = PointSet::grid_disk(a / 6.0, 1.3 * a).unwrap();
         let geometry = Geometry::Surfaces(Surface::Sphere { radius: r1 }, Surface::Sphere { radius: r2 });
         let problem = ContactProblem::new(points, &Body::uniform_patch(m1), &Body::uniform_patch(m2), &geometry,
-            Loading::Load(nominal * 10f64.powf(log_load))).unwrap();
+            Loading::load(nominal * 10f64.powf(log_load))).unwrap();
         match problem.solve(method, &Options::default()) {
             Ok(sol) => {
                 prop_assert!(sol.certificate.holds(), "{method}: {}", sol.certificate);
@@ -257,7 +260,7 @@ fn a_point_that_just_touches_is_reported_uncertain() {
         &Body::winkler(1e6),
         &Body::rigid(),
         &Geometry::Separation(vec![0.0, 1e-3, 2e-3]),
-        Loading::Approach(1e-3),
+        Loading::approach(1e-3).aligned(),
     )
     .unwrap();
     for method in Method::ALL {
@@ -298,7 +301,7 @@ fn a_folded_problem_reports_the_uncertain_points_of_the_full_one() {
                 &Body::winkler(1e6),
                 &Body::rigid(),
                 &Geometry::Separation(eps.clone()),
-                Loading::Approach(1e-3),
+                Loading::approach(1e-3),
             )
             .unwrap()
         };
@@ -337,7 +340,7 @@ fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
         &Body::beam(1e6, 1.0, 0.0),
         &Body::rigid(),
         &Geometry::Separation(vec![0.0; 21]),
-        Loading::Load(10.0),
+        Loading::load(10.0),
     )
     .unwrap();
     for method in Method::ALL {
@@ -379,7 +382,7 @@ fn lemke_ends_when_the_covering_variable_reaches_zero_outside_the_relative_tie()
         Surface::Sphere { radius: 10.0 },
     );
     let problem =
-        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::Load(100.0)).unwrap();
+        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
     let lemke = problem.solve(Method::Lemke, &Options::default()).unwrap();
     assert!(lemke.certificate.holds(), "{}", lemke.certificate);
     // Not checked from the full S (common::checks): about 17,500 points,

@@ -8,7 +8,7 @@
 //! each solution certified by elcon-analysis. Used for the re-analysis of
 //! every design, for crowns, and for comparing profiles.
 
-use elcon_analysis::{ContactProblem, ContactSolution, Loading, Method, Options};
+use elcon_analysis::{ContactProblem, ContactSolution, Method, Normal, Options};
 
 use crate::{Axis, DesignError, Profile};
 
@@ -51,9 +51,9 @@ pub(crate) fn load_of(case: &ContactProblem, index: usize) -> Result<f64, Design
             ),
         });
     }
-    match case.loading() {
-        Loading::Load(p) => Ok(p),
-        Loading::Approach(_) => Err(DesignError::Incompatible {
+    match case.loading().normal {
+        Normal::Load(p) => Ok(p),
+        Normal::Approach(_) => Err(DesignError::Incompatible {
             field: "cases",
             reason: format!(
                 "load case {index} is displacement controlled; a design needs every case under a load (Loading::Load)"

@@ -31,7 +31,7 @@
 //!     &Body::beam(30e6, 16.0 / 3.0, 0.0),
 //!     &Body::winkler(1e7),
 //!     &Geometry::Separation(vec![0.0; 20]),
-//!     Loading::Load(5e4),
+//!     Loading::load(5e4),
 //! )
 //! .unwrap();
 //! let d = design(std::slice::from_ref(&case), Axis::X, Family::Quadratic, &DesignOptions::default()).unwrap();

@@ -308,12 +308,22 @@ pub fn fit_profile(
     Ok(basis.profile(family, &stations, &basis.fit(&y)))
 }
 
-/// One load case, prepared: its points' stations, measures and load.
+/// One load case, prepared: its points' stations, measures and load, and
+/// its free rigid motions (the approach first, then the free rotations that
+/// its symmetry does not make zero) with the separations shifted by the
+/// prescribed ones. (A correction that breaks a case's symmetry makes its
+/// re-analysis free a rotation the program held: the re-analysis then
+/// disagrees, and the design says so.)
 struct Case<'a> {
     problem: &'a ContactProblem,
     station: Vec<usize>,
     measures: Vec<f64>,
     load: f64,
+    /// The free motions' levers at every point (n x k) and resultants.
+    levers: Mat<f64>,
+    resultants: Vec<f64>,
+    /// `eps` shifted by the prescribed motions.
+    separation: Vec<f64>,
     /// Reference intensity r_l.
     reference: f64,
 }
@@ -375,7 +385,7 @@ fn program(
     let mut starts = Vec::new();
     for c in cases {
         starts.push(rows);
-        rows += 2 * c.station.len() + 1;
+        rows += 2 * c.station.len() + c.resultants.len();
     }
     let profile_rows = rows;
     rows += n_st;
@@ -391,11 +401,15 @@ fn program(
         let n = c.station.len();
         let (rc, ri, re) = (starts[l], starts[l] + n, starts[l] + 2 * n);
         let s = c.problem.influence();
+        // Compatibility rows -S F + Y + sum lambda_j m_j = eps (+ drops),
+        // intensity rows F / A, resultant rows sum m_j F = b_j.
         let block = Mat::from_fn(rows, n, |r, j| {
             if (rc..rc + n).contains(&r) {
                 -s[(r - rc, j)]
-            } else if r == ri + j || r == re {
+            } else if r == ri + j {
                 1.0
+            } else if (re..re + c.resultants.len()).contains(&r) {
+                c.levers[(j, r - re)]
             } else {
                 0.0
             }
@@ -406,21 +420,36 @@ fn program(
             b.complementary(f.start + j, y.start + j)?;
         }
         forces.push(f);
-        let eps = c.problem.separation();
         for k in 0..n {
-            rhs[rc + k] = eps[k] + drops0[c.station[k]];
+            rhs[rc + k] = c.separation[k] + drops0[c.station[k]];
         }
-        rhs[re] = c.load;
+        for (j, &resultant) in c.resultants.iter().enumerate() {
+            rhs[re + j] = resultant;
+        }
     }
-    let alpha = Mat::from_fn(rows, cases.len(), |r, l| {
-        let n = cases[l].station.len();
-        if (starts[l]..starts[l] + n).contains(&r) {
-            1.0
+    // The free rigid motions: every case's approach, then every case's free
+    // rotations (levers in the compatibility rows).
+    let motions = cases.iter().map(|c| c.resultants.len()).max().unwrap_or(0);
+    for j in 0..motions {
+        let with: Vec<usize> = (0..cases.len())
+            .filter(|&l| j < cases[l].resultants.len())
+            .collect();
+        let block = Mat::from_fn(rows, with.len(), |r, col| {
+            let l = with[col];
+            let start = starts[l];
+            if (start..start + cases[l].station.len()).contains(&r) {
+                cases[l].levers[(r - start, j)]
+            } else {
+                0.0
+            }
+        });
+        let name = if j == 0 {
+            "alpha".to_string()
         } else {
-            0.0
-        }
-    });
-    b.dense_columns("alpha", alpha.as_ref(), Bound::Free)?;
+            format!("rotation{j}")
+        };
+        b.dense_columns(&name, block.as_ref(), Bound::Free)?;
+    }
     // theta: -Phi in the compatibility rows and the station rows, +1 in the bound row.
     let mut theta_block = Mat::<f64>::zeros(rows, m);
     for (l, c) in cases.iter().enumerate() {
@@ -519,11 +548,28 @@ pub fn design(
         .zip(index)
         .enumerate()
         .map(|(l, (problem, station))| {
+            let rigid = problem.rigid().clone();
+            let points = problem.points();
+            let at = |k: usize| (points.x(k), points.y(k));
+            let levers = Mat::from_fn(points.len(), rigid.free.len(), |k, j| {
+                rigid.free[j].0.lever(at(k), rigid.load_point)
+            });
+            let shift = |k: usize| -> f64 {
+                -rigid
+                    .prescribed
+                    .iter()
+                    .map(|&(mode, value)| value * mode.lever(at(k), rigid.load_point))
+                    .sum::<f64>()
+            };
+            let eps = problem.separation();
             Ok(Case {
                 problem,
-                measures: problem.points().measures(),
+                measures: points.measures(),
                 station,
                 load: load_of(problem, l)?,
+                levers,
+                resultants: rigid.free.iter().map(|&(_, v)| v).collect(),
+                separation: (0..points.len()).map(|k| eps[k] + shift(k)).collect(),
                 reference: references[l],
             })
         })

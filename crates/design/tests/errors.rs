@@ -22,7 +22,7 @@ fn beam(loading: Loading) -> ContactProblem {
 
 #[test]
 fn invalid_input_names_the_field() {
-    let case = beam(Loading::Load(5e4));
+    let case = beam(Loading::load(5e4));
     let opts = DesignOptions {
         max_constant: Some(-1.0),
         ..DesignOptions::default()
@@ -62,7 +62,7 @@ fn incompatible_inputs_say_what_to_give() {
     let e = design(&[], Axis::X, Family::Free, &DesignOptions::default()).unwrap_err();
     assert_eq!(e.to_string(), "`cases`: no load case given");
     let e = design(
-        &[beam(Loading::Approach(1e-3))],
+        &[beam(Loading::approach(1e-3))],
         Axis::X,
         Family::Free,
         &DesignOptions::default(),
@@ -74,7 +74,7 @@ fn incompatible_inputs_say_what_to_give() {
         "{e}"
     );
     let e = design(
-        &[beam(Loading::Load(1.0))],
+        &[beam(Loading::load(1.0))],
         Axis::X,
         Family::Polynomial { degree: 12 },
         &DesignOptions::default(),
@@ -85,7 +85,7 @@ fn incompatible_inputs_say_what_to_give() {
         "`family.degree`: degree 12 needs at least 13 axial stations, the cases have 12"
     );
     // Known solutions: one entry per case, one value per point.
-    let case = beam(Loading::Load(5e4));
+    let case = beam(Loading::load(5e4));
     let e = elcon_design::evaluate_known(
         std::slice::from_ref(&case),
         Axis::X,
@@ -104,7 +104,7 @@ fn incompatible_inputs_say_what_to_give() {
         &Body::beam(30e6, 64.0 / 12.0, 0.0),
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; 8]),
-        Loading::Load(5e4),
+        Loading::load(5e4),
     )
     .unwrap()
     .solve(Method::Lemke, &Options::default())
@@ -143,7 +143,7 @@ fn analysis_failures_name_the_stage() {
         ..DesignOptions::default()
     };
     let e = design(
-        &[beam(Loading::Load(5e4))],
+        &[beam(Loading::load(5e4))],
         Axis::X,
         Family::Quadratic,
         &opts,
@@ -176,7 +176,7 @@ fn engine_failures_pass_through() {
         ..DesignOptions::default()
     };
     let e = design(
-        &[beam(Loading::Load(5e4))],
+        &[beam(Loading::load(5e4))],
         Axis::X,
         Family::Quadratic,
         &opts,

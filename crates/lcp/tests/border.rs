@@ -30,17 +30,20 @@ struct Known {
     resultant: Col<f64>,
 }
 
-/// A problem around a known solution: the border's first column is ones
-/// (an approach), the others `coords` (tilts' lever arms); the active set
+/// A problem around a known solution: one border column is ones (an
+/// approach: the first, or with `ones_last` the last, so that a border of
+/// several rows starts from its first contact rather than along the
+/// approach), the others `coords` (tilts' lever arms); the active set
 /// holds at least k indices, `z* > 0` on it, `w* > 0` off it, `λ*` given;
 /// then `q = w* - M z* + B λ*` and `b = B^T z*`.
-fn known(m: Mat<f64>, k: usize, draw: &Draw) -> Known {
+fn known(m: Mat<f64>, k: usize, draw: &Draw, ones_last: bool) -> Known {
     let n = m.nrows();
+    let ones = if ones_last { k - 1 } else { 0 };
     let border = Mat::from_fn(n, k, |i, l| {
-        if l == 0 {
+        if l == ones {
             1.0
         } else {
-            draw.coords[(l - 1) * 60 + i]
+            draw.coords[l * 60 + i]
         }
     });
     let active: Vec<bool> = (0..n).map(|i| i < k || draw.active[i]).collect();
@@ -67,6 +70,7 @@ fn known(m: Mat<f64>, k: usize, draw: &Draw) -> Known {
 /// The random draws a problem is made of (up to 60 points, 3 columns).
 #[derive(Debug, Clone)]
 struct Draw {
+    /// Up to three columns of 60 levers.
     coords: Vec<f64>,
     active: Vec<bool>,
     values: Vec<f64>,
@@ -75,7 +79,7 @@ struct Draw {
 
 fn draw() -> impl Strategy<Value = Draw> {
     (
-        proptest::collection::vec(-1.0f64..1.0, 120),
+        proptest::collection::vec(-1.0f64..1.0, 180),
         proptest::collection::vec(any::<bool>(), 60),
         proptest::collection::vec(0.0f64..1.0, 60),
         proptest::collection::vec(-1.0f64..1.0, 3),
@@ -199,8 +203,9 @@ proptest! {
             0.05f64..1.0,
         ))),
         draw in draw(),
+        ones_last in any::<bool>(),
     ) {
-        let known = known(spd(n, &a, shift), k, &draw);
+        let known = known(spd(n, &a, shift), k, &draw, ones_last);
         let (z, lambda) = brute_force(&known).expect("the known solution is one");
         prop_assert!(rel_diff(&z, &known.z) < 1e-9 && rel_diff(&lambda, &known.lambda) < 1e-8);
         if let Err(e) = check_routes(&known, &z, &lambda, 1e-8) {
@@ -223,8 +228,9 @@ proptest! {
             0.05f64..1.0,
         ))),
         draw in draw(),
+        ones_last in any::<bool>(),
     ) {
-        let known = known(spd(n, &a, shift), k, &draw);
+        let known = known(spd(n, &a, shift), k, &draw, ones_last);
         let general = Options { tableau: Tableau::General, ..Options::default() };
         let reference = known.problem.solve(Method::Lemke, &general).unwrap();
         prop_assert!(rel_diff(&reference.z, &known.z) < 1e-8);
@@ -235,8 +241,9 @@ proptest! {
 }
 
 /// The symmetric tableau finishes borders of two and three rows, not only
-/// one: over a fixed set of random problems, nearly every Lemke solve
-/// returns from it.
+/// one, from either start (along the approach, or from the first contact
+/// of all the rows): over a fixed set of random problems, nearly every
+/// Lemke solve returns from it.
 #[test]
 fn the_symmetric_tableau_solves_borders_of_several_rows() {
     let mut rng = 0x2545_f491_4f6c_dd1du64;
@@ -246,19 +253,19 @@ fn the_symmetric_tableau_solves_borders_of_several_rows() {
         rng ^= rng << 17;
         (rng >> 11) as f64 / (1u64 << 53) as f64
     };
-    for k in [2, 3] {
+    for (k, ones_last) in [(2, false), (3, false), (2, true), (3, true)] {
         let mut symmetric = 0;
         let trials = 40;
         for _ in 0..trials {
             let n = 20 + (next() * 30.0) as usize;
             let a: Vec<f64> = (0..n * n).map(|_| 2.0 * next() - 1.0).collect();
             let draw = Draw {
-                coords: (0..120).map(|_| 2.0 * next() - 1.0).collect(),
+                coords: (0..180).map(|_| 2.0 * next() - 1.0).collect(),
                 active: (0..60).map(|_| next() < 0.5).collect(),
                 values: (0..60).map(|_| next()).collect(),
                 lambda: (0..3).map(|_| 2.0 * next() - 1.0).collect(),
             };
-            let known = known(spd(n, &a, 0.3), k, &draw);
+            let known = known(spd(n, &a, 0.3), k, &draw, ones_last);
             let sol = known
                 .problem
                 .solve(Method::Lemke, &Options::default())

@@ -6,7 +6,7 @@
 
 use std::time::Instant;
 
-use elcon_analysis::{ContactProblem, ContactSolution, Loading};
+use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
 use elcon_design::{
     DesignOptions, Evaluation, LogCrown, Profile, SearchOptions, axial_stations, crown_search,
     design, evaluate, evaluate_known,
@@ -420,9 +420,9 @@ fn compare(
             json.errors.max_pressure = Some(rel(sol.max_pressure, h.peak_pressure()));
             json.errors.contact_extent = Some(rel(sol.contact_extent, h.contact_radius()));
             json.errors.pressure_l2 = Some(l2(&p));
-            match loading {
-                Loading::Load(_) => json.errors.approach = Some(rel(sol.approach, h.approach())),
-                Loading::Approach(_) => {
+            match loading.normal {
+                Normal::Load(_) => json.errors.approach = Some(rel(sol.approach, h.approach())),
+                Normal::Approach(_) => {
                     json.load = Some(h.load);
                     json.errors.load = Some(rel(sol.load, h.load));
                 }
@@ -448,13 +448,13 @@ fn compare(
         }
         Reference::FlatPunch(punch) => {
             json.contact_extent = Some(punch.radius);
-            match loading {
-                Loading::Approach(d) => {
+            match loading.normal {
+                Normal::Approach(d) => {
                     let p = punch.load(d);
                     json.load = Some(p);
                     json.errors.load = Some(rel(sol.load, p));
                 }
-                Loading::Load(p) => {
+                Normal::Load(p) => {
                     let d = punch.approach(p);
                     json.approach = Some(d);
                     json.errors.approach = Some(rel(sol.approach, d));
@@ -517,19 +517,19 @@ fn design_stage(
         // solution is the uncorrected analysis.
         let own = problem.folding().is_none() && points == *problem.points();
         let case = if own {
-            problem.with_loading(Loading::Load(load))
+            problem.with_loading(Loading::load(load))
         } else {
             ContactProblem::new(
                 points,
                 &b1.body,
                 &b2.body,
                 &scene.geometry,
-                Loading::Load(load),
+                Loading::load(load),
             )
             .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1))
         }
         .map_err(|e| run_error(scene, e))?;
-        let solved = matches!(problem.loading(), Loading::Load(p) if own && p == load);
+        let solved = matches!(problem.loading().normal, Normal::Load(p) if own && p == load);
         known.push(solved.then_some(solution));
         references.push(reference_intensity(scene, &case, load)?);
         cases.push(case);

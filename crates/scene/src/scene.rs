@@ -12,7 +12,7 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam};
-use elcon_analysis::{Geometry, Loading, Method, Options, Surface};
+use elcon_analysis::{Geometry, Loading, Method, Normal, Options, Surface};
 use elcon_design::{Axis, Family};
 use elcon_influence::{Body, Dimension, Material, PointSet, combined_modulus_of};
 use toml::Spanned;
@@ -466,9 +466,9 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let geometry = geometry(ctx, raw.geometry.as_ref(), dimension)?;
     // The load that sizes Hertz-relative grids: the load, or under
     // displacement control the Hertz load of that approach.
-    let sizing_load = match loading {
-        Loading::Load(p) => Some(p),
-        Loading::Approach(_) => None,
+    let sizing_load = match loading.normal {
+        Normal::Load(p) => Some(p),
+        Normal::Approach(_) => None,
     };
     let scale = sizing_load.and_then(|p| hertz_scale(&bodies, &geometry, &points_spec, p));
     let relative = matches!(
@@ -748,8 +748,8 @@ fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneErr
 
 fn loading(ctx: &Ctx<'_>, l: &Spanned<LoadingToml>) -> Result<Loading, SceneError> {
     match (&l.get_ref().load, &l.get_ref().approach) {
-        (Some(p), None) => Ok(Loading::Load(ctx.positive(p, "loading.load")?)),
-        (None, Some(a)) => Ok(Loading::Approach(ctx.finite(a, "loading.approach")?)),
+        (Some(p), None) => Ok(Loading::load(ctx.positive(p, "loading.load")?)),
+        (None, Some(a)) => Ok(Loading::approach(ctx.finite(a, "loading.approach")?)),
         _ => Err(ctx.invalid(
             l.span(),
             "loading",
@@ -1233,11 +1233,11 @@ fn reference(
         PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
             let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
             let r = combined(geometry, true)?;
-            let load = match loading {
-                Loading::Load(p) => p,
+            let load = match loading.normal {
+                Normal::Load(p) => p,
                 // The Hertz load of the approach: P = 4 E* a^3 / (3 R), a = sqrt(R delta).
-                Loading::Approach(d) if d > 0.0 => 4.0 * e * (r * d).powf(1.5) / (3.0 * r),
-                Loading::Approach(_) => return None,
+                Normal::Approach(d) if d > 0.0 => 4.0 * e * (r * d).powf(1.5) / (3.0 * r),
+                Normal::Approach(_) => return None,
             };
             HertzSpheres::new(e, r, load)
                 .ok()
@@ -1246,7 +1246,7 @@ fn reference(
         PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
             if let Some(r) = combined(geometry, false) {
                 let e = half_space_modulus(bodies, &["plane-strain"])?;
-                let Loading::Load(p) = loading else {
+                let Normal::Load(p) = loading.normal else {
                     return None;
                 };
                 let datums: Vec<f64> = bodies
@@ -1267,7 +1267,7 @@ fn reference(
             if !flat {
                 return None;
             }
-            let Loading::Load(p) = loading else {
+            let Normal::Load(p) = loading.normal else {
                 return None;
             };
             let (mut ei, mut k, mut x0) = (None, None, None);
@@ -1404,7 +1404,7 @@ fn design(
         points_spec,
     } = *scene;
     let t = d.get_ref();
-    let Loading::Load(load) = loading else {
+    let Normal::Load(load) = loading.normal else {
         return Err(ctx.invalid(
             d.span(),
             "design",

@@ -3,7 +3,7 @@
 
 #![allow(dead_code)]
 
-use elcon_analysis::{ContactProblem, ContactSolution, Loading};
+use elcon_analysis::{ContactProblem, ContactSolution, Normal, Tilt};
 use proptest::prelude::*;
 
 /// Tolerance of the checks below, relative to the scale of each quantity:
@@ -16,22 +16,28 @@ pub const TOL: f64 = 1e-11;
 /// Checks the contact conditions of `sol` from the data of `problem`, which
 /// must be a problem solved in full (check a folded problem's solution
 /// against the full problem of the same scene): sum F = P under load
-/// control, F >= 0, gaps Y = S F + eps - alpha e >= 0 (and equal to
-/// `sol.gaps`), F_k Y_k = 0, and the reported load.
+/// control, F >= 0, gaps Y = S F + eps - (alpha + θ_x (y - y0) - θ_y (x -
+/// x0)) >= 0 (and equal to `sol.gaps`), F_k Y_k = 0, the moments of a free
+/// rotation, and the reported load and moments.
 pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), TestCaseError> {
     prop_assert!(
         problem.folding().is_none(),
         "check against the full problem: a folded one's matrix is not S"
     );
-    let load = match problem.loading() {
-        Loading::Load(p) => Some(p),
-        Loading::Approach(_) => None,
+    let load = match problem.loading().normal {
+        Normal::Load(p) => Some(p),
+        Normal::Approach(_) => None,
     };
     let s = problem.influence();
     let eps = problem.separation();
     let n = eps.len();
     prop_assert_eq!(sol.forces.len(), n);
     let fmax = sol.forces.iter().fold(0.0f64, |a, f| a.max(*f));
+    let (x0, y0) = problem.rigid().load_point;
+    let points = problem.points();
+    // The rigid motion toward body 2 at point k.
+    let rigid =
+        |k: usize| sol.approach + sol.tilt_x * (points.y(k) - y0) - sol.tilt_y * (points.x(k) - x0);
     let mut gap_scale = 0.0f64;
     let mut gaps = vec![0.0; n];
     for k in 0..n {
@@ -41,8 +47,8 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
             sf += s[(k, j)] * sol.forces[j];
             terms += (s[(k, j)] * sol.forces[j]).abs();
         }
-        gaps[k] = sf + eps[k] - sol.approach;
-        gap_scale = gap_scale.max(terms + eps[k].abs() + sol.approach.abs());
+        gaps[k] = sf + eps[k] - rigid(k);
+        gap_scale = gap_scale.max(terms + eps[k].abs() + rigid(k).abs());
     }
     for k in 0..n {
         prop_assert!(sol.forces[k] >= -TOL * fmax, "F[{k}] = {}", sol.forces[k]);
@@ -64,6 +70,44 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
         prop_assert!((total - p).abs() <= TOL * p, "sum F = {total}, P = {p}");
     }
     prop_assert!((total - sol.load).abs() <= TOL * total.abs().max(f64::MIN_POSITIVE));
+    // Moments of the forces about the load point, against the reported ones
+    // and, for a free rotation, the moment it balances (each to the scale
+    // of its terms, sum |F| |lever|).
+    let loading = problem.loading();
+    for (moment, reported, lever, tilt) in [
+        (
+            (0..n)
+                .map(|k| sol.forces[k] * (points.y(k) - y0))
+                .sum::<f64>(),
+            sol.moment_x,
+            (0..n)
+                .map(|k| (sol.forces[k] * (points.y(k) - y0)).abs())
+                .sum::<f64>(),
+            loading.tilt_x,
+        ),
+        (
+            -(0..n)
+                .map(|k| sol.forces[k] * (points.x(k) - x0))
+                .sum::<f64>(),
+            sol.moment_y,
+            (0..n)
+                .map(|k| (sol.forces[k] * (points.x(k) - x0)).abs())
+                .sum::<f64>(),
+            loading.tilt_y,
+        ),
+    ] {
+        let scale = lever.max(f64::MIN_POSITIVE);
+        prop_assert!(
+            (moment - reported).abs() <= TOL * scale,
+            "moment {moment} reported {reported}"
+        );
+        if let Tilt::Free { moment: applied } = tilt {
+            prop_assert!(
+                (moment - applied).abs() <= TOL * (scale + applied.abs()),
+                "moment {moment} against the applied {applied}"
+            );
+        }
+    }
     prop_assert!(sol.certificate.holds(), "{}", sol.certificate);
     Ok(())
 }

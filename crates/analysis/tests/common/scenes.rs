@@ -35,7 +35,7 @@ pub fn spheres(
         &Body::uniform_patch(m1),
         &Body::uniform_patch(m2),
         &geometry,
-        Loading::Load(load),
+        Loading::load(load),
     )
     .expect("spheres problem");
     (problem, hertz)
@@ -58,7 +58,7 @@ pub fn flat_punch(
         &Body::uniform_patch(material),
         &Body::rigid(),
         &Geometry::Separation(vec![0.0; n]),
-        Loading::Approach(approach),
+        Loading::approach(approach),
     )
     .expect("punch problem");
     let punch = FlatPunch::new(material.plane_strain_modulus(), radius).expect("punch");

@@ -170,7 +170,7 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
     let (nominal, _) = spheres(steel(), steel(), 0.01, 0.1, 100.0, across, 1.3);
     for factor in [1e-6, 1e-3, 1.0, 1e3, 1e6] {
         let load = 100.0 * factor;
-        let problem = nominal.with_loading(Loading::Load(load)).expect("load");
+        let problem = nominal.with_loading(Loading::load(load)).expect("load");
         let hertz = HertzSpheres::new(
             combined_modulus(&steel(), &steel()),
             combined_radius(0.01, 0.1),
@@ -212,7 +212,7 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
             Surface::Sphere { radius: 0.1 },
         );
         let body = Body::uniform_patch(steel());
-        let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::Load(100.0))
+        let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::load(100.0))
             .expect("problem");
         cases.push(Case {
             family: "size",
@@ -233,7 +233,7 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
             &Body::beam(ei, 1.0, 0.0),
             &Body::winkler(k),
             &Geometry::Separation(vec![0.0; n]),
-            Loading::Load(1e4),
+            Loading::load(1e4),
         )
         .expect("beam problem");
         let reference = if lambda_l < std::f64::consts::PI {

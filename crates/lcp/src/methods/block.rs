@@ -29,7 +29,7 @@
 use faer::Par;
 
 use crate::linalg::norm_inf;
-use crate::methods::{Answer, Attempted, Failure, NotApplicable, first_contact_order};
+use crate::methods::{Answer, Attempted, Failure, NotApplicable, touch_order};
 use crate::options::Options;
 use crate::problem::{MixedRef, Problem};
 use crate::statistics::{Breakdown, Work};
@@ -66,10 +66,7 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
     let cap = opts.max_pivots.unwrap_or(3 * n + 50);
     let mut best = usize::MAX;
     let mut retries = BLOCK_RETRIES;
-    let key = match first_contact_order(problem, opts) {
-        Some((_, keys)) => keys,
-        None => keys(p),
-    };
+    let key = touch_order(problem, opts).unwrap_or_else(|| keys(p));
     let mut factor = Factor::new(n);
     let mut active = match warm_start(p, opts) {
         Some(a) => a,
@@ -132,8 +129,9 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
 }
 /// The order in which indices join the factor: by the threshold `q_i /
 /// |B_i|` (for one extra unknown: the approach at which point i touches),
-/// else by `q_i`. (A border of several rows orders them by the gap at its
-/// first contact instead: `crate::methods::first_contact_order`.)
+/// else by `q_i`. (A bordered problem is ordered by the approach at which
+/// each index touches, or the gap at its first contact:
+/// `crate::methods::touch_order`.)
 fn keys(p: &MixedRef<'_>) -> Vec<f64> {
     (0..p.size())
         .map(|i| {

@@ -35,7 +35,7 @@ use faer::{Col, Mat};
 
 use crate::LcpError;
 use crate::methods::{
-    Answer, Attempted, Failure, NotApplicable, finish_on_active_set, first_contact_order,
+    Answer, Attempted, Failure, NotApplicable, PathStart, finish_on_active_set, path_start,
     symmetric_path,
 };
 use crate::options::Options;
@@ -56,20 +56,26 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
         Err(_) => return Err(Failure::new(Breakdown::NoStart, Work::default())),
     };
     let p = &problem.mixed;
-    let k = p.extras();
-    // Several rows start at their first contact (an LP), ordered from it.
-    let first = if k >= 2 {
-        match first_contact_order(problem, opts) {
-            Some(first) => Some(first),
+    // A border starts from the approach when its first column is one, else
+    // (several rows) from their first contact, an LP, ordered from it.
+    let begin = match stop {
+        Stop::Border => match path_start(problem, opts) {
+            Some(begin) => Some(begin),
             None => return Err(Failure::new(Breakdown::NoStart, Work::default())),
-        }
-    } else {
-        None
+        },
+        Stop::Parameter => None,
     };
-    let start = start(p, opts, &stop, first.as_ref().map(|f| f.1.as_slice()));
+    let keys = match &begin {
+        Some(PathStart::FirstContact(_, keys)) => Some(keys.as_slice()),
+        _ => None,
+    };
+    let start = start(p, opts, &stop, keys);
     let mut walk = Walk::new(start, stop, opts);
-    match &first {
-        Some((contact, _)) => walk.enter_first_contact(&contact.basis, &contact.lambda)?,
+    match &begin {
+        Some(PathStart::FirstContact(contact, _)) => {
+            walk.phase = Phase::Resultants;
+            walk.enter_first_contact(&contact.basis, &contact.lambda)?;
+        }
         None if walk.trivial() => {
             // A standard LCP with q >= 0: z = 0 solves it.
             let n = p.size();
@@ -80,7 +86,7 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
                 work: walk.work,
             });
         }
-        None => {}
+        _ => {}
     }
     walk.run()?;
     let Walk {
@@ -99,8 +105,20 @@ struct Direction {
     to_stop: f64,
 }
 
+/// The two stretches of a bordered path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// Along the approach (the first border column), the other free
+    /// unknowns held, until the first resultant is met (the whole path of
+    /// one row, and of a standard LCP).
+    Approach,
+    /// All free unknowns along the Newton direction to the resultants.
+    Resultants,
+}
+
 /// The walk along the path.
 struct Walk {
+    phase: Phase,
     order: Vec<usize>,
     tab: Swept,
     diagonal: Vec<f64>,
@@ -137,21 +155,23 @@ impl Walk {
             work,
         } = start;
         let n = order.len();
-        // One row or the standard LCP: the first contact, the least λ at
-        // which some w_i = q_i + b_i λ is 0 (k rows set it from their LP).
+        // The approach's first contact, the least λ_1 at which some
+        // w_i = q_i + b_i1 λ_1 is 0, the other free unknowns at 0 (a first
+        // contact of k rows sets all of them from its LP instead).
         let alpha = (0..n)
             .filter(|&i| path.bbar[i] < 0.0)
             .map(|i| path.qbar[i] / -path.bbar[i])
             .fold(f64::INFINITY, f64::min);
         let k = path.columns();
         Self {
+            phase: Phase::Approach,
             order,
             tab,
             diagonal,
             path,
             weight,
             load,
-            lambda: if k == 1 { vec![alpha] } else { vec![0.0; k] },
+            lambda: (0..k).map(|l| if l == 0 { alpha } else { 0.0 }).collect(),
             units,
             stop,
             work,
@@ -213,6 +233,16 @@ impl Walk {
                 return Err(Failure::new(breakdown, self.work));
             }
             if direction.to_stop <= step {
+                // The approach met the first resultant: with more rows, on
+                // to the others (nothing to do when they are met too).
+                if self.phase == Phase::Approach
+                    && self.path.columns() > 1
+                    && self.stop == Stop::Border
+                {
+                    self.lambda[0] += direction.to_stop;
+                    self.phase = Phase::Resultants;
+                    continue;
+                }
                 return Ok(());
             }
             let pivot_on = self.first_tied(step, &direction)?;
@@ -273,19 +303,21 @@ impl Walk {
                 to_stop: -self.lambda[0],
             });
         }
-        // L = C z on J, G = dL/dλ, h = dL/dε.
+        // L = C z on J, G = dL/dλ, h = dL/dε, and the size of L's terms.
         let (mut load, mut g, mut h) = (vec![0.0; k], Mat::<f64>::zeros(k, k), vec![0.0; k]);
+        let mut scale: Vec<f64> = self.load.iter().map(|v| v.abs()).collect();
         for i in (0..n).filter(|&i| self.path.into[i]) {
             for l in 0..k {
                 let w = self.weight[l * n + i];
                 load[l] += w * self.value[i];
+                scale[l] += (w * self.value[i]).abs();
                 h[l] -= w * self.path.gbar[i];
                 for m in 0..k {
                     g[(l, m)] -= w * self.path.bbar_column(m)[i];
                 }
             }
         }
-        if k == 1 {
+        if self.phase == Phase::Approach {
             let slope = g[(0, 0)];
             let to_stop = if slope > 0.0 {
                 (self.load[0] - load[0]) / slope
@@ -296,16 +328,26 @@ impl Walk {
             } else {
                 f64::INFINITY
             };
+            let mut delta = vec![0.0; k];
+            delta[0] = 1.0;
             return Ok(Direction {
-                delta: vec![1.0],
-                gamma: vec![0.0],
+                delta,
+                gamma: vec![0.0; k],
                 to_stop,
+            });
+        }
+        let rest: Vec<f64> = (0..k).map(|l| self.load[l] - load[l]).collect();
+        if (0..k).all(|l| rest[l].abs() <= self.tol.zero * scale[l]) {
+            // The resultants are met (to the zero tolerance of their terms).
+            return Ok(Direction {
+                delta: vec![0.0; k],
+                gamma: vec![0.0; k],
+                to_stop: 0.0,
             });
         }
         let Some(solve) = symmetric_solver(&g) else {
             return Err(Failure::new(Breakdown::SingularBorder, self.work));
         };
-        let rest: Vec<f64> = (0..k).map(|l| self.load[l] - load[l]).collect();
         let delta = solve(&rest);
         let gamma = solve(&h).into_iter().map(|v| -v).collect();
         Ok(Direction {

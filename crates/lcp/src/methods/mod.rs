@@ -106,6 +106,68 @@ pub(crate) fn finish_on_active_set(
     }
 }
 
+/// How the symmetric tableau's path of a bordered problem starts.
+pub(crate) enum PathStart {
+    /// From the first contact along the first border column (the
+    /// approach): the other free unknowns held at zero until the first
+    /// resultant is met, then all free (see `lemke_symmetric`).
+    Approach,
+    /// From the first contact of all the rows (a linear program with k
+    /// rows), with the order in which the indices would touch from there.
+    FirstContact(FirstContact, Vec<f64>),
+}
+
+/// Whether the border's first column is an approach: `B_:1 >= 0`, its
+/// resultant `b_1 > 0`, and `q_i >= 0` where `B_i1 = 0` (every index
+/// reached as the approach rises, none interfering at the start).
+pub(crate) fn approach_column(problem: &Problem<'_>) -> bool {
+    let Some(border) = problem.border else {
+        return false;
+    };
+    let (b, q) = (border.columns, problem.mixed.q);
+    b.ncols() >= 1
+        && border.resultant[0] > 0.0
+        && (0..b.nrows()).all(|i| b[(i, 0)] > 0.0 || (b[(i, 0)] == 0.0 && q[i] >= 0.0))
+}
+
+/// The start of the symmetric tableau's path for a bordered problem
+/// (`None` without one, for a standard LCP, or when a border of several
+/// rows without an approach column has no first contact).
+pub(crate) fn path_start(problem: &Problem<'_>, options: &Options) -> Option<PathStart> {
+    let border = problem.border?;
+    if border.columns.ncols() == 0 {
+        return None;
+    }
+    if approach_column(problem) {
+        return Some(PathStart::Approach);
+    }
+    first_contact_order(problem, options).map(|(f, keys)| PathStart::FirstContact(f, keys))
+}
+
+/// The order in which the indices of a bordered problem would touch, for
+/// block pivoting's prefix search: with an approach column, `q_i / B_i1`
+/// (the approach at which index `i` touches, the other free unknowns held);
+/// otherwise from the first contact of several rows. `None` for neither.
+pub(crate) fn touch_order(problem: &Problem<'_>, options: &Options) -> Option<Vec<f64>> {
+    match path_start(problem, options)? {
+        PathStart::Approach => {
+            let (b, q) = (problem.border?.columns, problem.mixed.q);
+            Some(
+                (0..problem.size())
+                    .map(|i| {
+                        if b[(i, 0)] > 0.0 {
+                            q[i] / b[(i, 0)]
+                        } else {
+                            f64::INFINITY
+                        }
+                    })
+                    .collect(),
+            )
+        }
+        PathStart::FirstContact(_, keys) => Some(keys),
+    }
+}
+
 /// The first contact of a bordered problem with several rows, and the
 /// order in which its indices would touch from there: the gap at the first
 /// contact `q_i - B_i λ0` over the size of the index's border row
@@ -137,10 +199,10 @@ pub(crate) fn first_contact_order(
 }
 
 /// Where a path on the symmetric tableau applies: a symmetric `M` with a
-/// positive diagonal, in the standard form or a bordered one; with one row, the column `B >= 0`, the
-/// resultant `P > 0` and `q_i >= 0` where `B_i = 0` (every index reached as
-/// the approach rises, none interfering at the start). Several rows start
-/// from their first contact, which the attempt computes.
+/// positive diagonal, in the standard form or a bordered one; with one
+/// row, an approach column ([`approach_column`]). Several rows start from
+/// the approach when their first column is one, else from their first
+/// contact, which the attempt computes ([`path_start`]).
 pub(crate) fn symmetric_path(problem: &Problem<'_>) -> Result<Stop, NotApplicable> {
     let Some(border) = problem.border else {
         return Err(NotApplicable::new(

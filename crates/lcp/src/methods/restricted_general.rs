@@ -41,6 +41,7 @@ use crate::problem::{Bound, Problem};
 use crate::program::{Column, ComplementaryProgram};
 use crate::statistics::Work;
 use crate::tableau::basic::basic_solution;
+use crate::tableau::border::first_contact;
 use crate::tableau::general::{GeneralTableau, Position, Ratio, RowRule, UPDATE_BLOCK};
 use crate::tableau::system::{EQUILIBRATION_PASSES, System};
 
@@ -97,7 +98,18 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options, relaxed: bool) -> A
     // The program is used once: its dense block moves into the engine
     // instead of being copied (one N x N matrix fewer).
     let dense = std::mem::replace(&mut program.dense, Mat::zeros(0, 0));
-    let out = run_with(&program, dense, opts)?;
+    // A border of several rows: the free unknowns enter at the rows of its
+    // first contact (where the rigid bodies first rest), not at whichever
+    // row limits each one alone.
+    let entry = problem
+        .border
+        .filter(|b| b.columns.ncols() >= 2)
+        .and_then(|b| {
+            first_contact(b.columns, b.resultant, p.q, &opts.tolerances)
+                .ok()
+                .map(|f| f.basis)
+        });
+    let out = run_with(&program, dense, opts, entry.as_deref())?;
     let mut basic = vec![false; n];
     for &v in &out.basis {
         if v < n {
@@ -117,7 +129,7 @@ pub(crate) fn attempt_program(
     p: &ComplementaryProgram,
     opts: &Options,
 ) -> Result<ProgramAnswer, Failure> {
-    run_with(p, p.dense.clone(), opts)
+    run_with(p, p.dense.clone(), opts, None)
 }
 
 /// An entering candidate: its column, its direction (+1 up, -1 down for a
@@ -151,6 +163,8 @@ struct Run<'a> {
     limit: usize,
     refactor_every: usize,
     names: &'a ComplementaryProgram,
+    /// The rows the free unknowns enter at, in order, where they tie.
+    entry: Option<&'a [usize]>,
 }
 
 /// The program's constraints scaled for pivoting: negative right-hand
@@ -245,6 +259,7 @@ fn run_with(
     p: &ComplementaryProgram,
     dense: Mat<f64>,
     opts: &Options,
+    entry: Option<&[usize]>,
 ) -> Result<ProgramAnswer, Failure> {
     let m = p.rows;
     let nv = p.columns.len();
@@ -278,6 +293,7 @@ fn run_with(
         limit: opts.pivot_limit(m, nv),
         refactor_every: opts.refactor_every(m),
         names: p,
+        entry,
     };
     match run.phases(p.cost.is_some()) {
         Ok(()) => {}
@@ -389,10 +405,11 @@ impl Run<'_> {
         let free: Vec<usize> = (0..self.bounds.len())
             .filter(|&v| self.bounds[v] == Bound::Free && !self.deferred[v])
             .collect();
-        for var in free {
+        for (index, var) in free.into_iter().enumerate() {
             let Position::Nonbasic(s) = self.tab.position[var] else {
                 continue;
             };
+            let prefer = self.entry.and_then(|rows| rows.get(index).copied());
             let d = self.tab.reduced_cost(0, s);
             let first = if d > 0.0 { -1.0 } else { 1.0 };
             let mut chosen = None;
@@ -401,7 +418,7 @@ impl Run<'_> {
                     s,
                     sigma,
                     self.rule(Phase::Feasibility),
-                    None,
+                    prefer,
                     &self.opts.tolerances,
                     self.zero_level,
                 ) {
