@@ -67,6 +67,7 @@ pub mod material;
 pub mod models;
 pub mod points;
 pub mod symmetry;
+mod terms;
 
 pub use assembly::{assemble, assemble_direct, assemble_folded, influence};
 pub use error::InfluenceError;
