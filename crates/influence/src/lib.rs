@@ -61,6 +61,7 @@
 //! Soc. A 228, 377-420; Johnson, K. L. (1985), Contact Mechanics, ch. 2-3.
 
 pub mod assembly;
+mod dimension;
 mod error;
 pub mod kernels;
 pub mod material;
