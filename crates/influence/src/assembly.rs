@@ -96,7 +96,7 @@ pub fn assemble_folded(
     } else {
         match table_layout(points) {
             Some(layout) => {
-                let table = terms.table(&layout);
+                let table = terms.table(layout.ni, layout.nj);
                 fold(points, &terms, folding, |k, j| table[layout.offset(k, j)])
             }
             None => {
@@ -163,7 +163,7 @@ pub fn assemble_direct(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, 
 fn fill_from_table(points: &PointSet, terms: &Terms, layout: &TableLayout) -> Mat<f64> {
     let n = points.len();
     let nj = layout.nj;
-    let table = terms.table(layout);
+    let table = terms.table(layout.ni, layout.nj);
     let mut s = Mat::<f64>::zeros(n, n);
     let threads = threads_for(n);
     let splits: Vec<usize> = (0..=threads).map(|t| t * n / threads).collect();

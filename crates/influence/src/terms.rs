@@ -1,7 +1,7 @@
 //! The bodies reduced to their influence terms, and the half-space
-//! coefficient at a lattice offset: the one kernel evaluation shared by
-//! every path that builds or applies S (the dense assembly
-//! [`crate::assemble`] among them).
+//! coefficient at a lattice offset: the one kernel evaluation shared by the
+//! dense assembly ([`crate::assemble`]) and the matrix-free lattice operator
+//! ([`crate::LatticeOperator`]).
 //!
 //! Half-space bodies that share a kernel K (same model, same datum d0) are
 //! summed before any kernel is evaluated, `c1 K + c2 K = (c1 + c2) K`, so the
@@ -207,12 +207,13 @@ impl Terms {
         })
     }
 
-    /// The half-space part of S at every lattice offset `(di, dj) >= 0` of
-    /// `layout`, at index `di * nj + dj` ([`TableLayout::offset`]).
-    pub(crate) fn table(&self, layout: &TableLayout) -> Vec<f64> {
+    /// The half-space part of S at every lattice offset `(di, dj)`,
+    /// `0 <= di < ni`, `0 <= dj < nj`, at index `di * nj + dj`
+    /// ([`TableLayout::offset`]): one kernel evaluation per offset, at
+    /// `(di dx, dj dy)`, the self-term at (0, 0).
+    pub(crate) fn table(&self, ni: usize, nj: usize) -> Vec<f64> {
         let Cell { dx, dy } = self.cell;
-        let nj = layout.nj;
-        (0..layout.ni * nj)
+        (0..ni * nj)
             .map(|t| {
                 let (di, dj) = (t / nj, t % nj);
                 self.coefficient(di as f64 * dx, dj as f64 * dy, t == 0)
@@ -295,27 +296,74 @@ impl TableLayout {
     }
 }
 
+/// The bounding box of a set's lattice indices: `ni x nj` lattice cells
+/// from `(i_min, j_min)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct LatticeBox {
+    pub(crate) i_min: i64,
+    pub(crate) j_min: i64,
+    pub(crate) ni: usize,
+    pub(crate) nj: usize,
+}
+
+impl LatticeBox {
+    /// The box of the set's lattice, or `None` without a lattice (or for a
+    /// box whose side does not fit a usize).
+    pub(crate) fn of(points: &PointSet) -> Option<Self> {
+        let lattice = points.lattice()?;
+        let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
+        for &(i, j) in lattice {
+            i_min = i_min.min(i);
+            i_max = i_max.max(i);
+            j_min = j_min.min(j);
+            j_max = j_max.max(j);
+        }
+        let side = |lo: i64, hi: i64| usize::try_from(i128::from(hi) - i128::from(lo) + 1).ok();
+        Some(Self {
+            i_min,
+            j_min,
+            ni: side(i_min, i_max)?,
+            nj: side(j_min, j_max)?,
+        })
+    }
+
+    /// The number of lattice cells in the box, `ni nj` (saturating).
+    pub(crate) fn cells(&self) -> usize {
+        self.ni.saturating_mul(self.nj)
+    }
+
+    /// The most cells a box may hold for `n` points before a table (or a
+    /// padded grid) over it costs more than the points themselves:
+    /// [`TABLE_ENTRIES_PER_POINT`] per point, plus 64 for tiny sets.
+    pub(crate) const fn cell_limit(n: usize) -> usize {
+        TABLE_ENTRIES_PER_POINT * n + 64
+    }
+
+    /// Whether the box is small enough for `n` points ([`Self::cell_limit`]).
+    pub(crate) fn is_dense(&self, n: usize) -> bool {
+        self.cells() <= Self::cell_limit(n)
+    }
+
+    /// The lattice indices of a point shifted into the box, `0 <= i < ni`,
+    /// `0 <= j < nj`.
+    pub(crate) fn local(&self, (i, j): (i64, i64)) -> (usize, usize) {
+        ((i - self.i_min) as usize, (j - self.j_min) as usize)
+    }
+}
+
 /// The table layout if the set has a lattice and the table (one entry per
 /// offset in the bounding box) is not much larger than the set.
 pub(crate) fn table_layout(points: &PointSet) -> Option<TableLayout> {
     let lattice = points.lattice()?;
-    let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
-    for &(i, j) in lattice {
-        i_min = i_min.min(i);
-        i_max = i_max.max(i);
-        j_min = j_min.min(j);
-        j_max = j_max.max(j);
-    }
-    let ni = u128::try_from(i128::from(i_max) - i128::from(i_min) + 1).ok()?;
-    let nj = u128::try_from(i128::from(j_max) - i128::from(j_min) + 1).ok()?;
-    let limit = (TABLE_ENTRIES_PER_POINT * points.len() + 64) as u128;
-    if ni.checked_mul(nj)? > limit {
+    let bounds = LatticeBox::of(points)?;
+    if !bounds.is_dense(points.len()) {
         return None;
     }
+    let (i, j) = lattice.iter().map(|&l| bounds.local(l)).unzip();
     Some(TableLayout {
-        i: lattice.iter().map(|&(i, _)| (i - i_min) as usize).collect(),
-        j: lattice.iter().map(|&(_, j)| (j - j_min) as usize).collect(),
-        ni: ni as usize,
-        nj: nj as usize,
+        i,
+        j,
+        ni: bounds.ni,
+        nj: bounds.nj,
     })
 }
