@@ -22,19 +22,13 @@
 //!
 //! (k and j on the same side of x0, else 0) are added entry by entry.
 
-use std::f64::consts::PI;
-
 use faer::prelude::*;
 use faer::{Mat, MatMut};
 
 use crate::error::InfluenceError;
-use crate::kernels::{boussinesq, love_rectangle, plane_strain_strip};
-use crate::models::{Body, Model};
-use crate::points::{Cell, Dimension, PointSet};
-
-/// A table may hold at most this many entries per point before the direct
-/// path is cheaper (a sparse set on a fine lattice).
-const TABLE_ENTRIES_PER_POINT: usize = 4;
+use crate::models::Body;
+use crate::points::PointSet;
+use crate::terms::{TableLayout, Terms, table_layout};
 
 /// Tile size of the mirroring copy (64 x 64 doubles = 32 kB).
 const MIRROR_TILE: usize = 64;
@@ -102,7 +96,7 @@ pub fn assemble_folded(
     } else {
         match table_layout(points) {
             Some(layout) => {
-                let table = terms.table(&layout);
+                let table = terms.table(layout.ni, layout.nj);
                 fold(points, &terms, folding, |k, j| table[layout.offset(k, j)])
             }
             None => {
@@ -164,300 +158,12 @@ pub fn assemble_direct(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, 
     Ok(s)
 }
 
-/// A translation-invariant kernel shared by half-space bodies.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Kernel {
-    PointForce,
-    UniformPatch,
-    Strip { reference_distance: f64 },
-}
-
-/// The bodies reduced to distinct kernels with summed compliances, plus the
-/// summed Winkler compliance `sum 1/k` and the beams' summed flexibilities
-/// `sum 1/(E I)` per loaded point.
-#[derive(Debug)]
-struct Terms {
-    kernels: Vec<(Kernel, f64)>,
-    winkler_compliance: f64,
-    /// (x0, sum of 1/(E I)) per distinct loaded point.
-    beams: Vec<(f64, f64)>,
-    cell: Cell,
-    /// love_rectangle(0, 0, dx, dy): the point-force self-term's kernel.
-    centre: f64,
-}
-
-impl Terms {
-    /// Validates every body against the point set and groups the kernels.
-    fn collect(points: &PointSet, bodies: &[&Body]) -> Result<Self, InfluenceError> {
-        let dimension = points.dimension();
-        let cell = points.cell();
-        let mut kernels: Vec<(Kernel, f64)> = Vec::new();
-        let mut winkler_compliance = 0.0;
-        let mut beams: Vec<(f64, f64)> = Vec::new();
-        let mut elastic = 0;
-        for body in bodies {
-            let model = body.model();
-            let mismatch = |hint| InfluenceError::DimensionMismatch {
-                model: model.name(),
-                dimension,
-                hint,
-            };
-            let (kernel, compliance) = match *model {
-                Model::Rigid => continue,
-                Model::PointForce { material } | Model::UniformPatch { material } => {
-                    if dimension != Dimension::Surface {
-                        return Err(mismatch(
-                            "use Body::plane_strain on a line, or a surface point set \
-                             (PointSet::grid_disk, grid_rectangle)",
-                        ));
-                    }
-                    let kernel = if matches!(model, Model::PointForce { .. }) {
-                        Kernel::PointForce
-                    } else {
-                        Kernel::UniformPatch
-                    };
-                    (kernel, material.compliance())
-                }
-                Model::PlaneStrainStrip {
-                    material,
-                    reference_distance,
-                } => {
-                    if dimension != Dimension::Line {
-                        return Err(mismatch(
-                            "use Body::uniform_patch or Body::point_force on a surface, \
-                             or a line point set (PointSet::line)",
-                        ));
-                    }
-                    check_reference_distance(model.name(), reference_distance, points)?;
-                    (Kernel::Strip { reference_distance }, material.compliance())
-                }
-                Model::Winkler { modulus } => {
-                    let bad = |reason: &str| InfluenceError::InvalidModel {
-                        model: model.name(),
-                        field: "modulus",
-                        value: modulus,
-                        reason: reason.into(),
-                    };
-                    if !modulus.is_finite() {
-                        return Err(bad("must be finite"));
-                    }
-                    if modulus <= 0.0 {
-                        return Err(bad("must be positive"));
-                    }
-                    winkler_compliance += 1.0 / modulus;
-                    elastic += 1;
-                    continue;
-                }
-                Model::Beam {
-                    flexural_rigidity,
-                    loaded_point,
-                } => {
-                    if dimension != Dimension::Line {
-                        return Err(mismatch(
-                            "a beam lies along x: use a line point set (PointSet::line)",
-                        ));
-                    }
-                    let bad = |field, value, reason: &str| InfluenceError::InvalidModel {
-                        model: model.name(),
-                        field,
-                        value,
-                        reason: reason.into(),
-                    };
-                    if !(flexural_rigidity.is_finite() && flexural_rigidity > 0.0) {
-                        return Err(bad(
-                            "flexural_rigidity",
-                            flexural_rigidity,
-                            "E I must be finite and positive",
-                        ));
-                    }
-                    if !loaded_point.is_finite() {
-                        return Err(bad("loaded_point", loaded_point, "must be finite"));
-                    }
-                    match beams.iter_mut().find(|(x0, _)| *x0 == loaded_point) {
-                        Some((_, f)) => *f += 1.0 / flexural_rigidity,
-                        None => beams.push((loaded_point, 1.0 / flexural_rigidity)),
-                    }
-                    elastic += 1;
-                    continue;
-                }
-            };
-            elastic += 1;
-            match kernels.iter_mut().find(|(k, _)| *k == kernel) {
-                Some((_, c)) => *c += compliance,
-                None => kernels.push((kernel, compliance)),
-            }
-        }
-        if elastic == 0 {
-            return Err(InfluenceError::AllRigid {
-                bodies: bodies.len(),
-            });
-        }
-        Ok(Self {
-            kernels,
-            winkler_compliance,
-            beams,
-            cell,
-            centre: love_rectangle(0.0, 0.0, cell.dx, cell.dy),
-        })
-    }
-
-    /// Adds the terms that are not translation invariant: the Winkler
-    /// diagonal `1 / (k A_k)` and the beams' cantilever coefficients.
-    /// S must be symmetric (the beams' terms are added to the lower triangle
-    /// and mirrored).
-    fn add_local(&self, points: &PointSet, s: &mut Mat<f64>) {
-        if self.winkler_compliance > 0.0 {
-            let diagonal = self.winkler_diagonal(points);
-            for k in 0..points.len() {
-                s[(k, k)] += diagonal;
-            }
-        }
-        if self.beams.is_empty() {
-            return;
-        }
-        let xs = points.xs();
-        for c in 0..xs.len() {
-            for r in c..xs.len() {
-                let v = self.add_beams(s[(r, c)], xs[r], xs[c]);
-                s[(r, c)] = v;
-                s[(c, r)] = v;
-            }
-        }
-    }
-
-    /// The Winkler foundations' diagonal `sum 1/k` over the cell's measure
-    /// (0 without a foundation).
-    fn winkler_diagonal(&self, points: &PointSet) -> f64 {
-        self.winkler_compliance / points.cell().measure(points.dimension())
-    }
-
-    /// `v` plus the beams' coefficients between abscissae `xk` and `xj`,
-    /// added beam by beam.
-    fn add_beams(&self, v: f64, xk: f64, xj: f64) -> f64 {
-        self.beams.iter().fold(v, |v, &(x0, flexibility)| {
-            v + cantilever(flexibility, xk - x0, xj - x0)
-        })
-    }
-
-    /// The half-space part of S at every lattice offset `(di, dj) >= 0` of
-    /// `layout`, at index `di * nj + dj` ([`TableLayout::offset`]).
-    fn table(&self, layout: &TableLayout) -> Vec<f64> {
-        let Cell { dx, dy } = self.cell;
-        let nj = layout.nj;
-        (0..layout.ni * nj)
-            .map(|t| {
-                let (di, dj) = (t / nj, t % nj);
-                self.coefficient(di as f64 * dx, dj as f64 * dy, t == 0)
-            })
-            .collect()
-    }
-
-    /// The half-space part of S for an offset (x, y) = field point minus
-    /// loaded point; `same_point` selects the self-terms.
-    fn coefficient(&self, x: f64, y: f64, same_point: bool) -> f64 {
-        let Cell { dx, dy } = self.cell;
-        self.kernels
-            .iter()
-            .map(|&(kernel, compliance)| {
-                let k = match kernel {
-                    Kernel::PointForce if same_point => self.centre / PI,
-                    Kernel::PointForce => boussinesq(x, y) / PI,
-                    Kernel::UniformPatch => love_rectangle(x, y, dx, dy) / PI,
-                    Kernel::Strip { reference_distance } => {
-                        2.0 / PI * plane_strain_strip(x, dx, reference_distance)
-                    }
-                };
-                compliance * k
-            })
-            .sum()
-    }
-}
-
-/// The cantilever coefficient `a^2 (3 b - a) / (6 E I)` of a beam of
-/// flexibility `1 / (E I)` between points at signed distances `dk`, `dj`
-/// from its clamp, `a` and `b` the smaller and larger distance; 0 for points
-/// on opposite sides or at the clamp.
-fn cantilever(flexibility: f64, dk: f64, dj: f64) -> f64 {
-    if dk * dj <= 0.0 {
-        return 0.0;
-    }
-    let (a, b) = (dk.abs().min(dj.abs()), dk.abs().max(dj.abs()));
-    flexibility * a * a * (3.0 * b - a) / 6.0
-}
-
-/// d0 must be finite, positive and at least the extent of the set.
-fn check_reference_distance(
-    model: &'static str,
-    d0: f64,
-    points: &PointSet,
-) -> Result<(), InfluenceError> {
-    let bad = |reason: String| InfluenceError::InvalidModel {
-        model,
-        field: "reference_distance",
-        value: d0,
-        reason,
-    };
-    if !d0.is_finite() {
-        return Err(bad("must be finite".into()));
-    }
-    let extent = points.extent().0;
-    if !(d0 >= extent) {
-        return Err(bad(format!(
-            "must be at least the extent of the point set ({extent}): the 2D displacement is \
-             measured from a datum outside the loaded zone, and the logarithmic kernel is \
-             positive definite only when d0 exceeds a quarter of the extent"
-        )));
-    }
-    Ok(())
-}
-
-/// Where a lattice table applies: the points' lattice indices shifted to
-/// start at 0, and the table's extent.
-struct TableLayout {
-    i: Vec<usize>,
-    j: Vec<usize>,
-    ni: usize,
-    nj: usize,
-}
-
-impl TableLayout {
-    /// The table index of the offset between points k and j.
-    fn offset(&self, k: usize, j: usize) -> usize {
-        self.i[k].abs_diff(self.i[j]) * self.nj + self.j[k].abs_diff(self.j[j])
-    }
-}
-
-/// The table layout if the set has a lattice and the table (one entry per
-/// offset in the bounding box) is not much larger than the set.
-fn table_layout(points: &PointSet) -> Option<TableLayout> {
-    let lattice = points.lattice()?;
-    let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
-    for &(i, j) in lattice {
-        i_min = i_min.min(i);
-        i_max = i_max.max(i);
-        j_min = j_min.min(j);
-        j_max = j_max.max(j);
-    }
-    let ni = u128::try_from(i128::from(i_max) - i128::from(i_min) + 1).ok()?;
-    let nj = u128::try_from(i128::from(j_max) - i128::from(j_min) + 1).ok()?;
-    let limit = (TABLE_ENTRIES_PER_POINT * points.len() + 64) as u128;
-    if ni.checked_mul(nj)? > limit {
-        return None;
-    }
-    Some(TableLayout {
-        i: lattice.iter().map(|&(i, _)| (i - i_min) as usize).collect(),
-        j: lattice.iter().map(|&(_, j)| (j - j_min) as usize).collect(),
-        ni: ni as usize,
-        nj: nj as usize,
-    })
-}
-
 /// S from one kernel evaluation per lattice offset `(di, dj) >= 0`, gathered
 /// column by column.
 fn fill_from_table(points: &PointSet, terms: &Terms, layout: &TableLayout) -> Mat<f64> {
     let n = points.len();
     let nj = layout.nj;
-    let table = terms.table(layout);
+    let table = terms.table(layout.ni, layout.nj);
     let mut s = Mat::<f64>::zeros(n, n);
     let threads = threads_for(n);
     let splits: Vec<usize> = (0..=threads).map(|t| t * n / threads).collect();
@@ -553,8 +259,13 @@ fn fill_direct(points: &PointSet, terms: &Terms) -> Mat<f64> {
 
 #[cfg(test)]
 mod tests {
+    use std::f64::consts::PI;
+
     use super::*;
-    use crate::Material;
+    use crate::error::InfluenceError;
+    use crate::kernels::love_rectangle;
+    use crate::points::{Cell, Dimension};
+    use crate::{Material, models::Body};
 
     fn steel() -> Material {
         Material::new(30e6, 0.3).unwrap()

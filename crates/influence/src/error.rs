@@ -5,7 +5,7 @@
 //! coefficients a_kj of the other modules are defined (E > 0, -1 < nu < 0.5,
 //! finite positive sizes, d0 at least the extent of the zone).
 
-use crate::points::Dimension;
+use crate::dimension::Dimension;
 
 /// Everything that can stop the construction of a material, a point set or
 /// an influence matrix.
@@ -74,6 +74,43 @@ pub enum InfluenceError {
     AllRigid {
         /// The number of bodies given.
         bodies: usize,
+    },
+    /// The lattice operator ([`LatticeOperator`](crate::LatticeOperator))
+    /// was given points it cannot convolve over: a set without a lattice, a
+    /// lattice much sparser than its bounding box, or two points on one
+    /// lattice cell.
+    #[error(
+        "the lattice operator needs the points on a compact lattice: {reason}; \
+         assemble the dense S instead (assemble), or use a grid constructor \
+         (PointSet::grid_disk, grid_rectangle, line)"
+    )]
+    LatticeRequired {
+        /// What is wrong with the point set, with its figures.
+        reason: String,
+    },
+    /// A body's influence model is not a translation-invariant kernel (its
+    /// coefficients depend on where the points are, not only on their
+    /// offset), so the lattice operator, a convolution, cannot apply it.
+    #[error(
+        "the {model} model is not translation invariant (its coefficients depend on the \
+         points' positions, not only on their offset): the lattice operator cannot apply it; \
+         assemble the dense S instead (assemble)"
+    )]
+    NotTranslationInvariant {
+        /// The model's name.
+        model: &'static str,
+    },
+    /// A buffer of the given size could not be allocated (the memory is
+    /// exhausted, or the size overflows).
+    #[error(
+        "could not allocate {bytes} bytes for the {what}: not enough memory; \
+         use a coarser grid or free memory"
+    )]
+    AllocationFailed {
+        /// What the buffer was for.
+        what: &'static str,
+        /// The size asked for (saturated at usize::MAX on overflow).
+        bytes: usize,
     },
 }
 

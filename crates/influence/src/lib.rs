@@ -25,7 +25,11 @@
 //!   evaluation per lattice offset on a grid, half-space bodies of the same
 //!   kernel summed into one combined compliance;
 //! - [`Folding`] / [`assemble_folded`]: for a mirror-symmetric problem, one
-//!   unknown per orbit and the folded matrix, never forming the full S.
+//!   unknown per orbit and the folded matrix, never forming the full S;
+//! - [`LatticeOperator`]: the product `S x` on a lattice grid (disk,
+//!   rectangle, line) by a zero-padded FFT convolution of the same kernel
+//!   table, in O(N) memory and O(N log N) time, for iterative solvers on
+//!   grids too large for the dense S.
 //!
 //! Units: any consistent set. With lengths in inches and E in psi, S is in
 //! inches per pound; with metres and pascals, metres per newton. On a line
@@ -54,6 +58,30 @@
 //! assert!(s.llt(Side::Lower).is_ok()); // positive definite
 //! ```
 //!
+//! Without forming S, on a 101 x 101 grid (N = 10,201; the dense S would
+//! take 830 MB):
+//!
+//! ```
+//! use elcon_influence::{Body, LatticeOperator, Material, PointSet, combined_modulus};
+//!
+//! let steel = Material::new(30e6, 0.3).unwrap(); // psi
+//! let points = PointSet::grid_rectangle(0.05, 0.05, 101, 101).unwrap(); // inches
+//! let sphere = Body::uniform_patch(steel);
+//! let mut s = LatticeOperator::new(&points, &[&sphere, &sphere]).unwrap();
+//!
+//! // A uniform pressure p on the whole 0.1 in square: by superposition, the
+//! // centre deflects by 4 ln(1 + sqrt 2) p L / (pi E*) (Love).
+//! let p = 1e5; // psi
+//! let forces: Vec<f64> = (0..points.len()).map(|k| p * points.measure(k)).collect();
+//! let mut deflection = vec![0.0; points.len()]; // inches
+//! s.apply(&forces, &mut deflection);
+//! let centre = points.len() / 2;
+//! let e_star = combined_modulus(&steel, &steel);
+//! let love = 4.0 * (1.0 + 2f64.sqrt()).ln() * p * 0.1 / (std::f64::consts::PI * e_star);
+//! assert!((deflection[centre] / love - 1.0).abs() < 1e-12);
+//! assert!(s.memory_bytes() < 50 * points.len());
+//! ```
+//!
 //! References: Conry, T. F. and Seireg, A. (1971), "A Mathematical
 //! Programming Method for Design of Elastic Bodies in Contact", J. Appl.
 //! Mech. 38, 387-392; Love, A. E. H. (1929), "The stress produced in a
@@ -61,16 +89,20 @@
 //! Soc. A 228, 377-420; Johnson, K. L. (1985), Contact Mechanics, ch. 2-3.
 
 pub mod assembly;
+mod dimension;
 mod error;
 pub mod kernels;
+pub mod lattice_operator;
 pub mod material;
 pub mod models;
 pub mod points;
 pub mod symmetry;
+mod terms;
 
 pub use assembly::{assemble, assemble_direct, assemble_folded, influence};
 pub use error::InfluenceError;
 pub use kernels::{boussinesq, love_rectangle, plane_strain_strip};
+pub use lattice_operator::{LatticeOperator, LatticeWorkspace};
 pub use material::{Material, combined_modulus, combined_modulus_of};
 pub use models::{Body, Model};
 pub use points::{Cell, Dimension, MAX_POINTS, PointSet};

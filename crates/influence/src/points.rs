@@ -12,10 +12,10 @@
 //! also record the integer lattice indices of the points, which lets the
 //! assembly evaluate a translation-invariant kernel once per lattice offset.
 
-use std::collections::{HashMap, HashSet};
-use std::fmt;
-
 use crate::error::InfluenceError;
+use std::collections::{HashMap, HashSet};
+
+pub use crate::dimension::Dimension;
 
 /// The largest number of points a set may hold. The influence matrix is
 /// dense (N x N doubles): at this size it already takes 34 GB.
@@ -24,26 +24,6 @@ pub const MAX_POINTS: usize = 1 << 16;
 /// Relative tolerance on the radius of [`PointSet::grid_disk`], so that a
 /// radius of exactly m spacings keeps the boundary points despite rounding.
 const DISK_RADIUS_TOLERANCE: f64 = 1e-9;
-
-/// The geometric dimension of a contact problem.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Dimension {
-    /// A 2D plane (plane-strain) problem: points on the x axis, each standing
-    /// for a length `dx`; forces are per unit width (force / length).
-    Line,
-    /// A 3D problem: points in the x-y plane, each standing for an area
-    /// `dx dy`; forces are forces.
-    Surface,
-}
-
-impl fmt::Display for Dimension {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Self::Line => "line (2D)",
-            Self::Surface => "surface (3D)",
-        })
-    }
-}
 
 /// The rectangular cell every point of a set stands for, centred on the
 /// point: `dx` along x, `dy` along y (length units).

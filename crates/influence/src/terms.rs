@@ -1,0 +1,369 @@
+//! The bodies reduced to their influence terms, and the half-space
+//! coefficient at a lattice offset: the one kernel evaluation shared by the
+//! dense assembly ([`crate::assemble`]) and the matrix-free lattice operator
+//! ([`crate::LatticeOperator`]).
+//!
+//! Half-space bodies that share a kernel K (same model, same datum d0) are
+//! summed before any kernel is evaluated, `c1 K + c2 K = (c1 + c2) K`, so the
+//! translation-invariant part of S is
+//!
+//! ```text
+//!     S_kj = sum_K c_K K(x_k - x_j, y_k - y_j)       (c_K = summed compliance (1 - nu^2)/E)
+//!     K = boussinesq / pi (point force; the own cell's love_rectangle(0, 0) / pi at k = j),
+//!         love_rectangle / pi (uniform patch), 2/pi plane_strain_strip (line)
+//! ```
+//!
+//! On a lattice these depend only on the offset `(|i_k - i_j|, |j_k - j_j|)`
+//! (translation invariance and the cell's symmetry): [`Terms::table`]
+//! evaluates them once per offset. The Winkler diagonal `sum 1/(k A_k)` and
+//! the beams' cantilever coefficients are kept apart: they are not
+//! translation-invariant kernels.
+
+use std::f64::consts::PI;
+
+use faer::Mat;
+
+use crate::error::InfluenceError;
+use crate::kernels::{boussinesq, love_rectangle, plane_strain_strip};
+use crate::models::{Body, Model};
+use crate::points::{Cell, Dimension, PointSet};
+
+/// A table may hold at most this many entries per point before the direct
+/// path is cheaper (a sparse set on a fine lattice).
+pub(crate) const TABLE_ENTRIES_PER_POINT: usize = 4;
+
+/// A translation-invariant kernel shared by half-space bodies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Kernel {
+    PointForce,
+    UniformPatch,
+    Strip { reference_distance: f64 },
+}
+
+/// The bodies reduced to distinct kernels with summed compliances, plus the
+/// summed Winkler compliance `sum 1/k` and the beams' summed flexibilities
+/// `sum 1/(E I)` per loaded point.
+#[derive(Debug)]
+pub(crate) struct Terms {
+    pub(crate) kernels: Vec<(Kernel, f64)>,
+    winkler_compliance: f64,
+    /// (x0, sum of 1/(E I)) per distinct loaded point.
+    beams: Vec<(f64, f64)>,
+    cell: Cell,
+    /// love_rectangle(0, 0, dx, dy): the point-force self-term's kernel.
+    centre: f64,
+}
+
+impl Terms {
+    /// Validates every body against the point set and groups the kernels.
+    pub(crate) fn collect(points: &PointSet, bodies: &[&Body]) -> Result<Self, InfluenceError> {
+        let dimension = points.dimension();
+        let cell = points.cell();
+        let mut kernels: Vec<(Kernel, f64)> = Vec::new();
+        let mut winkler_compliance = 0.0;
+        let mut beams: Vec<(f64, f64)> = Vec::new();
+        let mut elastic = 0;
+        for body in bodies {
+            let model = body.model();
+            let mismatch = |hint| InfluenceError::DimensionMismatch {
+                model: model.name(),
+                dimension,
+                hint,
+            };
+            let (kernel, compliance) = match *model {
+                Model::Rigid => continue,
+                Model::PointForce { material } | Model::UniformPatch { material } => {
+                    if dimension != Dimension::Surface {
+                        return Err(mismatch(
+                            "use Body::plane_strain on a line, or a surface point set \
+                             (PointSet::grid_disk, grid_rectangle)",
+                        ));
+                    }
+                    let kernel = if matches!(model, Model::PointForce { .. }) {
+                        Kernel::PointForce
+                    } else {
+                        Kernel::UniformPatch
+                    };
+                    (kernel, material.compliance())
+                }
+                Model::PlaneStrainStrip {
+                    material,
+                    reference_distance,
+                } => {
+                    if dimension != Dimension::Line {
+                        return Err(mismatch(
+                            "use Body::uniform_patch or Body::point_force on a surface, \
+                             or a line point set (PointSet::line)",
+                        ));
+                    }
+                    check_reference_distance(model.name(), reference_distance, points)?;
+                    (Kernel::Strip { reference_distance }, material.compliance())
+                }
+                Model::Winkler { modulus } => {
+                    let bad = |reason: &str| InfluenceError::InvalidModel {
+                        model: model.name(),
+                        field: "modulus",
+                        value: modulus,
+                        reason: reason.into(),
+                    };
+                    if !modulus.is_finite() {
+                        return Err(bad("must be finite"));
+                    }
+                    if modulus <= 0.0 {
+                        return Err(bad("must be positive"));
+                    }
+                    winkler_compliance += 1.0 / modulus;
+                    elastic += 1;
+                    continue;
+                }
+                Model::Beam {
+                    flexural_rigidity,
+                    loaded_point,
+                } => {
+                    if dimension != Dimension::Line {
+                        return Err(mismatch(
+                            "a beam lies along x: use a line point set (PointSet::line)",
+                        ));
+                    }
+                    let bad = |field, value, reason: &str| InfluenceError::InvalidModel {
+                        model: model.name(),
+                        field,
+                        value,
+                        reason: reason.into(),
+                    };
+                    if !(flexural_rigidity.is_finite() && flexural_rigidity > 0.0) {
+                        return Err(bad(
+                            "flexural_rigidity",
+                            flexural_rigidity,
+                            "E I must be finite and positive",
+                        ));
+                    }
+                    if !loaded_point.is_finite() {
+                        return Err(bad("loaded_point", loaded_point, "must be finite"));
+                    }
+                    match beams.iter_mut().find(|(x0, _)| *x0 == loaded_point) {
+                        Some((_, f)) => *f += 1.0 / flexural_rigidity,
+                        None => beams.push((loaded_point, 1.0 / flexural_rigidity)),
+                    }
+                    elastic += 1;
+                    continue;
+                }
+            };
+            elastic += 1;
+            match kernels.iter_mut().find(|(k, _)| *k == kernel) {
+                Some((_, c)) => *c += compliance,
+                None => kernels.push((kernel, compliance)),
+            }
+        }
+        if elastic == 0 {
+            return Err(InfluenceError::AllRigid {
+                bodies: bodies.len(),
+            });
+        }
+        Ok(Self {
+            kernels,
+            winkler_compliance,
+            beams,
+            cell,
+            centre: love_rectangle(0.0, 0.0, cell.dx, cell.dy),
+        })
+    }
+
+    /// Adds the terms that are not translation invariant: the Winkler
+    /// diagonal `1 / (k A_k)` and the beams' cantilever coefficients.
+    /// S must be symmetric (the beams' terms are added to the lower triangle
+    /// and mirrored).
+    pub(crate) fn add_local(&self, points: &PointSet, s: &mut Mat<f64>) {
+        if self.winkler_compliance > 0.0 {
+            let diagonal = self.winkler_diagonal(points);
+            for k in 0..points.len() {
+                s[(k, k)] += diagonal;
+            }
+        }
+        if self.beams.is_empty() {
+            return;
+        }
+        let xs = points.xs();
+        for c in 0..xs.len() {
+            for r in c..xs.len() {
+                let v = self.add_beams(s[(r, c)], xs[r], xs[c]);
+                s[(r, c)] = v;
+                s[(c, r)] = v;
+            }
+        }
+    }
+
+    /// The Winkler foundations' diagonal `sum 1/k` over the cell's measure
+    /// (0 without a foundation).
+    pub(crate) fn winkler_diagonal(&self, points: &PointSet) -> f64 {
+        self.winkler_compliance / points.cell().measure(points.dimension())
+    }
+
+    /// `v` plus the beams' coefficients between abscissae `xk` and `xj`,
+    /// added beam by beam.
+    pub(crate) fn add_beams(&self, v: f64, xk: f64, xj: f64) -> f64 {
+        self.beams.iter().fold(v, |v, &(x0, flexibility)| {
+            v + cantilever(flexibility, xk - x0, xj - x0)
+        })
+    }
+
+    /// The half-space part of S at every lattice offset `(di, dj)`,
+    /// `0 <= di < ni`, `0 <= dj < nj`, at index `di * nj + dj`
+    /// ([`TableLayout::offset`]): one kernel evaluation per offset, at
+    /// `(di dx, dj dy)`, the self-term at (0, 0).
+    pub(crate) fn table(&self, ni: usize, nj: usize) -> Vec<f64> {
+        let Cell { dx, dy } = self.cell;
+        (0..ni * nj)
+            .map(|t| {
+                let (di, dj) = (t / nj, t % nj);
+                self.coefficient(di as f64 * dx, dj as f64 * dy, t == 0)
+            })
+            .collect()
+    }
+
+    /// The half-space part of S for an offset (x, y) = field point minus
+    /// loaded point; `same_point` selects the self-terms.
+    pub(crate) fn coefficient(&self, x: f64, y: f64, same_point: bool) -> f64 {
+        let Cell { dx, dy } = self.cell;
+        self.kernels
+            .iter()
+            .map(|&(kernel, compliance)| {
+                let k = match kernel {
+                    Kernel::PointForce if same_point => self.centre / PI,
+                    Kernel::PointForce => boussinesq(x, y) / PI,
+                    Kernel::UniformPatch => love_rectangle(x, y, dx, dy) / PI,
+                    Kernel::Strip { reference_distance } => {
+                        2.0 / PI * plane_strain_strip(x, dx, reference_distance)
+                    }
+                };
+                compliance * k
+            })
+            .sum()
+    }
+}
+
+/// The cantilever coefficient `a^2 (3 b - a) / (6 E I)` of a beam of
+/// flexibility `1 / (E I)` between points at signed distances `dk`, `dj`
+/// from its clamp, `a` and `b` the smaller and larger distance; 0 for points
+/// on opposite sides or at the clamp.
+fn cantilever(flexibility: f64, dk: f64, dj: f64) -> f64 {
+    if dk * dj <= 0.0 {
+        return 0.0;
+    }
+    let (a, b) = (dk.abs().min(dj.abs()), dk.abs().max(dj.abs()));
+    flexibility * a * a * (3.0 * b - a) / 6.0
+}
+
+/// d0 must be finite, positive and at least the extent of the set.
+fn check_reference_distance(
+    model: &'static str,
+    d0: f64,
+    points: &PointSet,
+) -> Result<(), InfluenceError> {
+    let bad = |reason: String| InfluenceError::InvalidModel {
+        model,
+        field: "reference_distance",
+        value: d0,
+        reason,
+    };
+    if !d0.is_finite() {
+        return Err(bad("must be finite".into()));
+    }
+    let extent = points.extent().0;
+    if !(d0 >= extent) {
+        return Err(bad(format!(
+            "must be at least the extent of the point set ({extent}): the 2D displacement is \
+             measured from a datum outside the loaded zone, and the logarithmic kernel is \
+             positive definite only when d0 exceeds a quarter of the extent"
+        )));
+    }
+    Ok(())
+}
+
+/// Where a lattice table applies: the points' lattice indices shifted to
+/// start at 0, and the table's extent.
+pub(crate) struct TableLayout {
+    pub(crate) i: Vec<usize>,
+    pub(crate) j: Vec<usize>,
+    pub(crate) ni: usize,
+    pub(crate) nj: usize,
+}
+
+impl TableLayout {
+    /// The table index of the offset between points k and j.
+    pub(crate) fn offset(&self, k: usize, j: usize) -> usize {
+        self.i[k].abs_diff(self.i[j]) * self.nj + self.j[k].abs_diff(self.j[j])
+    }
+}
+
+/// The bounding box of a set's lattice indices: `ni x nj` lattice cells
+/// from `(i_min, j_min)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct LatticeBox {
+    pub(crate) i_min: i64,
+    pub(crate) j_min: i64,
+    pub(crate) ni: usize,
+    pub(crate) nj: usize,
+}
+
+impl LatticeBox {
+    /// The box of the set's lattice, or `None` without a lattice (or for a
+    /// box whose side does not fit a usize).
+    pub(crate) fn of(points: &PointSet) -> Option<Self> {
+        let lattice = points.lattice()?;
+        let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
+        for &(i, j) in lattice {
+            i_min = i_min.min(i);
+            i_max = i_max.max(i);
+            j_min = j_min.min(j);
+            j_max = j_max.max(j);
+        }
+        let side = |lo: i64, hi: i64| usize::try_from(i128::from(hi) - i128::from(lo) + 1).ok();
+        Some(Self {
+            i_min,
+            j_min,
+            ni: side(i_min, i_max)?,
+            nj: side(j_min, j_max)?,
+        })
+    }
+
+    /// The number of lattice cells in the box, `ni nj` (saturating).
+    pub(crate) fn cells(&self) -> usize {
+        self.ni.saturating_mul(self.nj)
+    }
+
+    /// The most cells a box may hold for `n` points before a table (or a
+    /// padded grid) over it costs more than the points themselves:
+    /// [`TABLE_ENTRIES_PER_POINT`] per point, plus 64 for tiny sets.
+    pub(crate) const fn cell_limit(n: usize) -> usize {
+        TABLE_ENTRIES_PER_POINT * n + 64
+    }
+
+    /// Whether the box is small enough for `n` points ([`Self::cell_limit`]).
+    pub(crate) fn is_dense(&self, n: usize) -> bool {
+        self.cells() <= Self::cell_limit(n)
+    }
+
+    /// The lattice indices of a point shifted into the box, `0 <= i < ni`,
+    /// `0 <= j < nj`.
+    pub(crate) fn local(&self, (i, j): (i64, i64)) -> (usize, usize) {
+        ((i - self.i_min) as usize, (j - self.j_min) as usize)
+    }
+}
+
+/// The table layout if the set has a lattice and the table (one entry per
+/// offset in the bounding box) is not much larger than the set.
+pub(crate) fn table_layout(points: &PointSet) -> Option<TableLayout> {
+    let lattice = points.lattice()?;
+    let bounds = LatticeBox::of(points)?;
+    if !bounds.is_dense(points.len()) {
+        return None;
+    }
+    let (i, j) = lattice.iter().map(|&l| bounds.local(l)).unzip();
+    Some(TableLayout {
+        i,
+        j,
+        ni: bounds.ni,
+        nj: bounds.nj,
+    })
+}
