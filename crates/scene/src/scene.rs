@@ -235,6 +235,10 @@ pub struct Scene {
     /// beam's ends (x), a roller's ends on a rectangle grid (y), a flat
     /// punch's rim (both).
     pub body_edges: (bool, bool),
+    /// What validation found doubtful but not wrong (a grid coarser than
+    /// the contact): printed by `elcon check` and `elcon run`, and written
+    /// to result.json's warnings.
+    pub warnings: Vec<String>,
 }
 
 /// Validation context: the file and its text, for locations.
@@ -564,6 +568,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         outputs,
         reference,
         body_edges,
+        warnings: Vec::new(),
     })
 }
 

@@ -84,7 +84,7 @@ fn invalid_names_the_field_and_the_reason() {
     let e = scene(&BASE.replace("across = 11", "across = 11\nnx = 4")).unwrap_err();
     assert!(
         e.to_string()
-            .contains("`points.nx` = : is not a parameter of grid = \"disk\""),
+            .contains("`points.nx`: is not a parameter of grid = \"disk\""),
         "{e}"
     );
     let e =
