@@ -14,8 +14,9 @@ use std::path::{Path, PathBuf};
 
 use sha2::{Digest, Sha256};
 
+use crate::ctx::{Ctx, parse};
 use crate::error::{Location, SceneError};
-use crate::scene::{Ctx, Scene, parse};
+use crate::scene::Scene;
 use crate::schema::BatchFile;
 use crate::shard::Shard;
 

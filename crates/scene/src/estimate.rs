@@ -386,3 +386,150 @@ fn design(scene: &Scene, unknowns: usize) -> Result<(DesignEstimate, f64), Scene
         seconds,
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::memory::Ceiling;
+
+    const SPHERES: &str = r#"
+[units]
+length = "in"
+force = "lbf"
+[body1]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+[body2]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+[geometry]
+surface1 = { shape = "sphere", radius = 1.0 }
+surface2 = { shape = "sphere", radius = 10.0 }
+[points]
+grid = "disk"
+spacing = 0.001
+radius = 0.02
+[loading]
+load = 100.0
+"#;
+
+    fn scene(text: &str) -> Scene {
+        Scene::from_str(Path::new("t.toml"), text).unwrap()
+    }
+
+    fn bytes(matrices: f64, n: usize) -> u64 {
+        to_bytes(matrices * 8.0 * (n * n) as f64)
+    }
+
+    #[test]
+    fn a_solve_counts_its_methods_matrices_on_the_folded_size() {
+        let folded = Estimate::of(&scene(SPHERES)).unwrap();
+        let n = folded.points;
+        assert_eq!(n, 1257);
+        // Eight mirror images: about N / 8 orbits.
+        assert!(
+            folded.unknowns > n / 8 && folded.unknowns < n / 6,
+            "{}",
+            folded.unknowns
+        );
+        assert_eq!(folded.solve_bytes, bytes(2.25, folded.unknowns));
+        assert_eq!(folded.peak_bytes, folded.solve_bytes + BASELINE);
+        let full =
+            Estimate::of(&scene(&format!("{SPHERES}[solver]\nsymmetry = \"none\"\n"))).unwrap();
+        assert_eq!(full.unknowns, n);
+        assert_eq!(full.solve_bytes, bytes(2.25, n));
+        // The tableau methods: the symmetric tableau under load, the
+        // restricted simplex's general tableau under an approach.
+        let lemke = format!("{SPHERES}[solver]\nmethod = \"lemke\"\nsymmetry = \"none\"\n");
+        assert_eq!(
+            Estimate::of(&scene(&lemke)).unwrap().solve_bytes,
+            bytes(2.5, n)
+        );
+        let simplex = lemke.replace("lemke", "restricted-simplex");
+        assert_eq!(
+            Estimate::of(&scene(&simplex)).unwrap().solve_bytes,
+            bytes(2.5, n)
+        );
+        let general = simplex.replace("load = 100.0", "approach = 0.0002");
+        let e = Estimate::of(&scene(&general)).unwrap();
+        assert_eq!(e.solve_bytes, bytes(7.75, n));
+        assert!(e.seconds > Estimate::of(&scene(&simplex)).unwrap().seconds);
+    }
+
+    #[test]
+    fn the_design_program_grows_like_the_square_of_all_cases_points() {
+        let beam = r#"
+[units]
+length = "in"
+force = "lbf"
+[body1]
+model = "beam"
+youngs_modulus = 30e6
+second_moment = 5.0
+[body2]
+model = "winkler"
+modulus = 1e7
+[points]
+grid = "line"
+start = -4.0
+end = 4.0
+n = 200
+[loading]
+load = 1000.0
+[design]
+family = "quadratic"
+"#;
+        let one = Estimate::of(&scene(beam)).unwrap();
+        let d1 = one.design.clone().unwrap();
+        assert_eq!((d1.cases, d1.points), (1, 200));
+        // R = 2 n + 1 + stations + 1 rows, C = n + 1 + 3 + 1 columns.
+        assert_eq!(d1.program, Some((602, 205)));
+        let four = beam.replace(
+            "family = \"quadratic\"",
+            "family = \"quadratic\"\nloads = [1000.0, 2000.0, 3000.0, 4000.0]",
+        );
+        let d4 = Estimate::of(&scene(&four)).unwrap().design.unwrap();
+        assert_eq!(d4.points, 800);
+        // Four cases on the same 200 stations: 4 x 200 forces, 2 rows each.
+        assert_eq!(d4.program, Some((1805, 808)));
+        let ratio = d4.bytes as f64 / d1.bytes as f64;
+        assert!(ratio > 10.0, "{ratio}");
+        assert!(one.peak_bytes >= d1.bytes + BASELINE);
+    }
+
+    #[test]
+    fn time_classes() {
+        assert_eq!(TimeClass::of(0.5), TimeClass::UnderASecond);
+        assert_eq!(TimeClass::of(59.0), TimeClass::Seconds);
+        assert_eq!(TimeClass::of(600.0), TimeClass::Minutes);
+        assert_eq!(TimeClass::of(1e5), TimeClass::Hours);
+        assert_eq!(TimeClass::Minutes.to_string(), "minutes");
+    }
+
+    #[test]
+    fn a_refusal_names_n_the_estimate_the_ceiling_and_what_helps() {
+        let s = scene(&format!("{SPHERES}[solver]\nsymmetry = \"none\"\n"));
+        let e = Estimate::of(&s).unwrap();
+        let ceiling = Ceiling::from_limits([(1 << 20, "--memory-limit".to_string())]);
+        assert!(!ceiling.admits(e.peak_bytes));
+        let text = e.refusal(&s, &ceiling).to_string();
+        for part in [
+            "scene `t`: too big for the memory available: N = 1257 points needs about",
+            "block-pivoting keeps about 2.25 matrices of 1257 x 1257",
+            "the ceiling is 922 KiB (--memory-limit 1.00 MiB, less 10 %)",
+            "folding by symmetry",
+            "a coarser grid",
+        ] {
+            assert!(text.contains(part), "{part}: {text}");
+        }
+        assert!(
+            e.summary().contains("1257 points; peak memory about"),
+            "{}",
+            e.summary()
+        );
+    }
+}

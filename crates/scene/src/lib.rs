@@ -18,6 +18,7 @@
 
 mod batch;
 mod batch_run;
+mod ctx;
 mod error;
 mod estimate;
 mod faults;
@@ -27,6 +28,7 @@ mod output;
 mod plot;
 mod prepare;
 mod run;
+mod sanity;
 mod scene;
 mod schema;
 mod shard;
@@ -43,6 +45,10 @@ pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, check_batch, prepare};
 pub use run::{
     CertificateJson, DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson, Run, RunResult,
     Seconds, StatisticsJson, SymmetryJson, run,
+};
+pub use sanity::{
+    MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MIN_POINTS_ACROSS,
+    max_pivots_bound,
 };
 pub use scene::{
     BodySpec, DesignFamily, DesignSpec, Outputs, Plot, PointsSpec, Reference, RelativeTo, Scene,

@@ -90,7 +90,8 @@ fn invalid_names_the_field_and_the_reason() {
     let e =
         scene(&BASE.replace("shape = \"sphere\", radius = 1.0", "shape = \"plane\"")).unwrap_err();
     assert!(
-        e.to_string().contains("need a Hertz contact under a load"),
+        e.to_string()
+            .contains("need curved surfaces (a sphere or a cylinder)"),
         "{e}"
     );
     assert!(e.is_input_error());
