@@ -22,7 +22,7 @@ use clap::{Parser, Subcommand};
 use elcon_scene::{
     Batch, BatchOptions, BatchRun, Ceiling, Progress, RunResult, Scene, SceneError, Shard, Staging,
     check_batch, install_panic_hook, isolated, merge, parse_size, prepare, run, run_batch,
-    write_run_files,
+    thousands, write_run_files,
 };
 
 #[derive(Parser)]
@@ -335,9 +335,9 @@ fn check_batch_file(path: &Path, ceiling: &Ceiling, every_run: bool) -> bool {
         "every run checked".to_string()
     } else {
         format!(
-            "{} runs checked, covering every value of every key (the others are checked as they \
-             run; --every-run checks all)",
-            c.checked
+            "{} runs checked, covering every value of every key; the others are checked as they \
+             run, or all with --every-run",
+            thousands(c.checked as u64)
         )
     };
     let verdict = if c.failures.is_empty() {
@@ -349,11 +349,11 @@ fn check_batch_file(path: &Path, ceiling: &Ceiling, every_run: bool) -> bool {
         "{}: batch `{}`: {} runs, {verdict} ({which})",
         path.display(),
         batch.name,
-        c.runs
+        thousands(c.runs as u64)
     );
     if let Some(l) = &c.largest {
         println!(
-            "{}: largest run: {}; the runs checked: about {:.0} s of solving in all",
+            "{}: largest run checked: {}; the runs checked: about {:.0} s of solving in all",
             path.display(),
             l.summary(),
             c.seconds

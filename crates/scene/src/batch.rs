@@ -399,16 +399,21 @@ fn groups(
 /// else in scientific notation.
 pub(crate) fn count(n: f64) -> String {
     if n < 1e15 {
-        let digits = format!("{n:.0}");
-        let mut out = String::new();
-        for (i, c) in digits.chars().enumerate() {
-            if i > 0 && (digits.len() - i) % 3 == 0 {
-                out.push(',');
-            }
-            out.push(c);
-        }
-        out
+        thousands(n as u64)
     } else {
         format!("{n:.3e}")
     }
+}
+
+/// `n` with thousands separators: 1,000,000.
+pub fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }

@@ -34,7 +34,7 @@ mod schema;
 mod shard;
 mod tables;
 
-pub use batch::{Batch, BatchRun, MAX_RUNS};
+pub use batch::{Batch, BatchRun, MAX_RUNS, thousands};
 pub use batch_run::{BatchOptions, Progress, run_batch};
 pub use error::{Location, SceneError};
 pub use estimate::{BASELINE, DesignEstimate, Estimate, Tableau, TimeClass, matrices};
