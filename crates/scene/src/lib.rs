@@ -41,7 +41,7 @@ pub use estimate::{BASELINE, DesignEstimate, Estimate, Tableau, TimeClass, matri
 pub use isolate::{install_panic_hook, isolated};
 pub use memory::{Ceiling, LIMIT_VARIABLE, MARGIN, human, parse_size};
 pub use output::{Staging, write_atomic, write_run, write_run_files};
-pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, check_batch, prepare};
+pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{
     CertificateJson, DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson, Run, RunResult,
     Seconds, StatisticsJson, SymmetryJson, run,

@@ -42,8 +42,11 @@ pub fn prepare(scene: Scene, ceiling: &Ceiling) -> Result<Prepared, SceneError> 
     Ok(Prepared { scene, estimate })
 }
 
+/// The failures `check_batch` keeps to report (the rest are counted).
+pub const REPORTED_FAILURES: usize = 20;
+
 /// What `elcon check` found in a batch.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct BatchCheck {
     /// Runs of the whole sweep.
     pub runs: usize,
@@ -51,7 +54,9 @@ pub struct BatchCheck {
     pub checked: usize,
     /// Whether every run was validated (else a covering set).
     pub every_run: bool,
-    /// The runs that failed, with why (by index).
+    /// Runs that failed.
+    pub failed: usize,
+    /// The first [`REPORTED_FAILURES`] of them by index, with why.
     pub failures: Vec<(BatchRun, SceneError)>,
     /// The largest estimate among the valid runs checked.
     pub largest: Option<Estimate>,
@@ -59,16 +64,62 @@ pub struct BatchCheck {
     pub seconds: f64,
 }
 
+impl BatchCheck {
+    /// Counts one run's outcome.
+    fn add(mut self, (run, outcome): (BatchRun, Result<Estimate, SceneError>)) -> Self {
+        self.checked += 1;
+        match outcome {
+            Ok(e) => {
+                self.seconds += e.seconds;
+                if self
+                    .largest
+                    .as_ref()
+                    .is_none_or(|l| e.peak_bytes > l.peak_bytes)
+                {
+                    self.largest = Some(e);
+                }
+            }
+            Err(e) => {
+                self.failed += 1;
+                self.failures.push((run, e));
+                self.trim();
+            }
+        }
+        self
+    }
+
+    /// Joins the counts of two parts of the sweep.
+    fn join(mut self, other: Self) -> Self {
+        self.checked += other.checked;
+        self.failed += other.failed;
+        self.seconds += other.seconds;
+        self.failures.extend(other.failures);
+        self.trim();
+        if let Some(o) = other.largest
+            && self
+                .largest
+                .as_ref()
+                .is_none_or(|l| o.peak_bytes > l.peak_bytes)
+        {
+            self.largest = Some(o);
+        }
+        self
+    }
+
+    fn trim(&mut self) {
+        if self.failures.len() > REPORTED_FAILURES {
+            self.failures.sort_by_key(|(r, _)| r.index);
+            self.failures.truncate(REPORTED_FAILURES);
+        }
+    }
+}
+
 /// Checks a batch's runs as `elcon batch` would before solving each: every
 /// run if `every_run` or the sweep has at most [`CHECK_EVERY_RUN`] runs,
-/// else [`Batch::covering_runs`].
+/// else [`Batch::covering_runs`]. Memory: the runs in flight and the
+/// failures reported, whatever the sweep's size.
 pub fn check_batch(batch: &Batch, ceiling: &Ceiling, every_run: bool) -> BatchCheck {
     let all = every_run || batch.len() <= CHECK_EVERY_RUN;
-    let runs: Vec<BatchRun> = if all {
-        Vec::new()
-    } else {
-        batch.covering_runs()
-    };
     let one = |r: BatchRun| {
         let outcome = crate::isolate::isolated(&r.slug(), || {
             batch
@@ -78,37 +129,24 @@ pub fn check_batch(batch: &Batch, ceiling: &Ceiling, every_run: bool) -> BatchCh
         });
         (r, outcome)
     };
-    let results: Vec<(BatchRun, Result<Estimate, SceneError>)> = if all {
+    let fresh = BatchCheck::default;
+    let mut check = if all {
         (0..batch.len())
             .into_par_iter()
             .filter_map(|i| batch.run(i))
             .map(one)
-            .collect()
+            .fold(fresh, BatchCheck::add)
+            .reduce(fresh, BatchCheck::join)
     } else {
-        runs.into_par_iter().map(one).collect()
+        batch
+            .covering_runs()
+            .into_par_iter()
+            .map(one)
+            .fold(fresh, BatchCheck::add)
+            .reduce(fresh, BatchCheck::join)
     };
-    let mut check = BatchCheck {
-        runs: batch.len(),
-        checked: results.len(),
-        every_run: all,
-        failures: Vec::new(),
-        largest: None,
-        seconds: 0.0,
-    };
-    for (r, outcome) in results {
-        match outcome {
-            Ok(e) => {
-                check.seconds += e.seconds;
-                if check
-                    .largest
-                    .as_ref()
-                    .is_none_or(|l| e.peak_bytes > l.peak_bytes)
-                {
-                    check.largest = Some(e);
-                }
-            }
-            Err(e) => check.failures.push((r, e)),
-        }
-    }
+    check.runs = batch.len();
+    check.every_run = all;
+    check.failures.sort_by_key(|(r, _)| r.index);
     check
 }
