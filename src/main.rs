@@ -233,7 +233,7 @@ fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
     let mut ok = true;
     let mut scenes: Vec<Scene> = Vec::new();
     for path in paths {
-        match Scene::from_file(path) {
+        match isolated(&path.display().to_string(), || Scene::from_file(path)) {
             Ok(s) => scenes.push(s),
             Err(e) => {
                 eprintln!("error: {e}");
@@ -373,10 +373,16 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
     let mut names: Vec<(String, &Path)> = Vec::new();
     for path in files {
         if is_batch(path) {
-            ok &= check_batch_file(path, ceiling, every_run);
+            let checked = isolated(&path.display().to_string(), || {
+                Ok(check_batch_file(path, ceiling, every_run))
+            });
+            ok &= checked.unwrap_or_else(|e| {
+                eprintln!("error: {e}");
+                false
+            });
             continue;
         }
-        match Scene::from_file(path) {
+        match isolated(&path.display().to_string(), || Scene::from_file(path)) {
             Ok(scene) => {
                 if let Some((_, other)) = names.iter().find(|(n, _)| *n == scene.name) {
                     eprintln!(
@@ -389,7 +395,12 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
                     ok = false;
                 }
                 names.push((scene.name.clone(), path));
-                ok &= check_scene(path, scene, ceiling);
+                let name = scene.name.clone();
+                ok &=
+                    isolated(&name, || Ok(check_scene(path, scene, ceiling))).unwrap_or_else(|e| {
+                        eprintln!("error: {e}");
+                        false
+                    });
             }
             Err(e) => {
                 eprintln!("error: {e}");
