@@ -157,7 +157,7 @@ fn main() -> ExitCode {
 }
 
 fn merge_command(dirs: &[PathBuf], out: &Path) -> bool {
-    match merge(dirs, out) {
+    match merge(dirs, out, &|m| eprintln!("{m}")) {
         Ok(m) => {
             println!(
                 "merged {} runs of `{}` into {}",
@@ -241,23 +241,26 @@ fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
             }
         }
     }
-    let mut unique = Vec::new();
-    for s in &scenes {
-        let same: Vec<&Scene> = scenes.iter().filter(|t| t.name == s.name).collect();
-        if same.len() == 1 {
-            unique.push(s.clone());
-        } else if std::ptr::eq(same[0], s) {
-            let files: Vec<String> = same.iter().map(|t| t.file.display().to_string()).collect();
+    let names: Vec<String> = scenes.iter().map(|s| s.name.clone()).collect();
+    let shared = |name: &str| names.iter().filter(|n| *n == name).count() > 1;
+    for (i, name) in names.iter().enumerate() {
+        if shared(name) && !names[..i].contains(name) {
+            let files: Vec<String> = scenes
+                .iter()
+                .filter(|t| t.name == *name)
+                .map(|t| t.file.display().to_string())
+                .collect();
             eprintln!(
-                "error: {} all name scene `{}`, so they would write one directory, {}: none of them \
-                 runs; give each its own [scene] name",
+                "error: {} {} name scene `{name}`, so they would write one directory, {}: none of \
+                 them runs; give each its own [scene] name",
                 files.join(" and "),
-                s.name,
-                out.join(&s.name).display()
+                if files.len() == 2 { "both" } else { "all" },
+                out.join(name).display()
             );
             ok = false;
         }
     }
+    let unique = scenes.into_iter().filter(|s| !shared(&s.name)).collect();
     (unique, ok)
 }
 

@@ -233,7 +233,10 @@ fn two_scenes_of_one_name_are_refused_before_any_solve() {
     let o = elcon(&["run", s(&a), s(&b), s(&c), "--out", s(&out)]);
     let t = text(&o);
     assert_eq!(o.status.code(), Some(1), "{t}");
-    assert!(t.contains("all name scene `same`"), "{t}");
+    assert!(
+        t.contains("both name scene `same`, so they would write one directory"),
+        "{t}"
+    );
     assert!(!out.join("same").exists());
     assert!(out.join("other/result.json").exists());
     let o = elcon(&["check", s(&a), s(&b)]);

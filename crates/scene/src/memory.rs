@@ -8,7 +8,8 @@
 //!
 //! ```text
 //!     ceiling = (1 - MARGIN) min(MemAvailable, cgroup memory.max - memory.current,
-//!                                RLIMIT_AS - VmSize, --memory-limit, ELCON_MEMORY_LIMIT)
+//!                                RLIMIT_AS - VmSize - ADDRESS_SPACE_RESERVE,
+//!                                --memory-limit, ELCON_MEMORY_LIMIT)
 //! ```
 //!
 //! read from /proc/meminfo, the current cgroup's memory controller (v2
@@ -25,6 +26,13 @@ pub const MARGIN: f64 = 0.10;
 /// The environment variable that may lower the ceiling (a size, as
 /// [`parse_size`] reads it).
 pub const LIMIT_VARIABLE: &str = "ELCON_MEMORY_LIMIT";
+
+/// Address space a run reserves beyond the memory it touches (malloc's
+/// per-thread arenas, thread stacks, the program's own mappings, buffers
+/// allocated whole and filled in part), taken off an address-space limit:
+/// a run's peak address space exceeded its peak resident memory by 350 to
+/// 490 MiB (docs/reliability.md).
+pub const ADDRESS_SPACE_RESERVE: u64 = 512 << 20;
 
 /// Limits at or above this many bytes mean "no limit" (cgroup v1 writes
 /// 2^63 rounded down to a page for an unlimited group).
@@ -167,8 +175,10 @@ fn system_limits() -> Vec<(u64, String)> {
             .and_then(|t| status_kib(&t, "VmSize:"))
             .unwrap_or(0);
         limits.push((
-            limit.saturating_sub(used),
-            "RLIMIT_AS less the address space in use".into(),
+            limit
+                .saturating_sub(used)
+                .saturating_sub(ADDRESS_SPACE_RESERVE),
+            "RLIMIT_AS less the address space in use and 512 MiB reserved".into(),
         ));
     }
     limits

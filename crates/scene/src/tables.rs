@@ -261,14 +261,19 @@ fn check_rows(parts: &[Part], runs: usize, count: usize) -> Result<(), SceneErro
 }
 
 /// Joins the results.json of a batch's shard directories (or of one whole
-/// batch) into one table under `out`, written as a unit.
+/// batch) into one table under `out`, written as a unit; `notice` hears
+/// that another writer of `out` is waited for.
 ///
 /// # Errors
 /// [`SceneError::Io`] for a directory without a readable results.json or
 /// an `out` that is not merge's own; [`SceneError::Merge`] when the
 /// directories are not every shard of one batch, each once, or rows
 /// conflict.
-pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<BatchOutcome, SceneError> {
+pub fn merge(
+    dirs: &[PathBuf],
+    out: &Path,
+    notice: &dyn Fn(&str),
+) -> Result<BatchOutcome, SceneError> {
     if dirs.is_empty() {
         return Err(merge_error("no directory to merge"));
     }
@@ -289,7 +294,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<BatchOutcome, SceneError> {
         rows: parts.iter().flat_map(|p| p.table.rows.clone()).collect(),
     };
     merged.rows.sort_by_key(|r| r.index);
-    let staging = Staging::begin(out, &|m| eprintln!("{m}"))?;
+    let staging = Staging::begin(out, notice)?;
     write_tables(&merged, staging.path())?;
     staging.commit()?;
     Ok(merged)
