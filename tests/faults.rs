@@ -169,6 +169,35 @@ fn a_scene_over_the_memory_ceiling_is_refused_and_the_others_run() {
         assert_eq!(o.status.code(), Some(1), "{}", text(&o));
         assert!(text(&o).contains("too big for the memory available"));
     }
+    // In a batch, the run over the ceiling is a failed row; the other runs.
+    let spheres_dir = dir.join("sweep");
+    std::fs::create_dir_all(&spheres_dir).unwrap();
+    std::fs::write(spheres_dir.join("spheres.toml"), &spheres).unwrap();
+    std::fs::write(
+        spheres_dir.join("folding.toml"),
+        "[batch]\nscene = \"spheres.toml\"\n[[batch.group]]\n\"solver.symmetry\" = [\"auto\", \"none\"]\n",
+    )
+    .unwrap();
+    let o = elcon(&[
+        "batch",
+        s(&spheres_dir.join("folding.toml")),
+        "--out",
+        s(&out),
+        "--memory-limit",
+        "64M",
+    ]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(t.contains("2 runs, 1 failed"), "{t}");
+    let rows = json(&out.join("folding/results.json"))["rows"].clone();
+    assert_eq!(rows[0]["status"], "ok");
+    assert!(
+        rows[1]["status"]
+            .as_str()
+            .unwrap()
+            .contains("too big for the memory available: N = 1653 points"),
+        "{rows}"
+    );
     // Without a limit it fits, and check prints the estimate.
     let o = elcon(&["check", s(&big)]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));

@@ -30,7 +30,7 @@ use elcon_influence::{Dimension, Folding, PointSet};
 
 use crate::error::SceneError;
 use crate::memory::human;
-use crate::scene::{DesignFamily, Scene};
+use crate::scene::{DesignFamily, DesignSpec, Scene};
 
 /// Bytes of one matrix entry (f64).
 const ENTRY: f64 = 8.0;
@@ -224,8 +224,8 @@ impl Estimate {
         let solve = square_bytes(m, unknowns);
         let mut seconds = per_cube(scene.method, tableau) * (unknowns as f64).powi(3);
         let design = match &scene.design {
-            Some(_) => {
-                let (d, s) = design(scene, unknowns)?;
+            Some(spec) => {
+                let (d, s) = design(scene, spec, unknowns)?;
                 seconds += s;
                 Some(d)
             }
@@ -331,8 +331,11 @@ impl Estimate {
 }
 
 /// The design stage's memory (bytes) and rough seconds.
-fn design(scene: &Scene, unknowns: usize) -> Result<(DesignEstimate, f64), SceneError> {
-    let spec = scene.design.as_ref().expect("a design stage");
+fn design(
+    scene: &Scene,
+    spec: &DesignSpec,
+    unknowns: usize,
+) -> Result<(DesignEstimate, f64), SceneError> {
     let sets = spec
         .loads
         .iter()
