@@ -168,7 +168,7 @@ fn system_limits() -> Vec<(u64, String)> {
     if let Some(b) =
         read("/proc/self/cgroup").and_then(|t| cgroup_available(&t, Path::new("/sys/fs/cgroup")))
     {
-        limits.push((b, "the cgroup's memory limit".into()));
+        limits.push((b, "memory left in the cgroup".into()));
     }
     if let Some(limit) = read("/proc/self/limits").and_then(|t| address_space_limit(&t)) {
         let used = read("/proc/self/status")
@@ -178,7 +178,7 @@ fn system_limits() -> Vec<(u64, String)> {
             limit
                 .saturating_sub(used)
                 .saturating_sub(ADDRESS_SPACE_RESERVE),
-            "RLIMIT_AS less the address space in use and 512 MiB reserved".into(),
+            "usable address space under RLIMIT_AS".into(),
         ));
     }
     limits
