@@ -1,15 +1,17 @@
 //! The `elcon` command line: a thin shell over elcon-scene.
 //!
 //! ```text
-//! elcon run SCENE.toml... [--out DIR]       solve scenes, write DIR/<scene>/ (result.json, pressure.csv, plots)
-//! elcon batch BATCH.toml [--out DIR] [--jobs N] [--shard K/N]
-//! elcon check FILE.toml...                  validate scenes or batches without solving
-//! elcon merge DIR... --out DIR              join the tables of batch shards
+//! elcon run SCENE.toml... [--out DIR] [--memory-limit SIZE]
+//! elcon batch BATCH.toml [--out DIR] [--jobs N] [--shard K/N|auto] [--memory-limit SIZE]
+//! elcon check FILE.toml... [--memory-limit SIZE] [--every-run]
+//! elcon merge DIR... --out DIR
 //! ```
 //!
 //! Exit codes: 0 all good; 1 some scene or run failed (the others still ran
-//! and were written) or a file did not validate; 2 a usage error (unknown
-//! option, missing argument).
+//! and were written), a file did not validate, a scene was too big for the
+//! memory, or merge was given inconsistent shards; 2 a usage error (unknown
+//! option, missing argument, a malformed size or shard, `--shard auto`
+//! outside a scheduler).
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -18,8 +20,9 @@ use std::sync::Mutex;
 
 use clap::{Parser, Subcommand};
 use elcon_scene::{
-    Batch, BatchRun, Progress, RunResult, Scene, SceneError, Shard, merge, run, run_batch,
-    write_run,
+    Batch, BatchOptions, BatchRun, Ceiling, Progress, RunResult, Scene, SceneError, Shard, Staging,
+    check_batch, install_panic_hook, isolated, merge, parse_size, prepare, run, run_batch,
+    thousands, write_run_files,
 };
 
 #[derive(Parser)]
@@ -33,6 +36,21 @@ struct Cli {
     command: Command,
 }
 
+/// `--shard`: K/N, or auto (from the scheduler's variables).
+#[derive(Clone, Copy)]
+enum ShardArg {
+    Fixed(Shard),
+    Auto,
+}
+
+fn shard_arg(s: &str) -> Result<ShardArg, String> {
+    if s.trim() == "auto" {
+        Ok(ShardArg::Auto)
+    } else {
+        s.parse().map(ShardArg::Fixed)
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Solve scenes; write result.json, pressure.csv and the plots asked for under DIR/<scene>/.
@@ -43,6 +61,9 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "out")]
         out: PathBuf,
+        /// Lower the memory ceiling (e.g. 4G, 512M; also ELCON_MEMORY_LIMIT).
+        #[arg(long, value_parser = parse_size)]
+        memory_limit: Option<u64>,
     },
     /// Run a batch of sweeps in parallel; write every run and the results table.
     Batch {
@@ -54,15 +75,25 @@ enum Command {
         /// Runs in parallel (default: one per core).
         #[arg(long)]
         jobs: Option<usize>,
-        /// Run only the K-th of N slices of the sweep (K from 1), e.g. 2/8.
-        #[arg(long)]
-        shard: Option<Shard>,
+        /// Run only the K-th of N slices of the sweep (K from 1), e.g. 2/8; or
+        /// auto: K and N from a SLURM job array or a Kubernetes indexed Job.
+        #[arg(long, value_parser = shard_arg)]
+        shard: Option<ShardArg>,
+        /// Lower the memory ceiling (e.g. 4G, 512M; also ELCON_MEMORY_LIMIT).
+        #[arg(long, value_parser = parse_size)]
+        memory_limit: Option<u64>,
     },
-    /// Validate scene or batch files without solving.
+    /// Validate scene or batch files without solving; print each one's memory and time estimate.
     Check {
         /// Scene or batch files.
         #[arg(required = true)]
         files: Vec<PathBuf>,
+        /// Lower the memory ceiling (e.g. 4G, 512M; also ELCON_MEMORY_LIMIT).
+        #[arg(long, value_parser = parse_size)]
+        memory_limit: Option<u64>,
+        /// Validate every run of a batch, however large its sweep.
+        #[arg(long)]
+        every_run: bool,
     },
     /// Join the results tables of batch shards.
     Merge {
@@ -75,37 +106,71 @@ enum Command {
     },
 }
 
+/// How a command ended.
+enum Outcome {
+    Ok,
+    Failed,
+    Usage(String),
+}
+
+impl From<bool> for Outcome {
+    fn from(ok: bool) -> Self {
+        if ok { Outcome::Ok } else { Outcome::Failed }
+    }
+}
+
+fn ceiling(limit: Option<u64>) -> Result<Ceiling, Outcome> {
+    Ceiling::of_this_process(limit).map_err(Outcome::Usage)
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let ok = match cli.command {
-        Command::Run { scenes, out } => run_scenes(&scenes, &out),
+    install_panic_hook();
+    let outcome = match cli.command {
+        Command::Run {
+            scenes,
+            out,
+            memory_limit,
+        } => ceiling(memory_limit).map(|c| run_scenes(&scenes, &out, &c).into()),
         Command::Batch {
             batch,
             out,
             jobs,
             shard,
-        } => batch_command(&batch, &out, jobs, shard),
-        Command::Check { files } => check(&files),
-        Command::Merge { dirs, out } => match merge(&dirs, &out) {
-            Ok(m) => {
-                println!(
-                    "merged {} runs of `{}` into {}",
-                    m.rows.len(),
-                    m.batch,
-                    out.display()
-                );
-                m.failures() == 0
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                false
-            }
-        },
+            memory_limit,
+        } => ceiling(memory_limit).and_then(|c| batch_command(&batch, &out, jobs, shard, c)),
+        Command::Check {
+            files,
+            memory_limit,
+            every_run,
+        } => ceiling(memory_limit).map(|c| check(&files, &c, every_run).into()),
+        Command::Merge { dirs, out } => Ok(merge_command(&dirs, &out).into()),
     };
-    if ok {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
+    match outcome.unwrap_or_else(|e| e) {
+        Outcome::Ok => ExitCode::SUCCESS,
+        Outcome::Failed => ExitCode::from(1),
+        Outcome::Usage(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn merge_command(dirs: &[PathBuf], out: &Path) -> bool {
+    match merge(dirs, out, &|m| eprintln!("{m}")) {
+        Ok(m) => {
+            println!(
+                "merged {} runs of `{}` into {}",
+                m.rows.len(),
+                m.batch,
+                out.display()
+            );
+            m.failures() == 0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            false
+        }
     }
 }
 
@@ -162,18 +227,62 @@ fn row(r: &RunResult) {
     }
 }
 
-fn run_scenes(scenes: &[PathBuf], out: &Path) -> bool {
-    header();
+/// The scenes of the files, validated; a file that fails, or two scenes of
+/// one name (they would write one directory), is reported and left out.
+fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
     let mut ok = true;
-    for path in scenes {
-        let outcome = Scene::from_file(path).and_then(|scene| {
-            let r = run(&scene)?;
-            let dir = write_run(&r, out)?;
-            Ok((r, dir))
+    let mut scenes: Vec<Scene> = Vec::new();
+    for path in paths {
+        match isolated(&path.display().to_string(), || Scene::from_file(path)) {
+            Ok(s) => scenes.push(s),
+            Err(e) => {
+                eprintln!("error: {e}");
+                ok = false;
+            }
+        }
+    }
+    let names: Vec<String> = scenes.iter().map(|s| s.name.clone()).collect();
+    let shared = |name: &str| names.iter().filter(|n| *n == name).count() > 1;
+    for (i, name) in names.iter().enumerate() {
+        if shared(name) && !names[..i].contains(name) {
+            let files: Vec<String> = scenes
+                .iter()
+                .filter(|t| t.name == *name)
+                .map(|t| t.file.display().to_string())
+                .collect();
+            eprintln!(
+                "error: {} {} name scene `{name}`, so they would write one directory, {}: none of \
+                 them runs; give each its own [scene] name",
+                files.join(" and "),
+                if files.len() == 2 { "both" } else { "all" },
+                out.join(name).display()
+            );
+            ok = false;
+        }
+    }
+    let unique = scenes.into_iter().filter(|s| !shared(&s.name)).collect();
+    (unique, ok)
+}
+
+fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling) -> bool {
+    let (scenes, mut ok) = validated(paths, out);
+    let mut header_printed = false;
+    for scene in scenes {
+        let name = scene.name.clone();
+        let outcome = isolated(&name, || {
+            let prepared = prepare(scene, ceiling)?;
+            let staging = Staging::begin(&out.join(&name), &|m| eprintln!("{m}"))?;
+            let r = run(&prepared.scene)?;
+            write_run_files(&r, staging.path())?;
+            Ok((r.result, staging.commit()?))
         });
         match outcome {
             Ok((r, dir)) => {
-                row(&r.result);
+                if !header_printed {
+                    header();
+                    header_printed = true;
+                }
+                row(&r);
                 println!("{:<28} wrote {}", "", dir.display());
             }
             Err(e) => {
@@ -185,31 +294,117 @@ fn run_scenes(scenes: &[PathBuf], out: &Path) -> bool {
     ok
 }
 
-fn check(files: &[PathBuf]) -> bool {
+fn is_batch(path: &Path) -> bool {
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|t| t.parse::<toml::Table>().ok())
+        .is_some_and(|t| t.contains_key("batch"))
+}
+
+fn check_scene(path: &Path, scene: Scene, ceiling: &Ceiling) -> bool {
+    match prepare(scene, ceiling) {
+        Ok(p) => {
+            println!(
+                "{}: scene `{}`: valid; {}",
+                path.display(),
+                p.scene.name,
+                p.estimate.summary()
+            );
+            for w in &p.scene.warnings {
+                println!("{}: warning: {w}", path.display());
+            }
+            true
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            false
+        }
+    }
+}
+
+fn check_batch_file(path: &Path, ceiling: &Ceiling, every_run: bool) -> bool {
+    let batch = match Batch::from_file(path) {
+        Ok(b) => b,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return false;
+        }
+    };
+    let c = check_batch(&batch, ceiling, every_run);
+    for (_, e) in &c.failures {
+        eprintln!("error: {e}");
+    }
+    let which = if c.every_run {
+        "every run checked".to_string()
+    } else {
+        format!(
+            "{} runs checked, covering every value of every key; the others are checked as they \
+             run, or all with --every-run",
+            thousands(c.checked as u64)
+        )
+    };
+    if c.failed > c.failures.len() {
+        eprintln!(
+            "error: ... and {} more runs failed",
+            thousands((c.failed - c.failures.len()) as u64)
+        );
+    }
+    let verdict = if c.failed == 0 {
+        "all valid".to_string()
+    } else {
+        format!("{} failed", thousands(c.failed as u64))
+    };
+    println!(
+        "{}: batch `{}`: {} runs, {verdict} ({which})",
+        path.display(),
+        batch.name,
+        thousands(c.runs as u64)
+    );
+    if let Some(l) = &c.largest {
+        println!(
+            "{}: largest run checked: {}; the runs checked: about {:.0} s of solving in all",
+            path.display(),
+            l.summary(),
+            c.seconds
+        );
+    }
+    c.failed == 0
+}
+
+fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
     let mut ok = true;
+    let mut names: Vec<(String, &Path)> = Vec::new();
     for path in files {
-        let is_batch = std::fs::read_to_string(path)
-            .ok()
-            .and_then(|t| t.parse::<toml::Table>().ok())
-            .is_some_and(|t| t.contains_key("batch"));
-        let result: Result<String, SceneError> = if is_batch {
-            Batch::from_file(path).and_then(|b| {
-                let runs = b.runs();
-                for r in &runs {
-                    b.scene(r)?;
+        if is_batch(path) {
+            let checked = isolated(&path.display().to_string(), || {
+                Ok(check_batch_file(path, ceiling, every_run))
+            });
+            ok &= checked.unwrap_or_else(|e| {
+                eprintln!("error: {e}");
+                false
+            });
+            continue;
+        }
+        match isolated(&path.display().to_string(), || Scene::from_file(path)) {
+            Ok(scene) => {
+                if let Some((_, other)) = names.iter().find(|(n, _)| *n == scene.name) {
+                    eprintln!(
+                        "error: {} and {} both name scene `{}`: `run` would run neither; give \
+                         each its own [scene] name",
+                        other.display(),
+                        path.display(),
+                        scene.name
+                    );
+                    ok = false;
                 }
-                Ok(format!(
-                    "batch `{}`: {} runs, all valid",
-                    b.name,
-                    runs.len()
-                ))
-            })
-        } else {
-            Scene::from_file(path)
-                .map(|s| format!("scene `{}`: {} points, valid", s.name, s.points.len()))
-        };
-        match result {
-            Ok(msg) => println!("{}: {msg}", path.display()),
+                names.push((scene.name.clone(), path));
+                let name = scene.name.clone();
+                ok &=
+                    isolated(&name, || Ok(check_scene(path, scene, ceiling))).unwrap_or_else(|e| {
+                        eprintln!("error: {e}");
+                        false
+                    });
+            }
             Err(e) => {
                 eprintln!("error: {e}");
                 ok = false;
@@ -231,6 +426,13 @@ impl Progress for Report {
         *self.total.lock().expect("progress lock") = total;
         if let Some(bar) = &self.bar {
             bar.set_length(total as u64);
+        }
+    }
+
+    fn notice(&self, message: &str) {
+        match &self.bar {
+            Some(bar) => bar.println(message),
+            None => eprintln!("{message}"),
         }
     }
 
@@ -260,12 +462,25 @@ impl Progress for Report {
     }
 }
 
-fn batch_command(path: &Path, out: &Path, jobs: Option<usize>, shard: Option<Shard>) -> bool {
+fn batch_command(
+    path: &Path,
+    out: &Path,
+    jobs: Option<usize>,
+    shard: Option<ShardArg>,
+    ceiling: Ceiling,
+) -> Result<Outcome, Outcome> {
+    let shard = match shard {
+        None => None,
+        Some(ShardArg::Fixed(s)) => Some(s),
+        Some(ShardArg::Auto) => {
+            Some(Shard::from_scheduler(|k| std::env::var(k).ok()).map_err(Outcome::Usage)?)
+        }
+    };
     let batch = match Batch::from_file(path) {
         Ok(b) => b,
         Err(e) => {
             eprintln!("error: {e}");
-            return false;
+            return Ok(Outcome::Failed);
         }
     };
     let bar = std::io::stderr().is_terminal().then(|| {
@@ -283,7 +498,19 @@ fn batch_command(path: &Path, out: &Path, jobs: Option<usize>, shard: Option<Sha
         done: Mutex::new(0),
         total: Mutex::new(0),
     };
-    match run_batch(&batch, out, jobs, shard, &report) {
+    if let Some(s) = shard {
+        eprintln!(
+            "shard {s} of batch `{}` ({} runs in all)",
+            batch.name,
+            batch.len()
+        );
+    }
+    let options = BatchOptions {
+        jobs,
+        shard,
+        ceiling,
+    };
+    match run_batch(&batch, out, &options, &report) {
         Ok(o) => {
             if let Some(bar) = &report.bar {
                 bar.finish_and_clear();
@@ -292,18 +519,18 @@ fn batch_command(path: &Path, out: &Path, jobs: Option<usize>, shard: Option<Sha
             println!(
                 "batch `{}`: {} runs, {} failed; tables in {}",
                 o.batch,
-                o.rows.len(),
-                o.failures(),
+                thousands(o.rows.len() as u64),
+                thousands(o.failures() as u64),
                 dir.display()
             );
             for r in o.rows.iter().filter(|r| r.status != "ok") {
                 println!("  run {} ({}): {}", r.index, r.overrides, r.status);
             }
-            o.failures() == 0
+            Ok((o.failures() == 0).into())
         }
         Err(e) => {
             eprintln!("error: {e}");
-            false
+            Ok(Outcome::Failed)
         }
     }
 }

@@ -53,7 +53,7 @@ pub enum SceneError {
         message: String,
     },
     /// A value is out of its physical range, or values do not go together.
-    #[error("{}:{}:{}: `{field}` = {value}: {reason}", file.display(), at.line, at.column)]
+    #[error("{}:{}:{}: `{field}`{}: {reason}", file.display(), at.line, at.column, shown(value))]
     Invalid {
         /// The file.
         file: PathBuf,
@@ -66,6 +66,40 @@ pub enum SceneError {
         /// Why it is rejected and what is admissible.
         reason: String,
     },
+    /// A scene whose estimated peak memory exceeds what this process may
+    /// use: refused before anything large is allocated.
+    #[error(
+        "scene `{scene}`: too big for the memory available: {needed}; the ceiling is {ceiling}. \
+         What helps: {hints}"
+    )]
+    TooBig {
+        /// The scene's name.
+        scene: String,
+        /// N, the estimate and what it is made of.
+        needed: String,
+        /// The ceiling and what set it.
+        ceiling: String,
+        /// What would make it fit.
+        hints: String,
+    },
+    /// A failure that is not an answer to the input: a panic caught at the
+    /// scene's boundary (the other scenes still run and are written).
+    #[error(
+        "scene `{scene}`: internal error (this is a bug; please report it with the scene): {message}"
+    )]
+    Bug {
+        /// The scene's name.
+        scene: String,
+        /// The panic's message and place.
+        message: String,
+    },
+    /// `elcon merge` was given directories that are not every shard of one
+    /// batch, each once, or rows that conflict.
+    #[error("merge: {reason}")]
+    Merge {
+        /// What is wrong, naming the directories.
+        reason: String,
+    },
     /// A valid scene whose solve failed (no solution, pivot limit, a design
     /// that could not be certified...).
     #[error("scene `{scene}`: {reason}")]
@@ -75,6 +109,16 @@ pub enum SceneError {
         /// The failure, from the solver crates.
         reason: String,
     },
+}
+
+/// ` = value` for a message, or nothing for an empty value (a field that
+/// is missing, or a section as a whole).
+fn shown(value: &str) -> String {
+    if value.is_empty() {
+        String::new()
+    } else {
+        format!(" = {value}")
+    }
 }
 
 impl SceneError {

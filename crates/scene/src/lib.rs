@@ -4,32 +4,55 @@
 //! the two bodies, the surfaces, the candidate points, the load or
 //! approach, the method, and only when wanted a design stage and plots; a
 //! batch file sweeps keys of a scene. This crate validates them (messages
-//! name the file, line, column and field), runs them (in parallel for a
-//! batch), and writes the results whole or not at all: result.json,
-//! pressure.csv, SVG plots, and for batches a results table in CSV and
-//! Markdown with an error-against-run-time plot.
+//! name the file, line, column and field), estimates what each will cost
+//! and refuses what will not fit in memory, runs them (in parallel for a
+//! batch; a failure or a panic in one is reported and the others go on),
+//! and writes the results whole or not at all: result.json, pressure.csv,
+//! SVG plots, and for batches a results table in CSV and Markdown with an
+//! error-against-run-time plot.
 //!
 //! The contact problem solved is that of elcon-analysis,
 //! `Y = S F + eps - alpha e`, `e^T F = P`, `F, Y >= 0`, `F_k Y_k = 0`; the
-//! schema is documented in docs/scenes.md and the outputs in
-//! docs/results.md.
+//! schema is documented in docs/scenes.md, the outputs in docs/results.md
+//! and the behaviour under faults and limits in docs/reliability.md.
 
 mod batch;
+mod batch_run;
+mod ctx;
 mod error;
+mod estimate;
+mod faults;
+mod isolate;
+mod memory;
 mod output;
 mod plot;
+mod prepare;
 mod run;
+mod sanity;
 mod scene;
 mod schema;
+mod shard;
+mod tables;
 
-pub use batch::{Batch, BatchOutcome, BatchRun, Progress, Shard, merge, run_batch};
+pub use batch::{Batch, BatchRun, MAX_RUNS, thousands};
+pub use batch_run::{BatchOptions, Progress, run_batch};
 pub use error::{Location, SceneError};
-pub use output::{write_atomic, write_run};
+pub use estimate::{BASELINE, DesignEstimate, Estimate, Tableau, TimeClass, matrices};
+pub use isolate::{install_panic_hook, isolated};
+pub use memory::{ADDRESS_SPACE_RESERVE, Ceiling, LIMIT_VARIABLE, MARGIN, human, parse_size};
+pub use output::{Staging, write_atomic, write_run, write_run_files};
+pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{
     AttemptJson, CertificateJson, DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson,
     Run, RunResult, Seconds, StatisticsJson, SymmetryJson, run,
+};
+pub use sanity::{
+    MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MIN_POINTS_ACROSS,
+    max_pivots_bound,
 };
 pub use scene::{
     BodySpec, DesignFamily, DesignSpec, Outputs, Plot, PointsSpec, Reference, RelativeTo, Scene,
     Units,
 };
+pub use shard::{SHARD_COUNT_VARIABLE, Shard};
+pub use tables::{BatchOutcome, Row, merge};

@@ -1,7 +1,15 @@
-//! Writing a run's outputs, each file whole or not at all: the contents go
-//! to a temporary file in the same directory, which is then renamed over the
-//! target (a rename within a directory is atomic), so an interrupted run
-//! leaves either the old file or the new one, never half of one.
+//! Writing a run's outputs, each file whole or not at all and each output
+//! directory as a unit.
+//!
+//! A file's contents go to a temporary file in the same directory, which is
+//! then renamed over the target (a rename within a directory is atomic), so
+//! an interrupted run leaves either the old file or the new one, never half
+//! of one. A directory (a scene's, a batch's, a merge's) is written whole
+//! into a temporary sibling, `.<name>.<pid>.tmp`, which then replaces the
+//! old directory ([`Staging`]): no file of an earlier run stays beside the
+//! new ones. While it is written, the writer holds an OS lock on
+//! `.<name>.lock` beside it, so a second writer of the same directory waits;
+//! the holder of the lock removes the temporary siblings a killed run left.
 //!
 //! Per scene, in `<out>/<scene>/`: result.json (docs/results.md),
 //! pressure.csv (position, measure, force, pressure, gap, separation, and
@@ -15,6 +23,7 @@ use std::path::{Path, PathBuf};
 use elcon_influence::Dimension;
 
 use crate::error::SceneError;
+use crate::faults;
 use crate::plot;
 use crate::run::Run;
 use crate::scene::Plot;
@@ -43,16 +52,178 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), SceneError> {
     })
 }
 
-/// Writes a run's outputs under `<out>/<scene name>/`; returns that directory.
+/// An output directory being written: a temporary sibling of the target
+/// that [`Staging::commit`] renames into place, replacing the old directory
+/// as a unit. The lock on the target is held from [`Staging::begin`] until
+/// the staging is committed or dropped; dropped uncommitted, the temporary
+/// directory is removed and the old directory stays as it was.
+#[derive(Debug)]
+pub struct Staging {
+    target: PathBuf,
+    tmp: PathBuf,
+    /// The OS lock on `.<name>.lock`, released when the file is closed.
+    _lock: Option<fs::File>,
+    done: bool,
+}
+
+/// The parent directory and the name of an output directory.
+fn split(target: &Path) -> Result<(PathBuf, String), SceneError> {
+    let name = target
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .filter(|n| n != "." && n != "..")
+        .ok_or_else(|| SceneError::io(target, "an output directory needs a name"))?;
+    let parent = target
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+        .to_path_buf();
+    Ok((parent, name))
+}
+
+impl Staging {
+    /// Locks `target` (waiting for another writer of it: `notice` is told
+    /// once, before the wait), removes what killed runs left beside it, and
+    /// creates the empty temporary directory to write into.
+    ///
+    /// # Errors
+    /// [`SceneError::Io`] when the parent or the temporary directory cannot
+    /// be created, or the lock fails for a reason other than another writer.
+    pub fn begin(target: &Path, notice: &dyn Fn(&str)) -> Result<Self, SceneError> {
+        let (parent, name) = split(target)?;
+        fs::create_dir_all(&parent).map_err(|e| SceneError::io(&parent, e))?;
+        let lock_path = parent.join(format!(".{name}.lock"));
+        let file = fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .map_err(|e| SceneError::io(&lock_path, e))?;
+        let lock = match file.try_lock() {
+            Ok(()) => Some(file),
+            Err(fs::TryLockError::WouldBlock) => {
+                notice(&format!(
+                    "waiting: another elcon is writing {} (it holds {})",
+                    target.display(),
+                    lock_path.display()
+                ));
+                file.lock().map_err(|e| SceneError::io(&lock_path, e))?;
+                Some(file)
+            }
+            Err(fs::TryLockError::Error(e)) => {
+                notice(&format!(
+                    "warning: cannot lock {} ({e}); a concurrent writer of {} would not be kept out",
+                    lock_path.display(),
+                    target.display()
+                ));
+                None
+            }
+        };
+        clean_leftovers(&parent, &name);
+        let tmp = parent.join(format!(".{name}.{}.tmp", std::process::id()));
+        fs::create_dir(&tmp).map_err(|e| SceneError::io(&tmp, e))?;
+        Ok(Self {
+            target: target.to_path_buf(),
+            tmp,
+            _lock: lock,
+            done: false,
+        })
+    }
+
+    /// The directory to write into.
+    pub fn path(&self) -> &Path {
+        &self.tmp
+    }
+
+    /// The directory the outputs will have once committed.
+    pub fn target(&self) -> &Path {
+        &self.target
+    }
+
+    /// Renames the temporary directory over the target (the old target is
+    /// moved aside first and removed after), then releases the lock.
+    ///
+    /// # Errors
+    /// [`SceneError::Io`] when a rename fails (the old directory is then
+    /// put back).
+    pub fn commit(mut self) -> Result<PathBuf, SceneError> {
+        let (parent, name) = split(&self.target)?;
+        let old = parent.join(format!(".{name}.{}.old", std::process::id()));
+        let had_old = match fs::symlink_metadata(&self.target) {
+            Ok(_) => {
+                fs::rename(&self.target, &old).map_err(|e| SceneError::io(&self.target, e))?;
+                true
+            }
+            Err(_) => false,
+        };
+        if let Err(e) = fs::rename(&self.tmp, &self.target) {
+            if had_old {
+                let _ = fs::rename(&old, &self.target);
+            }
+            return Err(SceneError::io(&self.target, e));
+        }
+        self.done = true;
+        if had_old {
+            let _ = fs::remove_dir_all(&old).or_else(|_| fs::remove_file(&old));
+        }
+        Ok(self.target.clone())
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if !self.done {
+            let _ = fs::remove_dir_all(&self.tmp);
+        }
+    }
+}
+
+/// Removes `.<name>.<pid>.tmp` and `.<name>.<pid>.old` in `parent`: what
+/// a writer killed before its commit left (the caller holds the lock, so
+/// no live writer owns them).
+fn clean_leftovers(parent: &Path, name: &str) {
+    let Ok(entries) = fs::read_dir(parent) else {
+        return;
+    };
+    let prefix = format!(".{name}.");
+    for entry in entries.flatten() {
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let Some(middle) = file.strip_prefix(&prefix).and_then(|rest| {
+            rest.strip_suffix(".tmp")
+                .or_else(|| rest.strip_suffix(".old"))
+        }) else {
+            continue;
+        };
+        if !middle.is_empty() && middle.bytes().all(|b| b.is_ascii_digit()) {
+            let path = entry.path();
+            let _ = fs::remove_dir_all(&path).or_else(|_| fs::remove_file(&path));
+        }
+    }
+}
+
+/// Writes a run's outputs under `<out>/<scene name>/`, the directory
+/// replaced as a unit ([`Staging`]); returns that directory.
 ///
 /// # Errors
 /// [`SceneError::Io`] for a file that could not be written.
 pub fn write_run(run: &Run, out: &Path) -> Result<PathBuf, SceneError> {
-    let dir = out.join(&run.scene.name);
-    let json = serde_json::to_string_pretty(&run.result).map_err(|e| SceneError::io(&dir, e))?;
+    let staging = Staging::begin(&out.join(&run.scene.name), &|_| {})?;
+    write_run_files(run, staging.path())?;
+    staging.commit()
+}
+
+/// Writes a run's files into `dir`: result.json, pressure.csv (unless
+/// switched off) and the plots asked for.
+///
+/// # Errors
+/// [`SceneError::Io`] for a file that could not be written.
+pub fn write_run_files(run: &Run, dir: &Path) -> Result<(), SceneError> {
+    let json = serde_json::to_string_pretty(&run.result).map_err(|e| SceneError::io(dir, e))?;
     write_atomic(&dir.join("result.json"), json.as_bytes())?;
+    faults::write_delay();
     if run.scene.outputs.pressure_csv {
         write_atomic(&dir.join("pressure.csv"), pressure_csv(run).as_bytes())?;
+        faults::write_delay();
     }
     for plot in &run.scene.outputs.plots {
         let (name, svg) = match plot {
@@ -64,8 +235,9 @@ pub fn write_run(run: &Run, out: &Path) -> Result<PathBuf, SceneError> {
             reason,
         })?;
         write_atomic(&dir.join(name), svg.as_bytes())?;
+        faults::write_delay();
     }
-    Ok(dir)
+    Ok(())
 }
 
 /// pressure.csv: one row per candidate point.

@@ -303,6 +303,7 @@ fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError {
 /// design stage fails.
 pub fn run(scene: &Scene) -> Result<Run, SceneError> {
     let start = Instant::now();
+    crate::faults::panic_point(&scene.name);
     let [b1, b2] = &scene.bodies;
     let build = if scene.fold {
         ContactProblem::symmetric
@@ -370,7 +371,12 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
             tolerance: c.tolerance,
             holds: c.holds(),
         },
-        warnings: solution.warnings.iter().map(|w| w.to_string()).collect(),
+        warnings: scene
+            .warnings
+            .iter()
+            .cloned()
+            .chain(solution.warnings.iter().map(|w| w.to_string()))
+            .collect(),
         reference,
         design: design_json,
     };

@@ -8,7 +8,6 @@
 //! does not ask for is neither read nor computed: no design stage without
 //! `[design]`, no reference where no closed form applies, no plot not asked.
 
-use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam};
@@ -17,7 +16,9 @@ use elcon_design::{Axis, Family};
 use elcon_influence::{Body, Dimension, Material, PointSet, combined_modulus_of};
 use toml::Spanned;
 
-use crate::error::{Location, SceneError};
+use crate::ctx::{Ctx, parse};
+use crate::error::SceneError;
+use crate::sanity;
 use crate::schema::{
     BodyToml, DesignToml, GeometryToml, LoadingToml, PointsToml, SceneFile, SurfaceToml,
 };
@@ -235,109 +236,10 @@ pub struct Scene {
     /// beam's ends (x), a roller's ends on a rectangle grid (y), a flat
     /// punch's rim (both).
     pub body_edges: (bool, bool),
-}
-
-/// Validation context: the file and its text, for locations.
-pub(crate) struct Ctx<'a> {
-    pub file: &'a Path,
-    pub text: &'a str,
-}
-
-impl Ctx<'_> {
-    fn at(&self, span: Range<usize>) -> Location {
-        Location::of(self.text, span.start)
-    }
-
-    /// An `Invalid` error at `span`.
-    pub(crate) fn invalid(
-        &self,
-        span: Range<usize>,
-        field: impl Into<String>,
-        value: impl std::fmt::Display,
-        reason: impl Into<String>,
-    ) -> SceneError {
-        SceneError::Invalid {
-            file: self.file.to_path_buf(),
-            at: self.at(span),
-            field: field.into(),
-            value: value.to_string(),
-            reason: reason.into(),
-        }
-    }
-
-    /// A value that must be finite and > 0.
-    fn positive(&self, v: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
-        let x = *v.get_ref();
-        if !x.is_finite() {
-            return Err(self.invalid(v.span(), field, x, "must be a finite number"));
-        }
-        if x <= 0.0 {
-            return Err(self.invalid(v.span(), field, x, "must be > 0"));
-        }
-        Ok(x)
-    }
-
-    /// A value that must be finite.
-    fn finite(&self, v: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
-        let x = *v.get_ref();
-        if !x.is_finite() {
-            return Err(self.invalid(v.span(), field, x, "must be a finite number"));
-        }
-        Ok(x)
-    }
-
-    /// A count that must be >= `min`.
-    fn count(&self, v: &Spanned<i64>, field: &str, min: i64) -> Result<usize, SceneError> {
-        let x = *v.get_ref();
-        if x < min {
-            let why = if field.starts_with("points.") && min == 1 {
-                format!("must be at least {min} (an empty point set)")
-            } else {
-                format!("must be at least {min}")
-            };
-            return Err(self.invalid(v.span(), field, x, why));
-        }
-        usize::try_from(x).map_err(|_| self.invalid(v.span(), field, x, "too large"))
-    }
-
-    fn required<'s, T>(
-        &self,
-        v: &'s Option<Spanned<T>>,
-        section: Range<usize>,
-        field: &str,
-        why: &str,
-    ) -> Result<&'s Spanned<T>, SceneError> {
-        v.as_ref()
-            .ok_or_else(|| self.invalid(section, field, "(missing)", format!("is required {why}")))
-    }
-
-    fn forbid<T>(&self, v: &Option<Spanned<T>>, field: &str, why: &str) -> Result<(), SceneError>
-    where
-        T: std::fmt::Debug,
-    {
-        match v {
-            Some(s) => Err(self.invalid(
-                s.span(),
-                field,
-                format!("{:?}", s.get_ref()),
-                why.to_string(),
-            )),
-            None => Ok(()),
-        }
-    }
-}
-
-/// Parses TOML text into `T`, turning a parser error into a located
-/// [`SceneError::Syntax`].
-pub(crate) fn parse<T: serde::de::DeserializeOwned>(
-    file: &Path,
-    text: &str,
-) -> Result<T, SceneError> {
-    toml::from_str(text).map_err(|e| SceneError::Syntax {
-        file: file.to_path_buf(),
-        at: Location::of(text, e.span().map_or(0, |s| s.start)),
-        message: e.message().trim().to_string(),
-    })
+    /// What validation found doubtful but not wrong (a grid coarser than
+    /// the contact): printed by `elcon check` and `elcon run`, and written
+    /// to result.json's warnings.
+    pub warnings: Vec<String>,
 }
 
 impl Scene {
@@ -409,7 +311,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
             "names an output directory: no path separators",
         ));
     }
-    let description = raw.scene.and_then(|m| m.description);
+    let description = raw.scene.as_ref().and_then(|m| m.description.clone());
     let bodies = [
         body(ctx, raw.body1.get_ref(), "body1")?,
         body(ctx, raw.body2.get_ref(), "body2")?,
@@ -464,50 +366,12 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         ));
     }
     let geometry = geometry(ctx, raw.geometry.as_ref(), dimension)?;
-    // The load that sizes Hertz-relative grids: the load, or under
-    // displacement control the Hertz load of that approach.
-    let sizing_load = match loading.normal {
-        Normal::Load(p) => Some(p),
-        Normal::Approach(_) => None,
-    };
-    let scale = sizing_load.and_then(|p| hertz_scale(&bodies, &geometry, &points_spec, p));
-    let relative = matches!(
-        points_spec,
-        PointsSpec::DiskHertz { .. } | PointsSpec::LineHertz { .. }
-    ) || matches!(points_spec, PointsSpec::Rectangle { zone: Some(_), .. });
-    if relative && scale.is_none() {
-        return Err(ctx.invalid(
-            raw.points.span(),
-            "points",
-            "across/zone",
-            "points relative to the Hertz contact (across, zone) need a Hertz contact under a load: \
-             sphere or cylinder surfaces, elastic half-space bodies, and loading.load; give absolute \
-             sizes instead",
-        ));
-    }
-    let points = build_points(&points_spec, scale)
-        .map_err(|reason| ctx.invalid(raw.points.span(), "points", "", reason))?;
-    if let Geometry::Separation(eps) = &geometry
-        && eps.len() != points.len()
-    {
-        let span = raw
-            .geometry
-            .as_ref()
-            .and_then(|g| g.get_ref().separation.as_ref())
-            .map_or(0..0, |s| s.span());
-        return Err(ctx.invalid(
-            span,
-            "geometry.separation",
-            format!("{} values", eps.len()),
-            format!(
-                "needs one value per candidate point: the grid has {}",
-                points.len()
-            ),
-        ));
-    }
+    sanity::curvatures(ctx, raw.geometry.as_ref(), &geometry)?;
+    let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
     let reference = reference(&bodies, &geometry, &points_spec, &points, loading);
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
     let (method, options) = solver(ctx, raw.solver.as_ref())?;
+    sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
     let fold = match raw.solver.as_ref().and_then(|s| s.symmetry.as_ref()) {
         Some(v) => match v.get_ref().as_str() {
             "auto" => true,
@@ -547,7 +411,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     } else {
         (false, false)
     };
-    Ok(Scene {
+    let mut scene = Scene {
         name,
         file: ctx.file.to_path_buf(),
         description,
@@ -564,7 +428,136 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         outputs,
         reference,
         body_edges,
-    })
+        warnings: Vec::new(),
+    };
+    scene.warnings = whole_scene(ctx, &raw, &scene)?;
+    Ok(scene)
+}
+
+/// The candidate points: absolute, or relative to the Hertz contact at the
+/// scene's load (which must then exist, at a size in floating-point range).
+fn lay_out(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    points_spec: &PointsSpec,
+    loading: Loading,
+) -> Result<PointSet, SceneError> {
+    // The load that sizes Hertz-relative grids (under displacement control
+    // there is none: the contact's size is not known before the solve).
+    let sizing_load = loading.load_value();
+    let scale = sizing_load.and_then(|p| hertz_scale(bodies, geometry, points_spec, p));
+    let relative = matches!(
+        points_spec,
+        PointsSpec::DiskHertz { .. } | PointsSpec::LineHertz { .. }
+    ) || matches!(points_spec, PointsSpec::Rectangle { zone: Some(_), .. });
+    if relative && scale.is_none() {
+        let dimension = match points_spec {
+            PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => Dimension::Line,
+            _ => Dimension::Surface,
+        };
+        return Err(ctx.invalid(
+            raw.points.span(),
+            "points",
+            "across/zone",
+            sanity::no_hertz_reason(
+                [&bodies[0].model, &bodies[1].model],
+                geometry,
+                loading,
+                dimension,
+            ),
+        ));
+    }
+    if relative && sanity::scale_out_of_range(scale) {
+        return Err(ctx.invalid(
+            raw.loading
+                .get_ref()
+                .load
+                .as_ref()
+                .map_or(raw.loading.span(), |l| l.span()),
+            "loading.load",
+            crate::ctx::Num(sizing_load.unwrap_or(0.0)),
+            format!(
+                "the Hertz contact at this load has a size of {:e}, outside floating-point range: \
+                 the load, the moduli and the radii are not in one consistent unit system",
+                scale.unwrap_or(f64::NAN)
+            ),
+        ));
+    }
+    let points = build_points(points_spec, scale)
+        .map_err(|reason| ctx.invalid(raw.points.span(), "points", "", reason))?;
+    if let Geometry::Separation(eps) = geometry
+        && eps.len() != points.len()
+    {
+        let span = raw
+            .geometry
+            .as_ref()
+            .and_then(|g| g.get_ref().separation.as_ref())
+            .map_or(0..0, |s| s.span());
+        return Err(ctx.invalid(
+            span,
+            "geometry.separation",
+            format!("{} values", eps.len()),
+            format!(
+                "needs one value per candidate point: the grid has {}",
+                points.len()
+            ),
+        ));
+    }
+    Ok(points)
+}
+
+/// The checks of the scene as a whole ([`sanity`]): the design against its
+/// load cases' grids, the bodies against every grid; and the warnings for
+/// a grid too coarse for the contact.
+fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<String>, SceneError> {
+    let mut sets = Vec::new();
+    if let (Some(spec), Some(raw_design)) = (&scene.design, &raw.design) {
+        for &load in &spec.loads {
+            let scale = hertz_scale(&scene.bodies, &scene.geometry, &scene.points_spec, load);
+            sets.push(build_points(&scene.points_spec, scale).map_err(|reason| {
+                ctx.invalid(
+                    raw_design.span(),
+                    "design.loads",
+                    load,
+                    format!("the grid of this load case: {reason}"),
+                )
+            })?);
+        }
+        let view = sanity::DesignView {
+            family: match &spec.family {
+                DesignFamily::Linear(f) => Some(*f),
+                _ => None,
+            },
+            axis: spec.axis,
+            cases: spec.loads.len(),
+            max_constant: spec.max_constant,
+        };
+        sanity::design(ctx, raw_design, &view, &sets)?;
+    }
+    sanity::bodies_on_grid(
+        ctx,
+        [&raw.body1, &raw.body2],
+        [&scene.bodies[0].body, &scene.bodies[1].body],
+        &scene.points,
+        &sets,
+    )?;
+    let hertz = match &scene.reference {
+        Some(Reference::HertzSpheres(h)) => Some(("diameter", h.contact_radius())),
+        Some(Reference::HertzCylinders { hertz, .. }) => Some(("width", hertz.half_width())),
+        _ => match (scene.loading.normal, &scene.points_spec) {
+            (Normal::Load(p), PointsSpec::Rectangle { .. }) => {
+                scene.hertz(p).map(|h| ("width", h.scale()))
+            }
+            _ => None,
+        },
+    };
+    let disk = match scene.points_spec {
+        PointsSpec::Disk { spacing, radius } => Some((spacing, radius)),
+        _ => None,
+    };
+    Ok(sanity::coarse_grid(&scene.points, hertz, disk))
 }
 
 fn units(ctx: &Ctx<'_>, u: &crate::schema::UnitsToml, beam: bool) -> Result<Units, SceneError> {
@@ -642,10 +635,14 @@ fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneErr
                 v.span(),
                 format!("{section}.{key}"),
                 v.get_ref(),
-                format!(
-                    "is not a parameter of the {model} model (it takes: {})",
-                    keys.join(", ")
-                ),
+                if keys.is_empty() {
+                    format!("is not a parameter of the {model} model (it takes none)")
+                } else {
+                    format!(
+                        "is not a parameter of the {model} model (it takes: {})",
+                        keys.join(", ")
+                    )
+                },
             ));
         }
     }

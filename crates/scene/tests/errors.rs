@@ -84,13 +84,14 @@ fn invalid_names_the_field_and_the_reason() {
     let e = scene(&BASE.replace("across = 11", "across = 11\nnx = 4")).unwrap_err();
     assert!(
         e.to_string()
-            .contains("`points.nx` = : is not a parameter of grid = \"disk\""),
+            .contains("`points.nx`: is not a parameter of grid = \"disk\""),
         "{e}"
     );
     let e =
         scene(&BASE.replace("shape = \"sphere\", radius = 1.0", "shape = \"plane\"")).unwrap_err();
     assert!(
-        e.to_string().contains("need a Hertz contact under a load"),
+        e.to_string()
+            .contains("need curved surfaces (a sphere or a cylinder)"),
         "{e}"
     );
     assert!(e.is_input_error());

@@ -1,0 +1,148 @@
+//! The validation context: a file and its text, so that every message can
+//! name the file, the line and column, and the field; and the TOML parser
+//! with located errors.
+
+use std::ops::Range;
+use std::path::Path;
+
+use toml::Spanned;
+
+use crate::error::{Location, SceneError};
+
+/// Validation context: the file and its text, for locations.
+pub(crate) struct Ctx<'a> {
+    pub file: &'a Path,
+    pub text: &'a str,
+}
+
+impl Ctx<'_> {
+    pub(crate) fn at(&self, span: Range<usize>) -> Location {
+        Location::of(self.text, span.start)
+    }
+
+    /// An `Invalid` error at `span`.
+    pub(crate) fn invalid(
+        &self,
+        span: Range<usize>,
+        field: impl Into<String>,
+        value: impl std::fmt::Display,
+        reason: impl Into<String>,
+    ) -> SceneError {
+        SceneError::Invalid {
+            file: self.file.to_path_buf(),
+            at: self.at(span),
+            field: field.into(),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+
+    /// A value that must be finite and > 0.
+    pub(crate) fn positive(&self, v: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
+        let x = *v.get_ref();
+        if !x.is_finite() {
+            return Err(self.invalid(v.span(), field, Num(x), "must be a finite number"));
+        }
+        if x <= 0.0 {
+            return Err(self.invalid(v.span(), field, Num(x), "must be > 0"));
+        }
+        if x < f64::MIN_POSITIVE {
+            return Err(self.invalid(
+                v.span(),
+                field,
+                Num(x),
+                "must be at least 2.2e-308 (a normal floating-point number): what is computed \
+                 from a value this small overflows",
+            ));
+        }
+        Ok(x)
+    }
+
+    /// A value that must be finite.
+    pub(crate) fn finite(&self, v: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
+        let x = *v.get_ref();
+        if !x.is_finite() {
+            return Err(self.invalid(v.span(), field, Num(x), "must be a finite number"));
+        }
+        Ok(x)
+    }
+
+    /// A count that must be >= `min`.
+    pub(crate) fn count(
+        &self,
+        v: &Spanned<i64>,
+        field: &str,
+        min: i64,
+    ) -> Result<usize, SceneError> {
+        let x = *v.get_ref();
+        if x < min {
+            let why = if field.starts_with("points.") && min == 1 {
+                format!("must be at least {min} (an empty point set)")
+            } else {
+                format!("must be at least {min}")
+            };
+            return Err(self.invalid(v.span(), field, x, why));
+        }
+        usize::try_from(x).map_err(|_| self.invalid(v.span(), field, x, "too large"))
+    }
+
+    pub(crate) fn required<'s, T>(
+        &self,
+        v: &'s Option<Spanned<T>>,
+        section: Range<usize>,
+        field: &str,
+        why: &str,
+    ) -> Result<&'s Spanned<T>, SceneError> {
+        v.as_ref()
+            .ok_or_else(|| self.invalid(section, field, "(missing)", format!("is required {why}")))
+    }
+
+    pub(crate) fn forbid<T>(
+        &self,
+        v: &Option<Spanned<T>>,
+        field: &str,
+        why: &str,
+    ) -> Result<(), SceneError>
+    where
+        T: std::fmt::Debug,
+    {
+        match v {
+            Some(s) => Err(self.invalid(
+                s.span(),
+                field,
+                format!("{:?}", s.get_ref()),
+                why.to_string(),
+            )),
+            None => Ok(()),
+        }
+    }
+}
+
+/// A number as a message shows it: as written for everyday magnitudes
+/// (`-30000000`, `0.5`), in scientific notation beyond them (`1e-308`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Num(pub f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || !a.is_finite() || (1e-4..1e16).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
+/// Parses TOML text into `T`, turning a parser error into a located
+/// [`SceneError::Syntax`].
+pub(crate) fn parse<T: serde::de::DeserializeOwned>(
+    file: &Path,
+    text: &str,
+) -> Result<T, SceneError> {
+    toml::from_str(text).map_err(|e| SceneError::Syntax {
+        file: file.to_path_buf(),
+        at: Location::of(text, e.span().map_or(0, |s| s.start)),
+        message: e.message().trim().to_string(),
+    })
+}

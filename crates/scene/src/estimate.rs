@@ -1,0 +1,538 @@
+//! What a scene will cost, known before anything of size N x N is
+//! allocated: its peak memory and a rough class of its run time.
+//!
+//! The memory is counted in the dense matrices each stage keeps alive at
+//! once, 8 bytes an entry (docs/performance.md, "Memory: N x N matrices
+//! alive"; the measured peaks behind each factor are in
+//! docs/reliability.md):
+//!
+//! ```text
+//!     contact solve      m n^2                   n = N, or one unknown per orbit when folded
+//!     design, linear     n^2 + sum_l n_l^2 + 4.25 R C + (m - 1) max_l n_l^2
+//!     design, crowns     n^2 + sum_l n_l^2 + (m - 1) max_l n_l^2
+//! ```
+//!
+//! with `m` the matrices the solve holds, S included ([`matrices`]); n_l
+//! the points of design load l; the design program's `R = sum_l (2 n_l +
+//! 1) + stations (+ 1)` rows and `C = sum_l n_l + L + parameters + 1`
+//! dense columns (its builder's growing buffer, the program, the engine's
+//! copy and the tableau, each about R x C, overlap). The peak is the larger
+//! of the two stages plus [`BASELINE`].
+//!
+//! The time class comes from the pivots' cost: about `c n^3` for a solve
+//! (a path of about n pivots of n^2 each) and `c R C^2` for the design
+//! program, with c measured through `elcon run` on the reference machine
+//! (docs/reliability.md), rounded up.
+
+use elcon_analysis::{Method, Normal, separations};
+use elcon_design::{Family, axial_stations};
+use elcon_influence::{Dimension, Folding, PointSet};
+
+use crate::error::SceneError;
+use crate::memory::human;
+use crate::scene::{DesignFamily, DesignSpec, Scene};
+
+/// Bytes of one matrix entry (f64).
+const ENTRY: f64 = 8.0;
+
+/// What the process holds besides the matrices (code, threads, buffers),
+/// bytes: about what a run of a scene with a handful of points peaks at.
+pub const BASELINE: u64 = 32 << 20;
+
+/// The relative tolerance of the separations' mirror symmetry, as the
+/// contact problem folds (elcon-analysis).
+const SYMMETRY_TOLERANCE: f64 = 1e-14;
+
+/// Seconds per n^3 of a tableau method's solve on the symmetric tableau
+/// (Lemke's method; the restricted simplex under load without initial
+/// interference): 3.2 s at N = 3745.
+const TABLEAU_SECONDS_PER_CUBE: f64 = 7e-11;
+
+/// Seconds per n^3 of the restricted simplex on the general tableau
+/// (displacement control, or initial interference): 17.7 s at N = 3729.
+const GENERAL_SECONDS_PER_CUBE: f64 = 3.5e-10;
+
+/// Seconds per n^3 of block principal pivoting: 1.7 s at N = 3745.
+const BLOCK_SECONDS_PER_CUBE: f64 = 3.5e-11;
+
+/// Seconds per `R C^2` of the design program (about 0.8 C pivots of R x C
+/// each, memory bound): 133 s at R = 14,460, C = 7261.
+const PROGRAM_SECONDS: f64 = 2.5e-10;
+
+/// The design program's peak in matrices of R x C: 3.7 to 4.1 measured.
+const PROGRAM_MATRICES: f64 = 4.25;
+
+/// Which tableau a tableau method works on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tableau {
+    /// The symmetric tableau (Lemke's method on the contact form; the
+    /// restricted simplex under load control without initial interference),
+    /// or block pivoting.
+    Symmetric,
+    /// The general tableau: the restricted simplex under displacement
+    /// control or with initial interference.
+    General,
+}
+
+/// The N x N matrices a contact solve of `method` on `tableau` holds at its
+/// peak, S included (measured peaks over n^2 doubles, rounded up; the
+/// measurements are in docs/reliability.md): block pivoting 1.96 (S and
+/// its Cholesky factor, whose capacity doubles in place); the symmetric
+/// tableau 2.19 (S, the swept tableau, then the contact block's factor);
+/// the restricted simplex's general tableau 7.3 to 7.6 (S, the constraint
+/// data, a tableau of twice S's width when most rows start with an
+/// artificial, and the basis matrices of its refactorizations).
+pub fn matrices(method: Method, tableau: Tableau) -> f64 {
+    match (method, tableau) {
+        (Method::BlockPivoting, _) => 2.25,
+        (Method::RestrictedSimplex, Tableau::General) => 7.75,
+        _ => 2.5,
+    }
+}
+
+/// A rough class of run time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum TimeClass {
+    /// Under a second.
+    UnderASecond,
+    /// Seconds (under a minute).
+    Seconds,
+    /// Minutes (under an hour).
+    Minutes,
+    /// Hours or more.
+    Hours,
+}
+
+impl TimeClass {
+    /// The class of `seconds`.
+    pub fn of(seconds: f64) -> Self {
+        if seconds < 1.0 {
+            Self::UnderASecond
+        } else if seconds < 60.0 {
+            Self::Seconds
+        } else if seconds < 3600.0 {
+            Self::Minutes
+        } else {
+            Self::Hours
+        }
+    }
+}
+
+impl std::fmt::Display for TimeClass {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::UnderASecond => "under a second",
+            Self::Seconds => "seconds",
+            Self::Minutes => "minutes",
+            Self::Hours => "hours",
+        })
+    }
+}
+
+/// The design stage's part of an [`Estimate`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct DesignEstimate {
+    /// Load cases.
+    pub cases: usize,
+    /// Points of every case together.
+    pub points: usize,
+    /// Rows and dense columns of the design program (linear families).
+    pub program: Option<(usize, usize)>,
+    /// Bytes the stage holds at its peak (the contact problem's S included).
+    pub bytes: u64,
+}
+
+/// A scene's estimated peak memory and run time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Estimate {
+    /// Candidate points N.
+    pub points: usize,
+    /// Unknowns of the solve: N, or one per orbit when the problem folds.
+    pub unknowns: usize,
+    /// The method's N x N matrices ([`matrices`]).
+    pub matrices: f64,
+    /// Bytes the contact solve holds at its peak.
+    pub solve_bytes: u64,
+    /// The design stage, if the scene has one.
+    pub design: Option<DesignEstimate>,
+    /// The whole run's peak, bytes: the larger stage plus [`BASELINE`].
+    pub peak_bytes: u64,
+    /// Rough seconds (an order of magnitude).
+    pub seconds: f64,
+    /// Its class.
+    pub time: TimeClass,
+}
+
+/// Bytes of `count` matrices of n x n, saturating.
+fn square_bytes(count: f64, n: usize) -> f64 {
+    count * ENTRY * (n as f64) * (n as f64)
+}
+
+fn to_bytes(b: f64) -> u64 {
+    if b >= u64::MAX as f64 {
+        u64::MAX
+    } else {
+        b.ceil() as u64
+    }
+}
+
+/// The unknowns of the contact solve (one per orbit when the scene folds
+/// and its points, models and separations are mirror symmetric, as
+/// `ContactProblem::symmetric` decides, else N) and the tableau its method
+/// works on.
+fn unknowns(points: &PointSet, scene: &Scene) -> (usize, Tableau) {
+    let Ok(eps) = separations(points, &scene.geometry) else {
+        return (points.len(), Tableau::General);
+    };
+    let general = scene.method == Method::RestrictedSimplex
+        && !(matches!(scene.loading.normal, Normal::Load(_)) && eps.iter().all(|&e| e >= 0.0));
+    let tableau = if general {
+        Tableau::General
+    } else {
+        Tableau::Symmetric
+    };
+    if !scene.fold {
+        return (points.len(), tableau);
+    }
+    let bodies = [&scene.bodies[0].body, &scene.bodies[1].body];
+    let n = Folding::detect_all(points, &bodies)
+        .into_iter()
+        .find(|f| f.is_invariant(&eps, SYMMETRY_TOLERANCE))
+        .map_or(points.len(), |f| f.len());
+    (n, tableau)
+}
+
+/// Seconds per n^3 of a solve.
+fn per_cube(method: Method, tableau: Tableau) -> f64 {
+    match (method, tableau) {
+        (Method::BlockPivoting, _) => BLOCK_SECONDS_PER_CUBE,
+        (Method::RestrictedSimplex, Tableau::General) => GENERAL_SECONDS_PER_CUBE,
+        _ => TABLEAU_SECONDS_PER_CUBE,
+    }
+}
+
+impl Estimate {
+    /// The estimate of a validated scene.
+    ///
+    /// # Errors
+    /// [`SceneError::Run`] when a design load's points cannot be laid out
+    /// (as the run would fail).
+    pub fn of(scene: &Scene) -> Result<Self, SceneError> {
+        let n = scene.points.len();
+        let (unknowns, tableau) = unknowns(&scene.points, scene);
+        let m = matrices(scene.method, tableau);
+        let solve = square_bytes(m, unknowns);
+        let mut seconds = per_cube(scene.method, tableau) * (unknowns as f64).powi(3);
+        let design = match &scene.design {
+            Some(spec) => {
+                let (d, s) = design(scene, spec, unknowns)?;
+                seconds += s;
+                Some(d)
+            }
+            None => None,
+        };
+        let stage = design.as_ref().map_or(0, |d| d.bytes).max(to_bytes(solve));
+        Ok(Self {
+            points: n,
+            unknowns,
+            matrices: m,
+            solve_bytes: to_bytes(solve),
+            design,
+            peak_bytes: stage.saturating_add(BASELINE),
+            seconds,
+            time: TimeClass::of(seconds),
+        })
+    }
+
+    /// One line for `elcon check`: "1653 points (222 unknowns, folded);
+    /// peak memory about 3.2 MiB; time: under a second".
+    pub fn summary(&self) -> String {
+        let mut s = format!("{} points", self.points);
+        if self.unknowns != self.points {
+            let _ = std::fmt::Write::write_fmt(
+                &mut s,
+                format_args!(" ({} unknowns, folded)", self.unknowns),
+            );
+        }
+        if let Some(d) = &self.design {
+            let _ = std::fmt::Write::write_fmt(
+                &mut s,
+                format_args!(
+                    ", design over {} load case{} ({} points)",
+                    d.cases,
+                    if d.cases == 1 { "" } else { "s" },
+                    d.points
+                ),
+            );
+        }
+        format!(
+            "{s}; peak memory about {}; time: {}",
+            human(self.peak_bytes),
+            self.time
+        )
+    }
+
+    /// Why a scene over `ceiling` is refused, and what would help.
+    pub fn refusal(&self, scene: &Scene, ceiling: &crate::Ceiling) -> SceneError {
+        let mut what = format!(
+            "N = {} points{} needs about {} ({} keeps about {:.2} matrices of {} x {}",
+            self.points,
+            if self.unknowns != self.points {
+                format!(" ({} unknowns, folded)", self.unknowns)
+            } else {
+                String::new()
+            },
+            human(self.peak_bytes),
+            scene.method.name(),
+            self.matrices,
+            self.unknowns,
+            self.unknowns,
+        );
+        let design_dominates = self
+            .design
+            .as_ref()
+            .is_some_and(|d| d.bytes > self.solve_bytes);
+        if let Some(d) = self.design.as_ref().filter(|_| design_dominates) {
+            let _ = std::fmt::Write::write_fmt(
+                &mut what,
+                format_args!(
+                    "; the design stage over {} load cases and {} points holds {}",
+                    d.cases,
+                    d.points,
+                    human(d.bytes)
+                ),
+            );
+        }
+        what.push(')');
+        let mut hints = Vec::new();
+        if design_dominates {
+            hints.push("fewer design cases (design.loads)");
+            hints.push("a coarser grid");
+        } else {
+            if self.unknowns == self.points {
+                hints.push(
+                    "folding by symmetry (solver.symmetry = \"auto\" with a grid, bodies and \
+                     surfaces symmetric about x = 0 and y = 0)",
+                );
+            }
+            hints.push("a coarser grid (fewer points across, a smaller zone)");
+            if scene.method != Method::BlockPivoting {
+                hints.push("solver.method = \"block-pivoting\" (fewer matrices)");
+            }
+        }
+        hints.push("a machine with more memory");
+        SceneError::TooBig {
+            scene: scene.name.clone(),
+            needed: what,
+            ceiling: ceiling.to_string(),
+            hints: hints.join(", or "),
+        }
+    }
+}
+
+/// The design stage's memory (bytes) and rough seconds.
+fn design(
+    scene: &Scene,
+    spec: &DesignSpec,
+    unknowns: usize,
+) -> Result<(DesignEstimate, f64), SceneError> {
+    let sets = spec
+        .loads
+        .iter()
+        .map(|&load| scene.points_for(load))
+        .collect::<Result<Vec<_>, _>>()?;
+    let sizes: Vec<usize> = sets.iter().map(PointSet::len).collect();
+    let total: usize = sizes.iter().sum();
+    let largest = sizes.iter().copied().max().unwrap_or(0);
+    let cases = sizes.len();
+    // The cases are analysed under load, from separations >= 0.
+    let m = matrices(scene.method, Tableau::Symmetric);
+    let per_cube = per_cube(scene.method, Tableau::Symmetric);
+    let mut bytes = square_bytes(1.0, unknowns)
+        + sizes.iter().map(|&n| square_bytes(1.0, n)).sum::<f64>()
+        + square_bytes(m - 1.0, largest);
+    // Each case analysed before and after (and per start, for the linear families).
+    let mut seconds = 2.0 * cases as f64 * per_cube * (largest as f64).powi(3);
+    let program = match &spec.family {
+        DesignFamily::Linear(family) => {
+            let (stations, _) = axial_stations(sets.iter(), spec.axis);
+            let params = match family {
+                Family::Quadratic => 3,
+                Family::Polynomial { degree } => degree + 1,
+                Family::Free => stations.len(),
+            };
+            let constant = usize::from(!matches!(family, Family::Free));
+            let rows = 2 * total + cases + stations.len() + constant;
+            let columns = total + cases + params + 1;
+            bytes += PROGRAM_MATRICES * ENTRY * rows as f64 * columns as f64;
+            let line = sets.iter().all(|p| p.dimension() == Dimension::Line);
+            let starts = if line { 2.0 } else { 1.0 };
+            seconds += starts
+                * (PROGRAM_SECONDS * rows as f64 * (columns as f64).powi(2)
+                    + cases as f64 * per_cube * (largest as f64).powi(3));
+            Some((rows, columns))
+        }
+        DesignFamily::CircularCrown { .. } => {
+            // The search's samples and refinement: about 30 evaluations.
+            seconds += 30.0 * cases as f64 * per_cube * (largest as f64).powi(3);
+            None
+        }
+        DesignFamily::LogarithmicCrown { .. } => None,
+    };
+    Ok((
+        DesignEstimate {
+            cases,
+            points: total,
+            program,
+            bytes: to_bytes(bytes),
+        },
+        seconds,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::memory::Ceiling;
+
+    const SPHERES: &str = r#"
+[units]
+length = "in"
+force = "lbf"
+[body1]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+[body2]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+[geometry]
+surface1 = { shape = "sphere", radius = 1.0 }
+surface2 = { shape = "sphere", radius = 10.0 }
+[points]
+grid = "disk"
+spacing = 0.001
+radius = 0.02
+[loading]
+load = 100.0
+"#;
+
+    fn scene(text: &str) -> Scene {
+        Scene::from_str(Path::new("t.toml"), text).unwrap()
+    }
+
+    fn bytes(matrices: f64, n: usize) -> u64 {
+        to_bytes(matrices * 8.0 * (n * n) as f64)
+    }
+
+    #[test]
+    fn a_solve_counts_its_methods_matrices_on_the_folded_size() {
+        let folded = Estimate::of(&scene(SPHERES)).unwrap();
+        let n = folded.points;
+        assert_eq!(n, 1257);
+        // Eight mirror images: about N / 8 orbits.
+        assert!(
+            folded.unknowns > n / 8 && folded.unknowns < n / 6,
+            "{}",
+            folded.unknowns
+        );
+        assert_eq!(folded.solve_bytes, bytes(2.25, folded.unknowns));
+        assert_eq!(folded.peak_bytes, folded.solve_bytes + BASELINE);
+        let full =
+            Estimate::of(&scene(&format!("{SPHERES}[solver]\nsymmetry = \"none\"\n"))).unwrap();
+        assert_eq!(full.unknowns, n);
+        assert_eq!(full.solve_bytes, bytes(2.25, n));
+        // The tableau methods: the symmetric tableau under load, the
+        // restricted simplex's general tableau under an approach.
+        let lemke = format!("{SPHERES}[solver]\nmethod = \"lemke\"\nsymmetry = \"none\"\n");
+        assert_eq!(
+            Estimate::of(&scene(&lemke)).unwrap().solve_bytes,
+            bytes(2.5, n)
+        );
+        let simplex = lemke.replace("lemke", "restricted-simplex");
+        assert_eq!(
+            Estimate::of(&scene(&simplex)).unwrap().solve_bytes,
+            bytes(2.5, n)
+        );
+        let general = simplex.replace("load = 100.0", "approach = 0.0002");
+        let e = Estimate::of(&scene(&general)).unwrap();
+        assert_eq!(e.solve_bytes, bytes(7.75, n));
+        assert!(e.seconds > Estimate::of(&scene(&simplex)).unwrap().seconds);
+    }
+
+    #[test]
+    fn the_design_program_grows_like_the_square_of_all_cases_points() {
+        let beam = r#"
+[units]
+length = "in"
+force = "lbf"
+[body1]
+model = "beam"
+youngs_modulus = 30e6
+second_moment = 5.0
+[body2]
+model = "winkler"
+modulus = 1e7
+[points]
+grid = "line"
+start = -4.0
+end = 4.0
+n = 200
+[loading]
+load = 1000.0
+[design]
+family = "quadratic"
+"#;
+        let one = Estimate::of(&scene(beam)).unwrap();
+        let d1 = one.design.clone().unwrap();
+        assert_eq!((d1.cases, d1.points), (1, 200));
+        // R = 2 n + 1 + stations + 1 rows, C = n + 1 + 3 + 1 columns.
+        assert_eq!(d1.program, Some((602, 205)));
+        let four = beam.replace(
+            "family = \"quadratic\"",
+            "family = \"quadratic\"\nloads = [1000.0, 2000.0, 3000.0, 4000.0]",
+        );
+        let d4 = Estimate::of(&scene(&four)).unwrap().design.unwrap();
+        assert_eq!(d4.points, 800);
+        // Four cases on the same 200 stations: 4 x 200 forces, 2 rows each.
+        assert_eq!(d4.program, Some((1805, 808)));
+        let ratio = d4.bytes as f64 / d1.bytes as f64;
+        assert!(ratio > 10.0, "{ratio}");
+        assert!(one.peak_bytes >= d1.bytes + BASELINE);
+    }
+
+    #[test]
+    fn time_classes() {
+        assert_eq!(TimeClass::of(0.5), TimeClass::UnderASecond);
+        assert_eq!(TimeClass::of(59.0), TimeClass::Seconds);
+        assert_eq!(TimeClass::of(600.0), TimeClass::Minutes);
+        assert_eq!(TimeClass::of(1e5), TimeClass::Hours);
+        assert_eq!(TimeClass::Minutes.to_string(), "minutes");
+    }
+
+    #[test]
+    fn a_refusal_names_n_the_estimate_the_ceiling_and_what_helps() {
+        let s = scene(&format!("{SPHERES}[solver]\nsymmetry = \"none\"\n"));
+        let e = Estimate::of(&s).unwrap();
+        let ceiling = Ceiling::from_limits([(1 << 20, "--memory-limit".to_string())]);
+        assert!(!ceiling.admits(e.peak_bytes));
+        let text = e.refusal(&s, &ceiling).to_string();
+        for part in [
+            "scene `t`: too big for the memory available: N = 1257 points needs about",
+            "block-pivoting keeps about 2.25 matrices of 1257 x 1257",
+            "the ceiling is 922 KiB (--memory-limit 1.00 MiB, less 10 %)",
+            "folding by symmetry",
+            "a coarser grid",
+        ] {
+            assert!(text.contains(part), "{part}: {text}");
+        }
+        assert!(
+            e.summary().contains("1257 points; peak memory about"),
+            "{}",
+            e.summary()
+        );
+    }
+}

@@ -1,0 +1,50 @@
+//! Fault injection for the reliability tests (tests/faults.rs), compiled
+//! only with the `fault-injection` feature, which only the workspace's
+//! test build turns on (a dev-dependency of the root package): a released
+//! `elcon` has no such code. With it, the environment variable
+//! `ELCON_FAULTS` (comma-separated) may ask for
+//!
+//! - `panic=NAME`: a panic in the solve of the scene (or batch run) named NAME;
+//! - `write_delay_ms=T`: a pause of T ms after each file of a scene's
+//!   outputs is written (so that a test can kill or race a run mid-write).
+//!
+//! Without the feature both points compile to nothing.
+
+/// The variable read.
+#[cfg(feature = "fault-injection")]
+const VARIABLE: &str = "ELCON_FAULTS";
+
+/// The value of `key=...` in `ELCON_FAULTS`.
+#[cfg(feature = "fault-injection")]
+fn fault(key: &str) -> Option<String> {
+    let all = std::env::var(VARIABLE).ok()?;
+    all.split(',').find_map(|f| {
+        f.split_once('=')
+            .filter(|(k, _)| k.trim() == key)
+            .map(|(_, v)| v.trim().to_string())
+    })
+}
+
+/// Panics if `ELCON_FAULTS` asks for a panic in scene `name`.
+#[cfg(feature = "fault-injection")]
+pub(crate) fn panic_point(name: &str) {
+    if fault("panic").is_some_and(|n| n == name) {
+        panic!("fault injected by {VARIABLE} in scene `{name}`");
+    }
+}
+
+/// Pauses as `ELCON_FAULTS` asks after a file is written.
+#[cfg(feature = "fault-injection")]
+pub(crate) fn write_delay() {
+    if let Some(ms) = fault("write_delay_ms").and_then(|v| v.parse().ok()) {
+        std::thread::sleep(std::time::Duration::from_millis(ms));
+    }
+}
+
+/// Without the feature: nothing.
+#[cfg(not(feature = "fault-injection"))]
+pub(crate) fn panic_point(_name: &str) {}
+
+/// Without the feature: nothing.
+#[cfg(not(feature = "fault-injection"))]
+pub(crate) fn write_delay() {}

@@ -1,0 +1,353 @@
+//! The memory a run may use: the ceiling a scene's estimated peak
+//! ([`crate::Estimate`]) is compared with before anything of size N x N is
+//! allocated.
+//!
+//! The ceiling is the lowest of what the machine and the process allow,
+//! less a margin of [`MARGIN`] of it (the program's own code, buffers and
+//! the allocator's slack):
+//!
+//! ```text
+//!     ceiling = (1 - MARGIN) min(MemAvailable, cgroup memory.max - memory.current,
+//!                                RLIMIT_AS - VmSize - ADDRESS_SPACE_RESERVE,
+//!                                --memory-limit, ELCON_MEMORY_LIMIT)
+//! ```
+//!
+//! read from /proc/meminfo, the current cgroup's memory controller (v2
+//! `memory.max`, or v1 `memory.limit_in_bytes`, every ancestor included),
+//! /proc/self/limits and /proc/self/status. A limit that cannot be read is
+//! left out (on a system without /proc only the option and the environment
+//! variable count, and without them the ceiling is unlimited).
+
+use std::path::{Path, PathBuf};
+
+/// The fraction of the lowest limit kept free.
+pub const MARGIN: f64 = 0.10;
+
+/// The environment variable that may lower the ceiling (a size, as
+/// [`parse_size`] reads it).
+pub const LIMIT_VARIABLE: &str = "ELCON_MEMORY_LIMIT";
+
+/// Address space a run reserves beyond the memory it touches (malloc's
+/// per-thread arenas, thread stacks, the program's own mappings, buffers
+/// allocated whole and filled in part), taken off an address-space limit:
+/// a run's peak address space exceeded its peak resident memory by 350 to
+/// 490 MiB (docs/reliability.md).
+pub const ADDRESS_SPACE_RESERVE: u64 = 512 << 20;
+
+/// Limits at or above this many bytes mean "no limit" (cgroup v1 writes
+/// 2^63 rounded down to a page for an unlimited group).
+const UNLIMITED: u64 = 1 << 62;
+
+/// The memory a run may use, and what set it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ceiling {
+    /// Bytes (the lowest limit less the margin); `u64::MAX` when nothing limits.
+    pub bytes: u64,
+    /// What set it, for messages: "MemAvailable 22.1 GiB", "--memory-limit 4 GiB", ...
+    pub source: String,
+}
+
+impl Ceiling {
+    /// No limit at all.
+    pub fn unlimited() -> Self {
+        Self {
+            bytes: u64::MAX,
+            source: "no limit found".into(),
+        }
+    }
+
+    /// Whether `bytes` fit under the ceiling.
+    pub fn admits(&self, bytes: u64) -> bool {
+        bytes <= self.bytes
+    }
+
+    /// The ceiling from the lowest of `limits` (bytes, and what each is).
+    pub fn from_limits(limits: impl IntoIterator<Item = (u64, String)>) -> Self {
+        match limits
+            .into_iter()
+            .filter(|(b, _)| *b < UNLIMITED)
+            .min_by_key(|(b, _)| *b)
+        {
+            Some((bytes, what)) => Self {
+                bytes: (bytes as f64 * (1.0 - MARGIN)) as u64,
+                source: format!("{what} {}, less {:.0} %", human(bytes), 100.0 * MARGIN),
+            },
+            None => Self::unlimited(),
+        }
+    }
+
+    /// The ceiling of this process on this machine, lowered by `option`
+    /// (`--memory-limit`) and by [`LIMIT_VARIABLE`] when set.
+    ///
+    /// # Errors
+    /// The environment variable's value when it is not a size.
+    pub fn of_this_process(option: Option<u64>) -> Result<Self, String> {
+        let mut limits = system_limits();
+        if let Some(b) = option {
+            limits.push((b, "--memory-limit".into()));
+        }
+        if let Ok(v) = std::env::var(LIMIT_VARIABLE) {
+            let b = parse_size(&v).map_err(|e| format!("{LIMIT_VARIABLE}={v}: {e}"))?;
+            limits.push((b, LIMIT_VARIABLE.into()));
+        }
+        Ok(Self::from_limits(limits))
+    }
+}
+
+impl std::fmt::Display for Ceiling {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.bytes == u64::MAX {
+            write!(f, "unlimited ({})", self.source)
+        } else {
+            write!(f, "{} ({})", human(self.bytes), self.source)
+        }
+    }
+}
+
+/// A size in bytes: a number (bytes) or a number with one of the suffixes
+/// K, M, G, T (powers of 1024, as in `ulimit` and SLURM's `--mem`),
+/// optionally followed by `B` or `iB`: "4G", "512M", "1.5GiB", "1048576".
+///
+/// # Errors
+/// A message saying what a size looks like.
+pub fn parse_size(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let bad = || format!("`{s}` is not a size: give bytes or a number with K, M, G or T, e.g. 4G");
+    let digits = t
+        .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .unwrap_or(t.len());
+    let (number, unit) = t.split_at(digits);
+    let value: f64 = number.parse().map_err(|_| bad())?;
+    let unit = unit.trim().to_ascii_uppercase();
+    let unit = unit
+        .strip_suffix("IB")
+        .or_else(|| unit.strip_suffix('B'))
+        .unwrap_or(&unit);
+    let scale = match unit {
+        "" => 1.0,
+        "K" => 1024.0,
+        "M" => 1024.0 * 1024.0,
+        "G" => 1024.0 * 1024.0 * 1024.0,
+        "T" => 1024.0 * 1024.0 * 1024.0 * 1024.0,
+        _ => return Err(bad()),
+    };
+    let bytes = value * scale;
+    if !(bytes.is_finite() && bytes >= 1.0 && bytes < u64::MAX as f64) {
+        return Err(format!(
+            "`{s}`: a memory limit must be at least 1 byte and finite"
+        ));
+    }
+    Ok(bytes as u64)
+}
+
+/// Bytes in binary units with three significant digits: "1.50 GiB".
+pub fn human(bytes: u64) -> String {
+    const UNITS: [&str; 5] = ["B", "KiB", "MiB", "GiB", "TiB"];
+    let mut v = bytes as f64;
+    let mut u = 0;
+    while v >= 1024.0 && u + 1 < UNITS.len() {
+        v /= 1024.0;
+        u += 1;
+    }
+    match u {
+        0 => format!("{bytes} B"),
+        _ if v >= 100.0 => format!("{v:.0} {}", UNITS[u]),
+        _ if v >= 10.0 => format!("{v:.1} {}", UNITS[u]),
+        _ => format!("{v:.2} {}", UNITS[u]),
+    }
+}
+
+/// Every limit this system states: MemAvailable, the cgroups' and the
+/// address-space limit.
+fn system_limits() -> Vec<(u64, String)> {
+    let read = |p: &str| std::fs::read_to_string(p).ok();
+    let mut limits = Vec::new();
+    if let Some(b) = read("/proc/meminfo").and_then(|t| meminfo_available(&t)) {
+        limits.push((b, "MemAvailable".into()));
+    }
+    if let Some(b) =
+        read("/proc/self/cgroup").and_then(|t| cgroup_available(&t, Path::new("/sys/fs/cgroup")))
+    {
+        limits.push((b, "memory left in the cgroup".into()));
+    }
+    if let Some(limit) = read("/proc/self/limits").and_then(|t| address_space_limit(&t)) {
+        let used = read("/proc/self/status")
+            .and_then(|t| status_kib(&t, "VmSize:"))
+            .unwrap_or(0);
+        limits.push((
+            limit
+                .saturating_sub(used)
+                .saturating_sub(ADDRESS_SPACE_RESERVE),
+            "usable address space under RLIMIT_AS".into(),
+        ));
+    }
+    limits
+}
+
+/// MemAvailable of /proc/meminfo, bytes.
+fn meminfo_available(meminfo: &str) -> Option<u64> {
+    status_kib(meminfo, "MemAvailable:")
+}
+
+/// A `Key:   123 kB` line of /proc/meminfo or /proc/self/status, bytes.
+fn status_kib(text: &str, key: &str) -> Option<u64> {
+    let line = text.lines().find(|l| l.starts_with(key))?;
+    let kib: u64 = line[key.len()..].split_whitespace().next()?.parse().ok()?;
+    kib.checked_mul(1024)
+}
+
+/// The soft "Max address space" of /proc/self/limits, bytes (`None` when unlimited).
+fn address_space_limit(limits: &str) -> Option<u64> {
+    let line = limits
+        .lines()
+        .find(|l| l.starts_with("Max address space"))?;
+    line["Max address space".len()..]
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
+}
+
+/// What the memory controller leaves this process: over the cgroup and each
+/// ancestor with a limit, the least of `limit - usage`. `proc_cgroup` is
+/// /proc/self/cgroup; `root` the cgroup file system's mount point.
+fn cgroup_available(proc_cgroup: &str, root: &Path) -> Option<u64> {
+    let mut best: Option<u64> = None;
+    for line in proc_cgroup.lines() {
+        let mut parts = line.splitn(3, ':');
+        let (Some(id), Some(controllers), Some(path)) = (parts.next(), parts.next(), parts.next())
+        else {
+            continue;
+        };
+        let (base, max_file, usage_file) = if id == "0" && controllers.is_empty() {
+            // cgroup v2: unified at the root, or under unified/ on a hybrid system.
+            let base = if root.join("cgroup.controllers").exists() {
+                root.to_path_buf()
+            } else {
+                root.join("unified")
+            };
+            (base, "memory.max", "memory.current")
+        } else if controllers.split(',').any(|c| c == "memory") {
+            (
+                root.join("memory"),
+                "memory.limit_in_bytes",
+                "memory.usage_in_bytes",
+            )
+        } else {
+            continue;
+        };
+        for dir in ancestors(&base, path) {
+            let read = |f: &str| -> Option<u64> {
+                std::fs::read_to_string(dir.join(f))
+                    .ok()?
+                    .trim()
+                    .parse()
+                    .ok()
+            };
+            if let Some(limit) = read(max_file).filter(|&l| l < UNLIMITED) {
+                let left = limit.saturating_sub(read(usage_file).unwrap_or(0));
+                best = Some(best.map_or(left, |b| b.min(left)));
+            }
+        }
+    }
+    best
+}
+
+/// The directories of a cgroup `path` and of its ancestors under `base`
+/// that exist (inside a container the path may name a group above the
+/// mount's root: then only the root is there).
+fn ancestors(base: &Path, path: &str) -> Vec<PathBuf> {
+    let mut dirs = vec![base.to_path_buf()];
+    let mut dir = base.to_path_buf();
+    for part in path.split('/').filter(|p| !p.is_empty()) {
+        dir = dir.join(part);
+        if dir.is_dir() {
+            dirs.push(dir.clone());
+        }
+    }
+    dirs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_read_as_powers_of_1024() {
+        assert_eq!(parse_size("4G"), Ok(4 << 30));
+        assert_eq!(parse_size("512M"), Ok(512 << 20));
+        assert_eq!(parse_size("512mb"), Ok(512 << 20));
+        assert_eq!(parse_size("1.5GiB"), Ok(3 << 29));
+        assert_eq!(parse_size("1048576"), Ok(1 << 20));
+        assert_eq!(parse_size(" 2 T "), Ok(2 << 40));
+        for bad in ["", "G", "4X", "-1G", "0", "1e400", "four"] {
+            assert!(parse_size(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn the_lowest_limit_less_the_margin_is_the_ceiling() {
+        let c = Ceiling::from_limits([
+            (10 << 30, "MemAvailable".to_string()),
+            (4 << 30, "--memory-limit".to_string()),
+            (u64::MAX, "RLIMIT_AS".to_string()),
+        ]);
+        assert_eq!(c.bytes, ((4u64 << 30) as f64 * 0.9) as u64);
+        assert!(
+            c.source.starts_with("--memory-limit 4.00 GiB"),
+            "{}",
+            c.source
+        );
+        assert!(c.admits(3 << 30) && !c.admits(4 << 30));
+        let none = Ceiling::from_limits([(1 << 63, "cgroup".to_string())]);
+        assert_eq!(none, Ceiling::unlimited());
+        assert!(none.admits(u64::MAX));
+    }
+
+    #[test]
+    fn proc_files_are_read() {
+        let meminfo =
+            "MemTotal:       24683656 kB\nMemFree:  100 kB\nMemAvailable:   23156324 kB\n";
+        assert_eq!(meminfo_available(meminfo), Some(23156324 * 1024));
+        let limits = "Limit                     Soft Limit           Hard Limit           Units     \n\
+                      Max address space         unlimited            unlimited            bytes     \n";
+        assert_eq!(address_space_limit(limits), None);
+        let limited = "Max address space         4294967296           unlimited            bytes\n";
+        assert_eq!(address_space_limit(limited), Some(1 << 32));
+    }
+
+    #[test]
+    fn cgroup_limits_of_every_ancestor_count() {
+        let root = std::env::temp_dir().join(format!("elcon-cgroup-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        // cgroup v2: /job (limit 8 GiB, 1 GiB used) / step (limit 6 GiB, 3 GiB used).
+        let job = root.join("job");
+        let step = job.join("step");
+        std::fs::create_dir_all(&step).unwrap();
+        std::fs::write(root.join("cgroup.controllers"), "memory").unwrap();
+        std::fs::write(root.join("memory.max"), "max\n").unwrap();
+        std::fs::write(job.join("memory.max"), format!("{}\n", 8u64 << 30)).unwrap();
+        std::fs::write(job.join("memory.current"), format!("{}\n", 1u64 << 30)).unwrap();
+        std::fs::write(step.join("memory.max"), format!("{}\n", 6u64 << 30)).unwrap();
+        std::fs::write(step.join("memory.current"), format!("{}\n", 3u64 << 30)).unwrap();
+        assert_eq!(cgroup_available("0::/job/step\n", &root), Some(3 << 30));
+        // A path above the mount's root (a container): only the root counts.
+        assert_eq!(cgroup_available("0::/elsewhere\n", &root), None);
+        // cgroup v1: an unlimited group.
+        let v1 = root.join("memory");
+        std::fs::create_dir_all(&v1).unwrap();
+        std::fs::write(v1.join("memory.limit_in_bytes"), "9223372036854771712\n").unwrap();
+        assert_eq!(cgroup_available("4:memory:/x\n", &root), None);
+        std::fs::write(v1.join("memory.limit_in_bytes"), "1073741824\n").unwrap();
+        assert_eq!(cgroup_available("4:memory:/x\n", &root), Some(1 << 30));
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn human_sizes() {
+        assert_eq!(human(512), "512 B");
+        assert_eq!(human(1536), "1.50 KiB");
+        assert_eq!(human(34 << 30), "34.0 GiB");
+        assert_eq!(human(300 << 20), "300 MiB");
+    }
+}

@@ -1,0 +1,418 @@
+//! Checks of a scene as a whole, beyond each value's own range: what the
+//! solve or the design would otherwise refuse (or answer meaninglessly)
+//! only once it runs, so that `elcon check` refuses the same scenes as
+//! `elcon run` before the solve; the bounds on the knobs that cost time or
+//! memory; and the warnings for a grid too coarse for the contact.
+//!
+//! Geometry: the initial separation of two paraboloids is
+//! `eps(x, y) = (k_x x^2 + k_y y^2) / 2` with the summed curvatures
+//! `k_x = 1/R1 + 1/R2` (spheres and cylinders, axis along y) and
+//! `k_y = 1/R1 + 1/R2` (spheres only); a negative k means the bodies
+//! interpenetrate more the farther from the first point of contact, which
+//! no contact solution describes.
+
+use elcon_analysis::{Geometry, Loading, Normal, Surface};
+use elcon_design::{Axis, Family, axial_stations};
+use elcon_influence::{Body, Dimension, Model, PointSet};
+use toml::Spanned;
+
+use crate::ctx::{Ctx, Num};
+use crate::error::SceneError;
+use crate::schema::{BodyToml, DesignToml, GeometryToml, SolverToml};
+
+/// The most iterative-refinement steps (each an N x N product;
+/// refinement settles in one to three).
+pub const MAX_REFINEMENT_STEPS: usize = 20;
+
+/// The most design load cases (the design program grows like the square
+/// of the points of all cases together; the memory estimate refuses what
+/// does not fit, this bounds the time).
+pub const MAX_DESIGN_CASES: usize = 100;
+
+/// The highest polynomial degree of a design (monomials of the normalized
+/// axial coordinate: past about 12 the basis is too ill-conditioned for
+/// the design program's pivots).
+pub const MAX_DEGREE: usize = 12;
+
+/// A grid with fewer points than this across the Hertz contact (or the
+/// candidate disk) gets a warning.
+pub const MIN_POINTS_ACROSS: usize = 5;
+
+/// `design.max_constant` is at most this many times the candidate zone's
+/// size: a uniform drop a million times the zone is no profile of these
+/// bodies, and values near the floating-point range overflow the design
+/// program's sums.
+pub const MAX_CONSTANT_OVER_ZONE: f64 = 1e6;
+
+/// The largest `solver.max_pivots` for N points: `100 N + 10,000`, well
+/// above every method's default (about 40 N for the tableau methods); a
+/// pivoting path that has not ended by then is cycling.
+pub fn max_pivots_bound(points: usize) -> usize {
+    points.saturating_mul(100).saturating_add(10_000)
+}
+
+/// Curvatures along x and y of one surface.
+fn curvature(s: &Surface) -> (f64, f64) {
+    match *s {
+        Surface::Plane => (0.0, 0.0),
+        Surface::Sphere { radius } => (1.0 / radius, 1.0 / radius),
+        Surface::Cylinder { radius } => (1.0 / radius, 0.0),
+    }
+}
+
+/// A concave surface must have the larger radius: the summed curvature
+/// along x and along y must not be negative.
+pub(crate) fn curvatures(
+    ctx: &Ctx<'_>,
+    raw: Option<&Spanned<GeometryToml>>,
+    geometry: &Geometry,
+) -> Result<(), SceneError> {
+    let Geometry::Surfaces(a, b) = geometry else {
+        return Ok(());
+    };
+    let (ka, kb) = (curvature(a), curvature(b));
+    for (axis, k1, k2) in [("x", ka.0, kb.0), ("y", ka.1, kb.1)] {
+        let sum = k1 + k2;
+        if sum >= -1e-12 * (k1.abs() + k2.abs()) {
+            continue;
+        }
+        // Blame the concave surface (the first, if both are).
+        let (field, surface, other) = if k1 < 0.0 {
+            ("geometry.surface1", a, b)
+        } else {
+            ("geometry.surface2", b, a)
+        };
+        let radius = match surface {
+            Surface::Sphere { radius } | Surface::Cylinder { radius } => *radius,
+            Surface::Plane => 0.0,
+        };
+        let raw_surface = raw.and_then(|g| {
+            if field.ends_with('1') {
+                g.get_ref().surface1.as_ref()
+            } else {
+                g.get_ref().surface2.as_ref()
+            }
+        });
+        let span = raw_surface
+            .and_then(|s| s.get_ref().radius.as_ref().map(|r| r.span()))
+            .or_else(|| raw.map(|g| g.span()))
+            .unwrap_or(0..0);
+        let against = match other {
+            Surface::Plane => "a plane".to_string(),
+            Surface::Sphere { radius } | Surface::Cylinder { radius } if *radius < 0.0 => {
+                format!("another concave surface (radius {radius})")
+            }
+            Surface::Sphere { radius } | Surface::Cylinder { radius } => {
+                format!("the convex radius {radius}")
+            }
+        };
+        return Err(ctx.invalid(
+            span,
+            format!("{field}.radius"),
+            Num(radius),
+            format!(
+                "a concave surface must have the larger radius: against {against} the summed \
+                 curvature along {axis}, 1/R1 + 1/R2 = {sum:.4e}, is negative, so the bodies would \
+                 interpenetrate more and more away from the first point of contact; give the \
+                 concave surface a radius larger in magnitude than the convex one's"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The plane-strain datum must lie beyond every grid the scene solves on
+/// (its own and each design load's), and a beam's loaded point on the beam.
+pub(crate) fn bodies_on_grid(
+    ctx: &Ctx<'_>,
+    raw: [&Spanned<BodyToml>; 2],
+    bodies: [&Body; 2],
+    own: &PointSet,
+    design_sets: &[PointSet],
+) -> Result<(), SceneError> {
+    for (section, (raw, body)) in ["body1", "body2"].iter().zip(raw.iter().zip(bodies)) {
+        let t = raw.get_ref();
+        match *body.model() {
+            Model::PlaneStrainStrip {
+                reference_distance, ..
+            } => {
+                let widest = std::iter::once(own)
+                    .chain(design_sets)
+                    .map(|p| p.extent().0)
+                    .fold(0.0f64, f64::max);
+                if reference_distance < widest {
+                    let span = t
+                        .reference_distance
+                        .as_ref()
+                        .map_or(t.model.span(), |v| v.span());
+                    return Err(ctx.invalid(
+                        span,
+                        format!("{section}.reference_distance"),
+                        Num(reference_distance),
+                        format!(
+                            "must be at least the extent of the grid, {widest:.4e} (the strips' \
+                             displacements are measured from a datum beyond the candidate zone{})",
+                            if widest > own.extent().0 {
+                                "; the widest grid is a design load's"
+                            } else {
+                                ""
+                            }
+                        ),
+                    ));
+                }
+            }
+            Model::Beam { loaded_point, .. } => {
+                let h = own.cell().dx;
+                let (lo, hi) = (own.xs()[0] - 0.5 * h, own.xs()[own.len() - 1] + 0.5 * h);
+                if !(lo..=hi).contains(&loaded_point) {
+                    let span = t.loaded_point.as_ref().map_or(t.model.span(), |v| v.span());
+                    return Err(ctx.invalid(
+                        span,
+                        format!("{section}.loaded_point"),
+                        Num(loaded_point),
+                        format!(
+                            "is outside the beam, which is the line grid from {lo} to {hi}; give a \
+                             point on it (default 0)"
+                        ),
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Bounds on the solver's knobs: refinement steps and the pivot limit.
+pub(crate) fn solver_bounds(
+    ctx: &Ctx<'_>,
+    s: Option<&SolverToml>,
+    points: usize,
+) -> Result<(), SceneError> {
+    let Some(s) = s else { return Ok(()) };
+    if let Some(r) = &s.refinement_steps
+        && *r.get_ref() > MAX_REFINEMENT_STEPS as i64
+    {
+        return Err(ctx.invalid(
+            r.span(),
+            "solver.refinement_steps",
+            r.get_ref(),
+            format!(
+                "at most {MAX_REFINEMENT_STEPS} (each step is an N x N product; refinement \
+                 settles in one to three)"
+            ),
+        ));
+    }
+    let bound = max_pivots_bound(points);
+    if let Some(p) = &s.max_pivots
+        && *p.get_ref() > i64::try_from(bound).unwrap_or(i64::MAX)
+    {
+        return Err(ctx.invalid(
+            p.span(),
+            "solver.max_pivots",
+            p.get_ref(),
+            format!(
+                "at most 100 N + 10000 = {bound} for N = {points} points (a pivoting path that \
+                 has not ended by then is cycling; the defaults are about 40 N)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A validated design section, as the checks against its grids need it.
+pub(crate) struct DesignView {
+    /// The family, when it is linear in its parameters.
+    pub family: Option<Family>,
+    /// The axial coordinate.
+    pub axis: Axis,
+    /// The load cases.
+    pub cases: usize,
+    /// The bound on the constant, if given.
+    pub max_constant: Option<f64>,
+}
+
+/// The design section against the grids of its load cases: the number of
+/// cases, the degree against the axial stations, the bound on the constant.
+pub(crate) fn design(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<DesignToml>,
+    spec: &DesignView,
+    sets: &[PointSet],
+) -> Result<(), SceneError> {
+    let t = raw.get_ref();
+    if spec.cases > MAX_DESIGN_CASES {
+        let span = t.loads.as_ref().map_or(raw.span(), |l| l.span());
+        return Err(ctx.invalid(
+            span,
+            "design.loads",
+            format!("{} loads", spec.cases),
+            format!(
+                "at most {MAX_DESIGN_CASES} load cases (the design program grows like the square \
+                 of all the cases' points together)"
+            ),
+        ));
+    }
+    if let Some(family) = &spec.family {
+        let (stations, _) = axial_stations(sets.iter(), spec.axis);
+        let (degree, field, span) = match family {
+            Family::Quadratic => (2, "design.family", t.family.span()),
+            Family::Polynomial { degree } => (
+                *degree,
+                "design.degree",
+                t.degree.as_ref().map_or(raw.span(), |d| d.span()),
+            ),
+            Family::Free => (0, "design.family", t.family.span()),
+        };
+        if degree > MAX_DEGREE {
+            return Err(ctx.invalid(
+                span,
+                field,
+                degree,
+                format!(
+                    "at most {MAX_DEGREE} (a polynomial basis of higher degree is too \
+                     ill-conditioned for the design program)"
+                ),
+            ));
+        }
+        if degree + 1 > stations.len() {
+            return Err(ctx.invalid(
+                span,
+                field,
+                if field == "design.family" {
+                    "\"quadratic\"".to_string()
+                } else {
+                    degree.to_string()
+                },
+                format!(
+                    "degree {degree} needs at least {} axial stations (distinct positions along \
+                     {}), the grid has {}",
+                    degree + 1,
+                    match spec.axis {
+                        Axis::X => "x",
+                        Axis::Y => "y",
+                    },
+                    stations.len()
+                ),
+            ));
+        }
+    }
+    if let (Some(c), Some(raw_c)) = (spec.max_constant, &t.max_constant) {
+        let zone = sets
+            .iter()
+            .map(|p| {
+                let (a, b) = p.extent();
+                if p.dimension() == Dimension::Line {
+                    a
+                } else {
+                    a.max(b)
+                }
+            })
+            .fold(0.0f64, f64::max);
+        let bound = MAX_CONSTANT_OVER_ZONE * zone;
+        if c > bound {
+            return Err(ctx.invalid(
+                raw_c.span(),
+                "design.max_constant",
+                Num(c),
+                format!(
+                    "at most {MAX_CONSTANT_OVER_ZONE:e} times the candidate zone's size \
+                     ({zone:.4e}), that is {bound:.4e} (a uniform drop only shifts the approach)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Warnings for a grid too coarse for the contact: fewer than
+/// [`MIN_POINTS_ACROSS`] points across the Hertz contact where a closed
+/// form gives one, or across an absolute candidate disk.
+///
+/// `hertz` is the contact's name for its size ("diameter", "width") and
+/// its half-size (radius or half-width), where a closed form gives one;
+/// `disk` the spacing and radius of an absolute candidate disk.
+pub(crate) fn coarse_grid(
+    points: &PointSet,
+    hertz: Option<(&str, f64)>,
+    disk: Option<(f64, f64)>,
+) -> Vec<String> {
+    let h = points.cell().dx;
+    let scale = hertz;
+    let mut warnings = Vec::new();
+    if let Some((what, a)) = scale {
+        let across = (2.0 * a / h).floor() + 1.0;
+        if across < MIN_POINTS_ACROSS as f64 {
+            warnings.push(format!(
+                "the grid has about {across:.0} points across the Hertz contact {what} \
+                 ({:.4e}, spacing {h:.4e}): fewer than {MIN_POINTS_ACROSS}, so expect an answer far \
+                 from Hertz (tens of percent); refine the grid (points.across, or a smaller spacing)",
+                2.0 * a
+            ));
+        }
+        return warnings;
+    }
+    if let Some((spacing, radius)) = disk {
+        let across = (2.0 * radius / spacing).floor() + 1.0;
+        if across < MIN_POINTS_ACROSS as f64 {
+            warnings.push(format!(
+                "the candidate disk has about {across:.0} points across (spacing {spacing} against \
+                 radius {radius}), {} in all: too coarse to resolve a contact",
+                points.len()
+            ));
+        }
+    }
+    warnings
+}
+
+/// Why points relative to the Hertz contact (across, zone) cannot be laid
+/// out: the first condition the scene misses.
+pub(crate) fn no_hertz_reason(
+    models: [&str; 2],
+    geometry: &Geometry,
+    loading: Loading,
+    dimension: Dimension,
+) -> String {
+    let fix = "; or give absolute sizes (spacing and radius, half_x, start, end and n)";
+    if matches!(loading.normal, Normal::Approach(_)) {
+        return format!(
+            "points relative to the Hertz contact (across, zone) need loading.load: under \
+             displacement control the contact's size is not known before the solve{fix}"
+        );
+    }
+    let curved = match geometry {
+        Geometry::Surfaces(a, b) => !matches!((a, b), (Surface::Plane, Surface::Plane)),
+        Geometry::Separation(_) => false,
+    };
+    if !curved {
+        return format!(
+            "points relative to the Hertz contact (across, zone) need curved surfaces (a sphere or \
+             a cylinder): between two planes, or a given separation, there is no Hertz contact{fix}"
+        );
+    }
+    let half_space: &[&str] = match dimension {
+        Dimension::Surface => &["point-force", "uniform-patch"],
+        Dimension::Line => &["plane-strain"],
+    };
+    if let Some(model) = models
+        .iter()
+        .find(|m| !(**m == "rigid" || half_space.contains(m)))
+    {
+        return format!(
+            "points relative to the Hertz contact (across, zone) need half-space bodies ({}) or \
+             rigid ones: the \"{}\" model has no Hertz contact{fix}",
+            half_space.join(", "),
+            model
+        );
+    }
+    format!(
+        "points relative to the Hertz contact (across, zone) need a Hertz contact: spheres on a \
+         disk, cylinders (axis along y) on a line or a rectangle{fix}"
+    )
+}
+
+/// A Hertz length scale that is not a finite positive number: the load,
+/// moduli and radii are outside floating-point range together.
+pub(crate) fn scale_out_of_range(scale: Option<f64>) -> bool {
+    scale.is_some_and(|a| !(a.is_finite() && a > 0.0))
+}

@@ -1,0 +1,304 @@
+//! Checks of a scene as a whole: what the solve or the design would
+//! otherwise refuse only once it runs (or answer meaninglessly) is refused
+//! by validation, so `elcon check` and `elcon run` agree; the knobs that
+//! cost time or memory are bounded; a grid too coarse for the contact
+//! warns. Each message names the field.
+
+use std::path::Path;
+
+use elcon_scene::{Scene, SceneError};
+
+fn scene(text: &str) -> Result<Scene, SceneError> {
+    Scene::from_str(Path::new("test.toml"), text)
+}
+
+/// Refused, naming `field`, with `reason` in the message.
+fn refused(text: &str, field: &str, reason: &str) {
+    let e = scene(text).unwrap_err();
+    assert!(matches!(e, SceneError::Invalid { .. }), "{e}");
+    let m = e.to_string();
+    assert!(m.contains(&format!("`{field}`")), "{field}: {m}");
+    assert!(m.contains(reason), "{reason}: {m}");
+}
+
+const SPHERES: &str = r#"
+[units]
+length = "in"
+force = "lbf"
+
+[body1]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+
+[body2]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+
+[geometry]
+surface1 = { shape = "sphere", radius = 1.0 }
+surface2 = { shape = "sphere", radius = 10.0 }
+
+[points]
+grid = "disk"
+spacing = 0.002
+radius = 0.02
+
+[loading]
+load = 100.0
+"#;
+
+const BEAM: &str = r#"
+[units]
+length = "in"
+force = "lbf"
+
+[body1]
+model = "beam"
+youngs_modulus = 30e6
+second_moment = 5.0
+
+[body2]
+model = "winkler"
+modulus = 1e7
+
+[points]
+grid = "line"
+start = -4.0
+end = 4.0
+n = 16
+
+[loading]
+load = 1000.0
+"#;
+
+const STRIPS: &str = r#"
+[units]
+length = "mm"
+force = "N"
+
+[body1]
+model = "plane-strain"
+youngs_modulus = 210e3
+poissons_ratio = 0.3
+reference_distance = 10.0
+
+[body2]
+model = "plane-strain"
+youngs_modulus = 210e3
+poissons_ratio = 0.3
+reference_distance = 10.0
+
+[geometry]
+surface1 = { shape = "cylinder", radius = 5.0 }
+
+[points]
+grid = "line"
+start = -0.2
+end = 0.2
+n = 41
+
+[loading]
+load = 100.0
+"#;
+
+#[test]
+fn a_concave_surface_must_be_the_larger_radius() {
+    scene(SPHERES).unwrap();
+    // A ball in a larger socket is a contact.
+    scene(&SPHERES.replace("radius = 10.0 }", "radius = -20.0 }")).unwrap();
+    // R1 = 1 inside a concave R2 = -0.5: interpenetration everywhere.
+    refused(
+        &SPHERES.replace("radius = 10.0 }", "radius = -0.5 }"),
+        "geometry.surface2.radius",
+        "a concave surface must have the larger radius",
+    );
+    // R1 = -1 against R2 = 10 (the concave one first).
+    let e = scene(&SPHERES.replace("radius = 1.0 }", "radius = -1.0 }")).unwrap_err();
+    assert!(
+        e.to_string().starts_with(
+            "test.toml:17:41: `geometry.surface1.radius` = -1: a concave surface must have the \
+             larger radius: against the convex radius 10"
+        ),
+        "{e}"
+    );
+    // A concave cylinder against a plane.
+    refused(
+        &STRIPS.replace("radius = 5.0 }", "radius = -5.0 }"),
+        "geometry.surface1.radius",
+        "against a plane",
+    );
+}
+
+#[test]
+fn the_plane_strain_datum_must_lie_beyond_the_grid() {
+    scene(STRIPS).unwrap();
+    // The grid spans 0.4 mm plus a cell; a datum of 0.3 mm is inside it.
+    refused(
+        &STRIPS.replacen("reference_distance = 10.0", "reference_distance = 0.3", 1),
+        "body1.reference_distance",
+        "must be at least the extent of the grid",
+    );
+}
+
+#[test]
+fn a_beams_loaded_point_must_be_on_the_beam() {
+    scene(&BEAM.replace(
+        "second_moment = 5.0",
+        "second_moment = 5.0\nloaded_point = 3.9",
+    ))
+    .unwrap();
+    refused(
+        &BEAM.replace(
+            "second_moment = 5.0",
+            "second_moment = 5.0\nloaded_point = 10.0",
+        ),
+        "body1.loaded_point",
+        "is outside the beam, which is the line grid from -4 to 4",
+    );
+    // The default, 0, off a line from 1 to 9.
+    refused(
+        &BEAM.replace("start = -4.0\nend = 4.0", "start = 1.0\nend = 9.0"),
+        "body1.loaded_point",
+        "is outside the beam",
+    );
+}
+
+#[test]
+fn a_design_degree_needs_the_stations_and_is_bounded() {
+    let short = BEAM.replace("n = 16", "n = 4");
+    scene(&format!(
+        "{short}\n[design]\nfamily = \"polynomial\"\ndegree = 3\n"
+    ))
+    .unwrap();
+    refused(
+        &format!("{short}\n[design]\nfamily = \"polynomial\"\ndegree = 4\n"),
+        "design.degree",
+        "degree 4 needs at least 5 axial stations (distinct positions along x), the grid has 4",
+    );
+    refused(
+        &format!(
+            "{}\n[design]\nfamily = \"quadratic\"\n",
+            BEAM.replace("n = 16", "n = 2")
+        ),
+        "design.family",
+        "degree 2 needs at least 3 axial stations",
+    );
+    refused(
+        &format!("{BEAM}\n[design]\nfamily = \"polynomial\"\ndegree = 13\n"),
+        "design.degree",
+        "at most 12",
+    );
+}
+
+#[test]
+fn design_cases_and_the_constant_are_bounded() {
+    let loads: Vec<String> = (1..=101).map(|i| format!("{i}.0")).collect();
+    refused(
+        &format!(
+            "{BEAM}\n[design]\nfamily = \"quadratic\"\nloads = [{}]\n",
+            loads.join(", ")
+        ),
+        "design.loads",
+        "at most 100 load cases",
+    );
+    scene(&format!(
+        "{BEAM}\n[design]\nfamily = \"quadratic\"\nmax_constant = 1.0\n"
+    ))
+    .unwrap();
+    refused(
+        &format!("{BEAM}\n[design]\nfamily = \"quadratic\"\nmax_constant = 1e308\n"),
+        "design.max_constant",
+        "at most 1e6 times the candidate zone's size",
+    );
+}
+
+#[test]
+fn solver_knobs_are_bounded() {
+    refused(
+        &format!("{SPHERES}\n[solver]\nrefinement_steps = 1000000000\n"),
+        "solver.refinement_steps",
+        "at most 20",
+    );
+    scene(&format!(
+        "{SPHERES}\n[solver]\nrefinement_steps = 20\nmax_pivots = 10000\n"
+    ))
+    .unwrap();
+    refused(
+        &format!("{SPHERES}\n[solver]\nmax_pivots = 1000000000\n"),
+        "solver.max_pivots",
+        "at most 100 N + 10000",
+    );
+}
+
+#[test]
+fn messages_name_the_field_at_fault() {
+    // A modulus too small for floating point names the modulus, not the points.
+    let e = scene(&SPHERES.replacen("youngs_modulus = 30e6", "youngs_modulus = 1e-308", 1))
+        .unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("`body1.youngs_modulus` = 1e-308: must be at least 2.2e-308"),
+        "{e}"
+    );
+    // Hertz-relative points: the condition the scene misses, not a list.
+    let relative = SPHERES.replace("spacing = 0.002\nradius = 0.02", "across = 11\nzone = 1.2");
+    scene(&relative).unwrap();
+    refused(
+        &relative.replace("load = 100.0", "approach = 0.0001"),
+        "points",
+        "need loading.load: under displacement control",
+    );
+    refused(
+        &relative.replace(
+            "model = \"uniform-patch\"\nyoungs_modulus = 30e6\npoissons_ratio = 0.3\n\n[geometry]",
+            "model = \"winkler\"\nmodulus = 1e6\n\n[geometry]",
+        ),
+        "points",
+        "the \"winkler\" model has no Hertz contact",
+    );
+    // No empty value or empty list in a message.
+    let e = scene(&SPHERES.replace("radius = 0.02\n", "radius = 0.02\nnx = 3\n")).unwrap_err();
+    assert!(
+        e.to_string().contains("`points.nx`: is not a parameter"),
+        "{e}"
+    );
+    let rigid = SPHERES.replace(
+        "[body2]\nmodel = \"uniform-patch\"\nyoungs_modulus = 30e6",
+        "[body2]\nmodel = \"rigid\"\nyoungs_modulus = 30e6",
+    );
+    let e = scene(&rigid).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("is not a parameter of the rigid model (it takes none)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_grid_coarser_than_the_contact_warns() {
+    assert!(scene(SPHERES).unwrap().warnings.is_empty());
+    // Spacing equal to the disk radius: about two points across the Hertz
+    // contact diameter (0.032 in).
+    let s = scene(&SPHERES.replace("spacing = 0.002", "spacing = 0.02")).unwrap();
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    assert!(
+        s.warnings[0].contains("about 2 points across the Hertz contact diameter"),
+        "{:?}",
+        s.warnings
+    );
+    // Without a closed form, the disk itself.
+    let flat = SPHERES
+        .replace("surface1 = { shape = \"sphere\", radius = 1.0 }\n", "")
+        .replace("surface2 = { shape = \"sphere\", radius = 10.0 }\n", "")
+        .replace("spacing = 0.002", "spacing = 0.02");
+    let s = scene(&flat).unwrap();
+    assert!(
+        s.warnings
+            .iter()
+            .any(|w| w.contains("the candidate disk has about 3 points across")),
+        "{:?}",
+        s.warnings
+    );
+}

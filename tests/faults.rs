@@ -1,0 +1,660 @@
+//! Faults and limits, through the `elcon` command line as a user meets
+//! them: a scene over the memory ceiling, a panic beside a good scene, a
+//! batch with failing runs, two writers of one directory, a run killed
+//! mid-write, inconsistent shards, a sweep split over scheduler tasks. In
+//! each case nothing that finished is lost and no directory is left half
+//! written. docs/reliability.md lists the same cases.
+//!
+//! The panics and pauses come from the test-only fault points of
+//! elcon-scene (its `fault-injection` feature, which this package's
+//! dev-dependency turns on for the `elcon` the tests run), asked for
+//! through the `ELCON_FAULTS` variable.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+/// The variable of the fault points.
+const FAULTS: &str = "ELCON_FAULTS";
+
+fn elcon_with(args: &[&str], env: &[(&str, &str)]) -> Output {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_elcon"));
+    c.args(args).current_dir(env!("CARGO_MANIFEST_DIR"));
+    for var in [
+        FAULTS,
+        "ELCON_MEMORY_LIMIT",
+        "SLURM_ARRAY_TASK_ID",
+        "JOB_COMPLETION_INDEX",
+    ] {
+        c.env_remove(var);
+    }
+    c.envs(env.iter().copied());
+    c.output().expect("the elcon binary runs")
+}
+
+fn elcon(args: &[&str]) -> Output {
+    elcon_with(args, &[])
+}
+
+/// `elcon` started in the background, its output captured.
+fn spawn(args: &[&str], env: &[(&str, &str)]) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_elcon"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .envs(env.iter().copied())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the elcon binary starts")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("elcon-faults-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// The paper's Example 1 (149 points, fast), with `edits` applied, as
+/// `dir/<file>.toml` named `name`.
+fn small_scene(dir: &Path, file: &str, name: &str, edits: &[(&str, &str)]) -> PathBuf {
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/example1-paper-model.toml"),
+    )
+    .unwrap();
+    let mut t = base.replace(
+        "name = \"example1-paper-model\"",
+        &format!("name = \"{name}\""),
+    );
+    for (from, to) in edits {
+        assert!(t.contains(from), "the scene has `{from}`");
+        t = t.replacen(from, to, 1);
+    }
+    let path = dir.join(format!("{file}.toml"));
+    std::fs::write(&path, t).unwrap();
+    path
+}
+
+/// Entries of `dir` whose names say they are temporary.
+fn litter(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp") || n.ends_with(".old"))
+        .collect()
+}
+
+/// Waits (at most 60 s) until `path` exists.
+fn wait_for(what: impl Fn() -> bool) {
+    let start = Instant::now();
+    while !what() {
+        assert!(start.elapsed() < Duration::from_secs(60), "timed out");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// Whether a staging directory of `name` under `out` holds result.json.
+fn staging_has_result(out: &Path, name: &str) -> bool {
+    std::fs::read_dir(out).is_ok_and(|entries| {
+        entries.flatten().any(|e| {
+            let n = e.file_name().to_string_lossy().into_owned();
+            n.starts_with(&format!(".{name}."))
+                && n.ends_with(".tmp")
+                && e.path().join("result.json").exists()
+        })
+    })
+}
+
+#[test]
+fn a_scene_over_the_memory_ceiling_is_refused_and_the_others_run() {
+    let dir = scratch("memory");
+    let out = dir.join("out");
+    // Example 1 in full (1653 points, not folded): about 81 MiB.
+    let big = dir.join("big.toml");
+    let spheres = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/example1-spheres.toml"),
+    )
+    .unwrap();
+    std::fs::write(
+        &big,
+        spheres.replace(
+            "method = \"block-pivoting\"",
+            "method = \"block-pivoting\"\nsymmetry = \"none\"",
+        ),
+    )
+    .unwrap();
+    let good = small_scene(&dir, "good", "good", &[]);
+    for (args, env) in [
+        (vec!["--memory-limit", "64M"], vec![]),
+        (vec![], vec![("ELCON_MEMORY_LIMIT", "64M")]),
+    ] {
+        let _ = std::fs::remove_dir_all(&out);
+        let mut run = vec!["run", s(&big), s(&good), "--out", s(&out)];
+        run.extend(args.iter().copied());
+        let o = elcon_with(&run, &env);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(1), "{t}");
+        for part in [
+            "scene `example1-spheres`: too big for the memory available: N = 1653 points needs about",
+            "block-pivoting keeps about 2.25 matrices of 1653 x 1653",
+            "the ceiling is 57.6 MiB",
+            "What helps: folding by symmetry",
+        ] {
+            assert!(t.contains(part), "{part}: {t}");
+        }
+        assert!(!t.contains("panicked"), "{t}");
+        assert!(!out.join("example1-spheres").exists());
+        assert!(out.join("good/result.json").exists(), "{t}");
+        // `check` refuses it too, with the same limit.
+        let mut check = vec!["check", s(&big)];
+        check.extend(args.iter().copied());
+        let o = elcon_with(&check, &env);
+        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+        assert!(text(&o).contains("too big for the memory available"));
+    }
+    // In a batch, the run over the ceiling is a failed row; the other runs.
+    let spheres_dir = dir.join("sweep");
+    std::fs::create_dir_all(&spheres_dir).unwrap();
+    std::fs::write(spheres_dir.join("spheres.toml"), &spheres).unwrap();
+    std::fs::write(
+        spheres_dir.join("folding.toml"),
+        "[batch]\nscene = \"spheres.toml\"\n[[batch.group]]\n\"solver.symmetry\" = [\"auto\", \"none\"]\n",
+    )
+    .unwrap();
+    let o = elcon(&[
+        "batch",
+        s(&spheres_dir.join("folding.toml")),
+        "--out",
+        s(&out),
+        "--memory-limit",
+        "64M",
+    ]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(t.contains("2 runs, 1 failed"), "{t}");
+    let rows = json(&out.join("folding/results.json"))["rows"].clone();
+    assert_eq!(rows[0]["status"], "ok");
+    assert!(
+        rows[1]["status"]
+            .as_str()
+            .unwrap()
+            .contains("too big for the memory available: N = 1653 points"),
+        "{rows}"
+    );
+    // Without a limit it fits, and check prints the estimate.
+    let o = elcon(&["check", s(&big)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(
+        text(&o).contains("1653 points; peak memory about"),
+        "{}",
+        text(&o)
+    );
+    // A size that is not one is a usage error.
+    let o = elcon(&["run", s(&good), "--memory-limit", "4X"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let o = elcon_with(&["check", s(&good)], &[("ELCON_MEMORY_LIMIT", "lots")]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("ELCON_MEMORY_LIMIT=lots"), "{}", text(&o));
+}
+
+#[test]
+fn a_panicking_scene_is_reported_and_the_good_one_written() {
+    let dir = scratch("panic");
+    let out = dir.join("out");
+    let bad = small_scene(&dir, "bad", "bad", &[]);
+    let good = small_scene(&dir, "good", "good", &[]);
+    let o = elcon_with(
+        &["run", s(&bad), s(&good), "--out", s(&out)],
+        &[(FAULTS, "panic=bad")],
+    );
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(
+        t.contains("error: scene `bad`: internal error (this is a bug; please report it with the scene): fault injected"),
+        "{t}"
+    );
+    // The panic's place is in the report; the default hook printed nothing.
+    assert!(t.contains("faults.rs:"), "{t}");
+    assert!(!t.contains("panicked at"), "{t}");
+    assert!(!out.join("bad").exists());
+    assert!(out.join("good/result.json").exists(), "{t}");
+    assert!(litter(&out).is_empty(), "{:?}", litter(&out));
+    // The table's header once, before the first result; none without one.
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        stdout
+            .matches("scene                        method")
+            .count(),
+        1
+    );
+    assert!(stdout.starts_with("scene "), "{stdout}");
+    let o = elcon_with(
+        &["run", s(&bad), "--out", s(&out)],
+        &[(FAULTS, "panic=bad")],
+    );
+    assert!(o.stdout.is_empty(), "{}", text(&o));
+}
+
+#[test]
+fn two_scenes_of_one_name_are_refused_before_any_solve() {
+    let dir = scratch("names");
+    let out = dir.join("out");
+    let a = small_scene(&dir, "a", "same", &[]);
+    let b = small_scene(&dir, "b", "same", &[("load = 100.0", "load = 200.0")]);
+    let c = small_scene(&dir, "c", "other", &[]);
+    let o = elcon(&["run", s(&a), s(&b), s(&c), "--out", s(&out)]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(
+        t.contains("both name scene `same`, so they would write one directory"),
+        "{t}"
+    );
+    assert!(!out.join("same").exists());
+    assert!(out.join("other/result.json").exists());
+    let o = elcon(&["check", s(&a), s(&b)]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("both name scene `same`"), "{}", text(&o));
+}
+
+#[test]
+fn a_batch_with_failing_runs_writes_its_tables() {
+    let dir = scratch("batch");
+    let base = small_scene(&dir, "base", "base", &[]);
+    let _ = base;
+    std::fs::write(
+        dir.join("sweep.toml"),
+        "[batch]\nscene = \"base.toml\"\n[[batch.group]]\n\"points.across\" = [5, 6, 7, 9]\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    // Run 2 (across 7) panics; run 1 (across 6) is invalid.
+    let o = elcon_with(
+        &[
+            "batch",
+            s(&dir.join("sweep.toml")),
+            "--out",
+            s(&out),
+            "--jobs",
+            "2",
+        ],
+        &[(FAULTS, "panic=002-points.across-7")],
+    );
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(t.contains("4 runs, 2 failed"), "{t}");
+    assert!(!t.contains("panicked at"), "{t}");
+    let rows = json(&out.join("sweep/results.json"))["rows"].clone();
+    let status: Vec<&str> = rows
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["status"].as_str().unwrap())
+        .collect();
+    assert_eq!(status[0], "ok");
+    assert!(
+        status[1].contains("`points.across` = 6: must be odd"),
+        "{status:?}"
+    );
+    assert!(
+        status[2].contains("internal error (this is a bug"),
+        "{status:?}"
+    );
+    assert_eq!(status[3], "ok");
+    for file in ["results.csv", "results.md"] {
+        let table = std::fs::read_to_string(out.join("sweep").join(file)).unwrap();
+        assert!(table.contains("this is a bug"), "{file}");
+    }
+    assert!(out.join("sweep/000-points.across-5/result.json").exists());
+    assert!(!out.join("sweep/002-points.across-7").exists());
+    assert!(litter(&out).is_empty(), "{:?}", litter(&out));
+}
+
+#[test]
+fn two_concurrent_runs_into_one_out_do_not_mix_their_files() {
+    let dir = scratch("concurrent");
+    let out = dir.join("out");
+    let plots = [(
+        "method = \"restricted-simplex\"",
+        "method = \"restricted-simplex\"\n[outputs]\nplots = [\"pressure\"]",
+    )];
+    let a = small_scene(&dir, "a", "x", &plots);
+    let b = small_scene(
+        &dir,
+        "b",
+        "x",
+        &[plots[0], ("load = 100.0", "load = 250.0")],
+    );
+    // Each pauses 300 ms after each of its three files.
+    let slow = [(FAULTS, "write_delay_ms=300")];
+    let first = spawn(&["run", s(&a), "--out", s(&out)], &slow);
+    wait_for(|| staging_has_result(&out, "x"));
+    let second = spawn(&["run", s(&b), "--out", s(&out)], &slow);
+    let (first, second) = (
+        first.wait_with_output().unwrap(),
+        second.wait_with_output().unwrap(),
+    );
+    assert_eq!(first.status.code(), Some(0), "{}", text(&first));
+    assert_eq!(second.status.code(), Some(0), "{}", text(&second));
+    assert!(
+        text(&second).contains("waiting: another elcon is writing"),
+        "{}",
+        text(&second)
+    );
+    // One writer's files only: the second's, whole.
+    let r = json(&out.join("x/result.json"));
+    assert!(
+        (r["load"].as_f64().unwrap() / 250.0 - 1.0).abs() < 1e-12,
+        "{r}"
+    );
+    let csv = std::fs::read_to_string(out.join("x/pressure.csv")).unwrap();
+    let total: f64 = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(4).unwrap().parse::<f64>().unwrap())
+        .sum();
+    assert!((total / 250.0 - 1.0).abs() < 1e-9, "{total}");
+    assert!(out.join("x/pressure.svg").exists());
+    assert!(litter(&out).is_empty(), "{:?}", litter(&out));
+}
+
+#[test]
+fn a_run_killed_mid_write_leaves_the_old_directory_and_the_rerun_cleans_up() {
+    let dir = scratch("killed");
+    let out = dir.join("out");
+    let plots = (
+        "method = \"restricted-simplex\"",
+        "method = \"restricted-simplex\"\n[outputs]\nplots = [\"pressure\"]",
+    );
+    let old = small_scene(&dir, "old", "x", &[plots]);
+    let o = elcon(&["run", s(&old), "--out", s(&out)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    // A second run, killed (SIGKILL) after its first file.
+    let new = small_scene(&dir, "new", "x", &[plots, ("load = 100.0", "load = 300.0")]);
+    let mut child = spawn(
+        &["run", s(&new), "--out", s(&out)],
+        &[(FAULTS, "write_delay_ms=5000")],
+    );
+    wait_for(|| staging_has_result(&out, "x"));
+    child.kill().unwrap();
+    child.wait().unwrap();
+    // The old directory stands, whole; the killed run's staging is left.
+    let load = json(&out.join("x/result.json"))["load"].as_f64().unwrap();
+    assert!((load / 100.0 - 1.0).abs() < 1e-12, "{load}");
+    assert!(out.join("x/pressure.csv").exists() && out.join("x/pressure.svg").exists());
+    assert_eq!(litter(&out).len(), 1, "{:?}", litter(&out));
+    // The next run into the directory removes it, and replaces the old
+    // outputs as a unit: no CSV or SVG of the old run beside the new JSON.
+    let lean = small_scene(
+        &dir,
+        "lean",
+        "x",
+        &[(
+            "method = \"restricted-simplex\"",
+            "method = \"restricted-simplex\"\n[outputs]\npressure_csv = false",
+        )],
+    );
+    let o = elcon(&["run", s(&lean), "--out", s(&out)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(litter(&out).is_empty(), "{:?}", litter(&out));
+    let files: Vec<String> = std::fs::read_dir(out.join("x"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(files, ["result.json"]);
+}
+
+/// A batch of six quick runs: Example 1 at three grids by two methods.
+fn six_runs(dir: &Path, name: &str, loads: &str) -> PathBuf {
+    small_scene(dir, "base", "base", &[]);
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(
+        &path,
+        format!(
+            "[batch]\nname = \"{name}\"\nscene = \"base.toml\"\n[[batch.group]]\n\
+             \"points.across\" = [5, 9, 13]\n\"solver.method\" = [\"lemke\", \"block-pivoting\"]\n\
+             [[batch.group]]\n\"loading.load\" = [{loads}]\n"
+        ),
+    )
+    .unwrap();
+    path
+}
+
+/// A table's rows without the run times (which differ from run to run).
+fn rows_without_times(table: &serde_json::Value) -> Vec<serde_json::Value> {
+    table["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            let mut r = r.clone();
+            let o = r.as_object_mut().unwrap();
+            o.remove("seconds_total");
+            o.remove("seconds_solve");
+            r
+        })
+        .collect()
+}
+
+#[test]
+fn a_sweep_run_as_scheduler_tasks_merges_to_exactly_the_unsharded_tables() {
+    let dir = scratch("shards");
+    let batch = six_runs(&dir, "sweep", "50.0, 150.0");
+    let out = dir.join("out");
+    let o = elcon(&["batch", s(&batch), "--out", s(&out)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let whole = json(&out.join("sweep/results.json"));
+    assert_eq!(whole["runs"], 8);
+    // A SLURM job array of three tasks (--array=0-2), all at once, each
+    // its own process.
+    let tasks: Vec<Child> = (0..3)
+        .map(|id| {
+            let id = id.to_string();
+            spawn(
+                &["batch", s(&batch), "--out", s(&out), "--shard", "auto"],
+                &[
+                    ("SLURM_ARRAY_TASK_ID", id.as_str()),
+                    ("SLURM_ARRAY_TASK_COUNT", "3"),
+                    ("SLURM_ARRAY_TASK_MIN", "0"),
+                ],
+            )
+        })
+        .collect();
+    for t in tasks {
+        let o = t.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    }
+    let shards: Vec<PathBuf> = (1..=3)
+        .map(|k| out.join(format!("sweep-shard-{k}-of-3")))
+        .collect();
+    let merged = dir.join("merged");
+    let mut args = vec!["merge"];
+    args.extend(shards.iter().map(|p| s(p)));
+    args.extend(["--out", s(&merged)]);
+    let o = elcon(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(
+        text(&o).contains("merged 8 runs of `sweep`"),
+        "{}",
+        text(&o)
+    );
+    let m = json(&merged.join("results.json"));
+    assert_eq!(rows_without_times(&m), rows_without_times(&whole));
+    assert_eq!(m["batch_hash"], whole["batch_hash"]);
+    // A Kubernetes indexed Job of two completions.
+    for index in ["0", "1"] {
+        let o = elcon_with(
+            &["batch", s(&batch), "--out", s(&out), "--shard", "auto"],
+            &[("JOB_COMPLETION_INDEX", index), ("ELCON_SHARD_COUNT", "2")],
+        );
+        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    }
+    let merged2 = dir.join("merged2");
+    let o = elcon(&[
+        "merge",
+        s(&out.join("sweep-shard-2-of-2")),
+        s(&out.join("sweep-shard-1-of-2")),
+        "--out",
+        s(&merged2),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert_eq!(
+        rows_without_times(&json(&merged2.join("results.json"))),
+        rows_without_times(&whole)
+    );
+    // Outside a scheduler, --shard auto is a usage error.
+    let o = elcon(&["batch", s(&batch), "--out", s(&out), "--shard", "auto"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("SLURM_ARRAY_TASK_ID"), "{}", text(&o));
+}
+
+#[test]
+fn merge_refuses_shards_that_are_not_one_batch_each_once() {
+    let dir = scratch("merge");
+    let batch = six_runs(&dir, "sweep", "50.0");
+    let out = dir.join("out");
+    for k in ["1/2", "2/2", "1/3"] {
+        let o = elcon(&["batch", s(&batch), "--out", s(&out), "--shard", k]);
+        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    }
+    let shard = |k: u32, n: u32| out.join(format!("sweep-shard-{k}-of-{n}"));
+    let merged = dir.join("merged");
+    let refused = |dirs: &[&Path], message: &str| {
+        let mut args = vec!["merge"];
+        args.extend(dirs.iter().map(|p| s(p)));
+        args.extend(["--out", s(&merged)]);
+        let o = elcon(&args);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(1), "{message}: {t}");
+        assert!(t.contains(message), "{message}: {t}");
+        assert!(!merged.exists(), "{message}");
+    };
+    refused(&[&shard(1, 2)], "shards missing: 2/2");
+    refused(&[&shard(1, 2), &shard(1, 2)], "shard 1/2 is given twice");
+    refused(&[&shard(1, 2), &shard(1, 3)], "shard counts differ");
+    // The sweep edited between the shards: the hashes differ.
+    let other = dir.join("other");
+    std::fs::create_dir_all(&other).unwrap();
+    let edited = six_runs(&other, "sweep", "60.0");
+    let o = elcon(&["batch", s(&edited), "--out", s(&other), "--shard", "2/2"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    refused(
+        &[&shard(1, 2), &other.join("sweep-shard-2-of-2")],
+        "are from different versions of batch `sweep`",
+    );
+    // Another batch.
+    let renamed = six_runs(&other, "another", "50.0");
+    let o = elcon(&["batch", s(&renamed), "--out", s(&other), "--shard", "2/2"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    refused(
+        &[&shard(1, 2), &other.join("another-shard-2-of-2")],
+        "is from batch `another`",
+    );
+    // Conflicting rows: shard 2 claims a row of shard 1.
+    let tampered = dir.join("tampered");
+    std::fs::create_dir_all(&tampered).unwrap();
+    let mut t = json(&shard(2, 2).join("results.json"));
+    let row0 = json(&shard(1, 2).join("results.json"))["rows"][0].clone();
+    t["rows"].as_array_mut().unwrap().push(row0);
+    std::fs::write(tampered.join("results.json"), t.to_string()).unwrap();
+    refused(
+        &[&shard(1, 2), &tampered],
+        "row 0 does not belong to shard 2/2",
+    );
+    let mut t = json(&shard(2, 2).join("results.json"));
+    let dup = t["rows"][0].clone();
+    t["rows"].as_array_mut().unwrap().push(dup);
+    std::fs::write(tampered.join("results.json"), t.to_string()).unwrap();
+    refused(&[&shard(1, 2), &tampered], "two rows with index 1");
+    // The good pair merges; merge will not replace a directory it did not write.
+    let o = elcon(&["merge", s(&shard(1, 2)), s(&shard(2, 2)), "--out", s(&out)]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("holds the shard"), "{}", text(&o));
+    let o = elcon(&[
+        "merge",
+        s(&shard(1, 2)),
+        s(&shard(2, 2)),
+        "--out",
+        s(&merged),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+}
+
+#[test]
+fn a_huge_sweep_is_checked_by_size_and_a_too_large_one_refused() {
+    let dir = scratch("huge");
+    small_scene(&dir, "base", "base", &[]);
+    let values = |n: usize, scale: f64| {
+        (1..=n)
+            .map(|i| format!("{}", scale * i as f64))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let write = |name: &str, keys: &[(&str, String)]| {
+        let mut t = format!("[batch]\nname = \"{name}\"\nscene = \"base.toml\"\n[[batch.group]]\n");
+        for (k, v) in keys {
+            t.push_str(&format!("\"{k}\" = [{v}]\n"));
+        }
+        let p = dir.join(format!("{name}.toml"));
+        std::fs::write(&p, t).unwrap();
+        p
+    };
+    // A million runs: its size at once, a covering set checked; the one
+    // invalid zone (0.9) is among the runs checked.
+    let zones = (0..999)
+        .map(|i| format!("{}", 1.1 + 0.001 * i as f64))
+        .chain(["0.9".to_string()])
+        .collect::<Vec<_>>()
+        .join(", ");
+    let million = write(
+        "million",
+        &[("loading.load", values(1000, 1.0)), ("points.zone", zones)],
+    );
+    let o = elcon(&["check", s(&million)]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(
+        t.contains("batch `million`: 1,000,000 runs, 1 failed"),
+        "{t}"
+    );
+    assert!(t.contains("covering every value of every key"), "{t}");
+    assert!(t.contains("`points.zone` = 0.9"), "{t}");
+    // A billion runs: refused with its size, even for one shard.
+    let billion = write(
+        "billion",
+        &[
+            ("loading.load", values(1000, 1.0)),
+            ("points.zone", values(1000, 1.0)),
+            ("points.across", values(1000, 2.0)),
+        ],
+    );
+    for args in [
+        vec!["check", s(&billion)],
+        vec!["batch", s(&billion), "--shard", "1/1000"],
+    ] {
+        let o = elcon(&args);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(1), "{t}");
+        assert!(
+            t.contains("1,000,000,000 runs: a sweep has at most MAX_RUNS = 1,000,000 runs"),
+            "{t}"
+        );
+    }
+}
