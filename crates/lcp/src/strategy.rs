@@ -6,7 +6,7 @@
 //! | method | route (`Tableau::Auto`) |
 //! |---|---|
 //! | Lemke | symmetric tableau (a symmetric `M` with a positive diagonal, standard or bordered), then the general tableau |
-//! | restricted simplex | symmetric tableau (a border of one row, `q >= 0`), then the general tableau; a general attempt that stalls in phase 1 with non-negative extra unknowns is followed by one with them free |
+//! | restricted simplex | symmetric tableau (a border of one row, `q >= 0`), then the general tableau; a general attempt that stalls in phase 1 with non-negative extra unknowns is followed by one with them free; with a border of several rows, Lemke's route after a stall |
 //! | block pivoting | block pivoting, then Lemke's route (a principal block not positive definite, a singular border, the iteration cap) |
 //!
 //! `Tableau::Symmetric` keeps only the symmetric attempts (an error where
@@ -230,7 +230,14 @@ fn route(problem: &Problem<'_>, method: Method, options: &Options) -> Result<Vec
     match method {
         Method::Lemke => tableau_route(Kind::LemkeSymmetric, Kind::LemkeGeneral),
         Method::RestrictedSimplex => {
-            tableau_route(Kind::RestrictedSymmetric, Kind::RestrictedGeneral)
+            let mut route = tableau_route(Kind::RestrictedSymmetric, Kind::RestrictedGeneral)?;
+            // The restricted-entry rule's theory is for one free multiplier
+            // (Wolfe's short form): with a border of several rows its phase
+            // 1 can stall, and Lemke's method finishes.
+            if problem.border.is_some_and(|b| b.columns.ncols() >= 2) {
+                route.extend(tableau_route(Kind::LemkeSymmetric, Kind::LemkeGeneral)?);
+            }
+            Ok(route)
         }
         Method::BlockPivoting => {
             block::applies(problem).map_err(|e| unsupported(Kind::BlockPivoting, e))?;
@@ -573,7 +580,7 @@ mod tests {
         );
         assert_eq!(
             route_of(&two, Method::RestrictedSimplex, Tableau::Auto).unwrap(),
-            [RestrictedGeneral]
+            [RestrictedGeneral, LemkeSymmetric, LemkeGeneral]
         );
         assert!(matches!(
             route_of(&two, Method::RestrictedSimplex, Tableau::Symmetric),

@@ -95,16 +95,6 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
     finish_on_active_set(problem, opts, &order, &path.into, work)
 }
 
-/// The direction of a step and where it ends.
-struct Direction {
-    /// `dλ / ds` (scaled units).
-    delta: Vec<f64>,
-    /// `dλ / dε` at fixed load (0 for one row: `λ` is the parameter).
-    gamma: Vec<f64>,
-    /// The step `s` at which the path ends along `delta`.
-    to_stop: f64,
-}
-
 /// The two stretches of a bordered path.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Phase {
@@ -114,6 +104,33 @@ enum Phase {
     Approach,
     /// All free unknowns along the Newton direction to the resultants.
     Resultants,
+}
+
+/// The sums over the active set a step needs (k rows, k x k): the load
+/// `L = C z`, the size of its terms, `G = dL/dλ` and `h = dL/dε`.
+struct Sums {
+    load: Vec<f64>,
+    size: Vec<f64>,
+    g: Mat<f64>,
+    h: Vec<f64>,
+}
+
+impl Sums {
+    fn new(k: usize) -> Self {
+        Self {
+            load: vec![0.0; k],
+            size: vec![0.0; k],
+            g: Mat::zeros(k, k),
+            h: vec![0.0; k],
+        }
+    }
+
+    fn clear(&mut self) {
+        self.load.fill(0.0);
+        self.size.fill(0.0);
+        self.h.fill(0.0);
+        self.g.fill(0.0);
+    }
 }
 
 /// The walk along the path.
@@ -129,17 +146,33 @@ struct Walk {
     /// The free unknowns λ' (scaled: `λ_l = units_l λ'_l`).
     lambda: Vec<f64>,
     units: Vec<f64>,
+    /// The direction of the step, `dλ / ds` (scaled), and `dλ / dε` at a
+    /// fixed load (0 along the approach: `λ_1` is then the parameter).
+    delta: Vec<f64>,
+    gamma: Vec<f64>,
+    sums: Sums,
     stop: Stop,
     work: Work,
     tol: Tolerances,
     limit: usize,
     zero_run: ZeroRun,
-    /// Scratch per position: the border's part of each value, each rate,
-    /// the values, each value's step to zero.
-    part: Vec<f64>,
-    rate: Vec<f64>,
+    /// Per position: the values, their rates along the step, each falling
+    /// value's step to zero.
     value: Vec<f64>,
+    rate: Vec<f64>,
     reach: Vec<f64>,
+    /// The zero tests' scales: the largest term `|q̄_i| + sum |λ_l b̄_il|`
+    /// on and off the active set, and the largest rate on and off it
+    /// (forces and gaps have their own units).
+    scales: [f64; 4],
+}
+
+/// `a` or `v`, whichever is larger, by a plain comparison: it leaves a NaN
+/// out as `f64::max` does, without its extra instructions on the critical
+/// path of the pivot rule's passes.
+#[inline(always)]
+fn larger(a: f64, v: f64) -> f64 {
+    if v > a { v } else { a }
 }
 
 impl Walk {
@@ -163,6 +196,8 @@ impl Walk {
             .map(|i| path.qbar[i] / -path.bbar[i])
             .fold(f64::INFINITY, f64::min);
         let k = path.columns();
+        let mut delta = vec![0.0; k];
+        delta[0] = 1.0;
         Self {
             phase: Phase::Approach,
             order,
@@ -173,15 +208,18 @@ impl Walk {
             load,
             lambda: (0..k).map(|l| if l == 0 { alpha } else { 0.0 }).collect(),
             units,
+            delta,
+            gamma: vec![0.0; k],
+            sums: Sums::new(k),
             stop,
             work,
             tol: opts.tolerances,
             limit: opts.pivot_limit(n, n),
             zero_run: ZeroRun::new(n),
-            part: vec![0.0; n],
-            rate: vec![0.0; n],
             value: vec![0.0; n],
+            rate: vec![0.0; n],
             reach: vec![0.0; n],
+            scales: [0.0; 4],
         }
     }
 
@@ -218,34 +256,36 @@ impl Walk {
     /// Walks until the end (see the module documentation).
     fn run(&mut self) -> Result<(), Failure> {
         loop {
-            let direction = self.direction()?;
-            let step = self.steps(&direction);
-            if direction.to_stop.is_nan()
-                || (!step.is_finite() && !(direction.to_stop < f64::INFINITY))
-            {
+            let (to_stop, step) = if self.along_approach() {
+                self.approach_pass()?
+            } else {
+                let to_stop = self.survey()?;
+                (to_stop, self.steps())
+            };
+            if to_stop.is_nan() || (!step.is_finite() && !(to_stop < f64::INFINITY)) {
                 // Nothing limits the path and it never reaches the end (a
                 // ray), or the data's scale overflowed (a NaN load).
-                let breakdown = if direction.to_stop.is_nan() {
+                let breakdown = if to_stop.is_nan() {
                     Breakdown::NonFinite
                 } else {
                     Breakdown::Ray
                 };
                 return Err(Failure::new(breakdown, self.work));
             }
-            if direction.to_stop <= step {
+            if to_stop <= step {
                 // The approach met the first resultant: with more rows, on
                 // to the others (nothing to do when they are met too).
                 if self.phase == Phase::Approach
                     && self.path.columns() > 1
                     && self.stop == Stop::Border
                 {
-                    self.lambda[0] += direction.to_stop;
+                    self.lambda[0] += to_stop;
                     self.phase = Phase::Resultants;
                     continue;
                 }
                 return Ok(());
             }
-            let pivot_on = self.first_tied(step, &direction)?;
+            let pivot_on = self.first_tied(step)?;
             if step == 0.0 {
                 // (The path starts at the first contact: its first pivot is
                 // Lemke's first, not a step of length 0.)
@@ -253,7 +293,7 @@ impl Walk {
                     self.work.degenerate_pivots += 1;
                 }
             } else {
-                for (l, d) in self.lambda.iter_mut().zip(&direction.delta) {
+                for (l, d) in self.lambda.iter_mut().zip(&self.delta) {
                     *l += step * d;
                 }
             }
@@ -285,115 +325,163 @@ impl Walk {
         Ok(())
     }
 
-    /// The values at the current `λ` (into `value`, the border's part into
-    /// `part`), the load on the active set and its derivatives, and the
-    /// direction of the next step.
-    fn direction(&mut self) -> Result<Direction, Failure> {
-        let n = self.n();
-        let k = self.path.columns();
-        self.path.combine(&self.lambda, &mut self.part);
-        for i in 0..n {
-            let sigma = if self.path.into[i] { -1.0 } else { 1.0 };
-            self.value[i] = sigma * (self.path.qbar[i] + self.part[i]);
-        }
-        if self.stop == Stop::Parameter {
-            return Ok(Direction {
-                delta: vec![1.0],
-                gamma: vec![0.0],
-                to_stop: -self.lambda[0],
-            });
-        }
-        // L = C z on J, G = dL/dλ, h = dL/dε, and the size of L's terms.
-        let (mut load, mut g, mut h) = (vec![0.0; k], Mat::<f64>::zeros(k, k), vec![0.0; k]);
-        let mut scale: Vec<f64> = self.load.iter().map(|v| v.abs()).collect();
-        for i in (0..n).filter(|&i| self.path.into[i]) {
-            for l in 0..k {
-                let w = self.weight[l * n + i];
-                load[l] += w * self.value[i];
-                scale[l] += (w * self.value[i]).abs();
-                h[l] -= w * self.path.gbar[i];
-                for m in 0..k {
-                    g[(l, m)] -= w * self.path.bbar_column(m)[i];
-                }
-            }
-        }
-        if self.phase == Phase::Approach {
-            let slope = g[(0, 0)];
-            let to_stop = if slope > 0.0 {
-                (self.load[0] - load[0]) / slope
-            } else if self.path.into.iter().any(|&j| j) {
-                // The load does not rise with the approach: M is not
-                // positive definite on the contact set.
-                return Err(Failure::new(Breakdown::NotPositiveDefinite, self.work));
-            } else {
-                f64::INFINITY
-            };
-            let mut delta = vec![0.0; k];
-            delta[0] = 1.0;
-            return Ok(Direction {
-                delta,
-                gamma: vec![0.0; k],
-                to_stop,
-            });
-        }
-        let rest: Vec<f64> = (0..k).map(|l| self.load[l] - load[l]).collect();
-        if (0..k).all(|l| rest[l].abs() <= self.tol.zero * scale[l]) {
-            // The resultants are met (to the zero tolerance of their terms).
-            return Ok(Direction {
-                delta: vec![0.0; k],
-                gamma: vec![0.0; k],
-                to_stop: 0.0,
-            });
-        }
-        let Some(solve) = symmetric_solver(&g) else {
-            return Err(Failure::new(Breakdown::SingularBorder, self.work));
-        };
-        let delta = solve(&rest);
-        let gamma = solve(&h).into_iter().map(|v| -v).collect();
-        Ok(Direction {
-            delta,
-            gamma,
-            to_stop: 1.0,
-        })
+    /// Whether the step is along the approach (or a standard LCP's
+    /// parameter): `λ_1` is then the path's parameter.
+    fn along_approach(&self) -> bool {
+        self.phase == Phase::Approach || self.stop == Stop::Parameter
     }
 
-    /// Each falling value's step to zero along `direction` (0 at the zero
-    /// level) into `reach`; returns the least.
-    fn steps(&mut self, direction: &Direction) -> f64 {
+    /// A step along the approach (the one-row path's): one pass for the
+    /// zero tests' scales, one for each falling value's step to zero and the
+    /// first row's load on the active set and its slope; returns where the
+    /// path ends along the approach and the least step. (Plain comparisons,
+    /// as throughout the pivot rules' passes: they leave a NaN out as
+    /// `f64::max` does, without its extra instructions on the loops'
+    /// critical paths.)
+    fn approach_pass(&mut self) -> Result<(f64, f64), Failure> {
         let n = self.n();
-        let k = self.path.columns();
-        self.path.combine(&direction.delta, &mut self.rate);
-        // The zero tests' scales: the largest term |q̄_i| + Σ |λ_l b̄_il| on
-        // and off the active set, and the largest rate on and off it
-        // (forces and gaps have their own units). (Plain comparisons, as
-        // throughout the pivot rules' passes: they leave a NaN out as
-        // `f64::max` does, without its extra instructions on the loop's
-        // critical path.)
-        let larger = |a: f64, v: f64| if v > a { v } else { a };
+        let alpha = self.lambda[0];
+        let path = &self.path;
         let (mut zscale, mut wscale, mut zrates, mut wrates) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-        for i in 0..n {
-            let sigma = if self.path.into[i] { -1.0 } else { 1.0 };
-            self.rate[i] *= sigma;
-            let terms = if k == 1 {
-                self.part[i].abs()
+        for ((&q, &b), &joined) in path.qbar.iter().zip(&path.bbar[..n]).zip(&path.into) {
+            let size = q.abs() + (alpha * b).abs();
+            let (on, off) = if joined { (size, 0.0) } else { (0.0, size) };
+            zscale = larger(zscale, on);
+            wscale = larger(wscale, off);
+            let (on, off) = if joined {
+                (b.abs(), 0.0)
             } else {
-                (0..k).fold(0.0, |a, l| {
-                    a + (self.lambda[l] * self.path.bbar_column(l)[i]).abs()
-                })
+                (0.0, b.abs())
             };
-            let size = self.path.qbar[i].abs() + terms;
-            if self.path.into[i] {
-                zscale = larger(zscale, size);
-                zrates = larger(zrates, self.rate[i].abs());
-            } else {
-                wscale = larger(wscale, size);
-                wrates = larger(wrates, self.rate[i].abs());
-            }
+            zrates = larger(zrates, on);
+            wrates = larger(wrates, off);
         }
         let [zscale, wscale, zrates, wrates] =
             [zscale, wscale, zrates, wrates].map(|v| self.tol.zero * v);
-        let mut least = f64::INFINITY;
+        let (mut step, mut value, mut slope) = (f64::INFINITY, 0.0, 0.0);
         for i in 0..n {
+            let joined = path.into[i];
+            let sigma = if joined { -1.0 } else { 1.0 };
+            let b = path.bbar[i];
+            let (xi, ri) = (sigma * (path.qbar[i] + alpha * b), sigma * b);
+            if joined && !self.weight.is_empty() {
+                value += self.weight[i] * xi;
+                slope += self.weight[i] * ri;
+            }
+            let (zero, falls) = if joined {
+                (zscale, -zrates)
+            } else {
+                (wscale, -wrates)
+            };
+            self.reach[i] = if ri < falls {
+                let s = if xi <= zero { 0.0 } else { xi / -ri };
+                step = if s < step { s } else { step };
+                s
+            } else {
+                f64::INFINITY
+            };
+        }
+        let to_stop = match self.stop {
+            Stop::Parameter => -alpha,
+            Stop::Border if slope > 0.0 => (self.load[0] - value) / slope,
+            // The load does not rise with the approach: M is not positive
+            // definite on the contact set.
+            Stop::Border if path.into.iter().any(|&j| j) => {
+                return Err(Failure::new(Breakdown::NotPositiveDefinite, self.work));
+            }
+            Stop::Border => f64::INFINITY,
+        };
+        Ok((to_stop, step))
+    }
+
+    /// One pass over the values at the current `λ` for a Newton step: the
+    /// values, the sums over the active set and the zero tests' scales;
+    /// then the direction of the step, a second pass for its rates, and
+    /// the step `s` at which the path ends along it.
+    fn survey(&mut self) -> Result<f64, Failure> {
+        let n = self.n();
+        let k = self.path.columns();
+        self.sums.clear();
+        let (mut zscale, mut wscale) = (0.0f64, 0.0f64);
+        let (path, sums, weight) = (&self.path, &mut self.sums, &self.weight);
+        let (bbar, lambda) = (&path.bbar, &self.lambda);
+        for i in 0..n {
+            let joined = path.into[i];
+            let sigma = if joined { -1.0 } else { 1.0 };
+            let (part, terms) = (0..k).fold((0.0, 0.0), |(p, t), l| {
+                let term = lambda[l] * bbar[l * n + i];
+                (p + term, t + term.abs())
+            });
+            let x = sigma * (path.qbar[i] + part);
+            self.value[i] = x;
+            let size = path.qbar[i].abs() + terms;
+            if !joined {
+                wscale = larger(wscale, size);
+                continue;
+            }
+            zscale = larger(zscale, size);
+            for l in 0..k {
+                let w = weight[l * n + i];
+                sums.load[l] += w * x;
+                sums.size[l] += (w * x).abs();
+                sums.h[l] -= w * path.gbar[i];
+                for m in 0..k {
+                    sums.g[(l, m)] -= w * bbar[m * n + i];
+                }
+            }
+        }
+        (self.scales[0], self.scales[1]) = (zscale, wscale);
+        let to_stop = self.direction()?;
+        self.newton_rates();
+        Ok(to_stop)
+    }
+
+    /// The Newton direction to the resultants from the sums (see the
+    /// module documentation); the path ends at a step of 1 along it.
+    fn direction(&mut self) -> Result<f64, Failure> {
+        let k = self.path.columns();
+        let rest: Vec<f64> = (0..k).map(|l| self.load[l] - self.sums.load[l]).collect();
+        let scale: Vec<f64> = (0..k)
+            .map(|l| self.sums.size[l] + self.load[l].abs())
+            .collect();
+        if (0..k).all(|l| rest[l].abs() <= self.tol.zero * scale[l]) {
+            // The resultants are met (to the zero tolerance of their terms).
+            self.delta.fill(0.0);
+            self.gamma.fill(0.0);
+            return Ok(0.0);
+        }
+        let Some(solve) = symmetric_solver(&self.sums.g) else {
+            return Err(Failure::new(Breakdown::SingularBorder, self.work));
+        };
+        self.delta = solve(&rest);
+        self.gamma = solve(&self.sums.h).into_iter().map(|v| -v).collect();
+        Ok(1.0)
+    }
+
+    /// The rates of a Newton step, `σ_i sum_l δ_l b̄_il`, and their scales.
+    fn newton_rates(&mut self) {
+        let n = self.n();
+        let k = self.path.columns();
+        let (mut zrates, mut wrates) = (0.0f64, 0.0f64);
+        for i in 0..n {
+            let sigma = if self.path.into[i] { -1.0 } else { 1.0 };
+            let r = sigma * (0..k).fold(0.0, |a, l| a + self.delta[l] * self.path.bbar[l * n + i]);
+            self.rate[i] = r;
+            if self.path.into[i] {
+                zrates = larger(zrates, r.abs());
+            } else {
+                wrates = larger(wrates, r.abs());
+            }
+        }
+        (self.scales[2], self.scales[3]) = (zrates, wrates);
+    }
+
+    /// Each falling value's step to zero along the step's direction (0 at
+    /// the zero level) into `reach`; returns the least.
+    fn steps(&mut self) -> f64 {
+        let [zscale, wscale, zrates, wrates] = self.scales.map(|v| self.tol.zero * v);
+        let mut least = f64::INFINITY;
+        for i in 0..self.n() {
             let (xi, ri) = (self.value[i], self.rate[i]);
             let (zero, falls) = if self.path.into[i] {
                 (zscale, -zrates)
@@ -414,20 +502,19 @@ impl Walk {
     /// Among the values whose steps tie the least `step` (those at zero,
     /// when it is 0), the first to reach zero under the perturbation
     /// `q + ε g`: the least `ε`-coefficient over the value's fall.
-    fn first_tied(&self, step: f64, direction: &Direction) -> Result<usize, Failure> {
+    fn first_tied(&self, step: f64) -> Result<usize, Failure> {
         let n = self.n();
         let k = self.path.columns();
         let tied = step + self.tol.tie * step;
+        let along_approach = self.along_approach();
         let key = |i: usize| {
             let sigma = if self.path.into[i] { -1.0 } else { 1.0 };
-            let moved = (0..k).fold(0.0, |a, l| {
-                a + self.path.bbar_column(l)[i] * direction.gamma[l]
+            if along_approach {
+                return (sigma * self.path.gbar[i]).max(0.0) / (-sigma * self.path.bbar[i]);
+            }
+            let e = (0..k).fold(self.path.gbar[i], |a, l| {
+                a + self.path.bbar[l * n + i] * self.gamma[l]
             });
-            let e = if k == 1 {
-                self.path.gbar[i]
-            } else {
-                self.path.gbar[i] + moved
-            };
             (sigma * e).max(0.0) / -self.rate[i]
         };
         let first = (0..n)

@@ -110,7 +110,8 @@ pub(crate) fn finish_on_active_set(
 pub(crate) enum PathStart {
     /// From the first contact along the first border column (the
     /// approach): the other free unknowns held at zero until the first
-    /// resultant is met, then all free (see `lemke_symmetric`).
+    /// resultant is met, then all free (see `lemke_symmetric`); when the
+    /// other resultants are zero.
     Approach,
     /// From the first contact of all the rows (a linear program with k
     /// rows), with the order in which the indices would touch from there.
@@ -138,10 +139,19 @@ pub(crate) fn path_start(problem: &Problem<'_>, options: &Options) -> Option<Pat
     if border.columns.ncols() == 0 {
         return None;
     }
-    if approach_column(problem) {
+    // Along the approach when the other resultants are zero (the contact
+    // starts where the aligned one does); otherwise from the first contact
+    // under all the resultants (an eccentric load: the contact starts
+    // under it), the approach if that has none.
+    let others_zero = border.resultant.iter().skip(1).all(|&b| b == 0.0);
+    let approach = approach_column(problem);
+    if approach && others_zero {
         return Some(PathStart::Approach);
     }
-    first_contact_order(problem, options).map(|(f, keys)| PathStart::FirstContact(f, keys))
+    match first_contact_order(problem, options) {
+        Some((f, keys)) => Some(PathStart::FirstContact(f, keys)),
+        None => approach.then_some(PathStart::Approach),
+    }
 }
 
 /// The order in which the indices of a bordered problem would touch, for

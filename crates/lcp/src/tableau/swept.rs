@@ -301,27 +301,6 @@ impl Path {
         self.bbar.len().checked_div(self.n).unwrap_or(0)
     }
 
-    /// Column `l` of `b̄`.
-    pub fn bbar_column(&self, l: usize) -> &[f64] {
-        &self.bbar[l * self.n..(l + 1) * self.n]
-    }
-
-    /// `out_i = Σ_l coefficients_l b̄_il`: the border's part of every value
-    /// at `λ = coefficients`, or of every rate along a direction.
-    pub fn combine(&self, coefficients: &[f64], out: &mut [f64]) {
-        let (first, rest) = coefficients
-            .split_first()
-            .expect("one border column at least");
-        for (o, &b) in out.iter_mut().zip(self.bbar_column(0)) {
-            *o = first * b;
-        }
-        for (l, &c) in rest.iter().enumerate() {
-            for (o, &b) in out.iter_mut().zip(self.bbar_column(l + 1)) {
-                *o += c * b;
-            }
-        }
-    }
-
     /// Applies the principal pivot on `p` (column `p` of `A` before it is
     /// `c`; `p` joins the active set or leaves it) to `q̄`, `b̄` and `ḡ`.
     pub(crate) fn sweep(&mut self, p: usize, c: &Col<f64>, joins: bool) {
