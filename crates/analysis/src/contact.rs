@@ -254,29 +254,21 @@ impl ContactProblem {
         fold: bool,
     ) -> Result<Self, AnalysisError> {
         let start = Instant::now();
-        let separation = separations(&points, geometry)?;
-        let rigid = Self::check(&points, &separation, &loading, load_point(&bodies))?;
-        let groups = Folding::detect_all(&points, &bodies);
-        let symmetric = symmetric_rigid(&groups, &points, &separation, &rigid);
-        let (folding, rigid) = match symmetric {
-            Some((f, r)) if fold => (Some(f.clone()), r),
-            Some((_, r)) => (None, r),
-            None => (None, rigid),
-        };
-        let influence = match &folding {
+        let layout = Layout::of(&points, bodies, geometry, &loading, fold)?;
+        let influence = match &layout.folding {
             Some(f) => assemble_folded(&points, &bodies, f)?,
             None => assemble(&points, &bodies)?,
         };
         Ok(Self {
             points,
             influence: Arc::new(influence),
-            separation,
+            separation: layout.separation,
             loading,
-            rigid,
+            rigid: layout.rigid,
             assembly_seconds: start.elapsed().as_secs_f64(),
             body_edges: (false, false),
-            folding: folding.map(Arc::new),
-            groups: Arc::new(groups),
+            folding: layout.folding.map(Arc::new),
+            groups: Arc::new(layout.groups),
         })
     }
 
@@ -307,7 +299,7 @@ impl ContactProblem {
                 },
             });
         }
-        let rigid = Self::check(&points, &separation, &loading, (0.0, 0.0))?;
+        let rigid = check(&points, &separation, &loading, (0.0, 0.0))?;
         Ok(Self {
             points,
             influence: Arc::new(influence),
@@ -319,33 +311,6 @@ impl ContactProblem {
             folding: None,
             groups: Arc::new(Vec::new()),
         })
-    }
-
-    /// Checks separations (size, finite) and loading (finite, P > 0) and
-    /// returns the rigid unknowns of the loading about `load_point`.
-    fn check(
-        points: &PointSet,
-        separation: &[f64],
-        loading: &Loading,
-        load_point: (f64, f64),
-    ) -> Result<Rigid, AnalysisError> {
-        let n = points.len();
-        if separation.len() != n {
-            return Err(AnalysisError::SizeMismatch {
-                field: "separation",
-                expected: n,
-                found: separation.len(),
-            });
-        }
-        if let Some((k, &v)) = separation.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(AnalysisError::NonFinite {
-                field: "separation",
-                index: k,
-                value: v,
-            });
-        }
-        loading.validate()?;
-        Rigid::of(loading, points, load_point)
     }
 
     /// The candidate points.
@@ -384,7 +349,7 @@ impl ContactProblem {
 
     fn with(&self, separation: Vec<f64>, loading: Loading) -> Result<Self, AnalysisError> {
         // Validate through from_parts' checks without copying S.
-        let rigid = Self::check(&self.points, &separation, &loading, self.rigid.load_point)?;
+        let rigid = check(&self.points, &separation, &loading, self.rigid.load_point)?;
         let rigid = match &self.folding {
             Some(f) => {
                 let groups = std::slice::from_ref(f.as_ref());
@@ -688,6 +653,97 @@ pub struct ContactSolution {
     pub solve_seconds: f64,
     /// Warnings: truncated zone, uncertain contact.
     pub warnings: Vec<Warning>,
+}
+
+/// What a problem will be, decided before its O(N^2) assembly: the
+/// initial separations, the rigid unknowns and, when folded, the orbits.
+/// [`ContactProblem::new`] and [`ContactProblem::symmetric`] build on it;
+/// a caller estimating a problem's memory and time reads it without
+/// assembling anything.
+#[derive(Debug, Clone)]
+pub struct Layout {
+    /// The initial separations eps (length), one per point.
+    pub separation: Vec<f64>,
+    /// The rigid unknowns: free (the border's columns), prescribed, and
+    /// dropped by symmetry.
+    pub rigid: Rigid,
+    /// The orbits the problem is folded with, if asked and symmetric.
+    pub folding: Option<Folding>,
+    /// The mirror groups the points and the models respect, largest first.
+    pub groups: Vec<Folding>,
+}
+
+impl Layout {
+    /// The layout of the problem `ContactProblem::new` (`fold` false) or
+    /// `ContactProblem::symmetric` (`fold` true) would build from these
+    /// arguments, with the same errors.
+    pub fn of(
+        points: &PointSet,
+        bodies: [&Body; 2],
+        geometry: &Geometry,
+        loading: &Loading,
+        fold: bool,
+    ) -> Result<Self, AnalysisError> {
+        let separation = separations(points, geometry)?;
+        let rigid = check(points, &separation, loading, load_point(&bodies))?;
+        let groups = Folding::detect_all(points, &bodies);
+        let symmetric = symmetric_rigid(&groups, points, &separation, &rigid);
+        let (folding, rigid) = match symmetric {
+            Some((f, r)) if fold => (Some(f.clone()), r),
+            Some((_, r)) => (None, r),
+            None => (None, rigid),
+        };
+        Ok(Self {
+            separation,
+            rigid,
+            folding,
+            groups,
+        })
+    }
+
+    /// The unknowns of the contact solve: one per orbit when folded, else
+    /// one per point.
+    pub fn unknowns(&self) -> usize {
+        self.folding
+            .as_ref()
+            .map_or(self.separation.len(), |f| f.len())
+    }
+
+    /// Whether some point starts in interference: a separation, shifted by
+    /// the prescribed motions, below zero (the engine's `q` has a negative
+    /// entry).
+    pub fn interference(&self, points: &PointSet) -> bool {
+        shifted(points, &self.separation, &self.rigid)
+            .iter()
+            .any(|&q| q < 0.0)
+    }
+}
+
+/// Checks separations (size, finite) and loading (finite, P > 0) and
+/// returns the rigid unknowns of the loading about `load_point`.
+fn check(
+    points: &PointSet,
+    separation: &[f64],
+    loading: &Loading,
+    load_point: (f64, f64),
+) -> Result<Rigid, AnalysisError> {
+    let n = points.len();
+    if separation.len() != n {
+        return Err(AnalysisError::SizeMismatch {
+            field: "separation",
+            expected: n,
+            found: separation.len(),
+        });
+    }
+    if let Some((k, &v)) = separation.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(AnalysisError::NonFinite {
+            field: "separation",
+            index: k,
+            value: v,
+        });
+    }
+    loading.validate()?;
+    Rigid::of(loading, points, load_point)
 }
 
 /// The point the load acts at: a beam's loaded point, else the origin.

@@ -44,7 +44,8 @@ pub mod references;
 pub mod rigid;
 
 pub use contact::{
-    ContactCertificate, ContactProblem, ContactSolution, Geometry, Surface, Warning, separations,
+    ContactCertificate, ContactProblem, ContactSolution, Geometry, Layout, Surface, Warning,
+    separations,
 };
 pub use elcon_lcp::{Method, Options};
 pub use error::AnalysisError;

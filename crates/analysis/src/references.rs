@@ -22,6 +22,15 @@
 //!   `y(z) = P lambda / (k (sinh lambda L + sin lambda L)) [2 cosh phi cos phi cosh lz cos lz
 //!   + (cosh phi sin phi - sinh phi cos phi)(cosh lz sin lz + sinh lz cos lz)]`, `lz = lambda z`;
 //!   at the centre `P lambda (cosh lambda L + cos lambda L + 2) / (2 k (sinh lambda L + sin lambda L))`.
+//! - The flat punch under a load `P` and a moment with first moment
+//!   `m = sum F x` about its centre, no lift-off while `|m| <= P a / 3`
+//!   (Johnson §3.8): `p = (P + 3 m x / a^2) / (2 pi a sqrt(a^2 - r^2))`, the
+//!   punch tilted by `3 m / (4 E* a^3)` toward the side of `m`.
+//! - The same finite beam under a concentrated load anywhere on it
+//!   ([`FiniteBeam`]): `E I w'''' + k w = P delta(x - e)` with free ends,
+//!   solved exactly on the two spans either side of the load (four waves
+//!   each; 8 conditions: free ends, continuity of `w`, `w'`, `w''` and the
+//!   jump `P` of the shear at the load).
 
 use std::f64::consts::PI;
 
@@ -165,6 +174,31 @@ impl FlatPunch {
         load / (2.0 * self.radius * self.combined_modulus)
     }
 
+    /// The largest first moment of the pressure about the centre, `P a / 3`,
+    /// the punch carries without lifting its heel.
+    pub fn lift_off_moment(&self, load: f64) -> f64 {
+        load * self.radius / 3.0
+    }
+
+    /// The punch's tilt under a first moment `m = sum F x` of the pressure
+    /// (no lift-off): `3 m / (4 E* a^3)` radians, pressing the side of `m`
+    /// deeper.
+    pub fn tilt(&self, first_moment: f64) -> f64 {
+        3.0 * first_moment / (4.0 * self.combined_modulus * self.radius.powi(3))
+    }
+
+    /// Pressure at `(x, y)` inside the punch under load `P` and first
+    /// moment `m = sum F x`: `(P + 3 m x / a^2) / (2 pi a sqrt(a^2 - r^2))`
+    /// (no lift-off; infinite at the edge, 0 outside).
+    pub fn pressure_with_moment(&self, load: f64, first_moment: f64, x: f64, y: f64) -> f64 {
+        let a = self.radius;
+        let r = x.hypot(y);
+        if r >= a {
+            return if r == a { f64::INFINITY } else { 0.0 };
+        }
+        (load + 3.0 * first_moment * x / (a * a)) / (2.0 * PI * a * (a * a - r * r).sqrt())
+    }
+
     /// Pressure at `r < a` under load `P`: `P / (2 pi a sqrt(a^2 - r^2))`
     /// (infinite at the edge; 0 outside).
     pub fn pressure(&self, load: f64, r: f64) -> f64 {
@@ -251,9 +285,223 @@ impl HetenyiBeam {
     }
 }
 
+/// A finite Euler-Bernoulli beam with free ends on a Winkler foundation
+/// under a concentrated load anywhere on it, the foundation bilateral
+/// (every point in contact; the solution holds for a tensionless one while
+/// the deflection stays positive: [`FiniteBeam::lifts_off`]).
+///
+/// `E I w'''' + k w = P delta(x - e)` on `|x| <= L/2` (x from the beam's
+/// middle), `w'' = w''' = 0` at both ends. On each span between an end and
+/// the load the solution is a sum of the four waves `exp(-lambda t)
+/// (cos, sin)(lambda t)` decaying from either end of the span (bounded by 1,
+/// so long beams do not overflow); the 8 coefficients solve the 8
+/// conditions (free ends; `w`, `w'`, `w''` continuous and `E I` times the
+/// jump of `w'''` equal to `P` at the load) by a faer LU. Units as
+/// [`HetenyiBeam`]; `w` is the deflection into the foundation, and the
+/// beam's rotation is `w'` (the tilt of elcon's loading about the load
+/// point is `-w'(e)`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FiniteBeam {
+    /// Flexural rigidity `E I`.
+    pub flexural_rigidity: f64,
+    /// Foundation modulus `k` per unit length of beam.
+    pub foundation_modulus: f64,
+    /// Beam length `L`.
+    pub length: f64,
+    /// The load `P`.
+    pub load: f64,
+    /// Where the load acts, `e`, from the beam's middle.
+    pub position: f64,
+    /// The span coefficients (see [`FiniteBeam::deflection`]).
+    coefficients: [f64; 8],
+}
+
+impl FiniteBeam {
+    /// The reference for `E I`, `k`, `L`, `P` (finite, > 0) and the load's
+    /// position `e` (strictly inside the beam).
+    pub fn new(
+        flexural_rigidity: f64,
+        foundation_modulus: f64,
+        length: f64,
+        load: f64,
+        position: f64,
+    ) -> Result<Self, AnalysisError> {
+        let mut beam = Self {
+            flexural_rigidity: positive("flexural_rigidity", flexural_rigidity)?,
+            foundation_modulus: positive("foundation_modulus", foundation_modulus)?,
+            length: positive("length", length)?,
+            load: positive("load", load)?,
+            position,
+            coefficients: [0.0; 8],
+        };
+        if !(position.is_finite() && position.abs() < 0.5 * length) {
+            return Err(AnalysisError::InvalidInput {
+                field: "position",
+                value: position,
+                reason: "the load must act strictly inside the beam, |e| < L / 2",
+            });
+        }
+        beam.coefficients = beam.solve();
+        Ok(beam)
+    }
+
+    /// The characteristic `lambda = (k / (4 E I))^(1/4)` (1/length).
+    pub fn lambda(&self) -> f64 {
+        (self.foundation_modulus / (4.0 * self.flexural_rigidity)).powf(0.25)
+    }
+
+    /// The spans: `[start, end]` of the left span and of the right one.
+    fn spans(&self) -> [(f64, f64); 2] {
+        let h = 0.5 * self.length;
+        [(-h, self.position), (self.position, h)]
+    }
+
+    /// The four waves of a span `[start, end]` and their first three
+    /// derivatives in x at `x`: `waves[d][j]`, d the order; j = 0, 1 are
+    /// `exp(-lt) cos lt`, `exp(-lt) sin lt` with `t = x - start`, j = 2, 3
+    /// the same with `t = end - x`.
+    fn waves(&self, (start, end): (f64, f64), x: f64) -> [[f64; 4]; 4] {
+        let l = self.lambda();
+        let mut w = [[0.0; 4]; 4];
+        for (side, t, sign) in [(0, x - start, 1.0), (1, end - x, -1.0)] {
+            let (c, s, d) = ((l * t).cos(), (l * t).sin(), (-l * t).exp());
+            let (mut f, mut g) = (d * c, d * s);
+            let mut factor = 1.0;
+            for order in w.iter_mut() {
+                order[2 * side] = factor * f;
+                order[2 * side + 1] = factor * g;
+                // d/dt (f, g) = (-f - g, f - g); d/dx = sign * l * d/dt.
+                (f, g) = (-f - g, f - g);
+                factor *= sign * l;
+            }
+        }
+        w
+    }
+
+    /// The 8 coefficients from the 8 conditions.
+    fn solve(&self) -> [f64; 8] {
+        use faer::linalg::solvers::Solve;
+        let [left, right] = self.spans();
+        let mut a = faer::Mat::<f64>::zeros(8, 8);
+        let mut b = faer::Col::<f64>::zeros(8);
+        // Free ends: w'' = w''' = 0.
+        for (row0, span, x, offset) in [(0, left, left.0, 0), (2, right, right.1, 4)] {
+            let w = self.waves(span, x);
+            for d in 0..2 {
+                for j in 0..4 {
+                    a[(row0 + d, offset + j)] = w[2 + d][j];
+                }
+            }
+        }
+        // At the load: w, w', w'' continuous; E I (w'''(e+) - w'''(e-)) = P.
+        let (l, r) = (
+            self.waves(left, self.position),
+            self.waves(right, self.position),
+        );
+        for d in 0..4 {
+            for j in 0..4 {
+                a[(4 + d, j)] = -l[d][j];
+                a[(4 + d, 4 + j)] = r[d][j];
+            }
+        }
+        b[7] = self.load / self.flexural_rigidity;
+        let x = a.partial_piv_lu().solve(&b);
+        std::array::from_fn(|i| x[i])
+    }
+
+    /// The `order`-th derivative of the deflection at `x` (0 outside the beam).
+    fn derivative(&self, x: f64, order: usize) -> f64 {
+        if x.abs() > 0.5 * self.length {
+            return 0.0;
+        }
+        let [left, right] = self.spans();
+        let (span, offset) = if x <= self.position {
+            (left, 0)
+        } else {
+            (right, 4)
+        };
+        let w = self.waves(span, x);
+        (0..4)
+            .map(|j| self.coefficients[offset + j] * w[order][j])
+            .sum()
+    }
+
+    /// Deflection into the foundation at `x` (from the beam's middle).
+    pub fn deflection(&self, x: f64) -> f64 {
+        self.derivative(x, 0)
+    }
+
+    /// The beam's slope `w'(x)`.
+    pub fn slope(&self, x: f64) -> f64 {
+        self.derivative(x, 1)
+    }
+
+    /// Foundation reaction per unit length at `x`: `k w(x)` (force/length).
+    pub fn load_intensity(&self, x: f64) -> f64 {
+        self.foundation_modulus * self.deflection(x)
+    }
+
+    /// Whether the bilateral solution pulls on the foundation somewhere
+    /// (some deflection negative, sampled at 2001 points along the beam):
+    /// then a tensionless foundation lifts off and this is no reference.
+    pub fn lifts_off(&self) -> bool {
+        let h = 0.5 * self.length;
+        (0..=2000).any(|i| self.deflection(-h + self.length * i as f64 / 2000.0) < 0.0)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_finite_beam_is_hetenyi_s_with_a_central_load_and_in_equilibrium_off_centre() {
+        let central = HetenyiBeam::new(1.6e8, 1e7, 8.9, 5e4).unwrap();
+        let beam = FiniteBeam::new(1.6e8, 1e7, 8.9, 5e4, 0.0).unwrap();
+        for i in 0..=20 {
+            let x = -4.45 + 8.9 * i as f64 / 20.0;
+            let (a, b) = (beam.deflection(x), central.deflection(x));
+            assert!(
+                (a - b).abs() <= 1e-12 * central.centre_deflection(),
+                "{x}: {a} {b}"
+            );
+        }
+        // Off centre: the foundation's reaction balances the load and its
+        // moment about the load (Simpson's rule on a fine grid).
+        let e = 1.3;
+        let beam = FiniteBeam::new(1.6e8, 1e7, 8.9, 5e4, e).unwrap();
+        let n = 20_000;
+        let h = 8.9 / n as f64;
+        let (mut force, mut moment) = (0.0, 0.0);
+        for i in 0..=n {
+            let x = -4.45 + h * i as f64;
+            let weight = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
+            let q = beam.load_intensity(x);
+            force += weight * q * h / 3.0;
+            moment += weight * q * (x - e) * h / 3.0;
+        }
+        assert!((force / 5e4 - 1.0).abs() < 1e-9, "{force}");
+        assert!(moment.abs() < 1e-9 * 5e4 * 8.9, "{moment}");
+        // Past the kern of a nearly rigid beam (e > L / 6) the far end pulls;
+        // well inside it (L = 6, e = 0.5) it does not.
+        assert!(beam.lifts_off());
+        assert!(
+            !FiniteBeam::new(1.6e8, 1e7, 6.0, 5e4, 0.5)
+                .unwrap()
+                .lifts_off()
+        );
+        // A soft beam loaded near its end lifts the far end.
+        let soft = FiniteBeam::new(1e6, 1e7, 8.9, 5e4, 3.5).unwrap();
+        assert!(soft.lifts_off());
+        // A load off the beam is refused.
+        assert!(FiniteBeam::new(1.0, 1.0, 2.0, 1.0, 1.0).is_err());
+    }
 
     #[test]
     fn hetenyi_general_form_meets_the_centre_and_end_formulas() {

@@ -41,7 +41,16 @@ fn every_case_is_certified_by_every_method() {
                 case.problem.loading().normal,
                 elcon_analysis::Normal::Load(_)
             );
-            if method == Method::Lemke || (method == Method::RestrictedSimplex && load_control) {
+            // (A border of several rows, a free rotation beside the
+            // approach, takes the restricted simplex to the general
+            // tableau: its swept form has one pin.)
+            // (Nor does a prescribed misalignment, which starts some points
+            // in interference.)
+            let rigid = case.problem.rigid();
+            let one_row = rigid.free.len() == 1 && rigid.prescribed.iter().all(|&(_, v)| v == 0.0);
+            if method == Method::Lemke
+                || (method == Method::RestrictedSimplex && load_control && one_row)
+            {
                 let s = &sol.statistics;
                 assert!(s.symmetric_tableau(), "{label}: {s:?}");
                 assert!(s.pivots() <= 2 * sol.forces.len(), "{label}: {s:?}");

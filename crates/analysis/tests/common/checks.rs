@@ -72,8 +72,14 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
     prop_assert!((total - sol.load).abs() <= TOL * total.abs().max(f64::MIN_POSITIVE));
     // Moments of the forces about the load point, against the reported ones
     // and, for a free rotation, the moment it balances (each to the scale
-    // of its terms, sum |F| |lever|).
+    // of the moments the forces can make, sum |F| times the largest lever:
+    // a contact on the axis alone makes none).
     let loading = problem.loading();
+    let force_sum: f64 = sol.forces.iter().map(|f| f.abs()).sum();
+    let reach = (0..n).fold(0.0f64, |a, k| {
+        a.max((points.x(k) - x0).abs())
+            .max((points.y(k) - y0).abs())
+    });
     for (moment, reported, lever, tilt) in [
         (
             (0..n)
@@ -96,7 +102,7 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
             loading.tilt_y,
         ),
     ] {
-        let scale = lever.max(f64::MIN_POSITIVE);
+        let scale = lever.max(force_sum * reach).max(f64::MIN_POSITIVE);
         prop_assert!(
             (moment - reported).abs() <= TOL * scale,
             "moment {moment} reported {reported}"

@@ -194,12 +194,7 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
     }
     // Size (the condition of S grows with refinement).
     for &n in sizes {
-        let hertz = HertzSpheres::new(
-            combined_modulus(&steel(), &steel()),
-            combined_radius(0.01, 0.1),
-            100.0,
-        )
-        .expect("Hertz");
+        let hertz = nominal_hertz();
         let a = hertz.contact_radius();
         let zone = 1.3 * a;
         let m0 = (n as f64 / std::f64::consts::PI).sqrt().round().max(1.0) as usize;
@@ -249,7 +244,94 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
             expect: Expect::Solved,
         });
     }
+    eccentric_and_tilted(&mut cases, across);
     cases
+}
+
+/// Loads off centre and misalignment: spheres under a load far off their
+/// apex (a free rotation balancing a moment), a flat punch at and past its
+/// lift-off moment (every point tied, then the heel lifting), an
+/// off-centre load on a free beam on a soft foundation, and a roller
+/// misaligned by 0.1 to 10 mrad (down to contact over a short length at
+/// one end).
+fn eccentric_and_tilted(cases: &mut Vec<Case>, across: usize) {
+    let hertz = nominal_hertz();
+    let a = hertz.contact_radius();
+    // The far load's zone is 3.3 radii: half the spacing keeps its N near
+    // the nominal grid's.
+    for (e, across) in [(0.5, across), (2.0, across / 2 + 1)] {
+        let (nominal, _) = spheres(steel(), steel(), 0.01, 0.1, 100.0, across, 1.3 + e);
+        let problem = nominal
+            .with_loading(Loading::load(100.0).with_moment_y(-100.0 * e * a))
+            .expect("eccentric load");
+        cases.push(Case {
+            family: "eccentric",
+            name: format!("spheres, load at x = {e} a"),
+            problem,
+            reference: Reference::None,
+            expect: Expect::Solved,
+        });
+    }
+    for factor in [1.0, 3.0] {
+        let (punch, closed) = scenes::flat_punch(steel(), 0.001, 10.0, 1e-6);
+        let load = closed.load(1e-6);
+        let problem = punch
+            .with_loading(Loading::load(load).with_moment_y(-factor * closed.lift_off_moment(load)))
+            .expect("punch under a moment");
+        cases.push(Case {
+            family: "eccentric",
+            name: format!("flat punch, {factor} x the lift-off moment"),
+            problem,
+            reference: Reference::None,
+            expect: Expect::EdgeWarning,
+        });
+    }
+    {
+        let (length, k) = (1.0f64, 1e8f64);
+        let ei = k / (4.0 * (10.0 / length).powi(4));
+        let n = 40;
+        let points = PointSet::line(-0.5 * length, 0.5 * length, n).expect("line");
+        let problem = ContactProblem::new(
+            points,
+            &Body::beam(ei, 1.0, 0.3 * length),
+            &Body::winkler(k),
+            &Geometry::Separation(vec![0.0; n]),
+            Loading::load(1e4),
+        )
+        .expect("beam problem");
+        cases.push(Case {
+            family: "eccentric",
+            name: "free beam, load at 0.3 L, lambda L = 10".into(),
+            problem,
+            reference: Reference::None,
+            expect: Expect::Solved,
+        });
+    }
+    for misalignment in [1e-4, 1e-3, 1e-2] {
+        let steel = steel();
+        let (radius, length, load) = (0.005, 0.01, 5e3);
+        let b = (4.0 * load / length * radius
+            / (std::f64::consts::PI * combined_modulus(&steel, &steel)))
+        .sqrt();
+        let points = PointSet::grid_rectangle(1.6 * b, 0.5 * length, 9, 40).expect("grid");
+        let body = Body::uniform_patch(steel);
+        let problem = ContactProblem::new(
+            points,
+            &body,
+            &body,
+            &Geometry::Surfaces(Surface::Cylinder { radius }, Surface::Plane),
+            Loading::load(load).with_tilt_x(misalignment),
+        )
+        .expect("roller")
+        .with_body_edges(false, true);
+        cases.push(Case {
+            family: "tilted",
+            name: format!("roller misaligned {} mrad", 1e3 * misalignment),
+            problem,
+            reference: Reference::None,
+            expect: Expect::Solved,
+        });
+    }
 }
 
 /// The relative error against the closed form, if one applies.
@@ -260,4 +342,15 @@ pub fn error(reference: Reference, approach: f64, load: f64) -> Option<f64> {
         Reference::Hetenyi(b) => Some(approach / b.centre_deflection() - 1.0),
         Reference::None => None,
     }
+}
+
+/// The Hertz solution of the nominal spheres (steel, R = 10 mm and 100 mm,
+/// 100 N).
+fn nominal_hertz() -> HertzSpheres {
+    HertzSpheres::new(
+        combined_modulus(&steel(), &steel()),
+        combined_radius(0.01, 0.1),
+        100.0,
+    )
+    .expect("Hertz")
 }
