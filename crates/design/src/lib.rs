@@ -56,5 +56,5 @@ pub use evaluate::{Evaluation, evaluate, evaluate_from, evaluate_known};
 pub use optimize::{
     Design, DesignOptions, Family, StartOutcome, axial_stations, design, fit_profile,
 };
-pub use profile::{Axis, JOHNS_GOHAR, LogCrown, Profile};
+pub use profile::{Axis, JOHNS_GOHAR, LogCrown, LogEnd, Profile};
 pub use target::{TargetSeparation, target_separation, uniform_target};

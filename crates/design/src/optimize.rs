@@ -502,7 +502,7 @@ fn program(
 }
 
 /// Designs the correction of `family` that minimizes the worst load
-/// intensity over `cases` (each under [`elcon_analysis::Loading::Load`]);
+/// intensity over `cases` (each under load control, [`elcon_analysis::Normal::Load`]);
 /// see the [module documentation](self) for the method and what it guarantees.
 ///
 /// # Errors

@@ -48,6 +48,18 @@ impl Axis {
 /// is that of Lundberg's profile at `1 - 0.3033 b / a` of the half-length.
 pub const JOHNS_GOHAR: f64 = 0.3033;
 
+/// How a logarithmic crown ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LogEnd {
+    /// Johns & Gohar's (1981) finite end drop: `k = 1 - 0.3033 b / a`.
+    #[default]
+    JohnsGohar,
+    /// Lundberg's (1939) own profile, `k = 1`: the drop grows without bound
+    /// toward the end of the crowned length (finite at every candidate point,
+    /// which stand half a cell short of it).
+    Lundberg,
+}
+
 /// A logarithmic crown (Lundberg 1939, Johns & Gohar 1981); see the
 /// [module documentation](self).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,6 +75,8 @@ pub struct LogCrown {
     pub radius: f64,
     /// Length of the flat middle l_f (0 for the Johns-Gohar profile).
     pub flat_length: f64,
+    /// How the profile ends (Johns-Gohar's finite drop, or Lundberg's).
+    pub end: LogEnd,
 }
 
 impl LogCrown {
@@ -73,7 +87,8 @@ impl LogCrown {
             .sqrt()
     }
 
-    /// The drop at the end of the crowned length (length).
+    /// The drop at the end of the crowned length (length; infinite for
+    /// Lundberg's end).
     pub fn end_drop(&self) -> f64 {
         self.drop_at(0.5 * self.length)
     }
@@ -84,7 +99,10 @@ impl LogCrown {
         if t == 0.0 {
             return 0.0;
         }
-        let k = 1.0 - JOHNS_GOHAR * self.half_width() / a;
+        let k = match self.end {
+            LogEnd::JohnsGohar => 1.0 - JOHNS_GOHAR * self.half_width() / a,
+            LogEnd::Lundberg => 1.0,
+        };
         let u = (t / a).min(1.0);
         self.design_load / (std::f64::consts::PI * self.length * self.combined_modulus)
             * -(1.0 - k * u * u).ln()
@@ -113,7 +131,7 @@ impl LogCrown {
             });
         }
         let a = 0.5 * (self.length - self.flat_length);
-        if JOHNS_GOHAR * self.half_width() >= a {
+        if self.end == LogEnd::JohnsGohar && JOHNS_GOHAR * self.half_width() >= a {
             return Err(DesignError::InvalidInput {
                 field: "log_crown.design_load",
                 value: self.design_load,
@@ -373,6 +391,7 @@ mod tests {
             combined_modulus: 115_384.6,
             radius: 5.0,
             flat_length: 0.0,
+            end: LogEnd::JohnsGohar,
         };
         let b = crown.half_width();
         assert!((b / 0.23487 - 1.0).abs() < 1e-3, "{b}");
@@ -388,6 +407,16 @@ mod tests {
         // Symmetric and monotone in |s|.
         assert_eq!(p.separation(-3.0).unwrap(), p.separation(3.0).unwrap());
         assert!(p.separation(4.0).unwrap() > p.separation(3.0).unwrap());
+        // Lundberg's own end: k = 1, unbounded at the end of the length.
+        let lundberg_crown = LogCrown {
+            end: LogEnd::Lundberg,
+            ..crown
+        };
+        let q = Profile::LogarithmicCrown(lundberg_crown);
+        let own = 10e3 / (std::f64::consts::PI * 10.0 * 115_384.6) * -(1.0f64 - 0.25).ln();
+        assert!((q.separation(2.5).unwrap() / own - 1.0).abs() < 1e-14);
+        assert_eq!(lundberg_crown.end_drop(), f64::INFINITY);
+        assert!(q.separation(4.9).unwrap() > p.separation(4.9).unwrap());
     }
 
     #[test]

@@ -24,9 +24,9 @@
 //! program, with c measured through `elcon run` on the reference machine
 //! (docs/reliability.md), rounded up.
 
-use elcon_analysis::{Method, Normal, separations};
+use elcon_analysis::{Layout, Method, Normal};
 use elcon_design::{Family, axial_stations};
-use elcon_influence::{Dimension, Folding, PointSet};
+use elcon_influence::{Dimension, PointSet};
 
 use crate::error::SceneError;
 use crate::memory::human;
@@ -38,10 +38,6 @@ const ENTRY: f64 = 8.0;
 /// What the process holds besides the matrices (code, threads, buffers),
 /// bytes: about what a run of a scene with a handful of points peaks at.
 pub const BASELINE: u64 = 32 << 20;
-
-/// The relative tolerance of the separations' mirror symmetry, as the
-/// contact problem folds (elcon-analysis).
-const SYMMETRY_TOLERANCE: f64 = 1e-14;
 
 /// Seconds per n^3 of a tableau method's solve on the symmetric tableau
 /// (Lemke's method; the restricted simplex under load without initial
@@ -177,29 +173,27 @@ fn to_bytes(b: f64) -> u64 {
 }
 
 /// The unknowns of the contact solve (one per orbit when the scene folds
-/// and its points, models and separations are mirror symmetric, as
-/// `ContactProblem::symmetric` decides, else N) and the tableau its method
-/// works on.
+/// and its points, models, separations and rigid motions are mirror
+/// symmetric, as `ContactProblem::symmetric` decides: `Layout`) and the
+/// tableau its method works on. The restricted simplex keeps the symmetric
+/// tableau only under load control, with one free rigid motion (the
+/// approach) and no point starting in interference; otherwise (an
+/// approach given, a free tilt, a prescribed misalignment that presses a
+/// point in) it works on the general tableau.
 fn unknowns(points: &PointSet, scene: &Scene) -> (usize, Tableau) {
-    let Ok(eps) = separations(points, &scene.geometry) else {
+    let bodies = [&scene.bodies[0].body, &scene.bodies[1].body];
+    let Ok(layout) = Layout::of(points, bodies, &scene.geometry, &scene.loading, scene.fold) else {
         return (points.len(), Tableau::General);
     };
-    let general = scene.method == Method::RestrictedSimplex
-        && !(matches!(scene.loading.normal, Normal::Load(_)) && eps.iter().all(|&e| e >= 0.0));
-    let tableau = if general {
+    let symmetric = matches!(scene.loading.normal, Normal::Load(_))
+        && layout.rigid.free.len() == 1
+        && !layout.interference(points);
+    let tableau = if scene.method == Method::RestrictedSimplex && !symmetric {
         Tableau::General
     } else {
         Tableau::Symmetric
     };
-    if !scene.fold {
-        return (points.len(), tableau);
-    }
-    let bodies = [&scene.bodies[0].body, &scene.bodies[1].body];
-    let n = Folding::detect_all(points, &bodies)
-        .into_iter()
-        .find(|f| f.is_invariant(&eps, SYMMETRY_TOLERANCE))
-        .map_or(points.len(), |f| f.len());
-    (n, tableau)
+    (layout.unknowns(), tableau)
 }
 
 /// Seconds per n^3 of a solve.
@@ -461,6 +455,31 @@ load = 100.0
         let e = Estimate::of(&scene(&general)).unwrap();
         assert_eq!(e.solve_bytes, bytes(7.75, n));
         assert!(e.seconds > Estimate::of(&scene(&simplex)).unwrap().seconds);
+    }
+
+    #[test]
+    fn a_moment_or_a_misalignment_is_counted_as_the_analysis_solves_it() {
+        // A moment about y breaks the mirror about x = 0: folded by the
+        // other mirror only (about half the points), and the restricted
+        // simplex, with a free tilt beside the approach, is on the general
+        // tableau.
+        let moment =
+            format!("{SPHERES}moment_y = 0.5\n[solver]\nmethod = \"restricted-simplex\"\n");
+        let e = Estimate::of(&scene(&moment)).unwrap();
+        assert!(
+            e.unknowns > e.points / 2 && e.unknowns < e.points * 6 / 10,
+            "{}",
+            e.unknowns
+        );
+        assert_eq!(e.solve_bytes, bytes(7.75, e.unknowns));
+        // A prescribed misalignment presses points in: the general tableau
+        // too; Lemke's method keeps the symmetric one.
+        let tilted = moment.replace("moment_y = 0.5", "tilt_y = 0.01");
+        let e = Estimate::of(&scene(&tilted)).unwrap();
+        assert_eq!(e.solve_bytes, bytes(7.75, e.unknowns));
+        let lemke = tilted.replace("restricted-simplex", "lemke");
+        let e = Estimate::of(&scene(&lemke)).unwrap();
+        assert_eq!(e.solve_bytes, bytes(2.5, e.unknowns));
     }
 
     #[test]

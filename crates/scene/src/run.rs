@@ -8,8 +8,8 @@ use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
 use elcon_design::{
-    DesignOptions, Evaluation, LogCrown, Profile, SearchOptions, axial_stations, crown_search,
-    design, evaluate, evaluate_known,
+    DesignOptions, Evaluation, LogCrown, LogEnd, Profile, SearchOptions, axial_stations,
+    crown_search, design, evaluate, evaluate_known,
 };
 use elcon_influence::Dimension;
 use serde::Serialize;
@@ -239,6 +239,14 @@ pub struct RunResult {
     pub seconds: Seconds,
     /// The approach alpha (length).
     pub approach: f64,
+    /// The rotations of body 1 about the x and y axes through the load
+    /// point (radians; 0 where symmetry makes them so).
+    pub tilt: XY,
+    /// The moments of the contact forces about the load point (force
+    /// length): `sum F (y - y0)`, `-sum F (x - x0)`.
+    pub moment: XY,
+    /// Where the resultant of the contact forces acts (length).
+    pub load_centre: XY,
     /// The load e^T F (force).
     pub load: f64,
     /// The largest load intensity max F_k / A_k (intensity unit).
@@ -257,6 +265,15 @@ pub struct RunResult {
     /// The design stage, if the scene has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub design: Option<DesignJson>,
+}
+
+/// A pair of components about x and y.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct XY {
+    /// About (or along) x.
+    pub x: f64,
+    /// About (or along) y.
+    pub y: f64,
 }
 
 /// A run's result with what the outputs need beyond result.json.
@@ -358,6 +375,18 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
             total: start.elapsed().as_secs_f64(),
         },
         approach: solution.approach,
+        tilt: XY {
+            x: solution.tilt_x,
+            y: solution.tilt_y,
+        },
+        moment: XY {
+            x: solution.moment_x,
+            y: solution.moment_y,
+        },
+        load_centre: XY {
+            x: solution.load_centre.0,
+            y: solution.load_centre.1,
+        },
         load: solution.load,
         max_pressure: solution.max_pressure,
         contact_points: solution.contact.len(),
@@ -628,6 +657,7 @@ fn design_stage(
                 combined_modulus: roller.combined_modulus,
                 radius: roller.radius,
                 flat_length: *flat_length,
+                end: LogEnd::JohnsGohar,
             });
             let after = evaluate(&cases, spec.axis, &profile, scene.method, &scene.options)
                 .map_err(fail)?;

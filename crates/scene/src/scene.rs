@@ -365,6 +365,25 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
             "the bodies' models (point-force, uniform-patch) need grid = \"disk\" or \"rectangle\"",
         ));
     }
+    if dimension == Dimension::Line {
+        // A line has one rotation, about the y axis.
+        let l = raw.loading.get_ref();
+        for (value, field) in [
+            (&l.moment_x, "loading.moment_x"),
+            (&l.tilt_x, "loading.tilt_x"),
+        ] {
+            if let Some(v) = value
+                && *v.get_ref() != 0.0
+            {
+                return Err(ctx.invalid(
+                    v.span(),
+                    field,
+                    v.get_ref().to_string(),
+                    "a line contact has one rotation, about the y axis: use loading.moment_y or loading.tilt_y",
+                ));
+            }
+        }
+    }
     let geometry = geometry(ctx, raw.geometry.as_ref(), dimension)?;
     sanity::curvatures(ctx, raw.geometry.as_ref(), &geometry)?;
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
@@ -744,16 +763,57 @@ fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneErr
 }
 
 fn loading(ctx: &Ctx<'_>, l: &Spanned<LoadingToml>) -> Result<Loading, SceneError> {
-    match (&l.get_ref().load, &l.get_ref().approach) {
-        (Some(p), None) => Ok(Loading::load(ctx.positive(p, "loading.load")?)),
-        (None, Some(a)) => Ok(Loading::approach(ctx.finite(a, "loading.approach")?)),
-        _ => Err(ctx.invalid(
-            l.span(),
-            "loading",
-            "",
-            "give exactly one of load (force; load control) and approach (length; displacement control)",
-        )),
+    let t = l.get_ref();
+    let mut loading = match (&t.load, &t.approach) {
+        (Some(p), None) => Loading::load(ctx.positive(p, "loading.load")?),
+        (None, Some(a)) => Loading::approach(ctx.finite(a, "loading.approach")?),
+        _ => {
+            return Err(ctx.invalid(
+                l.span(),
+                "loading",
+                "",
+                "give exactly one of load (force; load control) and approach (length; displacement control)",
+            ));
+        }
+    };
+    // Each rotation: free with its moment (default 0) or prescribed.
+    for (moment, tilt, moment_field, tilt_field) in [
+        (&t.moment_x, &t.tilt_x, "loading.moment_x", "loading.tilt_x"),
+        (&t.moment_y, &t.tilt_y, "loading.moment_y", "loading.tilt_y"),
+    ] {
+        let x_axis = moment_field.ends_with('x');
+        loading = match (moment, tilt) {
+            (Some(_), Some(angle)) => {
+                return Err(ctx.invalid(
+                    angle.span(),
+                    tilt_field,
+                    angle.get_ref().to_string(),
+                    format!(
+                        "give one of {moment_field} (a free rotation balancing that moment) and \
+                         {tilt_field} (a prescribed rotation, radians), not both"
+                    ),
+                ));
+            }
+            (Some(m), None) => {
+                let m = ctx.finite(m, moment_field)?;
+                if x_axis {
+                    loading.with_moment_x(m)
+                } else {
+                    loading.with_moment_y(m)
+                }
+            }
+            (None, Some(a)) => {
+                let a = ctx.finite(a, tilt_field)?;
+                if x_axis {
+                    loading.with_tilt_x(a)
+                } else {
+                    loading.with_tilt_y(a)
+                }
+            }
+            (None, None) => loading,
+        };
     }
+    Ok(loading)
 }
 
 fn points_spec(

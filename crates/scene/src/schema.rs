@@ -94,6 +94,10 @@ pub(crate) struct PointsToml {
 pub(crate) struct LoadingToml {
     pub load: Option<Spanned<f64>>,
     pub approach: Option<Spanned<f64>>,
+    pub moment_x: Option<Spanned<f64>>,
+    pub moment_y: Option<Spanned<f64>>,
+    pub tilt_x: Option<Spanned<f64>>,
+    pub tilt_y: Option<Spanned<f64>>,
 }
 
 /// `[solver]`.
