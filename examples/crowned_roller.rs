@@ -36,8 +36,8 @@ use std::path::{Path, PathBuf};
 use elcon::analysis::references::HertzCylinders;
 use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface};
 use elcon::design::{
-    Axis, DesignOptions, Evaluation, Family, LogCrown, Profile, SearchOptions, crown_search,
-    design, evaluate,
+    Axis, DesignOptions, Evaluation, Family, LogCrown, LogEnd, Profile, SearchOptions,
+    crown_search, design, evaluate,
 };
 use elcon::influence::{Body, Material, PointSet, combined_modulus};
 
@@ -139,6 +139,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         combined_modulus: e_star,
         radius: RADIUS,
         flat_length: 0.0,
+        end: LogEnd::JohnsGohar,
     };
     let logarithmic = evaluate(
         &cases,

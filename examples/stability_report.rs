@@ -2,24 +2,27 @@
 //! suite (crates/analysis/tests/common/stability_cases.rs) at the report's
 //! sizes (41 points across the Hertz cases, N up to 4096), by every method:
 //! N, a 1-norm condition estimate of S (Hager-Higham), pivots,
-//! refactorizations, whether the solve was retried, the certificate's worst
+//! refactorizations, the route (each attempt's tableau, with its method
+//! where the strategy moved to another, and why: fallback, retry), the
+//! certificate's worst
 //! relative residual, the error against the closed form, and pass or the
 //! error returned. "pass" means the certificate holds at 1e-12 and the
 //! case's expectation (a truncation warning, a single point) is met.
 //!
-//! Run: `cargo run --release --example stability_report` (about 35 s on the
-//! 2-core test machine, build included)
+//! Run: `cargo run --release --example stability_report` (about 30 s on the
+//! 2-core test machine, after the build)
 
 #[path = "../crates/analysis/tests/common/stability_cases.rs"]
 mod stability_cases;
 
 use elcon::analysis::{Method, Options, Warning};
+use elcon::lcp::{Reason, Statistics};
 use stability_cases::{Expect, catalogue, error};
 
 fn main() {
     let cases = catalogue(41, &[256, 1024, 2048, 4096]);
     println!(
-        "| family | case | N | cond_1(S) est. | method | pivots | refact. | retried | certificate | error | result |"
+        "| family | case | N | cond_1(S) est. | method | pivots | refact. | route | certificate | error | result |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     let (mut passed, mut total) = (0, 0);
@@ -30,12 +33,12 @@ fn main() {
             total += 1;
             let row = |pivots: String,
                        refact: String,
-                       retried: String,
+                       route: String,
                        cert: String,
                        err: String,
                        result: String| {
                 println!(
-                    "| {} | {} | {n} | {cond:.2e} | {method} | {pivots} | {refact} | {retried} | {cert} | {err} | {result} |",
+                    "| {} | {} | {n} | {cond:.2e} | {method} | {pivots} | {refact} | {route} | {cert} | {err} | {result} |",
                     case.family, case.name
                 );
             };
@@ -61,7 +64,7 @@ fn main() {
                     row(
                         st.pivots().to_string(),
                         st.refactorizations().to_string(),
-                        if st.retried() { "yes" } else { "no" }.into(),
+                        route(st),
                         format!("{:.1e}", sol.certificate.worst()),
                         error(case.reference, sol.approach, sol.load)
                             .map_or("-".into(), |e| format!("{e:+.2e}")),
@@ -85,4 +88,26 @@ fn main() {
     }
     println!();
     println!("{passed} of {total} solves pass");
+}
+
+/// The attempts of a solve in order: the tableau (or "block"), prefixed by
+/// the method where it is not the one asked for, suffixed by a reason other
+/// than the route's own order.
+fn route(st: &Statistics) -> String {
+    st.attempts
+        .iter()
+        .map(|a| {
+            let tableau = a.tableau.map_or("block", |t| t.name());
+            let step = if a.method == st.method {
+                tableau.to_string()
+            } else {
+                format!("{} {tableau}", a.method)
+            };
+            match a.reason {
+                Reason::First | Reason::Fallback => step,
+                reason => format!("{step} ({reason})"),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
