@@ -109,6 +109,34 @@ fn every_example_scene_runs_and_writes_the_documented_fields() {
             );
         }
         assert_eq!(r["certificate"]["holds"], true, "{scene}");
+        // The attempts log: each attempt's method, reason and outcome, one
+        // of them the answer returned.
+        let attempts = r["statistics"]["attempts"].as_array().expect("a log");
+        assert!(!attempts.is_empty(), "{scene}");
+        for a in attempts {
+            assert!(
+                Method::from_name(a["method"].as_str().unwrap()).is_some(),
+                "{scene}: {a}"
+            );
+            assert!(
+                a["reason"].is_string() && a["outcome"].is_string(),
+                "{scene}: {a}"
+            );
+            // Block pivoting has no tableau; the tableau methods name theirs.
+            assert_eq!(
+                a.get("tableau").is_some(),
+                a["method"] != "block-pivoting",
+                "{scene}: {a}"
+            );
+        }
+        assert_eq!(
+            attempts
+                .iter()
+                .filter(|a| a["outcome"] == "returned")
+                .count(),
+            1,
+            "{scene}"
+        );
         assert!(
             r["certificate"]["worst"].as_f64().unwrap() <= 1e-12,
             "{scene}"

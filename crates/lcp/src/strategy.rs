@@ -19,7 +19,7 @@
 //! not on an explicit symmetric tableau, nor where the options already are
 //! the retry's); of two answers the better certified is kept. An answer
 //! whose certificate does not hold is [`LcpError::Inaccurate`]; without
-//! an answer, the error of the route's last general attempt (which says
+//! an answer, the error of the route's last attempt that ended in one (which says
 //! what is wrong) stands. Every attempt is in [`Statistics::attempts`].
 //!
 //! Programs with complementarity constraints
@@ -241,8 +241,13 @@ fn route(problem: &Problem<'_>, method: Method, options: &Options) -> Result<Vec
         }
         Method::BlockPivoting => {
             block::applies(problem).map_err(|e| unsupported(Kind::BlockPivoting, e))?;
+            // The tableau option chooses the fallback's tableau; block
+            // pivoting itself has none, so a fallback the chosen tableau
+            // cannot take is left out rather than refusing the method.
             let mut route = vec![Kind::BlockPivoting];
-            route.extend(tableau_route(Kind::LemkeSymmetric, Kind::LemkeGeneral)?);
+            route.extend(
+                tableau_route(Kind::LemkeSymmetric, Kind::LemkeGeneral).unwrap_or_default(),
+            );
             Ok(route)
         }
     }
@@ -261,7 +266,9 @@ struct Ladder<'r, R: Routed> {
     options: &'r Options,
     statistics: Statistics,
     best: Option<Kept<R::Answer>>,
-    /// The error of the route's last general attempt, reported when nothing answers.
+    /// The engine error of the route's last attempt that ended in one (a
+    /// fallback's or the first's, never a retry's), reported when nothing
+    /// answers: it says what is wrong with the problem.
     error: Option<LcpError>,
     /// The kind of the last attempt.
     last: Option<Kind>,
@@ -506,6 +513,12 @@ impl ComplementaryProgram {
     /// numerical failure is the strategy's (see the module documentation).
     pub fn solve(&self, options: &Options) -> Result<ProgramSolution, LcpError> {
         options.validate(0)?;
+        if options.tableau == Tableau::Symmetric {
+            return Err(LcpError::Unsupported {
+                method: "the restricted-entry simplex",
+                reason: "a program with complementarity constraints has no symmetric tableau: use Tableau::Auto or Tableau::General".into(),
+            });
+        }
         let route = [Kind::RestrictedGeneral];
         let options = Options {
             tableau: Tableau::General,
@@ -593,6 +606,21 @@ mod tests {
         assert_eq!(
             route_of(&one, Method::Lemke, Tableau::Symmetric).unwrap(),
             [LemkeSymmetric]
+        );
+        // Block pivoting has no tableau: the option only chooses its
+        // fallback's, and a fallback that tableau cannot take is left out.
+        assert_eq!(
+            route_of(&one, Method::BlockPivoting, Tableau::Symmetric).unwrap(),
+            [BlockPivoting, LemkeSymmetric]
+        );
+        let zero_diagonal = BorderedLcp::new(mat![[0.0, 1.0], [1.0, 0.0]], col![0.0, 0.5])
+            .unwrap()
+            .with_border(mat![[1.0], [1.0]], col![1.0])
+            .unwrap();
+        assert!(route_of(&zero_diagonal, Method::Lemke, Tableau::Symmetric).is_err());
+        assert_eq!(
+            route_of(&zero_diagonal, Method::BlockPivoting, Tableau::Symmetric).unwrap(),
+            [BlockPivoting]
         );
     }
 

@@ -137,6 +137,15 @@ fn an_explicit_tableau_that_cannot_finish_is_an_error() {
     let e = mixed.solve(Method::Lemke, &opts).unwrap_err();
     assert!(matches!(e, LcpError::Unsupported { .. }));
     assert!(message(e).contains("the symmetric tableau takes a standard or bordered LCP"));
+    // Nor has a program with complementarity constraints.
+    let mut program = ProgramBuilder::new(1);
+    program
+        .dense_column("x", col![1.0].as_ref(), Bound::NonNegative)
+        .unwrap();
+    program.rhs(col![1.0].as_ref()).unwrap();
+    let e = program.build().unwrap().solve(&opts).unwrap_err();
+    assert!(matches!(e, LcpError::Unsupported { .. }), "{e}");
+    assert!(message(e).contains("has no symmetric tableau"));
 }
 
 #[test]

@@ -46,6 +46,7 @@ pub struct AttemptJson {
     /// The method ("lemke", "restricted-simplex", "block-pivoting").
     pub method: String,
     /// The tableau ("symmetric", "general"; absent for block pivoting).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub tableau: Option<String>,
     /// Why it ran ("first", "fallback", "relaxed-bounds", "retry").
     pub reason: String,
