@@ -352,7 +352,13 @@ fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
         Loading::load(10.0),
     )
     .unwrap();
-    for method in Method::ALL {
+    // S is only semidefinite (zero at the clamped point): the conjugate
+    // gradient refuses it, naming the method to use.
+    let e = problem
+        .solve(Method::ConjugateGradient, &Options::default())
+        .unwrap_err();
+    assert!(e.to_string().contains("Lemke"), "{e}");
+    for method in Method::PIVOTING {
         let sol = problem.solve(method, &Options::default()).unwrap();
         assert!(sol.certificate.holds(), "{method}: {}", sol.certificate);
         assert_solves(&problem, &sol, &format!("{method}"));

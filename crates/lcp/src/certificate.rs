@@ -34,6 +34,19 @@ pub(crate) struct MixedData<'a> {
     pub r: ColRef<'a, f64>,
 }
 
+/// The residual vectors a certificate is made of: `w` and the magnitude
+/// of its terms, the equality rows' residual and the magnitude of theirs.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Residuals<'a> {
+    pub z: ColRef<'a, f64>,
+    pub u: ColRef<'a, f64>,
+    pub nonneg_u: &'a [bool],
+    pub w: ColRef<'a, f64>,
+    pub w_terms: ColRef<'a, f64>,
+    pub equality: ColRef<'a, f64>,
+    pub equality_terms: ColRef<'a, f64>,
+}
+
 /// Relative residuals of a solution, computed from the original data.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Certificate {
@@ -105,8 +118,51 @@ impl Certificate {
             w[i] += q[i];
             w_terms[i] += q[i].abs();
         }
+        let (e, e_terms) = if c.nrows() > 0 {
+            let mut e = matvec(c, z);
+            let mut e_terms = abs_matvec(c, z);
+            if u.nrows() > 0 {
+                e += matvec(d, u);
+                e_terms += abs_matvec(d, u);
+            }
+            for i in 0..c.nrows() {
+                e[i] += r[i];
+                e_terms[i] += r[i].abs();
+            }
+            (e, e_terms)
+        } else {
+            (Col::zeros(0), Col::zeros(0))
+        };
+        let cert = Self::from_residuals(
+            &Residuals {
+                z,
+                u,
+                nonneg_u,
+                w: w.as_ref(),
+                w_terms: w_terms.as_ref(),
+                equality: e.as_ref(),
+                equality_terms: e_terms.as_ref(),
+            },
+            tolerance,
+        );
+        (cert, w)
+    }
+
+    /// The certificate of residuals computed elsewhere (the mixed form's
+    /// above, or a matrix-free problem's from its operator).
+    pub(crate) fn from_residuals(res: &Residuals<'_>, tolerance: f64) -> Self {
+        let Residuals {
+            z,
+            u,
+            nonneg_u,
+            w,
+            w_terms,
+            equality,
+            equality_terms,
+        } = *res;
+        let n = z.nrows();
         let z_scale = norm_inf(z);
-        let w_scale = norm_inf(w_terms.as_ref());
+        let w_scale = norm_inf(w_terms);
         let rel = |v: f64, s: f64| if s > 0.0 { v / s } else { 0.0 };
         let min_z = rel(
             z.iter()
@@ -128,22 +184,8 @@ impl Certificate {
         let min_u = (0..u.nrows())
             .filter(|&j| nonneg_u[j])
             .fold(0.0f64, |a, j| a.min(rel(u[j], u_scale)));
-        let equality = if c.nrows() > 0 {
-            let mut e = matvec(c, z);
-            let mut e_terms = abs_matvec(c, z);
-            if u.nrows() > 0 {
-                e += matvec(d, u);
-                e_terms += abs_matvec(d, u);
-            }
-            for i in 0..c.nrows() {
-                e[i] += r[i];
-                e_terms[i] += r[i].abs();
-            }
-            rel(norm_inf(e.as_ref()), norm_inf(e_terms.as_ref()))
-        } else {
-            0.0
-        };
-        let cert = Self {
+        let equality = rel(norm_inf(equality), norm_inf(equality_terms));
+        Self {
             min_z: if n == 0 { 0.0 } else { min_z },
             min_w: if n == 0 { 0.0 } else { min_w },
             min_u,
@@ -157,8 +199,7 @@ impl Certificate {
                 .chain(u.iter())
                 .chain(w.iter())
                 .all(|v| v.is_finite()),
-        };
-        (cert, w)
+        }
     }
 }
 

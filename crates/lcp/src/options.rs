@@ -37,11 +37,29 @@ pub enum Method {
     /// it breaks down (a principal block that is not positive definite, its
     /// iteration cap) the strategy finishes by Lemke's method.
     BlockPivoting,
+    /// The constrained conjugate gradient of Polonsky & Keer (1999),
+    /// generalized to a border of k rows: iterative, it needs only products
+    /// `M x`, so it also solves problems whose `M` is an operator
+    /// ([`OperatorLcp`](crate::OperatorLcp): an FFT convolution on a large
+    /// grid). For a symmetric positive definite `M`; it stops when the
+    /// certificate's residuals are below a fraction of its tolerance
+    /// ([`ITERATIVE_STOP`](crate::tolerance::ITERATIVE_STOP)). No fallback:
+    /// an answer whose certificate does not hold is an error.
+    ConjugateGradient,
 }
 
 impl Method {
     /// Every method, in a stable order.
-    pub const ALL: [Method; 3] = [
+    pub const ALL: [Method; 4] = [
+        Method::RestrictedSimplex,
+        Method::Lemke,
+        Method::BlockPivoting,
+        Method::ConjugateGradient,
+    ];
+
+    /// The exact (pivoting) methods: they finish in finitely many pivots on
+    /// a dense `M` and agree to rounding.
+    pub const PIVOTING: [Method; 3] = [
         Method::RestrictedSimplex,
         Method::Lemke,
         Method::BlockPivoting,
@@ -50,12 +68,14 @@ impl Method {
     /// The dense-tableau methods (they work for any matrix of their class).
     pub const TABLEAU: [Method; 2] = [Method::RestrictedSimplex, Method::Lemke];
 
-    /// A short lower-case name ("restricted-simplex", "lemke", "block-pivoting").
+    /// A short lower-case name ("restricted-simplex", "lemke", "block-pivoting",
+    /// "conjugate-gradient").
     pub fn name(self) -> &'static str {
         match self {
             Method::RestrictedSimplex => "restricted-simplex",
             Method::Lemke => "lemke",
             Method::BlockPivoting => "block-pivoting",
+            Method::ConjugateGradient => "conjugate-gradient",
         }
     }
 
@@ -104,6 +124,10 @@ const RETRY_REFACTOR: usize = 10;
 /// Refinement steps of the retry after a numerical failure.
 const RETRY_REFINEMENT: usize = 10;
 
+/// Default iteration cap of the conjugate gradient (it converges in tens to
+/// hundreds of iterations on contact problems; the cap stops a stall).
+const ITERATION_CAP: usize = 10_000;
+
 /// Options of a solve. `Options::default()` suits well-posed problems.
 #[derive(Debug, Clone)]
 pub struct Options {
@@ -113,7 +137,9 @@ pub struct Options {
     /// The tableau methods stop with [`LcpError::PivotLimit`] when a solve
     /// needs more than this many pivots (default: `20 (rows + unknowns) +
     /// 100`); block pivoting takes at most this many iterations (default
-    /// `3 n + 50`) before it breaks down.
+    /// `3 n + 50`) before it breaks down; the conjugate gradient at most
+    /// this many iterations (default `ITERATION_CAP`, 10,000), after which
+    /// its last iterate is certified like any answer.
     pub max_pivots: Option<usize>,
     /// The general tableau is recomputed from the original data every this
     /// many pivots (default: `max(100, rows)`; 0 disables periodic
@@ -138,6 +164,10 @@ pub struct Options {
     /// basic (e.g. [`LcpSolution::basic`](crate::LcpSolution::basic) of a
     /// previous, similar solve).
     pub warm_start: Option<Vec<bool>>,
+    /// A warm start for the conjugate gradient: its first iterate `z`
+    /// (clipped to `z >= 0` and restored to the border's rows), e.g. the
+    /// `z` of a previous, similar solve. Length `n`.
+    pub initial_z: Option<Vec<f64>>,
 }
 
 impl Default for Options {
@@ -152,6 +182,7 @@ impl Default for Options {
             covering_vector: None,
             parallelism: None,
             warm_start: None,
+            initial_z: None,
         }
     }
 }
@@ -167,6 +198,19 @@ impl Options {
                 field: "max_pivots",
                 value: "0".into(),
                 reason: "must be at least 1",
+            });
+        }
+        if let Some((index, &value)) = self
+            .initial_z
+            .iter()
+            .flatten()
+            .enumerate()
+            .find(|(_, v)| !v.is_finite())
+        {
+            return Err(LcpError::InvalidOption {
+                field: "initial_z",
+                value: format!("entry {index} = {value}"),
+                reason: "every entry must be finite",
             });
         }
         let Some(d) = &self.covering_vector else {
@@ -224,6 +268,11 @@ impl Options {
             refinement_steps: steps,
             ..self.clone()
         })
+    }
+
+    /// The conjugate gradient's iteration cap.
+    pub(crate) fn iteration_cap(&self) -> usize {
+        self.max_pivots.unwrap_or(ITERATION_CAP)
     }
 
     /// Pivots between refactorizations of a general tableau of `rows` rows.

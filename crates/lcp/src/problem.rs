@@ -123,22 +123,7 @@ impl<'a> BorderedLcpRef<'a> {
         border: MatRef<'a, f64>,
         resultant: ColRef<'a, f64>,
     ) -> Result<Self, LcpError> {
-        let n = self.q.nrows();
-        check_dims(
-            "border",
-            border.nrows(),
-            border.ncols(),
-            n,
-            resultant.nrows(),
-        )?;
-        check_finite_mat("border", border)?;
-        check_finite_col("resultant", resultant)?;
-        if let Some(column) = dependent_column(border) {
-            return Err(LcpError::RankDeficient {
-                field: "border",
-                column,
-            });
-        }
+        check_border(self.q.nrows(), border, resultant)?;
         Ok(Self {
             border,
             resultant,
@@ -175,6 +160,31 @@ impl<'a> BorderedLcpRef<'a> {
     pub fn resultant(&self) -> ColRef<'a, f64> {
         self.resultant
     }
+}
+
+/// Checks a border `B` (n x k) and its resultants `b` (k): sizes, finite
+/// entries, full column rank.
+pub(crate) fn check_border(
+    n: usize,
+    border: MatRef<'_, f64>,
+    resultant: ColRef<'_, f64>,
+) -> Result<(), LcpError> {
+    check_dims(
+        "border",
+        border.nrows(),
+        border.ncols(),
+        n,
+        resultant.nrows(),
+    )?;
+    check_finite_mat("border", border)?;
+    check_finite_col("resultant", resultant)?;
+    if let Some(column) = dependent_column(border) {
+        return Err(LcpError::RankDeficient {
+            field: "border",
+            column,
+        });
+    }
+    Ok(())
 }
 
 /// An owned bordered LCP (see [`BorderedLcpRef`]).

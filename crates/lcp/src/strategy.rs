@@ -32,10 +32,12 @@ use faer::Col;
 
 use crate::LcpError;
 use crate::certificate::Certificate;
+use crate::certificate::Residuals;
 use crate::methods::{
-    Answer, Failure, NotApplicable, block, lemke_general, lemke_symmetric, restricted_general,
-    restricted_symmetric,
+    Answer, Failure, NotApplicable, block, conjugate_gradient, lemke_general, lemke_symmetric,
+    restricted_general, restricted_symmetric,
 };
+use crate::operator::OperatorLcp;
 use crate::options::{Method, Options, Tableau};
 use crate::problem::{BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedBorder, MixedLcp, Problem};
 use crate::program::ComplementaryProgram;
@@ -50,6 +52,7 @@ enum Kind {
     RestrictedSymmetric,
     RestrictedGeneral,
     BlockPivoting,
+    ConjugateGradient,
 }
 
 impl Kind {
@@ -58,6 +61,7 @@ impl Kind {
             Kind::LemkeSymmetric | Kind::LemkeGeneral => Method::Lemke,
             Kind::RestrictedSymmetric | Kind::RestrictedGeneral => Method::RestrictedSimplex,
             Kind::BlockPivoting => Method::BlockPivoting,
+            Kind::ConjugateGradient => Method::ConjugateGradient,
         }
     }
 
@@ -65,15 +69,17 @@ impl Kind {
         match self {
             Kind::LemkeSymmetric | Kind::RestrictedSymmetric => Some(Tableau::Symmetric),
             Kind::LemkeGeneral | Kind::RestrictedGeneral => Some(Tableau::General),
-            Kind::BlockPivoting => None,
+            Kind::BlockPivoting | Kind::ConjugateGradient => None,
         }
     }
 
-    /// The general-tableau attempt of a method (the retry's).
-    fn general(method: Method) -> Self {
+    /// The general-tableau attempt of a method (the retry's); `None` for
+    /// the conjugate gradient, which has no tableau and no retry.
+    fn general(method: Method) -> Option<Self> {
         match method {
-            Method::RestrictedSimplex => Kind::RestrictedGeneral,
-            Method::Lemke | Method::BlockPivoting => Kind::LemkeGeneral,
+            Method::RestrictedSimplex => Some(Kind::RestrictedGeneral),
+            Method::Lemke | Method::BlockPivoting => Some(Kind::LemkeGeneral),
+            Method::ConjugateGradient => None,
         }
     }
 
@@ -130,6 +136,16 @@ impl Routed for Problem<'_> {
             Kind::RestrictedSymmetric => restricted_symmetric::attempt(self, options),
             Kind::RestrictedGeneral => restricted_general::attempt(self, options, relaxed),
             Kind::BlockPivoting => block::attempt(self, options),
+            Kind::ConjugateGradient => match conjugate_gradient::applies(self) {
+                Ok(form) => conjugate_gradient::attempt(&form, options),
+                Err(e) => Err(Failure::error(
+                    LcpError::Unsupported {
+                        method: "the conjugate gradient",
+                        reason: e.reason,
+                    },
+                    Work::default(),
+                )),
+            },
         }?;
         Ok(Solved {
             answer,
@@ -190,14 +206,88 @@ impl Routed for ComplementaryProgram {
     }
 }
 
+impl Routed for OperatorLcp<'_> {
+    type Answer = Solved;
+
+    fn attempt(&self, _kind: Kind, options: &Options, _relaxed: bool) -> Result<Solved, Failure> {
+        let form = conjugate_gradient::Form {
+            operator: self.operator,
+            q: self.q,
+            border: self.border,
+            resultant: self.resultant,
+        };
+        let answer = conjugate_gradient::attempt(&form, options)?;
+        Ok(Solved {
+            answer,
+            w: Col::zeros(0),
+        })
+    }
+
+    /// The certificate from products of the original operator:
+    /// `w = M z - B λ + q` and `|M| z + |B| |λ| + |q|`, `B^T z - b` and
+    /// `|B|^T z + |b|`.
+    fn certify(&self, solved: &mut Solved, tolerance: f64) -> Certificate {
+        let (z, lambda) = (&solved.answer.z, &solved.answer.u);
+        let n = z.nrows();
+        let z_slice: Vec<f64> = z.iter().copied().collect();
+        let mut w = vec![0.0; n];
+        let mut w_terms = vec![0.0; n];
+        self.operator.apply(&z_slice, &mut w);
+        let z_abs: Vec<f64> = z_slice.iter().map(|v| v.abs()).collect();
+        self.operator.apply_abs(&z_abs, &mut w_terms);
+        let shift = self.border * lambda;
+        let abs_border = self.border.map(|v| v.abs());
+        let lambda_abs = lambda.map(|v| v.abs());
+        let shift_terms = &abs_border * &lambda_abs;
+        let w = Col::from_fn(n, |i| w[i] - shift[i] + self.q[i]);
+        let w_terms = Col::from_fn(n, |i| w_terms[i] + shift_terms[i] + self.q[i].abs());
+        let equality = self.border.transpose() * z - self.resultant;
+        let equality_terms =
+            abs_border.transpose() * z.map(|v| v.abs()) + self.resultant.map(|v| v.abs());
+        let nonneg = vec![false; lambda.nrows()];
+        let certificate = Certificate::from_residuals(
+            &Residuals {
+                z: z.as_ref(),
+                u: lambda.as_ref(),
+                nonneg_u: &nonneg,
+                w: w.as_ref(),
+                w_terms: w_terms.as_ref(),
+                equality: equality.as_ref(),
+                equality_terms: equality_terms.as_ref(),
+            },
+            tolerance,
+        );
+        solved.w = w;
+        certificate
+    }
+
+    fn work(solved: &Solved) -> Work {
+        solved.answer.work
+    }
+
+    fn relaxable(&self) -> bool {
+        false
+    }
+
+    fn size(&self) -> usize {
+        OperatorLcp::size(self)
+    }
+}
+
+/// A method's name in an error message.
+fn described(method: Method) -> &'static str {
+    match method {
+        Method::Lemke => "Lemke's method",
+        Method::RestrictedSimplex => "the restricted-entry simplex",
+        Method::BlockPivoting => "block principal pivoting",
+        Method::ConjugateGradient => "the conjugate gradient",
+    }
+}
+
 /// The attempts of `method` on `problem` before any retry, in order.
 fn route(problem: &Problem<'_>, method: Method, options: &Options) -> Result<Vec<Kind>, LcpError> {
     let unsupported = |kind: Kind, e: NotApplicable| LcpError::Unsupported {
-        method: match kind.method() {
-            Method::Lemke => "Lemke's method",
-            Method::RestrictedSimplex => "the restricted-entry simplex",
-            Method::BlockPivoting => "block principal pivoting",
-        },
+        method: described(kind.method()),
         reason: e.reason,
     };
     let tableau_route = |symmetric: Kind, general: Kind| -> Result<Vec<Kind>, LcpError> {
@@ -250,6 +340,10 @@ fn route(problem: &Problem<'_>, method: Method, options: &Options) -> Result<Vec
             );
             Ok(route)
         }
+        // No tableau and no fallback: the method asked for is the answer's.
+        Method::ConjugateGradient => conjugate_gradient::applies(problem)
+            .map(|_| vec![Kind::ConjugateGradient])
+            .map_err(|e| unsupported(Kind::ConjugateGradient, e)),
     }
 }
 
@@ -380,7 +474,9 @@ impl<'r, R: Routed> Ladder<'r, R> {
         if !failed || self.options.tableau == Tableau::Symmetric {
             return;
         }
-        let kind = Kind::general(method);
+        let Some(kind) = Kind::general(method) else {
+            return;
+        };
         let options = match self.options.retry() {
             Some(retry) => retry,
             // Options that already are the retry's: only a different
@@ -501,6 +597,34 @@ impl MixedLcp {
     /// write a symmetric border as a [`BorderedLcp`] for it).
     pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
         solve_problem(&Problem::mixed(self.view()), method, options)
+    }
+}
+
+impl OperatorLcp<'_> {
+    /// Solves with `method`, which must be [`Method::ConjugateGradient`]
+    /// (the pivoting methods need `M`'s entries); the certificate is
+    /// computed from products of the original operator and the original
+    /// data, and an uncertified answer is an error
+    /// ([`LcpError::Inaccurate`]).
+    pub fn solve(&self, method: Method, options: &Options) -> Result<LcpSolution, LcpError> {
+        options.validate(0)?;
+        if method != Method::ConjugateGradient {
+            return Err(LcpError::Unsupported {
+                method: described(method),
+                reason: "this problem's M is an operator (its products only): use the conjugate gradient".into(),
+            });
+        }
+        let route = [Kind::ConjugateGradient];
+        let (solved, certificate, statistics) = solve_routed(self, method, &route, options)?;
+        let Solved { answer, w } = solved;
+        Ok(LcpSolution {
+            z: answer.z,
+            w,
+            u: answer.u,
+            basic: answer.basic,
+            certificate,
+            statistics,
+        })
     }
 }
 

@@ -114,3 +114,38 @@ pub(crate) const REFINED: f64 = f64::EPSILON;
 /// a distance of about 1e-6, past which the border's Schur complement has a
 /// condition number near `1 / u`).
 pub(crate) const BORDER_RANK: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// The conjugate-gradient method stops when its residuals (the ones the
+/// certificate measures, computed from its iterate) are at most this
+/// fraction of the certificate's tolerance, so that the certificate from
+/// the original data, which sums in another order, holds with room.
+pub const ITERATIVE_STOP: f64 = 0.25;
+
+/// The conjugate gradient's rows `B^T z = b` count as restored when each
+/// row's residual is at most this times the magnitude of its terms
+/// (`2^-46 ≈ 1.4e-14`: a few units of rounding of the row's sum).
+pub(crate) const ROWS_RESTORED: f64 = 1.0 / (1u64 << 46) as f64;
+
+/// The restoration of several rows fails when Newton's method stops (no
+/// decrease left) with a row's residual above this times the largest
+/// magnitude of the rows' terms (`2^-36 ≈ 1.5e-11`): the contact set cannot
+/// carry the rows. Below it, what is left is rounding, and the iteration's
+/// own test of the rows decides.
+pub(crate) const ROWS_STALLED: f64 = 1.0 / (1u64 << 36) as f64;
+
+/// Newton steps of the restoration of several rows before it gives up.
+pub(crate) const RESTORE_STEPS: usize = 60;
+
+/// Sufficient decrease of the restoration's line search (Armijo's constant).
+pub(crate) const ARMIJO: f64 = 1e-4;
+
+/// Rounds of the additive correction that restores several rows when the
+/// contact set cannot carry them (each round clips what went negative; the
+/// next corrects the clipped remainder).
+pub(crate) const EQUALITY_CORRECTIONS: usize = 10;
+
+/// The conjugate gradient fits `λ` on a contact set too small to carry the
+/// border's rows (an early iterate) by normal equations with this times
+/// their largest diagonal entry added to the diagonal: near the least-norm
+/// fit (`2^-30 ≈ 1e-9`, far above rounding, far below the data).
+pub(crate) const RIDGE: f64 = 1.0 / (1u64 << 30) as f64;

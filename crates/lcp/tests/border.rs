@@ -5,7 +5,7 @@
 //! from the original data: against brute-force enumeration of the active
 //! sets for small n, against Lemke's general tableau for larger n.
 
-use elcon_lcp::{BorderedLcp, LcpError, Method, Options, Tableau};
+use elcon_lcp::{BorderedLcp, LcpError, Method, OperatorLcp, Options, Tableau};
 use faer::{Col, Mat};
 use proptest::prelude::*;
 
@@ -190,7 +190,7 @@ fn residuals(k: &Known, z: &Col<f64>, lambda: &Col<f64>) -> f64 {
 }
 
 /// Every method with every tableau that applies: `(method, tableau)`.
-const ROUTES: [(Method, Tableau); 7] = [
+const ROUTES: [(Method, Tableau); 8] = [
     (Method::Lemke, Tableau::Auto),
     (Method::Lemke, Tableau::Symmetric),
     (Method::Lemke, Tableau::General),
@@ -198,6 +198,7 @@ const ROUTES: [(Method, Tableau); 7] = [
     (Method::RestrictedSimplex, Tableau::General),
     (Method::BlockPivoting, Tableau::Auto),
     (Method::BlockPivoting, Tableau::General),
+    (Method::ConjugateGradient, Tableau::Auto),
 ];
 
 /// Solves `k` by every route; each answer certified and equal to `(z, λ)`
@@ -365,5 +366,62 @@ fn block_pivoting_solves_borders_of_several_rows_itself() {
             own * 10 >= trials * 9,
             "k = {k}: block pivoting answered {own} of {trials} itself"
         );
+    }
+}
+
+/// The same problems with `M` given only by its products (an
+/// [`OperatorLcp`]): the conjugate gradient returns the known solution,
+/// certified from products of the operator, and the pivoting methods refuse
+/// the problem naming the method to use.
+#[test]
+fn operator_problems_solve_by_the_conjugate_gradient() {
+    let mut rng = 0x1234_5678_9abc_def1u64;
+    let mut next = move || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for k in [0, 1, 2, 3] {
+        for _ in 0..20 {
+            let n = 10 + (next() * 50.0) as usize;
+            let a: Vec<f64> = (0..n * n).map(|_| 2.0 * next() - 1.0).collect();
+            let draw = Draw {
+                coords: (0..180).map(|_| 2.0 * next() - 1.0).collect(),
+                active: (0..60).map(|_| next() < 0.5).collect(),
+                values: (0..60).map(|_| next()).collect(),
+                lambda: (0..3).map(|_| 2.0 * next() - 1.0).collect(),
+            };
+            let known = known(spd(n, &a, 0.3), k.max(1), &draw, false);
+            // k = 0: the standard LCP of the same M and q (its own solution).
+            let m = known.m.as_ref();
+            let border = known.border.as_ref().subcols(0, k);
+            let resultant = known.resultant.as_ref().subrows(0, k);
+            let lcp = OperatorLcp::new(&m, known.q.as_ref())
+                .unwrap()
+                .with_border(border, resultant)
+                .unwrap();
+            let sol = lcp
+                .solve(Method::ConjugateGradient, &Options::default())
+                .unwrap();
+            assert!(sol.certificate.holds(), "k = {k}: {}", sol.certificate);
+            let exact = BorderedLcp::new(known.m.clone(), known.q.clone())
+                .unwrap()
+                .with_border(border.to_owned(), resultant.to_owned())
+                .unwrap()
+                .solve(Method::BlockPivoting, &Options::default())
+                .unwrap();
+            assert!(rel_diff(&sol.z, &exact.z) < 1e-8, "k = {k}");
+            assert!(rel_diff(&sol.w, &exact.w) < 1e-8, "k = {k}");
+            if k > 0 {
+                assert!(rel_diff(&sol.z, &known.z) < 1e-8, "k = {k}");
+            }
+            let e = lcp.solve(Method::Lemke, &Options::default()).unwrap_err();
+            assert!(
+                matches!(e, LcpError::Unsupported { .. })
+                    && e.to_string().contains("conjugate gradient"),
+                "{e}"
+            );
+        }
     }
 }

@@ -75,11 +75,14 @@ pub enum Tableau {
 /// measurements are in docs/reliability.md): block pivoting 1.96 (S and
 /// its Cholesky factor, whose capacity doubles in place); the symmetric
 /// tableau 2.19 (S, the swept tableau, then the contact block's factor);
+/// the conjugate gradient S alone (rounded up to 1.25 for its vectors);
 /// the restricted simplex's general tableau 7.3 to 7.6 (S, the constraint
 /// data, a tableau of twice S's width when most rows start with an
 /// artificial, and the basis matrices of its refactorizations).
 pub fn matrices(method: Method, tableau: Tableau) -> f64 {
     match (method, tableau) {
+        // S itself; the iteration's vectors are O(N).
+        (Method::ConjugateGradient, _) => 1.25,
         (Method::BlockPivoting, _) => 2.25,
         (Method::RestrictedSimplex, Tableau::General) => 7.75,
         _ => 2.5,

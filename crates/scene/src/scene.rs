@@ -1413,7 +1413,7 @@ fn solver(
                 m.span(),
                 "solver.method",
                 format!("\"{}\"", m.get_ref()),
-                "unknown method; one of restricted-simplex, lemke, block-pivoting",
+                "unknown method; one of restricted-simplex, lemke, block-pivoting, conjugate-gradient",
             )
         })?,
         None => Method::BlockPivoting,

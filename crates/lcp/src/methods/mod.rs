@@ -14,9 +14,12 @@
 //! - [`restricted_general`]: the restricted-entry simplex on the general
 //!   tableau (any mixed form, and programs with complementarity
 //!   constraints);
-//! - [`block`]: block principal pivoting on Cholesky factors of active blocks.
+//! - [`block`]: block principal pivoting on Cholesky factors of active blocks;
+//! - [`conjugate_gradient`]: the constrained conjugate gradient (products
+//!   `M x` only: dense problems and matrix-free ones alike).
 
 pub(crate) mod block;
+pub(crate) mod conjugate_gradient;
 pub(crate) mod lemke_general;
 pub(crate) mod lemke_symmetric;
 pub(crate) mod restricted_general;

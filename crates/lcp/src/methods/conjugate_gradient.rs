@@ -1,0 +1,471 @@
+//! The constrained conjugate gradient of Polonsky & Keer (1999),
+//! generalized to a border of `k` rows: an iterative method that needs only
+//! products `M x`, for the bordered LCP
+//!
+//! ```text
+//!     w = M z - B λ + q,   B^T z = b,   z >= 0, w >= 0, z^T w = 0
+//! ```
+//!
+//! with `M` symmetric positive definite (the minimization of
+//! `1/2 z^T M z + q^T z` over `z >= 0`, `B^T z = b`). An iteration, with
+//! `J = {i : z_i > 0}` and `g = M z + q`:
+//!
+//! 1. `λ` is the least-squares fit of `g_J` by `B_J` (`k x k` normal
+//!    equations); `w = g - B λ` is then orthogonal to `B_J`'s columns;
+//! 2. the direction `t_J = w_J + δ (G / G_old) t_J` (`G = ‖w_J‖²`, `δ = 0`
+//!    after the contact set grew, else 1), `t = 0` off `J`;
+//! 3. the step `τ = (w_J · t_J) / ((M t)_J · t_J)`, `z_J -= τ t_J`, then
+//!    `z = max(z, 0)`; points out of contact that interfere (`z_i = 0`,
+//!    `w_i < 0`) enter with `z_i = -τ w_i`;
+//! 4. the rows `B^T z = b` restored: for one row by scaling `z` (Polonsky
+//!    & Keer's load balance), for several by `z_i <- z_i exp(B_i ν)`, the
+//!    nearest point on the rows that keeps the contact set (no clipping),
+//!    or where the contact set cannot carry the rows by adding `B_J ν` and
+//!    clipping, repeated.
+//!
+//! It stops when the residuals the certificate measures (smallest `w`,
+//! largest `|z_i w_i|`, the rows' residual, each relative to its terms'
+//! scale) are below [`ITERATIVE_STOP`](crate::tolerance::ITERATIVE_STOP)
+//! times the certificate's tolerance; the strategy then certifies the
+//! answer from the original operator and data. With `k = 0` it is the
+//! method under displacement control (the approach inside `q`).
+
+use faer::linalg::solvers::Solve;
+use faer::{Col, ColRef, Mat, MatRef, Side};
+
+use crate::LcpError;
+use crate::methods::{Answer, Attempted, Failure, NotApplicable};
+use crate::operator::Operator;
+use crate::options::Options;
+use crate::problem::Problem;
+use crate::statistics::{Breakdown, Work};
+use crate::tolerance::{
+    ARMIJO, EQUALITY_CORRECTIONS, ITERATIVE_STOP, RESTORE_STEPS, RIDGE, ROWS_RESTORED, ROWS_STALLED,
+};
+
+/// A bordered LCP as the method reads it: `M` by its products.
+#[derive(Clone, Copy)]
+pub(crate) struct Form<'a> {
+    pub operator: &'a dyn Operator,
+    pub q: ColRef<'a, f64>,
+    pub border: MatRef<'a, f64>,
+    pub resultant: ColRef<'a, f64>,
+}
+
+/// The method applies to a dense problem with a border (or none) and a
+/// symmetric `M` with a positive diagonal.
+pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotApplicable> {
+    let Some(border) = problem.border else {
+        return Err(NotApplicable::new(
+            "a mixed form with general equality rows; write it as a bordered LCP",
+        ));
+    };
+    if !problem.symmetric() || !problem.positive_diagonal() {
+        return Err(NotApplicable::new(
+            "M must be symmetric with a positive diagonal (positive definite); use Lemke's method",
+        ));
+    }
+    Ok(Form {
+        operator: &problem.mixed.m,
+        q: problem.mixed.q,
+        border: border.columns,
+        resultant: border.resultant,
+    })
+}
+
+/// The method's state: the iterate and what it has computed of it.
+struct State {
+    z: Vec<f64>,
+    /// `g = M z + q`.
+    g: Vec<f64>,
+    /// `w = g - B λ`.
+    w: Vec<f64>,
+    lambda: Col<f64>,
+    /// The conjugate direction.
+    t: Vec<f64>,
+    /// `‖w_J‖²` of the previous iteration.
+    g_old: f64,
+    /// Whether the contact set grew in the last step (restart the direction).
+    restart: bool,
+}
+
+/// Solves `form` from `options.initial_z` (clipped to `z >= 0`) or from a
+/// start of its own.
+pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
+    let n = form.q.nrows();
+    let mut work = Work::default();
+    let z = match start(form, options) {
+        Ok(Some(z)) => z,
+        Ok(None) => return Ok(answer(vec![0.0; n], Col::zeros(form.border.ncols()), work)),
+        Err(breakdown) => return Err(Failure::new(breakdown, work)),
+    };
+    let mut state = State {
+        g: vec![0.0; n],
+        w: vec![0.0; n],
+        lambda: Col::zeros(form.border.ncols()),
+        t: vec![0.0; n],
+        g_old: 0.0,
+        restart: true,
+        z,
+    };
+    let cap = options.iteration_cap();
+    let target = ITERATIVE_STOP * options.tolerances.certificate;
+    let mut r = vec![0.0; n];
+    loop {
+        if let Err(b) = residual(form, &mut state) {
+            return Err(Failure::new(b, work));
+        }
+        if converged(form, &state) <= target || work.iterations >= cap {
+            let z = std::mem::take(&mut state.z);
+            return Ok(answer(z, state.lambda, work));
+        }
+        work.iterations += 1;
+        if let Err(b) = step(form, &mut state, &mut r) {
+            return Err(Failure::new(b, work));
+        }
+        if let Err(b) = restore_rows(form, &mut state.z) {
+            return Err(Failure::new(b, work));
+        }
+    }
+}
+
+fn answer(z: Vec<f64>, lambda: Col<f64>, work: Work) -> Answer {
+    let basic = z.iter().map(|&v| v > 0.0).collect();
+    Answer {
+        z: Col::from_fn(z.len(), |i| z[i]),
+        u: lambda,
+        basic,
+        work,
+    }
+}
+
+/// The start: `options.initial_z`, or `B ν` with `B^T B ν = b` (a load
+/// spread over every point), restored to the rows; with no border, the
+/// interference `max(-q, 0)` over the diagonal. `None`: `z = 0` solves.
+fn start(form: &Form<'_>, options: &Options) -> Result<Option<Vec<f64>>, Breakdown> {
+    let n = form.q.nrows();
+    let k = form.border.ncols();
+    let mut z: Vec<f64> = match &options.initial_z {
+        Some(z0) if z0.len() != n => {
+            return Err(Breakdown::Error(Box::new(LcpError::DimensionMismatch {
+                field: "initial_z",
+                expected: n,
+                found: z0.len(),
+                unit: "entries",
+            })));
+        }
+        Some(z0) => z0.iter().map(|&v| v.max(0.0)).collect(),
+        None if k == 0 => {
+            let (j, worst) = (0..n)
+                .map(|i| (i, form.q[i]))
+                .fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
+            if worst >= 0.0 {
+                return Ok(None);
+            }
+            let mut e = vec![0.0; n];
+            let mut column = vec![0.0; n];
+            e[j] = 1.0;
+            form.operator.apply(&e, &mut column);
+            let d = column[j];
+            if !(d > 0.0 && d.is_finite()) {
+                return Err(Breakdown::NotPositiveDefinite);
+            }
+            (0..n).map(|i| (-form.q[i]).max(0.0) / d).collect()
+        }
+        None => {
+            let all = vec![true; n];
+            let nu = fit(form.border, &all, form.resultant).ok_or(Breakdown::SingularBorder)?;
+            let spread = form.border * &nu;
+            spread.iter().map(|&v| v.max(0.0)).collect()
+        }
+    };
+    if k > 0 && z.iter().all(|&v| v == 0.0) {
+        z.iter_mut().for_each(|v| *v = 1.0);
+    }
+    restore_rows(form, &mut z)?;
+    Ok(Some(z))
+}
+
+/// `g = M z + q`, `λ` fitted on the contact set, `w = g - B λ`.
+fn residual(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
+    form.operator.apply(&s.z, &mut s.g);
+    for (g, q) in s.g.iter_mut().zip(form.q.iter()) {
+        *g += q;
+    }
+    let active: Vec<bool> = s.z.iter().map(|&v| v > 0.0).collect();
+    let rhs = masked_transpose_product(form.border, &active, &s.g);
+    // Fewer contact points than independent rows (an early iterate): the
+    // least-norm fit of a slightly regularized system.
+    s.lambda = fit(form.border, &active, rhs.as_ref())
+        .or_else(|| fit_regularized(form.border, &active, rhs.as_ref()))
+        .ok_or(Breakdown::SingularBorder)?;
+    let shift = form.border * &s.lambda;
+    for i in 0..s.w.len() {
+        s.w[i] = s.g[i] - shift[i];
+    }
+    if s.w.iter().any(|v| !v.is_finite()) {
+        return Err(Breakdown::NonFinite);
+    }
+    Ok(())
+}
+
+/// The worst of the residuals the certificate measures, from the state
+/// (`M |z|` read as `g - q`: exact for an operator with non-negative
+/// entries, a stricter scale otherwise).
+fn converged(form: &Form<'_>, s: &State) -> f64 {
+    let n = s.z.len();
+    let shift = abs_product(form.border, &s.lambda);
+    let mut w_scale = 0.0f64;
+    for i in 0..n {
+        let q = form.q[i];
+        w_scale = w_scale.max((s.g[i] - q).abs() + q.abs() + shift[i]);
+    }
+    let z_scale = s.z.iter().fold(0.0f64, |a, &v| a.max(v));
+    let rel = |v: f64, scale: f64| if scale > 0.0 { v / scale } else { 0.0 };
+    let min_w = s.w.iter().fold(0.0f64, |a, &v| a.min(v));
+    let comp = (0..n).fold(0.0f64, |a, i| a.max((s.z[i] * s.w[i]).abs()));
+    let mut worst = rel(-min_w, w_scale).max(rel(comp, z_scale * w_scale));
+    for j in 0..form.border.ncols() {
+        let col = form.border.col(j);
+        let (mut sum, mut terms) = (-form.resultant[j], form.resultant[j].abs());
+        for i in 0..n {
+            sum += col[i] * s.z[i];
+            terms += (col[i] * s.z[i]).abs();
+        }
+        worst = worst.max(rel(sum.abs(), terms));
+    }
+    worst
+}
+
+/// One conjugate-gradient step on the contact set (steps 2 and 3 of the
+/// module documentation); `r` is scratch for `M t`.
+fn step(form: &Form<'_>, s: &mut State, r: &mut [f64]) -> Result<(), Breakdown> {
+    let n = s.z.len();
+    let active: Vec<bool> = s.z.iter().map(|&v| v > 0.0).collect();
+    let g_now: f64 = (0..n).filter(|&i| active[i]).map(|i| s.w[i] * s.w[i]).sum();
+    let beta = if s.restart || s.g_old == 0.0 {
+        0.0
+    } else {
+        g_now / s.g_old
+    };
+    for i in 0..n {
+        s.t[i] = if active[i] {
+            s.w[i] + beta * s.t[i]
+        } else {
+            0.0
+        };
+    }
+    form.operator.apply(&s.t, r);
+    let (mut num, mut den) = (0.0, 0.0);
+    for i in (0..n).filter(|&i| active[i]) {
+        num += s.w[i] * s.t[i];
+        den += r[i] * s.t[i];
+    }
+    if !(den > 0.0) && num != 0.0 {
+        return Err(if den.is_finite() {
+            Breakdown::NotPositiveDefinite
+        } else {
+            Breakdown::NonFinite
+        });
+    }
+    let tau = if num == 0.0 { 0.0 } else { num / den };
+    s.g_old = g_now;
+    let mut entered = false;
+    for i in 0..n {
+        if active[i] {
+            s.z[i] = (s.z[i] - tau * s.t[i]).max(0.0);
+        } else if s.w[i] < 0.0 {
+            // Interference out of contact: the point enters. With τ = 0
+            // (no step on the contact set) the diagonal-free scale of the
+            // overlap itself starts it.
+            s.z[i] = if tau > 0.0 { -tau * s.w[i] } else { -s.w[i] };
+            entered = true;
+        }
+    }
+    s.restart = entered;
+    Ok(())
+}
+
+/// Restores `B^T z = b` (step 4 of the module documentation): for one row
+/// by scaling, else by [`tilt_into_rows`] on the contact set, or failing
+/// that (the set's cone does not hold the resultants) by
+/// [`shift_into_rows`].
+fn restore_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
+    let k = form.border.ncols();
+    if k == 0 {
+        return Ok(());
+    }
+    if k == 1 {
+        let col = form.border.col(0);
+        let row: f64 = z.iter().zip(col.iter()).map(|(zi, bi)| zi * bi).sum();
+        let ratio = form.resultant[0] / row;
+        if ratio.is_finite() && ratio > 0.0 {
+            z.iter_mut().for_each(|v| *v *= ratio);
+            return Ok(());
+        }
+    }
+    let kept = z.to_vec();
+    if tilt_into_rows(form, z).is_ok() {
+        return Ok(());
+    }
+    z.copy_from_slice(&kept);
+    shift_into_rows(form, z)
+}
+
+/// Adds the least-squares correction `B_J ν` on the contact set `J` (on
+/// every point when `B_J` cannot carry the rows) and clips at zero,
+/// repeated: the restoration when the contact set's cone does not hold the
+/// resultants (points must enter or leave).
+fn shift_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
+    let n = z.len();
+    for _ in 0..EQUALITY_CORRECTIONS {
+        let mut active: Vec<bool> = z.iter().map(|&v| v > 0.0).collect();
+        let z_col = ColRef::from_slice(z);
+        let deficit = form.resultant - form.border.transpose() * z_col;
+        let nu = match fit(form.border, &active, deficit.as_ref()) {
+            Some(nu) => nu,
+            None => {
+                active.iter_mut().for_each(|a| *a = true);
+                fit(form.border, &active, deficit.as_ref()).ok_or(Breakdown::SingularBorder)?
+            }
+        };
+        let add = form.border * &nu;
+        let mut clipped = false;
+        for i in (0..n).filter(|&i| active[i]) {
+            let v = z[i] + add[i];
+            clipped |= v < 0.0;
+            z[i] = v.max(0.0);
+        }
+        if !clipped {
+            break;
+        }
+    }
+    Ok(())
+}
+
+/// `z_i <- z_i exp(B_i ν)` with `ν` minimizing the convex
+/// `φ(ν) = Σ z_i exp(B_i ν) - b^T ν`, whose gradient is `B^T z' - b`: the
+/// nearest `z' >= 0` on the rows in the Kullback-Leibler sense, with the
+/// support of `z` (no clipping, so a point that entered stays). Newton's
+/// method with backtracking on `φ`; for one row of ones it is Polonsky &
+/// Keer's scaling. Fails when `b` is not inside the cone of the supported
+/// points' `B_i` (the contact set cannot carry the rows).
+fn tilt_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
+    let (border, b) = (form.border, form.resultant);
+    let (n, k) = (z.len(), border.ncols());
+    let start = z.to_vec();
+    let scaled = |nu: &Col<f64>| -> Option<Col<f64>> {
+        let exponent = border * nu;
+        let s = Col::from_fn(n, |i| {
+            if start[i] > 0.0 {
+                start[i] * exponent[i].exp()
+            } else {
+                0.0
+            }
+        });
+        let finite = s.iter().all(|v| v.is_finite());
+        finite.then_some(s)
+    };
+    let phi = |s: &Col<f64>, nu: &Col<f64>| s.sum() - (b.transpose() * nu);
+    let mut nu = Col::<f64>::zeros(k);
+    let mut s = scaled(&nu).ok_or(Breakdown::NonFinite)?;
+    let residual = |s: &Col<f64>| -> (Col<f64>, f64) {
+        let gradient = border.transpose() * s - b;
+        let terms = border.map(|v| v.abs()).transpose() * s + b.map(|v| v.abs());
+        let scale = terms.iter().fold(0.0f64, |a, &v| a.max(v));
+        let worst = gradient.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
+        (gradient, if scale > 0.0 { worst / scale } else { 0.0 })
+    };
+    for _ in 0..RESTORE_STEPS {
+        let (gradient, worst) = residual(&s);
+        if worst <= ROWS_RESTORED {
+            break;
+        }
+        let weighted = Mat::from_fn(n, k, |i, j| s[i].sqrt() * border[(i, j)]);
+        let hessian = weighted.transpose() * &weighted;
+        let Ok(llt) = hessian.llt(Side::Lower) else {
+            break;
+        };
+        let step = llt.solve(&gradient);
+        let slope = gradient.transpose() * &step;
+        let current = phi(&s, &nu);
+        let mut length = 1.0;
+        while length >= f64::EPSILON {
+            let trial = &nu - &step * faer::Scale(length);
+            if let Some(t) = scaled(&trial)
+                && phi(&t, &trial) <= current - ARMIJO * length * slope
+            {
+                nu = trial;
+                s = t;
+                break;
+            }
+            length *= 0.5;
+        }
+        if length < f64::EPSILON {
+            // No decrease left: at the rounding floor, or no minimizer.
+            break;
+        }
+    }
+    if residual(&s).1 > ROWS_STALLED {
+        return Err(Breakdown::SingularBorder);
+    }
+    z.iter_mut().zip(s.iter()).for_each(|(zi, si)| *zi = *si);
+    Ok(())
+}
+
+/// `B_J^T v` (the rows of `B` outside the active set `J` left out).
+fn masked_transpose_product(border: MatRef<'_, f64>, active: &[bool], v: &[f64]) -> Col<f64> {
+    let masked = Col::from_fn(v.len(), |i| if active[i] { v[i] } else { 0.0 });
+    border.transpose() * &masked
+}
+
+/// Solves the normal equations `B_J^T B_J ν = rhs` (`k x k`, by faer's
+/// Cholesky); `None` when `B_J` is rank deficient.
+fn fit(border: MatRef<'_, f64>, active: &[bool], rhs: ColRef<'_, f64>) -> Option<Col<f64>> {
+    let k = border.ncols();
+    if k == 0 {
+        return Some(Col::zeros(0));
+    }
+    let masked = Mat::from_fn(border.nrows(), k, |i, j| {
+        if active[i] { border[(i, j)] } else { 0.0 }
+    });
+    let gram = masked.transpose() * &masked;
+    let llt = gram.llt(Side::Lower).ok()?;
+    let nu = llt.solve(rhs.to_owned());
+    let finite = nu.iter().all(|v| v.is_finite());
+    finite.then_some(nu)
+}
+
+/// [`fit`] with `RIDGE` times the largest diagonal entry added to the
+/// normal equations' diagonal: the least-norm fit, nearly, when `B_J` has
+/// fewer rows than columns.
+fn fit_regularized(
+    border: MatRef<'_, f64>,
+    active: &[bool],
+    rhs: ColRef<'_, f64>,
+) -> Option<Col<f64>> {
+    let k = border.ncols();
+    let masked = Mat::from_fn(border.nrows(), k, |i, j| {
+        if active[i] { border[(i, j)] } else { 0.0 }
+    });
+    let mut gram = masked.transpose() * &masked;
+    let largest = (0..k).fold(0.0f64, |a, j| a.max(gram[(j, j)]));
+    let ridge = if largest > 0.0 { RIDGE * largest } else { 1.0 };
+    for j in 0..k {
+        gram[(j, j)] += ridge;
+    }
+    let nu = gram.llt(Side::Lower).ok()?.solve(rhs.to_owned());
+    let finite = nu.iter().all(|v| v.is_finite());
+    finite.then_some(nu)
+}
+
+/// `|B| |λ|` entry-wise.
+fn abs_product(border: MatRef<'_, f64>, lambda: &Col<f64>) -> Vec<f64> {
+    (0..border.nrows())
+        .map(|i| {
+            (0..border.ncols())
+                .map(|j| (border[(i, j)] * lambda[j]).abs())
+                .sum()
+        })
+        .collect()
+}
