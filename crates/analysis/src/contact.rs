@@ -19,11 +19,14 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use elcon_influence::{Body, Dimension, Folding, Model, PointSet, assemble, assemble_folded};
-use elcon_lcp::{BorderedLcpRef, Certificate, Method, Options, Statistics};
+use elcon_influence::{
+    Body, Dimension, Folding, LatticeOperator, Model, PointSet, assemble, assemble_folded,
+};
+use elcon_lcp::{BorderedLcpRef, Certificate, Method, OperatorLcp, Options, Statistics};
 use faer::{Col, Mat, MatRef};
 
 use crate::AnalysisError;
+use crate::influence::{Influence, LatticeProducts};
 use crate::loading::Loading;
 use crate::rigid::{Rigid, RigidMode, point};
 
@@ -193,7 +196,7 @@ impl std::fmt::Display for ContactCertificate {
 pub struct ContactProblem {
     points: PointSet,
     /// Shared between problems that differ only in loading or separation.
-    influence: Arc<Mat<f64>>,
+    influence: Influence,
     separation: Vec<f64>,
     loading: Loading,
     /// The rigid-body unknowns of `loading` (folded with the problem).
@@ -261,7 +264,7 @@ impl ContactProblem {
         };
         Ok(Self {
             points,
-            influence: Arc::new(influence),
+            influence: Influence::Dense(Arc::new(influence)),
             separation: layout.separation,
             loading,
             rigid: layout.rigid,
@@ -270,6 +273,47 @@ impl ContactProblem {
             folding: layout.folding.map(Arc::new),
             groups: Arc::new(layout.groups),
         })
+    }
+
+    /// As [`ContactProblem::new`], with S held matrix-free: the product
+    /// `S F` by a zero-padded FFT convolution of the lattice kernel
+    /// (`elcon_influence::LatticeOperator`), O(N) memory instead of
+    /// 8 N^2 bytes, for grids too large to store S (10^4 to 10^6 points).
+    /// Solve it with [`Method::ConjugateGradient`]; the pivoting methods
+    /// need S's entries and are refused. Not folded (a tilt that symmetry
+    /// makes zero is still dropped from the unknowns).
+    ///
+    /// # Errors
+    /// As [`ContactProblem::new`]; and as `LatticeOperator::new`: the
+    /// points must be a lattice (`PointSet::grid_disk`, `grid_rectangle`,
+    /// `line`), no body a beam.
+    pub fn lattice(
+        points: PointSet,
+        body1: &Body,
+        body2: &Body,
+        geometry: &Geometry,
+        loading: Loading,
+    ) -> Result<Self, AnalysisError> {
+        let start = Instant::now();
+        let bodies = [body1, body2];
+        let layout = Layout::of(&points, bodies, geometry, &loading, false)?;
+        let operator = LatticeOperator::new(&points, &bodies)?;
+        Ok(Self {
+            points,
+            influence: Influence::Lattice(Arc::new(operator)),
+            separation: layout.separation,
+            loading,
+            rigid: layout.rigid,
+            assembly_seconds: start.elapsed().as_secs_f64(),
+            body_edges: (false, false),
+            folding: None,
+            groups: Arc::new(layout.groups),
+        })
+    }
+
+    /// Whether S is held matrix-free ([`ContactProblem::lattice`]).
+    pub fn matrix_free(&self) -> bool {
+        matches!(self.influence, Influence::Lattice(_))
     }
 
     /// The orbits the problem was folded with ([`ContactProblem::symmetric`]),
@@ -302,7 +346,7 @@ impl ContactProblem {
         let rigid = check(&points, &separation, &loading, (0.0, 0.0))?;
         Ok(Self {
             points,
-            influence: Arc::new(influence),
+            influence: Influence::Dense(Arc::new(influence)),
             separation,
             loading,
             rigid,
@@ -318,11 +362,46 @@ impl ContactProblem {
         &self.points
     }
 
-    /// The influence matrix S (length per force), N x N; for a folded
+    /// The influence matrix S (length per force), N x N, or `None` for a
+    /// matrix-free problem ([`ContactProblem::lattice`]); for a folded
     /// problem ([`ContactProblem::symmetric`]) the folded matrix M of the
     /// representatives instead (see [`ContactProblem::folding`]).
-    pub fn influence(&self) -> MatRef<'_, f64> {
-        Mat::as_ref(&self.influence)
+    pub fn influence(&self) -> Option<MatRef<'_, f64>> {
+        match &self.influence {
+            Influence::Dense(s) => Some(Mat::as_ref(s)),
+            Influence::Lattice(_) => None,
+        }
+    }
+
+    /// The elastic deflections `S F` (length) under the forces `forces`
+    /// (one per unknown: per point, or per orbit of a folded problem), from
+    /// the dense S or the matrix-free operator alike.
+    ///
+    /// # Errors
+    /// [`AnalysisError::SizeMismatch`] when `forces` has another length;
+    /// [`AnalysisError::Influence`] when a matrix-free problem's workspace
+    /// cannot be allocated.
+    pub fn deflection(&self, forces: &[f64]) -> Result<Vec<f64>, AnalysisError> {
+        let n = self.influence.len();
+        if forces.len() != n {
+            return Err(AnalysisError::SizeMismatch {
+                field: "forces",
+                expected: n,
+                found: forces.len(),
+            });
+        }
+        let mut y = vec![0.0; n];
+        match &self.influence {
+            Influence::Dense(s) => {
+                let product = Mat::as_ref(s) * faer::ColRef::from_slice(forces);
+                y.iter_mut().zip(product.iter()).for_each(|(y, p)| *y = *p);
+            }
+            Influence::Lattice(operator) => {
+                use elcon_lcp::Operator;
+                LatticeProducts::new(operator)?.apply(forces, &mut y);
+            }
+        }
+        Ok(y)
     }
 
     /// The initial separations eps (length).
@@ -372,7 +451,7 @@ impl ContactProblem {
         };
         Ok(Self {
             points: self.points.clone(),
-            influence: Arc::clone(&self.influence),
+            influence: self.influence.clone(),
             separation,
             loading,
             rigid,
@@ -465,7 +544,7 @@ impl ContactProblem {
         // folded problem, whose rows are scaled by 1 / s_a (docs of
         // `elcon_influence::Folding`): w_a = Y_a / s_a, and the equilibrium
         // row by 1 / |G|, which keeps [B; D] and [C D] a skew pair.
-        let n = self.influence.nrows();
+        let n = self.influence.len();
         let (scale, order): (Vec<f64>, f64) = match &self.folding {
             Some(f) => ((0..n).map(|a| f.stabilizer(a)).collect(), f.order() as f64),
             None => (vec![1.0; n], 1.0),
@@ -487,9 +566,17 @@ impl ContactProblem {
                 / scale[a]
         });
         let resultant = Col::from_fn(rigid.free.len(), |j| rigid.free[j].1 / order);
-        let problem = BorderedLcpRef::new(Mat::as_ref(&self.influence), q.as_ref())?
-            .with_border(border.as_ref(), resultant.as_ref())?;
-        let sol = problem.solve(method, options)?;
+        let sol = match &self.influence {
+            Influence::Dense(s) => BorderedLcpRef::new(Mat::as_ref(s), q.as_ref())?
+                .with_border(border.as_ref(), resultant.as_ref())?
+                .solve(method, options)?,
+            Influence::Lattice(operator) => {
+                let products = LatticeProducts::new(operator)?;
+                OperatorLcp::new(&products, q.as_ref())?
+                    .with_border(border.as_ref(), resultant.as_ref())?
+                    .solve(method, options)?
+            }
+        };
         let lambda: Vec<f64> = sol.u.iter().copied().collect();
         // The gaps are the engine's w = M z - B λ + q, computed from the data
         // above: Y = S F + eps - (rigid motion); folded, row a is scaled by

@@ -35,10 +35,19 @@
 //! let sol = problem.solve(Method::Lemke, &Options::default()).unwrap();
 //! assert!(sol.certificate.holds());
 //! assert!((sol.approach / hertz.approach() - 1.0).abs() < 0.01);
+//!
+//! // The same problem with S held matrix-free (an FFT convolution, O(N)
+//! // memory: grids of 10^4 to 10^6 points), solved by the conjugate gradient.
+//! let points = PointSet::grid_disk(a / 8.0, 1.3 * a).unwrap();
+//! let large = ContactProblem::lattice(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
+//! let iterative = large.solve(Method::ConjugateGradient, &Options::default()).unwrap();
+//! assert!(iterative.certificate.holds());
+//! assert!((iterative.approach / sol.approach - 1.0).abs() < 1e-9);
 //! ```
 
 pub mod contact;
 mod error;
+mod influence;
 pub mod loading;
 pub mod references;
 pub mod rigid;

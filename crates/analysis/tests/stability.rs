@@ -202,7 +202,7 @@ fn the_condition_estimate_grows_with_refinement() {
         .map(|c| {
             (
                 c.problem.points().len(),
-                elcon_lcp::condition_estimate(c.problem.influence()),
+                elcon_lcp::condition_estimate(c.problem.influence().expect("dense")),
             )
         })
         .collect();

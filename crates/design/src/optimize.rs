@@ -51,7 +51,7 @@ use elcon_analysis::{ContactProblem, Method, Options};
 use elcon_influence::{Dimension, PointSet};
 use elcon_lcp::{Bound, Certificate, ProgramBuilder, Statistics};
 use faer::linalg::solvers::SolveLstsq;
-use faer::{Col, Mat};
+use faer::{Col, Mat, MatRef};
 
 use crate::evaluate::{Evaluation, evaluate, load_of};
 use crate::target::uniform_target;
@@ -316,6 +316,8 @@ pub fn fit_profile(
 /// disagrees, and the design says so.)
 struct Case<'a> {
     problem: &'a ContactProblem,
+    /// The problem's dense S (the program is built from its entries).
+    influence: MatRef<'a, f64>,
     station: Vec<usize>,
     measures: Vec<f64>,
     load: f64,
@@ -400,7 +402,7 @@ fn program(
     for (l, c) in cases.iter().enumerate() {
         let n = c.station.len();
         let (rc, ri, re) = (starts[l], starts[l] + n, starts[l] + 2 * n);
-        let s = c.problem.influence();
+        let s = c.influence;
         // Compatibility rows -S F + Y + sum lambda_j m_j = eps (+ drops),
         // intensity rows F / A, resultant rows sum m_j F = b_j.
         let block = Mat::from_fn(rows, n, |r, j| {
@@ -543,37 +545,47 @@ pub fn design(
     let references = reference_intensities(options.reference_intensities.as_deref(), cases.len())?;
     let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), axis);
     let basis = Basis::new(family, &stations)?;
-    let prepared: Vec<Case<'_>> = cases
-        .iter()
-        .zip(index)
-        .enumerate()
-        .map(|(l, (problem, station))| {
-            let rigid = problem.rigid().clone();
-            let points = problem.points();
-            let at = |k: usize| (points.x(k), points.y(k));
-            let levers = Mat::from_fn(points.len(), rigid.free.len(), |k, j| {
-                rigid.free[j].0.lever(at(k), rigid.load_point)
-            });
-            let shift = |k: usize| -> f64 {
-                -rigid
-                    .prescribed
-                    .iter()
-                    .map(|&(mode, value)| value * mode.lever(at(k), rigid.load_point))
-                    .sum::<f64>()
-            };
-            let eps = problem.separation();
-            Ok(Case {
-                problem,
-                measures: points.measures(),
-                station,
-                load: load_of(problem, l)?,
-                levers,
-                resultants: rigid.free.iter().map(|&(_, v)| v).collect(),
-                separation: (0..points.len()).map(|k| eps[k] + shift(k)).collect(),
-                reference: references[l],
+    let prepared: Vec<Case<'_>> =
+        cases
+            .iter()
+            .zip(index)
+            .enumerate()
+            .map(|(l, (problem, station))| {
+                let rigid = problem.rigid().clone();
+                let points = problem.points();
+                let at = |k: usize| (points.x(k), points.y(k));
+                let levers = Mat::from_fn(points.len(), rigid.free.len(), |k, j| {
+                    rigid.free[j].0.lever(at(k), rigid.load_point)
+                });
+                let shift = |k: usize| -> f64 {
+                    -rigid
+                        .prescribed
+                        .iter()
+                        .map(|&(mode, value)| value * mode.lever(at(k), rigid.load_point))
+                        .sum::<f64>()
+                };
+                let eps = problem.separation();
+                let influence = problem.influence().ok_or_else(|| DesignError::Incompatible {
+                field: "cases",
+                reason: format!(
+                    "load case {l} holds S matrix-free (ContactProblem::lattice); the design \
+                     program is built from S's entries: build it with ContactProblem::new or \
+                     ::symmetric"
+                ),
+            })?;
+                Ok(Case {
+                    problem,
+                    influence,
+                    measures: points.measures(),
+                    station,
+                    load: load_of(problem, l)?,
+                    levers,
+                    resultants: rigid.free.iter().map(|&(_, v)| v).collect(),
+                    separation: (0..points.len()).map(|k| eps[k] + shift(k)).collect(),
+                    reference: references[l],
+                })
             })
-        })
-        .collect::<Result<_, DesignError>>()?;
+            .collect::<Result<_, DesignError>>()?;
 
     // Starts: the uncorrected geometry; for line contacts, the fit of the
     // uniform-pressure separation of the heaviest case.
@@ -677,7 +689,7 @@ pub(crate) fn reference_intensities(
 /// Largest elastic deflection under a uniform pressure plus the largest
 /// initial separation: the scale of the default c_max.
 fn deflection_scale(c: &Case<'_>) -> f64 {
-    let s = c.problem.influence();
+    let s = c.influence;
     let n = c.station.len();
     let total: f64 = c.measures.iter().sum();
     let deflection = (0..n)

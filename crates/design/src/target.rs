@@ -17,7 +17,6 @@
 //! definite).
 
 use elcon_analysis::ContactProblem;
-use faer::Col;
 
 use crate::DesignError;
 use crate::evaluate::load_of;
@@ -78,9 +77,11 @@ pub fn target_separation(
             reason: "the weights must not all be 0",
         });
     }
-    let forces = Col::<f64>::from_fn(n, |k| load * weights[k] / total);
+    let forces: Vec<f64> = (0..n).map(|k| load * weights[k] / total).collect();
     // The elastic deflection under the target forces, S F.
-    let deflection = case.influence() * &forces;
+    let deflection = case
+        .deflection(&forces)
+        .map_err(DesignError::analysis("the uniform target's deflection"))?;
     let eps = case.separation();
     let approach = (0..n)
         .map(|k| deflection[k] + eps[k])
@@ -88,7 +89,7 @@ pub fn target_separation(
     let correction = (0..n).map(|k| approach - deflection[k] - eps[k]).collect();
     Ok(TargetSeparation {
         correction,
-        forces: forces.iter().copied().collect(),
+        forces,
         approach,
     })
 }

@@ -8,6 +8,8 @@
 //!
 //! ```text
 //!     contact solve      m n^2                   n = N, or one unknown per orbit when folded
+//!     matrix-free solve  lattice operator + 24 N    (solver.method "auto" above its limit, or
+//!                                                   "conjugate-gradient": crate::Storage)
 //!     design, linear     n^2 + sum_l n_l^2 + 4.25 R C + (m - 1) max_l n_l^2
 //!     design, crowns     n^2 + sum_l n_l^2 + (m - 1) max_l n_l^2
 //! ```
@@ -26,11 +28,23 @@
 
 use elcon_analysis::{Layout, Method, Normal};
 use elcon_design::{Family, axial_stations};
-use elcon_influence::{Dimension, PointSet};
+use elcon_influence::{Dimension, LatticeOperator, PointSet};
 
 use crate::error::SceneError;
 use crate::memory::human;
 use crate::scene::{DesignFamily, DesignSpec, Scene};
+use crate::storage::Storage;
+
+/// Vectors of N doubles a matrix-free solve holds besides the operator
+/// (the conjugate gradient's iterate, residual, direction, product and
+/// gradient, the certificate's products, the problem's q, border and the
+/// solution's copies), rounded up.
+const CG_VECTORS: f64 = 24.0;
+
+/// Seconds per point of a matrix-free solve (a few hundred iterations of
+/// two FFT products each; docs/performance.md, "Dense or matrix-free"),
+/// rounded up.
+const CG_SECONDS_PER_POINT: f64 = 1e-4;
 
 /// Bytes of one matrix entry (f64).
 const ENTRY: f64 = 8.0;
@@ -216,10 +230,30 @@ impl Estimate {
     /// (as the run would fail).
     pub fn of(scene: &Scene) -> Result<Self, SceneError> {
         let n = scene.points.len();
-        let (unknowns, tableau) = unknowns(&scene.points, scene);
-        let m = matrices(scene.method, tableau);
-        let solve = square_bytes(m, unknowns);
-        let mut seconds = per_cube(scene.method, tableau) * (unknowns as f64).powi(3);
+        let (unknowns, m, solve, mut seconds) =
+            match scene.storage {
+                Storage::MatrixFree => {
+                    let bodies = [&scene.bodies[0].body, &scene.bodies[1].body];
+                    let operator = LatticeOperator::estimate_bytes(&scene.points, &bodies)
+                        .map_err(|e| SceneError::Run {
+                            scene: scene.name.clone(),
+                            reason: e.to_string(),
+                        })?;
+                    let vectors = CG_VECTORS * ENTRY * n as f64;
+                    (
+                        n,
+                        0.0,
+                        operator as f64 + vectors,
+                        CG_SECONDS_PER_POINT * n as f64,
+                    )
+                }
+                Storage::Dense => {
+                    let (unknowns, tableau) = unknowns(&scene.points, scene);
+                    let m = matrices(scene.method, tableau);
+                    let seconds = per_cube(scene.method, tableau) * (unknowns as f64).powi(3);
+                    (unknowns, m, square_bytes(m, unknowns), seconds)
+                }
+            };
         let design = match &scene.design {
             Some(spec) => {
                 let (d, s) = design(scene, spec, unknowns)?;

@@ -32,6 +32,7 @@ mod sanity;
 mod scene;
 mod schema;
 mod shard;
+mod storage;
 mod tables;
 
 pub use batch::{Batch, BatchRun, MAX_RUNS, thousands};
@@ -55,4 +56,5 @@ pub use scene::{
     Units,
 };
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};
+pub use storage::{AUTO_DENSE_LIMIT, MethodChoice, Storage};
 pub use tables::{BatchOutcome, Row, merge};

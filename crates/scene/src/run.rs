@@ -16,6 +16,7 @@ use serde::Serialize;
 
 use crate::error::SceneError;
 use crate::scene::{DesignFamily, Hertz, PointsSpec, Reference, RelativeTo, Scene, Units};
+use crate::storage::Storage;
 
 /// The engine's statistics, as written.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -227,6 +228,8 @@ pub struct RunResult {
     pub units: Units,
     /// The engine's method.
     pub method: String,
+    /// How S was held: "dense" or "matrix-free" (`solver.method`).
+    pub influence: String,
     /// "surface" or "line".
     pub dimension: String,
     /// Number of candidate points N.
@@ -323,10 +326,10 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
     let start = Instant::now();
     crate::faults::panic_point(&scene.name);
     let [b1, b2] = &scene.bodies;
-    let build = if scene.fold {
-        ContactProblem::symmetric
-    } else {
-        ContactProblem::new
+    let build = match (scene.storage, scene.fold) {
+        (Storage::MatrixFree, _) => ContactProblem::lattice,
+        (Storage::Dense, true) => ContactProblem::symmetric,
+        (Storage::Dense, false) => ContactProblem::new,
     };
     let problem = build(
         scene.points.clone(),
@@ -359,6 +362,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         description: scene.description.clone(),
         units: scene.units.clone(),
         method: scene.method.name().to_string(),
+        influence: scene.storage.name().to_string(),
         dimension: match scene.points.dimension() {
             Dimension::Surface => "surface".into(),
             Dimension::Line => "line".into(),

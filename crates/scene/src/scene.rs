@@ -11,7 +11,7 @@
 use std::path::{Path, PathBuf};
 
 use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam};
-use elcon_analysis::{Geometry, Loading, Method, Normal, Options, Surface};
+use elcon_analysis::{Geometry, Layout, Loading, Method, Normal, Options, Surface};
 use elcon_design::{Axis, Family};
 use elcon_influence::{Body, Dimension, Material, PointSet, combined_modulus_of};
 use toml::Spanned;
@@ -22,6 +22,7 @@ use crate::sanity;
 use crate::schema::{
     BodyToml, DesignToml, GeometryToml, LoadingToml, PointsToml, SceneFile, SurfaceToml,
 };
+use crate::storage::{self, MethodChoice, Storage};
 
 /// The unit labels of a scene (any consistent system; the labels are
 /// repeated in every output, never used in arithmetic).
@@ -218,8 +219,12 @@ pub struct Scene {
     pub points: PointSet,
     /// Load or approach.
     pub loading: Loading,
-    /// The engine's method.
+    /// The engine's method (`solver.method`; `"auto"` resolved, see
+    /// [`Storage`]).
     pub method: Method,
+    /// How the contact problem holds S: dense, or matrix-free on the
+    /// lattice (`solver.method`'s choice, see [`Storage`]).
+    pub storage: Storage,
     /// The engine's options.
     pub options: Options,
     /// Whether to fold a mirror-symmetric problem (`solver.symmetry`,
@@ -389,7 +394,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
     let reference = reference(&bodies, &geometry, &points_spec, &points, loading);
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
-    let (method, options) = solver(ctx, raw.solver.as_ref())?;
+    let (choice, options) = solver(ctx, raw.solver.as_ref())?;
     sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
     let fold = match raw.solver.as_ref().and_then(|s| s.symmetry.as_ref()) {
         Some(v) => match v.get_ref().as_str() {
@@ -406,6 +411,9 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         },
         None => true,
     };
+    let scene_bodies = [&bodies[0].body, &bodies[1].body];
+    let layout = Layout::of(&points, scene_bodies, &geometry, &loading, fold).ok();
+    let (method, storage) = storage::choose(choice, &points, scene_bodies, layout.as_ref(), fold);
     let design = match &raw.design {
         Some(d) => Some(design(
             ctx,
@@ -441,6 +449,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         points,
         loading,
         method,
+        storage,
         options,
         fold,
         design,
@@ -1402,21 +1411,22 @@ fn check_zone(
 fn solver(
     ctx: &Ctx<'_>,
     s: Option<&crate::schema::SolverToml>,
-) -> Result<(Method, Options), SceneError> {
+) -> Result<(MethodChoice, Options), SceneError> {
     let mut options = Options::default();
     let Some(s) = s else {
-        return Ok((Method::BlockPivoting, options));
+        return Ok((MethodChoice::Auto, options));
     };
     let method = match &s.method {
-        Some(m) => Method::from_name(m.get_ref()).ok_or_else(|| {
+        Some(m) if m.get_ref() == "auto" => MethodChoice::Auto,
+        Some(m) => MethodChoice::Given(Method::from_name(m.get_ref()).ok_or_else(|| {
             ctx.invalid(
                 m.span(),
                 "solver.method",
                 format!("\"{}\"", m.get_ref()),
-                "unknown method; one of restricted-simplex, lemke, block-pivoting, conjugate-gradient",
+                "unknown method; one of auto, restricted-simplex, lemke, block-pivoting, conjugate-gradient",
             )
-        })?,
-        None => Method::BlockPivoting,
+        })?),
+        None => MethodChoice::Auto,
     };
     if let Some(p) = &s.max_pivots {
         options.max_pivots = Some(ctx.count(p, "solver.max_pivots", 1)?);

@@ -1,0 +1,140 @@
+//! `solver.method`'s choice of storage: `"auto"` (the default) keeps the
+//! dense S and block pivoting while the unknowns are few, and goes
+//! matrix-free (the lattice operator, the conjugate gradient) above
+//! `AUTO_DENSE_LIMIT`; an explicit `"conjugate-gradient"` runs matrix-free
+//! unless the scene folds; the estimate of a matrix-free scene is O(N).
+
+use std::path::Path;
+
+use elcon_analysis::Method;
+use elcon_scene::{AUTO_DENSE_LIMIT, Estimate, Scene, Storage, run};
+
+fn spheres(across: usize, solver: &str) -> Scene {
+    let text = format!(
+        r#"
+[units]
+length = "in"
+force = "lbf"
+
+[body1]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+
+[body2]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+
+[geometry]
+surface1 = {{ shape = "sphere", radius = 1.0 }}
+surface2 = {{ shape = "sphere", radius = 10.0 }}
+
+[points]
+grid = "disk"
+across = {across}
+zone = 1.15
+
+[loading]
+load = 100.0
+
+[solver]
+{solver}
+"#
+    );
+    Scene::from_str(Path::new("storage.toml"), &text).expect("valid scene")
+}
+
+#[test]
+fn auto_is_block_pivoting_on_the_dense_s_for_few_unknowns() {
+    let scene = spheres(21, "");
+    assert_eq!(
+        (scene.method, scene.storage),
+        (Method::BlockPivoting, Storage::Dense)
+    );
+    let given = spheres(21, r#"method = "auto""#);
+    assert_eq!(given.storage, Storage::Dense);
+}
+
+#[test]
+fn auto_goes_matrix_free_above_the_limit_and_meets_hertz() {
+    // 81 across, not folded: N = 6,609 unknowns, above the limit.
+    let scene = spheres(81, r#"symmetry = "none""#);
+    assert!(scene.points.len() > AUTO_DENSE_LIMIT);
+    assert_eq!(
+        (scene.method, scene.storage),
+        (Method::ConjugateGradient, Storage::MatrixFree)
+    );
+    // O(N): the operator and a few vectors, not 8 N^2 bytes.
+    let estimate = Estimate::of(&scene).expect("estimate");
+    assert!(
+        estimate.solve_bytes < 1000 * scene.points.len() as u64,
+        "{}",
+        estimate.solve_bytes
+    );
+    let run = run(&scene).expect("runs");
+    assert!(run.problem.matrix_free());
+    assert!(run.solution.certificate.holds());
+    let result = &run.result;
+    assert_eq!(result.influence, "matrix-free");
+    assert_eq!(result.method, "conjugate-gradient");
+    let reference = result.reference.as_ref().expect("Hertz applies");
+    let error = reference.errors.approach.expect("approach error");
+    assert!(error.abs() < 2e-3, "approach against Hertz {error:e}");
+    // Folded, the same grid is small enough to stay dense.
+    let folded = spheres(81, "");
+    assert_eq!(folded.storage, Storage::Dense);
+}
+
+#[test]
+fn an_explicit_conjugate_gradient_is_matrix_free_unless_the_scene_folds() {
+    let unfolded = spheres(21, "method = \"conjugate-gradient\"\nsymmetry = \"none\"");
+    assert_eq!(unfolded.storage, Storage::MatrixFree);
+    let folded = spheres(21, r#"method = "conjugate-gradient""#);
+    assert_eq!(
+        (folded.method, folded.storage),
+        (Method::ConjugateGradient, Storage::Dense)
+    );
+    let a = run(&unfolded).expect("matrix-free");
+    let b = run(&folded).expect("dense, folded");
+    assert!((a.solution.approach / b.solution.approach - 1.0).abs() < 1e-9);
+}
+
+#[test]
+fn an_unknown_method_names_auto_among_the_choices() {
+    let text = r#"
+[units]
+length = "in"
+force = "lbf"
+
+[body1]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+
+[body2]
+model = "rigid"
+
+[geometry]
+surface1 = { shape = "sphere", radius = 1.0 }
+surface2 = { shape = "plane" }
+
+[points]
+grid = "disk"
+across = 11
+zone = 1.3
+
+[loading]
+load = 100.0
+
+[solver]
+method = "fastest"
+"#;
+    let e = Scene::from_str(Path::new("bad.toml"), text)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("`solver.method`") && e.contains("one of auto,"),
+        "{e}"
+    );
+}
