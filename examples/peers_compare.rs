@@ -56,7 +56,7 @@ fn run(
         .expect("builds");
         let sol = problem.solve(method, &Options::default()).expect("solves");
         best = best.min(t.elapsed().as_secs_f64());
-        let unknowns = problem.influence().nrows();
+        let unknowns = problem.influence().expect("dense").nrows();
         last = Some((sol, unknowns));
     }
     let (sol, unknowns) = last.expect("ran");

@@ -72,7 +72,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             fastest = Some((method, best));
         }
     }
-    let s = problem.influence().to_owned();
+    let s = problem.influence().expect("dense").to_owned();
     let mut par = f64::INFINITY;
     let mut seq = f64::INFINITY;
     for _ in 0..repeat {

@@ -28,7 +28,7 @@ fn main() {
     let (mut passed, mut total) = (0, 0);
     for case in &cases {
         let n = case.problem.points().len();
-        let cond = elcon::lcp::condition_estimate(case.problem.influence());
+        let cond = elcon::lcp::condition_estimate(case.problem.influence().expect("dense"));
         for method in Method::ALL {
             total += 1;
             let row = |pivots: String,
