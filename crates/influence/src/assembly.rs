@@ -27,7 +27,7 @@ use faer::{Mat, MatMut};
 
 use crate::error::InfluenceError;
 use crate::models::Body;
-use crate::points::PointSet;
+use crate::points::{MAX_DENSE_POINTS, PointSet};
 use crate::terms::{TableLayout, Terms, table_layout};
 
 /// Tile size of the mirroring copy (64 x 64 doubles = 32 kB).
@@ -61,8 +61,11 @@ pub fn influence(points: &PointSet, body: &Body) -> Result<Option<Mat<f64>>, Inf
 ///   and positive, or a plane-strain reference distance that is not finite
 ///   or is below the extent of the point set (`PointSet::extent().0`);
 /// - [`InfluenceError::AllRigid`]: no elastic body among `bodies` (also for
-///   an empty slice).
+///   an empty slice);
+/// - [`InfluenceError::InvalidPoints`]: more than [`MAX_DENSE_POINTS`]
+///   points.
 pub fn assemble(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, InfluenceError> {
+    dense_size(points.len())?;
     let terms = Terms::collect(points, bodies)?;
     let mut s = if terms.kernels.is_empty() {
         Mat::zeros(points.len(), points.len())
@@ -74,6 +77,22 @@ pub fn assemble(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, Influen
     };
     terms.add_local(points, &mut s);
     Ok(s)
+}
+
+/// Refuses a dense matrix of more than [`MAX_DENSE_POINTS`] unknowns.
+fn dense_size(n: usize) -> Result<(), InfluenceError> {
+    if n > MAX_DENSE_POINTS {
+        let gb = 8.0 * (n as f64) * (n as f64) / 1e9;
+        return Err(InfluenceError::points(
+            "number of points",
+            n,
+            format!(
+                "a dense influence matrix of more than MAX_DENSE_POINTS = {MAX_DENSE_POINTS} \
+                 unknowns ({gb:.0} GB here); solve it matrix-free (LatticeOperator)"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The folded influence matrix of a mirror-symmetric problem (see
@@ -88,6 +107,7 @@ pub fn assemble_folded(
     bodies: &[&Body],
     folding: &crate::Folding,
 ) -> Result<Mat<f64>, InfluenceError> {
+    dense_size(folding.len())?;
     let terms = Terms::collect(points, bodies)?;
     // The half-space part as in `assemble`: none, gathered from the lattice
     // table, or evaluated from the coordinates; chosen once, not per entry.

@@ -17,7 +17,7 @@ use elcon_influence::{Body, LatticeOperator, PointSet};
 /// Above this many unknowns `auto` solves matrix-free (docs/performance.md,
 /// "Dense or matrix-free": where the conjugate gradient on the lattice
 /// operator overtakes block pivoting on the dense S).
-pub const AUTO_DENSE_LIMIT: usize = 4000;
+pub const AUTO_DENSE_LIMIT: usize = 2000;
 
 /// How S is held.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
