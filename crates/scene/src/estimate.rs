@@ -305,20 +305,28 @@ impl Estimate {
 
     /// Why a scene over `ceiling` is refused, and what would help.
     pub fn refusal(&self, scene: &Scene, ceiling: &crate::Ceiling) -> SceneError {
-        let mut what = format!(
-            "N = {} points{} needs about {} ({} keeps about {:.2} matrices of {} x {}",
-            self.points,
-            if self.unknowns != self.points {
-                format!(" ({} unknowns, folded)", self.unknowns)
-            } else {
-                String::new()
-            },
-            human(self.peak_bytes),
-            scene.method.name(),
-            self.matrices,
-            self.unknowns,
-            self.unknowns,
-        );
+        let folded = if self.unknowns != self.points {
+            format!(" ({} unknowns, folded)", self.unknowns)
+        } else {
+            String::new()
+        };
+        let mut what = match scene.storage {
+            Storage::MatrixFree => format!(
+                "N = {} points needs about {} ({} matrix-free: the lattice operator and its vectors",
+                self.points,
+                human(self.peak_bytes),
+                scene.method.name(),
+            ),
+            Storage::Dense => format!(
+                "N = {} points{folded} needs about {} ({} keeps about {:.2} matrices of {} x {}",
+                self.points,
+                human(self.peak_bytes),
+                scene.method.name(),
+                self.matrices,
+                self.unknowns,
+                self.unknowns,
+            ),
+        };
         let design_dominates = self
             .design
             .as_ref()
@@ -347,7 +355,13 @@ impl Estimate {
                 );
             }
             hints.push("a coarser grid (fewer points across, a smaller zone)");
-            if scene.method != Method::BlockPivoting {
+            if scene.storage == Storage::Dense {
+                hints.push(
+                    "solver.method = \"auto\" or \"conjugate-gradient\" (matrix-free on a \
+                     lattice: O(N) memory, docs/performance.md section 6)",
+                );
+            }
+            if scene.storage == Storage::Dense && scene.method != Method::BlockPivoting {
                 hints.push("solver.method = \"block-pivoting\" (fewer matrices)");
             }
         }
