@@ -148,6 +148,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         method,
         &opts,
     )?;
+    let started = std::time::Instant::now();
     let designed = design(
         &cases,
         Axis::Y,
@@ -163,6 +164,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             ..DesignOptions::default()
         },
     )?;
+    let design_seconds = started.elapsed().as_secs_f64();
 
     let profiles: [(&str, &Evaluation); 4] = [
         ("no crown", &none),
@@ -183,13 +185,14 @@ fn main() -> Result<(), Box<dyn Error>> {
         1e3 * log_crown.end_drop()
     );
     println!(
-        "designed crown (free profile, {} stations, worst p_max/Hertz over the loads): end drop {:.2} um, {} pivots, {:.2} s per start",
+        "designed crown (free profile, {} stations, worst p_max/Hertz over the loads): end drop {:.2} um, {:?} method, {:.2} s for {} starts",
         designed.stations.len(),
         1e3 * designed
             .profile
             .separation(designed.stations[designed.stations.len() - 1])?,
-        designed.statistics.pivots(),
-        designed.statistics.seconds
+        designed.method,
+        design_seconds,
+        designed.starts.len()
     );
     for start in &designed.starts {
         match &start.result {

@@ -18,7 +18,7 @@
 use elcon_analysis::{ContactProblem, Method, Options};
 
 use crate::evaluate::{Evaluation, evaluate, evaluate_from};
-use crate::optimize::reference_intensities;
+use crate::prepared::reference_intensities;
 use crate::{Axis, DesignError, Profile};
 
 /// Golden-section steps of the refinement: the bracket shrinks by 0.618 per

@@ -43,18 +43,24 @@
 //! assert!(target.correction.iter().all(|&y| y >= 0.0));
 //! ```
 
+mod basis;
 pub mod crown;
+mod descent;
 mod error;
 pub mod evaluate;
+mod lpcc;
 pub mod optimize;
+pub mod options;
+mod prepared;
 pub mod profile;
 pub mod target;
 
+pub use basis::fit_profile;
 pub use crown::{CrownSearch, SearchOptions, crown_search};
 pub use error::DesignError;
 pub use evaluate::{Evaluation, evaluate, evaluate_from, evaluate_known};
-pub use optimize::{
-    Design, DesignOptions, Family, StartOutcome, axial_stations, design, fit_profile,
-};
+pub use optimize::{Design, StartOutcome, design};
+pub use options::{DesignMethod, DesignOptions, Family, PROGRAM_LIMIT};
+pub use prepared::{Solver, Stop, axial_stations};
 pub use profile::{Axis, JOHNS_GOHAR, LogCrown, LogEnd, Profile};
 pub use target::{TargetSeparation, target_separation, uniform_target};

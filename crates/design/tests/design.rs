@@ -5,8 +5,8 @@
 
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options};
 use elcon_design::{
-    Axis, DesignOptions, Family, Profile, SearchOptions, crown_search, design, evaluate,
-    evaluate_from, uniform_target,
+    Axis, DesignMethod, DesignOptions, Family, Profile, SearchOptions, Solver, Stop, crown_search,
+    design, evaluate, evaluate_from, uniform_target,
 };
 use elcon_influence::{Body, PointSet};
 
@@ -55,41 +55,56 @@ fn lemke_worst(cases: &[ContactProblem], profile: &Profile) -> f64 {
 #[test]
 fn design_equals_its_reanalysis_for_every_family() {
     let case = beam(20, 0.0, 5e4, 1.0, 1.0);
-    for family in [
-        Family::Quadratic,
-        Family::Polynomial { degree: 4 },
-        Family::Free,
-    ] {
-        let d = design(
-            std::slice::from_ref(&case),
-            Axis::X,
-            family,
-            &DesignOptions::default(),
-        )
-        .unwrap();
-        assert!(d.certificate.holds(), "{family:?}: {}", d.certificate);
-        let sol = &d.evaluation.solutions[0];
-        assert!(sol.certificate.holds());
-        // The program's forces and the re-analysis' are two exact solutions of
-        // the same LCP: they agree to rounding times the conditioning of S.
-        let rel = (d.max_intensity - d.evaluation.worst).abs() / d.max_intensity;
-        assert!(rel < 1e-9, "{family:?}: {rel:e}");
-        // design() checks its program against its own re-analysis (block
-        // pivoting); check it independently too, with another method.
-        let lemke = lemke_worst(std::slice::from_ref(&case), &d.profile);
-        let rel = (lemke - d.max_intensity).abs() / d.max_intensity;
-        assert!(
-            rel < INDEPENDENT,
-            "{family:?}: Lemke {lemke} vs {}: {rel:e}",
-            d.max_intensity
-        );
-        // The correction is a separation: >= 0 at every point, 0 somewhere.
-        let y = &d.evaluation.corrections[0];
-        let lowest = y.iter().cloned().fold(f64::INFINITY, f64::min);
-        assert!(
-            lowest.abs() < 1e-12 * y.iter().cloned().fold(0.0, f64::max),
-            "{lowest:e}"
-        );
+    for method in [DesignMethod::Program, DesignMethod::Descent] {
+        for family in [
+            Family::Quadratic,
+            Family::Polynomial { degree: 4 },
+            Family::Free,
+        ] {
+            let d = design(
+                std::slice::from_ref(&case),
+                Axis::X,
+                family,
+                &DesignOptions {
+                    method,
+                    ..DesignOptions::default()
+                },
+            )
+            .unwrap();
+            assert_eq!(d.method, method);
+            match &d.solver {
+                Solver::Program { certificate, .. } => {
+                    assert_eq!(method, DesignMethod::Program);
+                    assert!(certificate.holds(), "{family:?}: {certificate}");
+                }
+                Solver::Descent { stop, .. } => {
+                    assert_eq!(method, DesignMethod::Descent);
+                    assert_ne!(*stop, Stop::IterationLimit, "{family:?}");
+                }
+            }
+            let sol = &d.evaluation.solutions[0];
+            assert!(sol.certificate.holds());
+            // The method's forces and the re-analysis' are two exact solutions of
+            // the same LCP: they agree to rounding times the conditioning of S.
+            let rel = (d.max_intensity - d.evaluation.worst).abs() / d.max_intensity;
+            assert!(rel < 1e-9, "{method:?} {family:?}: {rel:e}");
+            // design() checks its result against its own re-analysis (block
+            // pivoting); check it independently too, with another method.
+            let lemke = lemke_worst(std::slice::from_ref(&case), &d.profile);
+            let rel = (lemke - d.max_intensity).abs() / d.max_intensity;
+            assert!(
+                rel < INDEPENDENT,
+                "{method:?} {family:?}: Lemke {lemke} vs {}: {rel:e}",
+                d.max_intensity
+            );
+            // The correction is a separation: >= 0 at every point, 0 somewhere.
+            let y = &d.evaluation.corrections[0];
+            let lowest = y.iter().cloned().fold(f64::INFINITY, f64::min);
+            assert!(
+                lowest.abs() < 1e-12 * y.iter().cloned().fold(0.0, f64::max),
+                "{lowest:e}"
+            );
+        }
     }
 }
 

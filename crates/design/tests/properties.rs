@@ -4,7 +4,7 @@
 //! uncorrected geometry, and no better than the lower bound P / L.
 
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options};
-use elcon_design::{Axis, DesignOptions, Family, Profile, design, evaluate};
+use elcon_design::{Axis, DesignOptions, Family, Profile, Solver, design, evaluate};
 use elcon_influence::{Body, PointSet};
 use proptest::prelude::*;
 
@@ -39,7 +39,9 @@ proptest! {
         ).unwrap();
         let cases = std::slice::from_ref(&case);
         let d = design(cases, Axis::X, family, &DesignOptions::default()).unwrap();
-        prop_assert!(d.certificate.holds(), "{}", d.certificate);
+        if let Solver::Program { certificate, .. } = &d.solver {
+            prop_assert!(certificate.holds(), "{}", certificate);
+        }
         let sol = &d.evaluation.solutions[0];
         prop_assert!(sol.certificate.holds(), "{}", sol.certificate);
         prop_assert!((d.max_intensity / d.evaluation.worst - 1.0).abs() <= 1e-9);

@@ -1,0 +1,406 @@
+//! The case-decomposed design method: the min-max problem of a linear
+//! family, solved as an outer problem over the profile parameters theta
+//! with every load case an analysis.
+//!
+//! Once theta is fixed the problem decomposes by case: case l's forces
+//! `F_l(theta)` are its contact solution with the separations
+//! `eps_l + Phi_l theta`, unique because S is positive definite, and
+//! piecewise linear in theta. The objective
+//!
+//! ```text
+//!     f(theta) = max_l max_k F_lk(theta) / (r_l A_k)
+//! ```
+//!
+//! is minimized by a trust-region sequential linear program (Madsen's
+//! minimax method). At theta, each case's contact set J gives the exact
+//! derivative of its forces while J holds: with the free rigid motions'
+//! levers L_J (the approach, free tilts) and the profile's basis D_J = Phi
+//! at the points of J,
+//!
+//! ```text
+//!     S_JJ X - L_J Lambda = -D_J,     L_J^T X = 0       X = dF_J / dtheta, Lambda = d lambda / dtheta
+//! ```
+//!
+//! (one Cholesky factor of S_JJ, m + k solves). The step d solves the
+//! linear program
+//!
+//! ```text
+//!     minimize t   subject to   (F_lk + X_lk d) / (r_l A_k) <= t   (every case l, k in J_l)
+//!                               -Phi'_st (theta' + d') <= c_max    (every station: the normalized constant)
+//!                               |d_i| <= Delta                     (the trust region)
+//! ```
+//!
+//! by its dual on the engine (one row per parameter, one column per
+//! constraint: a small tableau however many cases). Every case is
+//! then re-analysed at theta + d, warm-started from its contact set; the
+//! step is taken when f falls by a fraction of the model's prediction, and
+//! Delta shrinks when the model was wrong (a contact set changed) and grows
+//! when it was right up to its edge.
+//!
+//! Cost per iteration: one analysis and one factor of the contact block per
+//! case, S shared: linear in the cases, where the program of
+//! `crate::lpcc` grows with their square. Memory: S once, one contact
+//! block at a time. What is guaranteed: the objective never rises from the
+//! start; the method stops at a point where the linear model of every
+//! case's contact set predicts no decrease (a stationary point of the
+//! piecewise-linear min-max problem), a local minimum as the program's is.
+//! A uniform shift of the profile only moves the approach (every case is
+//! under load control), so the drops are normalized (smallest 0) only at
+//! the end, and `Phi theta >= 0` is never a constraint of the steps.
+
+use elcon_analysis::{ContactProblem, ContactSolution};
+use elcon_lcp::{Bound, ProgramBuilder};
+use faer::linalg::solvers::Solve;
+use faer::{Col, Mat, MatRef, Side};
+
+use crate::DesignError;
+use crate::DesignOptions;
+use crate::basis::Basis;
+use crate::prepared::{Case, Found, Solver, Stop};
+
+/// Stationarity: the model's predicted decrease below this fraction of the
+/// objective ends the descent. The forces are certified to about 1e-13 of
+/// the load, so a prediction below 1e-12 of the peak is rounding.
+const STATIONARY: f64 = 1e-12;
+/// A step is taken when the objective falls by at least this fraction of
+/// the predicted decrease (any true decrease, allowing for rounding).
+const ACCEPT: f64 = 1e-4;
+/// The largest violation of a step's constraint (relative to its terms'
+/// size) accepted from the step's basis: rounding of an (m + 1)-square
+/// solve, far above it, far below any model error that matters.
+const STEP_FEASIBILITY: f64 = 1e-9;
+/// Below this ratio of actual to predicted decrease the trust region
+/// shrinks to a quarter of the step; above `EXPAND`, with the step at its
+/// edge, it doubles.
+const SHRINK: f64 = 0.25;
+/// See [`SHRINK`].
+const EXPAND: f64 = 0.75;
+/// The descent ends when the trust region is below this fraction of the
+/// cases' elastic deflection: the drops change by less than the rounding
+/// of the separations they are added to.
+const RESOLUTION: f64 = 1e-13;
+
+/// One linear constraint of a step, `a . d + t_coefficient t <= b`.
+struct Constraint {
+    a: Vec<f64>,
+    /// -1 for a model row (an intensity below t), 0 for a bound.
+    t_coefficient: f64,
+    b: f64,
+}
+
+impl Constraint {
+    /// Its largest value of `a . d - b` over the trust region at t = 0
+    /// (model rows) or at all (bounds).
+    fn reach(&self, radius: f64) -> f64 {
+        self.a.iter().map(|v| v.abs()).sum::<f64>() * radius - self.b
+    }
+
+    /// How far `(d, t)` violates it, relative to its terms' size.
+    fn violation(&self, d: &[f64], t: f64) -> f64 {
+        let ad: f64 = self.a.iter().zip(d).map(|(a, d)| a * d).sum();
+        let size: f64 = self
+            .a
+            .iter()
+            .zip(d)
+            .map(|(a, d)| (a * d).abs())
+            .sum::<f64>()
+            + self.b.abs()
+            + (self.t_coefficient * t).abs();
+        (ad + self.t_coefficient * t - self.b) / size.max(f64::MIN_POSITIVE)
+    }
+}
+
+/// Every case analysed at one theta.
+struct Iterate {
+    theta: Vec<f64>,
+    /// The cases with the drops added (their rigid unknowns as the
+    /// analysis used them).
+    problems: Vec<ContactProblem>,
+    solutions: Vec<ContactSolution>,
+    /// `f(theta)`, the worst `p_max_l / r_l`.
+    objective: f64,
+}
+
+/// Analyses every case at `theta`, warm-started from `previous`.
+fn analyse(
+    cases: &[Case<'_>],
+    basis: &Basis,
+    theta: Vec<f64>,
+    previous: Option<&[ContactSolution]>,
+    options: &DesignOptions,
+) -> Result<Iterate, DesignError> {
+    let drops = basis.drops(&theta);
+    let mut problems = Vec::with_capacity(cases.len());
+    let mut solutions = Vec::with_capacity(cases.len());
+    let mut objective = 0.0f64;
+    for (l, case) in cases.iter().enumerate() {
+        let stage = || format!("load case {l} in the design's descent");
+        let eps: Vec<f64> = case
+            .problem
+            .separation()
+            .iter()
+            .zip(&case.station)
+            .map(|(e, &st)| e + drops[st])
+            .collect();
+        let problem = case
+            .problem
+            .with_separation(eps)
+            .map_err(DesignError::analysis(stage()))?;
+        let (method, engine) = (options.reanalysis, &options.reanalysis_options);
+        let solution = match previous {
+            Some(p) => problem.solve_from(&p[l], method, engine),
+            None => problem.solve(method, engine),
+        }
+        .map_err(DesignError::analysis(stage()))?;
+        objective = objective.max(solution.max_pressure / case.reference);
+        problems.push(problem);
+        solutions.push(solution);
+    }
+    Ok(Iterate {
+        theta,
+        problems,
+        solutions,
+        objective,
+    })
+}
+
+/// `S_JJ^{-1} rhs` by Cholesky, or by LU when S_JJ is not numerically
+/// positive definite.
+fn solve_block(block: MatRef<'_, f64>, rhs: MatRef<'_, f64>) -> Mat<f64> {
+    match block.llt(Side::Lower) {
+        Ok(llt) => llt.solve(rhs),
+        Err(_) => block.partial_piv_lu().solve(rhs),
+    }
+}
+
+/// Case l's model rows at its solution: for each point in contact its
+/// intensity over r_l and the derivative of that with respect to theta.
+fn model_rows(
+    case: &Case<'_>,
+    problem: &ContactProblem,
+    solution: &ContactSolution,
+    basis: &Basis,
+) -> Vec<Constraint> {
+    let contact = &solution.contact;
+    let (nj, m) = (contact.len(), basis.params());
+    if nj == 0 {
+        return Vec::new();
+    }
+    let rigid = problem.rigid();
+    let points = problem.points();
+    let block = Mat::from_fn(nj, nj, |a, b| case.influence[(contact[a], contact[b])]);
+    let levers = Mat::from_fn(nj, rigid.free.len(), |a, j| {
+        let k = contact[a];
+        rigid.free[j]
+            .0
+            .lever((points.x(k), points.y(k)), rigid.load_point)
+    });
+    let basis_rows = Mat::from_fn(nj, m, |a, i| basis.phi[(case.station[contact[a]], i)]);
+    // X = -V + U Lambda with U = S^-1 L, V = S^-1 D and (L^T U) Lambda = L^T V.
+    let u = solve_block(block.as_ref(), levers.as_ref());
+    let v = solve_block(block.as_ref(), basis_rows.as_ref());
+    let x = if levers.ncols() == 0 {
+        -&v
+    } else {
+        let reduced = levers.transpose() * &u;
+        let lambda = reduced.partial_piv_lu().solve(levers.transpose() * &v);
+        &u * &lambda - &v
+    };
+    (0..nj)
+        .map(|a| {
+            let k = contact[a];
+            let scale = case.reference * case.measures[k];
+            Constraint {
+                a: (0..m).map(|i| x[(a, i)] / scale).collect(),
+                t_coefficient: -1.0,
+                b: -solution.forces[k] / scale,
+            }
+        })
+        .collect()
+}
+
+/// The bounds on the normalized constant of a polynomial family at every
+/// station: `-sum_{i != c} Phi[st, i] (theta_i + d_i) <= c_max`.
+fn constant_rows(basis: &Basis, theta: &[f64], c_max: Option<f64>) -> Vec<Constraint> {
+    let (Some(ci), Some(c_max)) = (basis.constant, c_max) else {
+        return Vec::new();
+    };
+    (0..basis.phi.nrows())
+        .map(|st| {
+            let row = |i: usize| if i == ci { 0.0 } else { basis.phi[(st, i)] };
+            Constraint {
+                a: (0..theta.len()).map(|i| -row(i)).collect(),
+                t_coefficient: 0.0,
+                b: c_max + (0..theta.len()).map(|i| row(i) * theta[i]).sum::<f64>(),
+            }
+        })
+        .collect()
+}
+
+/// The step of least model objective within the trust region: the step,
+/// the model's objective there, and the engine's pivots.
+///
+/// Solved as the dual of the step's program, which has one row per
+/// parameter and one for t, and one column per constraint (the model rows
+/// of every case, the bounds, the trust region `|d_i| <= radius`):
+///
+/// ```text
+///     minimize b . y   subject to   sum_r y_r a_r = 0,   sum_(model rows) y_r = 1,   y >= 0
+/// ```
+///
+/// Its optimum is `-t`, and the step is read from the final basis B
+/// (the simplex multipliers pi of `B^T pi = b_B`: `d = pi_(1..m)`,
+/// `t = -pi_(m+1)`). The trust region's `d_i <= radius` is a unit column in
+/// row i and the lower bound `t >= floor` (implied: no intensity can fall
+/// below its lowest reach) one in the last row, so the start is a feasible
+/// basis of unit columns and no artificial is ever basic.
+fn step(
+    pool: &[Constraint],
+    m: usize,
+    radius: f64,
+    engine: &elcon_lcp::Options,
+) -> Result<(Vec<f64>, f64, usize), DesignError> {
+    // The model's objective is at least the largest lower reach of any
+    // intensity; a constraint that cannot reach it never binds.
+    let floor = pool
+        .iter()
+        .filter(|c| c.t_coefficient != 0.0)
+        .map(|c| -c.b - c.a.iter().map(|v| v.abs()).sum::<f64>() * radius)
+        .fold(f64::NEG_INFINITY, f64::max);
+    // The unit columns first (the start basis): d_i <= radius in row i,
+    // t >= floor in the last row; then d_i >= -radius and the live
+    // constraints.
+    let bound = |i: usize, sign: f64| Constraint {
+        a: (0..m).map(|j| if j == i { sign } else { 0.0 }).collect(),
+        t_coefficient: 0.0,
+        b: radius,
+    };
+    let mut own: Vec<Constraint> = (0..m).map(|i| bound(i, 1.0)).collect();
+    own.push(Constraint {
+        a: vec![0.0; m],
+        t_coefficient: -1.0,
+        b: -floor,
+    });
+    own.extend((0..m).map(|i| bound(i, -1.0)));
+    let live = pool.iter().filter(|c| {
+        let reach = c.reach(radius);
+        if c.t_coefficient != 0.0 {
+            reach >= floor
+        } else {
+            reach > 0.0
+        }
+    });
+    let columns: Vec<&Constraint> = own.iter().chain(live).collect();
+    let rows = m + 1;
+    let entry = |r: usize, c: &Constraint| if r < m { c.a[r] } else { -c.t_coefficient };
+    let block = Mat::from_fn(rows, columns.len() - rows, |r, j| {
+        entry(r, columns[rows + j])
+    });
+    let mut program = ProgramBuilder::new(rows);
+    let units = program.unit_columns("unit", 0..rows, 1.0, Bound::NonNegative)?;
+    let dense = program.dense_columns("y", block.as_ref(), Bound::NonNegative)?;
+    for (j, c) in units.chain(dense).zip(&columns) {
+        program.cost(j, c.b)?;
+    }
+    let rhs = Col::from_fn(rows, |r| f64::from(r == m));
+    program.rhs(rhs.as_ref())?;
+    let solution = program.build()?.solve(engine)?;
+    let pivots = solution.statistics.pivots();
+    let unreadable = || DesignError::Incompatible {
+        field: "cases",
+        reason: "the descent's step program ended without a basis of its own columns".into(),
+    };
+    if solution.basis.len() != rows || solution.basis.iter().any(|&v| v >= columns.len()) {
+        return Err(unreadable());
+    }
+    let basis = Mat::from_fn(rows, rows, |r, i| entry(r, columns[solution.basis[i]]));
+    let costs = Col::from_fn(rows, |i| columns[solution.basis[i]].b);
+    let pi = basis.transpose().partial_piv_lu().solve(&costs);
+    let d: Vec<f64> = (0..m).map(|i| pi[i]).collect();
+    let t = -pi[m];
+    // The multipliers of an optimal basis are a feasible step: checked,
+    // since the step is only as good as the basis it is read from.
+    let worst = columns
+        .iter()
+        .map(|c| c.violation(&d, t))
+        .fold(0.0f64, f64::max);
+    if !(t.is_finite() && worst <= STEP_FEASIBILITY) {
+        return Err(unreadable());
+    }
+    Ok((d, t, pivots))
+}
+
+/// The descent from `theta0`; `scale` is the cases' elastic deflection
+/// (length), the first trust radius.
+pub(crate) fn solve(
+    cases: &[Case<'_>],
+    basis: &Basis,
+    c_max: Option<f64>,
+    theta0: &[f64],
+    scale: f64,
+    options: &DesignOptions,
+) -> Result<Found, DesignError> {
+    let m = basis.params();
+    let mut current = analyse(cases, basis, theta0.to_vec(), None, options)?;
+    let mut radius = scale;
+    let (mut iterations, mut accepted) = (0, 0);
+    let mut analyses = cases.len();
+    let mut pivots = pivots_of(&current.solutions);
+    let stop = loop {
+        if iterations >= options.max_iterations {
+            break Stop::IterationLimit;
+        }
+        if radius < RESOLUTION * scale {
+            break Stop::TrustRegion;
+        }
+        iterations += 1;
+        let mut pool = constant_rows(basis, &current.theta, c_max);
+        for ((case, problem), solution) in
+            cases.iter().zip(&current.problems).zip(&current.solutions)
+        {
+            pool.extend(model_rows(case, problem, solution, basis));
+        }
+        let (d, model, p) = step(&pool, m, radius, &options.engine)?;
+        pivots += p;
+        let predicted = current.objective - model;
+        if predicted <= STATIONARY * current.objective {
+            break Stop::Stationary;
+        }
+        let theta: Vec<f64> = current.theta.iter().zip(&d).map(|(t, d)| t + d).collect();
+        let trial = analyse(cases, basis, theta, Some(&current.solutions), options)?;
+        analyses += cases.len();
+        pivots += pivots_of(&trial.solutions);
+        let ratio = (current.objective - trial.objective) / predicted;
+        let length = d.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        if ratio < SHRINK {
+            radius = 0.25 * length;
+        } else if ratio > EXPAND && length >= 0.99 * radius {
+            radius *= 2.0;
+        }
+        if ratio >= ACCEPT {
+            accepted += 1;
+            current = trial;
+        }
+    };
+    let max_intensity = current
+        .solutions
+        .iter()
+        .fold(0.0f64, |a, s| a.max(s.max_pressure));
+    Ok(Found {
+        theta: current.theta,
+        objective: current.objective,
+        max_intensity,
+        solutions: Some(current.solutions),
+        solver: Solver::Descent {
+            iterations,
+            accepted,
+            analyses,
+            pivots,
+            stop,
+        },
+    })
+}
+
+fn pivots_of(solutions: &[ContactSolution]) -> usize {
+    solutions.iter().map(|s| s.statistics.pivots()).sum()
+}

@@ -1,0 +1,100 @@
+//! What a design is asked for: the family of the correction, how its
+//! min-max problem is solved (the paper's program over all cases at once,
+//! or the case-decomposed descent), and the options of both.
+
+use elcon_analysis::{Method, Options};
+
+use crate::Profile;
+
+/// A profile family linear in its parameters, for the design program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Family {
+    /// The paper's `a s^2 + b s + c`.
+    Quadratic,
+    /// `sum_{i <= degree} c_i s^i`.
+    Polynomial {
+        /// The degree d (at least 0).
+        degree: usize,
+    },
+    /// One drop per axial station.
+    Free,
+}
+
+/// How the min-max problem of a linear family is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DesignMethod {
+    /// The program while all the cases' points together are at most
+    /// [`PROGRAM_LIMIT`], the descent above (the default).
+    #[default]
+    Auto,
+    /// The paper's linear program with complementarity constraints, every
+    /// case a block of one tableau (Conry & Seireg's eq. 16): exact pivots,
+    /// memory and time growing with the square of all the cases' points.
+    Program,
+    /// The case-decomposed descent: a trust-region sequential linear program
+    /// over the profile parameters, each case an analysis sharing its S,
+    /// sensitivities from each case's contact set (`crate::descent`): cost
+    /// growing like the analyses, linearly in the cases.
+    Descent,
+}
+
+/// All the cases' points together up to which [`DesignMethod::Auto`] uses
+/// the program (measured on Example 2 and the crowned roller:
+/// docs/design.md §2, the method's table).
+pub const PROGRAM_LIMIT: usize = 200;
+
+/// Options of a design.
+#[derive(Debug, Clone)]
+pub struct DesignOptions {
+    /// How the problem is solved (default [`DesignMethod::Auto`]).
+    pub method: DesignMethod,
+    /// The bound c_max on the constant of a polynomial family (length).
+    /// Default: ten times the largest elastic deflection under a uniform
+    /// pressure plus the largest initial separation, over the cases (and at
+    /// least twice the constant of the fitted start).
+    pub max_constant: Option<f64>,
+    /// Options of the engine for the design program and the descent's
+    /// linear programs.
+    pub engine: Options,
+    /// The method of the re-analysis and of the descent's analyses
+    /// (default: block principal pivoting).
+    pub reanalysis: Method,
+    /// Options of the re-analysis.
+    pub reanalysis_options: Options,
+    /// Also start from the least-squares fit of the uniform-pressure
+    /// separation (line contacts only; default true).
+    pub fitted_start: bool,
+    /// More starting profiles (any family: each is sampled at the stations
+    /// and fitted to the design's family by least squares, shifted to be
+    /// non-negative). A design from a start is never worse than the start
+    /// itself, so a known good crown given here bounds the result. Default
+    /// none.
+    pub starts: Vec<Profile>,
+    /// Largest accepted relative difference between the design's objective
+    /// and its re-analysis' (default 1e-9).
+    pub agreement: f64,
+    /// Reference intensities r_l, one per load case (force per length or per
+    /// area, > 0): the objective is the worst `p_max_l / r_l`. Default: all 1
+    /// (the worst p_max itself).
+    pub reference_intensities: Option<Vec<f64>>,
+    /// The descent's iteration limit (default 500; each iteration analyses
+    /// every case once).
+    pub max_iterations: usize,
+}
+
+impl Default for DesignOptions {
+    fn default() -> Self {
+        Self {
+            method: DesignMethod::Auto,
+            max_constant: None,
+            engine: Options::default(),
+            reanalysis: Method::BlockPivoting,
+            reanalysis_options: Options::default(),
+            fitted_start: true,
+            starts: Vec::new(),
+            agreement: 1e-9,
+            reference_intensities: None,
+            max_iterations: 500,
+        }
+    }
+}

@@ -1,0 +1,225 @@
+//! The load cases of a design, prepared once for either method: each case's
+//! axial stations, measures `A_k`, load, free rigid motions (their levers
+//! `m_k` and resultants `b`) and separations shifted by its prescribed
+//! motions,
+//!
+//! ```text
+//!     eps_k  ->  eps_k - sum_prescribed value m_k
+//! ```
+//!
+//! and what a method's start returns: the parameters it found, the worst
+//! intensity its own solutions reach, and how it got there.
+
+use elcon_analysis::{ContactProblem, ContactSolution};
+use elcon_influence::PointSet;
+use elcon_lcp::{Certificate, Statistics};
+use faer::{Col, Mat, MatRef};
+
+use crate::evaluate::load_of;
+use crate::{Axis, DesignError};
+
+/// One load case, prepared: its points' stations, measures and load, and
+/// its free rigid motions (the approach first, then the free rotations that
+/// its symmetry does not make zero) with the separations shifted by the
+/// prescribed ones. (A correction that breaks a case's symmetry makes its
+/// re-analysis free a rotation the program held: the re-analysis then
+/// disagrees, and the design says so.)
+pub(crate) struct Case<'a> {
+    pub(crate) problem: &'a ContactProblem,
+    /// The problem's dense S (the program is built from its entries).
+    pub(crate) influence: MatRef<'a, f64>,
+    pub(crate) station: Vec<usize>,
+    pub(crate) measures: Vec<f64>,
+    pub(crate) load: f64,
+    /// The free motions' levers at every point (n x k) and resultants.
+    pub(crate) levers: Mat<f64>,
+    pub(crate) resultants: Vec<f64>,
+    /// `eps` shifted by the prescribed motions.
+    pub(crate) separation: Vec<f64>,
+    /// Reference intensity r_l.
+    pub(crate) reference: f64,
+}
+
+/// The axial stations of point sets (the load cases' points, say): the
+/// distinct axial positions of all their points, increasing, positions
+/// within 1e-9 of the whole range merged into the first of them; and, per
+/// set, each point's station (an index into the stations). These are the
+/// stations a design's free profile has one drop at ([`crate::Design::stations`])
+/// and its table is written at.
+pub fn axial_stations<'a>(
+    sets: impl IntoIterator<Item = &'a PointSet>,
+    axis: Axis,
+) -> (Vec<f64>, Vec<Vec<usize>>) {
+    let all: Vec<Vec<f64>> = sets.into_iter().map(|p| axis.positions(p)).collect();
+    let mut sorted: Vec<f64> = all.iter().flatten().copied().collect();
+    sorted.sort_by(f64::total_cmp);
+    let range = sorted.last().copied().unwrap_or(0.0) - sorted.first().copied().unwrap_or(0.0);
+    let merge = 1e-9 * range.max(f64::MIN_POSITIVE);
+    let mut stations: Vec<f64> = Vec::new();
+    for s in sorted {
+        if stations.last().is_none_or(|&last| s - last > merge) {
+            stations.push(s);
+        }
+    }
+    let index = all
+        .iter()
+        .map(|positions| {
+            positions
+                .iter()
+                .map(|&s| {
+                    let i = stations.partition_point(|&st| st < s - merge);
+                    i.min(stations.len() - 1)
+                })
+                .collect()
+        })
+        .collect();
+    (stations, index)
+}
+
+/// Every case prepared (each under load control and unfolded, checked by
+/// `load_of`), with each point's station among `index`.
+pub(crate) fn prepare<'a>(
+    cases: &'a [ContactProblem],
+    index: Vec<Vec<usize>>,
+    references: &[f64],
+) -> Result<Vec<Case<'a>>, DesignError> {
+    cases
+        .iter()
+        .zip(index)
+        .enumerate()
+        .map(|(l, (problem, station))| {
+            let load = load_of(problem, l)?;
+            let rigid = problem.rigid();
+            let points = problem.points();
+            let at = |k: usize| (points.x(k), points.y(k));
+            let levers = Mat::from_fn(points.len(), rigid.free.len(), |k, j| {
+                rigid.free[j].0.lever(at(k), rigid.load_point)
+            });
+            let shift = |k: usize| -> f64 {
+                -rigid
+                    .prescribed
+                    .iter()
+                    .map(|&(mode, value)| value * mode.lever(at(k), rigid.load_point))
+                    .sum::<f64>()
+            };
+            let eps = problem.separation();
+            let influence = problem
+                .influence()
+                .ok_or_else(|| DesignError::Incompatible {
+                    field: "cases",
+                    reason: format!(
+                        "load case {l} holds S matrix-free (ContactProblem::lattice); a design \
+                         reads S's entries: build it with ContactProblem::new"
+                    ),
+                })?;
+            Ok(Case {
+                problem,
+                influence,
+                measures: points.measures(),
+                station,
+                load,
+                levers,
+                resultants: rigid.free.iter().map(|&(_, v)| v).collect(),
+                separation: (0..points.len()).map(|k| eps[k] + shift(k)).collect(),
+                reference: references[l],
+            })
+        })
+        .collect()
+}
+
+/// The reference intensities r_l: given (one per case, finite, > 0) or all
+/// 1 (the design program's and the crown search's).
+pub(crate) fn reference_intensities(
+    given: Option<&[f64]>,
+    cases: usize,
+) -> Result<Vec<f64>, DesignError> {
+    match given {
+        None => Ok(vec![1.0; cases]),
+        Some(r) if r.len() != cases => Err(DesignError::Incompatible {
+            field: "reference_intensities",
+            reason: format!(
+                "has {} entries, expected {cases} (one per load case)",
+                r.len()
+            ),
+        }),
+        Some(r) => match r.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+            Some(&v) => Err(DesignError::InvalidInput {
+                field: "reference_intensities",
+                value: v,
+                reason: "every reference intensity must be finite and > 0",
+            }),
+            None => Ok(r.to_vec()),
+        },
+    }
+}
+
+/// Largest elastic deflection under a uniform pressure plus the largest
+/// initial separation: the scale of the default c_max.
+pub(crate) fn deflection_scale(c: &Case<'_>) -> f64 {
+    let n = c.station.len();
+    let total: f64 = c.measures.iter().sum();
+    let uniform = Col::from_fn(n, |j| c.load * c.measures[j] / total);
+    let deflection = (c.influence * &uniform)
+        .iter()
+        .fold(0.0f64, |a, v| a.max(*v));
+    let eps = c
+        .problem
+        .separation()
+        .iter()
+        .fold(0.0f64, |a, e| a.max(e.abs()));
+    deflection + eps
+}
+
+/// How a design's parameters were found.
+#[derive(Debug, Clone)]
+pub enum Solver {
+    /// By the paper's program: its certificate (the residuals of its final
+    /// basis from the program's data) and the engine's statistics.
+    Program {
+        /// The certificate of the program's solution.
+        certificate: Certificate,
+        /// The engine's statistics.
+        statistics: Statistics,
+    },
+    /// By the case-decomposed descent (`crate::descent`).
+    Descent {
+        /// Trust-region iterations (each a linear program over the
+        /// parameters and one analysis of every case).
+        iterations: usize,
+        /// Steps accepted (the objective fell by a fraction of the model's
+        /// prediction).
+        accepted: usize,
+        /// Contact analyses solved.
+        analyses: usize,
+        /// Engine pivots of every analysis and linear program together.
+        pivots: usize,
+        /// Why it stopped.
+        stop: Stop,
+    },
+}
+
+/// Why the descent stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stop {
+    /// The linear model predicts no decrease within the trust region (a
+    /// stationary point of the min-max problem).
+    Stationary,
+    /// The trust region shrank below the parameters' resolution.
+    TrustRegion,
+    /// [`crate::DesignOptions::max_iterations`] reached.
+    IterationLimit,
+}
+
+/// What one start of a method found: the parameters (the program's, or
+/// the descent's, before the profile is shifted to a smallest drop of 0),
+/// its worst intensities, and how.
+pub(crate) struct Found {
+    pub(crate) theta: Vec<f64>,
+    /// The worst `p_max_l / r_l` of its own solutions.
+    pub(crate) objective: f64,
+    /// Their worst `max_k F_k / A_k`.
+    pub(crate) max_intensity: f64,
+    /// The descent's last analyses (warm starts of the re-analysis).
+    pub(crate) solutions: Option<Vec<ContactSolution>>,
+    pub(crate) solver: Solver,
+}
