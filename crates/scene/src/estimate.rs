@@ -27,7 +27,7 @@
 //! (docs/reliability.md), rounded up.
 
 use elcon_analysis::{Layout, Method, Normal};
-use elcon_design::{Family, axial_stations};
+use elcon_design::{DesignMethod, Family, PROGRAM_LIMIT, axial_stations};
 use elcon_influence::{Dimension, LatticeOperator, PointSet};
 
 use crate::error::SceneError;
@@ -71,6 +71,15 @@ const PROGRAM_SECONDS: f64 = 2.5e-10;
 
 /// The design program's peak in matrices of R x C: 3.7 to 4.1 measured.
 const PROGRAM_MATRICES: f64 = 4.25;
+
+/// The descent's iterations per start, rounded up (4 to 5 measured on the
+/// roller and Example 2, examples/design_scaling; docs/design.md).
+const DESCENT_ITERATIONS: f64 = 20.0;
+
+/// Vectors of a case's points the descent holds per case and iterate (the
+/// solution's forces, pressures, gaps, separations and the problem's
+/// copies), rounded up.
+const DESCENT_VECTORS: f64 = 8.0;
 
 /// Which tableau a tableau method works on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -149,7 +158,10 @@ pub struct DesignEstimate {
     pub cases: usize,
     /// Points of every case together.
     pub points: usize,
-    /// Rows and dense columns of the design program (linear families).
+    /// How a linear family is solved ("auto" resolved; `None` for a crown).
+    pub method: Option<DesignMethod>,
+    /// Rows and dense columns of the design program (a linear family solved
+    /// by the program).
     pub program: Option<(usize, usize)>,
     /// Bytes the stage holds at its peak (the contact problem's S included).
     pub bytes: u64,
@@ -345,7 +357,7 @@ impl Estimate {
         what.push(')');
         let mut hints = Vec::new();
         if design_dominates {
-            hints.push("fewer design cases (design.loads)");
+            hints.push("fewer design cases (design.loads, design.misalignments)");
             hints.push("a coarser grid");
         } else {
             if self.unknowns == self.points {
@@ -386,18 +398,24 @@ fn design(
         .iter()
         .map(|&load| scene.points_for(load))
         .collect::<Result<Vec<_>, _>>()?;
+    // Every load is a case at each misalignment, all sharing its S.
+    let angles = spec.misalignments.len().max(1);
     let sizes: Vec<usize> = sets.iter().map(PointSet::len).collect();
-    let total: usize = sizes.iter().sum();
+    let total: usize = angles * sizes.iter().sum::<usize>();
     let largest = sizes.iter().copied().max().unwrap_or(0);
-    let cases = sizes.len();
+    let cases = angles * sizes.len();
     // The cases are analysed under load, from separations >= 0.
     let m = matrices(scene.method, Tableau::Symmetric);
     let per_cube = per_cube(scene.method, Tableau::Symmetric);
+    let analysis = per_cube * (largest as f64).powi(3);
     let mut bytes = square_bytes(1.0, unknowns)
         + sizes.iter().map(|&n| square_bytes(1.0, n)).sum::<f64>()
         + square_bytes(m - 1.0, largest);
-    // Each case analysed before and after (and per start, for the linear families).
-    let mut seconds = 2.0 * cases as f64 * per_cube * (largest as f64).powi(3);
+    // Each case analysed before and after.
+    let mut seconds = 2.0 * cases as f64 * analysis;
+    let line = sets.iter().all(|p| p.dimension() == Dimension::Line);
+    let starts = if line { 2.0 } else { 1.0 };
+    let mut method = None;
     let program = match &spec.family {
         DesignFamily::Linear(family) => {
             let (stations, _) = axial_stations(sets.iter(), spec.axis);
@@ -406,20 +424,37 @@ fn design(
                 Family::Polynomial { degree } => degree + 1,
                 Family::Free => stations.len(),
             };
-            let constant = usize::from(!matches!(family, Family::Free));
-            let rows = 2 * total + cases + stations.len() + constant;
-            let columns = total + cases + params + 1;
-            bytes += PROGRAM_MATRICES * ENTRY * rows as f64 * columns as f64;
-            let line = sets.iter().all(|p| p.dimension() == Dimension::Line);
-            let starts = if line { 2.0 } else { 1.0 };
-            seconds += starts
-                * (PROGRAM_SECONDS * rows as f64 * (columns as f64).powi(2)
-                    + cases as f64 * per_cube * (largest as f64).powi(3));
-            Some((rows, columns))
+            let resolved = match spec.method {
+                DesignMethod::Auto if total <= PROGRAM_LIMIT => DesignMethod::Program,
+                DesignMethod::Auto => DesignMethod::Descent,
+                given => given,
+            };
+            method = Some(resolved);
+            if resolved == DesignMethod::Descent {
+                // One contact block and its solves at a time, every case's
+                // solutions twice (the iterate and the trial), the step's
+                // program of m + 1 rows and a column per point in contact.
+                let columns = (total + 2 * params + 1) as f64;
+                bytes += square_bytes(1.0, largest)
+                    + ENTRY * (largest * (params + 4)) as f64
+                    + 2.0 * DESCENT_VECTORS * ENTRY * total as f64
+                    + PROGRAM_MATRICES * ENTRY * (params + 1) as f64 * columns;
+                seconds += starts * DESCENT_ITERATIONS * cases as f64 * 2.0 * analysis;
+                None
+            } else {
+                let constant = usize::from(!matches!(family, Family::Free));
+                let rows = 2 * total + cases + stations.len() + constant;
+                let columns = total + cases + params + 1;
+                bytes += PROGRAM_MATRICES * ENTRY * rows as f64 * columns as f64;
+                seconds += starts
+                    * (PROGRAM_SECONDS * rows as f64 * (columns as f64).powi(2)
+                        + cases as f64 * analysis);
+                Some((rows, columns))
+            }
         }
         DesignFamily::CircularCrown { .. } => {
             // The search's samples and refinement: about 30 evaluations.
-            seconds += 30.0 * cases as f64 * per_cube * (largest as f64).powi(3);
+            seconds += 30.0 * cases as f64 * analysis;
             None
         }
         DesignFamily::LogarithmicCrown { .. } => None,
@@ -428,6 +463,7 @@ fn design(
         DesignEstimate {
             cases,
             points: total,
+            method,
             program,
             bytes: to_bytes(bytes),
         },
@@ -563,7 +599,7 @@ family = "quadratic"
         assert_eq!(d1.program, Some((602, 205)));
         let four = beam.replace(
             "family = \"quadratic\"",
-            "family = \"quadratic\"\nloads = [1000.0, 2000.0, 3000.0, 4000.0]",
+            "family = \"quadratic\"\nloads = [1000.0, 2000.0, 3000.0, 4000.0]\nmethod = \"program\"",
         );
         let d4 = Estimate::of(&scene(&four)).unwrap().design.unwrap();
         assert_eq!(d4.points, 800);
@@ -572,6 +608,21 @@ family = "quadratic"
         let ratio = d4.bytes as f64 / d1.bytes as f64;
         assert!(ratio > 10.0, "{ratio}");
         assert!(one.peak_bytes >= d1.bytes + BASELINE);
+        // The descent holds S once per load and a step program of a column
+        // per point: linear in the cases. 4 loads x 10 misalignments: 10
+        // times the points of 4 loads alone, far less than 10 times the bytes.
+        let auto = four.replace("method = \"program\"", "");
+        let d4 = Estimate::of(&scene(&auto)).unwrap().design.unwrap();
+        assert_eq!(d4.method, Some(DesignMethod::Descent));
+        assert_eq!(d4.program, None);
+        let forty = auto.replace(
+            "loads = [1000.0, 2000.0, 3000.0, 4000.0]",
+            "loads = [1000.0, 2000.0, 3000.0, 4000.0]\nmisalignments = [0.0, 1e-5, 2e-5, 3e-5, 4e-5, 5e-5, 6e-5, 7e-5, 8e-5, 9e-5]",
+        );
+        let d40 = Estimate::of(&scene(&forty)).unwrap().design.unwrap();
+        assert_eq!((d40.cases, d40.points), (40, 8000));
+        let ratio = d40.bytes as f64 / d4.bytes as f64;
+        assert!((1.0..3.0).contains(&ratio), "{ratio}");
     }
 
     #[test]

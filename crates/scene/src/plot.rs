@@ -175,10 +175,16 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
             ))
             .map_err(err)?;
         let mut series = Vec::new();
-        for (l, case) in d.cases.iter().enumerate() {
+        for ((l, case), (load, misalignment)) in
+            d.cases.iter().enumerate().zip(spec.case_loadings())
+        {
             let before = along(spec.axis, case.points(), &d.before.solutions[l].pressures);
             let after = along(spec.axis, case.points(), &d.after.solutions[l].pressures);
-            series.push((spec.loads[l], before, after));
+            let label = match misalignment {
+                Some(angle) => format!("load {load} {}, {angle:e} rad", u.force),
+                None => format!("load {load} {}", u.force),
+            };
+            series.push((label, before, after));
         }
         let pmax = series
             .iter()
@@ -200,7 +206,7 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
             .y_desc(format!("pressure ({})", u.intensity))
             .draw()
             .map_err(err)?;
-        for (i, (load, before, after)) in series.into_iter().enumerate() {
+        for (i, (label, before, after)) in series.into_iter().enumerate() {
             let color = COLORS[i % COLORS.len()];
             chart
                 .draw_series(DashedLineSeries::new(before, 6, 4, color.stroke_width(1)))
@@ -208,7 +214,7 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
             chart
                 .draw_series(LineSeries::new(after, color.stroke_width(2)))
                 .map_err(err)?
-                .label(format!("load {load} {}", u.force))
+                .label(label)
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });

@@ -8,8 +8,8 @@ use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
 use elcon_design::{
-    DesignOptions, Evaluation, LogCrown, LogEnd, Profile, SearchOptions, axial_stations,
-    crown_search, design, evaluate, evaluate_known,
+    DesignMethod, DesignOptions, Evaluation, LogCrown, LogEnd, Profile, SearchOptions,
+    axial_stations, crown_search, design, evaluate, evaluate_known,
 };
 use elcon_influence::Dimension;
 use serde::Serialize;
@@ -177,6 +177,10 @@ pub struct ReferenceJson {
 pub struct DesignCaseJson {
     /// The load (force).
     pub load: f64,
+    /// The prescribed misalignment (rad), when the design has
+    /// `misalignments`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub misalignment: Option<f64>,
     /// The reference intensity r_l the objective divides by.
     pub reference_intensity: f64,
     /// p_max without the correction.
@@ -208,7 +212,11 @@ pub struct DesignJson {
     pub cases: Vec<DesignCaseJson>,
     /// The correction as a table: (axial position, drop), lengths.
     pub table: Vec<(f64, f64)>,
-    /// How each start of the design program ended (linear families).
+    /// How the linear family's problem was solved: "program" or
+    /// "descent" (`design.method`, "auto" resolved); "search" for a
+    /// circular crown, "set" for a logarithmic one.
+    pub method: String,
+    /// How each start ended (linear families).
     pub starts: Vec<String>,
     /// Seconds of the design stage.
     pub seconds: f64,
@@ -537,6 +545,17 @@ fn reference_intensity(scene: &Scene, case: &ContactProblem, load: f64) -> Resul
     })
 }
 
+/// A design case's loading: the load, and the misalignment as a prescribed
+/// rotation about the axis across the profile (`tilt_x` for a profile
+/// along y, `tilt_y` along x), or the rotations free without a moment.
+fn case_loading(axis: elcon_design::Axis, load: f64, misalignment: Option<f64>) -> Loading {
+    match (misalignment, axis) {
+        (None, _) => Loading::load(load),
+        (Some(angle), elcon_design::Axis::Y) => Loading::load(load).with_tilt_x(angle),
+        (Some(angle), elcon_design::Axis::X) => Loading::load(load).with_tilt_y(angle),
+    }
+}
+
 /// The design stage: every load case analysed without and with the
 /// correction the family's method finds.
 fn design_stage(
@@ -550,26 +569,26 @@ fn design_stage(
     let mut cases = Vec::new();
     let mut known = Vec::new();
     let mut references = Vec::new();
-    for &load in &spec.loads {
+    for (load, misalignment) in spec.case_loadings() {
         let points = scene.points_for(load)?;
         // On the scene's own points, a problem solved in full shares its S
         // (a folded one has no full S to share); at the scene's own load its
-        // solution is the uncorrected analysis.
+        // solution is the uncorrected analysis. A design load's own S is
+        // shared by its misalignments.
         let own = problem.folding().is_none() && points == *problem.points();
-        let case = if own {
-            problem.with_loading(Loading::load(load))
-        } else {
-            ContactProblem::new(
-                points,
-                &b1.body,
-                &b2.body,
-                &scene.geometry,
-                Loading::load(load),
-            )
-            .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1))
+        let loading = case_loading(spec.axis, load, misalignment);
+        let shared = cases
+            .iter()
+            .find(|c: &&ContactProblem| c.points() == &points)
+            .or(own.then_some(problem));
+        let case = match shared {
+            Some(c) => c.with_loading(loading),
+            None => ContactProblem::new(points, &b1.body, &b2.body, &scene.geometry, loading)
+                .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1)),
         }
         .map_err(|e| run_error(scene, e))?;
-        let solved = matches!(problem.loading().normal, Normal::Load(p) if own && p == load);
+        let solved = misalignment.is_none()
+            && matches!(problem.loading().normal, Normal::Load(p) if own && p == load);
         known.push(solved.then_some(solution));
         references.push(reference_intensity(scene, &case, load)?);
         cases.push(case);
@@ -584,13 +603,14 @@ fn design_stage(
         &known,
     )
     .map_err(fail)?;
-    let (profile, after, starts) = match &spec.family {
+    let (profile, after, starts, method) = match &spec.family {
         DesignFamily::Linear(family) => {
             let d = design(
                 &cases,
                 spec.axis,
                 *family,
                 &DesignOptions {
+                    method: spec.method,
                     max_constant: spec.max_constant,
                     reanalysis: scene.method,
                     reanalysis_options: scene.options.clone(),
@@ -607,7 +627,11 @@ fn design_stage(
                     Err(e) => format!("{}: failed: {e}", s.label),
                 })
                 .collect();
-            (d.profile, d.evaluation, starts)
+            let method = match d.method {
+                DesignMethod::Descent => "descent",
+                _ => "program",
+            };
+            (d.profile, d.evaluation, starts, method)
         }
         DesignFamily::CircularCrown {
             radius_range,
@@ -638,6 +662,7 @@ fn design_stage(
                 search.profile,
                 search.evaluation,
                 vec![format!("searched: {n} analyses")],
+                "search",
             )
         }
         DesignFamily::LogarithmicCrown {
@@ -670,6 +695,7 @@ fn design_stage(
                 profile,
                 after,
                 vec!["set from the design load (Johns-Gohar)".into()],
+                "set",
             )
         }
     };
@@ -691,9 +717,13 @@ fn design_stage(
         parameters: parameters(&profile),
         objective,
         objective_before,
-        cases: (0..cases.len())
-            .map(|l| DesignCaseJson {
-                load: spec.loads[l],
+        cases: spec
+            .case_loadings()
+            .into_iter()
+            .enumerate()
+            .map(|(l, (load, misalignment))| DesignCaseJson {
+                load,
+                misalignment,
                 reference_intensity: references[l],
                 max_pressure_before: before.max_intensities[l],
                 max_pressure_after: after.max_intensities[l],
@@ -702,6 +732,7 @@ fn design_stage(
             })
             .collect(),
         table,
+        method: method.into(),
         starts,
         seconds: start.elapsed().as_secs_f64(),
     };

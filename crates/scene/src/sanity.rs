@@ -24,10 +24,10 @@ use crate::schema::{BodyToml, DesignToml, GeometryToml, SolverToml};
 /// refinement settles in one to three).
 pub const MAX_REFINEMENT_STEPS: usize = 20;
 
-/// The most design load cases (the design program grows like the square
-/// of the points of all cases together; the memory estimate refuses what
-/// does not fit, this bounds the time).
-pub const MAX_DESIGN_CASES: usize = 100;
+/// The most design cases, each load at each misalignment (every descent
+/// iteration analyses each case; the memory estimate refuses what does not
+/// fit, this bounds the time).
+pub const MAX_DESIGN_CASES: usize = 1000;
 
 /// The highest polynomial degree of a design (monomials of the normalized
 /// axial coordinate: past about 12 the basis is too ill-conditioned for
@@ -242,14 +242,18 @@ pub(crate) fn design(
 ) -> Result<(), SceneError> {
     let t = raw.get_ref();
     if spec.cases > MAX_DESIGN_CASES {
-        let span = t.loads.as_ref().map_or(raw.span(), |l| l.span());
+        let (span, field) = match (&t.misalignments, &t.loads) {
+            (Some(m), _) => (m.span(), "design.misalignments"),
+            (None, Some(l)) => (l.span(), "design.loads"),
+            (None, None) => (raw.span(), "design.loads"),
+        };
         return Err(ctx.invalid(
             span,
-            "design.loads",
-            format!("{} loads", spec.cases),
+            field,
+            format!("{} cases", spec.cases),
             format!(
-                "at most {MAX_DESIGN_CASES} load cases (the design program grows like the square \
-                 of all the cases' points together)"
+                "at most {MAX_DESIGN_CASES} design cases (each load at each misalignment): every \
+                 descent iteration analyses each one"
             ),
         ));
     }

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam};
 use elcon_analysis::{Geometry, Layout, Loading, Method, Normal, Options, Surface};
-use elcon_design::{Axis, Family};
+use elcon_design::{Axis, DesignMethod, Family};
 use elcon_influence::{Body, Dimension, Material, PointSet, combined_modulus_of};
 use toml::Spanned;
 
@@ -178,7 +178,35 @@ pub struct DesignSpec {
     pub relative_to: RelativeTo,
     /// The bound c_max (length), if given.
     pub max_constant: Option<f64>,
+    /// How a linear family's problem is solved (`design.method`).
+    pub method: DesignMethod,
+    /// Misalignments (rad): every load is a case at each, a prescribed
+    /// rotation about the axis across the profile (`tilt_x` when the
+    /// profile runs along y, `tilt_y` along x); empty: the loads alone,
+    /// their rotations free without a moment.
+    pub misalignments: Vec<f64>,
 }
+
+impl DesignSpec {
+    /// The design's load cases: each load at each misalignment (or alone).
+    pub fn case_loadings(&self) -> Vec<(f64, Option<f64>)> {
+        let angles: Vec<Option<f64>> = if self.misalignments.is_empty() {
+            vec![None]
+        } else {
+            self.misalignments.iter().copied().map(Some).collect()
+        };
+        self.loads
+            .iter()
+            .flat_map(|&load| angles.iter().map(move |&a| (load, a)))
+            .collect()
+    }
+}
+
+/// Misalignments a design takes at most (each load is a case at each).
+pub const MAX_MISALIGNMENTS: usize = 100;
+/// The largest misalignment (rad): the rigid rotation is linearized
+/// (`theta x`), which holds to 0.5 % of the angle up to 0.1 rad.
+pub const MAX_MISALIGNMENT: f64 = 0.1;
 
 /// A plot a scene asks for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -559,7 +587,7 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
                 _ => None,
             },
             axis: spec.axis,
-            cases: spec.loads.len(),
+            cases: spec.case_loadings().len(),
             max_constant: spec.max_constant,
         };
         sanity::design(ctx, raw_design, &view, &sets)?;
@@ -1679,13 +1707,83 @@ fn design(
         Some(c) => Some(ctx.positive(c, "design.max_constant")?),
         None => None,
     };
+    let method = design_method(ctx, t, &family)?;
+    let misalignments = misalignments(ctx, t)?;
     Ok(DesignSpec {
         family,
         axis,
         loads,
         relative_to,
         max_constant,
+        method,
+        misalignments,
     })
+}
+
+/// `design.method`: for the linear families only.
+fn design_method(
+    ctx: &Ctx<'_>,
+    t: &DesignToml,
+    family: &DesignFamily,
+) -> Result<DesignMethod, SceneError> {
+    let Some(m) = &t.method else {
+        return Ok(DesignMethod::Auto);
+    };
+    if !matches!(family, DesignFamily::Linear(_)) {
+        return Err(ctx.invalid(
+            m.span(),
+            "design.method",
+            format!("\"{}\"", m.get_ref()),
+            "only for the families quadratic, polynomial and free (a crown is searched or set)",
+        ));
+    }
+    match m.get_ref().as_str() {
+        "auto" => Ok(DesignMethod::Auto),
+        "program" => Ok(DesignMethod::Program),
+        "descent" => Ok(DesignMethod::Descent),
+        other => Err(ctx.invalid(
+            m.span(),
+            "design.method",
+            format!("\"{other}\""),
+            "one of auto, program, descent",
+        )),
+    }
+}
+
+/// `design.misalignments` (rad), each finite and at most
+/// [`MAX_MISALIGNMENT`] in size.
+fn misalignments(ctx: &Ctx<'_>, t: &DesignToml) -> Result<Vec<f64>, SceneError> {
+    let Some(list) = &t.misalignments else {
+        return Ok(Vec::new());
+    };
+    let values = list.get_ref();
+    if values.is_empty() || values.len() > MAX_MISALIGNMENTS {
+        return Err(ctx.invalid(
+            list.span(),
+            "design.misalignments",
+            format!("{} values", values.len()),
+            format!("give 1 to {MAX_MISALIGNMENTS} angles (rad)"),
+        ));
+    }
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let field = format!("design.misalignments[{i}]");
+            let angle = ctx.finite(v, &field)?;
+            if angle.abs() > MAX_MISALIGNMENT {
+                return Err(ctx.invalid(
+                    v.span(),
+                    &field,
+                    angle,
+                    format!(
+                        "at most {MAX_MISALIGNMENT} rad in size (the rigid rotation is linearized)"
+                    ),
+                ));
+            }
+            Ok(angle)
+        })
+        .collect()
 }
 
 fn outputs(

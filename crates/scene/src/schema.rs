@@ -124,6 +124,8 @@ pub(crate) struct DesignToml {
     pub radius_range: Option<Spanned<Vec<Spanned<f64>>>>,
     pub flat_length: Option<Spanned<f64>>,
     pub design_load: Option<Spanned<f64>>,
+    pub method: Option<Spanned<String>>,
+    pub misalignments: Option<Spanned<Vec<Spanned<f64>>>>,
 }
 
 /// `[outputs]`.

@@ -194,14 +194,46 @@ fn a_design_degree_needs_the_stations_and_is_bounded() {
 
 #[test]
 fn design_cases_and_the_constant_are_bounded() {
-    let loads: Vec<String> = (1..=101).map(|i| format!("{i}.0")).collect();
+    let loads: Vec<String> = (1..=11).map(|i| format!("{i}.0e4")).collect();
+    let angles: Vec<String> = (0..100).map(|i| format!("{i}.0e-5")).collect();
     refused(
         &format!(
-            "{BEAM}\n[design]\nfamily = \"quadratic\"\nloads = [{}]\n",
-            loads.join(", ")
+            "{BEAM}\n[design]\nfamily = \"quadratic\"\nloads = [{}]\nmisalignments = [{}]\n",
+            loads.join(", "),
+            angles.join(", ")
         ),
-        "design.loads",
-        "at most 100 load cases",
+        "design.misalignments",
+        "at most 1000 design cases",
+    );
+    refused(
+        &format!(
+            "{BEAM}\n[design]\nfamily = \"quadratic\"\nmisalignments = [{}, 0.0]\n",
+            angles.join(", ")
+        ),
+        "design.misalignments",
+        "give 1 to 100 angles",
+    );
+    refused(
+        &format!("{BEAM}\n[design]\nfamily = \"quadratic\"\nmisalignments = []\n"),
+        "design.misalignments",
+        "give 1 to 100 angles",
+    );
+    refused(
+        &format!("{BEAM}\n[design]\nfamily = \"quadratic\"\nmisalignments = [0.0, 0.2]\n"),
+        "design.misalignments[1]",
+        "at most 0.1 rad",
+    );
+    refused(
+        &format!("{BEAM}\n[design]\nfamily = \"quadratic\"\nmethod = \"newton\"\n"),
+        "design.method",
+        "one of auto, program, descent",
+    );
+    refused(
+        &format!(
+            "{BEAM}\n[design]\nfamily = \"circular-crown\"\nradius_range = [1.0, 100.0]\nmethod = \"descent\"\n"
+        ),
+        "design.method",
+        "only for the families quadratic, polynomial and free",
     );
     scene(&format!(
         "{BEAM}\n[design]\nfamily = \"quadratic\"\nmax_constant = 1.0\n"
