@@ -21,6 +21,8 @@ pub(crate) struct Basis {
     pub(crate) constant: Option<usize>,
     /// The length that normalizes s.
     scale: f64,
+    /// The stations in the normalized coordinate, `s_st / scale`.
+    normalized: Vec<f64>,
 }
 
 impl Basis {
@@ -49,6 +51,7 @@ impl Basis {
                 phi: Mat::identity(n, n),
                 constant: None,
                 scale,
+                normalized: stations.iter().map(|s| s / scale).collect(),
             }),
         }
     }
@@ -60,7 +63,47 @@ impl Basis {
             }),
             constant: Some(0),
             scale,
+            normalized: stations.iter().map(|s| s / scale).collect(),
         }
+    }
+
+    /// theta less the straight line `a + b u` (u = s / scale) that fits its
+    /// drops best in least squares: what a free rotation about the axis
+    /// across the profile and the approach absorb (a profile and the same
+    /// profile plus a line give the same forces when both are free). For
+    /// the free family and polynomials of degree >= 1; a constant alone is
+    /// left as it is.
+    pub(crate) fn without_line(&self, theta: &[f64]) -> Vec<f64> {
+        let n = self.normalized.len() as f64;
+        if self.constant.is_some() && self.params() < 2 {
+            return theta.to_vec();
+        }
+        let y = self.drops(theta);
+        let u = &self.normalized;
+        let (mean_u, mean_y) = (u.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+        let spread: f64 = u.iter().map(|v| (v - mean_u).powi(2)).sum();
+        let slope = if spread > 0.0 {
+            u.iter()
+                .zip(&y)
+                .map(|(v, w)| (v - mean_u) * (w - mean_y))
+                .sum::<f64>()
+                / spread
+        } else {
+            0.0
+        };
+        let intercept = mean_y - slope * mean_u;
+        let mut theta = theta.to_vec();
+        match self.constant {
+            None => theta
+                .iter_mut()
+                .zip(u)
+                .for_each(|(t, v)| *t -= intercept + slope * v),
+            Some(c) => {
+                theta[c] -= intercept;
+                theta[c + 1] -= slope;
+            }
+        }
+        theta
     }
 
     pub(crate) fn params(&self) -> usize {
@@ -163,4 +206,33 @@ pub fn fit_profile(
     let y: Vec<f64> = order.iter().map(|&i| drops[i]).collect();
     let basis = Basis::new(family, &stations)?;
     Ok(basis.profile(family, &stations, &basis.fit(&y)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn without_line_leaves_the_even_part_of_a_profile_on_symmetric_stations() {
+        let stations: Vec<f64> = (0..9).map(|i| -4.0 + i as f64).collect();
+        let even = |s: f64| 0.3 * s * s + 0.01 * s.powi(4);
+        let line = |s: f64| 2.0 - 0.7 * s;
+        // The free family: one drop per station.
+        let free = Basis::new(Family::Free, &stations).unwrap();
+        let theta: Vec<f64> = stations.iter().map(|&s| even(s) + line(s)).collect();
+        let cleaned = free.drops(&free.without_line(&theta));
+        let offset = cleaned[4] - even(0.0);
+        for (st, &s) in stations.iter().enumerate() {
+            assert!((cleaned[st] - offset - even(s)).abs() < 1e-12, "{s}");
+        }
+        // A quartic: the same profile by its coefficients (u = s / 4).
+        let quartic = Basis::new(Family::Polynomial { degree: 4 }, &stations).unwrap();
+        let theta = vec![2.0, -0.7 * 4.0, 0.3 * 16.0, 0.0, 0.01 * 256.0];
+        let cleaned = quartic.without_line(&theta);
+        assert!(cleaned[1].abs() < 1e-12, "{cleaned:?}");
+        assert_eq!(&cleaned[2..], &theta[2..]);
+        // A constant alone is left as it is.
+        let constant = Basis::new(Family::Polynomial { degree: 0 }, &stations).unwrap();
+        assert_eq!(constant.without_line(&[3.0]), vec![3.0]);
+    }
 }

@@ -25,7 +25,7 @@
 //! paper's c_max): a uniform separation only shifts the approach, and the
 //! bound keeps the profile's depth finite.
 
-use elcon_analysis::ContactProblem;
+use elcon_analysis::{ContactProblem, RigidMode};
 use elcon_influence::Dimension;
 
 use crate::basis::Basis;
@@ -89,6 +89,11 @@ struct Setup<'a> {
     /// The cases' largest elastic deflection under a uniform pressure
     /// (length).
     scale: f64,
+    /// Whether every case leaves the rotation about the axis across the
+    /// profile free: a straight line added to the profile then changes no
+    /// force (the rotation and the approach absorb it), and the design's
+    /// profile is given without one.
+    line_free: bool,
     method: DesignMethod,
 }
 
@@ -197,6 +202,13 @@ fn setup<'a>(
     let prepared = prepare(cases, index, &references)?;
     let scale = prepared.iter().map(deflection_scale).fold(0.0f64, f64::max);
     let points: usize = prepared.iter().map(|c| c.station.len()).sum();
+    let across = match axis {
+        Axis::X => RigidMode::TiltY,
+        Axis::Y => RigidMode::TiltX,
+    };
+    let line_free = cases
+        .iter()
+        .all(|c| c.rigid().prescribed.iter().all(|&(mode, _)| mode != across));
     let method = match options.method {
         DesignMethod::Auto if points <= PROGRAM_LIMIT => DesignMethod::Program,
         DesignMethod::Auto => DesignMethod::Descent,
@@ -211,6 +223,7 @@ fn setup<'a>(
         stations,
         c_max: None,
         scale,
+        line_free,
         method,
     })
 }
@@ -318,6 +331,11 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
         solutions,
         solver,
     } = found;
+    let theta = if setup.line_free {
+        setup.basis.without_line(&theta)
+    } else {
+        theta
+    };
     let profile = setup.basis.profile(setup.family, &setup.stations, &theta);
     let (method, reanalysis) = (options.reanalysis, &options.reanalysis_options);
     let evaluation = match solutions {

@@ -201,3 +201,41 @@ fn a_zero_iteration_limit_is_refused_naming_the_field() {
     .unwrap_err();
     assert!(e.to_string().contains("max_iterations"), "{e}");
 }
+
+#[test]
+fn a_line_the_free_rotation_absorbs_is_taken_out_of_the_profile() {
+    // Aligned roller cases leave the rotation about x free: a straight line
+    // along y added to the profile changes no force, so the descent's
+    // trust-region steps may drift along it. The design takes the line out:
+    // on these symmetric cases the free profile comes out symmetric.
+    let (misaligned, references) = roller(&[2e3, 5e3], &[0.0]);
+    let cases: Vec<ContactProblem> = misaligned
+        .iter()
+        .map(|c| {
+            let load = c.loading().load_value().unwrap();
+            c.with_loading(Loading::load(load)).unwrap()
+        })
+        .collect();
+    let d = solve(
+        &cases,
+        Axis::Y,
+        Family::Free,
+        DesignMethod::Descent,
+        Some(references),
+    );
+    let drops = match &d.profile {
+        elcon_design::Profile::Free { drops, .. } => drops.clone(),
+        other => panic!("{other:?}"),
+    };
+    let largest = drops.iter().fold(0.0f64, |a, v| a.max(*v));
+    assert!(largest > 0.0);
+    let n = drops.len();
+    for i in 0..n / 2 {
+        assert!(
+            (drops[i] - drops[n - 1 - i]).abs() <= 1e-9 * largest,
+            "station {i}: {} against {}",
+            drops[i],
+            drops[n - 1 - i]
+        );
+    }
+}

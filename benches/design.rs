@@ -1,0 +1,109 @@
+//! How the design stage's cost grows: with the load cases (a crowned
+//! roller's free profile over 1 to 100 misalignment cases, one S shared) and
+//! with the points (Example 2's quadratic correction from 40 to 800 points
+//! per half), the case-decomposed descent beside the paper's program where
+//! the program is small enough to run in a benchmark.
+//!
+//! ```sh
+//! cargo bench --bench design                    # both groups (about 5 minutes)
+//! cargo bench --bench design -- design/cases    # one group
+//! ```
+//!
+//! docs/design.md §2 has the table and the fitted growth.
+
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use elcon::analysis::references::HertzCylinders;
+use elcon::analysis::{ContactProblem, Geometry, Loading, Surface};
+use elcon::design::{Axis, DesignMethod, DesignOptions, Family, design};
+use elcon::influence::{Body, Material, PointSet, combined_modulus};
+
+/// The misaligned roller's cases at 5 kN (steel, D = 10 mm, l = 10 mm, 40 x
+/// 9 Love patches): `count` misalignments spread evenly over 0 to 1 mrad,
+/// one S shared, and their aligned Hertz peak.
+fn roller(count: usize) -> (Vec<ContactProblem>, Vec<f64>) {
+    let steel = Material::new(210e3, 0.3).unwrap();
+    let hertz = HertzCylinders::new(combined_modulus(&steel, &steel), 5.0, 500.0).unwrap();
+    let points = PointSet::grid_rectangle(1.6 * hertz.half_width(), 5.0, 9, 40).unwrap();
+    let body = Body::uniform_patch(steel);
+    let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
+    let aligned = ContactProblem::new(points, &body, &body, &geometry, Loading::load(5e3)).unwrap();
+    let step = if count > 1 {
+        1e-3 / (count - 1) as f64
+    } else {
+        0.0
+    };
+    let cases = (0..count)
+        .map(|i| {
+            aligned
+                .with_loading(Loading::load(5e3).with_tilt_x(i as f64 * step))
+                .unwrap()
+        })
+        .collect();
+    (cases, vec![hertz.peak_pressure(); count])
+}
+
+/// Example 2's beam with `per_half` points per half.
+fn beam(per_half: usize) -> ContactProblem {
+    let n = 2 * per_half;
+    ContactProblem::new(
+        PointSet::line(-4.45, 4.45, n).unwrap(),
+        &Body::beam(30e6, 64.0 / 12.0, 0.0),
+        &Body::winkler(1e7),
+        &Geometry::Separation(vec![0.0; n]),
+        Loading::load(5e4),
+    )
+    .unwrap()
+}
+
+fn options(method: DesignMethod, references: Option<Vec<f64>>) -> DesignOptions {
+    DesignOptions {
+        method,
+        reference_intensities: references,
+        ..DesignOptions::default()
+    }
+}
+
+fn cases(c: &mut Criterion) {
+    let mut group = c.benchmark_group("design/cases");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(10));
+    for count in [1, 3, 10, 30, 100] {
+        let (cases, references) = roller(count);
+        let opts = options(DesignMethod::Descent, Some(references));
+        group.throughput(Throughput::Elements(count as u64));
+        group.bench_with_input(BenchmarkId::new("descent", count), &cases, |b, cases| {
+            b.iter(|| design(cases, Axis::Y, Family::Free, &opts).unwrap())
+        });
+    }
+    group.finish();
+}
+
+fn points(c: &mut Criterion) {
+    let mut group = c.benchmark_group("design/points");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(10));
+    for per_half in [40, 100, 200, 400, 800] {
+        let case = [beam(per_half)];
+        group.throughput(Throughput::Elements(2 * per_half as u64));
+        let methods: &[DesignMethod] = if per_half <= 200 {
+            &[DesignMethod::Descent, DesignMethod::Program]
+        } else {
+            &[DesignMethod::Descent]
+        };
+        for &method in methods {
+            let opts = options(method, None);
+            let name = format!("{method:?}").to_lowercase();
+            group.bench_with_input(BenchmarkId::new(name, 2 * per_half), &case, |b, case| {
+                b.iter(|| design(case, Axis::X, Family::Quadratic, &opts).unwrap())
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, cases, points);
+criterion_main!(benches);
