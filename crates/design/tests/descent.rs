@@ -132,6 +132,25 @@ fn the_descent_reaches_the_programs_optimum_on_a_misaligned_roller() {
 }
 
 #[test]
+fn the_descent_reaches_the_programs_optimum_under_moments() {
+    // Each load with a moment about x (its centre of pressure 0.5 mm off
+    // the middle along the roller), the rotation free: the rigid unknowns'
+    // resultants are the load and the moment.
+    let (aligned, references) = roller(&[2e3, 5e3], &[0.0]);
+    let cases: Vec<ContactProblem> = aligned
+        .iter()
+        .map(|c| {
+            let load = c.loading().load_value().unwrap();
+            c.with_loading(Loading::load(load).with_moment_x(0.5 * load))
+                .unwrap()
+        })
+        .collect();
+    for family in [Family::Quadratic, Family::Free] {
+        same_optimum("moments", &cases, Axis::Y, family, Some(references.clone()));
+    }
+}
+
+#[test]
 fn auto_takes_the_program_for_few_points_and_the_descent_above() {
     let small = solve(
         &[beam(20, 5e4, 0.0)],

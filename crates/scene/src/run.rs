@@ -668,6 +668,7 @@ fn design_stage(
         DesignFamily::LogarithmicCrown {
             design_load,
             flat_length,
+            end,
         } => {
             // Validation refuses a logarithmic crown but for a roller.
             let (roller, length) = match (scene.hertz(*design_load), &scene.points_spec) {
@@ -687,14 +688,20 @@ fn design_stage(
                 combined_modulus: roller.combined_modulus,
                 radius: roller.radius,
                 flat_length: *flat_length,
-                end: LogEnd::JohnsGohar,
+                end: *end,
             });
             let after = evaluate(&cases, spec.axis, &profile, scene.method, &scene.options)
                 .map_err(fail)?;
             (
                 profile,
                 after,
-                vec!["set from the design load (Johns-Gohar)".into()],
+                vec![format!(
+                    "set from the design load ({})",
+                    match end {
+                        LogEnd::JohnsGohar => "Johns-Gohar",
+                        LogEnd::Lundberg => "Lundberg",
+                    }
+                )],
                 "set",
             )
         }

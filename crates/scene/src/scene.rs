@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam};
 use elcon_analysis::{Geometry, Layout, Loading, Method, Normal, Options, Surface};
-use elcon_design::{Axis, DesignMethod, Family};
+use elcon_design::{Axis, DesignMethod, Family, LogEnd};
 use elcon_influence::{Body, Dimension, Material, PointSet, combined_modulus_of};
 use toml::Spanned;
 
@@ -151,6 +151,8 @@ pub enum DesignFamily {
         design_load: f64,
         /// Flat middle (length).
         flat_length: f64,
+        /// Lundberg's end, or Johns & Gohar's finite end drop (the default).
+        end: LogEnd,
     },
 }
 
@@ -1530,6 +1532,11 @@ fn design(
     }
     if family_name != "logarithmic-crown" {
         only(&t.design_load, "design.design_load", "logarithmic-crown")?;
+        ctx.forbid(
+            &t.end,
+            "design.end",
+            "only for family = \"logarithmic-crown\"",
+        )?;
     }
     if !matches!(family_name, "circular-crown" | "logarithmic-crown") {
         ctx.forbid(&t.flat_length, "design.flat_length", "only for the crowns")?;
@@ -1639,6 +1646,7 @@ fn design(
             DesignFamily::LogarithmicCrown {
                 design_load: q,
                 flat_length: flat,
+                end: log_end(ctx, t)?,
             }
         }
         other => {
@@ -1718,6 +1726,24 @@ fn design(
         method,
         misalignments,
     })
+}
+
+/// `design.end` of a logarithmic crown: "johns-gohar" (the default) or
+/// "lundberg".
+fn log_end(ctx: &Ctx<'_>, t: &DesignToml) -> Result<LogEnd, SceneError> {
+    let Some(e) = &t.end else {
+        return Ok(LogEnd::JohnsGohar);
+    };
+    match e.get_ref().as_str() {
+        "johns-gohar" => Ok(LogEnd::JohnsGohar),
+        "lundberg" => Ok(LogEnd::Lundberg),
+        other => Err(ctx.invalid(
+            e.span(),
+            "design.end",
+            format!("\"{other}\""),
+            "one of johns-gohar, lundberg",
+        )),
+    }
 }
 
 /// `design.method`: for the linear families only.

@@ -125,6 +125,7 @@ pub(crate) struct DesignToml {
     pub flat_length: Option<Spanned<f64>>,
     pub design_load: Option<Spanned<f64>>,
     pub method: Option<Spanned<String>>,
+    pub end: Option<Spanned<String>>,
     pub misalignments: Option<Spanned<Vec<Spanned<f64>>>>,
 }
 

@@ -233,8 +233,32 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
     let s = scene(&format!("{ROLLER}{crown}")).unwrap();
     assert!(matches!(
         s.design.as_ref().unwrap().family,
-        elcon_scene::DesignFamily::LogarithmicCrown { .. }
+        elcon_scene::DesignFamily::LogarithmicCrown {
+            end: elcon_design::LogEnd::JohnsGohar,
+            ..
+        }
     ));
+    // Lundberg's end by name; another name, or an end for another family,
+    // is refused naming the field.
+    let s = scene(&format!("{ROLLER}{crown}end = \"lundberg\"\n")).unwrap();
+    assert!(matches!(
+        s.design.as_ref().unwrap().family,
+        elcon_scene::DesignFamily::LogarithmicCrown {
+            end: elcon_design::LogEnd::Lundberg,
+            ..
+        }
+    ));
+    let e = scene(&format!("{ROLLER}{crown}end = \"hyperbolic\"\n")).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("`design.end` = \"hyperbolic\": one of johns-gohar, lundberg"),
+        "{e}"
+    );
+    let e = scene(&format!(
+        "{ROLLER}\n[design]\nfamily = \"free\"\nend = \"lundberg\"\n"
+    ))
+    .unwrap_err();
+    assert!(e.to_string().contains("`design.end`"), "{e}");
     let refused = |text: String| {
         let e = scene(&text).unwrap_err();
         assert!(matches!(e, SceneError::Invalid { .. }), "{e}");
