@@ -68,11 +68,11 @@ pub fn assemble(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, Influen
     dense_size(points.len())?;
     let terms = Terms::collect(points, bodies)?;
     let mut s = if terms.kernels.is_empty() {
-        Mat::zeros(points.len(), points.len())
+        zeroed(points.len())?
     } else {
         match table_layout(points) {
-            Some(layout) => fill_from_table(points, &terms, &layout),
-            None => fill_direct(points, &terms),
+            Some(layout) => fill_from_table(points, &terms, &layout)?,
+            None => fill_direct(points, &terms)?,
         }
     };
     terms.add_local(points, &mut s);
@@ -112,18 +112,18 @@ pub fn assemble_folded(
     // The half-space part as in `assemble`: none, gathered from the lattice
     // table, or evaluated from the coordinates; chosen once, not per entry.
     let m = if terms.kernels.is_empty() {
-        fold(points, &terms, folding, |_, _| 0.0)
+        fold(points, &terms, folding, |_, _| 0.0)?
     } else {
         match table_layout(points) {
             Some(layout) => {
                 let table = terms.table(layout.ni, layout.nj);
-                fold(points, &terms, folding, |k, j| table[layout.offset(k, j)])
+                fold(points, &terms, folding, |k, j| table[layout.offset(k, j)])?
             }
             None => {
                 let (xs, ys) = (points.xs(), points.ys());
                 fold(points, &terms, folding, |k, j| {
                     terms.coefficient(xs[k] - xs[j], ys[k] - ys[j], k == j)
-                })
+                })?
             }
         }
     };
@@ -139,7 +139,7 @@ fn fold(
     terms: &Terms,
     folding: &crate::Folding,
     half: impl Fn(usize, usize) -> f64,
-) -> Mat<f64> {
+) -> Result<Mat<f64>, InfluenceError> {
     let n = folding.len();
     let xs = points.xs();
     let diagonal = terms.winkler_diagonal(points);
@@ -151,7 +151,7 @@ fn fold(
         }
         terms.add_beams(v, xs[k], xs[j])
     };
-    let mut m = Mat::<f64>::zeros(n, n);
+    let mut m = zeroed(n)?;
     for b in 0..n {
         let orbit = folding.orbit(b);
         for a in b..n {
@@ -162,7 +162,20 @@ fn fold(
             m[(b, a)] = v;
         }
     }
-    m
+    Ok(m)
+}
+
+/// An n x n matrix of zeros, its storage reserved fallibly:
+/// [`InfluenceError::AllocationFailed`] when it cannot be.
+fn zeroed(n: usize) -> Result<Mat<f64>, InfluenceError> {
+    let mut m = Mat::new();
+    m.try_reserve(n, n)
+        .map_err(|_| InfluenceError::AllocationFailed {
+            what: "the influence matrix S",
+            bytes: n.saturating_mul(n).saturating_mul(8),
+        })?;
+    m.resize_with(n, n, |_, _| 0.0);
+    Ok(m)
 }
 
 /// The same S as [`assemble`], always evaluating every entry of the lower
@@ -173,18 +186,22 @@ fn fold(
 /// As [`assemble`].
 pub fn assemble_direct(points: &PointSet, bodies: &[&Body]) -> Result<Mat<f64>, InfluenceError> {
     let terms = Terms::collect(points, bodies)?;
-    let mut s = fill_direct(points, &terms);
+    let mut s = fill_direct(points, &terms)?;
     terms.add_local(points, &mut s);
     Ok(s)
 }
 
 /// S from one kernel evaluation per lattice offset `(di, dj) >= 0`, gathered
 /// column by column.
-fn fill_from_table(points: &PointSet, terms: &Terms, layout: &TableLayout) -> Mat<f64> {
+fn fill_from_table(
+    points: &PointSet,
+    terms: &Terms,
+    layout: &TableLayout,
+) -> Result<Mat<f64>, InfluenceError> {
     let n = points.len();
     let nj = layout.nj;
     let table = terms.table(layout.ni, layout.nj);
-    let mut s = Mat::<f64>::zeros(n, n);
+    let mut s = zeroed(n)?;
     let threads = threads_for(n);
     let splits: Vec<usize> = (0..=threads).map(|t| t * n / threads).collect();
     fill_columns(s.as_mut(), &splits, |first, mut block| {
@@ -204,7 +221,7 @@ fn fill_from_table(points: &PointSet, terms: &Terms, layout: &TableLayout) -> Ma
             }
         }
     });
-    s
+    Ok(s)
 }
 
 /// Threads worth using to fill an n x n matrix: one below 2^18 entries, else
@@ -244,10 +261,10 @@ fn fill_columns(
 }
 
 /// S from a kernel evaluation per entry of the lower triangle, mirrored.
-fn fill_direct(points: &PointSet, terms: &Terms) -> Mat<f64> {
+fn fill_direct(points: &PointSet, terms: &Terms) -> Result<Mat<f64>, InfluenceError> {
     let n = points.len();
     let (xs, ys) = (points.xs(), points.ys());
-    let mut s = Mat::<f64>::zeros(n, n);
+    let mut s = zeroed(n)?;
     // Column c of the lower triangle has n - c entries: split where each
     // thread gets an equal share of the triangle, c_t = n (1 - sqrt(1 - t/T)).
     let threads = threads_for(n);
@@ -274,7 +291,7 @@ fn fill_direct(points: &PointSet, terms: &Terms) -> Mat<f64> {
             }
         }
     }
-    s
+    Ok(s)
 }
 
 #[cfg(test)]
@@ -284,6 +301,22 @@ mod tests {
     use super::*;
     use crate::error::InfluenceError;
     use crate::kernels::love_rectangle;
+
+    #[test]
+    fn an_influence_matrix_too_big_to_allocate_is_an_error() {
+        let e = zeroed(1 << 31).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                InfluenceError::AllocationFailed {
+                    what: "the influence matrix S",
+                    bytes
+                } if bytes == usize::MAX
+            ),
+            "{e}"
+        );
+        assert_eq!(zeroed(2).unwrap(), Mat::<f64>::zeros(2, 2));
+    }
     use crate::points::{Cell, Dimension};
     use crate::{Material, models::Body};
 

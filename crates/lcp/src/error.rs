@@ -170,4 +170,17 @@ pub enum LcpError {
         /// The certificate that failed.
         certificate: Box<Certificate>,
     },
+    /// A matrix of the method (a tableau, a factor) could not be allocated:
+    /// the problem is too big for the memory this process may use.
+    #[error(
+        "could not allocate {bytes} bytes for {what}: the problem is too big for the memory \
+         available; use block pivoting (fewer matrices), fold by symmetry, a coarser grid, or \
+         the matrix-free conjugate gradient"
+    )]
+    AllocationFailed {
+        /// What the matrix was for.
+        what: &'static str,
+        /// The size asked for (saturated at usize::MAX on overflow).
+        bytes: usize,
+    },
 }

@@ -10,6 +10,7 @@ use faer::linalg::matmul::matmul;
 use faer::perm::Perm;
 use faer::{Accum, Col, ColRef, Conj, Mat, MatMut, MatRef, Par};
 
+use crate::LcpError;
 use crate::tolerance::{SINGULAR_PER_ROW, SYMMETRY};
 
 /// LU factorization `B = P^T L U` kept packed in one matrix.
@@ -88,6 +89,36 @@ impl Lu {
 }
 
 /// `y = a x` for a dense `a`.
+/// A `rows` x `cols` matrix of `f(i, j)`, its storage reserved fallibly:
+/// [`LcpError::AllocationFailed`] naming `what` when it cannot be.
+pub(crate) fn try_mat(
+    rows: usize,
+    cols: usize,
+    what: &'static str,
+    f: impl FnMut(usize, usize) -> f64,
+) -> Result<Mat<f64>, LcpError> {
+    let mut m = Mat::new();
+    m.try_reserve(rows, cols)
+        .map_err(|_| LcpError::AllocationFailed {
+            what,
+            bytes: rows.saturating_mul(cols).saturating_mul(8),
+        })?;
+    m.resize_with(rows, cols, f);
+    Ok(m)
+}
+
+/// A vector of `len` zeros, reserved fallibly (see [`try_mat`]).
+pub(crate) fn try_zeros(len: usize, what: &'static str) -> Result<Vec<f64>, LcpError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len)
+        .map_err(|_| LcpError::AllocationFailed {
+            what,
+            bytes: len.saturating_mul(8),
+        })?;
+    v.resize(len, 0.0);
+    Ok(v)
+}
+
 pub(crate) fn matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {
     let mut y = Col::<f64>::zeros(a.nrows());
     matmul(y.as_mat_mut(), Accum::Replace, a, x.as_mat(), 1.0, Par::Seq);
@@ -257,6 +288,30 @@ const HAGER_ITERATIONS: usize = 5;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_matrix_too_big_to_allocate_is_an_error_not_an_abort() {
+        // 2^61 x 4 doubles: more than any address space.
+        let e = try_mat(1 << 61, 4, "the test tableau", |_, _| 0.0).unwrap_err();
+        assert!(matches!(
+            e,
+            LcpError::AllocationFailed {
+                what: "the test tableau",
+                ..
+            }
+        ));
+        assert!(
+            e.to_string()
+                .starts_with("could not allocate 18446744073709551615 bytes for the test tableau"),
+            "{e}"
+        );
+        let e = try_zeros(usize::MAX / 4, "the test vector").unwrap_err();
+        assert!(matches!(e, LcpError::AllocationFailed { .. }));
+        // What fits is built as asked.
+        let m = try_mat(2, 3, "small", |i, j| (10 * i + j) as f64).unwrap();
+        assert_eq!(m[(1, 2)], 12.0);
+        assert_eq!(try_zeros(3, "small").unwrap(), vec![0.0; 3]);
+    }
 
     #[test]
     fn diagonal_and_known_matrices() {

@@ -28,6 +28,7 @@
 
 use faer::Par;
 
+use crate::LcpError;
 use crate::linalg::norm_inf;
 use crate::methods::{Answer, Attempted, Failure, NotApplicable, touch_order};
 use crate::options::Options;
@@ -88,6 +89,13 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
             }
             Err(BlockFailure::Singular) => {
                 return Err(Failure::new(Breakdown::SingularBorder, work));
+            }
+            Err(BlockFailure::Allocation(bytes)) => {
+                let what = "the active block's factor";
+                return Err(Failure::error(
+                    LcpError::AllocationFailed { what, bytes },
+                    work,
+                ));
             }
         };
         let (mut z, mut u) = system.solution(p);
@@ -237,8 +245,9 @@ fn prefix_search(
                     break;
                 }
             }
-            // Not positive definite: the block iterations fall back.
-            Err(BlockFailure::NotPositiveDefinite) => break,
+            // Not positive definite: the block iterations fall back; a
+            // factor that cannot be allocated is reported by them.
+            Err(BlockFailure::NotPositiveDefinite | BlockFailure::Allocation(_)) => break,
         }
         next = grown;
     }

@@ -139,7 +139,11 @@ fn core(dense: Mat<f64>, q: Col<f64>, opts: &Options) -> Result<Split, Failure> 
     }
     let sys = system(dense, q, opts);
     let par = opts.par(n, n + 2);
-    let mut tab = GeneralTableau::from_identity(&sys, (0..n).collect(), par, lemke_update_block(n));
+    let mut tab =
+        match GeneralTableau::from_identity(&sys, (0..n).collect(), par, lemke_update_block(n)) {
+            Ok(tab) => tab,
+            Err(e) => return Err(Failure::error(e, work)),
+        };
     let leaving = match enter_covering(&mut tab, opts) {
         Ok(leaving) => leaving,
         Err(e) => return Err(Failure::error(e, work)),

@@ -69,7 +69,13 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
         Some(PathStart::FirstContact(_, keys)) => Some(keys.as_slice()),
         _ => None,
     };
-    let start = start(p, opts, &stop, keys);
+    let start = match start(p, opts, &stop, keys) {
+        Ok(start) => start,
+        Err(failed) => {
+            let (e, work) = *failed;
+            return Err(Failure::error(e, work));
+        }
+    };
     let mut walk = Walk::new(start, stop, opts);
     match &begin {
         Some(PathStart::FirstContact(contact, _)) => {

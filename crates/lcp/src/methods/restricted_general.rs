@@ -273,11 +273,14 @@ fn run_with(
     let mut deferred = p.deferred.clone();
     deferred.resize(total, false);
     let par = opts.par(m, total - m + 1);
-    let tab = GeneralTableau::from_identity(&sys, basis, par, UPDATE_BLOCK);
     let work = Work {
         tableau_rows: m,
         tableau_columns: total - m + 1,
         ..Work::default()
+    };
+    let tab = match GeneralTableau::from_identity(&sys, basis, par, UPDATE_BLOCK) {
+        Ok(tab) => tab,
+        Err(e) => return Err(Failure::error(e, work)),
     };
     let zero_level = opts.tolerances.zero * norm_inf(sys.b.as_ref()).max(f64::MIN_POSITIVE);
     let mut run = Run {

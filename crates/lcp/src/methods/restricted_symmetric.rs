@@ -120,7 +120,13 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
         return Err(Failure::new(Breakdown::NoStart, Work::default()));
     }
     let p = &problem.mixed;
-    let start = swept::start(p, opts, &Stop::Border, None);
+    let start = match swept::start(p, opts, &Stop::Border, None) {
+        Ok(start) => start,
+        Err(failed) => {
+            let (e, work) = *failed;
+            return Err(Failure::error(e, work));
+        }
+    };
     let order = start.order.clone();
     let mut simplex = match Pinned::new(start, opts) {
         Ok(simplex) => simplex,

@@ -17,7 +17,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Col, Mat, Par};
 
-use crate::linalg::{Lu, NotPositiveDefinite, cholesky_lower, norm_inf, unit_of};
+use crate::linalg::{Lu, NotPositiveDefinite, cholesky_lower, norm_inf, try_mat, unit_of};
 use crate::options::Options;
 use crate::problem::MixedRef;
 use crate::statistics::Work;
@@ -30,6 +30,8 @@ pub(crate) enum BlockFailure {
     NotPositiveDefinite,
     /// The equality rows' Schur complement is singular for this `J`.
     Singular,
+    /// The factor's storage (bytes) could not be allocated.
+    Allocation(usize),
 }
 
 impl From<NotPositiveDefinite> for BlockFailure {
@@ -131,13 +133,14 @@ impl Factor {
     ) -> Result<Self, BlockFailure> {
         let order: Vec<usize> = (0..active.len()).filter(|&i| active[i]).collect();
         let nj = order.len();
-        let mut l = Mat::from_fn(nj, nj, |a, b| {
+        let mut l = try_mat(nj, nj, "the active block's factor", |a, b| {
             if a >= b {
                 p.m[(order[a], order[b])]
             } else {
                 0.0
             }
-        });
+        })
+        .map_err(|_| BlockFailure::Allocation(nj.saturating_mul(nj).saturating_mul(8)))?;
         cholesky_lower(l.as_mut(), par)?;
         work.factorizations += 1;
         Ok(Self {
@@ -179,7 +182,13 @@ impl Factor {
             // that the kept prefix moves O(log n) times over a prefix search.
             if self.capacity < np + nr {
                 self.capacity = (2 * self.capacity).max(np + nr).min(self.n);
-                self.l.reserve(self.capacity, self.capacity);
+                let bytes = self
+                    .capacity
+                    .saturating_mul(self.capacity)
+                    .saturating_mul(8);
+                self.l
+                    .try_reserve(self.capacity, self.capacity)
+                    .map_err(|_| BlockFailure::Allocation(bytes))?;
             }
             self.l.resize_with(np + nr, np + nr, |_, _| 0.0);
         }

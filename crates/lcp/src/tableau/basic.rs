@@ -96,7 +96,8 @@ mod tests {
             col_scale: vec![1.0; 2 * n],
             row_scale: vec![1.0; n],
         };
-        let mut tab = GeneralTableau::from_identity(&system, (0..n).collect(), Par::Seq, 64);
+        let mut tab =
+            GeneralTableau::from_identity(&system, (0..n).collect(), Par::Seq, 64).unwrap();
         for r in 0..pivots {
             let Position::Nonbasic(s) = tab.position[n + r] else {
                 unreachable!()

@@ -40,6 +40,8 @@ use faer::linalg::matmul::matmul;
 use faer::prelude::*;
 use faer::{Accum, Col, Mat, Par, Row};
 
+use crate::LcpError;
+use crate::linalg::try_mat;
 use crate::tableau::system::{BasisFactor, Singular, System};
 use crate::tolerance::Tolerances;
 
@@ -148,7 +150,15 @@ impl GeneralTableau {
     /// `+1` unit columns (an identity after ordering by row): `T = -A_N`,
     /// `b̄ = b`, and one objective row per cost vector of the system; `block`
     /// pending updates at most.
-    pub fn from_identity(system: &System, basis: Vec<usize>, par: Par, block: usize) -> Self {
+    ///
+    /// # Errors
+    /// [`LcpError::AllocationFailed`] when the tableau cannot be allocated.
+    pub fn from_identity(
+        system: &System,
+        basis: Vec<usize>,
+        par: Par,
+        block: usize,
+    ) -> Result<Self, LcpError> {
         let m = system.rows;
         let nv = system.vars();
         let mut position = vec![Position::Nonbasic(usize::MAX); nv];
@@ -163,7 +173,7 @@ impl GeneralTableau {
         }
         let nobj = system.costs.len();
         let n = nonbasic.len();
-        let mut t0 = Mat::<f64>::zeros(m + nobj, n + 1);
+        let mut t0 = try_mat(m + nobj, n + 1, "the general tableau", |_, _| 0.0)?;
         for (j, &v) in nonbasic.iter().enumerate() {
             system.write_column(v, t0.as_mut().col_mut(j).subrows_mut(0, m), -1.0);
         }
@@ -185,7 +195,7 @@ impl GeneralTableau {
             par,
         };
         tab.recompute_objectives(system);
-        tab
+        Ok(tab)
     }
 
     /// Number of non-basic columns (without the right-hand side).

@@ -55,7 +55,8 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::{Accum, Col, Mat, MatMut, MatRef, Par};
 
-use crate::linalg::unit_of;
+use crate::LcpError;
+use crate::linalg::{try_zeros, unit_of};
 use crate::options::Options;
 use crate::problem::MixedRef;
 use crate::statistics::Work;
@@ -98,10 +99,16 @@ impl Swept {
     /// The tableau of `J = {}`: `A0 = D M D` with rows and columns in the
     /// positions `order` (`order[t]` is the index at position t), its lower
     /// triangle gathered column by column on up to `par`'s threads.
-    fn gather(m: MatRef<'_, f64>, order: &[usize], d: &[f64], block: usize, par: Par) -> Self {
+    fn gather(
+        m: MatRef<'_, f64>,
+        order: &[usize],
+        d: &[f64],
+        block: usize,
+        par: Par,
+    ) -> Result<Self, LcpError> {
         let n = order.len();
         // Zeroed by the allocator (fresh pages), so the upper triangle costs nothing.
-        let mut a0 = vec![0.0; n * n];
+        let mut a0 = try_zeros(n.saturating_mul(n), "the symmetric tableau")?;
         let fill = |first: usize, columns: &mut [f64]| {
             for (t, col) in columns.chunks_mut(n.max(1)).enumerate() {
                 let j = first + t;
@@ -135,14 +142,14 @@ impl Swept {
                 }
             });
         }
-        Self {
+        Ok(Self {
             a0,
             n,
             u: Mat::zeros(n, block),
             lambda: vec![0.0; block],
             k: 0,
             par,
-        }
+        })
     }
 
     fn a(&self) -> MatRef<'_, f64> {
@@ -355,7 +362,16 @@ pub(crate) struct Start {
 /// at the first contact of several rows); without it, by the approach at
 /// which each touches, `q_i / -b_i` in the scaled units of one row (or
 /// the scaled `q_i` of a standard LCP).
-pub(crate) fn start(p: &MixedRef<'_>, opts: &Options, stop: &Stop, touch: Option<&[f64]>) -> Start {
+///
+/// # Errors
+/// [`LcpError::AllocationFailed`] (with the work of the start) when the
+/// tableau cannot be allocated.
+pub(crate) fn start(
+    p: &MixedRef<'_>,
+    opts: &Options,
+    stop: &Stop,
+    touch: Option<&[f64]>,
+) -> Result<Start, Box<(LcpError, Work)>> {
     let n = p.size();
     let k = match stop {
         Stop::Border => p.extras(),
@@ -417,7 +433,10 @@ pub(crate) fn start(p: &MixedRef<'_>, opts: &Options, stop: &Stop, touch: Option
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&i, &j| key[i].total_cmp(&key[j]).then(i.cmp(&j)));
     let d: Vec<f64> = order.iter().map(|&i| scale[i]).collect();
-    let tab = Swept::gather(p.m, &order, &d, SWEEP_BLOCK, opts.par(n, n));
+    let tab = match Swept::gather(p.m, &order, &d, SWEEP_BLOCK, opts.par(n, n)) {
+        Ok(tab) => tab,
+        Err(e) => return Err(Box::new((e, work))),
+    };
     let diagonal: Vec<f64> = (0..n).map(|t| tab.a()[(t, t)]).collect();
     let bbar = match stop {
         Stop::Border => (0..k)
@@ -444,7 +463,7 @@ pub(crate) fn start(p: &MixedRef<'_>, opts: &Options, stop: &Stop, touch: Option
         ),
         Stop::Parameter => (Vec::new(), Vec::new()),
     };
-    Start {
+    Ok(Start {
         order,
         tab,
         diagonal,
@@ -453,7 +472,7 @@ pub(crate) fn start(p: &MixedRef<'_>, opts: &Options, stop: &Stop, touch: Option
         load,
         units,
         work,
-    }
+    })
 }
 
 #[cfg(test)]
@@ -502,7 +521,7 @@ mod tests {
         // Block 2: flushes between pivots, and indices pivoted in one block
         // and read in the next.
         let order: Vec<usize> = (0..n).collect();
-        let mut tab = Swept::gather(m.as_ref(), &order, &vec![1.0; n], 2, Par::Seq);
+        let mut tab = Swept::gather(m.as_ref(), &order, &vec![1.0; n], 2, Par::Seq).unwrap();
         let mut into = vec![false; n];
         for &p in &[3, 0, 7, 3, 5, 1, 0, 8, 2, 5, 3, 4] {
             let c = tab.column(p);
