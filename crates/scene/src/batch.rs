@@ -132,12 +132,13 @@ impl Batch {
         let name = match &b.name {
             Some(n) => {
                 let v = n.get_ref();
-                if v.trim().is_empty() || v.contains(['/', '\\']) || v == "." || v == ".." {
+                if v.trim().is_empty() || v.contains(['/', '\\']) || v.starts_with('.') {
                     return Err(ctx.invalid(
                         n.span(),
                         "batch.name",
                         format!("\"{v}\""),
-                        "names the output directory: not empty, no path separators",
+                        "names the output directory: not empty, no path separators, no leading '.' \
+                         (elcon's temporary siblings and locks start with one)",
                     ));
                 }
                 v.clone()
@@ -314,10 +315,12 @@ impl Batch {
     }
 }
 
-/// SHA-256 (hex) of a batch file's text and its base scene's.
+/// SHA-256 (hex) of a batch file's text, its base scene's and the elcon
+/// version that runs them: shards merge only when all three are the same
+/// (another version may give other digits for the same scene).
 fn hash(batch: &str, scene: &str) -> String {
     let mut h = Sha256::new();
-    for part in [batch, scene] {
+    for part in [batch, scene, env!("CARGO_PKG_VERSION")] {
         h.update((part.len() as u64).to_le_bytes());
         h.update(part.as_bytes());
     }

@@ -76,10 +76,13 @@ const PROGRAM_MATRICES: f64 = 4.25;
 /// roller and Example 2, examples/design_scaling; docs/design.md).
 const DESCENT_ITERATIONS: f64 = 20.0;
 
-/// Vectors of a case's points the descent holds per case and iterate (the
-/// solution's forces, pressures, gaps, separations and the problem's
-/// copies), rounded up.
-const DESCENT_VECTORS: f64 = 8.0;
+/// Doubles per point of every case the design stage holds per iterate
+/// of the descent (the iterate's and the trial's problems with their point
+/// sets and separations, their solutions, the evaluations before and after
+/// the design), besides a step-program row of `parameters + 2` per point:
+/// fitted to the crowned roller over 50 and 400 loads (docs/reliability.md),
+/// rounded up.
+const DESCENT_VECTORS: f64 = 64.0;
 
 /// Which tableau a tableau method works on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -95,9 +98,12 @@ pub enum Tableau {
 
 /// The N x N matrices a contact solve of `method` on `tableau` holds at its
 /// peak, S included (measured peaks over n^2 doubles, rounded up; the
-/// measurements are in docs/reliability.md): block pivoting 1.96 (S and
-/// its Cholesky factor, whose capacity doubles in place); the symmetric
-/// tableau 2.19 (S, the swept tableau, then the contact block's factor);
+/// measurements are in docs/reliability.md). With every point in contact (a
+/// beam on a foundation, a flat punch), the worst case the estimate
+/// assumes: block pivoting 3.13 (S, its Cholesky factor of the whole
+/// contact set, whose capacity doubles in place, and the blocks of the
+/// last update), the symmetric tableau 3.16 (S, the swept tableau, then
+/// the contact block's factor); a Hertz contact takes less (1.96, 2.19);
 /// the conjugate gradient S alone (rounded up to 1.25 for its vectors);
 /// the restricted simplex's general tableau 7.3 to 7.6 (S, the constraint
 /// data, a tableau of twice S's width when most rows start with an
@@ -106,9 +112,8 @@ pub fn matrices(method: Method, tableau: Tableau) -> f64 {
     match (method, tableau) {
         // S itself; the iteration's vectors are O(N).
         (Method::ConjugateGradient, _) => 1.25,
-        (Method::BlockPivoting, _) => 2.25,
         (Method::RestrictedSimplex, Tableau::General) => 7.75,
-        _ => 2.5,
+        _ => 3.25,
     }
 }
 
@@ -377,6 +382,18 @@ impl Estimate {
                 hints.push("solver.method = \"block-pivoting\" (fewer matrices)");
             }
         }
+        let address = if ceiling.source.contains("RLIMIT_AS") {
+            format!(
+                "a higher address-space limit (ulimit -v): faer's matrix products alone reserve {} \
+                 of address space here",
+                human(crate::memory::gemm_reserve())
+            )
+        } else {
+            String::new()
+        };
+        if !address.is_empty() {
+            hints.push(&address);
+        }
         hints.push("a machine with more memory");
         SceneError::TooBig {
             scene: scene.name.clone(),
@@ -437,7 +454,7 @@ fn design(
                 let columns = (total + 2 * params + 1) as f64;
                 bytes += square_bytes(1.0, largest)
                     + ENTRY * (largest * (params + 4)) as f64
-                    + 2.0 * DESCENT_VECTORS * ENTRY * total as f64
+                    + ENTRY * (2.0 * DESCENT_VECTORS + (params + 2) as f64) * total as f64
                     + PROGRAM_MATRICES * ENTRY * (params + 1) as f64 * columns;
                 seconds += starts * DESCENT_ITERATIONS * cases as f64 * 2.0 * analysis;
                 None
@@ -520,23 +537,23 @@ load = 100.0
             "{}",
             folded.unknowns
         );
-        assert_eq!(folded.solve_bytes, bytes(2.25, folded.unknowns));
+        assert_eq!(folded.solve_bytes, bytes(3.25, folded.unknowns));
         assert_eq!(folded.peak_bytes, folded.solve_bytes + BASELINE);
         let full =
             Estimate::of(&scene(&format!("{SPHERES}[solver]\nsymmetry = \"none\"\n"))).unwrap();
         assert_eq!(full.unknowns, n);
-        assert_eq!(full.solve_bytes, bytes(2.25, n));
+        assert_eq!(full.solve_bytes, bytes(3.25, n));
         // The tableau methods: the symmetric tableau under load, the
         // restricted simplex's general tableau under an approach.
         let lemke = format!("{SPHERES}[solver]\nmethod = \"lemke\"\nsymmetry = \"none\"\n");
         assert_eq!(
             Estimate::of(&scene(&lemke)).unwrap().solve_bytes,
-            bytes(2.5, n)
+            bytes(3.25, n)
         );
         let simplex = lemke.replace("lemke", "restricted-simplex");
         assert_eq!(
             Estimate::of(&scene(&simplex)).unwrap().solve_bytes,
-            bytes(2.5, n)
+            bytes(3.25, n)
         );
         let general = simplex.replace("load = 100.0", "approach = 0.0002");
         let e = Estimate::of(&scene(&general)).unwrap();
@@ -566,7 +583,7 @@ load = 100.0
         assert_eq!(e.solve_bytes, bytes(7.75, e.unknowns));
         let lemke = tilted.replace("restricted-simplex", "lemke");
         let e = Estimate::of(&scene(&lemke)).unwrap();
-        assert_eq!(e.solve_bytes, bytes(2.5, e.unknowns));
+        assert_eq!(e.solve_bytes, bytes(3.25, e.unknowns));
     }
 
     #[test]
@@ -605,12 +622,16 @@ family = "quadratic"
         assert_eq!(d4.points, 800);
         // Four cases on the same 200 stations: 4 x 200 forces, 2 rows each.
         assert_eq!(d4.program, Some((1805, 808)));
+        // Four times the points, more than twice four times the bytes: the
+        // program's R x C grows like the square (16 times), beside the
+        // analyses' matrices that grow with the loads.
         let ratio = d4.bytes as f64 / d1.bytes as f64;
-        assert!(ratio > 10.0, "{ratio}");
+        assert!(ratio > 8.0, "{ratio}");
         assert!(one.peak_bytes >= d1.bytes + BASELINE);
         // The descent holds S once per load and a step program of a column
-        // per point: linear in the cases. 4 loads x 10 misalignments: 10
-        // times the points of 4 loads alone, far less than 10 times the bytes.
+        // per point: at most linear in the cases. 4 loads x 10
+        // misalignments: 10 times the points of 4 loads alone, less than 10
+        // times the bytes (the program's would be about 100 times).
         let auto = four.replace("method = \"program\"", "");
         let d4 = Estimate::of(&scene(&auto)).unwrap().design.unwrap();
         assert_eq!(d4.method, Some(DesignMethod::Descent));
@@ -622,7 +643,7 @@ family = "quadratic"
         let d40 = Estimate::of(&scene(&forty)).unwrap().design.unwrap();
         assert_eq!((d40.cases, d40.points), (40, 8000));
         let ratio = d40.bytes as f64 / d4.bytes as f64;
-        assert!((1.0..3.0).contains(&ratio), "{ratio}");
+        assert!((1.0..10.0).contains(&ratio), "{ratio}");
     }
 
     #[test]
@@ -643,7 +664,7 @@ family = "quadratic"
         let text = e.refusal(&s, &ceiling).to_string();
         for part in [
             "scene `t`: too big for the memory available: N = 1257 points needs about",
-            "block-pivoting keeps about 2.25 matrices of 1257 x 1257",
+            "block-pivoting keeps about 3.25 matrices of 1257 x 1257",
             "the ceiling is 922 KiB (--memory-limit 1.00 MiB, less 10 %)",
             "folding by symmetry",
             "a coarser grid",

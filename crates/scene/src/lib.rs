@@ -40,7 +40,9 @@ pub use batch_run::{BatchOptions, Progress, run_batch};
 pub use error::{Location, SceneError};
 pub use estimate::{BASELINE, DesignEstimate, Estimate, Tableau, TimeClass, matrices};
 pub use isolate::{install_panic_hook, isolated};
-pub use memory::{ADDRESS_SPACE_RESERVE, Ceiling, LIMIT_VARIABLE, MARGIN, human, parse_size};
+pub use memory::{
+    ADDRESS_SPACE_RESERVE, Ceiling, LIMIT_VARIABLE, MARGIN, gemm_reserve, human, parse_size,
+};
 pub use output::{Staging, write_atomic, write_run, write_run_files};
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{

@@ -8,7 +8,7 @@
 //!
 //! ```text
 //!     ceiling = (1 - MARGIN) min(MemAvailable, cgroup memory.max - memory.current,
-//!                                RLIMIT_AS - VmSize - ADDRESS_SPACE_RESERVE,
+//!                                RLIMIT_AS - VmSize - address-space reserve,
 //!                                --memory-limit, ELCON_MEMORY_LIMIT)
 //! ```
 //!
@@ -29,10 +29,41 @@ pub const LIMIT_VARIABLE: &str = "ELCON_MEMORY_LIMIT";
 
 /// Address space a run reserves beyond the memory it touches (malloc's
 /// per-thread arenas, thread stacks, the program's own mappings, buffers
-/// allocated whole and filled in part), taken off an address-space limit:
-/// a run's peak address space exceeded its peak resident memory by 350 to
-/// 490 MiB (docs/reliability.md).
+/// allocated whole and filled in part), besides the matrix products'
+/// buffers ([`gemm_reserve`]), taken off an address-space limit: a run's
+/// peak address space exceeded its peak resident memory by 350 to 490 MiB
+/// (docs/reliability.md).
 pub const ADDRESS_SPACE_RESERVE: u64 = 512 << 20;
+
+/// The address space faer's matrix products reserve: each thread that
+/// multiplies keeps two buffers of the last-level cache's size (the L3 of
+/// /sys/devices/system/cpu/cpu0/cache/index3/size, 480 MiB on a VM that
+/// reports it so), the main thread and one per core. Untouched, they cost
+/// no memory, but they count against an address-space limit, and a
+/// product that cannot map them aborts the process.
+pub fn gemm_reserve() -> u64 {
+    let l3 = std::fs::read_to_string("/sys/devices/system/cpu/cpu0/cache/index3/size")
+        .ok()
+        .and_then(|t| cache_size(&t))
+        .unwrap_or(32 << 20);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u64 + 1;
+    l3.saturating_mul(2).saturating_mul(threads)
+}
+
+/// A sysfs cache size ("491520K", "32M"), bytes.
+fn cache_size(text: &str) -> Option<u64> {
+    let t = text.trim();
+    let (digits, unit) = t.split_at(t.find(|c: char| !c.is_ascii_digit()).unwrap_or(t.len()));
+    let value: u64 = digits.parse().ok()?;
+    let scale = match unit {
+        "" => 1,
+        "K" => 1 << 10,
+        "M" => 1 << 20,
+        "G" => 1 << 30,
+        _ => return None,
+    };
+    value.checked_mul(scale)
+}
 
 /// Limits at or above this many bytes mean "no limit" (cgroup v1 writes
 /// 2^63 rounded down to a page for an unlimited group).
@@ -177,8 +208,9 @@ fn system_limits() -> Vec<(u64, String)> {
         limits.push((
             limit
                 .saturating_sub(used)
-                .saturating_sub(ADDRESS_SPACE_RESERVE),
-            "usable address space under RLIMIT_AS".into(),
+                .saturating_sub(ADDRESS_SPACE_RESERVE)
+                .saturating_sub(gemm_reserve()),
+            "usable address space under RLIMIT_AS (less the matrix products' buffers)".into(),
         ));
     }
     limits
@@ -312,6 +344,10 @@ mod tests {
         let limits = "Limit                     Soft Limit           Hard Limit           Units     \n\
                       Max address space         unlimited            unlimited            bytes     \n";
         assert_eq!(address_space_limit(limits), None);
+        assert_eq!(cache_size("491520K\n"), Some(480 << 20));
+        assert_eq!(cache_size("32M"), Some(32 << 20));
+        assert_eq!(cache_size("1024"), Some(1024));
+        assert_eq!(cache_size("12 KB"), None);
         let limited = "Max address space         4294967296           unlimited            bytes\n";
         assert_eq!(address_space_limit(limited), Some(1 << 32));
     }

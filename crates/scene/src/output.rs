@@ -9,7 +9,12 @@
 //! old directory ([`Staging`]): no file of an earlier run stays beside the
 //! new ones. While it is written, the writer holds an OS lock on
 //! `.<name>.lock` beside it, so a second writer of the same directory waits;
-//! the holder of the lock removes the temporary siblings a killed run left.
+//! the holder of the lock removes the temporary siblings a killed run left,
+//! and puts back an old directory a run killed between its two renames had
+//! moved aside. The lock file stays, empty: removing it while another
+//! writer waits on it would let a third one take a new lock beside them.
+//! Scene names cannot start with '.', so nothing of the user's is taken for
+//! one of these siblings.
 //!
 //! Per scene, in `<out>/<scene>/`: result.json (docs/results.md),
 //! pressure.csv (position, measure, force, pressure, gap, separation, and
@@ -180,7 +185,9 @@ impl Drop for Staging {
 
 /// Removes `.<name>.<pid>.tmp` and `.<name>.<pid>.old` in `parent`: what
 /// a writer killed before its commit left (the caller holds the lock, so
-/// no live writer owns them).
+/// no live writer owns them). An `.old` with no `<name>` beside it is the
+/// old directory of a writer killed between moving it aside and renaming
+/// the new one in: it is put back, not removed.
 fn clean_leftovers(parent: &Path, name: &str) {
     let Ok(entries) = fs::read_dir(parent) else {
         return;
@@ -196,6 +203,13 @@ fn clean_leftovers(parent: &Path, name: &str) {
         };
         if !middle.is_empty() && middle.bytes().all(|b| b.is_ascii_digit()) {
             let path = entry.path();
+            let target = parent.join(name);
+            if file.ends_with(".old")
+                && fs::symlink_metadata(&target).is_err()
+                && fs::rename(&path, &target).is_ok()
+            {
+                continue;
+            }
             let _ = fs::remove_dir_all(&path).or_else(|_| fs::remove_file(&path));
         }
     }
@@ -285,4 +299,64 @@ fn pressure_csv(run: &Run) -> String {
         s.push('\n');
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(label: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("elcon-output-{label}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn an_old_directory_moved_aside_by_a_killed_writer_is_put_back() {
+        let parent = scratch("restore");
+        // A writer killed between its two renames: the old directory aside,
+        // its new one complete or not, no target.
+        fs::create_dir(parent.join(".s.123.old")).unwrap();
+        fs::write(parent.join(".s.123.old/result.json"), "old").unwrap();
+        fs::create_dir(parent.join(".s.123.tmp")).unwrap();
+        fs::write(parent.join(".s.123.tmp/result.json"), "half").unwrap();
+        // A user's directory whose name only looks alike is not touched.
+        fs::create_dir(parent.join("s.9.tmp")).unwrap();
+        let staging = Staging::begin(&parent.join("s"), &|_| {}).unwrap();
+        assert_eq!(
+            fs::read_to_string(parent.join("s/result.json")).unwrap(),
+            "old"
+        );
+        assert!(!parent.join(".s.123.old").exists());
+        assert!(!parent.join(".s.123.tmp").exists());
+        assert!(parent.join("s.9.tmp").exists());
+        // The new run then replaces it as a unit.
+        fs::write(staging.path().join("result.json"), "new").unwrap();
+        staging.commit().unwrap();
+        assert_eq!(
+            fs::read_to_string(parent.join("s/result.json")).unwrap(),
+            "new"
+        );
+        let left: Vec<String> = fs::read_dir(&parent)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".tmp") || n.ends_with(".old"))
+            .collect();
+        assert_eq!(left, vec!["s.9.tmp".to_string()]);
+        let _ = fs::remove_dir_all(&parent);
+    }
+
+    #[test]
+    fn an_old_directory_beside_its_target_is_removed() {
+        let parent = scratch("remove");
+        fs::create_dir(parent.join("s")).unwrap();
+        fs::create_dir(parent.join(".s.77.old")).unwrap();
+        let staging = Staging::begin(&parent.join("s"), &|_| {}).unwrap();
+        assert!(!parent.join(".s.77.old").exists());
+        assert!(parent.join("s").exists());
+        drop(staging);
+        let _ = fs::remove_dir_all(&parent);
+    }
 }

@@ -226,22 +226,19 @@ pub(crate) struct DesignView {
     pub family: Option<Family>,
     /// The axial coordinate.
     pub axis: Axis,
-    /// The load cases.
-    pub cases: usize,
     /// The bound on the constant, if given.
     pub max_constant: Option<f64>,
 }
 
-/// The design section against the grids of its load cases: the number of
-/// cases, the degree against the axial stations, the bound on the constant.
-pub(crate) fn design(
+/// The number of design cases (each load at each misalignment), before any
+/// of their grids is built.
+pub(crate) fn design_cases(
     ctx: &Ctx<'_>,
     raw: &Spanned<DesignToml>,
-    spec: &DesignView,
-    sets: &[PointSet],
+    cases: usize,
 ) -> Result<(), SceneError> {
     let t = raw.get_ref();
-    if spec.cases > MAX_DESIGN_CASES {
+    if cases > MAX_DESIGN_CASES {
         let (span, field) = match (&t.misalignments, &t.loads) {
             (Some(m), _) => (m.span(), "design.misalignments"),
             (None, Some(l)) => (l.span(), "design.loads"),
@@ -250,13 +247,25 @@ pub(crate) fn design(
         return Err(ctx.invalid(
             span,
             field,
-            format!("{} cases", spec.cases),
+            format!("{} cases", cases),
             format!(
                 "at most {MAX_DESIGN_CASES} design cases (each load at each misalignment): every \
                  descent iteration analyses each one"
             ),
         ));
     }
+    Ok(())
+}
+
+/// The design section against the grids of its load cases: the degree
+/// against the axial stations, the bound on the constant.
+pub(crate) fn design(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<DesignToml>,
+    spec: &DesignView,
+    sets: &[PointSet],
+) -> Result<(), SceneError> {
+    let t = raw.get_ref();
     if let Some(family) = &spec.family {
         let (stations, _) = axial_stations(sets.iter(), spec.axis);
         let (degree, field, span) = match family {

@@ -333,7 +333,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
             .file_stem()
             .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned()),
     };
-    if name.contains(['/', '\\']) || name == "." || name == ".." {
+    if name.contains(['/', '\\']) || name.starts_with('.') {
         let span = raw
             .scene
             .as_ref()
@@ -343,7 +343,8 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
             span,
             "scene.name",
             &name,
-            "names an output directory: no path separators",
+            "names an output directory: no path separators, and no leading '.' (elcon's \
+             temporary siblings and locks start with one)",
         ));
     }
     let description = raw.scene.as_ref().and_then(|m| m.description.clone());
@@ -572,6 +573,8 @@ fn lay_out(
 fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<String>, SceneError> {
     let mut sets = Vec::new();
     if let (Some(spec), Some(raw_design)) = (&scene.design, &raw.design) {
+        // The number of cases first: every load's grid is built below.
+        sanity::design_cases(ctx, raw_design, spec.case_loadings().len())?;
         for &load in &spec.loads {
             let scale = hertz_scale(&scene.bodies, &scene.geometry, &scene.points_spec, load);
             sets.push(build_points(&scene.points_spec, scale).map_err(|reason| {
@@ -589,7 +592,6 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
                 _ => None,
             },
             axis: spec.axis,
-            cases: spec.case_loadings().len(),
             max_constant: spec.max_constant,
         };
         sanity::design(ctx, raw_design, &view, &sets)?;

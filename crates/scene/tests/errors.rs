@@ -118,7 +118,7 @@ fn a_batch_name_cannot_leave_the_output_directory() {
     let dir = std::env::temp_dir().join(format!("elcon-batch-name-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("base.toml"), BASE).unwrap();
-    for bad in ["../escape", "", "/tmp/x"] {
+    for bad in ["../escape", "", "/tmp/x", ".hidden.1.tmp"] {
         std::fs::write(
             dir.join("b.toml"),
             format!("[batch]\nname = \"{bad}\"\nscene = \"base.toml\"\n[[batch.group]]\n\"loading.load\" = [1.0]\n"),
@@ -128,6 +128,11 @@ fn a_batch_name_cannot_leave_the_output_directory() {
         assert!(e.to_string().contains("`batch.name`"), "{bad}: {e}");
         assert!(e.to_string().contains("no path separators"), "{bad}: {e}");
     }
+    // A scene's name likewise: a leading '.' is what elcon's own temporary
+    // siblings look like.
+    let e = scene(&format!("[scene]\nname = \".a.1234.tmp\"\n{BASE}")).unwrap_err();
+    assert!(e.to_string().contains("`scene.name`"), "{e}");
+    assert!(e.to_string().contains("no leading '.'"), "{e}");
 }
 
 /// A roller along y on a plane, on an absolute rectangle grid.
