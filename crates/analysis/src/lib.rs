@@ -18,17 +18,24 @@
 //! pascal); forces are per unit length and pressures per unit length per
 //! unit width for a 2D line contact.
 //!
+//! Everything the API takes is re-exported here (the bodies, materials and
+//! point sets of `elcon-influence`, the methods and options of `elcon-lcp`),
+//! so this crate alone is enough; [`grid`] lays points out relative to a
+//! Hertz contact as a scene's `across` and `zone` do.
+//!
 //! ```
-//! use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
 //! use elcon_analysis::references::HertzSpheres;
-//! use elcon_influence::{Body, Material, PointSet, combined_modulus};
-//! use elcon_lcp::{Method, Options};
+//! use elcon_analysis::{
+//!     Body, ContactProblem, Geometry, Loading, Material, Method, Options, PointSet, Surface,
+//!     combined_modulus, grid,
+//! };
 //!
 //! // Two steel spheres, R1 = 1 in, R2 = 10 in, P = 100 lb (Conry & Seireg, Example 1).
 //! let steel = Material::new(30e6, 0.3).unwrap();
 //! let hertz = HertzSpheres::new(combined_modulus(&steel, &steel), 1.0 / (1.0 + 0.1), 100.0).unwrap();
 //! let a = hertz.contact_radius();
-//! let points = PointSet::grid_disk(a / 8.0, 1.3 * a).unwrap();
+//! // 17 points across the contact's diameter (spacing a / 8), out to 1.3 a.
+//! let points = grid::hertz_disk(a, 17, 1.3).unwrap();
 //! let body = Body::uniform_patch(steel);
 //! let geometry = Geometry::Surfaces(Surface::Sphere { radius: 1.0 }, Surface::Sphere { radius: 10.0 });
 //! let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
@@ -38,7 +45,7 @@
 //!
 //! // The same problem with S held matrix-free (an FFT convolution, O(N)
 //! // memory: grids of 10^4 to 10^6 points), solved by the conjugate gradient.
-//! let points = PointSet::grid_disk(a / 8.0, 1.3 * a).unwrap();
+//! let points: PointSet = grid::hertz_disk(a, 17, 1.3).unwrap();
 //! let large = ContactProblem::lattice(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
 //! let iterative = large.solve(Method::ConjugateGradient, &Options::default()).unwrap();
 //! assert!(iterative.certificate.holds());
@@ -47,6 +54,7 @@
 
 pub mod contact;
 mod error;
+pub mod grid;
 mod influence;
 pub mod loading;
 pub mod references;
@@ -55,6 +63,9 @@ pub mod rigid;
 pub use contact::{
     ContactCertificate, ContactProblem, ContactSolution, Geometry, Layout, Surface, Warning,
     separations,
+};
+pub use elcon_influence::{
+    Body, Dimension, Material, Model, PointSet, combined_modulus, combined_modulus_of,
 };
 pub use elcon_lcp::{Method, Options};
 pub use error::AnalysisError;

@@ -1065,9 +1065,8 @@ pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<Poin
     let r = match *spec {
         PointsSpec::Disk { spacing, radius } => PointSet::grid_disk(spacing, radius),
         PointsSpec::DiskHertz { across, zone } => {
-            let a = need()?;
-            let h = 2.0 * a / (across - 1) as f64;
-            PointSet::grid_disk(h, zone * a)
+            return elcon_analysis::grid::hertz_disk(need()?, across, zone)
+                .map_err(|e| e.to_string());
         }
         PointsSpec::Rectangle {
             half_x,
@@ -1085,17 +1084,8 @@ pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<Poin
         }
         PointsSpec::Line { start, end, n } => PointSet::line(start, end, n),
         PointsSpec::LineHertz { across, zone } => {
-            let b = need()?;
-            let h = 2.0 * b / (across - 1) as f64;
-            let m = (zone * b / h).round().max(1.0);
-            if !(m <= elcon_influence::MAX_POINTS as f64) {
-                return Err(format!(
-                    "{} points across the line: more than MAX_POINTS = {}",
-                    2.0 * m + 1.0,
-                    elcon_influence::MAX_POINTS
-                ));
-            }
-            PointSet::line(-(m + 0.5) * h, (m + 0.5) * h, 2 * m as usize + 1)
+            return elcon_analysis::grid::hertz_line(need()?, across, zone)
+                .map_err(|e| e.to_string());
         }
     };
     r.map_err(|e| e.to_string())
