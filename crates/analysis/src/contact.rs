@@ -26,6 +26,7 @@ use elcon_lcp::{BorderedLcpRef, Certificate, Method, OperatorLcp, Options, Stati
 use faer::{Col, Mat, MatRef};
 
 use crate::AnalysisError;
+use crate::edge::EdgeLaw;
 use crate::influence::{Influence, LatticeProducts};
 use crate::loading::Loading;
 use crate::rigid::{Rigid, RigidMode, point};
@@ -209,6 +210,8 @@ pub struct ContactProblem {
     /// a free rotation that is odd under one the separations respect too
     /// is zero at the solution and not an unknown, folded or not.
     groups: Arc<Vec<Folding>>,
+    /// How the pressure falls at the contact's edge (crate::edge).
+    edge: EdgeLaw,
 }
 
 impl ContactProblem {
@@ -272,6 +275,7 @@ impl ContactProblem {
             body_edges: (false, false),
             folding: layout.folding.map(Arc::new),
             groups: Arc::new(layout.groups),
+            edge: EdgeLaw::of(bodies),
         })
     }
 
@@ -308,6 +312,7 @@ impl ContactProblem {
             body_edges: (false, false),
             folding: None,
             groups: Arc::new(layout.groups),
+            edge: EdgeLaw::of(bodies),
         })
     }
 
@@ -354,6 +359,7 @@ impl ContactProblem {
             body_edges: (false, false),
             folding: None,
             groups: Arc::new(Vec::new()),
+            edge: EdgeLaw::Cells,
         })
     }
 
@@ -459,6 +465,7 @@ impl ContactProblem {
             body_edges: self.body_edges,
             folding: self.folding.clone(),
             groups: Arc::clone(&self.groups),
+            edge: self.edge,
         })
     }
 
@@ -618,7 +625,7 @@ impl ContactProblem {
         let load: f64 = forces.iter().sum();
         let fmax = forces.iter().fold(0.0f64, |a, f| a.max(*f));
         let contact: Vec<usize> = (0..n).filter(|&k| forces[k] > 0.0).collect();
-        let contact_measure: f64 = contact.iter().map(|&k| self.points.measure(k)).sum();
+        let contact_measure = crate::edge::contact_measure(&self.points, &pressures, self.edge);
         let contact_extent = match self.points.dimension() {
             Dimension::Surface => (contact_measure / std::f64::consts::PI).sqrt(),
             Dimension::Line => contact_measure / 2.0,
@@ -726,9 +733,14 @@ pub struct ContactSolution {
     pub max_pressure: f64,
     /// Indices of the points with F_k > 0.
     pub contact: Vec<usize>,
-    /// Area (3D) or length (2D) of the contact set's cells.
+    /// Area (3D) or length (2D) of the contact: its cells', the edge
+    /// resolved within the outermost cells where the pressure falls to it
+    /// (`p^2` extrapolated to zero along the grid on a half-space, `p` on a
+    /// foundation; whole cells on points that are not a lattice or an S
+    /// given by [`ContactProblem::from_parts`]).
     pub contact_measure: f64,
-    /// Contact radius `sqrt(area / pi)` (3D) or half-width `length / 2` (2D).
+    /// Contact radius `sqrt(area / pi)` (3D) or half-width `length / 2` (2D)
+    /// from [`ContactSolution::contact_measure`].
     pub contact_extent: f64,
     /// Residuals from the original data.
     pub certificate: ContactCertificate,

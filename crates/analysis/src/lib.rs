@@ -53,6 +53,7 @@
 //! ```
 
 pub mod contact;
+mod edge;
 mod error;
 pub mod grid;
 mod influence;

@@ -1,0 +1,196 @@
+//! The contact's extent resolved within a cell.
+//!
+//! The cells in contact overstate the contact: the outermost points carry a
+//! little force and their whole cells count. Near a smooth edge the
+//! pressure falls like the square root of the distance to it (Hertz:
+//! `p^2 = p0^2 (1 - r^2 / a^2)`, linear in r near r = a), so along each
+//! grid direction that leaves the contact at point k, the straight line
+//! through `p^2` at k and at the point behind it reaches zero at
+//!
+//! ```text
+//!     t = h p_k^2 / (p_behind^2 - p_k^2)        beyond x_k,  clamped to [0, h]
+//! ```
+//!
+//! and the contact's edge point on that side lies there. On a line the
+//! contact's length is the sum of its cells', each side that leaves the
+//! contact reaching t instead of h / 2. On a surface the edge points,
+//! joined in order of their angle about the centre of pressure, make a
+//! polygon whose area is the contact's (a star-shaped contact: Hertz's
+//! ellipses, a roller's patch; a contact of another shape, whose polygon
+//! would cross itself, keeps its cells' area).
+//! On a Winkler foundation alone (no half-space body) the pressure is the
+//! foundation's deflection, which crosses zero linearly: there p itself,
+//! not p^2, is extrapolated. Where the pressure does not fall toward the
+//! edge (a flat punch's rises to it) or no point lies behind, the cell
+//! counts whole (t = h / 2), as it does for a problem built from a given S
+//! (`ContactProblem::from_parts`), whose edge law is not known.
+
+use std::collections::HashMap;
+
+use elcon_influence::{Body, Dimension, Model, PointSet};
+
+/// How the pressure falls to zero at a smooth edge of the contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum EdgeLaw {
+    /// Like the square root of the distance (an elastic half-space body).
+    SquareRoot,
+    /// Linearly (foundations and beams only).
+    Linear,
+    /// Not known: whole cells.
+    Cells,
+}
+
+impl EdgeLaw {
+    /// The law of two bodies: a half-space model in either sets it.
+    pub(crate) fn of(bodies: [&Body; 2]) -> Self {
+        let half_space = bodies.iter().any(|b| {
+            matches!(
+                b.model(),
+                Model::PointForce { .. }
+                    | Model::UniformPatch { .. }
+                    | Model::PlaneStrainStrip { .. }
+            )
+        });
+        if half_space {
+            Self::SquareRoot
+        } else {
+            Self::Linear
+        }
+    }
+
+    /// The power q of the pressure that is linear in the distance.
+    fn power(self) -> Option<i32> {
+        match self {
+            Self::SquareRoot => Some(2),
+            Self::Linear => Some(1),
+            Self::Cells => None,
+        }
+    }
+}
+
+/// The measure (area on a surface, length on a line) of the contact, its
+/// edge resolved within the cells by `law` (see the module documentation);
+/// the cells' own measure when the points are not on a lattice or the law
+/// is not known.
+pub(crate) fn contact_measure(points: &PointSet, pressures: &[f64], law: EdgeLaw) -> f64 {
+    let n = points.len();
+    let cells: f64 = (0..n)
+        .filter(|&k| pressures[k] > 0.0)
+        .map(|k| points.measure(k))
+        .sum();
+    let (Some(lattice), Some(q)) = (points.lattice(), law.power()) else {
+        return cells;
+    };
+    let cell = points.cell();
+    let index: HashMap<(i64, i64), usize> =
+        lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect();
+    let pressed = |ij: (i64, i64)| index.get(&ij).copied().filter(|&k| pressures[k] > 0.0);
+    // Each cell in contact spans, along each axis, h / 2 on a side whose
+    // neighbour is in contact and t on a side that leaves the contact; its
+    // contact is the rectangle of those spans (on a line, the span).
+    let reach = |k: usize, (di, dj): (i64, i64), h: f64| -> f64 {
+        let (i, j) = lattice[k];
+        if pressed((i + di, j + dj)).is_some() {
+            return 0.5 * h;
+        }
+        match pressed((i - di, j - dj)) {
+            Some(b) if pressures[b] > pressures[k] => {
+                let (pk, pb) = (pressures[k].powi(q), pressures[b].powi(q));
+                (h * pk / (pb - pk)).clamp(0.0, h)
+            }
+            _ => 0.5 * h,
+        }
+    };
+    let pressed_points = (0..n).filter(|&k| pressures[k] > 0.0);
+    if points.dimension() == Dimension::Line {
+        return pressed_points
+            .map(|k| reach(k, (1, 0), cell.dx) + reach(k, (-1, 0), cell.dx))
+            .sum();
+    }
+    // On a surface: the edge points along every face that leaves the
+    // contact, joined in order of their angle about the contact's centre of
+    // pressure into a polygon (a star-shaped contact: Hertz's ellipses, a
+    // roller's patch), whose area is the contact's.
+    let total: f64 = pressures.iter().filter(|&&p| p > 0.0).sum();
+    let centre = pressed_points.clone().fold((0.0, 0.0), |(x, y), k| {
+        (
+            x + pressures[k] * points.x(k),
+            y + pressures[k] * points.y(k),
+        )
+    });
+    let (cx, cy) = (centre.0 / total, centre.1 / total);
+    let mut edge: Vec<(f64, f64, f64)> = Vec::new();
+    for k in pressed_points {
+        let (i, j) = lattice[k];
+        for (di, dj, h) in [
+            (1, 0, cell.dx),
+            (-1, 0, cell.dx),
+            (0, 1, cell.dy),
+            (0, -1, cell.dy),
+        ] {
+            if pressed((i + di, j + dj)).is_some() {
+                continue;
+            }
+            let t = reach(k, (di, dj), h);
+            let (x, y) = (points.x(k) + di as f64 * t, points.y(k) + dj as f64 * t);
+            edge.push(((y - cy).atan2(x - cx), x, y));
+        }
+    }
+    if edge.len() < 3 {
+        return cells;
+    }
+    edge.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let m = edge.len();
+    let twice: f64 = (0..m)
+        .map(|i| {
+            let (_, x0, y0) = edge[i];
+            let (_, x1, y1) = edge[(i + 1) % m];
+            x0 * y1 - x1 * y0
+        })
+        .sum();
+    // A contact that is not star-shaped about its centre (two patches, a
+    // ring) makes a polygon that crosses itself: its area then differs from
+    // the cells' by more than the edge faces can move it, and the cells'
+    // is kept.
+    let polygon = 0.5 * twice.abs();
+    if (polygon - cells).abs() <= m as f64 * cell.dx * cell.dy {
+        polygon
+    } else {
+        cells
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_exact_square_root_profile_gives_its_edge() {
+        // p^2 = 1 - x on a line of unit cells: the edge at x = 1 exactly,
+        // whatever the grid; the contact [-1, 1] has length 2.
+        let points = PointSet::line(-2.05, 2.05, 41).unwrap();
+        let p: Vec<f64> = points
+            .xs()
+            .iter()
+            .map(|&x| (1.0 - x.abs()).max(0.0).sqrt())
+            .collect();
+        let length = contact_measure(&points, &p, EdgeLaw::SquareRoot);
+        assert!((length - 2.0).abs() < 1e-12, "{length}");
+        // A linear fall under the linear law, likewise.
+        let linear: Vec<f64> = p.iter().map(|v| v * v).collect();
+        let length = contact_measure(&points, &linear, EdgeLaw::Linear);
+        assert!((length - 2.0).abs() < 1e-12, "{length}");
+        // An unknown law keeps whole cells, 0.1 each.
+        let pressed = p.iter().filter(|&&v| v > 0.0).count() as f64;
+        let cells = contact_measure(&points, &p, EdgeLaw::Cells);
+        assert!((cells - 0.1 * pressed).abs() < 1e-12, "{cells}");
+        // A pressure that rises to its edge (a punch) keeps whole cells.
+        let q: Vec<f64> = points
+            .xs()
+            .iter()
+            .map(|&x| if x.abs() < 1.0 { 1.0 + x.abs() } else { 0.0 })
+            .collect();
+        let cells = points.xs().iter().filter(|x| x.abs() < 1.0).count() as f64 * 0.1;
+        assert!((contact_measure(&points, &q, EdgeLaw::SquareRoot) - cells).abs() < 1e-12);
+    }
+}
