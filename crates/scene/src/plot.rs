@@ -1,9 +1,16 @@
 //! SVG plots (plotters): pressure against position with the closed form
-//! overlaid; a design's separations and pressures before and after; a
-//! batch's error against run time (log-log, one series per method).
+//! overlaid (lines, and surfaces whose pressure depends on the radius
+//! alone), a pressure map with the contact's boundary and a colour bar and
+//! the pressure along the principal axes (other surfaces); a design's
+//! separations and pressures before and after; a batch's error against run
+//! time (log-log, one series per method).
+
+use std::collections::HashMap;
 
 use plotters::prelude::*;
+use plotters::style::colors::colormaps::ViridisRGB;
 
+use elcon_analysis::{Geometry, Surface};
 use elcon_influence::Dimension;
 
 use crate::run::Run;
@@ -31,11 +38,34 @@ fn padded(lo: f64, hi: f64) -> (f64, f64) {
     (lo - 0.05 * span, hi + 0.05 * span)
 }
 
-/// Pressure (intensity) against the radius (surface) or x (line); the
-/// closed form as a line where one applies.
+/// Whether a surface run's pressure depends on the radius alone: surfaces
+/// of revolution (spheres, planes) about the origin, no rigid rotation
+/// prescribed or loaded by a moment, and the contact centred there.
+fn axisymmetric(run: &Run) -> bool {
+    let revolution = |s: &Surface| matches!(s, Surface::Sphere { .. } | Surface::Plane);
+    let surfaces =
+        matches!(&run.scene.geometry, Geometry::Surfaces(a, b) if revolution(a) && revolution(b));
+    let rigid = run.problem.rigid();
+    let level = rigid
+        .prescribed
+        .iter()
+        .all(|&(m, v)| m == elcon_analysis::RigidMode::Approach || v == 0.0)
+        && rigid.free.iter().skip(1).all(|&(_, moment)| moment == 0.0);
+    let (x, y) = run.solution.load_centre;
+    let (ex, ey) = run.problem.points().extent();
+    let centred = x.abs() <= 1e-9 * ex.max(ey) && y.abs() <= 1e-9 * ex.max(ey);
+    surfaces && level && centred
+}
+
+/// Pressure (intensity) against the radius (an axisymmetric surface run)
+/// or x (line); the closed form as a line where one applies. Other surface
+/// runs get [`pressure_map`].
 pub(crate) fn pressure(run: &Run) -> Result<String, String> {
     let points = run.problem.points();
     let surface = points.dimension() == Dimension::Surface;
+    if surface && !axisymmetric(run) {
+        return pressure_map(run);
+    }
     let u = &run.scene.units;
     let pos = |k: usize| {
         if surface {
@@ -302,4 +332,232 @@ pub(crate) fn error_time(
         root.present().map_err(err)?;
     }
     Ok(svg)
+}
+
+/// The colour of `p` over `[0, top]`; out of contact, a light grey.
+fn shade(p: f64, top: f64) -> RGBColor {
+    if p <= 0.0 {
+        RGBColor(235, 235, 235)
+    } else {
+        ViridisRGB::get_color_normalized(p, 0.0, top)
+    }
+}
+
+/// The faces between a cell in contact and one that is not (or the grid's
+/// edge), as segments: the contact's boundary on the cells.
+fn boundary(points: &elcon_influence::PointSet, pressures: &[f64]) -> Vec<[(f64, f64); 2]> {
+    let Some(lattice) = points.lattice() else {
+        return Vec::new();
+    };
+    let index: HashMap<(i64, i64), usize> =
+        lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect();
+    let cell = points.cell();
+    let (hx, hy) = (0.5 * cell.dx, 0.5 * cell.dy);
+    let mut faces = Vec::new();
+    for k in (0..points.len()).filter(|&k| pressures[k] > 0.0) {
+        let (i, j) = lattice[k];
+        let (x, y) = (points.x(k), points.y(k));
+        for (di, dj) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
+            let pressed = index
+                .get(&(i + di, j + dj))
+                .is_some_and(|&n| pressures[n] > 0.0);
+            if pressed {
+                continue;
+            }
+            let face = if di != 0 {
+                let fx = x + di as f64 * hx;
+                [(fx, y - hy), (fx, y + hy)]
+            } else {
+                let fy = y + dj as f64 * hy;
+                [(x - hx, fy), (x + hx, fy)]
+            };
+            faces.push(face);
+        }
+    }
+    faces
+}
+
+/// The pressure along one grid line: where it lies (the other coordinate)
+/// and its (position, pressure) pairs, sorted.
+struct Section {
+    at: f64,
+    values: Vec<(f64, f64)>,
+}
+
+/// The pressure along the grid row and column nearest the contact's centre
+/// of pressure: `[along x, along y]`.
+fn principal_axes(
+    points: &elcon_influence::PointSet,
+    pressures: &[f64],
+    centre: (f64, f64),
+) -> [Section; 2] {
+    let nearest = |coord: &dyn Fn(usize) -> f64, target: f64| -> f64 {
+        (0..points.len())
+            .map(coord)
+            .min_by(|a, b| (a - target).abs().total_cmp(&(b - target).abs()))
+            .unwrap_or(target)
+    };
+    let row = nearest(&|k| points.y(k), centre.1);
+    let column = nearest(&|k| points.x(k), centre.0);
+    let tolerance = 1e-9 * points.extent().0.max(points.extent().1);
+    let line = |on: &dyn Fn(usize) -> bool, at: &dyn Fn(usize) -> f64| {
+        let mut v: Vec<(f64, f64)> = (0..points.len())
+            .filter(|&k| on(k))
+            .map(|k| (at(k), pressures[k]))
+            .collect();
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        v
+    };
+    let x = |k: usize| points.x(k);
+    let y = |k: usize| points.y(k);
+    [
+        Section {
+            at: row,
+            values: line(&|k| (y(k) - row).abs() <= tolerance, &x),
+        },
+        Section {
+            at: column,
+            values: line(&|k| (x(k) - column).abs() <= tolerance, &y),
+        },
+    ]
+}
+
+/// A surface run's pressure as a colour map over x, y (each cell in its
+/// colour, the contact's boundary drawn on the cells' faces, a colour bar),
+/// and the pressure along the row and the column through the centre of
+/// pressure.
+pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
+    let points = run.problem.points();
+    let p = &run.solution.pressures;
+    let u = &run.scene.units;
+    let top = p
+        .iter()
+        .fold(0.0f64, |a, v| a.max(*v))
+        .max(f64::MIN_POSITIVE);
+    let cell = points.cell();
+    let (hx, hy) = (0.5 * cell.dx, 0.5 * cell.dy);
+    let xs = padded(
+        points.xs().iter().fold(f64::INFINITY, |a, v| a.min(*v)) - hx,
+        points.xs().iter().fold(f64::NEG_INFINITY, |a, v| a.max(*v)) + hx,
+    );
+    let ys = padded(
+        points.ys().iter().fold(f64::INFINITY, |a, v| a.min(*v)) - hy,
+        points.ys().iter().fold(f64::NEG_INFINITY, |a, v| a.max(*v)) + hy,
+    );
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (SIZE.0, SIZE.1 + 340)).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        let (upper, lower) = root.split_vertically(SIZE.1);
+        let (map_area, bar_area) = upper.split_horizontally(SIZE.0 - 130);
+        let mut map = ChartBuilder::on(&map_area)
+            .caption(
+                format!("{}: pressure map", run.scene.name),
+                ("sans-serif", 22),
+            )
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(80)
+            .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)
+            .map_err(err)?;
+        map.configure_mesh()
+            .disable_mesh()
+            .x_desc(format!("x ({})", u.length))
+            .y_desc(format!("y ({})", u.length))
+            .draw()
+            .map_err(err)?;
+        map.draw_series((0..points.len()).map(|k| {
+            let (x, y) = (points.x(k), points.y(k));
+            Rectangle::new(
+                [(x - hx, y - hy), (x + hx, y + hy)],
+                shade(p[k], top).filled(),
+            )
+        }))
+        .map_err(err)?;
+        map.draw_series(
+            boundary(points, p)
+                .into_iter()
+                .map(|face| PathElement::new(face.to_vec(), BLACK.stroke_width(2))),
+        )
+        .map_err(err)?
+        .label("contact boundary")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+        map.configure_series_labels()
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()
+            .map_err(err)?;
+        colour_bar(&bar_area, top, &u.intensity)?;
+        let [along_x, along_y] = principal_axes(points, p, run.solution.load_centre);
+        let (left, right) = lower.split_horizontally(SIZE.0 / 2);
+        for (i, (area, label, range, series)) in [
+            (
+                &left,
+                format!("along x, at y = {:.4e}", along_x.at),
+                xs,
+                along_x.values,
+            ),
+            (
+                &right,
+                format!("along y, at x = {:.4e}", along_y.at),
+                ys,
+                along_y.values,
+            ),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let colour = COLORS[i];
+            let mut axes = ChartBuilder::on(area)
+                .caption(&label, ("sans-serif", 16))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(80)
+                .build_cartesian_2d(range.0..range.1, 0.0..top * 1.08)
+                .map_err(err)?;
+            axes.configure_mesh()
+                .x_desc(format!("{} ({})", if i == 0 { "x" } else { "y" }, u.length))
+                .y_desc(format!("pressure ({})", u.intensity))
+                .draw()
+                .map_err(err)?;
+            axes.draw_series(LineSeries::new(series, colour.stroke_width(2)))
+                .map_err(err)?;
+        }
+        root.present().map_err(err)?;
+    }
+    Ok(svg)
+}
+
+/// A vertical colour bar of `[0, top]` labelled with the pressure's unit.
+fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    top: f64,
+    unit: &str,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let mut bar = ChartBuilder::on(area)
+        .margin_top(48)
+        .margin_bottom(57)
+        .margin_right(8)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..1.0, 0.0..top)
+        .map_err(err)?;
+    bar.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_desc(format!("pressure ({unit})"))
+        .draw()
+        .map_err(err)?;
+    let steps = 100;
+    bar.draw_series((0..steps).map(|i| {
+        let (lo, hi) = (
+            top * i as f64 / steps as f64,
+            top * (i + 1) as f64 / steps as f64,
+        );
+        Rectangle::new([(0.0, lo), (1.0, hi)], shade(0.5 * (lo + hi), top).filled())
+    }))
+    .map_err(err)?;
+    Ok(())
 }

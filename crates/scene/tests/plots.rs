@@ -1,0 +1,121 @@
+//! The pressure plot: a map with the contact's boundary and a colour bar for
+//! a surface whose pressure is not a function of the radius, pressure
+//! against the radius with the closed form for one that is.
+
+use std::path::Path;
+
+use elcon_scene::{Plot, Scene, run};
+
+/// A roller (cylinder on a plane) on a 9 x 12 rectangle: not axisymmetric.
+const ROLLER: &str = r#"
+[units]
+length = "mm"
+force = "N"
+pressure = "MPa"
+
+[body1]
+model = "uniform-patch"
+youngs_modulus = 210e3
+poissons_ratio = 0.3
+
+[body2]
+model = "uniform-patch"
+youngs_modulus = 210e3
+poissons_ratio = 0.3
+
+[geometry]
+surface1 = { shape = "cylinder", radius = 5.0 }
+surface2 = { shape = "plane" }
+
+[points]
+grid = "rectangle"
+zone = 1.6
+half_y = 5.0
+nx = 9
+ny = 12
+
+[loading]
+load = 5000.0
+
+[outputs]
+plots = ["pressure"]
+"#;
+
+/// Example 1's spheres, 11 across: axisymmetric.
+const SPHERES: &str = r#"
+[units]
+length = "in"
+force = "lbf"
+
+[body1]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+
+[body2]
+model = "uniform-patch"
+youngs_modulus = 30e6
+poissons_ratio = 0.3
+
+[geometry]
+surface1 = { shape = "sphere", radius = 1.0 }
+surface2 = { shape = "sphere", radius = 10.0 }
+
+[points]
+grid = "disk"
+across = 11
+zone = 1.2
+
+[loading]
+load = 100.0
+
+[outputs]
+plots = ["pressure"]
+"#;
+
+fn pressure_svg(text: &str) -> (String, usize, usize) {
+    let scene = Scene::from_str(Path::new("plot.toml"), text).unwrap();
+    assert_eq!(scene.outputs.plots, vec![Plot::Pressure]);
+    let r = run(&scene).unwrap();
+    let dir =
+        std::env::temp_dir().join(format!("elcon-plots-{}-{}", std::process::id(), scene.name));
+    let written = elcon_scene::write_run(&r, &dir).unwrap();
+    let svg = std::fs::read_to_string(written.join("pressure.svg")).unwrap();
+    let contact = r.solution.contact.len();
+    let points = r.problem.points().len();
+    let _ = std::fs::remove_dir_all(&dir);
+    (svg, points, contact)
+}
+
+#[test]
+fn a_roller_gets_a_pressure_map_with_its_boundary_and_a_colour_bar() {
+    let (svg, points, contact) = pressure_svg(ROLLER);
+    assert!(svg.contains("pressure map"), "the map's caption");
+    assert!(svg.contains("contact boundary"), "the boundary's legend");
+    assert!(svg.contains("pressure (MPa)"), "the colour bar's label");
+    assert!(svg.contains("along x, at y =") && svg.contains("along y, at x ="));
+    // One rectangle per cell and a hundred for the colour bar, besides the
+    // frames.
+    let rects = svg.matches("<rect").count();
+    assert!(
+        rects >= points + 100,
+        "{rects} rectangles for {points} cells"
+    );
+    // The boundary: black faces of width 2, at least four (a closed outline)
+    // and at most four per cell in contact.
+    let faces = svg
+        .matches(r##"stroke="#000000" stroke-width="2""##)
+        .count();
+    assert!(
+        faces >= 4 && faces <= 4 * contact + 1,
+        "{faces} faces, {contact} cells in contact"
+    );
+}
+
+#[test]
+fn axisymmetric_spheres_keep_pressure_against_the_radius() {
+    let (svg, ..) = pressure_svg(SPHERES);
+    assert!(!svg.contains("pressure map"));
+    assert!(svg.contains("radius (in)"));
+    assert!(svg.contains("hertz-spheres"), "the closed form's legend");
+}
