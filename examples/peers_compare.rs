@@ -1,4 +1,4 @@
-//! elcon on the peers' discrete problems (../shared/peers/), for the side by
+//! elcon on the peers' discrete problems (docs/peers/), for the side by
 //! side comparison in docs/performance.md.
 //!
 //! 1. The BEM peers' Hertz case (Tamaas, ContactMechanics): Love patches of

@@ -44,6 +44,7 @@ pub use memory::{
     ADDRESS_SPACE_RESERVE, Ceiling, LIMIT_VARIABLE, MARGIN, gemm_reserve, human, parse_size,
 };
 pub use output::{Staging, write_atomic, write_run, write_run_files};
+pub use plot::error_time;
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{
     AttemptJson, CertificateJson, DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson,

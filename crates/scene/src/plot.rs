@@ -261,8 +261,12 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
 }
 
 /// Error against run time, log-log, one series per method: `series` holds
-/// (method, [(seconds, |error|)]).
-pub(crate) fn error_time(
+/// (method, [(seconds, |error|)]); `error` names the error on the axis. The
+/// SVG's text, or why it could not be drawn (no positive pair).
+///
+/// # Errors
+/// A message when no (time, error) pair is positive or plotters fails.
+pub fn error_time(
     title: &str,
     error: &str,
     series: &[(String, Vec<(f64, f64)>)],
