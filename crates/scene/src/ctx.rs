@@ -140,9 +140,57 @@ pub(crate) fn parse<T: serde::de::DeserializeOwned>(
     file: &Path,
     text: &str,
 ) -> Result<T, SceneError> {
-    toml::from_str(text).map_err(|e| SceneError::Syntax {
-        file: file.to_path_buf(),
-        at: Location::of(text, e.span().map_or(0, |s| s.start)),
-        message: e.message().trim().to_string(),
+    toml::from_str(text).map_err(|e| {
+        let offset = e.span().map_or(0, |s| s.start);
+        let message = e.message().trim();
+        // A value of the wrong type (a number written as a string, say):
+        // the parser names the types, not the key; the key is read from the
+        // text at the value.
+        let message = match (message.starts_with("invalid type"), key_at(text, offset)) {
+            (true, Some(key)) => format!(
+                "`{key}`: {}",
+                message
+                    .replace("expected f64", "expected a number")
+                    .replace("expected i64", "expected a whole number")
+            ),
+            _ => message.to_string(),
+        };
+        SceneError::Syntax {
+            file: file.to_path_buf(),
+            at: Location::of(text, offset),
+            message,
+        }
     })
+}
+
+/// The dotted key of the value at byte `offset` of a TOML text: the
+/// section of the last `[header]` above it, the key of its line, and, in an
+/// inline table or an array of them, the key before the value (`None` when
+/// the line has no `key =`).
+pub(crate) fn key_at(text: &str, offset: usize) -> Option<String> {
+    let offset = offset.min(text.len());
+    let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
+    let line = &text[start..end];
+    let section = text[..start]
+        .lines()
+        .rev()
+        .map(str::trim)
+        .find(|l| l.starts_with('['))
+        .map(|l| l.trim_matches(|c| c == '[' || c == ']').trim().to_string());
+    let (outer, _) = line.split_once('=')?;
+    let outer = outer.trim().trim_matches('"');
+    let before = &line[..offset - start];
+    let inner = before
+        .rfind('{')
+        .map(|brace| &before[brace + 1..])
+        .and_then(|inside| {
+            let assignment = inside.rsplit(',').next()?;
+            let (key, _) = assignment.split_once('=')?;
+            Some(key.trim().trim_matches('"').to_string())
+        });
+    let mut key: Vec<String> = section.into_iter().collect();
+    key.push(outer.to_string());
+    key.extend(inner);
+    Some(key.join("."))
 }

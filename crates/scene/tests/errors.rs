@@ -65,6 +65,20 @@ fn syntax_names_line_column_and_key() {
     let e = scene(&BASE.replace("[units]\nlength = \"in\"\nforce = \"lbf\"\n", "")).unwrap_err();
     assert!(e.to_string().contains("missing field `units`"), "{e}");
     assert!(e.is_input_error());
+    // A number written as a string names its field, in a section and in an
+    // inline table.
+    let e = scene(&BASE.replace("load = 100.0", "load = \"100\"")).unwrap_err();
+    assert!(matches!(e, SceneError::Syntax { .. }));
+    assert!(
+        e.to_string()
+            .ends_with("`loading.load`: invalid type: string \"100\", expected a number"),
+        "{e}"
+    );
+    let e = scene(&BASE.replace("across = 11", "across = \"11\"")).unwrap_err();
+    assert!(e.to_string().contains("`points.across`"), "{e}");
+    assert!(e.to_string().contains("expected a whole number"), "{e}");
+    let e = scene(&BASE.replace("radius = 1.0 }", "radius = \"1.0\" }")).unwrap_err();
+    assert!(e.to_string().contains("`geometry.surface1.radius`"), "{e}");
 }
 
 #[test]
