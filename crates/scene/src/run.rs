@@ -130,6 +130,21 @@ pub struct CertificateJson {
     pub holds: bool,
 }
 
+impl CertificateJson {
+    /// A solution's certificate, as written.
+    pub fn of(c: &elcon_analysis::ContactCertificate) -> Self {
+        Self {
+            equilibrium: c.equilibrium,
+            min_force: c.min_force,
+            min_gap: c.min_gap,
+            complementarity: c.complementarity,
+            worst: c.worst(),
+            tolerance: c.tolerance,
+            holds: c.holds(),
+        }
+    }
+}
+
 /// Relative errors against the closed form, signed (computed / reference - 1),
 /// except `pressure_l2` (a norm ratio). Absent where not meaningful.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
@@ -265,7 +280,8 @@ pub struct RunResult {
     pub max_pressure: f64,
     /// Points in contact.
     pub contact_points: usize,
-    /// Contact radius (surface) or half-width (line), from the contact cells' measure (length).
+    /// Contact radius (surface) or half-width (line), the edge resolved within
+    /// the outermost cells (`ContactSolution::contact_extent`; length).
     pub contact_extent: f64,
     /// Residuals from the original data.
     pub certificate: CertificateJson,
@@ -404,15 +420,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         max_pressure: solution.max_pressure,
         contact_points: solution.contact.len(),
         contact_extent: solution.contact_extent,
-        certificate: CertificateJson {
-            equilibrium: c.equilibrium,
-            min_force: c.min_force,
-            min_gap: c.min_gap,
-            complementarity: c.complementarity,
-            worst: c.worst(),
-            tolerance: c.tolerance,
-            holds: c.holds(),
-        },
+        certificate: CertificateJson::of(c),
         warnings: scene
             .warnings
             .iter()
