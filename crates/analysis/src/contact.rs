@@ -102,7 +102,10 @@ pub enum Geometry {
 pub enum Warning {
     /// The contact reaches an open edge of the candidate zone (not one
     /// declared a body's own by [`ContactProblem::with_body_edges`]): the
-    /// true contact may be larger, and the answer is truncated. Enlarge the zone.
+    /// true contact may be larger, and the answer truncated. Raised where the
+    /// contact's edge, extrapolated from the outermost points
+    /// (`crate::edge`), does not end inside their cells, or where that
+    /// cannot be told. Enlarge the zone.
     ContactAtEdge {
         /// Points in contact on the zone's boundary.
         points: Vec<usize>,
@@ -121,7 +124,7 @@ impl std::fmt::Display for Warning {
         match self {
             Warning::ContactAtEdge { points } => write!(
                 f,
-                "contact reaches the edge of the candidate zone at {} point(s): the answer is truncated; enlarge the zone",
+                "contact reaches the edge of the candidate zone at {} point(s) and may go on beyond it: the answer may be truncated; enlarge the zone",
                 points.len()
             ),
             Warning::UncertainContact { points } => write!(
@@ -645,7 +648,9 @@ impl ContactProblem {
             .copied()
             .filter(|&k| {
                 let (x, y) = self.points.open_sides(k);
-                (x && !body_x) || (y && !body_y)
+                let open = (x && !body_x, y && !body_y);
+                (open.0 || open.1)
+                    && crate::edge::may_be_truncated(&self.points, &pressures, self.edge, k, open)
             })
             .collect();
         let mut warnings = Vec::new();

@@ -68,6 +68,46 @@ impl EdgeLaw {
     }
 }
 
+/// Whether the contact at point k, on the candidate zone's boundary, may go
+/// on beyond it: along some open side (`open_x`, `open_y`: a side whose
+/// neighbour cell is missing), the edge extrapolated from k and the point
+/// behind it (see the module documentation) does not end inside k's cell;
+/// or it cannot be told (no lattice, an unknown law, no point behind, a
+/// pressure that does not fall toward the side). A contact that ends
+/// within its outermost cells is not cut off by the zone.
+pub(crate) fn may_be_truncated(
+    points: &PointSet,
+    pressures: &[f64],
+    law: EdgeLaw,
+    k: usize,
+    (open_x, open_y): (bool, bool),
+) -> bool {
+    let (Some(lattice), Some(q)) = (points.lattice(), law.power()) else {
+        return true;
+    };
+    let index: HashMap<(i64, i64), usize> =
+        lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect();
+    let cell = points.cell();
+    let (i, j) = lattice[k];
+    let mut sides = Vec::new();
+    if open_x {
+        sides.extend([(1, 0, cell.dx), (-1, 0, cell.dx)]);
+    }
+    if open_y && points.dimension() == Dimension::Surface {
+        sides.extend([(0, 1, cell.dy), (0, -1, cell.dy)]);
+    }
+    sides
+        .into_iter()
+        .filter(|&(di, dj, _)| !index.contains_key(&(i + di, j + dj)))
+        .any(|(di, dj, h)| match index.get(&(i - di, j - dj)) {
+            Some(&b) if pressures[b] > pressures[k] && pressures[k] > 0.0 => {
+                let (pk, pb) = (pressures[k].powi(q), pressures[b].powi(q));
+                h * pk / (pb - pk) >= 0.5 * h
+            }
+            _ => true,
+        })
+}
+
 /// The measure (area on a surface, length on a line) of the contact, its
 /// edge resolved within the cells by `law` (see the module documentation);
 /// the cells' own measure when the points are not on a lattice or the law

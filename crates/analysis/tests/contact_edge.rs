@@ -83,3 +83,48 @@ fn the_half_width_of_a_line_contact_is_within_a_tenth_of_a_cell() {
         );
     }
 }
+
+/// Example 1's spheres on a disk of `radius` at spacing `h`: the solution.
+fn spheres_on(h: f64, radius: f64) -> elcon_analysis::ContactSolution {
+    let m = steel();
+    let body = Body::uniform_patch(m);
+    let geometry = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    let points = elcon_analysis::PointSet::grid_disk(h, radius).unwrap();
+    ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0))
+        .unwrap()
+        .solve(Method::BlockPivoting, &Options::default())
+        .unwrap()
+}
+
+fn warns_of_the_edge(sol: &elcon_analysis::ContactSolution) -> bool {
+    sol.warnings
+        .iter()
+        .any(|w| matches!(w, elcon_analysis::Warning::ContactAtEdge { .. }))
+}
+
+#[test]
+fn the_edge_warning_fires_where_the_zone_cuts_the_contact_off() {
+    let m = steel();
+    let a = HertzSpheres::new(combined_modulus(&m, &m), combined_radius(1.0, 10.0), 100.0)
+        .unwrap()
+        .contact_radius();
+    let h = 2.0 * a / 10.0;
+    // 11 across, zone 1.2: the outermost points in contact sit on the
+    // Hertz circle, next to the zone's edge, and their pressure falls to
+    // zero within their cells; the answer is the one at zone 1.4.
+    let (tight, roomy) = (spheres_on(h, 1.2 * a), spheres_on(h, 1.4 * a));
+    assert!(!warns_of_the_edge(&tight), "{:?}", tight.warnings);
+    assert!(!warns_of_the_edge(&roomy));
+    assert!((tight.approach / roomy.approach - 1.0).abs() < 1e-12);
+    // A zone inside the contact cuts it off: warned.
+    let cut = spheres_on(h, 0.7 * a);
+    assert!(warns_of_the_edge(&cut), "{:?}", cut.warnings);
+    assert!(
+        cut.to_owned().warnings[0]
+            .to_string()
+            .contains("may be truncated")
+    );
+}
