@@ -334,3 +334,29 @@ fn a_grid_coarser_than_the_contact_warns() {
         s.warnings
     );
 }
+
+#[test]
+fn hetenyi_on_a_beam_that_lifts_off_carries_a_note() {
+    // Example 2's beam on 8 in: every point in contact, Hetenyi's bonded
+    // solution applies and no note. On 30 in the tensionless foundation
+    // lets the ends lift: the note says what the errors then measure.
+    let short = elcon_scene::run(&scene(BEAM).unwrap()).unwrap();
+    let reference = short.result.reference.as_ref().unwrap();
+    assert_eq!(reference.kind, "hetenyi-beam");
+    assert_eq!(reference.note, None);
+    let long = BEAM
+        .replace("start = -4.0", "start = -15.0")
+        .replace("end = 4.0", "end = 15.0")
+        .replace("n = 16", "n = 60");
+    let lifted = elcon_scene::run(&scene(&long).unwrap()).unwrap();
+    assert!(lifted.solution.contact.len() < 60);
+    let note = lifted
+        .result
+        .reference
+        .as_ref()
+        .unwrap()
+        .note
+        .clone()
+        .unwrap();
+    assert!(note.contains("lifted off"), "{note}");
+}
