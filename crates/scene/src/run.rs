@@ -15,7 +15,9 @@ use elcon_influence::Dimension;
 use serde::Serialize;
 
 use crate::error::SceneError;
-use crate::scene::{DesignFamily, Hertz, PointsSpec, Reference, RelativeTo, Scene, Units};
+use crate::scene::{
+    DesignFamily, DesignSpec, Hertz, PointsSpec, Reference, RelativeTo, Scene, Units,
+};
 use crate::storage::Storage;
 
 /// The engine's statistics, as written.
@@ -587,34 +589,7 @@ fn design_stage(
 ) -> Result<(DesignJson, DesignRun), SceneError> {
     let spec = scene.design.as_ref().expect("a design stage");
     let start = Instant::now();
-    let [b1, b2] = &scene.bodies;
-    let mut cases = Vec::new();
-    let mut known = Vec::new();
-    let mut references = Vec::new();
-    for (load, misalignment) in spec.case_loadings() {
-        let points = scene.points_for(load)?;
-        // On the scene's own points, a problem solved in full shares its S
-        // (a folded one has no full S to share); at the scene's own load its
-        // solution is the uncorrected analysis. A design load's own S is
-        // shared by its misalignments.
-        let own = problem.folding().is_none() && points == *problem.points();
-        let loading = case_loading(spec.axis, load, misalignment);
-        let shared = cases
-            .iter()
-            .find(|c: &&ContactProblem| c.points() == &points)
-            .or(own.then_some(problem));
-        let case = match shared {
-            Some(c) => c.with_loading(loading),
-            None => ContactProblem::new(points, &b1.body, &b2.body, &scene.geometry, loading)
-                .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1)),
-        }
-        .map_err(|e| run_error(scene, e))?;
-        let solved = misalignment.is_none()
-            && matches!(problem.loading().normal, Normal::Load(p) if own && p == load);
-        known.push(solved.then_some(solution));
-        references.push(reference_intensity(scene, &case, load)?);
-        cases.push(case);
-    }
+    let (cases, known, references) = design_cases(scene, spec, problem, solution)?;
     let fail = |e: elcon_design::DesignError| run_error(scene, e);
     let before = evaluate_known(
         &cases,
@@ -625,109 +600,7 @@ fn design_stage(
         &known,
     )
     .map_err(fail)?;
-    let (profile, after, starts, method) = match &spec.family {
-        DesignFamily::Linear(family) => {
-            let d = design(
-                &cases,
-                spec.axis,
-                *family,
-                &DesignOptions {
-                    method: spec.method,
-                    max_constant: spec.max_constant,
-                    reanalysis: scene.method,
-                    reanalysis_options: scene.options.clone(),
-                    reference_intensities: Some(references.clone()),
-                    ..DesignOptions::default()
-                },
-            )
-            .map_err(fail)?;
-            let starts = d
-                .starts
-                .iter()
-                .map(|s| match &s.result {
-                    Ok(v) => format!("{}: objective {v:.6e} ({} pivots)", s.label, s.pivots),
-                    Err(e) => format!("{}: failed: {e}", s.label),
-                })
-                .collect();
-            let method = match d.method {
-                DesignMethod::Descent => "descent",
-                _ => "program",
-            };
-            (d.profile, d.evaluation, starts, method)
-        }
-        DesignFamily::CircularCrown {
-            radius_range,
-            flat_length,
-        } => {
-            let flat = *flat_length;
-            let search = crown_search(
-                &cases,
-                spec.axis,
-                |radius| {
-                    Ok(Profile::CircularCrown {
-                        radius,
-                        flat_length: flat,
-                    })
-                },
-                radius_range.0,
-                radius_range.1,
-                &SearchOptions {
-                    method: scene.method,
-                    options: scene.options.clone(),
-                    reference_intensities: Some(references.clone()),
-                    ..SearchOptions::default()
-                },
-            )
-            .map_err(fail)?;
-            let n = search.samples.len();
-            (
-                search.profile,
-                search.evaluation,
-                vec![format!("searched: {n} analyses")],
-                "search",
-            )
-        }
-        DesignFamily::LogarithmicCrown {
-            design_load,
-            flat_length,
-            end,
-        } => {
-            // Validation refuses a logarithmic crown but for a roller.
-            let (roller, length) = match (scene.hertz(*design_load), &scene.points_spec) {
-                (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => {
-                    (h, 2.0 * half_y)
-                }
-                _ => {
-                    return Err(run_error(
-                        scene,
-                        "design.family: a logarithmic crown needs a cylinder on a rectangle grid",
-                    ));
-                }
-            };
-            let profile = Profile::LogarithmicCrown(LogCrown {
-                design_load: *design_load,
-                length,
-                combined_modulus: roller.combined_modulus,
-                radius: roller.radius,
-                flat_length: *flat_length,
-                end: *end,
-            });
-            let after = evaluate(&cases, spec.axis, &profile, scene.method, &scene.options)
-                .map_err(fail)?;
-            (
-                profile,
-                after,
-                vec![format!(
-                    "set from the design load ({})",
-                    match end {
-                        LogEnd::JohnsGohar => "Johns-Gohar",
-                        LogEnd::Lundberg => "Lundberg",
-                    }
-                )],
-                "set",
-            )
-        }
-    };
+    let (profile, after, starts, method) = find_design(scene, spec, &cases, &references)?;
     let objective = after.relative_worst(&references);
     let objective_before = before.relative_worst(&references);
     let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis);
@@ -774,6 +647,169 @@ fn design_stage(
             cases,
         },
     ))
+}
+
+/// The design's load cases (each load at each misalignment), the solutions
+/// already known (the scene's own analysis, where a case is it) and the
+/// reference intensities.
+type DesignCases<'a> = (
+    Vec<ContactProblem>,
+    Vec<Option<&'a ContactSolution>>,
+    Vec<f64>,
+);
+
+/// See [`DesignCases`]: on the scene's own points a problem solved in full
+/// shares its S, and a design load's S is shared by its misalignments.
+fn design_cases<'a>(
+    scene: &Scene,
+    spec: &DesignSpec,
+    problem: &ContactProblem,
+    solution: &'a ContactSolution,
+) -> Result<DesignCases<'a>, SceneError> {
+    let mut cases = Vec::new();
+    let mut known = Vec::new();
+    let mut references = Vec::new();
+    let [b1, b2] = &scene.bodies;
+    for (load, misalignment) in spec.case_loadings() {
+        let points = scene.points_for(load)?;
+        // On the scene's own points, a problem solved in full shares its S
+        // (a folded one has no full S to share); at the scene's own load its
+        // solution is the uncorrected analysis. A design load's own S is
+        // shared by its misalignments.
+        let own = problem.folding().is_none() && points == *problem.points();
+        let loading = case_loading(spec.axis, load, misalignment);
+        let shared = cases
+            .iter()
+            .find(|c: &&ContactProblem| c.points() == &points)
+            .or(own.then_some(problem));
+        let case = match shared {
+            Some(c) => c.with_loading(loading),
+            None => ContactProblem::new(points, &b1.body, &b2.body, &scene.geometry, loading)
+                .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1)),
+        }
+        .map_err(|e| run_error(scene, e))?;
+        let solved = misalignment.is_none()
+            && matches!(problem.loading().normal, Normal::Load(p) if own && p == load);
+        known.push(solved.then_some(solution));
+        references.push(reference_intensity(scene, &case, load)?);
+        cases.push(case);
+    }
+    Ok((cases, known, references))
+}
+
+/// The correction of the spec's family: designed (linear families),
+/// searched (a circular crown) or set (a logarithmic crown); with its
+/// evaluation, how each start ended and the method's name.
+fn find_design(
+    scene: &Scene,
+    spec: &DesignSpec,
+    cases: &[ContactProblem],
+    references: &[f64],
+) -> Result<(Profile, Evaluation, Vec<String>, &'static str), SceneError> {
+    let fail = |e: elcon_design::DesignError| run_error(scene, e);
+    Ok(match &spec.family {
+        DesignFamily::Linear(family) => {
+            let d = design(
+                cases,
+                spec.axis,
+                *family,
+                &DesignOptions {
+                    method: spec.method,
+                    max_constant: spec.max_constant,
+                    reanalysis: scene.method,
+                    reanalysis_options: scene.options.clone(),
+                    reference_intensities: Some(references.to_vec()),
+                    ..DesignOptions::default()
+                },
+            )
+            .map_err(fail)?;
+            let starts = d
+                .starts
+                .iter()
+                .map(|s| match &s.result {
+                    Ok(v) => format!("{}: objective {v:.6e} ({} pivots)", s.label, s.pivots),
+                    Err(e) => format!("{}: failed: {e}", s.label),
+                })
+                .collect();
+            let method = match d.method {
+                DesignMethod::Descent => "descent",
+                _ => "program",
+            };
+            (d.profile, d.evaluation, starts, method)
+        }
+        DesignFamily::CircularCrown {
+            radius_range,
+            flat_length,
+        } => {
+            let flat = *flat_length;
+            let search = crown_search(
+                cases,
+                spec.axis,
+                |radius| {
+                    Ok(Profile::CircularCrown {
+                        radius,
+                        flat_length: flat,
+                    })
+                },
+                radius_range.0,
+                radius_range.1,
+                &SearchOptions {
+                    method: scene.method,
+                    options: scene.options.clone(),
+                    reference_intensities: Some(references.to_vec()),
+                    ..SearchOptions::default()
+                },
+            )
+            .map_err(fail)?;
+            let n = search.samples.len();
+            (
+                search.profile,
+                search.evaluation,
+                vec![format!("searched: {n} analyses")],
+                "search",
+            )
+        }
+        DesignFamily::LogarithmicCrown {
+            design_load,
+            flat_length,
+            end,
+        } => {
+            // Validation refuses a logarithmic crown but for a roller.
+            let (roller, length) = match (scene.hertz(*design_load), &scene.points_spec) {
+                (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => {
+                    (h, 2.0 * half_y)
+                }
+                _ => {
+                    return Err(run_error(
+                        scene,
+                        "design.family: a logarithmic crown needs a cylinder on a rectangle grid",
+                    ));
+                }
+            };
+            let profile = Profile::LogarithmicCrown(LogCrown {
+                design_load: *design_load,
+                length,
+                combined_modulus: roller.combined_modulus,
+                radius: roller.radius,
+                flat_length: *flat_length,
+                end: *end,
+            });
+            let after =
+                evaluate(cases, spec.axis, &profile, scene.method, &scene.options).map_err(fail)?;
+            (
+                profile,
+                after,
+                vec![format!(
+                    "set from the design load ({})",
+                    match end {
+                        LogEnd::JohnsGohar => "Johns-Gohar",
+                        LogEnd::Lundberg => "Lundberg",
+                    }
+                )],
+                "set",
+            )
+        }
+    })
 }
 
 fn family_name(f: &DesignFamily) -> String {

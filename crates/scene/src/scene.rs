@@ -323,6 +323,74 @@ impl Scene {
 }
 
 fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
+    let name = scene_name(ctx, &raw)?;
+    let description = raw.scene.as_ref().and_then(|m| m.description.clone());
+    let bodies = [
+        body(ctx, raw.body1.get_ref(), "body1")?,
+        body(ctx, raw.body2.get_ref(), "body2")?,
+    ];
+    let (line_models, surface_models) = model_kinds(ctx, &raw, &bodies)?;
+    let units = units(
+        ctx,
+        raw.units.get_ref(),
+        bodies.iter().any(|b| b.model == "beam"),
+    )?;
+    let loading = loading(ctx, &raw.loading)?;
+    let (points_spec, dimension) = points_spec(ctx, &raw.points)?;
+    grid_fits_models(ctx, &raw, dimension, line_models, surface_models)?;
+    let geometry = geometry(ctx, raw.geometry.as_ref(), dimension)?;
+    sanity::curvatures(ctx, raw.geometry.as_ref(), &geometry)?;
+    let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
+    let reference = reference(&bodies, &geometry, &points_spec, &points, loading);
+    check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
+    let (choice, options) = solver(ctx, raw.solver.as_ref())?;
+    sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
+    let fold = symmetry(ctx, raw.solver.as_ref())?;
+    let scene_bodies = [&bodies[0].body, &bodies[1].body];
+    let layout = Layout::of(&points, scene_bodies, &geometry, &loading, fold).ok();
+    let (method, storage) = storage::choose(choice, &points, scene_bodies, layout.as_ref(), fold);
+    let design = match &raw.design {
+        Some(d) => Some(design(
+            ctx,
+            d,
+            &DesignContext {
+                loading,
+                dimension,
+                bodies: &bodies,
+                geometry: &geometry,
+                points_spec: &points_spec,
+            },
+        )?),
+        None => None,
+    };
+    let outputs = outputs(ctx, raw.outputs.as_ref(), design.is_some())?;
+    let body_edges = body_edges(&bodies, reference.as_ref(), &points_spec);
+    let mut scene = Scene {
+        name,
+        file: ctx.file.to_path_buf(),
+        description,
+        units,
+        bodies,
+        geometry,
+        points_spec,
+        points,
+        loading,
+        method,
+        storage,
+        options,
+        fold,
+        design,
+        outputs,
+        reference,
+        body_edges,
+        warnings: Vec::new(),
+    };
+    scene.warnings = whole_scene(ctx, &raw, &scene)?;
+    Ok(scene)
+}
+
+/// `scene.name` (default: the file's stem): it names an output directory.
+fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
     let name = match raw.scene.as_ref().and_then(|m| m.name.as_ref()) {
         Some(n) if n.get_ref().trim().is_empty() => {
             return Err(ctx.invalid(n.span(), "scene.name", "\"\"", "must not be empty"));
@@ -347,11 +415,17 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
              temporary siblings and locks start with one)",
         ));
     }
-    let description = raw.scene.as_ref().and_then(|m| m.description.clone());
-    let bodies = [
-        body(ctx, raw.body1.get_ref(), "body1")?,
-        body(ctx, raw.body2.get_ref(), "body2")?,
-    ];
+    Ok(name)
+}
+
+/// The bodies' models: not both rigid, and all of one kind (line models:
+/// plane-strain, beam; surface models: point-force, uniform-patch).
+/// Returns (line models present, surface models present).
+fn model_kinds(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    bodies: &[BodySpec; 2],
+) -> Result<(bool, bool), SceneError> {
     if bodies.iter().all(|b| b.body.is_rigid()) {
         return Err(ctx.invalid(
             raw.body2.get_ref().model.span(),
@@ -378,13 +452,18 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
             ),
         ));
     }
-    let units = units(
-        ctx,
-        raw.units.get_ref(),
-        bodies.iter().any(|b| b.model == "beam"),
-    )?;
-    let loading = loading(ctx, &raw.loading)?;
-    let (points_spec, dimension) = points_spec(ctx, &raw.points)?;
+    Ok((line_models, surface_models))
+}
+
+/// The grid's dimension matches the models', and a line takes no rotation
+/// about x.
+fn grid_fits_models(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    dimension: Dimension,
+    line_models: bool,
+    surface_models: bool,
+) -> Result<(), SceneError> {
     if line_models && dimension != Dimension::Line {
         return Err(ctx.invalid(
             raw.points.get_ref().grid.span(),
@@ -420,14 +499,12 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
             }
         }
     }
-    let geometry = geometry(ctx, raw.geometry.as_ref(), dimension)?;
-    sanity::curvatures(ctx, raw.geometry.as_ref(), &geometry)?;
-    let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
-    let reference = reference(&bodies, &geometry, &points_spec, &points, loading);
-    check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
-    let (choice, options) = solver(ctx, raw.solver.as_ref())?;
-    sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
-    let fold = match raw.solver.as_ref().and_then(|s| s.symmetry.as_ref()) {
+    Ok(())
+}
+
+/// `solver.symmetry`: "auto" (fold when symmetric, the default) or "none".
+fn symmetry(ctx: &Ctx<'_>, solver: Option<&crate::schema::SolverToml>) -> Result<bool, SceneError> {
+    let fold = match solver.and_then(|s| s.symmetry.as_ref()) {
         Some(v) => match v.get_ref().as_str() {
             "auto" => true,
             "none" => false,
@@ -442,25 +519,17 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         },
         None => true,
     };
-    let scene_bodies = [&bodies[0].body, &bodies[1].body];
-    let layout = Layout::of(&points, scene_bodies, &geometry, &loading, fold).ok();
-    let (method, storage) = storage::choose(choice, &points, scene_bodies, layout.as_ref(), fold);
-    let design = match &raw.design {
-        Some(d) => Some(design(
-            ctx,
-            d,
-            &DesignContext {
-                loading,
-                dimension,
-                bodies: &bodies,
-                geometry: &geometry,
-                points_spec: &points_spec,
-            },
-        )?),
-        None => None,
-    };
-    let outputs = outputs(ctx, raw.outputs.as_ref(), design.is_some())?;
-    let body_edges = if matches!(reference, Some(Reference::FlatPunch(_))) {
+    Ok(fold)
+}
+
+/// The edges of the candidate zone that are the bodies' own: a punch's rim,
+/// a beam's ends, a roller's ends.
+fn body_edges(
+    bodies: &[BodySpec; 2],
+    reference: Option<&Reference>,
+    points_spec: &PointsSpec,
+) -> (bool, bool) {
+    if matches!(reference, Some(Reference::FlatPunch(_))) {
         (true, true)
     } else if bodies.iter().any(|b| b.model == "beam") {
         (true, false)
@@ -468,29 +537,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         (false, true)
     } else {
         (false, false)
-    };
-    let mut scene = Scene {
-        name,
-        file: ctx.file.to_path_buf(),
-        description,
-        units,
-        bodies,
-        geometry,
-        points_spec,
-        points,
-        loading,
-        method,
-        storage,
-        options,
-        fold,
-        design,
-        outputs,
-        reference,
-        body_edges,
-        warnings: Vec::new(),
-    };
-    scene.warnings = whole_scene(ctx, &raw, &scene)?;
-    Ok(scene)
+    }
 }
 
 /// The candidate points: absolute, or relative to the Hertz contact at the
@@ -857,12 +904,12 @@ fn loading(ctx: &Ctx<'_>, l: &Spanned<LoadingToml>) -> Result<Loading, SceneErro
     Ok(loading)
 }
 
+/// `[points]`: the grid and its parameters, each key checked against the grid.
 fn points_spec(
     ctx: &Ctx<'_>,
     p: &Spanned<PointsToml>,
 ) -> Result<(PointsSpec, Dimension), SceneError> {
     let t = p.get_ref();
-    let s = p.span();
     let grid = t.grid.get_ref().as_str();
     let allowed: &[&str] = match grid {
         "disk" => &["spacing", "radius", "across", "zone"],
@@ -877,6 +924,27 @@ fn points_spec(
             ));
         }
     };
+    grid_keys(ctx, t, grid, allowed)?;
+    let spec = match grid {
+        "disk" => disk_spec(ctx, p)?,
+        "rectangle" => rectangle_spec(ctx, p)?,
+        _ => line_spec(ctx, p)?,
+    };
+    let dimension = if grid == "line" {
+        Dimension::Line
+    } else {
+        Dimension::Surface
+    };
+    Ok((spec, dimension))
+}
+
+/// Every key given under `[points]` must be one of `grid`'s.
+fn grid_keys(
+    ctx: &Ctx<'_>,
+    t: &PointsToml,
+    grid: &str,
+    allowed: &[&str],
+) -> Result<(), SceneError> {
     let floats: [(&str, Option<&Spanned<f64>>); 7] = [
         ("spacing", t.spacing.as_ref()),
         ("radius", t.radius.as_ref()),
@@ -909,149 +977,164 @@ fn points_spec(
             ));
         }
     }
-    let zone = |ctx: &Ctx<'_>| -> Result<f64, SceneError> {
-        let z = ctx.required(&t.zone, s.clone(), "points.zone", "with across")?;
-        let v = ctx.positive(z, "points.zone")?;
-        if v <= 1.0 {
-            return Err(ctx.invalid(
-                z.span(),
+    Ok(())
+}
+
+/// `points.zone` (required with `across`): the candidate zone over the
+/// Hertz contact, above 1.
+fn hertz_zone(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<f64, SceneError> {
+    let t = p.get_ref();
+    let s = p.span();
+    let z = ctx.required(&t.zone, s.clone(), "points.zone", "with across")?;
+    let v = ctx.positive(z, "points.zone")?;
+    if v <= 1.0 {
+        return Err(ctx.invalid(
+            z.span(),
+            "points.zone",
+            v,
+            "the candidate zone must extend beyond the Hertz contact (zone > 1), or the contact is cut off",
+        ));
+    }
+    Ok(v)
+}
+
+/// `points.across`: odd, at least 3.
+fn hertz_across(ctx: &Ctx<'_>, a: &Spanned<i64>) -> Result<usize, SceneError> {
+    let n = ctx.count(a, "points.across", 3)?;
+    if n % 2 == 0 {
+        return Err(ctx.invalid(
+            a.span(),
+            "points.across",
+            n,
+            "must be odd (the centre is a point)",
+        ));
+    }
+    Ok(n)
+}
+
+/// A disk: `across` and `zone`, or `spacing` and `radius`.
+fn disk_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
+    let (t, s) = (p.get_ref(), p.span());
+    Ok(match &t.across {
+        Some(a) => {
+            ctx.forbid(
+                &t.spacing,
+                "points.spacing",
+                "give either across and zone, or spacing and radius",
+            )?;
+            ctx.forbid(
+                &t.radius,
+                "points.radius",
+                "give either across and zone, or spacing and radius",
+            )?;
+            PointsSpec::DiskHertz {
+                across: hertz_across(ctx, a)?,
+                zone: hertz_zone(ctx, p)?,
+            }
+        }
+        None => {
+            ctx.forbid(
+                &t.zone,
                 "points.zone",
-                v,
-                "the candidate zone must extend beyond the Hertz contact (zone > 1), or the contact is cut off",
-            ));
-        }
-        Ok(v)
-    };
-    let across = |ctx: &Ctx<'_>, a: &Spanned<i64>| -> Result<usize, SceneError> {
-        let n = ctx.count(a, "points.across", 3)?;
-        if n % 2 == 0 {
-            return Err(ctx.invalid(
-                a.span(),
-                "points.across",
-                n,
-                "must be odd (the centre is a point)",
-            ));
-        }
-        Ok(n)
-    };
-    let spec = match grid {
-        "disk" => match &t.across {
-            Some(a) => {
-                ctx.forbid(
-                    &t.spacing,
-                    "points.spacing",
-                    "give either across and zone, or spacing and radius",
-                )?;
-                ctx.forbid(
-                    &t.radius,
-                    "points.radius",
-                    "give either across and zone, or spacing and radius",
-                )?;
-                PointsSpec::DiskHertz {
-                    across: across(ctx, a)?,
-                    zone: zone(ctx)?,
-                }
+                "zone goes with across (points across the Hertz diameter)",
+            )?;
+            let h = ctx.required(
+                &t.spacing,
+                s.clone(),
+                "points.spacing",
+                "for a disk (or across and zone)",
+            )?;
+            let r = ctx.required(
+                &t.radius,
+                s.clone(),
+                "points.radius",
+                "for a disk (or across and zone)",
+            )?;
+            PointsSpec::Disk {
+                spacing: ctx.positive(h, "points.spacing")?,
+                radius: ctx.positive(r, "points.radius")?,
             }
-            None => {
-                ctx.forbid(
-                    &t.zone,
-                    "points.zone",
-                    "zone goes with across (points across the Hertz diameter)",
-                )?;
-                let h = ctx.required(
-                    &t.spacing,
-                    s.clone(),
-                    "points.spacing",
-                    "for a disk (or across and zone)",
-                )?;
-                let r = ctx.required(
-                    &t.radius,
-                    s.clone(),
-                    "points.radius",
-                    "for a disk (or across and zone)",
-                )?;
-                PointsSpec::Disk {
-                    spacing: ctx.positive(h, "points.spacing")?,
-                    radius: ctx.positive(r, "points.radius")?,
-                }
+        }
+    })
+}
+
+/// A rectangle: `half_x` or `zone`, and `half_y`, `nx`, `ny`.
+fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
+    let (t, s) = (p.get_ref(), p.span());
+    Ok({
+        let (half_x, zone_x) = match (&t.half_x, &t.zone) {
+            (Some(h), None) => (Some(ctx.positive(h, "points.half_x")?), None),
+            (None, Some(_)) => (None, Some(hertz_zone(ctx, p)?)),
+            _ => {
+                return Err(ctx.invalid(
+                    s,
+                    "points.half_x",
+                    "",
+                    "give either half_x (length) or zone (Hertz half-widths of the load)",
+                ));
             }
+        };
+        let hy = ctx.required(&t.half_y, s.clone(), "points.half_y", "for a rectangle")?;
+        let nx = ctx.required(&t.nx, s.clone(), "points.nx", "for a rectangle")?;
+        let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
+        PointsSpec::Rectangle {
+            half_x,
+            zone: zone_x,
+            half_y: ctx.positive(hy, "points.half_y")?,
+            nx: ctx.count(nx, "points.nx", 1)?,
+            ny: ctx.count(ny, "points.ny", 1)?,
+        }
+    })
+}
+
+/// A line: `across` and `zone`, or `start`, `end` and `n`.
+fn line_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
+    let (t, s) = (p.get_ref(), p.span());
+    Ok(match &t.across {
+        Some(a) => PointsSpec::LineHertz {
+            across: hertz_across(ctx, a)?,
+            zone: hertz_zone(ctx, p)?,
         },
-        "rectangle" => {
-            let (half_x, zone_x) = match (&t.half_x, &t.zone) {
-                (Some(h), None) => (Some(ctx.positive(h, "points.half_x")?), None),
-                (None, Some(_)) => (None, Some(zone(ctx)?)),
-                _ => {
-                    return Err(ctx.invalid(
-                        s,
-                        "points.half_x",
-                        "",
-                        "give either half_x (length) or zone (Hertz half-widths of the load)",
-                    ));
-                }
-            };
-            let hy = ctx.required(&t.half_y, s.clone(), "points.half_y", "for a rectangle")?;
-            let nx = ctx.required(&t.nx, s.clone(), "points.nx", "for a rectangle")?;
-            let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
-            PointsSpec::Rectangle {
-                half_x,
-                zone: zone_x,
-                half_y: ctx.positive(hy, "points.half_y")?,
-                nx: ctx.count(nx, "points.nx", 1)?,
-                ny: ctx.count(ny, "points.ny", 1)?,
-            }
-        }
-        _ => match &t.across {
-            Some(a) => PointsSpec::LineHertz {
-                across: across(ctx, a)?,
-                zone: zone(ctx)?,
-            },
-            None => {
-                ctx.forbid(
-                    &t.zone,
-                    "points.zone",
-                    "zone goes with across (points across the Hertz width)",
-                )?;
-                let a = ctx.required(
-                    &t.start,
-                    s.clone(),
-                    "points.start",
-                    "for a line (or across and zone)",
-                )?;
-                let b = ctx.required(
-                    &t.end,
-                    s.clone(),
+        None => {
+            ctx.forbid(
+                &t.zone,
+                "points.zone",
+                "zone goes with across (points across the Hertz width)",
+            )?;
+            let a = ctx.required(
+                &t.start,
+                s.clone(),
+                "points.start",
+                "for a line (or across and zone)",
+            )?;
+            let b = ctx.required(
+                &t.end,
+                s.clone(),
+                "points.end",
+                "for a line (or across and zone)",
+            )?;
+            let n = ctx.required(
+                &t.n,
+                s.clone(),
+                "points.n",
+                "for a line (or across and zone)",
+            )?;
+            let (start, end) = (ctx.finite(a, "points.start")?, ctx.finite(b, "points.end")?);
+            if end <= start {
+                return Err(ctx.invalid(
+                    b.span(),
                     "points.end",
-                    "for a line (or across and zone)",
-                )?;
-                let n = ctx.required(
-                    &t.n,
-                    s.clone(),
-                    "points.n",
-                    "for a line (or across and zone)",
-                )?;
-                let (start, end) = (ctx.finite(a, "points.start")?, ctx.finite(b, "points.end")?);
-                if end <= start {
-                    return Err(ctx.invalid(
-                        b.span(),
-                        "points.end",
-                        end,
-                        format!("must exceed points.start = {start}"),
-                    ));
-                }
-                PointsSpec::Line {
-                    start,
                     end,
-                    n: ctx.count(n, "points.n", 1)?,
-                }
+                    format!("must exceed points.start = {start}"),
+                ));
             }
-        },
-    };
-    let dimension = if grid == "line" {
-        Dimension::Line
-    } else {
-        Dimension::Surface
-    };
-    Ok((spec, dimension))
+            PointsSpec::Line {
+                start,
+                end,
+                n: ctx.count(n, "points.n", 1)?,
+            }
+        }
+    })
 }
 
 /// Builds the point set; `scale` is the Hertz radius or half-width for the
@@ -1486,11 +1569,7 @@ fn design(
     scene: &DesignContext<'_>,
 ) -> Result<DesignSpec, SceneError> {
     let DesignContext {
-        loading,
-        dimension,
-        bodies,
-        geometry,
-        points_spec,
+        loading, dimension, ..
     } = *scene;
     let t = d.get_ref();
     let Normal::Load(load) = loading.normal else {
@@ -1502,6 +1581,53 @@ fn design(
         ));
     };
     let family_name = t.family.get_ref().as_str();
+    design_keys(ctx, t, family_name)?;
+    let flat = match &t.flat_length {
+        Some(f) => {
+            let v = ctx.finite(f, "design.flat_length")?;
+            if v < 0.0 {
+                return Err(ctx.invalid(f.span(), "design.flat_length", v, "must be >= 0"));
+            }
+            v
+        }
+        None => 0.0,
+    };
+    let loads = match &t.loads {
+        Some(l) => {
+            if l.get_ref().is_empty() {
+                return Err(ctx.invalid(l.span(), "design.loads", "[]", "give at least one load"));
+            }
+            l.get_ref()
+                .iter()
+                .enumerate()
+                .map(|(i, v)| ctx.positive(v, &format!("design.loads[{i}]")))
+                .collect::<Result<Vec<f64>, _>>()?
+        }
+        None => vec![load],
+    };
+    let family = design_family(ctx, t, family_name, flat, &loads, scene)?;
+    let axis = design_axis(ctx, d, dimension)?;
+    let relative_to = design_relative_to(ctx, d, &loads, scene)?;
+    let max_constant = match &t.max_constant {
+        Some(c) => Some(ctx.positive(c, "design.max_constant")?),
+        None => None,
+    };
+    let method = design_method(ctx, t, &family)?;
+    let misalignments = misalignments(ctx, t)?;
+    Ok(DesignSpec {
+        family,
+        axis,
+        loads,
+        relative_to,
+        max_constant,
+        method,
+        misalignments,
+    })
+}
+
+/// The keys of `[design]` that belong to other families than `family_name`
+/// are refused, naming the key and the family it belongs to.
+fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: &str) -> Result<(), SceneError> {
     let only = |v: &Option<Spanned<f64>>, field: &str, fam: &str| {
         ctx.forbid(v, field, &format!("only for family = \"{fam}\""))
     };
@@ -1539,30 +1665,25 @@ fn design(
             "only for the polynomial families",
         )?;
     }
-    let flat = match &t.flat_length {
-        Some(f) => {
-            let v = ctx.finite(f, "design.flat_length")?;
-            if v < 0.0 {
-                return Err(ctx.invalid(f.span(), "design.flat_length", v, "must be >= 0"));
-            }
-            v
-        }
-        None => 0.0,
-    };
-    let loads = match &t.loads {
-        Some(l) => {
-            if l.get_ref().is_empty() {
-                return Err(ctx.invalid(l.span(), "design.loads", "[]", "give at least one load"));
-            }
-            l.get_ref()
-                .iter()
-                .enumerate()
-                .map(|(i, v)| ctx.positive(v, &format!("design.loads[{i}]")))
-                .collect::<Result<Vec<f64>, _>>()?
-        }
-        None => vec![load],
-    };
-    let family = match family_name {
+    Ok(())
+}
+
+/// The family of `[design]`, its own keys checked.
+fn design_family(
+    ctx: &Ctx<'_>,
+    t: &DesignToml,
+    family_name: &str,
+    flat: f64,
+    loads: &[f64],
+    scene: &DesignContext<'_>,
+) -> Result<DesignFamily, SceneError> {
+    let DesignContext {
+        bodies,
+        geometry,
+        points_spec,
+        ..
+    } = *scene;
+    Ok(match family_name {
         "quadratic" => DesignFamily::Linear(Family::Quadratic),
         "free" => DesignFamily::Linear(Family::Free),
         "polynomial" => {
@@ -1649,7 +1770,16 @@ fn design(
                 "unknown family; one of quadratic, polynomial, free, circular-crown, logarithmic-crown",
             ));
         }
-    };
+    })
+}
+
+/// `design.axis`: x on a line, y by default on a surface.
+fn design_axis(
+    ctx: &Ctx<'_>,
+    d: &Spanned<DesignToml>,
+    dimension: Dimension,
+) -> Result<Axis, SceneError> {
+    let t = d.get_ref();
     let axis = match &t.axis {
         Some(a) => match a.get_ref().as_str() {
             "x" => Axis::X,
@@ -1670,6 +1800,23 @@ fn design(
         let span = t.axis.as_ref().map_or(d.span(), |a| a.span());
         return Err(ctx.invalid(span, "design.axis", "\"y\"", "a line grid lies along x"));
     }
+    Ok(axis)
+}
+
+/// `design.relative_to`: "hertz" needs a Hertz contact at every load.
+fn design_relative_to(
+    ctx: &Ctx<'_>,
+    d: &Spanned<DesignToml>,
+    loads: &[f64],
+    scene: &DesignContext<'_>,
+) -> Result<RelativeTo, SceneError> {
+    let DesignContext {
+        bodies,
+        geometry,
+        points_spec,
+        ..
+    } = *scene;
+    let t = d.get_ref();
     let relative_to = match &t.relative_to {
         Some(r) => match r.get_ref().as_str() {
             "absolute" => RelativeTo::Absolute,
@@ -1703,21 +1850,7 @@ fn design(
             ),
         ));
     }
-    let max_constant = match &t.max_constant {
-        Some(c) => Some(ctx.positive(c, "design.max_constant")?),
-        None => None,
-    };
-    let method = design_method(ctx, t, &family)?;
-    let misalignments = misalignments(ctx, t)?;
-    Ok(DesignSpec {
-        family,
-        axis,
-        loads,
-        relative_to,
-        max_constant,
-        method,
-        misalignments,
-    })
+    Ok(relative_to)
 }
 
 /// `design.end` of a logarithmic crown: "johns-gohar" (the default) or
