@@ -40,7 +40,10 @@
 //! Cost per iteration: one analysis and one factor of the contact block per
 //! case, S shared: linear in the cases, where the program of
 //! `crate::lpcc` grows with their square. Memory: S once, one contact
-//! block at a time. What is guaranteed: the objective never rises from the
+//! block at a time. A case whose S is matrix-free (a lattice's FFT
+//! operator) is analysed by the conjugate gradient and its sensitivities
+//! solved by conjugate gradients on the operator restricted to the contact
+//! set (m + k solves of S_JJ), so a design on a large grid never forms S. What is guaranteed: the objective never rises from the
 //! start; the method stops at a point where the linear model of every
 //! case's contact set predicts no decrease (a stationary point of the
 //! piecewise-linear min-max problem), a local minimum as the program's is.
@@ -58,6 +61,9 @@ use crate::DesignOptions;
 use crate::basis::Basis;
 use crate::prepared::{Case, Found, Solver, Stop};
 
+/// The relative residual of a matrix-free case's sensitivity solves: far
+/// below the model's use (a step's linear prediction), above rounding.
+const SENSITIVITY: f64 = 1e-12;
 /// Stationarity: the model's predicted decrease below this fraction of the
 /// objective ends the descent. The forces are certified to about 1e-13 of
 /// the load, so a prediction below 1e-12 of the peak is rounding.
@@ -173,6 +179,54 @@ fn solve_block(block: MatRef<'_, f64>, rhs: MatRef<'_, f64>) -> Mat<f64> {
     }
 }
 
+/// `S_JJ^{-1} rhs` for a matrix-free S, column by column, by conjugate
+/// gradients on the operator's products restricted to the contact set J
+/// (S_JJ is symmetric positive definite), each to [`SENSITIVITY`] of its
+/// right-hand side.
+fn solve_restricted(
+    problem: &ContactProblem,
+    contact: &[usize],
+    rhs: MatRef<'_, f64>,
+) -> Result<Mat<f64>, DesignError> {
+    let (n, nj) = (problem.points().len(), contact.len());
+    let product = |p: &[f64]| -> Result<Vec<f64>, DesignError> {
+        let mut full = vec![0.0; n];
+        for (a, &k) in contact.iter().enumerate() {
+            full[k] = p[a];
+        }
+        let y = problem
+            .deflection(&full)
+            .map_err(DesignError::analysis("a design sensitivity"))?;
+        Ok(contact.iter().map(|&k| y[k]).collect())
+    };
+    let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
+    let mut out = Mat::<f64>::zeros(nj, rhs.ncols());
+    for c in 0..rhs.ncols() {
+        let b: Vec<f64> = (0..nj).map(|a| rhs[(a, c)]).collect();
+        let target = (SENSITIVITY * dot(&b, &b).sqrt()).powi(2);
+        let (mut x, mut r) = (vec![0.0; nj], b.clone());
+        let mut p = r.clone();
+        let mut rr = dot(&r, &r);
+        for _ in 0..(10 * nj + 100) {
+            if rr <= target {
+                break;
+            }
+            let q = product(&p)?;
+            let alpha = rr / dot(&p, &q);
+            x.iter_mut().zip(&p).for_each(|(x, p)| *x += alpha * p);
+            r.iter_mut().zip(&q).for_each(|(r, q)| *r -= alpha * q);
+            let next = dot(&r, &r);
+            let beta = next / rr;
+            p.iter_mut().zip(&r).for_each(|(p, r)| *p = r + beta * *p);
+            rr = next;
+        }
+        for (a, v) in x.into_iter().enumerate() {
+            out[(a, c)] = v;
+        }
+    }
+    Ok(out)
+}
+
 /// Case l's model rows at its solution: for each point in contact its
 /// intensity over r_l and the derivative of that with respect to theta.
 fn model_rows(
@@ -180,15 +234,14 @@ fn model_rows(
     problem: &ContactProblem,
     solution: &ContactSolution,
     basis: &Basis,
-) -> Vec<Constraint> {
+) -> Result<Vec<Constraint>, DesignError> {
     let contact = &solution.contact;
     let (nj, m) = (contact.len(), basis.params());
     if nj == 0 {
-        return Vec::new();
+        return Ok(Vec::new());
     }
     let rigid = problem.rigid();
     let points = problem.points();
-    let block = Mat::from_fn(nj, nj, |a, b| case.influence[(contact[a], contact[b])]);
     let levers = Mat::from_fn(nj, rigid.free.len(), |a, j| {
         let k = contact[a];
         rigid.free[j]
@@ -197,8 +250,19 @@ fn model_rows(
     });
     let basis_rows = Mat::from_fn(nj, m, |a, i| basis.phi[(case.station[contact[a]], i)]);
     // X = -V + U Lambda with U = S^-1 L, V = S^-1 D and (L^T U) Lambda = L^T V.
-    let u = solve_block(block.as_ref(), levers.as_ref());
-    let v = solve_block(block.as_ref(), basis_rows.as_ref());
+    let (u, v) = match case.influence {
+        Some(s) => {
+            let block = Mat::from_fn(nj, nj, |a, b| s[(contact[a], contact[b])]);
+            (
+                solve_block(block.as_ref(), levers.as_ref()),
+                solve_block(block.as_ref(), basis_rows.as_ref()),
+            )
+        }
+        None => (
+            solve_restricted(problem, contact, levers.as_ref())?,
+            solve_restricted(problem, contact, basis_rows.as_ref())?,
+        ),
+    };
     let x = if levers.ncols() == 0 {
         -&v
     } else {
@@ -206,7 +270,7 @@ fn model_rows(
         let lambda = reduced.partial_piv_lu().solve(levers.transpose() * &v);
         &u * &lambda - &v
     };
-    (0..nj)
+    Ok((0..nj)
         .map(|a| {
             let k = contact[a];
             let scale = case.reference * case.measures[k];
@@ -216,7 +280,7 @@ fn model_rows(
                 b: -solution.forces[k] / scale,
             }
         })
-        .collect()
+        .collect())
 }
 
 /// The bounds on the normalized constant of a polynomial family at every
@@ -358,7 +422,7 @@ pub(crate) fn solve(
         for ((case, problem), solution) in
             cases.iter().zip(&current.problems).zip(&current.solutions)
         {
-            pool.extend(model_rows(case, problem, solution, basis));
+            pool.extend(model_rows(case, problem, solution, basis)?);
         }
         let (d, model, p) = step(&pool, m, radius, &options.engine)?;
         pivots += p;

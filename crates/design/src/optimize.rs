@@ -200,8 +200,22 @@ fn setup<'a>(
     let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), axis);
     let basis = Basis::new(family, &stations)?;
     let prepared = prepare(cases, index, &references)?;
-    let scale = prepared.iter().map(deflection_scale).fold(0.0f64, f64::max);
+    let mut scale = 0.0f64;
+    for case in &prepared {
+        scale = scale.max(deflection_scale(case)?);
+    }
     let points: usize = prepared.iter().map(|c| c.station.len()).sum();
+    let matrix_free = prepared.iter().any(|c| c.influence.is_none());
+    if matrix_free && options.reanalysis != elcon_analysis::Method::ConjugateGradient {
+        return Err(DesignError::Incompatible {
+            field: "reanalysis",
+            reason: format!(
+                "a case holds S matrix-free (ContactProblem::lattice): its analyses need \
+                 Method::ConjugateGradient, not {}",
+                options.reanalysis
+            ),
+        });
+    }
     let across = match axis {
         Axis::X => RigidMode::TiltY,
         Axis::Y => RigidMode::TiltX,
@@ -210,7 +224,7 @@ fn setup<'a>(
         .iter()
         .all(|c| c.rigid().prescribed.iter().all(|&(mode, _)| mode != across));
     let method = match options.method {
-        DesignMethod::Auto if points <= PROGRAM_LIMIT => DesignMethod::Program,
+        DesignMethod::Auto if points <= PROGRAM_LIMIT && !matrix_free => DesignMethod::Program,
         DesignMethod::Auto => DesignMethod::Descent,
         given => given,
     };

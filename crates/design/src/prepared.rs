@@ -13,7 +13,7 @@
 use elcon_analysis::{ContactProblem, ContactSolution};
 use elcon_influence::PointSet;
 use elcon_lcp::{Certificate, Statistics};
-use faer::{Col, Mat, MatRef};
+use faer::{Mat, MatRef};
 
 use crate::evaluate::load_of;
 use crate::{Axis, DesignError};
@@ -26,8 +26,9 @@ use crate::{Axis, DesignError};
 /// disagrees, and the design says so.)
 pub(crate) struct Case<'a> {
     pub(crate) problem: &'a ContactProblem,
-    /// The problem's dense S (the program is built from its entries).
-    pub(crate) influence: MatRef<'a, f64>,
+    /// The problem's dense S (the program is built from its entries;
+    /// `None` for a matrix-free case, which only the descent takes).
+    pub(crate) influence: Option<MatRef<'a, f64>>,
     pub(crate) station: Vec<usize>,
     pub(crate) measures: Vec<f64>,
     pub(crate) load: f64,
@@ -103,15 +104,7 @@ pub(crate) fn prepare<'a>(
                     .sum::<f64>()
             };
             let eps = problem.separation();
-            let influence = problem
-                .influence()
-                .ok_or_else(|| DesignError::Incompatible {
-                    field: "cases",
-                    reason: format!(
-                        "load case {l} holds S matrix-free (ContactProblem::lattice); a design \
-                         reads S's entries: build it with ContactProblem::new"
-                    ),
-                })?;
+            let influence = problem.influence();
             Ok(Case {
                 problem,
                 influence,
@@ -155,19 +148,27 @@ pub(crate) fn reference_intensities(
 
 /// Largest elastic deflection under a uniform pressure plus the largest
 /// initial separation: the scale of the default c_max.
-pub(crate) fn deflection_scale(c: &Case<'_>) -> f64 {
+pub(crate) fn deflection_scale(c: &Case<'_>) -> Result<f64, DesignError> {
     let n = c.station.len();
     let total: f64 = c.measures.iter().sum();
-    let uniform = Col::from_fn(n, |j| c.load * c.measures[j] / total);
-    let deflection = (c.influence * &uniform)
-        .iter()
-        .fold(0.0f64, |a, v| a.max(*v));
+    let uniform: Vec<f64> = (0..n).map(|j| c.load * c.measures[j] / total).collect();
+    let deflected: Vec<f64> = match c.influence {
+        Some(s) => (s * faer::ColRef::from_slice(&uniform))
+            .iter()
+            .copied()
+            .collect(),
+        None => c
+            .problem
+            .deflection(&uniform)
+            .map_err(DesignError::analysis("the deflection scale"))?,
+    };
+    let deflection = deflected.iter().fold(0.0f64, |a, v| a.max(*v));
     let eps = c
         .problem
         .separation()
         .iter()
         .fold(0.0f64, |a, e| a.max(e.abs()));
-    deflection + eps
+    Ok(deflection + eps)
 }
 
 /// How a design's parameters were found.

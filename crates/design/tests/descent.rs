@@ -258,3 +258,47 @@ fn a_line_the_free_rotation_absorbs_is_taken_out_of_the_profile() {
         );
     }
 }
+
+#[test]
+fn a_matrix_free_case_is_designed_by_the_descent_as_the_dense_one() {
+    // The roller of the tests above on a lattice: S as an FFT operator,
+    // the analyses by the conjugate gradient, the sensitivities by
+    // conjugate gradients on the contact set. Same optimum as the dense S,
+    // to the conjugate gradient's certificate (1e-12) times the model's use.
+    let steel = Material::new(210e3, 0.3).unwrap();
+    let hertz = HertzCylinders::new(combined_modulus(&steel, &steel), 5.0, 500.0).unwrap();
+    let points = PointSet::grid_rectangle(1.6 * hertz.half_width(), 5.0, 5, 12).unwrap();
+    let body = Body::uniform_patch(steel);
+    let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
+    let loading = Loading::load(5e3).with_tilt_x(2e-4);
+    let dense = ContactProblem::new(points.clone(), &body, &body, &geometry, loading).unwrap();
+    let lattice = ContactProblem::lattice(points, &body, &body, &geometry, loading).unwrap();
+    for family in [Family::Quadratic, Family::Free] {
+        let exact = solve(
+            std::slice::from_ref(&dense),
+            Axis::Y,
+            family,
+            DesignMethod::Descent,
+            None,
+        );
+        let options = DesignOptions {
+            reanalysis: elcon_analysis::Method::ConjugateGradient,
+            ..DesignOptions::default()
+        };
+        let free = design(std::slice::from_ref(&lattice), Axis::Y, family, &options)
+            .unwrap_or_else(|e| panic!("{family:?}: {e}"));
+        assert_eq!(free.method, DesignMethod::Descent, "auto takes the descent");
+        let relative = (free.objective - exact.objective) / exact.objective;
+        assert!(relative.abs() < 1e-8, "{family:?}: {relative:e}");
+        assert!(free.evaluation.solutions[0].certificate.holds());
+    }
+    // The program reads S's entries; pivoting re-analyses need them too.
+    let e = design(
+        std::slice::from_ref(&lattice),
+        Axis::Y,
+        Family::Quadratic,
+        &DesignOptions::default(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("`reanalysis`"), "{e}");
+}

@@ -425,9 +425,31 @@ fn design(
     let m = matrices(scene.method, Tableau::Symmetric);
     let per_cube = per_cube(scene.method, Tableau::Symmetric);
     let analysis = per_cube * (largest as f64).powi(3);
-    let mut bytes = square_bytes(1.0, unknowns)
-        + sizes.iter().map(|&n| square_bytes(1.0, n)).sum::<f64>()
-        + square_bytes(m - 1.0, largest);
+    // Each design load's S: dense, or (a matrix-free scene) its operator
+    // and the conjugate gradient's vectors.
+    let mut held = 0.0;
+    for set in &sets {
+        held += match scene.storage {
+            Storage::Dense => square_bytes(1.0, set.len()),
+            Storage::MatrixFree => {
+                let bodies = [&scene.bodies[0].body, &scene.bodies[1].body];
+                LatticeOperator::estimate_bytes(set, &bodies).map_err(|e| SceneError::Run {
+                    scene: scene.name.clone(),
+                    reason: e.to_string(),
+                })? as f64
+                    + CG_VECTORS * ENTRY * set.len() as f64
+            }
+        };
+    }
+    let analysis_blocks = match scene.storage {
+        Storage::Dense => square_bytes(m - 1.0, largest),
+        Storage::MatrixFree => 0.0,
+    };
+    let own = match scene.storage {
+        Storage::Dense => square_bytes(1.0, unknowns),
+        Storage::MatrixFree => 0.0,
+    };
+    let mut bytes = own + held + analysis_blocks;
     // Each case analysed before and after.
     let mut seconds = 2.0 * cases as f64 * analysis;
     let line = sets.iter().all(|p| p.dimension() == Dimension::Line);
@@ -442,7 +464,9 @@ fn design(
                 Family::Free => stations.len(),
             };
             let resolved = match spec.method {
-                DesignMethod::Auto if total <= PROGRAM_LIMIT => DesignMethod::Program,
+                DesignMethod::Auto if total <= PROGRAM_LIMIT && scene.storage == Storage::Dense => {
+                    DesignMethod::Program
+                }
                 DesignMethod::Auto => DesignMethod::Descent,
                 given => given,
             };
@@ -452,7 +476,11 @@ fn design(
                 // solutions twice (the iterate and the trial), the step's
                 // program of m + 1 rows and a column per point in contact.
                 let columns = (total + 2 * params + 1) as f64;
-                bytes += square_bytes(1.0, largest)
+                let block = match scene.storage {
+                    Storage::Dense => square_bytes(1.0, largest),
+                    Storage::MatrixFree => 0.0,
+                };
+                bytes += block
                     + ENTRY * (largest * (params + 4)) as f64
                     + ENTRY * (2.0 * DESCENT_VECTORS + (params + 2) as f64) * total as f64
                     + PROGRAM_MATRICES * ENTRY * (params + 1) as f64 * columns;

@@ -684,8 +684,17 @@ fn design_cases<'a>(
             .or(own.then_some(problem));
         let case = match shared {
             Some(c) => c.with_loading(loading),
-            None => ContactProblem::new(points, &b1.body, &b2.body, &scene.geometry, loading)
-                .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1)),
+            // A matrix-free scene's design cases are matrix-free too (the
+            // descent analyses them by the conjugate gradient).
+            None => match scene.storage {
+                crate::storage::Storage::MatrixFree => {
+                    ContactProblem::lattice(points, &b1.body, &b2.body, &scene.geometry, loading)
+                }
+                crate::storage::Storage::Dense => {
+                    ContactProblem::new(points, &b1.body, &b2.body, &scene.geometry, loading)
+                }
+            }
+            .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1)),
         }
         .map_err(|e| run_error(scene, e))?;
         let solved = misalignment.is_none()

@@ -363,6 +363,22 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         )?),
         None => None,
     };
+    if let (Some(d), Some(raw_design), Storage::MatrixFree) = (&design, &raw.design, storage)
+        && d.method == DesignMethod::Program
+    {
+        let span = raw_design
+            .get_ref()
+            .method
+            .as_ref()
+            .map_or(raw_design.span(), |m| m.span());
+        return Err(ctx.invalid(
+            span,
+            "design.method",
+            "\"program\"",
+            "the program reads S's entries and this scene holds S matrix-free (solver.method); \
+             use \"descent\" or \"auto\"",
+        ));
+    }
     let outputs = outputs(ctx, raw.outputs.as_ref(), design.is_some())?;
     let body_edges = body_edges(&bodies, reference.as_ref(), &points_spec);
     let mut scene = Scene {

@@ -10,7 +10,12 @@ use elcon_analysis::Method;
 use elcon_scene::{AUTO_DENSE_LIMIT, Estimate, Scene, Storage, run};
 
 fn spheres(across: usize, solver: &str) -> Scene {
-    let text = format!(
+    Scene::from_str(Path::new("storage.toml"), &spheres_text(across, solver)).expect("valid scene")
+}
+
+/// The spheres' scene text with `solver` under `[solver]`.
+fn spheres_text(across: usize, solver: &str) -> String {
+    format!(
         r#"
 [units]
 length = "in"
@@ -41,8 +46,7 @@ load = 100.0
 [solver]
 {solver}
 "#
-    );
-    Scene::from_str(Path::new("storage.toml"), &text).expect("valid scene")
+    )
 }
 
 #[test]
@@ -137,4 +141,47 @@ method = "fastest"
         e.contains("`solver.method`") && e.contains("one of auto,"),
         "{e}"
     );
+}
+
+#[test]
+fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
+    // Spheres solved matrix-free, their profile along y designed for two
+    // loads: the design cases are lattice problems, the method the descent.
+    let design = "method = \"conjugate-gradient\"\nsymmetry = \"none\"\n\n[design]\nfamily = \"quadratic\"\naxis = \"y\"\nloads = [80.0, 100.0]\n";
+    let scene = spheres(15, design);
+    assert_eq!(scene.storage, Storage::MatrixFree);
+    let estimate = Estimate::of(&scene).unwrap();
+    let d = estimate.design.clone().unwrap();
+    assert_eq!(d.method, Some(elcon_design::DesignMethod::Descent));
+    // No N x N: at N = 1653 (41 across) the matrix-free design stage holds
+    // less than one dense S (21.9 MB), the dense one several.
+    let large = |solver: &str| {
+        let text = spheres_text(
+            41,
+            &design.replace("method = \"conjugate-gradient\"", solver),
+        );
+        let scene = Scene::from_str(Path::new("storage.toml"), &text).unwrap();
+        Estimate::of(&scene).unwrap().design.unwrap().bytes
+    };
+    let n = 1653u64;
+    let (free, dense) = (
+        large("method = \"conjugate-gradient\""),
+        large("method = \"block-pivoting\""),
+    );
+    assert!(free < 8 * n * n, "{free} bytes");
+    assert!(dense > 3 * 8 * n * n, "{dense} bytes");
+    let r = run(&scene).unwrap();
+    let cases = &r.design.as_ref().unwrap().cases;
+    assert!(cases.iter().all(|c| c.matrix_free()));
+    let json = r.result.design.as_ref().unwrap();
+    assert_eq!(json.method, "descent");
+    assert!(json.cases.iter().all(|c| c.certificate_holds));
+    assert!(json.objective <= json.objective_before * (1.0 + 1e-12));
+    // The program is refused for such a scene, naming the key.
+    let text = design.replace(
+        "family = \"quadratic\"",
+        "family = \"quadratic\"\nmethod = \"program\"",
+    );
+    let e = Scene::from_str(Path::new("storage.toml"), &spheres_text(15, &text)).unwrap_err();
+    assert!(e.to_string().contains("`design.method`"), "{e}");
 }
