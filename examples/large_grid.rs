@@ -8,7 +8,15 @@
 //! ```sh
 //! cargo run --release --example large_grid                # up to 128 cells per radius
 //! cargo run --release --example large_grid -- --max 256   # N up to about 260,000
+//! cargo run --release --example large_grid -- --h-over-a 64   # one size, the peers' case
 //! ```
+//!
+//! With `--h-over-a K` it solves one size only, the peers' Hertz case
+//! (Love patches of side h = a/K on the disk of radius 1.3 a, unfolded,
+//! `solver.method = "auto"`'s choice for that N), and prints as its last
+//! line `n=<N> method=<name> seconds=<assembly+solve>
+//! err_delta=<approach error against Hertz> certificate=<worst residual>
+//! peak_rss_mb=<MB>` (the process's peak resident memory, VmHWM).
 //!
 //! The table is docs/performance.md's "Dense or matrix-free"; the
 //! crossover sets `elcon_scene::AUTO_DENSE_LIMIT`.
@@ -22,7 +30,68 @@ use elcon::influence::{Body, LatticeOperator, Material, PointSet, combined_modul
 /// S above this many bytes is not built (the dense column is left empty).
 const DENSE_CEILING: f64 = 4e9;
 
+/// The process's peak resident memory (VmHWM of /proc/self/status), MB.
+fn peak_rss_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|t| {
+            let line = t.lines().find(|l| l.starts_with("VmHWM:"))?;
+            line.split_whitespace().nth(1)?.parse::<f64>().ok()
+        })
+        .map_or(f64::NAN, |kib| kib * 1024.0 / 1e6)
+}
+
+/// One size, the peers' case: h = a / `cells` on the disk of 1.3 a, the
+/// method `"auto"` picks for it.
+fn one_size(cells: f64) {
+    let steel = Material::new(30e6, 0.3).expect("steel");
+    let hertz = HertzSpheres::new(
+        combined_modulus(&steel, &steel),
+        combined_radius(1.0, 10.0),
+        100.0,
+    )
+    .expect("Hertz");
+    let a = hertz.contact_radius();
+    let body = Body::uniform_patch(steel);
+    let geometry = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
+    let n = points.len();
+    let dense = n <= elcon::scene::AUTO_DENSE_LIMIT;
+    let start = Instant::now();
+    let (method, sol) = if dense {
+        let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::load(100.0))
+            .expect("dense problem");
+        let m = Method::BlockPivoting;
+        (m, problem.solve(m, &Options::default()).expect("solve"))
+    } else {
+        let problem =
+            ContactProblem::lattice(points, &body, &body, &geometry, Loading::load(100.0))
+                .expect("lattice problem");
+        let m = Method::ConjugateGradient;
+        (m, problem.solve(m, &Options::default()).expect("solve"))
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    println!(
+        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1}",
+        method.name(),
+        sol.approach / hertz.approach() - 1.0,
+        sol.certificate.worst(),
+        peak_rss_mb()
+    );
+}
+
 fn main() {
+    if let Some(k) = std::env::args()
+        .skip_while(|a| a != "--h-over-a")
+        .nth(1)
+        .and_then(|v| v.parse::<f64>().ok())
+    {
+        one_size(k);
+        return;
+    }
     let max: f64 = std::env::args()
         .skip_while(|a| a != "--max")
         .nth(1)
