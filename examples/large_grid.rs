@@ -9,6 +9,7 @@
 //! cargo run --release --example large_grid                # up to 128 cells per radius
 //! cargo run --release --example large_grid -- --max 256   # N up to about 260,000
 //! cargo run --release --example large_grid -- --h-over-a 64   # one size, the peers' case
+//! cargo run --release --example large_grid -- --max 128 --plot docs/img/large-grid.svg
 //! ```
 //!
 //! With `--h-over-a K` it solves one size only, the peers' Hertz case
@@ -114,6 +115,11 @@ fn main() {
         "| cells per radius | N | dense: assembly + block pivoting, s | dense S, MB | matrix-free: operator + CG, s | CG iterations | operator, MB | approach error | peak error | CG certificate |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|");
+    let plot_to = std::env::args()
+        .skip_while(|a| a != "--plot")
+        .nth(1)
+        .map(std::path::PathBuf::from);
+    let mut timings = Timings::default();
     let mut cells = 8.0;
     while cells <= max {
         let points = PointSet::grid_disk(a / cells, 1.25 * a).expect("grid");
@@ -166,6 +172,102 @@ fn main() {
             sol.max_pressure / hertz.pressure(0.0) - 1.0,
             sol.certificate.worst(),
         );
+        if let Some((s, _)) = dense {
+            timings.dense.push((n as f64, s));
+        }
+        timings.matrix_free.push((n as f64, seconds));
         cells *= 2.0;
     }
+    if let Some(path) = plot_to {
+        plot(&path, &timings).expect("plot");
+        println!("wrote {}", path.display());
+    }
+}
+
+/// Seconds against N of each family.
+#[derive(Default)]
+struct Timings {
+    dense: Vec<(f64, f64)>,
+    matrix_free: Vec<(f64, f64)>,
+}
+
+/// A peer's stored runs (docs/peers/*-large.md): (cells of its square grid,
+/// setup + solve seconds).
+fn peer(path: &str) -> Vec<(f64, f64)> {
+    std::fs::read_to_string(path)
+        .unwrap_or_default()
+        .lines()
+        .filter(|l| l.starts_with('{'))
+        .filter_map(|l| {
+            let v: serde_json::Value = serde_json::from_str(l).ok()?;
+            let n = v["n"].as_f64()?;
+            Some((n * n, v["t_setup_s"].as_f64()? + v["t_solve_s"].as_f64()?))
+        })
+        .collect()
+}
+
+/// Time against N, log-log: elcon's two families and the FFT peers.
+fn plot(path: &std::path::Path, t: &Timings) -> Result<(), Box<dyn std::error::Error>> {
+    use plotters::prelude::*;
+    let series = [
+        ("elcon, dense S, block pivoting", t.dense.clone()),
+        (
+            "elcon, matrix-free, conjugate gradient",
+            t.matrix_free.clone(),
+        ),
+        (
+            "Tamaas (docs/peers/tamaas-large.md)",
+            peer("docs/peers/tamaas-large.md"),
+        ),
+        (
+            "ContactMechanics (docs/peers/cm-large.md)",
+            peer("docs/peers/cm-large.md"),
+        ),
+    ];
+    let all: Vec<(f64, f64)> = series.iter().flat_map(|(_, s)| s.iter().copied()).collect();
+    let (n0, n1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+        (a.min(p.0), b.max(p.0))
+    });
+    let (t0, t1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+        (a.min(p.1), b.max(p.1))
+    });
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption("Hertz spheres: seconds against N", ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(
+                (n0 * 0.8..n1 * 1.25).log_scale(),
+                (t0 * 0.8..t1 * 1.25).log_scale(),
+            )?;
+        chart
+            .configure_mesh()
+            .x_desc("N (points; the peers' square grids: cells)")
+            .y_desc("seconds (assembly or setup, and solve)")
+            .draw()?;
+        for (i, (name, points)) in series.iter().enumerate() {
+            let colour = Palette99::pick(i).to_rgba();
+            chart
+                .draw_series(LineSeries::new(
+                    points.iter().copied(),
+                    colour.stroke_width(2),
+                ))?
+                .label(*name)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
+        }
+        chart
+            .configure_series_labels()
+            .border_style(BLACK)
+            .background_style(WHITE.mix(0.8))
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()?;
+        root.present()?;
+    }
+    std::fs::write(path, svg)?;
+    Ok(())
 }
