@@ -1,12 +1,12 @@
 //! Large grids: the matrix-free conjugate gradient (S as an FFT
-//! convolution on the lattice) from N = 317 to 80,381, beside the
+//! convolution on the lattice) from N = 317 to 321,657, beside the
 //! dense block pivoting where S still fits comfortably (up to about 5,000
 //! points). Hertz spheres (Example 1) on Love patches over 1.25 contact
-//! radii, 8 to 128 cells per radius, unfolded; each sample is the whole
+//! radii, 8 to 256 cells per radius, unfolded; each sample is the whole
 //! solve: the operator or S, the iterations or pivots, the certificate.
 //!
 //! ```sh
-//! cargo bench --bench large          # about 5 minutes
+//! cargo bench --bench large          # about 7 minutes
 //! ```
 //!
 //! docs/performance.md §6 has the table of examples/large_grid, which
@@ -37,7 +37,7 @@ fn large(c: &mut Criterion) {
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(1));
     group.measurement_time(Duration::from_secs(15));
-    for cells in [8.0, 16.0, 32.0, 64.0, 128.0] {
+    for cells in [8.0, 16.0, 32.0, 64.0, 128.0, 256.0] {
         let points = PointSet::grid_disk(a / cells, 1.25 * a).expect("grid");
         let n = points.len();
         group.throughput(Throughput::Elements(n as u64));
