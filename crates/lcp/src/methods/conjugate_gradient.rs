@@ -40,8 +40,8 @@ use crate::options::Options;
 use crate::problem::Problem;
 use crate::statistics::{Breakdown, Work};
 use crate::tolerance::{
-    ARMIJO, EQUALITY_CORRECTIONS, ITERATIVE_STOP, RESTORE_STEPS, RIDGE, ROWS_RESTORED,
-    ROWS_STALLED, STALL_WINDOW, STALLED_STOP,
+    ARMIJO, EQUALITY_CORRECTIONS, ITERATIVE_STOP, RESTORE_STEPS, RIDGE, ROUNDING_FLOOR,
+    ROWS_RESTORED, ROWS_STALLED, STALL_WINDOW, STALLED_STOP,
 };
 
 /// A bordered LCP as the method reads it: `M` by its products.
@@ -112,6 +112,9 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
     let cap = options.iteration_cap();
     let target = ITERATIVE_STOP * options.tolerances.certificate;
     let (mut checkpoint, mut stalled) = (f64::INFINITY, false);
+    // The rounding floor of sums of n terms (a few eps sqrt(n)): only there
+    // is a stall the arithmetic's, not a slow convergence.
+    let floor = ROUNDING_FLOOR * f64::EPSILON * (n as f64).sqrt();
     let mut r = vec![0.0; n];
     loop {
         if let Err(b) = residual(form, &mut state) {
@@ -123,7 +126,9 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
         // no longer halving over a window, the iterate is as good as the
         // arithmetic allows.
         if work.iterations % STALL_WINDOW == 0 {
-            stalled = c <= STALLED_STOP * options.tolerances.certificate && c > 0.5 * checkpoint;
+            stalled = c <= STALLED_STOP * options.tolerances.certificate
+                && c <= floor
+                && c > 0.5 * checkpoint;
             checkpoint = c;
         }
         if c <= target || stalled || work.iterations >= cap {
