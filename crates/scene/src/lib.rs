@@ -55,8 +55,8 @@ pub use sanity::{
     max_pivots_bound,
 };
 pub use scene::{
-    BodySpec, DesignFamily, DesignSpec, Outputs, Plot, PointsSpec, Reference, RelativeTo, Scene,
-    Units,
+    BodySpec, DesignFamily, DesignSpec, ModelKind, Outputs, Plot, PointsSpec, Reference,
+    RelativeTo, Scene, Units,
 };
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};
 pub use storage::{AUTO_DENSE_LIMIT, MethodChoice, Storage};

@@ -43,12 +43,74 @@ pub struct Units {
 /// models, the material (the references need it).
 #[derive(Debug, Clone)]
 pub struct BodySpec {
-    /// The model's name in the scene ("uniform-patch", ...).
-    pub model: String,
+    /// The model (`body.model`).
+    pub model: ModelKind,
     /// The body for elcon-influence.
     pub body: Body,
     /// The material of a half-space model.
     pub material: Option<Material>,
+}
+
+/// A body's model, as a scene names it in `model = "..."`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModelKind {
+    /// `"rigid"`.
+    Rigid,
+    /// `"point-force"`: Boussinesq point forces on a half-space (surfaces).
+    PointForce,
+    /// `"uniform-patch"`: Love's uniform pressure patches (surfaces).
+    UniformPatch,
+    /// `"plane-strain"`: 2D strips (lines).
+    PlaneStrain,
+    /// `"winkler"`: a Winkler foundation (either).
+    Winkler,
+    /// `"beam"`: an Euler-Bernoulli beam (lines).
+    Beam,
+}
+
+impl ModelKind {
+    /// Every model, in the order messages list them.
+    pub const ALL: [ModelKind; 6] = [
+        ModelKind::Rigid,
+        ModelKind::PointForce,
+        ModelKind::UniformPatch,
+        ModelKind::PlaneStrain,
+        ModelKind::Winkler,
+        ModelKind::Beam,
+    ];
+
+    /// The name a scene gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelKind::Rigid => "rigid",
+            ModelKind::PointForce => "point-force",
+            ModelKind::UniformPatch => "uniform-patch",
+            ModelKind::PlaneStrain => "plane-strain",
+            ModelKind::Winkler => "winkler",
+            ModelKind::Beam => "beam",
+        }
+    }
+
+    /// The model of a name, if it is one.
+    pub fn of(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// A model of a line only (plane-strain strips, a beam).
+    pub fn is_line(self) -> bool {
+        matches!(self, ModelKind::PlaneStrain | ModelKind::Beam)
+    }
+
+    /// A model of a surface only (point forces, uniform patches).
+    pub fn is_surface(self) -> bool {
+        matches!(self, ModelKind::PointForce | ModelKind::UniformPatch)
+    }
+}
+
+impl std::fmt::Display for ModelKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// How the candidate points are laid out.
@@ -333,7 +395,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let units = units(
         ctx,
         raw.units.get_ref(),
-        bodies.iter().any(|b| b.model == "beam"),
+        bodies.iter().any(|b| b.model == ModelKind::Beam),
     )?;
     let loading = loading(ctx, &raw.loading)?;
     let (points_spec, dimension) = points_spec(ctx, &raw.points)?;
@@ -450,12 +512,8 @@ fn model_kinds(
             "both bodies are rigid: there is no elasticity to solve for; give one an elastic model",
         ));
     }
-    let line_models = bodies
-        .iter()
-        .any(|b| matches!(b.model.as_str(), "plane-strain" | "beam"));
-    let surface_models = bodies
-        .iter()
-        .any(|b| matches!(b.model.as_str(), "point-force" | "uniform-patch"));
+    let line_models = bodies.iter().any(|b| b.model.is_line());
+    let surface_models = bodies.iter().any(|b| b.model.is_surface());
     if line_models && surface_models {
         return Err(ctx.invalid(
             raw.body2.get_ref().model.span(),
@@ -547,7 +605,7 @@ fn body_edges(
 ) -> (bool, bool) {
     if matches!(reference, Some(Reference::FlatPunch(_))) {
         (true, true)
-    } else if bodies.iter().any(|b| b.model == "beam") {
+    } else if bodies.iter().any(|b| b.model == ModelKind::Beam) {
         (true, false)
     } else if matches!(points_spec, PointsSpec::Rectangle { .. }) {
         (false, true)
@@ -584,7 +642,7 @@ fn lay_out(
             "points",
             "across/zone",
             sanity::no_hertz_reason(
-                [&bodies[0].model, &bodies[1].model],
+                [bodies[0].model.name(), bodies[1].model.name()],
                 geometry,
                 loading,
                 dimension,
@@ -732,7 +790,10 @@ const MODELS: [(&str, &[&str]); 6] = [
 
 fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneError> {
     let model = b.model.get_ref().as_str();
-    let Some((_, keys)) = MODELS.iter().find(|(m, _)| *m == model) else {
+    let (Some(kind), Some((_, keys))) = (
+        ModelKind::of(model),
+        MODELS.iter().find(|(m, _)| *m == model),
+    ) else {
         return Err(ctx.invalid(
             b.model.span(),
             format!("{section}.model"),
@@ -860,7 +921,7 @@ fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneErr
         }
     };
     Ok(BodySpec {
-        model: model.to_string(),
+        model: kind,
         body,
         material,
     })
@@ -1317,7 +1378,7 @@ fn combined(geometry: &Geometry, spheres: bool) -> Option<f64> {
 fn half_space_modulus(bodies: &[BodySpec; 2], models: &[&str]) -> Option<f64> {
     if !bodies
         .iter()
-        .all(|b| b.model == "rigid" || models.contains(&b.model.as_str()))
+        .all(|b| b.model == ModelKind::Rigid || models.contains(&b.model.name()))
     {
         return None;
     }

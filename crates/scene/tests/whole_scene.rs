@@ -360,3 +360,19 @@ fn hetenyi_on_a_beam_that_lifts_off_carries_a_note() {
         .unwrap();
     assert!(note.contains("lifted off"), "{note}");
 }
+
+#[test]
+fn model_kinds_are_named_as_scenes_name_them() {
+    use elcon_scene::ModelKind;
+    for m in ModelKind::ALL {
+        assert_eq!(ModelKind::of(m.name()), Some(m));
+        assert_eq!(m.to_string(), m.name());
+        assert!(!(m.is_line() && m.is_surface()));
+    }
+    assert_eq!(ModelKind::of("jelly"), None);
+    // A scene's body reads as the kind it names.
+    let s = scene(BEAM).unwrap();
+    assert_eq!(s.bodies[0].model, ModelKind::Beam);
+    assert_eq!(s.bodies[1].model, ModelKind::Winkler);
+    assert!(s.bodies[0].model.is_line());
+}
