@@ -295,10 +295,7 @@ fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling) -> bool {
 }
 
 fn is_batch(path: &Path) -> bool {
-    std::fs::read_to_string(path)
-        .ok()
-        .and_then(|t| t.parse::<toml::Table>().ok())
-        .is_some_and(|t| t.contains_key("batch"))
+    std::fs::read_to_string(path).is_ok_and(|t| elcon_scene::is_batch_text(&t))
 }
 
 fn check_scene(path: &Path, scene: Scene, ceiling: &Ceiling) -> bool {

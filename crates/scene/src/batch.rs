@@ -315,6 +315,14 @@ impl Batch {
     }
 }
 
+/// Whether the TOML text is a batch (it has a `[batch]` table) rather than
+/// a scene: how the command line tells the two apart. Text that does not
+/// parse is not a batch (reading it as a scene reports the syntax error).
+pub fn is_batch_text(text: &str) -> bool {
+    text.parse::<toml::Table>()
+        .is_ok_and(|t| t.contains_key("batch"))
+}
+
 /// SHA-256 (hex) of a batch file's text, its base scene's and the elcon
 /// version that runs them: shards merge only when all three are the same
 /// (another version may give other digits for the same scene).

@@ -35,7 +35,7 @@ mod shard;
 mod storage;
 mod tables;
 
-pub use batch::{Batch, BatchRun, MAX_RUNS, thousands};
+pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text, thousands};
 pub use batch_run::{BatchOptions, Progress, run_batch};
 pub use error::{Location, SceneError};
 pub use estimate::{BASELINE, DesignEstimate, Estimate, Tableau, TimeClass, matrices};

@@ -376,3 +376,12 @@ fn model_kinds_are_named_as_scenes_name_them() {
     assert_eq!(s.bodies[1].model, ModelKind::Winkler);
     assert!(s.bodies[0].model.is_line());
 }
+
+#[test]
+fn a_batch_is_told_from_a_scene_by_its_batch_table() {
+    assert!(elcon_scene::is_batch_text(
+        "[batch]\nscene = \"base.toml\"\n[[batch.group]]\n\"loading.load\" = [1.0]\n"
+    ));
+    assert!(!elcon_scene::is_batch_text(BEAM));
+    assert!(!elcon_scene::is_batch_text("this is = = not toml"));
+}
