@@ -628,7 +628,8 @@ impl ContactProblem {
         let load: f64 = forces.iter().sum();
         let fmax = forces.iter().fold(0.0f64, |a, f| a.max(*f));
         let contact: Vec<usize> = (0..n).filter(|&k| forces[k] > 0.0).collect();
-        let contact_measure = crate::edge::contact_measure(&self.points, &pressures, self.edge);
+        let edge_of_contact = crate::edge::Edge::new(&self.points, &pressures, self.edge);
+        let contact_measure = edge_of_contact.measure();
         let contact_extent = match self.points.dimension() {
             Dimension::Surface => (contact_measure / std::f64::consts::PI).sqrt(),
             Dimension::Line => contact_measure / 2.0,
@@ -649,8 +650,7 @@ impl ContactProblem {
             .filter(|&k| {
                 let (x, y) = self.points.open_sides(k);
                 let open = (x && !body_x, y && !body_y);
-                (open.0 || open.1)
-                    && crate::edge::may_be_truncated(&self.points, &pressures, self.edge, k, open)
+                (open.0 || open.1) && edge_of_contact.may_be_truncated(k, open)
             })
             .collect();
         let mut warnings = Vec::new();

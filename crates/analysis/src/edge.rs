@@ -68,135 +68,167 @@ impl EdgeLaw {
     }
 }
 
-/// Whether the contact at point k, on the candidate zone's boundary, may go
-/// on beyond it: along some open side (`open_x`, `open_y`: a side whose
-/// neighbour cell is missing), the edge extrapolated from k and the point
-/// behind it (see the module documentation) does not end inside k's cell;
-/// or it cannot be told (no lattice, an unknown law, no point behind, a
-/// pressure that does not fall toward the side). A contact that ends
-/// within its outermost cells is not cut off by the zone.
-pub(crate) fn may_be_truncated(
-    points: &PointSet,
-    pressures: &[f64],
-    law: EdgeLaw,
-    k: usize,
-    (open_x, open_y): (bool, bool),
-) -> bool {
-    let (Some(lattice), Some(q)) = (points.lattice(), law.power()) else {
-        return true;
-    };
-    let index: HashMap<(i64, i64), usize> =
-        lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect();
-    let cell = points.cell();
-    let (i, j) = lattice[k];
-    let mut sides = Vec::new();
-    if open_x {
-        sides.extend([(1, 0, cell.dx), (-1, 0, cell.dx)]);
-    }
-    if open_y && points.dimension() == Dimension::Surface {
-        sides.extend([(0, 1, cell.dy), (0, -1, cell.dy)]);
-    }
-    sides
-        .into_iter()
-        .filter(|&(di, dj, _)| !index.contains_key(&(i + di, j + dj)))
-        .any(|(di, dj, h)| match index.get(&(i - di, j - dj)) {
-            Some(&b) if pressures[b] > pressures[k] && pressures[k] > 0.0 => {
-                let (pk, pb) = (pressures[k].powi(q), pressures[b].powi(q));
-                h * pk / (pb - pk) >= 0.5 * h
-            }
-            _ => true,
-        })
+/// A solution's pressures on its points, read for the contact's edge: the
+/// lattice's index built once (the measure and every boundary point's
+/// truncation test use it).
+pub(crate) struct Edge<'a> {
+    points: &'a PointSet,
+    pressures: &'a [f64],
+    /// The lattice, its index and the power q of the law; `None` where the
+    /// edge cannot be resolved (points not on a lattice, an unknown law).
+    grid: Option<Grid<'a>>,
 }
 
-/// The measure (area on a surface, length on a line) of the contact, its
-/// edge resolved within the cells by `law` (see the module documentation);
-/// the cells' own measure when the points are not on a lattice or the law
-/// is not known.
-pub(crate) fn contact_measure(points: &PointSet, pressures: &[f64], law: EdgeLaw) -> f64 {
-    let n = points.len();
-    let cells: f64 = (0..n)
-        .filter(|&k| pressures[k] > 0.0)
-        .map(|k| points.measure(k))
-        .sum();
-    let (Some(lattice), Some(q)) = (points.lattice(), law.power()) else {
-        return cells;
-    };
-    let cell = points.cell();
-    let index: HashMap<(i64, i64), usize> =
-        lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect();
-    let pressed = |ij: (i64, i64)| index.get(&ij).copied().filter(|&k| pressures[k] > 0.0);
-    // Each cell in contact spans, along each axis, h / 2 on a side whose
-    // neighbour is in contact and t on a side that leaves the contact; its
-    // contact is the rectangle of those spans (on a line, the span).
-    let reach = |k: usize, (di, dj): (i64, i64), h: f64| -> f64 {
-        let (i, j) = lattice[k];
-        if pressed((i + di, j + dj)).is_some() {
+/// The lattice coordinates of the points, their index, and q.
+struct Grid<'a> {
+    lattice: &'a [(i64, i64)],
+    index: HashMap<(i64, i64), usize>,
+    q: i32,
+}
+
+impl<'a> Edge<'a> {
+    /// The edge of the contact where `pressures > 0`, under `law`.
+    pub(crate) fn new(points: &'a PointSet, pressures: &'a [f64], law: EdgeLaw) -> Self {
+        let grid = match (points.lattice(), law.power()) {
+            (Some(lattice), Some(q)) => Some(Grid {
+                lattice,
+                index: lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect(),
+                q,
+            }),
+            _ => None,
+        };
+        Self {
+            points,
+            pressures,
+            grid,
+        }
+    }
+
+    /// The point at lattice coordinates `ij`, if it is in contact.
+    fn pressed(&self, g: &Grid<'_>, ij: (i64, i64)) -> Option<usize> {
+        g.index
+            .get(&ij)
+            .copied()
+            .filter(|&k| self.pressures[k] > 0.0)
+    }
+
+    /// How far beyond point k, toward `(di, dj)` (spacing h), `p^q`
+    /// extrapolated from k and the point behind it reaches zero; `None`
+    /// where it cannot be told (no point behind, a pressure that does not
+    /// fall toward the side).
+    fn beyond(&self, g: &Grid<'_>, k: usize, (di, dj): (i64, i64), h: f64) -> Option<f64> {
+        let (i, j) = g.lattice[k];
+        let b = self.pressed(g, (i - di, j - dj))?;
+        let (pk, pb) = (self.pressures[k], self.pressures[b]);
+        (pb > pk && pk > 0.0).then(|| {
+            let (pk, pb) = (pk.powi(g.q), pb.powi(g.q));
+            h * pk / (pb - pk)
+        })
+    }
+
+    /// Where the contact of point k reaches toward `(di, dj)`: h / 2 when
+    /// the neighbour is in contact, else the extrapolated edge within
+    /// `[0, h]` (h / 2 where it cannot be told).
+    fn reach(&self, g: &Grid<'_>, k: usize, (di, dj): (i64, i64), h: f64) -> f64 {
+        let (i, j) = g.lattice[k];
+        if self.pressed(g, (i + di, j + dj)).is_some() {
             return 0.5 * h;
         }
-        match pressed((i - di, j - dj)) {
-            Some(b) if pressures[b] > pressures[k] => {
-                let (pk, pb) = (pressures[k].powi(q), pressures[b].powi(q));
-                (h * pk / (pb - pk)).clamp(0.0, h)
-            }
-            _ => 0.5 * h,
+        self.beyond(g, k, (di, dj), h)
+            .map_or(0.5 * h, |t| t.clamp(0.0, h))
+    }
+
+    /// Whether the contact at point k, on the candidate zone's boundary,
+    /// may go on beyond it: along some open side (`open_x`, `open_y`: a
+    /// side whose neighbour cell is missing), the extrapolated edge does
+    /// not end inside k's cell, or that cannot be told. A contact that
+    /// ends within its outermost cells is not cut off by the zone.
+    pub(crate) fn may_be_truncated(&self, k: usize, (open_x, open_y): (bool, bool)) -> bool {
+        let Some(g) = &self.grid else {
+            return true;
+        };
+        let cell = self.points.cell();
+        let (i, j) = g.lattice[k];
+        let mut sides = Vec::new();
+        if open_x {
+            sides.extend([(1, 0, cell.dx), (-1, 0, cell.dx)]);
         }
-    };
-    let pressed_points = (0..n).filter(|&k| pressures[k] > 0.0);
-    if points.dimension() == Dimension::Line {
-        return pressed_points
-            .map(|k| reach(k, (1, 0), cell.dx) + reach(k, (-1, 0), cell.dx))
+        if open_y && self.points.dimension() == Dimension::Surface {
+            sides.extend([(0, 1, cell.dy), (0, -1, cell.dy)]);
+        }
+        sides
+            .into_iter()
+            .filter(|&(di, dj, _)| !g.index.contains_key(&(i + di, j + dj)))
+            .any(|(di, dj, h)| self.beyond(g, k, (di, dj), h).is_none_or(|t| t >= 0.5 * h))
+    }
+
+    /// The measure (area on a surface, length on a line) of the contact,
+    /// its edge resolved within the cells (see the module documentation);
+    /// the cells' own measure where the edge cannot be resolved.
+    pub(crate) fn measure(&self) -> f64 {
+        let (points, pressures) = (self.points, self.pressures);
+        let pressed_points = (0..points.len()).filter(|&k| pressures[k] > 0.0);
+        let cells: f64 = pressed_points.clone().map(|k| points.measure(k)).sum();
+        let Some(g) = &self.grid else {
+            return cells;
+        };
+        let cell = points.cell();
+        if points.dimension() == Dimension::Line {
+            return pressed_points
+                .map(|k| self.reach(g, k, (1, 0), cell.dx) + self.reach(g, k, (-1, 0), cell.dx))
+                .sum();
+        }
+        // On a surface: the edge points along every face that leaves the
+        // contact, joined in order of their angle about the contact's
+        // centre of pressure into a polygon (a star-shaped contact: Hertz's
+        // ellipses, a roller's patch), whose area is the contact's.
+        let total: f64 = pressures.iter().filter(|&&p| p > 0.0).sum();
+        let centre = pressed_points.clone().fold((0.0, 0.0), |(x, y), k| {
+            (
+                x + pressures[k] * points.x(k),
+                y + pressures[k] * points.y(k),
+            )
+        });
+        let (cx, cy) = (centre.0 / total, centre.1 / total);
+        let mut edge: Vec<(f64, f64, f64)> = Vec::new();
+        for k in pressed_points {
+            let (i, j) = g.lattice[k];
+            for (di, dj, h) in [
+                (1, 0, cell.dx),
+                (-1, 0, cell.dx),
+                (0, 1, cell.dy),
+                (0, -1, cell.dy),
+            ] {
+                if self.pressed(g, (i + di, j + dj)).is_some() {
+                    continue;
+                }
+                let t = self.reach(g, k, (di, dj), h);
+                let (x, y) = (points.x(k) + di as f64 * t, points.y(k) + dj as f64 * t);
+                edge.push(((y - cy).atan2(x - cx), x, y));
+            }
+        }
+        if edge.len() < 3 {
+            return cells;
+        }
+        edge.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let m = edge.len();
+        let twice: f64 = (0..m)
+            .map(|i| {
+                let (_, x0, y0) = edge[i];
+                let (_, x1, y1) = edge[(i + 1) % m];
+                x0 * y1 - x1 * y0
+            })
             .sum();
-    }
-    // On a surface: the edge points along every face that leaves the
-    // contact, joined in order of their angle about the contact's centre of
-    // pressure into a polygon (a star-shaped contact: Hertz's ellipses, a
-    // roller's patch), whose area is the contact's.
-    let total: f64 = pressures.iter().filter(|&&p| p > 0.0).sum();
-    let centre = pressed_points.clone().fold((0.0, 0.0), |(x, y), k| {
-        (
-            x + pressures[k] * points.x(k),
-            y + pressures[k] * points.y(k),
-        )
-    });
-    let (cx, cy) = (centre.0 / total, centre.1 / total);
-    let mut edge: Vec<(f64, f64, f64)> = Vec::new();
-    for k in pressed_points {
-        let (i, j) = lattice[k];
-        for (di, dj, h) in [
-            (1, 0, cell.dx),
-            (-1, 0, cell.dx),
-            (0, 1, cell.dy),
-            (0, -1, cell.dy),
-        ] {
-            if pressed((i + di, j + dj)).is_some() {
-                continue;
-            }
-            let t = reach(k, (di, dj), h);
-            let (x, y) = (points.x(k) + di as f64 * t, points.y(k) + dj as f64 * t);
-            edge.push(((y - cy).atan2(x - cx), x, y));
+        // A contact that is not star-shaped about its centre (two patches,
+        // a ring) makes a polygon that crosses itself: its area then differs
+        // from the cells' by more than the edge faces can move it, and the
+        // cells' is kept.
+        let polygon = 0.5 * twice.abs();
+        if (polygon - cells).abs() <= m as f64 * cell.dx * cell.dy {
+            polygon
+        } else {
+            cells
         }
-    }
-    if edge.len() < 3 {
-        return cells;
-    }
-    edge.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let m = edge.len();
-    let twice: f64 = (0..m)
-        .map(|i| {
-            let (_, x0, y0) = edge[i];
-            let (_, x1, y1) = edge[(i + 1) % m];
-            x0 * y1 - x1 * y0
-        })
-        .sum();
-    // A contact that is not star-shaped about its centre (two patches, a
-    // ring) makes a polygon that crosses itself: its area then differs from
-    // the cells' by more than the edge faces can move it, and the cells'
-    // is kept.
-    let polygon = 0.5 * twice.abs();
-    if (polygon - cells).abs() <= m as f64 * cell.dx * cell.dy {
-        polygon
-    } else {
-        cells
     }
 }
 
@@ -214,15 +246,15 @@ mod tests {
             .iter()
             .map(|&x| (1.0 - x.abs()).max(0.0).sqrt())
             .collect();
-        let length = contact_measure(&points, &p, EdgeLaw::SquareRoot);
+        let length = Edge::new(&points, &p, EdgeLaw::SquareRoot).measure();
         assert!((length - 2.0).abs() < 1e-12, "{length}");
         // A linear fall under the linear law, likewise.
         let linear: Vec<f64> = p.iter().map(|v| v * v).collect();
-        let length = contact_measure(&points, &linear, EdgeLaw::Linear);
+        let length = Edge::new(&points, &linear, EdgeLaw::Linear).measure();
         assert!((length - 2.0).abs() < 1e-12, "{length}");
         // An unknown law keeps whole cells, 0.1 each.
         let pressed = p.iter().filter(|&&v| v > 0.0).count() as f64;
-        let cells = contact_measure(&points, &p, EdgeLaw::Cells);
+        let cells = Edge::new(&points, &p, EdgeLaw::Cells).measure();
         assert!((cells - 0.1 * pressed).abs() < 1e-12, "{cells}");
         // A pressure that rises to its edge (a punch) keeps whole cells.
         let q: Vec<f64> = points
@@ -231,6 +263,6 @@ mod tests {
             .map(|&x| if x.abs() < 1.0 { 1.0 + x.abs() } else { 0.0 })
             .collect();
         let cells = points.xs().iter().filter(|x| x.abs() < 1.0).count() as f64 * 0.1;
-        assert!((contact_measure(&points, &q, EdgeLaw::SquareRoot) - cells).abs() < 1e-12);
+        assert!((Edge::new(&points, &q, EdgeLaw::SquareRoot).measure() - cells).abs() < 1e-12);
     }
 }

@@ -38,8 +38,8 @@
 //! when it was right up to its edge.
 //!
 //! Cost per iteration: one analysis and one factor of the contact block per
-//! case, S shared: linear in the cases, where the program of
-//! `crate::lpcc` grows with their square. Memory: S once, one contact
+//! case, S shared: linear in the cases, where the paper's program over
+//! every case at once grows with their square. Memory: S once, one contact
 //! block at a time. A case whose S is matrix-free (a lattice's FFT
 //! operator) is analysed by the conjugate gradient and its sensitivities
 //! solved by conjugate gradients on the operator restricted to the contact

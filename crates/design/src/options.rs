@@ -33,7 +33,7 @@ pub enum DesignMethod {
     Program,
     /// The case-decomposed descent: a trust-region sequential linear program
     /// over the profile parameters, each case an analysis sharing its S,
-    /// sensitivities from each case's contact set (`crate::descent`): cost
+    /// sensitivities from each case's contact set: cost
     /// growing like the analyses, linearly in the cases.
     Descent,
 }

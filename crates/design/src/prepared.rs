@@ -45,7 +45,7 @@ pub(crate) struct Case<'a> {
 /// distinct axial positions of all their points, increasing, positions
 /// within 1e-9 of the whole range merged into the first of them; and, per
 /// set, each point's station (an index into the stations). These are the
-/// stations a design's free profile has one drop at ([`crate::Design::stations`])
+/// stations a design's free profile has one drop at (`Design::stations`)
 /// and its table is written at.
 pub fn axial_stations<'a>(
     sets: impl IntoIterator<Item = &'a PointSet>,
@@ -182,7 +182,7 @@ pub enum Solver {
         /// The engine's statistics.
         statistics: Statistics,
     },
-    /// By the case-decomposed descent (`crate::descent`).
+    /// By the case-decomposed descent (`DesignMethod::Descent`).
     Descent {
         /// Trust-region iterations (each a linear program over the
         /// parameters and one analysis of every case).
@@ -207,7 +207,7 @@ pub enum Stop {
     Stationary,
     /// The trust region shrank below the parameters' resolution.
     TrustRegion,
-    /// [`crate::DesignOptions::max_iterations`] reached.
+    /// `DesignOptions::max_iterations` reached.
     IterationLimit,
 }
 

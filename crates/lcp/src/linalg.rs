@@ -10,7 +10,6 @@ use faer::linalg::matmul::matmul;
 use faer::perm::Perm;
 use faer::{Accum, Col, ColRef, Conj, Mat, MatMut, MatRef, Par};
 
-use crate::LcpError;
 use crate::tolerance::{SINGULAR_PER_ROW, SYMMETRY};
 
 /// LU factorization `B = P^T L U` kept packed in one matrix.
@@ -89,32 +88,38 @@ impl Lu {
 }
 
 /// `y = a x` for a dense `a`.
+/// A matrix or vector that could not be allocated: what it was for and
+/// the bytes asked for (`LcpError::AllocationFailed` to the user).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct AllocationFailed {
+    pub what: &'static str,
+    pub bytes: usize,
+}
+
 /// A `rows` x `cols` matrix of `f(i, j)`, its storage reserved fallibly:
-/// [`LcpError::AllocationFailed`] naming `what` when it cannot be.
+/// [`AllocationFailed`] naming `what` when it cannot be.
 pub(crate) fn try_mat(
     rows: usize,
     cols: usize,
     what: &'static str,
     f: impl FnMut(usize, usize) -> f64,
-) -> Result<Mat<f64>, LcpError> {
+) -> Result<Mat<f64>, AllocationFailed> {
     let mut m = Mat::new();
-    m.try_reserve(rows, cols)
-        .map_err(|_| LcpError::AllocationFailed {
-            what,
-            bytes: rows.saturating_mul(cols).saturating_mul(8),
-        })?;
+    m.try_reserve(rows, cols).map_err(|_| AllocationFailed {
+        what,
+        bytes: rows.saturating_mul(cols).saturating_mul(8),
+    })?;
     m.resize_with(rows, cols, f);
     Ok(m)
 }
 
 /// A vector of `len` zeros, reserved fallibly (see [`try_mat`]).
-pub(crate) fn try_zeros(len: usize, what: &'static str) -> Result<Vec<f64>, LcpError> {
+pub(crate) fn try_zeros(len: usize, what: &'static str) -> Result<Vec<f64>, AllocationFailed> {
     let mut v = Vec::new();
-    v.try_reserve_exact(len)
-        .map_err(|_| LcpError::AllocationFailed {
-            what,
-            bytes: len.saturating_mul(8),
-        })?;
+    v.try_reserve_exact(len).map_err(|_| AllocationFailed {
+        what,
+        bytes: len.saturating_mul(8),
+    })?;
     v.resize(len, 0.0);
     Ok(v)
 }
@@ -295,18 +300,20 @@ mod tests {
         let e = try_mat(1 << 61, 4, "the test tableau", |_, _| 0.0).unwrap_err();
         assert!(matches!(
             e,
-            LcpError::AllocationFailed {
+            AllocationFailed {
                 what: "the test tableau",
                 ..
             }
         ));
+        // The user sees it as the engine's error, naming what and how much.
+        let message = crate::LcpError::from(e).to_string();
         assert!(
-            e.to_string()
+            message
                 .starts_with("could not allocate 18446744073709551615 bytes for the test tableau"),
-            "{e}"
+            "{message}"
         );
         let e = try_zeros(usize::MAX / 4, "the test vector").unwrap_err();
-        assert!(matches!(e, LcpError::AllocationFailed { .. }));
+        assert!(matches!(e, AllocationFailed { .. }));
         // What fits is built as asked.
         let m = try_mat(2, 3, "small", |i, j| (10 * i + j) as f64).unwrap();
         assert_eq!(m[(1, 2)], 12.0);
