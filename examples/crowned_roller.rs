@@ -190,7 +190,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         1e3 * designed
             .profile
             .separation(designed.stations[designed.stations.len() - 1])?,
-        designed.method,
+        designed.solver.method().name(),
         design_seconds,
         designed.starts.len()
     );

@@ -293,7 +293,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             DESIGN_LOADS.len(),
             angles.len(),
             designed.objective,
-            designed.method
+            designed.solver.method().name()
         );
     }
     named_profiles.push(Named {

@@ -111,7 +111,9 @@ pub fn crown_search(
         // Warm-started from the best evaluation so far: the samples close in
         // on it, so its contact sets are the nearest at hand.
         let e = match &found {
-            Some((.., best)) => evaluate_from(cases, axis, &profile, method, options, best)?,
+            Some((.., best)) => {
+                evaluate_from(cases, axis, &profile, method, options, &best.solutions)?
+            }
             None => evaluate(cases, axis, &profile, method, options)?,
         };
         let objective = e.relative_worst(&references);

@@ -106,8 +106,8 @@ pub fn evaluate_known(
 }
 
 /// As [`evaluate`], each case's solve warm-started from its solution in
-/// `start` (the evaluation of a neighbouring profile: a crown search's
-/// previous sample). Block principal pivoting then starts from that contact
+/// `start`, one per case (the solutions of a neighbouring profile: a crown
+/// search's previous sample, a design's last iterate). Block principal pivoting then starts from that contact
 /// set ([`ContactProblem::solve_from`]); the answer does not depend on the
 /// start.
 ///
@@ -120,9 +120,9 @@ pub fn evaluate_from(
     profile: &Profile,
     method: Method,
     options: &Options,
-    start: &Evaluation,
+    start: &[ContactSolution],
 ) -> Result<Evaluation, DesignError> {
-    let starts: Vec<Option<&ContactSolution>> = start.solutions.iter().map(Some).collect();
+    let starts: Vec<Option<&ContactSolution>> = start.iter().map(Some).collect();
     evaluate_cases(
         cases,
         axis,

@@ -34,7 +34,7 @@ use crate::prepared::{
     Case, Found, Solver, axial_stations, deflection_scale, prepare, reference_intensities,
 };
 use crate::target::uniform_target;
-use crate::{Axis, DesignError, DesignMethod, DesignOptions, Family, PROGRAM_LIMIT, Profile};
+use crate::{Axis, DesignError, DesignMethod, DesignOptions, Family, Profile};
 use crate::{descent, lpcc};
 
 /// How one start ended.
@@ -65,8 +65,6 @@ pub struct Design {
     pub evaluation: Evaluation,
     /// Every start and where it ended.
     pub starts: Vec<StartOutcome>,
-    /// The method that ran ([`DesignMethod::Auto`] resolved).
-    pub method: DesignMethod,
     /// How the chosen start was solved: the program's certificate and
     /// statistics, or the descent's iterations.
     pub solver: Solver,
@@ -223,11 +221,7 @@ fn setup<'a>(
     let line_free = cases
         .iter()
         .all(|c| c.rigid().prescribed.iter().all(|&(mode, _)| mode != across));
-    let method = match options.method {
-        DesignMethod::Auto if points <= PROGRAM_LIMIT && !matrix_free => DesignMethod::Program,
-        DesignMethod::Auto => DesignMethod::Descent,
-        given => given,
-    };
+    let method = options.method.resolve(points, matrix_free);
     Ok(Setup {
         cases,
         prepared,
@@ -353,22 +347,14 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
     let profile = setup.basis.profile(setup.family, &setup.stations, &theta);
     let (method, reanalysis) = (options.reanalysis, &options.reanalysis_options);
     let evaluation = match solutions {
-        Some(previous) => {
-            let known = Evaluation {
-                corrections: Vec::new(),
-                max_intensities: Vec::new(),
-                worst: 0.0,
-                solutions: previous,
-            };
-            evaluate_from(
-                setup.cases,
-                setup.axis,
-                &profile,
-                method,
-                reanalysis,
-                &known,
-            )?
-        }
+        Some(previous) => evaluate_from(
+            setup.cases,
+            setup.axis,
+            &profile,
+            method,
+            reanalysis,
+            &previous,
+        )?,
         None => evaluate(setup.cases, setup.axis, &profile, method, reanalysis)?,
     };
     let references: Vec<f64> = setup.prepared.iter().map(|c| c.reference).collect();
@@ -394,7 +380,6 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
         max_intensity,
         evaluation,
         starts: Vec::new(),
-        method: setup.method,
         solver,
         max_constant: setup.c_max,
         constant_at_bound,

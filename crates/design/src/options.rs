@@ -38,6 +38,41 @@ pub enum DesignMethod {
     Descent,
 }
 
+impl DesignMethod {
+    /// Every method, in the order messages list them.
+    pub const ALL: [DesignMethod; 3] = [
+        DesignMethod::Auto,
+        DesignMethod::Program,
+        DesignMethod::Descent,
+    ];
+
+    /// Its name in a scene's `design.method`: "auto", "program", "descent".
+    pub fn name(self) -> &'static str {
+        match self {
+            DesignMethod::Auto => "auto",
+            DesignMethod::Program => "program",
+            DesignMethod::Descent => "descent",
+        }
+    }
+
+    /// The method of a name, if it is one.
+    pub fn of(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// The method that runs for `points` points over all cases: `Auto`
+    /// resolved to the program up to [`PROGRAM_LIMIT`] points with every S
+    /// dense, the descent otherwise (a matrix-free S has no entries for
+    /// the program to read); a given method as it is.
+    pub fn resolve(self, points: usize, matrix_free: bool) -> Self {
+        match self {
+            DesignMethod::Auto if points <= PROGRAM_LIMIT && !matrix_free => DesignMethod::Program,
+            DesignMethod::Auto => DesignMethod::Descent,
+            given => given,
+        }
+    }
+}
+
 /// All the cases' points together up to which [`DesignMethod::Auto`] uses
 /// the program (measured on Example 2 and the crowned roller:
 /// docs/design.md §2, the method's table).

@@ -199,6 +199,16 @@ pub enum Solver {
     },
 }
 
+impl Solver {
+    /// The method that ran: the program or the descent.
+    pub fn method(&self) -> crate::DesignMethod {
+        match self {
+            Solver::Program { .. } => crate::DesignMethod::Program,
+            Solver::Descent { .. } => crate::DesignMethod::Descent,
+        }
+    }
+}
+
 /// Why the descent stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Stop {

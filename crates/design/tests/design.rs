@@ -71,7 +71,7 @@ fn design_equals_its_reanalysis_for_every_family() {
                 },
             )
             .unwrap();
-            assert_eq!(d.method, method);
+            assert_eq!(d.solver.method(), method);
             match &d.solver {
                 Solver::Program { certificate, .. } => {
                     assert_eq!(method, DesignMethod::Program);
@@ -421,7 +421,7 @@ fn a_warm_started_evaluation_equals_a_cold_one_in_fewer_iterations() {
         &profile,
         Method::BlockPivoting,
         &options,
-        &near,
+        &near.solutions,
     )
     .unwrap();
     let (c, w) = (&cold.solutions[0], &warm.solutions[0]);
@@ -444,7 +444,7 @@ fn a_warm_started_evaluation_equals_a_cold_one_in_fewer_iterations() {
         &profile,
         Method::BlockPivoting,
         &options,
-        &near,
+        &near.solutions,
     )
     .unwrap_err();
     assert!(e.to_string().contains("start"), "{e}");
@@ -464,7 +464,7 @@ fn a_warm_started_evaluation_equals_a_cold_one_in_fewer_iterations() {
         &profile,
         Method::BlockPivoting,
         &options,
-        &other,
+        &other.solutions,
     )
     .unwrap_err();
     assert!(

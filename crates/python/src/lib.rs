@@ -379,16 +379,11 @@ fn design(
             )));
         }
     };
-    let method = match method_name {
-        "auto" => DesignMethod::Auto,
-        "program" => DesignMethod::Program,
-        "descent" => DesignMethod::Descent,
-        other => {
-            return Err(InputError::new_err(format!(
-                "`method` = \"{other}\": one of auto, program, descent"
-            )));
-        }
-    };
+    let method = DesignMethod::of(method_name).ok_or_else(|| {
+        InputError::new_err(format!(
+            "`method` = \"{method_name}\": one of auto, program, descent"
+        ))
+    })?;
     let cases: Vec<elcon_analysis::ContactProblem> =
         problems.iter().map(|p| p.inner.clone()).collect();
     let options = DesignOptions {
@@ -405,7 +400,7 @@ fn design(
         .map_err(|e| DesignError::new_err(e.to_string()))?;
     let json = serde_json::json!({
         "family": d.profile.family(),
-        "method": match d.method { DesignMethod::Descent => "descent", _ => "program" },
+        "method": d.solver.method().name(),
         "objective": d.objective,
         "max_intensity": d.max_intensity,
         "max_intensities": d.evaluation.max_intensities,

@@ -27,7 +27,7 @@
 //! (docs/reliability.md), rounded up.
 
 use elcon_analysis::{Layout, Method, Normal};
-use elcon_design::{DesignMethod, Family, PROGRAM_LIMIT, axial_stations};
+use elcon_design::{DesignMethod, Family, axial_stations};
 use elcon_influence::{Dimension, LatticeOperator, PointSet};
 
 use crate::error::SceneError;
@@ -463,13 +463,9 @@ fn design(
                 Family::Polynomial { degree } => degree + 1,
                 Family::Free => stations.len(),
             };
-            let resolved = match spec.method {
-                DesignMethod::Auto if total <= PROGRAM_LIMIT && scene.storage == Storage::Dense => {
-                    DesignMethod::Program
-                }
-                DesignMethod::Auto => DesignMethod::Descent,
-                given => given,
-            };
+            let resolved = spec
+                .method
+                .resolve(total, scene.storage == Storage::MatrixFree);
             method = Some(resolved);
             if resolved == DesignMethod::Descent {
                 // One contact block and its solves at a time, every case's

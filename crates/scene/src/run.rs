@@ -8,8 +8,8 @@ use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
 use elcon_design::{
-    DesignMethod, DesignOptions, Evaluation, LogCrown, LogEnd, Profile, SearchOptions,
-    axial_stations, crown_search, design, evaluate, evaluate_known,
+    DesignOptions, Evaluation, LogCrown, LogEnd, Profile, SearchOptions, axial_stations,
+    crown_search, design, evaluate, evaluate_known,
 };
 use elcon_influence::Dimension;
 use serde::Serialize;
@@ -740,10 +740,7 @@ fn find_design(
                     Err(e) => format!("{}: failed: {e}", s.label),
                 })
                 .collect();
-            let method = match d.method {
-                DesignMethod::Descent => "descent",
-                _ => "program",
-            };
+            let method = d.solver.method().name();
             (d.profile, d.evaluation, starts, method)
         }
         DesignFamily::CircularCrown {

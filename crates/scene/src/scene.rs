@@ -1965,17 +1965,14 @@ fn design_method(
             "only for the families quadratic, polynomial and free (a crown is searched or set)",
         ));
     }
-    match m.get_ref().as_str() {
-        "auto" => Ok(DesignMethod::Auto),
-        "program" => Ok(DesignMethod::Program),
-        "descent" => Ok(DesignMethod::Descent),
-        other => Err(ctx.invalid(
+    DesignMethod::of(m.get_ref()).ok_or_else(|| {
+        ctx.invalid(
             m.span(),
             "design.method",
-            format!("\"{other}\""),
+            format!("\"{}\"", m.get_ref()),
             "one of auto, program, descent",
-        )),
-    }
+        )
+    })
 }
 
 /// `design.misalignments` (rad), each finite and at most
