@@ -42,9 +42,9 @@ fn peak_rss_mb() -> f64 {
         .map_or(f64::NAN, |kib| kib * 1024.0 / 1e6)
 }
 
-/// One size, the peers' case: h = a / `cells` on the disk of 1.3 a, the
-/// method `"auto"` picks for it.
-fn one_size(cells: f64) {
+/// Example 1's spheres: the Hertz solution, the bodies' model and the
+/// surfaces.
+fn example1() -> (HertzSpheres, Body, Geometry) {
     let steel = Material::new(30e6, 0.3).expect("steel");
     let hertz = HertzSpheres::new(
         combined_modulus(&steel, &steel),
@@ -52,12 +52,18 @@ fn one_size(cells: f64) {
         100.0,
     )
     .expect("Hertz");
-    let a = hertz.contact_radius();
-    let body = Body::uniform_patch(steel);
     let geometry = Geometry::Surfaces(
         Surface::Sphere { radius: 1.0 },
         Surface::Sphere { radius: 10.0 },
     );
+    (hertz, Body::uniform_patch(steel), geometry)
+}
+
+/// One size, the peers' case: h = a / `cells` on the disk of 1.3 a, the
+/// method `"auto"` picks for it.
+fn one_size(cells: f64) {
+    let (hertz, body, geometry) = example1();
+    let a = hertz.contact_radius();
     let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
     let n = points.len();
     let dense = n <= elcon::scene::AUTO_DENSE_LIMIT;
@@ -98,19 +104,8 @@ fn main() {
         .nth(1)
         .and_then(|v| v.parse().ok())
         .unwrap_or(128.0);
-    let steel = Material::new(30e6, 0.3).expect("steel");
-    let hertz = HertzSpheres::new(
-        combined_modulus(&steel, &steel),
-        combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .expect("Hertz");
+    let (hertz, body, geometry) = example1();
     let a = hertz.contact_radius();
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
     println!(
         "| cells per radius | N | dense: assembly + block pivoting, s | dense S, MB | matrix-free: operator + CG, s | CG iterations | operator, MB | approach error | peak error | CG certificate |"
     );
