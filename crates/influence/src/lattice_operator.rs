@@ -123,7 +123,10 @@ const _: () = assert!(LatticeBox::cell_limit(MAX_POINTS) <= u32::MAX as usize);
 #[derive(Debug)]
 pub struct LatticeOperator {
     core: Core,
-    workspace: LatticeWorkspace,
+    /// The workspace [`LatticeOperator::apply`] uses: made by
+    /// [`LatticeOperator::new`], absent from a [`LatticeOperator::shared`]
+    /// one until its first `apply`.
+    workspace: Option<LatticeWorkspace>,
 }
 
 /// The operator without its workspace: what [`LatticeOperator::apply_with`]
@@ -343,6 +346,20 @@ impl LatticeOperator {
     /// - [`InfluenceError::AllocationFailed`]: the memory
     ///   ([`estimate_bytes`](Self::estimate_bytes)) cannot be allocated.
     pub fn new(points: &PointSet, bodies: &[&Body]) -> Result<Self, InfluenceError> {
+        let mut operator = Self::shared(points, bodies)?;
+        operator.workspace = Some(operator.core.workspace()?);
+        Ok(operator)
+    }
+
+    /// As [`LatticeOperator::new`], without a workspace of its own (about 16
+    /// bytes per cell of the lattice's bounding box fewer): for an operator
+    /// whose products all go through [`apply_with`](Self::apply_with), each
+    /// caller or thread with its [`workspace`](Self::workspace). Its
+    /// [`apply`](Self::apply) makes the workspace on first use.
+    ///
+    /// # Errors
+    /// As [`LatticeOperator::new`].
+    pub fn shared(points: &PointSet, bodies: &[&Body]) -> Result<Self, InfluenceError> {
         let setup = Setup::new(points, bodies)?;
         let winkler = setup.terms.winkler_diagonal(points);
         let (convolution, self_term) = if setup.has_kernel() {
@@ -358,8 +375,10 @@ impl LatticeOperator {
             winkler,
             convolution,
         };
-        let workspace = core.workspace()?;
-        Ok(Self { core, workspace })
+        Ok(Self {
+            core,
+            workspace: None,
+        })
     }
 
     /// The memory [`LatticeOperator::new`] would allocate for `points` and
@@ -408,12 +427,14 @@ impl LatticeOperator {
             .map(|c| (c.grid.padded_rows, c.grid.padded_columns))
     }
 
-    /// Bytes held by the operator, its own workspace included.
+    /// Bytes held by the operator, its own workspace included (none yet
+    /// for a [`shared`](Self::shared) one).
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Self>()
             + self.core.convolution.as_ref().map_or(0, Convolution::bytes)
-            + self.workspace.memory_bytes()
-            - std::mem::size_of::<LatticeWorkspace>()
+            + self.workspace.as_ref().map_or(0, |w| {
+                w.memory_bytes() - std::mem::size_of::<LatticeWorkspace>()
+            })
     }
 
     /// A new workspace for [`apply_with`](Self::apply_with), e.g. one per
@@ -432,9 +453,20 @@ impl LatticeOperator {
     /// with the operator's own workspace.
     ///
     /// # Panics
-    /// If `x` or `y` does not have [`len`](Self::len) entries.
+    /// If `x` or `y` does not have [`len`](Self::len) entries, or a
+    /// [`shared`](Self::shared) operator's workspace cannot be allocated at
+    /// its first `apply` (build with [`new`](Self::new) to have that an
+    /// error).
     pub fn apply(&mut self, x: &[f64], y: &mut [f64]) {
-        self.core.apply(x, y, &mut self.workspace);
+        let workspace = match &mut self.workspace {
+            Some(w) => w,
+            None => self.workspace.insert(
+                self.core
+                    .workspace()
+                    .expect("the shared operator's workspace could not be allocated"),
+            ),
+        };
+        self.core.apply(x, y, workspace);
     }
 
     /// `y = S x` as [`apply`](Self::apply), with a caller's workspace: the
@@ -953,6 +985,19 @@ mod tests {
         op.apply_with(&x, &mut c, &mut ws);
         assert_eq!(a, b);
         assert_eq!(a, c);
+        // Without a workspace of its own: the same product, the workspace's
+        // bytes fewer until its first apply.
+        let mut lean = LatticeOperator::shared(&points, &bodies).unwrap();
+        assert_eq!(
+            lean.memory_bytes() + ws.memory_bytes() - std::mem::size_of::<LatticeWorkspace>(),
+            op.memory_bytes()
+        );
+        let mut d = vec![0.0; x.len()];
+        lean.apply_with(&x, &mut d, &mut ws);
+        assert_eq!(a, d);
+        lean.apply(&x, &mut d);
+        assert_eq!(a, d);
+        assert_eq!(lean.memory_bytes(), op.memory_bytes());
         // Shared between threads, one workspace each.
         let shared = &op;
         std::thread::scope(|scope| {

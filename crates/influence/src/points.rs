@@ -335,8 +335,14 @@ impl PointSet {
         cell: Cell,
         xs: Vec<f64>,
         ys: Vec<f64>,
-        lattice: Vec<(i64, i64)>,
+        mut lattice: Vec<(i64, i64)>,
     ) -> Self {
+        // Held for the problem's lifetime: no spare capacity (a grid built
+        // by pushing would keep up to twice its length).
+        let (mut xs, mut ys) = (xs, ys);
+        xs.shrink_to_fit();
+        ys.shrink_to_fit();
+        lattice.shrink_to_fit();
         let members: HashSet<(i64, i64)> = lattice.iter().copied().collect();
         let boundary = lattice
             .iter()

@@ -113,46 +113,53 @@ impl Folding {
     /// data (separations) break the largest can fold by a smaller one (a
     /// cylinder on a square grid: both mirrors, not the swap of x and y).
     pub fn detect_all(points: &PointSet, bodies: &[&Body]) -> Vec<Self> {
-        let mut found = Vec::new();
-        let cell = points.cell();
-        let square = cell.dx == cell.dy;
+        Self::detect_each(points, bodies).collect()
+    }
+
+    /// The groups of [`detect_all`](Self::detect_all), largest first, each
+    /// found when the iterator reaches it: a caller that stops at the first
+    /// group its data respect holds one group's orbits at a time (about
+    /// 60 bytes a point each), not all of them.
+    pub fn detect_each<'p>(
+        points: &'p PointSet,
+        bodies: &[&Body],
+    ) -> impl Iterator<Item = Self> + 'p {
         let beam_at_origin = bodies.iter().all(|b| match b.model() {
             Model::Beam { loaded_point, .. } => *loaded_point == 0.0,
             _ => true,
         });
-        if !beam_at_origin {
-            return found;
-        }
-        let key = |k: usize| {
+        let cell = points.cell();
+        let key = move |k: usize| {
             (
                 (2.0 * points.x(k) / cell.dx).round() as i64,
                 (2.0 * points.y(k) / cell.dy).round() as i64,
             )
         };
-        let index: HashMap<(i64, i64), usize> = (0..points.len()).map(|k| (key(k), k)).collect();
-        if index.len() != points.len() {
-            return found;
-        }
+        let index: Option<HashMap<(i64, i64), usize>> = beam_at_origin
+            .then(|| (0..points.len()).map(|k| (key(k), k)).collect())
+            .filter(|index: &HashMap<_, _>| index.len() == points.len());
+        let square = cell.dx == cell.dy;
         let tolerance = 1e-12 * cell.dx.max(cell.dy);
-        for (group, elements) in candidates(points.dimension(), square) {
+        let groups = match index {
+            Some(_) => candidates(points.dimension(), square),
+            None => Vec::new(),
+        };
+        groups.into_iter().filter_map(move |(group, elements)| {
+            let index = index.as_ref()?;
             let image = |g: Element, k: usize| -> Option<usize> {
                 let j = *index.get(&g.apply(key(k))?)?;
                 let (x, y) = g.apply_xy((points.x(k), points.y(k)));
                 ((points.x(j) - x).abs() <= tolerance && (points.y(j) - y).abs() <= tolerance)
                     .then_some(j)
             };
-            if let Some((orbits, rep_of)) = orbits_of(points.len(), &elements, image)
-                && orbits.len() < points.len()
-            {
-                found.push(Self {
-                    group,
-                    order: elements.len(),
-                    orbits,
-                    rep_of,
-                });
-            }
-        }
-        found
+            let (orbits, rep_of) = orbits_of(points.len(), &elements, image)?;
+            (orbits.len() < points.len()).then_some(Self {
+                group,
+                order: elements.len(),
+                orbits,
+                rep_of,
+            })
+        })
     }
 
     /// The group's name ("mirror x, mirror y", ...).
