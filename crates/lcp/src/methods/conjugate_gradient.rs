@@ -74,12 +74,11 @@ pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotAppli
     })
 }
 
-/// The method's state: the iterate and what it has computed of it.
+/// The method's state: the iterate and what it has computed of it (four
+/// vectors of n: the memory of a large solve).
 struct State {
     z: Vec<f64>,
-    /// `g = M z + q`.
-    g: Vec<f64>,
-    /// `w = g - B λ`.
+    /// `w = M z + q - B λ` (`g = M z + q` is not kept: `w + B λ`).
     w: Vec<f64>,
     lambda: Col<f64>,
     /// The conjugate direction.
@@ -101,7 +100,6 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
         Err(breakdown) => return Err(Failure::new(breakdown, work)),
     };
     let mut state = State {
-        g: vec![0.0; n],
         w: vec![0.0; n],
         lambda: Col::zeros(form.border.ncols()),
         t: vec![0.0; n],
@@ -189,8 +187,7 @@ fn start(form: &Form<'_>, options: &Options) -> Result<Option<Vec<f64>>, Breakdo
             (0..n).map(|i| (-form.q[i]).max(0.0) / d).collect()
         }
         None => {
-            let all = vec![true; n];
-            let nu = fit(form.border, &all, form.resultant).ok_or(Breakdown::SingularBorder)?;
+            let nu = fit(form.border, |_| true, form.resultant).ok_or(Breakdown::SingularBorder)?;
             let spread = form.border * &nu;
             spread.iter().map(|&v| v.max(0.0)).collect()
         }
@@ -202,22 +199,26 @@ fn start(form: &Form<'_>, options: &Options) -> Result<Option<Vec<f64>>, Breakdo
     Ok(Some(z))
 }
 
-/// `g = M z + q`, `λ` fitted on the contact set, `w = g - B λ`.
+/// `g = M z + q`, `λ` fitted on the contact set, `w = g - B λ` (`g` held
+/// in `w` until `λ` is known).
 fn residual(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
-    form.operator.apply(&s.z, &mut s.g);
-    for (g, q) in s.g.iter_mut().zip(form.q.iter()) {
+    form.operator.apply(&s.z, &mut s.w);
+    for (g, q) in s.w.iter_mut().zip(form.q.iter()) {
         *g += q;
     }
-    let active: Vec<bool> = s.z.iter().map(|&v| v > 0.0).collect();
-    let rhs = masked_transpose_product(form.border, &active, &s.g);
+    let z = &s.z;
+    let active = |i: usize| z[i] > 0.0;
+    let rhs = masked_transpose_product(form.border, active, &s.w);
     // Fewer contact points than independent rows (an early iterate): the
     // least-norm fit of a slightly regularized system.
-    s.lambda = fit(form.border, &active, rhs.as_ref())
-        .or_else(|| fit_regularized(form.border, &active, rhs.as_ref()))
+    s.lambda = fit(form.border, active, rhs.as_ref())
+        .or_else(|| fit_regularized(form.border, active, rhs.as_ref()))
         .ok_or(Breakdown::SingularBorder)?;
-    let shift = form.border * &s.lambda;
-    for i in 0..s.w.len() {
-        s.w[i] = s.g[i] - shift[i];
+    for (j, &l) in s.lambda.iter().enumerate() {
+        let column = form.border.col(j);
+        for (i, w) in s.w.iter_mut().enumerate() {
+            *w -= column[i] * l;
+        }
     }
     if s.w.iter().any(|v| !v.is_finite()) {
         return Err(Breakdown::NonFinite);
@@ -226,22 +227,29 @@ fn residual(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
 }
 
 /// The worst of the residuals the certificate measures, from the state
-/// (`M |z|` read as `g - q`: exact for an operator with non-negative
-/// entries, a stricter scale otherwise).
+/// (`M |z|` read as `M z = w + B λ - q`: exact for an operator with
+/// non-negative entries, a stricter scale otherwise).
 fn converged(form: &Form<'_>, s: &State) -> f64 {
     let n = s.z.len();
-    let shift = abs_product(form.border, &s.lambda);
+    let k = form.border.ncols();
     let mut w_scale = 0.0f64;
     for i in 0..n {
+        let (mut shift, mut shift_terms) = (0.0, 0.0);
+        for j in 0..k {
+            let b = form.border[(i, j)] * s.lambda[j];
+            shift += b;
+            shift_terms += b.abs();
+        }
         let q = form.q[i];
-        w_scale = w_scale.max((s.g[i] - q).abs() + q.abs() + shift[i]);
+        let product = s.w[i] + shift - q;
+        w_scale = w_scale.max(product.abs() + q.abs() + shift_terms);
     }
     let z_scale = s.z.iter().fold(0.0f64, |a, &v| a.max(v));
     let rel = |v: f64, scale: f64| if scale > 0.0 { v / scale } else { 0.0 };
     let min_w = s.w.iter().fold(0.0f64, |a, &v| a.min(v));
     let comp = (0..n).fold(0.0f64, |a, i| a.max((s.z[i] * s.w[i]).abs()));
     let mut worst = rel(-min_w, w_scale).max(rel(comp, z_scale * w_scale));
-    for j in 0..form.border.ncols() {
+    for j in 0..k {
         let col = form.border.col(j);
         let (mut sum, mut terms) = (-form.resultant[j], form.resultant[j].abs());
         for i in 0..n {
@@ -257,15 +265,19 @@ fn converged(form: &Form<'_>, s: &State) -> f64 {
 /// module documentation); `r` is scratch for `M t`.
 fn step(form: &Form<'_>, s: &mut State, r: &mut [f64]) -> Result<(), Breakdown> {
     let n = s.z.len();
-    let active: Vec<bool> = s.z.iter().map(|&v| v > 0.0).collect();
-    let g_now: f64 = (0..n).filter(|&i| active[i]).map(|i| s.w[i] * s.w[i]).sum();
+    // The contact set J = {z_i > 0}: read from z, which the update below
+    // changes only at the entry it is visiting.
+    let g_now: f64 = (0..n)
+        .filter(|&i| s.z[i] > 0.0)
+        .map(|i| s.w[i] * s.w[i])
+        .sum();
     let beta = if s.restart || s.g_old == 0.0 {
         0.0
     } else {
         g_now / s.g_old
     };
     for i in 0..n {
-        s.t[i] = if active[i] {
+        s.t[i] = if s.z[i] > 0.0 {
             s.w[i] + beta * s.t[i]
         } else {
             0.0
@@ -273,7 +285,7 @@ fn step(form: &Form<'_>, s: &mut State, r: &mut [f64]) -> Result<(), Breakdown> 
     }
     form.operator.apply(&s.t, r);
     let (mut num, mut den) = (0.0, 0.0);
-    for i in (0..n).filter(|&i| active[i]) {
+    for i in (0..n).filter(|&i| s.z[i] > 0.0) {
         num += s.w[i] * s.t[i];
         den += r[i] * s.t[i];
     }
@@ -288,7 +300,7 @@ fn step(form: &Form<'_>, s: &mut State, r: &mut [f64]) -> Result<(), Breakdown> 
     s.g_old = g_now;
     let mut entered = false;
     for i in 0..n {
-        if active[i] {
+        if s.z[i] > 0.0 {
             s.z[i] = (s.z[i] - tau * s.t[i]).max(0.0);
         } else if s.w[i] < 0.0 {
             // Interference out of contact: the point enters. With τ = 0
@@ -313,7 +325,7 @@ fn restore_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
     }
     if k == 1 {
         let col = form.border.col(0);
-        let row: f64 = z.iter().zip(col.iter()).map(|(zi, bi)| zi * bi).sum();
+        let row = compensated_sum(z.iter().zip(col.iter()).map(|(zi, bi)| zi * bi));
         let ratio = form.resultant[0] / row;
         if ratio.is_finite() && ratio > 0.0 {
             z.iter_mut().for_each(|v| *v *= ratio);
@@ -338,11 +350,11 @@ fn shift_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
         let mut active: Vec<bool> = z.iter().map(|&v| v > 0.0).collect();
         let z_col = ColRef::from_slice(z);
         let deficit = form.resultant - form.border.transpose() * z_col;
-        let nu = match fit(form.border, &active, deficit.as_ref()) {
+        let nu = match fit(form.border, |i| active[i], deficit.as_ref()) {
             Some(nu) => nu,
             None => {
                 active.iter_mut().for_each(|a| *a = true);
-                fit(form.border, &active, deficit.as_ref()).ok_or(Breakdown::SingularBorder)?
+                fit(form.border, |_| true, deficit.as_ref()).ok_or(Breakdown::SingularBorder)?
             }
         };
         let add = form.border * &nu;
@@ -430,22 +442,73 @@ fn tilt_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
 }
 
 /// `B_J^T v` (the rows of `B` outside the active set `J` left out).
-fn masked_transpose_product(border: MatRef<'_, f64>, active: &[bool], v: &[f64]) -> Col<f64> {
-    let masked = Col::from_fn(v.len(), |i| if active[i] { v[i] } else { 0.0 });
-    border.transpose() * &masked
+fn masked_transpose_product(
+    border: MatRef<'_, f64>,
+    active: impl Fn(usize) -> bool,
+    v: &[f64],
+) -> Col<f64> {
+    Col::from_fn(border.ncols(), |j| {
+        let column = border.col(j);
+        compensated_sum(
+            (0..v.len())
+                .filter(|&i| active(i))
+                .map(|i| column[i] * v[i]),
+        )
+    })
+}
+
+/// Neumaier's compensated sum: accurate to a few units of rounding of the
+/// result whatever the number of terms. `λ` is fitted from sums of 10^5 to
+/// 10^6 nearly equal `g_i`, and a plain running sum's error (n eps) shifts
+/// every `w_J` by as much, which the iteration then cannot remove.
+fn compensated_sum(terms: impl Iterator<Item = f64>) -> f64 {
+    let (mut sum, mut carry) = (0.0f64, 0.0f64);
+    for t in terms {
+        let next = sum + t;
+        carry += if sum.abs() >= t.abs() {
+            (sum - next) + t
+        } else {
+            (t - next) + sum
+        };
+        sum = next;
+    }
+    sum + carry
+}
+
+/// The normal equations' matrix `B_J^T B_J` (k x k) of the rows in the
+/// active set `J`, summed row by row (no masked copy of `B`: n k values
+/// at a million points).
+fn masked_gram(border: MatRef<'_, f64>, active: impl Fn(usize) -> bool) -> Mat<f64> {
+    let k = border.ncols();
+    let mut gram = Mat::<f64>::zeros(k, k);
+    for i in (0..border.nrows()).filter(|&i| active(i)) {
+        for a in 0..k {
+            let ba = border[(i, a)];
+            for b in 0..=a {
+                gram[(a, b)] += ba * border[(i, b)];
+            }
+        }
+    }
+    for a in 0..k {
+        for b in 0..a {
+            gram[(b, a)] = gram[(a, b)];
+        }
+    }
+    gram
 }
 
 /// Solves the normal equations `B_J^T B_J ν = rhs` (`k x k`, by faer's
 /// Cholesky); `None` when `B_J` is rank deficient.
-fn fit(border: MatRef<'_, f64>, active: &[bool], rhs: ColRef<'_, f64>) -> Option<Col<f64>> {
+fn fit(
+    border: MatRef<'_, f64>,
+    active: impl Fn(usize) -> bool,
+    rhs: ColRef<'_, f64>,
+) -> Option<Col<f64>> {
     let k = border.ncols();
     if k == 0 {
         return Some(Col::zeros(0));
     }
-    let masked = Mat::from_fn(border.nrows(), k, |i, j| {
-        if active[i] { border[(i, j)] } else { 0.0 }
-    });
-    let gram = masked.transpose() * &masked;
+    let gram = masked_gram(border, active);
     let llt = gram.llt(Side::Lower).ok()?;
     let nu = llt.solve(rhs.to_owned());
     let finite = nu.iter().all(|v| v.is_finite());
@@ -457,14 +520,11 @@ fn fit(border: MatRef<'_, f64>, active: &[bool], rhs: ColRef<'_, f64>) -> Option
 /// fewer rows than columns.
 fn fit_regularized(
     border: MatRef<'_, f64>,
-    active: &[bool],
+    active: impl Fn(usize) -> bool,
     rhs: ColRef<'_, f64>,
 ) -> Option<Col<f64>> {
     let k = border.ncols();
-    let masked = Mat::from_fn(border.nrows(), k, |i, j| {
-        if active[i] { border[(i, j)] } else { 0.0 }
-    });
-    let mut gram = masked.transpose() * &masked;
+    let mut gram = masked_gram(border, active);
     let largest = (0..k).fold(0.0f64, |a, j| a.max(gram[(j, j)]));
     let ridge = if largest > 0.0 { RIDGE * largest } else { 1.0 };
     for j in 0..k {
@@ -473,15 +533,4 @@ fn fit_regularized(
     let nu = gram.llt(Side::Lower).ok()?.solve(rhs.to_owned());
     let finite = nu.iter().all(|v| v.is_finite());
     finite.then_some(nu)
-}
-
-/// `|B| |λ|` entry-wise.
-fn abs_product(border: MatRef<'_, f64>, lambda: &Col<f64>) -> Vec<f64> {
-    (0..border.nrows())
-        .map(|i| {
-            (0..border.ncols())
-                .map(|j| (border[(i, j)] * lambda[j]).abs())
-                .sum()
-        })
-        .collect()
 }
