@@ -23,7 +23,7 @@ use elcon_influence::{
     Body, Dimension, Folding, LatticeOperator, Model, PointSet, assemble, assemble_folded,
 };
 use elcon_lcp::{BorderedLcpRef, Certificate, Method, OperatorLcp, Options, Statistics};
-use faer::{Col, Mat, MatRef};
+use faer::{Col, ColRef, Mat, MatRef};
 
 use crate::AnalysisError;
 use crate::edge::EdgeLaw;
@@ -211,8 +211,10 @@ pub struct ContactProblem {
     folding: Option<Arc<Folding>>,
     /// The mirror groups the points and the models respect, largest first:
     /// a free rotation that is odd under one the separations respect too
-    /// is zero at the solution and not an unknown, folded or not.
-    groups: Arc<Vec<Folding>>,
+    /// is zero at the solution and not an unknown, folded or not. `None`
+    /// for a matrix-free problem: its orbits (tens of bytes a point) are
+    /// found again when a new loading or separation asks.
+    groups: Option<Arc<Vec<Folding>>>,
     /// How the pressure falls at the contact's edge (crate::edge).
     edge: EdgeLaw,
 }
@@ -277,7 +279,7 @@ impl ContactProblem {
             assembly_seconds: start.elapsed().as_secs_f64(),
             body_edges: (false, false),
             folding: layout.folding.map(Arc::new),
-            groups: Arc::new(layout.groups),
+            groups: Some(Arc::new(layout.groups)),
             edge: EdgeLaw::of(bodies),
         })
     }
@@ -303,18 +305,23 @@ impl ContactProblem {
     ) -> Result<Self, AnalysisError> {
         let start = Instant::now();
         let bodies = [body1, body2];
-        let layout = Layout::of(&points, bodies, geometry, &loading, false)?;
-        let operator = LatticeOperator::new(&points, &bodies)?;
+        // As Layout::of unfolded, the mirror groups tried one at a time
+        // and none kept: at 10^5 points and more their orbits would
+        // outweigh the operator.
+        let separation = separations(&points, geometry)?;
+        let rigid = check(&points, &separation, &loading, load_point(&bodies))?;
+        let rigid = unfolded_rigid(&points, &bodies, &separation, rigid);
+        let operator = LatticeOperator::shared(&points, &bodies)?;
         Ok(Self {
             points,
             influence: Influence::Lattice(Arc::new(operator)),
-            separation: layout.separation,
+            separation,
             loading,
-            rigid: layout.rigid,
+            rigid,
             assembly_seconds: start.elapsed().as_secs_f64(),
             body_edges: (false, false),
             folding: None,
-            groups: Arc::new(layout.groups),
+            groups: None,
             edge: EdgeLaw::of(bodies),
         })
     }
@@ -361,7 +368,7 @@ impl ContactProblem {
             assembly_seconds: 0.0,
             body_edges: (false, false),
             folding: None,
-            groups: Arc::new(Vec::new()),
+            groups: Some(Arc::new(Vec::new())),
             edge: EdgeLaw::Cells,
         })
     }
@@ -455,8 +462,15 @@ impl ContactProblem {
                     }
                 }
             }
-            None => symmetric_rigid(&self.groups, &self.points, &separation, &rigid)
-                .map_or(rigid, |(_, r)| r),
+            None => {
+                // A matrix-free problem holds no orbits; its bodies are
+                // half-spaces and foundations, invariant under every mirror.
+                match &self.groups {
+                    Some(groups) => symmetric_rigid(groups, &self.points, &separation, &rigid)
+                        .map_or(rigid, |(_, r)| r),
+                    None => unfolded_rigid(&self.points, &[], &separation, rigid),
+                }
+            }
         };
         Ok(Self {
             points: self.points.clone(),
@@ -467,7 +481,7 @@ impl ContactProblem {
             assembly_seconds: self.assembly_seconds,
             body_edges: self.body_edges,
             folding: self.folding.clone(),
-            groups: Arc::clone(&self.groups),
+            groups: self.groups.clone(),
             edge: self.edge,
         })
     }
@@ -555,57 +569,76 @@ impl ContactProblem {
         // `elcon_influence::Folding`): w_a = Y_a / s_a, and the equilibrium
         // row by 1 / |G|, which keeps [B; D] and [C D] a skew pair.
         let n = self.influence.len();
-        let (scale, order): (Vec<f64>, f64) = match &self.folding {
-            Some(f) => ((0..n).map(|a| f.stabilizer(a)).collect(), f.order() as f64),
-            None => (vec![1.0; n], 1.0),
-        };
+        let scale = |a: usize| self.folding.as_ref().map_or(1.0, |f| f.stabilizer(a));
+        let order = self.folding.as_ref().map_or(1.0, |f| f.order() as f64);
         let rep = |a: usize| self.folding.as_ref().map_or(a, |f| f.rep(a));
         // The bordered form: q the separations shifted by the prescribed
         // rigid motions, a column per free motion (its lever; 1 for the
         // approach), each scaled by 1 / s_a when folded, and the resultants
         // (load, moments) over |G|.
         let rigid = &self.rigid;
-        let q = Col::from_fn(n, |a| {
-            let k = rep(a);
-            (self.separation[k] + rigid.shift(point(&self.points, k))) / scale[a]
-        });
+        // Unfolded with no prescribed motion, q is eps itself: borrowed.
+        let q = if self.folding.is_none() && rigid.prescribed.is_empty() {
+            None
+        } else {
+            Some(Col::from_fn(n, |a| {
+                let k = rep(a);
+                (self.separation[k] + rigid.shift(point(&self.points, k))) / scale(a)
+            }))
+        };
+        let q = q
+            .as_ref()
+            .map_or(ColRef::from_slice(&self.separation), Col::as_ref);
         let border = Mat::<f64>::from_fn(n, rigid.free.len(), |a, j| {
             rigid.free[j]
                 .0
                 .lever(point(&self.points, rep(a)), rigid.load_point)
-                / scale[a]
+                / scale(a)
         });
         let resultant = Col::from_fn(rigid.free.len(), |j| rigid.free[j].1 / order);
         let sol = match &self.influence {
-            Influence::Dense(s) => BorderedLcpRef::new(Mat::as_ref(s), q.as_ref())?
+            Influence::Dense(s) => BorderedLcpRef::new(Mat::as_ref(s), q)?
                 .with_border(border.as_ref(), resultant.as_ref())?
                 .solve(method, options)?,
             Influence::Lattice(operator) => {
                 let products = LatticeProducts::new(operator)?;
-                OperatorLcp::new(&products, q.as_ref())?
+                OperatorLcp::new(&products, q)?
                     .with_border(border.as_ref(), resultant.as_ref())?
                     .solve(method, options)?
             }
         };
-        let lambda: Vec<f64> = sol.u.iter().copied().collect();
+        // The engine's border is not needed any more: at a million points
+        // every column is 8 MB.
+        drop(border);
+        let elcon_lcp::LcpSolution {
+            z,
+            w,
+            u,
+            certificate,
+            statistics,
+            ..
+        } = sol;
+        let lambda: Vec<f64> = u.iter().copied().collect();
         // The gaps are the engine's w = M z - B λ + q, computed from the data
         // above: Y = S F + eps - (rigid motion); folded, row a is scaled by
         // 1 / s_a, so w_a = Y_a / s_a (the same sums regrouped) and
         // Y_a = s_a w_a, exactly (s_a is a power of two).
-        let z: Vec<f64> = sol.z.iter().copied().collect();
-        let w: Vec<f64> = sol.w.iter().copied().collect();
-        let folded_gaps: Vec<f64> = (0..n).map(|a| scale[a] * w[a]).collect();
+        let z = into_vec(z);
+        let w = into_vec(w);
         let (forces, gaps, slack) = match &self.folding {
-            Some(f) => (f.unfold(&z), f.unfold(&folded_gaps), f.unfold(&w)),
-            None => (z, folded_gaps, w),
+            Some(f) => {
+                let folded_gaps: Vec<f64> = (0..n).map(|a| scale(a) * w[a]).collect();
+                (f.unfold(&z), f.unfold(&folded_gaps), Some(f.unfold(&w)))
+            }
+            None => (z, w, None),
         };
         let engine = Engine {
             forces,
             gaps,
             slack,
             lambda,
-            certificate: sol.certificate,
-            statistics: sol.statistics,
+            certificate,
+            statistics,
             solve_seconds: start.elapsed().as_secs_f64(),
         };
         Ok(self.finish(engine))
@@ -623,6 +656,7 @@ impl ContactProblem {
             solve_seconds,
         } = engine;
         let certificate = &certificate;
+        let slack = slack.as_deref().unwrap_or(&gaps);
         let n = self.points.len();
         let pressures: Vec<f64> = (0..n).map(|k| forces[k] / self.points.measure(k)).collect();
         let load: f64 = forces.iter().sum();
@@ -692,14 +726,19 @@ impl ContactProblem {
     }
 }
 
+/// A column's values as a vector (the column is freed).
+fn into_vec(col: Col<f64>) -> Vec<f64> {
+    col.iter().copied().collect()
+}
+
 /// The engine's answer at every point, before the solution's reading.
 struct Engine {
     forces: Vec<f64>,
     gaps: Vec<f64>,
     /// The engine's w at every point (the gap, or for a folded problem the
     /// gap over its orbit's s_a): the scaling the certificate's `w_scale`
-    /// measures.
-    slack: Vec<f64>,
+    /// measures. `None` when unfolded: then it is `gaps`.
+    slack: Option<Vec<f64>>,
     /// The free rigid motions, in the order of `Rigid::free`.
     lambda: Vec<f64>,
     certificate: Certificate,
@@ -871,11 +910,27 @@ fn symmetric_rigid<'g>(
     rigid: &Rigid,
 ) -> Option<(&'g Folding, Rigid)> {
     let shifted = shifted(points, separation, rigid);
-    groups.iter().find_map(|f| {
-        let folded = rigid.folded(f, points)?;
-        f.is_invariant(&shifted, SYMMETRY_TOLERANCE)
-            .then_some((f, folded))
-    })
+    groups
+        .iter()
+        .find_map(|f| respected(f, points, &shifted, rigid).map(|r| (f, r)))
+}
+
+/// [`symmetric_rigid`]'s rigid unknowns for a problem solved in full, the
+/// groups detected one at a time ([`Folding::detect_each`]) and none kept.
+fn unfolded_rigid(points: &PointSet, bodies: &[&Body], separation: &[f64], rigid: Rigid) -> Rigid {
+    let shifted = shifted(points, separation, &rigid);
+    Folding::detect_each(points, bodies)
+        .find_map(|f| respected(&f, points, &shifted, &rigid))
+        .unwrap_or(rigid)
+}
+
+/// The rigid unknowns with the rotations odd under `group` dropped, when
+/// the shifted separations and the free rotations respect it.
+fn respected(group: &Folding, points: &PointSet, shifted: &[f64], rigid: &Rigid) -> Option<Rigid> {
+    let folded = rigid.folded(group, points)?;
+    group
+        .is_invariant(shifted, SYMMETRY_TOLERANCE)
+        .then_some(folded)
 }
 
 /// The separations shifted by the prescribed rigid motions (what the

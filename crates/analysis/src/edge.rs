@@ -82,7 +82,7 @@ pub(crate) struct Edge<'a> {
 /// The lattice coordinates of the points, their index, and q.
 struct Grid<'a> {
     lattice: &'a [(i64, i64)],
-    index: HashMap<(i64, i64), usize>,
+    index: LatticeIndex,
     q: i32,
 }
 
@@ -92,7 +92,7 @@ impl<'a> Edge<'a> {
         let grid = match (points.lattice(), law.power()) {
             (Some(lattice), Some(q)) => Some(Grid {
                 lattice,
-                index: lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect(),
+                index: LatticeIndex::new(lattice),
                 q,
             }),
             _ => None,
@@ -106,10 +106,7 @@ impl<'a> Edge<'a> {
 
     /// The point at lattice coordinates `ij`, if it is in contact.
     fn pressed(&self, g: &Grid<'_>, ij: (i64, i64)) -> Option<usize> {
-        g.index
-            .get(&ij)
-            .copied()
-            .filter(|&k| self.pressures[k] > 0.0)
+        g.index.get(ij).filter(|&k| self.pressures[k] > 0.0)
     }
 
     /// How far beyond point k, toward `(di, dj)` (spacing h), `p^q`
@@ -158,7 +155,7 @@ impl<'a> Edge<'a> {
         }
         sides
             .into_iter()
-            .filter(|&(di, dj, _)| !g.index.contains_key(&(i + di, j + dj)))
+            .filter(|&(di, dj, _)| g.index.get((i + di, j + dj)).is_none())
             .any(|(di, dj, h)| self.beyond(g, k, (di, dj), h).is_none_or(|t| t >= 0.5 * h))
     }
 
@@ -232,9 +229,105 @@ impl<'a> Edge<'a> {
     }
 }
 
+/// The point at each lattice coordinate: a table over the lattice's
+/// bounding box (4 bytes a cell; a grid's box holds at most 4/pi cells a
+/// point), or a hash map when the box is far larger than the set.
+enum LatticeIndex {
+    /// `cells[(i - i0) * width + (j - j0)]`, `u32::MAX` where no point is.
+    Table {
+        i0: i64,
+        j0: i64,
+        rows: usize,
+        width: usize,
+        cells: Vec<u32>,
+    },
+    Map(HashMap<(i64, i64), usize>),
+}
+
+impl LatticeIndex {
+    fn new(lattice: &[(i64, i64)]) -> Self {
+        let (mut lo, mut hi) = ((i64::MAX, i64::MAX), (i64::MIN, i64::MIN));
+        for &(i, j) in lattice {
+            lo = (lo.0.min(i), lo.1.min(j));
+            hi = (hi.0.max(i), hi.1.max(j));
+        }
+        let side = |a: i64, b: i64| usize::try_from(b.saturating_sub(a)).ok()?.checked_add(1);
+        let cells = side(lo.0, hi.0)
+            .zip(side(lo.1, hi.1))
+            .and_then(|(r, w)| Some((r, w, r.checked_mul(w)?)));
+        match cells {
+            Some((rows, width, total))
+                if total <= 4 * lattice.len() + 64 && lattice.len() < u32::MAX as usize =>
+            {
+                let mut cells = vec![u32::MAX; total];
+                for (k, &(i, j)) in lattice.iter().enumerate() {
+                    let at = (i - lo.0) as usize * width + (j - lo.1) as usize;
+                    cells[at] = k as u32;
+                }
+                Self::Table {
+                    i0: lo.0,
+                    j0: lo.1,
+                    rows,
+                    width,
+                    cells,
+                }
+            }
+            _ => Self::Map(lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect()),
+        }
+    }
+
+    /// The point at `(i, j)`, if any.
+    fn get(&self, (i, j): (i64, i64)) -> Option<usize> {
+        match self {
+            Self::Table {
+                i0,
+                j0,
+                rows,
+                width,
+                cells,
+            } => {
+                let r = usize::try_from(i.checked_sub(*i0)?).ok()?;
+                let c = usize::try_from(j.checked_sub(*j0)?).ok()?;
+                if r >= *rows || c >= *width {
+                    return None;
+                }
+                let k = cells[r * width + c];
+                (k != u32::MAX).then_some(k as usize)
+            }
+            Self::Map(map) => map.get(&(i, j)).copied(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_lattice_index_is_a_table_on_grids_and_a_map_on_sparse_sets() {
+        let disk = PointSet::grid_disk(1.0, 6.0).unwrap();
+        let lattice = disk.lattice().unwrap();
+        let index = LatticeIndex::new(lattice);
+        assert!(matches!(index, LatticeIndex::Table { .. }));
+        let sparse = [(0, 0), (1000, -1000), (3, 2)];
+        let map = LatticeIndex::new(&sparse);
+        assert!(matches!(map, LatticeIndex::Map(_)));
+        for (index, lattice) in [(&index, lattice), (&map, &sparse[..])] {
+            for (k, &ij) in lattice.iter().enumerate() {
+                assert_eq!(index.get(ij), Some(k));
+            }
+            for absent in [
+                (7, 0),
+                (-7, 0),
+                (6, 6),
+                (i64::MIN, 0),
+                (0, i64::MAX),
+                (1, 1000),
+            ] {
+                assert_eq!(index.get(absent), None, "{absent:?}");
+            }
+        }
+    }
 
     #[test]
     fn an_exact_square_root_profile_gives_its_edge() {
