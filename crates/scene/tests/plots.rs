@@ -77,8 +77,15 @@ fn pressure_svg(text: &str) -> (String, usize, usize) {
     let scene = Scene::from_str(Path::new("plot.toml"), text).unwrap();
     assert_eq!(scene.outputs.plots, vec![Plot::Pressure]);
     let r = run(&scene).unwrap();
-    let dir =
-        std::env::temp_dir().join(format!("elcon-plots-{}-{}", std::process::id(), scene.name));
+    // Each call its own directory: the tests run in parallel, and their
+    // scenes share a name.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!(
+        "elcon-plots-{}-{call}-{}",
+        std::process::id(),
+        scene.name
+    ));
     let written = elcon_scene::write_run(&r, &dir).unwrap();
     let svg = std::fs::read_to_string(written.join("pressure.svg")).unwrap();
     let contact = r.solution.contact.len();
