@@ -257,7 +257,7 @@ fn malformed_scenes_name_file_line_column_and_field() {
             "method",
             "method = \"block-pivoting\"",
             "method = \"simplex\"",
-            "`solver.method` = \"simplex\": unknown method",
+            "`solver.method`: unknown variant `simplex`",
             56,
         ),
     ];

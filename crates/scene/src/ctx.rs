@@ -97,26 +97,88 @@ impl Ctx<'_> {
             .ok_or_else(|| self.invalid(section, field, "(missing)", format!("is required {why}")))
     }
 
-    pub(crate) fn forbid<T>(
+    pub(crate) fn forbid<T: Shown>(
         &self,
         v: &Option<Spanned<T>>,
         field: &str,
         why: &str,
-    ) -> Result<(), SceneError>
-    where
-        T: std::fmt::Debug,
-    {
+    ) -> Result<(), SceneError> {
         match v {
-            Some(s) => Err(self.invalid(
-                s.span(),
-                field,
-                format!("{:?}", s.get_ref()),
-                why.to_string(),
-            )),
+            Some(s) => Err(self.invalid(s.span(), field, s.get_ref().shown(), why.to_string())),
             None => Ok(()),
         }
     }
 }
+
+/// A value as a message about a key that does not belong shows it: a number
+/// as written in Rust (`3.0`), a name quoted as in the file (`"lundberg"`).
+pub(crate) trait Shown {
+    /// The value, printed.
+    fn shown(&self) -> String;
+}
+
+impl Shown for f64 {
+    fn shown(&self) -> String {
+        format!("{self:?}")
+    }
+}
+
+impl Shown for i64 {
+    fn shown(&self) -> String {
+        self.to_string()
+    }
+}
+
+/// Defines an enum of the names a string key takes: deserialized from the
+/// name (an unknown one is serde's "unknown variant `x`, expected one of
+/// ..." error, located and given its key by [`parse`]), with `ALL` in the
+/// order messages list them, `name()`, `of(name)`, `Display` as the name,
+/// and [`Shown`] as the quoted name.
+macro_rules! keywords {
+    (
+        $(#[$meta:meta])*
+        $vis:vis enum $name:ident {
+            $($(#[$vmeta:meta])* $variant:ident = $text:literal,)+
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+        $vis enum $name {
+            $($(#[$vmeta])* #[serde(rename = $text)] $variant,)+
+        }
+
+        impl $name {
+            /// Every name, in the order messages list them.
+            $vis const ALL: [$name; [$($text),+].len()] = [$($name::$variant),+];
+
+            /// The name a scene gives it.
+            $vis fn name(self) -> &'static str {
+                match self {
+                    $($name::$variant => $text,)+
+                }
+            }
+
+            /// The value of a name, if it is one.
+            #[allow(dead_code)]
+            $vis fn of(name: &str) -> Option<Self> {
+                Self::ALL.into_iter().find(|v| v.name() == name)
+            }
+        }
+
+        impl std::fmt::Display for $name {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl $crate::ctx::Shown for $name {
+            fn shown(&self) -> String {
+                format!("\"{}\"", self.name())
+            }
+        }
+    };
+}
+pub(crate) use keywords;
 
 /// A number as a message shows it: as written for everyday magnitudes
 /// (`-30000000`, `0.5`), in scientific notation beyond them (`1e-308`).
@@ -146,7 +208,10 @@ pub(crate) fn parse<T: serde::de::DeserializeOwned>(
         // A value of the wrong type (a number written as a string, say):
         // the parser names the types, not the key; the key is read from the
         // text at the value.
-        let message = match (message.starts_with("invalid type"), key_at(text, offset)) {
+        // Likewise a name that is not one of a key's (`unknown variant`).
+        let about_a_value =
+            message.starts_with("invalid type") || message.starts_with("unknown variant");
+        let message = match (about_a_value, key_at(text, offset)) {
             (true, Some(key)) => format!(
                 "`{key}`: {}",
                 message

@@ -20,8 +20,10 @@ use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
 use crate::schema::{
-    BodyToml, DesignToml, GeometryToml, LoadingToml, PointsToml, SceneFile, SurfaceToml,
+    AxisName, BodyToml, DesignMethodName, DesignToml, EndName, FamilyName, GeometryToml, Grid,
+    LoadingToml, PointsToml, SceneFile, Shape, SolverMethod, SurfaceToml, Symmetry,
 };
+pub use crate::schema::{ModelKind, Plot, RelativeTo};
 use crate::storage::{self, MethodChoice, Storage};
 
 /// The unit labels of a scene (any consistent system; the labels are
@@ -49,68 +51,6 @@ pub struct BodySpec {
     pub body: Body,
     /// The material of a half-space model.
     pub material: Option<Material>,
-}
-
-/// A body's model, as a scene names it in `model = "..."`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ModelKind {
-    /// `"rigid"`.
-    Rigid,
-    /// `"point-force"`: Boussinesq point forces on a half-space (surfaces).
-    PointForce,
-    /// `"uniform-patch"`: Love's uniform pressure patches (surfaces).
-    UniformPatch,
-    /// `"plane-strain"`: 2D strips (lines).
-    PlaneStrain,
-    /// `"winkler"`: a Winkler foundation (either).
-    Winkler,
-    /// `"beam"`: an Euler-Bernoulli beam (lines).
-    Beam,
-}
-
-impl ModelKind {
-    /// Every model, in the order messages list them.
-    pub const ALL: [ModelKind; 6] = [
-        ModelKind::Rigid,
-        ModelKind::PointForce,
-        ModelKind::UniformPatch,
-        ModelKind::PlaneStrain,
-        ModelKind::Winkler,
-        ModelKind::Beam,
-    ];
-
-    /// The name a scene gives it.
-    pub fn name(self) -> &'static str {
-        match self {
-            ModelKind::Rigid => "rigid",
-            ModelKind::PointForce => "point-force",
-            ModelKind::UniformPatch => "uniform-patch",
-            ModelKind::PlaneStrain => "plane-strain",
-            ModelKind::Winkler => "winkler",
-            ModelKind::Beam => "beam",
-        }
-    }
-
-    /// The model of a name, if it is one.
-    pub fn of(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
-    }
-
-    /// A model of a line only (plane-strain strips, a beam).
-    pub fn is_line(self) -> bool {
-        matches!(self, ModelKind::PlaneStrain | ModelKind::Beam)
-    }
-
-    /// A model of a surface only (point forces, uniform patches).
-    pub fn is_surface(self) -> bool {
-        matches!(self, ModelKind::PointForce | ModelKind::UniformPatch)
-    }
-}
-
-impl std::fmt::Display for ModelKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
 }
 
 /// How the candidate points are laid out.
@@ -218,17 +158,6 @@ pub enum DesignFamily {
     },
 }
 
-/// What the design is relative to, per load case.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RelativeTo {
-    /// The worst p_max itself.
-    Absolute,
-    /// p_max over the mean intensity P / (sum of A_k) of each load.
-    Mean,
-    /// p_max over each load's Hertz peak (line contact for a roller).
-    Hertz,
-}
-
 /// A validated `[design]` section.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DesignSpec {
@@ -271,15 +200,6 @@ pub const MAX_MISALIGNMENTS: usize = 100;
 /// The largest misalignment (rad): the rigid rotation is linearized
 /// (`theta x`), which holds to 0.5 % of the angle up to 0.1 rad.
 pub const MAX_MISALIGNMENT: f64 = 0.1;
-
-/// A plot a scene asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Plot {
-    /// Pressure against position, with the closed form overlaid.
-    Pressure,
-    /// Separations and pressures before and after the design.
-    Design,
-}
 
 /// What to write.
 #[derive(Debug, Clone, PartialEq)]
@@ -407,7 +327,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
     let (choice, options) = solver(ctx, raw.solver.as_ref())?;
     sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
-    let fold = symmetry(ctx, raw.solver.as_ref())?;
+    let fold = symmetry(raw.solver.as_ref());
     let scene_bodies = [&bodies[0].body, &bodies[1].body];
     let layout = Layout::of(&points, scene_bodies, &geometry, &loading, fold).ok();
     let (method, storage) = storage::choose(choice, &points, scene_bodies, layout.as_ref(), fold);
@@ -577,23 +497,10 @@ fn grid_fits_models(
 }
 
 /// `solver.symmetry`: "auto" (fold when symmetric, the default) or "none".
-fn symmetry(ctx: &Ctx<'_>, solver: Option<&crate::schema::SolverToml>) -> Result<bool, SceneError> {
-    let fold = match solver.and_then(|s| s.symmetry.as_ref()) {
-        Some(v) => match v.get_ref().as_str() {
-            "auto" => true,
-            "none" => false,
-            other => {
-                return Err(ctx.invalid(
-                    v.span(),
-                    "solver.symmetry",
-                    format!("\"{other}\""),
-                    "one of auto, none",
-                ));
-            }
-        },
-        None => true,
-    };
-    Ok(fold)
+fn symmetry(solver: Option<&crate::schema::SolverToml>) -> bool {
+    solver
+        .and_then(|s| s.symmetry.as_ref())
+        .is_none_or(|v| *v.get_ref() == Symmetry::Auto)
 }
 
 /// The edges of the candidate zone that are the bodies' own: a punch's rim,
@@ -766,41 +673,27 @@ fn units(ctx: &Ctx<'_>, u: &crate::schema::UnitsToml, beam: bool) -> Result<Unit
     })
 }
 
-/// The models a body may have, with the keys each one takes.
-const MODELS: [(&str, &[&str]); 6] = [
-    ("rigid", &[]),
-    ("point-force", &["youngs_modulus", "poissons_ratio"]),
-    ("uniform-patch", &["youngs_modulus", "poissons_ratio"]),
-    (
-        "plane-strain",
-        &["youngs_modulus", "poissons_ratio", "reference_distance"],
-    ),
-    ("winkler", &["modulus"]),
-    (
-        "beam",
-        &[
+/// The keys a body of `model` takes.
+fn model_keys(model: ModelKind) -> &'static [&'static str] {
+    match model {
+        ModelKind::Rigid => &[],
+        ModelKind::PointForce | ModelKind::UniformPatch => &["youngs_modulus", "poissons_ratio"],
+        ModelKind::PlaneStrain => &["youngs_modulus", "poissons_ratio", "reference_distance"],
+        ModelKind::Winkler => &["modulus"],
+        ModelKind::Beam => &[
             "youngs_modulus",
             "second_moment",
             "width",
             "depth",
             "loaded_point",
         ],
-    ),
-];
+    }
+}
 
 fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneError> {
-    let model = b.model.get_ref().as_str();
-    let (Some(kind), Some((_, keys))) = (
-        ModelKind::of(model),
-        MODELS.iter().find(|(m, _)| *m == model),
-    ) else {
-        return Err(ctx.invalid(
-            b.model.span(),
-            format!("{section}.model"),
-            format!("\"{model}\""),
-            "unknown model; one of rigid, point-force, uniform-patch, plane-strain, winkler, beam",
-        ));
-    };
+    let kind = *b.model.get_ref();
+    let model = kind.name();
+    let keys = model_keys(kind);
     let given: [(&str, Option<&Spanned<f64>>); 8] = [
         ("youngs_modulus", b.youngs_modulus.as_ref()),
         ("poissons_ratio", b.poissons_ratio.as_ref()),
@@ -858,17 +751,17 @@ fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneErr
         Material::new(e_value, nu_value)
             .map_err(|err| ctx.invalid(e.span(), field("youngs_modulus"), e_value, err.to_string()))
     };
-    let (body, material) = match model {
-        "rigid" => (Body::rigid(), None),
-        "point-force" => {
+    let (body, material) = match kind {
+        ModelKind::Rigid => (Body::rigid(), None),
+        ModelKind::PointForce => {
             let m = material(ctx)?;
             (Body::point_force(m), Some(m))
         }
-        "uniform-patch" => {
+        ModelKind::UniformPatch => {
             let m = material(ctx)?;
             (Body::uniform_patch(m), Some(m))
         }
-        "plane-strain" => {
+        ModelKind::PlaneStrain => {
             let m = material(ctx)?;
             let d0 = ctx.required(
                 &b.reference_distance,
@@ -881,7 +774,7 @@ fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneErr
                 Some(m),
             )
         }
-        "winkler" => {
+        ModelKind::Winkler => {
             let k = ctx.required(
                 &b.modulus,
                 section_span.clone(),
@@ -890,7 +783,7 @@ fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneErr
             )?;
             (Body::winkler(ctx.positive(k, &field("modulus"))?), None)
         }
-        _ => {
+        ModelKind::Beam => {
             let e = ctx.required(
                 &b.youngs_modulus,
                 section_span.clone(),
@@ -987,27 +880,19 @@ fn points_spec(
     p: &Spanned<PointsToml>,
 ) -> Result<(PointsSpec, Dimension), SceneError> {
     let t = p.get_ref();
-    let grid = t.grid.get_ref().as_str();
+    let grid = *t.grid.get_ref();
     let allowed: &[&str] = match grid {
-        "disk" => &["spacing", "radius", "across", "zone"],
-        "rectangle" => &["half_x", "half_y", "nx", "ny", "zone"],
-        "line" => &["start", "end", "n", "across", "zone"],
-        _ => {
-            return Err(ctx.invalid(
-                t.grid.span(),
-                "points.grid",
-                format!("\"{grid}\""),
-                "unknown grid; one of disk, rectangle, line",
-            ));
-        }
+        Grid::Disk => &["spacing", "radius", "across", "zone"],
+        Grid::Rectangle => &["half_x", "half_y", "nx", "ny", "zone"],
+        Grid::Line => &["start", "end", "n", "across", "zone"],
     };
-    grid_keys(ctx, t, grid, allowed)?;
+    grid_keys(ctx, t, grid.name(), allowed)?;
     let spec = match grid {
-        "disk" => disk_spec(ctx, p)?,
-        "rectangle" => rectangle_spec(ctx, p)?,
-        _ => line_spec(ctx, p)?,
+        Grid::Disk => disk_spec(ctx, p)?,
+        Grid::Rectangle => rectangle_spec(ctx, p)?,
+        Grid::Line => line_spec(ctx, p)?,
     };
-    let dimension = if grid == "line" {
+    let dimension = if grid == Grid::Line {
         Dimension::Line
     } else {
         Dimension::Surface
@@ -1258,7 +1143,6 @@ fn surface(
     dimension: Dimension,
 ) -> Result<Surface, SceneError> {
     let t = s.get_ref();
-    let shape = t.shape.get_ref().as_str();
     let radius = |ctx: &Ctx<'_>| -> Result<f64, SceneError> {
         let r = ctx.required(
             &t.radius,
@@ -1277,8 +1161,8 @@ fn surface(
         }
         Ok(v)
     };
-    match shape {
-        "plane" => {
+    match *t.shape.get_ref() {
+        Shape::Plane => {
             ctx.forbid(
                 &t.radius,
                 &format!("{field}.radius"),
@@ -1286,7 +1170,7 @@ fn surface(
             )?;
             Ok(Surface::Plane)
         }
-        "sphere" => {
+        Shape::Sphere => {
             if dimension == Dimension::Line {
                 return Err(ctx.invalid(
                     t.shape.span(),
@@ -1299,15 +1183,9 @@ fn surface(
                 radius: radius(ctx)?,
             })
         }
-        "cylinder" => Ok(Surface::Cylinder {
+        Shape::Cylinder => Ok(Surface::Cylinder {
             radius: radius(ctx)?,
         }),
-        _ => Err(ctx.invalid(
-            t.shape.span(),
-            format!("{field}.shape"),
-            format!("\"{shape}\""),
-            "unknown shape; one of plane, sphere, cylinder (axis along y)",
-        )),
     }
 }
 
@@ -1598,17 +1476,12 @@ fn solver(
     let Some(s) = s else {
         return Ok((MethodChoice::Auto, options));
     };
-    let method = match &s.method {
-        Some(m) if m.get_ref() == "auto" => MethodChoice::Auto,
-        Some(m) => MethodChoice::Given(Method::from_name(m.get_ref()).ok_or_else(|| {
-            ctx.invalid(
-                m.span(),
-                "solver.method",
-                format!("\"{}\"", m.get_ref()),
-                "unknown method; one of auto, restricted-simplex, lemke, block-pivoting, conjugate-gradient",
-            )
-        })?),
-        None => MethodChoice::Auto,
+    let method = match s.method.as_ref().map(|m| *m.get_ref()) {
+        None | Some(SolverMethod::Auto) => MethodChoice::Auto,
+        Some(SolverMethod::RestrictedSimplex) => MethodChoice::Given(Method::RestrictedSimplex),
+        Some(SolverMethod::Lemke) => MethodChoice::Given(Method::Lemke),
+        Some(SolverMethod::BlockPivoting) => MethodChoice::Given(Method::BlockPivoting),
+        Some(SolverMethod::ConjugateGradient) => MethodChoice::Given(Method::ConjugateGradient),
     };
     if let Some(p) = &s.max_pivots {
         options.max_pivots = Some(ctx.count(p, "solver.max_pivots", 1)?);
@@ -1657,7 +1530,7 @@ fn design(
             "a design evens the pressure under a load: use loading.load",
         ));
     };
-    let family_name = t.family.get_ref().as_str();
+    let family_name = *t.family.get_ref();
     design_keys(ctx, t, family_name)?;
     let flat = match &t.flat_length {
         Some(f) => {
@@ -1704,18 +1577,18 @@ fn design(
 
 /// The keys of `[design]` that belong to other families than `family_name`
 /// are refused, naming the key and the family it belongs to.
-fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: &str) -> Result<(), SceneError> {
+fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: FamilyName) -> Result<(), SceneError> {
     let only = |v: &Option<Spanned<f64>>, field: &str, fam: &str| {
         ctx.forbid(v, field, &format!("only for family = \"{fam}\""))
     };
-    if family_name != "polynomial" {
+    if family_name != FamilyName::Polynomial {
         ctx.forbid(
             &t.degree,
             "design.degree",
             "only for family = \"polynomial\"",
         )?;
     }
-    if family_name != "circular-crown"
+    if family_name != FamilyName::CircularCrown
         && let Some(r) = &t.radius_range
     {
         return Err(ctx.invalid(
@@ -1725,7 +1598,7 @@ fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: &str) -> Result<(), S
             "only for family = \"circular-crown\"",
         ));
     }
-    if family_name != "logarithmic-crown" {
+    if family_name != FamilyName::LogarithmicCrown {
         only(&t.design_load, "design.design_load", "logarithmic-crown")?;
         ctx.forbid(
             &t.end,
@@ -1733,7 +1606,10 @@ fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: &str) -> Result<(), S
             "only for family = \"logarithmic-crown\"",
         )?;
     }
-    if !matches!(family_name, "circular-crown" | "logarithmic-crown") {
+    if !matches!(
+        family_name,
+        FamilyName::CircularCrown | FamilyName::LogarithmicCrown
+    ) {
         ctx.forbid(&t.flat_length, "design.flat_length", "only for the crowns")?;
     } else {
         ctx.forbid(
@@ -1749,7 +1625,7 @@ fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: &str) -> Result<(), S
 fn design_family(
     ctx: &Ctx<'_>,
     t: &DesignToml,
-    family_name: &str,
+    family_name: FamilyName,
     flat: f64,
     loads: &[f64],
     scene: &DesignContext<'_>,
@@ -1761,9 +1637,9 @@ fn design_family(
         ..
     } = *scene;
     Ok(match family_name {
-        "quadratic" => DesignFamily::Linear(Family::Quadratic),
-        "free" => DesignFamily::Linear(Family::Free),
-        "polynomial" => {
+        FamilyName::Quadratic => DesignFamily::Linear(Family::Quadratic),
+        FamilyName::Free => DesignFamily::Linear(Family::Free),
+        FamilyName::Polynomial => {
             let deg = ctx.required(
                 &t.degree,
                 t.family.span(),
@@ -1774,7 +1650,7 @@ fn design_family(
                 degree: ctx.count(deg, "design.degree", 0)?,
             })
         }
-        "circular-crown" => {
+        FamilyName::CircularCrown => {
             let (lo, hi) = match &t.radius_range {
                 Some(r) => {
                     let v = r.get_ref();
@@ -1812,7 +1688,7 @@ fn design_family(
                 flat_length: flat,
             }
         }
-        "logarithmic-crown" => {
+        FamilyName::LogarithmicCrown => {
             let q = match &t.design_load {
                 Some(q) => ctx.positive(q, "design.design_load")?,
                 None => loads.iter().cloned().fold(0.0, f64::max),
@@ -1836,16 +1712,8 @@ fn design_family(
             DesignFamily::LogarithmicCrown {
                 design_load: q,
                 flat_length: flat,
-                end: log_end(ctx, t)?,
+                end: log_end(t),
             }
-        }
-        other => {
-            return Err(ctx.invalid(
-                t.family.span(),
-                "design.family",
-                format!("\"{other}\""),
-                "unknown family; one of quadratic, polynomial, free, circular-crown, logarithmic-crown",
-            ));
         }
     })
 }
@@ -1858,17 +1726,9 @@ fn design_axis(
 ) -> Result<Axis, SceneError> {
     let t = d.get_ref();
     let axis = match &t.axis {
-        Some(a) => match a.get_ref().as_str() {
-            "x" => Axis::X,
-            "y" => Axis::Y,
-            other => {
-                return Err(ctx.invalid(
-                    a.span(),
-                    "design.axis",
-                    format!("\"{other}\""),
-                    "one of x, y",
-                ));
-            }
+        Some(a) => match a.get_ref() {
+            AxisName::X => Axis::X,
+            AxisName::Y => Axis::Y,
         },
         None if dimension == Dimension::Line => Axis::X,
         None => Axis::Y,
@@ -1894,22 +1754,10 @@ fn design_relative_to(
         ..
     } = *scene;
     let t = d.get_ref();
-    let relative_to = match &t.relative_to {
-        Some(r) => match r.get_ref().as_str() {
-            "absolute" => RelativeTo::Absolute,
-            "mean" => RelativeTo::Mean,
-            "hertz" => RelativeTo::Hertz,
-            other => {
-                return Err(ctx.invalid(
-                    r.span(),
-                    "design.relative_to",
-                    format!("\"{other}\""),
-                    "one of absolute, mean, hertz",
-                ));
-            }
-        },
-        None => RelativeTo::Absolute,
-    };
+    let relative_to = t
+        .relative_to
+        .as_ref()
+        .map_or(RelativeTo::Absolute, |r| *r.get_ref());
     if relative_to == RelativeTo::Hertz
         && let Some(&load) = loads
             .iter()
@@ -1932,19 +1780,10 @@ fn design_relative_to(
 
 /// `design.end` of a logarithmic crown: "johns-gohar" (the default) or
 /// "lundberg".
-fn log_end(ctx: &Ctx<'_>, t: &DesignToml) -> Result<LogEnd, SceneError> {
-    let Some(e) = &t.end else {
-        return Ok(LogEnd::JohnsGohar);
-    };
-    match e.get_ref().as_str() {
-        "johns-gohar" => Ok(LogEnd::JohnsGohar),
-        "lundberg" => Ok(LogEnd::Lundberg),
-        other => Err(ctx.invalid(
-            e.span(),
-            "design.end",
-            format!("\"{other}\""),
-            "one of johns-gohar, lundberg",
-        )),
+fn log_end(t: &DesignToml) -> LogEnd {
+    match t.end.as_ref().map(|e| *e.get_ref()) {
+        None | Some(EndName::JohnsGohar) => LogEnd::JohnsGohar,
+        Some(EndName::Lundberg) => LogEnd::Lundberg,
     }
 }
 
@@ -1965,13 +1804,10 @@ fn design_method(
             "only for the families quadratic, polynomial and free (a crown is searched or set)",
         ));
     }
-    DesignMethod::of(m.get_ref()).ok_or_else(|| {
-        ctx.invalid(
-            m.span(),
-            "design.method",
-            format!("\"{}\"", m.get_ref()),
-            "one of auto, program, descent",
-        )
+    Ok(match m.get_ref() {
+        DesignMethodName::Auto => DesignMethod::Auto,
+        DesignMethodName::Program => DesignMethod::Program,
+        DesignMethodName::Descent => DesignMethod::Descent,
     })
 }
 
@@ -2026,26 +1862,15 @@ fn outputs(
     }
     if let Some(plots) = &o.plots {
         for p in plots.get_ref() {
-            let plot = match p.get_ref().as_str() {
-                "pressure" => Plot::Pressure,
-                "design" if has_design => Plot::Design,
-                "design" => {
-                    return Err(ctx.invalid(
-                        p.span(),
-                        "outputs.plots",
-                        "\"design\"",
-                        "needs a [design] section",
-                    ));
-                }
-                other => {
-                    return Err(ctx.invalid(
-                        p.span(),
-                        "outputs.plots",
-                        format!("\"{other}\""),
-                        "one of pressure, design",
-                    ));
-                }
-            };
+            let plot = *p.get_ref();
+            if plot == Plot::Design && !has_design {
+                return Err(ctx.invalid(
+                    p.span(),
+                    "outputs.plots",
+                    "\"design\"",
+                    "needs a [design] section",
+                ));
+            }
             if !out.plots.contains(&plot) {
                 out.plots.push(plot);
             }

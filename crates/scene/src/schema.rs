@@ -5,6 +5,158 @@
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::ctx::keywords;
+
+keywords! {
+    /// A body's model, as a scene names it in `model = "..."`.
+    pub enum ModelKind {
+        /// `"rigid"`.
+        Rigid = "rigid",
+        /// `"point-force"`: Boussinesq point forces on a half-space (surfaces).
+        PointForce = "point-force",
+        /// `"uniform-patch"`: Love's uniform pressure patches (surfaces).
+        UniformPatch = "uniform-patch",
+        /// `"plane-strain"`: 2D strips (lines).
+        PlaneStrain = "plane-strain",
+        /// `"winkler"`: a Winkler foundation (either).
+        Winkler = "winkler",
+        /// `"beam"`: an Euler-Bernoulli beam (lines).
+        Beam = "beam",
+    }
+}
+
+impl ModelKind {
+    /// A model of a line only (plane-strain strips, a beam).
+    pub fn is_line(self) -> bool {
+        matches!(self, ModelKind::PlaneStrain | ModelKind::Beam)
+    }
+
+    /// A model of a surface only (point forces, uniform patches).
+    pub fn is_surface(self) -> bool {
+        matches!(self, ModelKind::PointForce | ModelKind::UniformPatch)
+    }
+}
+
+keywords! {
+    /// A surface's `shape`.
+    pub(crate) enum Shape {
+        /// `"plane"`.
+        Plane = "plane",
+        /// `"sphere"`.
+        Sphere = "sphere",
+        /// `"cylinder"` (axis along y).
+        Cylinder = "cylinder",
+    }
+}
+
+keywords! {
+    /// `points.grid`.
+    pub(crate) enum Grid {
+        /// `"disk"`.
+        Disk = "disk",
+        /// `"rectangle"`.
+        Rectangle = "rectangle",
+        /// `"line"`.
+        Line = "line",
+    }
+}
+
+keywords! {
+    /// `solver.method`: "auto" or one of the engine's methods.
+    pub(crate) enum SolverMethod {
+        /// `"auto"`: chosen by the problem's size (see `storage`).
+        Auto = "auto",
+        /// `"restricted-simplex"`.
+        RestrictedSimplex = "restricted-simplex",
+        /// `"lemke"`.
+        Lemke = "lemke",
+        /// `"block-pivoting"`.
+        BlockPivoting = "block-pivoting",
+        /// `"conjugate-gradient"`.
+        ConjugateGradient = "conjugate-gradient",
+    }
+}
+
+keywords! {
+    /// `solver.symmetry`.
+    pub(crate) enum Symmetry {
+        /// `"auto"`: fold a mirror-symmetric problem.
+        Auto = "auto",
+        /// `"none"`: never fold.
+        None = "none",
+    }
+}
+
+keywords! {
+    /// `design.family`.
+    pub(crate) enum FamilyName {
+        /// `"quadratic"`.
+        Quadratic = "quadratic",
+        /// `"polynomial"` (with `degree`).
+        Polynomial = "polynomial",
+        /// `"free"`.
+        Free = "free",
+        /// `"circular-crown"` (with `radius_range`).
+        CircularCrown = "circular-crown",
+        /// `"logarithmic-crown"`.
+        LogarithmicCrown = "logarithmic-crown",
+    }
+}
+
+keywords! {
+    /// `design.axis`.
+    pub(crate) enum AxisName {
+        /// `"x"`.
+        X = "x",
+        /// `"y"`.
+        Y = "y",
+    }
+}
+
+keywords! {
+    /// What the design is relative to, per load case.
+    pub enum RelativeTo {
+        /// `"absolute"`: the worst p_max itself.
+        Absolute = "absolute",
+        /// `"mean"`: p_max over the mean intensity P / (sum of A_k) of each load.
+        Mean = "mean",
+        /// `"hertz"`: p_max over each load's Hertz peak (line contact for a roller).
+        Hertz = "hertz",
+    }
+}
+
+keywords! {
+    /// `design.method`.
+    pub(crate) enum DesignMethodName {
+        /// `"auto"`.
+        Auto = "auto",
+        /// `"program"`.
+        Program = "program",
+        /// `"descent"`.
+        Descent = "descent",
+    }
+}
+
+keywords! {
+    /// `design.end` of a logarithmic crown.
+    pub(crate) enum EndName {
+        /// `"johns-gohar"`: Johns & Gohar's finite end drop.
+        JohnsGohar = "johns-gohar",
+        /// `"lundberg"`: Lundberg's end.
+        Lundberg = "lundberg",
+    }
+}
+
+keywords! {
+    /// A plot a scene asks for.
+    pub enum Plot {
+        /// `"pressure"`: pressure against position, with the closed form overlaid.
+        Pressure = "pressure",
+        /// `"design"`: separations and pressures before and after the design.
+        Design = "design",
+    }
+}
+
 /// A scene file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -42,7 +194,7 @@ pub(crate) struct UnitsToml {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct BodyToml {
-    pub model: Spanned<String>,
+    pub model: Spanned<ModelKind>,
     pub youngs_modulus: Option<Spanned<f64>>,
     pub poissons_ratio: Option<Spanned<f64>>,
     pub reference_distance: Option<Spanned<f64>>,
@@ -66,7 +218,7 @@ pub(crate) struct GeometryToml {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct SurfaceToml {
-    pub shape: Spanned<String>,
+    pub shape: Spanned<Shape>,
     pub radius: Option<Spanned<f64>>,
 }
 
@@ -74,7 +226,7 @@ pub(crate) struct SurfaceToml {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct PointsToml {
-    pub grid: Spanned<String>,
+    pub grid: Spanned<Grid>,
     pub spacing: Option<Spanned<f64>>,
     pub radius: Option<Spanned<f64>>,
     pub across: Option<Spanned<i64>>,
@@ -104,28 +256,28 @@ pub(crate) struct LoadingToml {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct SolverToml {
-    pub method: Option<Spanned<String>>,
+    pub method: Option<Spanned<SolverMethod>>,
     pub max_pivots: Option<Spanned<i64>>,
     pub certificate_tolerance: Option<Spanned<f64>>,
     pub refinement_steps: Option<Spanned<i64>>,
-    pub symmetry: Option<Spanned<String>>,
+    pub symmetry: Option<Spanned<Symmetry>>,
 }
 
 /// `[design]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct DesignToml {
-    pub family: Spanned<String>,
+    pub family: Spanned<FamilyName>,
     pub degree: Option<Spanned<i64>>,
-    pub axis: Option<Spanned<String>>,
+    pub axis: Option<Spanned<AxisName>>,
     pub loads: Option<Spanned<Vec<Spanned<f64>>>>,
-    pub relative_to: Option<Spanned<String>>,
+    pub relative_to: Option<Spanned<RelativeTo>>,
     pub max_constant: Option<Spanned<f64>>,
     pub radius_range: Option<Spanned<Vec<Spanned<f64>>>>,
     pub flat_length: Option<Spanned<f64>>,
     pub design_load: Option<Spanned<f64>>,
-    pub method: Option<Spanned<String>>,
-    pub end: Option<Spanned<String>>,
+    pub method: Option<Spanned<DesignMethodName>>,
+    pub end: Option<Spanned<EndName>>,
     pub misalignments: Option<Spanned<Vec<Spanned<f64>>>>,
 }
 
@@ -133,7 +285,7 @@ pub(crate) struct DesignToml {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct OutputsToml {
-    pub plots: Option<Spanned<Vec<Spanned<String>>>>,
+    pub plots: Option<Spanned<Vec<Spanned<Plot>>>>,
     pub pressure_csv: Option<bool>,
 }
 

@@ -269,8 +269,9 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
     ));
     let e = scene(&format!("{ROLLER}{crown}end = \"hyperbolic\"\n")).unwrap_err();
     assert!(
-        e.to_string()
-            .contains("`design.end` = \"hyperbolic\": one of johns-gohar, lundberg"),
+        e.to_string().contains(
+            "`design.end`: unknown variant `hyperbolic`, expected `johns-gohar` or `lundberg`"
+        ),
         "{e}"
     );
     let e = scene(&format!(
@@ -307,4 +308,52 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
             "grid = \"disk\"\nspacing = 0.1\nradius = 0.5"
         )
     ));
+}
+
+#[test]
+fn a_name_a_key_does_not_take_is_refused_with_the_names_it_takes() {
+    let design = "\n[design]\nfamily = \"quadratic\"\n";
+    let cases = [
+        (
+            BASE.replace("model = \"rigid\"", "model = \"elastic\""),
+            "12:9: `body2.model`: unknown variant `elastic`, expected one of `rigid`, `point-force`",
+        ),
+        (
+            BASE.replace("shape = \"sphere\"", "shape = \"cube\""),
+            "15:22: `geometry.surface1.shape`: unknown variant `cube`, expected one of `plane`",
+        ),
+        (
+            BASE.replace("grid = \"disk\"", "grid = \"hexagon\""),
+            "18:8: `points.grid`: unknown variant `hexagon`, expected one of `disk`, `rectangle`, `line`",
+        ),
+        (
+            format!("{BASE}\n[solver]\nsymmetry = \"mirror\"\n"),
+            "26:12: `solver.symmetry`: unknown variant `mirror`, expected `auto` or `none`",
+        ),
+        (
+            format!("{BASE}\n[design]\nfamily = \"cubic\"\n"),
+            "26:10: `design.family`: unknown variant `cubic`, expected one of `quadratic`",
+        ),
+        (
+            format!("{BASE}{design}axis = \"z\"\n"),
+            "27:8: `design.axis`: unknown variant `z`, expected `x` or `y`",
+        ),
+        (
+            format!("{BASE}{design}relative_to = \"peak\"\n"),
+            "27:15: `design.relative_to`: unknown variant `peak`, expected one of `absolute`",
+        ),
+        (
+            format!("{BASE}\n[outputs]\nplots = [\"pressure\", \"contour\"]\n"),
+            "26:22: `outputs.plots`: unknown variant `contour`, expected `pressure` or `design`",
+        ),
+    ];
+    for (text, message) in cases {
+        let e = scene(&text).unwrap_err();
+        assert!(matches!(e, SceneError::Syntax { .. }), "{e}");
+        assert!(e.is_input_error());
+        assert!(
+            e.to_string().starts_with(&format!("test.toml:{message}")),
+            "{message}: {e}"
+        );
+    }
 }

@@ -138,7 +138,7 @@ method = "fastest"
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("`solver.method`") && e.contains("one of auto,"),
+        e.contains("`solver.method`: unknown variant `fastest`, expected one of `auto`,"),
         "{e}"
     );
 }

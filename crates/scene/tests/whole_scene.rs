@@ -223,10 +223,17 @@ fn design_cases_and_the_constant_are_bounded() {
         "design.misalignments[1]",
         "at most 0.1 rad",
     );
-    refused(
-        &format!("{BEAM}\n[design]\nfamily = \"quadratic\"\nmethod = \"newton\"\n"),
-        "design.method",
-        "one of auto, program, descent",
+    // An unknown name is refused by the parser, with the names it takes.
+    let e = scene(&format!(
+        "{BEAM}\n[design]\nfamily = \"quadratic\"\nmethod = \"newton\"\n"
+    ))
+    .unwrap_err();
+    assert!(matches!(e, SceneError::Syntax { .. }), "{e}");
+    assert!(
+        e.to_string().contains(
+            "`design.method`: unknown variant `newton`, expected one of `auto`, `program`, `descent`"
+        ),
+        "{e}"
     );
     refused(
         &format!(
