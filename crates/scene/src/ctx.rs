@@ -97,6 +97,35 @@ impl Ctx<'_> {
             .ok_or_else(|| self.invalid(section, field, "(missing)", format!("is required {why}")))
     }
 
+    /// Every key given in `section` must be one that `owner` (a model, a
+    /// grid) takes: `given` is each key present, with its span and its
+    /// value as the message shows it ("" for none); the first that `owner`
+    /// does not take is refused, naming what it does take.
+    pub(crate) fn allowed_keys<'k>(
+        &self,
+        section: &str,
+        owner: &str,
+        allowed: &[&str],
+        given: impl IntoIterator<Item = (&'k str, Range<usize>, String)>,
+    ) -> Result<(), SceneError> {
+        for (key, span, value) in given {
+            if !allowed.contains(&key) {
+                let takes = if allowed.is_empty() {
+                    "it takes none".to_string()
+                } else {
+                    format!("it takes: {}", allowed.join(", "))
+                };
+                return Err(self.invalid(
+                    span,
+                    format!("{section}.{key}"),
+                    value,
+                    format!("is not a parameter of {owner} ({takes})"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     pub(crate) fn forbid<T: Shown>(
         &self,
         v: &Option<Spanned<T>>,

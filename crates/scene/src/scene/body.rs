@@ -1,0 +1,159 @@
+//! `[body1]`, `[body2]`: a body's model and the parameters that model
+//! takes, checked against their physical ranges, into an elcon-influence
+//! [`Body`] (and the material the references need).
+
+use elcon_influence::{Body, Material};
+use toml::Spanned;
+
+use crate::ctx::Ctx;
+use crate::error::SceneError;
+use crate::schema::BodyToml;
+pub use crate::schema::ModelKind;
+
+/// One body of a scene: the influence model and, for the half-space
+/// models, the material (the references need it).
+#[derive(Debug, Clone)]
+pub struct BodySpec {
+    /// The model (`body.model`).
+    pub model: ModelKind,
+    /// The body for elcon-influence.
+    pub body: Body,
+    /// The material of a half-space model.
+    pub material: Option<Material>,
+}
+
+/// The keys a body of `model` takes.
+fn model_keys(model: ModelKind) -> &'static [&'static str] {
+    match model {
+        ModelKind::Rigid => &[],
+        ModelKind::PointForce | ModelKind::UniformPatch => &["youngs_modulus", "poissons_ratio"],
+        ModelKind::PlaneStrain => &["youngs_modulus", "poissons_ratio", "reference_distance"],
+        ModelKind::Winkler => &["modulus"],
+        ModelKind::Beam => &[
+            "youngs_modulus",
+            "second_moment",
+            "width",
+            "depth",
+            "loaded_point",
+        ],
+    }
+}
+
+pub(super) fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpec, SceneError> {
+    let kind = *b.model.get_ref();
+    let model = kind.name();
+    let keys = model_keys(kind);
+    let given: [(&str, Option<&Spanned<f64>>); 8] = [
+        ("youngs_modulus", b.youngs_modulus.as_ref()),
+        ("poissons_ratio", b.poissons_ratio.as_ref()),
+        ("reference_distance", b.reference_distance.as_ref()),
+        ("modulus", b.modulus.as_ref()),
+        ("second_moment", b.second_moment.as_ref()),
+        ("width", b.width.as_ref()),
+        ("depth", b.depth.as_ref()),
+        ("loaded_point", b.loaded_point.as_ref()),
+    ];
+    ctx.allowed_keys(
+        section,
+        &format!("the {model} model"),
+        keys,
+        given
+            .into_iter()
+            .filter_map(|(k, v)| v.map(|v| (k, v.span(), v.get_ref().to_string()))),
+    )?;
+    let section_span = b.model.span();
+    let field = |k: &str| format!("{section}.{k}");
+    let material = |ctx: &Ctx<'_>| -> Result<Material, SceneError> {
+        let e = ctx.required(
+            &b.youngs_modulus,
+            section_span.clone(),
+            &field("youngs_modulus"),
+            "by this model",
+        )?;
+        let nu = ctx.required(
+            &b.poissons_ratio,
+            section_span.clone(),
+            &field("poissons_ratio"),
+            "by this model",
+        )?;
+        let e_value = ctx.positive(e, &field("youngs_modulus"))?;
+        let nu_value = *nu.get_ref();
+        if !(nu_value.is_finite() && nu_value > -1.0 && nu_value < 0.5) {
+            return Err(ctx.invalid(
+                nu.span(),
+                field("poissons_ratio"),
+                nu_value,
+                "must be in (-1, 0.5): outside it the elastic energy is not positive definite",
+            ));
+        }
+        Material::new(e_value, nu_value)
+            .map_err(|err| ctx.invalid(e.span(), field("youngs_modulus"), e_value, err.to_string()))
+    };
+    let (body, material) = match kind {
+        ModelKind::Rigid => (Body::rigid(), None),
+        ModelKind::PointForce => {
+            let m = material(ctx)?;
+            (Body::point_force(m), Some(m))
+        }
+        ModelKind::UniformPatch => {
+            let m = material(ctx)?;
+            (Body::uniform_patch(m), Some(m))
+        }
+        ModelKind::PlaneStrain => {
+            let m = material(ctx)?;
+            let d0 = ctx.required(
+                &b.reference_distance,
+                section_span.clone(),
+                &field("reference_distance"),
+                "by the plane-strain model (the datum distance d0 of the 2D displacements)",
+            )?;
+            (
+                Body::plane_strain(m, ctx.positive(d0, &field("reference_distance"))?),
+                Some(m),
+            )
+        }
+        ModelKind::Winkler => {
+            let k = ctx.required(
+                &b.modulus,
+                section_span.clone(),
+                &field("modulus"),
+                "by the Winkler model",
+            )?;
+            (Body::winkler(ctx.positive(k, &field("modulus"))?), None)
+        }
+        ModelKind::Beam => {
+            let e = ctx.required(
+                &b.youngs_modulus,
+                section_span.clone(),
+                &field("youngs_modulus"),
+                "by the beam model",
+            )?;
+            let e = ctx.positive(e, &field("youngs_modulus"))?;
+            let i = match (&b.second_moment, &b.width, &b.depth) {
+                (Some(i), None, None) => ctx.positive(i, &field("second_moment"))?,
+                (None, Some(w), Some(d)) => {
+                    ctx.positive(w, &field("width"))? * ctx.positive(d, &field("depth"))?.powi(3)
+                        / 12.0
+                }
+                _ => {
+                    return Err(ctx.invalid(
+                        section_span,
+                        field("second_moment"),
+                        "",
+                        "give either second_moment, or width and depth (a rectangular section, I = w d^3 / 12)",
+                    ));
+                }
+            };
+            let x0 = match &b.loaded_point {
+                Some(v) => ctx.finite(v, &field("loaded_point"))?,
+                None => 0.0,
+            };
+            (Body::beam(e, i, x0), None)
+        }
+    };
+    Ok(BodySpec {
+        model: kind,
+        body,
+        material,
+    })
+}

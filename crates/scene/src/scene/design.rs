@@ -1,0 +1,431 @@
+//! `[design]`: the profile family and its own keys, the load cases and
+//! misalignments, the axis, what the design is relative to and how a
+//! linear family's problem is solved, checked against the scene's bodies,
+//! grid and surfaces (elcon-design).
+
+use elcon_analysis::{Geometry, Loading, Normal};
+use elcon_design::{Axis, DesignMethod, Family, LogEnd};
+use elcon_influence::Dimension;
+use toml::Spanned;
+
+use super::body::BodySpec;
+use super::hertz::{Hertz, hertz};
+use super::points::PointsSpec;
+use crate::ctx::Ctx;
+use crate::error::SceneError;
+pub use crate::schema::RelativeTo;
+use crate::schema::{AxisName, DesignMethodName, DesignToml, EndName, FamilyName};
+
+/// The profile family of a design section.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DesignFamily {
+    /// A family linear in its parameters (quadratic, polynomial, free).
+    Linear(Family),
+    /// A circular crown, its radius searched in `radius_range`.
+    CircularCrown {
+        /// The search bracket (length).
+        radius_range: (f64, f64),
+        /// Flat middle (length).
+        flat_length: f64,
+    },
+    /// A logarithmic crown (Johns-Gohar) for `design_load`.
+    LogarithmicCrown {
+        /// The design load (force; default the largest load).
+        design_load: f64,
+        /// Flat middle (length).
+        flat_length: f64,
+        /// Lundberg's end, or Johns & Gohar's finite end drop (the default).
+        end: LogEnd,
+    },
+}
+
+/// A validated `[design]` section.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DesignSpec {
+    /// The family.
+    pub family: DesignFamily,
+    /// The axial coordinate.
+    pub axis: Axis,
+    /// The load cases (force).
+    pub loads: Vec<f64>,
+    /// The reference intensities.
+    pub relative_to: RelativeTo,
+    /// The bound c_max (length), if given.
+    pub max_constant: Option<f64>,
+    /// How a linear family's problem is solved (`design.method`).
+    pub method: DesignMethod,
+    /// Misalignments (rad): every load is a case at each, a prescribed
+    /// rotation about the axis across the profile (`tilt_x` when the
+    /// profile runs along y, `tilt_y` along x); empty: the loads alone,
+    /// their rotations free without a moment.
+    pub misalignments: Vec<f64>,
+}
+
+impl DesignSpec {
+    /// The design's load cases: each load at each misalignment (or alone).
+    pub fn case_loadings(&self) -> Vec<(f64, Option<f64>)> {
+        let angles: Vec<Option<f64>> = if self.misalignments.is_empty() {
+            vec![None]
+        } else {
+            self.misalignments.iter().copied().map(Some).collect()
+        };
+        self.loads
+            .iter()
+            .flat_map(|&load| angles.iter().map(move |&a| (load, a)))
+            .collect()
+    }
+}
+
+/// Misalignments a design takes at most (each load is a case at each).
+pub const MAX_MISALIGNMENTS: usize = 100;
+/// The largest misalignment (rad): the rigid rotation is linearized
+/// (`theta x`), which holds to 0.5 % of the angle up to 0.1 rad.
+pub const MAX_MISALIGNMENT: f64 = 0.1;
+
+/// The scene's parts a `[design]` section is checked against.
+pub(super) struct DesignContext<'a> {
+    /// The scene's loading (a design needs a load).
+    pub(super) loading: Loading,
+    /// The grid's dimension.
+    pub(super) dimension: Dimension,
+    /// The two bodies.
+    pub(super) bodies: &'a [BodySpec; 2],
+    /// The surfaces or the separation.
+    pub(super) geometry: &'a Geometry,
+    /// The point layout.
+    pub(super) points_spec: &'a PointsSpec,
+}
+
+pub(super) fn design(
+    ctx: &Ctx<'_>,
+    d: &Spanned<DesignToml>,
+    scene: &DesignContext<'_>,
+) -> Result<DesignSpec, SceneError> {
+    let DesignContext {
+        loading, dimension, ..
+    } = *scene;
+    let t = d.get_ref();
+    let Normal::Load(load) = loading.normal else {
+        return Err(ctx.invalid(
+            d.span(),
+            "design",
+            "",
+            "a design evens the pressure under a load: use loading.load",
+        ));
+    };
+    let family_name = *t.family.get_ref();
+    design_keys(ctx, t, family_name)?;
+    let flat = match &t.flat_length {
+        Some(f) => {
+            let v = ctx.finite(f, "design.flat_length")?;
+            if v < 0.0 {
+                return Err(ctx.invalid(f.span(), "design.flat_length", v, "must be >= 0"));
+            }
+            v
+        }
+        None => 0.0,
+    };
+    let loads = match &t.loads {
+        Some(l) => {
+            if l.get_ref().is_empty() {
+                return Err(ctx.invalid(l.span(), "design.loads", "[]", "give at least one load"));
+            }
+            l.get_ref()
+                .iter()
+                .enumerate()
+                .map(|(i, v)| ctx.positive(v, &format!("design.loads[{i}]")))
+                .collect::<Result<Vec<f64>, _>>()?
+        }
+        None => vec![load],
+    };
+    let family = design_family(ctx, t, family_name, flat, &loads, scene)?;
+    let axis = design_axis(ctx, d, dimension)?;
+    let relative_to = design_relative_to(ctx, d, &loads, scene)?;
+    let max_constant = match &t.max_constant {
+        Some(c) => Some(ctx.positive(c, "design.max_constant")?),
+        None => None,
+    };
+    let method = design_method(ctx, t, &family)?;
+    let misalignments = misalignments(ctx, t)?;
+    Ok(DesignSpec {
+        family,
+        axis,
+        loads,
+        relative_to,
+        max_constant,
+        method,
+        misalignments,
+    })
+}
+
+/// The keys of `[design]` that belong to other families than `family_name`
+/// are refused, naming the key and the family it belongs to.
+fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: FamilyName) -> Result<(), SceneError> {
+    let only = |v: &Option<Spanned<f64>>, field: &str, fam: &str| {
+        ctx.forbid(v, field, &format!("only for family = \"{fam}\""))
+    };
+    if family_name != FamilyName::Polynomial {
+        ctx.forbid(
+            &t.degree,
+            "design.degree",
+            "only for family = \"polynomial\"",
+        )?;
+    }
+    if family_name != FamilyName::CircularCrown
+        && let Some(r) = &t.radius_range
+    {
+        return Err(ctx.invalid(
+            r.span(),
+            "design.radius_range",
+            "",
+            "only for family = \"circular-crown\"",
+        ));
+    }
+    if family_name != FamilyName::LogarithmicCrown {
+        only(&t.design_load, "design.design_load", "logarithmic-crown")?;
+        ctx.forbid(
+            &t.end,
+            "design.end",
+            "only for family = \"logarithmic-crown\"",
+        )?;
+    }
+    if !matches!(
+        family_name,
+        FamilyName::CircularCrown | FamilyName::LogarithmicCrown
+    ) {
+        ctx.forbid(&t.flat_length, "design.flat_length", "only for the crowns")?;
+    } else {
+        ctx.forbid(
+            &t.max_constant,
+            "design.max_constant",
+            "only for the polynomial families",
+        )?;
+    }
+    Ok(())
+}
+
+/// The family of `[design]`, its own keys checked.
+fn design_family(
+    ctx: &Ctx<'_>,
+    t: &DesignToml,
+    family_name: FamilyName,
+    flat: f64,
+    loads: &[f64],
+    scene: &DesignContext<'_>,
+) -> Result<DesignFamily, SceneError> {
+    let DesignContext {
+        bodies,
+        geometry,
+        points_spec,
+        ..
+    } = *scene;
+    Ok(match family_name {
+        FamilyName::Quadratic => DesignFamily::Linear(Family::Quadratic),
+        FamilyName::Free => DesignFamily::Linear(Family::Free),
+        FamilyName::Polynomial => {
+            let deg = ctx.required(
+                &t.degree,
+                t.family.span(),
+                "design.degree",
+                "for family = \"polynomial\"",
+            )?;
+            DesignFamily::Linear(Family::Polynomial {
+                degree: ctx.count(deg, "design.degree", 0)?,
+            })
+        }
+        FamilyName::CircularCrown => {
+            let (lo, hi) = match &t.radius_range {
+                Some(r) => {
+                    let v = r.get_ref();
+                    if v.len() != 2 {
+                        return Err(ctx.invalid(
+                            r.span(),
+                            "design.radius_range",
+                            format!("{} values", v.len()),
+                            "give [smallest, largest] radius",
+                        ));
+                    }
+                    let lo = ctx.positive(&v[0], "design.radius_range[0]")?;
+                    let hi = ctx.positive(&v[1], "design.radius_range[1]")?;
+                    if hi <= lo {
+                        return Err(ctx.invalid(
+                            v[1].span(),
+                            "design.radius_range[1]",
+                            hi,
+                            "must exceed the smallest radius",
+                        ));
+                    }
+                    (lo, hi)
+                }
+                None => {
+                    return Err(ctx.invalid(
+                        t.family.span(),
+                        "design.radius_range",
+                        "(missing)",
+                        "is required for family = \"circular-crown\" (the search bracket)",
+                    ));
+                }
+            };
+            DesignFamily::CircularCrown {
+                radius_range: (lo, hi),
+                flat_length: flat,
+            }
+        }
+        FamilyName::LogarithmicCrown => {
+            let q = match &t.design_load {
+                Some(q) => ctx.positive(q, "design.design_load")?,
+                None => loads.iter().cloned().fold(0.0, f64::max),
+            };
+            // Its radius, modulus and length are those of the roller's
+            // Hertz line contact.
+            let roller = matches!(points_spec, PointsSpec::Rectangle { .. })
+                && matches!(
+                    hertz(bodies, geometry, points_spec, q),
+                    Some(Hertz::Cylinders(_))
+                );
+            if !roller {
+                return Err(ctx.invalid(
+                    t.family.span(),
+                    "design.family",
+                    "\"logarithmic-crown\"",
+                    "a logarithmic crown is for a roller: half-space bodies on a rectangle grid, \
+                     a cylinder (axis along y) on a plane or a cylinder",
+                ));
+            }
+            DesignFamily::LogarithmicCrown {
+                design_load: q,
+                flat_length: flat,
+                end: log_end(t),
+            }
+        }
+    })
+}
+
+/// `design.axis`: x on a line, y by default on a surface.
+fn design_axis(
+    ctx: &Ctx<'_>,
+    d: &Spanned<DesignToml>,
+    dimension: Dimension,
+) -> Result<Axis, SceneError> {
+    let t = d.get_ref();
+    let axis = match &t.axis {
+        Some(a) => match a.get_ref() {
+            AxisName::X => Axis::X,
+            AxisName::Y => Axis::Y,
+        },
+        None if dimension == Dimension::Line => Axis::X,
+        None => Axis::Y,
+    };
+    if dimension == Dimension::Line && axis == Axis::Y {
+        let span = t.axis.as_ref().map_or(d.span(), |a| a.span());
+        return Err(ctx.invalid(span, "design.axis", "\"y\"", "a line grid lies along x"));
+    }
+    Ok(axis)
+}
+
+/// `design.relative_to`: "hertz" needs a Hertz contact at every load.
+fn design_relative_to(
+    ctx: &Ctx<'_>,
+    d: &Spanned<DesignToml>,
+    loads: &[f64],
+    scene: &DesignContext<'_>,
+) -> Result<RelativeTo, SceneError> {
+    let DesignContext {
+        bodies,
+        geometry,
+        points_spec,
+        ..
+    } = *scene;
+    let t = d.get_ref();
+    let relative_to = t
+        .relative_to
+        .as_ref()
+        .map_or(RelativeTo::Absolute, |r| *r.get_ref());
+    if relative_to == RelativeTo::Hertz
+        && let Some(&load) = loads
+            .iter()
+            .find(|&&p| hertz(bodies, geometry, points_spec, p).is_none())
+    {
+        let span = t.relative_to.as_ref().map_or(d.span(), |r| r.span());
+        return Err(ctx.invalid(
+            span,
+            "design.relative_to",
+            "\"hertz\"",
+            format!(
+                "needs a Hertz contact at every design load ({load} has none): sphere or cylinder \
+                 surfaces (not both planes) and elastic half-space bodies, spheres on a disk grid, \
+                 cylinders on a line or a rectangle grid; use \"mean\" or \"absolute\""
+            ),
+        ));
+    }
+    Ok(relative_to)
+}
+
+/// `design.end` of a logarithmic crown: "johns-gohar" (the default) or
+/// "lundberg".
+fn log_end(t: &DesignToml) -> LogEnd {
+    match t.end.as_ref().map(|e| *e.get_ref()) {
+        None | Some(EndName::JohnsGohar) => LogEnd::JohnsGohar,
+        Some(EndName::Lundberg) => LogEnd::Lundberg,
+    }
+}
+
+/// `design.method`: for the linear families only.
+fn design_method(
+    ctx: &Ctx<'_>,
+    t: &DesignToml,
+    family: &DesignFamily,
+) -> Result<DesignMethod, SceneError> {
+    let Some(m) = &t.method else {
+        return Ok(DesignMethod::Auto);
+    };
+    if !matches!(family, DesignFamily::Linear(_)) {
+        return Err(ctx.invalid(
+            m.span(),
+            "design.method",
+            format!("\"{}\"", m.get_ref()),
+            "only for the families quadratic, polynomial and free (a crown is searched or set)",
+        ));
+    }
+    Ok(match m.get_ref() {
+        DesignMethodName::Auto => DesignMethod::Auto,
+        DesignMethodName::Program => DesignMethod::Program,
+        DesignMethodName::Descent => DesignMethod::Descent,
+    })
+}
+
+/// `design.misalignments` (rad), each finite and at most
+/// [`MAX_MISALIGNMENT`] in size.
+fn misalignments(ctx: &Ctx<'_>, t: &DesignToml) -> Result<Vec<f64>, SceneError> {
+    let Some(list) = &t.misalignments else {
+        return Ok(Vec::new());
+    };
+    let values = list.get_ref();
+    if values.is_empty() || values.len() > MAX_MISALIGNMENTS {
+        return Err(ctx.invalid(
+            list.span(),
+            "design.misalignments",
+            format!("{} values", values.len()),
+            format!("give 1 to {MAX_MISALIGNMENTS} angles (rad)"),
+        ));
+    }
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let field = format!("design.misalignments[{i}]");
+            let angle = ctx.finite(v, &field)?;
+            if angle.abs() > MAX_MISALIGNMENT {
+                return Err(ctx.invalid(
+                    v.span(),
+                    &field,
+                    angle,
+                    format!(
+                        "at most {MAX_MISALIGNMENT} rad in size (the rigid rotation is linearized)"
+                    ),
+                ));
+            }
+            Ok(angle)
+        })
+        .collect()
+}

@@ -1,0 +1,216 @@
+//! The closed forms a scene is compared with: the Hertz contact at a load
+//! (point or line contact, from the layout, the bodies and the surfaces),
+//! a flat punch, a beam on a Winkler foundation.
+
+use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam};
+use elcon_analysis::{Geometry, Loading, Normal, Surface};
+use elcon_influence::{PointSet, combined_modulus_of};
+
+use super::body::{BodySpec, ModelKind};
+use super::geometry::combined;
+use super::points::PointsSpec;
+
+/// The closed form a scene is compared with, when one applies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Reference {
+    /// Hertz, two spheres or a sphere on a plane.
+    HertzSpheres(HertzSpheres),
+    /// Hertz line contact (plane strain); the approach is compared when the
+    /// datum distance d0 is the same for the elastic bodies.
+    HertzCylinders {
+        /// The closed form.
+        hertz: HertzCylinders,
+        /// The common datum distance d0.
+        datum: Option<f64>,
+    },
+    /// A rigid flat circular punch whose face is the candidate disk.
+    FlatPunch(FlatPunch),
+    /// A free-free beam on a Winkler foundation under a central load.
+    Hetenyi(HetenyiBeam),
+}
+
+impl Reference {
+    /// A short name: "hertz-spheres", "hertz-cylinders", "flat-punch", "hetenyi-beam".
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Reference::HertzSpheres(_) => "hertz-spheres",
+            Reference::HertzCylinders { .. } => "hertz-cylinders",
+            Reference::FlatPunch(_) => "flat-punch",
+            Reference::Hetenyi(_) => "hetenyi-beam",
+        }
+    }
+}
+
+/// E* of the bodies if they are half-space models (or rigid) of `models`.
+fn half_space_modulus(bodies: &[BodySpec; 2], models: &[&str]) -> Option<f64> {
+    if !bodies
+        .iter()
+        .all(|b| b.model == ModelKind::Rigid || models.contains(&b.model.name()))
+    {
+        return None;
+    }
+    let e = combined_modulus_of(bodies[0].material.as_ref(), bodies[1].material.as_ref());
+    e.is_finite().then_some(e)
+}
+
+/// The Hertz contact of a scene at one load: the closed form its layout,
+/// bodies and surfaces call for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Hertz {
+    /// Point contact: spheres (or a sphere on a plane) on a disk grid.
+    Spheres(HertzSpheres),
+    /// Line contact: cylinders (or a cylinder on a plane) on a line, or a
+    /// roller along y on a rectangle grid (per unit length `2 half_y`).
+    Cylinders(HertzCylinders),
+}
+
+impl Hertz {
+    /// The length scale: the contact radius or the half-width.
+    pub(crate) fn scale(&self) -> f64 {
+        match self {
+            Hertz::Spheres(h) => h.contact_radius(),
+            Hertz::Cylinders(h) => h.half_width(),
+        }
+    }
+
+    /// The peak pressure (intensity unit).
+    pub(crate) fn peak_pressure(&self) -> f64 {
+        match self {
+            Hertz::Spheres(h) => h.peak_pressure(),
+            Hertz::Cylinders(h) => h.peak_pressure(),
+        }
+    }
+}
+
+/// The Hertz contact at `load`, if one applies: spheres/planes and
+/// half-space surface bodies on a disk; cylinders/planes and plane-strain
+/// bodies on a line; cylinders/planes and half-space surface bodies on a
+/// rectangle (a roller along y, per unit length `2 half_y`). Rigid bodies
+/// count as half-spaces; the surfaces must not both be planes.
+pub(super) fn hertz(
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    spec: &PointsSpec,
+    load: f64,
+) -> Option<Hertz> {
+    match spec {
+        PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            let r = combined(geometry, true)?;
+            HertzSpheres::new(e, r, load).ok().map(Hertz::Spheres)
+        }
+        PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+            let e = half_space_modulus(bodies, &["plane-strain"])?;
+            let r = combined(geometry, false)?;
+            HertzCylinders::new(e, r, load).ok().map(Hertz::Cylinders)
+        }
+        PointsSpec::Rectangle { half_y, .. } => {
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            let r = combined(geometry, false)?;
+            HertzCylinders::new(e, r, load / (2.0 * half_y))
+                .ok()
+                .map(Hertz::Cylinders)
+        }
+    }
+}
+
+/// The Hertz length scale at `load`: the contact radius (disk) or the
+/// half-width (line; rectangle of a roller, per unit length `2 half_y`).
+pub(super) fn hertz_scale(
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    spec: &PointsSpec,
+    load: f64,
+) -> Option<f64> {
+    hertz(bodies, geometry, spec, load).map(|h| h.scale())
+}
+
+/// The closed form that applies to the scene, if one does.
+pub(super) fn reference(
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    spec: &PointsSpec,
+    points: &PointSet,
+    loading: Loading,
+) -> Option<Reference> {
+    let flat = match geometry {
+        Geometry::Surfaces(Surface::Plane, Surface::Plane) => true,
+        Geometry::Separation(eps) => eps.iter().all(|&e| e == eps[0]),
+        _ => false,
+    };
+    match spec {
+        PointsSpec::Disk { radius, .. } if flat => {
+            // A rigid flat punch: one rigid body, the candidate disk its face.
+            let rigid = bodies.iter().filter(|b| b.body.is_rigid()).count() == 1;
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            rigid.then(|| FlatPunch::new(e, *radius).ok().map(Reference::FlatPunch))?
+        }
+        PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
+            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+            let r = combined(geometry, true)?;
+            let load = match loading.normal {
+                Normal::Load(p) => p,
+                // The Hertz load of the approach: P = 4 E* a^3 / (3 R), a = sqrt(R delta).
+                Normal::Approach(d) if d > 0.0 => 4.0 * e * (r * d).powf(1.5) / (3.0 * r),
+                Normal::Approach(_) => return None,
+            };
+            HertzSpheres::new(e, r, load)
+                .ok()
+                .map(Reference::HertzSpheres)
+        }
+        PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+            if let Some(r) = combined(geometry, false) {
+                let e = half_space_modulus(bodies, &["plane-strain"])?;
+                let Normal::Load(p) = loading.normal else {
+                    return None;
+                };
+                let datums: Vec<f64> = bodies
+                    .iter()
+                    .filter_map(|b| match b.body.model() {
+                        elcon_influence::Model::PlaneStrainStrip {
+                            reference_distance, ..
+                        } => Some(*reference_distance),
+                        _ => None,
+                    })
+                    .collect();
+                let datum = datums.iter().all(|&d| d == datums[0]).then(|| datums[0]);
+                return HertzCylinders::new(e, r, p)
+                    .ok()
+                    .map(|hertz| Reference::HertzCylinders { hertz, datum });
+            }
+            // A beam on a Winkler foundation, central load, no separation.
+            if !flat {
+                return None;
+            }
+            let Normal::Load(p) = loading.normal else {
+                return None;
+            };
+            let (mut ei, mut k, mut x0) = (None, None, None);
+            for b in bodies {
+                match *b.body.model() {
+                    elcon_influence::Model::Beam {
+                        flexural_rigidity,
+                        loaded_point,
+                    } => {
+                        ei = Some(flexural_rigidity);
+                        x0 = Some(loaded_point);
+                    }
+                    elcon_influence::Model::Winkler { modulus } => k = Some(modulus),
+                    _ => return None,
+                }
+            }
+            // The beam is the zone: its cells end to end.
+            let (lo, hi) = (points.xs()[0], points.xs()[points.len() - 1]);
+            let length = points.extent().0;
+            let centred = (x0? - 0.5 * (lo + hi)).abs() <= 1e-9 * length;
+            centred
+                .then(|| {
+                    HetenyiBeam::new(ei?, k?, length, p)
+                        .ok()
+                        .map(Reference::Hetenyi)
+                })
+                .flatten()
+        }
+        PointsSpec::Rectangle { .. } => None,
+    }
+}

@@ -1,0 +1,63 @@
+//! `[loading]`: a load or an approach, and each rotation free under its
+//! moment or prescribed.
+
+use elcon_analysis::Loading;
+use toml::Spanned;
+
+use crate::ctx::Ctx;
+use crate::error::SceneError;
+use crate::schema::LoadingToml;
+
+pub(super) fn loading(ctx: &Ctx<'_>, l: &Spanned<LoadingToml>) -> Result<Loading, SceneError> {
+    let t = l.get_ref();
+    let mut loading = match (&t.load, &t.approach) {
+        (Some(p), None) => Loading::load(ctx.positive(p, "loading.load")?),
+        (None, Some(a)) => Loading::approach(ctx.finite(a, "loading.approach")?),
+        _ => {
+            return Err(ctx.invalid(
+                l.span(),
+                "loading",
+                "",
+                "give exactly one of load (force; load control) and approach (length; displacement control)",
+            ));
+        }
+    };
+    // Each rotation: free with its moment (default 0) or prescribed.
+    for (moment, tilt, moment_field, tilt_field) in [
+        (&t.moment_x, &t.tilt_x, "loading.moment_x", "loading.tilt_x"),
+        (&t.moment_y, &t.tilt_y, "loading.moment_y", "loading.tilt_y"),
+    ] {
+        let x_axis = moment_field.ends_with('x');
+        loading = match (moment, tilt) {
+            (Some(_), Some(angle)) => {
+                return Err(ctx.invalid(
+                    angle.span(),
+                    tilt_field,
+                    angle.get_ref().to_string(),
+                    format!(
+                        "give one of {moment_field} (a free rotation balancing that moment) and \
+                         {tilt_field} (a prescribed rotation, radians), not both"
+                    ),
+                ));
+            }
+            (Some(m), None) => {
+                let m = ctx.finite(m, moment_field)?;
+                if x_axis {
+                    loading.with_moment_x(m)
+                } else {
+                    loading.with_moment_y(m)
+                }
+            }
+            (None, Some(a)) => {
+                let a = ctx.finite(a, tilt_field)?;
+                if x_axis {
+                    loading.with_tilt_x(a)
+                } else {
+                    loading.with_tilt_y(a)
+                }
+            }
+            (None, None) => loading,
+        };
+    }
+    Ok(loading)
+}

@@ -1,0 +1,517 @@
+//! A validated scene: the TOML file turned into the objects of the solver
+//! crates, every value checked against its physical range with a message
+//! that names the file, the line and column, and the field. Each section
+//! is validated by its own module; this one puts them together and checks
+//! the scene as a whole.
+//!
+//! The scene's equations are those of elcon-analysis (compatibility
+//! `Y = S F + eps - alpha e`, equilibrium `e^T F = P`, the contact
+//! criterion) and, with a `[design]` section, elcon-design. What a scene
+//! does not ask for is neither read nor computed: no design stage without
+//! `[design]`, no reference where no closed form applies, no plot not asked.
+
+mod body;
+mod design;
+mod geometry;
+mod hertz;
+mod loading;
+mod outputs;
+mod points;
+mod solver;
+mod units;
+
+use std::path::{Path, PathBuf};
+
+use elcon_analysis::{Geometry, Layout, Loading, Method, Normal, Options};
+use elcon_design::DesignMethod;
+use elcon_influence::{Dimension, PointSet};
+use toml::Spanned;
+
+pub use body::{BodySpec, ModelKind};
+pub use design::{DesignFamily, DesignSpec, RelativeTo};
+pub(crate) use hertz::Hertz;
+pub use hertz::Reference;
+pub use outputs::{Outputs, Plot};
+pub use points::PointsSpec;
+pub(crate) use points::build_points;
+pub use units::Units;
+
+use crate::ctx::{Ctx, parse};
+use crate::error::SceneError;
+use crate::sanity;
+use crate::schema::{PointsToml, SceneFile};
+use crate::storage::{self, Storage};
+
+/// A validated scene.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The scene's name (default: the file's stem).
+    pub name: String,
+    /// The file it came from.
+    pub file: PathBuf,
+    /// Its description.
+    pub description: Option<String>,
+    /// Unit labels.
+    pub units: Units,
+    /// The two bodies.
+    pub bodies: [BodySpec; 2],
+    /// The initial separations' source.
+    pub geometry: Geometry,
+    /// The point layout.
+    pub points_spec: PointsSpec,
+    /// The candidate points for the scene's loading.
+    pub points: PointSet,
+    /// Load or approach.
+    pub loading: Loading,
+    /// The engine's method (`solver.method`; `"auto"` resolved, see
+    /// [`Storage`]).
+    pub method: Method,
+    /// How the contact problem holds S: dense, or matrix-free on the
+    /// lattice (`solver.method`'s choice, see [`Storage`]).
+    pub storage: Storage,
+    /// The engine's options.
+    pub options: Options,
+    /// Whether to fold a mirror-symmetric problem (`solver.symmetry`,
+    /// "auto" (default) or "none").
+    pub fold: bool,
+    /// The design stage, if asked for.
+    pub design: Option<DesignSpec>,
+    /// The outputs.
+    pub outputs: Outputs,
+    /// The closed form that applies, if any.
+    pub reference: Option<Reference>,
+    /// The zone's edges that are the bodies' own (along x, along y):
+    /// contact reaching them raises no truncation warning. Inferred: a
+    /// beam's ends (x), a roller's ends on a rectangle grid (y), a flat
+    /// punch's rim (both).
+    pub body_edges: (bool, bool),
+    /// What validation found doubtful but not wrong (a grid coarser than
+    /// the contact): printed by `elcon check` and `elcon run`, and written
+    /// to result.json's warnings.
+    pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// Reads and validates a scene file.
+    ///
+    /// # Errors
+    /// [`SceneError::Io`] if it cannot be read; [`SceneError::Syntax`] for
+    /// invalid TOML, unknown or missing keys and wrong types;
+    /// [`SceneError::Invalid`] for values out of their physical range.
+    pub fn from_file(path: &Path) -> Result<Self, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError::io(path, e))?;
+        Self::from_str(path, &text)
+    }
+
+    /// Validates a scene given as text; `file` names it in messages and
+    /// gives the default name.
+    ///
+    /// # Errors
+    /// As [`Scene::from_file`], without the I/O.
+    pub fn from_str(file: &Path, text: &str) -> Result<Self, SceneError> {
+        let raw: SceneFile = parse(file, text)?;
+        let ctx = Ctx { file, text };
+        validate(&ctx, raw)
+    }
+
+    /// The candidate points for a load case of `load` (the scene's own
+    /// points unless they are laid out relative to the Hertz contact).
+    pub fn points_for(&self, load: f64) -> Result<PointSet, SceneError> {
+        let scale = self.hertz_scale(load);
+        build_points(&self.points_spec, scale).map_err(|reason| SceneError::Run {
+            scene: self.name.clone(),
+            reason,
+        })
+    }
+
+    /// The Hertz length scale (contact radius or half-width) at `load`.
+    fn hertz_scale(&self, load: f64) -> Option<f64> {
+        hertz::hertz_scale(&self.bodies, &self.geometry, &self.points_spec, load)
+    }
+
+    /// The Hertz contact at `load`, where one applies (the layout, bodies
+    /// and surfaces of a Hertz contact).
+    pub(crate) fn hertz(&self, load: f64) -> Option<Hertz> {
+        hertz::hertz(&self.bodies, &self.geometry, &self.points_spec, load)
+    }
+}
+
+fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
+    let name = scene_name(ctx, &raw)?;
+    let description = raw.scene.as_ref().and_then(|m| m.description.clone());
+    let bodies = [
+        body::body(ctx, raw.body1.get_ref(), "body1")?,
+        body::body(ctx, raw.body2.get_ref(), "body2")?,
+    ];
+    let (line_models, surface_models) = model_kinds(ctx, &raw, &bodies)?;
+    let units = units::units(
+        ctx,
+        raw.units.get_ref(),
+        bodies.iter().any(|b| b.model == ModelKind::Beam),
+    )?;
+    let loading = loading::loading(ctx, &raw.loading)?;
+    let (points_spec, dimension) = points::points_spec(ctx, &raw.points)?;
+    grid_fits_models(ctx, &raw, dimension, line_models, surface_models)?;
+    let geometry = geometry::geometry(ctx, raw.geometry.as_ref(), dimension)?;
+    sanity::curvatures(ctx, raw.geometry.as_ref(), &geometry)?;
+    let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
+    let reference = hertz::reference(&bodies, &geometry, &points_spec, &points, loading);
+    check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
+    let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;
+    sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
+    let fold = solver::symmetry(raw.solver.as_ref());
+    let scene_bodies = [&bodies[0].body, &bodies[1].body];
+    let layout = Layout::of(&points, scene_bodies, &geometry, &loading, fold).ok();
+    let (method, storage) = storage::choose(choice, &points, scene_bodies, layout.as_ref(), fold);
+    let design = match &raw.design {
+        Some(d) => Some(design::design(
+            ctx,
+            d,
+            &design::DesignContext {
+                loading,
+                dimension,
+                bodies: &bodies,
+                geometry: &geometry,
+                points_spec: &points_spec,
+            },
+        )?),
+        None => None,
+    };
+    if let (Some(d), Some(raw_design), Storage::MatrixFree) = (&design, &raw.design, storage)
+        && d.method == DesignMethod::Program
+    {
+        let span = raw_design
+            .get_ref()
+            .method
+            .as_ref()
+            .map_or(raw_design.span(), |m| m.span());
+        return Err(ctx.invalid(
+            span,
+            "design.method",
+            "\"program\"",
+            "the program reads S's entries and this scene holds S matrix-free (solver.method); \
+             use \"descent\" or \"auto\"",
+        ));
+    }
+    let outputs = outputs::outputs(ctx, raw.outputs.as_ref(), design.is_some())?;
+    let body_edges = body_edges(&bodies, reference.as_ref(), &points_spec);
+    let mut scene = Scene {
+        name,
+        file: ctx.file.to_path_buf(),
+        description,
+        units,
+        bodies,
+        geometry,
+        points_spec,
+        points,
+        loading,
+        method,
+        storage,
+        options,
+        fold,
+        design,
+        outputs,
+        reference,
+        body_edges,
+        warnings: Vec::new(),
+    };
+    scene.warnings = whole_scene(ctx, &raw, &scene)?;
+    Ok(scene)
+}
+
+/// `scene.name` (default: the file's stem): it names an output directory.
+fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
+    let name = match raw.scene.as_ref().and_then(|m| m.name.as_ref()) {
+        Some(n) if n.get_ref().trim().is_empty() => {
+            return Err(ctx.invalid(n.span(), "scene.name", "\"\"", "must not be empty"));
+        }
+        Some(n) => n.get_ref().clone(),
+        None => ctx
+            .file
+            .file_stem()
+            .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned()),
+    };
+    if name.contains(['/', '\\']) || name.starts_with('.') {
+        let span = raw
+            .scene
+            .as_ref()
+            .and_then(|m| m.name.as_ref())
+            .map_or(0..0, |n| n.span());
+        return Err(ctx.invalid(
+            span,
+            "scene.name",
+            &name,
+            "names an output directory: no path separators, and no leading '.' (elcon's \
+             temporary siblings and locks start with one)",
+        ));
+    }
+    Ok(name)
+}
+
+/// The bodies' models: not both rigid, and all of one kind (line models:
+/// plane-strain, beam; surface models: point-force, uniform-patch).
+/// Returns (line models present, surface models present).
+fn model_kinds(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    bodies: &[BodySpec; 2],
+) -> Result<(bool, bool), SceneError> {
+    if bodies.iter().all(|b| b.body.is_rigid()) {
+        return Err(ctx.invalid(
+            raw.body2.get_ref().model.span(),
+            "body2.model",
+            "\"rigid\"",
+            "both bodies are rigid: there is no elasticity to solve for; give one an elastic model",
+        ));
+    }
+    let line_models = bodies.iter().any(|b| b.model.is_line());
+    let surface_models = bodies.iter().any(|b| b.model.is_surface());
+    if line_models && surface_models {
+        return Err(ctx.invalid(
+            raw.body2.get_ref().model.span(),
+            "body2.model",
+            format!("\"{}\"", bodies[1].model),
+            format!(
+                "does not go with body1's \"{}\": line models (plane-strain, beam) and surface models \
+                 (point-force, uniform-patch) cannot share a point set",
+                bodies[0].model
+            ),
+        ));
+    }
+    Ok((line_models, surface_models))
+}
+
+/// The grid's dimension matches the models', and a line takes no rotation
+/// about x.
+fn grid_fits_models(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    dimension: Dimension,
+    line_models: bool,
+    surface_models: bool,
+) -> Result<(), SceneError> {
+    if line_models && dimension != Dimension::Line {
+        return Err(ctx.invalid(
+            raw.points.get_ref().grid.span(),
+            "points.grid",
+            format!("\"{}\"", raw.points.get_ref().grid.get_ref()),
+            "the bodies' models (plane-strain, beam) need grid = \"line\"",
+        ));
+    }
+    if surface_models && dimension != Dimension::Surface {
+        return Err(ctx.invalid(
+            raw.points.get_ref().grid.span(),
+            "points.grid",
+            "\"line\"",
+            "the bodies' models (point-force, uniform-patch) need grid = \"disk\" or \"rectangle\"",
+        ));
+    }
+    if dimension == Dimension::Line {
+        // A line has one rotation, about the y axis.
+        let l = raw.loading.get_ref();
+        for (value, field) in [
+            (&l.moment_x, "loading.moment_x"),
+            (&l.tilt_x, "loading.tilt_x"),
+        ] {
+            if let Some(v) = value
+                && *v.get_ref() != 0.0
+            {
+                return Err(ctx.invalid(
+                    v.span(),
+                    field,
+                    v.get_ref().to_string(),
+                    "a line contact has one rotation, about the y axis: use loading.moment_y or loading.tilt_y",
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The edges of the candidate zone that are the bodies' own: a punch's rim,
+/// a beam's ends, a roller's ends.
+fn body_edges(
+    bodies: &[BodySpec; 2],
+    reference: Option<&Reference>,
+    points_spec: &PointsSpec,
+) -> (bool, bool) {
+    if matches!(reference, Some(Reference::FlatPunch(_))) {
+        (true, true)
+    } else if bodies.iter().any(|b| b.model == ModelKind::Beam) {
+        (true, false)
+    } else if matches!(points_spec, PointsSpec::Rectangle { .. }) {
+        (false, true)
+    } else {
+        (false, false)
+    }
+}
+
+/// The candidate points: absolute, or relative to the Hertz contact at the
+/// scene's load (which must then exist, at a size in floating-point range).
+fn lay_out(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    points_spec: &PointsSpec,
+    loading: Loading,
+) -> Result<PointSet, SceneError> {
+    // The load that sizes Hertz-relative grids (under displacement control
+    // there is none: the contact's size is not known before the solve).
+    let sizing_load = loading.load_value();
+    let scale = sizing_load.and_then(|p| hertz::hertz_scale(bodies, geometry, points_spec, p));
+    let relative = matches!(
+        points_spec,
+        PointsSpec::DiskHertz { .. } | PointsSpec::LineHertz { .. }
+    ) || matches!(points_spec, PointsSpec::Rectangle { zone: Some(_), .. });
+    if relative && scale.is_none() {
+        let dimension = match points_spec {
+            PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => Dimension::Line,
+            _ => Dimension::Surface,
+        };
+        return Err(ctx.invalid(
+            raw.points.span(),
+            "points",
+            "across/zone",
+            sanity::no_hertz_reason(
+                [bodies[0].model.name(), bodies[1].model.name()],
+                geometry,
+                loading,
+                dimension,
+            ),
+        ));
+    }
+    if relative && sanity::scale_out_of_range(scale) {
+        return Err(ctx.invalid(
+            raw.loading
+                .get_ref()
+                .load
+                .as_ref()
+                .map_or(raw.loading.span(), |l| l.span()),
+            "loading.load",
+            crate::ctx::Num(sizing_load.unwrap_or(0.0)),
+            format!(
+                "the Hertz contact at this load has a size of {:e}, outside floating-point range: \
+                 the load, the moduli and the radii are not in one consistent unit system",
+                scale.unwrap_or(f64::NAN)
+            ),
+        ));
+    }
+    let points = build_points(points_spec, scale)
+        .map_err(|reason| ctx.invalid(raw.points.span(), "points", "", reason))?;
+    if let Geometry::Separation(eps) = geometry
+        && eps.len() != points.len()
+    {
+        let span = raw
+            .geometry
+            .as_ref()
+            .and_then(|g| g.get_ref().separation.as_ref())
+            .map_or(0..0, |s| s.span());
+        return Err(ctx.invalid(
+            span,
+            "geometry.separation",
+            format!("{} values", eps.len()),
+            format!(
+                "needs one value per candidate point: the grid has {}",
+                points.len()
+            ),
+        ));
+    }
+    Ok(points)
+}
+
+/// The checks of the scene as a whole ([`sanity`]): the design against its
+/// load cases' grids, the bodies against every grid; and the warnings for
+/// a grid too coarse for the contact.
+fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<String>, SceneError> {
+    let mut sets = Vec::new();
+    if let (Some(spec), Some(raw_design)) = (&scene.design, &raw.design) {
+        // The number of cases first: every load's grid is built below.
+        sanity::design_cases(ctx, raw_design, spec.case_loadings().len())?;
+        for &load in &spec.loads {
+            let scale =
+                hertz::hertz_scale(&scene.bodies, &scene.geometry, &scene.points_spec, load);
+            sets.push(build_points(&scene.points_spec, scale).map_err(|reason| {
+                ctx.invalid(
+                    raw_design.span(),
+                    "design.loads",
+                    load,
+                    format!("the grid of this load case: {reason}"),
+                )
+            })?);
+        }
+        let view = sanity::DesignView {
+            family: match &spec.family {
+                DesignFamily::Linear(f) => Some(*f),
+                _ => None,
+            },
+            axis: spec.axis,
+            max_constant: spec.max_constant,
+        };
+        sanity::design(ctx, raw_design, &view, &sets)?;
+    }
+    sanity::bodies_on_grid(
+        ctx,
+        [&raw.body1, &raw.body2],
+        [&scene.bodies[0].body, &scene.bodies[1].body],
+        &scene.points,
+        &sets,
+    )?;
+    let hertz = match &scene.reference {
+        Some(Reference::HertzSpheres(h)) => Some(("diameter", h.contact_radius())),
+        Some(Reference::HertzCylinders { hertz, .. }) => Some(("width", hertz.half_width())),
+        _ => match (scene.loading.normal, &scene.points_spec) {
+            (Normal::Load(p), PointsSpec::Rectangle { .. }) => {
+                scene.hertz(p).map(|h| ("width", h.scale()))
+            }
+            _ => None,
+        },
+    };
+    let disk = match scene.points_spec {
+        PointsSpec::Disk { spacing, radius } => Some((spacing, radius)),
+        _ => None,
+    };
+    Ok(sanity::coarse_grid(&scene.points, hertz, disk))
+}
+
+/// An absolute grid that cannot hold the Hertz contact is an error.
+fn check_zone(
+    ctx: &Ctx<'_>,
+    p: &Spanned<PointsToml>,
+    reference: Option<&Reference>,
+    points: &PointSet,
+) -> Result<(), SceneError> {
+    let t = p.get_ref();
+    match reference {
+        Some(Reference::HertzSpheres(h)) => {
+            if let Some(r) = &t.radius
+                && *r.get_ref() <= h.contact_radius()
+            {
+                return Err(ctx.invalid(
+                    r.span(),
+                    "points.radius",
+                    r.get_ref(),
+                    format!(
+                        "the candidate disk cannot hold the contact: the Hertz contact radius is {:.4e}; \
+                         give a radius beyond it (1.2 to 1.5 times)",
+                        h.contact_radius()
+                    ),
+                ));
+            }
+        }
+        Some(Reference::HertzCylinders { hertz, .. }) => {
+            let (lo, hi) = (points.xs()[0], points.xs()[points.len() - 1]);
+            let b = hertz.half_width();
+            if let (Some(s), true) = (&t.start, lo > -b || hi < b) {
+                return Err(ctx.invalid(
+                    s.span(),
+                    "points.start",
+                    s.get_ref(),
+                    format!("the line [{lo:.4e}, {hi:.4e}] cannot hold the contact: the Hertz half-width is {b:.4e}"),
+                ));
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}

@@ -1,0 +1,313 @@
+//! `[points]`: the candidate points' layout (a disk, a rectangle or a
+//! line, absolute or relative to the Hertz contact), each key checked
+//! against the grid, and the point set a layout gives at a Hertz scale.
+
+use elcon_influence::{Dimension, PointSet};
+use toml::Spanned;
+
+use crate::ctx::Ctx;
+use crate::error::SceneError;
+use crate::schema::{Grid, PointsToml};
+
+/// How the candidate points are laid out.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PointsSpec {
+    /// Square grid of `spacing`, clipped to a disk of `radius`.
+    Disk {
+        /// Spacing (length).
+        spacing: f64,
+        /// Radius of the candidate zone (length).
+        radius: f64,
+    },
+    /// Square grid with `across` points across the Hertz contact diameter,
+    /// clipped to `zone` Hertz radii.
+    DiskHertz {
+        /// Points across the Hertz diameter (odd: the centre is a point).
+        across: usize,
+        /// Candidate zone over the Hertz radius (> 1).
+        zone: f64,
+    },
+    /// `nx x ny` cells on `[-half_x, half_x] x [-half_y, half_y]`;
+    /// `half_x` absolute, or `zone` Hertz half-widths of the case's load.
+    Rectangle {
+        /// Half-size along x (length), if absolute.
+        half_x: Option<f64>,
+        /// Half-size along x over the Hertz half-width, if relative.
+        zone: Option<f64>,
+        /// Half-size along y (length).
+        half_y: f64,
+        /// Cells along x.
+        nx: usize,
+        /// Cells along y.
+        ny: usize,
+    },
+    /// `n` cells on `[start, end]` of the x axis.
+    Line {
+        /// Start (length).
+        start: f64,
+        /// End (length).
+        end: f64,
+        /// Number of cells.
+        n: usize,
+    },
+    /// Cells with `across` points across the Hertz contact width, out to
+    /// `zone` Hertz half-widths.
+    LineHertz {
+        /// Points across the Hertz width.
+        across: usize,
+        /// Candidate zone over the Hertz half-width (> 1).
+        zone: f64,
+    },
+}
+
+/// `[points]`: the grid and its parameters, each key checked against the grid.
+pub(super) fn points_spec(
+    ctx: &Ctx<'_>,
+    p: &Spanned<PointsToml>,
+) -> Result<(PointsSpec, Dimension), SceneError> {
+    let t = p.get_ref();
+    let grid = *t.grid.get_ref();
+    let allowed: &[&str] = match grid {
+        Grid::Disk => &["spacing", "radius", "across", "zone"],
+        Grid::Rectangle => &["half_x", "half_y", "nx", "ny", "zone"],
+        Grid::Line => &["start", "end", "n", "across", "zone"],
+    };
+    grid_keys(ctx, t, grid.name(), allowed)?;
+    let spec = match grid {
+        Grid::Disk => disk_spec(ctx, p)?,
+        Grid::Rectangle => rectangle_spec(ctx, p)?,
+        Grid::Line => line_spec(ctx, p)?,
+    };
+    let dimension = if grid == Grid::Line {
+        Dimension::Line
+    } else {
+        Dimension::Surface
+    };
+    Ok((spec, dimension))
+}
+
+/// Every key given under `[points]` must be one of `grid`'s.
+fn grid_keys(
+    ctx: &Ctx<'_>,
+    t: &PointsToml,
+    grid: &str,
+    allowed: &[&str],
+) -> Result<(), SceneError> {
+    let floats: [(&str, Option<&Spanned<f64>>); 7] = [
+        ("spacing", t.spacing.as_ref()),
+        ("radius", t.radius.as_ref()),
+        ("zone", t.zone.as_ref()),
+        ("half_x", t.half_x.as_ref()),
+        ("half_y", t.half_y.as_ref()),
+        ("start", t.start.as_ref()),
+        ("end", t.end.as_ref()),
+    ];
+    let ints: [(&str, Option<&Spanned<i64>>); 4] = [
+        ("across", t.across.as_ref()),
+        ("nx", t.nx.as_ref()),
+        ("ny", t.ny.as_ref()),
+        ("n", t.n.as_ref()),
+    ];
+    let given = floats
+        .iter()
+        .filter_map(|(k, v)| v.map(|v| (*k, v.span(), String::new())))
+        .chain(
+            ints.iter()
+                .filter_map(|(k, v)| v.map(|v| (*k, v.span(), String::new()))),
+        );
+    ctx.allowed_keys("points", &format!("grid = \"{grid}\""), allowed, given)
+}
+
+/// `points.zone` (required with `across`): the candidate zone over the
+/// Hertz contact, above 1.
+fn hertz_zone(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<f64, SceneError> {
+    let t = p.get_ref();
+    let s = p.span();
+    let z = ctx.required(&t.zone, s.clone(), "points.zone", "with across")?;
+    let v = ctx.positive(z, "points.zone")?;
+    if v <= 1.0 {
+        return Err(ctx.invalid(
+            z.span(),
+            "points.zone",
+            v,
+            "the candidate zone must extend beyond the Hertz contact (zone > 1), or the contact is cut off",
+        ));
+    }
+    Ok(v)
+}
+
+/// `points.across`: odd, at least 3.
+fn hertz_across(ctx: &Ctx<'_>, a: &Spanned<i64>) -> Result<usize, SceneError> {
+    let n = ctx.count(a, "points.across", 3)?;
+    if n % 2 == 0 {
+        return Err(ctx.invalid(
+            a.span(),
+            "points.across",
+            n,
+            "must be odd (the centre is a point)",
+        ));
+    }
+    Ok(n)
+}
+
+/// A disk: `across` and `zone`, or `spacing` and `radius`.
+fn disk_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
+    let (t, s) = (p.get_ref(), p.span());
+    Ok(match &t.across {
+        Some(a) => {
+            ctx.forbid(
+                &t.spacing,
+                "points.spacing",
+                "give either across and zone, or spacing and radius",
+            )?;
+            ctx.forbid(
+                &t.radius,
+                "points.radius",
+                "give either across and zone, or spacing and radius",
+            )?;
+            PointsSpec::DiskHertz {
+                across: hertz_across(ctx, a)?,
+                zone: hertz_zone(ctx, p)?,
+            }
+        }
+        None => {
+            ctx.forbid(
+                &t.zone,
+                "points.zone",
+                "zone goes with across (points across the Hertz diameter)",
+            )?;
+            let h = ctx.required(
+                &t.spacing,
+                s.clone(),
+                "points.spacing",
+                "for a disk (or across and zone)",
+            )?;
+            let r = ctx.required(
+                &t.radius,
+                s.clone(),
+                "points.radius",
+                "for a disk (or across and zone)",
+            )?;
+            PointsSpec::Disk {
+                spacing: ctx.positive(h, "points.spacing")?,
+                radius: ctx.positive(r, "points.radius")?,
+            }
+        }
+    })
+}
+
+/// A rectangle: `half_x` or `zone`, and `half_y`, `nx`, `ny`.
+fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
+    let (t, s) = (p.get_ref(), p.span());
+    Ok({
+        let (half_x, zone_x) = match (&t.half_x, &t.zone) {
+            (Some(h), None) => (Some(ctx.positive(h, "points.half_x")?), None),
+            (None, Some(_)) => (None, Some(hertz_zone(ctx, p)?)),
+            _ => {
+                return Err(ctx.invalid(
+                    s,
+                    "points.half_x",
+                    "",
+                    "give either half_x (length) or zone (Hertz half-widths of the load)",
+                ));
+            }
+        };
+        let hy = ctx.required(&t.half_y, s.clone(), "points.half_y", "for a rectangle")?;
+        let nx = ctx.required(&t.nx, s.clone(), "points.nx", "for a rectangle")?;
+        let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
+        PointsSpec::Rectangle {
+            half_x,
+            zone: zone_x,
+            half_y: ctx.positive(hy, "points.half_y")?,
+            nx: ctx.count(nx, "points.nx", 1)?,
+            ny: ctx.count(ny, "points.ny", 1)?,
+        }
+    })
+}
+
+/// A line: `across` and `zone`, or `start`, `end` and `n`.
+fn line_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
+    let (t, s) = (p.get_ref(), p.span());
+    Ok(match &t.across {
+        Some(a) => PointsSpec::LineHertz {
+            across: hertz_across(ctx, a)?,
+            zone: hertz_zone(ctx, p)?,
+        },
+        None => {
+            ctx.forbid(
+                &t.zone,
+                "points.zone",
+                "zone goes with across (points across the Hertz width)",
+            )?;
+            let a = ctx.required(
+                &t.start,
+                s.clone(),
+                "points.start",
+                "for a line (or across and zone)",
+            )?;
+            let b = ctx.required(
+                &t.end,
+                s.clone(),
+                "points.end",
+                "for a line (or across and zone)",
+            )?;
+            let n = ctx.required(
+                &t.n,
+                s.clone(),
+                "points.n",
+                "for a line (or across and zone)",
+            )?;
+            let (start, end) = (ctx.finite(a, "points.start")?, ctx.finite(b, "points.end")?);
+            if end <= start {
+                return Err(ctx.invalid(
+                    b.span(),
+                    "points.end",
+                    end,
+                    format!("must exceed points.start = {start}"),
+                ));
+            }
+            PointsSpec::Line {
+                start,
+                end,
+                n: ctx.count(n, "points.n", 1)?,
+            }
+        }
+    })
+}
+
+/// Builds the point set; `scale` is the Hertz radius or half-width for the
+/// relative layouts.
+pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, String> {
+    let need = || {
+        scale.ok_or_else(|| {
+            "the layout is relative to a Hertz contact that does not apply".to_string()
+        })
+    };
+    let r = match *spec {
+        PointsSpec::Disk { spacing, radius } => PointSet::grid_disk(spacing, radius),
+        PointsSpec::DiskHertz { across, zone } => {
+            return elcon_analysis::grid::hertz_disk(need()?, across, zone)
+                .map_err(|e| e.to_string());
+        }
+        PointsSpec::Rectangle {
+            half_x,
+            zone,
+            half_y,
+            nx,
+            ny,
+        } => {
+            let hx = match (half_x, zone) {
+                (Some(h), _) => h,
+                (None, Some(z)) => z * need()?,
+                (None, None) => unreachable!("validated: half_x or zone"),
+            };
+            PointSet::grid_rectangle(hx, half_y, nx, ny)
+        }
+        PointsSpec::Line { start, end, n } => PointSet::line(start, end, n),
+        PointsSpec::LineHertz { across, zone } => {
+            return elcon_analysis::grid::hertz_line(need()?, across, zone)
+                .map_err(|e| e.to_string());
+        }
+    };
+    r.map_err(|e| e.to_string())
+}
