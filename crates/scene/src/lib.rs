@@ -55,7 +55,7 @@ pub use sanity::{
     max_pivots_bound,
 };
 pub use scene::{
-    BodySpec, DesignFamily, DesignSpec, ModelKind, Outputs, Plot, PointsSpec, Reference,
+    BodySpec, DesignFamily, DesignSpec, HalfX, ModelKind, Outputs, Plot, PointsSpec, Reference,
     RelativeTo, Scene, Units,
 };
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};

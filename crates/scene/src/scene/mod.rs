@@ -32,8 +32,8 @@ pub use design::{DesignFamily, DesignSpec, RelativeTo};
 pub(crate) use hertz::Hertz;
 pub use hertz::Reference;
 pub use outputs::{Outputs, Plot};
-pub use points::PointsSpec;
 pub(crate) use points::build_points;
+pub use points::{HalfX, PointsSpec};
 pub use units::Units;
 
 use crate::ctx::{Ctx, parse};
@@ -363,7 +363,13 @@ fn lay_out(
     let relative = matches!(
         points_spec,
         PointsSpec::DiskHertz { .. } | PointsSpec::LineHertz { .. }
-    ) || matches!(points_spec, PointsSpec::Rectangle { zone: Some(_), .. });
+    ) || matches!(
+        points_spec,
+        PointsSpec::Rectangle {
+            half_x: HalfX::Zone(_),
+            ..
+        }
+    );
     if relative && scale.is_none() {
         let dimension = match points_spec {
             PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => Dimension::Line,

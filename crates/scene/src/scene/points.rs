@@ -30,10 +30,8 @@ pub enum PointsSpec {
     /// `nx x ny` cells on `[-half_x, half_x] x [-half_y, half_y]`;
     /// `half_x` absolute, or `zone` Hertz half-widths of the case's load.
     Rectangle {
-        /// Half-size along x (length), if absolute.
-        half_x: Option<f64>,
-        /// Half-size along x over the Hertz half-width, if relative.
-        zone: Option<f64>,
+        /// Half-size along x: a length, or relative to the Hertz contact.
+        half_x: HalfX,
         /// Half-size along y (length).
         half_y: f64,
         /// Cells along x.
@@ -200,9 +198,9 @@ fn disk_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, Scene
 fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
     let (t, s) = (p.get_ref(), p.span());
     Ok({
-        let (half_x, zone_x) = match (&t.half_x, &t.zone) {
-            (Some(h), None) => (Some(ctx.positive(h, "points.half_x")?), None),
-            (None, Some(_)) => (None, Some(hertz_zone(ctx, p)?)),
+        let half_x = match (&t.half_x, &t.zone) {
+            (Some(h), None) => HalfX::Length(ctx.positive(h, "points.half_x")?),
+            (None, Some(_)) => HalfX::Zone(hertz_zone(ctx, p)?),
             _ => {
                 return Err(ctx.invalid(
                     s,
@@ -217,7 +215,6 @@ fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, 
         let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
         PointsSpec::Rectangle {
             half_x,
-            zone: zone_x,
             half_y: ctx.positive(hy, "points.half_y")?,
             nx: ctx.count(nx, "points.nx", 1)?,
             ny: ctx.count(ny, "points.ny", 1)?,
@@ -275,6 +272,15 @@ fn line_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, Scene
     })
 }
 
+/// A rectangle grid's half-size along x (`points.half_x` or `points.zone`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HalfX {
+    /// `half_x`: a length.
+    Length(f64),
+    /// `zone`: Hertz half-widths of the case's load (> 1).
+    Zone(f64),
+}
+
 /// Builds the point set; `scale` is the Hertz radius or half-width for the
 /// relative layouts.
 pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, String> {
@@ -291,15 +297,13 @@ pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<Poin
         }
         PointsSpec::Rectangle {
             half_x,
-            zone,
             half_y,
             nx,
             ny,
         } => {
-            let hx = match (half_x, zone) {
-                (Some(h), _) => h,
-                (None, Some(z)) => z * need()?,
-                (None, None) => unreachable!("validated: half_x or zone"),
+            let hx = match half_x {
+                HalfX::Length(h) => h,
+                HalfX::Zone(z) => z * need()?,
             };
             PointSet::grid_rectangle(hx, half_y, nx, ny)
         }
