@@ -241,14 +241,14 @@ fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
             }
         }
     }
-    let names: Vec<String> = scenes.iter().map(|s| s.name.clone()).collect();
+    let names: Vec<String> = scenes.iter().map(|s| s.name().to_string()).collect();
     let shared = |name: &str| names.iter().filter(|n| *n == name).count() > 1;
     for (i, name) in names.iter().enumerate() {
         if shared(name) && !names[..i].contains(name) {
             let files: Vec<String> = scenes
                 .iter()
-                .filter(|t| t.name == *name)
-                .map(|t| t.file.display().to_string())
+                .filter(|t| t.name() == *name)
+                .map(|t| t.file().display().to_string())
                 .collect();
             eprintln!(
                 "error: {} {} name scene `{name}`, so they would write one directory, {}: none of \
@@ -260,7 +260,7 @@ fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
             ok = false;
         }
     }
-    let unique = scenes.into_iter().filter(|s| !shared(&s.name)).collect();
+    let unique = scenes.into_iter().filter(|s| !shared(s.name())).collect();
     (unique, ok)
 }
 
@@ -268,7 +268,7 @@ fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling) -> bool {
     let (scenes, mut ok) = validated(paths, out);
     let mut header_printed = false;
     for scene in scenes {
-        let name = scene.name.clone();
+        let name = scene.name().to_string();
         let outcome = isolated(&name, || {
             let prepared = prepare(scene, ceiling)?;
             let staging = Staging::begin(&out.join(&name), &|m| eprintln!("{m}"))?;
@@ -304,10 +304,10 @@ fn check_scene(path: &Path, scene: Scene, ceiling: &Ceiling) -> bool {
             println!(
                 "{}: scene `{}`: valid; {}",
                 path.display(),
-                p.scene.name,
+                p.scene.name(),
                 p.estimate.summary()
             );
-            for w in &p.scene.warnings {
+            for w in p.scene.warnings() {
                 println!("{}: warning: {w}", path.display());
             }
             true
@@ -384,18 +384,18 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
         }
         match isolated(&path.display().to_string(), || Scene::from_file(path)) {
             Ok(scene) => {
-                if let Some((_, other)) = names.iter().find(|(n, _)| *n == scene.name) {
+                if let Some((_, other)) = names.iter().find(|(n, _)| *n == scene.name()) {
                     eprintln!(
                         "error: {} and {} both name scene `{}`: `run` would run neither; give \
                          each its own [scene] name",
                         other.display(),
                         path.display(),
-                        scene.name
+                        scene.name()
                     );
                     ok = false;
                 }
-                names.push((scene.name.clone(), path));
-                let name = scene.name.clone();
+                names.push((scene.name().to_string(), path));
+                let name = scene.name().to_string();
                 ok &=
                     isolated(&name, || Ok(check_scene(path, scene, ceiling))).unwrap_or_else(|e| {
                         eprintln!("error: {e}");

@@ -309,9 +309,7 @@ impl Batch {
             run.index,
             run.label()
         ));
-        let mut scene = Scene::from_str(&label, &text)?;
-        scene.name = run.slug();
-        Ok(scene)
+        Ok(Scene::from_str(&label, &text)?.renamed(run.slug()))
     }
 }
 

@@ -84,7 +84,7 @@ fn one_run(
     }
     let share = estimate.peak_bytes.saturating_sub(BASELINE);
     budget.take(share);
-    let outcome = isolated(&scene.name, || {
+    let outcome = isolated(scene.name(), || {
         let result = run(&scene)?;
         write_run_files(&result, &dir.join(r.slug()))?;
         Ok(result.result)

@@ -215,14 +215,20 @@ fn to_bytes(b: f64) -> u64 {
 /// approach given, a free tilt, a prescribed misalignment that presses a
 /// point in) it works on the general tableau.
 fn unknowns(points: &PointSet, scene: &Scene) -> (usize, Tableau) {
-    let bodies = [&scene.bodies[0].body, &scene.bodies[1].body];
-    let Ok(layout) = Layout::of(points, bodies, &scene.geometry, &scene.loading, scene.fold) else {
+    let bodies = [&scene.bodies()[0].body, &scene.bodies()[1].body];
+    let Ok(layout) = Layout::of(
+        points,
+        bodies,
+        scene.geometry(),
+        &scene.loading(),
+        scene.fold(),
+    ) else {
         return (points.len(), Tableau::General);
     };
-    let symmetric = matches!(scene.loading.normal, Normal::Load(_))
+    let symmetric = matches!(scene.loading().normal, Normal::Load(_))
         && layout.rigid.free.len() == 1
         && !layout.interference(points);
-    let tableau = if scene.method == Method::RestrictedSimplex && !symmetric {
+    let tableau = if scene.method() == Method::RestrictedSimplex && !symmetric {
         Tableau::General
     } else {
         Tableau::Symmetric
@@ -246,14 +252,14 @@ impl Estimate {
     /// [`SceneError::Run`] when a design load's points cannot be laid out
     /// (as the run would fail).
     pub fn of(scene: &Scene) -> Result<Self, SceneError> {
-        let n = scene.points.len();
+        let n = scene.points().len();
         let (unknowns, m, solve, mut seconds) =
-            match scene.storage {
+            match scene.storage() {
                 Storage::MatrixFree => {
-                    let bodies = [&scene.bodies[0].body, &scene.bodies[1].body];
-                    let operator = LatticeOperator::estimate_bytes(&scene.points, &bodies)
+                    let bodies = [&scene.bodies()[0].body, &scene.bodies()[1].body];
+                    let operator = LatticeOperator::estimate_bytes(scene.points(), &bodies)
                         .map_err(|e| SceneError::Run {
-                            scene: scene.name.clone(),
+                            scene: scene.name().to_string(),
                             reason: e.to_string(),
                         })?;
                     let vectors = CG_VECTORS * ENTRY * n as f64;
@@ -265,13 +271,13 @@ impl Estimate {
                     )
                 }
                 Storage::Dense => {
-                    let (unknowns, tableau) = unknowns(&scene.points, scene);
-                    let m = matrices(scene.method, tableau);
-                    let seconds = per_cube(scene.method, tableau) * (unknowns as f64).powi(3);
+                    let (unknowns, tableau) = unknowns(scene.points(), scene);
+                    let m = matrices(scene.method(), tableau);
+                    let seconds = per_cube(scene.method(), tableau) * (unknowns as f64).powi(3);
                     (unknowns, m, square_bytes(m, unknowns), seconds)
                 }
             };
-        let design = match &scene.design {
+        let design = match &scene.design() {
             Some(spec) => {
                 let (d, s) = design(scene, spec, unknowns)?;
                 seconds += s;
@@ -327,18 +333,18 @@ impl Estimate {
         } else {
             String::new()
         };
-        let mut what = match scene.storage {
+        let mut what = match scene.storage() {
             Storage::MatrixFree => format!(
                 "N = {} points needs about {} ({} matrix-free: the lattice operator and its vectors",
                 self.points,
                 human(self.peak_bytes),
-                scene.method.name(),
+                scene.method().name(),
             ),
             Storage::Dense => format!(
                 "N = {} points{folded} needs about {} ({} keeps about {:.2} matrices of {} x {}",
                 self.points,
                 human(self.peak_bytes),
-                scene.method.name(),
+                scene.method().name(),
                 self.matrices,
                 self.unknowns,
                 self.unknowns,
@@ -372,13 +378,13 @@ impl Estimate {
                 );
             }
             hints.push("a coarser grid (fewer points across, a smaller zone)");
-            if scene.storage == Storage::Dense {
+            if scene.storage() == Storage::Dense {
                 hints.push(
                     "solver.method = \"auto\" or \"conjugate-gradient\" (matrix-free on a \
                      lattice: O(N) memory, docs/performance.md section 6)",
                 );
             }
-            if scene.storage == Storage::Dense && scene.method != Method::BlockPivoting {
+            if scene.storage() == Storage::Dense && scene.method() != Method::BlockPivoting {
                 hints.push("solver.method = \"block-pivoting\" (fewer matrices)");
             }
         }
@@ -396,7 +402,7 @@ impl Estimate {
         }
         hints.push("a machine with more memory");
         SceneError::TooBig {
-            scene: scene.name.clone(),
+            scene: scene.name().to_string(),
             needed: what,
             ceiling: ceiling.to_string(),
             hints: hints.join(", or "),
@@ -422,30 +428,30 @@ fn design(
     let largest = sizes.iter().copied().max().unwrap_or(0);
     let cases = angles * sizes.len();
     // The cases are analysed under load, from separations >= 0.
-    let m = matrices(scene.method, Tableau::Symmetric);
-    let per_cube = per_cube(scene.method, Tableau::Symmetric);
+    let m = matrices(scene.method(), Tableau::Symmetric);
+    let per_cube = per_cube(scene.method(), Tableau::Symmetric);
     let analysis = per_cube * (largest as f64).powi(3);
     // Each design load's S: dense, or (a matrix-free scene) its operator
     // and the conjugate gradient's vectors.
     let mut held = 0.0;
     for set in &sets {
-        held += match scene.storage {
+        held += match scene.storage() {
             Storage::Dense => square_bytes(1.0, set.len()),
             Storage::MatrixFree => {
-                let bodies = [&scene.bodies[0].body, &scene.bodies[1].body];
+                let bodies = [&scene.bodies()[0].body, &scene.bodies()[1].body];
                 LatticeOperator::estimate_bytes(set, &bodies).map_err(|e| SceneError::Run {
-                    scene: scene.name.clone(),
+                    scene: scene.name().to_string(),
                     reason: e.to_string(),
                 })? as f64
                     + CG_VECTORS * ENTRY * set.len() as f64
             }
         };
     }
-    let analysis_blocks = match scene.storage {
+    let analysis_blocks = match scene.storage() {
         Storage::Dense => square_bytes(m - 1.0, largest),
         Storage::MatrixFree => 0.0,
     };
-    let own = match scene.storage {
+    let own = match scene.storage() {
         Storage::Dense => square_bytes(1.0, unknowns),
         Storage::MatrixFree => 0.0,
     };
@@ -465,14 +471,14 @@ fn design(
             };
             let resolved = spec
                 .method
-                .resolve(total, scene.storage == Storage::MatrixFree);
+                .resolve(total, scene.storage() == Storage::MatrixFree);
             method = Some(resolved);
             if resolved == DesignMethod::Descent {
                 // One contact block and its solves at a time, every case's
                 // solutions twice (the iterate and the trial), the step's
                 // program of m + 1 rows and a column per point in contact.
                 let columns = (total + 2 * params + 1) as f64;
-                let block = match scene.storage {
+                let block = match scene.storage() {
                     Storage::Dense => square_bytes(1.0, largest),
                     Storage::MatrixFree => 0.0,
                 };

@@ -221,7 +221,7 @@ fn clean_leftovers(parent: &Path, name: &str) {
 /// # Errors
 /// [`SceneError::Io`] for a file that could not be written.
 pub fn write_run(run: &Run, out: &Path) -> Result<PathBuf, SceneError> {
-    let staging = Staging::begin(&out.join(&run.scene.name), &|_| {})?;
+    let staging = Staging::begin(&out.join(run.scene.name()), &|_| {})?;
     write_run_files(run, staging.path())?;
     staging.commit()
 }
@@ -235,11 +235,11 @@ pub fn write_run_files(run: &Run, dir: &Path) -> Result<(), SceneError> {
     let json = serde_json::to_string_pretty(&run.result).map_err(|e| SceneError::io(dir, e))?;
     write_atomic(&dir.join("result.json"), json.as_bytes())?;
     faults::write_delay();
-    if run.scene.outputs.pressure_csv {
+    if run.scene.outputs().pressure_csv {
         write_atomic(&dir.join("pressure.csv"), pressure_csv(run).as_bytes())?;
         faults::write_delay();
     }
-    for plot in &run.scene.outputs.plots {
+    for plot in &run.scene.outputs().plots {
         let (name, svg) = match plot {
             Plot::Pressure => ("pressure.svg", plot::pressure(run)),
             Plot::Design => ("design.svg", plot::design(run)),
@@ -256,7 +256,7 @@ pub fn write_run_files(run: &Run, dir: &Path) -> Result<(), SceneError> {
 
 /// pressure.csv: one row per candidate point.
 fn pressure_csv(run: &Run) -> String {
-    let u = &run.scene.units;
+    let u = run.scene.units();
     let points = run.problem.points();
     let sol = &run.solution;
     let eps = run.problem.separation();

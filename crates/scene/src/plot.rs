@@ -44,7 +44,7 @@ fn padded(lo: f64, hi: f64) -> (f64, f64) {
 fn axisymmetric(run: &Run) -> bool {
     let revolution = |s: &Surface| matches!(s, Surface::Sphere { .. } | Surface::Plane);
     let surfaces =
-        matches!(&run.scene.geometry, Geometry::Surfaces(a, b) if revolution(a) && revolution(b));
+        matches!(run.scene.geometry(), Geometry::Surfaces(a, b) if revolution(a) && revolution(b));
     let rigid = run.problem.rigid();
     let level = rigid
         .prescribed
@@ -66,7 +66,7 @@ pub(crate) fn pressure(run: &Run) -> Result<String, String> {
     if surface && !axisymmetric(run) {
         return pressure_map(run);
     }
-    let u = &run.scene.units;
+    let u = run.scene.units();
     let pos = |k: usize| {
         if surface {
             points.radius(k)
@@ -97,7 +97,10 @@ pub(crate) fn pressure(run: &Run) -> Result<String, String> {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(format!("{}: pressure", run.scene.name), ("sans-serif", 22))
+            .caption(
+                format!("{}: pressure", run.scene.name()),
+                ("sans-serif", 22),
+            )
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(80)
@@ -119,7 +122,7 @@ pub(crate) fn pressure(run: &Run) -> Result<String, String> {
             .label(format!(
                 "elcon, {} points, {}",
                 points.len(),
-                run.scene.method
+                run.scene.method()
             ))
             .legend(|(x, y)| Circle::new((x + 10, y), 3, COLORS[0].filled()));
         if !reference.is_empty() {
@@ -168,8 +171,8 @@ fn along(
 /// axis before and after (bottom).
 pub(crate) fn design(run: &Run) -> Result<String, String> {
     let d = run.design.as_ref().ok_or("no design stage")?;
-    let spec = run.scene.design.as_ref().ok_or("no design section")?;
-    let u = &run.scene.units;
+    let spec = run.scene.design().ok_or("no design section")?;
+    let u = run.scene.units();
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (SIZE.0, SIZE.1 + 300)).into_drawing_area();
@@ -182,7 +185,7 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
             .caption(
                 format!(
                     "{}: correction ({})",
-                    run.scene.name,
+                    run.scene.name(),
                     run.result.design.as_ref().map_or("", |d| d.family.as_str())
                 ),
                 ("sans-serif", 22),
@@ -433,7 +436,7 @@ fn principal_axes(
 pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
     let points = run.problem.points();
     let p = &run.solution.pressures;
-    let u = &run.scene.units;
+    let u = run.scene.units();
     let top = p
         .iter()
         .fold(0.0f64, |a, v| a.max(*v))
@@ -456,7 +459,7 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
         let (map_area, bar_area) = upper.split_horizontally(SIZE.0 - 130);
         let mut map = ChartBuilder::on(&map_area)
             .caption(
-                format!("{}: pressure map", run.scene.name),
+                format!("{}: pressure map", run.scene.name()),
                 ("sans-serif", 22),
             )
             .margin(12)

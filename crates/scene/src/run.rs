@@ -342,7 +342,7 @@ pub struct DesignRun {
 
 fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError {
     SceneError::Run {
-        scene: scene.name.clone(),
+        scene: scene.name().to_string(),
         reason: e.to_string(),
     }
 }
@@ -354,50 +354,50 @@ fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError {
 /// design stage fails.
 pub fn run(scene: &Scene) -> Result<Run, SceneError> {
     let start = Instant::now();
-    crate::faults::panic_point(&scene.name);
-    let [b1, b2] = &scene.bodies;
-    let build = match (scene.storage, scene.fold) {
+    crate::faults::panic_point(scene.name());
+    let [b1, b2] = scene.bodies();
+    let build = match (scene.storage(), scene.fold()) {
         (Storage::MatrixFree, _) => ContactProblem::lattice,
         (Storage::Dense, true) => ContactProblem::symmetric,
         (Storage::Dense, false) => ContactProblem::new,
     };
     let problem = build(
-        scene.points.clone(),
+        scene.points().clone(),
         &b1.body,
         &b2.body,
-        &scene.geometry,
-        scene.loading,
+        scene.geometry(),
+        scene.loading(),
     )
     .map_err(|e| run_error(scene, e))?
-    .with_body_edges(scene.body_edges.0, scene.body_edges.1);
+    .with_body_edges(scene.body_edges().0, scene.body_edges().1);
     let solution = problem
-        .solve(scene.method, &scene.options)
+        .solve(scene.method(), scene.options())
         .map_err(|e| run_error(scene, e))?;
-    let (reference, reference_pressures) = match &scene.reference {
+    let (reference, reference_pressures) = match &scene.reference() {
         Some(r) => {
-            let (json, p) = compare(r, &problem, &solution, scene.loading);
+            let (json, p) = compare(r, &problem, &solution, scene.loading());
             (Some(json), p)
         }
         None => (None, None),
     };
-    let (design_json, design) = match &scene.design {
+    let (design_json, design) = match &scene.design() {
         Some(_) => Some(design_stage(scene, &problem, &solution)?),
         None => None,
     }
     .unzip();
     let c = &solution.certificate;
     let result = RunResult {
-        scene: scene.name.clone(),
-        file: scene.file.display().to_string(),
-        description: scene.description.clone(),
-        units: scene.units.clone(),
-        method: scene.method.name().to_string(),
-        influence: scene.storage.name().to_string(),
-        dimension: match scene.points.dimension() {
+        scene: scene.name().to_string(),
+        file: scene.file().display().to_string(),
+        description: scene.description().map(String::from),
+        units: scene.units().clone(),
+        method: scene.method().name().to_string(),
+        influence: scene.storage().name().to_string(),
+        dimension: match scene.points().dimension() {
             Dimension::Surface => "surface".into(),
             Dimension::Line => "line".into(),
         },
-        points: scene.points.len(),
+        points: scene.points().len(),
         symmetry: problem.folding().map(|f| SymmetryJson {
             group: f.group().to_string(),
             order: f.order(),
@@ -428,7 +428,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         contact_extent: solution.contact_extent,
         certificate: CertificateJson::of(c),
         warnings: scene
-            .warnings
+            .warnings()
             .iter()
             .cloned()
             .chain(solution.warnings.iter().map(|w| w.to_string()))
@@ -552,7 +552,7 @@ fn compare(
 
 /// The reference intensity r_l of a load case.
 fn reference_intensity(scene: &Scene, case: &ContactProblem, load: f64) -> Result<f64, SceneError> {
-    let spec = scene.design.as_ref().expect("a design stage");
+    let spec = scene.design().expect("a design stage");
     Ok(match spec.relative_to {
         RelativeTo::Absolute => 1.0,
         RelativeTo::Mean => load / case.points().total_measure(),
@@ -587,7 +587,7 @@ fn design_stage(
     problem: &ContactProblem,
     solution: &ContactSolution,
 ) -> Result<(DesignJson, DesignRun), SceneError> {
-    let spec = scene.design.as_ref().expect("a design stage");
+    let spec = scene.design().expect("a design stage");
     let start = Instant::now();
     let (cases, known, references) = design_cases(scene, spec, problem, solution)?;
     let fail = |e: elcon_design::DesignError| run_error(scene, e);
@@ -595,8 +595,8 @@ fn design_stage(
         &cases,
         spec.axis,
         &Profile::none(),
-        scene.method,
-        &scene.options,
+        scene.method(),
+        scene.options(),
         &known,
     )
     .map_err(fail)?;
@@ -669,7 +669,7 @@ fn design_cases<'a>(
     let mut cases = Vec::new();
     let mut known = Vec::new();
     let mut references = Vec::new();
-    let [b1, b2] = &scene.bodies;
+    let [b1, b2] = scene.bodies();
     for (load, misalignment) in spec.case_loadings() {
         let points = scene.points_for(load)?;
         // On the scene's own points, a problem solved in full shares its S
@@ -686,15 +686,15 @@ fn design_cases<'a>(
             Some(c) => c.with_loading(loading),
             // A matrix-free scene's design cases are matrix-free too (the
             // descent analyses them by the conjugate gradient).
-            None => match scene.storage {
+            None => match scene.storage() {
                 crate::storage::Storage::MatrixFree => {
-                    ContactProblem::lattice(points, &b1.body, &b2.body, &scene.geometry, loading)
+                    ContactProblem::lattice(points, &b1.body, &b2.body, scene.geometry(), loading)
                 }
                 crate::storage::Storage::Dense => {
-                    ContactProblem::new(points, &b1.body, &b2.body, &scene.geometry, loading)
+                    ContactProblem::new(points, &b1.body, &b2.body, scene.geometry(), loading)
                 }
             }
-            .map(|c| c.with_body_edges(scene.body_edges.0, scene.body_edges.1)),
+            .map(|c| c.with_body_edges(scene.body_edges().0, scene.body_edges().1)),
         }
         .map_err(|e| run_error(scene, e))?;
         let solved = misalignment.is_none()
@@ -725,8 +725,8 @@ fn find_design(
                 &DesignOptions {
                     method: spec.method,
                     max_constant: spec.max_constant,
-                    reanalysis: scene.method,
-                    reanalysis_options: scene.options.clone(),
+                    reanalysis: scene.method(),
+                    reanalysis_options: scene.options().clone(),
                     reference_intensities: Some(references.to_vec()),
                     ..DesignOptions::default()
                 },
@@ -760,8 +760,8 @@ fn find_design(
                 radius_range.0,
                 radius_range.1,
                 &SearchOptions {
-                    method: scene.method,
-                    options: scene.options.clone(),
+                    method: scene.method(),
+                    options: scene.options().clone(),
                     reference_intensities: Some(references.to_vec()),
                     ..SearchOptions::default()
                 },
@@ -781,7 +781,7 @@ fn find_design(
             end,
         } => {
             // Validation refuses a logarithmic crown but for a roller.
-            let (roller, length) = match (scene.hertz(*design_load), &scene.points_spec) {
+            let (roller, length) = match (scene.hertz(*design_load), scene.points_spec()) {
                 (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => {
                     (h, 2.0 * half_y)
                 }
@@ -800,8 +800,8 @@ fn find_design(
                 flat_length: *flat_length,
                 end: *end,
             });
-            let after =
-                evaluate(cases, spec.axis, &profile, scene.method, &scene.options).map_err(fail)?;
+            let after = evaluate(cases, spec.axis, &profile, scene.method(), scene.options())
+                .map_err(fail)?;
             (
                 profile,
                 after,

@@ -58,10 +58,10 @@ fn the_design_stage_shares_the_scenes_matrix_and_solution() {
     // And it is what solving again gives, to the bit.
     let fresh = evaluate(
         &d.cases,
-        scene.design.as_ref().unwrap().axis,
+        scene.design().unwrap().axis,
         &Profile::none(),
-        scene.method,
-        &scene.options,
+        scene.method(),
+        scene.options(),
     )
     .unwrap();
     assert_eq!(fresh.max_intensities, d.before.max_intensities);

@@ -75,7 +75,7 @@ plots = ["pressure"]
 
 fn pressure_svg(text: &str) -> (String, usize, usize) {
     let scene = Scene::from_str(Path::new("plot.toml"), text).unwrap();
-    assert_eq!(scene.outputs.plots, vec![Plot::Pressure]);
+    assert_eq!(scene.outputs().plots, vec![Plot::Pressure]);
     let r = run(&scene).unwrap();
     // Each call its own directory: the tests run in parallel, and their
     // scenes share a name.
@@ -84,7 +84,7 @@ fn pressure_svg(text: &str) -> (String, usize, usize) {
     let dir = std::env::temp_dir().join(format!(
         "elcon-plots-{}-{call}-{}",
         std::process::id(),
-        scene.name
+        scene.name()
     ));
     let written = elcon_scene::write_run(&r, &dir).unwrap();
     let svg = std::fs::read_to_string(written.join("pressure.svg")).unwrap();

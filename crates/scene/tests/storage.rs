@@ -53,26 +53,26 @@ load = 100.0
 fn auto_is_block_pivoting_on_the_dense_s_for_few_unknowns() {
     let scene = spheres(21, "");
     assert_eq!(
-        (scene.method, scene.storage),
+        (scene.method(), scene.storage()),
         (Method::BlockPivoting, Storage::Dense)
     );
     let given = spheres(21, r#"method = "auto""#);
-    assert_eq!(given.storage, Storage::Dense);
+    assert_eq!(given.storage(), Storage::Dense);
 }
 
 #[test]
 fn auto_goes_matrix_free_above_the_limit_and_meets_hertz() {
     // 81 across, not folded: N = 6,609 unknowns, above the limit.
     let scene = spheres(81, r#"symmetry = "none""#);
-    assert!(scene.points.len() > AUTO_DENSE_LIMIT);
+    assert!(scene.points().len() > AUTO_DENSE_LIMIT);
     assert_eq!(
-        (scene.method, scene.storage),
+        (scene.method(), scene.storage()),
         (Method::ConjugateGradient, Storage::MatrixFree)
     );
     // O(N): the operator and a few vectors, not 8 N^2 bytes.
     let estimate = Estimate::of(&scene).expect("estimate");
     assert!(
-        estimate.solve_bytes < 1000 * scene.points.len() as u64,
+        estimate.solve_bytes < 1000 * scene.points().len() as u64,
         "{}",
         estimate.solve_bytes
     );
@@ -87,16 +87,16 @@ fn auto_goes_matrix_free_above_the_limit_and_meets_hertz() {
     assert!(error.abs() < 2e-3, "approach against Hertz {error:e}");
     // Folded, the same grid is small enough to stay dense.
     let folded = spheres(81, "");
-    assert_eq!(folded.storage, Storage::Dense);
+    assert_eq!(folded.storage(), Storage::Dense);
 }
 
 #[test]
 fn an_explicit_conjugate_gradient_is_matrix_free_unless_the_scene_folds() {
     let unfolded = spheres(21, "method = \"conjugate-gradient\"\nsymmetry = \"none\"");
-    assert_eq!(unfolded.storage, Storage::MatrixFree);
+    assert_eq!(unfolded.storage(), Storage::MatrixFree);
     let folded = spheres(21, r#"method = "conjugate-gradient""#);
     assert_eq!(
-        (folded.method, folded.storage),
+        (folded.method(), folded.storage()),
         (Method::ConjugateGradient, Storage::Dense)
     );
     let a = run(&unfolded).expect("matrix-free");
@@ -149,7 +149,7 @@ fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
     // loads: the design cases are lattice problems, the method the descent.
     let design = "method = \"conjugate-gradient\"\nsymmetry = \"none\"\n\n[design]\nfamily = \"quadratic\"\naxis = \"y\"\nloads = [80.0, 100.0]\n";
     let scene = spheres(15, design);
-    assert_eq!(scene.storage, Storage::MatrixFree);
+    assert_eq!(scene.storage(), Storage::MatrixFree);
     let estimate = Estimate::of(&scene).unwrap();
     let d = estimate.design.clone().unwrap();
     assert_eq!(d.method, Some(elcon_design::DesignMethod::Descent));

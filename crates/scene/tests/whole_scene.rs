@@ -317,15 +317,15 @@ fn messages_name_the_field_at_fault() {
 
 #[test]
 fn a_grid_coarser_than_the_contact_warns() {
-    assert!(scene(SPHERES).unwrap().warnings.is_empty());
+    assert!(scene(SPHERES).unwrap().warnings().is_empty());
     // Spacing equal to the disk radius: about two points across the Hertz
     // contact diameter (0.032 in).
     let s = scene(&SPHERES.replace("spacing = 0.002", "spacing = 0.02")).unwrap();
-    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    assert_eq!(s.warnings().len(), 1, "{:?}", s.warnings());
     assert!(
-        s.warnings[0].contains("about 2 points across the Hertz contact diameter"),
+        s.warnings()[0].contains("about 2 points across the Hertz contact diameter"),
         "{:?}",
-        s.warnings
+        s.warnings()
     );
     // Without a closed form, the disk itself.
     let flat = SPHERES
@@ -334,11 +334,11 @@ fn a_grid_coarser_than_the_contact_warns() {
         .replace("spacing = 0.002", "spacing = 0.02");
     let s = scene(&flat).unwrap();
     assert!(
-        s.warnings
+        s.warnings()
             .iter()
             .any(|w| w.contains("the candidate disk has about 3 points across")),
         "{:?}",
-        s.warnings
+        s.warnings()
     );
 }
 
@@ -379,9 +379,9 @@ fn model_kinds_are_named_as_scenes_name_them() {
     assert_eq!(ModelKind::of("jelly"), None);
     // A scene's body reads as the kind it names.
     let s = scene(BEAM).unwrap();
-    assert_eq!(s.bodies[0].model, ModelKind::Beam);
-    assert_eq!(s.bodies[1].model, ModelKind::Winkler);
-    assert!(s.bodies[0].model.is_line());
+    assert_eq!(s.bodies()[0].model, ModelKind::Beam);
+    assert_eq!(s.bodies()[1].model, ModelKind::Winkler);
+    assert!(s.bodies()[0].model.is_line());
 }
 
 #[test]

@@ -46,52 +46,155 @@ use crate::storage::{self, Storage};
 #[derive(Debug, Clone)]
 pub struct Scene {
     /// The scene's name (default: the file's stem).
-    pub name: String,
+    name: String,
     /// The file it came from.
-    pub file: PathBuf,
+    file: PathBuf,
     /// Its description.
-    pub description: Option<String>,
+    description: Option<String>,
     /// Unit labels.
-    pub units: Units,
+    units: Units,
     /// The two bodies.
-    pub bodies: [BodySpec; 2],
+    bodies: [BodySpec; 2],
     /// The initial separations' source.
-    pub geometry: Geometry,
+    geometry: Geometry,
     /// The point layout.
-    pub points_spec: PointsSpec,
+    points_spec: PointsSpec,
     /// The candidate points for the scene's loading.
-    pub points: PointSet,
+    points: PointSet,
     /// Load or approach.
-    pub loading: Loading,
+    loading: Loading,
     /// The engine's method (`solver.method`; `"auto"` resolved, see
     /// [`Storage`]).
-    pub method: Method,
+    method: Method,
     /// How the contact problem holds S: dense, or matrix-free on the
     /// lattice (`solver.method`'s choice, see [`Storage`]).
-    pub storage: Storage,
+    storage: Storage,
     /// The engine's options.
-    pub options: Options,
+    options: Options,
     /// Whether to fold a mirror-symmetric problem (`solver.symmetry`,
     /// "auto" (default) or "none").
-    pub fold: bool,
+    fold: bool,
     /// The design stage, if asked for.
-    pub design: Option<DesignSpec>,
+    design: Option<DesignSpec>,
     /// The outputs.
-    pub outputs: Outputs,
+    outputs: Outputs,
     /// The closed form that applies, if any.
-    pub reference: Option<Reference>,
+    reference: Option<Reference>,
     /// The zone's edges that are the bodies' own (along x, along y):
     /// contact reaching them raises no truncation warning. Inferred: a
     /// beam's ends (x), a roller's ends on a rectangle grid (y), a flat
     /// punch's rim (both).
-    pub body_edges: (bool, bool),
+    body_edges: (bool, bool),
     /// What validation found doubtful but not wrong (a grid coarser than
     /// the contact): printed by `elcon check` and `elcon run`, and written
     /// to result.json's warnings.
-    pub warnings: Vec<String>,
+    warnings: Vec<String>,
 }
 
 impl Scene {
+    /// The scene's name (default: the file's stem): it names the output
+    /// directory.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The file it came from.
+    pub fn file(&self) -> &Path {
+        &self.file
+    }
+
+    /// Its description, if it has one.
+    pub fn description(&self) -> Option<&str> {
+        self.description.as_deref()
+    }
+
+    /// The unit labels.
+    pub fn units(&self) -> &Units {
+        &self.units
+    }
+
+    /// The two bodies.
+    pub fn bodies(&self) -> &[BodySpec; 2] {
+        &self.bodies
+    }
+
+    /// The initial separations' source: two surfaces, or given values.
+    pub fn geometry(&self) -> &Geometry {
+        &self.geometry
+    }
+
+    /// The point layout.
+    pub fn points_spec(&self) -> &PointsSpec {
+        &self.points_spec
+    }
+
+    /// The candidate points for the scene's loading.
+    pub fn points(&self) -> &PointSet {
+        &self.points
+    }
+
+    /// Load or approach, and the rotations.
+    pub fn loading(&self) -> Loading {
+        self.loading
+    }
+
+    /// The engine's method (`solver.method`; `"auto"` resolved, see
+    /// [`Storage`]).
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
+    /// How the contact problem holds S: dense, or matrix-free on the
+    /// lattice (`solver.method`'s choice, see [`Storage`]).
+    pub fn storage(&self) -> Storage {
+        self.storage
+    }
+
+    /// The engine's options (`solver.max_pivots`,
+    /// `certificate_tolerance`, `refinement_steps`).
+    pub fn options(&self) -> &Options {
+        &self.options
+    }
+
+    /// Whether a mirror-symmetric problem is folded (`solver.symmetry`).
+    pub fn fold(&self) -> bool {
+        self.fold
+    }
+
+    /// The design stage, if the scene asks for one.
+    pub fn design(&self) -> Option<&DesignSpec> {
+        self.design.as_ref()
+    }
+
+    /// What to write.
+    pub fn outputs(&self) -> &Outputs {
+        &self.outputs
+    }
+
+    /// The closed form that applies, if any.
+    pub fn reference(&self) -> Option<&Reference> {
+        self.reference.as_ref()
+    }
+
+    /// The zone's edges that are the bodies' own (along x, along y):
+    /// contact reaching them raises no truncation warning.
+    pub fn body_edges(&self) -> (bool, bool) {
+        self.body_edges
+    }
+
+    /// What validation found doubtful but not wrong (a grid coarser than
+    /// the contact).
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    /// The same scene under another name (a batch's run is named after
+    /// its sweep values).
+    pub(crate) fn renamed(mut self, name: String) -> Self {
+        self.name = name;
+        self
+    }
+
     /// Reads and validates a scene file.
     ///
     /// # Errors
