@@ -214,7 +214,10 @@ fn row(r: &RunResult) {
     );
     println!(
         "{:<28} units: length {}, force {}, pressure {}",
-        "", r.units.length, r.units.force, r.units.intensity
+        "",
+        r.units.length(),
+        r.units.force(),
+        r.units.intensity()
     );
     for w in &r.warnings {
         println!("{:<28} warning: {w}", "");

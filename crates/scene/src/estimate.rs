@@ -215,7 +215,7 @@ fn to_bytes(b: f64) -> u64 {
 /// approach given, a free tilt, a prescribed misalignment that presses a
 /// point in) it works on the general tableau.
 fn unknowns(points: &PointSet, scene: &Scene) -> (usize, Tableau) {
-    let bodies = [&scene.bodies()[0].body, &scene.bodies()[1].body];
+    let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
     let Ok(layout) = Layout::of(
         points,
         bodies,
@@ -256,7 +256,7 @@ impl Estimate {
         let (unknowns, m, solve, mut seconds) =
             match scene.storage() {
                 Storage::MatrixFree => {
-                    let bodies = [&scene.bodies()[0].body, &scene.bodies()[1].body];
+                    let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
                     let operator = LatticeOperator::estimate_bytes(scene.points(), &bodies)
                         .map_err(|e| SceneError::Run {
                             scene: scene.name().to_string(),
@@ -417,12 +417,12 @@ fn design(
     unknowns: usize,
 ) -> Result<(DesignEstimate, f64), SceneError> {
     let sets = spec
-        .loads
+        .loads()
         .iter()
         .map(|&load| scene.points_for(load))
         .collect::<Result<Vec<_>, _>>()?;
     // Every load is a case at each misalignment, all sharing its S.
-    let angles = spec.misalignments.len().max(1);
+    let angles = spec.misalignments().len().max(1);
     let sizes: Vec<usize> = sets.iter().map(PointSet::len).collect();
     let total: usize = angles * sizes.iter().sum::<usize>();
     let largest = sizes.iter().copied().max().unwrap_or(0);
@@ -438,7 +438,7 @@ fn design(
         held += match scene.storage() {
             Storage::Dense => square_bytes(1.0, set.len()),
             Storage::MatrixFree => {
-                let bodies = [&scene.bodies()[0].body, &scene.bodies()[1].body];
+                let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
                 LatticeOperator::estimate_bytes(set, &bodies).map_err(|e| SceneError::Run {
                     scene: scene.name().to_string(),
                     reason: e.to_string(),
@@ -461,16 +461,16 @@ fn design(
     let line = sets.iter().all(|p| p.dimension() == Dimension::Line);
     let starts = if line { 2.0 } else { 1.0 };
     let mut method = None;
-    let program = match &spec.family {
+    let program = match spec.family() {
         DesignFamily::Linear(family) => {
-            let (stations, _) = axial_stations(sets.iter(), spec.axis);
+            let (stations, _) = axial_stations(sets.iter(), spec.axis());
             let params = match family {
                 Family::Quadratic => 3,
                 Family::Polynomial { degree } => degree + 1,
                 Family::Free => stations.len(),
             };
             let resolved = spec
-                .method
+                .method()
                 .resolve(total, scene.storage() == Storage::MatrixFree);
             method = Some(resolved);
             if resolved == DesignMethod::Descent {

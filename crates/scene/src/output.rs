@@ -235,11 +235,11 @@ pub fn write_run_files(run: &Run, dir: &Path) -> Result<(), SceneError> {
     let json = serde_json::to_string_pretty(&run.result).map_err(|e| SceneError::io(dir, e))?;
     write_atomic(&dir.join("result.json"), json.as_bytes())?;
     faults::write_delay();
-    if run.scene.outputs().pressure_csv {
+    if run.scene.outputs().pressure_csv() {
         write_atomic(&dir.join("pressure.csv"), pressure_csv(run).as_bytes())?;
         faults::write_delay();
     }
-    for plot in &run.scene.outputs().plots {
+    for plot in run.scene.outputs().plots() {
         let (name, svg) = match plot {
             Plot::Pressure => ("pressure.svg", plot::pressure(run)),
             Plot::Design => ("design.svg", plot::design(run)),
@@ -262,7 +262,7 @@ fn pressure_csv(run: &Run) -> String {
     let eps = run.problem.separation();
     let surface = points.dimension() == Dimension::Surface;
     let mut s = String::new();
-    let (l, f, p) = (&u.length, &u.force, &u.intensity);
+    let (l, f, p) = (u.length(), u.force(), u.intensity());
     if surface {
         let _ = write!(
             s,

@@ -109,11 +109,11 @@ pub(crate) fn pressure(run: &Run) -> Result<String, String> {
         chart
             .configure_mesh()
             .x_desc(if surface {
-                format!("radius ({})", u.length)
+                format!("radius ({})", u.length())
             } else {
-                format!("x ({})", u.length)
+                format!("x ({})", u.length())
             })
-            .y_desc(format!("pressure ({})", u.intensity))
+            .y_desc(format!("pressure ({})", u.intensity()))
             .draw()
             .map_err(err)?;
         chart
@@ -197,8 +197,8 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
             .map_err(err)?;
         chart
             .configure_mesh()
-            .x_desc(format!("axial position ({})", u.length))
-            .y_desc(format!("separation ({})", u.length))
+            .x_desc(format!("axial position ({})", u.length()))
+            .y_desc(format!("separation ({})", u.length()))
             .draw()
             .map_err(err)?;
         chart
@@ -211,11 +211,11 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
         for ((l, case), (load, misalignment)) in
             d.cases.iter().enumerate().zip(spec.case_loadings())
         {
-            let before = along(spec.axis, case.points(), &d.before.solutions[l].pressures);
-            let after = along(spec.axis, case.points(), &d.after.solutions[l].pressures);
+            let before = along(spec.axis(), case.points(), &d.before.solutions[l].pressures);
+            let after = along(spec.axis(), case.points(), &d.after.solutions[l].pressures);
             let label = match misalignment {
-                Some(angle) => format!("load {load} {}, {angle:e} rad", u.force),
-                None => format!("load {load} {}", u.force),
+                Some(angle) => format!("load {load} {}, {angle:e} rad", u.force()),
+                None => format!("load {load} {}", u.force()),
             };
             series.push((label, before, after));
         }
@@ -235,8 +235,8 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
             .map_err(err)?;
         chart
             .configure_mesh()
-            .x_desc(format!("axial position ({})", u.length))
-            .y_desc(format!("pressure ({})", u.intensity))
+            .x_desc(format!("axial position ({})", u.length()))
+            .y_desc(format!("pressure ({})", u.intensity()))
             .draw()
             .map_err(err)?;
         for (i, (label, before, after)) in series.into_iter().enumerate() {
@@ -469,8 +469,8 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
             .map_err(err)?;
         map.configure_mesh()
             .disable_mesh()
-            .x_desc(format!("x ({})", u.length))
-            .y_desc(format!("y ({})", u.length))
+            .x_desc(format!("x ({})", u.length()))
+            .y_desc(format!("y ({})", u.length()))
             .draw()
             .map_err(err)?;
         map.draw_series((0..points.len()).map(|k| {
@@ -494,7 +494,7 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
             .border_style(BLACK)
             .draw()
             .map_err(err)?;
-        colour_bar(&bar_area, top, &u.intensity)?;
+        colour_bar(&bar_area, top, u.intensity())?;
         let [along_x, along_y] = principal_axes(points, p, run.solution.load_centre);
         let (left, right) = lower.split_horizontally(SIZE.0 / 2);
         for (i, (area, label, range, series)) in [
@@ -523,8 +523,12 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
                 .build_cartesian_2d(range.0..range.1, 0.0..top * 1.08)
                 .map_err(err)?;
             axes.configure_mesh()
-                .x_desc(format!("{} ({})", if i == 0 { "x" } else { "y" }, u.length))
-                .y_desc(format!("pressure ({})", u.intensity))
+                .x_desc(format!(
+                    "{} ({})",
+                    if i == 0 { "x" } else { "y" },
+                    u.length()
+                ))
+                .y_desc(format!("pressure ({})", u.intensity()))
                 .draw()
                 .map_err(err)?;
             axes.draw_series(LineSeries::new(series, colour.stroke_width(2)))

@@ -363,8 +363,8 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
     };
     let problem = build(
         scene.points().clone(),
-        &b1.body,
-        &b2.body,
+        b1.body(),
+        b2.body(),
         scene.geometry(),
         scene.loading(),
     )
@@ -553,7 +553,7 @@ fn compare(
 /// The reference intensity r_l of a load case.
 fn reference_intensity(scene: &Scene, case: &ContactProblem, load: f64) -> Result<f64, SceneError> {
     let spec = scene.design().expect("a design stage");
-    Ok(match spec.relative_to {
+    Ok(match spec.relative_to() {
         RelativeTo::Absolute => 1.0,
         RelativeTo::Mean => load / case.points().total_measure(),
         // Validation refuses relative_to = "hertz" without a Hertz contact.
@@ -593,7 +593,7 @@ fn design_stage(
     let fail = |e: elcon_design::DesignError| run_error(scene, e);
     let before = evaluate_known(
         &cases,
-        spec.axis,
+        spec.axis(),
         &Profile::none(),
         scene.method(),
         scene.options(),
@@ -603,15 +603,15 @@ fn design_stage(
     let (profile, after, starts, method) = find_design(scene, spec, &cases, &references)?;
     let objective = after.relative_worst(&references);
     let objective_before = before.relative_worst(&references);
-    let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis);
+    let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis());
     let table = profile.table(&positions).map_err(fail)?;
     let json = DesignJson {
-        family: family_name(&spec.family),
-        axis: match spec.axis {
+        family: family_name(spec.family()),
+        axis: match spec.axis() {
             elcon_design::Axis::X => "x".into(),
             elcon_design::Axis::Y => "y".into(),
         },
-        relative_to: match spec.relative_to {
+        relative_to: match spec.relative_to() {
             RelativeTo::Absolute => "absolute".into(),
             RelativeTo::Mean => "mean".into(),
             RelativeTo::Hertz => "hertz".into(),
@@ -677,7 +677,7 @@ fn design_cases<'a>(
         // solution is the uncorrected analysis. A design load's own S is
         // shared by its misalignments.
         let own = problem.folding().is_none() && points == *problem.points();
-        let loading = case_loading(spec.axis, load, misalignment);
+        let loading = case_loading(spec.axis(), load, misalignment);
         let shared = cases
             .iter()
             .find(|c: &&ContactProblem| c.points() == &points)
@@ -688,10 +688,10 @@ fn design_cases<'a>(
             // descent analyses them by the conjugate gradient).
             None => match scene.storage() {
                 crate::storage::Storage::MatrixFree => {
-                    ContactProblem::lattice(points, &b1.body, &b2.body, scene.geometry(), loading)
+                    ContactProblem::lattice(points, b1.body(), b2.body(), scene.geometry(), loading)
                 }
                 crate::storage::Storage::Dense => {
-                    ContactProblem::new(points, &b1.body, &b2.body, scene.geometry(), loading)
+                    ContactProblem::new(points, b1.body(), b2.body(), scene.geometry(), loading)
                 }
             }
             .map(|c| c.with_body_edges(scene.body_edges().0, scene.body_edges().1)),
@@ -716,15 +716,15 @@ fn find_design(
     references: &[f64],
 ) -> Result<(Profile, Evaluation, Vec<String>, &'static str), SceneError> {
     let fail = |e: elcon_design::DesignError| run_error(scene, e);
-    Ok(match &spec.family {
+    Ok(match spec.family() {
         DesignFamily::Linear(family) => {
             let d = design(
                 cases,
-                spec.axis,
+                spec.axis(),
                 *family,
                 &DesignOptions {
-                    method: spec.method,
-                    max_constant: spec.max_constant,
+                    method: spec.method(),
+                    max_constant: spec.max_constant(),
                     reanalysis: scene.method(),
                     reanalysis_options: scene.options().clone(),
                     reference_intensities: Some(references.to_vec()),
@@ -750,7 +750,7 @@ fn find_design(
             let flat = *flat_length;
             let search = crown_search(
                 cases,
-                spec.axis,
+                spec.axis(),
                 |radius| {
                     Ok(Profile::CircularCrown {
                         radius,
@@ -800,8 +800,14 @@ fn find_design(
                 flat_length: *flat_length,
                 end: *end,
             });
-            let after = evaluate(cases, spec.axis, &profile, scene.method(), scene.options())
-                .map_err(fail)?;
+            let after = evaluate(
+                cases,
+                spec.axis(),
+                &profile,
+                scene.method(),
+                scene.options(),
+            )
+            .map_err(fail)?;
             (
                 profile,
                 after,

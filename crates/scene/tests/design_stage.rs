@@ -58,7 +58,7 @@ fn the_design_stage_shares_the_scenes_matrix_and_solution() {
     // And it is what solving again gives, to the bit.
     let fresh = evaluate(
         &d.cases,
-        scene.design().unwrap().axis,
+        scene.design().unwrap().axis(),
         &Profile::none(),
         scene.method(),
         scene.options(),

@@ -251,7 +251,7 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
     let crown = "\n[design]\nfamily = \"logarithmic-crown\"\n";
     let s = scene(&format!("{ROLLER}{crown}")).unwrap();
     assert!(matches!(
-        s.design().unwrap().family,
+        s.design().unwrap().family(),
         elcon_scene::DesignFamily::LogarithmicCrown {
             end: elcon_design::LogEnd::JohnsGohar,
             ..
@@ -261,7 +261,7 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
     // is refused naming the field.
     let s = scene(&format!("{ROLLER}{crown}end = \"lundberg\"\n")).unwrap();
     assert!(matches!(
-        s.design().unwrap().family,
+        s.design().unwrap().family(),
         elcon_scene::DesignFamily::LogarithmicCrown {
             end: elcon_design::LogEnd::Lundberg,
             ..

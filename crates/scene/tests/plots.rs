@@ -75,7 +75,7 @@ plots = ["pressure"]
 
 fn pressure_svg(text: &str) -> (String, usize, usize) {
     let scene = Scene::from_str(Path::new("plot.toml"), text).unwrap();
-    assert_eq!(scene.outputs().plots, vec![Plot::Pressure]);
+    assert_eq!(scene.outputs().plots(), vec![Plot::Pressure]);
     let r = run(&scene).unwrap();
     // Each call its own directory: the tests run in parallel, and their
     // scenes share a name.

@@ -379,9 +379,9 @@ fn model_kinds_are_named_as_scenes_name_them() {
     assert_eq!(ModelKind::of("jelly"), None);
     // A scene's body reads as the kind it names.
     let s = scene(BEAM).unwrap();
-    assert_eq!(s.bodies()[0].model, ModelKind::Beam);
-    assert_eq!(s.bodies()[1].model, ModelKind::Winkler);
-    assert!(s.bodies()[0].model.is_line());
+    assert_eq!(s.bodies()[0].model(), ModelKind::Beam);
+    assert_eq!(s.bodies()[1].model(), ModelKind::Winkler);
+    assert!(s.bodies()[0].model().is_line());
 }
 
 #[test]

@@ -15,11 +15,29 @@ pub use crate::schema::ModelKind;
 #[derive(Debug, Clone)]
 pub struct BodySpec {
     /// The model (`body.model`).
-    pub model: ModelKind,
+    model: ModelKind,
     /// The body for elcon-influence.
-    pub body: Body,
+    body: Body,
     /// The material of a half-space model.
-    pub material: Option<Material>,
+    material: Option<Material>,
+}
+
+impl BodySpec {
+    /// The model (`body.model`).
+    pub fn model(&self) -> ModelKind {
+        self.model
+    }
+
+    /// The body for elcon-influence.
+    pub fn body(&self) -> &Body {
+        &self.body
+    }
+
+    /// The material of a half-space model (none for a rigid body, a
+    /// Winkler foundation or a beam).
+    pub fn material(&self) -> Option<&Material> {
+        self.material.as_ref()
+    }
 }
 
 /// The keys a body of `model` takes.

@@ -43,25 +43,61 @@ pub enum DesignFamily {
 #[derive(Debug, Clone, PartialEq)]
 pub struct DesignSpec {
     /// The family.
-    pub family: DesignFamily,
+    family: DesignFamily,
     /// The axial coordinate.
-    pub axis: Axis,
+    axis: Axis,
     /// The load cases (force).
-    pub loads: Vec<f64>,
+    loads: Vec<f64>,
     /// The reference intensities.
-    pub relative_to: RelativeTo,
+    relative_to: RelativeTo,
     /// The bound c_max (length), if given.
-    pub max_constant: Option<f64>,
+    max_constant: Option<f64>,
     /// How a linear family's problem is solved (`design.method`).
-    pub method: DesignMethod,
+    method: DesignMethod,
     /// Misalignments (rad): every load is a case at each, a prescribed
     /// rotation about the axis across the profile (`tilt_x` when the
     /// profile runs along y, `tilt_y` along x); empty: the loads alone,
     /// their rotations free without a moment.
-    pub misalignments: Vec<f64>,
+    misalignments: Vec<f64>,
 }
 
 impl DesignSpec {
+    /// The profile family.
+    pub fn family(&self) -> &DesignFamily {
+        &self.family
+    }
+
+    /// The axial coordinate (`design.axis`).
+    pub fn axis(&self) -> Axis {
+        self.axis
+    }
+
+    /// The load cases (force).
+    pub fn loads(&self) -> &[f64] {
+        &self.loads
+    }
+
+    /// What the worst p_max is relative to, per load case.
+    pub fn relative_to(&self) -> RelativeTo {
+        self.relative_to
+    }
+
+    /// The bound c_max (length), if given.
+    pub fn max_constant(&self) -> Option<f64> {
+        self.max_constant
+    }
+
+    /// How a linear family's problem is solved (`design.method`, "auto"
+    /// not yet resolved).
+    pub fn method(&self) -> DesignMethod {
+        self.method
+    }
+
+    /// Misalignments (rad); empty: the loads alone.
+    pub fn misalignments(&self) -> &[f64] {
+        &self.misalignments
+    }
+
     /// The design's load cases: each load at each misalignment (or alone).
     pub fn case_loadings(&self) -> Vec<(f64, Option<f64>)> {
         let angles: Vec<Option<f64>> = if self.misalignments.is_empty() {

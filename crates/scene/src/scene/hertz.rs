@@ -45,11 +45,11 @@ impl Reference {
 fn half_space_modulus(bodies: &[BodySpec; 2], models: &[&str]) -> Option<f64> {
     if !bodies
         .iter()
-        .all(|b| b.model == ModelKind::Rigid || models.contains(&b.model.name()))
+        .all(|b| b.model() == ModelKind::Rigid || models.contains(&b.model().name()))
     {
         return None;
     }
-    let e = combined_modulus_of(bodies[0].material.as_ref(), bodies[1].material.as_ref());
+    let e = combined_modulus_of(bodies[0].material(), bodies[1].material());
     e.is_finite().then_some(e)
 }
 
@@ -141,7 +141,7 @@ pub(super) fn reference(
     match spec {
         PointsSpec::Disk { radius, .. } if flat => {
             // A rigid flat punch: one rigid body, the candidate disk its face.
-            let rigid = bodies.iter().filter(|b| b.body.is_rigid()).count() == 1;
+            let rigid = bodies.iter().filter(|b| b.body().is_rigid()).count() == 1;
             let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
             rigid.then(|| FlatPunch::new(e, *radius).ok().map(Reference::FlatPunch))?
         }
@@ -166,7 +166,7 @@ pub(super) fn reference(
                 };
                 let datums: Vec<f64> = bodies
                     .iter()
-                    .filter_map(|b| match b.body.model() {
+                    .filter_map(|b| match b.body().model() {
                         elcon_influence::Model::PlaneStrainStrip {
                             reference_distance, ..
                         } => Some(*reference_distance),
@@ -187,7 +187,7 @@ pub(super) fn reference(
             };
             let (mut ei, mut k, mut x0) = (None, None, None);
             for b in bodies {
-                match *b.body.model() {
+                match *b.body().model() {
                     elcon_influence::Model::Beam {
                         flexural_rigidity,
                         loaded_point,

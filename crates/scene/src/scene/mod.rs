@@ -250,7 +250,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let units = units::units(
         ctx,
         raw.units.get_ref(),
-        bodies.iter().any(|b| b.model == ModelKind::Beam),
+        bodies.iter().any(|b| b.model() == ModelKind::Beam),
     )?;
     let loading = loading::loading(ctx, &raw.loading)?;
     let (points_spec, dimension) = points::points_spec(ctx, &raw.points)?;
@@ -263,7 +263,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;
     sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
     let fold = solver::symmetry(raw.solver.as_ref());
-    let scene_bodies = [&bodies[0].body, &bodies[1].body];
+    let scene_bodies = [bodies[0].body(), bodies[1].body()];
     let layout = Layout::of(&points, scene_bodies, &geometry, &loading, fold).ok();
     let (method, storage) = storage::choose(choice, &points, scene_bodies, layout.as_ref(), fold);
     let design = match &raw.design {
@@ -281,7 +281,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         None => None,
     };
     if let (Some(d), Some(raw_design), Storage::MatrixFree) = (&design, &raw.design, storage)
-        && d.method == DesignMethod::Program
+        && d.method() == DesignMethod::Program
     {
         let span = raw_design
             .get_ref()
@@ -359,7 +359,7 @@ fn model_kinds(
     raw: &SceneFile,
     bodies: &[BodySpec; 2],
 ) -> Result<(bool, bool), SceneError> {
-    if bodies.iter().all(|b| b.body.is_rigid()) {
+    if bodies.iter().all(|b| b.body().is_rigid()) {
         return Err(ctx.invalid(
             raw.body2.get_ref().model.span(),
             "body2.model",
@@ -367,17 +367,17 @@ fn model_kinds(
             "both bodies are rigid: there is no elasticity to solve for; give one an elastic model",
         ));
     }
-    let line_models = bodies.iter().any(|b| b.model.is_line());
-    let surface_models = bodies.iter().any(|b| b.model.is_surface());
+    let line_models = bodies.iter().any(|b| b.model().is_line());
+    let surface_models = bodies.iter().any(|b| b.model().is_surface());
     if line_models && surface_models {
         return Err(ctx.invalid(
             raw.body2.get_ref().model.span(),
             "body2.model",
-            format!("\"{}\"", bodies[1].model),
+            format!("\"{}\"", bodies[1].model()),
             format!(
                 "does not go with body1's \"{}\": line models (plane-strain, beam) and surface models \
                  (point-force, uniform-patch) cannot share a point set",
-                bodies[0].model
+                bodies[0].model()
             ),
         ));
     }
@@ -440,7 +440,7 @@ fn body_edges(
 ) -> (bool, bool) {
     if matches!(reference, Some(Reference::FlatPunch(_))) {
         (true, true)
-    } else if bodies.iter().any(|b| b.model == ModelKind::Beam) {
+    } else if bodies.iter().any(|b| b.model() == ModelKind::Beam) {
         (true, false)
     } else if matches!(points_spec, PointsSpec::Rectangle { .. }) {
         (false, true)
@@ -483,7 +483,7 @@ fn lay_out(
             "points",
             "across/zone",
             sanity::no_hertz_reason(
-                [bodies[0].model.name(), bodies[1].model.name()],
+                [bodies[0].model().name(), bodies[1].model().name()],
                 geometry,
                 loading,
                 dimension,
@@ -537,7 +537,7 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
     if let (Some(spec), Some(raw_design)) = (&scene.design, &raw.design) {
         // The number of cases first: every load's grid is built below.
         sanity::design_cases(ctx, raw_design, spec.case_loadings().len())?;
-        for &load in &spec.loads {
+        for &load in spec.loads() {
             let scale =
                 hertz::hertz_scale(&scene.bodies, &scene.geometry, &scene.points_spec, load);
             sets.push(build_points(&scene.points_spec, scale).map_err(|reason| {
@@ -550,19 +550,19 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
             })?);
         }
         let view = sanity::DesignView {
-            family: match &spec.family {
+            family: match spec.family() {
                 DesignFamily::Linear(f) => Some(*f),
                 _ => None,
             },
-            axis: spec.axis,
-            max_constant: spec.max_constant,
+            axis: spec.axis(),
+            max_constant: spec.max_constant(),
         };
         sanity::design(ctx, raw_design, &view, &sets)?;
     }
     sanity::bodies_on_grid(
         ctx,
         [&raw.body1, &raw.body2],
-        [&scene.bodies[0].body, &scene.bodies[1].body],
+        [scene.bodies[0].body(), scene.bodies[1].body()],
         &scene.points,
         &sets,
     )?;

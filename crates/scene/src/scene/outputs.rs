@@ -9,9 +9,21 @@ pub use crate::schema::Plot;
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outputs {
     /// The plots asked for (default none).
-    pub plots: Vec<Plot>,
+    plots: Vec<Plot>,
     /// Whether to write pressure.csv (default true).
-    pub pressure_csv: bool,
+    pressure_csv: bool,
+}
+
+impl Outputs {
+    /// The plots asked for (default none), each once.
+    pub fn plots(&self) -> &[Plot] {
+        &self.plots
+    }
+
+    /// Whether to write pressure.csv (default true).
+    pub fn pressure_csv(&self) -> bool {
+        self.pressure_csv
+    }
 }
 
 pub(super) fn outputs(

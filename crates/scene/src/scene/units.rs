@@ -10,14 +10,37 @@ use crate::schema::UnitsToml;
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Units {
     /// Length, e.g. "in", "m", "mm".
-    pub length: String,
+    length: String,
     /// Force, e.g. "lbf", "N".
-    pub force: String,
+    force: String,
     /// Stress and pressure (default `force/length^2`), e.g. "psi", "Pa", "MPa".
-    pub pressure: String,
+    pressure: String,
     /// The unit of the load intensity F_k / A_k of this scene: the pressure
     /// unit, or `force/length` on a beam.
-    pub intensity: String,
+    intensity: String,
+}
+
+impl Units {
+    /// Length, e.g. "in", "m", "mm".
+    pub fn length(&self) -> &str {
+        &self.length
+    }
+
+    /// Force, e.g. "lbf", "N".
+    pub fn force(&self) -> &str {
+        &self.force
+    }
+
+    /// Stress and pressure (default `force/length^2`), e.g. "psi", "Pa", "MPa".
+    pub fn pressure(&self) -> &str {
+        &self.pressure
+    }
+
+    /// The unit of the load intensity F_k / A_k: the pressure unit, or
+    /// `force/length` on a beam.
+    pub fn intensity(&self) -> &str {
+        &self.intensity
+    }
 }
 
 pub(super) fn units(ctx: &Ctx<'_>, u: &UnitsToml, beam: bool) -> Result<Units, SceneError> {
