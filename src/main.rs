@@ -205,7 +205,7 @@ fn row(r: &RunResult) {
         r.scene,
         r.method,
         r.points,
-        r.statistics.pivots,
+        r.statistics.pivots(),
         r.seconds.total,
         r.approach,
         r.max_pressure,

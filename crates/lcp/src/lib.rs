@@ -42,6 +42,10 @@
 //! certificate does not hold is not returned: the solve ends with
 //! [`LcpError::Inaccurate`].
 //!
+//! With the `serde` feature, [`Statistics`] and its [`Attempt`]s are
+//! `Serialize`: the totals, then each attempt by name (the shape of
+//! elcon-scene's result.json).
+//!
 //! ```
 //! use elcon_lcp::{BorderedLcp, Lcp, Method, Options};
 //! use faer::{col, mat};

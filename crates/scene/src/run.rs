@@ -20,78 +20,10 @@ use crate::scene::{
 };
 use crate::storage::Storage;
 
-/// The engine's statistics, as written.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct StatisticsJson {
-    /// Pivots (basis exchanges; index exchanges for block pivoting).
-    pub pivots: usize,
-    /// Pivots of step length zero.
-    pub degenerate_pivots: usize,
-    /// Recomputations of the tableau from the data.
-    pub refactorizations: usize,
-    /// Iterative-refinement steps.
-    pub refinement_steps: usize,
-    /// Block iterations (block pivoting).
-    pub iterations: usize,
-    /// Cholesky factorizations (block pivoting; 1 for a tableau method
-    /// that finished on the symmetric tableau).
-    pub factorizations: usize,
-    /// Whether a tableau method finished on the symmetric tableau (half
-    /// the update work; the general tableau otherwise).
-    pub symmetric_tableau: bool,
-    /// Every attempt of the solve, in order (the counts above are their sums).
-    pub attempts: Vec<AttemptJson>,
-}
-
-/// One attempt of a solve, as written.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct AttemptJson {
-    /// The method ("lemke", "restricted-simplex", "block-pivoting").
-    pub method: String,
-    /// The tableau ("symmetric", "general"; absent for block pivoting).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub tableau: Option<String>,
-    /// Why it ran ("first", "fallback", "relaxed-bounds", "retry").
-    pub reason: String,
-    /// Its pivots (index exchanges for block pivoting).
-    pub pivots: usize,
-    /// Its block iterations (block pivoting).
-    pub iterations: usize,
-    /// Its wall-clock seconds.
-    pub seconds: f64,
-    /// How it ended ("returned", "rejected (certificate ...)", "breakdown: ...").
-    pub outcome: String,
-}
-
-impl StatisticsJson {
-    /// The statistics of a solve, as written.
-    pub fn of(st: &elcon_lcp::Statistics) -> Self {
-        Self {
-            pivots: st.pivots(),
-            degenerate_pivots: st.degenerate_pivots(),
-            refactorizations: st.refactorizations(),
-            refinement_steps: st.refinement_steps(),
-            iterations: st.iterations(),
-            factorizations: st.factorizations(),
-            symmetric_tableau: st.symmetric_tableau(),
-            attempts: st
-                .attempts
-                .iter()
-                .map(|a| AttemptJson {
-                    method: a.method.name().to_string(),
-                    tableau: a.tableau.map(|t| t.name().to_string()),
-                    reason: a.reason.to_string(),
-                    pivots: a.work.pivots,
-                    iterations: a.work.iterations,
-                    seconds: a.seconds,
-                    outcome: a.outcome.to_string(),
-                })
-                .collect(),
-        }
-    }
-}
-
-/// A folded problem's symmetry.
+/// A folded problem's symmetry, as written. A mirror of
+/// `elcon_influence::Folding` rather than a `Serialize` on it: result.json
+/// writes the group by name and the folding's size, which the folding
+/// computes, not stores.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SymmetryJson {
     /// The reflections ("mirror x, mirror y", ...).
@@ -113,7 +45,11 @@ pub struct Seconds {
     pub total: f64,
 }
 
-/// The certificate, as written.
+/// The certificate, as written. A mirror of
+/// [`ContactCertificate`](elcon_analysis::ContactCertificate) rather than a
+/// `Serialize` on it: result.json adds the worst residual and whether it
+/// holds (`worst`, `holds`), which the certificate computes, between its
+/// stored fields.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CertificateJson {
     /// |e^T F - P| / P.
@@ -168,7 +104,8 @@ pub struct Errors {
     pub pressure_l2: Option<f64>,
 }
 
-/// The closed form's values and the errors against it.
+/// The closed form's values and the errors against it: gathered from the
+/// closed form and the solution, not the copy of one type.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ReferenceJson {
     /// "hertz-spheres", "hertz-cylinders", "flat-punch", "hetenyi-beam".
@@ -193,7 +130,8 @@ pub struct ReferenceJson {
     pub note: Option<String>,
 }
 
-/// One load case of a design, before and after.
+/// One load case of a design, before and after: gathered from the
+/// evaluations before and after the design, not the copy of one type.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DesignCaseJson {
     /// The load (force).
@@ -214,7 +152,8 @@ pub struct DesignCaseJson {
     pub certificate_holds: bool,
 }
 
-/// The design stage's result.
+/// The design stage's result: the scene's design section by name and
+/// elcon-design's outcome, not the copy of one type.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DesignJson {
     /// The family.
@@ -266,8 +205,8 @@ pub struct RunResult {
     /// The mirror symmetry the problem was folded with, if it was.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub symmetry: Option<SymmetryJson>,
-    /// The engine's statistics.
-    pub statistics: StatisticsJson,
+    /// The engine's statistics (serialized by elcon-lcp's `serde` feature).
+    pub statistics: elcon_lcp::Statistics,
     /// Seconds.
     pub seconds: Seconds,
     /// The approach alpha (length).
@@ -403,7 +342,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
             order: f.order(),
             unknowns: f.len(),
         }),
-        statistics: StatisticsJson::of(&solution.statistics),
+        statistics: solution.statistics.clone(),
         seconds: Seconds {
             assembly: problem.assembly_seconds(),
             solve: solution.solve_seconds,

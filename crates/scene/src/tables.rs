@@ -67,7 +67,7 @@ impl Row {
             status: "ok".into(),
             method: Some(r.method.clone()),
             points: Some(r.points),
-            pivots: Some(r.statistics.pivots),
+            pivots: Some(r.statistics.pivots()),
             seconds_total: Some(r.seconds.total),
             seconds_solve: Some(r.seconds.solve),
             approach: Some(r.approach),

@@ -185,3 +185,50 @@ fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
     let e = Scene::from_str(Path::new("storage.toml"), &spheres_text(15, &text)).unwrap_err();
     assert!(e.to_string().contains("`design.method`"), "{e}");
 }
+
+#[test]
+fn result_json_writes_the_statistics_totals_then_each_attempt() {
+    // elcon-lcp's `serde` feature writes Statistics in result.json's shape:
+    // the totals in this order, then the attempts; a block-pivoting
+    // attempt has no tableau.
+    let r = run(&spheres(11, r#"method = "block-pivoting""#)).unwrap();
+    let text = serde_json::to_string(&r.result.statistics).unwrap();
+    let order = |keys: &[&str], within: &str| {
+        let at: Vec<usize> = keys
+            .iter()
+            .map(|k| within.find(&format!("\"{k}\":")).expect(k))
+            .collect();
+        assert!(at.windows(2).all(|w| w[0] < w[1]), "{keys:?} in {within}");
+    };
+    order(
+        &[
+            "pivots",
+            "degenerate_pivots",
+            "refactorizations",
+            "refinement_steps",
+            "iterations",
+            "factorizations",
+            "symmetric_tableau",
+            "attempts",
+        ],
+        &text,
+    );
+    let attempt = &text[text.find("\"attempts\":").unwrap()..];
+    order(
+        &[
+            "method",
+            "reason",
+            "pivots",
+            "iterations",
+            "seconds",
+            "outcome",
+        ],
+        attempt,
+    );
+    assert!(!attempt.contains("\"tableau\""), "{attempt}");
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(json["pivots"], r.solution.statistics.pivots());
+    assert_eq!(json["attempts"][0]["method"], "block-pivoting");
+    assert_eq!(json["attempts"][0]["reason"], "first");
+    assert_eq!(json["attempts"][0]["outcome"], "returned");
+}
