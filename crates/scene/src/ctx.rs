@@ -160,9 +160,8 @@ impl Shown for i64 {
 
 /// Defines an enum of the names a string key takes: deserialized from the
 /// name (an unknown one is serde's "unknown variant `x`, expected one of
-/// ..." error, located and given its key by [`parse`]), with `ALL` in the
-/// order messages list them, `name()`, `of(name)`, `Display` as the name,
-/// and [`Shown`] as the quoted name.
+/// ..." error, located and given its key by [`parse`]), with `name()`,
+/// `Display` as the name, and [`Shown`] as the quoted name.
 macro_rules! keywords {
     (
         $(#[$meta:meta])*
@@ -177,20 +176,11 @@ macro_rules! keywords {
         }
 
         impl $name {
-            /// Every name, in the order messages list them.
-            $vis const ALL: [$name; [$($text),+].len()] = [$($name::$variant),+];
-
             /// The name a scene gives it.
             $vis fn name(self) -> &'static str {
                 match self {
                     $($name::$variant => $text,)+
                 }
-            }
-
-            /// The value of a name, if it is one.
-            #[allow(dead_code)]
-            $vis fn of(name: &str) -> Option<Self> {
-                Self::ALL.into_iter().find(|v| v.name() == name)
             }
         }
 

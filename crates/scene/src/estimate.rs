@@ -277,7 +277,7 @@ impl Estimate {
                     (unknowns, m, square_bytes(m, unknowns), seconds)
                 }
             };
-        let design = match &scene.design() {
+        let design = match scene.design() {
             Some(spec) => {
                 let (d, s) = design(scene, spec, unknowns)?;
                 seconds += s;

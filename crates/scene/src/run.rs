@@ -312,14 +312,14 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
     let solution = problem
         .solve(scene.method(), scene.options())
         .map_err(|e| run_error(scene, e))?;
-    let (reference, reference_pressures) = match &scene.reference() {
+    let (reference, reference_pressures) = match scene.reference() {
         Some(r) => {
             let (json, p) = compare(r, &problem, &solution, scene.loading());
             (Some(json), p)
         }
         None => (None, None),
     };
-    let (design_json, design) = match &scene.design() {
+    let (design_json, design) = match scene.design() {
         Some(_) => Some(design_stage(scene, &problem, &solution)?),
         None => None,
     }

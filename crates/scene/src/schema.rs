@@ -26,6 +26,21 @@ keywords! {
 }
 
 impl ModelKind {
+    /// Every model, in the order messages list them.
+    pub const ALL: [ModelKind; 6] = [
+        ModelKind::Rigid,
+        ModelKind::PointForce,
+        ModelKind::UniformPatch,
+        ModelKind::PlaneStrain,
+        ModelKind::Winkler,
+        ModelKind::Beam,
+    ];
+
+    /// The model of a name, if it is one.
+    pub fn of(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
     /// A model of a line only (plane-strain strips, a beam).
     pub fn is_line(self) -> bool {
         matches!(self, ModelKind::PlaneStrain | ModelKind::Beam)

@@ -423,11 +423,16 @@ fn design_method(
             "only for the families quadratic, polynomial and free (a crown is searched or set)",
         ));
     }
-    Ok(match m.get_ref() {
+    Ok(design_method_of(*m.get_ref()))
+}
+
+/// The method a `design.method` name stands for.
+fn design_method_of(name: DesignMethodName) -> DesignMethod {
+    match name {
         DesignMethodName::Auto => DesignMethod::Auto,
         DesignMethodName::Program => DesignMethod::Program,
         DesignMethodName::Descent => DesignMethod::Descent,
-    })
+    }
 }
 
 /// `design.misalignments` (rad), each finite and at most
@@ -464,4 +469,20 @@ fn misalignments(ctx: &Ctx<'_>, t: &DesignToml) -> Result<Vec<f64>, SceneError> 
             Ok(angle)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_design_method_name_is_elcon_designs_name_for_it() {
+        for m in [
+            DesignMethodName::Auto,
+            DesignMethodName::Program,
+            DesignMethodName::Descent,
+        ] {
+            assert_eq!(design_method_of(m).name(), m.name());
+        }
+    }
 }

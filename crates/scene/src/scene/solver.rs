@@ -23,13 +23,10 @@ pub(super) fn solver(
     let Some(s) = s else {
         return Ok((MethodChoice::Auto, options));
     };
-    let method = match s.method.as_ref().map(|m| *m.get_ref()) {
-        None | Some(SolverMethod::Auto) => MethodChoice::Auto,
-        Some(SolverMethod::RestrictedSimplex) => MethodChoice::Given(Method::RestrictedSimplex),
-        Some(SolverMethod::Lemke) => MethodChoice::Given(Method::Lemke),
-        Some(SolverMethod::BlockPivoting) => MethodChoice::Given(Method::BlockPivoting),
-        Some(SolverMethod::ConjugateGradient) => MethodChoice::Given(Method::ConjugateGradient),
-    };
+    let method = s
+        .method
+        .as_ref()
+        .map_or(MethodChoice::Auto, |m| choice(*m.get_ref()));
     if let Some(p) = &s.max_pivots {
         options.max_pivots = Some(ctx.count(p, "solver.max_pivots", 1)?);
     }
@@ -49,4 +46,36 @@ pub(super) fn solver(
         options.refinement_steps = ctx.count(r, "solver.refinement_steps", 0)?;
     }
     Ok((method, options))
+}
+
+/// The engine's method a `solver.method` name stands for.
+fn choice(method: SolverMethod) -> MethodChoice {
+    match method {
+        SolverMethod::Auto => MethodChoice::Auto,
+        SolverMethod::RestrictedSimplex => MethodChoice::Given(Method::RestrictedSimplex),
+        SolverMethod::Lemke => MethodChoice::Given(Method::Lemke),
+        SolverMethod::BlockPivoting => MethodChoice::Given(Method::BlockPivoting),
+        SolverMethod::ConjugateGradient => MethodChoice::Given(Method::ConjugateGradient),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_method_name_is_the_engines_name_for_it() {
+        for m in [
+            SolverMethod::RestrictedSimplex,
+            SolverMethod::Lemke,
+            SolverMethod::BlockPivoting,
+            SolverMethod::ConjugateGradient,
+        ] {
+            assert_eq!(
+                choice(m),
+                MethodChoice::Given(Method::from_name(m.name()).unwrap())
+            );
+        }
+        assert_eq!(choice(SolverMethod::Auto), MethodChoice::Auto);
+    }
 }
