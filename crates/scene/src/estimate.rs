@@ -35,11 +35,12 @@ use crate::memory::human;
 use crate::scene::{DesignFamily, DesignSpec, Scene};
 use crate::storage::Storage;
 
-/// Vectors of N doubles a matrix-free solve holds besides the operator
-/// (the conjugate gradient's iterate, residual, direction, product and
-/// gradient, the certificate's products, the problem's q, border and the
-/// solution's copies), rounded up.
-const CG_VECTORS: f64 = 24.0;
+/// Vectors of N doubles a matrix-free solve holds besides the operator:
+/// the point set (about four), the separations, the border, the conjugate
+/// gradient's iterate, gap, direction and product, the certificate's two
+/// columns and the solution's vectors, rounded up (measured: a heap peak
+/// of 132 bytes a point at 347,949 points, 39 of them the operator's).
+const CG_VECTORS: f64 = 14.0;
 
 /// Seconds per point of a matrix-free solve (a few hundred iterations of
 /// two FFT products each; docs/performance.md, "Dense or matrix-free"),
