@@ -7,7 +7,7 @@
 //! [`MAX_RUNS`] costs memory for the runs in flight only, and a shard picks
 //! its runs by index ([`crate::Shard`]).
 //!
-//! Running a batch is [`crate::run_batch`]; its tables and `elcon merge`
+//! Running a batch is `run_batch` (the crate root); its tables and `elcon merge`
 //! are in the tables module.
 
 use std::path::{Path, PathBuf};
