@@ -17,17 +17,8 @@ use sha2::{Digest, Sha256};
 use crate::ctx::{Ctx, parse};
 use crate::error::{Location, SceneError};
 use crate::scene::Scene;
-use crate::schema::BatchFile;
+use crate::schema::{BatchFile, ErrorMetric};
 use crate::shard::Shard;
-
-/// The error metrics a batch can plot against run time.
-pub(crate) const METRICS: [&str; 5] = [
-    "approach",
-    "max_pressure",
-    "contact_extent",
-    "pressure_l2",
-    "load",
-];
 
 /// The most runs a batch file's sweep may have. A batch's tables hold one
 /// row per run, in memory while they are written and on disk (about half a
@@ -45,7 +36,7 @@ pub struct Batch {
     /// The base scene file.
     pub scene_file: PathBuf,
     /// The error plotted against run time (default "approach").
-    pub error: String,
+    pub error: ErrorMetric,
     /// SHA-256 of the batch file's and the base scene's text (hex): the
     /// shards of one batch carry the same, and `elcon merge` checks it.
     pub hash: String,
@@ -163,18 +154,10 @@ impl Batch {
                     at: Location::of(&base_text, e.span().map_or(0, |s| s.start)),
                     message: e.message().trim().to_string(),
                 })?;
-        let error = match &b.error {
-            Some(e) if METRICS.contains(&e.get_ref().as_str()) => e.get_ref().clone(),
-            Some(e) => {
-                return Err(ctx.invalid(
-                    e.span(),
-                    "batch.error",
-                    format!("\"{}\"", e.get_ref()),
-                    format!("one of {}", METRICS.join(", ")),
-                ));
-            }
-            None => "approach".into(),
-        };
+        let error = b
+            .error
+            .as_ref()
+            .map_or_else(ErrorMetric::default, |e| *e.get_ref());
         let (groups, total) = groups(&ctx, &b.group)?;
         let batch = Self {
             name,

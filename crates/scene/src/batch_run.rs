@@ -141,7 +141,7 @@ pub fn run_batch(
     rows.sort_by_key(|r| r.index);
     let outcome = BatchOutcome {
         batch: batch.name.clone(),
-        error: batch.error.clone(),
+        error: batch.error,
         shard: shard.map(|s| s.to_string()),
         batch_hash: Some(batch.hash.clone()),
         runs: Some(batch.len()),

@@ -58,6 +58,7 @@ pub use scene::{
     BodySpec, DesignFamily, DesignSpec, HalfX, ModelKind, Outputs, Plot, PointsSpec, Reference,
     RelativeTo, Scene, Units,
 };
+pub use schema::ErrorMetric;
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};
 pub use storage::{AUTO_DENSE_LIMIT, MethodChoice, Storage};
 pub use tables::{BatchOutcome, Row, merge};

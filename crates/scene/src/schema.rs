@@ -53,6 +53,25 @@ impl ModelKind {
 }
 
 keywords! {
+    /// `batch.error`: the error a batch plots against run time (each a
+    /// column of results.csv, `error_<name>`).
+    #[derive(serde::Serialize, Default)]
+    pub enum ErrorMetric {
+        /// `"approach"` (the default): relative error of the approach.
+        #[default]
+        Approach = "approach",
+        /// `"max_pressure"`: relative error of the peak pressure.
+        MaxPressure = "max_pressure",
+        /// `"contact_extent"`: relative error of the contact radius or half-width.
+        ContactExtent = "contact_extent",
+        /// `"pressure_l2"`: L2 error of the pressure.
+        PressureL2 = "pressure_l2",
+        /// `"load"`: relative error of the load.
+        Load = "load",
+    }
+}
+
+keywords! {
     /// A surface's `shape`.
     pub(crate) enum Shape {
         /// `"plane"`.
@@ -317,6 +336,6 @@ pub(crate) struct BatchFile {
 pub(crate) struct BatchToml {
     pub name: Option<Spanned<String>>,
     pub scene: Spanned<String>,
-    pub error: Option<Spanned<String>>,
+    pub error: Option<Spanned<ErrorMetric>>,
     pub group: Spanned<Vec<Spanned<toml::Table>>>,
 }

@@ -17,6 +17,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::SceneError;
 use crate::output::{Staging, write_atomic};
 use crate::run::RunResult;
+use crate::schema::ErrorMetric;
 
 /// One row of a batch's results table (the default: every value absent).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -91,13 +92,13 @@ impl Row {
         }
     }
 
-    fn error(&self, metric: &str) -> Option<f64> {
+    fn error(&self, metric: ErrorMetric) -> Option<f64> {
         match metric {
-            "approach" => self.error_approach,
-            "max_pressure" => self.error_max_pressure,
-            "contact_extent" => self.error_contact_extent,
-            "pressure_l2" => self.error_pressure_l2,
-            _ => self.error_load,
+            ErrorMetric::Approach => self.error_approach,
+            ErrorMetric::MaxPressure => self.error_max_pressure,
+            ErrorMetric::ContactExtent => self.error_contact_extent,
+            ErrorMetric::PressureL2 => self.error_pressure_l2,
+            ErrorMetric::Load => self.error_load,
         }
     }
 }
@@ -108,7 +109,7 @@ pub struct BatchOutcome {
     /// The batch's name.
     pub batch: String,
     /// The metric plotted against run time.
-    pub error: String,
+    pub error: ErrorMetric,
     /// The shard, "K/N", if one.
     pub shard: Option<String>,
     /// The batch's hash ([`crate::Batch::hash`]): shards of one batch share it.
@@ -287,7 +288,7 @@ pub fn merge(
     let first = &parts[0].table;
     let mut merged = BatchOutcome {
         batch: first.batch.clone(),
-        error: first.error.clone(),
+        error: first.error,
         shard: None,
         batch_hash: first.batch_hash.clone(),
         runs: Some(runs),
@@ -396,7 +397,7 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
             r.seconds_total.map_or(String::new(), |s| format!("{s:.4}")),
             r.certificate_worst
                 .map_or(String::new(), |c| format!("{c:.1e}")),
-            r.error(&o.error)
+            r.error(o.error)
                 .map_or(String::new(), |e| format!("{e:+.3e}")),
             r.status.replace('|', "/"),
         );
@@ -405,7 +406,7 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
     write_atomic(&dir.join("results.md"), md.as_bytes())?;
     let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     for r in &o.rows {
-        if let (Some(m), Some(t), Some(e)) = (&r.method, r.seconds_total, r.error(&o.error)) {
+        if let (Some(m), Some(t), Some(e)) = (&r.method, r.seconds_total, r.error(o.error)) {
             match series.iter_mut().find(|(name, _)| name == m) {
                 Some((_, pts)) => pts.push((t, e.abs())),
                 None => series.push((m.clone(), vec![(t, e.abs())])),
@@ -414,7 +415,7 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
     }
     if !series.is_empty() {
         let title = format!("{}: error against run time", o.batch);
-        if let Ok(svg) = crate::plot::error_time(&title, &o.error, &series) {
+        if let Ok(svg) = crate::plot::error_time(&title, o.error.name(), &series) {
             write_atomic(&dir.join("error-time.svg"), svg.as_bytes())?;
         }
     }

@@ -149,6 +149,32 @@ fn a_batch_name_cannot_leave_the_output_directory() {
     assert!(e.to_string().contains("no leading '.'"), "{e}");
 }
 
+#[test]
+fn a_batch_error_metric_is_one_of_the_results_columns() {
+    let dir = std::env::temp_dir().join(format!("elcon-batch-error-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("base.toml"), BASE).unwrap();
+    let batch = |error: &str| {
+        std::fs::write(
+            dir.join("b.toml"),
+            format!("[batch]\nscene = \"base.toml\"\nerror = \"{error}\"\n[[batch.group]]\n\"loading.load\" = [1.0]\n"),
+        )
+        .unwrap();
+        elcon_scene::Batch::from_file(&dir.join("b.toml"))
+    };
+    let e = batch("peak").unwrap_err().to_string();
+    assert!(e.contains("`batch.error`"), "{e}");
+    assert!(e.contains("b.toml:3:9"), "{e}");
+    assert!(e.contains("unknown variant `peak`"), "{e}");
+    assert!(
+        e.contains("`max_pressure`") && e.contains("`pressure_l2`"),
+        "{e}"
+    );
+    let b = batch("contact_extent").unwrap();
+    assert_eq!(b.error, elcon_scene::ErrorMetric::ContactExtent);
+    assert_eq!(b.error.name(), "contact_extent");
+}
+
 /// A roller along y on a plane, on an absolute rectangle grid.
 const ROLLER: &str = r#"
 [units]
