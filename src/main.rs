@@ -209,7 +209,7 @@ fn row(r: &RunResult) {
         r.seconds.total,
         r.approach,
         r.max_pressure,
-        r.certificate.worst,
+        r.certificate.worst(),
         err
     );
     println!(

@@ -17,7 +17,7 @@ use elcon_analysis::{
 };
 use elcon_design::{Axis, DesignMethod, DesignOptions, Family};
 use elcon_influence::Cell;
-use elcon_scene::{CertificateJson, Scene, SceneError as RustSceneError};
+use elcon_scene::{Scene, SceneError as RustSceneError};
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
@@ -337,7 +337,7 @@ fn solution_json(s: &ContactSolution, m: Method) -> serde_json::Value {
         "max_pressure": s.max_pressure,
         "contact_points": s.contact.len(),
         "contact_extent": s.contact_extent,
-        "certificate": serde_json::to_value(CertificateJson::of(&s.certificate)).unwrap_or_default(),
+        "certificate": serde_json::to_value(s.certificate).unwrap_or_default(),
         "statistics": serde_json::to_value(&s.statistics).unwrap_or_default(),
         "seconds": { "assembly": s.assembly_seconds, "solve": s.solve_seconds },
         "warnings": s.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),

@@ -47,8 +47,8 @@ pub use output::{Staging, write_atomic, write_run, write_run_files};
 pub use plot::error_time;
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{
-    CertificateJson, DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson, Run, RunResult,
-    Seconds, SymmetryJson, XY, run,
+    DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson, Run, RunResult, Seconds,
+    SymmetryJson, XY, run,
 };
 pub use sanity::{
     MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MIN_POINTS_ACROSS,

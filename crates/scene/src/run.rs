@@ -45,44 +45,6 @@ pub struct Seconds {
     pub total: f64,
 }
 
-/// The certificate, as written. A mirror of
-/// [`ContactCertificate`](elcon_analysis::ContactCertificate) rather than a
-/// `Serialize` on it: result.json adds the worst residual and whether it
-/// holds (`worst`, `holds`), which the certificate computes, between its
-/// stored fields.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct CertificateJson {
-    /// |e^T F - P| / P.
-    pub equilibrium: f64,
-    /// Smallest force over the largest.
-    pub min_force: f64,
-    /// Smallest gap over the gap's scale.
-    pub min_gap: f64,
-    /// Largest |F_k Y_k| over (largest force x gap scale).
-    pub complementarity: f64,
-    /// The worst of the above (as violations).
-    pub worst: f64,
-    /// The tolerance it is judged against.
-    pub tolerance: f64,
-    /// worst <= tolerance.
-    pub holds: bool,
-}
-
-impl CertificateJson {
-    /// A solution's certificate, as written.
-    pub fn of(c: &elcon_analysis::ContactCertificate) -> Self {
-        Self {
-            equilibrium: c.equilibrium,
-            min_force: c.min_force,
-            min_gap: c.min_gap,
-            complementarity: c.complementarity,
-            worst: c.worst(),
-            tolerance: c.tolerance,
-            holds: c.holds(),
-        }
-    }
-}
-
 /// Relative errors against the closed form, signed (computed / reference - 1),
 /// except `pressure_l2` (a norm ratio). Absent where not meaningful.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
@@ -229,7 +191,7 @@ pub struct RunResult {
     /// the outermost cells (`ContactSolution::contact_extent`; length).
     pub contact_extent: f64,
     /// Residuals from the original data.
-    pub certificate: CertificateJson,
+    pub certificate: elcon_analysis::ContactCertificate,
     /// Warnings (truncated zone, uncertain contact).
     pub warnings: Vec<String>,
     /// The closed-form comparison, where one applies.
@@ -365,7 +327,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         max_pressure: solution.max_pressure,
         contact_points: solution.contact.len(),
         contact_extent: solution.contact_extent,
-        certificate: CertificateJson::of(c),
+        certificate: *c,
         warnings: scene
             .warnings()
             .iter()

@@ -73,7 +73,7 @@ impl Row {
             seconds_solve: Some(r.seconds.solve),
             approach: Some(r.approach),
             max_pressure: Some(r.max_pressure),
-            certificate_worst: Some(r.certificate.worst),
+            certificate_worst: Some(r.certificate.worst()),
             error_approach: e.and_then(|e| e.approach),
             error_max_pressure: e.and_then(|e| e.max_pressure),
             error_contact_extent: e.and_then(|e| e.contact_extent),

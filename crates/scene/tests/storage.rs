@@ -232,3 +232,32 @@ fn result_json_writes_the_statistics_totals_then_each_attempt() {
     assert_eq!(json["attempts"][0]["reason"], "first");
     assert_eq!(json["attempts"][0]["outcome"], "returned");
 }
+
+#[test]
+fn result_json_writes_the_certificate_with_its_worst_residual_and_verdict() {
+    // elcon-analysis's `serde` feature writes the contact certificate in
+    // result.json's shape: the stored residuals with the computed `worst`
+    // and `holds` between them.
+    let r = run(&spheres(11, r#"method = "block-pivoting""#)).unwrap();
+    let c = &r.solution.certificate;
+    let text = serde_json::to_string(c).unwrap();
+    let keys = [
+        "equilibrium",
+        "min_force",
+        "min_gap",
+        "complementarity",
+        "worst",
+        "tolerance",
+        "holds",
+    ];
+    let at: Vec<usize> = keys
+        .iter()
+        .map(|k| text.find(&format!("\"{k}\":")).expect(k))
+        .collect();
+    assert!(at.windows(2).all(|w| w[0] < w[1]), "{text}");
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(json["worst"], c.worst());
+    assert_eq!(json["holds"], c.holds());
+    assert!(c.holds());
+    assert_eq!(json["min_gap"], c.min_gap);
+}
