@@ -25,9 +25,7 @@
 //! counts whole (t = h / 2), as it does for a problem built from a given S
 //! (`ContactProblem::from_parts`), whose edge law is not known.
 
-use std::collections::HashMap;
-
-use elcon_influence::{Body, Dimension, Model, PointSet};
+use elcon_influence::{Body, Dimension, LatticeIndex, Model, PointSet};
 
 /// How the pressure falls to zero at a smooth edge of the contact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -89,14 +87,13 @@ struct Grid<'a> {
 impl<'a> Edge<'a> {
     /// The edge of the contact where `pressures > 0`, under `law`.
     pub(crate) fn new(points: &'a PointSet, pressures: &'a [f64], law: EdgeLaw) -> Self {
-        let grid = match (points.lattice(), law.power()) {
-            (Some(lattice), Some(q)) => Some(Grid {
-                lattice,
-                index: LatticeIndex::new(lattice),
+        let grid = law.power().and_then(|q| {
+            Some(Grid {
+                lattice: points.lattice()?,
+                index: points.lattice_index()?,
                 q,
-            }),
-            _ => None,
-        };
+            })
+        });
         Self {
             points,
             pressures,
@@ -229,105 +226,9 @@ impl<'a> Edge<'a> {
     }
 }
 
-/// The point at each lattice coordinate: a table over the lattice's
-/// bounding box (4 bytes a cell; a grid's box holds at most 4/pi cells a
-/// point), or a hash map when the box is far larger than the set.
-enum LatticeIndex {
-    /// `cells[(i - i0) * width + (j - j0)]`, `u32::MAX` where no point is.
-    Table {
-        i0: i64,
-        j0: i64,
-        rows: usize,
-        width: usize,
-        cells: Vec<u32>,
-    },
-    Map(HashMap<(i64, i64), usize>),
-}
-
-impl LatticeIndex {
-    fn new(lattice: &[(i64, i64)]) -> Self {
-        let (mut lo, mut hi) = ((i64::MAX, i64::MAX), (i64::MIN, i64::MIN));
-        for &(i, j) in lattice {
-            lo = (lo.0.min(i), lo.1.min(j));
-            hi = (hi.0.max(i), hi.1.max(j));
-        }
-        let side = |a: i64, b: i64| usize::try_from(b.saturating_sub(a)).ok()?.checked_add(1);
-        let cells = side(lo.0, hi.0)
-            .zip(side(lo.1, hi.1))
-            .and_then(|(r, w)| Some((r, w, r.checked_mul(w)?)));
-        match cells {
-            Some((rows, width, total))
-                if total <= 4 * lattice.len() + 64 && lattice.len() < u32::MAX as usize =>
-            {
-                let mut cells = vec![u32::MAX; total];
-                for (k, &(i, j)) in lattice.iter().enumerate() {
-                    let at = (i - lo.0) as usize * width + (j - lo.1) as usize;
-                    cells[at] = k as u32;
-                }
-                Self::Table {
-                    i0: lo.0,
-                    j0: lo.1,
-                    rows,
-                    width,
-                    cells,
-                }
-            }
-            _ => Self::Map(lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect()),
-        }
-    }
-
-    /// The point at `(i, j)`, if any.
-    fn get(&self, (i, j): (i64, i64)) -> Option<usize> {
-        match self {
-            Self::Table {
-                i0,
-                j0,
-                rows,
-                width,
-                cells,
-            } => {
-                let r = usize::try_from(i.checked_sub(*i0)?).ok()?;
-                let c = usize::try_from(j.checked_sub(*j0)?).ok()?;
-                if r >= *rows || c >= *width {
-                    return None;
-                }
-                let k = cells[r * width + c];
-                (k != u32::MAX).then_some(k as usize)
-            }
-            Self::Map(map) => map.get(&(i, j)).copied(),
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_lattice_index_is_a_table_on_grids_and_a_map_on_sparse_sets() {
-        let disk = PointSet::grid_disk(1.0, 6.0).unwrap();
-        let lattice = disk.lattice().unwrap();
-        let index = LatticeIndex::new(lattice);
-        assert!(matches!(index, LatticeIndex::Table { .. }));
-        let sparse = [(0, 0), (1000, -1000), (3, 2)];
-        let map = LatticeIndex::new(&sparse);
-        assert!(matches!(map, LatticeIndex::Map(_)));
-        for (index, lattice) in [(&index, lattice), (&map, &sparse[..])] {
-            for (k, &ij) in lattice.iter().enumerate() {
-                assert_eq!(index.get(ij), Some(k));
-            }
-            for absent in [
-                (7, 0),
-                (-7, 0),
-                (6, 6),
-                (i64::MIN, 0),
-                (0, i64::MAX),
-                (1, 1000),
-            ] {
-                assert_eq!(index.get(absent), None, "{absent:?}");
-            }
-        }
-    }
 
     #[test]
     fn an_exact_square_root_profile_gives_its_edge() {

@@ -67,8 +67,8 @@ use rustfft::{Fft, FftPlanner};
 
 use crate::error::InfluenceError;
 use crate::models::{Body, Model};
-use crate::points::{MAX_POINTS, PointSet};
-use crate::terms::{LatticeBox, Terms};
+use crate::points::{LatticeBox, MAX_POINTS, PointSet};
+use crate::terms::Terms;
 
 type C64 = Complex<f64>;
 

@@ -13,7 +13,7 @@
 //! assembly evaluate a translation-invariant kernel once per lattice offset.
 
 use crate::error::InfluenceError;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 pub use crate::dimension::Dimension;
 
@@ -343,10 +343,10 @@ impl PointSet {
         xs.shrink_to_fit();
         ys.shrink_to_fit();
         lattice.shrink_to_fit();
-        let members: HashSet<(i64, i64)> = lattice.iter().copied().collect();
+        let members = LatticeIndex::of(&lattice);
         let boundary = lattice
             .iter()
-            .map(|&(i, j)| open_sides(dimension, |di, dj| members.contains(&(i + di, j + dj))))
+            .map(|&(i, j)| open_sides(dimension, |di, dj| members.get((i + di, j + dj)).is_some()))
             .collect();
         Self {
             dimension,
@@ -447,6 +447,13 @@ impl PointSet {
         self.lattice.as_deref()
     }
 
+    /// The point at each lattice coordinate, or `None` for a set without a
+    /// lattice: built on each call (O(N)), for a caller that walks the
+    /// lattice's neighbours.
+    pub fn lattice_index(&self) -> Option<LatticeIndex> {
+        self.lattice.as_deref().map(LatticeIndex::of)
+    }
+
     /// Whether point `k` lies on the edge of the candidate zone: one of the
     /// adjacent cells, centred at `(x +- dx, y)` or `(x, y +- dy)` (on a
     /// line: `x +- dx`), holds no point of the set. On a lattice this is the
@@ -466,6 +473,123 @@ impl PointSet {
     /// end) from one that truncates the contact. Panics if `k >= len()`.
     pub fn open_sides(&self, k: usize) -> (bool, bool) {
         self.boundary[k]
+    }
+}
+
+/// A table may hold at most this many entries per point before the direct
+/// path is cheaper (a sparse set on a fine lattice).
+pub(crate) const TABLE_ENTRIES_PER_POINT: usize = 4;
+
+/// The bounding box of a set's lattice indices: `ni x nj` lattice cells
+/// from `(i_min, j_min)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct LatticeBox {
+    pub(crate) i_min: i64,
+    pub(crate) j_min: i64,
+    pub(crate) ni: usize,
+    pub(crate) nj: usize,
+}
+
+impl LatticeBox {
+    /// The box of the set's lattice, or `None` without a lattice (or for a
+    /// box whose side does not fit a usize).
+    pub(crate) fn of(points: &PointSet) -> Option<Self> {
+        Self::of_lattice(points.lattice()?)
+    }
+
+    /// The box of lattice indices (`None` for none, or a side that does
+    /// not fit a usize).
+    pub(crate) fn of_lattice(lattice: &[(i64, i64)]) -> Option<Self> {
+        let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
+        for &(i, j) in lattice {
+            i_min = i_min.min(i);
+            i_max = i_max.max(i);
+            j_min = j_min.min(j);
+            j_max = j_max.max(j);
+        }
+        let side = |lo: i64, hi: i64| usize::try_from(i128::from(hi) - i128::from(lo) + 1).ok();
+        Some(Self {
+            i_min,
+            j_min,
+            ni: side(i_min, i_max)?,
+            nj: side(j_min, j_max)?,
+        })
+    }
+
+    /// The number of lattice cells in the box, `ni nj` (saturating).
+    pub(crate) fn cells(&self) -> usize {
+        self.ni.saturating_mul(self.nj)
+    }
+
+    /// The most cells a box may hold for `n` points before a table (or a
+    /// padded grid) over it costs more than the points themselves:
+    /// [`TABLE_ENTRIES_PER_POINT`] per point, plus 64 for tiny sets.
+    pub(crate) const fn cell_limit(n: usize) -> usize {
+        TABLE_ENTRIES_PER_POINT * n + 64
+    }
+
+    /// Whether the box is small enough for `n` points ([`Self::cell_limit`]).
+    pub(crate) fn is_dense(&self, n: usize) -> bool {
+        self.cells() <= Self::cell_limit(n)
+    }
+
+    /// The lattice indices of a point shifted into the box, `0 <= i < ni`,
+    /// `0 <= j < nj`.
+    pub(crate) fn local(&self, (i, j): (i64, i64)) -> (usize, usize) {
+        ((i - self.i_min) as usize, (j - self.j_min) as usize)
+    }
+}
+
+/// The point at each lattice coordinate of a set ([`PointSet::lattice_index`]):
+/// a table over the lattice's bounding box (4 bytes a cell; a disk grid's
+/// box holds 4/pi cells a point) when the box is at most
+/// `TABLE_ENTRIES_PER_POINT` cells a point, else a hash map.
+#[derive(Debug, Clone)]
+pub struct LatticeIndex(Index);
+
+#[derive(Debug, Clone)]
+enum Index {
+    /// `cells[i * nj + j]` at the box's local `(i, j)`; `u32::MAX` where no
+    /// point is.
+    Table {
+        bounds: LatticeBox,
+        cells: Vec<u32>,
+    },
+    Map(HashMap<(i64, i64), usize>),
+}
+
+impl LatticeIndex {
+    /// The index of lattice coordinates (point k at `lattice[k]`).
+    fn of(lattice: &[(i64, i64)]) -> Self {
+        let table = LatticeBox::of_lattice(lattice)
+            .filter(|b| b.is_dense(lattice.len()) && lattice.len() < u32::MAX as usize);
+        Self(match table {
+            Some(bounds) => {
+                let mut cells = vec![u32::MAX; bounds.cells()];
+                for (k, &l) in lattice.iter().enumerate() {
+                    let (i, j) = bounds.local(l);
+                    cells[i * bounds.nj + j] = k as u32;
+                }
+                Index::Table { bounds, cells }
+            }
+            None => Index::Map(lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect()),
+        })
+    }
+
+    /// The point at lattice coordinates `(i, j)`, if any.
+    pub fn get(&self, (i, j): (i64, i64)) -> Option<usize> {
+        match &self.0 {
+            Index::Table { bounds, cells } => {
+                let r = usize::try_from(i.checked_sub(bounds.i_min)?).ok()?;
+                let c = usize::try_from(j.checked_sub(bounds.j_min)?).ok()?;
+                if r >= bounds.ni || c >= bounds.nj {
+                    return None;
+                }
+                let k = cells[r * bounds.nj + c];
+                (k != u32::MAX).then_some(k as usize)
+            }
+            Index::Map(map) => map.get(&(i, j)).copied(),
+        }
     }
 }
 
@@ -545,6 +669,40 @@ fn boundary_by_cells(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_lattice_index_is_a_table_on_grids_and_a_map_on_sparse_sets() {
+        let disk = PointSet::grid_disk(1.0, 6.0).unwrap();
+        let index = disk.lattice_index().unwrap();
+        assert!(matches!(index.0, Index::Table { .. }));
+        let sparse = [(0, 0), (1000, -1000), (3, 2)];
+        let map = LatticeIndex::of(&sparse);
+        assert!(matches!(map.0, Index::Map(_)));
+        for (index, lattice) in [(&index, disk.lattice().unwrap()), (&map, &sparse[..])] {
+            for (k, &ij) in lattice.iter().enumerate() {
+                assert_eq!(index.get(ij), Some(k));
+            }
+            for absent in [
+                (7, 0),
+                (-7, 0),
+                (6, 6),
+                (i64::MIN, 0),
+                (0, i64::MAX),
+                (1, 1000),
+            ] {
+                assert_eq!(index.get(absent), None, "{absent:?}");
+            }
+        }
+        // A set without a lattice has no index.
+        let scattered = PointSet::from_points(
+            Dimension::Surface,
+            vec![0.0, 0.13, 0.5],
+            vec![0.0, 0.02, 0.31],
+            Cell::square(0.1),
+        )
+        .unwrap();
+        assert!(scattered.lattice_index().is_none());
+    }
 
     #[test]
     fn line_is_cell_centred_and_symmetric() {

@@ -26,11 +26,7 @@ use faer::Mat;
 use crate::error::InfluenceError;
 use crate::kernels::{boussinesq, love_rectangle, plane_strain_strip};
 use crate::models::{Body, Model};
-use crate::points::{Cell, Dimension, PointSet};
-
-/// A table may hold at most this many entries per point before the direct
-/// path is cheaper (a sparse set on a fine lattice).
-pub(crate) const TABLE_ENTRIES_PER_POINT: usize = 4;
+use crate::points::{Cell, Dimension, LatticeBox, PointSet};
 
 /// A translation-invariant kernel shared by half-space bodies.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -293,61 +289,6 @@ impl TableLayout {
     /// The table index of the offset between points k and j.
     pub(crate) fn offset(&self, k: usize, j: usize) -> usize {
         self.i[k].abs_diff(self.i[j]) * self.nj + self.j[k].abs_diff(self.j[j])
-    }
-}
-
-/// The bounding box of a set's lattice indices: `ni x nj` lattice cells
-/// from `(i_min, j_min)`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct LatticeBox {
-    pub(crate) i_min: i64,
-    pub(crate) j_min: i64,
-    pub(crate) ni: usize,
-    pub(crate) nj: usize,
-}
-
-impl LatticeBox {
-    /// The box of the set's lattice, or `None` without a lattice (or for a
-    /// box whose side does not fit a usize).
-    pub(crate) fn of(points: &PointSet) -> Option<Self> {
-        let lattice = points.lattice()?;
-        let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
-        for &(i, j) in lattice {
-            i_min = i_min.min(i);
-            i_max = i_max.max(i);
-            j_min = j_min.min(j);
-            j_max = j_max.max(j);
-        }
-        let side = |lo: i64, hi: i64| usize::try_from(i128::from(hi) - i128::from(lo) + 1).ok();
-        Some(Self {
-            i_min,
-            j_min,
-            ni: side(i_min, i_max)?,
-            nj: side(j_min, j_max)?,
-        })
-    }
-
-    /// The number of lattice cells in the box, `ni nj` (saturating).
-    pub(crate) fn cells(&self) -> usize {
-        self.ni.saturating_mul(self.nj)
-    }
-
-    /// The most cells a box may hold for `n` points before a table (or a
-    /// padded grid) over it costs more than the points themselves:
-    /// [`TABLE_ENTRIES_PER_POINT`] per point, plus 64 for tiny sets.
-    pub(crate) const fn cell_limit(n: usize) -> usize {
-        TABLE_ENTRIES_PER_POINT * n + 64
-    }
-
-    /// Whether the box is small enough for `n` points ([`Self::cell_limit`]).
-    pub(crate) fn is_dense(&self, n: usize) -> bool {
-        self.cells() <= Self::cell_limit(n)
-    }
-
-    /// The lattice indices of a point shifted into the box, `0 <= i < ni`,
-    /// `0 <= j < nj`.
-    pub(crate) fn local(&self, (i, j): (i64, i64)) -> (usize, usize) {
-        ((i - self.i_min) as usize, (j - self.j_min) as usize)
     }
 }
 
