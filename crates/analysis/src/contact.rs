@@ -20,7 +20,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use elcon_influence::{
-    Body, Dimension, Folding, LatticeOperator, Model, PointSet, assemble, assemble_folded,
+    Body, Dimension, Folding, LatticeKernel, Model, PointSet, assemble, assemble_folded,
 };
 use elcon_lcp::{BorderedLcpRef, Certificate, Method, OperatorLcp, Options, Statistics};
 use faer::{Col, ColRef, Mat, MatRef};
@@ -311,7 +311,7 @@ impl ContactProblem {
 
     /// As [`ContactProblem::new`], with S held matrix-free: the product
     /// `S F` by a zero-padded FFT convolution of the lattice kernel
-    /// (`elcon_influence::LatticeOperator`), O(N) memory instead of
+    /// (`elcon_influence::LatticeKernel`), O(N) memory instead of
     /// 8 N^2 bytes, for grids too large to store S (10^4 to 10^6 points).
     /// Solve it with [`Method::ConjugateGradient`]; the pivoting methods
     /// need S's entries and are refused. Not folded (a tilt that symmetry
@@ -336,7 +336,7 @@ impl ContactProblem {
         let separation = separations(&points, geometry)?;
         let rigid = check(&points, &separation, &loading, load_point(&bodies))?;
         let rigid = unfolded_rigid(&points, &bodies, &separation, rigid);
-        let operator = LatticeOperator::shared(&points, &bodies)?;
+        let operator = LatticeKernel::new(&points, &bodies)?;
         Ok(Self {
             points,
             influence: Influence::Lattice(Arc::new(operator)),

@@ -1,13 +1,13 @@
 //! How a contact problem holds its influence matrix `S = A(1) + A(2)`:
 //! dense (every entry, 8 N^2 bytes: what the exact pivoting methods need),
-//! or matrix-free on a lattice (`elcon_influence::LatticeOperator`: the
+//! or matrix-free on a lattice (`elcon_influence::LatticeKernel`: the
 //! product `S F` by an FFT convolution, O(N) memory: what the conjugate
 //! gradient needs on grids too large to store).
 
 use std::cell::RefCell;
 use std::sync::Arc;
 
-use elcon_influence::{LatticeOperator, LatticeWorkspace};
+use elcon_influence::{LatticeKernel, LatticeWorkspace};
 use elcon_lcp::Operator;
 use faer::Mat;
 
@@ -17,7 +17,7 @@ pub(crate) enum Influence {
     /// Every entry of S (or of the folded matrix).
     Dense(Arc<Mat<f64>>),
     /// S by its products on a lattice.
-    Lattice(Arc<LatticeOperator>),
+    Lattice(Arc<LatticeKernel>),
 }
 
 impl Influence {
@@ -33,13 +33,13 @@ impl Influence {
 /// The lattice operator with a workspace of its own, as the engine applies
 /// it (one solve, one thread).
 pub(crate) struct LatticeProducts<'a> {
-    operator: &'a LatticeOperator,
+    operator: &'a LatticeKernel,
     workspace: RefCell<LatticeWorkspace>,
 }
 
 impl<'a> LatticeProducts<'a> {
     /// The products of `operator`, with a new workspace.
-    pub fn new(operator: &'a LatticeOperator) -> Result<Self, elcon_influence::InfluenceError> {
+    pub fn new(operator: &'a LatticeKernel) -> Result<Self, elcon_influence::InfluenceError> {
         Ok(Self {
             operator,
             workspace: RefCell::new(operator.workspace()?),

@@ -122,17 +122,19 @@ const _: () = assert!(LatticeBox::cell_limit(MAX_POINTS) <= u32::MAX as usize);
 /// ```
 #[derive(Debug)]
 pub struct LatticeOperator {
-    core: Core,
-    /// The workspace [`LatticeOperator::apply`] uses: made by
-    /// [`LatticeOperator::new`], absent from a [`LatticeOperator::shared`]
-    /// one until its first `apply`.
-    workspace: Option<LatticeWorkspace>,
+    kernel: LatticeKernel,
+    /// The workspace [`LatticeOperator::apply`] uses.
+    workspace: LatticeWorkspace,
 }
 
-/// The operator without its workspace: what [`LatticeOperator::apply_with`]
-/// shares between threads.
+/// The operator without a workspace: `S` on a lattice as the products
+/// [`apply_with`](Self::apply_with) computes, each caller or thread with
+/// its own [`LatticeWorkspace`] (the kernel is `Sync`). What a problem that
+/// is solved by several threads, or holds no workspace between solves,
+/// keeps; a [`LatticeOperator`] is one of these with a workspace, and
+/// dereferences to it.
 #[derive(Debug)]
-struct Core {
+pub struct LatticeKernel {
     len: usize,
     /// S_kk: the self-term plus the Winkler diagonal.
     diagonal: f64,
@@ -334,7 +336,8 @@ impl Setup {
 impl LatticeOperator {
     /// The operator `x -> S x` of `bodies` (`S = sum_b A(b)`, as
     /// [`assemble`](crate::assemble)) on the lattice point set `points`: the
-    /// kernel table and its spectrum are computed here, once.
+    /// kernel table and its spectrum are computed here, once, then the
+    /// workspace of [`apply`](Self::apply).
     ///
     /// # Errors
     /// - as [`assemble`](crate::assemble): [`InfluenceError::DimensionMismatch`],
@@ -346,47 +349,19 @@ impl LatticeOperator {
     /// - [`InfluenceError::AllocationFailed`]: the memory
     ///   ([`estimate_bytes`](Self::estimate_bytes)) cannot be allocated.
     pub fn new(points: &PointSet, bodies: &[&Body]) -> Result<Self, InfluenceError> {
-        let mut operator = Self::shared(points, bodies)?;
-        operator.workspace = Some(operator.core.workspace()?);
-        Ok(operator)
-    }
-
-    /// As [`LatticeOperator::new`], without a workspace of its own (about 16
-    /// bytes per cell of the lattice's bounding box fewer): for an operator
-    /// whose products all go through [`apply_with`](Self::apply_with), each
-    /// caller or thread with its [`workspace`](Self::workspace). Its
-    /// [`apply`](Self::apply) makes the workspace on first use.
-    ///
-    /// # Errors
-    /// As [`LatticeOperator::new`].
-    pub fn shared(points: &PointSet, bodies: &[&Body]) -> Result<Self, InfluenceError> {
-        let setup = Setup::new(points, bodies)?;
-        let winkler = setup.terms.winkler_diagonal(points);
-        let (convolution, self_term) = if setup.has_kernel() {
-            let (convolution, self_term) = Convolution::new(points, &setup)?;
-            (Some(convolution), self_term)
-        } else {
-            (None, 0.0)
-        };
-        let core = Core {
-            len: points.len(),
-            // In the order assemble adds them: the table's (0, 0), then Winkler.
-            diagonal: self_term + winkler,
-            winkler,
-            convolution,
-        };
-        Ok(Self {
-            core,
-            workspace: None,
-        })
+        let kernel = LatticeKernel::new(points, bodies)?;
+        let workspace = kernel.workspace()?;
+        Ok(Self { kernel, workspace })
     }
 
     /// The memory [`LatticeOperator::new`] would allocate for `points` and
     /// `bodies`, in bytes, computed without allocating it: the figure
     /// [`memory_bytes`](Self::memory_bytes) reports once built (to the FFT
-    /// plans' scratch and twiddles, estimated from above). The construction
-    /// never holds more at once (its kernel table and first-stage spectrum
-    /// are freed before the workspace is allocated, and are smaller).
+    /// plans' scratch and twiddles, estimated from above); a
+    /// [`LatticeKernel`] and the one workspace its products need. The
+    /// construction never holds more at once (its kernel table and
+    /// first-stage spectrum are freed before the workspace is allocated,
+    /// and are smaller).
     ///
     /// # Errors
     /// As [`LatticeOperator::new`], except [`InfluenceError::AllocationFailed`]
@@ -400,41 +375,90 @@ impl LatticeOperator {
         Ok(base + Grid::new(&setup.bounds).operator_bytes(points.len()))
     }
 
+    /// The operator's kernel, to share (`&LatticeKernel` is `Sync`).
+    pub fn kernel(&self) -> &LatticeKernel {
+        &self.kernel
+    }
+
+    /// Bytes held by the operator, its workspace included.
+    pub fn memory_bytes(&self) -> usize {
+        // Both sizes count their own struct; the operator's is both.
+        self.kernel.memory_bytes() + self.workspace.memory_bytes()
+    }
+
+    /// `y = S x`: `y_k` = the deflection at point k under the forces `x_j`
+    /// at the points j, in the point set's order (x in force, y in length),
+    /// with the operator's own workspace.
+    ///
+    /// # Panics
+    /// If `x` or `y` does not have [`len`](LatticeKernel::len) entries.
+    pub fn apply(&mut self, x: &[f64], y: &mut [f64]) {
+        self.kernel.apply_with(x, y, &mut self.workspace);
+    }
+}
+
+impl std::ops::Deref for LatticeOperator {
+    type Target = LatticeKernel;
+
+    fn deref(&self) -> &LatticeKernel {
+        &self.kernel
+    }
+}
+
+impl LatticeKernel {
+    /// The kernel of `bodies` on `points`, as [`LatticeOperator::new`]
+    /// without its workspace (about 16 bytes per cell of the lattice's
+    /// bounding box fewer).
+    ///
+    /// # Errors
+    /// As [`LatticeOperator::new`].
+    pub fn new(points: &PointSet, bodies: &[&Body]) -> Result<Self, InfluenceError> {
+        let setup = Setup::new(points, bodies)?;
+        let winkler = setup.terms.winkler_diagonal(points);
+        let (convolution, self_term) = if setup.has_kernel() {
+            let (convolution, self_term) = Convolution::new(points, &setup)?;
+            (Some(convolution), self_term)
+        } else {
+            (None, 0.0)
+        };
+        Ok(Self {
+            len: points.len(),
+            // In the order assemble adds them: the table's (0, 0), then Winkler.
+            diagonal: self_term + winkler,
+            winkler,
+            convolution,
+        })
+    }
+
     /// The number of points N (the length of x and y).
     pub fn len(&self) -> usize {
-        self.core.len
+        self.len
     }
 
     /// Always false: a point set holds at least one point.
     pub fn is_empty(&self) -> bool {
-        self.core.len == 0
+        self.len == 0
     }
 
     /// The diagonal entry `S_kk`, the same for every point of a lattice (the
     /// self-term of the kernels plus the Winkler `1/(k A_k)`; length/force):
     /// a Jacobi preconditioner is this scalar.
     pub fn diagonal(&self) -> f64 {
-        self.core.diagonal
+        self.diagonal
     }
 
     /// The padded FFT grid `(P1, P2)` (rows along the lattice's i, columns
     /// along j), or `None` when no half-space body needs a convolution (only
     /// foundations).
     pub fn fft_shape(&self) -> Option<(usize, usize)> {
-        self.core
-            .convolution
+        self.convolution
             .as_ref()
             .map(|c| (c.grid.padded_rows, c.grid.padded_columns))
     }
 
-    /// Bytes held by the operator, its own workspace included (none yet
-    /// for a [`shared`](Self::shared) one).
+    /// Bytes held by the kernel (no workspace).
     pub fn memory_bytes(&self) -> usize {
-        std::mem::size_of::<Self>()
-            + self.core.convolution.as_ref().map_or(0, Convolution::bytes)
-            + self.workspace.as_ref().map_or(0, |w| {
-                w.memory_bytes() - std::mem::size_of::<LatticeWorkspace>()
-            })
+        std::mem::size_of::<Self>() + self.convolution.as_ref().map_or(0, Convolution::bytes)
     }
 
     /// A new workspace for [`apply_with`](Self::apply_with), e.g. one per
@@ -445,44 +469,6 @@ impl LatticeOperator {
     /// [`InfluenceError::AllocationFailed`] when the memory cannot be
     /// allocated.
     pub fn workspace(&self) -> Result<LatticeWorkspace, InfluenceError> {
-        self.core.workspace()
-    }
-
-    /// `y = S x`: `y_k` = the deflection at point k under the forces `x_j`
-    /// at the points j, in the point set's order (x in force, y in length),
-    /// with the operator's own workspace.
-    ///
-    /// # Panics
-    /// If `x` or `y` does not have [`len`](Self::len) entries, or a
-    /// [`shared`](Self::shared) operator's workspace cannot be allocated at
-    /// its first `apply` (build with [`new`](Self::new) to have that an
-    /// error).
-    pub fn apply(&mut self, x: &[f64], y: &mut [f64]) {
-        let workspace = match &mut self.workspace {
-            Some(w) => w,
-            None => self.workspace.insert(
-                self.core
-                    .workspace()
-                    .expect("the shared operator's workspace could not be allocated"),
-            ),
-        };
-        self.core.apply(x, y, workspace);
-    }
-
-    /// `y = S x` as [`apply`](Self::apply), with a caller's workspace: the
-    /// operator is shared (`&self`, it is `Sync`), so threads may apply it
-    /// at once, each with its own workspace.
-    ///
-    /// # Panics
-    /// If `x` or `y` does not have [`len`](Self::len) entries, or the
-    /// workspace was made for an operator of another grid.
-    pub fn apply_with(&self, x: &[f64], y: &mut [f64], workspace: &mut LatticeWorkspace) {
-        self.core.apply(x, y, workspace);
-    }
-}
-
-impl Core {
-    fn workspace(&self) -> Result<LatticeWorkspace, InfluenceError> {
         let Some(c) = &self.convolution else {
             return Ok(LatticeWorkspace {
                 grid: None,
@@ -503,7 +489,14 @@ impl Core {
         })
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64], workspace: &mut LatticeWorkspace) {
+    /// `y = S x` as [`LatticeOperator::apply`], with a caller's workspace:
+    /// the kernel is shared (`&self`, it is `Sync`), so threads may apply
+    /// it at once, each with its own workspace.
+    ///
+    /// # Panics
+    /// If `x` or `y` does not have [`len`](Self::len) entries, or the
+    /// workspace was made for an operator of another grid.
+    pub fn apply_with(&self, x: &[f64], y: &mut [f64], workspace: &mut LatticeWorkspace) {
         assert_eq!(
             x.len(),
             self.len,
@@ -985,19 +978,13 @@ mod tests {
         op.apply_with(&x, &mut c, &mut ws);
         assert_eq!(a, b);
         assert_eq!(a, c);
-        // Without a workspace of its own: the same product, the workspace's
-        // bytes fewer until its first apply.
-        let mut lean = LatticeOperator::shared(&points, &bodies).unwrap();
-        assert_eq!(
-            lean.memory_bytes() + ws.memory_bytes() - std::mem::size_of::<LatticeWorkspace>(),
-            op.memory_bytes()
-        );
+        // A kernel alone: the same product, the workspace's bytes fewer.
+        let kernel = LatticeKernel::new(&points, &bodies).unwrap();
+        assert_eq!(kernel.memory_bytes() + ws.memory_bytes(), op.memory_bytes());
+        assert_eq!(kernel.memory_bytes(), op.kernel().memory_bytes());
         let mut d = vec![0.0; x.len()];
-        lean.apply_with(&x, &mut d, &mut ws);
+        kernel.apply_with(&x, &mut d, &mut ws);
         assert_eq!(a, d);
-        lean.apply(&x, &mut d);
-        assert_eq!(a, d);
-        assert_eq!(lean.memory_bytes(), op.memory_bytes());
         // Shared between threads, one workspace each.
         let shared = &op;
         std::thread::scope(|scope| {
@@ -1193,6 +1180,7 @@ mod tests {
     #[test]
     fn is_send_and_sync() {
         fn shared<T: Send + Sync>() {}
+        shared::<LatticeKernel>();
         shared::<LatticeOperator>();
         shared::<LatticeWorkspace>();
     }

@@ -29,7 +29,8 @@
 //! - [`LatticeOperator`]: the product `S x` on a lattice grid (disk,
 //!   rectangle, line) by a zero-padded FFT convolution of the same kernel
 //!   table, in O(N) memory and O(N log N) time, for iterative solvers on
-//!   grids too large for the dense S.
+//!   grids too large for the dense S; [`LatticeKernel`] is the same without
+//!   a workspace of its own, shared between threads or problems.
 //!
 //! Units: any consistent set. With lengths in inches and E in psi, S is in
 //! inches per pound; with metres and pascals, metres per newton. On a line
@@ -102,7 +103,7 @@ mod terms;
 pub use assembly::{assemble, assemble_direct, assemble_folded, influence};
 pub use error::InfluenceError;
 pub use kernels::{boussinesq, love_rectangle, plane_strain_strip};
-pub use lattice_operator::{LatticeOperator, LatticeWorkspace};
+pub use lattice_operator::{LatticeKernel, LatticeOperator, LatticeWorkspace};
 pub use material::{Material, combined_modulus, combined_modulus_of};
 pub use models::{Body, Model};
 pub use points::{Cell, Dimension, LatticeIndex, MAX_DENSE_POINTS, MAX_POINTS, PointSet};
