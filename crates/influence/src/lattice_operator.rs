@@ -95,7 +95,7 @@ const _: () = assert!(LatticeBox::cell_limit(MAX_POINTS) <= u32::MAX as usize);
 /// Built once per point set and bodies; [`apply`](Self::apply) is then called
 /// as often as needed (an iterative solver calls it once per iteration). The
 /// operator keeps one workspace for [`apply`](Self::apply) (`&mut self`);
-/// threads that share one operator call [`apply_with`](Self::apply_with)
+/// threads that share one operator call [`apply_with`](LatticeKernel::apply_with)
 /// (`&self`), each with its own [`LatticeWorkspace`]. The two are the same
 /// code and equally fast.
 ///
@@ -253,7 +253,7 @@ impl std::fmt::Debug for Convolution {
 
 /// The scratch memory of one product `S x`: the row spectra of the box
 /// (`n1 (P2/2 + 1)` complex values), a row, a batch of columns and the FFT
-/// scratch. Made by [`LatticeOperator::workspace`] for one operator (or one
+/// scratch. Made by [`LatticeKernel::workspace`] for one operator (or one
 /// of the same grid); reused across calls, its contents between calls mean
 /// nothing.
 #[derive(Debug)]
