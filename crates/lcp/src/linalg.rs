@@ -8,7 +8,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::linalg::matmul::matmul;
 use faer::perm::Perm;
-use faer::{Accum, Col, ColRef, Conj, Mat, MatMut, MatRef, Par};
+use faer::{Accum, Col, ColMut, ColRef, Conj, Mat, MatMut, MatRef, Par};
 
 use crate::tolerance::{SINGULAR_PER_ROW, SYMMETRY};
 
@@ -87,7 +87,6 @@ impl Lu {
     }
 }
 
-/// `y = a x` for a dense `a`.
 /// A matrix or vector that could not be allocated: what it was for and
 /// the bytes asked for (`LcpError::AllocationFailed` to the user).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -124,6 +123,7 @@ pub(crate) fn try_zeros(len: usize, what: &'static str) -> Result<Vec<f64>, Allo
     Ok(v)
 }
 
+/// `y = a x` for a dense `a`.
 pub(crate) fn matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {
     let mut y = Col::<f64>::zeros(a.nrows());
     matmul(y.as_mat_mut(), Accum::Replace, a, x.as_mat(), 1.0, Par::Seq);
@@ -133,8 +133,14 @@ pub(crate) fn matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {
 /// `y = |a| |x|` entry-wise absolute values: the magnitude of the terms that
 /// sum to `a x`, the scale against which a residual of `a x` is judged.
 pub(crate) fn abs_matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {
-    // Column by column, without forming |a| (an N x N copy).
     let mut y = Col::<f64>::zeros(a.nrows());
+    add_abs_matvec(y.as_mut(), a, x);
+    y
+}
+
+/// `y += |a| |x|` (see [`abs_matvec`]), in place.
+pub(crate) fn add_abs_matvec(mut y: ColMut<'_, f64>, a: MatRef<'_, f64>, x: ColRef<'_, f64>) {
+    // Column by column, without forming |a| (an N x N copy).
     for j in 0..a.ncols() {
         let xj = x[j].abs();
         if xj == 0.0 {
@@ -145,7 +151,11 @@ pub(crate) fn abs_matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {
             y[i] += col[i].abs() * xj;
         }
     }
-    y
+}
+
+/// `y -= a x`, in place (faer's product, accumulated).
+pub(crate) fn sub_matvec(y: ColMut<'_, f64>, a: MatRef<'_, f64>, x: ColRef<'_, f64>) {
+    matmul(y.as_mat_mut(), Accum::Add, a, x.as_mat(), -1.0, Par::Seq);
 }
 
 /// Largest magnitude of a column vector (0 for an empty one).

@@ -33,6 +33,7 @@ use faer::Col;
 use crate::LcpError;
 use crate::certificate::Certificate;
 use crate::certificate::Residuals;
+use crate::linalg;
 use crate::methods::{
     Answer, Failure, NotApplicable, block, conjugate_gradient, lemke_general, lemke_symmetric,
     restricted_general, restricted_symmetric,
@@ -248,26 +249,16 @@ impl Routed for OperatorLcp<'_> {
             let z_abs: Vec<f64> = z_slice.iter().map(|v| v.abs()).collect();
             self.operator.apply_abs(&z_abs, terms_out);
         }
-        // w = M z - B λ + q and its terms |M| |z| + |B| |λ| + |q|, a border
-        // column at a time.
-        for (j, &l) in lambda.iter().enumerate() {
-            let column = self.border.col(j);
-            for i in 0..n {
-                w[i] -= column[i] * l;
-                w_terms[i] += (column[i] * l).abs();
-            }
-        }
+        // w = M z - B λ + q and its terms |M| |z| + |B| |λ| + |q|.
+        linalg::sub_matvec(w.as_mut(), self.border, lambda.as_ref());
+        linalg::add_abs_matvec(w_terms.as_mut(), self.border, lambda.as_ref());
         for i in 0..n {
             w[i] += self.q[i];
             w_terms[i] += self.q[i].abs();
         }
         let equality = self.border.transpose() * z - self.resultant;
-        let k = self.border.ncols();
-        let equality_terms = Col::from_fn(k, |j| {
-            let column = self.border.col(j);
-            let sum: f64 = (0..n).map(|i| (column[i] * z[i]).abs()).sum();
-            sum + self.resultant[j].abs()
-        });
+        let mut equality_terms = self.resultant.map(|v| v.abs());
+        linalg::add_abs_matvec(equality_terms.as_mut(), self.border.transpose(), z.as_ref());
         let nonneg = vec![false; lambda.nrows()];
         let certificate = Certificate::from_residuals(
             &Residuals {

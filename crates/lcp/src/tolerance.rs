@@ -123,10 +123,10 @@ pub const ITERATIVE_STOP: f64 = 0.25;
 
 /// The conjugate gradient also stops when its residuals are at most this
 /// fraction of the certificate's tolerance and did not halve over the last
-/// [`STALL_WINDOW`] iterations: on very large problems (N of 3e5) the sums'
-/// rounding leaves a floor near a quarter of the tolerance, which the
-/// iterate approaches over hundreds of iterations without gaining a digit
-/// (measured: 5e-13 at 200 iterations, 2.5e-13 at 600).
+/// [`STALL_WINDOW`] iterations: on very large problems (N of 10^5 and more)
+/// the sums' rounding leaves the residuals a floor of a fraction of the
+/// tolerance, which the iterate approaches over hundreds of iterations
+/// without gaining a digit.
 pub const STALLED_STOP: f64 = 0.75;
 
 /// Iterations over which the conjugate gradient's progress is judged
@@ -134,9 +134,10 @@ pub const STALLED_STOP: f64 = 0.75;
 pub const STALL_WINDOW: usize = 25;
 
 /// A stall counts only at residuals below `ROUNDING_FLOOR eps sqrt(n)`, the
-/// rounding of sums of n terms (with room: the floor measured at
-/// n = 347,949 was about 4 eps sqrt(n)); a small problem that converges
-/// slowly is not stopped early by it.
+/// rounding of sums of n terms with room. Below n of about 2e4 this is under
+/// [`STALLED_STOP`] times the default tolerance, so a small problem that
+/// converges slowly is not stopped early; on large ones the stall test
+/// alone decides.
 pub const ROUNDING_FLOOR: f64 = 8.0;
 
 /// The conjugate gradient's rows `B^T z = b` count as restored when each

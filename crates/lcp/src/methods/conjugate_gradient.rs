@@ -31,9 +31,10 @@
 //! method under displacement control (the approach inside `q`).
 
 use faer::linalg::solvers::Solve;
-use faer::{Col, ColRef, Mat, MatRef, Side};
+use faer::{Col, ColMut, ColRef, Mat, MatRef, Side};
 
 use crate::LcpError;
+use crate::linalg;
 use crate::methods::{Answer, Attempted, Failure, NotApplicable};
 use crate::operator::Operator;
 use crate::options::Options;
@@ -214,12 +215,11 @@ fn residual(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
     s.lambda = fit(form.border, active, rhs.as_ref())
         .or_else(|| fit_regularized(form.border, active, rhs.as_ref()))
         .ok_or(Breakdown::SingularBorder)?;
-    for (j, &l) in s.lambda.iter().enumerate() {
-        let column = form.border.col(j);
-        for (i, w) in s.w.iter_mut().enumerate() {
-            *w -= column[i] * l;
-        }
-    }
+    linalg::sub_matvec(
+        ColMut::from_slice_mut(&mut s.w),
+        form.border,
+        s.lambda.as_ref(),
+    );
     if s.w.iter().any(|v| !v.is_finite()) {
         return Err(Breakdown::NonFinite);
     }
