@@ -22,12 +22,12 @@ use std::time::Instant;
 use elcon_influence::{
     Body, Dimension, Folding, LatticeKernel, Model, PointSet, assemble, assemble_folded,
 };
-use elcon_lcp::{BorderedLcpRef, Certificate, Method, OperatorLcp, Options, Statistics};
+use elcon_lcp::{BorderedLcpRef, Certificate, Method, Operator, OperatorLcp, Options, Statistics};
 use faer::{Col, ColRef, Mat, MatRef};
 
 use crate::AnalysisError;
 use crate::edge::EdgeLaw;
-use crate::influence::{Influence, LatticeProducts};
+use crate::influence::{Influence, Products};
 use crate::loading::Loading;
 use crate::rigid::{Rigid, RigidMode, point};
 
@@ -432,17 +432,20 @@ impl ContactProblem {
             });
         }
         let mut y = vec![0.0; n];
-        match &self.influence {
-            Influence::Dense(s) => {
-                let product = Mat::as_ref(s) * faer::ColRef::from_slice(forces);
-                y.iter_mut().zip(product.iter()).for_each(|(y, p)| *y = *p);
-            }
-            Influence::Lattice(operator) => {
-                use elcon_lcp::Operator;
-                LatticeProducts::new(operator)?.apply(forces, &mut y);
-            }
-        }
+        self.products()?.apply(forces, &mut y);
         Ok(y)
+    }
+
+    /// The products `S F` as an [`elcon_lcp::Operator`] (length per force;
+    /// one entry per unknown), made once for many applications: a
+    /// matrix-free problem's FFT workspace is allocated here, not per
+    /// product as [`ContactProblem::deflection`] does.
+    ///
+    /// # Errors
+    /// [`AnalysisError::Influence`] when a matrix-free problem's workspace
+    /// cannot be allocated.
+    pub fn products(&self) -> Result<Products<'_>, AnalysisError> {
+        Ok(Products::of(&self.influence)?)
     }
 
     /// The initial separations eps (length).
@@ -625,8 +628,8 @@ impl ContactProblem {
             Influence::Dense(s) => BorderedLcpRef::new(Mat::as_ref(s), q)?
                 .with_border(border.as_ref(), resultant.as_ref())?
                 .solve(method, options)?,
-            Influence::Lattice(operator) => {
-                let products = LatticeProducts::new(operator)?;
+            Influence::Lattice(_) => {
+                let products = self.products()?;
                 OperatorLcp::new(&products, q)?
                     .with_border(border.as_ref(), resultant.as_ref())?
                     .solve(method, options)?

@@ -63,3 +63,44 @@ impl Operator for LatticeProducts<'_> {
         self.apply(x, y);
     }
 }
+
+/// The products `y = S F` of a problem's influence matrix, for a caller that
+/// applies them many times (an iterative solve of its own): made once by
+/// `ContactProblem::products`, with the workspace a matrix-free S needs.
+pub struct Products<'a>(ProductsOf<'a>);
+
+enum ProductsOf<'a> {
+    Dense(faer::MatRef<'a, f64>),
+    Lattice(LatticeProducts<'a>),
+}
+
+impl<'a> Products<'a> {
+    /// The products of `influence`.
+    pub(crate) fn of(influence: &'a Influence) -> Result<Self, elcon_influence::InfluenceError> {
+        Ok(Self(match influence {
+            Influence::Dense(s) => ProductsOf::Dense(Mat::as_ref(s)),
+            Influence::Lattice(kernel) => ProductsOf::Lattice(LatticeProducts::new(kernel)?),
+        }))
+    }
+
+    fn operator(&self) -> &dyn Operator {
+        match &self.0 {
+            ProductsOf::Dense(s) => s,
+            ProductsOf::Lattice(p) => p,
+        }
+    }
+}
+
+impl Operator for Products<'_> {
+    fn size(&self) -> usize {
+        self.operator().size()
+    }
+
+    fn apply(&self, x: &[f64], y: &mut [f64]) {
+        self.operator().apply(x, y);
+    }
+
+    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
+        self.operator().apply_abs(x, y);
+    }
+}

@@ -70,5 +70,6 @@ pub use elcon_influence::{
 };
 pub use elcon_lcp::{Method, Options};
 pub use error::AnalysisError;
+pub use influence::Products;
 pub use loading::{Loading, Normal, Tilt};
 pub use rigid::{Rigid, RigidMode};

@@ -52,7 +52,7 @@
 //! the end, and `Phi theta >= 0` is never a constraint of the steps.
 
 use elcon_analysis::{ContactProblem, ContactSolution};
-use elcon_lcp::{Bound, ProgramBuilder};
+use elcon_lcp::{Bound, Operator, ProgramBuilder};
 use faer::linalg::solvers::Solve;
 use faer::{Col, Mat, MatRef, Side};
 
@@ -189,15 +189,19 @@ fn solve_restricted(
     rhs: MatRef<'_, f64>,
 ) -> Result<Mat<f64>, DesignError> {
     let (n, nj) = (problem.points().len(), contact.len());
-    let product = |p: &[f64]| -> Result<Vec<f64>, DesignError> {
-        let mut full = vec![0.0; n];
+    // One workspace and two buffers of n for every product of every column.
+    let products = problem
+        .products()
+        .map_err(DesignError::analysis("a design sensitivity"))?;
+    let (mut full, mut y) = (vec![0.0; n], vec![0.0; n]);
+    let mut product = |p: &[f64], q: &mut [f64]| {
         for (a, &k) in contact.iter().enumerate() {
             full[k] = p[a];
         }
-        let y = problem
-            .deflection(&full)
-            .map_err(DesignError::analysis("a design sensitivity"))?;
-        Ok(contact.iter().map(|&k| y[k]).collect())
+        products.apply(&full, &mut y);
+        for (q, &k) in q.iter_mut().zip(contact) {
+            *q = y[k];
+        }
     };
     let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
     let mut out = Mat::<f64>::zeros(nj, rhs.ncols());
@@ -207,11 +211,12 @@ fn solve_restricted(
         let (mut x, mut r) = (vec![0.0; nj], b.clone());
         let mut p = r.clone();
         let mut rr = dot(&r, &r);
+        let mut q = vec![0.0; nj];
         for _ in 0..(10 * nj + 100) {
             if rr <= target {
                 break;
             }
-            let q = product(&p)?;
+            product(&p, &mut q);
             let alpha = rr / dot(&p, &q);
             x.iter_mut().zip(&p).for_each(|(x, p)| *x += alpha * p);
             r.iter_mut().zip(&q).for_each(|(r, q)| *r -= alpha * q);
@@ -248,27 +253,31 @@ fn model_rows(
             .0
             .lever((points.x(k), points.y(k)), rigid.load_point)
     });
-    let basis_rows = Mat::from_fn(nj, m, |a, i| basis.phi[(case.station[contact[a]], i)]);
-    // X = -V + U Lambda with U = S^-1 L, V = S^-1 D and (L^T U) Lambda = L^T V.
-    let (u, v) = match case.influence {
+    // X = -V + U Lambda with U = S^-1 L, V = S^-1 D and (L^T U) Lambda = L^T V:
+    // both from one factor (or one set of CG solves), the right-hand side
+    // [L | D].
+    let k = levers.ncols();
+    let rhs = Mat::from_fn(nj, k + m, |a, c| {
+        if c < k {
+            levers[(a, c)]
+        } else {
+            basis.phi[(case.station[contact[a]], c - k)]
+        }
+    });
+    let solved = match case.influence {
         Some(s) => {
             let block = Mat::from_fn(nj, nj, |a, b| s[(contact[a], contact[b])]);
-            (
-                solve_block(block.as_ref(), levers.as_ref()),
-                solve_block(block.as_ref(), basis_rows.as_ref()),
-            )
+            solve_block(block.as_ref(), rhs.as_ref())
         }
-        None => (
-            solve_restricted(problem, contact, levers.as_ref())?,
-            solve_restricted(problem, contact, basis_rows.as_ref())?,
-        ),
+        None => solve_restricted(problem, contact, rhs.as_ref())?,
     };
-    let x = if levers.ncols() == 0 {
-        -&v
+    let (u, v) = (solved.subcols(0, k), solved.subcols(k, m));
+    let x = if k == 0 {
+        -v
     } else {
-        let reduced = levers.transpose() * &u;
-        let lambda = reduced.partial_piv_lu().solve(levers.transpose() * &v);
-        &u * &lambda - &v
+        let reduced = levers.transpose() * u;
+        let lambda = reduced.partial_piv_lu().solve(levers.transpose() * v);
+        u * &lambda - v
     };
     Ok((0..nj)
         .map(|a| {
@@ -410,6 +419,9 @@ pub(crate) fn solve(
     let (mut iterations, mut accepted) = (0, 0);
     let mut analyses = cases.len();
     let mut pivots = pivots_of(&current.solutions);
+    // The model at `current`: rebuilt only when a step is accepted (a
+    // rejected one changes the radius alone).
+    let mut model_at_current: Option<Vec<Constraint>> = None;
     let stop = loop {
         if iterations >= options.max_iterations {
             break Stop::IterationLimit;
@@ -418,13 +430,11 @@ pub(crate) fn solve(
             break Stop::TrustRegion;
         }
         iterations += 1;
-        let mut pool = constant_rows(basis, &current.theta, c_max);
-        for ((case, problem), solution) in
-            cases.iter().zip(&current.problems).zip(&current.solutions)
-        {
-            pool.extend(model_rows(case, problem, solution, basis)?);
-        }
-        let (d, model, p) = step(&pool, m, radius, &options.engine)?;
+        let pool = match &mut model_at_current {
+            Some(pool) => pool,
+            None => model_at_current.insert(model_of(cases, basis, c_max, &current)?),
+        };
+        let (d, model, p) = step(pool, m, radius, &options.engine)?;
         pivots += p;
         let predicted = current.objective - model;
         if predicted <= STATIONARY * current.objective {
@@ -444,6 +454,7 @@ pub(crate) fn solve(
         if ratio >= ACCEPT {
             accepted += 1;
             current = trial;
+            model_at_current = None;
         }
     };
     let max_intensity = current
@@ -463,6 +474,21 @@ pub(crate) fn solve(
             stop,
         },
     })
+}
+
+/// The step's constraints at `current`: the constant's bounds and every
+/// case's model rows.
+fn model_of(
+    cases: &[Case<'_>],
+    basis: &Basis,
+    c_max: Option<f64>,
+    current: &Iterate,
+) -> Result<Vec<Constraint>, DesignError> {
+    let mut pool = constant_rows(basis, &current.theta, c_max);
+    for ((case, problem), solution) in cases.iter().zip(&current.problems).zip(&current.solutions) {
+        pool.extend(model_rows(case, problem, solution, basis)?);
+    }
+    Ok(pool)
 }
 
 fn pivots_of(solutions: &[ContactSolution]) -> usize {
