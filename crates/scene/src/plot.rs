@@ -5,8 +5,6 @@
 //! separations and pressures before and after; a batch's error against run
 //! time (log-log, one series per method).
 
-use std::collections::HashMap;
-
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 
@@ -353,11 +351,9 @@ fn shade(p: f64, top: f64) -> RGBColor {
 /// The faces between a cell in contact and one that is not (or the grid's
 /// edge), as segments: the contact's boundary on the cells.
 fn boundary(points: &elcon_influence::PointSet, pressures: &[f64]) -> Vec<[(f64, f64); 2]> {
-    let Some(lattice) = points.lattice() else {
+    let (Some(lattice), Some(index)) = (points.lattice(), points.lattice_index()) else {
         return Vec::new();
     };
-    let index: HashMap<(i64, i64), usize> =
-        lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect();
     let cell = points.cell();
     let (hx, hy) = (0.5 * cell.dx, 0.5 * cell.dy);
     let mut faces = Vec::new();
@@ -366,8 +362,8 @@ fn boundary(points: &elcon_influence::PointSet, pressures: &[f64]) -> Vec<[(f64,
         let (x, y) = (points.x(k), points.y(k));
         for (di, dj) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
             let pressed = index
-                .get(&(i + di, j + dj))
-                .is_some_and(|&n| pressures[n] > 0.0);
+                .get((i + di, j + dj))
+                .is_some_and(|n| pressures[n] > 0.0);
             if pressed {
                 continue;
             }
