@@ -90,12 +90,8 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
             Err(BlockFailure::Singular) => {
                 return Err(Failure::new(Breakdown::SingularBorder, work));
             }
-            Err(BlockFailure::Allocation(bytes)) => {
-                let what = "the active block's factor";
-                return Err(Failure::error(
-                    LcpError::AllocationFailed { what, bytes },
-                    work,
-                ));
+            Err(BlockFailure::Allocation(e)) => {
+                return Err(Failure::error(LcpError::from(e), work));
             }
         };
         let (mut z, mut u) = system.solution(p);

@@ -17,7 +17,9 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Col, Mat, Par};
 
-use crate::linalg::{Lu, NotPositiveDefinite, cholesky_lower, norm_inf, try_mat, unit_of};
+use crate::linalg::{
+    AllocationFailed, Lu, NotPositiveDefinite, cholesky_lower, norm_inf, try_mat, unit_of,
+};
 use crate::options::Options;
 use crate::problem::MixedRef;
 use crate::statistics::Work;
@@ -30,8 +32,14 @@ pub(crate) enum BlockFailure {
     NotPositiveDefinite,
     /// The equality rows' Schur complement is singular for this `J`.
     Singular,
-    /// The factor's storage (bytes) could not be allocated.
-    Allocation(usize),
+    /// The factor's storage could not be allocated.
+    Allocation(AllocationFailed),
+}
+
+impl From<AllocationFailed> for BlockFailure {
+    fn from(e: AllocationFailed) -> Self {
+        Self::Allocation(e)
+    }
 }
 
 impl From<NotPositiveDefinite> for BlockFailure {
@@ -139,8 +147,7 @@ impl Factor {
             } else {
                 0.0
             }
-        })
-        .map_err(|_| BlockFailure::Allocation(nj.saturating_mul(nj).saturating_mul(8)))?;
+        })?;
         cholesky_lower(l.as_mut(), par)?;
         work.factorizations += 1;
         Ok(Self {
@@ -182,13 +189,16 @@ impl Factor {
             // that the kept prefix moves O(log n) times over a prefix search.
             if self.capacity < np + nr {
                 self.capacity = (2 * self.capacity).max(np + nr).min(self.n);
-                let bytes = self
-                    .capacity
-                    .saturating_mul(self.capacity)
-                    .saturating_mul(8);
+                let failed = AllocationFailed {
+                    what: "the active block's factor",
+                    bytes: self
+                        .capacity
+                        .saturating_mul(self.capacity)
+                        .saturating_mul(8),
+                };
                 self.l
                     .try_reserve(self.capacity, self.capacity)
-                    .map_err(|_| BlockFailure::Allocation(bytes))?;
+                    .map_err(|_| BlockFailure::Allocation(failed))?;
             }
             self.l.resize_with(np + nr, np + nr, |_, _| 0.0);
         }
