@@ -199,16 +199,13 @@ fn body(spec: &Bound<'_, PyDict>, which: &str) -> PyResult<Body> {
 
 /// The solve method by its scene name.
 fn method(name: &str) -> PyResult<Method> {
-    Method::ALL
-        .into_iter()
-        .find(|m| m.name() == name)
-        .ok_or_else(|| {
-            let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
-            InputError::new_err(format!(
-                "`method` = \"{name}\": one of {}",
-                names.join(", ")
-            ))
-        })
+    Method::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
+        InputError::new_err(format!(
+            "`method` = \"{name}\": one of {}",
+            names.join(", ")
+        ))
+    })
 }
 
 /// A contact problem from arrays: the candidate points, their separations,
@@ -380,8 +377,10 @@ fn design(
         }
     };
     let method = DesignMethod::of(method_name).ok_or_else(|| {
+        let names: Vec<&str> = DesignMethod::ALL.iter().map(|m| m.name()).collect();
         InputError::new_err(format!(
-            "`method` = \"{method_name}\": one of auto, program, descent"
+            "`method` = \"{method_name}\": one of {}",
+            names.join(", ")
         ))
     })?;
     let cases: Vec<elcon_analysis::ContactProblem> =
