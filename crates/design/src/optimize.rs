@@ -100,8 +100,10 @@ struct Setup<'a> {
 /// see the [module documentation](self) for the method and what it guarantees.
 ///
 /// # Errors
-/// [`DesignError::Incompatible`] for no case, a displacement-controlled,
-/// folded or matrix-free case or a degree the stations cannot carry;
+/// [`DesignError::Incompatible`] for no case, a displacement-controlled
+/// or folded case, a matrix-free case under [`DesignMethod::Program`] or a
+/// `reanalysis` other than the conjugate gradient, or a degree the
+/// stations cannot carry;
 /// [`DesignError::InvalidInput`] for a bad `max_constant`, `agreement` or
 /// `max_iterations`; [`DesignError::Engine`] or [`DesignError::Analysis`]
 /// when every start failed (the first start's error);
@@ -238,7 +240,6 @@ fn setup<'a>(
 
 /// The starts: the uncorrected geometry; for line contacts, the fit of the
 /// uniform-pressure separation of the heaviest case; the given profiles.
-/// Sets c_max from them when it is not given.
 fn starts(
     setup: &Setup<'_>,
     options: &DesignOptions,

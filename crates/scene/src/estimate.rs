@@ -73,8 +73,8 @@ const PROGRAM_SECONDS: f64 = 2.5e-10;
 /// The design program's peak in matrices of R x C: 3.7 to 4.1 measured.
 const PROGRAM_MATRICES: f64 = 4.25;
 
-/// The descent's iterations per start, rounded up (4 to 5 measured on the
-/// roller and Example 2, examples/design_scaling; docs/design.md).
+/// The descent's iterations per start, rounded up (2 to 7 on Example 2
+/// and the roller, docs/design.md §2 and §6).
 const DESCENT_ITERATIONS: f64 = 20.0;
 
 /// Doubles per point of every case the design stage holds per iterate
