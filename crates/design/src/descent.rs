@@ -59,6 +59,7 @@ use faer::{Col, Mat, MatRef, Side};
 use crate::DesignError;
 use crate::DesignOptions;
 use crate::basis::Basis;
+use crate::evaluate::solve_corrected;
 use crate::prepared::{Case, Found, Solver, Stop};
 
 /// The relative residual of a matrix-free case's sensitivity solves: far
@@ -140,24 +141,14 @@ fn analyse(
     let mut solutions = Vec::with_capacity(cases.len());
     let mut objective = 0.0f64;
     for (l, case) in cases.iter().enumerate() {
-        let stage = || format!("load case {l} in the design's descent");
-        let eps: Vec<f64> = case
-            .problem
-            .separation()
-            .iter()
-            .zip(&case.station)
-            .map(|(e, &st)| e + drops[st])
-            .collect();
-        let problem = case
-            .problem
-            .with_separation(eps)
-            .map_err(DesignError::analysis(stage()))?;
-        let (method, engine) = (options.reanalysis, &options.reanalysis_options);
-        let solution = match previous {
-            Some(p) => problem.solve_from(&p[l], method, engine),
-            None => problem.solve(method, engine),
-        }
-        .map_err(DesignError::analysis(stage()))?;
+        let (problem, solution) = solve_corrected(
+            case.problem,
+            case.station.iter().map(|&st| drops[st]),
+            previous.map(|p| &p[l]),
+            options.reanalysis,
+            &options.reanalysis_options,
+            &format!("load case {l} in the design's descent"),
+        )?;
         objective = objective.max(solution.max_pressure / case.reference);
         problems.push(problem);
         solutions.push(solution);

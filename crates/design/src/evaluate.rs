@@ -169,6 +169,34 @@ fn check_given(
     Ok(())
 }
 
+/// `case` with `drops` (one per point, length) added to its separations,
+/// solved from `start` when one is given: the corrected problem and its
+/// solution; `stage` names the analysis in an error.
+pub(crate) fn solve_corrected(
+    case: &ContactProblem,
+    drops: impl Iterator<Item = f64>,
+    start: Option<&ContactSolution>,
+    method: Method,
+    options: &Options,
+    stage: &str,
+) -> Result<(ContactProblem, ContactSolution), DesignError> {
+    let eps: Vec<f64> = case
+        .separation()
+        .iter()
+        .zip(drops)
+        .map(|(e, d)| e + d)
+        .collect();
+    let corrected = case
+        .with_separation(eps)
+        .map_err(DesignError::analysis(stage))?;
+    let solution = match start {
+        Some(start) => corrected.solve_from(start, method, options),
+        None => corrected.solve(method, options),
+    }
+    .map_err(DesignError::analysis(stage))?;
+    Ok((corrected, solution))
+}
+
 /// [`evaluate_known`] with warm starts: a known solution is taken as it
 /// is, a start begins the solve.
 fn evaluate_cases(
@@ -197,21 +225,9 @@ fn evaluate_cases(
         let solution = match known {
             Some(solution) => (*solution).clone(),
             None => {
-                let eps: Vec<f64> = case
-                    .separation()
-                    .iter()
-                    .zip(&y)
-                    .map(|(e, y)| e + y)
-                    .collect();
                 let stage = format!("load case {l} with the {} profile", profile.family());
-                let corrected = case
-                    .with_separation(eps)
-                    .map_err(DesignError::analysis(stage.clone()))?;
-                match start {
-                    Some(start) => corrected.solve_from(start, method, options),
-                    None => corrected.solve(method, options),
-                }
-                .map_err(DesignError::analysis(stage))?
+                let drops = y.iter().copied();
+                solve_corrected(case, drops, *start, method, options, &stage)?.1
             }
         };
         max_intensities.push(solution.max_pressure);
