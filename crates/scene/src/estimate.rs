@@ -31,7 +31,7 @@ use elcon_design::{DesignMethod, Family, axial_stations};
 use elcon_influence::{Dimension, LatticeOperator, PointSet};
 
 use crate::error::SceneError;
-use crate::memory::human;
+use crate::memory::{Limit, human};
 use crate::scene::{DesignFamily, DesignSpec, Scene};
 use crate::storage::Storage;
 
@@ -389,16 +389,13 @@ impl Estimate {
                 hints.push("solver.method = \"block-pivoting\" (fewer matrices)");
             }
         }
-        let address = if ceiling.source.contains("RLIMIT_AS") {
-            format!(
+        let address;
+        if matches!(ceiling.limit, Some((Limit::AddressSpace, _))) {
+            address = format!(
                 "a higher address-space limit (ulimit -v): faer's matrix products alone reserve {} \
                  of address space here",
                 human(crate::memory::gemm_reserve())
-            )
-        } else {
-            String::new()
-        };
-        if !address.is_empty() {
+            );
             hints.push(&address);
         }
         hints.push("a machine with more memory");
@@ -690,7 +687,7 @@ family = "quadratic"
     fn a_refusal_names_n_the_estimate_the_ceiling_and_what_helps() {
         let s = scene(&format!("{SPHERES}[solver]\nsymmetry = \"none\"\n"));
         let e = Estimate::of(&s).unwrap();
-        let ceiling = Ceiling::from_limits([(1 << 20, "--memory-limit".to_string())]);
+        let ceiling = Ceiling::from_limits([(1 << 20, Limit::Option)]);
         assert!(!ceiling.admits(e.peak_bytes));
         let text = e.refusal(&s, &ceiling).to_string();
         for part in [

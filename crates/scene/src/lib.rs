@@ -41,7 +41,7 @@ pub use error::{Location, SceneError};
 pub use estimate::{BASELINE, DesignEstimate, Estimate, Tableau, TimeClass, matrices};
 pub use isolate::{install_panic_hook, isolated};
 pub use memory::{
-    ADDRESS_SPACE_RESERVE, Ceiling, LIMIT_VARIABLE, MARGIN, gemm_reserve, human, parse_size,
+    ADDRESS_SPACE_RESERVE, Ceiling, LIMIT_VARIABLE, Limit, MARGIN, gemm_reserve, human, parse_size,
 };
 pub use output::{Staging, write_atomic, write_run, write_run_files};
 pub use plot::error_time;

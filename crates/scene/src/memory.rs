@@ -74,8 +74,39 @@ const UNLIMITED: u64 = 1 << 62;
 pub struct Ceiling {
     /// Bytes (the lowest limit less the margin); `u64::MAX` when nothing limits.
     pub bytes: u64,
-    /// What set it, for messages: "MemAvailable 22.1 GiB", "--memory-limit 4 GiB", ...
-    pub source: String,
+    /// The limit that set it and its bytes (before the margin); `None` when
+    /// nothing limits.
+    pub limit: Option<(Limit, u64)>,
+}
+
+/// What limits a process's memory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Limit {
+    /// MemAvailable of /proc/meminfo.
+    Available,
+    /// The memory left in the process's cgroup.
+    Cgroup,
+    /// The address space left under RLIMIT_AS (`ulimit -v`), less faer's
+    /// matrix products' buffers.
+    AddressSpace,
+    /// The command line's `--memory-limit`.
+    Option,
+    /// The environment's [`LIMIT_VARIABLE`].
+    Variable,
+}
+
+impl std::fmt::Display for Limit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Limit::Available => "MemAvailable",
+            Limit::Cgroup => "memory left in the cgroup",
+            Limit::AddressSpace => {
+                "usable address space under RLIMIT_AS (less the matrix products' buffers)"
+            }
+            Limit::Option => "--memory-limit",
+            Limit::Variable => LIMIT_VARIABLE,
+        })
+    }
 }
 
 impl Ceiling {
@@ -83,7 +114,7 @@ impl Ceiling {
     pub fn unlimited() -> Self {
         Self {
             bytes: u64::MAX,
-            source: "no limit found".into(),
+            limit: None,
         }
     }
 
@@ -93,7 +124,7 @@ impl Ceiling {
     }
 
     /// The ceiling from the lowest of `limits` (bytes, and what each is).
-    pub fn from_limits(limits: impl IntoIterator<Item = (u64, String)>) -> Self {
+    pub fn from_limits(limits: impl IntoIterator<Item = (u64, Limit)>) -> Self {
         match limits
             .into_iter()
             .filter(|(b, _)| *b < UNLIMITED)
@@ -101,7 +132,7 @@ impl Ceiling {
         {
             Some((bytes, what)) => Self {
                 bytes: (bytes as f64 * (1.0 - MARGIN)) as u64,
-                source: format!("{what} {}, less {:.0} %", human(bytes), 100.0 * MARGIN),
+                limit: Some((what, bytes)),
             },
             None => Self::unlimited(),
         }
@@ -115,22 +146,35 @@ impl Ceiling {
     pub fn of_this_process(option: Option<u64>) -> Result<Self, String> {
         let mut limits = system_limits();
         if let Some(b) = option {
-            limits.push((b, "--memory-limit".into()));
+            limits.push((b, Limit::Option));
         }
         if let Ok(v) = std::env::var(LIMIT_VARIABLE) {
             let b = parse_size(&v).map_err(|e| format!("{LIMIT_VARIABLE}={v}: {e}"))?;
-            limits.push((b, LIMIT_VARIABLE.into()));
+            limits.push((b, Limit::Variable));
         }
         Ok(Self::from_limits(limits))
+    }
+}
+
+impl Ceiling {
+    /// What set it, for messages: "MemAvailable 22.1 GiB, less 10 %",
+    /// "--memory-limit 4.00 GiB, less 10 %", or "no limit found".
+    pub fn source(&self) -> String {
+        match self.limit {
+            Some((what, bytes)) => {
+                format!("{what} {}, less {:.0} %", human(bytes), 100.0 * MARGIN)
+            }
+            None => "no limit found".into(),
+        }
     }
 }
 
 impl std::fmt::Display for Ceiling {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         if self.bytes == u64::MAX {
-            write!(f, "unlimited ({})", self.source)
+            write!(f, "unlimited ({})", self.source())
         } else {
-            write!(f, "{} ({})", human(self.bytes), self.source)
+            write!(f, "{} ({})", human(self.bytes), self.source())
         }
     }
 }
@@ -190,16 +234,16 @@ pub fn human(bytes: u64) -> String {
 
 /// Every limit this system states: MemAvailable, the cgroups' and the
 /// address-space limit.
-fn system_limits() -> Vec<(u64, String)> {
+fn system_limits() -> Vec<(u64, Limit)> {
     let read = |p: &str| std::fs::read_to_string(p).ok();
     let mut limits = Vec::new();
     if let Some(b) = read("/proc/meminfo").and_then(|t| meminfo_available(&t)) {
-        limits.push((b, "MemAvailable".into()));
+        limits.push((b, Limit::Available));
     }
     if let Some(b) =
         read("/proc/self/cgroup").and_then(|t| cgroup_available(&t, Path::new("/sys/fs/cgroup")))
     {
-        limits.push((b, "memory left in the cgroup".into()));
+        limits.push((b, Limit::Cgroup));
     }
     if let Some(limit) = read("/proc/self/limits").and_then(|t| address_space_limit(&t)) {
         let used = read("/proc/self/status")
@@ -210,7 +254,7 @@ fn system_limits() -> Vec<(u64, String)> {
                 .saturating_sub(used)
                 .saturating_sub(ADDRESS_SPACE_RESERVE)
                 .saturating_sub(gemm_reserve()),
-            "usable address space under RLIMIT_AS (less the matrix products' buffers)".into(),
+            Limit::AddressSpace,
         ));
     }
     limits
@@ -320,18 +364,18 @@ mod tests {
     #[test]
     fn the_lowest_limit_less_the_margin_is_the_ceiling() {
         let c = Ceiling::from_limits([
-            (10 << 30, "MemAvailable".to_string()),
-            (4 << 30, "--memory-limit".to_string()),
-            (u64::MAX, "RLIMIT_AS".to_string()),
+            (10 << 30, Limit::Available),
+            (4 << 30, Limit::Option),
+            (u64::MAX, Limit::AddressSpace),
         ]);
         assert_eq!(c.bytes, ((4u64 << 30) as f64 * 0.9) as u64);
         assert!(
-            c.source.starts_with("--memory-limit 4.00 GiB"),
+            c.source().starts_with("--memory-limit 4.00 GiB"),
             "{}",
-            c.source
+            c.source()
         );
         assert!(c.admits(3 << 30) && !c.admits(4 << 30));
-        let none = Ceiling::from_limits([(1 << 63, "cgroup".to_string())]);
+        let none = Ceiling::from_limits([(1 << 63, Limit::Cgroup)]);
         assert_eq!(none, Ceiling::unlimited());
         assert!(none.admits(u64::MAX));
     }

@@ -152,7 +152,7 @@ fn exercise(text: &str) {
             assert!(e.peak_bytes > 0 && e.seconds.is_finite() && e.seconds >= 0.0);
             assert!(!e.summary().is_empty());
         }
-        let ceiling = Ceiling::from_limits([(1 << 30, "test".to_string())]);
+        let ceiling = Ceiling::from_limits([(1 << 30, elcon_scene::Limit::Option)]);
         let _ = prepare(scene, &ceiling).map_err(|e| e.to_string());
     }
 }
