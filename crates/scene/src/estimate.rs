@@ -699,6 +699,15 @@ family = "quadratic"
         ] {
             assert!(text.contains(part), "{part}: {text}");
         }
+        // Only an address-space limit suggests raising ulimit -v.
+        assert!(!text.contains("ulimit -v"), "{text}");
+        let address = Ceiling::from_limits([(1 << 20, Limit::AddressSpace)]);
+        let text = e.refusal(&s, &address).to_string();
+        assert!(
+            text.contains("a higher address-space limit (ulimit -v)"),
+            "{text}"
+        );
+        assert!(text.contains("under RLIMIT_AS"), "{text}");
         assert!(
             e.summary().contains("1257 points; peak memory about"),
             "{}",
