@@ -75,11 +75,13 @@ pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotAppli
     })
 }
 
-/// The method's state: the iterate and what it has computed of it (four
+/// The method's state: the iterate and what it has computed of it (three
 /// vectors of n: the memory of a large solve).
 struct State {
     z: Vec<f64>,
-    /// `w = M z + q - B λ` (`g = M z + q` is not kept: `w + B λ`).
+    /// `w = M z + q - B λ` (`g = M z + q` is not kept: `w + B λ`); during
+    /// a [`step`], once its last read is done, the product `M t` (the next
+    /// [`residual`] computes `w` again).
     w: Vec<f64>,
     lambda: Col<f64>,
     /// The conjugate direction.
@@ -114,7 +116,6 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
     // The rounding floor of sums of n terms (a few eps sqrt(n)): only there
     // is a stall the arithmetic's, not a slow convergence.
     let floor = ROUNDING_FLOOR * f64::EPSILON * (n as f64).sqrt();
-    let mut r = vec![0.0; n];
     loop {
         if let Err(b) = residual(form, &mut state) {
             return Err(Failure::new(b, work));
@@ -131,11 +132,15 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
             checkpoint = c;
         }
         if c <= target || stalled || work.iterations >= cap {
-            let z = std::mem::take(&mut state.z);
-            return Ok(answer(z, state.lambda, work));
+            // The answer copies z: free the other vectors first.
+            let State {
+                z, lambda, w, t, ..
+            } = state;
+            drop((w, t));
+            return Ok(answer(z, lambda, work));
         }
         work.iterations += 1;
-        if let Err(b) = step(form, &mut state, &mut r) {
+        if let Err(b) = step(form, &mut state) {
             return Err(Failure::new(b, work));
         }
         if let Err(b) = restore_rows(form, &mut state.z) {
@@ -262,11 +267,15 @@ fn converged(form: &Form<'_>, s: &State) -> f64 {
 }
 
 /// One conjugate-gradient step on the contact set (steps 2 and 3 of the
-/// module documentation); `r` is scratch for `M t`.
-fn step(form: &Form<'_>, s: &mut State, r: &mut [f64]) -> Result<(), Breakdown> {
+/// module documentation). `M t` is written over `w`, which is read before
+/// it: on `J` for the direction and the numerator, off `J` for the points
+/// that enter, which are marked by `z_i = w_i < 0` until the step length is
+/// known (J = {z_i > 0} is unchanged by the marks). Three vectors of n, not
+/// four.
+fn step(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
     let n = s.z.len();
-    // The contact set J = {z_i > 0}: read from z, which the update below
-    // changes only at the entry it is visiting.
+    // The contact set J = {z_i > 0}: read from z, which the loops below
+    // change only at the entry they are visiting.
     let g_now: f64 = (0..n)
         .filter(|&i| s.z[i] > 0.0)
         .map(|i| s.w[i] * s.w[i])
@@ -276,19 +285,25 @@ fn step(form: &Form<'_>, s: &mut State, r: &mut [f64]) -> Result<(), Breakdown> 
     } else {
         g_now / s.g_old
     };
+    let mut num = 0.0;
     for i in 0..n {
-        s.t[i] = if s.z[i] > 0.0 {
-            s.w[i] + beta * s.t[i]
+        if s.z[i] > 0.0 {
+            s.t[i] = s.w[i] + beta * s.t[i];
+            num += s.w[i] * s.t[i];
         } else {
-            0.0
-        };
+            s.t[i] = 0.0;
+            if s.w[i] < 0.0 {
+                // Interference out of contact: the point will enter.
+                s.z[i] = s.w[i];
+            }
+        }
     }
-    form.operator.apply(&s.t, r);
-    let (mut num, mut den) = (0.0, 0.0);
-    for i in (0..n).filter(|&i| s.z[i] > 0.0) {
-        num += s.w[i] * s.t[i];
-        den += r[i] * s.t[i];
-    }
+    form.operator.apply(&s.t, &mut s.w);
+    let product = &s.w;
+    let den: f64 = (0..n)
+        .filter(|&i| s.z[i] > 0.0)
+        .map(|i| product[i] * s.t[i])
+        .sum();
     if !(den > 0.0) && num != 0.0 {
         return Err(if den.is_finite() {
             Breakdown::NotPositiveDefinite
@@ -300,13 +315,14 @@ fn step(form: &Form<'_>, s: &mut State, r: &mut [f64]) -> Result<(), Breakdown> 
     s.g_old = g_now;
     let mut entered = false;
     for i in 0..n {
-        if s.z[i] > 0.0 {
-            s.z[i] = (s.z[i] - tau * s.t[i]).max(0.0);
-        } else if s.w[i] < 0.0 {
-            // Interference out of contact: the point enters. With τ = 0
+        let z = s.z[i];
+        if z > 0.0 {
+            s.z[i] = (z - tau * s.t[i]).max(0.0);
+        } else if z < 0.0 {
+            // A marked point (z_i = w_i) enters with -τ w_i. With τ = 0
             // (no step on the contact set) the diagonal-free scale of the
             // overlap itself starts it.
-            s.z[i] = if tau > 0.0 { -tau * s.w[i] } else { -s.w[i] };
+            s.z[i] = if tau > 0.0 { -tau * z } else { -z };
             entered = true;
         }
     }
