@@ -945,7 +945,17 @@ fn symmetric_rigid<'g>(
 
 /// [`symmetric_rigid`]'s rigid unknowns for a problem solved in full, the
 /// groups detected one at a time ([`Folding::detect_each`]) and none kept.
+/// Only a free rotation without a moment can be dropped: without one the
+/// groups are not looked for (a group's index and orbits take about 80
+/// bytes a point, more than the rest of a large solve).
 fn unfolded_rigid(points: &PointSet, bodies: &[&Body], separation: &[f64], rigid: Rigid) -> Rigid {
+    let droppable = rigid
+        .free
+        .iter()
+        .any(|&(mode, resultant)| mode != RigidMode::Approach && resultant == 0.0);
+    if !droppable {
+        return rigid;
+    }
     let shifted = shifted(points, separation, &rigid);
     Folding::detect_each(points, bodies)
         .find_map(|f| respected(&f, points, &shifted, &rigid))

@@ -153,7 +153,7 @@ impl Rigid {
                 rigid.free.push((mode, resultant));
             } else if resultant == 0.0
                 && (0..folding.len()).all(|a| {
-                    let sum: f64 = folding.orbit(a).iter().map(|&k| levers[k]).sum();
+                    let sum: f64 = folding.orbit(a).map(|k| levers[k]).sum();
                     sum.abs() <= LEVER_SYMMETRY * scale
                 })
             {

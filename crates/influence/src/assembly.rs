@@ -156,7 +156,7 @@ fn fold(
         let orbit = folding.orbit(b);
         for a in b..n {
             let k = folding.rep(a);
-            let t: f64 = orbit.iter().map(|&j| entry(k, j)).sum();
+            let t: f64 = orbit.clone().map(|j| entry(k, j)).sum();
             let v = t / folding.stabilizer(a);
             m[(a, b)] = v;
             m[(b, a)] = v;
@@ -477,7 +477,7 @@ mod tests {
             let m = assemble_folded(&points, &refs, &f).unwrap();
             for a in 0..f.len() {
                 for b in 0..f.len() {
-                    let t: f64 = f.orbit(b).iter().map(|&j| s[(f.rep(a), j)]).sum();
+                    let t: f64 = f.orbit(b).map(|j| s[(f.rep(a), j)]).sum();
                     let expected = t / f.stabilizer(a);
                     assert!(
                         (m[(a, b)] - expected).abs() <= 1e-14 * expected.abs(),

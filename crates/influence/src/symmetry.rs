@@ -21,17 +21,21 @@
 //! 1653 points to 227 unknowns (1/7.3) and 26,565 to 3400 (1/7.8), about
 //! 1/390 and 1/480 of the work. elcon-analysis scales its rows to match.
 //!
-//! Points are compared on the doubled lattice `(round(2x/dx), round(2y/dy))`,
+//! A point's image is looked up in the set's lattice index (a table over
+//! the lattice's box, about 5 bytes a point) or, for a set without a
+//! lattice, in a map of the doubled lattice `(round(2x/dx), round(2y/dy))`,
 //! which holds both node-centred (disk) and cell-centred (rectangle, line)
-//! grids, and each image's coordinates must match to 1e-12 of the cell.
+//! grids; each image's coordinates must match to 1e-12 of the cell. The
+//! orbits are stored flat, 4 bytes a point and 4 an orbit, with the orbit
+//! of each point (4 bytes a point).
 
 use std::collections::HashMap;
 
 use crate::models::{Body, Model};
-use crate::points::{Dimension, PointSet};
+use crate::points::{Cell, Dimension, LatticeIndex, PointSet};
 
-/// A group element acting on doubled lattice coordinates `(u, v)`: `(u, v)`
-/// maps to `(su * (u or v), sv * (v or u))`.
+/// A group element acting on coordinates: `(x, y)` maps to
+/// `(su * (x or y), sv * (y or x))`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Element {
     swap: bool,
@@ -40,12 +44,6 @@ struct Element {
 }
 
 impl Element {
-    /// `None` when a coordinate does not fit (points beyond 4.6e18 cells).
-    fn apply(self, (u, v): (i64, i64)) -> Option<(i64, i64)> {
-        let (a, b) = if self.swap { (v, u) } else { (u, v) };
-        Some((self.su.checked_mul(a)?, self.sv.checked_mul(b)?))
-    }
-
     fn apply_xy(self, (x, y): (f64, f64)) -> (f64, f64) {
         let (a, b) = if self.swap { (y, x) } else { (x, y) };
         (self.su as f64 * a, self.sv as f64 * b)
@@ -89,10 +87,84 @@ fn candidates(dimension: Dimension, square: bool) -> Vec<(&'static str, Vec<Elem
 pub struct Folding {
     group: &'static str,
     order: usize,
-    /// The orbits, each sorted; its first point is its representative
-    /// (the first point of the set not in an earlier orbit).
-    orbits: Vec<Vec<usize>>,
-    rep_of: Vec<usize>,
+    /// The points of the orbits, orbit by orbit, each orbit sorted; its
+    /// first point is its representative (the first point of the set not
+    /// in an earlier orbit).
+    members: Vec<u32>,
+    /// Orbit a is `members[starts[a]..starts[a + 1]]`.
+    starts: Vec<u32>,
+    /// The orbit of each point.
+    rep_of: Vec<u32>,
+}
+
+/// Where the point at a position is: a lattice set's index, or a map of
+/// the doubled lattice's keys.
+enum Lookup {
+    Lattice {
+        index: LatticeIndex,
+        /// Point 0's coordinates and lattice indices.
+        origin: (f64, f64),
+        base: (i64, i64),
+        cell: Cell,
+    },
+    Keys {
+        map: HashMap<(i64, i64), u32>,
+        cell: Cell,
+    },
+}
+
+impl Lookup {
+    /// `None` when two points share a lattice cell or a doubled key (then
+    /// no image is unique and nothing folds).
+    fn new(points: &PointSet) -> Option<Self> {
+        let cell = points.cell();
+        if let (Some(lattice), Some(index)) = (points.lattice(), points.lattice_index()) {
+            let distinct = lattice
+                .iter()
+                .enumerate()
+                .all(|(k, &ij)| index.get(ij) == Some(k));
+            return distinct.then(|| Self::Lattice {
+                index,
+                origin: (points.x(0), points.y(0)),
+                base: lattice[0],
+                cell,
+            });
+        }
+        let map: HashMap<(i64, i64), u32> = (0..points.len())
+            .map(|k| (doubled_key((points.x(k), points.y(k)), cell), k as u32))
+            .collect();
+        (map.len() == points.len()).then_some(Self::Keys { map, cell })
+    }
+
+    /// The point nearest `(x, y)` on the lattice, if the set holds one
+    /// there.
+    fn find(&self, (x, y): (f64, f64)) -> Option<usize> {
+        match self {
+            Self::Lattice {
+                index,
+                origin,
+                base,
+                cell,
+            } => {
+                let i = base
+                    .0
+                    .checked_add(((x - origin.0) / cell.dx).round() as i64)?;
+                let j = base
+                    .1
+                    .checked_add(((y - origin.1) / cell.dy).round() as i64)?;
+                index.get((i, j))
+            }
+            Self::Keys { map, cell } => map.get(&doubled_key((x, y), *cell)).map(|&k| k as usize),
+        }
+    }
+}
+
+/// The doubled lattice coordinates `(round(2x/dx), round(2y/dy))`.
+fn doubled_key((x, y): (f64, f64), cell: Cell) -> (i64, i64) {
+    (
+        (2.0 * x / cell.dx).round() as i64,
+        (2.0 * y / cell.dy).round() as i64,
+    )
 }
 
 impl Folding {
@@ -129,35 +201,32 @@ impl Folding {
             _ => true,
         });
         let cell = points.cell();
-        let key = move |k: usize| {
-            (
-                (2.0 * points.x(k) / cell.dx).round() as i64,
-                (2.0 * points.y(k) / cell.dy).round() as i64,
-            )
+        let lookup = if beam_at_origin {
+            Lookup::new(points)
+        } else {
+            None
         };
-        let index: Option<HashMap<(i64, i64), usize>> = beam_at_origin
-            .then(|| (0..points.len()).map(|k| (key(k), k)).collect())
-            .filter(|index: &HashMap<_, _>| index.len() == points.len());
         let square = cell.dx == cell.dy;
         let tolerance = 1e-12 * cell.dx.max(cell.dy);
-        let groups = match index {
+        let groups = match lookup {
             Some(_) => candidates(points.dimension(), square),
             None => Vec::new(),
         };
         groups.into_iter().filter_map(move |(group, elements)| {
-            let index = index.as_ref()?;
+            let lookup = lookup.as_ref()?;
             let image = |g: Element, k: usize| -> Option<usize> {
-                let j = *index.get(&g.apply(key(k))?)?;
                 let (x, y) = g.apply_xy((points.x(k), points.y(k)));
+                let j = lookup.find((x, y))?;
                 ((points.x(j) - x).abs() <= tolerance && (points.y(j) - y).abs() <= tolerance)
                     .then_some(j)
             };
-            let (orbits, rep_of) = orbits_of(points.len(), &elements, image)?;
-            (orbits.len() < points.len()).then_some(Self {
+            let orbits = orbits_of(points.len(), &elements, image)?;
+            (orbits.starts.len() - 1 < points.len()).then_some(Self {
                 group,
                 order: elements.len(),
-                orbits,
-                rep_of,
+                members: orbits.members,
+                starts: orbits.starts,
+                rep_of: orbits.rep_of,
             })
         })
     }
@@ -174,50 +243,57 @@ impl Folding {
 
     /// The number of representatives (the folded problem's size).
     pub fn len(&self) -> usize {
-        self.orbits.len()
+        self.starts.len() - 1
     }
 
     /// Whether there is no representative (never: a point set is not empty).
     pub fn is_empty(&self) -> bool {
-        self.orbits.is_empty()
+        self.len() == 0
     }
 
     /// The point that represents orbit `a`: its smallest index.
     pub fn rep(&self, a: usize) -> usize {
-        self.orbits[a][0]
+        self.members[self.starts[a] as usize] as usize
     }
 
-    /// The points of orbit `a`.
-    pub fn orbit(&self, a: usize) -> &[usize] {
-        &self.orbits[a]
+    /// The points of orbit `a`, in increasing order.
+    pub fn orbit(&self, a: usize) -> impl ExactSizeIterator<Item = usize> + Clone + '_ {
+        let range = self.starts[a] as usize..self.starts[a + 1] as usize;
+        self.members[range].iter().map(|&k| k as usize)
     }
 
     /// The orbit of point `k`.
     pub fn rep_of(&self, k: usize) -> usize {
-        self.rep_of[k]
+        self.rep_of[k] as usize
     }
 
     /// The stabilizer size `s_a = |G| / |O(a)|` of orbit `a`.
     pub fn stabilizer(&self, a: usize) -> f64 {
-        (self.order / self.orbits[a].len()) as f64
+        (self.order / (self.starts[a + 1] - self.starts[a]) as usize) as f64
     }
 
     /// Whether `values` (one per point) are constant on every orbit, to
     /// `tolerance` times their largest magnitude.
     pub fn is_invariant(&self, values: &[f64], tolerance: f64) -> bool {
         let scale = values.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        self.orbits.iter().all(|orbit| {
-            let v0 = values[orbit[0]];
-            orbit
-                .iter()
-                .all(|&j| (values[j] - v0).abs() <= tolerance * scale)
+        (0..self.len()).all(|a| {
+            let v0 = values[self.rep(a)];
+            self.orbit(a)
+                .all(|j| (values[j] - v0).abs() <= tolerance * scale)
         })
     }
 
     /// Values on the representatives, copied to every point of each orbit.
     pub fn unfold(&self, folded: &[f64]) -> Vec<f64> {
-        self.rep_of.iter().map(|&a| folded[a]).collect()
+        self.rep_of.iter().map(|&a| folded[a as usize]).collect()
     }
+}
+
+/// Orbits stored flat (see [`Folding`]'s fields).
+struct Orbits {
+    members: Vec<u32>,
+    starts: Vec<u32>,
+    rep_of: Vec<u32>,
 }
 
 /// The orbits of the points `0..n` under `elements` (a group: the identity
@@ -232,14 +308,17 @@ fn orbits_of(
     n: usize,
     elements: &[Element],
     image: impl Fn(Element, usize) -> Option<usize>,
-) -> Option<(Vec<Vec<usize>>, Vec<usize>)> {
-    let mut rep_of = vec![usize::MAX; n];
-    let mut orbits: Vec<Vec<usize>> = Vec::new();
+) -> Option<Orbits> {
+    // Indices fit in u32: a point set holds at most MAX_POINTS = 2^22.
+    let mut rep_of = vec![u32::MAX; n];
+    let mut members = Vec::with_capacity(n);
+    let mut starts = vec![0u32];
+    let mut orbit = Vec::with_capacity(elements.len());
     for k in 0..n {
-        if rep_of[k] != usize::MAX {
+        if rep_of[k] != u32::MAX {
             continue;
         }
-        let mut orbit = Vec::with_capacity(elements.len());
+        orbit.clear();
         for &g in elements {
             let j = image(g, k)?;
             if !orbit.contains(&j) {
@@ -248,12 +327,20 @@ fn orbits_of(
         }
         orbit.sort_unstable();
         debug_assert_eq!(orbit[0], k, "an orbit starts at its smallest point");
+        let a = (starts.len() - 1) as u32;
         for &j in &orbit {
-            rep_of[j] = orbits.len();
+            rep_of[j] = a;
+            members.push(j as u32);
         }
-        orbits.push(orbit);
+        starts.push(members.len() as u32);
     }
-    Some((orbits, rep_of))
+    members.shrink_to_fit();
+    starts.shrink_to_fit();
+    Some(Orbits {
+        members,
+        starts,
+        rep_of,
+    })
 }
 
 #[cfg(test)]
@@ -290,13 +377,13 @@ mod tests {
         for (p, body) in [(&disk, &patch), (&rectangle, &patch), (&line, &winkler)] {
             for f in Folding::detect_all(p, &[body]) {
                 for a in 0..f.len() {
-                    let orbit = f.orbit(a);
-                    assert_eq!(f.rep(a), *orbit.iter().min().unwrap(), "{}", f.group());
-                    assert!(orbit.iter().all(|&j| f.rep_of(j) == a));
+                    let mut orbit = f.orbit(a);
+                    assert_eq!(f.rep(a), orbit.clone().min().unwrap(), "{}", f.group());
+                    assert!(orbit.all(|j| f.rep_of(j) == a));
                 }
                 // Every point is in the orbit it is filed under.
                 for k in 0..p.len() {
-                    assert!(f.orbit(f.rep_of(k)).contains(&k));
+                    assert!(f.orbit(f.rep_of(k)).any(|j| j == k));
                 }
             }
         }
@@ -330,6 +417,47 @@ mod tests {
             .map(|f| f.order())
             .collect();
         assert_eq!(groups, [8, 4, 2, 2]);
+    }
+
+    #[test]
+    fn images_are_found_on_and_off_a_lattice_and_twins_do_not_fold() {
+        let winkler = Body::winkler(1.0);
+        // Off any lattice: the doubled keys; symmetric about x = 0 only.
+        let scattered = PointSet::from_points(
+            Dimension::Surface,
+            vec![-0.37, 0.37, 0.0],
+            vec![0.11, 0.11, 0.5],
+            Cell::square(0.1),
+        )
+        .unwrap();
+        assert!(scattered.lattice().is_none());
+        let f = Folding::detect(&scattered, &[&winkler]).unwrap();
+        assert_eq!((f.group(), f.len()), ("mirror x", 2));
+        assert_eq!(f.orbit(0).collect::<Vec<_>>(), [0, 1]);
+        // On a lattice not centred on the origin's cell: the lattice index.
+        let shifted = PointSet::from_points(
+            Dimension::Surface,
+            vec![-0.15, -0.05, 0.05, 0.15],
+            vec![0.3, 0.3, 0.3, 0.3],
+            Cell::square(0.1),
+        )
+        .unwrap();
+        assert!(shifted.lattice().is_some());
+        let f = Folding::detect(&shifted, &[&winkler]).unwrap();
+        assert_eq!((f.group(), f.len()), ("mirror x", 2));
+        assert_eq!(f.orbit(1).collect::<Vec<_>>(), [1, 2]);
+        assert_eq!((f.rep_of(3), f.stabilizer(0)), (0, 1.0));
+        // Two points within the lattice tolerance of one cell: no image is
+        // unique, nothing folds.
+        let twins = PointSet::from_points(
+            Dimension::Surface,
+            vec![-1.0, 0.0, 1e-14, 1.0],
+            vec![0.0; 4],
+            Cell::square(1.0),
+        )
+        .unwrap();
+        assert!(twins.lattice().is_some());
+        assert!(Folding::detect(&twins, &[&winkler]).is_none());
     }
 
     #[test]
