@@ -25,7 +25,7 @@
 //! counts whole (t = h / 2), as it does for a problem built from a given S
 //! (`ContactProblem::from_parts`), whose edge law is not known.
 
-use elcon_influence::{Body, Dimension, LatticeIndex, Model, PointSet};
+use elcon_influence::{Body, Dimension, Lattice, LatticeIndex, Model, PointSet};
 
 /// How the pressure falls to zero at a smooth edge of the contact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -79,7 +79,7 @@ pub(crate) struct Edge<'a> {
 
 /// The lattice coordinates of the points, their index, and q.
 struct Grid<'a> {
-    lattice: &'a [(i64, i64)],
+    lattice: Lattice<'a>,
     index: LatticeIndex,
     q: i32,
 }
@@ -111,7 +111,7 @@ impl<'a> Edge<'a> {
     /// where it cannot be told (no point behind, a pressure that does not
     /// fall toward the side).
     fn beyond(&self, g: &Grid<'_>, k: usize, (di, dj): (i64, i64), h: f64) -> Option<f64> {
-        let (i, j) = g.lattice[k];
+        let (i, j) = g.lattice.get(k);
         let b = self.pressed(g, (i - di, j - dj))?;
         let (pk, pb) = (self.pressures[k], self.pressures[b]);
         (pb > pk && pk > 0.0).then(|| {
@@ -124,7 +124,7 @@ impl<'a> Edge<'a> {
     /// the neighbour is in contact, else the extrapolated edge within
     /// `[0, h]` (h / 2 where it cannot be told).
     fn reach(&self, g: &Grid<'_>, k: usize, (di, dj): (i64, i64), h: f64) -> f64 {
-        let (i, j) = g.lattice[k];
+        let (i, j) = g.lattice.get(k);
         if self.pressed(g, (i + di, j + dj)).is_some() {
             return 0.5 * h;
         }
@@ -142,7 +142,7 @@ impl<'a> Edge<'a> {
             return true;
         };
         let cell = self.points.cell();
-        let (i, j) = g.lattice[k];
+        let (i, j) = g.lattice.get(k);
         let mut sides = Vec::new();
         if open_x {
             sides.extend([(1, 0, cell.dx), (-1, 0, cell.dx)]);
@@ -186,7 +186,7 @@ impl<'a> Edge<'a> {
         let (cx, cy) = (centre.0 / total, centre.1 / total);
         let mut edge: Vec<(f64, f64, f64)> = Vec::new();
         for k in pressed_points {
-            let (i, j) = g.lattice[k];
+            let (i, j) = g.lattice.get(k);
             for (di, dj, h) in [
                 (1, 0, cell.dx),
                 (-1, 0, cell.dx),

@@ -332,7 +332,7 @@ mod tests {
             .lattice()
             .unwrap()
             .iter()
-            .position(|&l| l == (0, 0))
+            .position(|l| l == (0, 0))
             .unwrap();
         let expected = steel().compliance() * 4.0 * (1.0 + 2f64.sqrt()).ln() / (PI * h);
         for body in [Body::uniform_patch(steel()), Body::point_force(steel())] {

@@ -67,7 +67,7 @@ use rustfft::{Fft, FftPlanner};
 
 use crate::error::InfluenceError;
 use crate::models::{Body, Model};
-use crate::points::{LatticeBox, MAX_POINTS, PointSet};
+use crate::points::{Lattice, LatticeBox, MAX_POINTS, PointSet};
 use crate::terms::Terms;
 
 type C64 = Complex<f64>;
@@ -664,7 +664,7 @@ impl GatherOrder {
         let lattice = points.lattice().expect("Setup checked the lattice");
         let n = points.len();
         let mut row_start = try_vec(bounds.ni + 1, 0u32, "lattice row starts")?;
-        for &l in lattice {
+        for l in lattice {
             row_start[bounds.local(l).0 + 1] += 1;
         }
         for i in 0..bounds.ni {
@@ -673,7 +673,7 @@ impl GatherOrder {
         let mut next = row_start.clone();
         let mut order = try_vec(n, 0u32, "lattice gather order")?;
         let mut columns = try_vec(n, 0u32, "lattice gather order")?;
-        for (k, &l) in lattice.iter().enumerate() {
+        for (k, l) in lattice.iter().enumerate() {
             let (i, j) = bounds.local(l);
             let s = next[i] as usize;
             // Bounded by the box and MAX_POINTS (the const assertion above).
@@ -692,11 +692,7 @@ impl GatherOrder {
 
     /// Two points on one cell would be summed into one value of the grid:
     /// an error naming them.
-    fn check_distinct_cells(
-        &self,
-        lattice: &[(i64, i64)],
-        nj: usize,
-    ) -> Result<(), InfluenceError> {
+    fn check_distinct_cells(&self, lattice: Lattice<'_>, nj: usize) -> Result<(), InfluenceError> {
         // The last entry of `order` seen in each column.
         let mut seen = try_vec(nj, usize::MAX, "lattice row occupancy")?;
         for i in 0..self.row_start.len() - 1 {
@@ -708,7 +704,7 @@ impl GatherOrder {
                     return Err(InfluenceError::LatticeRequired {
                         reason: format!(
                             "points {a} and {b} fall on one lattice cell (i, j) = {:?}",
-                            lattice[a as usize]
+                            lattice.get(a as usize)
                         ),
                     });
                 }
@@ -1114,7 +1110,7 @@ mod tests {
             Cell::square(1.0),
         )
         .unwrap();
-        assert_eq!(twins.lattice(), Some(&[(0, 0), (0, 0), (1, 0)][..]));
+        assert_eq!(twins.lattice().unwrap().to_vec(), [(0, 0), (0, 0), (1, 0)]);
         let e = LatticeOperator::new(&twins, &[&patch]).unwrap_err();
         assert!(
             e.to_string()

@@ -13,6 +13,7 @@
 //! assembly evaluate a translation-invariant kernel once per lattice offset.
 
 use crate::error::InfluenceError;
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 pub use crate::dimension::Dimension;
@@ -65,19 +66,187 @@ impl Cell {
 ///
 /// Built only by the validated constructors, so a `PointSet` is never empty,
 /// holds finite distinct coordinates and at most [`MAX_POINTS`] points.
-#[derive(Debug, Clone, PartialEq)]
+/// A grid constructor's set stores no coordinates: they follow from the
+/// lattice indices, which it stores as runs (a few bytes a lattice row), so
+/// a grid takes 2 bytes a point (its boundary flags).
+#[derive(Debug, Clone)]
 pub struct PointSet {
     dimension: Dimension,
     cell: Cell,
-    xs: Vec<f64>,
-    ys: Vec<f64>,
-    /// Integer indices (i, j) with `x_k - x_l = (i_k - i_l) dx` and
-    /// `y_k - y_l = (j_k - j_l) dy` (to rounding), when the set lies on a
-    /// lattice of the cell's spacing.
-    lattice: Option<Vec<(i64, i64)>>,
+    layout: Layout,
     /// Whether an adjacent cell along x (x +- dx), resp. along y (y +- dy),
     /// holds no point of the set.
     boundary: Vec<(bool, bool)>,
+}
+
+/// Where the points are.
+#[derive(Debug, Clone)]
+enum Layout {
+    /// Coordinates as given, with lattice indices `(i, j)` when the set
+    /// lies on a lattice of the cell's spacing: `x_k - x_l = (i_k - i_l) dx`
+    /// and `y_k - y_l = (j_k - j_l) dy` (to rounding).
+    Listed {
+        xs: Vec<f64>,
+        ys: Vec<f64>,
+        lattice: Option<Vec<(i64, i64)>>,
+    },
+    /// A grid: the lattice indices by runs, the coordinates by a rule per
+    /// axis, `x_k = x(i_k)`, `y_k = y(j_k)`.
+    Grid {
+        x: AxisRule,
+        y: AxisRule,
+        runs: Vec<Run>,
+        len: usize,
+    },
+}
+
+/// The coordinate of lattice index `i` along one axis of a grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum AxisRule {
+    /// `i h`: node-centred, the origin on a point.
+    Scaled { h: f64 },
+    /// `mid + (2 i + 1 - n) h / 2`: `n` cells of length `h` centred on
+    /// `mid`, i = 0..n.
+    Centred { mid: f64, n: usize, h: f64 },
+}
+
+impl AxisRule {
+    fn at(self, i: i64) -> f64 {
+        match self {
+            Self::Scaled { h } => i as f64 * h,
+            Self::Centred { mid, n, h } => mid + (2.0 * i as f64 + 1.0 - n as f64) * (0.5 * h),
+        }
+    }
+}
+
+/// Points `start..` (up to the next run's start) of a grid at the lattice
+/// indices `first + t step`, t = 0, 1, ...
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Run {
+    start: usize,
+    first: (i64, i64),
+    step: (i64, i64),
+}
+
+impl Run {
+    fn at(&self, k: usize) -> (i64, i64) {
+        let t = (k - self.start) as i64;
+        (
+            self.first.0 + t * self.step.0,
+            self.first.1 + t * self.step.1,
+        )
+    }
+}
+
+/// The lattice indices `(i, j)` of a set's points ([`PointSet::lattice`]):
+/// listed, or computed from a grid's runs.
+#[derive(Debug, Clone, Copy)]
+pub struct Lattice<'a>(LatticeRef<'a>);
+
+#[derive(Debug, Clone, Copy)]
+enum LatticeRef<'a> {
+    Listed(&'a [(i64, i64)]),
+    Runs { runs: &'a [Run], len: usize },
+}
+
+impl<'a> Lattice<'a> {
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        match self.0 {
+            LatticeRef::Listed(l) => l.len(),
+            LatticeRef::Runs { len, .. } => len,
+        }
+    }
+
+    /// Always false: a point set holds at least one point.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The lattice indices of point `k`. Panics if `k >= len()`.
+    pub fn get(&self, k: usize) -> (i64, i64) {
+        match self.0 {
+            LatticeRef::Listed(l) => l[k],
+            LatticeRef::Runs { runs, len } => {
+                assert!(k < len, "point {k} of {len}");
+                runs[runs.partition_point(|r| r.start <= k) - 1].at(k)
+            }
+        }
+    }
+
+    /// The lattice indices of the points, in order, as a vector.
+    pub fn to_vec(&self) -> Vec<(i64, i64)> {
+        self.iter().collect()
+    }
+
+    /// The lattice indices of the points, in order.
+    pub fn iter(&self) -> LatticeIter<'a> {
+        LatticeIter {
+            lattice: *self,
+            next: 0,
+            run: 0,
+        }
+    }
+}
+
+impl<'a> IntoIterator for Lattice<'a> {
+    type Item = (i64, i64);
+    type IntoIter = LatticeIter<'a>;
+
+    fn into_iter(self) -> LatticeIter<'a> {
+        self.iter()
+    }
+}
+
+/// The iterator of [`Lattice::iter`].
+#[derive(Debug, Clone)]
+pub struct LatticeIter<'a> {
+    lattice: Lattice<'a>,
+    next: usize,
+    run: usize,
+}
+
+impl Iterator for LatticeIter<'_> {
+    type Item = (i64, i64);
+
+    fn next(&mut self) -> Option<(i64, i64)> {
+        let k = self.next;
+        if k >= self.lattice.len() {
+            return None;
+        }
+        self.next += 1;
+        Some(match self.lattice.0 {
+            LatticeRef::Listed(l) => l[k],
+            LatticeRef::Runs { runs, .. } => {
+                while self.run + 1 < runs.len() && runs[self.run + 1].start <= k {
+                    self.run += 1;
+                }
+                runs[self.run].at(k)
+            }
+        })
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.lattice.len() - self.next;
+        (left, Some(left))
+    }
+}
+
+impl ExactSizeIterator for LatticeIter<'_> {}
+
+impl PartialEq for PointSet {
+    /// The same points (coordinates, lattice indices, boundary flags) in
+    /// the same order, on the same cells, however they are stored.
+    fn eq(&self, other: &Self) -> bool {
+        let lattice = |p: &Self| p.lattice().map(|l| l.iter().collect::<Vec<_>>());
+        self.dimension == other.dimension
+            && self.cell == other.cell
+            && self.len() == other.len()
+            && self.boundary == other.boundary
+            && self.xs() == other.xs()
+            && self.ys() == other.ys()
+            && lattice(self) == lattice(other)
+    }
 }
 
 /// `value` if finite and positive, else an InvalidPoints error for `field`.
@@ -132,16 +301,18 @@ impl PointSet {
         let n = count("n", n)?;
         let h = positive("(end - start) / n", (end - start) / n as f64)?;
         let mid = 0.5 * (start + end);
-        let xs: Vec<f64> = (0..n)
-            .map(|i| mid + (2.0 * i as f64 + 1.0 - n as f64) * (0.5 * h))
-            .collect();
-        let lattice: Vec<(i64, i64)> = (0..n as i64).map(|i| (i, 0)).collect();
-        Ok(Self::with_lattice(
+        let run = Run {
+            start: 0,
+            first: (0, 0),
+            step: (1, 0),
+        };
+        Ok(Self::grid(
             Dimension::Line,
             Cell { dx: h, dy: 1.0 },
-            xs,
-            vec![0.0; n],
-            lattice,
+            AxisRule::Centred { mid, n, h },
+            AxisRule::Scaled { h: 1.0 },
+            vec![run],
+            n,
         ))
     }
 
@@ -168,23 +339,30 @@ impl PointSet {
         }
         let r2 = m_f * m_f;
         let m = m_f.floor() as i64;
-        let (mut xs, mut ys, mut lattice) = (Vec::new(), Vec::new(), Vec::new());
+        // Row i holds the j with i^2 + j^2 <= r2: -jm..=jm (j = 0 always,
+        // as i^2 <= m^2 <= r2).
+        let mut runs = Vec::with_capacity(2 * m as usize + 1);
+        let mut n = 0;
         for i in -m..=m {
-            for j in -m..=m {
-                if ((i * i + j * j) as f64) <= r2 {
-                    xs.push(i as f64 * h);
-                    ys.push(j as f64 * h);
-                    lattice.push((i, j));
-                }
-            }
+            let jm = (0..=m)
+                .take_while(|&j| ((i * i + j * j) as f64) <= r2)
+                .last()
+                .unwrap_or(0);
+            runs.push(Run {
+                start: n,
+                first: (i, -jm),
+                step: (0, 1),
+            });
+            n += 2 * jm as usize + 1;
         }
-        count("number of points in the disk", xs.len())?;
-        Ok(Self::with_lattice(
+        count("number of points in the disk", n)?;
+        Ok(Self::grid(
             Dimension::Surface,
             Cell::square(h),
-            xs,
-            ys,
-            lattice,
+            AxisRule::Scaled { h },
+            AxisRule::Scaled { h },
+            runs,
+            n,
         ))
     }
 
@@ -210,25 +388,21 @@ impl PointSet {
         count("nx * ny", n)?;
         let dx = positive("2 half_x / nx", 2.0 * half_x / nx as f64)?;
         let dy = positive("2 half_y / ny", 2.0 * half_y / ny as f64)?;
-        let centre = |i: usize, n: usize, d: f64| (2.0 * i as f64 + 1.0 - n as f64) * (0.5 * d);
-        let (mut xs, mut ys, mut lattice) = (
-            Vec::with_capacity(n),
-            Vec::with_capacity(n),
-            Vec::with_capacity(n),
-        );
-        for i in 0..nx {
-            for j in 0..ny {
-                xs.push(centre(i, nx, dx));
-                ys.push(centre(j, ny, dy));
-                lattice.push((i as i64, j as i64));
-            }
-        }
-        Ok(Self::with_lattice(
+        let runs = (0..nx)
+            .map(|i| Run {
+                start: i * ny,
+                first: (i as i64, 0),
+                step: (0, 1),
+            })
+            .collect();
+        let centred = |n: usize, h: f64| AxisRule::Centred { mid: 0.0, n, h };
+        Ok(Self::grid(
             Dimension::Surface,
             Cell { dx, dy },
-            xs,
-            ys,
-            lattice,
+            centred(nx, dx),
+            centred(ny, dy),
+            runs,
+            n,
         ))
     }
 
@@ -312,60 +486,49 @@ impl PointSet {
             }
         }
         let cell = Cell { dx, dy };
-        match detect_lattice(&xs, &ys, cell) {
-            Some(lattice) => Ok(Self::with_lattice(dimension, cell, xs, ys, lattice)),
-            None => {
-                let boundary = boundary_by_cells(dimension, cell, &xs, &ys);
-                Ok(Self {
-                    dimension,
-                    cell,
-                    xs,
-                    ys,
-                    lattice: None,
-                    boundary,
-                })
-            }
-        }
+        let lattice = detect_lattice(&xs, &ys, cell);
+        let boundary = match &lattice {
+            Some(l) => lattice_boundary(dimension, Lattice(LatticeRef::Listed(l))),
+            None => boundary_by_cells(dimension, cell, &xs, &ys),
+        };
+        Ok(Self {
+            dimension,
+            cell,
+            layout: Layout::Listed { xs, ys, lattice },
+            boundary,
+        })
     }
 
-    /// A validated set on a lattice: computes the boundary flags from the
-    /// lattice indices.
-    fn with_lattice(
+    /// A grid constructor's validated set: computes the boundary flags
+    /// from the lattice indices.
+    fn grid(
         dimension: Dimension,
         cell: Cell,
-        xs: Vec<f64>,
-        ys: Vec<f64>,
-        mut lattice: Vec<(i64, i64)>,
+        x: AxisRule,
+        y: AxisRule,
+        runs: Vec<Run>,
+        len: usize,
     ) -> Self {
-        // Held for the problem's lifetime: no spare capacity (a grid built
-        // by pushing would keep up to twice its length).
-        let (mut xs, mut ys) = (xs, ys);
-        xs.shrink_to_fit();
-        ys.shrink_to_fit();
-        lattice.shrink_to_fit();
-        let members = LatticeIndex::of(&lattice);
-        let boundary = lattice
-            .iter()
-            .map(|&(i, j)| open_sides(dimension, |di, dj| members.get((i + di, j + dj)).is_some()))
-            .collect();
+        let boundary = lattice_boundary(dimension, Lattice(LatticeRef::Runs { runs: &runs, len }));
         Self {
             dimension,
             cell,
-            xs,
-            ys,
-            lattice: Some(lattice),
+            layout: Layout::Grid { x, y, runs, len },
             boundary,
         }
     }
 
     /// The number of points N (at least 1).
     pub fn len(&self) -> usize {
-        self.xs.len()
+        match &self.layout {
+            Layout::Listed { xs, .. } => xs.len(),
+            Layout::Grid { len, .. } => *len,
+        }
     }
 
     /// Always false: a point set holds at least one point.
     pub fn is_empty(&self) -> bool {
-        self.xs.is_empty()
+        self.len() == 0
     }
 
     /// Line (2D) or surface (3D).
@@ -380,27 +543,51 @@ impl PointSet {
 
     /// x coordinate of point `k` (length). Panics if `k >= len()`.
     pub fn x(&self, k: usize) -> f64 {
-        self.xs[k]
+        match &self.layout {
+            Layout::Listed { xs, .. } => xs[k],
+            Layout::Grid { x, .. } => x.at(self.lattice_at(k).0),
+        }
     }
 
     /// y coordinate of point `k` (length; 0 on a line). Panics if `k >= len()`.
     pub fn y(&self, k: usize) -> f64 {
-        self.ys[k]
+        match &self.layout {
+            Layout::Listed { ys, .. } => ys[k],
+            Layout::Grid { y, .. } => y.at(self.lattice_at(k).1),
+        }
     }
 
-    /// All x coordinates.
-    pub fn xs(&self) -> &[f64] {
-        &self.xs
+    /// All x coordinates (length): borrowed for a set built from
+    /// coordinates, computed (N values) for a grid.
+    pub fn xs(&self) -> Cow<'_, [f64]> {
+        match &self.layout {
+            Layout::Listed { xs, .. } => Cow::Borrowed(xs),
+            Layout::Grid { x, runs, len, .. } => Cow::Owned(
+                Lattice(LatticeRef::Runs { runs, len: *len })
+                    .iter()
+                    .map(|(i, _)| x.at(i))
+                    .collect(),
+            ),
+        }
     }
 
-    /// All y coordinates (zeros on a line).
-    pub fn ys(&self) -> &[f64] {
-        &self.ys
+    /// All y coordinates (length; zeros on a line): borrowed for a set
+    /// built from coordinates, computed (N values) for a grid.
+    pub fn ys(&self) -> Cow<'_, [f64]> {
+        match &self.layout {
+            Layout::Listed { ys, .. } => Cow::Borrowed(ys),
+            Layout::Grid { y, runs, len, .. } => Cow::Owned(
+                Lattice(LatticeRef::Runs { runs, len: *len })
+                    .iter()
+                    .map(|(_, j)| y.at(j))
+                    .collect(),
+            ),
+        }
     }
 
     /// Distance of point `k` from the origin (length). Panics if `k >= len()`.
     pub fn radius(&self, k: usize) -> f64 {
-        self.xs[k].hypot(self.ys[k])
+        self.x(k).hypot(self.y(k))
     }
 
     /// The measure A_k of point `k`: area (Surface) or length per unit width
@@ -433,8 +620,11 @@ impl PointSet {
             hi - lo
         };
         match self.dimension {
-            Dimension::Line => (span(&self.xs) + self.cell.dx, 1.0),
-            Dimension::Surface => (span(&self.xs) + self.cell.dx, span(&self.ys) + self.cell.dy),
+            Dimension::Line => (span(&self.xs()) + self.cell.dx, 1.0),
+            Dimension::Surface => (
+                span(&self.xs()) + self.cell.dx,
+                span(&self.ys()) + self.cell.dy,
+            ),
         }
     }
 
@@ -443,15 +633,26 @@ impl PointSet {
     /// `x_k - x_l = (i_k - i_l) dx` and `y_k - y_l = (j_k - j_l) dy`, to
     /// rounding. The grid constructors always set it; [`PointSet::from_points`]
     /// sets it when it detects a lattice.
-    pub fn lattice(&self) -> Option<&[(i64, i64)]> {
-        self.lattice.as_deref()
+    pub fn lattice(&self) -> Option<Lattice<'_>> {
+        match &self.layout {
+            Layout::Listed { lattice, .. } => {
+                lattice.as_deref().map(|l| Lattice(LatticeRef::Listed(l)))
+            }
+            Layout::Grid { runs, len, .. } => Some(Lattice(LatticeRef::Runs { runs, len: *len })),
+        }
+    }
+
+    /// The lattice indices of point `k` of a grid. Panics if `k >= len()`
+    /// or the set is not a grid.
+    fn lattice_at(&self, k: usize) -> (i64, i64) {
+        self.lattice().expect("a grid has a lattice").get(k)
     }
 
     /// The point at each lattice coordinate, or `None` for a set without a
     /// lattice: built on each call (O(N)), for a caller that walks the
     /// lattice's neighbours.
     pub fn lattice_index(&self) -> Option<LatticeIndex> {
-        self.lattice.as_deref().map(LatticeIndex::of)
+        self.lattice().map(LatticeIndex::of)
     }
 
     /// Whether point `k` lies on the edge of the candidate zone: one of the
@@ -499,9 +700,9 @@ impl LatticeBox {
 
     /// The box of lattice indices (`None` for none, or a side that does
     /// not fit a usize).
-    pub(crate) fn of_lattice(lattice: &[(i64, i64)]) -> Option<Self> {
+    pub(crate) fn of_lattice(lattice: Lattice<'_>) -> Option<Self> {
         let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
-        for &(i, j) in lattice {
+        for (i, j) in lattice.iter() {
             i_min = i_min.min(i);
             i_max = i_max.max(i);
             j_min = j_min.min(j);
@@ -560,19 +761,19 @@ enum Index {
 
 impl LatticeIndex {
     /// The index of lattice coordinates (point k at `lattice[k]`).
-    fn of(lattice: &[(i64, i64)]) -> Self {
+    fn of(lattice: Lattice<'_>) -> Self {
         let table = LatticeBox::of_lattice(lattice)
             .filter(|b| b.is_dense(lattice.len()) && lattice.len() < u32::MAX as usize);
         Self(match table {
             Some(bounds) => {
                 let mut cells = vec![u32::MAX; bounds.cells()];
-                for (k, &l) in lattice.iter().enumerate() {
+                for (k, l) in lattice.iter().enumerate() {
                     let (i, j) = bounds.local(l);
                     cells[i * bounds.nj + j] = k as u32;
                 }
                 Index::Table { bounds, cells }
             }
-            None => Index::Map(lattice.iter().enumerate().map(|(k, &ij)| (ij, k)).collect()),
+            None => Index::Map(lattice.iter().enumerate().map(|(k, ij)| (ij, k)).collect()),
         })
     }
 
@@ -599,6 +800,15 @@ fn open_sides(dimension: Dimension, present: impl Fn(i64, i64) -> bool) -> (bool
     let x = !present(1, 0) || !present(-1, 0);
     let y = dimension == Dimension::Surface && (!present(0, 1) || !present(0, -1));
     (x, y)
+}
+
+/// Boundary flags of a set on a lattice: the lattice neighbour test.
+fn lattice_boundary(dimension: Dimension, lattice: Lattice<'_>) -> Vec<(bool, bool)> {
+    let members = LatticeIndex::of(lattice);
+    lattice
+        .iter()
+        .map(|(i, j)| open_sides(dimension, |di, dj| members.get((i + di, j + dj)).is_some()))
+        .collect()
 }
 
 /// Lattice indices relative to the first point, if every point lies on the
@@ -676,10 +886,13 @@ mod tests {
         let index = disk.lattice_index().unwrap();
         assert!(matches!(index.0, Index::Table { .. }));
         let sparse = [(0, 0), (1000, -1000), (3, 2)];
-        let map = LatticeIndex::of(&sparse);
+        let map = LatticeIndex::of(Lattice(LatticeRef::Listed(&sparse)));
         assert!(matches!(map.0, Index::Map(_)));
-        for (index, lattice) in [(&index, disk.lattice().unwrap()), (&map, &sparse[..])] {
-            for (k, &ij) in lattice.iter().enumerate() {
+        for (index, lattice) in [
+            (&index, disk.lattice().unwrap()),
+            (&map, Lattice(LatticeRef::Listed(&sparse))),
+        ] {
+            for (k, ij) in lattice.iter().enumerate() {
                 assert_eq!(index.get(ij), Some(k));
             }
             for absent in [
@@ -705,13 +918,56 @@ mod tests {
     }
 
     #[test]
+    fn a_grid_stores_runs_and_equals_the_same_points_listed() {
+        let grids = [
+            PointSet::grid_disk(0.1, 0.73).unwrap(),
+            PointSet::grid_rectangle(1.0, 2.5, 4, 7).unwrap(),
+            PointSet::line(-1.0, 2.0, 9).unwrap(),
+        ];
+        for grid in grids {
+            let lattice = grid.lattice().unwrap();
+            let (xs, ys) = (grid.xs(), grid.ys());
+            assert!(matches!(xs, Cow::Owned(_)));
+            for (k, ij) in lattice.iter().enumerate() {
+                assert_eq!(lattice.get(k), ij);
+                assert_eq!((grid.x(k), grid.y(k)), (xs[k], ys[k]));
+            }
+            assert_eq!(lattice.iter().len(), grid.len());
+            // The same coordinates listed: the same set, stored otherwise.
+            let listed =
+                PointSet::from_points(grid.dimension(), xs.to_vec(), ys.to_vec(), grid.cell())
+                    .unwrap();
+            assert!(matches!(listed.xs(), Cow::Borrowed(_)));
+            let shifted = |p: &PointSet| {
+                let l = p.lattice().unwrap().to_vec();
+                l.iter()
+                    .map(|&(i, j)| (i - l[0].0, j - l[0].1))
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(shifted(&listed), shifted(&grid));
+            assert_eq!(listed.extent(), grid.extent());
+            assert_eq!(
+                (0..grid.len())
+                    .map(|k| grid.open_sides(k))
+                    .collect::<Vec<_>>(),
+                (0..listed.len())
+                    .map(|k| listed.open_sides(k))
+                    .collect::<Vec<_>>()
+            );
+        }
+        let p = PointSet::grid_rectangle(1.0, 1.0, 2, 2).unwrap();
+        assert_eq!(p, p.clone());
+        assert_ne!(p, PointSet::grid_rectangle(1.0, 1.0, 2, 3).unwrap());
+    }
+
+    #[test]
     fn line_is_cell_centred_and_symmetric() {
         let p = PointSet::line(-1.0, 1.0, 5).unwrap();
         assert_eq!(p.len(), 5);
         assert_eq!(p.dimension(), Dimension::Line);
         assert_eq!(p.cell(), Cell { dx: 0.4, dy: 1.0 });
         // Centres -0.8, -0.4, 0, 0.4, 0.8: exact symmetry, apex on a point (n odd).
-        assert_eq!(p.xs(), &[-0.8, -0.4, 0.0, 0.4, 0.8]);
+        assert_eq!(*p.xs(), [-0.8, -0.4, 0.0, 0.4, 0.8]);
         assert!(p.ys().iter().all(|&y| y == 0.0));
         assert_eq!(p.measure(2), 0.4);
         assert!((p.total_measure() - 2.0).abs() < 1e-15);
@@ -725,7 +981,7 @@ mod tests {
         assert_eq!(b, [true, false, false, false, true]);
         // A single cell is all boundary.
         let one = PointSet::line(2.0, 3.0, 1).unwrap();
-        assert_eq!(one.xs(), &[2.5]);
+        assert_eq!(*one.xs(), [2.5]);
         assert!(one.is_on_boundary(0));
     }
 
@@ -746,13 +1002,13 @@ mod tests {
         assert_eq!(p.cell(), Cell::square(h));
         // The origin is a point; the four axis end points (radius m h) are kept.
         let lat = p.lattice().unwrap();
-        assert!(lat.contains(&(0, 0)));
+        assert!(lat.iter().any(|l| l == (0, 0)));
         for t in [(m, 0), (-m, 0), (0, m), (0, -m)] {
-            let k = lat.iter().position(|&l| l == t).unwrap();
+            let k = lat.iter().position(|l| l == t).unwrap();
             assert!((p.radius(k) / (1.3 * a) - 1.0).abs() < 1e-14);
             assert!(p.is_on_boundary(k));
         }
-        let centre = lat.iter().position(|&l| l == (0, 0)).unwrap();
+        let centre = lat.iter().position(|l| l == (0, 0)).unwrap();
         assert!(!p.is_on_boundary(centre));
         assert_eq!(p.x(centre), 0.0);
         assert!((p.measure(0) - h * h).abs() < 1e-30);
@@ -776,8 +1032,8 @@ mod tests {
         let p = PointSet::grid_rectangle(1.0, 3.0, 2, 3).unwrap();
         assert_eq!(p.len(), 6);
         assert_eq!(p.cell(), Cell { dx: 1.0, dy: 2.0 });
-        assert_eq!(p.xs(), &[-0.5, -0.5, -0.5, 0.5, 0.5, 0.5]);
-        assert_eq!(p.ys(), &[-2.0, 0.0, 2.0, -2.0, 0.0, 2.0]);
+        assert_eq!(*p.xs(), [-0.5, -0.5, -0.5, 0.5, 0.5, 0.5]);
+        assert_eq!(*p.ys(), [-2.0, 0.0, 2.0, -2.0, 0.0, 2.0]);
         assert_eq!(p.measure(0), 2.0);
         assert_eq!(p.total_measure(), 12.0);
         assert_eq!(p.extent(), (2.0, 6.0));
@@ -797,7 +1053,10 @@ mod tests {
         let xs = vec![0.0, 0.5, 1.0, 0.5];
         let ys = vec![0.0, 0.0, 0.0, 0.5];
         let p = PointSet::from_points(Dimension::Surface, xs, ys, cell).unwrap();
-        assert_eq!(p.lattice().unwrap(), &[(0, 0), (1, 0), (2, 0), (1, 1)]);
+        assert_eq!(
+            p.lattice().unwrap().to_vec(),
+            [(0, 0), (1, 0), (2, 0), (1, 1)]
+        );
         // Off-lattice by a tenth of a cell: no lattice.
         let q = PointSet::from_points(Dimension::Surface, vec![0.0, 0.55], vec![0.0, 0.0], cell)
             .unwrap();
@@ -832,7 +1091,7 @@ mod tests {
             Cell { dx: 1.0, dy: 7.0 },
         )
         .unwrap();
-        assert_eq!(p.ys(), &[0.0, 0.0, 0.0]);
+        assert_eq!(*p.ys(), [0.0, 0.0, 0.0]);
         assert_eq!(p.cell().dy, 1.0);
         assert!(p.lattice().is_none());
         assert_eq!(p.measure(0), 1.0);

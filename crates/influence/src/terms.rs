@@ -300,7 +300,7 @@ pub(crate) fn table_layout(points: &PointSet) -> Option<TableLayout> {
     if !bounds.is_dense(points.len()) {
         return None;
     }
-    let (i, j) = lattice.iter().map(|&l| bounds.local(l)).unzip();
+    let (i, j) = lattice.iter().map(|l| bounds.local(l)).unzip();
     Some(TableLayout {
         i,
         j,

@@ -78,8 +78,8 @@ fn arrays<'py>(
     separation: &[f64],
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("x", PyArray1::from_slice(py, points.xs()))?;
-    d.set_item("y", PyArray1::from_slice(py, points.ys()))?;
+    d.set_item("x", PyArray1::from_slice(py, &points.xs()))?;
+    d.set_item("y", PyArray1::from_slice(py, &points.ys()))?;
     d.set_item("force", PyArray1::from_slice(py, &solution.forces))?;
     d.set_item("pressure", PyArray1::from_slice(py, &solution.pressures))?;
     d.set_item("gap", PyArray1::from_slice(py, &solution.gaps))?;

@@ -358,7 +358,7 @@ fn boundary(points: &elcon_influence::PointSet, pressures: &[f64]) -> Vec<[(f64,
     let (hx, hy) = (0.5 * cell.dx, 0.5 * cell.dy);
     let mut faces = Vec::new();
     for k in (0..points.len()).filter(|&k| pressures[k] > 0.0) {
-        let (i, j) = lattice[k];
+        let (i, j) = lattice.get(k);
         let (x, y) = (points.x(k), points.y(k));
         for (di, dj) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
             let pressed = index
