@@ -59,6 +59,7 @@
 //! diverge, so it needs a different kernel (the spectral `2 / (E* |q|)` with
 //! the mean load set apart), not a different padding.
 
+use std::ops::Range;
 use std::sync::Arc;
 
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
@@ -76,6 +77,12 @@ type C64 = Complex<f64>;
 /// (256 bytes) of each row are read at once, and the batch (16 columns of
 /// P1 values, 256 kB at P1 = 1024) stays in the level-2 cache.
 const COLUMN_BATCH: usize = 16;
+
+/// The row spectra are taken in this many bands of frequencies per
+/// product: the workspace holds one band, half the row spectra (8 bytes a
+/// cell of the box instead of 16), and each row is transformed once per
+/// band (the row transforms are about a third of a product's work).
+const BANDS: usize = 2;
 
 /// Bytes counted per unit of FFT length for the plans, an upper estimate:
 /// rustfft keeps about one complex twiddle factor (16 bytes) per unit of
@@ -176,6 +183,11 @@ impl Grid {
         self.padded_rows / 2 + 1
     }
 
+    /// Frequencies of a band of the row spectra (the last may hold fewer).
+    fn band_width(&self) -> usize {
+        self.half_columns().div_ceil(BANDS)
+    }
+
     /// Values of the stored kernel spectrum.
     fn spectrum_len(&self) -> usize {
         self.half_rows() * self.half_columns()
@@ -195,14 +207,18 @@ impl Grid {
 
     /// Bytes of a workspace with `scratch` complex values of FFT scratch.
     fn workspace_bytes(&self, scratch: usize) -> usize {
-        let complex = self.rows * self.half_columns() + COLUMN_BATCH * self.padded_rows + scratch;
+        let complex = self.rows * self.band_width()
+            + self.half_columns()
+            + COLUMN_BATCH * self.padded_rows
+            + scratch;
         16 * complex + 8 * self.padded_columns
     }
 
-    /// Bytes held by an operator of `n` points on this grid, its workspace
-    /// included (the gather order, the spectrum, the plans, the workspace).
-    fn operator_bytes(&self, n: usize) -> usize {
-        4 * (2 * n + self.rows + 1)
+    /// Bytes held by an operator with `segments` gather segments on this
+    /// grid, its workspace included (the gather order, the spectrum, the
+    /// plans, the workspace).
+    fn operator_bytes(&self, segments: usize) -> usize {
+        GatherOrder::bytes_for(segments, self.rows)
             + 8 * self.spectrum_len()
             + self.plan_bytes()
             + self.workspace_bytes(self.scratch_bound())
@@ -246,22 +262,23 @@ impl std::fmt::Debug for Convolution {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Convolution")
             .field("grid", &self.grid)
-            .field("points", &self.gather.order.len())
+            .field("segments", &self.gather.segments.len())
             .finish_non_exhaustive()
     }
 }
 
-/// The scratch memory of one product `S x`: the row spectra of the box
-/// (`n1 (P2/2 + 1)` complex values), a row, a batch of columns and the FFT
-/// scratch. Made by [`LatticeKernel::workspace`] for one operator (or one
-/// of the same grid); reused across calls, its contents between calls mean
-/// nothing.
+/// The scratch memory of one product `S x`: a band of the row spectra of
+/// the box (`n1 ceil((P2/2 + 1) / 2)` complex values), a row and its
+/// spectrum, a batch of columns and the FFT scratch. Made by
+/// [`LatticeKernel::workspace`] for one operator (or one of the same grid);
+/// reused across calls, its contents between calls mean nothing.
 #[derive(Debug)]
 pub struct LatticeWorkspace {
     /// The grid it was made for (`None`: an operator without convolution).
     grid: Option<Grid>,
     spectra: Vec<C64>,
     row: Vec<f64>,
+    row_spectrum: Vec<C64>,
     batch: Vec<C64>,
     scratch: Vec<C64>,
 }
@@ -270,7 +287,10 @@ impl LatticeWorkspace {
     /// Bytes held by the workspace.
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Self>()
-            + 16 * (self.spectra.capacity() + self.batch.capacity() + self.scratch.capacity())
+            + 16 * (self.spectra.capacity()
+                + self.row_spectrum.capacity()
+                + self.batch.capacity()
+                + self.scratch.capacity())
             + 8 * self.row.capacity()
     }
 }
@@ -372,7 +392,8 @@ impl LatticeOperator {
         if !setup.has_kernel() {
             return Ok(base);
         }
-        Ok(base + Grid::new(&setup.bounds).operator_bytes(points.len()))
+        let segments = GatherOrder::segments(points, &setup.bounds);
+        Ok(base + Grid::new(&setup.bounds).operator_bytes(segments))
     }
 
     /// The operator's kernel, to share (`&LatticeKernel` is `Sync`).
@@ -474,6 +495,7 @@ impl LatticeKernel {
                 grid: None,
                 spectra: Vec::new(),
                 row: Vec::new(),
+                row_spectrum: Vec::new(),
                 batch: Vec::new(),
                 scratch: Vec::new(),
             });
@@ -482,8 +504,9 @@ impl LatticeKernel {
         let zero = C64::new(0.0, 0.0);
         Ok(LatticeWorkspace {
             grid: Some(g),
-            spectra: try_vec(g.rows * g.half_columns(), zero, "lattice row spectra")?,
+            spectra: try_vec(g.rows * g.band_width(), zero, "lattice row spectra")?,
             row: try_vec(g.padded_columns, 0.0, "lattice row")?,
+            row_spectrum: try_vec(g.half_columns(), zero, "lattice row spectrum")?,
             batch: try_vec(COLUMN_BATCH * g.padded_rows, zero, "lattice column batch")?,
             scratch: try_vec(c.scratch_len, zero, "FFT scratch")?,
         })
@@ -568,51 +591,81 @@ impl Convolution {
         self.gather.bytes() + 8 * self.spectrum.capacity() + self.grid.plan_bytes()
     }
 
-    /// `y` = the half-space part of `S x`.
+    /// `y` = the half-space part of `S x`, band by band of the row
+    /// spectra: the inverse row transforms are linear, so the bands' rows
+    /// add up to the whole.
     fn apply(&self, x: &[f64], y: &mut [f64], ws: &mut LatticeWorkspace) {
         let g = self.grid;
-        let half = g.half_columns();
-        // Rows: the forces of each lattice row, zero-padded to P2, to their
-        // half spectrum.
-        for (i, spectrum) in ws.spectra.chunks_exact_mut(half).enumerate() {
+        let (half, width) = (g.half_columns(), g.band_width());
+        for first in (0..half).step_by(width) {
+            let band = first..(first + width).min(half);
+            self.rows_forward(x, band.clone(), ws);
+            self.columns_times_kernel(band.clone(), ws);
+            self.rows_inverse(y, band, ws);
+        }
+    }
+
+    /// The forces of each lattice row, zero-padded to P2, to their half
+    /// spectrum, of which the frequencies `band` are kept.
+    fn rows_forward(&self, x: &[f64], band: Range<usize>, ws: &mut LatticeWorkspace) {
+        let rows = self.grid.rows * band.len();
+        for (i, spectrum) in ws.spectra[..rows].chunks_exact_mut(band.len()).enumerate() {
             ws.row.fill(0.0);
-            for (j, k) in self.gather.row(i) {
-                ws.row[j] = x[k];
+            for s in self.gather.row(i) {
+                ws.row[s.columns()].copy_from_slice(&x[s.points()]);
             }
             self.row_forward
-                .process_with_scratch(&mut ws.row, spectrum, &mut ws.scratch)
+                .process_with_scratch(&mut ws.row, &mut ws.row_spectrum, &mut ws.scratch)
                 .expect("buffer lengths follow the plan");
+            spectrum.copy_from_slice(&ws.row_spectrum[band.clone()]);
         }
-        self.columns_times_kernel(ws);
-        // Rows back: the first n2 values of each inverse are the box's.
-        for (i, spectrum) in ws.spectra.chunks_exact_mut(half).enumerate() {
+    }
+
+    /// Rows back from the frequencies `band` (the others zero): the first
+    /// n2 values of each inverse are the box's, written to `y` for the
+    /// first band and added for the others.
+    fn rows_inverse(&self, y: &mut [f64], band: Range<usize>, ws: &mut LatticeWorkspace) {
+        let half = self.grid.half_columns();
+        let rows = self.grid.rows * band.len();
+        let first = band.start == 0;
+        for (i, spectrum) in ws.spectra[..rows].chunks_exact(band.len()).enumerate() {
+            ws.row_spectrum.fill(C64::new(0.0, 0.0));
+            ws.row_spectrum[band.clone()].copy_from_slice(spectrum);
             // DC and Nyquist of a real row are real; drop the rounding.
-            spectrum[0].im = 0.0;
-            spectrum[half - 1].im = 0.0;
+            ws.row_spectrum[0].im = 0.0;
+            ws.row_spectrum[half - 1].im = 0.0;
             self.row_inverse
-                .process_with_scratch(spectrum, &mut ws.row, &mut ws.scratch)
+                .process_with_scratch(&mut ws.row_spectrum, &mut ws.row, &mut ws.scratch)
                 .expect("buffer lengths follow the plan");
-            for (j, k) in self.gather.row(i) {
-                y[k] = ws.row[j];
+            for s in self.gather.row(i) {
+                let (out, row) = (&mut y[s.points()], &ws.row[s.columns()]);
+                if first {
+                    out.copy_from_slice(row);
+                } else {
+                    out.iter_mut().zip(row).for_each(|(y, r)| *y += r);
+                }
             }
         }
     }
 
-    /// The column stage on the row spectra, in batches of [`COLUMN_BATCH`]
-    /// columns: zero-pad each column from n1 to P1, transform, multiply by
-    /// the kernel's spectrum (even in m1: frequency `P1 - m` is `m`'s),
-    /// transform back, keep the first n1 values.
-    fn columns_times_kernel(&self, ws: &mut LatticeWorkspace) {
+    /// The column stage on a band of the row spectra, in batches of
+    /// [`COLUMN_BATCH`] columns: zero-pad each column from n1 to P1,
+    /// transform, multiply by the kernel's spectrum (even in m1: frequency
+    /// `P1 - m` is `m`'s), transform back, keep the first n1 values.
+    fn columns_times_kernel(&self, band: Range<usize>, ws: &mut LatticeWorkspace) {
         let g = self.grid;
-        let (n1, p1, half, half_rows) = (g.rows, g.padded_rows, g.half_columns(), g.half_rows());
-        for first in (0..half).step_by(COLUMN_BATCH) {
-            let width = COLUMN_BATCH.min(half - first);
+        let (n1, p1, half_rows) = (g.rows, g.padded_rows, g.half_rows());
+        let stride = band.len();
+        let rows = n1 * stride;
+        for first in band.clone().step_by(COLUMN_BATCH) {
+            let width = COLUMN_BATCH.min(band.end - first);
+            let offset = first - band.start;
             let batch = &mut ws.batch[..width * p1];
             for column in batch.chunks_exact_mut(p1) {
                 column[n1..].fill(C64::new(0.0, 0.0));
             }
-            for (i, row) in ws.spectra.chunks_exact(half).enumerate() {
-                for (t, &z) in row[first..first + width].iter().enumerate() {
+            for (i, row) in ws.spectra[..rows].chunks_exact(stride).enumerate() {
+                for (t, &z) in row[offset..offset + width].iter().enumerate() {
                     batch[t * p1 + i] = z;
                 }
             }
@@ -635,8 +688,8 @@ impl Convolution {
             }
             self.column_inverse
                 .process_with_scratch(batch, &mut ws.scratch);
-            for (i, row) in ws.spectra.chunks_exact_mut(half).enumerate() {
-                for (t, z) in row[first..first + width].iter_mut().enumerate() {
+            for (i, row) in ws.spectra[..rows].chunks_exact_mut(stride).enumerate() {
+                for (t, z) in row[offset..offset + width].iter_mut().enumerate() {
                     *z = batch[t * p1 + i];
                 }
             }
@@ -644,15 +697,65 @@ impl Convolution {
     }
 }
 
-/// The points grouped by lattice row (a counting sort), to spread x on the
-/// box row by row and gather y back.
+/// The points grouped by lattice row, as segments of consecutive points on
+/// consecutive lattice columns (a grid's row is one segment): to spread x
+/// on the box row by row and gather y back, a slice at a time.
 struct GatherOrder {
-    /// Point indices by lattice row: row i holds
-    /// `order[row_start[i]..row_start[i + 1]]`.
-    order: Vec<u32>,
-    /// The lattice column (0..n2) of each entry of `order`.
-    columns: Vec<u32>,
+    /// Segments by lattice row: row i holds
+    /// `segments[row_start[i]..row_start[i + 1]]`.
+    segments: Vec<Segment>,
     row_start: Vec<u32>,
+}
+
+/// Points `point..point + len` on the lattice columns `column..column +
+/// len` of one row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Segment {
+    column: u32,
+    point: u32,
+    len: u32,
+}
+
+impl Segment {
+    fn columns(&self) -> Range<usize> {
+        self.column as usize..(self.column + self.len) as usize
+    }
+
+    fn points(&self) -> Range<usize> {
+        self.point as usize..(self.point + self.len) as usize
+    }
+}
+
+/// The segments of a point set on a lattice box, in the points' order,
+/// each with its lattice row.
+fn segments(points: &PointSet, bounds: &LatticeBox) -> impl Iterator<Item = (usize, Segment)> {
+    let lattice = points.lattice().expect("Setup checked the lattice");
+    let mut cells = lattice.iter().map(|l| bounds.local(l)).enumerate();
+    let mut current: Option<(usize, Segment)> = None;
+    std::iter::from_fn(move || {
+        loop {
+            let Some((k, (i, j))) = cells.next() else {
+                return current.take();
+            };
+            // Bounded by the box and MAX_POINTS (the const assertion above).
+            let (k, j) = (k as u32, j as u32);
+            match &mut current {
+                Some((row, s)) if *row == i && s.column + s.len == j && s.point + s.len == k => {
+                    s.len += 1;
+                }
+                _ => {
+                    let next = Segment {
+                        column: j,
+                        point: k,
+                        len: 1,
+                    };
+                    if let Some(done) = current.replace((i, next)) {
+                        return Some(done);
+                    }
+                }
+            }
+        }
+    })
 }
 
 impl GatherOrder {
@@ -661,117 +764,126 @@ impl GatherOrder {
     /// lattice cell (possible for [`PointSet::from_points`] within its
     /// lattice tolerance); [`InfluenceError::AllocationFailed`].
     fn new(points: &PointSet, bounds: &LatticeBox) -> Result<Self, InfluenceError> {
-        let lattice = points.lattice().expect("Setup checked the lattice");
-        let n = points.len();
         let mut row_start = try_vec(bounds.ni + 1, 0u32, "lattice row starts")?;
-        for l in lattice {
-            row_start[bounds.local(l).0 + 1] += 1;
+        for (i, _) in segments(points, bounds) {
+            row_start[i + 1] += 1;
         }
         for i in 0..bounds.ni {
             row_start[i + 1] += row_start[i];
         }
+        let count = row_start[bounds.ni] as usize;
         let mut next = row_start.clone();
-        let mut order = try_vec(n, 0u32, "lattice gather order")?;
-        let mut columns = try_vec(n, 0u32, "lattice gather order")?;
-        for (k, l) in lattice.iter().enumerate() {
-            let (i, j) = bounds.local(l);
-            let s = next[i] as usize;
-            // Bounded by the box and MAX_POINTS (the const assertion above).
-            order[s] = k as u32;
-            columns[s] = j as u32;
+        let empty = Segment {
+            column: 0,
+            point: 0,
+            len: 0,
+        };
+        let mut placed = try_vec(count, empty, "lattice gather order")?;
+        for (i, s) in segments(points, bounds) {
+            placed[next[i] as usize] = s;
             next[i] += 1;
         }
         let gather = Self {
-            order,
-            columns,
+            segments: placed,
             row_start,
         };
+        let lattice = points.lattice().expect("Setup checked the lattice");
         gather.check_distinct_cells(lattice, bounds.nj)?;
         Ok(gather)
+    }
+
+    /// The number of segments [`GatherOrder::new`] would store.
+    fn segments(points: &PointSet, bounds: &LatticeBox) -> usize {
+        segments(points, bounds).count()
+    }
+
+    /// Bytes of an order of `segments` segments on `rows` lattice rows.
+    fn bytes_for(segments: usize, rows: usize) -> usize {
+        std::mem::size_of::<Segment>() * segments + 4 * (rows + 1)
     }
 
     /// Two points on one cell would be summed into one value of the grid:
     /// an error naming them.
     fn check_distinct_cells(&self, lattice: Lattice<'_>, nj: usize) -> Result<(), InfluenceError> {
-        // The last entry of `order` seen in each column.
-        let mut seen = try_vec(nj, usize::MAX, "lattice row occupancy")?;
+        // The last row that filled each column, and the point that did.
+        let mut seen = try_vec(nj, (u32::MAX, 0u32), "lattice row occupancy")?;
         for i in 0..self.row_start.len() - 1 {
-            let first = self.row_start[i] as usize;
-            for s in first..self.row_start[i + 1] as usize {
-                let j = self.columns[s] as usize;
-                if seen[j] != usize::MAX && seen[j] >= first {
-                    let (a, b) = (self.order[seen[j]], self.order[s]);
-                    return Err(InfluenceError::LatticeRequired {
-                        reason: format!(
-                            "points {a} and {b} fall on one lattice cell (i, j) = {:?}",
-                            lattice.get(a as usize)
-                        ),
-                    });
+            for s in self.row(i) {
+                for (j, k) in s.columns().zip(s.points()) {
+                    let (row, a) = seen[j];
+                    if row == i as u32 {
+                        return Err(InfluenceError::LatticeRequired {
+                            reason: format!(
+                                "points {a} and {k} fall on one lattice cell (i, j) = {:?}",
+                                lattice.get(k)
+                            ),
+                        });
+                    }
+                    seen[j] = (i as u32, k as u32);
                 }
-                seen[j] = s;
             }
         }
         Ok(())
     }
 
-    /// `(column j, point k)` of the points in lattice row `i`.
-    fn row(&self, i: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
-        let range = self.row_start[i] as usize..self.row_start[i + 1] as usize;
-        self.columns[range.clone()]
-            .iter()
-            .zip(&self.order[range])
-            .map(|(&j, &k)| (j as usize, k as usize))
+    /// The segments of lattice row `i`.
+    fn row(&self, i: usize) -> &[Segment] {
+        &self.segments[self.row_start[i] as usize..self.row_start[i + 1] as usize]
     }
 
     /// Bytes held.
     fn bytes(&self) -> usize {
-        4 * (self.order.capacity() + self.columns.capacity() + self.row_start.capacity())
+        std::mem::size_of::<Segment>() * self.segments.capacity() + 4 * self.row_start.capacity()
     }
 }
 
 /// The kernel table of the bodies on the lattice's offsets (the one
-/// [`assemble`](crate::assemble) gathers from) and its spectrum
-/// `DFT(Kc) / (P1 P2)` on `(P1/2 + 1) x (P2/2 + 1)` frequencies (see
-/// [`Convolution::spectrum`]); also the table's self-term. Kc is even along
-/// both axes, so both stages are real transforms of even sequences whose
-/// real parts are kept (the imaginary parts are rounding).
+/// [`assemble`](crate::assemble) gathers from, computed a row at a time)
+/// and its spectrum `DFT(Kc) / (P1 P2)` on `(P1/2 + 1) x (P2/2 + 1)`
+/// frequencies (see [`Convolution::spectrum`]); also the table's self-term.
+/// Kc is even along both axes, so both stages are real transforms of even
+/// sequences whose real parts are kept (the imaginary parts are rounding).
+/// The row stage writes its spectra into the result, transposed (frequency
+/// m2's values over i where the column stage reads them, `n1 <= P1/2 + 1`),
+/// and the column stage transforms them in place: nothing of the box's
+/// size is allocated but the result.
 fn kernel_spectrum(
     terms: &Terms,
     grid: &Grid,
     planner: &mut RealFftPlanner<f64>,
 ) -> Result<(Vec<f64>, f64), InfluenceError> {
     let (n1, n2) = (grid.rows, grid.columns);
-    let (half, half_rows) = (grid.half_columns(), grid.half_rows());
-    let table = terms.table(n1, n2);
-    let self_term = table[0];
+    let half_rows = grid.half_rows();
     let row_fft = planner.plan_fft_forward(grid.padded_columns);
     let column_fft = planner.plan_fft_forward(grid.padded_rows);
     let zero = C64::new(0.0, 0.0);
     let mut scratch = vec![zero; row_fft.get_scratch_len().max(column_fft.get_scratch_len())];
+    let mut spectrum = try_vec(grid.spectrum_len(), 0.0, "kernel spectrum")?;
     // Rows: the even extension of each offset row di, transformed along j.
-    let mut rows = try_vec(n1 * half, 0.0, "kernel row spectra")?;
+    let mut values = vec![0.0; n2];
     let mut row = vec![0.0; grid.padded_columns];
-    let mut row_spectrum = vec![zero; half];
-    for (values, out) in table.chunks_exact(n2).zip(rows.chunks_exact_mut(half)) {
-        even_extension(values, &mut row);
+    let mut row_spectrum = vec![zero; grid.half_columns()];
+    let mut self_term = 0.0;
+    for di in 0..n1 {
+        terms.table_row(di, &mut values);
+        if di == 0 {
+            self_term = values[0];
+        }
+        even_extension(&values, &mut row);
         row_fft
             .process_with_scratch(&mut row, &mut row_spectrum, &mut scratch)
             .expect("buffer lengths follow the plan");
-        for (o, z) in out.iter_mut().zip(&row_spectrum) {
-            *o = z.re;
+        for (m2, z) in row_spectrum.iter().enumerate() {
+            spectrum[m2 * half_rows + di] = z.re;
         }
     }
-    drop(table);
     // Columns: the even extension along i of each frequency m2.
     let scale = 1.0 / (grid.padded_rows as f64 * grid.padded_columns as f64);
-    let mut spectrum = try_vec(grid.spectrum_len(), 0.0, "kernel spectrum")?;
     let mut values = vec![0.0; n1];
     let mut column = vec![0.0; grid.padded_rows];
     let mut column_spectrum = vec![zero; half_rows];
-    for (m2, out) in spectrum.chunks_exact_mut(half_rows).enumerate() {
-        for (v, r) in values.iter_mut().zip(rows.chunks_exact(half)) {
-            *v = r[m2];
-        }
+    for out in spectrum.chunks_exact_mut(half_rows) {
+        values.copy_from_slice(&out[..n1]);
         even_extension(&values, &mut column);
         column_fft
             .process_with_scratch(&mut column, &mut column_spectrum, &mut scratch)
@@ -998,25 +1110,26 @@ mod tests {
 
     #[test]
     fn memory_is_linear_in_the_points_and_estimated_before() {
-        // Held bytes: 24 per cell of the padded box's quarter (spectrum 8,
-        // row spectra 16), 8 per point (the gather order), and O(sqrt N) for
-        // the plans, a column batch and the scratch. A rectangle's box is its
-        // points, a disk's 4/pi of them; padding to 5-smooth lengths adds up
-        // to ~10 %. Measured: 38.7 and 35.3 B/point on the squares, 50.0 and
-        // 45.4 on the disks; the bounds leave a few percent.
+        // Held bytes: 16 per cell of the padded box's quarter (the spectrum
+        // 8, one band of the row spectra 8), 12 per segment of the gather
+        // order (one a lattice row on these grids), and O(sqrt N) for the
+        // plans, a row, a column batch and the scratch. A rectangle's box is
+        // its points, a disk's 4/pi of them; padding to 5-smooth lengths adds
+        // up to ~10 %. Measured: 22.9 and 19.4 B/point on the squares, 31.4
+        // and 26.8 on the disks; the bounds leave a few percent.
         let bodies = [&Body::uniform_patch(steel()), &Body::uniform_patch(steel())];
         for (name, small, large, bound) in [
             (
                 "square 128 x 128 and 256 x 256",
                 PointSet::grid_rectangle(1.0, 1.0, 128, 128).unwrap(),
                 PointSet::grid_rectangle(1.0, 1.0, 256, 256).unwrap(),
-                40.0,
+                24.0,
             ),
             (
                 "disks of radius 64 h and 128 h",
                 PointSet::grid_disk(1.0, 64.0).unwrap(),
                 PointSet::grid_disk(1.0, 128.0).unwrap(),
-                52.0,
+                33.0,
             ),
         ] {
             let mut per_point = Vec::new();
@@ -1024,10 +1137,12 @@ mod tests {
                 let estimate = LatticeOperator::estimate_bytes(points, &bodies).unwrap();
                 let op = LatticeOperator::new(points, &bodies).unwrap();
                 let held = op.memory_bytes();
-                // The estimate bounds the FFT scratch from above, by < 1 %.
+                // The estimate bounds the FFT scratch from above by at most
+                // the bound itself, P1 + P2 complex values.
+                let (p1, p2) = op.fft_shape().unwrap();
                 assert!(held <= estimate, "{name}: {held} > {estimate}");
                 assert!(
-                    estimate as f64 <= 1.01 * held as f64,
+                    estimate <= held + 16 * (p1 + p2),
                     "{name}: {estimate} vs {held}"
                 );
                 per_point.push(held as f64 / points.len() as f64);

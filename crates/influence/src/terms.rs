@@ -208,13 +208,19 @@ impl Terms {
     /// ([`TableLayout::offset`]): one kernel evaluation per offset, at
     /// `(di dx, dj dy)`, the self-term at (0, 0).
     pub(crate) fn table(&self, ni: usize, nj: usize) -> Vec<f64> {
+        let mut table = vec![0.0; ni * nj];
+        for (di, row) in table.chunks_exact_mut(nj).enumerate() {
+            self.table_row(di, row);
+        }
+        table
+    }
+
+    /// Row `di` of [`Terms::table`]: `row[dj]` for `dj < row.len()`.
+    pub(crate) fn table_row(&self, di: usize, row: &mut [f64]) {
         let Cell { dx, dy } = self.cell;
-        (0..ni * nj)
-            .map(|t| {
-                let (di, dj) = (t / nj, t % nj);
-                self.coefficient(di as f64 * dx, dj as f64 * dy, t == 0)
-            })
-            .collect()
+        for (dj, v) in row.iter_mut().enumerate() {
+            *v = self.coefficient(di as f64 * dx, dj as f64 * dy, di == 0 && dj == 0);
+        }
     }
 
     /// The half-space part of S for an offset (x, y) = field point minus
