@@ -130,6 +130,13 @@ pub(crate) fn matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {
     y
 }
 
+/// The Gram matrix `a^T a`.
+pub(crate) fn gram(a: MatRef<'_, f64>) -> Mat<f64> {
+    let mut g = Mat::<f64>::zeros(a.ncols(), a.ncols());
+    matmul(g.as_mut(), Accum::Replace, a.transpose(), a, 1.0, Par::Seq);
+    g
+}
+
 /// `y = |a| |x|` entry-wise absolute values: the magnitude of the terms that
 /// sum to `a x`, the scale against which a residual of `a x` is judged.
 pub(crate) fn abs_matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {

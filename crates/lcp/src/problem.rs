@@ -498,16 +498,17 @@ impl MixedLcp {
 fn dependent_column(border: MatRef<'_, f64>) -> Option<usize> {
     use faer::linalg::cholesky::llt::factor::LltError;
     let k = border.ncols();
-    let mut unit = border.to_owned();
-    for j in 0..k {
-        let norm = unit.col(j).norm_l2();
-        if !(norm > 0.0) {
-            return Some(j);
-        }
-        let mut col = unit.col_mut(j);
-        col /= norm;
+    let norms: Vec<f64> = (0..k).map(|j| border.col(j).norm_l2()).collect();
+    if let Some(j) = norms.iter().position(|&norm| !(norm > 0.0)) {
+        return Some(j);
     }
-    let gram = unit.transpose() * &unit;
+    // The columns scaled as they are read: no copy of the border (n x k).
+    let gram = Mat::<f64>::from_fn(k, k, |a, b| {
+        let (ca, cb) = (border.col(a), border.col(b));
+        (0..border.nrows())
+            .map(|i| (ca[i] / norms[a]) * (cb[i] / norms[b]))
+            .sum()
+    });
     match gram.llt(faer::Side::Lower) {
         Ok(llt) => {
             let l = llt.L();

@@ -256,7 +256,7 @@ impl Routed for OperatorLcp<'_> {
             w[i] += self.q[i];
             w_terms[i] += self.q[i].abs();
         }
-        let equality = self.border.transpose() * z - self.resultant;
+        let equality = linalg::matvec(self.border.transpose(), z.as_ref()) - self.resultant;
         let mut equality_terms = self.resultant.map(|v| v.abs());
         linalg::add_abs_matvec(equality_terms.as_mut(), self.border.transpose(), z.as_ref());
         let nonneg = vec![false; lambda.nrows()];

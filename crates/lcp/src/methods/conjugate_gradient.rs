@@ -194,7 +194,7 @@ fn start(form: &Form<'_>, options: &Options) -> Result<Option<Vec<f64>>, Breakdo
         }
         None => {
             let nu = fit(form.border, |_| true, form.resultant).ok_or(Breakdown::SingularBorder)?;
-            let spread = form.border * &nu;
+            let spread = linalg::matvec(form.border, nu.as_ref());
             spread.iter().map(|&v| v.max(0.0)).collect()
         }
     };
@@ -365,7 +365,7 @@ fn shift_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
     for _ in 0..EQUALITY_CORRECTIONS {
         let mut active: Vec<bool> = z.iter().map(|&v| v > 0.0).collect();
         let z_col = ColRef::from_slice(z);
-        let deficit = form.resultant - form.border.transpose() * z_col;
+        let deficit = form.resultant - linalg::matvec(form.border.transpose(), z_col);
         let nu = match fit(form.border, |i| active[i], deficit.as_ref()) {
             Some(nu) => nu,
             None => {
@@ -373,7 +373,7 @@ fn shift_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
                 fit(form.border, |_| true, deficit.as_ref()).ok_or(Breakdown::SingularBorder)?
             }
         };
-        let add = form.border * &nu;
+        let add = linalg::matvec(form.border, nu.as_ref());
         let mut clipped = false;
         for i in (0..n).filter(|&i| active[i]) {
             let v = z[i] + add[i];
@@ -399,7 +399,7 @@ fn tilt_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
     let (n, k) = (z.len(), border.ncols());
     let start = z.to_vec();
     let scaled = |nu: &Col<f64>| -> Option<Col<f64>> {
-        let exponent = border * nu;
+        let exponent = linalg::matvec(border, nu.as_ref());
         let s = Col::from_fn(n, |i| {
             if start[i] > 0.0 {
                 start[i] * exponent[i].exp()
@@ -414,8 +414,8 @@ fn tilt_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
     let mut nu = Col::<f64>::zeros(k);
     let mut s = scaled(&nu).ok_or(Breakdown::NonFinite)?;
     let residual = |s: &Col<f64>| -> (Col<f64>, f64) {
-        let gradient = border.transpose() * s - b;
-        let terms = border.map(|v| v.abs()).transpose() * s + b.map(|v| v.abs());
+        let gradient = linalg::matvec(border.transpose(), s.as_ref()) - b;
+        let terms = linalg::abs_matvec(border.transpose(), s.as_ref()) + b.map(|v| v.abs());
         let scale = terms.iter().fold(0.0f64, |a, &v| a.max(v));
         let worst = gradient.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
         (gradient, if scale > 0.0 { worst / scale } else { 0.0 })
@@ -426,7 +426,7 @@ fn tilt_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
             break;
         }
         let weighted = Mat::from_fn(n, k, |i, j| s[i].sqrt() * border[(i, j)]);
-        let hessian = weighted.transpose() * &weighted;
+        let hessian = linalg::gram(weighted.as_ref());
         let Ok(llt) = hessian.llt(Side::Lower) else {
             break;
         };
