@@ -91,7 +91,9 @@ enum Layout {
         lattice: Option<Vec<(i64, i64)>>,
     },
     /// A grid: the lattice indices by runs, the coordinates by a rule per
-    /// axis, `x_k = x(i_k)`, `y_k = y(j_k)`.
+    /// axis, `x_k = x(i_k)`, `y_k = y(j_k)`. The runs are one per lattice
+    /// row, along j (step (0, 1)), in increasing i; or one run along i (a
+    /// line).
     Grid {
         x: AxisRule,
         y: AxisRule,
@@ -135,6 +137,21 @@ impl Run {
             self.first.0 + t * self.step.0,
             self.first.1 + t * self.step.1,
         )
+    }
+
+    /// The point of this run of `count` points at `(i, j)`, if any (a
+    /// grid's steps: (0, 1) or (1, 0)).
+    fn find(&self, (i, j): (i64, i64), count: usize) -> Option<usize> {
+        let ((along, across), (first_along, first_across)) = if self.step == (0, 1) {
+            ((j, i), (self.first.1, self.first.0))
+        } else {
+            ((i, j), self.first)
+        };
+        if across != first_across {
+            return None;
+        }
+        let t = usize::try_from(along.checked_sub(first_along)?).ok()?;
+        (t < count).then_some(self.start + t)
     }
 }
 
@@ -742,9 +759,10 @@ impl LatticeBox {
 }
 
 /// The point at each lattice coordinate of a set ([`PointSet::lattice_index`]):
-/// a table over the lattice's bounding box (4 bytes a cell; a disk grid's
-/// box holds 4/pi cells a point) when the box is at most
-/// `TABLE_ENTRIES_PER_POINT` cells a point, else a hash map.
+/// for a grid its runs (found by a binary search over the lattice rows,
+/// O(rows) memory); else a table over the lattice's bounding box (4 bytes a
+/// cell) when the box is at most `TABLE_ENTRIES_PER_POINT` cells a point,
+/// else a hash map.
 #[derive(Debug, Clone)]
 pub struct LatticeIndex(Index);
 
@@ -757,11 +775,22 @@ enum Index {
         cells: Vec<u32>,
     },
     Map(HashMap<(i64, i64), usize>),
+    /// A grid's runs (see [`Layout::Grid`]) and its number of points.
+    Runs {
+        runs: Vec<Run>,
+        len: usize,
+    },
 }
 
 impl LatticeIndex {
     /// The index of lattice coordinates (point k at `lattice[k]`).
     fn of(lattice: Lattice<'_>) -> Self {
+        if let LatticeRef::Runs { runs, len } = lattice.0 {
+            return Self(Index::Runs {
+                runs: runs.to_vec(),
+                len,
+            });
+        }
         let table = LatticeBox::of_lattice(lattice)
             .filter(|b| b.is_dense(lattice.len()) && lattice.len() < u32::MAX as usize);
         Self(match table {
@@ -790,6 +819,16 @@ impl LatticeIndex {
                 (k != u32::MAX).then_some(k as usize)
             }
             Index::Map(map) => map.get(&(i, j)).copied(),
+            Index::Runs { runs, len } => {
+                let r = if runs.len() == 1 {
+                    0
+                } else {
+                    runs.partition_point(|run| run.first.0 < i)
+                };
+                let run = runs.get(r)?;
+                let end = runs.get(r + 1).map_or(*len, |next| next.start);
+                run.find((i, j), end - run.start)
+            }
         }
     }
 }
@@ -881,13 +920,34 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_lattice_index_is_a_table_on_grids_and_a_map_on_sparse_sets() {
+    fn the_lattice_index_is_runs_on_grids_a_table_on_lattices_and_a_map_on_sparse_sets() {
         let disk = PointSet::grid_disk(1.0, 6.0).unwrap();
         let index = disk.lattice_index().unwrap();
-        assert!(matches!(index.0, Index::Table { .. }));
+        assert!(matches!(index.0, Index::Runs { .. }));
+        let listed = PointSet::from_points(
+            Dimension::Surface,
+            disk.xs().to_vec(),
+            disk.ys().to_vec(),
+            disk.cell(),
+        )
+        .unwrap();
+        let table = listed.lattice_index().unwrap();
+        assert!(matches!(table.0, Index::Table { .. }));
+        let line = PointSet::line(-1.0, 1.0, 5).unwrap();
+        let along = line.lattice_index().unwrap();
+        assert_eq!(
+            (0..7).map(|i| along.get((i - 1, 0))).collect::<Vec<_>>(),
+            [None, Some(0), Some(1), Some(2), Some(3), Some(4), None]
+        );
+        assert_eq!(along.get((2, 1)), None);
         let sparse = [(0, 0), (1000, -1000), (3, 2)];
         let map = LatticeIndex::of(Lattice(LatticeRef::Listed(&sparse)));
         assert!(matches!(map.0, Index::Map(_)));
+        // Listed indices count from point 0, the disk's (-6, 0).
+        let shifted = |l: (i64, i64)| (l.0 - 6, l.1);
+        for (k, ij) in listed.lattice().unwrap().iter().enumerate() {
+            assert_eq!(index.get(shifted(ij)), Some(k));
+        }
         for (index, lattice) in [
             (&index, disk.lattice().unwrap()),
             (&map, Lattice(LatticeRef::Listed(&sparse))),
