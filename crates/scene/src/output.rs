@@ -20,9 +20,8 @@
 //! pressure.csv (position, measure, force, pressure, gap, separation, and
 //! the closed form's pressure where one applies), and the plots asked for.
 
-use std::fmt::Write as _;
 use std::fs;
-use std::io::Write as _;
+use std::io;
 use std::path::{Path, PathBuf};
 
 use elcon_influence::Dimension;
@@ -39,6 +38,19 @@ use crate::scene::Plot;
 /// # Errors
 /// [`SceneError::Io`] naming the file.
 pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), SceneError> {
+    write_atomic_with(path, |w| w.write_all(contents))
+}
+
+/// Writes what `write` produces to `path` whole or not at all, as
+/// [`write_atomic`], streamed through a buffer: a file as large as a
+/// per-point table is never held in memory.
+///
+/// # Errors
+/// [`SceneError::Io`] naming the file.
+pub fn write_atomic_with(
+    path: &Path,
+    write: impl FnOnce(&mut dyn io::Write) -> io::Result<()>,
+) -> Result<(), SceneError> {
     let dir = path.parent().unwrap_or(Path::new("."));
     fs::create_dir_all(dir).map_err(|e| SceneError::io(dir, e))?;
     let name = path
@@ -46,8 +58,9 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), SceneError> {
         .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
     let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
     let result = (|| {
-        let mut f = fs::File::create(&tmp)?;
-        f.write_all(contents)?;
+        let mut f = io::BufWriter::new(fs::File::create(&tmp)?);
+        write(&mut f)?;
+        let f = f.into_inner().map_err(io::IntoInnerError::into_error)?;
         f.sync_all()?;
         fs::rename(&tmp, path)
     })();
@@ -236,7 +249,7 @@ pub fn write_run_files(run: &Run, dir: &Path) -> Result<(), SceneError> {
     write_atomic(&dir.join("result.json"), json.as_bytes())?;
     faults::write_delay();
     if run.scene.outputs().pressure_csv() {
-        write_atomic(&dir.join("pressure.csv"), pressure_csv(run).as_bytes())?;
+        write_atomic_with(&dir.join("pressure.csv"), |w| pressure_csv(run, w))?;
         faults::write_delay();
     }
     for plot in run.scene.outputs().plots() {
@@ -254,51 +267,50 @@ pub fn write_run_files(run: &Run, dir: &Path) -> Result<(), SceneError> {
     Ok(())
 }
 
-/// pressure.csv: one row per candidate point.
-fn pressure_csv(run: &Run) -> String {
+/// pressure.csv: one row per candidate point, written row by row.
+fn pressure_csv(run: &Run, w: &mut dyn io::Write) -> io::Result<()> {
     let u = run.scene.units();
     let points = run.problem.points();
     let sol = &run.solution;
     let eps = run.problem.separation();
     let surface = points.dimension() == Dimension::Surface;
-    let mut s = String::new();
     let (l, f, p) = (u.length(), u.force(), u.intensity());
     if surface {
-        let _ = write!(
-            s,
+        write!(
+            w,
             "x_{l},y_{l},r_{l},area_{l}^2,force_{f},pressure_{p},gap_{l},separation_{l}"
-        );
+        )?;
     } else {
-        let _ = write!(
-            s,
+        write!(
+            w,
             "x_{l},length_{l},force_{f},intensity_{p},gap_{l},separation_{l}"
-        );
+        )?;
     }
     if run.reference_pressures.is_some() {
-        let _ = write!(s, ",reference_{p}");
+        write!(w, ",reference_{p}")?;
     }
-    s.push('\n');
+    writeln!(w)?;
     for k in 0..points.len() {
         if surface {
-            let _ = write!(s, "{},{},{},", points.x(k), points.y(k), points.radius(k));
+            write!(w, "{},{},{},", points.x(k), points.y(k), points.radius(k))?;
         } else {
-            let _ = write!(s, "{},", points.x(k));
+            write!(w, "{},", points.x(k))?;
         }
-        let _ = write!(
-            s,
+        write!(
+            w,
             "{},{},{},{},{}",
             points.measure(k),
             sol.forces[k],
             sol.pressures[k],
             sol.gaps[k],
             eps[k]
-        );
+        )?;
         if let Some(r) = &run.reference_pressures {
-            let _ = write!(s, ",{}", r[k]);
+            write!(w, ",{}", r[k])?;
         }
-        s.push('\n');
+        writeln!(w)?;
     }
-    s
+    Ok(())
 }
 
 #[cfg(test)]
@@ -310,6 +322,23 @@ mod tests {
         let _ = fs::remove_dir_all(&dir);
         fs::create_dir_all(&dir).unwrap();
         dir
+    }
+
+    #[test]
+    fn a_streamed_file_that_fails_midway_is_not_written_at_all() {
+        let dir = scratch("streamed");
+        let path = dir.join("pressure.csv");
+        fs::write(&path, "old").unwrap();
+        let e = write_atomic_with(&path, |w| {
+            w.write_all(b"x,y\n1,2\n")?;
+            Err(io::Error::other("the disk is full"))
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains("the disk is full"), "{e}");
+        assert_eq!(fs::read_to_string(&path).unwrap(), "old");
+        assert_eq!(fs::read_dir(&dir).unwrap().count(), 1, "no temporary left");
+        write_atomic_with(&path, |w| w.write_all(b"x,y\n")).unwrap();
+        assert_eq!(fs::read_to_string(&path).unwrap(), "x,y\n");
     }
 
     #[test]
