@@ -8,7 +8,7 @@
 //!
 //! ```text
 //!     contact solve      m n^2                   n = N, or one unknown per orbit when folded
-//!     matrix-free solve  lattice operator + 24 N    (solver.method "auto" above its limit, or
+//!     matrix-free solve  lattice operator + 48 N    (solver.method "auto" above its limit, or
 //!                                                   "conjugate-gradient": crate::Storage)
 //!     design, linear     n^2 + sum_l n_l^2 + 4.25 R C + (m - 1) max_l n_l^2
 //!     design, crowns     n^2 + sum_l n_l^2 + (m - 1) max_l n_l^2
@@ -36,11 +36,16 @@ use crate::scene::{DesignFamily, DesignSpec, Scene};
 use crate::storage::Storage;
 
 /// Vectors of N doubles a matrix-free solve holds besides the operator:
-/// the point set (about four), the separations, the border, the conjugate
-/// gradient's iterate, gap, direction and product, the certificate's two
-/// columns and the solution's vectors, rounded up (measured: a heap peak
-/// of 132 bytes a point at 347,949 points, 39 of them the operator's).
-const CG_VECTORS: f64 = 14.0;
+/// the separations, the border, then the conjugate gradient's iterate, gap
+/// and direction, or at the end the answer and the certificate's two
+/// columns; a grid's point set holds a quarter of one (measured: a heap
+/// peak of 66 bytes a point at 347,949 points, 21 of them the operator's).
+const CG_VECTORS: f64 = 6.0;
+
+/// Vectors of N doubles a design case on a lattice holds besides its
+/// operator: its analysis's ([`CG_VECTORS`]) and its sensitivities', an
+/// upper count (the design stage's peak on a lattice is not measured).
+const DESIGN_CASE_VECTORS: f64 = 14.0;
 
 /// Seconds per point of a matrix-free solve (a few hundred iterations of
 /// two FFT products each; docs/performance.md, "Dense or matrix-free"),
@@ -441,7 +446,7 @@ fn design(
                     scene: scene.name().to_string(),
                     reason: e.to_string(),
                 })? as f64
-                    + CG_VECTORS * ENTRY * set.len() as f64
+                    + DESIGN_CASE_VECTORS * ENTRY * set.len() as f64
             }
         };
     }
