@@ -36,17 +36,25 @@
 //! operator reproduces `assemble`'s S to the FFT's rounding (about 1e-15 of
 //! the largest `|S x|`).
 //!
-//! Each product: `n1` real-to-complex row transforms of length P2 (the rows
-//! beyond the box are zero and skipped), `P2/2 + 1` complex column transforms
-//! of length P1 forward and back with the product by `DFT(Kc)` between, and
-//! `n1` complex-to-real row transforms (realfft over rustfft, planned once).
+//! Each product, in two bands of the row frequencies (`BANDS`): for each
+//! band, `n1` real-to-complex row transforms of length P2 (the rows beyond
+//! the box are zero and skipped) of which the band's frequencies are kept,
+//! the band's complex column transforms of length P1 forward and back with
+//! the product by `DFT(Kc)` between, and `n1` complex-to-real row
+//! transforms of the band (the others zero), added into y: the inverse is
+//! linear, so the bands add up to the whole (realfft over rustfft, planned
+//! once). The second band costs a second pass of row transforms, about a
+//! third more work, and halves the workspace.
 //! Memory: the stored spectrum (`8 (P1/2 + 1)(P2/2 + 1)` bytes, about
-//! `8 n1 n2`), the gather order (8 bytes per point) and one workspace of
-//! `n1 (P2/2 + 1)` complex values (about `16 n1 n2` bytes), plus buffers and
-//! plans of O(P1 + P2): 35 bytes per point on a 256 x 256 grid, 45 on a disk
-//! of 51,433 points (its bounding box holds 4/pi as many cells). A point
-//! set itself takes about 34 bytes per point. [`LatticeOperator::estimate_bytes`]
-//! gives the figure before anything is built.
+//! `8 n1 n2`), the gather order (12 bytes per segment of consecutive points
+//! in a lattice row: one a row on a grid) and one workspace of a band,
+//! `n1 ceil((P2/2 + 1) / 2)` complex values (about `8 n1 n2` bytes), plus
+//! buffers and plans of O(P1 + P2): 19 bytes per point on a 256 x 256
+//! grid, 27 on a disk of 51,433 points (its bounding box holds 4/pi as many
+//! cells). A grid's point set takes 2 bytes per point.
+//! [`LatticeOperator::estimate_bytes`] gives the figure before anything is
+//! built; the construction holds nothing of the box's size but the
+//! spectrum (the kernel table is made a row at a time).
 //!
 //! Units: as S. With x the forces F (force; per unit width on a line), y is
 //! the deflection (length); S's entries are in length per force.
@@ -124,8 +132,8 @@ const _: () = assert!(LatticeBox::cell_limit(MAX_POINTS) <= u32::MAX as usize);
 /// let dense: f64 = (0..points.len()).map(|j| s[(k, j)] * forces[j]).sum();
 /// assert!((deflection[k] / dense - 1.0).abs() < 1e-12);
 /// assert_eq!(op.diagonal(), s[(k, k)]);
-/// // O(N): 75 bytes per point here, ~40 on large grids (a dense S: 8 N per point).
-/// assert!(op.memory_bytes() < 80 * points.len());
+/// // O(N): 56 bytes per point here, ~20 on large grids (a dense S: 8 N per point).
+/// assert!(op.memory_bytes() < 60 * points.len());
 /// ```
 #[derive(Debug)]
 pub struct LatticeOperator {
@@ -379,9 +387,8 @@ impl LatticeOperator {
     /// [`memory_bytes`](Self::memory_bytes) reports once built (to the FFT
     /// plans' scratch and twiddles, estimated from above); a
     /// [`LatticeKernel`] and the one workspace its products need. The
-    /// construction never holds more at once (its kernel table and
-    /// first-stage spectrum are freed before the workspace is allocated,
-    /// and are smaller).
+    /// construction never holds more at once (the kernel table is made a
+    /// row at a time, its spectrum in the stored one).
     ///
     /// # Errors
     /// As [`LatticeOperator::new`], except [`InfluenceError::AllocationFailed`]
