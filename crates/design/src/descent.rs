@@ -380,7 +380,11 @@ fn step(
     let basis = Mat::from_fn(rows, rows, |r, i| entry(r, columns[solution.basis[i]]));
     let costs = Col::from_fn(rows, |i| columns[solution.basis[i]].b);
     let pi = basis.transpose().partial_piv_lu().solve(&costs);
-    let d: Vec<f64> = (0..m).map(|i| pi[i]).collect();
+    // The trust region's bounds are exact: the solve's rounding, relative
+    // to the model rows' terms (intensities), can put d_i beyond a radius
+    // that has shrunk to rounding's size of them. Clamped, d keeps the
+    // model rows to that rounding.
+    let d: Vec<f64> = (0..m).map(|i| pi[i].clamp(-radius, radius)).collect();
     let t = -pi[m];
     // The multipliers of an optimal basis are a feasible step: checked,
     // since the step is only as good as the basis it is read from.
@@ -484,4 +488,35 @@ fn model_of(
 
 fn pivots_of(solutions: &[ContactSolution]) -> usize {
     solutions.iter().map(|s| s.statistics.pivots()).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Model rows of intensities near 1.6e5 whose sensitivities are near
+    /// 1e9 per unit of the parameters (psi and inches in a crowned
+    /// contact), the trust region down to rounding's size.
+    #[test]
+    fn a_step_at_a_radius_near_rounding_stays_in_its_trust_region() {
+        let row = |a: [f64; 3], p: f64| Constraint {
+            a: a.to_vec(),
+            t_coefficient: -1.0,
+            b: -p,
+        };
+        let pool = vec![
+            row([3.1e9, -1.2e9, 2.3e9], 1.640_658e5),
+            row([-2.2e9, 1.05e9, -2.7e9], 1.640_657e5),
+            row([0.4e9, 2.9e9, -0.8e9], 1.640_651e5),
+            row([-1.3e9, -2.1e9, 1.9e9], 1.640_655e5),
+        ];
+        let engine = elcon_lcp::Options::default();
+        for exponent in 3..=16 {
+            let radius = 5.771_143_672e-1 * 10f64.powi(-exponent);
+            let (d, t, _) = step(&pool, 3, radius, &engine)
+                .unwrap_or_else(|e| panic!("radius {radius:e}: {e}"));
+            assert!(d.iter().all(|v| v.abs() <= radius), "{d:?} {radius:e}");
+            assert!(t <= 1.640_658e5, "{t}");
+        }
+    }
 }
