@@ -60,7 +60,7 @@ pub use crown::{CrownSearch, SearchOptions, crown_search};
 pub use error::DesignError;
 pub use evaluate::{Evaluation, evaluate, evaluate_from, evaluate_known};
 pub use optimize::{Design, StartOutcome, design};
-pub use options::{DesignMethod, DesignOptions, Family, PROGRAM_LIMIT};
+pub use options::{DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, PROGRAM_LIMIT};
 pub use prepared::{Solver, Stop, axial_stations};
 pub use profile::{Axis, JOHNS_GOHAR, LogCrown, LogEnd, Profile};
 pub use target::{TargetSeparation, target_separation, uniform_target};

@@ -34,7 +34,7 @@ use crate::prepared::{
     Case, Found, Solver, axial_stations, deflection_scale, prepare, reference_intensities,
 };
 use crate::target::uniform_target;
-use crate::{Axis, DesignError, DesignMethod, DesignOptions, Family, Profile};
+use crate::{Axis, DesignError, DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, Profile};
 use crate::{descent, lpcc};
 
 /// How one start ended.
@@ -93,6 +93,9 @@ struct Setup<'a> {
     /// profile is given without one.
     line_free: bool,
     method: DesignMethod,
+    /// The agreement the re-analysis is held to: the options', or
+    /// [`ITERATIVE_AGREEMENT`] if larger when a case is matrix-free.
+    agreement: f64,
 }
 
 /// Designs the correction of `family` that minimizes the worst load
@@ -224,6 +227,11 @@ fn setup<'a>(
         .iter()
         .all(|c| c.rigid().prescribed.iter().all(|&(mode, _)| mode != across));
     let method = options.method.resolve(points, matrix_free);
+    let agreement = if matrix_free {
+        options.agreement.max(ITERATIVE_AGREEMENT)
+    } else {
+        options.agreement
+    };
     Ok(Setup {
         cases,
         prepared,
@@ -235,6 +243,7 @@ fn setup<'a>(
         scale,
         line_free,
         method,
+        agreement,
     })
 }
 
@@ -362,7 +371,7 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
     agree(
         objective,
         evaluation.relative_worst(&references),
-        options.agreement,
+        setup.agreement,
     )?;
     // A uniform shift of the profile only moves the approach, so the bound
     // constrains the design only if the normalized profile (smallest drop 0)
@@ -403,5 +412,40 @@ mod tests {
         );
         // NaN never agrees.
         assert!(agree(100.0, f64::NAN, 1e-9).is_err());
+    }
+
+    #[test]
+    fn a_matrix_free_case_is_held_to_the_iterative_agreement() {
+        use elcon_analysis::{Geometry, Loading, Surface};
+        use elcon_influence::{Body, Material, PointSet};
+        let steel = Material::new(210e3, 0.3).unwrap();
+        let points = PointSet::grid_rectangle(0.5, 5.0, 5, 12).unwrap();
+        let body = Body::uniform_patch(steel);
+        let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
+        let loading = Loading::load(5e3);
+        let dense = ContactProblem::new(points.clone(), &body, &body, &geometry, loading).unwrap();
+        let lattice = ContactProblem::lattice(points, &body, &body, &geometry, loading).unwrap();
+        let options = DesignOptions {
+            reanalysis: elcon_analysis::Method::ConjugateGradient,
+            ..DesignOptions::default()
+        };
+        let agreement = |case: &ContactProblem, options: &DesignOptions| {
+            setup(
+                std::slice::from_ref(case),
+                Axis::Y,
+                Family::Quadratic,
+                options,
+            )
+            .unwrap()
+            .agreement
+        };
+        assert_eq!(agreement(&dense, &DesignOptions::default()), 1e-9);
+        assert_eq!(agreement(&lattice, &options), ITERATIVE_AGREEMENT);
+        // A looser agreement asked for is kept.
+        let loose = DesignOptions {
+            agreement: 1e-3,
+            ..options
+        };
+        assert_eq!(agreement(&lattice, &loose), 1e-3);
     }
 }
