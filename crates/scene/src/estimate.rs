@@ -434,8 +434,10 @@ fn design(
     let cases = angles * sizes.len();
     // The cases are analysed under load, from separations >= 0.
     let m = matrices(scene.method(), Tableau::Symmetric);
-    let per_cube = per_cube(scene.method(), Tableau::Symmetric);
-    let analysis = per_cube * (largest as f64).powi(3);
+    let analysis = match scene.storage() {
+        Storage::Dense => per_cube(scene.method(), Tableau::Symmetric) * (largest as f64).powi(3),
+        Storage::MatrixFree => CG_SECONDS_PER_POINT * largest as f64,
+    };
     // Each design load's S: dense, or (a matrix-free scene) its operator
     // and the conjugate gradient's vectors.
     let mut held = 0.0;
