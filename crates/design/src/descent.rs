@@ -102,9 +102,9 @@ impl Constraint {
         self.a.iter().map(|v| v.abs()).sum::<f64>() * radius - self.b
     }
 
-    /// How far `(d, t)` violates it, relative to its terms' size.
-    fn violation(&self, d: &[f64], t: f64) -> f64 {
-        let ad: f64 = self.a.iter().zip(d).map(|(a, d)| a * d).sum();
+    /// The size of its terms at `(d, t)`: `sum |a_i d_i| + |b| + |t_coefficient t|`
+    /// (at least the smallest positive double).
+    fn size(&self, d: &[f64], t: f64) -> f64 {
         let size: f64 = self
             .a
             .iter()
@@ -113,7 +113,13 @@ impl Constraint {
             .sum::<f64>()
             + self.b.abs()
             + (self.t_coefficient * t).abs();
-        (ad + self.t_coefficient * t - self.b) / size.max(f64::MIN_POSITIVE)
+        size.max(f64::MIN_POSITIVE)
+    }
+
+    /// How far `(d, t)` violates it, relative to its terms' size.
+    fn violation(&self, d: &[f64], t: f64) -> f64 {
+        let ad: f64 = self.a.iter().zip(d).map(|(a, d)| a * d).sum();
+        (ad + self.t_coefficient * t - self.b) / self.size(d, t)
     }
 }
 
@@ -382,17 +388,30 @@ fn step(
     let pi = basis.transpose().partial_piv_lu().solve(&costs);
     // The trust region's bounds are exact: the solve's rounding, relative
     // to the model rows' terms (intensities), can put d_i beyond a radius
-    // that has shrunk to rounding's size of them. Clamped, d keeps the
-    // model rows to that rounding.
-    let d: Vec<f64> = (0..m).map(|i| pi[i].clamp(-radius, radius)).collect();
+    // that has shrunk to rounding's size of them. d is clamped to them, if
+    // what the clamp moves in every other constraint is rounding too.
+    let raw: Vec<f64> = (0..m).map(|i| pi[i]).collect();
+    let d: Vec<f64> = raw.iter().map(|v| v.clamp(-radius, radius)).collect();
     let t = -pi[m];
+    let clamped = columns[own.len()..]
+        .iter()
+        .map(|c| {
+            let moved: f64 =
+                c.a.iter()
+                    .zip(raw.iter().zip(&d))
+                    .map(|(a, (r, d))| (a * (r - d)).abs())
+                    .sum();
+            moved / c.size(&d, t)
+        })
+        .fold(0.0f64, f64::max);
     // The multipliers of an optimal basis are a feasible step: checked,
     // since the step is only as good as the basis it is read from.
     let worst = columns
         .iter()
         .map(|c| c.violation(&d, t))
         .fold(0.0f64, f64::max);
-    if !(t.is_finite() && worst <= STEP_FEASIBILITY) {
+    let finite = t.is_finite() && d.iter().all(|v| v.is_finite());
+    if !(finite && worst <= STEP_FEASIBILITY && clamped <= STEP_FEASIBILITY) {
         return Err(unreadable());
     }
     Ok((d, t, pivots))

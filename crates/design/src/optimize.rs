@@ -94,7 +94,8 @@ struct Setup<'a> {
     line_free: bool,
     method: DesignMethod,
     /// The agreement the re-analysis is held to: the options', or
-    /// [`ITERATIVE_AGREEMENT`] if larger when a case is matrix-free.
+    /// [`ITERATIVE_AGREEMENT`] if larger when the cases are solved by the
+    /// conjugate gradient (matrix-free, or `options.reanalysis`).
     agreement: f64,
 }
 
@@ -227,7 +228,9 @@ fn setup<'a>(
         .iter()
         .all(|c| c.rigid().prescribed.iter().all(|&(mode, _)| mode != across));
     let method = options.method.resolve(points, matrix_free);
-    let agreement = if matrix_free {
+    // The cases are solved iteratively when matrix-free, or when asked to.
+    let iterative = matrix_free || options.reanalysis == elcon_analysis::Method::ConjugateGradient;
+    let agreement = if iterative {
         options.agreement.max(ITERATIVE_AGREEMENT)
     } else {
         options.agreement
@@ -415,7 +418,7 @@ mod tests {
     }
 
     #[test]
-    fn a_matrix_free_case_is_held_to_the_iterative_agreement() {
+    fn a_case_solved_by_the_conjugate_gradient_is_held_to_the_iterative_agreement() {
         use elcon_analysis::{Geometry, Loading, Surface};
         use elcon_influence::{Body, Material, PointSet};
         let steel = Material::new(210e3, 0.3).unwrap();
@@ -441,6 +444,8 @@ mod tests {
         };
         assert_eq!(agreement(&dense, &DesignOptions::default()), 1e-9);
         assert_eq!(agreement(&lattice, &options), ITERATIVE_AGREEMENT);
+        // A dense case re-analysed by the conjugate gradient as well.
+        assert_eq!(agreement(&dense, &options), ITERATIVE_AGREEMENT);
         // A looser agreement asked for is kept.
         let loose = DesignOptions {
             agreement: 1e-3,

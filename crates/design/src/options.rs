@@ -78,8 +78,9 @@ impl DesignMethod {
 /// docs/design.md §2, the method's table).
 pub const PROGRAM_LIMIT: usize = 200;
 
-/// The agreement a design is held to, at least, when a case is solved
-/// matrix-free: a conjugate gradient stops at a residual, so two solves of
+/// The agreement a design is held to, at least, when its cases are solved
+/// by the conjugate gradient (matrix-free, or
+/// [`DesignOptions::reanalysis`] asks for it): it stops at a residual, so two solves of
 /// one design (the descent's and the re-analysis', from different starts
 /// and separations that differ by rounding) agree to that accuracy, not to
 /// rounding. Measured: 1.3e-9 on the Hertz spheres' design for two loads
@@ -116,7 +117,8 @@ pub struct DesignOptions {
     pub starts: Vec<Profile>,
     /// Largest accepted relative difference between the design's objective
     /// and its re-analysis' (default 1e-9; at least [`ITERATIVE_AGREEMENT`]
-    /// when a case is matrix-free).
+    /// when the cases are solved by the conjugate gradient: matrix-free, or
+    /// `reanalysis` asks for it).
     pub agreement: f64,
     /// Reference intensities r_l, one per load case (force per length or per
     /// area, > 0): the objective is the worst `p_max_l / r_l`. Default: all 1

@@ -38,8 +38,8 @@ impl Axis {
     /// The axial positions of the points of a set.
     pub fn positions(self, points: &elcon_influence::PointSet) -> Vec<f64> {
         match self {
-            Axis::X => points.xs().to_vec(),
-            Axis::Y => points.ys().to_vec(),
+            Axis::X => points.xs().into_owned(),
+            Axis::Y => points.ys().into_owned(),
         }
     }
 }
