@@ -237,7 +237,7 @@ pub struct ContactProblem {
     /// The mirror groups the points and the models respect, largest first:
     /// a free rotation that is odd under one the separations respect too
     /// is zero at the solution and not an unknown, folded or not. `None`
-    /// for a matrix-free problem: its orbits (8 bytes a point each) are
+    /// for a matrix-free problem: its orbits (8.5 bytes a point each) are
     /// found again when a new loading or separation asks.
     groups: Option<Arc<Vec<Folding>>>,
     /// How the pressure falls at the contact's edge (crate::edge).
@@ -946,8 +946,8 @@ fn symmetric_rigid<'g>(
 /// [`symmetric_rigid`]'s rigid unknowns for a problem solved in full, the
 /// groups detected one at a time ([`Folding::detect_each`]) and none kept.
 /// Only a free rotation without a moment can be dropped: without one the
-/// groups are not looked for (a group's index and orbits take about 13
-/// bytes a point).
+/// groups are not looked for (a group's orbits take about 8.5 bytes a
+/// point).
 fn unfolded_rigid(points: &PointSet, bodies: &[&Body], separation: &[f64], rigid: Rigid) -> Rigid {
     let droppable = rigid
         .free

@@ -47,7 +47,8 @@
 //! third more work, and halves the workspace.
 //! Memory: the stored spectrum (`8 (P1/2 + 1)(P2/2 + 1)` bytes, about
 //! `8 n1 n2`), the gather order (12 bytes per segment of consecutive points
-//! in a lattice row: one a row on a grid) and one workspace of a band,
+//! in a lattice row: one a row on a surface grid, one a point on a line,
+//! whose rows hold a point each) and one workspace of a band,
 //! `n1 ceil((P2/2 + 1) / 2)` complex values (about `8 n1 n2` bytes), plus
 //! buffers and plans of O(P1 + P2): 19 bytes per point on a 256 x 256
 //! grid, 27 on a disk of 51,433 points (its bounding box holds 4/pi as many

@@ -252,10 +252,16 @@ impl Iterator for LatticeIter<'_> {
 impl ExactSizeIterator for LatticeIter<'_> {}
 
 impl PartialEq for PointSet {
-    /// The same points (coordinates, lattice indices, boundary flags) in
-    /// the same order, on the same cells, however they are stored.
+    /// The same points (coordinates, boundary flags, lattice indices
+    /// relative to point 0's: only their differences mean anything) in the
+    /// same order, on the same cells, however they are stored.
     fn eq(&self, other: &Self) -> bool {
-        let lattice = |p: &Self| p.lattice().map(|l| l.iter().collect::<Vec<_>>());
+        let lattice = |p: &Self| {
+            p.lattice().map(|l| {
+                let (i0, j0) = l.get(0);
+                l.iter().map(|(i, j)| (i - i0, j - j0)).collect::<Vec<_>>()
+            })
+        };
         self.dimension == other.dimension
             && self.cell == other.cell
             && self.len() == other.len()
@@ -628,20 +634,17 @@ impl PointSet {
     /// `(max x - min x + dx, max y - min y + dy)` (length); for a line the
     /// second value is the unit width 1.
     pub fn extent(&self) -> (f64, f64) {
-        let span = |v: &[f64]| {
-            let (lo, hi) = v
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-                    (lo.min(x), hi.max(x))
+        let span = |v: &dyn Fn(usize) -> f64| {
+            let (lo, hi) = (0..self.len())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), k| {
+                    (lo.min(v(k)), hi.max(v(k)))
                 });
             hi - lo
         };
+        let width = span(&|k| self.x(k)) + self.cell.dx;
         match self.dimension {
-            Dimension::Line => (span(&self.xs()) + self.cell.dx, 1.0),
-            Dimension::Surface => (
-                span(&self.xs()) + self.cell.dx,
-                span(&self.ys()) + self.cell.dy,
-            ),
+            Dimension::Line => (width, 1.0),
+            Dimension::Surface => (width, span(&|k| self.y(k)) + self.cell.dy),
         }
     }
 
@@ -666,8 +669,8 @@ impl PointSet {
     }
 
     /// The point at each lattice coordinate, or `None` for a set without a
-    /// lattice: built on each call (O(N)), for a caller that walks the
-    /// lattice's neighbours.
+    /// lattice: built on each call (O(N) for a listed lattice, O(rows) for
+    /// a grid), for a caller that walks the lattice's neighbours.
     pub fn lattice_index(&self) -> Option<LatticeIndex> {
         self.lattice().map(LatticeIndex::of)
     }
@@ -1006,6 +1009,7 @@ mod tests {
             };
             assert_eq!(shifted(&listed), shifted(&grid));
             assert_eq!(listed.extent(), grid.extent());
+            assert_eq!(listed, grid);
             assert_eq!(
                 (0..grid.len())
                     .map(|k| grid.open_sides(k))

@@ -21,9 +21,10 @@
 //! 1653 points to 227 unknowns (1/7.3) and 26,565 to 3400 (1/7.8), about
 //! 1/390 and 1/480 of the work. elcon-analysis scales its rows to match.
 //!
-//! A point's image is looked up in the set's lattice index (a table over
-//! the lattice's box, about 5 bytes a point) or, for a set without a
-//! lattice, in a map of the doubled lattice `(round(2x/dx), round(2y/dy))`,
+//! A point's image is looked up in the set's lattice index (a grid's runs;
+//! a table over a listed lattice's box, about 5 bytes a point) or, for a
+//! set without a lattice, in a map of the doubled lattice
+//! `(round(2x/dx), round(2y/dy))`,
 //! which holds both node-centred (disk) and cell-centred (rectangle, line)
 //! grids; each image's coordinates must match to 1e-12 of the cell. The
 //! orbits are stored flat, 4 bytes a point and 4 an orbit, with the orbit
@@ -190,8 +191,8 @@ impl Folding {
 
     /// The groups of [`detect_all`](Self::detect_all), largest first, each
     /// found when the iterator reaches it: a caller that stops at the first
-    /// group its data respect holds one group's orbits at a time (about
-    /// 13 bytes a point each, with the index), not all of them.
+    /// group its data respect holds one group's orbits at a time (about 8.5
+    /// bytes a point; 13 with a listed lattice's index), not all of them.
     pub fn detect_each<'p>(
         points: &'p PointSet,
         bodies: &[&Body],

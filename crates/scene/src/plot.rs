@@ -439,13 +439,14 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
         .max(f64::MIN_POSITIVE);
     let cell = points.cell();
     let (hx, hy) = (0.5 * cell.dx, 0.5 * cell.dy);
+    let (px, py) = (points.xs(), points.ys());
     let xs = padded(
-        points.xs().iter().fold(f64::INFINITY, |a, v| a.min(*v)) - hx,
-        points.xs().iter().fold(f64::NEG_INFINITY, |a, v| a.max(*v)) + hx,
+        px.iter().fold(f64::INFINITY, |a, v| a.min(*v)) - hx,
+        px.iter().fold(f64::NEG_INFINITY, |a, v| a.max(*v)) + hx,
     );
     let ys = padded(
-        points.ys().iter().fold(f64::INFINITY, |a, v| a.min(*v)) - hy,
-        points.ys().iter().fold(f64::NEG_INFINITY, |a, v| a.max(*v)) + hy,
+        py.iter().fold(f64::INFINITY, |a, v| a.min(*v)) - hy,
+        py.iter().fold(f64::NEG_INFINITY, |a, v| a.max(*v)) + hy,
     );
     let mut svg = String::new();
     {

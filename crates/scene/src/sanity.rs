@@ -163,7 +163,7 @@ pub(crate) fn bodies_on_grid(
             }
             Model::Beam { loaded_point, .. } => {
                 let h = own.cell().dx;
-                let (lo, hi) = (own.xs()[0] - 0.5 * h, own.xs()[own.len() - 1] + 0.5 * h);
+                let (lo, hi) = (own.x(0) - 0.5 * h, own.x(own.len() - 1) + 0.5 * h);
                 if !(lo..=hi).contains(&loaded_point) {
                     let span = t.loaded_point.as_ref().map_or(t.model.span(), |v| v.span());
                     return Err(ctx.invalid(

@@ -200,7 +200,7 @@ pub(super) fn reference(
                 }
             }
             // The beam is the zone: its cells end to end.
-            let (lo, hi) = (points.xs()[0], points.xs()[points.len() - 1]);
+            let (lo, hi) = (points.x(0), points.x(points.len() - 1));
             let length = points.extent().0;
             let centred = (x0? - 0.5 * (lo + hi)).abs() <= 1e-9 * length;
             centred

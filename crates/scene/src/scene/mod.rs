@@ -609,7 +609,7 @@ fn check_zone(
             }
         }
         Some(Reference::HertzCylinders { hertz, .. }) => {
-            let (lo, hi) = (points.xs()[0], points.xs()[points.len() - 1]);
+            let (lo, hi) = (points.x(0), points.x(points.len() - 1));
             let b = hertz.half_width();
             if let (Some(s), true) = (&t.start, lo > -b || hi < b) {
                 return Err(ctx.invalid(
