@@ -415,6 +415,26 @@ impl Estimate {
     }
 }
 
+/// Each design load's S: dense, or (a matrix-free scene) its operator and
+/// its case's vectors (bytes).
+fn influence_bytes(scene: &Scene, sets: &[PointSet]) -> Result<f64, SceneError> {
+    let mut held = 0.0;
+    for set in sets {
+        held += match scene.storage() {
+            Storage::Dense => square_bytes(1.0, set.len()),
+            Storage::MatrixFree => {
+                let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
+                LatticeOperator::estimate_bytes(set, &bodies).map_err(|e| SceneError::Run {
+                    scene: scene.name().to_string(),
+                    reason: e.to_string(),
+                })? as f64
+                    + DESIGN_CASE_VECTORS * ENTRY * set.len() as f64
+            }
+        };
+    }
+    Ok(held)
+}
+
 /// The design stage's memory (bytes) and rough seconds.
 fn design(
     scene: &Scene,
@@ -438,22 +458,7 @@ fn design(
         Storage::Dense => per_cube(scene.method(), Tableau::Symmetric) * (largest as f64).powi(3),
         Storage::MatrixFree => CG_SECONDS_PER_POINT * largest as f64,
     };
-    // Each design load's S: dense, or (a matrix-free scene) its operator
-    // and the conjugate gradient's vectors.
-    let mut held = 0.0;
-    for set in &sets {
-        held += match scene.storage() {
-            Storage::Dense => square_bytes(1.0, set.len()),
-            Storage::MatrixFree => {
-                let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
-                LatticeOperator::estimate_bytes(set, &bodies).map_err(|e| SceneError::Run {
-                    scene: scene.name().to_string(),
-                    reason: e.to_string(),
-                })? as f64
-                    + DESIGN_CASE_VECTORS * ENTRY * set.len() as f64
-            }
-        };
-    }
+    let held = influence_bytes(scene, &sets)?;
     let analysis_blocks = match scene.storage() {
         Storage::Dense => square_bytes(m - 1.0, largest),
         Storage::MatrixFree => 0.0,
