@@ -175,3 +175,28 @@ fn the_deflection_is_the_same_from_either_storage() {
         })
     ));
 }
+
+#[test]
+fn the_lattice_drops_rotations_its_symmetry_makes_zero_and_keeps_the_others() {
+    use elcon_analysis::RigidMode;
+    // Free rotations without moments on a symmetric scene: both dropped by
+    // the mirror groups, as on the dense problem.
+    let (dense, free, _) = spheres(4.0, 1.3, Loading::load(100.0));
+    assert_eq!(free.rigid().free, dense.rigid().free);
+    assert_eq!(free.rigid().free.len(), 1);
+    assert_eq!(
+        free.rigid().dropped,
+        [RigidMode::TiltX, RigidMode::TiltY],
+        "{:?}",
+        free.rigid()
+    );
+    // A moment about y keeps θ_y free; θ_x, without a moment, is dropped.
+    let (dense, free, _) = spheres(4.0, 1.3, Loading::load(100.0).with_moment_y(0.01));
+    assert_eq!(free.rigid().free, dense.rigid().free);
+    assert_eq!(free.rigid().dropped, [RigidMode::TiltX]);
+    // Both rotations prescribed: nothing to drop, and no group is looked
+    // for (the same unknowns either way).
+    let (dense, free, _) = spheres(4.0, 1.3, Loading::load(100.0).aligned());
+    assert_eq!(free.rigid().free, dense.rigid().free);
+    assert!(free.rigid().dropped.is_empty());
+}
