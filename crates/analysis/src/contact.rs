@@ -945,15 +945,10 @@ fn symmetric_rigid<'g>(
 
 /// [`symmetric_rigid`]'s rigid unknowns for a problem solved in full, the
 /// groups detected one at a time ([`Folding::detect_each`]) and none kept.
-/// Only a free rotation without a moment can be dropped: without one the
-/// groups are not looked for (a group's orbits take about 8.5 bytes a
-/// point).
+/// The groups are not looked for when none could drop a free motion
+/// ([`Rigid::may_drop`]; a group's orbits take about 8.5 bytes a point).
 fn unfolded_rigid(points: &PointSet, bodies: &[&Body], separation: &[f64], rigid: Rigid) -> Rigid {
-    let droppable = rigid
-        .free
-        .iter()
-        .any(|&(mode, resultant)| mode != RigidMode::Approach && resultant == 0.0);
-    if !droppable {
+    if !rigid.may_drop() {
         return rigid;
     }
     let shifted = shifted(points, separation, &rigid);

@@ -138,6 +138,16 @@ impl Rigid {
             .sum::<f64>()
     }
 
+    /// Whether [`Rigid::folded`] could drop a free motion under some group:
+    /// only a rotation without a moment can be (the approach's lever is 1
+    /// everywhere, and a motion with a resultant is kept or refuses the
+    /// group). Without one, no group changes the free motions.
+    pub(crate) fn may_drop(&self) -> bool {
+        self.free
+            .iter()
+            .any(|&(mode, resultant)| mode != RigidMode::Approach && resultant == 0.0)
+    }
+
     /// The rigid unknowns of the problem folded by `folding`, or `None`
     /// when a free motion with a non-zero resultant is not symmetric under
     /// it (see the module documentation).
@@ -206,6 +216,27 @@ mod tests {
         assert_eq!(rigid.dropped, vec![RigidMode::TiltX]);
         let e = Rigid::of(&Loading::load(1.0).with_moment_x(1.0), &line, (0.0, 0.0)).unwrap_err();
         assert!(e.to_string().contains("moment_x"), "{e}");
+    }
+
+    #[test]
+    fn only_a_free_rotation_without_a_moment_may_be_dropped() {
+        let points = PointSet::grid_disk(0.25, 1.0).unwrap();
+        let of = |loading: Loading| Rigid::of(&loading, &points, (0.0, 0.0)).unwrap();
+        assert!(of(Loading::load(1.0)).may_drop());
+        assert!(!of(Loading::load(1.0).with_moment_y(0.5).with_tilt_x(0.0)).may_drop());
+        assert!(!of(Loading::load(1.0).aligned()).may_drop());
+        // Every group leaves such motions as they are.
+        for loading in [
+            Loading::load(1.0).aligned(),
+            Loading::load(1.0).with_moment_y(0.5).with_tilt_x(0.0),
+        ] {
+            let rigid = of(loading);
+            for folding in Folding::detect_all(&points, &[]) {
+                if let Some(folded) = rigid.folded(&folding, &points) {
+                    assert_eq!((folded.free, folded.dropped), (rigid.free.clone(), vec![]));
+                }
+            }
+        }
     }
 
     #[test]
