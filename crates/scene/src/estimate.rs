@@ -253,6 +253,28 @@ fn per_cube(method: Method, tableau: Tableau) -> f64 {
     }
 }
 
+/// Rough seconds of one solve of `unknowns` unknowns: the conjugate
+/// gradient's, linear in N, for a matrix-free scene; a dense method's
+/// `c n^3` on `tableau` otherwise.
+fn solve_seconds(scene: &Scene, tableau: Tableau, unknowns: usize) -> f64 {
+    match scene.storage() {
+        Storage::MatrixFree => CG_SECONDS_PER_POINT * unknowns as f64,
+        Storage::Dense => per_cube(scene.method(), tableau) * (unknowns as f64).powi(3),
+    }
+}
+
+/// Bytes of a matrix-free solve on `points`: the lattice operator and
+/// `vectors` vectors of N.
+fn matrix_free_bytes(scene: &Scene, points: &PointSet, vectors: f64) -> Result<f64, SceneError> {
+    let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
+    let operator =
+        LatticeOperator::estimate_bytes(points, &bodies).map_err(|e| SceneError::Run {
+            scene: scene.name().to_string(),
+            reason: e.to_string(),
+        })?;
+    Ok(operator as f64 + vectors * ENTRY * points.len() as f64)
+}
+
 impl Estimate {
     /// The estimate of a validated scene.
     ///
@@ -261,30 +283,20 @@ impl Estimate {
     /// (as the run would fail).
     pub fn of(scene: &Scene) -> Result<Self, SceneError> {
         let n = scene.points().len();
-        let (unknowns, m, solve, mut seconds) =
-            match scene.storage() {
-                Storage::MatrixFree => {
-                    let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
-                    let operator = LatticeOperator::estimate_bytes(scene.points(), &bodies)
-                        .map_err(|e| SceneError::Run {
-                            scene: scene.name().to_string(),
-                            reason: e.to_string(),
-                        })?;
-                    let vectors = CG_VECTORS * ENTRY * n as f64;
-                    (
-                        n,
-                        0.0,
-                        operator as f64 + vectors,
-                        CG_SECONDS_PER_POINT * n as f64,
-                    )
-                }
-                Storage::Dense => {
-                    let (unknowns, tableau) = unknowns(scene.points(), scene);
-                    let m = matrices(scene.method(), tableau);
-                    let seconds = per_cube(scene.method(), tableau) * (unknowns as f64).powi(3);
-                    (unknowns, m, square_bytes(m, unknowns), seconds)
-                }
-            };
+        let (unknowns, m, solve, mut seconds) = match scene.storage() {
+            Storage::MatrixFree => (
+                n,
+                0.0,
+                matrix_free_bytes(scene, scene.points(), CG_VECTORS)?,
+                solve_seconds(scene, Tableau::Symmetric, n),
+            ),
+            Storage::Dense => {
+                let (unknowns, tableau) = unknowns(scene.points(), scene);
+                let m = matrices(scene.method(), tableau);
+                let seconds = solve_seconds(scene, tableau, unknowns);
+                (unknowns, m, square_bytes(m, unknowns), seconds)
+            }
+        };
         let design = match scene.design() {
             Some(spec) => {
                 let (d, s) = design(scene, spec, unknowns)?;
@@ -422,14 +434,7 @@ fn influence_bytes(scene: &Scene, sets: &[PointSet]) -> Result<f64, SceneError> 
     for set in sets {
         held += match scene.storage() {
             Storage::Dense => square_bytes(1.0, set.len()),
-            Storage::MatrixFree => {
-                let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
-                LatticeOperator::estimate_bytes(set, &bodies).map_err(|e| SceneError::Run {
-                    scene: scene.name().to_string(),
-                    reason: e.to_string(),
-                })? as f64
-                    + DESIGN_CASE_VECTORS * ENTRY * set.len() as f64
-            }
+            Storage::MatrixFree => matrix_free_bytes(scene, set, DESIGN_CASE_VECTORS)?,
         };
     }
     Ok(held)
@@ -454,10 +459,7 @@ fn design(
     let cases = angles * sizes.len();
     // The cases are analysed under load, from separations >= 0.
     let m = matrices(scene.method(), Tableau::Symmetric);
-    let analysis = match scene.storage() {
-        Storage::Dense => per_cube(scene.method(), Tableau::Symmetric) * (largest as f64).powi(3),
-        Storage::MatrixFree => CG_SECONDS_PER_POINT * largest as f64,
-    };
+    let analysis = solve_seconds(scene, Tableau::Symmetric, largest);
     let held = influence_bytes(scene, &sets)?;
     let analysis_blocks = match scene.storage() {
         Storage::Dense => square_bytes(m - 1.0, largest),
