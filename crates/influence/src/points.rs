@@ -585,12 +585,7 @@ impl PointSet {
     pub fn xs(&self) -> Cow<'_, [f64]> {
         match &self.layout {
             Layout::Listed { xs, .. } => Cow::Borrowed(xs),
-            Layout::Grid { x, runs, len, .. } => Cow::Owned(
-                Lattice(LatticeRef::Runs { runs, len: *len })
-                    .iter()
-                    .map(|(i, _)| x.at(i))
-                    .collect(),
-            ),
+            Layout::Grid { x, .. } => self.along_grid(|(i, _)| x.at(i)),
         }
     }
 
@@ -599,13 +594,14 @@ impl PointSet {
     pub fn ys(&self) -> Cow<'_, [f64]> {
         match &self.layout {
             Layout::Listed { ys, .. } => Cow::Borrowed(ys),
-            Layout::Grid { y, runs, len, .. } => Cow::Owned(
-                Lattice(LatticeRef::Runs { runs, len: *len })
-                    .iter()
-                    .map(|(_, j)| y.at(j))
-                    .collect(),
-            ),
+            Layout::Grid { y, .. } => self.along_grid(|(_, j)| y.at(j)),
         }
+    }
+
+    /// `coordinate` of every point's lattice indices, as a new vector.
+    fn along_grid(&self, coordinate: impl Fn((i64, i64)) -> f64) -> Cow<'_, [f64]> {
+        let lattice = self.lattice().expect("a grid has a lattice");
+        Cow::Owned(lattice.iter().map(coordinate).collect())
     }
 
     /// Distance of point `k` from the origin (length). Panics if `k >= len()`.
