@@ -400,7 +400,7 @@ impl LatticeOperator {
         if !setup.has_kernel() {
             return Ok(base);
         }
-        let segments = GatherOrder::segments(points, &setup.bounds);
+        let segments = segments(points, &setup.bounds).count();
         Ok(base + Grid::new(&setup.bounds).operator_bytes(segments))
     }
 
@@ -798,11 +798,6 @@ impl GatherOrder {
         let lattice = points.lattice().expect("Setup checked the lattice");
         gather.check_distinct_cells(lattice, bounds.nj)?;
         Ok(gather)
-    }
-
-    /// The number of segments [`GatherOrder::new`] would store.
-    fn segments(points: &PointSet, bounds: &LatticeBox) -> usize {
-        segments(points, bounds).count()
     }
 
     /// Bytes of an order of `segments` segments on `rows` lattice rows.
