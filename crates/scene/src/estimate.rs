@@ -32,7 +32,7 @@ use elcon_influence::{Dimension, LatticeOperator, PointSet};
 
 use crate::error::SceneError;
 use crate::memory::{Limit, human};
-use crate::scene::{DesignFamily, DesignSpec, Scene};
+use crate::scene::{DesignFamily, DesignSpec, Plot, Scene};
 use crate::storage::Storage;
 
 /// Vectors of N doubles a matrix-free solve holds besides the operator:
@@ -53,6 +53,12 @@ const DESIGN_CASE_VECTORS: f64 = 14.0;
 /// two FFT products each; docs/performance.md, "Dense or matrix-free"),
 /// rounded up.
 const CG_SECONDS_PER_POINT: f64 = 1e-4;
+
+/// Bytes a point of the pressure plot, built whole before it is written:
+/// one mark or cell of SVG a point and its data, rounded up (measured at
+/// 347,949 and 262,144 points: 137 for the spheres' pressure against the
+/// radius, 90 for the roller's pressure map; docs/reliability.md).
+const PLOT_BYTES_PER_POINT: f64 = 160.0;
 
 /// Bytes of one matrix entry (f64).
 const ENTRY: f64 = 8.0;
@@ -305,7 +311,16 @@ impl Estimate {
             }
             None => None,
         };
-        let stage = design.as_ref().map_or(0, |d| d.bytes).max(to_bytes(solve));
+        let plot = if scene.outputs().plots().contains(&Plot::Pressure) {
+            PLOT_BYTES_PER_POINT * n as f64
+        } else {
+            0.0
+        };
+        let stage = design
+            .as_ref()
+            .map_or(0, |d| d.bytes)
+            .max(to_bytes(solve))
+            .saturating_add(to_bytes(plot));
         Ok(Self {
             points: n,
             unknowns,
@@ -568,6 +583,21 @@ load = 100.0
 
     fn bytes(matrices: f64, n: usize) -> u64 {
         to_bytes(matrices * 8.0 * (n * n) as f64)
+    }
+
+    #[test]
+    fn a_pressure_plot_adds_its_bytes_per_point() {
+        let plain = Estimate::of(&scene(SPHERES)).unwrap();
+        let plotted = Estimate::of(&scene(&format!(
+            "{SPHERES}[outputs]\nplots = [\"pressure\"]\n"
+        )))
+        .unwrap();
+        let n = plain.points as f64;
+        assert_eq!(
+            plotted.peak_bytes - plain.peak_bytes,
+            to_bytes(PLOT_BYTES_PER_POINT * n)
+        );
+        assert_eq!(plotted.solve_bytes, plain.solve_bytes);
     }
 
     #[test]
