@@ -44,9 +44,9 @@ const CG_VECTORS: f64 = 6.0;
 
 /// Vectors of N doubles a design case on a lattice holds besides its
 /// operator: its analysis's ([`CG_VECTORS`]) and its sensitivities', with
-/// the descent's model rows, rounded up (measured: the Hertz spheres'
-/// quadratic design for two loads at 68,085 points, `elcon run` peaks at
-/// 175 MB against 209 MiB estimated).
+/// the descent's model rows, rounded up (docs/reliability.md's matrix-free
+/// design row: 169 MiB measured against 220 MiB estimated, the plot
+/// included).
 const DESIGN_CASE_VECTORS: f64 = 14.0;
 
 /// Seconds per point of a matrix-free solve (a few hundred iterations of
