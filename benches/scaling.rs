@@ -62,7 +62,10 @@ fn scaling(c: &mut Criterion) {
                 b.iter(|| p.solve(method, &Options::default()).expect("solves"))
             });
         }
-        let s = problem.influence().expect("dense").to_owned();
+        let s = problem
+            .entries("the scaling probe")
+            .expect("dense")
+            .to_owned();
         group.throughput(Throughput::Elements(1));
         group.bench_with_input(BenchmarkId::new("cholesky", size), &s, |b, s| {
             b.iter(|| s.llt(Side::Lower).expect("S is positive definite"))

@@ -263,7 +263,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     println!(
         "  {} points ({} unknowns folded); aligned Hertz line-contact peak p0 = {p0:.0} MPa",
         base.points().len(),
-        base.influence().expect("dense").nrows()
+        base.entries("the unknowns count").expect("dense").nrows()
     );
     let angles: Vec<f64> = (0..=STEPS).map(|i| i as f64 / STEPS_PER_RAD).collect();
     let mut csv = String::from(

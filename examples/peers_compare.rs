@@ -56,7 +56,10 @@ fn run(
         .expect("builds");
         let sol = problem.solve(method, &Options::default()).expect("solves");
         best = best.min(t.elapsed().as_secs_f64());
-        let unknowns = problem.influence().expect("dense").nrows();
+        let unknowns = problem
+            .entries("the unknowns count")
+            .expect("dense")
+            .nrows();
         last = Some((sol, unknowns));
     }
     let (sol, unknowns) = last.expect("ran");

@@ -72,7 +72,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             fastest = Some((method, best));
         }
     }
-    let s = problem.influence().expect("dense").to_owned();
+    let s = problem
+        .entries("the scaling probe")
+        .expect("dense")
+        .to_owned();
     let mut par = f64::INFINITY;
     let mut seq = f64::INFINITY;
     for _ in 0..repeat {

@@ -28,7 +28,11 @@ fn main() {
     let (mut passed, mut total) = (0, 0);
     for case in &cases {
         let n = case.problem.points().len();
-        let cond = elcon::lcp::condition_estimate(case.problem.influence().expect("dense"));
+        let cond = elcon::lcp::condition_estimate(
+            case.problem
+                .entries("the condition estimate")
+                .expect("dense"),
+        );
         for method in Method::ALL {
             total += 1;
             let row = |pivots: String,

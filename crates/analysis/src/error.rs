@@ -46,6 +46,18 @@ pub enum AnalysisError {
         /// Why, and what to use instead.
         reason: String,
     },
+    /// A method needs S's entries and the problem holds S without them
+    /// (matrix-free).
+    #[error(
+        "{what} reads the entries of S, which this problem holds matrix-free (storage \
+         \"{storage}\"): build it with the dense or folded storage"
+    )]
+    NeedsEntries {
+        /// What needs them.
+        what: &'static str,
+        /// How the problem holds S.
+        storage: crate::Storage,
+    },
     /// The influence models rejected the bodies or the points.
     #[error(transparent)]
     Influence(#[from] InfluenceError),

@@ -55,6 +55,7 @@
 pub mod contact;
 mod edge;
 mod error;
+pub mod estimate;
 pub mod grid;
 mod influence;
 pub mod loading;
@@ -62,14 +63,15 @@ pub mod references;
 pub mod rigid;
 
 pub use contact::{
-    ContactCertificate, ContactProblem, ContactSolution, Geometry, Layout, Surface, Warning,
-    separations,
+    AUTO_DENSE_LIMIT, ContactCertificate, ContactProblem, ContactSolution, Geometry, Layout, Plan,
+    ProblemBuilder, Storage, Surface, Warning, separations,
 };
 pub use elcon_influence::{
     Body, Dimension, Material, Model, PointSet, combined_modulus, combined_modulus_of,
 };
 pub use elcon_lcp::{Method, Options};
 pub use error::AnalysisError;
+pub use estimate::{Estimate, Relief, Tableau};
 pub use influence::Products;
 pub use loading::{Loading, Normal, Tilt};
 pub use rigid::{Rigid, RigidMode};

@@ -455,7 +455,7 @@ fn folded_problems_agree_with_full_ones() {
         let folded = ContactProblem::symmetric(points, &b1, &b2, &geometry, loading).unwrap();
         let f = folded.folding().expect("a symmetric scene folds");
         assert_eq!(f.order(), order);
-        assert_eq!(folded.influence().expect("dense").nrows(), f.len());
+        assert_eq!(folded.entries("a test").expect("dense").nrows(), f.len());
         for method in Method::ALL {
             let x = full.solve(method, &Options::default()).unwrap();
             let y = folded.solve(method, &Options::default()).unwrap();

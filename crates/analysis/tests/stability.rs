@@ -202,7 +202,9 @@ fn the_condition_estimate_grows_with_refinement() {
         .map(|c| {
             (
                 c.problem.points().len(),
-                elcon_lcp::condition_estimate(c.problem.influence().expect("dense")),
+                elcon_lcp::condition_estimate(
+                    c.problem.entries("the condition estimate").expect("dense"),
+                ),
             )
         })
         .collect();

@@ -21,7 +21,10 @@
 //!     S_JJ X - L_J Lambda = -D_J,     L_J^T X = 0       X = dF_J / dtheta, Lambda = d lambda / dtheta
 //! ```
 //!
-//! (one Cholesky factor of S_JJ, m + k solves). The step d solves the
+//! (m + k right-hand sides of the case's restricted solve,
+//! `ContactProblem::restricted_solve`: a Cholesky factor of S_JJ where S is
+//! dense, conjugate gradients on its products where it is matrix-free).
+//! The step d solves the
 //! linear program
 //!
 //! ```text
@@ -37,13 +40,11 @@
 //! Delta shrinks when the model was wrong (a contact set changed) and grows
 //! when it was right up to its edge.
 //!
-//! Cost per iteration: one analysis and one factor of the contact block per
-//! case, S shared: linear in the cases, where the paper's program over
-//! every case at once grows with their square. Memory: S once, one contact
-//! block at a time. A case whose S is matrix-free (a lattice's FFT
-//! operator) is analysed by the conjugate gradient and its sensitivities
-//! solved by conjugate gradients on the operator restricted to the contact
-//! set (m + k solves of S_JJ), so a design on a large grid never forms S. What is guaranteed: the objective never rises from the
+//! Cost per iteration: one analysis and one restricted solve per case, S
+//! shared: linear in the cases, where the paper's program over every case
+//! at once grows with their square. Memory: S as its case holds it, one
+//! contact block at a time (none matrix-free: a design on a large grid
+//! never forms S). What is guaranteed: the objective never rises from the
 //! start; the method stops at a point where the linear model of every
 //! case's contact set predicts no decrease (a stationary point of the
 //! piecewise-linear min-max problem), a local minimum as the program's is.
@@ -52,9 +53,9 @@
 //! the end, and `Phi theta >= 0` is never a constraint of the steps.
 
 use elcon_analysis::{ContactProblem, ContactSolution};
-use elcon_lcp::{Bound, Operator, ProgramBuilder};
+use elcon_lcp::{Bound, ProgramBuilder};
 use faer::linalg::solvers::Solve;
-use faer::{Col, Mat, MatRef, Side};
+use faer::{Col, Mat};
 
 use crate::DesignError;
 use crate::DesignOptions;
@@ -62,9 +63,6 @@ use crate::basis::Basis;
 use crate::evaluate::solve_corrected;
 use crate::prepared::{Case, Found, Solver, Stop};
 
-/// The relative residual of a matrix-free case's sensitivity solves: far
-/// below the model's use (a step's linear prediction), above rounding.
-const SENSITIVITY: f64 = 1e-12;
 /// Stationarity: the model's predicted decrease below this fraction of the
 /// objective ends the descent. The forces are certified to about 1e-13 of
 /// the load, so a prediction below 1e-12 of the peak is rounding.
@@ -167,68 +165,6 @@ fn analyse(
     })
 }
 
-/// `S_JJ^{-1} rhs` by Cholesky, or by LU when S_JJ is not numerically
-/// positive definite.
-fn solve_block(block: MatRef<'_, f64>, rhs: MatRef<'_, f64>) -> Mat<f64> {
-    match block.llt(Side::Lower) {
-        Ok(llt) => llt.solve(rhs),
-        Err(_) => block.partial_piv_lu().solve(rhs),
-    }
-}
-
-/// `S_JJ^{-1} rhs` for a matrix-free S, column by column, by conjugate
-/// gradients on the operator's products restricted to the contact set J
-/// (S_JJ is symmetric positive definite), each to [`SENSITIVITY`] of its
-/// right-hand side.
-fn solve_restricted(
-    problem: &ContactProblem,
-    contact: &[usize],
-    rhs: MatRef<'_, f64>,
-) -> Result<Mat<f64>, DesignError> {
-    let (n, nj) = (problem.points().len(), contact.len());
-    // One workspace and two buffers of n for every product of every column.
-    let products = problem
-        .products()
-        .map_err(DesignError::analysis("a design sensitivity"))?;
-    let (mut full, mut y) = (vec![0.0; n], vec![0.0; n]);
-    let mut product = |p: &[f64], q: &mut [f64]| {
-        for (a, &k) in contact.iter().enumerate() {
-            full[k] = p[a];
-        }
-        products.apply(&full, &mut y);
-        for (q, &k) in q.iter_mut().zip(contact) {
-            *q = y[k];
-        }
-    };
-    let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
-    let mut out = Mat::<f64>::zeros(nj, rhs.ncols());
-    for c in 0..rhs.ncols() {
-        let b: Vec<f64> = (0..nj).map(|a| rhs[(a, c)]).collect();
-        let target = (SENSITIVITY * dot(&b, &b).sqrt()).powi(2);
-        let (mut x, mut r) = (vec![0.0; nj], b.clone());
-        let mut p = r.clone();
-        let mut rr = dot(&r, &r);
-        let mut q = vec![0.0; nj];
-        for _ in 0..(10 * nj + 100) {
-            if rr <= target {
-                break;
-            }
-            product(&p, &mut q);
-            let alpha = rr / dot(&p, &q);
-            x.iter_mut().zip(&p).for_each(|(x, p)| *x += alpha * p);
-            r.iter_mut().zip(&q).for_each(|(r, q)| *r -= alpha * q);
-            let next = dot(&r, &r);
-            let beta = next / rr;
-            p.iter_mut().zip(&r).for_each(|(p, r)| *p = r + beta * *p);
-            rr = next;
-        }
-        for (a, v) in x.into_iter().enumerate() {
-            out[(a, c)] = v;
-        }
-    }
-    Ok(out)
-}
-
 /// Case l's model rows at its solution: for each point in contact its
 /// intensity over r_l and the derivative of that with respect to theta.
 fn model_rows(
@@ -261,13 +197,9 @@ fn model_rows(
             basis.phi[(case.station[contact[a]], c - k)]
         }
     });
-    let solved = match case.influence {
-        Some(s) => {
-            let block = Mat::from_fn(nj, nj, |a, b| s[(contact[a], contact[b])]);
-            solve_block(block.as_ref(), rhs.as_ref())
-        }
-        None => solve_restricted(problem, contact, rhs.as_ref())?,
-    };
+    let solved = problem
+        .restricted_solve(contact, rhs.as_ref())
+        .map_err(DesignError::analysis("a design sensitivity"))?;
     let (u, v) = (solved.subcols(0, k), solved.subcols(k, m));
     let x = if k == 0 {
         -v

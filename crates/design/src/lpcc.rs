@@ -67,13 +67,10 @@ fn program(
     for (l, c) in cases.iter().enumerate() {
         let n = c.station.len();
         let (rc, ri, re) = (starts[l], starts[l] + n, starts[l] + 2 * n);
-        let s = c.influence.ok_or_else(|| DesignError::Incompatible {
-            field: "cases",
-            reason: format!(
-                "load case {l} holds S matrix-free (ContactProblem::lattice); the program \
-                 reads S's entries: use the descent (DesignMethod::Descent or Auto)"
-            ),
-        })?;
+        let s = c
+            .problem
+            .entries("the design program (use the descent: DesignMethod::Descent or Auto)")
+            .map_err(DesignError::analysis(format!("load case {l}")))?;
         // Compatibility rows -S F + Y + sum lambda_j m_j = eps (+ drops),
         // intensity rows F / A, resultant rows sum m_j F = b_j.
         let block = Mat::from_fn(rows, n, |r, j| {

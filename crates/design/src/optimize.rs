@@ -105,9 +105,10 @@ struct Setup<'a> {
 ///
 /// # Errors
 /// [`DesignError::Incompatible`] for no case, a displacement-controlled
-/// or folded case, a matrix-free case under [`DesignMethod::Program`] or a
-/// `reanalysis` other than the conjugate gradient, or a degree the
-/// stations cannot carry;
+/// or folded case, a `reanalysis` method a case cannot be solved by (a
+/// pivoting method on a matrix-free S), or a degree the stations cannot
+/// carry; [`DesignError::Analysis`] for [`DesignMethod::Program`] on a case
+/// that holds S without its entries (matrix-free);
 /// [`DesignError::InvalidInput`] for a bad `max_constant`, `agreement` or
 /// `max_iterations`; [`DesignError::Engine`] or [`DesignError::Analysis`]
 /// when every start failed (the first start's error);
@@ -209,17 +210,16 @@ fn setup<'a>(
         scale = scale.max(deflection_scale(case)?);
     }
     let points: usize = prepared.iter().map(|c| c.station.len()).sum();
-    let matrix_free = prepared.iter().any(|c| c.influence.is_none());
-    if matrix_free && options.reanalysis != elcon_analysis::Method::ConjugateGradient {
-        return Err(DesignError::Incompatible {
-            field: "reanalysis",
-            reason: format!(
-                "a case holds S matrix-free (ContactProblem::lattice): its analyses need \
-                 Method::ConjugateGradient, not {}",
-                options.reanalysis
-            ),
-        });
+    for case in cases {
+        case.check_method(options.reanalysis)
+            .map_err(|e| DesignError::Incompatible {
+                field: "reanalysis",
+                reason: e.to_string(),
+            })?;
     }
+    let entries = cases
+        .iter()
+        .all(|c| c.entries("the design program").is_ok());
     let across = match axis {
         Axis::X => RigidMode::TiltY,
         Axis::Y => RigidMode::TiltX,
@@ -227,10 +227,10 @@ fn setup<'a>(
     let line_free = cases
         .iter()
         .all(|c| c.rigid().prescribed.iter().all(|&(mode, _)| mode != across));
-    let method = options.method.resolve(points, matrix_free);
-    // The cases are solved iteratively when matrix-free, or when asked to.
-    let iterative = matrix_free || options.reanalysis == elcon_analysis::Method::ConjugateGradient;
-    let agreement = if iterative {
+    let method = options.method.resolve(points, entries);
+    // The cases are solved iteratively (a matrix-free case can be solved no
+    // other way: `check_method`).
+    let agreement = if options.reanalysis == elcon_analysis::Method::ConjugateGradient {
         options.agreement.max(ITERATIVE_AGREEMENT)
     } else {
         options.agreement

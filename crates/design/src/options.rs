@@ -61,12 +61,12 @@ impl DesignMethod {
     }
 
     /// The method that runs for `points` points over all cases: `Auto`
-    /// resolved to the program up to [`PROGRAM_LIMIT`] points with every S
-    /// dense, the descent otherwise (a matrix-free S has no entries for
-    /// the program to read); a given method as it is.
-    pub fn resolve(self, points: usize, matrix_free: bool) -> Self {
+    /// resolved to the program up to [`PROGRAM_LIMIT`] points when every
+    /// case holds S's entries (`entries`; the program reads them), the
+    /// descent otherwise; a given method as it is.
+    pub fn resolve(self, points: usize, entries: bool) -> Self {
         match self {
-            DesignMethod::Auto if points <= PROGRAM_LIMIT && !matrix_free => DesignMethod::Program,
+            DesignMethod::Auto if points <= PROGRAM_LIMIT && entries => DesignMethod::Program,
             DesignMethod::Auto => DesignMethod::Descent,
             given => given,
         }

@@ -13,7 +13,7 @@
 use elcon_analysis::{ContactProblem, ContactSolution};
 use elcon_influence::PointSet;
 use elcon_lcp::{Certificate, Statistics};
-use faer::{Mat, MatRef};
+use faer::Mat;
 
 use crate::evaluate::load_of;
 use crate::{Axis, DesignError};
@@ -26,9 +26,6 @@ use crate::{Axis, DesignError};
 /// disagrees, and the design says so.)
 pub(crate) struct Case<'a> {
     pub(crate) problem: &'a ContactProblem,
-    /// The problem's dense S (the program is built from its entries;
-    /// `None` for a matrix-free case, which only the descent takes).
-    pub(crate) influence: Option<MatRef<'a, f64>>,
     pub(crate) station: Vec<usize>,
     pub(crate) measures: Vec<f64>,
     pub(crate) load: f64,
@@ -104,10 +101,8 @@ pub(crate) fn prepare<'a>(
                     .sum::<f64>()
             };
             let eps = problem.separation();
-            let influence = problem.influence();
             Ok(Case {
                 problem,
-                influence,
                 measures: points.measures(),
                 station,
                 load,
@@ -152,16 +147,10 @@ pub(crate) fn deflection_scale(c: &Case<'_>) -> Result<f64, DesignError> {
     let n = c.station.len();
     let total: f64 = c.measures.iter().sum();
     let uniform: Vec<f64> = (0..n).map(|j| c.load * c.measures[j] / total).collect();
-    let deflected: Vec<f64> = match c.influence {
-        Some(s) => (s * faer::ColRef::from_slice(&uniform))
-            .iter()
-            .copied()
-            .collect(),
-        None => c
-            .problem
-            .deflection(&uniform)
-            .map_err(DesignError::analysis("the deflection scale"))?,
-    };
+    let deflected = c
+        .problem
+        .deflection(&uniform)
+        .map_err(DesignError::analysis("the deflection scale"))?;
     let deflection = deflected.iter().fold(0.0f64, |a, v| a.max(*v));
     let eps = c
         .problem

@@ -1,58 +1,39 @@
 //! What a scene will cost, known before anything of size N x N is
 //! allocated: its peak memory and a rough class of its run time.
 //!
-//! The memory is counted in the dense matrices each stage keeps alive at
-//! once, 8 bytes an entry (docs/performance.md, "Memory: N x N matrices
-//! alive"; the measured peaks behind each factor are in
-//! docs/reliability.md):
+//! The contact solve's part is elcon-analysis's estimate of the scene's
+//! problem (`elcon_analysis::Estimate`, from its [`Plan`]: the storage, the
+//! method and the unknowns; dense, `m` matrices of n x n, 8 bytes an entry;
+//! matrix-free, the lattice operator and a few vectors of N). The design
+//! stage holds each design load's problem as elcon-analysis counts it for
+//! repeated solves, plus its own:
 //!
 //! ```text
-//!     contact solve      m n^2                   n = N, or one unknown per orbit when folded
-//!     matrix-free solve  lattice operator + 48 N    (solver.method "auto" above its limit, or
-//!                                                   "conjugate-gradient": crate::Storage)
-//!     design, linear     n^2 + sum_l n_l^2 + 4.25 R C + (m - 1) max_l n_l^2
-//!     design, crowns     n^2 + sum_l n_l^2 + (m - 1) max_l n_l^2
+//!     design, linear     S + sum_l held_l + 4.25 R C + work_max   (the program)
+//!                        S + sum_l held_l + block_max + rows      (the descent)
+//!     design, crowns     S + sum_l held_l + work_max
 //! ```
 //!
-//! with `m` the matrices the solve holds, S included ([`matrices`]); n_l
-//! the points of design load l; the design program's `R = sum_l (2 n_l +
-//! 1) + stations (+ 1)` rows and `C = sum_l n_l + L + parameters + 1`
-//! dense columns (its builder's growing buffer, the program, the engine's
-//! copy and the tableau, each about R x C, overlap). The peak is the larger
-//! of the two stages plus [`BASELINE`].
+//! with S the scene's own problem, `held_l` design load l's problem (its S,
+//! or its operator and vectors), `work_max` the largest solve's working
+//! matrices, the design program's `R = sum_l (2 n_l + 1) + stations (+ 1)`
+//! rows and `C = sum_l n_l + L + parameters + 1` dense columns (its
+//! builder's growing buffer, the program, the engine's copy and the
+//! tableau, each about R x C, overlap). The peak is the larger of the two
+//! stages plus [`BASELINE`].
 //!
-//! The time class comes from the pivots' cost: about `c n^3` for a solve
-//! (a path of about n pivots of n^2 each) and `c R C^2` for the design
-//! program, with c measured through `elcon run` on the reference machine
-//! (docs/reliability.md), rounded up.
+//! The time class comes from the pivots' cost: about `c n^3` for a dense
+//! solve (a path of about n pivots of n^2 each), linear in N matrix-free,
+//! and `c R C^2` for the design program, with c measured through `elcon
+//! run` on the reference machine (docs/reliability.md), rounded up.
 
-use elcon_analysis::{Layout, Method, Normal};
+use elcon_analysis::{Loading, Relief};
 use elcon_design::{DesignMethod, Family, axial_stations};
-use elcon_influence::{Dimension, LatticeOperator, PointSet};
+use elcon_influence::{Dimension, PointSet};
 
 use crate::error::SceneError;
 use crate::memory::{Limit, human};
 use crate::scene::{DesignFamily, DesignSpec, Plot, Scene};
-use crate::storage::Storage;
-
-/// Vectors of N doubles a matrix-free solve holds besides the operator:
-/// the separations, the border, then the conjugate gradient's iterate, gap
-/// and direction, or at the end the answer and the certificate's two
-/// columns; a grid's point set holds a quarter of one (measured: a heap
-/// peak of 66 bytes a point at 347,949 points, 21 of them the operator's).
-const CG_VECTORS: f64 = 6.0;
-
-/// Vectors of N doubles a design case on a lattice holds besides its
-/// operator: its analysis's ([`CG_VECTORS`]) and its sensitivities', with
-/// the descent's model rows, rounded up (docs/reliability.md's matrix-free
-/// design row: 169 MiB measured against 220 MiB estimated, the plot
-/// included).
-const DESIGN_CASE_VECTORS: f64 = 14.0;
-
-/// Seconds per point of a matrix-free solve (a few hundred iterations of
-/// two FFT products each; docs/performance.md, "Dense or matrix-free"),
-/// rounded up.
-const CG_SECONDS_PER_POINT: f64 = 1e-4;
 
 /// Bytes a point of the pressure plot, built whole before it is written:
 /// one mark or cell of SVG a point and its data, rounded up (measured at
@@ -66,18 +47,6 @@ const ENTRY: f64 = 8.0;
 /// What the process holds besides the matrices (code, threads, buffers),
 /// bytes: about what a run of a scene with a handful of points peaks at.
 pub const BASELINE: u64 = 32 << 20;
-
-/// Seconds per n^3 of a tableau method's solve on the symmetric tableau
-/// (Lemke's method; the restricted simplex under load without initial
-/// interference): 3.2 s at N = 3745.
-const TABLEAU_SECONDS_PER_CUBE: f64 = 7e-11;
-
-/// Seconds per n^3 of the restricted simplex on the general tableau
-/// (displacement control, or initial interference): 17.7 s at N = 3729.
-const GENERAL_SECONDS_PER_CUBE: f64 = 3.5e-10;
-
-/// Seconds per n^3 of block principal pivoting: 1.7 s at N = 3745.
-const BLOCK_SECONDS_PER_CUBE: f64 = 3.5e-11;
 
 /// Seconds per `R C^2` of the design program (about 0.8 C pivots of R x C
 /// each, memory bound): 133 s at R = 14,460, C = 7261.
@@ -97,39 +66,6 @@ const DESCENT_ITERATIONS: f64 = 20.0;
 /// fitted to the crowned roller over 50 and 400 loads (docs/reliability.md),
 /// rounded up.
 const DESCENT_VECTORS: f64 = 64.0;
-
-/// Which tableau a tableau method works on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Tableau {
-    /// The symmetric tableau (Lemke's method on the contact form; the
-    /// restricted simplex under load control without initial interference),
-    /// or block pivoting.
-    Symmetric,
-    /// The general tableau: the restricted simplex under displacement
-    /// control or with initial interference.
-    General,
-}
-
-/// The N x N matrices a contact solve of `method` on `tableau` holds at its
-/// peak, S included (measured peaks over n^2 doubles, rounded up; the
-/// measurements are in docs/reliability.md). With every point in contact (a
-/// beam on a foundation, a flat punch), the worst case the estimate
-/// assumes: block pivoting 3.13 (S, its Cholesky factor of the whole
-/// contact set, whose capacity doubles in place, and the blocks of the
-/// last update), the symmetric tableau 3.16 (S, the swept tableau, then
-/// the contact block's factor); a Hertz contact takes less (1.96, 2.19);
-/// the conjugate gradient S alone (rounded up to 1.25 for its vectors);
-/// the restricted simplex's general tableau 7.3 to 7.6 (S, the constraint
-/// data, a tableau of twice S's width when most rows start with an
-/// artificial, and the basis matrices of its refactorizations).
-pub fn matrices(method: Method, tableau: Tableau) -> f64 {
-    match (method, tableau) {
-        // S itself; the iteration's vectors are O(N).
-        (Method::ConjugateGradient, _) => 1.25,
-        (Method::RestrictedSimplex, Tableau::General) => 7.75,
-        _ => 3.25,
-    }
-}
 
 /// A rough class of run time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -193,7 +129,7 @@ pub struct Estimate {
     pub points: usize,
     /// Unknowns of the solve: N, or one per orbit when the problem folds.
     pub unknowns: usize,
-    /// The method's N x N matrices ([`matrices`]).
+    /// The method's N x N matrices ([`elcon_analysis::estimate::matrices`]).
     pub matrices: f64,
     /// Bytes the contact solve holds at its peak.
     pub solve_bytes: u64,
@@ -207,78 +143,12 @@ pub struct Estimate {
     pub time: TimeClass,
 }
 
-/// Bytes of `count` matrices of n x n, saturating.
-fn square_bytes(count: f64, n: usize) -> f64 {
-    count * ENTRY * (n as f64) * (n as f64)
-}
-
 fn to_bytes(b: f64) -> u64 {
     if b >= u64::MAX as f64 {
         u64::MAX
     } else {
         b.ceil() as u64
     }
-}
-
-/// The unknowns of the contact solve (one per orbit when the scene folds
-/// and its points, models, separations and rigid motions are mirror
-/// symmetric, as `ContactProblem::symmetric` decides: `Layout`) and the
-/// tableau its method works on. The restricted simplex keeps the symmetric
-/// tableau only under load control, with one free rigid motion (the
-/// approach) and no point starting in interference; otherwise (an
-/// approach given, a free tilt, a prescribed misalignment that presses a
-/// point in) it works on the general tableau.
-fn unknowns(points: &PointSet, scene: &Scene) -> (usize, Tableau) {
-    let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
-    let Ok(layout) = Layout::of(
-        points,
-        bodies,
-        scene.geometry(),
-        &scene.loading(),
-        scene.fold(),
-    ) else {
-        return (points.len(), Tableau::General);
-    };
-    let symmetric = matches!(scene.loading().normal, Normal::Load(_))
-        && layout.rigid.free.len() == 1
-        && !layout.interference(points);
-    let tableau = if scene.method() == Method::RestrictedSimplex && !symmetric {
-        Tableau::General
-    } else {
-        Tableau::Symmetric
-    };
-    (layout.unknowns(), tableau)
-}
-
-/// Seconds per n^3 of a solve.
-fn per_cube(method: Method, tableau: Tableau) -> f64 {
-    match (method, tableau) {
-        (Method::BlockPivoting, _) => BLOCK_SECONDS_PER_CUBE,
-        (Method::RestrictedSimplex, Tableau::General) => GENERAL_SECONDS_PER_CUBE,
-        _ => TABLEAU_SECONDS_PER_CUBE,
-    }
-}
-
-/// Rough seconds of one solve of `unknowns` unknowns: the conjugate
-/// gradient's, linear in N, for a matrix-free scene; a dense method's
-/// `c n^3` on `tableau` otherwise.
-fn solve_seconds(scene: &Scene, tableau: Tableau, unknowns: usize) -> f64 {
-    match scene.storage() {
-        Storage::MatrixFree => CG_SECONDS_PER_POINT * unknowns as f64,
-        Storage::Dense => per_cube(scene.method(), tableau) * (unknowns as f64).powi(3),
-    }
-}
-
-/// Bytes of a matrix-free solve on `points`: the lattice operator and
-/// `vectors` vectors of N.
-fn matrix_free_bytes(scene: &Scene, points: &PointSet, vectors: f64) -> Result<f64, SceneError> {
-    let bodies = [scene.bodies()[0].body(), scene.bodies()[1].body()];
-    let operator =
-        LatticeOperator::estimate_bytes(points, &bodies).map_err(|e| SceneError::Run {
-            scene: scene.name().to_string(),
-            reason: e.to_string(),
-        })?;
-    Ok(operator as f64 + vectors * ENTRY * points.len() as f64)
 }
 
 impl Estimate {
@@ -288,24 +158,12 @@ impl Estimate {
     /// [`SceneError::Run`] when a design load's points cannot be laid out
     /// (as the run would fail).
     pub fn of(scene: &Scene) -> Result<Self, SceneError> {
+        let solve = &scene.plan().estimate;
         let n = scene.points().len();
-        let (unknowns, m, solve, mut seconds) = match scene.storage() {
-            Storage::MatrixFree => (
-                n,
-                0.0,
-                matrix_free_bytes(scene, scene.points(), CG_VECTORS)?,
-                solve_seconds(scene, Tableau::Symmetric, n),
-            ),
-            Storage::Dense => {
-                let (unknowns, tableau) = unknowns(scene.points(), scene);
-                let m = matrices(scene.method(), tableau);
-                let seconds = solve_seconds(scene, tableau, unknowns);
-                (unknowns, m, square_bytes(m, unknowns), seconds)
-            }
-        };
+        let mut seconds = solve.seconds;
         let design = match scene.design() {
             Some(spec) => {
-                let (d, s) = design(scene, spec, unknowns)?;
+                let (d, s) = design(scene, spec, solve.influence_bytes)?;
                 seconds += s;
                 Some(d)
             }
@@ -319,13 +177,13 @@ impl Estimate {
         let stage = design
             .as_ref()
             .map_or(0, |d| d.bytes)
-            .max(to_bytes(solve))
+            .max(to_bytes(solve.solve_bytes))
             .saturating_add(to_bytes(plot));
         Ok(Self {
             points: n,
-            unknowns,
-            matrices: m,
-            solve_bytes: to_bytes(solve),
+            unknowns: solve.unknowns,
+            matrices: solve.matrices,
+            solve_bytes: to_bytes(solve.solve_bytes),
             design,
             peak_bytes: stage.saturating_add(BASELINE),
             seconds,
@@ -368,23 +226,13 @@ impl Estimate {
         } else {
             String::new()
         };
-        let mut what = match scene.storage() {
-            Storage::MatrixFree => format!(
-                "N = {} points needs about {} ({} matrix-free: the lattice operator and its vectors",
-                self.points,
-                human(self.peak_bytes),
-                scene.method().name(),
-            ),
-            Storage::Dense => format!(
-                "N = {} points{folded} needs about {} ({} keeps about {:.2} matrices of {} x {}",
-                self.points,
-                human(self.peak_bytes),
-                scene.method().name(),
-                self.matrices,
-                self.unknowns,
-                self.unknowns,
-            ),
-        };
+        let solve = &scene.plan().estimate;
+        let mut what = format!(
+            "N = {} points{folded} needs about {} ({}",
+            self.points,
+            human(self.peak_bytes),
+            solve.holding()
+        );
         let design_dominates = self
             .design
             .as_ref()
@@ -413,14 +261,15 @@ impl Estimate {
                 );
             }
             hints.push("a coarser grid (fewer points across, a smaller zone)");
-            if scene.storage() == Storage::Dense {
-                hints.push(
-                    "solver.method = \"auto\" or \"conjugate-gradient\" (matrix-free on a \
-                     lattice: O(N) memory, docs/performance.md section 6)",
-                );
-            }
-            if scene.storage() == Storage::Dense && scene.method() != Method::BlockPivoting {
-                hints.push("solver.method = \"block-pivoting\" (fewer matrices)");
+            for relief in solve.reliefs() {
+                hints.push(match relief {
+                    Relief::MatrixFree => {
+                        "solver.method = \"auto\" or \"conjugate-gradient\" (matrix-free on a \
+                         lattice: O(N) memory, docs/performance.md section 6)"
+                    }
+                    Relief::FewerMatrices => "solver.method = \"block-pivoting\" (fewer matrices)",
+                    _ => continue,
+                });
             }
         }
         let address;
@@ -442,49 +291,47 @@ impl Estimate {
     }
 }
 
-/// Each design load's S: dense, or (a matrix-free scene) its operator and
-/// its case's vectors (bytes).
-fn influence_bytes(scene: &Scene, sets: &[PointSet]) -> Result<f64, SceneError> {
-    let mut held = 0.0;
-    for set in sets {
-        held += match scene.storage() {
-            Storage::Dense => square_bytes(1.0, set.len()),
-            Storage::MatrixFree => matrix_free_bytes(scene, set, DESIGN_CASE_VECTORS)?,
-        };
-    }
-    Ok(held)
-}
-
-/// The design stage's memory (bytes) and rough seconds.
-fn design(
+/// Each design load's problem, planned as the run builds it (held as the
+/// scene's, unfolded) under its load alone.
+fn design_loads(
     scene: &Scene,
     spec: &DesignSpec,
-    unknowns: usize,
-) -> Result<(DesignEstimate, f64), SceneError> {
-    let sets = spec
-        .loads()
+) -> Result<Vec<(PointSet, elcon_analysis::Estimate)>, SceneError> {
+    spec.loads()
         .iter()
-        .map(|&load| scene.points_for(load))
-        .collect::<Result<Vec<_>, _>>()?;
+        .map(|&load| {
+            let points = scene.points_for(load)?;
+            let plan = scene
+                .builder(points.clone(), Loading::load(load))
+                .fold(false)
+                .plan()
+                .map_err(|e| SceneError::Run {
+                    scene: scene.name().to_string(),
+                    reason: e.to_string(),
+                })?;
+            Ok((points, plan.estimate))
+        })
+        .collect()
+}
+
+/// The design stage's memory (bytes) and rough seconds; `own` the bytes of
+/// the scene's own S, alive through the stage.
+fn design(scene: &Scene, spec: &DesignSpec, own: f64) -> Result<(DesignEstimate, f64), SceneError> {
+    let loads = design_loads(scene, spec)?;
+    let sets: Vec<&PointSet> = loads.iter().map(|(p, _)| p).collect();
     // Every load is a case at each misalignment, all sharing its S.
     let angles = spec.misalignments().len().max(1);
-    let sizes: Vec<usize> = sets.iter().map(PointSet::len).collect();
-    let total: usize = angles * sizes.iter().sum::<usize>();
-    let largest = sizes.iter().copied().max().unwrap_or(0);
-    let cases = angles * sizes.len();
-    // The cases are analysed under load, from separations >= 0.
-    let m = matrices(scene.method(), Tableau::Symmetric);
-    let analysis = solve_seconds(scene, Tableau::Symmetric, largest);
-    let held = influence_bytes(scene, &sets)?;
-    let analysis_blocks = match scene.storage() {
-        Storage::Dense => square_bytes(m - 1.0, largest),
-        Storage::MatrixFree => 0.0,
-    };
-    let own = match scene.storage() {
-        Storage::Dense => square_bytes(1.0, unknowns),
-        Storage::MatrixFree => 0.0,
-    };
-    let mut bytes = own + held + analysis_blocks;
+    let total: usize = angles * sets.iter().map(|p| p.len()).sum::<usize>();
+    let largest = loads
+        .iter()
+        .map(|(_, e)| e)
+        .max_by_key(|e| e.points)
+        .copied()
+        .expect("a design has at least one load");
+    let cases = angles * loads.len();
+    let analysis = largest.seconds;
+    let held: f64 = loads.iter().map(|(_, e)| e.held_bytes).sum();
+    let mut bytes = own + held + largest.work_bytes;
     // Each case analysed before and after.
     let mut seconds = 2.0 * cases as f64 * analysis;
     let line = sets.iter().all(|p| p.dimension() == Dimension::Line);
@@ -492,27 +339,22 @@ fn design(
     let mut method = None;
     let program = match spec.family() {
         DesignFamily::Linear(family) => {
-            let (stations, _) = axial_stations(sets.iter(), spec.axis());
+            let (stations, _) = axial_stations(sets.iter().copied(), spec.axis());
             let params = match family {
                 Family::Quadratic => 3,
                 Family::Polynomial { degree } => degree + 1,
                 Family::Free => stations.len(),
             };
-            let resolved = spec
-                .method()
-                .resolve(total, scene.storage() == Storage::MatrixFree);
+            let entries = loads.iter().all(|(_, e)| e.storage.holds_entries());
+            let resolved = spec.method().resolve(total, entries);
             method = Some(resolved);
             if resolved == DesignMethod::Descent {
                 // One contact block and its solves at a time, every case's
                 // solutions twice (the iterate and the trial), the step's
                 // program of m + 1 rows and a column per point in contact.
                 let columns = (total + 2 * params + 1) as f64;
-                let block = match scene.storage() {
-                    Storage::Dense => square_bytes(1.0, largest),
-                    Storage::MatrixFree => 0.0,
-                };
-                bytes += block
-                    + ENTRY * (largest * (params + 4)) as f64
+                bytes += largest.restricted_bytes
+                    + ENTRY * (largest.points * (params + 4)) as f64
                     + ENTRY * (2.0 * DESCENT_VECTORS + (params + 2) as f64) * total as f64
                     + PROGRAM_MATRICES * ENTRY * (params + 1) as f64 * columns;
                 seconds += starts * DESCENT_ITERATIONS * cases as f64 * 2.0 * analysis;

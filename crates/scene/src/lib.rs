@@ -32,13 +32,13 @@ mod sanity;
 mod scene;
 mod schema;
 mod shard;
-mod storage;
 mod tables;
 
 pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text, thousands};
 pub use batch_run::{BatchOptions, Progress, run_batch};
+pub use elcon_analysis::{AUTO_DENSE_LIMIT, Storage};
 pub use error::{Location, SceneError};
-pub use estimate::{BASELINE, DesignEstimate, Estimate, Tableau, TimeClass, matrices};
+pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass};
 pub use isolate::{install_panic_hook, isolated};
 pub use memory::{
     ADDRESS_SPACE_RESERVE, Ceiling, LIMIT_VARIABLE, Limit, MARGIN, gemm_reserve, human, parse_size,
@@ -55,10 +55,9 @@ pub use sanity::{
     max_pivots_bound,
 };
 pub use scene::{
-    BodySpec, DesignFamily, DesignSpec, HalfX, ModelKind, Outputs, Plot, PointsSpec, Reference,
-    RelativeTo, Scene, Units,
+    BodySpec, DesignFamily, DesignSpec, HalfX, MethodChoice, ModelKind, Outputs, Plot, PointsSpec,
+    Reference, RelativeTo, Scene, Units,
 };
 pub use schema::ErrorMetric;
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};
-pub use storage::{AUTO_DENSE_LIMIT, MethodChoice, Storage};
 pub use tables::{BatchOutcome, Row, merge};

@@ -18,7 +18,6 @@ use crate::error::SceneError;
 use crate::scene::{
     DesignFamily, DesignSpec, Hertz, PointsSpec, Reference, RelativeTo, Scene, Units,
 };
-use crate::storage::Storage;
 
 /// A folded problem's symmetry, as written. A mirror of
 /// `elcon_influence::Folding` rather than a `Serialize` on it: result.json
@@ -256,21 +255,10 @@ fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError {
 pub fn run(scene: &Scene) -> Result<Run, SceneError> {
     let start = Instant::now();
     crate::faults::panic_point(scene.name());
-    let [b1, b2] = scene.bodies();
-    let build = match (scene.storage(), scene.fold()) {
-        (Storage::MatrixFree, _) => ContactProblem::lattice,
-        (Storage::Dense, true) => ContactProblem::symmetric,
-        (Storage::Dense, false) => ContactProblem::new,
-    };
-    let problem = build(
-        scene.points().clone(),
-        b1.body(),
-        b2.body(),
-        scene.geometry(),
-        scene.loading(),
-    )
-    .map_err(|e| run_error(scene, e))?
-    .with_body_edges(scene.body_edges().0, scene.body_edges().1);
+    let problem = scene
+        .builder(scene.points().clone(), scene.loading())
+        .build()
+        .map_err(|e| run_error(scene, e))?;
     let solution = problem
         .solve(scene.method(), scene.options())
         .map_err(|e| run_error(scene, e))?;
@@ -293,7 +281,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         description: scene.description().map(String::from),
         units: scene.units().clone(),
         method: scene.method().name().to_string(),
-        influence: scene.storage().name().to_string(),
+        influence: problem.storage().held_as().to_string(),
         dimension: match scene.points().dimension() {
             Dimension::Surface => "surface".into(),
             Dimension::Line => "line".into(),
@@ -570,7 +558,6 @@ fn design_cases<'a>(
     let mut cases = Vec::new();
     let mut known = Vec::new();
     let mut references = Vec::new();
-    let [b1, b2] = scene.bodies();
     for (load, misalignment) in spec.case_loadings() {
         let points = scene.points_for(load)?;
         // On the scene's own points, a problem solved in full shares its S
@@ -585,17 +572,9 @@ fn design_cases<'a>(
             .or(own.then_some(problem));
         let case = match shared {
             Some(c) => c.with_loading(loading),
-            // A matrix-free scene's design cases are matrix-free too (the
-            // descent analyses them by the conjugate gradient).
-            None => match scene.storage() {
-                crate::storage::Storage::MatrixFree => {
-                    ContactProblem::lattice(points, b1.body(), b2.body(), scene.geometry(), loading)
-                }
-                crate::storage::Storage::Dense => {
-                    ContactProblem::new(points, b1.body(), b2.body(), scene.geometry(), loading)
-                }
-            }
-            .map(|c| c.with_body_edges(scene.body_edges().0, scene.body_edges().1)),
+            // Held as the scene's problem is, unfolded: the design reads
+            // every point.
+            None => scene.builder(points, loading).fold(false).build(),
         }
         .map_err(|e| run_error(scene, e))?;
         let solved = misalignment.is_none()

@@ -49,8 +49,8 @@ fn the_design_stage_shares_the_scenes_matrix_and_solution() {
     // Both cases are on the scene's points: S is shared, not assembled again.
     for case in &d.cases {
         assert_eq!(
-            case.influence().expect("dense").as_ptr(),
-            r.problem.influence().expect("dense").as_ptr()
+            case.entries("a test").expect("dense").as_ptr(),
+            r.problem.entries("a test").expect("dense").as_ptr()
         );
     }
     // At the scene's load the uncorrected case is the scene's own solution.
@@ -111,8 +111,8 @@ fn misalignments_make_a_case_of_each_load_at_each_angle() {
                 .any(|&(m, v)| m == elcon_analysis::RigidMode::TiltY && v == angle)
         );
         assert_eq!(
-            case.influence().expect("dense").as_ptr(),
-            r.problem.influence().expect("dense").as_ptr()
+            case.entries("a test").expect("dense").as_ptr(),
+            r.problem.entries("a test").expect("dense").as_ptr()
         );
     }
     // A misaligned case is not the scene's own (free-rotation) analysis;

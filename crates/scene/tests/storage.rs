@@ -51,13 +51,14 @@ load = 100.0
 
 #[test]
 fn auto_is_block_pivoting_on_the_dense_s_for_few_unknowns() {
+    // Symmetric about both axes: folded, an eighth of the unknowns.
     let scene = spheres(21, "");
     assert_eq!(
         (scene.method(), scene.storage()),
-        (Method::BlockPivoting, Storage::Dense)
+        (Method::BlockPivoting, Storage::Folded)
     );
     let given = spheres(21, r#"method = "auto""#);
-    assert_eq!(given.storage(), Storage::Dense);
+    assert_eq!(given.storage(), Storage::Folded);
 }
 
 #[test]
@@ -67,7 +68,7 @@ fn auto_goes_matrix_free_above_the_limit_and_meets_hertz() {
     assert!(scene.points().len() > AUTO_DENSE_LIMIT);
     assert_eq!(
         (scene.method(), scene.storage()),
-        (Method::ConjugateGradient, Storage::MatrixFree)
+        (Method::ConjugateGradient, Storage::Lattice)
     );
     // O(N): the operator and a few vectors, not 8 N^2 bytes.
     let estimate = Estimate::of(&scene).expect("estimate");
@@ -77,7 +78,7 @@ fn auto_goes_matrix_free_above_the_limit_and_meets_hertz() {
         estimate.solve_bytes
     );
     let run = run(&scene).expect("runs");
-    assert!(run.problem.matrix_free());
+    assert_eq!(run.problem.storage(), Storage::Lattice);
     assert!(run.solution.certificate.holds());
     let result = &run.result;
     assert_eq!(result.influence, "matrix-free");
@@ -87,17 +88,17 @@ fn auto_goes_matrix_free_above_the_limit_and_meets_hertz() {
     assert!(error.abs() < 2e-3, "approach against Hertz {error:e}");
     // Folded, the same grid is small enough to stay dense.
     let folded = spheres(81, "");
-    assert_eq!(folded.storage(), Storage::Dense);
+    assert_eq!(folded.storage(), Storage::Folded);
 }
 
 #[test]
 fn an_explicit_conjugate_gradient_is_matrix_free_unless_the_scene_folds() {
     let unfolded = spheres(21, "method = \"conjugate-gradient\"\nsymmetry = \"none\"");
-    assert_eq!(unfolded.storage(), Storage::MatrixFree);
+    assert_eq!(unfolded.storage(), Storage::Lattice);
     let folded = spheres(21, r#"method = "conjugate-gradient""#);
     assert_eq!(
         (folded.method(), folded.storage()),
-        (Method::ConjugateGradient, Storage::Dense)
+        (Method::ConjugateGradient, Storage::Folded)
     );
     let a = run(&unfolded).expect("matrix-free");
     let b = run(&folded).expect("dense, folded");
@@ -149,7 +150,7 @@ fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
     // loads: the design cases are lattice problems, the method the descent.
     let design = "method = \"conjugate-gradient\"\nsymmetry = \"none\"\n\n[design]\nfamily = \"quadratic\"\naxis = \"y\"\nloads = [80.0, 100.0]\n";
     let scene = spheres(15, design);
-    assert_eq!(scene.storage(), Storage::MatrixFree);
+    assert_eq!(scene.storage(), Storage::Lattice);
     let estimate = Estimate::of(&scene).unwrap();
     let d = estimate.design.clone().unwrap();
     assert_eq!(d.method, Some(elcon_design::DesignMethod::Descent));
@@ -179,7 +180,7 @@ fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
     assert!((10.0..3600.0).contains(&seconds), "{seconds} s");
     let r = run(&scene).unwrap();
     let cases = &r.design.as_ref().unwrap().cases;
-    assert!(cases.iter().all(|c| c.matrix_free()));
+    assert!(cases.iter().all(|c| c.storage() == Storage::Lattice));
     let json = r.result.design.as_ref().unwrap();
     assert_eq!(json.method, "descent");
     assert!(json.cases.iter().all(|c| c.certificate_holds));

@@ -28,7 +28,7 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
         Normal::Load(p) => Some(p),
         Normal::Approach(_) => None,
     };
-    let s = problem.influence().expect("a dense problem");
+    let s = problem.entries("the check").expect("a dense problem");
     let eps = problem.separation();
     let n = eps.len();
     prop_assert_eq!(sol.forces.len(), n);

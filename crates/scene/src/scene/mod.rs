@@ -22,7 +22,9 @@ mod units;
 
 use std::path::{Path, PathBuf};
 
-use elcon_analysis::{Geometry, Layout, Loading, Method, Normal, Options};
+use elcon_analysis::{
+    ContactProblem, Geometry, Loading, Method, Normal, Options, Plan, ProblemBuilder, Storage,
+};
 use elcon_design::DesignMethod;
 use elcon_influence::{Dimension, PointSet};
 use toml::Spanned;
@@ -34,13 +36,13 @@ pub use hertz::Reference;
 pub use outputs::{Outputs, Plot};
 pub(crate) use points::build_points;
 pub use points::{HalfX, PointsSpec};
+pub use solver::MethodChoice;
 pub use units::Units;
 
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
 use crate::schema::{PointsToml, SceneFile};
-use crate::storage::{self, Storage};
 
 /// A validated scene.
 #[derive(Debug, Clone)]
@@ -63,12 +65,11 @@ pub struct Scene {
     points: PointSet,
     /// Load or approach.
     loading: Loading,
-    /// The engine's method (`solver.method`; `"auto"` resolved, see
-    /// [`Storage`]).
-    method: Method,
-    /// How the contact problem holds S: dense, or matrix-free on the
-    /// lattice (`solver.method`'s choice, see [`Storage`]).
-    storage: Storage,
+    /// `solver.method` as given ("auto" or a method).
+    choice: MethodChoice,
+    /// The contact problem's storage, method and cost, decided by
+    /// elcon-analysis from `solver.method` and `solver.symmetry`.
+    plan: Plan,
     /// The engine's options.
     options: Options,
     /// Whether to fold a mirror-symmetric problem (`solver.symmetry`,
@@ -138,16 +139,40 @@ impl Scene {
         self.loading
     }
 
-    /// The engine's method (`solver.method`; `"auto"` resolved, see
-    /// [`Storage`]).
+    /// The engine's method (`solver.method`; `"auto"` resolved by the
+    /// problem's [`Plan`]).
     pub fn method(&self) -> Method {
-        self.method
+        self.plan.method
     }
 
-    /// How the contact problem holds S: dense, or matrix-free on the
-    /// lattice (`solver.method`'s choice, see [`Storage`]).
+    /// How the contact problem holds S ([`Storage`]: dense, folded, or
+    /// matrix-free on the lattice), as elcon-analysis decided it from
+    /// `solver.method` and `solver.symmetry`.
     pub fn storage(&self) -> Storage {
-        self.storage
+        self.plan.storage
+    }
+
+    /// The contact problem's storage, method and estimated cost.
+    pub fn plan(&self) -> &Plan {
+        &self.plan
+    }
+
+    /// The builder of this scene's contact problem on `points` under
+    /// `loading`: its bodies, geometry, method, storage and the zone's
+    /// edges that are the bodies' own. A design's load case adds
+    /// `.fold(false)` (the design reads every point).
+    pub fn builder(&self, points: PointSet, loading: Loading) -> ProblemBuilder<'_> {
+        let (along_x, along_y) = self.body_edges;
+        planner(
+            points,
+            &self.bodies,
+            &self.geometry,
+            loading,
+            self.choice,
+            self.fold,
+        )
+        .storage(self.plan.storage)
+        .body_edges(along_x, along_y)
     }
 
     /// The engine's options (`solver.max_pivots`,
@@ -263,9 +288,12 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;
     sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
     let fold = solver::symmetry(raw.solver.as_ref());
-    let scene_bodies = [bodies[0].body(), bodies[1].body()];
-    let layout = Layout::of(&points, scene_bodies, &geometry, &loading, fold).ok();
-    let (method, storage) = storage::choose(choice, &points, scene_bodies, layout.as_ref(), fold);
+    let plan = planner(points.clone(), &bodies, &geometry, loading, choice, fold)
+        .plan()
+        .map_err(|e| SceneError::Run {
+            scene: name.clone(),
+            reason: e.to_string(),
+        })?;
     let design = match &raw.design {
         Some(d) => Some(design::design(
             ctx,
@@ -280,8 +308,9 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         )?),
         None => None,
     };
-    if let (Some(d), Some(raw_design), Storage::MatrixFree) = (&design, &raw.design, storage)
+    if let (Some(d), Some(raw_design)) = (&design, &raw.design)
         && d.method() == DesignMethod::Program
+        && !plan.storage.holds_entries()
     {
         let span = raw_design
             .get_ref()
@@ -308,8 +337,8 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         points_spec,
         points,
         loading,
-        method,
-        storage,
+        choice,
+        plan,
         options,
         fold,
         design,
@@ -320,6 +349,31 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     };
     scene.warnings = whole_scene(ctx, &raw, &scene)?;
     Ok(scene)
+}
+
+/// The builder of a scene's problem before its storage is decided: the
+/// bodies, the geometry, the method asked for (none for "auto") and
+/// whether a symmetric problem may fold.
+fn planner<'a>(
+    points: PointSet,
+    bodies: &'a [BodySpec; 2],
+    geometry: &'a Geometry,
+    loading: Loading,
+    choice: MethodChoice,
+    fold: bool,
+) -> ProblemBuilder<'a> {
+    let builder = ContactProblem::builder(
+        points,
+        bodies[0].body(),
+        bodies[1].body(),
+        geometry,
+        loading,
+    )
+    .fold(fold);
+    match choice {
+        MethodChoice::Given(method) => builder.method(method),
+        MethodChoice::Auto => builder,
+    }
 }
 
 /// `scene.name` (default: the file's stem): it names an output directory.

@@ -6,7 +6,18 @@ use elcon_analysis::{Method, Options};
 use crate::ctx::Ctx;
 use crate::error::SceneError;
 use crate::schema::{SolverMethod, SolverToml, Symmetry};
-use crate::storage::MethodChoice;
+
+/// The method asked for in `solver.method`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MethodChoice {
+    /// `"auto"`: the method of the storage elcon-analysis picks
+    /// (`elcon_analysis::Storage`): block pivoting on a dense or folded S,
+    /// the conjugate gradient matrix-free above
+    /// `elcon_analysis::AUTO_DENSE_LIMIT` unknowns on a lattice.
+    Auto,
+    /// A method by name.
+    Given(Method),
+}
 
 /// `solver.symmetry`: "auto" (fold when symmetric, the default) or "none".
 pub(super) fn symmetry(solver: Option<&SolverToml>) -> bool {

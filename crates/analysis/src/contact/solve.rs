@@ -1,0 +1,161 @@
+//! The reduction of a contact problem to the engine's bordered LCP and its
+//! solve. Load control (P given) is `w = S z - B λ + q`, `B^T z = b` with
+//! `z = F`, `w = Y`, `λ` the free rigid motions (the approach alpha first,
+//! then the free tilts), `B` their levers (`e` for the approach), `q` the
+//! separations eps shifted by the prescribed motions and `b` the
+//! resultants (P, the moments). Displacement control (alpha given, P =
+//! e^T F follows) is the plain LCP `Y = S F + (eps - alpha e)`. A folded
+//! problem has one unknown per orbit, its rows scaled by 1 / s_a.
+
+use std::time::Instant;
+
+use elcon_lcp::{Certificate, Method, Options, Statistics};
+use faer::{Col, ColRef, Mat};
+
+use super::problem::ContactProblem;
+use super::solution::ContactSolution;
+use crate::AnalysisError;
+use crate::rigid::point;
+
+impl ContactProblem {
+    /// Solves starting from the contact set of `previous` (a solution of a
+    /// similar problem: the previous load step, a neighbouring design), as
+    /// `options.warm_start`. Block principal pivoting then starts from that
+    /// set (on Hertz spheres, a load step from 90 to 100 lb is tested to take
+    /// at most three iterations and fewer than a cold start); the tableau
+    /// methods start from their usual basis (the option does not apply to
+    /// them).
+    /// The answer does not depend on the start.
+    ///
+    /// # Errors
+    /// As [`ContactProblem::solve`]; a `previous` with another number of
+    /// points is [`AnalysisError::SizeMismatch`].
+    pub fn solve_from(
+        &self,
+        previous: &ContactSolution,
+        method: Method,
+        options: &Options,
+    ) -> Result<ContactSolution, AnalysisError> {
+        let n = self.points.len();
+        if previous.forces.len() != n {
+            return Err(AnalysisError::SizeMismatch {
+                field: "previous.forces",
+                expected: n,
+                found: previous.forces.len(),
+            });
+        }
+        let start: Vec<bool> = match &self.folding {
+            Some(f) => (0..f.len())
+                .map(|a| previous.forces[f.rep(a)] > 0.0)
+                .collect(),
+            None => previous.forces.iter().map(|&f| f > 0.0).collect(),
+        };
+        let mut options = options.clone();
+        options.warm_start = Some(start);
+        self.solve(method, &options)
+    }
+
+    /// Solves with the engine's `method`; the solution carries the
+    /// certificate computed from the original S, eps and P.
+    pub fn solve(
+        &self,
+        method: Method,
+        options: &Options,
+    ) -> Result<ContactSolution, AnalysisError> {
+        let start = Instant::now();
+        // The unknowns: every point, or one representative per orbit of a
+        // folded problem, whose rows are scaled by 1 / s_a (docs of
+        // `elcon_influence::Folding`): w_a = Y_a / s_a, and the equilibrium
+        // row by 1 / |G|, which keeps [B; D] and [C D] a skew pair.
+        let n = self.influence.len();
+        let scale = |a: usize| self.folding.as_ref().map_or(1.0, |f| f.stabilizer(a));
+        let order = self.folding.as_ref().map_or(1.0, |f| f.order() as f64);
+        let rep = |a: usize| self.folding.as_ref().map_or(a, |f| f.rep(a));
+        // The bordered form: q the separations shifted by the prescribed
+        // rigid motions, a column per free motion (its lever; 1 for the
+        // approach), each scaled by 1 / s_a when folded, and the resultants
+        // (load, moments) over |G|.
+        let rigid = &self.rigid;
+        // Unfolded with no prescribed motion, q is eps itself: borrowed.
+        let q = if self.folding.is_none() && rigid.prescribed.is_empty() {
+            None
+        } else {
+            Some(Col::from_fn(n, |a| {
+                let k = rep(a);
+                (self.separation[k] + rigid.shift(point(&self.points, k))) / scale(a)
+            }))
+        };
+        let q = q
+            .as_ref()
+            .map_or(ColRef::from_slice(&self.separation), Col::as_ref);
+        let border = Mat::<f64>::from_fn(n, rigid.free.len(), |a, j| {
+            rigid.free[j]
+                .0
+                .lever(point(&self.points, rep(a)), rigid.load_point)
+                / scale(a)
+        });
+        let resultant = Col::from_fn(rigid.free.len(), |j| rigid.free[j].1 / order);
+        let sol = self.influence.solve_bordered(
+            q,
+            border.as_ref(),
+            resultant.as_ref(),
+            method,
+            options,
+        )?;
+        // The engine's border is not needed any more: at a million points
+        // every column is 8 MB.
+        drop(border);
+        let elcon_lcp::LcpSolution {
+            z,
+            w,
+            u,
+            certificate,
+            statistics,
+            ..
+        } = sol;
+        let lambda: Vec<f64> = u.iter().copied().collect();
+        // The gaps are the engine's w = M z - B λ + q, computed from the data
+        // above: Y = S F + eps - (rigid motion); folded, row a is scaled by
+        // 1 / s_a, so w_a = Y_a / s_a (the same sums regrouped) and
+        // Y_a = s_a w_a, exactly (s_a is a power of two).
+        let z = into_vec(z);
+        let w = into_vec(w);
+        let (forces, gaps, slack) = match &self.folding {
+            Some(f) => {
+                let folded_gaps: Vec<f64> = (0..n).map(|a| scale(a) * w[a]).collect();
+                (f.unfold(&z), f.unfold(&folded_gaps), Some(f.unfold(&w)))
+            }
+            None => (z, w, None),
+        };
+        let engine = Engine {
+            forces,
+            gaps,
+            slack,
+            lambda,
+            certificate,
+            statistics,
+            solve_seconds: start.elapsed().as_secs_f64(),
+        };
+        Ok(self.finish(engine))
+    }
+}
+
+/// A column's values as a vector (the column is freed).
+fn into_vec(col: Col<f64>) -> Vec<f64> {
+    col.iter().copied().collect()
+}
+
+/// The engine's answer at every point, before the solution's reading.
+pub(super) struct Engine {
+    pub(super) forces: Vec<f64>,
+    pub(super) gaps: Vec<f64>,
+    /// The engine's w at every point (the gap, or for a folded problem the
+    /// gap over its orbit's s_a): the scaling the certificate's `w_scale`
+    /// measures. `None` when unfolded: then it is `gaps`.
+    pub(super) slack: Option<Vec<f64>>,
+    /// The free rigid motions, in the order of `Rigid::free`.
+    pub(super) lambda: Vec<f64>,
+    pub(super) certificate: Certificate,
+    pub(super) statistics: Statistics,
+    pub(super) solve_seconds: f64,
+}

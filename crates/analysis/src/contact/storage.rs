@@ -1,0 +1,461 @@
+//! How a contact problem holds its influence matrix `S = A(1) + A(2)`,
+//! decided in one place: [`ProblemBuilder`] (from
+//! [`ContactProblem::builder`]) resolves [`Storage::Auto`], plans the
+//! problem before its O(N^2) assembly (the storage, the method, the
+//! unknowns and what the solve will cost: [`Plan`]) and builds it.
+//!
+//! A dense S costs `8 N^2` bytes and an exact method about `N^3` flops; a
+//! folded S (a mirror-symmetric problem, one unknown per orbit) a quarter
+//! or an eighth of that; the matrix-free lattice operator O(N) memory and
+//! the conjugate gradient O(N log N) a product. [`Storage::Auto`] (the
+//! default) folds a symmetric problem; above [`AUTO_DENSE_LIMIT`] unknowns
+//! (after folding) it holds S matrix-free when the points are a lattice and
+//! no body is a beam, unless the method asked for reads S's entries; else
+//! it holds S dense. Asked for the conjugate gradient, it holds S
+//! matrix-free whenever the lattice operator applies and the problem does
+//! not fold (a folded problem is smaller dense).
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use elcon_influence::{Body, LatticeKernel, LatticeOperator, PointSet, assemble, assemble_folded};
+use elcon_lcp::Method;
+use faer::Mat;
+
+use super::geometry::{Geometry, separations};
+use super::layout::{Layout, check, load_point, unfolded_rigid};
+use super::problem::ContactProblem;
+use crate::AnalysisError;
+use crate::edge::EdgeLaw;
+use crate::estimate::{Estimate, Tableau};
+use crate::influence::Influence;
+use crate::loading::{Loading, Normal};
+
+/// Above this many unknowns [`Storage::Auto`] holds S matrix-free where
+/// the lattice operator applies (docs/performance.md, "Dense or
+/// matrix-free": where the conjugate gradient on the lattice operator
+/// overtakes block pivoting on the dense S).
+pub const AUTO_DENSE_LIMIT: usize = 2000;
+
+/// How a contact problem holds S.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Storage {
+    /// Decided from the problem (the default; see the module documentation).
+    #[default]
+    Auto,
+    /// Every entry of S.
+    Dense,
+    /// One unknown per orbit of a mirror-symmetric problem, the folded
+    /// matrix assembled in place of S (never the full S); S dense when the
+    /// problem is not symmetric. The solution is the same and is returned
+    /// at every point.
+    Folded,
+    /// S by its products: a zero-padded FFT convolution of the lattice
+    /// kernel (`elcon_influence::LatticeKernel`), O(N) memory, for grids
+    /// too large to store S (10^4 to 10^6 points). Solved by the conjugate
+    /// gradient; the points must be a lattice and no body a beam.
+    Lattice,
+}
+
+impl Storage {
+    /// Every storage, in the order messages list them.
+    pub const ALL: [Storage; 4] = [
+        Storage::Auto,
+        Storage::Dense,
+        Storage::Folded,
+        Storage::Lattice,
+    ];
+
+    /// Its name: "auto", "dense", "folded", "lattice".
+    pub fn name(self) -> &'static str {
+        match self {
+            Storage::Auto => "auto",
+            Storage::Dense => "dense",
+            Storage::Folded => "folded",
+            Storage::Lattice => "lattice",
+        }
+    }
+
+    /// The storage of a name, if it is one.
+    pub fn of(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// How S is held, in result.json's words: "dense" (every entry, or the
+    /// folded matrix's) or "matrix-free".
+    pub fn held_as(self) -> &'static str {
+        match self {
+            Storage::Lattice => "matrix-free",
+            _ => "dense",
+        }
+    }
+
+    /// The method a problem of this storage is solved by when the caller
+    /// has no preference: the conjugate gradient matrix-free (the pivoting
+    /// methods need S's entries), block principal pivoting otherwise.
+    pub fn default_method(self) -> Method {
+        match self {
+            Storage::Lattice => Method::ConjugateGradient,
+            _ => Method::BlockPivoting,
+        }
+    }
+
+    /// Whether a problem of this storage holds S's entries (what the
+    /// pivoting methods and the paper's design program read).
+    pub fn holds_entries(self) -> bool {
+        self != Storage::Lattice
+    }
+}
+
+impl std::fmt::Display for Storage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A contact problem, decided before it is built: the storage (resolved),
+/// the method it will be solved by, and what the solve will cost.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// How S will be held: never [`Storage::Auto`]; [`Storage::Folded`]
+    /// only when the problem does fold.
+    pub storage: Storage,
+    /// The method: the one asked for ([`ProblemBuilder::method`]), or the
+    /// storage's default ([`Storage::default_method`]).
+    pub method: Method,
+    /// What the solve will cost.
+    pub estimate: Estimate,
+}
+
+/// Builds a [`ContactProblem`]: the points, the two bodies, the geometry
+/// and the loading, with how S is held ([`Storage`], default
+/// [`Storage::Auto`]), the method it will be solved by (if the caller
+/// knows), and the zone's edges that are the bodies' own.
+///
+/// ```
+/// use elcon_analysis::{Body, ContactProblem, Geometry, Loading, Material, PointSet, Storage, Surface};
+///
+/// let steel = Material::new(210e3, 0.3).unwrap();
+/// let body = Body::uniform_patch(steel);
+/// let geometry = Geometry::Surfaces(Surface::Sphere { radius: 10.0 }, Surface::Plane);
+/// let points = PointSet::grid_disk(0.05, 0.4).unwrap();
+/// let builder = ContactProblem::builder(points, &body, &body, &geometry, Loading::load(100.0));
+/// // Symmetric about both axes: Auto folds it, an eighth of the unknowns.
+/// let plan = builder.plan().unwrap();
+/// assert_eq!(plan.storage, Storage::Folded);
+/// let problem = builder.build().unwrap();
+/// let solution = problem.solve(plan.method, &Default::default()).unwrap();
+/// assert!(solution.certificate.holds());
+/// ```
+#[derive(Debug, Clone)]
+pub struct ProblemBuilder<'a> {
+    points: PointSet,
+    bodies: [&'a Body; 2],
+    geometry: &'a Geometry,
+    loading: Loading,
+    storage: Storage,
+    method: Option<Method>,
+    fold: bool,
+    body_edges: (bool, bool),
+}
+
+impl ContactProblem {
+    /// A [`ProblemBuilder`] for the problem of `body1` and `body2` on
+    /// `points`, with the initial separations of `geometry`, under
+    /// `loading`.
+    pub fn builder<'a>(
+        points: PointSet,
+        body1: &'a Body,
+        body2: &'a Body,
+        geometry: &'a Geometry,
+        loading: Loading,
+    ) -> ProblemBuilder<'a> {
+        ProblemBuilder {
+            points,
+            bodies: [body1, body2],
+            geometry,
+            loading,
+            storage: Storage::Auto,
+            method: None,
+            fold: true,
+            body_edges: (false, false),
+        }
+    }
+
+    /// The problem with S dense and unfolded:
+    /// `ContactProblem::builder(..).storage(Storage::Dense).build()`.
+    pub fn new(
+        points: PointSet,
+        body1: &Body,
+        body2: &Body,
+        geometry: &Geometry,
+        loading: Loading,
+    ) -> Result<Self, AnalysisError> {
+        Self::builder(points, body1, body2, geometry, loading)
+            .storage(Storage::Dense)
+            .build()
+    }
+
+    /// The problem folded when it is mirror symmetric, dense otherwise:
+    /// `ContactProblem::builder(..).storage(Storage::Folded).build()`.
+    pub fn symmetric(
+        points: PointSet,
+        body1: &Body,
+        body2: &Body,
+        geometry: &Geometry,
+        loading: Loading,
+    ) -> Result<Self, AnalysisError> {
+        Self::builder(points, body1, body2, geometry, loading)
+            .storage(Storage::Folded)
+            .build()
+    }
+
+    /// The problem with S matrix-free:
+    /// `ContactProblem::builder(..).storage(Storage::Lattice).build()`.
+    pub fn lattice(
+        points: PointSet,
+        body1: &Body,
+        body2: &Body,
+        geometry: &Geometry,
+        loading: Loading,
+    ) -> Result<Self, AnalysisError> {
+        Self::builder(points, body1, body2, geometry, loading)
+            .storage(Storage::Lattice)
+            .build()
+    }
+
+    /// A problem from an influence matrix (N x N, length per force) and
+    /// separations (N, length) built elsewhere, held dense; moments and
+    /// rotations are about the origin.
+    pub fn from_parts(
+        points: PointSet,
+        influence: Mat<f64>,
+        separation: Vec<f64>,
+        loading: Loading,
+    ) -> Result<Self, AnalysisError> {
+        let n = points.len();
+        if influence.nrows() != n || influence.ncols() != n {
+            return Err(AnalysisError::SizeMismatch {
+                field: "influence",
+                expected: n,
+                found: if influence.nrows() != n {
+                    influence.nrows()
+                } else {
+                    influence.ncols()
+                },
+            });
+        }
+        let rigid = check(&points, &separation, &loading, (0.0, 0.0))?;
+        Ok(Self {
+            points,
+            influence: Influence::Dense(Arc::new(influence)),
+            separation,
+            loading,
+            rigid,
+            assembly_seconds: 0.0,
+            body_edges: (false, false),
+            folding: None,
+            groups: Some(Arc::new(Vec::new())),
+            edge: EdgeLaw::Cells,
+        })
+    }
+}
+
+impl<'a> ProblemBuilder<'a> {
+    /// How S is to be held (default [`Storage::Auto`]).
+    pub fn storage(mut self, storage: Storage) -> Self {
+        self.storage = storage;
+        self
+    }
+
+    /// The method the problem will be solved by: [`Storage::Auto`] then
+    /// holds S's entries for a pivoting method and goes matrix-free for the
+    /// conjugate gradient where it can. Default: none given, the storage's
+    /// own ([`Storage::default_method`]).
+    pub fn method(mut self, method: Method) -> Self {
+        self.method = Some(method);
+        self
+    }
+
+    /// Whether a mirror-symmetric problem may be folded (default true).
+    /// With false, [`Storage::Auto`] never folds and [`Storage::Folded`] is
+    /// [`Storage::Dense`].
+    pub fn fold(mut self, fold: bool) -> Self {
+        self.fold = fold;
+        self
+    }
+
+    /// The candidate zone's extents that are the bodies' own (see
+    /// [`ContactProblem::with_body_edges`]).
+    pub fn body_edges(mut self, along_x: bool, along_y: bool) -> Self {
+        self.body_edges = (along_x, along_y);
+        self
+    }
+
+    /// The candidate points.
+    pub fn points(&self) -> &PointSet {
+        &self.points
+    }
+
+    /// The problem's [`Layout`] (its separations, rigid unknowns and
+    /// symmetry) as the storage asked for would fold it, or the build's
+    /// error.
+    pub fn layout(&self) -> Result<Layout, AnalysisError> {
+        Layout::of(
+            &self.points,
+            self.bodies,
+            self.geometry,
+            &self.loading,
+            self.folds_if_symmetric(),
+        )
+    }
+
+    /// Whether the storage asked for folds a symmetric problem.
+    fn folds_if_symmetric(&self) -> bool {
+        self.fold && matches!(self.storage, Storage::Auto | Storage::Folded)
+    }
+
+    /// The storage, the method and the cost of the problem, decided without
+    /// assembling anything. A problem that cannot be laid out (the build
+    /// will say why) is planned at its worst: every point an unknown, the
+    /// general tableau.
+    ///
+    /// # Errors
+    /// [`AnalysisError::Influence`] when [`Storage::Lattice`] is asked for
+    /// points or bodies the lattice operator does not take (as the build
+    /// would fail).
+    pub fn plan(&self) -> Result<Plan, AnalysisError> {
+        let layout = self.layout().ok();
+        let operator = || LatticeOperator::estimate_bytes(&self.points, &self.bodies);
+        let folds = layout.as_ref().is_some_and(|l| l.folding.is_some());
+        let unknowns = layout.as_ref().map_or(self.points.len(), Layout::unknowns);
+        let lattice_applies = || operator().is_ok();
+        let storage = match self.storage {
+            // A pivoting method reads S's entries, and a folded problem is
+            // smaller dense.
+            Storage::Auto => match self.method {
+                Some(Method::ConjugateGradient) if !folds && lattice_applies() => Storage::Lattice,
+                None if unknowns > AUTO_DENSE_LIMIT && lattice_applies() => Storage::Lattice,
+                _ if folds => Storage::Folded,
+                _ => Storage::Dense,
+            },
+            Storage::Folded if folds => Storage::Folded,
+            Storage::Folded | Storage::Dense => Storage::Dense,
+            Storage::Lattice => Storage::Lattice,
+        };
+        let method = self.method.unwrap_or(storage.default_method());
+        let estimate = match storage {
+            Storage::Lattice => Estimate::matrix_free(storage, method, operator()?, &self.points),
+            _ => {
+                let symmetric = layout.as_ref().is_some_and(|l| {
+                    matches!(self.loading.normal, Normal::Load(_))
+                        && l.rigid.free.len() == 1
+                        && !l.interference(&self.points)
+                });
+                let tableau = if symmetric {
+                    Tableau::Symmetric
+                } else {
+                    Tableau::General
+                };
+                let unknowns = if storage == Storage::Folded {
+                    unknowns
+                } else {
+                    self.points.len()
+                };
+                Estimate::dense(storage, method, tableau, self.points.len(), unknowns)
+            }
+        };
+        Ok(Plan {
+            storage,
+            method,
+            estimate,
+        })
+    }
+
+    /// Builds the problem: the separations and the loading validated
+    /// before any O(N^2) work, the storage resolved ([`plan`](Self::plan)),
+    /// then S assembled (dense or folded) or its lattice operator made.
+    ///
+    /// # Errors
+    /// [`AnalysisError`] naming the field: separations of the wrong size or
+    /// not finite, a bad loading, a surface that does not fit the points;
+    /// [`AnalysisError::Influence`] when the bodies do not fit the points
+    /// or (matrix-free) the points are not a lattice or a body is a beam.
+    pub fn build(self) -> Result<ContactProblem, AnalysisError> {
+        let storage = match self.storage {
+            Storage::Auto => self.plan()?.storage,
+            Storage::Folded if !self.fold => Storage::Dense,
+            given => given,
+        };
+        let (along_x, along_y) = self.body_edges;
+        let problem = match storage {
+            Storage::Lattice => self.lattice()?,
+            _ => self.dense(storage == Storage::Folded)?,
+        };
+        Ok(problem.with_body_edges(along_x, along_y))
+    }
+
+    /// The problem with S dense, folded when `fold` and symmetric: the
+    /// separations and the loading are validated before the O(N^2)
+    /// assembly, then, if asked, the largest symmetry group the separations
+    /// (shifted by the prescribed motions) and the free rigid motions
+    /// respect too is looked for (`crate::rigid`), and the folded or the
+    /// full matrix is assembled.
+    fn dense(self, fold: bool) -> Result<ContactProblem, AnalysisError> {
+        let start = Instant::now();
+        let layout = Layout::of(
+            &self.points,
+            self.bodies,
+            self.geometry,
+            &self.loading,
+            fold,
+        )?;
+        let influence = match &layout.folding {
+            Some(f) => assemble_folded(&self.points, &self.bodies, f)?,
+            None => assemble(&self.points, &self.bodies)?,
+        };
+        Ok(ContactProblem {
+            points: self.points,
+            influence: Influence::Dense(Arc::new(influence)),
+            separation: layout.separation,
+            loading: self.loading,
+            rigid: layout.rigid,
+            assembly_seconds: start.elapsed().as_secs_f64(),
+            body_edges: (false, false),
+            folding: layout.folding.map(Arc::new),
+            groups: Some(Arc::new(layout.groups)),
+            edge: EdgeLaw::of(self.bodies),
+        })
+    }
+
+    /// The problem with S matrix-free, not folded (a tilt that symmetry
+    /// makes zero is still dropped from the unknowns): as
+    /// [`Layout::of`] unfolded, the mirror groups tried one at a time and
+    /// none kept, since at 10^5 points and more their orbits would outweigh
+    /// the operator.
+    fn lattice(self) -> Result<ContactProblem, AnalysisError> {
+        let start = Instant::now();
+        let separation = separations(&self.points, self.geometry)?;
+        let rigid = check(
+            &self.points,
+            &separation,
+            &self.loading,
+            load_point(&self.bodies),
+        )?;
+        let rigid = unfolded_rigid(&self.points, &self.bodies, &separation, rigid);
+        let operator = LatticeKernel::new(&self.points, &self.bodies)?;
+        Ok(ContactProblem {
+            points: self.points,
+            influence: Influence::Lattice(Arc::new(operator)),
+            separation,
+            loading: self.loading,
+            rigid,
+            assembly_seconds: start.elapsed().as_secs_f64(),
+            body_edges: (false, false),
+            folding: None,
+            groups: None,
+            edge: EdgeLaw::of(self.bodies),
+        })
+    }
+}
