@@ -16,7 +16,10 @@
 //! - [`target_separation`] / [`uniform_target`]: the correction that makes
 //!   the forces exactly a target distribution (the seed's Fig. 6 curve);
 //! - [`evaluate()`]: the certified analysis of any profile under every load
-//!   case; [`crown_search`]: the best parameter of a one-parameter crown.
+//!   case; [`crown_search`]: the best parameter of a one-parameter crown;
+//! - [`DesignRequest`]: a design as a scene or Python asks for it (any
+//!   family, linear or a crown), routed to the one of the above that finds
+//!   it.
 //!
 //! ```
 //! use elcon_analysis::{ContactProblem, Geometry, Loading};
@@ -47,20 +50,24 @@ mod basis;
 pub mod crown;
 mod descent;
 mod error;
+pub mod estimate;
 pub mod evaluate;
 mod lpcc;
 pub mod optimize;
 pub mod options;
 mod prepared;
 pub mod profile;
+pub mod request;
 pub mod target;
 
 pub use basis::fit_profile;
 pub use crown::{CrownSearch, SearchOptions, crown_search};
 pub use error::DesignError;
+pub use estimate::DesignEstimate;
 pub use evaluate::{Evaluation, evaluate, evaluate_from, evaluate_known};
 pub use optimize::{Design, StartOutcome, design};
 pub use options::{DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, PROGRAM_LIMIT};
 pub use prepared::{Solver, Stop, axial_stations};
 pub use profile::{Axis, JOHNS_GOHAR, LogCrown, LogEnd, Profile};
+pub use request::{DesignFamily, DesignRequest, Found, Outcome, Roller};
 pub use target::{TargetSeparation, target_separation, uniform_target};

@@ -43,7 +43,7 @@ pub struct StartOutcome {
     /// "uncorrected", "fitted uniform-pressure separation", or "given start i".
     pub label: String,
     /// The objective it reached (the worst p_max_l / r_l), or why it failed.
-    pub result: Result<f64, String>,
+    pub result: Result<f64, DesignError>,
     /// Engine pivots of its solve (the program's; the descent's analyses'
     /// and linear programs' together).
     pub pivots: usize,
@@ -145,7 +145,7 @@ pub fn design(
             Err(e) => {
                 outcomes.push(StartOutcome {
                     label: label.clone(),
-                    result: Err(e.to_string()),
+                    result: Err(e.clone()),
                     pivots: 0,
                 });
                 first_error.get_or_insert(e);

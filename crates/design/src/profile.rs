@@ -187,6 +187,39 @@ impl Profile {
         }
     }
 
+    /// The parameters by name, as result.json's design block lists them:
+    /// a, b, c (quadratic); c0, c1, ... (polynomial); radius and
+    /// flat_length (circular crown); design_load, end_drop and flat_length
+    /// (logarithmic crown); max_drop (free).
+    pub fn parameters(&self) -> std::collections::BTreeMap<String, f64> {
+        let list: Vec<(String, f64)> = match self {
+            Profile::Quadratic { a, b, c } => {
+                vec![("a".into(), *a), ("b".into(), *b), ("c".into(), *c)]
+            }
+            Profile::Polynomial { coefficients } => coefficients
+                .iter()
+                .enumerate()
+                .map(|(i, c)| (format!("c{i}"), *c))
+                .collect(),
+            Profile::CircularCrown {
+                radius,
+                flat_length,
+            } => vec![
+                ("radius".into(), *radius),
+                ("flat_length".into(), *flat_length),
+            ],
+            Profile::LogarithmicCrown(c) => vec![
+                ("design_load".into(), c.design_load),
+                ("end_drop".into(), c.end_drop()),
+                ("flat_length".into(), c.flat_length),
+            ],
+            Profile::Free { drops, .. } => {
+                vec![("max_drop".into(), drops.iter().cloned().fold(0.0, f64::max))]
+            }
+        };
+        list.into_iter().collect()
+    }
+
     /// A short name of the family ("quadratic", "circular crown", ...).
     pub fn family(&self) -> &'static str {
         match self {

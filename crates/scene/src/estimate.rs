@@ -28,12 +28,12 @@
 //! run` on the reference machine (docs/reliability.md), rounded up.
 
 use elcon_analysis::{Loading, Relief};
-use elcon_design::{DesignMethod, Family, axial_stations};
-use elcon_influence::{Dimension, PointSet};
+pub use elcon_design::DesignEstimate;
+use elcon_influence::PointSet;
 
 use crate::error::SceneError;
 use crate::memory::{Limit, human};
-use crate::scene::{DesignFamily, DesignSpec, Plot, Scene};
+use crate::scene::{DesignSpec, Plot, Scene};
 
 /// Bytes a point of the pressure plot, built whole before it is written:
 /// one mark or cell of SVG a point and its data, rounded up (measured at
@@ -41,31 +41,9 @@ use crate::scene::{DesignFamily, DesignSpec, Plot, Scene};
 /// radius, 90 for the roller's pressure map; docs/reliability.md).
 const PLOT_BYTES_PER_POINT: f64 = 160.0;
 
-/// Bytes of one matrix entry (f64).
-const ENTRY: f64 = 8.0;
-
 /// What the process holds besides the matrices (code, threads, buffers),
 /// bytes: about what a run of a scene with a handful of points peaks at.
 pub const BASELINE: u64 = 32 << 20;
-
-/// Seconds per `R C^2` of the design program (about 0.8 C pivots of R x C
-/// each, memory bound): 133 s at R = 14,460, C = 7261.
-const PROGRAM_SECONDS: f64 = 2.5e-10;
-
-/// The design program's peak in matrices of R x C: 3.7 to 4.1 measured.
-const PROGRAM_MATRICES: f64 = 4.25;
-
-/// The descent's iterations per start, rounded up (2 to 7 on Example 2
-/// and the roller, docs/design.md §2 and §6).
-const DESCENT_ITERATIONS: f64 = 20.0;
-
-/// Doubles per point of every case the design stage holds per iterate
-/// of the descent (the iterate's and the trial's problems with their point
-/// sets and separations, their solutions, the evaluations before and after
-/// the design), besides a step-program row of `parameters + 2` per point:
-/// fitted to the crowned roller over 50 and 400 loads (docs/reliability.md),
-/// rounded up.
-const DESCENT_VECTORS: f64 = 64.0;
 
 /// A rough class of run time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -104,22 +82,6 @@ impl std::fmt::Display for TimeClass {
             Self::Hours => "hours",
         })
     }
-}
-
-/// The design stage's part of an [`Estimate`].
-#[derive(Debug, Clone, PartialEq)]
-pub struct DesignEstimate {
-    /// Load cases.
-    pub cases: usize,
-    /// Points of every case together.
-    pub points: usize,
-    /// How a linear family is solved ("auto" resolved; `None` for a crown).
-    pub method: Option<DesignMethod>,
-    /// Rows and dense columns of the design program (a linear family solved
-    /// by the program).
-    pub program: Option<(usize, usize)>,
-    /// Bytes the stage holds at its peak (the contact problem's S included).
-    pub bytes: u64,
 }
 
 /// A scene's estimated peak memory and run time.
@@ -163,8 +125,8 @@ impl Estimate {
         let mut seconds = solve.seconds;
         let design = match scene.design() {
             Some(spec) => {
-                let (d, s) = design(scene, spec, solve.influence_bytes)?;
-                seconds += s;
+                let d = design(scene, spec, solve.influence_bytes)?;
+                seconds += d.seconds;
                 Some(d)
             }
             None => None,
@@ -314,79 +276,15 @@ fn design_loads(
         .collect()
 }
 
-/// The design stage's memory (bytes) and rough seconds; `own` the bytes of
-/// the scene's own S, alive through the stage.
-fn design(scene: &Scene, spec: &DesignSpec, own: f64) -> Result<(DesignEstimate, f64), SceneError> {
+/// The design stage's estimate; `own` the bytes of the scene's own S,
+/// alive through the stage.
+fn design(scene: &Scene, spec: &DesignSpec, own: f64) -> Result<DesignEstimate, SceneError> {
     let loads = design_loads(scene, spec)?;
-    let sets: Vec<&PointSet> = loads.iter().map(|(p, _)| p).collect();
-    // Every load is a case at each misalignment, all sharing its S.
-    let angles = spec.misalignments().len().max(1);
-    let total: usize = angles * sets.iter().map(|p| p.len()).sum::<usize>();
-    let largest = loads
-        .iter()
-        .map(|(_, e)| e)
-        .max_by_key(|e| e.points)
-        .copied()
-        .expect("a design has at least one load");
-    let cases = angles * loads.len();
-    let analysis = largest.seconds;
-    let held: f64 = loads.iter().map(|(_, e)| e.held_bytes).sum();
-    let mut bytes = own + held + largest.work_bytes;
-    // Each case analysed before and after.
-    let mut seconds = 2.0 * cases as f64 * analysis;
-    let line = sets.iter().all(|p| p.dimension() == Dimension::Line);
-    let starts = if line { 2.0 } else { 1.0 };
-    let mut method = None;
-    let program = match spec.family() {
-        DesignFamily::Linear(family) => {
-            let (stations, _) = axial_stations(sets.iter().copied(), spec.axis());
-            let params = match family {
-                Family::Quadratic => 3,
-                Family::Polynomial { degree } => degree + 1,
-                Family::Free => stations.len(),
-            };
-            let entries = loads.iter().all(|(_, e)| e.storage.holds_entries());
-            let resolved = spec.method().resolve(total, entries);
-            method = Some(resolved);
-            if resolved == DesignMethod::Descent {
-                // One contact block and its solves at a time, every case's
-                // solutions twice (the iterate and the trial), the step's
-                // program of m + 1 rows and a column per point in contact.
-                let columns = (total + 2 * params + 1) as f64;
-                bytes += largest.restricted_bytes
-                    + ENTRY * (largest.points * (params + 4)) as f64
-                    + ENTRY * (2.0 * DESCENT_VECTORS + (params + 2) as f64) * total as f64
-                    + PROGRAM_MATRICES * ENTRY * (params + 1) as f64 * columns;
-                seconds += starts * DESCENT_ITERATIONS * cases as f64 * 2.0 * analysis;
-                None
-            } else {
-                let constant = usize::from(!matches!(family, Family::Free));
-                let rows = 2 * total + cases + stations.len() + constant;
-                let columns = total + cases + params + 1;
-                bytes += PROGRAM_MATRICES * ENTRY * rows as f64 * columns as f64;
-                seconds += starts
-                    * (PROGRAM_SECONDS * rows as f64 * (columns as f64).powi(2)
-                        + cases as f64 * analysis);
-                Some((rows, columns))
-            }
-        }
-        DesignFamily::CircularCrown { .. } => {
-            // The search's samples and refinement: about 30 evaluations.
-            seconds += 30.0 * cases as f64 * analysis;
-            None
-        }
-        DesignFamily::LogarithmicCrown { .. } => None,
-    };
-    Ok((
-        DesignEstimate {
-            cases,
-            points: total,
-            method,
-            program,
-            bytes: to_bytes(bytes),
-        },
-        seconds,
-    ))
+    let loads: Vec<(&PointSet, elcon_analysis::Estimate)> =
+        loads.iter().map(|(p, e)| (p, *e)).collect();
+    Ok(spec
+        .request(None, scene.method(), scene.options())
+        .estimate(&loads, spec.misalignments().len().max(1), own))
 }
 
 #[cfg(test)]
@@ -550,7 +448,7 @@ family = "quadratic"
         // times the bytes (the program's would be about 100 times).
         let auto = four.replace("method = \"program\"", "");
         let d4 = Estimate::of(&scene(&auto)).unwrap().design.unwrap();
-        assert_eq!(d4.method, Some(DesignMethod::Descent));
+        assert_eq!(d4.method, Some(elcon_design::DesignMethod::Descent));
         assert_eq!(d4.program, None);
         let forty = auto.replace(
             "loads = [1000.0, 2000.0, 3000.0, 4000.0]",

@@ -7,17 +7,12 @@
 use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
-use elcon_design::{
-    DesignOptions, Evaluation, LogCrown, LogEnd, Profile, SearchOptions, axial_stations,
-    crown_search, design, evaluate, evaluate_known,
-};
+use elcon_design::{Evaluation, Profile, axial_stations, evaluate_known};
 use elcon_influence::Dimension;
 use serde::Serialize;
 
 use crate::error::SceneError;
-use crate::scene::{
-    DesignFamily, DesignSpec, Hertz, PointsSpec, Reference, RelativeTo, Scene, Units,
-};
+use crate::scene::{DesignSpec, Reference, RelativeTo, Scene, Units};
 
 /// A folded problem's symmetry, as written. A mirror of
 /// `elcon_influence::Folding` rather than a `Serialize` on it: result.json
@@ -495,7 +490,7 @@ fn design_stage(
     let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis());
     let table = profile.table(&positions).map_err(fail)?;
     let json = DesignJson {
-        family: family_name(spec.family()),
+        family: spec.family().describe(),
         axis: match spec.axis() {
             elcon_design::Axis::X => "x".into(),
             elcon_design::Axis::Y => "y".into(),
@@ -505,7 +500,7 @@ fn design_stage(
             RelativeTo::Mean => "mean".into(),
             RelativeTo::Hertz => "hertz".into(),
         },
-        parameters: parameters(&profile),
+        parameters: profile.parameters(),
         objective,
         objective_before,
         cases: spec
@@ -586,163 +581,24 @@ fn design_cases<'a>(
     Ok((cases, known, references))
 }
 
-/// The correction of the spec's family: designed (linear families),
-/// searched (a circular crown) or set (a logarithmic crown); with its
-/// evaluation, how each start ended and the method's name.
+/// The correction of the spec's family, found as its family is
+/// (`elcon_design::DesignRequest`), with its evaluation, how each start
+/// ended and the method's name.
 fn find_design(
     scene: &Scene,
     spec: &DesignSpec,
     cases: &[ContactProblem],
     references: &[f64],
 ) -> Result<(Profile, Evaluation, Vec<String>, &'static str), SceneError> {
-    let fail = |e: elcon_design::DesignError| run_error(scene, e);
-    Ok(match spec.family() {
-        DesignFamily::Linear(family) => {
-            let d = design(
-                cases,
-                spec.axis(),
-                *family,
-                &DesignOptions {
-                    method: spec.method(),
-                    max_constant: spec.max_constant(),
-                    reanalysis: scene.method(),
-                    reanalysis_options: scene.options().clone(),
-                    reference_intensities: Some(references.to_vec()),
-                    ..DesignOptions::default()
-                },
-            )
-            .map_err(fail)?;
-            let starts = d
-                .starts
-                .iter()
-                .map(|s| match &s.result {
-                    Ok(v) => format!("{}: objective {v:.6e} ({} pivots)", s.label, s.pivots),
-                    Err(e) => format!("{}: failed: {e}", s.label),
-                })
-                .collect();
-            let method = d.solver.method().name();
-            (d.profile, d.evaluation, starts, method)
-        }
-        DesignFamily::CircularCrown {
-            radius_range,
-            flat_length,
-        } => {
-            let flat = *flat_length;
-            let search = crown_search(
-                cases,
-                spec.axis(),
-                |radius| {
-                    Ok(Profile::CircularCrown {
-                        radius,
-                        flat_length: flat,
-                    })
-                },
-                radius_range.0,
-                radius_range.1,
-                &SearchOptions {
-                    method: scene.method(),
-                    options: scene.options().clone(),
-                    reference_intensities: Some(references.to_vec()),
-                    ..SearchOptions::default()
-                },
-            )
-            .map_err(fail)?;
-            let n = search.samples.len();
-            (
-                search.profile,
-                search.evaluation,
-                vec![format!("searched: {n} analyses")],
-                "search",
-            )
-        }
-        DesignFamily::LogarithmicCrown {
-            design_load,
-            flat_length,
-            end,
-        } => {
-            // Validation refuses a logarithmic crown but for a roller.
-            let (roller, length) = match (scene.hertz(*design_load), scene.points_spec()) {
-                (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => {
-                    (h, 2.0 * half_y)
-                }
-                _ => {
-                    return Err(run_error(
-                        scene,
-                        "design.family: a logarithmic crown needs a cylinder on a rectangle grid",
-                    ));
-                }
-            };
-            let profile = Profile::LogarithmicCrown(LogCrown {
-                design_load: *design_load,
-                length,
-                combined_modulus: roller.combined_modulus,
-                radius: roller.radius,
-                flat_length: *flat_length,
-                end: *end,
-            });
-            let after = evaluate(
-                cases,
-                spec.axis(),
-                &profile,
-                scene.method(),
-                scene.options(),
-            )
-            .map_err(fail)?;
-            (
-                profile,
-                after,
-                vec![format!(
-                    "set from the design load ({})",
-                    match end {
-                        LogEnd::JohnsGohar => "Johns-Gohar",
-                        LogEnd::Lundberg => "Lundberg",
-                    }
-                )],
-                "set",
-            )
-        }
-    })
-}
-
-fn family_name(f: &DesignFamily) -> String {
-    match f {
-        DesignFamily::Linear(elcon_design::Family::Quadratic) => "quadratic".into(),
-        DesignFamily::Linear(elcon_design::Family::Polynomial { degree }) => {
-            format!("polynomial (degree {degree})")
-        }
-        DesignFamily::Linear(elcon_design::Family::Free) => "free".into(),
-        DesignFamily::CircularCrown { .. } => "circular-crown".into(),
-        DesignFamily::LogarithmicCrown { .. } => "logarithmic-crown".into(),
-    }
-}
-
-fn parameters(p: &Profile) -> std::collections::BTreeMap<String, f64> {
-    let list: Vec<(String, f64)> = match p {
-        Profile::Quadratic { a, b, c } => {
-            vec![("a".into(), *a), ("b".into(), *b), ("c".into(), *c)]
-        }
-        Profile::Polynomial { coefficients } => coefficients
-            .iter()
-            .enumerate()
-            .map(|(i, c)| (format!("c{i}"), *c))
-            .collect(),
-        Profile::CircularCrown {
-            radius,
-            flat_length,
-        } => {
-            vec![
-                ("radius".into(), *radius),
-                ("flat_length".into(), *flat_length),
-            ]
-        }
-        Profile::LogarithmicCrown(c) => vec![
-            ("design_load".into(), c.design_load),
-            ("end_drop".into(), c.end_drop()),
-            ("flat_length".into(), c.flat_length),
-        ],
-        Profile::Free { drops, .. } => {
-            vec![("max_drop".into(), drops.iter().cloned().fold(0.0, f64::max))]
-        }
-    };
-    list.into_iter().collect()
+    let outcome = spec
+        .request(Some(references.to_vec()), scene.method(), scene.options())
+        .run(cases)
+        .map_err(|e| run_error(scene, e))?;
+    let starts = outcome.found.starts();
+    Ok((
+        outcome.profile,
+        outcome.evaluation,
+        starts,
+        outcome.found.method(),
+    ))
 }

@@ -3,8 +3,9 @@
 //! linear family's problem is solved, checked against the scene's bodies,
 //! grid and surfaces (elcon-design).
 
-use elcon_analysis::{Geometry, Loading, Normal};
-use elcon_design::{Axis, DesignMethod, Family, LogEnd};
+use elcon_analysis::{Geometry, Loading, Method, Normal, Options};
+pub use elcon_design::DesignFamily;
+use elcon_design::{Axis, DesignMethod, DesignRequest, Family, LogEnd, Roller};
 use elcon_influence::Dimension;
 use toml::Spanned;
 
@@ -15,29 +16,6 @@ use crate::ctx::Ctx;
 use crate::error::SceneError;
 pub use crate::schema::RelativeTo;
 use crate::schema::{AxisName, DesignMethodName, DesignToml, EndName, FamilyName};
-
-/// The profile family of a design section.
-#[derive(Debug, Clone, PartialEq)]
-pub enum DesignFamily {
-    /// A family linear in its parameters (quadratic, polynomial, free).
-    Linear(Family),
-    /// A circular crown, its radius searched in `radius_range`.
-    CircularCrown {
-        /// The search bracket (length).
-        radius_range: (f64, f64),
-        /// Flat middle (length).
-        flat_length: f64,
-    },
-    /// A logarithmic crown (Johns-Gohar) for `design_load`.
-    LogarithmicCrown {
-        /// The design load (force; default the largest load).
-        design_load: f64,
-        /// Flat middle (length).
-        flat_length: f64,
-        /// Lundberg's end, or Johns & Gohar's finite end drop (the default).
-        end: LogEnd,
-    },
-}
 
 /// A validated `[design]` section.
 #[derive(Debug, Clone, PartialEq)]
@@ -96,6 +74,26 @@ impl DesignSpec {
     /// Misalignments (rad); empty: the loads alone.
     pub fn misalignments(&self) -> &[f64] {
         &self.misalignments
+    }
+
+    /// The request elcon-design runs: the family, axis, method and bound
+    /// of this section, the cases measured against `references` (one per
+    /// case; none: the worst p_max itself), analysed by `reanalysis` with
+    /// `options`.
+    pub fn request(
+        &self,
+        references: Option<Vec<f64>>,
+        reanalysis: Method,
+        options: &Options,
+    ) -> DesignRequest {
+        DesignRequest {
+            method: self.method,
+            max_constant: self.max_constant,
+            reference_intensities: references,
+            reanalysis,
+            reanalysis_options: options.clone(),
+            ..DesignRequest::new(self.family.clone(), self.axis)
+        }
     }
 
     /// The design's load cases: each load at each misalignment (or alone).
@@ -314,12 +312,15 @@ fn design_family(
             };
             // Its radius, modulus and length are those of the roller's
             // Hertz line contact.
-            let roller = matches!(points_spec, PointsSpec::Rectangle { .. })
-                && matches!(
-                    hertz(bodies, geometry, points_spec, q),
-                    Some(Hertz::Cylinders(_))
-                );
-            if !roller {
+            let roller = match (hertz(bodies, geometry, points_spec, q), points_spec) {
+                (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => Some(Roller {
+                    combined_modulus: h.combined_modulus,
+                    radius: h.radius,
+                    length: 2.0 * half_y,
+                }),
+                _ => None,
+            };
+            let Some(roller) = roller else {
                 return Err(ctx.invalid(
                     t.family.span(),
                     "design.family",
@@ -327,11 +328,12 @@ fn design_family(
                     "a logarithmic crown is for a roller: half-space bodies on a rectangle grid, \
                      a cylinder (axis along y) on a plane or a cylinder",
                 ));
-            }
+            };
             DesignFamily::LogarithmicCrown {
                 design_load: q,
                 flat_length: flat,
                 end: log_end(t),
+                roller,
             }
         }
     })

@@ -1,0 +1,274 @@
+//! A design as asked for, whoever asks (a scene, Python, a Rust caller):
+//! the family with its own parameters, the axis along which the profile
+//! runs, how a linear family's min-max problem is solved, and how each
+//! load case's worst intensity is measured. [`DesignRequest::run`] is the
+//! one dispatch over the families:
+//!
+//! | family | how the correction is found |
+//! |---|---|
+//! | [`Family`] (quadratic, polynomial, free) | designed: the min-max problem `min_theta max_l max_k F_lk(theta) / (r_l A_k)` ([`design`]) |
+//! | [`DesignFamily::CircularCrown`] | searched: the crown radius of least worst `p_max_l / r_l` ([`crown_search`]) |
+//! | [`DesignFamily::LogarithmicCrown`] | set: Johns & Gohar's (or Lundberg's) crown for the design load, from the roller's Hertz line contact |
+//!
+//! Every outcome is re-analysed under every case with elcon-analysis and
+//! certified.
+
+use elcon_analysis::{ContactProblem, Method, Options};
+
+use crate::crown::{SearchOptions, crown_search};
+use crate::evaluate::{Evaluation, evaluate};
+use crate::optimize::{StartOutcome, design};
+use crate::{Axis, DesignError, DesignMethod, DesignOptions, Family, LogCrown, LogEnd, Profile};
+
+/// The roller a logarithmic crown is set for: its Hertz line contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Roller {
+    /// The combined modulus E* of the two bodies (stress).
+    pub combined_modulus: f64,
+    /// The roller's radius, combined with its race's (length).
+    pub radius: f64,
+    /// The roller's effective length (length).
+    pub length: f64,
+}
+
+/// The family of a design, with its own parameters.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum DesignFamily {
+    /// A family linear in its parameters (quadratic, polynomial, free):
+    /// designed.
+    Linear(Family),
+    /// A circular crown, its radius searched in `radius_range`.
+    CircularCrown {
+        /// The search bracket (length).
+        radius_range: (f64, f64),
+        /// Flat middle (length).
+        flat_length: f64,
+    },
+    /// A logarithmic crown for `design_load`, set in closed form.
+    LogarithmicCrown {
+        /// The design load (force).
+        design_load: f64,
+        /// Flat middle (length).
+        flat_length: f64,
+        /// Lundberg's end, or Johns & Gohar's finite end drop.
+        end: LogEnd,
+        /// The roller's Hertz line contact.
+        roller: Roller,
+    },
+}
+
+impl DesignFamily {
+    /// Its name as a scene writes it: "quadratic", "polynomial (degree d)",
+    /// "free", "circular-crown", "logarithmic-crown".
+    pub fn describe(&self) -> String {
+        match self {
+            DesignFamily::Linear(Family::Quadratic) => "quadratic".into(),
+            DesignFamily::Linear(Family::Polynomial { degree }) => {
+                format!("polynomial (degree {degree})")
+            }
+            DesignFamily::Linear(Family::Free) => "free".into(),
+            DesignFamily::CircularCrown { .. } => "circular-crown".into(),
+            DesignFamily::LogarithmicCrown { .. } => "logarithmic-crown".into(),
+        }
+    }
+}
+
+/// A design asked for: see the [module documentation](self).
+#[derive(Debug, Clone)]
+pub struct DesignRequest {
+    /// The family and its parameters.
+    pub family: DesignFamily,
+    /// The axial coordinate the profile runs along.
+    pub axis: Axis,
+    /// How a linear family's min-max problem is solved (ignored by the
+    /// crowns).
+    pub method: DesignMethod,
+    /// The bound c_max on a polynomial family's constant (length); default
+    /// as [`DesignOptions::max_constant`].
+    pub max_constant: Option<f64>,
+    /// Reference intensities r_l, one per case (default all 1: the worst
+    /// p_max itself).
+    pub reference_intensities: Option<Vec<f64>>,
+    /// The method every case is analysed by.
+    pub reanalysis: Method,
+    /// The options of those analyses.
+    pub reanalysis_options: Options,
+}
+
+impl DesignRequest {
+    /// A request for `family` along `axis`, every other setting its default
+    /// (the method `auto`, the cases analysed by block pivoting).
+    pub fn new(family: DesignFamily, axis: Axis) -> Self {
+        Self {
+            family,
+            axis,
+            method: DesignMethod::Auto,
+            max_constant: None,
+            reference_intensities: None,
+            reanalysis: Method::BlockPivoting,
+            reanalysis_options: Options::default(),
+        }
+    }
+
+    /// The correction over `cases` (each under a load), found as its
+    /// family is, with its certified analysis of every case.
+    ///
+    /// # Errors
+    /// As [`design`], [`crown_search`] and [`evaluate`] for the family.
+    pub fn run(&self, cases: &[ContactProblem]) -> Result<Outcome, DesignError> {
+        match &self.family {
+            DesignFamily::Linear(family) => self.designed(cases, *family),
+            DesignFamily::CircularCrown {
+                radius_range,
+                flat_length,
+            } => self.searched(cases, *radius_range, *flat_length),
+            DesignFamily::LogarithmicCrown {
+                design_load,
+                flat_length,
+                end,
+                roller,
+            } => {
+                let profile = Profile::LogarithmicCrown(LogCrown {
+                    design_load: *design_load,
+                    length: roller.length,
+                    combined_modulus: roller.combined_modulus,
+                    radius: roller.radius,
+                    flat_length: *flat_length,
+                    end: *end,
+                });
+                let evaluation = evaluate(
+                    cases,
+                    self.axis,
+                    &profile,
+                    self.reanalysis,
+                    &self.reanalysis_options,
+                )?;
+                Ok(Outcome {
+                    profile,
+                    evaluation,
+                    found: Found::Set { end: *end },
+                })
+            }
+        }
+    }
+
+    fn designed(&self, cases: &[ContactProblem], family: Family) -> Result<Outcome, DesignError> {
+        let options = DesignOptions {
+            method: self.method,
+            max_constant: self.max_constant,
+            reanalysis: self.reanalysis,
+            reanalysis_options: self.reanalysis_options.clone(),
+            reference_intensities: self.reference_intensities.clone(),
+            ..DesignOptions::default()
+        };
+        let d = design(cases, self.axis, family, &options)?;
+        Ok(Outcome {
+            profile: d.profile,
+            evaluation: d.evaluation,
+            found: Found::Designed {
+                method: d.solver.method(),
+                starts: d.starts,
+            },
+        })
+    }
+
+    fn searched(
+        &self,
+        cases: &[ContactProblem],
+        (low, high): (f64, f64),
+        flat_length: f64,
+    ) -> Result<Outcome, DesignError> {
+        let search = crown_search(
+            cases,
+            self.axis,
+            |radius| {
+                Ok(Profile::CircularCrown {
+                    radius,
+                    flat_length,
+                })
+            },
+            low,
+            high,
+            &SearchOptions {
+                method: self.reanalysis,
+                options: self.reanalysis_options.clone(),
+                reference_intensities: self.reference_intensities.clone(),
+                ..SearchOptions::default()
+            },
+        )?;
+        Ok(Outcome {
+            profile: search.profile,
+            evaluation: search.evaluation,
+            found: Found::Searched {
+                analyses: search.samples.len(),
+            },
+        })
+    }
+}
+
+/// How a request's correction was found.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub enum Found {
+    /// Designed by a linear family's method, from several starts.
+    Designed {
+        /// The method that ran (the program or the descent).
+        method: DesignMethod,
+        /// Every start and where it ended.
+        starts: Vec<StartOutcome>,
+    },
+    /// A circular crown's radius searched.
+    Searched {
+        /// The analyses the search made.
+        analyses: usize,
+    },
+    /// A logarithmic crown set in closed form.
+    Set {
+        /// Its end.
+        end: LogEnd,
+    },
+}
+
+impl Found {
+    /// The method's name: "program", "descent", "search" or "set".
+    pub fn method(&self) -> &'static str {
+        match self {
+            Found::Designed { method, .. } => method.name(),
+            Found::Searched { .. } => "search",
+            Found::Set { .. } => "set",
+        }
+    }
+
+    /// One line per start (designed), or how the crown was found.
+    pub fn starts(&self) -> Vec<String> {
+        match self {
+            Found::Designed { starts, .. } => starts
+                .iter()
+                .map(|s| match &s.result {
+                    Ok(v) => format!("{}: objective {v:.6e} ({} pivots)", s.label, s.pivots),
+                    Err(e) => format!("{}: failed: {e}", s.label),
+                })
+                .collect(),
+            Found::Searched { analyses } => vec![format!("searched: {analyses} analyses")],
+            Found::Set { end } => vec![format!(
+                "set from the design load ({})",
+                match end {
+                    LogEnd::JohnsGohar => "Johns-Gohar",
+                    LogEnd::Lundberg => "Lundberg",
+                }
+            )],
+        }
+    }
+}
+
+/// A request's correction with its certified analysis of every case.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The correction.
+    pub profile: Profile,
+    /// Every case analysed with it.
+    pub evaluation: Evaluation,
+    /// How it was found.
+    pub found: Found,
+}
