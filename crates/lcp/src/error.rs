@@ -2,7 +2,6 @@
 //! what the caller can do about it.
 
 use crate::certificate::Certificate;
-use crate::linalg::AllocationFailed;
 
 /// Everything that can stop a solve of the engine.
 ///
@@ -184,10 +183,4 @@ pub enum LcpError {
         /// The size asked for (saturated at usize::MAX on overflow).
         bytes: usize,
     },
-}
-
-impl From<AllocationFailed> for LcpError {
-    fn from(AllocationFailed { what, bytes }: AllocationFailed) -> Self {
-        LcpError::AllocationFailed { what, bytes }
-    }
 }

@@ -74,6 +74,7 @@
 //! ```
 
 mod certificate;
+mod certify;
 mod error;
 mod linalg;
 mod methods;

@@ -38,7 +38,6 @@ use std::cell::OnceCell;
 use faer::{Col, ColRef, Mat, MatRef};
 
 use crate::LcpError;
-use crate::certificate::{Certificate, MixedData};
 use crate::linalg::{asymmetry, first_non_finite};
 use crate::tolerance::BORDER_RANK;
 
@@ -435,58 +434,6 @@ impl<'a> Problem<'a> {
     pub fn free_square(&self) -> bool {
         self.mixed.extras() == self.mixed.equalities()
             && self.mixed.bounds.iter().all(|b| *b == Bound::Free)
-    }
-}
-
-impl MixedRef<'_> {
-    /// The certificate of `(z, u)` and `w = M z + B u + q`.
-    pub(crate) fn certify(
-        &self,
-        z: ColRef<'_, f64>,
-        u: ColRef<'_, f64>,
-        tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
-        let nonneg: Vec<bool> = self
-            .bounds
-            .iter()
-            .map(|b| *b == Bound::NonNegative)
-            .collect();
-        let data = MixedData {
-            m: self.m,
-            b: self.b,
-            q: self.q,
-            c: self.c,
-            d: self.d,
-            r: self.r,
-        };
-        Certificate::mixed(&data, &nonneg, z, u, tolerance)
-    }
-}
-
-impl BorderedLcpRef<'_> {
-    /// The certificate of a candidate `(z, λ)` against this problem's data,
-    /// with `w = M z - B λ + q`.
-    pub fn certify(
-        &self,
-        z: ColRef<'_, f64>,
-        lambda: ColRef<'_, f64>,
-        tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
-        let parts = MixedBorder::of(self);
-        parts.view(self).certify(z, lambda, tolerance)
-    }
-}
-
-impl MixedLcp {
-    /// The certificate of a candidate `(z, u)` against this problem's data,
-    /// with `w = M z + B u + q`.
-    pub fn certify(
-        &self,
-        z: ColRef<'_, f64>,
-        u: ColRef<'_, f64>,
-        tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
-        self.view().certify(z, u, tolerance)
     }
 }
 

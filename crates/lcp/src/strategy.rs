@@ -32,8 +32,6 @@ use faer::Col;
 
 use crate::LcpError;
 use crate::certificate::Certificate;
-use crate::certificate::Residuals;
-use crate::linalg;
 use crate::methods::{
     Answer, Failure, NotApplicable, block, conjugate_gradient, lemke_general, lemke_symmetric,
     restricted_general, restricted_symmetric,
@@ -224,54 +222,9 @@ impl Routed for OperatorLcp<'_> {
         })
     }
 
-    /// The certificate from products of the original operator:
-    /// `w = M z - B λ + q` and `|M| z + |B| |λ| + |q|`, `B^T z - b` and
-    /// `|B|^T z + |b|`.
     fn certify(&self, solved: &mut Solved, tolerance: f64) -> Certificate {
-        let (z, lambda) = (&solved.answer.z, &solved.answer.u);
-        let n = z.nrows();
-        // Two vectors of n, computed in place: at 10^6 points each is 8 MB.
-        let z_slice = z
-            .try_as_col_major()
-            .expect("an owned column is contiguous")
-            .as_slice();
-        let mut w = Col::<f64>::zeros(n);
-        let mut w_terms = Col::<f64>::zeros(n);
-        let w_out = w.try_as_col_major_mut().expect("contiguous").as_slice_mut();
-        self.operator.apply(z_slice, w_out);
-        let terms_out = w_terms
-            .try_as_col_major_mut()
-            .expect("contiguous")
-            .as_slice_mut();
-        if z_slice.iter().all(|&v| v >= 0.0) {
-            self.operator.apply_abs(z_slice, terms_out);
-        } else {
-            let z_abs: Vec<f64> = z_slice.iter().map(|v| v.abs()).collect();
-            self.operator.apply_abs(&z_abs, terms_out);
-        }
-        // w = M z - B λ + q and its terms |M| |z| + |B| |λ| + |q|.
-        linalg::sub_matvec(w.as_mut(), self.border, lambda.as_ref());
-        linalg::add_abs_matvec(w_terms.as_mut(), self.border, lambda.as_ref());
-        for i in 0..n {
-            w[i] += self.q[i];
-            w_terms[i] += self.q[i].abs();
-        }
-        let equality = linalg::matvec(self.border.transpose(), z.as_ref()) - self.resultant;
-        let mut equality_terms = self.resultant.map(|v| v.abs());
-        linalg::add_abs_matvec(equality_terms.as_mut(), self.border.transpose(), z.as_ref());
-        let nonneg = vec![false; lambda.nrows()];
-        let certificate = Certificate::from_residuals(
-            &Residuals {
-                z: z.as_ref(),
-                u: lambda.as_ref(),
-                nonneg_u: &nonneg,
-                w: w.as_ref(),
-                w_terms: w_terms.as_ref(),
-                equality: equality.as_ref(),
-                equality_terms: equality_terms.as_ref(),
-            },
-            tolerance,
-        );
+        let (certificate, w) =
+            OperatorLcp::certify(self, &solved.answer.z, &solved.answer.u, tolerance);
         solved.w = w;
         certificate
     }
