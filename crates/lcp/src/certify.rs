@@ -145,16 +145,16 @@ impl OperatorLcp<'_> {
         let mut w = Col::<f64>::zeros(n);
         let mut w_terms = Col::<f64>::zeros(n);
         let w_out = w.try_as_col_major_mut().expect("contiguous").as_slice_mut();
-        self.operator.apply(z_slice, w_out);
+        self.m.apply(z_slice, w_out);
         let terms_out = w_terms
             .try_as_col_major_mut()
             .expect("contiguous")
             .as_slice_mut();
         if z_slice.iter().all(|&v| v >= 0.0) {
-            self.operator.apply_abs(z_slice, terms_out);
+            self.m.apply_abs(z_slice, terms_out);
         } else {
             let z_abs: Vec<f64> = z_slice.iter().map(|v| v.abs()).collect();
-            self.operator.apply_abs(&z_abs, terms_out);
+            self.m.apply_abs(&z_abs, terms_out);
         }
         // w = M z - B λ + q and its terms |M| |z| + |B| |λ| + |q|.
         linalg::sub_matvec(w.as_mut(), self.border, lambda.as_ref());

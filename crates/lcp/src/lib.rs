@@ -93,7 +93,7 @@ pub use error::LcpError;
 pub use linalg::condition_estimate;
 pub use operator::{Operator, OperatorLcp};
 pub use options::{Method, Options, Tableau};
-pub use problem::{BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedLcp, MixedLcpParts};
+pub use problem::{Bordered, BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedLcp, MixedLcpParts};
 pub use program::{ComplementaryProgram, ProgramBuilder};
 pub use solution::{LcpSolution, ProgramSolution};
 pub use statistics::{Attempt, Breakdown, Outcome, Reason, Statistics, Work};

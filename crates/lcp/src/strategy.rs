@@ -209,13 +209,7 @@ impl Routed for OperatorLcp<'_> {
     type Answer = Solved;
 
     fn attempt(&self, _kind: Kind, options: &Options, _relaxed: bool) -> Result<Solved, Failure> {
-        let form = conjugate_gradient::Form {
-            operator: self.operator,
-            q: self.q,
-            border: self.border,
-            resultant: self.resultant,
-        };
-        let answer = conjugate_gradient::attempt(&form, options)?;
+        let answer = conjugate_gradient::attempt(self, options)?;
         Ok(Solved {
             answer,
             w: Col::zeros(0),

@@ -36,23 +36,18 @@ use faer::{Col, ColMut, ColRef, Mat, MatRef, Side};
 use crate::LcpError;
 use crate::linalg;
 use crate::methods::{Answer, Attempted, Failure, NotApplicable};
-use crate::operator::Operator;
+use crate::operator::OperatorLcp;
 use crate::options::Options;
-use crate::problem::Problem;
+use crate::problem::{Bordered, Problem};
 use crate::statistics::{Breakdown, Work};
 use crate::tolerance::{
     ARMIJO, EQUALITY_CORRECTIONS, ITERATIVE_STOP, RESTORE_STEPS, RIDGE, ROUNDING_FLOOR,
     ROWS_RESTORED, ROWS_STALLED, STALL_WINDOW, STALLED_STOP,
 };
 
-/// A bordered LCP as the method reads it: `M` by its products.
-#[derive(Clone, Copy)]
-pub(crate) struct Form<'a> {
-    pub operator: &'a dyn Operator,
-    pub q: ColRef<'a, f64>,
-    pub border: MatRef<'a, f64>,
-    pub resultant: ColRef<'a, f64>,
-}
+/// A bordered LCP as the method reads it: `M` by its products (a dense
+/// problem's `M` as the operator of its products).
+type Form<'a> = OperatorLcp<'a>;
 
 /// The method applies to a dense problem with a border (or none) and a
 /// symmetric `M` with a positive diagonal.
@@ -67,8 +62,8 @@ pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotAppli
             "M must be symmetric with a positive diagonal (positive definite); use Lemke's method",
         ));
     }
-    Ok(Form {
-        operator: &problem.mixed.m,
+    Ok(Bordered {
+        m: &problem.mixed.m,
         q: problem.mixed.q,
         border: border.columns,
         resultant: border.resultant,
@@ -185,7 +180,7 @@ fn start(form: &Form<'_>, options: &Options) -> Result<Option<Vec<f64>>, Breakdo
             let mut e = vec![0.0; n];
             let mut column = vec![0.0; n];
             e[j] = 1.0;
-            form.operator.apply(&e, &mut column);
+            form.m.apply(&e, &mut column);
             let d = column[j];
             if !(d > 0.0 && d.is_finite()) {
                 return Err(Breakdown::NotPositiveDefinite);
@@ -208,7 +203,7 @@ fn start(form: &Form<'_>, options: &Options) -> Result<Option<Vec<f64>>, Breakdo
 /// `g = M z + q`, `λ` fitted on the contact set, `w = g - B λ` (`g` held
 /// in `w` until `λ` is known).
 fn residual(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
-    form.operator.apply(&s.z, &mut s.w);
+    form.m.apply(&s.z, &mut s.w);
     for (g, q) in s.w.iter_mut().zip(form.q.iter()) {
         *g += q;
     }
@@ -298,7 +293,7 @@ fn step(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
             }
         }
     }
-    form.operator.apply(&s.t, &mut s.w);
+    form.m.apply(&s.t, &mut s.w);
     let product = &s.w;
     let den: f64 = (0..n)
         .filter(|&i| s.z[i] > 0.0)
