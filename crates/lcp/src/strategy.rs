@@ -112,8 +112,10 @@ trait Routed {
     fn work(answer: &Self::Answer) -> Work;
 
     /// Whether an attempt that stalled in phase 1 may be repeated with the
-    /// extra unknowns free.
-    fn relaxable(&self) -> bool;
+    /// extra unknowns free (only a mixed form's non-negative ones).
+    fn relaxable(&self) -> bool {
+        false
+    }
 
     /// Number of unknowns (for error messages).
     fn size(&self) -> usize;
@@ -123,6 +125,36 @@ trait Routed {
 struct Solved {
     answer: Answer,
     w: Col<f64>,
+}
+
+impl From<Answer> for Solved {
+    fn from(answer: Answer) -> Self {
+        Self {
+            answer,
+            w: Col::zeros(0),
+        }
+    }
+}
+
+impl Solved {
+    /// Keeps `w` of a certificate's `(certificate, w)`; returns the certificate.
+    fn keep_w(&mut self, (certificate, w): (Certificate, Col<f64>)) -> Certificate {
+        self.w = w;
+        certificate
+    }
+
+    /// The solution: this answer with its certificate and statistics.
+    fn solution(self, certificate: Certificate, statistics: Statistics) -> LcpSolution {
+        let Solved { answer, w } = self;
+        LcpSolution {
+            z: answer.z,
+            w,
+            u: answer.u,
+            basic: answer.basic,
+            certificate,
+            statistics,
+        }
+    }
 }
 
 impl Routed for Problem<'_> {
@@ -145,21 +177,13 @@ impl Routed for Problem<'_> {
                     Work::default(),
                 )),
             },
-        }?;
-        Ok(Solved {
-            answer,
-            w: Col::zeros(0),
-        })
+        };
+        answer.map(Solved::from)
     }
 
     fn certify(&self, solved: &mut Solved, tolerance: f64) -> Certificate {
-        let (certificate, w) = self.mixed.certify(
-            solved.answer.z.as_ref(),
-            solved.answer.u.as_ref(),
-            tolerance,
-        );
-        solved.w = w;
-        certificate
+        let (z, u) = (solved.answer.z.as_ref(), solved.answer.u.as_ref());
+        solved.keep_w(self.mixed.certify(z, u, tolerance))
     }
 
     fn work(solved: &Solved) -> Work {
@@ -196,10 +220,6 @@ impl Routed for ComplementaryProgram {
         answer.work
     }
 
-    fn relaxable(&self) -> bool {
-        false
-    }
-
     fn size(&self) -> usize {
         self.rows()
     }
@@ -209,26 +229,16 @@ impl Routed for OperatorLcp<'_> {
     type Answer = Solved;
 
     fn attempt(&self, _kind: Kind, options: &Options, _relaxed: bool) -> Result<Solved, Failure> {
-        let answer = conjugate_gradient::attempt(self, options)?;
-        Ok(Solved {
-            answer,
-            w: Col::zeros(0),
-        })
+        conjugate_gradient::attempt(self, options).map(Solved::from)
     }
 
     fn certify(&self, solved: &mut Solved, tolerance: f64) -> Certificate {
-        let (certificate, w) =
-            OperatorLcp::certify(self, &solved.answer.z, &solved.answer.u, tolerance);
-        solved.w = w;
-        certificate
+        let (z, lambda) = (&solved.answer.z, &solved.answer.u);
+        solved.keep_w(OperatorLcp::certify(self, z, lambda, tolerance))
     }
 
     fn work(solved: &Solved) -> Work {
         solved.answer.work
-    }
-
-    fn relaxable(&self) -> bool {
-        false
     }
 
     fn size(&self) -> usize {
@@ -517,15 +527,7 @@ fn solve_problem(
     options.validate(lemke_general::split_size(&problem.mixed))?;
     let route = route(problem, method, options)?;
     let (solved, certificate, statistics) = solve_routed(problem, method, &route, options)?;
-    let Solved { answer, w } = solved;
-    Ok(LcpSolution {
-        z: answer.z,
-        w,
-        u: answer.u,
-        basic: answer.basic,
-        certificate,
-        statistics,
-    })
+    Ok(solved.solution(certificate, statistics))
 }
 
 impl BorderedLcpRef<'_> {
@@ -578,15 +580,7 @@ impl OperatorLcp<'_> {
         }
         let route = [Kind::ConjugateGradient];
         let (solved, certificate, statistics) = solve_routed(self, method, &route, options)?;
-        let Solved { answer, w } = solved;
-        Ok(LcpSolution {
-            z: answer.z,
-            w,
-            u: answer.u,
-            basic: answer.basic,
-            certificate,
-            statistics,
-        })
+        Ok(solved.solution(certificate, statistics))
     }
 }
 
