@@ -10,6 +10,20 @@ fn message(e: LcpError) -> String {
     e.to_string()
 }
 
+/// The mixed form `w = z - u`, `z = 1`, with `u` bounded by `bound`.
+fn one_pair(bound: Bound) -> MixedLcp {
+    MixedLcp::new(MixedLcpParts {
+        m: Mat::identity(1, 1),
+        b: mat![[-1.0]],
+        q: col![0.0],
+        c: mat![[1.0]],
+        d: Mat::zeros(1, 1),
+        r: col![-1.0],
+        bounds: vec![bound],
+    })
+    .unwrap()
+}
+
 #[test]
 fn dimension_mismatch_names_the_field() {
     let e = Lcp::new(Mat::zeros(2, 3), Col::zeros(2)).unwrap_err();
@@ -124,16 +138,7 @@ fn an_explicit_tableau_that_cannot_finish_is_an_error() {
         ),
     );
     // A mixed form has no symmetric tableau at all.
-    let mixed = MixedLcp::new(MixedLcpParts {
-        m: Mat::identity(1, 1),
-        b: mat![[-1.0]],
-        q: col![0.0],
-        c: mat![[1.0]],
-        d: Mat::zeros(1, 1),
-        r: col![-1.0],
-        bounds: vec![Bound::Free],
-    })
-    .unwrap();
+    let mixed = one_pair(Bound::Free);
     let e = mixed.solve(Method::Lemke, &opts).unwrap_err();
     assert!(matches!(e, LcpError::Unsupported { .. }));
     assert!(message(e).contains("the symmetric tableau takes a standard or bordered LCP"));
@@ -151,16 +156,7 @@ fn an_explicit_tableau_that_cannot_finish_is_an_error() {
 #[test]
 fn unsupported_forms() {
     // Non-negative extra unknown: not an LCP for Lemke or block pivoting.
-    let p = MixedLcp::new(MixedLcpParts {
-        m: Mat::identity(1, 1),
-        b: mat![[-1.0]],
-        q: col![0.0],
-        c: mat![[1.0]],
-        d: Mat::zeros(1, 1),
-        r: col![-1.0],
-        bounds: vec![Bound::NonNegative],
-    })
-    .unwrap();
+    let p = one_pair(Bound::NonNegative);
     for method in [Method::Lemke, Method::BlockPivoting] {
         let e = p.solve(method, &Options::default()).unwrap_err();
         assert!(matches!(e, LcpError::Unsupported { .. }), "{method}");
