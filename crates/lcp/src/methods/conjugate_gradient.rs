@@ -106,27 +106,13 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
         z,
     };
     let cap = options.iteration_cap();
-    let target = ITERATIVE_STOP * options.tolerances.certificate;
-    let (mut checkpoint, mut stalled) = (f64::INFINITY, false);
-    // The rounding floor of sums of n terms (a few eps sqrt(n)): only there
-    // is a stall the arithmetic's, not a slow convergence.
-    let floor = ROUNDING_FLOOR * f64::EPSILON * (n as f64).sqrt();
+    let mut progress = Progress::new(options.tolerances.certificate, n);
     loop {
         if let Err(b) = residual(form, &mut state) {
             return Err(Failure::new(b, work));
         }
         let c = converged(form, &state);
-        // At the rounding floor of very large sums the residuals creep
-        // down for hundreds of iterations: below the stalled target and
-        // no longer halving over a window, the iterate is as good as the
-        // arithmetic allows.
-        if work.iterations % STALL_WINDOW == 0 {
-            stalled = c <= STALLED_STOP * options.tolerances.certificate
-                && c <= floor
-                && c > 0.5 * checkpoint;
-            checkpoint = c;
-        }
-        if c <= target || stalled || work.iterations >= cap {
+        if progress.done(work.iterations, c) || work.iterations >= cap {
             // The answer copies z: free the other vectors first.
             let State {
                 z, lambda, w, t, ..
@@ -271,10 +257,7 @@ fn step(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
     let n = s.z.len();
     // The contact set J = {z_i > 0}: read from z, which the loops below
     // change only at the entry they are visiting.
-    let g_now: f64 = (0..n)
-        .filter(|&i| s.z[i] > 0.0)
-        .map(|i| s.w[i] * s.w[i])
-        .sum();
+    let g_now = dot_on(|i| s.z[i] > 0.0, &s.w, &s.w);
     let beta = if s.restart || s.g_old == 0.0 {
         0.0
     } else {
@@ -294,19 +277,8 @@ fn step(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
         }
     }
     form.m.apply(&s.t, &mut s.w);
-    let product = &s.w;
-    let den: f64 = (0..n)
-        .filter(|&i| s.z[i] > 0.0)
-        .map(|i| product[i] * s.t[i])
-        .sum();
-    if !(den > 0.0) && num != 0.0 {
-        return Err(if den.is_finite() {
-            Breakdown::NotPositiveDefinite
-        } else {
-            Breakdown::NonFinite
-        });
-    }
-    let tau = if num == 0.0 { 0.0 } else { num / den };
+    let den = dot_on(|i| s.z[i] > 0.0, &s.w, &s.t);
+    let tau = step_length(num, den)?;
     s.g_old = g_now;
     let mut entered = false;
     for i in 0..n {
@@ -323,6 +295,67 @@ fn step(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
     }
     s.restart = entered;
     Ok(())
+}
+
+/// When a conjugate gradient stops: its residual `c` (relative to the
+/// data's scale) at most [`ITERATIVE_STOP`] times the certificate's
+/// tolerance, or stalled: at most [`STALLED_STOP`] times the tolerance,
+/// below the rounding floor of sums of n terms, and not halved over the
+/// last [`STALL_WINDOW`] iterations (at the rounding floor of very large
+/// sums the residuals creep down for hundreds of iterations: the iterate
+/// is then as good as the arithmetic allows).
+struct Progress {
+    target: f64,
+    stalled_target: f64,
+    /// `ROUNDING_FLOOR eps sqrt(n)`: only there is a stall the
+    /// arithmetic's, not a slow convergence.
+    floor: f64,
+    /// The residual at the start of the current window.
+    checkpoint: f64,
+    stalled: bool,
+}
+
+impl Progress {
+    fn new(tolerance: f64, n: usize) -> Self {
+        Self {
+            target: ITERATIVE_STOP * tolerance,
+            stalled_target: STALLED_STOP * tolerance,
+            floor: ROUNDING_FLOOR * f64::EPSILON * (n as f64).sqrt(),
+            checkpoint: f64::INFINITY,
+            stalled: false,
+        }
+    }
+
+    /// Whether the iterate of `iteration` (counted from 0), of residual
+    /// `c`, is done: converged, or stalled (judged every window).
+    fn done(&mut self, iteration: usize, c: f64) -> bool {
+        if iteration.is_multiple_of(STALL_WINDOW) {
+            self.stalled = c <= self.stalled_target && c <= self.floor && c > 0.5 * self.checkpoint;
+            self.checkpoint = c;
+        }
+        c <= self.target || self.stalled
+    }
+}
+
+/// `Σ_{i in J} a_i b_i` over the indices `J` that `on` selects (the
+/// contact set, or every index), summed in order.
+fn dot_on(on: impl Fn(usize) -> bool, a: &[f64], b: &[f64]) -> f64 {
+    (0..a.len()).filter(|&i| on(i)).map(|i| a[i] * b[i]).sum()
+}
+
+/// The step `num / den` along a direction `p` with `den = p · M p` (on the
+/// contact set): a breakdown where `den` is not positive (`M` is not
+/// positive definite along `p`) or not finite, unless there is nothing to
+/// step (`num = 0`).
+fn step_length(num: f64, den: f64) -> Result<f64, Breakdown> {
+    if !(den > 0.0) && num != 0.0 {
+        return Err(if den.is_finite() {
+            Breakdown::NotPositiveDefinite
+        } else {
+            Breakdown::NonFinite
+        });
+    }
+    Ok(if num == 0.0 { 0.0 } else { num / den })
 }
 
 /// Restores `B^T z = b` (step 4 of the module documentation): for one row
@@ -544,4 +577,31 @@ fn fit_regularized(
     let nu = gram.llt(Side::Lower).ok()?.solve(rhs.to_owned());
     let finite = nu.iter().all(|v| v.is_finite());
     finite.then_some(nu)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_needs_a_positive_curvature() {
+        assert_eq!(step_length(2.0, 4.0), Ok(0.5));
+        assert_eq!(step_length(0.0, -1.0), Ok(0.0));
+        assert_eq!(step_length(1.0, 0.0), Err(Breakdown::NotPositiveDefinite));
+        assert_eq!(step_length(1.0, -3.0), Err(Breakdown::NotPositiveDefinite));
+        assert_eq!(step_length(1.0, f64::NAN), Err(Breakdown::NonFinite));
+    }
+
+    #[test]
+    fn progress_stops_at_the_target_or_at_a_stall_on_the_rounding_floor() {
+        let mut p = Progress::new(1e-12, 100);
+        assert!(!p.done(0, 1e-3));
+        assert!(p.done(1, 0.25e-12));
+        // A million terms: a rounding floor (8 eps sqrt(n) = 1.8e-12) above
+        // the stalled target (7.5e-13). Below that and not halved over a
+        // window: a stall.
+        let mut p = Progress::new(1e-12, 1_000_000);
+        assert!(!p.done(0, 6e-13));
+        assert!(p.done(STALL_WINDOW, 5e-13));
+    }
 }
