@@ -497,7 +497,8 @@ fn check_square(m: MatRef<'_, f64>, q: ColRef<'_, f64>) -> Result<(), LcpError> 
     check_finite_col("q", q)
 }
 
-fn check_dims(
+/// Checks that a matrix named `field` is `er` x `ec`.
+pub(crate) fn check_dims(
     field: &'static str,
     rows: usize,
     cols: usize,

@@ -25,6 +25,17 @@
 //! Programs with complementarity constraints
 //! ([`ComplementaryProgram`](crate::ComplementaryProgram)) take the route of
 //! the restricted simplex's general tableau, with the same retry.
+//!
+//! A linear system `M X = R` ([`LinearSystem`](crate::LinearSystem)) has a
+//! route of its own, with no retry:
+//!
+//! | `M` | route |
+//! |---|---|
+//! | dense | Cholesky factorization, then (where `M` is not numerically symmetric positive definite) LU factorization |
+//! | operator | conjugate gradient (no fallback: `p · M p <= 0` and its iteration cap are errors) |
+//!
+//! and its answer is certified like the others: every column's residual
+//! from products of the original data.
 
 use std::time::Instant;
 
@@ -32,15 +43,17 @@ use faer::Col;
 
 use crate::LcpError;
 use crate::certificate::Certificate;
+use crate::linear::{LinearSystem, Matrix};
 use crate::methods::{
-    Answer, Failure, NotApplicable, block, conjugate_gradient, lemke_general, lemke_symmetric,
-    restricted_general, restricted_symmetric,
+    Answer, Failure, LinearAnswer, LinearAttempted, NotApplicable, block, cholesky,
+    conjugate_gradient, lemke_general, lemke_symmetric, lu, restricted_general,
+    restricted_symmetric,
 };
 use crate::operator::OperatorLcp;
 use crate::options::{Method, Options, Tableau};
 use crate::problem::{BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedBorder, MixedLcp, Problem};
 use crate::program::ComplementaryProgram;
-use crate::solution::{LcpSolution, ProgramSolution};
+use crate::solution::{LcpSolution, LinearSolution, ProgramSolution};
 use crate::statistics::{Attempt, Breakdown, Outcome, Reason, Statistics, Work};
 
 /// One kind of attempt: a method on a tableau.
@@ -51,7 +64,11 @@ enum Kind {
     RestrictedSymmetric,
     RestrictedGeneral,
     BlockPivoting,
+    /// The constrained conjugate gradient of an LCP; a linear system's plain one.
     ConjugateGradient,
+    /// A linear system's factorizations.
+    Cholesky,
+    Lu,
 }
 
 impl Kind {
@@ -61,6 +78,8 @@ impl Kind {
             Kind::RestrictedSymmetric | Kind::RestrictedGeneral => Method::RestrictedSimplex,
             Kind::BlockPivoting => Method::BlockPivoting,
             Kind::ConjugateGradient => Method::ConjugateGradient,
+            Kind::Cholesky => Method::Cholesky,
+            Kind::Lu => Method::Lu,
         }
     }
 
@@ -68,17 +87,18 @@ impl Kind {
         match self {
             Kind::LemkeSymmetric | Kind::RestrictedSymmetric => Some(Tableau::Symmetric),
             Kind::LemkeGeneral | Kind::RestrictedGeneral => Some(Tableau::General),
-            Kind::BlockPivoting | Kind::ConjugateGradient => None,
+            Kind::BlockPivoting | Kind::ConjugateGradient | Kind::Cholesky | Kind::Lu => None,
         }
     }
 
     /// The general-tableau attempt of a method (the retry's); `None` for
-    /// the conjugate gradient, which has no tableau and no retry.
+    /// the conjugate gradient and the factorizations, which have no tableau
+    /// and no retry.
     fn general(method: Method) -> Option<Self> {
         match method {
             Method::RestrictedSimplex => Some(Kind::RestrictedGeneral),
             Method::Lemke | Method::BlockPivoting => Some(Kind::LemkeGeneral),
-            Method::ConjugateGradient => None,
+            Method::ConjugateGradient | Method::Cholesky | Method::Lu => None,
         }
     }
 
@@ -119,6 +139,12 @@ trait Routed {
 
     /// Number of unknowns (for error messages).
     fn size(&self) -> usize;
+
+    /// What to do when the route broke down without an answer or an
+    /// engine error ([`LcpError::BrokeDown`]'s advice).
+    fn advice(&self) -> &'static str {
+        "let the engine choose the tableau (`Tableau::Auto`) or use another method"
+    }
 }
 
 /// An LCP's answer with `w`, filled by its certificate.
@@ -177,6 +203,7 @@ impl Routed for Problem<'_> {
                     Work::default(),
                 )),
             },
+            Kind::Cholesky | Kind::Lu => Err(foreign(kind, LINEAR_ONLY)),
         };
         answer.map(Solved::from)
     }
@@ -246,6 +273,56 @@ impl Routed for OperatorLcp<'_> {
     }
 }
 
+impl Routed for LinearSystem<'_> {
+    type Answer = LinearAnswer;
+
+    fn attempt(&self, kind: Kind, options: &Options, _relaxed: bool) -> LinearAttempted {
+        match (kind, self.matrix) {
+            (Kind::Cholesky, Matrix::Dense(m)) => cholesky::attempt(m, self.rhs, options),
+            (Kind::Lu, Matrix::Dense(m)) => lu::attempt(m, self.rhs, options),
+            (Kind::ConjugateGradient, matrix) => {
+                conjugate_gradient::attempt_linear(matrix.operator(), self.rhs, options)
+            }
+            _ => Err(foreign(
+                kind,
+                "a linear system is solved by a factorization of its dense M or by the conjugate gradient",
+            )),
+        }
+    }
+
+    fn certify(&self, answer: &mut LinearAnswer, tolerance: f64) -> Certificate {
+        LinearSystem::certify(self, answer.x.as_ref(), tolerance)
+    }
+
+    fn work(answer: &LinearAnswer) -> Work {
+        answer.work
+    }
+
+    fn size(&self) -> usize {
+        LinearSystem::size(self)
+    }
+
+    fn advice(&self) -> &'static str {
+        "the conjugate gradient needs a symmetric positive definite M: give M densely \
+         (`LinearSystem::dense`), whose LU factorization takes any nonsingular M"
+    }
+}
+
+/// Why a factorization of a linear system does not solve a complementarity
+/// problem.
+const LINEAR_ONLY: &str = "it solves a linear system (`LinearSystem`), not a complementarity \
+     problem: use Lemke's method, the restricted-entry simplex, block pivoting or the conjugate gradient";
+
+/// The failure of an attempt of `kind` on a problem it does not solve (no
+/// route makes one; a guard).
+fn foreign(kind: Kind, reason: &str) -> Failure {
+    let error = LcpError::Unsupported {
+        method: described(kind.method()),
+        reason: reason.into(),
+    };
+    Failure::error(error, Work::default())
+}
+
 /// A method's name in an error message.
 fn described(method: Method) -> &'static str {
     match method {
@@ -253,6 +330,8 @@ fn described(method: Method) -> &'static str {
         Method::RestrictedSimplex => "the restricted-entry simplex",
         Method::BlockPivoting => "block principal pivoting",
         Method::ConjugateGradient => "the conjugate gradient",
+        Method::Cholesky => "the Cholesky factorization",
+        Method::Lu => "the LU factorization",
     }
 }
 
@@ -316,6 +395,10 @@ fn route(problem: &Problem<'_>, method: Method, options: &Options) -> Result<Vec
         Method::ConjugateGradient => conjugate_gradient::applies(problem)
             .map(|_| vec![Kind::ConjugateGradient])
             .map_err(|e| unsupported(Kind::ConjugateGradient, e)),
+        Method::Cholesky | Method::Lu => Err(LcpError::Unsupported {
+            method: described(method),
+            reason: LINEAR_ONLY.into(),
+        }),
     }
 }
 
@@ -491,6 +574,7 @@ impl<'r, R: Routed> Ladder<'r, R> {
                         Outcome::Breakdown(b) => b.to_string(),
                         other => other.to_string(),
                     }),
+                    advice: self.problem.advice(),
                 }
             })),
         }
@@ -581,6 +665,30 @@ impl OperatorLcp<'_> {
         let route = [Kind::ConjugateGradient];
         let (solved, certificate, statistics) = solve_routed(self, method, &route, options)?;
         Ok(solved.solution(certificate, statistics))
+    }
+}
+
+impl LinearSystem<'_> {
+    /// Solves `M X = R`, certified: a dense `M` by its Cholesky
+    /// factorization, and where `M` is not numerically symmetric positive
+    /// definite by an LU (a fallback in the statistics' log); an operator
+    /// by the conjugate gradient, whose
+    /// breakdown (`p · M p <= 0`: [`LcpError::BrokeDown`]) and iteration cap
+    /// ([`LcpError::IterationLimit`]) are errors. The answer's residual is
+    /// recomputed from products of the original data; one above the
+    /// certificate's tolerance is [`LcpError::Inaccurate`].
+    pub fn solve(&self, options: &Options) -> Result<LinearSolution, LcpError> {
+        options.validate(0)?;
+        let (method, route): (Method, &[Kind]) = match self.matrix {
+            Matrix::Dense(_) => (Method::Cholesky, &[Kind::Cholesky, Kind::Lu]),
+            Matrix::Operator(_) => (Method::ConjugateGradient, &[Kind::ConjugateGradient]),
+        };
+        let (answer, certificate, statistics) = solve_routed(self, method, route, options)?;
+        Ok(LinearSolution {
+            x: answer.x,
+            residual: certificate.equality,
+            statistics,
+        })
     }
 }
 
