@@ -15,8 +15,8 @@ use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::solve::solve_in_place_with_conj;
 use faer::{Conj, MatRef};
 
-use crate::linalg::{asymmetry, cholesky_lower, try_mat};
-use crate::methods::{Failure, LinearAnswer, LinearAttempted};
+use crate::linalg::{asymmetry, cholesky_lower};
+use crate::methods::{Failure, LinearAnswer, LinearAttempted, copied};
 use crate::options::Options;
 use crate::statistics::{Breakdown, Work};
 
@@ -33,14 +33,12 @@ pub(crate) fn attempt(
         return Err(Failure::new(Breakdown::NotPositiveDefinite, work));
     }
     let par = options.par(n, n);
-    let mut l = try_mat(n, n, "the Cholesky factor", |i, j| m[(i, j)])
-        .map_err(|e| Failure::error(e.into(), work))?;
+    let mut l = copied(m, "the Cholesky factor", work)?;
     work.factorizations = 1;
     if cholesky_lower(l.as_mut(), par).is_err() {
         return Err(Failure::new(Breakdown::NotPositiveDefinite, work));
     }
-    let mut x = try_mat(n, rhs.ncols(), "the solution", |i, j| rhs[(i, j)])
-        .map_err(|e| Failure::error(e.into(), work))?;
+    let mut x = copied(rhs, "the solution", work)?;
     let mut mem = MemBuffer::new(StackReq::EMPTY);
     solve_in_place_with_conj(
         l.as_ref(),

@@ -12,8 +12,8 @@
 
 use faer::MatRef;
 
-use crate::linalg::{Lu, try_mat};
-use crate::methods::{Failure, LinearAnswer, LinearAttempted};
+use crate::linalg::Lu;
+use crate::methods::{LinearAnswer, LinearAttempted, copied};
 use crate::options::Options;
 use crate::statistics::Work;
 
@@ -26,12 +26,9 @@ pub(crate) fn attempt(
 ) -> LinearAttempted {
     let n = m.nrows();
     let mut work = Work::default();
-    let copy = try_mat(n, n, "the LU factor", |i, j| m[(i, j)])
-        .map_err(|e| Failure::error(e.into(), work))?;
-    let lu = Lu::new(copy, options.par(n, n));
+    let lu = Lu::new(copied(m, "the LU factor", work)?, options.par(n, n));
     work.factorizations = 1;
-    let mut x = try_mat(n, rhs.ncols(), "the solution", |i, j| rhs[(i, j)])
-        .map_err(|e| Failure::error(e.into(), work))?;
+    let mut x = copied(rhs, "the solution", work)?;
     lu.solve_in_place(x.as_mut());
     Ok(LinearAnswer { x, work })
 }

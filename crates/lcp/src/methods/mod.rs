@@ -30,9 +30,10 @@ pub(crate) mod lu;
 pub(crate) mod restricted_general;
 pub(crate) mod restricted_symmetric;
 
-use faer::{Col, Mat};
+use faer::{Col, Mat, MatRef};
 
 use crate::LcpError;
+use crate::linalg::try_mat;
 use crate::options::Options;
 use crate::problem::Problem;
 use crate::statistics::{Breakdown, Work};
@@ -88,6 +89,17 @@ pub(crate) struct LinearAnswer {
 
 /// What an attempt on a linear system returns.
 pub(crate) type LinearAttempted = Result<LinearAnswer, Failure>;
+
+/// A copy of `a` to factor or solve in place (named `what` when it cannot
+/// be allocated, after `work`).
+pub(crate) fn copied(
+    a: MatRef<'_, f64>,
+    what: &'static str,
+    work: Work,
+) -> Result<Mat<f64>, Failure> {
+    try_mat(a.nrows(), a.ncols(), what, |i, j| a[(i, j)])
+        .map_err(|e| Failure::error(e.into(), work))
+}
 
 /// Why a method does not apply to a problem (the user's error when the
 /// method or the tableau was asked for explicitly).
