@@ -4,39 +4,15 @@
 //! broken run still writes the others; shards merge; and `run` agrees with
 //! the library bit for bit.
 
+mod common;
+#[path = "../crates/analysis/tests/common/scenes.rs"]
+mod scenes;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface};
-use elcon::influence::{Body, Material, PointSet};
-
-fn elcon(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_elcon"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the elcon binary runs")
-}
-
-/// A fresh directory for one test's files.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("elcon-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
-
-fn json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
+use common::{edited, elcon, example_scene, json, scratch, text};
+use elcon::analysis::{ContactProblem, Loading, Method, Options};
+use elcon::influence::PointSet;
 
 /// The fields docs/results.md documents for every result.json.
 const FIELDS: [&str; 16] = [
@@ -174,13 +150,12 @@ fn every_example_scene_runs_and_writes_the_documented_fields() {
 
 /// Writes a scene derived from example1-spheres.toml with one line replaced.
 fn broken(dir: &Path, name: &str, from: &str, to: &str) -> PathBuf {
-    let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/example1-spheres.toml"),
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(
+        &path,
+        edited(&example_scene("example1-spheres"), &[(from, to)]),
     )
     .unwrap();
-    assert!(base.contains(from), "the base scene has `{from}`");
-    let path = dir.join(format!("{name}.toml"));
-    std::fs::write(&path, base.replacen(from, to, 1)).unwrap();
     path
 }
 
@@ -423,20 +398,9 @@ fn the_command_line_and_the_library_agree_bit_for_bit() {
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let r = json(&out.join("example1-spheres/result.json"));
     // The same scene through the library: Love patches, 41 across, zone 1.15.
-    let steel = Material::new(30e6, 0.3).unwrap();
-    let hertz = elcon::analysis::references::HertzSpheres::new(
-        elcon::influence::combined_modulus(&steel, &steel),
-        elcon::analysis::references::combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .unwrap();
-    let a = hertz.contact_radius();
+    let a = scenes::example1_hertz().contact_radius();
     let points = PointSet::grid_disk(2.0 * a / 40.0, 1.15 * a).unwrap();
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
+    let (body, geometry) = scenes::example1_bodies();
     let problem =
         ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
     let sol = problem
