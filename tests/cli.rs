@@ -34,6 +34,75 @@ const FIELDS: [&str; 16] = [
     "reference",
 ];
 
+/// The checks of the run of the example `scene` under `out`: the documented
+/// fields, `reference` where a closed form applies, the attempts log, the
+/// certificate and the files, the `plots` among them.
+fn check_result(out: &Path, scene: &str, reference: Option<&str>, plots: &[&str]) {
+    let dir = out.join(scene);
+    let r = json(&dir.join("result.json"));
+    for field in FIELDS {
+        let present = r.get(field).is_some();
+        // `reference` is present exactly where a closed form applies.
+        let expected = field != "reference" || reference.is_some();
+        assert_eq!(present, expected, "{scene}: field {field}");
+    }
+    if let Some(kind) = reference {
+        assert_eq!(r["reference"]["kind"], kind, "{scene}");
+        assert!(
+            r["reference"]["errors"]
+                .as_object()
+                .is_some_and(|e| !e.is_empty()),
+            "{scene}"
+        );
+    }
+    assert_eq!(r["certificate"]["holds"], true, "{scene}");
+    // The attempts log: each attempt's method, reason and outcome, one
+    // of them the answer returned.
+    let attempts = r["statistics"]["attempts"].as_array().expect("a log");
+    assert!(!attempts.is_empty(), "{scene}");
+    for a in attempts {
+        assert!(
+            Method::from_name(a["method"].as_str().unwrap()).is_some(),
+            "{scene}: {a}"
+        );
+        assert!(
+            a["reason"].is_string() && a["outcome"].is_string(),
+            "{scene}: {a}"
+        );
+        // Block pivoting has no tableau; the tableau methods name theirs.
+        assert_eq!(
+            a.get("tableau").is_some(),
+            a["method"] != "block-pivoting",
+            "{scene}: {a}"
+        );
+    }
+    assert_eq!(
+        attempts
+            .iter()
+            .filter(|a| a["outcome"] == "returned")
+            .count(),
+        1,
+        "{scene}"
+    );
+    assert!(
+        r["certificate"]["worst"].as_f64().unwrap() <= 1e-12,
+        "{scene}"
+    );
+    assert_eq!(
+        r.get("design").is_some(),
+        scene.contains("design") || scene == "crowned-roller",
+        "{scene}"
+    );
+    assert!(dir.join("pressure.csv").exists(), "{scene}");
+    for file in ["pressure.svg", "design.svg"] {
+        assert_eq!(
+            dir.join(file).exists(),
+            plots.contains(&file),
+            "{scene}: {file}"
+        );
+    }
+}
+
 #[test]
 fn every_example_scene_runs_and_writes_the_documented_fields() {
     let out = scratch("examples");
@@ -67,69 +136,7 @@ fn every_example_scene_runs_and_writes_the_documented_fields() {
     let o = elcon(&args.iter().map(String::as_str).collect::<Vec<_>>());
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     for (scene, reference, plots) in scenes {
-        let dir = out.join(scene);
-        let r = json(&dir.join("result.json"));
-        for field in FIELDS {
-            let present = r.get(field).is_some();
-            // `reference` is present exactly where a closed form applies.
-            let expected = field != "reference" || reference.is_some();
-            assert_eq!(present, expected, "{scene}: field {field}");
-        }
-        if let Some(kind) = reference {
-            assert_eq!(r["reference"]["kind"], kind, "{scene}");
-            assert!(
-                r["reference"]["errors"]
-                    .as_object()
-                    .is_some_and(|e| !e.is_empty()),
-                "{scene}"
-            );
-        }
-        assert_eq!(r["certificate"]["holds"], true, "{scene}");
-        // The attempts log: each attempt's method, reason and outcome, one
-        // of them the answer returned.
-        let attempts = r["statistics"]["attempts"].as_array().expect("a log");
-        assert!(!attempts.is_empty(), "{scene}");
-        for a in attempts {
-            assert!(
-                Method::from_name(a["method"].as_str().unwrap()).is_some(),
-                "{scene}: {a}"
-            );
-            assert!(
-                a["reason"].is_string() && a["outcome"].is_string(),
-                "{scene}: {a}"
-            );
-            // Block pivoting has no tableau; the tableau methods name theirs.
-            assert_eq!(
-                a.get("tableau").is_some(),
-                a["method"] != "block-pivoting",
-                "{scene}: {a}"
-            );
-        }
-        assert_eq!(
-            attempts
-                .iter()
-                .filter(|a| a["outcome"] == "returned")
-                .count(),
-            1,
-            "{scene}"
-        );
-        assert!(
-            r["certificate"]["worst"].as_f64().unwrap() <= 1e-12,
-            "{scene}"
-        );
-        assert_eq!(
-            r.get("design").is_some(),
-            scene.contains("design") || scene == "crowned-roller",
-            "{scene}"
-        );
-        assert!(dir.join("pressure.csv").exists(), "{scene}");
-        for file in ["pressure.svg", "design.svg"] {
-            assert_eq!(
-                dir.join(file).exists(),
-                plots.contains(&file),
-                "{scene}: {file}"
-            );
-        }
+        check_result(&out, scene, reference, plots);
     }
     // The paper's Example 1 numbers, through the command line.
     let e1 = json(&out.join("example1-paper-model/result.json"));
@@ -159,84 +166,86 @@ fn broken(dir: &Path, name: &str, from: &str, to: &str) -> PathBuf {
     path
 }
 
+/// Malformed scenes: (name, replaced text of example1-spheres.toml, its
+/// replacement, expected message fragment, line).
+const MALFORMED: [(&str, &str, &str, &str, usize); 11] = [
+    ("syntax", "load = 100.0", "load = = 100.0", "extra `=`", 52),
+    (
+        "unknown-key",
+        "poissons_ratio = 0.3\n\n[body2]",
+        "poissons_ratio = 0.3\ncolour = \"red\"\n\n[body2]",
+        "unknown field `colour`",
+        30,
+    ),
+    (
+        "modulus",
+        "youngs_modulus = 30e6                        # psi",
+        "youngs_modulus = -30e6",
+        "`body1.youngs_modulus` = -30000000: must be > 0",
+        28,
+    ),
+    (
+        "poisson",
+        "poissons_ratio = 0.3\n\n[body2]",
+        "poissons_ratio = 0.5\n\n[body2]",
+        "`body1.poissons_ratio` = 0.5: must be in (-1, 0.5)",
+        29,
+    ),
+    (
+        "non-finite",
+        "radius = 10.0 }",
+        "radius = inf }",
+        "`geometry.surface2.radius` = inf: must be a finite number",
+        40,
+    ),
+    (
+        "load",
+        "load = 100.0",
+        "load = 0.0",
+        "`loading.load` = 0: must be > 0",
+        52,
+    ),
+    (
+        "negative-load",
+        "load = 100.0",
+        "load = -1.0",
+        "`loading.load` = -1: must be > 0",
+        52,
+    ),
+    (
+        "zone",
+        "zone = 1.15",
+        "zone = 0.9",
+        "`points.zone` = 0.9: the candidate zone must extend beyond the Hertz contact",
+        48,
+    ),
+    (
+        "empty",
+        "grid = \"disk\"\nacross = 41\nzone = 1.15",
+        "grid = \"rectangle\"\nhalf_x = 0.02\nhalf_y = 0.02\nnx = 0\nny = 5",
+        "`points.nx` = 0: must be at least 1 (an empty point set)",
+        49,
+    ),
+    (
+        "too-small",
+        "across = 41\nzone = 1.15",
+        "spacing = 0.001\nradius = 0.01",
+        "`points.radius` = 0.01: the candidate disk cannot hold the contact",
+        48,
+    ),
+    (
+        "method",
+        "method = \"block-pivoting\"",
+        "method = \"simplex\"",
+        "`solver.method`: unknown variant `simplex`",
+        56,
+    ),
+];
+
 #[test]
 fn malformed_scenes_name_file_line_column_and_field() {
     let dir = scratch("malformed");
-    // (name, replaced text, replacement, expected message fragment, line)
-    let cases = [
-        ("syntax", "load = 100.0", "load = = 100.0", "extra `=`", 52),
-        (
-            "unknown-key",
-            "poissons_ratio = 0.3\n\n[body2]",
-            "poissons_ratio = 0.3\ncolour = \"red\"\n\n[body2]",
-            "unknown field `colour`",
-            30,
-        ),
-        (
-            "modulus",
-            "youngs_modulus = 30e6                        # psi",
-            "youngs_modulus = -30e6",
-            "`body1.youngs_modulus` = -30000000: must be > 0",
-            28,
-        ),
-        (
-            "poisson",
-            "poissons_ratio = 0.3\n\n[body2]",
-            "poissons_ratio = 0.5\n\n[body2]",
-            "`body1.poissons_ratio` = 0.5: must be in (-1, 0.5)",
-            29,
-        ),
-        (
-            "non-finite",
-            "radius = 10.0 }",
-            "radius = inf }",
-            "`geometry.surface2.radius` = inf: must be a finite number",
-            40,
-        ),
-        (
-            "load",
-            "load = 100.0",
-            "load = 0.0",
-            "`loading.load` = 0: must be > 0",
-            52,
-        ),
-        (
-            "negative-load",
-            "load = 100.0",
-            "load = -1.0",
-            "`loading.load` = -1: must be > 0",
-            52,
-        ),
-        (
-            "zone",
-            "zone = 1.15",
-            "zone = 0.9",
-            "`points.zone` = 0.9: the candidate zone must extend beyond the Hertz contact",
-            48,
-        ),
-        (
-            "empty",
-            "grid = \"disk\"\nacross = 41\nzone = 1.15",
-            "grid = \"rectangle\"\nhalf_x = 0.02\nhalf_y = 0.02\nnx = 0\nny = 5",
-            "`points.nx` = 0: must be at least 1 (an empty point set)",
-            49,
-        ),
-        (
-            "too-small",
-            "across = 41\nzone = 1.15",
-            "spacing = 0.001\nradius = 0.01",
-            "`points.radius` = 0.01: the candidate disk cannot hold the contact",
-            48,
-        ),
-        (
-            "method",
-            "method = \"block-pivoting\"",
-            "method = \"simplex\"",
-            "`solver.method`: unknown variant `simplex`",
-            56,
-        ),
-    ];
-    for (name, from, to, message, line) in cases {
+    for (name, from, to, message, line) in MALFORMED {
         let path = broken(&dir, name, from, to);
         for command in ["check", "run"] {
             let o = elcon(
