@@ -524,13 +524,8 @@ fn a_folded_problem_refuses_an_asymmetric_separation() {
 
 #[test]
 fn a_warm_start_from_the_previous_load_step_saves_iterations() {
-    let steel = Material::new(30e6, 0.3).unwrap();
     let a = 0.016;
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
-    let body = Body::uniform_patch(steel);
+    let (body, geometry) = scenes::example1_bodies();
     let points = PointSet::grid_disk(a / 8.0, 1.4 * a).unwrap();
     // The data the warm solutions are checked against (folded or not).
     let full = ContactProblem::new(
