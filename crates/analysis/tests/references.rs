@@ -179,12 +179,19 @@ fn methods_agree_on_a_contact_problem() {
     }
 }
 
+/// The first case (inch-pound steel on steel, P = 100 lb) at 6 cells per
+/// Hertz radius on a zone of `zone` Hertz radii, solved by Lemke's method.
+fn inch_pound_by_lemke(zone: f64) -> (ContactProblem, ContactSolution) {
+    let (_, case) = cases().swap_remove(0);
+    let (problem, _) = sphere_problem(&case, 6.0, zone);
+    let sol = problem.solve(Method::Lemke, &Options::default()).unwrap();
+    (problem, sol)
+}
+
 #[test]
 fn load_and_displacement_control_agree() {
     // Inch-pound steel on steel: P = 100 lb.
-    let (_, case) = cases().swap_remove(0);
-    let (load, _) = sphere_problem(&case, 6.0, 1.3);
-    let by_load = load.solve(Method::Lemke, &Options::default()).unwrap();
+    let (load, by_load) = inch_pound_by_lemke(1.3);
     assert_solves(&load, &by_load, "by load");
     let approach = load
         .with_loading(Loading::approach(by_load.approach))
@@ -306,10 +313,8 @@ fn rigid_flat_punch() {
 
 #[test]
 fn truncated_zone_warns() {
-    let (_, case) = cases().swap_remove(0);
     // Candidate zone smaller than the contact: the answer is truncated.
-    let (problem, _) = sphere_problem(&case, 6.0, 0.7);
-    let sol = problem.solve(Method::Lemke, &Options::default()).unwrap();
+    let (problem, sol) = inch_pound_by_lemke(0.7);
     assert!(sol.certificate.holds());
     assert_solves(&problem, &sol, "truncated");
     let warning = sol
@@ -519,13 +524,8 @@ fn a_folded_problem_refuses_an_asymmetric_separation() {
 
 #[test]
 fn a_warm_start_from_the_previous_load_step_saves_iterations() {
-    let steel = Material::new(30e6, 0.3).unwrap();
     let a = 0.016;
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
-    let body = Body::uniform_patch(steel);
+    let (body, geometry) = scenes::example1_bodies();
     let points = PointSet::grid_disk(a / 8.0, 1.4 * a).unwrap();
     // The data the warm solutions are checked against (folded or not).
     let full = ContactProblem::new(

@@ -10,10 +10,10 @@
 mod common;
 
 use common::checks::{assert_solves, check};
+use common::scenes;
 use common::stability_cases::{Expect, Reference, catalogue, error};
-use elcon_analysis::references::{HertzSpheres, combined_radius};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface, Warning};
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Body, Material, PointSet};
 use proptest::prelude::*;
 
 #[test]
@@ -384,20 +384,9 @@ fn lemke_ends_when_the_covering_variable_reaches_zero_outside_the_relative_tie()
     // next entering variable (u- with u+ basic) was a ray. The ratio test now
     // also ties every row that the step brings to the zero level, so z0 is
     // preferred and leaves.
-    let steel = Material::new(30e6, 0.3).unwrap();
-    let a = HertzSpheres::new(
-        combined_modulus(&steel, &steel),
-        combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .unwrap()
-    .contact_radius();
+    let a = scenes::example1_hertz().contact_radius();
     let points = PointSet::grid_disk(2.0 * a / 130.0, 1.15 * a).unwrap();
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
+    let (body, geometry) = scenes::example1_bodies();
     let problem =
         ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
     let lemke = problem.solve(Method::Lemke, &Options::default()).unwrap();
