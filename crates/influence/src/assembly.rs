@@ -28,6 +28,7 @@ use faer::{Mat, MatMut};
 use crate::error::InfluenceError;
 use crate::models::Body;
 use crate::points::{MAX_DENSE_POINTS, PointSet};
+use crate::symmetry::Folding;
 use crate::terms::{TableLayout, Terms, table_layout};
 
 /// Tile size of the mirroring copy (64 x 64 doubles = 32 kB).
@@ -96,7 +97,7 @@ fn dense_size(n: usize) -> Result<(), InfluenceError> {
 }
 
 /// The folded influence matrix of a mirror-symmetric problem (see
-/// [`Folding`](crate::Folding)): for representatives a, b,
+/// [`Folding`]): for representatives a, b,
 /// `M_ab = (1 / s_a) sum_{j in O(b)} S_{rep(a) j}`, symmetric positive
 /// definite, of order `folding.len()`. The full S is never formed.
 ///
@@ -105,7 +106,7 @@ fn dense_size(n: usize) -> Result<(), InfluenceError> {
 pub fn assemble_folded(
     points: &PointSet,
     bodies: &[&Body],
-    folding: &crate::Folding,
+    folding: &Folding,
 ) -> Result<Mat<f64>, InfluenceError> {
     dense_size(folding.len())?;
     let terms = Terms::collect(points, bodies)?;
@@ -132,12 +133,12 @@ pub fn assemble_folded(
 
 /// The folded matrix from `half(k, j)`, the half-space part of `S_kj`, plus
 /// the local terms. M is symmetric (`s_b T_ab = s_a T_ba`, see
-/// [`Folding`](crate::Folding)): the lower triangle is summed and mirrored,
+/// [`Folding`]): the lower triangle is summed and mirrored,
 /// which halves the work and makes the symmetry exact.
 fn fold(
     points: &PointSet,
     terms: &Terms,
-    folding: &crate::Folding,
+    folding: &Folding,
     half: impl Fn(usize, usize) -> f64,
 ) -> Result<Mat<f64>, InfluenceError> {
     let n = folding.len();
@@ -472,7 +473,7 @@ mod tests {
         ];
         for (points, bodies) in cases {
             let refs: Vec<&Body> = bodies.iter().collect();
-            let f = crate::Folding::detect(&points, &refs).unwrap();
+            let f = Folding::detect(&points, &refs).unwrap();
             let s = assemble(&points, &refs).unwrap();
             let m = assemble_folded(&points, &refs, &f).unwrap();
             for a in 0..f.len() {
