@@ -336,11 +336,14 @@ impl Setup {
                 model: beam.model().name(),
             });
         }
-        let bounds = LatticeBox::of(points).ok_or_else(|| InfluenceError::LatticeRequired {
-            reason: "the points lie on no lattice of the cell's spacing \
+        let bounds = points
+            .lattice()
+            .and_then(LatticeBox::of_lattice)
+            .ok_or_else(|| InfluenceError::LatticeRequired {
+                reason: "the points lie on no lattice of the cell's spacing \
                      (PointSet::from_points found none)"
-                .into(),
-        })?;
+                    .into(),
+            })?;
         if !bounds.is_dense(points.len()) {
             return Err(InfluenceError::LatticeRequired {
                 reason: format!(

@@ -302,7 +302,7 @@ impl TableLayout {
 /// offset in the bounding box) is not much larger than the set.
 pub(crate) fn table_layout(points: &PointSet) -> Option<TableLayout> {
     let lattice = points.lattice()?;
-    let bounds = LatticeBox::of(points)?;
+    let bounds = LatticeBox::of_lattice(lattice)?;
     if !bounds.is_dense(points.len()) {
         return None;
     }
