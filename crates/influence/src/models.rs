@@ -25,6 +25,7 @@
 //! forces (the beam's width is inside E I and k), and F_k / A_k is a load
 //! intensity per unit length.
 
+use crate::error::InfluenceError;
 use crate::material::Material;
 
 /// How a body deflects: the influence model, with its material and
@@ -99,6 +100,28 @@ impl Model {
             | Self::PlaneStrainStrip { material, .. } => Some(material),
             Self::Rigid | Self::Winkler { .. } | Self::Beam { .. } => None,
         }
+    }
+}
+
+/// `value` if finite and positive, else an [`InfluenceError::InvalidModel`]
+/// naming the parameter `field` of `model` and why.
+pub(crate) fn positive(
+    model: &'static str,
+    field: &'static str,
+    value: f64,
+) -> Result<f64, InfluenceError> {
+    let bad = |reason: &str| InfluenceError::InvalidModel {
+        model,
+        field,
+        value,
+        reason: reason.into(),
+    };
+    if !value.is_finite() {
+        Err(bad("must be finite"))
+    } else if value <= 0.0 {
+        Err(bad("must be positive"))
+    } else {
+        Ok(value)
     }
 }
 
