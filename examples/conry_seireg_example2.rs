@@ -29,7 +29,7 @@ use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options};
 use elcon::design::{
     Axis, DesignOptions, Family, Profile, design, evaluate, fit_profile, uniform_target,
 };
-use elcon::influence::{Body, PointSet};
+use elcon::influence::{Beam, Body, PointSet};
 
 const LENGTH: f64 = 8.9;
 const WIDTH: f64 = 1.0;
@@ -92,7 +92,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     let points = PointSet::line(-0.5 * LENGTH, 0.5 * LENGTH, n)?;
     let case = ContactProblem::new(
         points,
-        &Body::beam(E_STEEL, second_moment, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: E_STEEL,
+            second_moment,
+            loaded_point: 0.0,
+        })?,
         &Body::winkler(FOUNDATION),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(a.load),

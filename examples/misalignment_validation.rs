@@ -26,7 +26,7 @@ use elcon::analysis::references::{FiniteBeam, FlatPunch, HertzSpheres};
 use elcon::analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface,
 };
-use elcon::influence::{Body, Material, PointSet, combined_modulus};
+use elcon::influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 fn solved(problem: &ContactProblem) -> Result<ContactSolution, Box<dyn Error>> {
     let sol = problem.solve(Method::BlockPivoting, &Options::default())?;
@@ -126,7 +126,11 @@ fn beam(
     let n = points.len();
     let problem = ContactProblem::new(
         points,
-        &Body::beam(30e6, 64.0 / 12.0, e),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 64.0 / 12.0,
+            loaded_point: e,
+        })?,
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(5e4),

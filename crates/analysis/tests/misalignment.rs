@@ -12,7 +12,7 @@ use elcon_analysis::references::{FiniteBeam, FlatPunch, HertzCylinders, HertzSph
 use elcon_analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface,
 };
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 fn steel() -> Material {
     Material::new(210e9, 0.3).unwrap()
@@ -167,7 +167,12 @@ fn off_centre_beam(
     let n = points.len();
     let problem = ContactProblem::new(
         points,
-        &Body::beam(modulus, second, e),
+        &Body::beam(Beam {
+            youngs_modulus: modulus,
+            second_moment: second,
+            loaded_point: e,
+        })
+        .unwrap(),
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(load),

@@ -13,7 +13,7 @@ use common::checks::{assert_solves, check};
 use common::stability_cases::{Expect, Reference, catalogue, error};
 use elcon_analysis::references::{HertzSpheres, combined_radius};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface, Warning};
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 use proptest::prelude::*;
 
 #[test]
@@ -346,7 +346,12 @@ fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
     let points = PointSet::line(-1.0, 1.0, 21).unwrap();
     let problem = ContactProblem::new(
         points,
-        &Body::beam(1e6, 1.0, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 1e6,
+            second_moment: 1.0,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::rigid(),
         &Geometry::Separation(vec![0.0; 21]),
         Loading::load(10.0),

@@ -318,8 +318,9 @@ mod tests {
         );
         assert_eq!(zeroed(2).unwrap(), Mat::<f64>::zeros(2, 2));
     }
+    use crate::Material;
+    use crate::models::{Beam, Body, Model};
     use crate::points::{Cell, Dimension};
-    use crate::{Material, models::Body};
 
     fn steel() -> Material {
         Material::new(30e6, 0.3).unwrap()
@@ -403,9 +404,17 @@ mod tests {
     fn beam_is_two_cantilevers_clamped_at_the_loaded_point() {
         let line = PointSet::line(-2.0, 2.0, 8).unwrap(); // x = -1.75 .. 1.75, h = 0.5
         let ei = 3.0e4;
-        let a = influence(&line, &Body::beam(1.0e4, 3.0, 0.0))
-            .unwrap()
-            .unwrap();
+        let a = influence(
+            &line,
+            &Body::beam(Beam {
+                youngs_modulus: 1.0e4,
+                second_moment: 3.0,
+                loaded_point: 0.0,
+            })
+            .unwrap(),
+        )
+        .unwrap()
+        .unwrap();
         // Tip of a cantilever under a tip load: L^3 / (3 E I).
         assert!((a[(7, 7)] / (1.75f64.powi(3) / (3.0 * ei)) - 1.0).abs() < 1e-15);
         // Maxwell-Betti: deflection at 0.25 due to a load at 1.75 is a^2 (3b - a) / 6EI.
@@ -418,15 +427,31 @@ mod tests {
         // A beam on a foundation: S = beam + 1/(k A_k) on the diagonal.
         let s = assemble(
             &line,
-            &[&Body::beam(1.0e4, 3.0, 0.0), &Body::winkler(100.0)],
+            &[
+                &Body::beam(Beam {
+                    youngs_modulus: 1.0e4,
+                    second_moment: 3.0,
+                    loaded_point: 0.0,
+                })
+                .unwrap(),
+                &Body::winkler(100.0),
+            ],
         )
         .unwrap();
         assert!((s[(5, 5)] - a[(5, 5)] - 1.0 / (100.0 * 0.5)).abs() < 1e-18);
         assert_eq!(s[(5, 6)], a[(5, 6)]);
         // Off-centre loaded point: points on one side only.
-        let b = influence(&line, &Body::beam(1.0e4, 3.0, -2.0))
-            .unwrap()
-            .unwrap();
+        let b = influence(
+            &line,
+            &Body::beam(Beam {
+                youngs_modulus: 1.0e4,
+                second_moment: 3.0,
+                loaded_point: -2.0,
+            })
+            .unwrap(),
+        )
+        .unwrap()
+        .unwrap();
         let expected = 0.25f64.powi(2) * (3.0 * 3.75 - 0.25) / (6.0 * ei);
         assert!((b[(0, 7)] / expected - 1.0).abs() < 1e-14);
     }
@@ -434,15 +459,38 @@ mod tests {
     #[test]
     fn beam_parameters_are_validated() {
         let line = PointSet::line(-1.0, 1.0, 4).unwrap();
-        let e = assemble(&line, &[&Body::beam(0.0, 1.0, 0.0)]).unwrap_err();
+        let e = assemble(
+            &line,
+            &[&Body::new(Model::Beam {
+                flexural_rigidity: 0.0,
+                loaded_point: 0.0,
+            })],
+        )
+        .unwrap_err();
         assert_eq!(
             e.to_string(),
             "invalid Euler-Bernoulli beam parameter: flexural_rigidity = 0: E I must be finite and positive"
         );
-        let e = assemble(&line, &[&Body::beam(1.0, 1.0, f64::NAN)]).unwrap_err();
+        let e = assemble(
+            &line,
+            &[&Body::new(Model::Beam {
+                flexural_rigidity: 1.0,
+                loaded_point: f64::NAN,
+            })],
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("loaded_point = NaN"), "{e}");
         let disk = PointSet::grid_disk(0.1, 0.3).unwrap();
-        let e = assemble(&disk, &[&Body::beam(1.0, 1.0, 0.0)]).unwrap_err();
+        let e = assemble(
+            &disk,
+            &[&Body::beam(Beam {
+                youngs_modulus: 1.0,
+                second_moment: 1.0,
+                loaded_point: 0.0,
+            })
+            .unwrap()],
+        )
+        .unwrap_err();
         assert!(matches!(e, InfluenceError::DimensionMismatch { .. }), "{e}");
     }
 
@@ -464,7 +512,15 @@ mod tests {
             ),
             (
                 PointSet::line(-1.0, 1.0, 9).unwrap(),
-                vec![Body::beam(1e3, 1.0, 0.0), Body::winkler(50.0)],
+                vec![
+                    Body::beam(Beam {
+                        youngs_modulus: 1e3,
+                        second_moment: 1.0,
+                        loaded_point: 0.0,
+                    })
+                    .unwrap(),
+                    Body::winkler(50.0),
+                ],
             ),
             (
                 PointSet::line(-1.0, 1.0, 8).unwrap(),
@@ -528,7 +584,12 @@ mod tests {
                 PointSet::line(-1.0, 1.0, 16).unwrap(),
                 vec![
                     Body::plane_strain(steel(), 5.0),
-                    Body::beam(1e3, 1.0, 0.0),
+                    Body::beam(Beam {
+                        youngs_modulus: 1e3,
+                        second_moment: 1.0,
+                        loaded_point: 0.0,
+                    })
+                    .unwrap(),
                     Body::winkler(50.0),
                 ],
             ),

@@ -348,6 +348,7 @@ fn orbits_of(
 mod tests {
     use super::*;
     use crate::Material;
+    use crate::models::Beam;
 
     #[test]
     fn a_disk_has_the_square_group() {
@@ -401,10 +402,33 @@ mod tests {
     #[test]
     fn a_beam_folds_only_about_its_loaded_point_at_the_origin() {
         let line = PointSet::line(-2.0, 2.0, 10).unwrap();
-        let f = Folding::detect(&line, &[&Body::beam(1.0, 1.0, 0.0), &Body::winkler(1.0)]).unwrap();
+        let f = Folding::detect(
+            &line,
+            &[
+                &Body::beam(Beam {
+                    youngs_modulus: 1.0,
+                    second_moment: 1.0,
+                    loaded_point: 0.0,
+                })
+                .unwrap(),
+                &Body::winkler(1.0),
+            ],
+        )
+        .unwrap();
         assert_eq!((f.order(), f.len()), (2, 5));
         assert_eq!(f.unfold(&[1.0, 2.0, 3.0, 4.0, 5.0])[9], 1.0);
-        assert!(Folding::detect(&line, &[&Body::beam(1.0, 1.0, 0.5)]).is_none());
+        assert!(
+            Folding::detect(
+                &line,
+                &[&Body::beam(Beam {
+                    youngs_modulus: 1.0,
+                    second_moment: 1.0,
+                    loaded_point: 0.5
+                })
+                .unwrap()]
+            )
+            .is_none()
+        );
         // An asymmetric set does not fold.
         let shifted = PointSet::line(-2.0, 3.0, 10).unwrap();
         assert!(Folding::detect(&shifted, &[&Body::winkler(1.0)]).is_none());

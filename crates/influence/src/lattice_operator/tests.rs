@@ -9,7 +9,7 @@ use super::{LatticeKernel, LatticeOperator, LatticeWorkspace};
 use crate::assembly::assemble;
 use crate::error::InfluenceError;
 use crate::material::Material;
-use crate::models::Body;
+use crate::models::{Beam, Body};
 use crate::points::{Cell, Dimension, PointSet};
 
 /// `max |S x - op x| / max |S x|` is at most this. The FFT's rounding is
@@ -334,8 +334,19 @@ fn refuses_points_off_a_lattice() {
 #[test]
 fn refuses_beams_and_what_assemble_refuses() {
     let line = PointSet::line(-1.0, 1.0, 8).unwrap();
-    let e = LatticeOperator::new(&line, &[&Body::beam(1e4, 3.0, 0.0), &Body::winkler(1e3)])
-        .unwrap_err();
+    let e = LatticeOperator::new(
+        &line,
+        &[
+            &Body::beam(Beam {
+                youngs_modulus: 1e4,
+                second_moment: 3.0,
+                loaded_point: 0.0,
+            })
+            .unwrap(),
+            &Body::winkler(1e3),
+        ],
+    )
+    .unwrap_err();
     assert_eq!(
         e,
         InfluenceError::NotTranslationInvariant {
