@@ -22,7 +22,7 @@
 use std::error::Error;
 use std::time::Instant;
 
-use elcon::analysis::references::{FiniteBeam, FlatPunch, HertzSpheres};
+use elcon::analysis::references::{BeamOnFoundation, FiniteBeam, FlatPunch, HertzSpheres};
 use elcon::analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface,
 };
@@ -141,7 +141,15 @@ fn beam(
 
 fn beams() -> Result<(), Box<dyn Error>> {
     let (length, e) = (6.0, 0.5);
-    let exact = FiniteBeam::new(30e6 * 64.0 / 12.0, 1e7, length, 5e4, e)?;
+    let exact = FiniteBeam::new(
+        BeamOnFoundation {
+            flexural_rigidity: 30e6 * 64.0 / 12.0,
+            foundation_modulus: 1e7,
+            length,
+            load: 5e4,
+        },
+        e,
+    )?;
     let peak = (0..=600)
         .map(|i| exact.load_intensity(-3.0 + 6.0 * i as f64 / 600.0))
         .fold(0.0, f64::max);

@@ -10,7 +10,9 @@ mod common;
 
 use common::checks::assert_solves;
 use common::scenes;
-use elcon_analysis::references::{HertzCylinders, HertzSpheres, HetenyiBeam, combined_radius};
+use elcon_analysis::references::{
+    BeamOnFoundation, HertzCylinders, HertzSpheres, HetenyiBeam, combined_radius,
+};
 use elcon_analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface, Warning,
 };
@@ -369,7 +371,13 @@ fn hetenyi_case(per_half: usize, length: f64) -> (ContactSolution, HetenyiBeam, 
     assert_solves(&problem, &sol, &format!("Hetenyi, {per_half} per half"));
     (
         sol,
-        HetenyiBeam::new(e * i, k, length, load).unwrap(),
+        HetenyiBeam::new(BeamOnFoundation {
+            flexural_rigidity: e * i,
+            foundation_modulus: k,
+            length,
+            load,
+        })
+        .unwrap(),
         points,
     )
 }

@@ -13,7 +13,9 @@
 #[path = "scenes.rs"]
 pub mod scenes;
 
-use elcon_analysis::references::{FlatPunch, HertzSpheres, HetenyiBeam, combined_radius};
+use elcon_analysis::references::{
+    BeamOnFoundation, FlatPunch, HertzSpheres, HetenyiBeam, combined_radius,
+};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
 use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
@@ -237,7 +239,15 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
         )
         .expect("beam problem");
         let reference = if lambda_l < std::f64::consts::PI {
-            Reference::Hetenyi(HetenyiBeam::new(ei, k, length, 1e4).expect("Hetenyi"))
+            Reference::Hetenyi(
+                HetenyiBeam::new(BeamOnFoundation {
+                    flexural_rigidity: ei,
+                    foundation_modulus: k,
+                    length,
+                    load: 1e4,
+                })
+                .expect("Hetenyi"),
+            )
         } else {
             Reference::None
         };
