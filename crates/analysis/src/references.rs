@@ -498,6 +498,18 @@ mod tests {
         load: 5e4,
     };
 
+    /// The weight of node i of Simpson's rule on n intervals (n even):
+    /// 1, 4, 2, 4, ..., 2, 4, 1 (times h / 3).
+    fn simpson_weight(i: usize, n: usize) -> f64 {
+        if i == 0 || i == n {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        }
+    }
+
     #[test]
     fn the_finite_beam_is_hetenyi_s_with_a_central_load_and_in_equilibrium_off_centre() {
         let central = HetenyiBeam::new(EXAMPLE).unwrap();
@@ -519,13 +531,7 @@ mod tests {
         let (mut force, mut moment) = (0.0, 0.0);
         for i in 0..=n {
             let x = -4.45 + h * i as f64;
-            let weight = if i == 0 || i == n {
-                1.0
-            } else if i % 2 == 1 {
-                4.0
-            } else {
-                2.0
-            };
+            let weight = simpson_weight(i, n);
             let q = beam.load_intensity(x);
             force += weight * q * h / 3.0;
             moment += weight * q * (x - e) * h / 3.0;
@@ -598,20 +604,7 @@ mod tests {
         let n = 2000;
         let h = beam.parameters().length / n as f64;
         let f = |i: usize| beam.load_intensity(-0.5 * beam.parameters().length + i as f64 * h);
-        let simpson: f64 = (0..=n)
-            .map(|i| {
-                let w = if i == 0 || i == n {
-                    1.0
-                } else if i % 2 == 1 {
-                    4.0
-                } else {
-                    2.0
-                };
-                w * f(i)
-            })
-            .sum::<f64>()
-            * h
-            / 3.0;
+        let simpson: f64 = (0..=n).map(|i| simpson_weight(i, n) * f(i)).sum::<f64>() * h / 3.0;
         assert!(
             (simpson / beam.parameters().load - 1.0).abs() < 1e-10,
             "{simpson}"

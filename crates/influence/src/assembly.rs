@@ -319,8 +319,8 @@ mod tests {
         assert_eq!(zeroed(2).unwrap(), Mat::<f64>::zeros(2, 2));
     }
     use crate::Material;
+    use crate::fixtures::{BEAM, UNIT_BEAM, sparse_pair};
     use crate::models::{Beam, Body, Model};
-    use crate::points::{Cell, Dimension};
 
     fn steel() -> Material {
         Material::new(30e6, 0.3).unwrap()
@@ -404,17 +404,9 @@ mod tests {
     fn beam_is_two_cantilevers_clamped_at_the_loaded_point() {
         let line = PointSet::line(-2.0, 2.0, 8).unwrap(); // x = -1.75 .. 1.75, h = 0.5
         let ei = 3.0e4;
-        let a = influence(
-            &line,
-            &Body::beam(Beam {
-                youngs_modulus: 1.0e4,
-                second_moment: 3.0,
-                loaded_point: 0.0,
-            })
-            .unwrap(),
-        )
-        .unwrap()
-        .unwrap();
+        let a = influence(&line, &Body::beam(BEAM).unwrap())
+            .unwrap()
+            .unwrap();
         // Tip of a cantilever under a tip load: L^3 / (3 E I).
         assert!((a[(7, 7)] / (1.75f64.powi(3) / (3.0 * ei)) - 1.0).abs() < 1e-15);
         // Maxwell-Betti: deflection at 0.25 due to a load at 1.75 is a^2 (3b - a) / 6EI.
@@ -425,28 +417,15 @@ mod tests {
         assert_eq!(a[(3, 4)], 0.0);
         assert_eq!(a[(0, 0)], a[(7, 7)]);
         // A beam on a foundation: S = beam + 1/(k A_k) on the diagonal.
-        let s = assemble(
-            &line,
-            &[
-                &Body::beam(Beam {
-                    youngs_modulus: 1.0e4,
-                    second_moment: 3.0,
-                    loaded_point: 0.0,
-                })
-                .unwrap(),
-                &Body::winkler(100.0),
-            ],
-        )
-        .unwrap();
+        let s = assemble(&line, &[&Body::beam(BEAM).unwrap(), &Body::winkler(100.0)]).unwrap();
         assert!((s[(5, 5)] - a[(5, 5)] - 1.0 / (100.0 * 0.5)).abs() < 1e-18);
         assert_eq!(s[(5, 6)], a[(5, 6)]);
         // Off-centre loaded point: points on one side only.
         let b = influence(
             &line,
             &Body::beam(Beam {
-                youngs_modulus: 1.0e4,
-                second_moment: 3.0,
                 loaded_point: -2.0,
+                ..BEAM
             })
             .unwrap(),
         )
@@ -481,16 +460,7 @@ mod tests {
         .unwrap_err();
         assert!(e.to_string().contains("loaded_point = NaN"), "{e}");
         let disk = PointSet::grid_disk(0.1, 0.3).unwrap();
-        let e = assemble(
-            &disk,
-            &[&Body::beam(Beam {
-                youngs_modulus: 1.0,
-                second_moment: 1.0,
-                loaded_point: 0.0,
-            })
-            .unwrap()],
-        )
-        .unwrap_err();
+        let e = assemble(&disk, &[&Body::beam(UNIT_BEAM).unwrap()]).unwrap_err();
         assert!(matches!(e, InfluenceError::DimensionMismatch { .. }), "{e}");
     }
 
@@ -515,8 +485,7 @@ mod tests {
                 vec![
                     Body::beam(Beam {
                         youngs_modulus: 1e3,
-                        second_moment: 1.0,
-                        loaded_point: 0.0,
+                        ..UNIT_BEAM
                     })
                     .unwrap(),
                     Body::winkler(50.0),
@@ -586,8 +555,7 @@ mod tests {
                     Body::plane_strain(steel(), 5.0),
                     Body::beam(Beam {
                         youngs_modulus: 1e3,
-                        second_moment: 1.0,
-                        loaded_point: 0.0,
+                        ..UNIT_BEAM
                     })
                     .unwrap(),
                     Body::winkler(50.0),
@@ -628,13 +596,7 @@ mod tests {
     #[test]
     fn sparse_lattice_falls_back_to_direct() {
         // Two points 1000 cells apart: a 1001-entry table for 2 points.
-        let p = PointSet::from_points(
-            Dimension::Surface,
-            vec![0.0, 1000.0],
-            vec![0.0, 0.0],
-            Cell::square(1.0),
-        )
-        .unwrap();
+        let p = sparse_pair();
         assert!(p.lattice().is_some());
         assert!(table_layout(&p).is_none());
         let s = assemble(&p, &[&Body::uniform_patch(steel())]).unwrap();

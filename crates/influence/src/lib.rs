@@ -92,6 +92,8 @@
 pub mod assembly;
 mod dimension;
 mod error;
+#[cfg(test)]
+mod fixtures;
 pub mod kernels;
 pub mod lattice_operator;
 pub mod material;

@@ -8,8 +8,9 @@ use super::grid::{padded_length, try_vec};
 use super::{LatticeKernel, LatticeOperator, LatticeWorkspace};
 use crate::assembly::assemble;
 use crate::error::InfluenceError;
+use crate::fixtures::{BEAM, scattered, sparse_pair, surface};
 use crate::material::Material;
-use crate::models::{Beam, Body};
+use crate::models::Body;
 use crate::points::{Cell, Dimension, PointSet};
 
 /// `max |S x - op x| / max |S x|` is at most this. The FFT's rounding is
@@ -281,13 +282,7 @@ fn padded_lengths_avoid_wrap_around_and_are_fast() {
 #[test]
 fn refuses_points_off_a_lattice() {
     let patch = Body::uniform_patch(steel());
-    let scattered = PointSet::from_points(
-        Dimension::Surface,
-        vec![0.0, 0.13, 0.5],
-        vec![0.0, 0.02, 0.31],
-        Cell::square(0.1),
-    )
-    .unwrap();
+    let scattered = scattered();
     assert!(scattered.lattice().is_none());
     let e = LatticeOperator::new(&scattered, &[&patch]).unwrap_err();
     assert!(matches!(e, InfluenceError::LatticeRequired { .. }), "{e}");
@@ -301,13 +296,7 @@ fn refuses_points_off_a_lattice() {
         Err(e)
     );
     // A lattice far sparser than its box: 2 points 1000 cells apart.
-    let sparse = PointSet::from_points(
-        Dimension::Surface,
-        vec![0.0, 1000.0],
-        vec![0.0, 0.0],
-        Cell::square(1.0),
-    )
-    .unwrap();
+    let sparse = sparse_pair();
     let e = LatticeOperator::new(&sparse, &[&patch]).unwrap_err();
     assert!(
         e.to_string()
@@ -315,13 +304,7 @@ fn refuses_points_off_a_lattice() {
         "{e}"
     );
     // Two points within the lattice tolerance of one cell.
-    let twins = PointSet::from_points(
-        Dimension::Surface,
-        vec![0.0, 1e-14, 1.0],
-        vec![0.0, 0.0, 0.0],
-        Cell::square(1.0),
-    )
-    .unwrap();
+    let twins = surface(vec![0.0, 1e-14, 1.0], vec![0.0, 0.0, 0.0], 1.0);
     assert_eq!(twins.lattice().unwrap().to_vec(), [(0, 0), (0, 0), (1, 0)]);
     let e = LatticeOperator::new(&twins, &[&patch]).unwrap_err();
     assert!(
@@ -334,19 +317,8 @@ fn refuses_points_off_a_lattice() {
 #[test]
 fn refuses_beams_and_what_assemble_refuses() {
     let line = PointSet::line(-1.0, 1.0, 8).unwrap();
-    let e = LatticeOperator::new(
-        &line,
-        &[
-            &Body::beam(Beam {
-                youngs_modulus: 1e4,
-                second_moment: 3.0,
-                loaded_point: 0.0,
-            })
-            .unwrap(),
-            &Body::winkler(1e3),
-        ],
-    )
-    .unwrap_err();
+    let e = LatticeOperator::new(&line, &[&Body::beam(BEAM).unwrap(), &Body::winkler(1e3)])
+        .unwrap_err();
     assert_eq!(
         e,
         InfluenceError::NotTranslationInvariant {

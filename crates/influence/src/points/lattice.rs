@@ -289,7 +289,8 @@ impl LatticeIndex {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::points::{Cell, Dimension, PointSet};
+    use crate::fixtures::scattered;
+    use crate::points::{Dimension, PointSet};
 
     #[test]
     fn the_lattice_index_is_runs_on_grids_a_table_on_lattices_and_a_map_on_sparse_sets() {
@@ -339,13 +340,7 @@ mod tests {
             }
         }
         // A set without a lattice has no index.
-        let scattered = PointSet::from_points(
-            Dimension::Surface,
-            vec![0.0, 0.13, 0.5],
-            vec![0.0, 0.02, 0.31],
-            Cell::square(0.1),
-        )
-        .unwrap();
+        let scattered = scattered();
         assert!(scattered.lattice_index().is_none());
     }
 }
