@@ -31,7 +31,7 @@ use elcon::design::{
     Axis, Design, DesignOptions, Evaluation, Family, Profile, design, evaluate, fit_profile,
     uniform_target,
 };
-use elcon::influence::{Body, PointSet};
+use elcon::influence::{Beam, Body, PointSet};
 
 const LENGTH: f64 = 8.9;
 const WIDTH: f64 = 1.0;
@@ -83,7 +83,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     let points = PointSet::line(-0.5 * LENGTH, 0.5 * LENGTH, n)?;
     let case = ContactProblem::new(
         points,
-        &Body::beam(E_STEEL, second_moment, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: E_STEEL,
+            second_moment,
+            loaded_point: 0.0,
+        })?,
         &Body::winkler(FOUNDATION),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(a.load),

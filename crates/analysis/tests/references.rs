@@ -10,11 +10,13 @@ mod common;
 
 use common::checks::assert_solves;
 use common::scenes;
-use elcon_analysis::references::{HertzCylinders, HertzSpheres, HetenyiBeam, combined_radius};
+use elcon_analysis::references::{
+    BeamOnFoundation, HertzCylinders, HertzSpheres, HetenyiBeam, combined_radius,
+};
 use elcon_analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface, Warning,
 };
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 /// A material pair and a unit system: (E1, nu1), (E2, nu2), length and force factors from inch-pound.
 struct Case {
@@ -357,7 +359,12 @@ fn hetenyi_case(per_half: usize, length: f64) -> (ContactSolution, HetenyiBeam, 
     let n = points.len();
     let problem = ContactProblem::new(
         points.clone(),
-        &Body::beam(e, i, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: e,
+            second_moment: i,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::winkler(k),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(load),
@@ -369,7 +376,13 @@ fn hetenyi_case(per_half: usize, length: f64) -> (ContactSolution, HetenyiBeam, 
     assert_solves(&problem, &sol, &format!("Hetenyi, {per_half} per half"));
     (
         sol,
-        HetenyiBeam::new(e * i, k, length, load).unwrap(),
+        HetenyiBeam::new(BeamOnFoundation {
+            flexural_rigidity: e * i,
+            foundation_modulus: k,
+            length,
+            load,
+        })
+        .unwrap(),
         points,
     )
 }
@@ -448,7 +461,12 @@ fn folded_problems_agree_with_full_ones() {
         ),
         (
             PointSet::line(-4.45, 4.45, 30).unwrap(),
-            Body::beam(30e6, 16.0 / 3.0, 0.0),
+            Body::beam(Beam {
+                youngs_modulus: 30e6,
+                second_moment: 16.0 / 3.0,
+                loaded_point: 0.0,
+            })
+            .unwrap(),
             Body::winkler(1e7),
             Geometry::Separation(vec![0.0; 30]),
             Loading::load(5e4),

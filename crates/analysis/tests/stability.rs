@@ -13,7 +13,7 @@ use common::checks::{assert_solves, check};
 use common::scenes;
 use common::stability_cases::{Expect, Reference, catalogue, error};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface, Warning};
-use elcon_influence::{Body, Material, PointSet};
+use elcon_influence::{Beam, Body, Material, PointSet};
 use proptest::prelude::*;
 
 #[test]
@@ -348,7 +348,12 @@ fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
     let points = PointSet::line(-1.0, 1.0, 21).unwrap();
     let problem = ContactProblem::new(
         points,
-        &Body::beam(1e6, 1.0, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 1e6,
+            second_moment: 1.0,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::rigid(),
         &Geometry::Separation(vec![0.0; 21]),
         Loading::load(10.0),

@@ -7,14 +7,19 @@ use elcon_analysis::{
 use elcon_design::{
     Axis, DesignError, DesignOptions, Family, Profile, design, evaluate, target_separation,
 };
-use elcon_influence::{Body, PointSet};
+use elcon_influence::{Beam, Body, PointSet};
 use elcon_lcp::LcpError;
 
 fn beam(loading: Loading) -> ContactProblem {
     let points = PointSet::line(-4.45, 4.45, 12).unwrap();
     ContactProblem::new(
         points,
-        &Body::beam(30e6, 64.0 / 12.0, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 64.0 / 12.0,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; 12]),
         loading,
@@ -108,7 +113,12 @@ fn incompatible_inputs_say_what_to_give() {
     );
     let other = ContactProblem::new(
         PointSet::line(-4.45, 4.45, 8).unwrap(),
-        &Body::beam(30e6, 64.0 / 12.0, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 64.0 / 12.0,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; 8]),
         Loading::load(5e4),

@@ -16,7 +16,7 @@ use elcon_analysis::{
     AnalysisError, Body, ContactSolution, Dimension, Loading, Material, Method, Options, PointSet,
 };
 use elcon_design::{Axis, DesignMethod, DesignOptions, Family};
-use elcon_influence::Cell;
+use elcon_influence::{Beam, Cell};
 use elcon_scene::{Scene, SceneError as RustSceneError};
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::create_exception;
@@ -183,11 +183,12 @@ fn body(spec: &Bound<'_, PyDict>, which: &str) -> PyResult<Body> {
         "point-force" => Body::point_force(material()?),
         "plane-strain" => Body::plane_strain(material()?, need("reference_distance")?),
         "winkler" => Body::winkler(need("modulus")?),
-        "beam" => Body::beam(
-            need("youngs_modulus")?,
-            need("second_moment")?,
-            get("loaded_point")?.unwrap_or(0.0),
-        ),
+        "beam" => Body::beam(Beam {
+            youngs_modulus: need("youngs_modulus")?,
+            second_moment: need("second_moment")?,
+            loaded_point: get("loaded_point")?.unwrap_or(0.0),
+        })
+        .map_err(|e| InputError::new_err(format!("`{which}`: {e}")))?,
         other => {
             return Err(InputError::new_err(format!(
                 "`{which}.model` = \"{other}\": one of rigid, uniform-patch, point-force, \
