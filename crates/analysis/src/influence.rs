@@ -18,7 +18,7 @@ use elcon_lcp::{
 use faer::{ColRef, Mat, MatRef};
 
 use crate::AnalysisError;
-use crate::contact::Storage;
+use crate::storage::Storage;
 
 /// The influence matrix of a problem, as it is held.
 #[derive(Debug, Clone)]

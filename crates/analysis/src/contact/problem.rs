@@ -15,12 +15,12 @@ use elcon_lcp::{LinearSolution, Method, Operator, Options};
 use faer::MatRef;
 
 use super::layout::{check, symmetric_rigid, unfolded_rigid};
-use super::storage::Storage;
 use crate::AnalysisError;
 use crate::edge::EdgeLaw;
 use crate::influence::{Influence, Products};
 use crate::loading::Loading;
 use crate::rigid::Rigid;
+use crate::storage::Storage;
 
 /// A discrete contact problem: points, influence matrix, separations, loading.
 #[derive(Debug, Clone)]
