@@ -28,8 +28,8 @@ use std::path::{Path, PathBuf};
 
 use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options};
 use elcon::design::{
-    Axis, Design, DesignOptions, Evaluation, Family, Profile, design, evaluate, fit_profile,
-    uniform_target,
+    Analysis, Axis, Design, DesignOptions, Evaluation, Family, Profile, design, evaluate,
+    fit_profile, uniform_target,
 };
 use elcon::influence::{Beam, Body, PointSet};
 
@@ -142,8 +142,7 @@ impl Separations {
                 &cases,
                 Axis::X,
                 profile,
-                Method::BlockPivoting,
-                &Options::default(),
+                &Analysis::new(Method::BlockPivoting, &Options::default()),
             )
         };
         let none = analyse(&Profile::none())?;

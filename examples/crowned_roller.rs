@@ -36,8 +36,8 @@ use std::fs;
 use elcon::analysis::references::HertzCylinders;
 use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface};
 use elcon::design::{
-    Axis, CrownSearch, Design, DesignOptions, Evaluation, Family, LogCrown, LogEnd, Profile,
-    SearchOptions, crown_search, design, evaluate,
+    Analysis, Axis, CrownSearch, Design, DesignOptions, Evaluation, Family, LogCrown, LogEnd,
+    Profile, SearchOptions, crown_search, design, evaluate,
 };
 use elcon::influence::{Body, Material, PointSet, combined_modulus};
 
@@ -131,7 +131,12 @@ impl Crowns {
     fn of(cases: &[ContactProblem], e_star: f64, hertz: &[f64]) -> Result<Crowns, Box<dyn Error>> {
         let method = Method::BlockPivoting;
         let opts = Options::default();
-        let none = evaluate(cases, Axis::Y, &Profile::none(), method, &opts)?;
+        let none = evaluate(
+            cases,
+            Axis::Y,
+            &Profile::none(),
+            &Analysis::new(method, &opts),
+        )?;
         let circular = crown_search(
             cases,
             Axis::Y,
@@ -160,8 +165,7 @@ impl Crowns {
             cases,
             Axis::Y,
             &Profile::LogarithmicCrown(log_crown),
-            method,
-            &opts,
+            &Analysis::new(method, &opts),
         )?;
         let started = std::time::Instant::now();
         let designed = design(

@@ -53,7 +53,8 @@ use elcon::analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface,
 };
 use elcon::design::{
-    Axis, Design, DesignOptions, Family, LogCrown, LogEnd, Profile, Solver, design, evaluate,
+    Analysis, Axis, Design, DesignOptions, Family, LogCrown, LogEnd, Profile, Solver, design,
+    evaluate,
 };
 use elcon::influence::{Body, Material, PointSet, combined_modulus};
 use plotters::prelude::*;
@@ -375,8 +376,7 @@ fn print_worst_over_the_cases(
             cases,
             Axis::Y,
             &named.profile,
-            Method::BlockPivoting,
-            &Options::default(),
+            &Analysis::new(Method::BlockPivoting, &Options::default()),
         )?;
         println!("  {:<12} {:>8.4}", named.name, e.relative_worst(references));
     }

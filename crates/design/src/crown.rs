@@ -17,7 +17,7 @@
 
 use elcon_analysis::{ContactProblem, Method, Options};
 
-use crate::evaluate::{Evaluation, evaluate, evaluate_from};
+use crate::evaluate::{Analysis, Evaluation, evaluate};
 use crate::prepared::reference_intensities;
 use crate::{Axis, DesignError, Profile};
 
@@ -111,10 +111,13 @@ pub fn crown_search(
         // Warm-started from the best evaluation so far: the samples close in
         // on it, so its contact sets are the nearest at hand.
         let e = match &found {
-            Some((.., best)) => {
-                evaluate_from(cases, axis, &profile, method, options, &best.solutions)?
-            }
-            None => evaluate(cases, axis, &profile, method, options)?,
+            Some((.., best)) => evaluate(
+                cases,
+                axis,
+                &profile,
+                &Analysis::new(method, options).starting_from(&best.solutions),
+            )?,
+            None => evaluate(cases, axis, &profile, &Analysis::new(method, options))?,
         };
         let objective = e.relative_worst(&references);
         tried.push((q, objective));

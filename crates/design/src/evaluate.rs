@@ -62,76 +62,76 @@ pub(crate) fn load_of(case: &ContactProblem, index: usize) -> Result<f64, Design
     }
 }
 
-/// Solves every case with `profile` added to its separations.
+/// How [`evaluate`] analyses the cases: the method and its options, and
+/// optionally solutions already known or warm starts, one per case.
+#[derive(Debug, Clone, Copy)]
+pub struct Analysis<'a> {
+    /// The method every case is solved by.
+    pub method: Method,
+    /// Its options.
+    pub options: &'a Options,
+    /// Solutions already known: `known[l]`, when given, is case l's
+    /// solution with the profile added (solved with `method` and `options`,
+    /// e.g. the scene's own analysis as the uncorrected case), taken as it
+    /// is instead of being solved again.
+    pub known: Option<&'a [Option<&'a ContactSolution>]>,
+    /// Warm starts, one per case (the solutions of a neighbouring profile:
+    /// a crown search's previous sample, a design's last iterate). Block
+    /// principal pivoting then starts from that contact set
+    /// ([`ContactProblem::solve_from`]); the answer does not depend on the
+    /// start.
+    pub starts: Option<&'a [ContactSolution]>,
+}
+
+impl<'a> Analysis<'a> {
+    /// Every case solved by `method` with `options`, from its own start.
+    pub fn new(method: Method, options: &'a Options) -> Self {
+        Self {
+            method,
+            options,
+            known: None,
+            starts: None,
+        }
+    }
+
+    /// With solutions already known (see [`Analysis::known`]).
+    pub fn with_known(self, known: &'a [Option<&'a ContactSolution>]) -> Self {
+        Self {
+            known: Some(known),
+            ..self
+        }
+    }
+
+    /// With warm starts (see [`Analysis::starts`]).
+    pub fn starting_from(self, starts: &'a [ContactSolution]) -> Self {
+        Self {
+            starts: Some(starts),
+            ..self
+        }
+    }
+}
+
+/// Solves every case with `profile` added to its separations, as
+/// `analysis` says.
 ///
 /// # Errors
-/// [`DesignError::Incompatible`] for no case or a displacement-controlled
-/// case; the profile's own errors; [`DesignError::Analysis`] naming the case
-/// whose analysis failed.
+/// [`DesignError::Incompatible`] for no case, a displacement-controlled
+/// case, or known solutions or starts that do not have one entry per case
+/// with one value per point; the profile's own errors;
+/// [`DesignError::Analysis`] naming the case whose analysis failed.
 pub fn evaluate(
     cases: &[ContactProblem],
     axis: Axis,
     profile: &Profile,
-    method: Method,
-    options: &Options,
-) -> Result<Evaluation, DesignError> {
-    evaluate_known(
-        cases,
-        axis,
-        profile,
-        method,
-        options,
-        &vec![None; cases.len()],
-    )
-}
-
-/// As [`evaluate`], with some solutions already known: `known[l]`, when
-/// given, is case l's solution with `profile` added (solved with `method`
-/// and `options`, e.g. the scene's own analysis as the uncorrected case) and
-/// is taken as it is instead of being solved again.
-///
-/// # Errors
-/// As [`evaluate`]; [`DesignError::Incompatible`] when `known` does not have
-/// one entry per case or a known solution not one value per point.
-pub fn evaluate_known(
-    cases: &[ContactProblem],
-    axis: Axis,
-    profile: &Profile,
-    method: Method,
-    options: &Options,
-    known: &[Option<&ContactSolution>],
+    analysis: &Analysis<'_>,
 ) -> Result<Evaluation, DesignError> {
     let none = vec![None; cases.len()];
-    evaluate_cases(cases, axis, profile, method, options, known, &none)
-}
-
-/// As [`evaluate`], each case's solve warm-started from its solution in
-/// `start`, one per case (the solutions of a neighbouring profile: a crown
-/// search's previous sample, a design's last iterate). Block principal pivoting then starts from that contact
-/// set ([`ContactProblem::solve_from`]); the answer does not depend on the
-/// start.
-///
-/// # Errors
-/// As [`evaluate`]; [`DesignError::Incompatible`] when `start` does not have
-/// one solution per case, each with one value per point.
-pub fn evaluate_from(
-    cases: &[ContactProblem],
-    axis: Axis,
-    profile: &Profile,
-    method: Method,
-    options: &Options,
-    start: &[ContactSolution],
-) -> Result<Evaluation, DesignError> {
-    let starts: Vec<Option<&ContactSolution>> = start.iter().map(Some).collect();
-    evaluate_cases(
-        cases,
-        axis,
-        profile,
-        method,
-        options,
-        &vec![None; cases.len()],
-        &starts,
-    )
+    let known = analysis.known.unwrap_or(&none);
+    let starts: Vec<Option<&ContactSolution>> = match analysis.starts {
+        Some(starts) => starts.iter().map(Some).collect(),
+        None => none.clone(),
+    };
+    evaluate_cases(cases, axis, profile, analysis, known, &starts)
 }
 
 /// Solutions given per case (`known`, or warm starts): one entry per case,
@@ -197,14 +197,13 @@ pub(crate) fn solve_corrected(
     Ok((corrected, solution))
 }
 
-/// [`evaluate_known`] with warm starts: a known solution is taken as it
-/// is, a start begins the solve.
+/// [`evaluate`] with its known solutions and starts per case: a known
+/// solution is taken as it is, a start begins the solve.
 fn evaluate_cases(
     cases: &[ContactProblem],
     axis: Axis,
     profile: &Profile,
-    method: Method,
-    options: &Options,
+    analysis: &Analysis<'_>,
     known: &[Option<&ContactSolution>],
     starts: &[Option<&ContactSolution>],
 ) -> Result<Evaluation, DesignError> {
@@ -227,6 +226,7 @@ fn evaluate_cases(
             None => {
                 let stage = format!("load case {l} with the {} profile", profile.family());
                 let drops = y.iter().copied();
+                let (method, options) = (analysis.method, analysis.options);
                 solve_corrected(case, drops, *start, method, options, &stage)?.1
             }
         };

@@ -69,7 +69,7 @@ pub use basis::fit_profile;
 pub use crown::{CrownSearch, SearchOptions, crown_search};
 pub use error::DesignError;
 pub use estimate::DesignEstimate;
-pub use evaluate::{Evaluation, evaluate, evaluate_from, evaluate_known};
+pub use evaluate::{Analysis, Evaluation, evaluate};
 pub use optimize::{Design, StartOutcome, design};
 pub use options::{DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, PROGRAM_LIMIT};
 pub use prepared::{Solver, Stop, axial_stations};

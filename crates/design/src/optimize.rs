@@ -29,7 +29,7 @@ use elcon_analysis::{ContactProblem, RigidMode};
 use elcon_influence::Dimension;
 
 use crate::basis::Basis;
-use crate::evaluate::{Evaluation, evaluate, evaluate_from};
+use crate::evaluate::{Analysis, Evaluation, evaluate};
 use crate::prepared::{
     Case, Found, Solver, axial_stations, deflection_scale, prepare, reference_intensities,
 };
@@ -360,15 +360,18 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
     let profile = setup.basis.profile(setup.family, &setup.stations, &theta);
     let (method, reanalysis) = (options.reanalysis, &options.reanalysis_options);
     let evaluation = match solutions {
-        Some(previous) => evaluate_from(
+        Some(previous) => evaluate(
             setup.cases,
             setup.axis,
             &profile,
-            method,
-            reanalysis,
-            &previous,
+            &Analysis::new(method, reanalysis).starting_from(&previous),
         )?,
-        None => evaluate(setup.cases, setup.axis, &profile, method, reanalysis)?,
+        None => evaluate(
+            setup.cases,
+            setup.axis,
+            &profile,
+            &Analysis::new(method, reanalysis),
+        )?,
     };
     let references: Vec<f64> = setup.prepared.iter().map(|c| c.reference).collect();
     agree(

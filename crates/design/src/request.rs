@@ -16,7 +16,7 @@
 use elcon_analysis::{ContactProblem, Method, Options};
 
 use crate::crown::{SearchOptions, crown_search};
-use crate::evaluate::{Evaluation, evaluate};
+use crate::evaluate::{Analysis, Evaluation, evaluate};
 use crate::optimize::{StartOutcome, design};
 use crate::{Axis, DesignError, DesignMethod, DesignOptions, Family, LogCrown, LogEnd, Profile};
 
@@ -141,8 +141,7 @@ impl DesignRequest {
                     cases,
                     self.axis,
                     &profile,
-                    self.reanalysis,
-                    &self.reanalysis_options,
+                    &Analysis::new(self.reanalysis, &self.reanalysis_options),
                 )?;
                 Ok(Outcome {
                     profile,

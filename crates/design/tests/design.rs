@@ -5,8 +5,8 @@
 
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options};
 use elcon_design::{
-    Axis, DesignMethod, DesignOptions, Family, Profile, SearchOptions, Solver, Stop, crown_search,
-    design, evaluate, evaluate_from, uniform_target,
+    Analysis, Axis, DesignMethod, DesignOptions, Family, Profile, SearchOptions, Solver, Stop,
+    crown_search, design, evaluate, uniform_target,
 };
 use elcon_influence::{Beam, Body, PointSet};
 
@@ -50,7 +50,13 @@ const INDEPENDENT: f64 = 1e-9;
 /// The worst p_max over `cases` with `profile`, by Lemke's method (not the
 /// block pivoting design() re-analyses with), certified.
 fn lemke_worst(cases: &[ContactProblem], profile: &Profile) -> f64 {
-    let e = evaluate(cases, Axis::X, profile, Method::Lemke, &Options::default()).unwrap();
+    let e = evaluate(
+        cases,
+        Axis::X,
+        profile,
+        &Analysis::new(Method::Lemke, &Options::default()),
+    )
+    .unwrap();
     for s in &e.solutions {
         assert!(s.certificate.holds(), "{}", s.certificate);
     }
@@ -157,8 +163,7 @@ fn quadratic_pmax(case: &ContactProblem, a: f64, b: f64) -> f64 {
         std::slice::from_ref(case),
         Axis::X,
         &profile,
-        Method::BlockPivoting,
-        &Options::default(),
+        &Analysis::new(Method::BlockPivoting, &Options::default()),
     )
     .unwrap()
     .worst
@@ -226,8 +231,7 @@ fn uniform_target_gives_the_mean_pressure_everywhere() {
             std::slice::from_ref(&case),
             Axis::X,
             &profile,
-            Method::Lemke,
-            &Options::default(),
+            &Analysis::new(Method::Lemke, &Options::default()),
         )
         .unwrap();
         let sol = &e.solutions[0];
@@ -313,8 +317,7 @@ fn several_load_cases_at_once() {
             &cases,
             Axis::X,
             &d.profile,
-            Method::BlockPivoting,
-            &Options::default(),
+            &Analysis::new(Method::BlockPivoting, &Options::default()),
         )
         .unwrap()
         .worst;
@@ -419,19 +422,22 @@ fn a_warm_started_evaluation_equals_a_cold_one_in_fewer_iterations() {
         cases,
         Axis::X,
         &hollow(&case, 1.0e-3),
-        Method::BlockPivoting,
-        &options,
+        &Analysis::new(Method::BlockPivoting, &options),
     )
     .unwrap();
     let profile = hollow(&case, 1.05e-3);
-    let cold = evaluate(cases, Axis::X, &profile, Method::BlockPivoting, &options).unwrap();
-    let warm = evaluate_from(
+    let cold = evaluate(
         cases,
         Axis::X,
         &profile,
-        Method::BlockPivoting,
-        &options,
-        &near.solutions,
+        &Analysis::new(Method::BlockPivoting, &options),
+    )
+    .unwrap();
+    let warm = evaluate(
+        cases,
+        Axis::X,
+        &profile,
+        &Analysis::new(Method::BlockPivoting, &options).starting_from(&near.solutions),
     )
     .unwrap();
     let (c, w) = (&cold.solutions[0], &warm.solutions[0]);
@@ -448,13 +454,11 @@ fn a_warm_started_evaluation_equals_a_cold_one_in_fewer_iterations() {
     );
     // A start with the wrong number of cases is refused, naming the field.
     let two = [case.clone(), case.clone()];
-    let e = evaluate_from(
+    let e = evaluate(
         &two,
         Axis::X,
         &profile,
-        Method::BlockPivoting,
-        &options,
-        &near.solutions,
+        &Analysis::new(Method::BlockPivoting, &options).starting_from(&near.solutions),
     )
     .unwrap_err();
     assert!(e.to_string().contains("start"), "{e}");
@@ -464,17 +468,14 @@ fn a_warm_started_evaluation_equals_a_cold_one_in_fewer_iterations() {
         std::slice::from_ref(&small),
         Axis::X,
         &hollow(&small, 1.0e-3),
-        Method::BlockPivoting,
-        &options,
+        &Analysis::new(Method::BlockPivoting, &options),
     )
     .unwrap();
-    let e = evaluate_from(
+    let e = evaluate(
         cases,
         Axis::X,
         &profile,
-        Method::BlockPivoting,
-        &options,
-        &other.solutions,
+        &Analysis::new(Method::BlockPivoting, &options).starting_from(&other.solutions),
     )
     .unwrap_err();
     assert!(

@@ -5,7 +5,8 @@ use elcon_analysis::{
     AnalysisError, ContactProblem, ContactSolution, Geometry, Loading, Method, Options,
 };
 use elcon_design::{
-    Axis, DesignError, DesignOptions, Family, Profile, design, evaluate, target_separation,
+    Analysis, Axis, DesignError, DesignOptions, Family, Profile, design, evaluate,
+    target_separation,
 };
 use elcon_influence::{Beam, Body, PointSet};
 use elcon_lcp::LcpError;
@@ -57,7 +58,13 @@ fn invalid_input_names_the_field() {
         radius: f64::INFINITY,
         flat_length: 0.0,
     };
-    let e = evaluate(&[case], Axis::X, &crown, Method::Lemke, &Options::default()).unwrap_err();
+    let e = evaluate(
+        &[case],
+        Axis::X,
+        &crown,
+        &Analysis::new(Method::Lemke, &Options::default()),
+    )
+    .unwrap_err();
     assert_eq!(
         e.to_string(),
         "`circular_crown.radius` = inf: must be finite and > 0"
@@ -66,13 +73,11 @@ fn invalid_input_names_the_field() {
 
 /// The error of evaluating `case`, uncorrected, from the solutions `known`.
 fn known_error(case: &ContactProblem, known: &[Option<&ContactSolution>]) -> DesignError {
-    elcon_design::evaluate_known(
+    elcon_design::evaluate(
         std::slice::from_ref(case),
         Axis::X,
         &Profile::none(),
-        Method::Lemke,
-        &Options::default(),
-        known,
+        &elcon_design::Analysis::new(Method::Lemke, &Options::default()).with_known(known),
     )
     .unwrap_err()
 }

@@ -4,7 +4,7 @@
 //! uncorrected geometry, and no better than the lower bound P / L.
 
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options};
-use elcon_design::{Axis, DesignOptions, Family, Profile, Solver, design, evaluate};
+use elcon_design::{Analysis, Axis, DesignOptions, Family, Profile, Solver, design, evaluate};
 use elcon_influence::{Beam, Body, PointSet};
 use proptest::prelude::*;
 
@@ -56,13 +56,13 @@ proptest! {
         // the conditioning of S on the contact set: design() demands 1e-9 of
         // block pivoting; Lemke's tableau is given a decade more over these
         // random stiffness ratios (measured: up to about 1e-11).
-        let lemke = evaluate(cases, Axis::X, &d.profile, Method::Lemke, &Options::default()).unwrap();
+        let lemke = evaluate(cases, Axis::X, &d.profile, &Analysis::new(Method::Lemke, &Options::default())).unwrap();
         prop_assert!(lemke.solutions[0].certificate.holds(), "{}", lemke.solutions[0].certificate);
         let rel = (lemke.worst - d.max_intensity).abs() / d.max_intensity;
         prop_assert!(rel < 1e-8, "Lemke {} vs {}: {rel:e}", lemke.worst, d.max_intensity);
         let mean = load / length;
         prop_assert!(d.max_intensity >= mean * (1.0 - 1e-12), "{} < P/L {mean}", d.max_intensity);
-        let none = evaluate(cases, Axis::X, &Profile::none(), Method::BlockPivoting, &Options::default())
+        let none = evaluate(cases, Axis::X, &Profile::none(), &Analysis::new(Method::BlockPivoting, &Options::default()))
             .unwrap();
         prop_assert!(d.max_intensity <= none.worst * (1.0 + 1e-9), "{} > uncorrected {}", d.max_intensity, none.worst);
         if family == Family::Free {

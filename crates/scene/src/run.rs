@@ -7,7 +7,7 @@
 use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
-use elcon_design::{Evaluation, Profile, axial_stations, evaluate_known};
+use elcon_design::{Analysis, Evaluation, Profile, axial_stations, evaluate};
 use elcon_influence::Dimension;
 use serde::Serialize;
 
@@ -475,13 +475,11 @@ fn design_stage(
     let start = Instant::now();
     let (cases, known, references) = design_cases(scene, spec, problem, solution)?;
     let fail = |e: elcon_design::DesignError| run_error(scene, e);
-    let before = evaluate_known(
+    let before = evaluate(
         &cases,
         spec.axis(),
         &Profile::none(),
-        scene.method(),
-        scene.options(),
-        &known,
+        &Analysis::new(scene.method(), scene.options()).with_known(&known),
     )
     .map_err(fail)?;
     let (profile, after, starts, method) = find_design(scene, spec, &cases, &references)?;

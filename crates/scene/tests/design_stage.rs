@@ -6,7 +6,7 @@ mod common;
 use std::path::Path;
 
 use common::{BEAM, with_table};
-use elcon_design::{Profile, evaluate};
+use elcon_design::{Analysis, Profile, evaluate};
 use elcon_scene::{Scene, run};
 
 /// The paper's beam on a foundation (Example 2: 1 in x 4 in, 8.9 in long,
@@ -48,8 +48,7 @@ fn the_design_stage_shares_the_scenes_matrix_and_solution() {
         &d.cases,
         scene.design().unwrap().axis(),
         &Profile::none(),
-        scene.method(),
-        scene.options(),
+        &Analysis::new(scene.method(), scene.options()),
     )
     .unwrap();
     assert_eq!(fresh.max_intensities, d.before.max_intensities);
