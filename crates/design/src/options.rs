@@ -8,6 +8,7 @@ use crate::Profile;
 
 /// A profile family linear in its parameters, for the design program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Family {
     /// The paper's `a s^2 + b s + c`.
     Quadratic,
@@ -20,8 +21,21 @@ pub enum Family {
     Free,
 }
 
+impl Family {
+    /// The polynomial degree of the profile: 2 for the quadratic, d for a
+    /// polynomial, `None` for a free profile (one drop per station).
+    pub fn degree(&self) -> Option<usize> {
+        match *self {
+            Family::Quadratic => Some(2),
+            Family::Polynomial { degree } => Some(degree),
+            Family::Free => None,
+        }
+    }
+}
+
 /// How the min-max problem of a linear family is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
 pub enum DesignMethod {
     /// The program while all the cases' points together are at most
     /// [`PROGRAM_LIMIT`], the descent above (the default).

@@ -145,6 +145,7 @@ impl LogCrown {
 
 /// A profile correction `y(s)`; see the [module documentation](self).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Profile {
     /// The paper's `y = a s^2 + b s + c` (eq. 14).
     Quadratic {

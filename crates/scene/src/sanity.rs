@@ -11,7 +11,7 @@
 //! interpenetrate more the farther from the first point of contact, which
 //! no contact solution describes.
 
-use elcon_analysis::{Geometry, Loading, Normal, Surface};
+use elcon_analysis::{Geometry, Loading, Normal};
 use elcon_design::{Axis, Family, axial_stations};
 use elcon_influence::{Body, Dimension, Model, PointSet};
 use toml::Spanned;
@@ -51,15 +51,6 @@ pub fn max_pivots_bound(points: usize) -> usize {
     points.saturating_mul(100).saturating_add(10_000)
 }
 
-/// Curvatures along x and y of one surface.
-fn curvature(s: &Surface) -> (f64, f64) {
-    match *s {
-        Surface::Plane => (0.0, 0.0),
-        Surface::Sphere { radius } => (1.0 / radius, 1.0 / radius),
-        Surface::Cylinder { radius } => (1.0 / radius, 0.0),
-    }
-}
-
 /// A concave surface must have the larger radius: the summed curvature
 /// along x and along y must not be negative.
 pub(crate) fn curvatures(
@@ -70,7 +61,7 @@ pub(crate) fn curvatures(
     let Geometry::Surfaces(a, b) = geometry else {
         return Ok(());
     };
-    let (ka, kb) = (curvature(a), curvature(b));
+    let (ka, kb) = (a.curvatures(), b.curvatures());
     for (axis, k1, k2) in [("x", ka.0, kb.0), ("y", ka.1, kb.1)] {
         let sum = k1 + k2;
         if sum >= -1e-12 * (k1.abs() + k2.abs()) {
@@ -82,10 +73,7 @@ pub(crate) fn curvatures(
         } else {
             ("geometry.surface2", b, a)
         };
-        let radius = match surface {
-            Surface::Sphere { radius } | Surface::Cylinder { radius } => *radius,
-            Surface::Plane => 0.0,
-        };
+        let radius = surface.radius().unwrap_or(0.0);
         let raw_surface = raw.and_then(|g| {
             if field.ends_with('1') {
                 g.get_ref().surface1.as_ref()
@@ -97,14 +85,10 @@ pub(crate) fn curvatures(
             .and_then(|s| s.get_ref().radius.as_ref().map(|r| r.span()))
             .or_else(|| raw.map(|g| g.span()))
             .unwrap_or(0..0);
-        let against = match other {
-            Surface::Plane => "a plane".to_string(),
-            Surface::Sphere { radius } | Surface::Cylinder { radius } if *radius < 0.0 => {
-                format!("another concave surface (radius {radius})")
-            }
-            Surface::Sphere { radius } | Surface::Cylinder { radius } => {
-                format!("the convex radius {radius}")
-            }
+        let against = match other.radius() {
+            None => "a plane".to_string(),
+            Some(radius) if radius < 0.0 => format!("another concave surface (radius {radius})"),
+            Some(radius) => format!("the convex radius {radius}"),
         };
         return Err(ctx.invalid(
             span,
@@ -268,14 +252,13 @@ pub(crate) fn design(
     let t = raw.get_ref();
     if let Some(family) = &spec.family {
         let (stations, _) = axial_stations(sets.iter(), spec.axis);
-        let (degree, field, span) = match family {
-            Family::Quadratic => (2, "design.family", t.family.span()),
-            Family::Polynomial { degree } => (
-                *degree,
+        let degree = family.degree().unwrap_or(0);
+        let (field, span) = match family {
+            Family::Polynomial { .. } => (
                 "design.degree",
                 t.degree.as_ref().map_or(raw.span(), |d| d.span()),
             ),
-            Family::Free => (0, "design.family", t.family.span()),
+            _ => ("design.family", t.family.span()),
         };
         if degree > MAX_DEGREE {
             return Err(ctx.invalid(
@@ -393,10 +376,7 @@ pub(crate) fn no_hertz_reason(
              displacement control the contact's size is not known before the solve{fix}"
         );
     }
-    let curved = match geometry {
-        Geometry::Surfaces(a, b) => !matches!((a, b), (Surface::Plane, Surface::Plane)),
-        Geometry::Separation(_) => false,
-    };
+    let curved = matches!(geometry, Geometry::Surfaces(a, b) if a.radius().is_some() || b.radius().is_some());
     if !curved {
         return format!(
             "points relative to the Hertz contact (across, zone) need curved surfaces (a sphere or \

@@ -10,6 +10,7 @@ use crate::AnalysisError;
 /// above the common tangent plane. Radii are positive for convex surfaces and
 /// negative for concave ones (a ball in a groove).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Surface {
     /// A plane: height 0.
     Plane,
@@ -26,6 +27,25 @@ pub enum Surface {
 }
 
 impl Surface {
+    /// The curvatures along x and along y (1 / length; negative where
+    /// concave): `1/R` both ways for a sphere, `1/R` along x for a cylinder
+    /// with its axis along y, none for a plane.
+    pub fn curvatures(&self) -> (f64, f64) {
+        match *self {
+            Surface::Plane => (0.0, 0.0),
+            Surface::Sphere { radius } => (1.0 / radius, 1.0 / radius),
+            Surface::Cylinder { radius } => (1.0 / radius, 0.0),
+        }
+    }
+
+    /// Its radius (length; negative = concave), `None` for a plane.
+    pub fn radius(&self) -> Option<f64> {
+        match *self {
+            Surface::Plane => None,
+            Surface::Sphere { radius } | Surface::Cylinder { radius } => Some(radius),
+        }
+    }
+
     pub(crate) fn height(&self, x: f64, y: f64) -> f64 {
         match *self {
             Surface::Plane => 0.0,
@@ -63,6 +83,7 @@ impl Surface {
 
 /// Where the initial separations come from.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Geometry {
     /// Two surfaces: `eps_k = h1(x_k, y_k) + h2(x_k, y_k)`.
     Surfaces(Surface, Surface),

@@ -11,6 +11,7 @@ use crate::schema::{Grid, PointsToml};
 
 /// How the candidate points are laid out.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum PointsSpec {
     /// Square grid of `spacing`, clipped to a disk of `radius`.
     Disk {
