@@ -48,7 +48,7 @@ pub use plot::error_time;
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{
     DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson, Run, RunResult, Seconds,
-    SymmetryJson, XY, run,
+    SolutionJson, SymmetryJson, XY, run,
 };
 pub use sanity::{
     MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MIN_POINTS_ACROSS,
