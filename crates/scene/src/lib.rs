@@ -55,8 +55,9 @@ pub use sanity::{
     max_pivots_bound,
 };
 pub use scene::{
-    BodySpec, DesignFamily, DesignSpec, HalfX, MethodChoice, ModelKind, Outputs, Plot, PointsSpec,
-    Reference, RelativeTo, Scene, Units,
+    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, HalfX, MethodChoice, ModelKind, Outputs,
+    Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units, design_over,
+    problem_parts, scene_with_design,
 };
 pub use schema::ErrorMetric;
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};
