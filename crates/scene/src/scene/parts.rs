@@ -320,3 +320,122 @@ pub fn scene_with_design(file: &Path, text: &str, design: &str) -> Result<Scene,
     })?;
     Scene::from_str(file, &joined)
 }
+
+#[cfg(test)]
+mod tests {
+    use elcon_analysis::{Body, Material, Surface};
+
+    use super::*;
+
+    fn file() -> &'static Path {
+        Path::new("<parts>")
+    }
+
+    fn line_points() -> PointSet {
+        PointSet::line(-1.0, 1.0, 8).unwrap()
+    }
+
+    #[test]
+    fn a_body_is_checked_by_the_scenes_body_parser_naming_the_field() {
+        let text = "[body1]\nmodel = \"beam\"\nyoungs_modulus = -30e6\nsecond_moment = 1.0\n\
+                    [body2]\nmodel = \"winkler\"\nmodulus = 1e7\n";
+        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        assert!(e.is_input_error());
+        assert!(
+            e.to_string()
+                .contains("`body1.youngs_modulus` = -30000000: must be > 0"),
+            "{e}"
+        );
+        let text = "[body1]\nmodel = \"winkler\"\nmodulus = 1e7\nloaded_pt = 3.0\n\
+                    [body2]\nmodel = \"rigid\"\n";
+        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        assert!(e.to_string().contains("unknown field `loaded_pt`"), "{e}");
+        let text = "[body1]\nmodel = \"winkler\"\nmodulus = 1e7\n";
+        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        assert!(e.to_string().contains("`body2` = (missing)"), "{e}");
+    }
+
+    #[test]
+    fn surfaces_and_a_layout_are_the_scenes_sections() {
+        let text = "[body1]\nmodel = \"uniform-patch\"\nyoungs_modulus = 30e6\n\
+                    poissons_ratio = 0.3\n[body2]\nmodel = \"rigid\"\n\
+                    [geometry]\nsurface1 = { shape = \"sphere\", radius = 1.0 }\n\
+                    [points]\ngrid = \"disk\"\nspacing = 0.01\nradius = 0.05\n";
+        let parts = problem_parts(file(), text, None, Loading::load(1.0)).unwrap();
+        assert_eq!(parts.points, PointSet::grid_disk(0.01, 0.05).unwrap());
+        assert_eq!(
+            parts.geometry,
+            Some(Geometry::Surfaces(
+                Surface::Sphere { radius: 1.0 },
+                Surface::Plane
+            ))
+        );
+        assert!(parts.bodies.is_some() && parts.points_spec.is_some());
+        // A sphere on a line, as a scene refuses it.
+        let text = "[geometry]\nsurface1 = { shape = \"sphere\", radius = 1.0 }\n";
+        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("`geometry.surface1.shape` = \"sphere\""),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_design_over_problems_is_checked_against_their_kind() {
+        let bed = Body::winkler(1e7);
+        let rigid = Body::rigid();
+        let flat = Geometry::Surfaces(Surface::Plane, Surface::Plane);
+        let line =
+            ContactProblem::new(line_points(), &rigid, &bed, &flat, Loading::load(1.0)).unwrap();
+        let steel = Body::uniform_patch(Material::new(30e6, 0.3).unwrap());
+        let sphere = Geometry::Surfaces(Surface::Sphere { radius: 1.0 }, Surface::Plane);
+        let surface = ContactProblem::new(
+            PointSet::grid_disk(0.01, 0.05).unwrap(),
+            &steel,
+            &steel,
+            &sphere,
+            Loading::load(1.0),
+        )
+        .unwrap();
+        let free = "[design]\nfamily = \"free\"\n";
+        let spec = design_over(file(), free, std::slice::from_ref(&line), None, None).unwrap();
+        assert_eq!(spec.axis(), elcon_design::Axis::X);
+        let e = design_over(file(), free, &[line.clone(), surface], None, None).unwrap_err();
+        assert!(e.to_string().contains("`cases[1]`: is a surface"), "{e}");
+        let along_y = "[design]\nfamily = \"free\"\naxis = \"y\"\n";
+        let e = design_over(file(), along_y, std::slice::from_ref(&line), None, None).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("`design.axis` = \"y\": a line grid lies along x"),
+            "{e}"
+        );
+        let loads = "[design]\nfamily = \"free\"\nloads = [1.0]\n";
+        let e = design_over(file(), loads, std::slice::from_ref(&line), None, None).unwrap_err();
+        assert!(e.to_string().contains("`design.loads`"), "{e}");
+        let log = "[design]\nfamily = \"logarithmic-crown\"\n";
+        let e = design_over(file(), log, std::slice::from_ref(&line), None, None).unwrap_err();
+        assert!(e.to_string().contains("set for a roller"), "{e}");
+    }
+
+    #[test]
+    fn a_scenes_design_is_replaced_whole() {
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/crowned-roller.toml");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let log = "[design]\nfamily = \"logarithmic-crown\"\nloads = [1000.0, 10000.0]\n\
+                   axis = \"y\"\n";
+        let scene = scene_with_design(&path, &text, log).unwrap();
+        let spec = scene.design().unwrap();
+        assert!(matches!(
+            spec.family(),
+            design::DesignFamily::LogarithmicCrown { .. }
+        ));
+        assert_eq!(spec.loads(), &[1000.0, 10000.0]);
+        assert_eq!(scene.name(), "crowned-roller");
+        // The scene's own [design] is gone: its relative_to with it.
+        assert_eq!(spec.relative_to(), crate::RelativeTo::Absolute);
+        let e = scene_with_design(&path, &text, "[design]\nfamily = \"cubic\"\n").unwrap_err();
+        assert!(e.to_string().contains("unknown variant `cubic`"), "{e}");
+    }
+}
