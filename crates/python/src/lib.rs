@@ -521,6 +521,12 @@ impl PyContactProblem {
         let ceiling = ceiling()?;
         match (influence, parts.bodies) {
             (Some(s), None) => {
+                if !matches!(storage, Storage::Auto | Storage::Dense) {
+                    return Err(InputError::new_err(format!(
+                        "`storage` = \"{storage}\": an S given as an array is held dense; \
+                         give \"auto\" or \"dense\", or the bodies for the other storages"
+                    )));
+                }
                 let s = s.as_array();
                 let eps = match geometry {
                     Geometry::Separation(eps) => eps,
