@@ -17,7 +17,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use elcon::analysis::references::HertzCylinders;
 use elcon::analysis::{ContactProblem, Geometry, Loading, Surface};
 use elcon::design::{Axis, DesignMethod, DesignOptions, Family, design};
-use elcon::influence::{Body, Material, PointSet, combined_modulus};
+use elcon::influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 /// The misaligned roller's cases at 5 kN (steel, D = 10 mm, l = 10 mm, 40 x
 /// 9 Love patches): `count` misalignments spread evenly over 0 to 1 mrad,
@@ -49,7 +49,12 @@ fn beam(per_half: usize) -> ContactProblem {
     let n = 2 * per_half;
     ContactProblem::new(
         PointSet::line(-4.45, 4.45, n).unwrap(),
-        &Body::beam(30e6, 64.0 / 12.0, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 64.0 / 12.0,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(5e4),

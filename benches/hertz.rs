@@ -1,5 +1,6 @@
 //! The benchmark problem and the benchmark sizes, in one place (read by
-//! benches/scaling.rs and examples/scaling_probe.rs, like faer's bench list).
+//! benches/scaling.rs, benches/large.rs, examples/scaling_probe.rs and
+//! examples/peers_compare.rs, like faer's bench list).
 //!
 //! Conry & Seireg's Example 1 (steel spheres, R = 1 in and 10 in, P = 100
 //! lb) on Love patches: a square grid clipped to the disk r <= 1.3 a (a the
@@ -9,23 +10,26 @@
 
 #![allow(dead_code)]
 
-use elcon::analysis::references::{HertzSpheres, combined_radius};
-use elcon::analysis::{ContactProblem, Geometry, Loading, Surface};
-use elcon::influence::{Body, Material, PointSet, combined_modulus};
+// Example 1's data, as the analysis tests have it; the path is relative to
+// this file's directory.
+#[path = "../crates/analysis/tests/common/scenes.rs"]
+mod scenes;
+
+use elcon::analysis::references::HertzSpheres;
+use elcon::analysis::{ContactProblem, Geometry, Loading};
+use elcon::influence::{Body, PointSet};
 
 /// The sizes the scaling benchmark runs (candidate points N, approximately).
 pub const SIZES: [usize; 7] = [64, 128, 256, 512, 1024, 2048, 4096];
 
+/// The Hertz solution of the benchmark problem.
+pub fn reference() -> HertzSpheres {
+    scenes::example1_hertz()
+}
+
 /// The Hertz radius of the benchmark problem (in).
 pub fn hertz_radius() -> f64 {
-    let steel = Material::new(30e6, 0.3).expect("steel");
-    HertzSpheres::new(
-        combined_modulus(&steel, &steel),
-        combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .expect("a Hertz contact")
-    .contact_radius()
+    reference().contact_radius()
 }
 
 /// The candidate points: the grid in the disk r <= 1.3 a whose number of
@@ -42,14 +46,7 @@ pub fn points(n: usize) -> PointSet {
 
 /// The two bodies (Love patches, steel) and the sphere-on-sphere geometry.
 pub fn bodies() -> (Body, Geometry) {
-    let steel = Material::new(30e6, 0.3).expect("steel");
-    (
-        Body::uniform_patch(steel),
-        Geometry::Surfaces(
-            Surface::Sphere { radius: 1.0 },
-            Surface::Sphere { radius: 10.0 },
-        ),
-    )
+    scenes::example1_bodies()
 }
 
 /// The benchmark problem of about `n` points, in full.

@@ -12,27 +12,18 @@
 //! docs/performance.md §6 has the table of examples/large_grid, which
 //! measures the same problems once each up to N = 321,657.
 
+#[path = "hertz.rs"]
+mod hertz;
+
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use elcon::analysis::references::{HertzSpheres, combined_radius};
-use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface};
-use elcon::influence::{Body, Material, PointSet, combined_modulus};
+use elcon::analysis::{ContactProblem, Loading, Method, Options};
+use elcon::influence::PointSet;
 
 fn large(c: &mut Criterion) {
-    let steel = Material::new(30e6, 0.3).expect("steel");
-    let a = HertzSpheres::new(
-        combined_modulus(&steel, &steel),
-        combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .expect("Hertz")
-    .contact_radius();
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
+    let a = hertz::hertz_radius();
+    let (body, geometry) = hertz::bodies();
     let mut group = c.benchmark_group("large");
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(1));

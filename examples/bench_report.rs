@@ -57,8 +57,29 @@ fn exponent(points: &[(f64, f64)]) -> Option<f64> {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir = root.join("target/criterion");
-    let mut records: BTreeMap<(String, usize), serde_json::Value> = BTreeMap::new();
-    for entry in std::fs::read_dir(&dir)? {
+    let records = read_records(&dir)?;
+    let mut sizes: Vec<usize> = records.keys().map(|k| k.1).collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    if sizes.is_empty() {
+        return Err("no benchmark results: run `cargo bench --bench scaling` first".into());
+    }
+    let curves = print_times(&dir, &sizes, &records);
+    print_exponents(&curves);
+    let out = root.join("docs/img/scaling.svg");
+    plot(&out, &sizes, &curves)?;
+    println!();
+    println!("wrote {}", out.display());
+    Ok(())
+}
+
+/// The records the bench wrote (elcon-scaling-<N>.json under `dir`), by
+/// method and N.
+fn read_records(
+    dir: &Path,
+) -> Result<BTreeMap<(String, usize), serde_json::Value>, Box<dyn std::error::Error>> {
+    let mut records = BTreeMap::new();
+    for entry in std::fs::read_dir(dir)? {
         let path = entry?.path();
         let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
         if name.starts_with("elcon-scaling-") && name.ends_with(".json") {
@@ -73,52 +94,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
         }
     }
-    let mut sizes: Vec<usize> = records.keys().map(|k| k.1).collect();
-    sizes.sort_unstable();
-    sizes.dedup();
-    if sizes.is_empty() {
-        return Err("no benchmark results: run `cargo bench --bench scaling` first".into());
-    }
+    Ok(records)
+}
+
+/// Prints the table of times, one row per series and size; returns each
+/// series' (N, seconds).
+fn print_times(
+    dir: &Path,
+    sizes: &[usize],
+    records: &BTreeMap<(String, usize), serde_json::Value>,
+) -> BTreeMap<&'static str, Vec<(f64, f64)>> {
     println!(
         "| method | N | seconds | pivots (iterations) | us / pivot | effective GFLOP/s | / Cholesky |"
     );
     println!("|---|---|---|---|---|---|---|");
     let mut curves: BTreeMap<&str, Vec<(f64, f64)>> = BTreeMap::new();
-    for &n in &sizes {
-        let chol = mean_seconds(&dir, "cholesky", n);
+    for &n in sizes {
+        let chol = mean_seconds(dir, "cholesky", n);
         for series in SERIES {
-            let Some(t) = mean_seconds(&dir, series, n) else {
+            let Some(t) = mean_seconds(dir, series, n) else {
                 continue;
             };
             curves.entry(series).or_default().push((n as f64, t));
-            let cube = (n as f64).powi(3) / 3.0;
-            let (pivots, gflops) = match records.get(&(series.to_string(), n)) {
-                Some(r) => {
-                    let p = r["pivots"].as_u64().unwrap_or(0) as f64;
-                    let rows = r["tableau_rows"].as_u64().unwrap_or(0) as f64;
-                    let cols = r["tableau_columns"].as_u64().unwrap_or(0) as f64;
-                    // The symmetric tableau (`Statistics::symmetric_tableau`)
-                    // updates only the lower triangle of its N x N swept
-                    // matrix: N^2 flops a pivot.
-                    let symmetric = r["symmetric_tableau"].as_bool() == Some(true);
-                    let work = if symmetric {
-                        p * rows * rows
-                    } else if rows > 0.0 {
-                        p * 2.0 * rows * cols
-                    } else {
-                        cube
-                    };
-                    let it = r["iterations"].as_u64().unwrap_or(0);
-                    let label = if it > 0 {
-                        format!("{p} ({it})")
-                    } else {
-                        format!("{p}")
-                    };
-                    (Some((p, label)), work / t * 1e-9)
-                }
-                None if series == "cholesky" => (None, cube / t * 1e-9),
-                None => (None, f64::NAN),
-            };
+            let (pivots, gflops) =
+                pivots_and_gflops(records.get(&(series.to_string(), n)), series, n, t);
             println!(
                 "| {series} | {n} | {t:.3e} | {} | {} | {} | {} |",
                 pivots.as_ref().map_or("-".into(), |p| p.1.clone()),
@@ -134,10 +133,54 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
     }
+    curves
+}
+
+/// The pivots of `series` at `n` (the count and its label, with the
+/// iterations where there are some) from its `record`, and its effective
+/// GFLOP/s at `t` seconds.
+fn pivots_and_gflops(
+    record: Option<&serde_json::Value>,
+    series: &str,
+    n: usize,
+    t: f64,
+) -> (Option<(f64, String)>, f64) {
+    let cube = (n as f64).powi(3) / 3.0;
+    match record {
+        Some(r) => {
+            let p = r["pivots"].as_u64().unwrap_or(0) as f64;
+            let rows = r["tableau_rows"].as_u64().unwrap_or(0) as f64;
+            let cols = r["tableau_columns"].as_u64().unwrap_or(0) as f64;
+            // The symmetric tableau (`Statistics::symmetric_tableau`)
+            // updates only the lower triangle of its N x N swept
+            // matrix: N^2 flops a pivot.
+            let symmetric = r["symmetric_tableau"].as_bool() == Some(true);
+            let work = if symmetric {
+                p * rows * rows
+            } else if rows > 0.0 {
+                p * 2.0 * rows * cols
+            } else {
+                cube
+            };
+            let it = r["iterations"].as_u64().unwrap_or(0);
+            let label = if it > 0 {
+                format!("{p} ({it})")
+            } else {
+                format!("{p}")
+            };
+            (Some((p, label)), work / t * 1e-9)
+        }
+        None if series == "cholesky" => (None, cube / t * 1e-9),
+        None => (None, f64::NAN),
+    }
+}
+
+/// Prints each series' fitted exponent of time against N.
+fn print_exponents(curves: &BTreeMap<&str, Vec<(f64, f64)>>) {
     println!();
     println!("| method | fitted exponent of time against N (N >= 500) | (all N) |");
     println!("|---|---|---|");
-    for (series, points) in &curves {
+    for (series, points) in curves {
         let large: Vec<(f64, f64)> = points.iter().copied().filter(|p| p.0 >= 500.0).collect();
         println!(
             "| {series} | {} | {} |",
@@ -145,8 +188,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             exponent(points).map_or("-".into(), |e| format!("{e:.2}"))
         );
     }
-    // The plot.
-    let out = root.join("docs/img/scaling.svg");
+}
+
+/// The log-log plot of time against N, each series a line with its points,
+/// to `out`.
+fn plot(
+    out: &Path,
+    sizes: &[usize],
+    curves: &BTreeMap<&str, Vec<(f64, f64)>>,
+) -> Result<(), Box<dyn std::error::Error>> {
     let (n0, n1) = (
         sizes[0] as f64 / 1.3,
         *sizes.last().expect("sizes") as f64 * 1.3,
@@ -155,65 +205,61 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (t0, t1) = all
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), &t| (a.min(t), b.max(t)));
-    {
-        let root_area = SVGBackend::new(&out, (900, 560)).into_drawing_area();
-        root_area.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(&root_area)
-            .caption(
-                "Hertz spheres on Love patches: time against N",
-                ("sans-serif", 22),
-            )
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(80)
-            .build_cartesian_2d((n0..n1).log_scale(), (t0 / 1.5..t1 * 1.5).log_scale())?;
+    let root_area = SVGBackend::new(out, (900, 560)).into_drawing_area();
+    root_area.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root_area)
+        .caption(
+            "Hertz spheres on Love patches: time against N",
+            ("sans-serif", 22),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .build_cartesian_2d((n0..n1).log_scale(), (t0 / 1.5..t1 * 1.5).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("candidate points N")
+        .y_desc("seconds")
+        .draw()?;
+    let colors = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+        RGBColor(0, 0, 0),
+        RGBColor(150, 150, 150),
+    ];
+    for (i, series) in SERIES.iter().enumerate() {
+        let Some(points) = curves.get(series) else {
+            continue;
+        };
+        let color = colors[i];
+        let style = if *series == "cholesky" {
+            color.stroke_width(3)
+        } else {
+            color.stroke_width(2)
+        };
         chart
-            .configure_mesh()
-            .x_desc("candidate points N")
-            .y_desc("seconds")
-            .draw()?;
-        let colors = [
-            RGBColor(31, 119, 180),
-            RGBColor(214, 39, 40),
-            RGBColor(44, 160, 44),
-            RGBColor(0, 0, 0),
-            RGBColor(150, 150, 150),
-        ];
-        for (i, series) in SERIES.iter().enumerate() {
-            let Some(points) = curves.get(series) else {
-                continue;
-            };
-            let color = colors[i];
-            let style = if *series == "cholesky" {
-                color.stroke_width(3)
+            .draw_series(LineSeries::new(points.clone(), style))?
+            .label(if *series == "cholesky" {
+                "faer Cholesky of S (floor)".to_string()
             } else {
-                color.stroke_width(2)
-            };
-            chart
-                .draw_series(LineSeries::new(points.clone(), style))?
-                .label(if *series == "cholesky" {
-                    "faer Cholesky of S (floor)".to_string()
-                } else {
-                    series.to_string()
-                })
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-            chart.draw_series(
-                points
-                    .iter()
-                    .map(move |&p| Circle::new(p, 3, color.filled())),
-            )?;
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()?;
-        root_area.present()?;
+                series.to_string()
+            })
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+        chart.draw_series(
+            points
+                .iter()
+                .map(move |&p| Circle::new(p, 3, color.filled())),
+        )?;
     }
-    println!();
-    println!("wrote {}", out.display());
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()?;
+    root_area.present()?;
     Ok(())
 }

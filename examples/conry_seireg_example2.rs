@@ -20,16 +20,18 @@
 //!
 //! Run: `cargo run --release --example conry_seireg_example2 -- [--load P] [--per-half N] [--out DIR]`
 
+mod common;
+
 use std::error::Error;
 use std::fs;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options};
 use elcon::design::{
-    Axis, DesignOptions, Family, Profile, design, evaluate, fit_profile, uniform_target,
+    Axis, Design, DesignOptions, Evaluation, Family, Profile, design, evaluate, fit_profile,
+    uniform_target,
 };
-use elcon::influence::{Body, PointSet};
+use elcon::influence::{Beam, Body, PointSet};
 
 const LENGTH: f64 = 8.9;
 const WIDTH: f64 = 1.0;
@@ -74,17 +76,6 @@ fn args() -> Result<Args, Box<dyn Error>> {
     Ok(a)
 }
 
-/// Writes `contents` to `path` whole or not at all (a temporary file, then a rename).
-fn write_whole(path: &Path, contents: &str) -> std::io::Result<()> {
-    let tmp = path.with_extension("csv.tmp");
-    {
-        let mut f = fs::File::create(&tmp)?;
-        f.write_all(contents.as_bytes())?;
-        f.sync_all()?;
-    }
-    fs::rename(&tmp, path)
-}
-
 fn main() -> Result<(), Box<dyn Error>> {
     let a = args()?;
     let n = 2 * a.per_half;
@@ -92,7 +83,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     let points = PointSet::line(-0.5 * LENGTH, 0.5 * LENGTH, n)?;
     let case = ContactProblem::new(
         points,
-        &Body::beam(E_STEEL, second_moment, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: E_STEEL,
+            second_moment,
+            loaded_point: 0.0,
+        })?,
         &Body::winkler(FOUNDATION),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(a.load),
@@ -104,125 +99,16 @@ fn main() -> Result<(), Box<dyn Error>> {
          k = {FOUNDATION:e} lb/in/in, P = {} lb central, {n} points ({} per half); P/L = {mean:.2} lb/in",
         a.load, a.per_half
     );
-    let cases = [case.clone()];
-    let xs = case.points().xs().to_vec();
-    let none = evaluate(
-        &cases,
-        Axis::X,
-        &Profile::none(),
-        Method::BlockPivoting,
-        &Options::default(),
-    )?;
-    let quadratic = design(
-        &cases,
-        Axis::X,
-        Family::Quadratic,
-        &DesignOptions::default(),
-    )?;
-    let target = uniform_target(&case)?;
-    let uniform_profile = Profile::Free {
-        positions: xs.clone(),
-        drops: target.correction.clone(),
-    };
-    let uniform = evaluate(
-        &cases,
-        Axis::X,
-        &uniform_profile,
-        Method::BlockPivoting,
-        &Options::default(),
-    )?;
-    // The paper's curve-fitting alternative: the uniform-pressure separation
-    // fitted by a quadratic, without regard to the resulting loads.
-    let fitted_profile = fit_profile(Family::Quadratic, &xs, &target.correction)?;
-    let fitted = evaluate(
-        &cases,
-        Axis::X,
-        &fitted_profile,
-        Method::BlockPivoting,
-        &Options::default(),
-    )?;
-
-    let rows = [
-        ("no separation", &none),
-        ("optimal quadratic", &quadratic.evaluation),
-        ("uniform-pressure separation", &uniform),
-        ("quadratic fit of the uniform", &fitted),
-    ];
-    println!();
-    println!(
-        "{:>8} {:>13} {:>13} {:>13} {:>13} {:>13}",
-        "x in", "p none", "p quadratic", "p uniform", "y quadratic", "y uniform"
-    );
-    println!(
-        "{:>8} {:>13} {:>13} {:>13} {:>13} {:>13}",
-        "", "lb/in", "lb/in", "lb/in", "in", "in"
-    );
-    for k in 0..n {
-        println!(
-            "{:>8.4} {:>13.2} {:>13.2} {:>13.2} {:>13.4e} {:>13.4e}",
-            xs[k],
-            none.solutions[0].pressures[k],
-            quadratic.evaluation.solutions[0].pressures[k],
-            uniform.solutions[0].pressures[k],
-            quadratic.evaluation.corrections[0][k],
-            uniform.corrections[0][k],
-        );
-    }
-    println!();
-    for (name, e) in rows {
-        let s = &e.solutions[0];
-        println!(
-            "{name:<28} p_max = {:>10.2} lb/in   p_max/(P/L) = {:.4}   points in contact {:>3}/{n}   approach {:.4e} in   certificate {:.1e}",
-            e.worst,
-            e.worst / mean,
-            s.contact.len(),
-            s.approach,
-            s.certificate.worst()
-        );
-    }
-    if let Profile::Quadratic { a: qa, b, c } = quadratic.profile {
-        println!(
-            "optimal quadratic y = a x^2 + b x + c: a = {qa:.6e} 1/in, b = {b:.3e}, c = {c:.6e} in"
-        );
-    }
-    for s in &quadratic.starts {
-        println!(
-            "  design start '{}': {} ({} pivots)",
-            s.label,
-            match &s.result {
-                Ok(p) => format!("p_max {p:.4} lb/in"),
-                Err(e) => format!("failed: {e}"),
-            },
-            s.pivots
-        );
-    }
-
+    let separations = Separations::of(&case)?;
+    separations.print_distributions(&case);
+    separations.print_summary(mean, n);
     fs::create_dir_all(&a.out)?;
-    for (file, e) in [
-        ("none.csv", &none),
-        ("quadratic.csv", &quadratic.evaluation),
-        ("uniform.csv", &uniform),
-    ] {
-        let s = &e.solutions[0];
-        let mut csv =
-            String::from("x_in,length_in,force_lb,load_intensity_lb_per_in,gap_in,separation_in\n");
-        for k in 0..n {
-            csv.push_str(&format!(
-                "{},{},{},{},{},{}\n",
-                xs[k],
-                case.points().measure(k),
-                s.forces[k],
-                s.pressures[k],
-                s.gaps[k],
-                e.corrections[0][k]
-            ));
-        }
-        write_whole(&a.out.join(file), &csv)?;
-    }
+    separations.write_csv(&case, &a.out)?;
     println!(
         "wrote none.csv, quadratic.csv, uniform.csv under {}",
         a.out.display()
     );
+    let (none, quadratic) = (&separations.none, &separations.quadratic);
     println!(
         "pmax_none={:.6e} pmax_quadratic={:.6e} ratio={:.6}",
         none.worst,
@@ -230,4 +116,148 @@ fn main() -> Result<(), Box<dyn Error>> {
         quadratic.max_intensity / none.worst
     );
     Ok(())
+}
+
+/// The beam with each separation of the comparison.
+struct Separations {
+    /// No separation.
+    none: Evaluation,
+    /// The paper's design: the optimal quadratic.
+    quadratic: Design,
+    /// The separation for a uniform pressure.
+    uniform: Evaluation,
+    /// The paper's curve-fitting alternative: the uniform-pressure
+    /// separation fitted by a quadratic, without regard to the resulting
+    /// loads.
+    fitted: Evaluation,
+}
+
+impl Separations {
+    /// Each separation on `case`, designed or fitted and analysed.
+    fn of(case: &ContactProblem) -> Result<Separations, Box<dyn Error>> {
+        let cases = [case.clone()];
+        let xs = case.points().xs().to_vec();
+        let analyse = |profile: &Profile| {
+            evaluate(
+                &cases,
+                Axis::X,
+                profile,
+                Method::BlockPivoting,
+                &Options::default(),
+            )
+        };
+        let none = analyse(&Profile::none())?;
+        let quadratic = design(
+            &cases,
+            Axis::X,
+            Family::Quadratic,
+            &DesignOptions::default(),
+        )?;
+        let target = uniform_target(case)?;
+        let uniform = analyse(&Profile::Free {
+            positions: xs.clone(),
+            drops: target.correction.clone(),
+        })?;
+        let fitted = analyse(&fit_profile(Family::Quadratic, &xs, &target.correction)?)?;
+        Ok(Separations {
+            none,
+            quadratic,
+            uniform,
+            fitted,
+        })
+    }
+
+    /// Prints the load intensity and the separation along the beam.
+    fn print_distributions(&self, case: &ContactProblem) {
+        let xs = case.points().xs();
+        let (none, quadratic, uniform) = (&self.none, &self.quadratic, &self.uniform);
+        println!();
+        println!(
+            "{:>8} {:>13} {:>13} {:>13} {:>13} {:>13}",
+            "x in", "p none", "p quadratic", "p uniform", "y quadratic", "y uniform"
+        );
+        println!(
+            "{:>8} {:>13} {:>13} {:>13} {:>13} {:>13}",
+            "", "lb/in", "lb/in", "lb/in", "in", "in"
+        );
+        for k in 0..xs.len() {
+            println!(
+                "{:>8.4} {:>13.2} {:>13.2} {:>13.2} {:>13.4e} {:>13.4e}",
+                xs[k],
+                none.solutions[0].pressures[k],
+                quadratic.evaluation.solutions[0].pressures[k],
+                uniform.solutions[0].pressures[k],
+                quadratic.evaluation.corrections[0][k],
+                uniform.corrections[0][k],
+            );
+        }
+    }
+
+    /// Prints p_max of each separation against the mean `mean` on `n`
+    /// points, the optimal quadratic and the design's starts.
+    fn print_summary(&self, mean: f64, n: usize) {
+        let rows = [
+            ("no separation", &self.none),
+            ("optimal quadratic", &self.quadratic.evaluation),
+            ("uniform-pressure separation", &self.uniform),
+            ("quadratic fit of the uniform", &self.fitted),
+        ];
+        println!();
+        for (name, e) in rows {
+            let s = &e.solutions[0];
+            println!(
+                "{name:<28} p_max = {:>10.2} lb/in   p_max/(P/L) = {:.4}   points in contact {:>3}/{n}   approach {:.4e} in   certificate {:.1e}",
+                e.worst,
+                e.worst / mean,
+                s.contact.len(),
+                s.approach,
+                s.certificate.worst()
+            );
+        }
+        if let Profile::Quadratic { a: qa, b, c } = self.quadratic.profile {
+            println!(
+                "optimal quadratic y = a x^2 + b x + c: a = {qa:.6e} 1/in, b = {b:.3e}, c = {c:.6e} in"
+            );
+        }
+        for s in &self.quadratic.starts {
+            println!(
+                "  design start '{}': {} ({} pivots)",
+                s.label,
+                match &s.result {
+                    Ok(p) => format!("p_max {p:.4} lb/in"),
+                    Err(e) => format!("failed: {e}"),
+                },
+                s.pivots
+            );
+        }
+    }
+
+    /// Writes the distributions and separations without, with the optimal
+    /// quadratic and with the uniform-pressure separation as CSV under `out`.
+    fn write_csv(&self, case: &ContactProblem, out: &Path) -> Result<(), Box<dyn Error>> {
+        let xs = case.points().xs();
+        for (file, e) in [
+            ("none.csv", &self.none),
+            ("quadratic.csv", &self.quadratic.evaluation),
+            ("uniform.csv", &self.uniform),
+        ] {
+            let s = &e.solutions[0];
+            let mut csv = String::from(
+                "x_in,length_in,force_lb,load_intensity_lb_per_in,gap_in,separation_in\n",
+            );
+            for k in 0..xs.len() {
+                csv.push_str(&format!(
+                    "{},{},{},{},{},{}\n",
+                    xs[k],
+                    case.points().measure(k),
+                    s.forces[k],
+                    s.pressures[k],
+                    s.gaps[k],
+                    e.corrections[0][k]
+                ));
+            }
+            common::write_whole(&out.join(file), &csv)?;
+        }
+        Ok(())
+    }
 }

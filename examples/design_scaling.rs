@@ -17,7 +17,7 @@ use std::time::Instant;
 use elcon::analysis::references::HertzCylinders;
 use elcon::analysis::{ContactProblem, Geometry, Loading, Surface};
 use elcon::design::{Axis, Design, DesignMethod, DesignOptions, Family, Solver, design};
-use elcon::influence::{Body, Material, PointSet, combined_modulus};
+use elcon::influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 /// Example 2's beam: steel, 8.9 in x 1 in x 4 in, on a Winkler foundation
 /// of 1e7 lb/in/in, 50,000 lb at the middle.
@@ -26,7 +26,11 @@ fn beam(per_half: usize) -> Result<ContactProblem, Box<dyn Error>> {
     let points = PointSet::line(-4.45, 4.45, n)?;
     Ok(ContactProblem::new(
         points,
-        &Body::beam(30e6, 4f64.powi(3) / 12.0, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 4f64.powi(3) / 12.0,
+            loaded_point: 0.0,
+        })?,
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(5e4),

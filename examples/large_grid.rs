@@ -22,11 +22,15 @@
 //! The table is docs/performance.md's "Dense or matrix-free"; the
 //! crossover sets `elcon_scene::AUTO_DENSE_LIMIT`.
 
+mod common;
+#[path = "../benches/hertz.rs"]
+mod hertz;
+
 use std::time::Instant;
 
-use elcon::analysis::references::{HertzSpheres, combined_radius};
-use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface};
-use elcon::influence::{Body, LatticeOperator, Material, PointSet, combined_modulus};
+use elcon::analysis::references::HertzSpheres;
+use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options};
+use elcon::influence::{Body, LatticeOperator, PointSet};
 
 /// S above this many bytes is not built (the dense column is left empty).
 const DENSE_CEILING: f64 = 4e9;
@@ -45,18 +49,8 @@ fn peak_rss_mb() -> f64 {
 /// Example 1's spheres: the Hertz solution, the bodies' model and the
 /// surfaces.
 fn example1() -> (HertzSpheres, Body, Geometry) {
-    let steel = Material::new(30e6, 0.3).expect("steel");
-    let hertz = HertzSpheres::new(
-        combined_modulus(&steel, &steel),
-        combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .expect("Hertz");
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
-    (hertz, Body::uniform_patch(steel), geometry)
+    let (body, geometry) = hertz::bodies();
+    (hertz::reference(), body, geometry)
 }
 
 /// One size, the peers' case: h = a / `cells` on the disk of 1.3 a, the
@@ -245,22 +239,10 @@ fn plot(path: &std::path::Path, t: &Timings) -> Result<(), Box<dyn std::error::E
             .y_desc("seconds (assembly or setup, and solve)")
             .draw()?;
         for (i, (name, points)) in series.iter().enumerate() {
-            let colour = Palette99::pick(i).to_rgba();
-            chart
-                .draw_series(LineSeries::new(
-                    points.iter().copied(),
-                    colour.stroke_width(2),
-                ))?
-                .label(*name)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+            let colour = common::labelled_line(&mut chart, i, name, points.iter().copied())?;
             chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
         }
-        chart
-            .configure_series_labels()
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.8))
-            .position(SeriesLabelPosition::UpperLeft)
-            .draw()?;
+        common::legend_upper_left(&mut chart)?;
         root.present()?;
     }
     std::fs::write(path, svg)?;

@@ -42,10 +42,11 @@
 //!
 //! Run: `cargo run --release --example misaligned_roller -- [--out DIR]`
 
+mod common;
+
 use std::error::Error;
 use std::fs;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use elcon::analysis::references::HertzCylinders;
 use elcon::analysis::{
@@ -70,20 +71,13 @@ const STEPS: usize = 10;
 const STEPS_PER_RAD: f64 = 1e4;
 const LARGEST: f64 = STEPS as f64 / STEPS_PER_RAD;
 
+/// A profile's name and its p_max at each misalignment.
+type Row = (String, Vec<f64>);
+
 /// A profile of the table, and its separation along y.
 struct Named {
     name: &'static str,
     profile: Profile,
-}
-
-fn write_whole(path: &Path, contents: &[u8]) -> std::io::Result<()> {
-    let tmp = path.with_extension("tmp");
-    {
-        let mut f = fs::File::create(&tmp)?;
-        f.write_all(contents)?;
-        f.sync_all()?;
-    }
-    fs::rename(&tmp, path)
 }
 
 fn profiles(e_star: f64) -> Result<Vec<Named>, Box<dyn Error>> {
@@ -190,7 +184,7 @@ fn solve(
     Ok(problem.solve(Method::BlockPivoting, &Options::default())?)
 }
 
-fn plot(path: &Path, angles: &[f64], rows: &[(String, Vec<f64>)]) -> Result<(), Box<dyn Error>> {
+fn plot(path: &Path, angles: &[f64], rows: &[Row]) -> Result<(), Box<dyn Error>> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (720, 480)).into_drawing_area();
@@ -211,36 +205,18 @@ fn plot(path: &Path, angles: &[f64], rows: &[(String, Vec<f64>)]) -> Result<(), 
             .y_desc("p_max (MPa)")
             .draw()?;
         for (i, (name, values)) in rows.iter().enumerate() {
-            let colour = Palette99::pick(i).to_rgba();
-            chart
-                .draw_series(LineSeries::new(
-                    angles.iter().zip(values).map(|(a, p)| (1e3 * a, *p)),
-                    colour.stroke_width(2),
-                ))?
-                .label(name.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+            let points = angles.iter().zip(values).map(|(a, p)| (1e3 * a, *p));
+            common::labelled_line(&mut chart, i, name, points)?;
         }
-        chart
-            .configure_series_labels()
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.8))
-            .position(SeriesLabelPosition::UpperLeft)
-            .draw()?;
+        common::legend_upper_left(&mut chart)?;
         root.present()?;
     }
-    write_whole(path, svg.as_bytes())?;
+    common::write_whole(path, svg)?;
     Ok(())
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let mut out = PathBuf::from("out/misaligned_roller");
-    let mut it = std::env::args().skip(1);
-    while let Some(flag) = it.next() {
-        match (flag.as_str(), it.next()) {
-            ("--out", Some(dir)) => out = PathBuf::from(dir),
-            _ => return Err(format!("unknown option {flag} (--out DIR)").into()),
-        }
-    }
+    let out = common::out_dir("out/misaligned_roller")?;
     fs::create_dir_all(&out)?;
     let steel = Material::new(210e3, 0.3)?;
     let e_star = combined_modulus(&steel, &steel);
@@ -266,19 +242,45 @@ fn main() -> Result<(), Box<dyn Error>> {
         base.entries("the unknowns count").expect("dense").nrows()
     );
     let angles: Vec<f64> = (0..=STEPS).map(|i| i as f64 / STEPS_PER_RAD).collect();
-    let mut csv = String::from(
-        "profile,misalignment_rad,pmax_mpa,pmax_over_p0,moment_x_nmm,moment_y_nmm,load_n,load_centre_y_mm\n",
-    );
-    let mut rows = Vec::new();
     let mut named_profiles = profiles(e_star)?;
     let (cases, references) = design_cases(&steel, e_star, &angles)?;
+    add_designed_crown(&mut named_profiles, &cases, &references, angles.len())?;
+    let (csv, rows) = pmax_table(&base, &named_profiles, &angles, p0, b)?;
+    common::write_whole(&out.join("pmax.csv"), csv)?;
+    plot(&out.join("pmax.svg"), &angles, &rows)?;
+    println!("\nwrote {}/pmax.csv and pmax.svg", out.display());
+    print_worst_over_the_cases(&cases, &references, &named_profiles)?;
+    let last = |name: &str| {
+        rows.iter()
+            .find(|(n, _)| n == name)
+            .and_then(|(_, v)| v.last().copied())
+            .unwrap_or(f64::NAN)
+    };
+    println!(
+        "misalignment={LARGEST:e} pmax_none={:.1} pmax_log={:.1} pmax_designed={:.1}",
+        last("uncrowned"),
+        last("Johns-Gohar"),
+        last("designed")
+    );
+    Ok(())
+}
+
+/// Designs the free crown over `cases` (started from the Johns-Gohar and
+/// circular crowns of `named_profiles`), prints how it went, and adds it to
+/// `named_profiles` as "designed".
+fn add_designed_crown(
+    named_profiles: &mut Vec<Named>,
+    cases: &[ContactProblem],
+    references: &[f64],
+    misalignments: usize,
+) -> Result<(), Box<dyn Error>> {
     let starts = named_profiles
         .iter()
         .filter(|n| matches!(n.name, "Johns-Gohar" | "circular"))
         .map(|n| n.profile.clone())
         .collect();
     let started = std::time::Instant::now();
-    let designed = designed_crown(&cases, &references, starts)?;
+    let designed = designed_crown(cases, references, starts)?;
     let design_seconds = started.elapsed().as_secs_f64();
     if let Solver::Descent {
         iterations,
@@ -291,23 +293,40 @@ fn main() -> Result<(), Box<dyn Error>> {
              {iterations} iterations, {analyses} analyses, {design_seconds:.2} s ({:?})",
             cases.len(),
             DESIGN_LOADS.len(),
-            angles.len(),
+            misalignments,
             designed.objective,
             designed.solver.method().name()
         );
     }
     named_profiles.push(Named {
         name: "designed",
-        profile: designed.profile.clone(),
+        profile: designed.profile,
     });
+    Ok(())
+}
+
+/// The table of each profile at each misalignment at [`LOAD`], printed:
+/// returns it as CSV, and each profile's p_max at each angle (the plot's
+/// rows).
+fn pmax_table(
+    base: &ContactProblem,
+    named_profiles: &[Named],
+    angles: &[f64],
+    p0: f64,
+    b: f64,
+) -> Result<(String, Vec<Row>), Box<dyn Error>> {
+    let mut csv = String::from(
+        "profile,misalignment_rad,pmax_mpa,pmax_over_p0,moment_x_nmm,moment_y_nmm,load_n,load_centre_y_mm\n",
+    );
+    let mut rows = Vec::new();
     println!(
         "\n{:<12} {:>9} {:>10} {:>8} {:>13} {:>12}",
         "profile", "mrad", "p_max", "/ p0", "moment_x", "balance"
     );
-    for named in &named_profiles {
+    for named in named_profiles {
         let mut values = Vec::new();
-        for &angle in &angles {
-            let sol = solve(&base, &named.profile, angle)?;
+        for &angle in angles {
+            let sol = solve(base, &named.profile, angle)?;
             // The balance: the forces carry the load and, about the free
             // axis y, no moment (relative to the load and the contact's
             // half-width); the moment about x is the reaction that holds
@@ -336,40 +355,30 @@ fn main() -> Result<(), Box<dyn Error>> {
         }
         rows.push((named.name.to_string(), values));
     }
-    write_whole(&out.join("pmax.csv"), csv.as_bytes())?;
-    plot(&out.join("pmax.svg"), &angles, &rows)?;
-    println!("\nwrote {}/pmax.csv and pmax.svg", out.display());
+    Ok((csv, rows))
+}
+
+/// Prints each profile's worst p_max / p0 over the design cases.
+fn print_worst_over_the_cases(
+    cases: &[ContactProblem],
+    references: &[f64],
+    named_profiles: &[Named],
+) -> Result<(), Box<dyn Error>> {
     println!(
         "\nworst p_max / p0 over the {} design cases (loads {:?} N x 0 to {} mrad):",
         cases.len(),
         DESIGN_LOADS,
         1e3 * LARGEST
     );
-    for named in &named_profiles {
+    for named in named_profiles {
         let e = evaluate(
-            &cases,
+            cases,
             Axis::Y,
             &named.profile,
             Method::BlockPivoting,
             &Options::default(),
         )?;
-        println!(
-            "  {:<12} {:>8.4}",
-            named.name,
-            e.relative_worst(&references)
-        );
+        println!("  {:<12} {:>8.4}", named.name, e.relative_worst(references));
     }
-    let last = |name: &str| {
-        rows.iter()
-            .find(|(n, _)| n == name)
-            .and_then(|(_, v)| v.last().copied())
-            .unwrap_or(f64::NAN)
-    };
-    println!(
-        "misalignment={LARGEST:e} pmax_none={:.1} pmax_log={:.1} pmax_designed={:.1}",
-        last("uncrowned"),
-        last("Johns-Gohar"),
-        last("designed")
-    );
     Ok(())
 }

@@ -22,11 +22,11 @@
 use std::error::Error;
 use std::time::Instant;
 
-use elcon::analysis::references::{FiniteBeam, FlatPunch, HertzSpheres};
+use elcon::analysis::references::{BeamOnFoundation, FiniteBeam, FlatPunch, HertzSpheres};
 use elcon::analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface,
 };
-use elcon::influence::{Body, Material, PointSet, combined_modulus};
+use elcon::influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 fn solved(problem: &ContactProblem) -> Result<ContactSolution, Box<dyn Error>> {
     let sol = problem.solve(Method::BlockPivoting, &Options::default())?;
@@ -126,7 +126,11 @@ fn beam(
     let n = points.len();
     let problem = ContactProblem::new(
         points,
-        &Body::beam(30e6, 64.0 / 12.0, e),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 64.0 / 12.0,
+            loaded_point: e,
+        })?,
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(5e4),
@@ -137,7 +141,15 @@ fn beam(
 
 fn beams() -> Result<(), Box<dyn Error>> {
     let (length, e) = (6.0, 0.5);
-    let exact = FiniteBeam::new(30e6 * 64.0 / 12.0, 1e7, length, 5e4, e)?;
+    let exact = FiniteBeam::new(
+        BeamOnFoundation {
+            flexural_rigidity: 30e6 * 64.0 / 12.0,
+            foundation_modulus: 1e7,
+            length,
+            load: 5e4,
+        },
+        e,
+    )?;
     let peak = (0..=600)
         .map(|i| exact.load_intensity(-3.0 + 6.0 * i as f64 / 600.0))
         .fold(0.0, f64::max);

@@ -19,9 +19,8 @@ mod hertz;
 
 use std::time::Instant;
 
-use elcon::analysis::references::{HertzSpheres, combined_radius};
 use elcon::analysis::{ContactProblem, Loading, Method, Options};
-use elcon::influence::{Material, PointSet, combined_modulus};
+use elcon::influence::PointSet;
 
 fn run(
     points: &PointSet,
@@ -30,13 +29,7 @@ fn run(
     repeat: usize,
 ) -> (f64, f64, f64, usize, f64) {
     let (body, geometry) = hertz::bodies();
-    let steel = Material::new(30e6, 0.3).expect("steel");
-    let reference = HertzSpheres::new(
-        combined_modulus(&steel, &steel),
-        combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .expect("Hertz");
+    let reference = hertz::reference();
     let mut best = f64::INFINITY;
     let mut last = None;
     for _ in 0..repeat {

@@ -4,39 +4,15 @@
 //! broken run still writes the others; shards merge; and `run` agrees with
 //! the library bit for bit.
 
+mod common;
+#[path = "../crates/analysis/tests/common/scenes.rs"]
+mod scenes;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface};
-use elcon::influence::{Body, Material, PointSet};
-
-fn elcon(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_elcon"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the elcon binary runs")
-}
-
-/// A fresh directory for one test's files.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("elcon-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
-
-fn json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
+use common::{edited, elcon, example_scene, json, scratch, text};
+use elcon::analysis::{ContactProblem, Loading, Method, Options};
+use elcon::influence::PointSet;
 
 /// The fields docs/results.md documents for every result.json.
 const FIELDS: [&str; 16] = [
@@ -57,6 +33,75 @@ const FIELDS: [&str; 16] = [
     "warnings",
     "reference",
 ];
+
+/// The checks of the run of the example `scene` under `out`: the documented
+/// fields, `reference` where a closed form applies, the attempts log, the
+/// certificate and the files, the `plots` among them.
+fn check_result(out: &Path, scene: &str, reference: Option<&str>, plots: &[&str]) {
+    let dir = out.join(scene);
+    let r = json(&dir.join("result.json"));
+    for field in FIELDS {
+        let present = r.get(field).is_some();
+        // `reference` is present exactly where a closed form applies.
+        let expected = field != "reference" || reference.is_some();
+        assert_eq!(present, expected, "{scene}: field {field}");
+    }
+    if let Some(kind) = reference {
+        assert_eq!(r["reference"]["kind"], kind, "{scene}");
+        assert!(
+            r["reference"]["errors"]
+                .as_object()
+                .is_some_and(|e| !e.is_empty()),
+            "{scene}"
+        );
+    }
+    assert_eq!(r["certificate"]["holds"], true, "{scene}");
+    // The attempts log: each attempt's method, reason and outcome, one
+    // of them the answer returned.
+    let attempts = r["statistics"]["attempts"].as_array().expect("a log");
+    assert!(!attempts.is_empty(), "{scene}");
+    for a in attempts {
+        assert!(
+            Method::from_name(a["method"].as_str().unwrap()).is_some(),
+            "{scene}: {a}"
+        );
+        assert!(
+            a["reason"].is_string() && a["outcome"].is_string(),
+            "{scene}: {a}"
+        );
+        // Block pivoting has no tableau; the tableau methods name theirs.
+        assert_eq!(
+            a.get("tableau").is_some(),
+            a["method"] != "block-pivoting",
+            "{scene}: {a}"
+        );
+    }
+    assert_eq!(
+        attempts
+            .iter()
+            .filter(|a| a["outcome"] == "returned")
+            .count(),
+        1,
+        "{scene}"
+    );
+    assert!(
+        r["certificate"]["worst"].as_f64().unwrap() <= 1e-12,
+        "{scene}"
+    );
+    assert_eq!(
+        r.get("design").is_some(),
+        scene.contains("design") || scene == "crowned-roller",
+        "{scene}"
+    );
+    assert!(dir.join("pressure.csv").exists(), "{scene}");
+    for file in ["pressure.svg", "design.svg"] {
+        assert_eq!(
+            dir.join(file).exists(),
+            plots.contains(&file),
+            "{scene}: {file}"
+        );
+    }
+}
 
 #[test]
 fn every_example_scene_runs_and_writes_the_documented_fields() {
@@ -91,69 +136,7 @@ fn every_example_scene_runs_and_writes_the_documented_fields() {
     let o = elcon(&args.iter().map(String::as_str).collect::<Vec<_>>());
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     for (scene, reference, plots) in scenes {
-        let dir = out.join(scene);
-        let r = json(&dir.join("result.json"));
-        for field in FIELDS {
-            let present = r.get(field).is_some();
-            // `reference` is present exactly where a closed form applies.
-            let expected = field != "reference" || reference.is_some();
-            assert_eq!(present, expected, "{scene}: field {field}");
-        }
-        if let Some(kind) = reference {
-            assert_eq!(r["reference"]["kind"], kind, "{scene}");
-            assert!(
-                r["reference"]["errors"]
-                    .as_object()
-                    .is_some_and(|e| !e.is_empty()),
-                "{scene}"
-            );
-        }
-        assert_eq!(r["certificate"]["holds"], true, "{scene}");
-        // The attempts log: each attempt's method, reason and outcome, one
-        // of them the answer returned.
-        let attempts = r["statistics"]["attempts"].as_array().expect("a log");
-        assert!(!attempts.is_empty(), "{scene}");
-        for a in attempts {
-            assert!(
-                Method::from_name(a["method"].as_str().unwrap()).is_some(),
-                "{scene}: {a}"
-            );
-            assert!(
-                a["reason"].is_string() && a["outcome"].is_string(),
-                "{scene}: {a}"
-            );
-            // Block pivoting has no tableau; the tableau methods name theirs.
-            assert_eq!(
-                a.get("tableau").is_some(),
-                a["method"] != "block-pivoting",
-                "{scene}: {a}"
-            );
-        }
-        assert_eq!(
-            attempts
-                .iter()
-                .filter(|a| a["outcome"] == "returned")
-                .count(),
-            1,
-            "{scene}"
-        );
-        assert!(
-            r["certificate"]["worst"].as_f64().unwrap() <= 1e-12,
-            "{scene}"
-        );
-        assert_eq!(
-            r.get("design").is_some(),
-            scene.contains("design") || scene == "crowned-roller",
-            "{scene}"
-        );
-        assert!(dir.join("pressure.csv").exists(), "{scene}");
-        for file in ["pressure.svg", "design.svg"] {
-            assert_eq!(
-                dir.join(file).exists(),
-                plots.contains(&file),
-                "{scene}: {file}"
-            );
-        }
+        check_result(&out, scene, reference, plots);
     }
     // The paper's Example 1 numbers, through the command line.
     let e1 = json(&out.join("example1-paper-model/result.json"));
@@ -174,94 +157,95 @@ fn every_example_scene_runs_and_writes_the_documented_fields() {
 
 /// Writes a scene derived from example1-spheres.toml with one line replaced.
 fn broken(dir: &Path, name: &str, from: &str, to: &str) -> PathBuf {
-    let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/example1-spheres.toml"),
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(
+        &path,
+        edited(&example_scene("example1-spheres"), &[(from, to)]),
     )
     .unwrap();
-    assert!(base.contains(from), "the base scene has `{from}`");
-    let path = dir.join(format!("{name}.toml"));
-    std::fs::write(&path, base.replacen(from, to, 1)).unwrap();
     path
 }
+
+/// Malformed scenes: (name, replaced text of example1-spheres.toml, its
+/// replacement, expected message fragment, line).
+const MALFORMED: [(&str, &str, &str, &str, usize); 11] = [
+    ("syntax", "load = 100.0", "load = = 100.0", "extra `=`", 52),
+    (
+        "unknown-key",
+        "poissons_ratio = 0.3\n\n[body2]",
+        "poissons_ratio = 0.3\ncolour = \"red\"\n\n[body2]",
+        "unknown field `colour`",
+        30,
+    ),
+    (
+        "modulus",
+        "youngs_modulus = 30e6                        # psi",
+        "youngs_modulus = -30e6",
+        "`body1.youngs_modulus` = -30000000: must be > 0",
+        28,
+    ),
+    (
+        "poisson",
+        "poissons_ratio = 0.3\n\n[body2]",
+        "poissons_ratio = 0.5\n\n[body2]",
+        "`body1.poissons_ratio` = 0.5: must be in (-1, 0.5)",
+        29,
+    ),
+    (
+        "non-finite",
+        "radius = 10.0 }",
+        "radius = inf }",
+        "`geometry.surface2.radius` = inf: must be a finite number",
+        40,
+    ),
+    (
+        "load",
+        "load = 100.0",
+        "load = 0.0",
+        "`loading.load` = 0: must be > 0",
+        52,
+    ),
+    (
+        "negative-load",
+        "load = 100.0",
+        "load = -1.0",
+        "`loading.load` = -1: must be > 0",
+        52,
+    ),
+    (
+        "zone",
+        "zone = 1.15",
+        "zone = 0.9",
+        "`points.zone` = 0.9: the candidate zone must extend beyond the Hertz contact",
+        48,
+    ),
+    (
+        "empty",
+        "grid = \"disk\"\nacross = 41\nzone = 1.15",
+        "grid = \"rectangle\"\nhalf_x = 0.02\nhalf_y = 0.02\nnx = 0\nny = 5",
+        "`points.nx` = 0: must be at least 1 (an empty point set)",
+        49,
+    ),
+    (
+        "too-small",
+        "across = 41\nzone = 1.15",
+        "spacing = 0.001\nradius = 0.01",
+        "`points.radius` = 0.01: the candidate disk cannot hold the contact",
+        48,
+    ),
+    (
+        "method",
+        "method = \"block-pivoting\"",
+        "method = \"simplex\"",
+        "`solver.method`: unknown variant `simplex`",
+        56,
+    ),
+];
 
 #[test]
 fn malformed_scenes_name_file_line_column_and_field() {
     let dir = scratch("malformed");
-    // (name, replaced text, replacement, expected message fragment, line)
-    let cases = [
-        ("syntax", "load = 100.0", "load = = 100.0", "extra `=`", 52),
-        (
-            "unknown-key",
-            "poissons_ratio = 0.3\n\n[body2]",
-            "poissons_ratio = 0.3\ncolour = \"red\"\n\n[body2]",
-            "unknown field `colour`",
-            30,
-        ),
-        (
-            "modulus",
-            "youngs_modulus = 30e6                        # psi",
-            "youngs_modulus = -30e6",
-            "`body1.youngs_modulus` = -30000000: must be > 0",
-            28,
-        ),
-        (
-            "poisson",
-            "poissons_ratio = 0.3\n\n[body2]",
-            "poissons_ratio = 0.5\n\n[body2]",
-            "`body1.poissons_ratio` = 0.5: must be in (-1, 0.5)",
-            29,
-        ),
-        (
-            "non-finite",
-            "radius = 10.0 }",
-            "radius = inf }",
-            "`geometry.surface2.radius` = inf: must be a finite number",
-            40,
-        ),
-        (
-            "load",
-            "load = 100.0",
-            "load = 0.0",
-            "`loading.load` = 0: must be > 0",
-            52,
-        ),
-        (
-            "negative-load",
-            "load = 100.0",
-            "load = -1.0",
-            "`loading.load` = -1: must be > 0",
-            52,
-        ),
-        (
-            "zone",
-            "zone = 1.15",
-            "zone = 0.9",
-            "`points.zone` = 0.9: the candidate zone must extend beyond the Hertz contact",
-            48,
-        ),
-        (
-            "empty",
-            "grid = \"disk\"\nacross = 41\nzone = 1.15",
-            "grid = \"rectangle\"\nhalf_x = 0.02\nhalf_y = 0.02\nnx = 0\nny = 5",
-            "`points.nx` = 0: must be at least 1 (an empty point set)",
-            49,
-        ),
-        (
-            "too-small",
-            "across = 41\nzone = 1.15",
-            "spacing = 0.001\nradius = 0.01",
-            "`points.radius` = 0.01: the candidate disk cannot hold the contact",
-            48,
-        ),
-        (
-            "method",
-            "method = \"block-pivoting\"",
-            "method = \"simplex\"",
-            "`solver.method`: unknown variant `simplex`",
-            56,
-        ),
-    ];
-    for (name, from, to, message, line) in cases {
+    for (name, from, to, message, line) in MALFORMED {
         let path = broken(&dir, name, from, to);
         for command in ["check", "run"] {
             let o = elcon(
@@ -423,20 +407,9 @@ fn the_command_line_and_the_library_agree_bit_for_bit() {
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let r = json(&out.join("example1-spheres/result.json"));
     // The same scene through the library: Love patches, 41 across, zone 1.15.
-    let steel = Material::new(30e6, 0.3).unwrap();
-    let hertz = elcon::analysis::references::HertzSpheres::new(
-        elcon::influence::combined_modulus(&steel, &steel),
-        elcon::analysis::references::combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .unwrap();
-    let a = hertz.contact_radius();
+    let a = scenes::example1_hertz().contact_radius();
     let points = PointSet::grid_disk(2.0 * a / 40.0, 1.15 * a).unwrap();
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
+    let (body, geometry) = scenes::example1_bodies();
     let problem =
         ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
     let sol = problem

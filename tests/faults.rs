@@ -10,61 +10,21 @@
 //! dev-dependency turns on for the `elcon` the tests run), asked for
 //! through the `ELCON_FAULTS` variable.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
-/// The variable of the fault points.
-const FAULTS: &str = "ELCON_FAULTS";
-
-fn elcon_with(args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_elcon"));
-    c.args(args).current_dir(env!("CARGO_MANIFEST_DIR"));
-    for var in [
-        FAULTS,
-        "ELCON_MEMORY_LIMIT",
-        "SLURM_ARRAY_TASK_ID",
-        "JOB_COMPLETION_INDEX",
-    ] {
-        c.env_remove(var);
-    }
-    c.envs(env.iter().copied());
-    c.output().expect("the elcon binary runs")
-}
-
-fn elcon(args: &[&str]) -> Output {
-    elcon_with(args, &[])
-}
+use common::{FAULTS, command, edited, elcon, elcon_with, example_scene, json, scratch, text};
 
 /// `elcon` started in the background, its output captured.
 fn spawn(args: &[&str], env: &[(&str, &str)]) -> Child {
-    Command::new(env!("CARGO_BIN_EXE_elcon"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .envs(env.iter().copied())
+    command(args, env)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .expect("the elcon binary starts")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("elcon-faults-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
-
-fn json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
 fn s(p: &Path) -> &str {
@@ -74,20 +34,12 @@ fn s(p: &Path) -> &str {
 /// The paper's Example 1 (149 points, fast), with `edits` applied, as
 /// `dir/<file>.toml` named `name`.
 fn small_scene(dir: &Path, file: &str, name: &str, edits: &[(&str, &str)]) -> PathBuf {
-    let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/example1-paper-model.toml"),
-    )
-    .unwrap();
-    let mut t = base.replace(
+    let named = example_scene("example1-paper-model").replace(
         "name = \"example1-paper-model\"",
         &format!("name = \"{name}\""),
     );
-    for (from, to) in edits {
-        assert!(t.contains(from), "the scene has `{from}`");
-        t = t.replacen(from, to, 1);
-    }
     let path = dir.join(format!("{file}.toml"));
-    std::fs::write(&path, t).unwrap();
+    std::fs::write(&path, edited(&named, edits)).unwrap();
     path
 }
 
@@ -128,10 +80,7 @@ fn a_scene_over_the_memory_ceiling_is_refused_and_the_others_run() {
     let out = dir.join("out");
     // Example 1 in full (1653 points, not folded): about 81 MiB.
     let big = dir.join("big.toml");
-    let spheres = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/example1-spheres.toml"),
-    )
-    .unwrap();
+    let spheres = example_scene("example1-spheres");
     std::fs::write(
         &big,
         spheres.replace(

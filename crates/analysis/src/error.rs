@@ -56,7 +56,7 @@ pub enum AnalysisError {
         /// What needs them.
         what: &'static str,
         /// How the problem holds S.
-        storage: crate::Storage,
+        storage: crate::storage::Storage,
     },
     /// The influence models rejected the bodies or the points.
     #[error(transparent)]

@@ -17,7 +17,7 @@
 use elcon_influence::PointSet;
 use elcon_lcp::Method;
 
-use crate::contact::Storage;
+use crate::storage::Storage;
 
 /// Bytes of one matrix entry (f64).
 const ENTRY: f64 = 8.0;

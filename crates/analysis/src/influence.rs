@@ -11,11 +11,14 @@ use std::cell::RefCell;
 use std::sync::Arc;
 
 use elcon_influence::{LatticeKernel, LatticeWorkspace};
-use elcon_lcp::{BorderedLcpRef, LcpSolution, Method, Operator, OperatorLcp, Options};
+use elcon_lcp::{
+    BorderedLcpRef, LcpSolution, LinearSolution, LinearSystem, Method, Operator, OperatorLcp,
+    Options,
+};
 use faer::{ColRef, Mat, MatRef};
 
 use crate::AnalysisError;
-use crate::contact::Storage;
+use crate::storage::Storage;
 
 /// The influence matrix of a problem, as it is held.
 #[derive(Debug, Clone)]
@@ -76,80 +79,75 @@ impl Influence {
     }
 }
 
-/// The relative residual of a matrix-free restricted solve: far below
-/// its use (a design step's linear prediction), above rounding.
-const RESTRICTED_RESIDUAL: f64 = 1e-12;
-
 impl Influence {
-    /// `S_JJ X = R` on the unknowns `contact` (J), `rhs` R of `|J|` rows:
-    /// dense by a Cholesky factor of the block `S_JJ` (LU where it is not
-    /// numerically positive definite), matrix-free by conjugate gradients
-    /// on the products restricted to J, each column to
-    /// [`RESTRICTED_RESIDUAL`] of its right-hand side.
+    /// `S_JJ X = R` on the unknowns `contact` (J), `rhs` R of `|J|` rows,
+    /// by the engine's certified linear solve (`elcon_lcp::LinearSystem`):
+    /// dense, a Cholesky factor of the block `S_JJ` (LU, logged as a
+    /// fallback, where it is not numerically positive definite);
+    /// matrix-free, the conjugate gradient on the products restricted to J.
     pub fn restricted_solve(
         &self,
         contact: &[usize],
         rhs: MatRef<'_, f64>,
-    ) -> Result<Mat<f64>, AnalysisError> {
-        match self {
+        options: &Options,
+    ) -> Result<LinearSolution, AnalysisError> {
+        Ok(match self {
             Influence::Dense(s) => {
                 let nj = contact.len();
                 let block = Mat::from_fn(nj, nj, |a, b| s[(contact[a], contact[b])]);
-                Ok(match block.llt(faer::Side::Lower) {
-                    Ok(llt) => faer::linalg::solvers::Solve::solve(&llt, rhs),
-                    Err(_) => faer::linalg::solvers::Solve::solve(&block.partial_piv_lu(), rhs),
-                })
+                LinearSystem::dense(block.as_ref(), rhs)?.solve(options)?
             }
             Influence::Lattice(kernel) => {
-                let products = LatticeProducts::new(kernel)?;
-                Ok(restricted_cg(&products, contact, rhs))
+                let restricted = Restricted {
+                    products: LatticeProducts::new(kernel)?,
+                    contact,
+                    full: RefCell::new(vec![0.0; kernel.len()]),
+                    product: RefCell::new(vec![0.0; kernel.len()]),
+                };
+                LinearSystem::operator(&restricted, rhs)?.solve(options)?
             }
+        })
+    }
+}
+
+/// An operator's products restricted to the unknowns `contact`:
+/// `(S_JJ x) = (S [x on J, 0 elsewhere])_J`, through two buffers of n.
+struct Restricted<'a> {
+    products: LatticeProducts<'a>,
+    contact: &'a [usize],
+    full: RefCell<Vec<f64>>,
+    product: RefCell<Vec<f64>>,
+}
+
+impl Restricted<'_> {
+    fn restricted(&self, x: &[f64], y: &mut [f64], abs: bool) {
+        let (mut full, mut product) = (self.full.borrow_mut(), self.product.borrow_mut());
+        for (&k, &v) in self.contact.iter().zip(x) {
+            full[k] = v;
+        }
+        if abs {
+            self.products.apply_abs(&full, &mut product);
+        } else {
+            self.products.apply(&full, &mut product);
+        }
+        for (y, &k) in y.iter_mut().zip(self.contact) {
+            *y = product[k];
         }
     }
 }
 
-/// `S_JJ^{-1} rhs` by conjugate gradients on `products` restricted to the
-/// contact set J (S_JJ is symmetric positive definite), column by column.
-fn restricted_cg(products: &dyn Operator, contact: &[usize], rhs: MatRef<'_, f64>) -> Mat<f64> {
-    let (n, nj) = (products.size(), contact.len());
-    // One workspace and two buffers of n for every product of every column.
-    let (mut full, mut y) = (vec![0.0; n], vec![0.0; n]);
-    let mut product = |p: &[f64], q: &mut [f64]| {
-        for (a, &k) in contact.iter().enumerate() {
-            full[k] = p[a];
-        }
-        products.apply(&full, &mut y);
-        for (q, &k) in q.iter_mut().zip(contact) {
-            *q = y[k];
-        }
-    };
-    let dot = |u: &[f64], v: &[f64]| u.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
-    let mut out = Mat::<f64>::zeros(nj, rhs.ncols());
-    for c in 0..rhs.ncols() {
-        let b: Vec<f64> = (0..nj).map(|a| rhs[(a, c)]).collect();
-        let target = (RESTRICTED_RESIDUAL * dot(&b, &b).sqrt()).powi(2);
-        let (mut x, mut r) = (vec![0.0; nj], b.clone());
-        let mut p = r.clone();
-        let mut rr = dot(&r, &r);
-        let mut q = vec![0.0; nj];
-        for _ in 0..(10 * nj + 100) {
-            if rr <= target {
-                break;
-            }
-            product(&p, &mut q);
-            let alpha = rr / dot(&p, &q);
-            x.iter_mut().zip(&p).for_each(|(x, p)| *x += alpha * p);
-            r.iter_mut().zip(&q).for_each(|(r, q)| *r -= alpha * q);
-            let next = dot(&r, &r);
-            let beta = next / rr;
-            p.iter_mut().zip(&r).for_each(|(p, r)| *p = r + beta * *p);
-            rr = next;
-        }
-        for (a, v) in x.into_iter().enumerate() {
-            out[(a, c)] = v;
-        }
+impl Operator for Restricted<'_> {
+    fn size(&self) -> usize {
+        self.contact.len()
     }
-    out
+
+    fn apply(&self, x: &[f64], y: &mut [f64]) {
+        self.restricted(x, y, false);
+    }
+
+    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
+        self.restricted(x, y, true);
+    }
 }
 
 /// The lattice operator with a workspace of its own, as the engine applies

@@ -61,10 +61,11 @@ mod influence;
 pub mod loading;
 pub mod references;
 pub mod rigid;
+mod storage;
 
 pub use contact::{
-    AUTO_DENSE_LIMIT, ContactCertificate, ContactProblem, ContactSolution, Geometry, Layout, Plan,
-    ProblemBuilder, Storage, Surface, Warning, separations,
+    ContactCertificate, ContactProblem, ContactSolution, Geometry, Layout, Plan, ProblemBuilder,
+    Surface, Warning, separations,
 };
 pub use elcon_influence::{
     Body, Dimension, Material, Model, PointSet, combined_modulus, combined_modulus_of,
@@ -75,3 +76,4 @@ pub use estimate::{Estimate, Relief, Tableau};
 pub use influence::Products;
 pub use loading::{Loading, Normal, Tilt};
 pub use rigid::{Rigid, RigidMode};
+pub use storage::{AUTO_DENSE_LIMIT, Storage};

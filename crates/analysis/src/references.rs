@@ -15,8 +15,9 @@
 //! - Rigid flat circular punch of radius `a` (Johnson §3.8, Boussinesq):
 //!   `P = 2 a E* delta`, `p(r) = P / (2 pi a sqrt(a^2 - r^2))`.
 //! - A finite beam with free ends on a Winkler foundation under a central
-//!   concentrated load (Hetenyi, *Beams on Elastic Foundation*, 1946, §V;
-//!   the foundation bilateral, i.e. every point in contact):
+//!   concentrated load ([`HetenyiBeam`] of a [`BeamOnFoundation`]; Hetenyi,
+//!   *Beams on Elastic Foundation*, 1946, §V; the foundation bilateral,
+//!   i.e. every point in contact):
 //!   `lambda = (k / (4 E I))^(1/4)`, `phi = lambda L / 2`, z the distance
 //!   from the nearer free end,
 //!   `y(z) = P lambda / (k (sinh lambda L + sin lambda L)) [2 cosh phi cos phi cosh lz cos lz
@@ -34,7 +35,7 @@
 
 use std::f64::consts::PI;
 
-use crate::AnalysisError;
+use crate::error::AnalysisError;
 
 fn positive(field: &'static str, value: f64) -> Result<f64, AnalysisError> {
     if value.is_finite() && value > 0.0 {
@@ -210,40 +211,35 @@ impl FlatPunch {
     }
 }
 
-/// A finite Euler-Bernoulli beam with free ends on a Winkler foundation,
-/// loaded by a concentrated force at its middle (Hetenyi 1946), the
-/// foundation bilateral: the closed form holds while the deflection stays
-/// positive everywhere (every point in contact), i.e. for `lambda L < pi`
-/// (beyond it the ends would lift off a tensionless foundation).
+/// A finite Euler-Bernoulli beam with free ends on a Winkler foundation
+/// under one concentrated load: the parameters of [`HetenyiBeam`] (the load
+/// at the middle) and [`FiniteBeam`] (the load anywhere), each finite and
+/// > 0.
 ///
 /// Units: `E I` in force length^2, `k` in force per length per deflection
 /// (force/length^2, the modulus per unit length of beam), `L` length, `P`
-/// force; deflections in length, foundation reaction `k y` in force per length.
+/// force.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct HetenyiBeam {
+pub struct BeamOnFoundation {
     /// Flexural rigidity `E I`.
     pub flexural_rigidity: f64,
     /// Foundation modulus `k` per unit length of beam.
     pub foundation_modulus: f64,
     /// Beam length `L`.
     pub length: f64,
-    /// Central load `P`.
+    /// The load `P`.
     pub load: f64,
 }
 
-impl HetenyiBeam {
-    /// The reference for `E I`, `k`, `L` and `P` (all finite and > 0).
-    pub fn new(
-        flexural_rigidity: f64,
-        foundation_modulus: f64,
-        length: f64,
-        load: f64,
-    ) -> Result<Self, AnalysisError> {
+impl BeamOnFoundation {
+    /// The parameters, each checked finite and > 0 (an error names the
+    /// first that is not).
+    fn validated(self) -> Result<Self, AnalysisError> {
         Ok(Self {
-            flexural_rigidity: positive("flexural_rigidity", flexural_rigidity)?,
-            foundation_modulus: positive("foundation_modulus", foundation_modulus)?,
-            length: positive("length", length)?,
-            load: positive("load", load)?,
+            flexural_rigidity: positive("flexural_rigidity", self.flexural_rigidity)?,
+            foundation_modulus: positive("foundation_modulus", self.foundation_modulus)?,
+            length: positive("length", self.length)?,
+            load: positive("load", self.load)?,
         })
     }
 
@@ -251,19 +247,56 @@ impl HetenyiBeam {
     pub fn lambda(&self) -> f64 {
         (self.foundation_modulus / (4.0 * self.flexural_rigidity)).powf(0.25)
     }
+}
+
+/// A finite Euler-Bernoulli beam with free ends on a Winkler foundation,
+/// loaded by a concentrated force at its middle (Hetenyi 1946), the
+/// foundation bilateral: the closed form holds while the deflection stays
+/// positive everywhere (every point in contact), i.e. for `lambda L < pi`
+/// (beyond it the ends would lift off a tensionless foundation).
+///
+/// Units as [`BeamOnFoundation`]; deflections in length, foundation
+/// reaction `k y` in force per length.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HetenyiBeam {
+    /// `E I`, `k`, `L` and the central load `P`, validated.
+    beam: BeamOnFoundation,
+}
+
+impl HetenyiBeam {
+    /// The reference for `E I`, `k`, `L` and `P`.
+    ///
+    /// # Errors
+    /// [`AnalysisError::InvalidInput`] naming the first parameter that is
+    /// not finite and > 0.
+    pub fn new(beam: BeamOnFoundation) -> Result<Self, AnalysisError> {
+        Ok(Self {
+            beam: beam.validated()?,
+        })
+    }
+
+    /// The beam's parameters.
+    pub fn parameters(&self) -> &BeamOnFoundation {
+        &self.beam
+    }
+
+    /// The characteristic `lambda = (k / (4 E I))^(1/4)` (1/length).
+    pub fn lambda(&self) -> f64 {
+        self.beam.lambda()
+    }
 
     /// Deflection (into the foundation) at `x`, measured from the beam's
     /// middle (`|x| <= L/2`; outside the beam: 0).
     pub fn deflection(&self, x: f64) -> f64 {
-        let half = 0.5 * self.length;
+        let half = 0.5 * self.beam.length;
         if x.abs() > half {
             return 0.0;
         }
         let lam = self.lambda();
-        let ll = lam * self.length;
+        let ll = lam * self.beam.length;
         let phi = 0.5 * ll;
         let lz = lam * (half - x.abs());
-        let factor = self.load * lam / (self.foundation_modulus * (ll.sinh() + ll.sin()));
+        let factor = self.beam.load * lam / (self.beam.foundation_modulus * (ll.sinh() + ll.sin()));
         factor
             * (2.0 * phi.cosh() * phi.cos() * lz.cosh() * lz.cos()
                 + (phi.cosh() * phi.sin() - phi.sinh() * phi.cos())
@@ -274,14 +307,14 @@ impl HetenyiBeam {
     /// + 2) / (2 k (sinh lambda L + sin lambda L))`, the approach alpha.
     pub fn centre_deflection(&self) -> f64 {
         let lam = self.lambda();
-        let ll = lam * self.length;
-        self.load * lam * (ll.cosh() + ll.cos() + 2.0)
-            / (2.0 * self.foundation_modulus * (ll.sinh() + ll.sin()))
+        let ll = lam * self.beam.length;
+        self.beam.load * lam * (ll.cosh() + ll.cos() + 2.0)
+            / (2.0 * self.beam.foundation_modulus * (ll.sinh() + ll.sin()))
     }
 
     /// Foundation reaction per unit length at `x`: `k y(x)` (force/length).
     pub fn load_intensity(&self, x: f64) -> f64 {
-        self.foundation_modulus * self.deflection(x)
+        self.beam.foundation_modulus * self.deflection(x)
     }
 }
 
@@ -302,35 +335,27 @@ impl HetenyiBeam {
 /// point is `-w'(e)`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FiniteBeam {
-    /// Flexural rigidity `E I`.
-    pub flexural_rigidity: f64,
-    /// Foundation modulus `k` per unit length of beam.
-    pub foundation_modulus: f64,
-    /// Beam length `L`.
-    pub length: f64,
-    /// The load `P`.
-    pub load: f64,
+    /// `E I`, `k`, `L` and the load `P`, validated.
+    beam: BeamOnFoundation,
     /// Where the load acts, `e`, from the beam's middle.
-    pub position: f64,
-    /// The span coefficients (see [`FiniteBeam::deflection`]).
+    position: f64,
+    /// The span coefficients (see [`FiniteBeam::deflection`]), cached: they
+    /// follow from the parameters, which are therefore not public fields.
     coefficients: [f64; 8],
 }
 
 impl FiniteBeam {
-    /// The reference for `E I`, `k`, `L`, `P` (finite, > 0) and the load's
-    /// position `e` (strictly inside the beam).
-    pub fn new(
-        flexural_rigidity: f64,
-        foundation_modulus: f64,
-        length: f64,
-        load: f64,
-        position: f64,
-    ) -> Result<Self, AnalysisError> {
+    /// The reference for `E I`, `k`, `L`, `P` and the load's position `e`
+    /// from the beam's middle (strictly inside the beam).
+    ///
+    /// # Errors
+    /// [`AnalysisError::InvalidInput`] naming the first parameter that is
+    /// not finite and > 0, or `position` when `|e| >= L / 2`.
+    pub fn new(beam: BeamOnFoundation, position: f64) -> Result<Self, AnalysisError> {
+        let beam = beam.validated()?;
+        let length = beam.length;
         let mut beam = Self {
-            flexural_rigidity: positive("flexural_rigidity", flexural_rigidity)?,
-            foundation_modulus: positive("foundation_modulus", foundation_modulus)?,
-            length: positive("length", length)?,
-            load: positive("load", load)?,
+            beam,
             position,
             coefficients: [0.0; 8],
         };
@@ -345,14 +370,24 @@ impl FiniteBeam {
         Ok(beam)
     }
 
+    /// The beam's parameters.
+    pub fn parameters(&self) -> &BeamOnFoundation {
+        &self.beam
+    }
+
+    /// Where the load acts, `e`, from the beam's middle.
+    pub fn position(&self) -> f64 {
+        self.position
+    }
+
     /// The characteristic `lambda = (k / (4 E I))^(1/4)` (1/length).
     pub fn lambda(&self) -> f64 {
-        (self.foundation_modulus / (4.0 * self.flexural_rigidity)).powf(0.25)
+        self.beam.lambda()
     }
 
     /// The spans: `[start, end]` of the left span and of the right one.
     fn spans(&self) -> [(f64, f64); 2] {
-        let h = 0.5 * self.length;
+        let h = 0.5 * self.beam.length;
         [(-h, self.position), (self.position, h)]
     }
 
@@ -404,14 +439,14 @@ impl FiniteBeam {
                 a[(4 + d, 4 + j)] = r[d][j];
             }
         }
-        b[7] = self.load / self.flexural_rigidity;
+        b[7] = self.beam.load / self.beam.flexural_rigidity;
         let x = a.partial_piv_lu().solve(&b);
         std::array::from_fn(|i| x[i])
     }
 
     /// The `order`-th derivative of the deflection at `x` (0 outside the beam).
     fn derivative(&self, x: f64, order: usize) -> f64 {
-        if x.abs() > 0.5 * self.length {
+        if x.abs() > 0.5 * self.beam.length {
             return 0.0;
         }
         let [left, right] = self.spans();
@@ -438,15 +473,15 @@ impl FiniteBeam {
 
     /// Foundation reaction per unit length at `x`: `k w(x)` (force/length).
     pub fn load_intensity(&self, x: f64) -> f64 {
-        self.foundation_modulus * self.deflection(x)
+        self.beam.foundation_modulus * self.deflection(x)
     }
 
     /// Whether the bilateral solution pulls on the foundation somewhere
     /// (some deflection negative, sampled at 2001 points along the beam):
     /// then a tensionless foundation lifts off and this is no reference.
     pub fn lifts_off(&self) -> bool {
-        let h = 0.5 * self.length;
-        (0..=2000).any(|i| self.deflection(-h + self.length * i as f64 / 2000.0) < 0.0)
+        let h = 0.5 * self.beam.length;
+        (0..=2000).any(|i| self.deflection(-h + self.beam.length * i as f64 / 2000.0) < 0.0)
     }
 }
 
@@ -454,10 +489,31 @@ impl FiniteBeam {
 mod tests {
     use super::*;
 
+    /// Example 2's beam: E I = 1.6e8 lb in^2 on a foundation of 1e7
+    /// lb/in/in, 8.9 in long, under 50,000 lb.
+    const EXAMPLE: BeamOnFoundation = BeamOnFoundation {
+        flexural_rigidity: 1.6e8,
+        foundation_modulus: 1e7,
+        length: 8.9,
+        load: 5e4,
+    };
+
+    /// The weight of node i of Simpson's rule on n intervals (n even):
+    /// 1, 4, 2, 4, ..., 2, 4, 1 (times h / 3).
+    fn simpson_weight(i: usize, n: usize) -> f64 {
+        if i == 0 || i == n {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        }
+    }
+
     #[test]
     fn the_finite_beam_is_hetenyi_s_with_a_central_load_and_in_equilibrium_off_centre() {
-        let central = HetenyiBeam::new(1.6e8, 1e7, 8.9, 5e4).unwrap();
-        let beam = FiniteBeam::new(1.6e8, 1e7, 8.9, 5e4, 0.0).unwrap();
+        let central = HetenyiBeam::new(EXAMPLE).unwrap();
+        let beam = FiniteBeam::new(EXAMPLE, 0.0).unwrap();
         for i in 0..=20 {
             let x = -4.45 + 8.9 * i as f64 / 20.0;
             let (a, b) = (beam.deflection(x), central.deflection(x));
@@ -469,19 +525,13 @@ mod tests {
         // Off centre: the foundation's reaction balances the load and its
         // moment about the load (Simpson's rule on a fine grid).
         let e = 1.3;
-        let beam = FiniteBeam::new(1.6e8, 1e7, 8.9, 5e4, e).unwrap();
+        let beam = FiniteBeam::new(EXAMPLE, e).unwrap();
         let n = 20_000;
         let h = 8.9 / n as f64;
         let (mut force, mut moment) = (0.0, 0.0);
         for i in 0..=n {
             let x = -4.45 + h * i as f64;
-            let weight = if i == 0 || i == n {
-                1.0
-            } else if i % 2 == 1 {
-                4.0
-            } else {
-                2.0
-            };
+            let weight = simpson_weight(i, n);
             let q = beam.load_intensity(x);
             force += weight * q * h / 3.0;
             moment += weight * q * (x - e) * h / 3.0;
@@ -492,26 +542,50 @@ mod tests {
         // well inside it (L = 6, e = 0.5) it does not.
         assert!(beam.lifts_off());
         assert!(
-            !FiniteBeam::new(1.6e8, 1e7, 6.0, 5e4, 0.5)
-                .unwrap()
-                .lifts_off()
+            !FiniteBeam::new(
+                BeamOnFoundation {
+                    length: 6.0,
+                    ..EXAMPLE
+                },
+                0.5
+            )
+            .unwrap()
+            .lifts_off()
         );
         // A soft beam loaded near its end lifts the far end.
-        let soft = FiniteBeam::new(1e6, 1e7, 8.9, 5e4, 3.5).unwrap();
+        let soft = FiniteBeam::new(
+            BeamOnFoundation {
+                flexural_rigidity: 1e6,
+                ..EXAMPLE
+            },
+            3.5,
+        )
+        .unwrap();
         assert!(soft.lifts_off());
         // A load off the beam is refused.
-        assert!(FiniteBeam::new(1.0, 1.0, 2.0, 1.0, 1.0).is_err());
+        assert!(
+            FiniteBeam::new(
+                BeamOnFoundation {
+                    flexural_rigidity: 1.0,
+                    foundation_modulus: 1.0,
+                    length: 2.0,
+                    load: 1.0
+                },
+                1.0
+            )
+            .is_err()
+        );
     }
 
     #[test]
     fn hetenyi_general_form_meets_the_centre_and_end_formulas() {
-        let beam = HetenyiBeam::new(1.6e8, 1e7, 8.9, 5e4).unwrap();
+        let beam = HetenyiBeam::new(EXAMPLE).unwrap();
         let lam = beam.lambda();
-        let ll = lam * beam.length;
+        let ll = lam * beam.parameters().length;
         assert!((beam.deflection(0.0) / beam.centre_deflection() - 1.0).abs() < 1e-14);
         // End: 2 P lambda cosh(lL/2) cos(lL/2) / (k (sinh lL + sin lL)) (Roark, Table 8.6).
-        let end = 2.0 * beam.load * lam * (0.5 * ll).cosh() * (0.5 * ll).cos()
-            / (beam.foundation_modulus * (ll.sinh() + ll.sin()));
+        let end = 2.0 * beam.parameters().load * lam * (0.5 * ll).cosh() * (0.5 * ll).cos()
+            / (beam.parameters().foundation_modulus * (ll.sinh() + ll.sin()));
         assert!((beam.deflection(4.45) - end).abs() < 1e-14 * beam.centre_deflection());
         assert_eq!(beam.deflection(-1.3), beam.deflection(1.3));
         assert_eq!(beam.deflection(4.5), 0.0);
@@ -520,30 +594,78 @@ mod tests {
     #[test]
     fn hetenyi_satisfies_equilibrium_and_the_rigid_limit() {
         // The reaction integrates to P (Simpson's rule on 2000 intervals).
-        let beam = HetenyiBeam::new(2.0e5, 3.0e3, 6.0, 7.0).unwrap();
+        let beam = HetenyiBeam::new(BeamOnFoundation {
+            flexural_rigidity: 2.0e5,
+            foundation_modulus: 3.0e3,
+            length: 6.0,
+            load: 7.0,
+        })
+        .unwrap();
         let n = 2000;
-        let h = beam.length / n as f64;
-        let f = |i: usize| beam.load_intensity(-0.5 * beam.length + i as f64 * h);
-        let simpson: f64 = (0..=n)
-            .map(|i| {
-                let w = if i == 0 || i == n {
-                    1.0
-                } else if i % 2 == 1 {
-                    4.0
-                } else {
-                    2.0
-                };
-                w * f(i)
-            })
-            .sum::<f64>()
-            * h
-            / 3.0;
-        assert!((simpson / beam.load - 1.0).abs() < 1e-10, "{simpson}");
+        let h = beam.parameters().length / n as f64;
+        let f = |i: usize| beam.load_intensity(-0.5 * beam.parameters().length + i as f64 * h);
+        let simpson: f64 = (0..=n).map(|i| simpson_weight(i, n) * f(i)).sum::<f64>() * h / 3.0;
+        assert!(
+            (simpson / beam.parameters().load - 1.0).abs() < 1e-10,
+            "{simpson}"
+        );
         // A very stiff beam sinks uniformly: y = P / (k L).
-        let rigid = HetenyiBeam::new(1e12, 3.0e3, 6.0, 7.0).unwrap();
+        let rigid = HetenyiBeam::new(BeamOnFoundation {
+            flexural_rigidity: 1e12,
+            ..*beam.parameters()
+        })
+        .unwrap();
         let uniform = 7.0 / (3.0e3 * 6.0);
         for x in [0.0, 1.0, 2.9] {
             assert!((rigid.deflection(x) / uniform - 1.0).abs() < 1e-6);
         }
+    }
+
+    #[test]
+    fn the_beams_name_each_parameter_out_of_range() {
+        let field = |e: AnalysisError| match e {
+            AnalysisError::InvalidInput { field, .. } => field,
+            other => panic!("expected InvalidInput, got {other:?}"),
+        };
+        for (beam, name) in [
+            (
+                BeamOnFoundation {
+                    flexural_rigidity: -1.0,
+                    ..EXAMPLE
+                },
+                "flexural_rigidity",
+            ),
+            (
+                BeamOnFoundation {
+                    foundation_modulus: f64::NAN,
+                    ..EXAMPLE
+                },
+                "foundation_modulus",
+            ),
+            (
+                BeamOnFoundation {
+                    length: 0.0,
+                    ..EXAMPLE
+                },
+                "length",
+            ),
+            (
+                BeamOnFoundation {
+                    load: f64::INFINITY,
+                    ..EXAMPLE
+                },
+                "load",
+            ),
+        ] {
+            assert_eq!(field(HetenyiBeam::new(beam).unwrap_err()), name);
+            assert_eq!(field(FiniteBeam::new(beam, 0.0).unwrap_err()), name);
+        }
+        for position in [4.45, -5.0, f64::NAN] {
+            let e = FiniteBeam::new(EXAMPLE, position).unwrap_err();
+            assert_eq!(field(e), "position", "e = {position}");
+        }
+        let beam = FiniteBeam::new(EXAMPLE, 1.3).unwrap();
+        assert_eq!((*beam.parameters(), beam.position()), (EXAMPLE, 1.3));
+        assert_eq!(*HetenyiBeam::new(EXAMPLE).unwrap().parameters(), EXAMPLE);
     }
 }

@@ -3,7 +3,10 @@
 //! surface (spheres, Love patches) and on a line (cylinders in plane
 //! strain).
 
-use elcon_analysis::references::{HertzCylinders, HertzSpheres, combined_radius};
+mod common;
+
+use common::scenes;
+use elcon_analysis::references::{HertzCylinders, combined_radius};
 use elcon_analysis::{
     Body, ContactProblem, Geometry, Loading, Material, Method, Options, Surface, combined_modulus,
     grid,
@@ -16,16 +19,10 @@ fn steel() -> Material {
 /// The contact radius of Example 1's spheres over Hertz's, less 1, at
 /// `across` points across the Hertz diameter, and the spacing over a.
 fn sphere_error(across: usize) -> (f64, f64) {
-    let m = steel();
-    let hertz =
-        HertzSpheres::new(combined_modulus(&m, &m), combined_radius(1.0, 10.0), 100.0).unwrap();
+    let hertz = scenes::example1_hertz();
     let a = hertz.contact_radius();
     let points = grid::hertz_disk(a, across, 1.2).unwrap();
-    let body = Body::uniform_patch(m);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
+    let (body, geometry) = scenes::example1_bodies();
     let problem =
         ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
     let sol = problem
@@ -86,12 +83,7 @@ fn the_half_width_of_a_line_contact_is_within_a_tenth_of_a_cell() {
 
 /// Example 1's spheres on a disk of `radius` at spacing `h`: the solution.
 fn spheres_on(h: f64, radius: f64) -> elcon_analysis::ContactSolution {
-    let m = steel();
-    let body = Body::uniform_patch(m);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
+    let (body, geometry) = scenes::example1_bodies();
     let points = elcon_analysis::PointSet::grid_disk(h, radius).unwrap();
     ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0))
         .unwrap()
@@ -107,10 +99,7 @@ fn warns_of_the_edge(sol: &elcon_analysis::ContactSolution) -> bool {
 
 #[test]
 fn the_edge_warning_fires_where_the_zone_cuts_the_contact_off() {
-    let m = steel();
-    let a = HertzSpheres::new(combined_modulus(&m, &m), combined_radius(1.0, 10.0), 100.0)
-        .unwrap()
-        .contact_radius();
+    let a = scenes::example1_hertz().contact_radius();
     let h = 2.0 * a / 10.0;
     // 11 across, zone 1.2: the outermost points in contact sit on the
     // Hertz circle, next to the zone's edge, and their pressure falls to

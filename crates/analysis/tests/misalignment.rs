@@ -8,11 +8,13 @@
 mod common;
 
 use common::checks::assert_solves;
-use elcon_analysis::references::{FiniteBeam, FlatPunch, HertzCylinders, HertzSpheres};
+use elcon_analysis::references::{
+    BeamOnFoundation, FiniteBeam, FlatPunch, HertzCylinders, HertzSpheres,
+};
 use elcon_analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface,
 };
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 fn steel() -> Material {
     Material::new(210e9, 0.3).unwrap()
@@ -167,7 +169,12 @@ fn off_centre_beam(
     let n = points.len();
     let problem = ContactProblem::new(
         points,
-        &Body::beam(modulus, second, e),
+        &Body::beam(Beam {
+            youngs_modulus: modulus,
+            second_moment: second,
+            loaded_point: e,
+        })
+        .unwrap(),
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(load),
@@ -183,7 +190,16 @@ fn an_off_centre_load_on_a_free_beam_is_the_bonded_finite_beam() {
     // kern of the nearly rigid beam, L / 6): the bonded solution pulls nowhere, so the tensionless foundation keeps every
     // point in contact and the two agree, converging in the cell's square.
     let (length, e, load) = (6.0, 0.5, 5e4);
-    let exact = FiniteBeam::new(30e6 * 64.0 / 12.0, 1e7, length, load, e).unwrap();
+    let exact = FiniteBeam::new(
+        BeamOnFoundation {
+            flexural_rigidity: 30e6 * 64.0 / 12.0,
+            foundation_modulus: 1e7,
+            length,
+            load,
+        },
+        e,
+    )
+    .unwrap();
     assert!(!exact.lifts_off());
     let peak = (0..=600)
         .map(|i| exact.load_intensity(-3.0 + 6.0 * i as f64 / 600.0))
@@ -227,9 +243,17 @@ fn a_free_beam_that_lifts_off_converges_with_the_grid() {
     // (successive differences falling at least 3x per halving).
     let (length, e, load) = (12.0, 3.0, 5e4);
     assert!(
-        FiniteBeam::new(30e6 * 64.0 / 12.0, 1e7, length, load, e)
-            .unwrap()
-            .lifts_off()
+        FiniteBeam::new(
+            BeamOnFoundation {
+                flexural_rigidity: 30e6 * 64.0 / 12.0,
+                foundation_modulus: 1e7,
+                length,
+                load
+            },
+            e
+        )
+        .unwrap()
+        .lifts_off()
     );
     let mut last: Option<(f64, f64)> = None;
     let mut last_change = f64::INFINITY;

@@ -10,11 +10,13 @@ mod common;
 
 use common::checks::assert_solves;
 use common::scenes;
-use elcon_analysis::references::{HertzCylinders, HertzSpheres, HetenyiBeam, combined_radius};
+use elcon_analysis::references::{
+    BeamOnFoundation, HertzCylinders, HertzSpheres, HetenyiBeam, combined_radius,
+};
 use elcon_analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface, Warning,
 };
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 /// A material pair and a unit system: (E1, nu1), (E2, nu2), length and force factors from inch-pound.
 struct Case {
@@ -179,12 +181,19 @@ fn methods_agree_on_a_contact_problem() {
     }
 }
 
+/// The first case (inch-pound steel on steel, P = 100 lb) at 6 cells per
+/// Hertz radius on a zone of `zone` Hertz radii, solved by Lemke's method.
+fn inch_pound_by_lemke(zone: f64) -> (ContactProblem, ContactSolution) {
+    let (_, case) = cases().swap_remove(0);
+    let (problem, _) = sphere_problem(&case, 6.0, zone);
+    let sol = problem.solve(Method::Lemke, &Options::default()).unwrap();
+    (problem, sol)
+}
+
 #[test]
 fn load_and_displacement_control_agree() {
     // Inch-pound steel on steel: P = 100 lb.
-    let (_, case) = cases().swap_remove(0);
-    let (load, _) = sphere_problem(&case, 6.0, 1.3);
-    let by_load = load.solve(Method::Lemke, &Options::default()).unwrap();
+    let (load, by_load) = inch_pound_by_lemke(1.3);
     assert_solves(&load, &by_load, "by load");
     let approach = load
         .with_loading(Loading::approach(by_load.approach))
@@ -306,10 +315,8 @@ fn rigid_flat_punch() {
 
 #[test]
 fn truncated_zone_warns() {
-    let (_, case) = cases().swap_remove(0);
     // Candidate zone smaller than the contact: the answer is truncated.
-    let (problem, _) = sphere_problem(&case, 6.0, 0.7);
-    let sol = problem.solve(Method::Lemke, &Options::default()).unwrap();
+    let (problem, sol) = inch_pound_by_lemke(0.7);
     assert!(sol.certificate.holds());
     assert_solves(&problem, &sol, "truncated");
     let warning = sol
@@ -352,7 +359,12 @@ fn hetenyi_case(per_half: usize, length: f64) -> (ContactSolution, HetenyiBeam, 
     let n = points.len();
     let problem = ContactProblem::new(
         points.clone(),
-        &Body::beam(e, i, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: e,
+            second_moment: i,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::winkler(k),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(load),
@@ -364,7 +376,13 @@ fn hetenyi_case(per_half: usize, length: f64) -> (ContactSolution, HetenyiBeam, 
     assert_solves(&problem, &sol, &format!("Hetenyi, {per_half} per half"));
     (
         sol,
-        HetenyiBeam::new(e * i, k, length, load).unwrap(),
+        HetenyiBeam::new(BeamOnFoundation {
+            flexural_rigidity: e * i,
+            foundation_modulus: k,
+            length,
+            load,
+        })
+        .unwrap(),
         points,
     )
 }
@@ -443,7 +461,12 @@ fn folded_problems_agree_with_full_ones() {
         ),
         (
             PointSet::line(-4.45, 4.45, 30).unwrap(),
-            Body::beam(30e6, 16.0 / 3.0, 0.0),
+            Body::beam(Beam {
+                youngs_modulus: 30e6,
+                second_moment: 16.0 / 3.0,
+                loaded_point: 0.0,
+            })
+            .unwrap(),
             Body::winkler(1e7),
             Geometry::Separation(vec![0.0; 30]),
             Loading::load(5e4),
@@ -519,13 +542,8 @@ fn a_folded_problem_refuses_an_asymmetric_separation() {
 
 #[test]
 fn a_warm_start_from_the_previous_load_step_saves_iterations() {
-    let steel = Material::new(30e6, 0.3).unwrap();
     let a = 0.016;
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
-    let body = Body::uniform_patch(steel);
+    let (body, geometry) = scenes::example1_bodies();
     let points = PointSet::grid_disk(a / 8.0, 1.4 * a).unwrap();
     // The data the warm solutions are checked against (folded or not).
     let full = ContactProblem::new(

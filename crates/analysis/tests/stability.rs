@@ -10,10 +10,10 @@
 mod common;
 
 use common::checks::{assert_solves, check};
+use common::scenes;
 use common::stability_cases::{Expect, Reference, catalogue, error};
-use elcon_analysis::references::{HertzSpheres, combined_radius};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface, Warning};
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Beam, Body, Material, PointSet};
 use proptest::prelude::*;
 
 #[test]
@@ -348,7 +348,12 @@ fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
     let points = PointSet::line(-1.0, 1.0, 21).unwrap();
     let problem = ContactProblem::new(
         points,
-        &Body::beam(1e6, 1.0, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 1e6,
+            second_moment: 1.0,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::rigid(),
         &Geometry::Separation(vec![0.0; 21]),
         Loading::load(10.0),
@@ -384,20 +389,9 @@ fn lemke_ends_when_the_covering_variable_reaches_zero_outside_the_relative_tie()
     // next entering variable (u- with u+ basic) was a ray. The ratio test now
     // also ties every row that the step brings to the zero level, so z0 is
     // preferred and leaves.
-    let steel = Material::new(30e6, 0.3).unwrap();
-    let a = HertzSpheres::new(
-        combined_modulus(&steel, &steel),
-        combined_radius(1.0, 10.0),
-        100.0,
-    )
-    .unwrap()
-    .contact_radius();
+    let a = scenes::example1_hertz().contact_radius();
     let points = PointSet::grid_disk(2.0 * a / 130.0, 1.15 * a).unwrap();
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
+    let (body, geometry) = scenes::example1_bodies();
     let problem =
         ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
     let lemke = problem.solve(Method::Lemke, &Options::default()).unwrap();

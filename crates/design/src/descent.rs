@@ -172,6 +172,7 @@ fn model_rows(
     problem: &ContactProblem,
     solution: &ContactSolution,
     basis: &Basis,
+    reanalysis: &elcon_lcp::Options,
 ) -> Result<Vec<Constraint>, DesignError> {
     let contact = &solution.contact;
     let (nj, m) = (contact.len(), basis.params());
@@ -198,8 +199,9 @@ fn model_rows(
         }
     });
     let solved = problem
-        .restricted_solve(contact, rhs.as_ref())
-        .map_err(DesignError::analysis("a design sensitivity"))?;
+        .restricted_solve(contact, rhs.as_ref(), reanalysis)
+        .map_err(DesignError::analysis("a design sensitivity"))?
+        .x;
     let (u, v) = (solved.subcols(0, k), solved.subcols(k, m));
     let x = if k == 0 {
         -v
@@ -378,7 +380,13 @@ pub(crate) fn solve(
         iterations += 1;
         let pool = match &mut model_at_current {
             Some(pool) => pool,
-            None => model_at_current.insert(model_of(cases, basis, c_max, &current)?),
+            None => model_at_current.insert(model_of(
+                cases,
+                basis,
+                c_max,
+                &current,
+                &options.reanalysis_options,
+            )?),
         };
         let (d, model, p) = step(pool, m, radius, &options.engine)?;
         pivots += p;
@@ -429,10 +437,11 @@ fn model_of(
     basis: &Basis,
     c_max: Option<f64>,
     current: &Iterate,
+    reanalysis: &elcon_lcp::Options,
 ) -> Result<Vec<Constraint>, DesignError> {
     let mut pool = constant_rows(basis, &current.theta, c_max);
     for ((case, problem), solution) in cases.iter().zip(&current.problems).zip(&current.solutions) {
-        pool.extend(model_rows(case, problem, solution, basis)?);
+        pool.extend(model_rows(case, problem, solution, basis, reanalysis)?);
     }
     Ok(pool)
 }

@@ -24,14 +24,19 @@
 //! ```
 //! use elcon_analysis::{ContactProblem, Geometry, Loading};
 //! use elcon_design::{Axis, DesignOptions, Family, design, uniform_target};
-//! use elcon_influence::{Body, PointSet};
+//! use elcon_influence::{Beam, Body, PointSet};
 //!
 //! // A steel beam (E I = 1.6e8 lb in^2) on a Winkler foundation (1e7 lb/in/in),
 //! // 8.9 in long, 10 points per half, central load 50,000 lb.
 //! let points = PointSet::line(-4.45, 4.45, 20).unwrap();
 //! let case = ContactProblem::new(
 //!     points,
-//!     &Body::beam(30e6, 16.0 / 3.0, 0.0),
+//!     &Body::beam(Beam {
+//!         youngs_modulus: 30e6,
+//!         second_moment: 16.0 / 3.0,
+//!         loaded_point: 0.0,
+//!     })
+//!     .unwrap(),
 //!     &Body::winkler(1e7),
 //!     &Geometry::Separation(vec![0.0; 20]),
 //!     Loading::load(5e4),

@@ -10,7 +10,7 @@
 use elcon_analysis::references::HertzCylinders;
 use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
 use elcon_design::{Axis, Design, DesignMethod, DesignOptions, Family, Solver, Stop, design};
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 /// The agreement between the two methods' optima (see the module docs).
 const SAME_OPTIMUM: f64 = 1e-9;
@@ -19,7 +19,12 @@ fn beam(per_half: usize, load: f64, x0: f64) -> ContactProblem {
     let n = 2 * per_half;
     ContactProblem::new(
         PointSet::line(-4.45, 4.45, n).unwrap(),
-        &Body::beam(30e6, 64.0 / 12.0, x0),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 64.0 / 12.0,
+            loaded_point: x0,
+        })
+        .unwrap(),
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(load).with_tilt_y(0.0),
@@ -181,7 +186,12 @@ fn the_descent_never_ends_above_its_start() {
     let n = 30;
     let case = ContactProblem::new(
         PointSet::line(-4.45, 4.45, n).unwrap(),
-        &Body::beam(30e6, 0.01, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 0.01,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::winkler(1e9),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(5e4),

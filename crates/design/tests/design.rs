@@ -8,7 +8,7 @@ use elcon_design::{
     Axis, DesignMethod, DesignOptions, Family, Profile, SearchOptions, Solver, Stop, crown_search,
     design, evaluate, evaluate_from, uniform_target,
 };
-use elcon_influence::{Body, PointSet};
+use elcon_influence::{Beam, Body, PointSet};
 
 /// Example 2's beam: steel, 1 in x 4 in, on a foundation of 1e7 lb/in/in,
 /// `length` long, `per_half` points per half, loaded at `x0` by `load`.
@@ -22,7 +22,12 @@ fn beam(per_half: usize, x0: f64, load: f64, length: f64, force: f64) -> Contact
     let k = 1e7 * force / (length * length);
     ContactProblem::new(
         points,
-        &Body::beam(e, i, x0 * length),
+        &Body::beam(Beam {
+            youngs_modulus: e,
+            second_moment: i,
+            loaded_point: x0 * length,
+        })
+        .unwrap(),
         &Body::winkler(k),
         &Geometry::Separation(vec![0.0; n]),
         // The rotation held at the loaded point (the paper's beam, clamped
@@ -355,7 +360,12 @@ fn the_paper_start_can_end_at_a_local_minimum_and_the_fitted_start_escapes_it() 
     let points = PointSet::line(-0.5 * length, 0.5 * length, n).unwrap();
     let case = ContactProblem::new(
         points,
-        &Body::beam(1e4, 1.0, -0.0199 * length),
+        &Body::beam(Beam {
+            youngs_modulus: 1e4,
+            second_moment: 1.0,
+            loaded_point: -0.0199 * length,
+        })
+        .unwrap(),
         &Body::winkler(10f64.powf(7.804_685_818_363_645)),
         &Geometry::Separation(vec![0.0; n]),
         Loading::load(10.0).with_tilt_y(0.0),

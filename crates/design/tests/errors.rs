@@ -1,18 +1,25 @@
 //! One test per `DesignError` variant: the error a user gets, and that its
 //! message names the field and the reason.
 
-use elcon_analysis::{AnalysisError, ContactProblem, Geometry, Loading, Method, Options};
+use elcon_analysis::{
+    AnalysisError, ContactProblem, ContactSolution, Geometry, Loading, Method, Options,
+};
 use elcon_design::{
     Axis, DesignError, DesignOptions, Family, Profile, design, evaluate, target_separation,
 };
-use elcon_influence::{Body, PointSet};
+use elcon_influence::{Beam, Body, PointSet};
 use elcon_lcp::LcpError;
 
 fn beam(loading: Loading) -> ContactProblem {
     let points = PointSet::line(-4.45, 4.45, 12).unwrap();
     ContactProblem::new(
         points,
-        &Body::beam(30e6, 64.0 / 12.0, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 64.0 / 12.0,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; 12]),
         loading,
@@ -57,6 +64,19 @@ fn invalid_input_names_the_field() {
     );
 }
 
+/// The error of evaluating `case`, uncorrected, from the solutions `known`.
+fn known_error(case: &ContactProblem, known: &[Option<&ContactSolution>]) -> DesignError {
+    elcon_design::evaluate_known(
+        std::slice::from_ref(case),
+        Axis::X,
+        &Profile::none(),
+        Method::Lemke,
+        &Options::default(),
+        known,
+    )
+    .unwrap_err()
+}
+
 #[test]
 fn incompatible_inputs_say_what_to_give() {
     let e = design(&[], Axis::X, Family::Free, &DesignOptions::default()).unwrap_err();
@@ -86,22 +106,19 @@ fn incompatible_inputs_say_what_to_give() {
     );
     // Known solutions: one entry per case, one value per point.
     let case = beam(Loading::load(5e4));
-    let e = elcon_design::evaluate_known(
-        std::slice::from_ref(&case),
-        Axis::X,
-        &Profile::none(),
-        Method::Lemke,
-        &Options::default(),
-        &[],
-    )
-    .unwrap_err();
+    let e = known_error(&case, &[]);
     assert_eq!(
         e.to_string(),
         "`known`: has 0 entries, expected 1 (one per load case)"
     );
     let other = ContactProblem::new(
         PointSet::line(-4.45, 4.45, 8).unwrap(),
-        &Body::beam(30e6, 64.0 / 12.0, 0.0),
+        &Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 64.0 / 12.0,
+            loaded_point: 0.0,
+        })
+        .unwrap(),
         &Body::winkler(1e7),
         &Geometry::Separation(vec![0.0; 8]),
         Loading::load(5e4),
@@ -109,15 +126,7 @@ fn incompatible_inputs_say_what_to_give() {
     .unwrap()
     .solve(Method::Lemke, &Options::default())
     .unwrap();
-    let e = elcon_design::evaluate_known(
-        std::slice::from_ref(&case),
-        Axis::X,
-        &Profile::none(),
-        Method::Lemke,
-        &Options::default(),
-        &[Some(&other)],
-    )
-    .unwrap_err();
+    let e = known_error(&case, &[Some(&other)]);
     assert_eq!(
         e.to_string(),
         "`known`: the solution of load case 0 has 8 values, the case 12 points"
@@ -131,24 +140,33 @@ fn incompatible_inputs_say_what_to_give() {
     );
 }
 
-#[test]
-fn analysis_failures_name_the_stage() {
-    // A pivot limit of 1 in the re-analysis.
-    let opts = DesignOptions {
-        reanalysis: Method::Lemke,
-        reanalysis_options: Options {
-            max_pivots: Some(1),
-            ..Options::default()
-        },
-        ..DesignOptions::default()
-    };
-    let e = design(
+/// Options that allow one pivot.
+fn one_pivot() -> Options {
+    Options {
+        max_pivots: Some(1),
+        ..Options::default()
+    }
+}
+
+/// The error of the quadratic design of the beam under 5e4 lb with `opts`.
+fn quadratic_design_error(opts: &DesignOptions) -> DesignError {
+    design(
         &[beam(Loading::load(5e4))],
         Axis::X,
         Family::Quadratic,
-        &opts,
+        opts,
     )
-    .unwrap_err();
+    .unwrap_err()
+}
+
+#[test]
+fn analysis_failures_name_the_stage() {
+    // A pivot limit of 1 in the re-analysis.
+    let e = quadratic_design_error(&DesignOptions {
+        reanalysis: Method::Lemke,
+        reanalysis_options: one_pivot(),
+        ..DesignOptions::default()
+    });
     assert!(
         matches!(
             &e,
@@ -168,20 +186,10 @@ fn analysis_failures_name_the_stage() {
 
 #[test]
 fn engine_failures_pass_through() {
-    let opts = DesignOptions {
-        engine: Options {
-            max_pivots: Some(1),
-            ..Options::default()
-        },
+    let e = quadratic_design_error(&DesignOptions {
+        engine: one_pivot(),
         ..DesignOptions::default()
-    };
-    let e = design(
-        &[beam(Loading::load(5e4))],
-        Axis::X,
-        Family::Quadratic,
-        &opts,
-    )
-    .unwrap_err();
+    });
     assert!(
         matches!(
             e,

@@ -5,7 +5,7 @@
 
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options};
 use elcon_design::{Axis, DesignOptions, Family, Profile, Solver, design, evaluate};
-use elcon_influence::{Body, PointSet};
+use elcon_influence::{Beam, Body, PointSet};
 use proptest::prelude::*;
 
 proptest! {
@@ -30,7 +30,12 @@ proptest! {
         let points = PointSet::line(-0.5 * length, 0.5 * length, n).unwrap();
         let case = ContactProblem::new(
             points,
-            &Body::beam(10f64.powf(log_ei), 1.0, x0_fraction * length),
+            &Body::beam(Beam {
+                youngs_modulus: 10f64.powf(log_ei),
+                second_moment: 1.0,
+                loaded_point: x0_fraction * length,
+            })
+            .unwrap(),
             &Body::winkler(10f64.powf(log_k)),
             &Geometry::Separation(vec![0.0; n]),
             // The rotation held at the loaded point, which may be off the

@@ -28,6 +28,7 @@ use faer::{Mat, MatMut};
 use crate::error::InfluenceError;
 use crate::models::Body;
 use crate::points::{MAX_DENSE_POINTS, PointSet};
+use crate::symmetry::Folding;
 use crate::terms::{TableLayout, Terms, table_layout};
 
 /// Tile size of the mirroring copy (64 x 64 doubles = 32 kB).
@@ -96,7 +97,7 @@ fn dense_size(n: usize) -> Result<(), InfluenceError> {
 }
 
 /// The folded influence matrix of a mirror-symmetric problem (see
-/// [`Folding`](crate::Folding)): for representatives a, b,
+/// [`Folding`]): for representatives a, b,
 /// `M_ab = (1 / s_a) sum_{j in O(b)} S_{rep(a) j}`, symmetric positive
 /// definite, of order `folding.len()`. The full S is never formed.
 ///
@@ -105,7 +106,7 @@ fn dense_size(n: usize) -> Result<(), InfluenceError> {
 pub fn assemble_folded(
     points: &PointSet,
     bodies: &[&Body],
-    folding: &crate::Folding,
+    folding: &Folding,
 ) -> Result<Mat<f64>, InfluenceError> {
     dense_size(folding.len())?;
     let terms = Terms::collect(points, bodies)?;
@@ -132,12 +133,12 @@ pub fn assemble_folded(
 
 /// The folded matrix from `half(k, j)`, the half-space part of `S_kj`, plus
 /// the local terms. M is symmetric (`s_b T_ab = s_a T_ba`, see
-/// [`Folding`](crate::Folding)): the lower triangle is summed and mirrored,
+/// [`Folding`]): the lower triangle is summed and mirrored,
 /// which halves the work and makes the symmetry exact.
 fn fold(
     points: &PointSet,
     terms: &Terms,
-    folding: &crate::Folding,
+    folding: &Folding,
     half: impl Fn(usize, usize) -> f64,
 ) -> Result<Mat<f64>, InfluenceError> {
     let n = folding.len();
@@ -317,8 +318,9 @@ mod tests {
         );
         assert_eq!(zeroed(2).unwrap(), Mat::<f64>::zeros(2, 2));
     }
-    use crate::points::{Cell, Dimension};
-    use crate::{Material, models::Body};
+    use crate::Material;
+    use crate::fixtures::{BEAM, UNIT_BEAM, sparse_pair};
+    use crate::models::{Beam, Body, Model};
 
     fn steel() -> Material {
         Material::new(30e6, 0.3).unwrap()
@@ -402,7 +404,7 @@ mod tests {
     fn beam_is_two_cantilevers_clamped_at_the_loaded_point() {
         let line = PointSet::line(-2.0, 2.0, 8).unwrap(); // x = -1.75 .. 1.75, h = 0.5
         let ei = 3.0e4;
-        let a = influence(&line, &Body::beam(1.0e4, 3.0, 0.0))
+        let a = influence(&line, &Body::beam(BEAM).unwrap())
             .unwrap()
             .unwrap();
         // Tip of a cantilever under a tip load: L^3 / (3 E I).
@@ -415,17 +417,20 @@ mod tests {
         assert_eq!(a[(3, 4)], 0.0);
         assert_eq!(a[(0, 0)], a[(7, 7)]);
         // A beam on a foundation: S = beam + 1/(k A_k) on the diagonal.
-        let s = assemble(
-            &line,
-            &[&Body::beam(1.0e4, 3.0, 0.0), &Body::winkler(100.0)],
-        )
-        .unwrap();
+        let s = assemble(&line, &[&Body::beam(BEAM).unwrap(), &Body::winkler(100.0)]).unwrap();
         assert!((s[(5, 5)] - a[(5, 5)] - 1.0 / (100.0 * 0.5)).abs() < 1e-18);
         assert_eq!(s[(5, 6)], a[(5, 6)]);
         // Off-centre loaded point: points on one side only.
-        let b = influence(&line, &Body::beam(1.0e4, 3.0, -2.0))
-            .unwrap()
-            .unwrap();
+        let b = influence(
+            &line,
+            &Body::beam(Beam {
+                loaded_point: -2.0,
+                ..BEAM
+            })
+            .unwrap(),
+        )
+        .unwrap()
+        .unwrap();
         let expected = 0.25f64.powi(2) * (3.0 * 3.75 - 0.25) / (6.0 * ei);
         assert!((b[(0, 7)] / expected - 1.0).abs() < 1e-14);
     }
@@ -433,15 +438,29 @@ mod tests {
     #[test]
     fn beam_parameters_are_validated() {
         let line = PointSet::line(-1.0, 1.0, 4).unwrap();
-        let e = assemble(&line, &[&Body::beam(0.0, 1.0, 0.0)]).unwrap_err();
+        let e = assemble(
+            &line,
+            &[&Body::new(Model::Beam {
+                flexural_rigidity: 0.0,
+                loaded_point: 0.0,
+            })],
+        )
+        .unwrap_err();
         assert_eq!(
             e.to_string(),
             "invalid Euler-Bernoulli beam parameter: flexural_rigidity = 0: E I must be finite and positive"
         );
-        let e = assemble(&line, &[&Body::beam(1.0, 1.0, f64::NAN)]).unwrap_err();
+        let e = assemble(
+            &line,
+            &[&Body::new(Model::Beam {
+                flexural_rigidity: 1.0,
+                loaded_point: f64::NAN,
+            })],
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("loaded_point = NaN"), "{e}");
         let disk = PointSet::grid_disk(0.1, 0.3).unwrap();
-        let e = assemble(&disk, &[&Body::beam(1.0, 1.0, 0.0)]).unwrap_err();
+        let e = assemble(&disk, &[&Body::beam(UNIT_BEAM).unwrap()]).unwrap_err();
         assert!(matches!(e, InfluenceError::DimensionMismatch { .. }), "{e}");
     }
 
@@ -463,7 +482,14 @@ mod tests {
             ),
             (
                 PointSet::line(-1.0, 1.0, 9).unwrap(),
-                vec![Body::beam(1e3, 1.0, 0.0), Body::winkler(50.0)],
+                vec![
+                    Body::beam(Beam {
+                        youngs_modulus: 1e3,
+                        ..UNIT_BEAM
+                    })
+                    .unwrap(),
+                    Body::winkler(50.0),
+                ],
             ),
             (
                 PointSet::line(-1.0, 1.0, 8).unwrap(),
@@ -472,7 +498,7 @@ mod tests {
         ];
         for (points, bodies) in cases {
             let refs: Vec<&Body> = bodies.iter().collect();
-            let f = crate::Folding::detect(&points, &refs).unwrap();
+            let f = Folding::detect(&points, &refs).unwrap();
             let s = assemble(&points, &refs).unwrap();
             let m = assemble_folded(&points, &refs, &f).unwrap();
             for a in 0..f.len() {
@@ -527,7 +553,11 @@ mod tests {
                 PointSet::line(-1.0, 1.0, 16).unwrap(),
                 vec![
                     Body::plane_strain(steel(), 5.0),
-                    Body::beam(1e3, 1.0, 0.0),
+                    Body::beam(Beam {
+                        youngs_modulus: 1e3,
+                        ..UNIT_BEAM
+                    })
+                    .unwrap(),
                     Body::winkler(50.0),
                 ],
             ),
@@ -566,13 +596,7 @@ mod tests {
     #[test]
     fn sparse_lattice_falls_back_to_direct() {
         // Two points 1000 cells apart: a 1001-entry table for 2 points.
-        let p = PointSet::from_points(
-            Dimension::Surface,
-            vec![0.0, 1000.0],
-            vec![0.0, 0.0],
-            Cell::square(1.0),
-        )
-        .unwrap();
+        let p = sparse_pair();
         assert!(p.lattice().is_some());
         assert!(table_layout(&p).is_none());
         let s = assemble(&p, &[&Body::uniform_patch(steel())]).unwrap();

@@ -92,6 +92,8 @@
 pub mod assembly;
 mod dimension;
 mod error;
+#[cfg(test)]
+mod fixtures;
 pub mod kernels;
 pub mod lattice_operator;
 pub mod material;
@@ -105,7 +107,7 @@ pub use error::InfluenceError;
 pub use kernels::{boussinesq, love_rectangle, plane_strain_strip};
 pub use lattice_operator::{LatticeKernel, LatticeOperator, LatticeWorkspace};
 pub use material::{Material, combined_modulus, combined_modulus_of};
-pub use models::{Body, Model};
+pub use models::{Beam, Body, Model};
 pub use points::{
     Cell, Dimension, Lattice, LatticeIndex, LatticeIter, MAX_DENSE_POINTS, MAX_POINTS, PointSet,
 };

@@ -25,6 +25,7 @@
 //! forces (the beam's width is inside E I and k), and F_k / A_k is a load
 //! intensity per unit length.
 
+use crate::error::InfluenceError;
 use crate::material::Material;
 
 /// How a body deflects: the influence model, with its material and
@@ -87,7 +88,7 @@ impl Model {
             Self::UniformPatch { .. } => "uniform-patch (Love)",
             Self::PlaneStrainStrip { .. } => "plane-strain strip",
             Self::Winkler { .. } => "Winkler foundation",
-            Self::Beam { .. } => "Euler-Bernoulli beam",
+            Self::Beam { .. } => BEAM,
         }
     }
 
@@ -102,11 +103,51 @@ impl Model {
     }
 }
 
+/// The beam model's name ([`Model::name`]).
+const BEAM: &str = "Euler-Bernoulli beam";
+
+/// The parameters of an Euler-Bernoulli beam along x, for [`Body::beam`]
+/// (the paper's Example 2): its flexural rigidity is `E I`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Beam {
+    /// Young's modulus E (stress: force/length^2).
+    pub youngs_modulus: f64,
+    /// The second moment of area I of the section (length^4); for a
+    /// rectangular section of width w and depth d, `I = w d^3 / 12`.
+    pub second_moment: f64,
+    /// The x coordinate x0 of the loaded point (length): the deflections
+    /// are referenced there, with the beam's rotation held.
+    pub loaded_point: f64,
+}
+
+/// `value` if finite and positive, else an [`InfluenceError::InvalidModel`]
+/// naming the parameter `field` of `model` and why.
+pub(crate) fn positive(
+    model: &'static str,
+    field: &'static str,
+    value: f64,
+) -> Result<f64, InfluenceError> {
+    let bad = |reason: &str| InfluenceError::InvalidModel {
+        model,
+        field,
+        value,
+        reason: reason.into(),
+    };
+    if !value.is_finite() {
+        Err(bad("must be finite"))
+    } else if value <= 0.0 {
+        Err(bad("must be positive"))
+    } else {
+        Ok(value)
+    }
+}
+
 /// One of the bodies in contact: its influence model (with material).
 ///
 /// Two bodies add: `S = A(1) + A(2)` ([`assemble`](crate::assemble)). The
-/// constructors do not validate the model parameters against a point set;
-/// [`assemble`](crate::assemble) and [`influence`](crate::influence) do.
+/// constructors do not validate the model parameters against a point set
+/// (nor, but for [`Body::beam`], at all); [`assemble`](crate::assemble) and
+/// [`influence`](crate::influence) do.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Body {
     model: Model,
@@ -149,18 +190,63 @@ impl Body {
         Self::new(Model::Winkler { modulus })
     }
 
-    /// An Euler-Bernoulli beam of Young's modulus `youngs_modulus` (E,
-    /// stress) and second moment of area `second_moment` (I, length^4),
-    /// deflections referenced at its loaded point `loaded_point` (x0, length)
-    /// with its rotation there held (Line only). For a rectangular section of
-    /// width w and depth d, `I = w d^3 / 12`. The constructor does not
-    /// validate; [`assemble`](crate::assemble) does (E I finite and > 0, x0
-    /// finite).
-    pub fn beam(youngs_modulus: f64, second_moment: f64, loaded_point: f64) -> Self {
-        Self::new(Model::Beam {
-            flexural_rigidity: youngs_modulus * second_moment,
-            loaded_point,
-        })
+    /// An Euler-Bernoulli beam of Young's modulus E and second moment of
+    /// area I ([`Beam`]), deflections referenced at its loaded point x0 with
+    /// its rotation there held (Line only): [`Model::Beam`] of flexural
+    /// rigidity `E I`.
+    ///
+    /// ```
+    /// use elcon_influence::{Beam, Body, Model};
+    ///
+    /// // Conry & Seireg's Example 2: a steel beam of square section, 4 in deep.
+    /// let second_moment = 4f64.powi(4) / 12.0; // in^4
+    /// let beam = Body::beam(Beam {
+    ///     youngs_modulus: 30e6, // psi
+    ///     second_moment,
+    ///     loaded_point: 0.0, // in
+    /// })
+    /// .unwrap();
+    /// assert_eq!(
+    ///     *beam.model(),
+    ///     Model::Beam {
+    ///         flexural_rigidity: 30e6 * second_moment,
+    ///         loaded_point: 0.0
+    ///     }
+    /// );
+    /// ```
+    ///
+    /// # Errors
+    /// [`InfluenceError::InvalidModel`] naming the parameter and why: E
+    /// (`youngs_modulus`) or I (`second_moment`) not finite and positive,
+    /// each on its own (a negative E and a negative I do not make a beam);
+    /// their product E I (`flexural_rigidity`) overflowing or underflowing
+    /// to 0; x0 (`loaded_point`) not finite.
+    pub fn beam(beam: Beam) -> Result<Self, InfluenceError> {
+        let e = positive(BEAM, "youngs_modulus", beam.youngs_modulus)?;
+        let i = positive(BEAM, "second_moment", beam.second_moment)?;
+        let flexural_rigidity = e * i;
+        if !(flexural_rigidity.is_finite() && flexural_rigidity > 0.0) {
+            return Err(InfluenceError::InvalidModel {
+                model: BEAM,
+                field: "flexural_rigidity",
+                value: flexural_rigidity,
+                reason: "E I must be finite and positive: the product of youngs_modulus and \
+                         second_moment overflows or underflows"
+                    .into(),
+            });
+        }
+        if !beam.loaded_point.is_finite() {
+            return Err(InfluenceError::InvalidModel {
+                model: BEAM,
+                field: "loaded_point",
+                value: beam.loaded_point,
+                reason: "must be finite".into(),
+            });
+        }
+        Ok(Self::new(Model::Beam {
+            flexural_rigidity,
+            loaded_point: beam.loaded_point,
+        }))
     }
 
     /// The body's model.
@@ -202,12 +288,74 @@ mod tests {
         );
         assert_eq!(Body::winkler(5.0).material(), None);
         assert_eq!(
-            *Body::beam(30e6, 4.0, 0.5).model(),
+            *Body::beam(Beam {
+                youngs_modulus: 30e6,
+                second_moment: 4.0,
+                loaded_point: 0.5
+            })
+            .unwrap()
+            .model(),
             Model::Beam {
                 flexural_rigidity: 120e6,
                 loaded_point: 0.5
             }
         );
         assert_eq!(Body::rigid().material(), None);
+    }
+
+    /// The field and reason of a refused beam.
+    fn refusal(
+        youngs_modulus: f64,
+        second_moment: f64,
+        loaded_point: f64,
+    ) -> (&'static str, String) {
+        let beam = Beam {
+            youngs_modulus,
+            second_moment,
+            loaded_point,
+        };
+        match Body::beam(beam) {
+            Err(InfluenceError::InvalidModel {
+                model: "Euler-Bernoulli beam",
+                field,
+                reason,
+                ..
+            }) => (field, reason),
+            other => panic!("{beam:?}: expected an InvalidModel error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_beam_refuses_each_parameter_by_name() {
+        for e in [0.0, -30e6, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(refusal(e, 64.0 / 12.0, 0.0).0, "youngs_modulus", "E = {e}");
+        }
+        for i in [0.0, -64.0 / 12.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(refusal(30e6, i, 0.0).0, "second_moment", "I = {i}");
+        }
+        // A negative E and a negative I: E I > 0, but no beam; E is named.
+        let e = Body::beam(Beam {
+            youngs_modulus: -30e6,
+            second_moment: -64.0 / 12.0,
+            loaded_point: 0.0,
+        })
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid Euler-Bernoulli beam parameter: youngs_modulus = -30000000: must be positive"
+        );
+        assert_eq!(
+            refusal(30e6, f64::NAN, 0.0).1,
+            "must be finite",
+            "the reason, apart from the field"
+        );
+        assert_eq!(refusal(30e6, -1.0, 0.0).1, "must be positive");
+        // Each finite and positive, their product not.
+        assert_eq!(refusal(1e200, 1e200, 0.0).0, "flexural_rigidity");
+        assert_eq!(refusal(1e-200, 1e-200, 0.0).0, "flexural_rigidity");
+        for x0 in [f64::NAN, f64::INFINITY] {
+            let (field, reason) = refusal(30e6, 1.0, x0);
+            assert_eq!((field, reason.as_str()), ("loaded_point", "must be finite"));
+        }
     }
 }

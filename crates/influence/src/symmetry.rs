@@ -348,6 +348,8 @@ fn orbits_of(
 mod tests {
     use super::*;
     use crate::Material;
+    use crate::fixtures::{UNIT_BEAM, surface};
+    use crate::models::Beam;
 
     #[test]
     fn a_disk_has_the_square_group() {
@@ -401,10 +403,24 @@ mod tests {
     #[test]
     fn a_beam_folds_only_about_its_loaded_point_at_the_origin() {
         let line = PointSet::line(-2.0, 2.0, 10).unwrap();
-        let f = Folding::detect(&line, &[&Body::beam(1.0, 1.0, 0.0), &Body::winkler(1.0)]).unwrap();
+        let f = Folding::detect(
+            &line,
+            &[&Body::beam(UNIT_BEAM).unwrap(), &Body::winkler(1.0)],
+        )
+        .unwrap();
         assert_eq!((f.order(), f.len()), (2, 5));
         assert_eq!(f.unfold(&[1.0, 2.0, 3.0, 4.0, 5.0])[9], 1.0);
-        assert!(Folding::detect(&line, &[&Body::beam(1.0, 1.0, 0.5)]).is_none());
+        assert!(
+            Folding::detect(
+                &line,
+                &[&Body::beam(Beam {
+                    loaded_point: 0.5,
+                    ..UNIT_BEAM
+                })
+                .unwrap()]
+            )
+            .is_none()
+        );
         // An asymmetric set does not fold.
         let shifted = PointSet::line(-2.0, 3.0, 10).unwrap();
         assert!(Folding::detect(&shifted, &[&Body::winkler(1.0)]).is_none());
@@ -424,25 +440,17 @@ mod tests {
     fn images_are_found_on_and_off_a_lattice_and_twins_do_not_fold() {
         let winkler = Body::winkler(1.0);
         // Off any lattice: the doubled keys; symmetric about x = 0 only.
-        let scattered = PointSet::from_points(
-            Dimension::Surface,
-            vec![-0.37, 0.37, 0.0],
-            vec![0.11, 0.11, 0.5],
-            Cell::square(0.1),
-        )
-        .unwrap();
+        let scattered = surface(vec![-0.37, 0.37, 0.0], vec![0.11, 0.11, 0.5], 0.1);
         assert!(scattered.lattice().is_none());
         let f = Folding::detect(&scattered, &[&winkler]).unwrap();
         assert_eq!((f.group(), f.len()), ("mirror x", 2));
         assert_eq!(f.orbit(0).collect::<Vec<_>>(), [0, 1]);
         // On a lattice not centred on the origin's cell: the lattice index.
-        let shifted = PointSet::from_points(
-            Dimension::Surface,
+        let shifted = surface(
             vec![-0.15, -0.05, 0.05, 0.15],
             vec![0.3, 0.3, 0.3, 0.3],
-            Cell::square(0.1),
-        )
-        .unwrap();
+            0.1,
+        );
         assert!(shifted.lattice().is_some());
         let f = Folding::detect(&shifted, &[&winkler]).unwrap();
         assert_eq!((f.group(), f.len()), ("mirror x", 2));
@@ -450,13 +458,7 @@ mod tests {
         assert_eq!((f.rep_of(3), f.stabilizer(0)), (0, 1.0));
         // Two points within the lattice tolerance of one cell: no image is
         // unique, nothing folds.
-        let twins = PointSet::from_points(
-            Dimension::Surface,
-            vec![-1.0, 0.0, 1e-14, 1.0],
-            vec![0.0; 4],
-            Cell::square(1.0),
-        )
-        .unwrap();
+        let twins = surface(vec![-1.0, 0.0, 1e-14, 1.0], vec![0.0; 4], 1.0);
         assert!(twins.lattice().is_some());
         assert!(Folding::detect(&twins, &[&winkler]).is_none());
     }

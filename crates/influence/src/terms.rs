@@ -25,7 +25,7 @@ use faer::Mat;
 
 use crate::error::InfluenceError;
 use crate::kernels::{boussinesq, love_rectangle, plane_strain_strip};
-use crate::models::{Body, Model};
+use crate::models::{Body, Model, positive};
 use crate::points::{Cell, Dimension, LatticeBox, PointSet};
 
 /// A translation-invariant kernel shared by half-space bodies.
@@ -50,106 +50,115 @@ pub(crate) struct Terms {
     centre: f64,
 }
 
+/// One body's part of S, validated against the point set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Term {
+    /// Nothing (a rigid body).
+    Rigid,
+    /// A translation-invariant kernel and its compliance `(1 - nu^2)/E`.
+    Kernel(Kernel, f64),
+    /// A Winkler foundation's compliance `1/k`.
+    Winkler(f64),
+    /// A beam's flexibility `1/(E I)` about its loaded point x0.
+    Beam { loaded_point: f64, flexibility: f64 },
+}
+
+impl Term {
+    /// The term of a body of `model` on `points`.
+    ///
+    /// # Errors
+    /// [`InfluenceError::DimensionMismatch`] for a model of the other
+    /// dimension; [`InfluenceError::InvalidModel`] for a parameter out of
+    /// range.
+    fn of(model: &Model, points: &PointSet) -> Result<Self, InfluenceError> {
+        let dimension = points.dimension();
+        // The model applies to `wanted` point sets only; `hint` says what to use.
+        let require = |wanted: Dimension, hint| {
+            if dimension == wanted {
+                Ok(())
+            } else {
+                Err(InfluenceError::DimensionMismatch {
+                    model: model.name(),
+                    dimension,
+                    hint,
+                })
+            }
+        };
+        Ok(match *model {
+            Model::Rigid => Self::Rigid,
+            Model::PointForce { material } | Model::UniformPatch { material } => {
+                require(
+                    Dimension::Surface,
+                    "use Body::plane_strain on a line, or a surface point set \
+                     (PointSet::grid_disk, grid_rectangle)",
+                )?;
+                let kernel = if matches!(model, Model::PointForce { .. }) {
+                    Kernel::PointForce
+                } else {
+                    Kernel::UniformPatch
+                };
+                Self::Kernel(kernel, material.compliance())
+            }
+            Model::PlaneStrainStrip {
+                material,
+                reference_distance,
+            } => {
+                require(
+                    Dimension::Line,
+                    "use Body::uniform_patch or Body::point_force on a surface, \
+                     or a line point set (PointSet::line)",
+                )?;
+                check_reference_distance(model.name(), reference_distance, points)?;
+                Self::Kernel(Kernel::Strip { reference_distance }, material.compliance())
+            }
+            Model::Winkler { modulus } => {
+                Self::Winkler(1.0 / positive(model.name(), "modulus", modulus)?)
+            }
+            Model::Beam {
+                flexural_rigidity,
+                loaded_point,
+            } => {
+                require(
+                    Dimension::Line,
+                    "a beam lies along x: use a line point set (PointSet::line)",
+                )?;
+                check_beam(model.name(), flexural_rigidity, loaded_point)?;
+                Self::Beam {
+                    loaded_point,
+                    flexibility: 1.0 / flexural_rigidity,
+                }
+            }
+        })
+    }
+}
+
 impl Terms {
     /// Validates every body against the point set and groups the kernels.
     pub(crate) fn collect(points: &PointSet, bodies: &[&Body]) -> Result<Self, InfluenceError> {
-        let dimension = points.dimension();
         let cell = points.cell();
         let mut kernels: Vec<(Kernel, f64)> = Vec::new();
         let mut winkler_compliance = 0.0;
         let mut beams: Vec<(f64, f64)> = Vec::new();
         let mut elastic = 0;
         for body in bodies {
-            let model = body.model();
-            let mismatch = |hint| InfluenceError::DimensionMismatch {
-                model: model.name(),
-                dimension,
-                hint,
-            };
-            let (kernel, compliance) = match *model {
-                Model::Rigid => continue,
-                Model::PointForce { material } | Model::UniformPatch { material } => {
-                    if dimension != Dimension::Surface {
-                        return Err(mismatch(
-                            "use Body::plane_strain on a line, or a surface point set \
-                             (PointSet::grid_disk, grid_rectangle)",
-                        ));
+            match Term::of(body.model(), points)? {
+                Term::Rigid => continue,
+                Term::Kernel(kernel, compliance) => {
+                    match kernels.iter_mut().find(|(k, _)| *k == kernel) {
+                        Some((_, c)) => *c += compliance,
+                        None => kernels.push((kernel, compliance)),
                     }
-                    let kernel = if matches!(model, Model::PointForce { .. }) {
-                        Kernel::PointForce
-                    } else {
-                        Kernel::UniformPatch
-                    };
-                    (kernel, material.compliance())
                 }
-                Model::PlaneStrainStrip {
-                    material,
-                    reference_distance,
-                } => {
-                    if dimension != Dimension::Line {
-                        return Err(mismatch(
-                            "use Body::uniform_patch or Body::point_force on a surface, \
-                             or a line point set (PointSet::line)",
-                        ));
-                    }
-                    check_reference_distance(model.name(), reference_distance, points)?;
-                    (Kernel::Strip { reference_distance }, material.compliance())
-                }
-                Model::Winkler { modulus } => {
-                    let bad = |reason: &str| InfluenceError::InvalidModel {
-                        model: model.name(),
-                        field: "modulus",
-                        value: modulus,
-                        reason: reason.into(),
-                    };
-                    if !modulus.is_finite() {
-                        return Err(bad("must be finite"));
-                    }
-                    if modulus <= 0.0 {
-                        return Err(bad("must be positive"));
-                    }
-                    winkler_compliance += 1.0 / modulus;
-                    elastic += 1;
-                    continue;
-                }
-                Model::Beam {
-                    flexural_rigidity,
+                Term::Winkler(compliance) => winkler_compliance += compliance,
+                Term::Beam {
                     loaded_point,
-                } => {
-                    if dimension != Dimension::Line {
-                        return Err(mismatch(
-                            "a beam lies along x: use a line point set (PointSet::line)",
-                        ));
-                    }
-                    let bad = |field, value, reason: &str| InfluenceError::InvalidModel {
-                        model: model.name(),
-                        field,
-                        value,
-                        reason: reason.into(),
-                    };
-                    if !(flexural_rigidity.is_finite() && flexural_rigidity > 0.0) {
-                        return Err(bad(
-                            "flexural_rigidity",
-                            flexural_rigidity,
-                            "E I must be finite and positive",
-                        ));
-                    }
-                    if !loaded_point.is_finite() {
-                        return Err(bad("loaded_point", loaded_point, "must be finite"));
-                    }
-                    match beams.iter_mut().find(|(x0, _)| *x0 == loaded_point) {
-                        Some((_, f)) => *f += 1.0 / flexural_rigidity,
-                        None => beams.push((loaded_point, 1.0 / flexural_rigidity)),
-                    }
-                    elastic += 1;
-                    continue;
-                }
-            };
-            elastic += 1;
-            match kernels.iter_mut().find(|(k, _)| *k == kernel) {
-                Some((_, c)) => *c += compliance,
-                None => kernels.push((kernel, compliance)),
+                    flexibility,
+                } => match beams.iter_mut().find(|(x0, _)| *x0 == loaded_point) {
+                    Some((_, f)) => *f += flexibility,
+                    None => beams.push((loaded_point, flexibility)),
+                },
             }
+            elastic += 1;
         }
         if elastic == 0 {
             return Err(InfluenceError::AllRigid {
@@ -256,6 +265,31 @@ fn cantilever(flexibility: f64, dk: f64, dj: f64) -> f64 {
     flexibility * a * a * (3.0 * b - a) / 6.0
 }
 
+/// E I must be finite and positive, x0 finite.
+fn check_beam(
+    model: &'static str,
+    flexural_rigidity: f64,
+    loaded_point: f64,
+) -> Result<(), InfluenceError> {
+    let bad = |field, value, reason: &str| InfluenceError::InvalidModel {
+        model,
+        field,
+        value,
+        reason: reason.into(),
+    };
+    if !(flexural_rigidity.is_finite() && flexural_rigidity > 0.0) {
+        return Err(bad(
+            "flexural_rigidity",
+            flexural_rigidity,
+            "E I must be finite and positive",
+        ));
+    }
+    if !loaded_point.is_finite() {
+        return Err(bad("loaded_point", loaded_point, "must be finite"));
+    }
+    Ok(())
+}
+
 /// d0 must be finite, positive and at least the extent of the set.
 fn check_reference_distance(
     model: &'static str,
@@ -302,7 +336,7 @@ impl TableLayout {
 /// offset in the bounding box) is not much larger than the set.
 pub(crate) fn table_layout(points: &PointSet) -> Option<TableLayout> {
     let lattice = points.lattice()?;
-    let bounds = LatticeBox::of(points)?;
+    let bounds = LatticeBox::of_lattice(lattice)?;
     if !bounds.is_dense(points.len()) {
         return None;
     }

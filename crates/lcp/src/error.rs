@@ -2,7 +2,6 @@
 //! what the caller can do about it.
 
 use crate::certificate::Certificate;
-use crate::linalg::AllocationFailed;
 
 /// Everything that can stop a solve of the engine.
 ///
@@ -140,11 +139,10 @@ pub enum LcpError {
         /// What broke, and what to do.
         reason: &'static str,
     },
-    /// The only attempt allowed (an explicit tableau) broke down without an
+    /// The only attempt allowed (an explicit tableau, the conjugate
+    /// gradient of a problem given by its products) broke down without an
     /// answer.
-    #[error(
-        "{method} broke down after {pivots} pivots (size {size}): {reason}; let the engine choose the tableau (`Tableau::Auto`) or use another method"
-    )]
+    #[error("{method} broke down after {pivots} pivots (size {size}): {reason}; {advice}")]
     BrokeDown {
         /// The method and tableau that ran.
         method: String,
@@ -154,6 +152,26 @@ pub enum LcpError {
         pivots: usize,
         /// What happened.
         reason: String,
+        /// What to do: let the engine choose the tableau, or use another
+        /// method (for a linear system, give `M` densely).
+        advice: &'static str,
+    },
+    /// The conjugate gradient of a linear system reached its iteration cap
+    /// before its residual met the target: it returns no unconverged answer.
+    #[error(
+        "the conjugate gradient reached its iteration limit {limit} on right-hand side {column} \
+         (size {size}) at a relative residual {residual:.2e}: raise `max_pivots` (its iteration cap) \
+         or give M densely (a factorization needs no iterations)"
+    )]
+    IterationLimit {
+        /// Number of unknowns.
+        size: usize,
+        /// The right-hand side (column of `R`) that did not converge.
+        column: usize,
+        /// The cap that was reached ([`Options::max_pivots`](crate::Options::max_pivots)).
+        limit: usize,
+        /// Its relative residual when the cap was reached.
+        residual: f64,
     },
     /// The final solution does not satisfy its certificate to the tolerance
     /// even after refactorization and refinement: it is not returned as solved.
@@ -184,10 +202,4 @@ pub enum LcpError {
         /// The size asked for (saturated at usize::MAX on overflow).
         bytes: usize,
     },
-}
-
-impl From<AllocationFailed> for LcpError {
-    fn from(AllocationFailed { what, bytes }: AllocationFailed) -> Self {
-        LcpError::AllocationFailed { what, bytes }
-    }
 }

@@ -31,6 +31,12 @@
 //!   `M x`, and so also solves problems whose `M` is an [`Operator`]
 //!   ([`OperatorLcp`]: an FFT convolution on a grid too large to store).
 //!
+//! It also solves, certified, a symmetric positive definite linear system
+//! `M X = R` with several right-hand sides ([`LinearSystem`]: a Cholesky
+//! factorization of a dense `M`, an LU where `M` is not numerically
+//! positive definite, the conjugate gradient for an [`Operator`]), the
+//! contact solution's sensitivities `S_JJ X = R` on its contact set.
+//!
 //! One strategy routes every solve (the module `strategy`, drawn in
 //! docs/theory.md): the attempts in order, a fallback after a breakdown,
 //! one retry refactoring from the data after a numerical failure.
@@ -74,8 +80,10 @@
 //! ```
 
 mod certificate;
+mod certify;
 mod error;
 mod linalg;
+mod linear;
 mod methods;
 mod operator;
 mod options;
@@ -90,11 +98,12 @@ pub mod tolerance;
 pub use certificate::Certificate;
 pub use error::LcpError;
 pub use linalg::condition_estimate;
+pub use linear::LinearSystem;
 pub use operator::{Operator, OperatorLcp};
 pub use options::{Method, Options, Tableau};
-pub use problem::{BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedLcp, MixedLcpParts};
+pub use problem::{Bordered, BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedLcp, MixedLcpParts};
 pub use program::{ComplementaryProgram, ProgramBuilder};
-pub use solution::{LcpSolution, ProgramSolution};
+pub use solution::{LcpSolution, LinearSolution, ProgramSolution};
 pub use statistics::{Attempt, Breakdown, Outcome, Reason, Statistics, Work};
 pub use tolerance::Tolerances;
 

@@ -10,6 +10,7 @@ use faer::linalg::matmul::matmul;
 use faer::perm::Perm;
 use faer::{Accum, Col, ColMut, ColRef, Conj, Mat, MatMut, MatRef, Par};
 
+use crate::LcpError;
 use crate::tolerance::{SINGULAR_PER_ROW, SYMMETRY};
 
 /// LU factorization `B = P^T L U` kept packed in one matrix.
@@ -93,6 +94,12 @@ impl Lu {
 pub(crate) struct AllocationFailed {
     pub what: &'static str,
     pub bytes: usize,
+}
+
+impl From<AllocationFailed> for LcpError {
+    fn from(AllocationFailed { what, bytes }: AllocationFailed) -> Self {
+        LcpError::AllocationFailed { what, bytes }
+    }
 }
 
 /// A `rows` x `cols` matrix of `f(i, j)`, its storage reserved fallibly:

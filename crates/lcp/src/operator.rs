@@ -17,7 +17,7 @@
 use faer::{ColRef, MatRef};
 
 use crate::LcpError;
-use crate::problem::{check_border, check_finite_col};
+use crate::problem::{Bordered, check_finite_col};
 
 /// A symmetric linear map `M` (n x n) applied without storing it.
 pub trait Operator {
@@ -57,8 +57,8 @@ impl Operator for MatRef<'_, f64> {
 }
 
 /// A bordered LCP whose `M` is an [`Operator`] (see the module
-/// documentation): build it with [`OperatorLcp::new`] and, for `k > 0`
-/// rigid-body rows, [`OperatorLcp::with_border`]; solve it with
+/// documentation; a [`Bordered`] problem): build it with [`OperatorLcp::new`]
+/// and, for `k > 0` rigid-body rows, [`Bordered::with_border`]; solve it with
 /// [`Method::ConjugateGradient`](crate::Method::ConjugateGradient).
 ///
 /// ```
@@ -81,19 +81,13 @@ impl Operator for MatRef<'_, f64> {
 /// assert!((sol.z[0] - 2.0).abs() < 1e-10 && (sol.z[1] - 1.0).abs() < 1e-10);
 /// assert!((sol.u[0] - 5.0).abs() < 1e-10);
 /// ```
-#[derive(Clone, Copy)]
-pub struct OperatorLcp<'a> {
-    pub(crate) operator: &'a dyn Operator,
-    pub(crate) q: ColRef<'a, f64>,
-    pub(crate) border: MatRef<'a, f64>,
-    pub(crate) resultant: ColRef<'a, f64>,
-}
+pub type OperatorLcp<'a> = Bordered<'a, &'a dyn Operator>;
 
 impl std::fmt::Debug for OperatorLcp<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("OperatorLcp")
-            .field("size", &self.q.nrows())
-            .field("border_size", &self.border.ncols())
+            .field("size", &self.size())
+            .field("border_size", &self.border_size())
             .finish()
     }
 }
@@ -114,36 +108,6 @@ impl<'a> OperatorLcp<'a> {
             return Err(LcpError::Empty { field: "q" });
         }
         check_finite_col("q", q)?;
-        Ok(Self {
-            operator,
-            q,
-            border: MatRef::from_column_major_slice(&[], q.nrows(), 0),
-            resultant: ColRef::from_slice(&[]),
-        })
-    }
-
-    /// Adds the border `B` (n x k, full column rank) and its resultants `b`
-    /// (k): the rows `B^T z = b` and the free unknowns `λ`.
-    pub fn with_border(
-        self,
-        border: MatRef<'a, f64>,
-        resultant: ColRef<'a, f64>,
-    ) -> Result<Self, LcpError> {
-        check_border(self.q.nrows(), border, resultant)?;
-        Ok(Self {
-            border,
-            resultant,
-            ..self
-        })
-    }
-
-    /// Number of complementary pairs `n`.
-    pub fn size(&self) -> usize {
-        self.q.nrows()
-    }
-
-    /// Number of border rows `k`.
-    pub fn border_size(&self) -> usize {
-        self.border.ncols()
+        Ok(Self::unchecked(operator, q))
     }
 }

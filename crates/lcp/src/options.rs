@@ -8,7 +8,11 @@ use faer::Par;
 use crate::LcpError;
 use crate::tolerance::Tolerances;
 
-/// A pivoting method of the engine.
+/// A method of the engine: the four that solve complementarity problems
+/// ([`Method::ALL`]), and the factorizations of a linear system
+/// ([`LinearSystem`](crate::LinearSystem), whose strategy chooses among
+/// [`Method::LINEAR`]; an LCP asked to be solved by one of those is
+/// [`LcpError::Unsupported`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Method {
@@ -44,12 +48,21 @@ pub enum Method {
     /// grid). For a symmetric positive definite `M`; it stops when the
     /// certificate's residuals are below a fraction of its tolerance
     /// ([`ITERATIVE_STOP`](crate::tolerance::ITERATIVE_STOP)). No fallback:
-    /// an answer whose certificate does not hold is an error.
+    /// an answer whose certificate does not hold is an error. Unconstrained,
+    /// the plain conjugate gradient of a [`LinearSystem`](crate::LinearSystem)
+    /// whose `M` is an operator.
     ConjugateGradient,
+    /// The Cholesky factorization `M = L L^T` of a dense symmetric positive
+    /// definite `M`: a [`LinearSystem`](crate::LinearSystem)'s first attempt.
+    Cholesky,
+    /// The LU factorization with partial pivoting `M = P^T L U` of a dense
+    /// `M`: a [`LinearSystem`](crate::LinearSystem)'s fallback where `M` is
+    /// not numerically symmetric positive definite.
+    Lu,
 }
 
 impl Method {
-    /// Every method, in a stable order.
+    /// Every method of complementarity problems, in a stable order.
     pub const ALL: [Method; 4] = [
         Method::RestrictedSimplex,
         Method::Lemke,
@@ -68,20 +81,30 @@ impl Method {
     /// The dense-tableau methods (they work for any matrix of their class).
     pub const TABLEAU: [Method; 2] = [Method::RestrictedSimplex, Method::Lemke];
 
+    /// The methods of a linear system: the Cholesky factorization, the LU
+    /// fallback, and the conjugate gradient for an operator.
+    pub const LINEAR: [Method; 3] = [Method::Cholesky, Method::Lu, Method::ConjugateGradient];
+
     /// A short lower-case name ("restricted-simplex", "lemke", "block-pivoting",
-    /// "conjugate-gradient").
+    /// "conjugate-gradient", "cholesky", "lu").
     pub fn name(self) -> &'static str {
         match self {
             Method::RestrictedSimplex => "restricted-simplex",
             Method::Lemke => "lemke",
             Method::BlockPivoting => "block-pivoting",
             Method::ConjugateGradient => "conjugate-gradient",
+            Method::Cholesky => "cholesky",
+            Method::Lu => "lu",
         }
     }
 
-    /// The method of a name given by [`Method::name`].
+    /// The method of a name given by [`Method::name`] (any method's: an
+    /// attempt's in a log may be a linear system's).
     pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
+        Self::ALL
+            .into_iter()
+            .chain(Self::LINEAR)
+            .find(|m| m.name() == name)
     }
 }
 
@@ -139,7 +162,10 @@ pub struct Options {
     /// 100`); block pivoting takes at most this many iterations (default
     /// `3 n + 50`) before it breaks down; the conjugate gradient at most
     /// this many iterations (default `ITERATION_CAP`, 10,000), after which
-    /// its last iterate is certified like any answer.
+    /// its last iterate is certified like any answer; a linear system's
+    /// conjugate gradient at most this many per right-hand side, after
+    /// which the solve ends with [`LcpError::IterationLimit`] (it returns no
+    /// unconverged answer).
     pub max_pivots: Option<usize>,
     /// The general tableau is recomputed from the original data every this
     /// many pivots (default: `max(100, rows)`; 0 disables periodic

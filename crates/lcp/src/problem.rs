@@ -38,7 +38,6 @@ use std::cell::OnceCell;
 use faer::{Col, ColRef, Mat, MatRef};
 
 use crate::LcpError;
-use crate::certificate::{Certificate, MixedData};
 use crate::linalg::{asymmetry, first_non_finite};
 use crate::tolerance::BORDER_RANK;
 
@@ -82,30 +81,32 @@ impl Lcp {
 
     /// A borrowed view (no border).
     pub fn as_ref(&self) -> BorderedLcpRef<'_> {
-        BorderedLcpRef::new_unchecked(self.m.as_ref(), self.q.as_ref())
+        BorderedLcpRef::unchecked(self.m.as_ref(), self.q.as_ref())
     }
 }
 
-/// A borrowed bordered LCP (see the module documentation): build it with
-/// [`BorderedLcpRef::new`] and, for `k > 0` rigid-body rows,
-/// [`BorderedLcpRef::with_border`]. Nothing large is copied.
-#[derive(Debug, Clone, Copy)]
-pub struct BorderedLcpRef<'a> {
-    m: MatRef<'a, f64>,
-    q: ColRef<'a, f64>,
-    border: MatRef<'a, f64>,
-    resultant: ColRef<'a, f64>,
+/// A borrowed bordered LCP (see the module documentation) whose `M` is
+/// `A`: a dense matrix ([`BorderedLcpRef`]) or an operator known only by
+/// its products ([`OperatorLcp`](crate::OperatorLcp)). Build it with the
+/// form's `new` and, for `k > 0` rigid-body rows,
+/// [`with_border`](Bordered::with_border): the border and its checks are
+/// the same for both forms. Nothing large is copied.
+#[derive(Clone, Copy)]
+pub struct Bordered<'a, A> {
+    pub(crate) m: A,
+    pub(crate) q: ColRef<'a, f64>,
+    pub(crate) border: MatRef<'a, f64>,
+    pub(crate) resultant: ColRef<'a, f64>,
 }
 
-impl<'a> BorderedLcpRef<'a> {
-    /// The LCP `w = M z + q` with no border yet; `m` square with the size of
-    /// `q`, all finite.
-    pub fn new(m: MatRef<'a, f64>, q: ColRef<'a, f64>) -> Result<Self, LcpError> {
-        check_square(m, q)?;
-        Ok(Self::new_unchecked(m, q))
-    }
+/// A borrowed bordered LCP with a dense `M` (see [`Bordered`]): build it
+/// with [`BorderedLcpRef::new`] and, for `k > 0` rigid-body rows,
+/// [`Bordered::with_border`].
+pub type BorderedLcpRef<'a> = Bordered<'a, MatRef<'a, f64>>;
 
-    fn new_unchecked(m: MatRef<'a, f64>, q: ColRef<'a, f64>) -> Self {
+impl<'a, A: Copy> Bordered<'a, A> {
+    /// The LCP `w = M z + q` with no border, its data already checked.
+    pub(crate) fn unchecked(m: A, q: ColRef<'a, f64>) -> Self {
         let n = q.nrows();
         Self {
             m,
@@ -141,8 +142,8 @@ impl<'a> BorderedLcpRef<'a> {
         self.border.ncols()
     }
 
-    /// The matrix `M`.
-    pub fn matrix(&self) -> MatRef<'a, f64> {
+    /// The matrix `M` (a dense matrix, or the operator of its products).
+    pub fn matrix(&self) -> A {
         self.m
     }
 
@@ -162,9 +163,29 @@ impl<'a> BorderedLcpRef<'a> {
     }
 }
 
+impl<'a> BorderedLcpRef<'a> {
+    /// The LCP `w = M z + q` with no border yet; `m` square with the size of
+    /// `q`, all finite.
+    pub fn new(m: MatRef<'a, f64>, q: ColRef<'a, f64>) -> Result<Self, LcpError> {
+        check_square(m, q)?;
+        Ok(Self::unchecked(m, q))
+    }
+}
+
+impl std::fmt::Debug for BorderedLcpRef<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BorderedLcpRef")
+            .field("m", &self.m)
+            .field("q", &self.q)
+            .field("border", &self.border)
+            .field("resultant", &self.resultant)
+            .finish()
+    }
+}
+
 /// Checks a border `B` (n x k) and its resultants `b` (k): sizes, finite
 /// entries, full column rank.
-pub(crate) fn check_border(
+fn check_border(
     n: usize,
     border: MatRef<'_, f64>,
     resultant: ColRef<'_, f64>,
@@ -211,7 +232,7 @@ impl BorderedLcp {
 
     /// Adds the border `B` and the resultants `b` (see [`BorderedLcpRef::with_border`]).
     pub fn with_border(self, border: Mat<f64>, resultant: Col<f64>) -> Result<Self, LcpError> {
-        BorderedLcpRef::new_unchecked(self.m.as_ref(), self.q.as_ref())
+        BorderedLcpRef::unchecked(self.m.as_ref(), self.q.as_ref())
             .with_border(border.as_ref(), resultant.as_ref())?;
         Ok(Self {
             border,
@@ -438,58 +459,6 @@ impl<'a> Problem<'a> {
     }
 }
 
-impl MixedRef<'_> {
-    /// The certificate of `(z, u)` and `w = M z + B u + q`.
-    pub(crate) fn certify(
-        &self,
-        z: ColRef<'_, f64>,
-        u: ColRef<'_, f64>,
-        tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
-        let nonneg: Vec<bool> = self
-            .bounds
-            .iter()
-            .map(|b| *b == Bound::NonNegative)
-            .collect();
-        let data = MixedData {
-            m: self.m,
-            b: self.b,
-            q: self.q,
-            c: self.c,
-            d: self.d,
-            r: self.r,
-        };
-        Certificate::mixed(&data, &nonneg, z, u, tolerance)
-    }
-}
-
-impl BorderedLcpRef<'_> {
-    /// The certificate of a candidate `(z, λ)` against this problem's data,
-    /// with `w = M z - B λ + q`.
-    pub fn certify(
-        &self,
-        z: ColRef<'_, f64>,
-        lambda: ColRef<'_, f64>,
-        tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
-        let parts = MixedBorder::of(self);
-        parts.view(self).certify(z, lambda, tolerance)
-    }
-}
-
-impl MixedLcp {
-    /// The certificate of a candidate `(z, u)` against this problem's data,
-    /// with `w = M z + B u + q`.
-    pub fn certify(
-        &self,
-        z: ColRef<'_, f64>,
-        u: ColRef<'_, f64>,
-        tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
-        self.view().certify(z, u, tolerance)
-    }
-}
-
 /// The first column of `border` that depends linearly on the ones before
 /// it, if any: a Cholesky of the Gram matrix of the columns scaled to unit
 /// length (each column in its own units), whose pivot `j` is the squared
@@ -528,7 +497,8 @@ fn check_square(m: MatRef<'_, f64>, q: ColRef<'_, f64>) -> Result<(), LcpError> 
     check_finite_col("q", q)
 }
 
-fn check_dims(
+/// Checks that a matrix named `field` is `er` x `ec`.
+pub(crate) fn check_dims(
     field: &'static str,
     rows: usize,
     cols: usize,

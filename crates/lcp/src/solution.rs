@@ -1,6 +1,6 @@
 //! The answers of a solve: certified solutions with their statistics.
 
-use faer::Col;
+use faer::{Col, Mat};
 
 use crate::certificate::Certificate;
 use crate::statistics::Statistics;
@@ -41,5 +41,19 @@ pub struct ProgramSolution {
     /// `max_r (|A| |x| + |b|)_r`.
     pub certificate: Certificate,
     /// What the solve cost, attempt by attempt.
+    pub statistics: Statistics,
+}
+
+/// A certified solution of a [`LinearSystem`](crate::LinearSystem) `M X = R`.
+#[derive(Debug, Clone)]
+pub struct LinearSolution {
+    /// `X` (n x m), a column for each right-hand side.
+    pub x: Mat<f64>,
+    /// The worst relative residual over the columns,
+    /// `max_c ‖R_c - M X_c‖∞ / ‖|M| |X_c| + |R_c|‖∞`, from products of the
+    /// original data (at most the certificate's tolerance).
+    pub residual: f64,
+    /// What the solve cost, attempt by attempt (which factorization or
+    /// iteration answered, and any fallback).
     pub statistics: Statistics,
 }

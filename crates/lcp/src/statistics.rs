@@ -138,11 +138,13 @@ pub struct Work {
     pub refactorizations: usize,
     /// Iterative-refinement steps of the final basic solution.
     pub refinement_steps: usize,
-    /// Block iterations (block pivoting).
+    /// Iterations: block pivoting's blocks, the conjugate gradient's steps
+    /// (of every right-hand side of a linear system).
     pub iterations: usize,
     /// Matrix factorizations (Cholesky factors of active blocks; 1 for a
     /// symmetric-tableau attempt, whose final solution is one Cholesky of
-    /// the contact block; 0 for the general tableau).
+    /// the contact block; 0 for the general tableau; 1 for a linear
+    /// system's Cholesky or LU).
     pub factorizations: usize,
     /// Rows of the tableau pivoted on (0 for block pivoting).
     pub tableau_rows: usize,
@@ -156,7 +158,8 @@ pub struct Attempt {
     /// The method that ran.
     pub method: Method,
     /// The tableau it ran on ([`Tableau::Symmetric`] or
-    /// [`Tableau::General`]; `None` for block pivoting).
+    /// [`Tableau::General`]; `None` for the methods without one: block
+    /// pivoting, the conjugate gradient, a linear system's factorizations).
     pub tableau: Option<Tableau>,
     /// Why it ran.
     pub reason: Reason,
@@ -213,7 +216,7 @@ impl Statistics {
         self.total(|w| w.refinement_steps)
     }
 
-    /// Block iterations of every attempt.
+    /// Iterations of every attempt (blocks, conjugate-gradient steps).
     pub fn iterations(&self) -> usize {
         self.total(|w| w.iterations)
     }
@@ -237,7 +240,8 @@ impl Statistics {
     }
 
     /// Whether the answer came from another method than the one asked for
-    /// (block pivoting finished by Lemke's method).
+    /// (block pivoting finished by Lemke's method, a linear system's
+    /// Cholesky factorization by its LU).
     pub fn fell_back(&self) -> bool {
         self.returned().is_some_and(|a| a.method != self.method)
     }
@@ -275,7 +279,7 @@ impl fmt::Display for Attempt {
 
 /// `Serialize` (the `serde` feature), in the shape of result.json's
 /// `statistics` (docs/results.md): the totals derived from the log, then
-/// each attempt with its method, tableau (absent for block pivoting),
+/// each attempt with its method, tableau (absent for the methods without one),
 /// reason, pivots, iterations, seconds and outcome by name. Written by hand
 /// because the totals are computed, not stored.
 #[cfg(feature = "serde")]

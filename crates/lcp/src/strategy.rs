@@ -25,6 +25,17 @@
 //! Programs with complementarity constraints
 //! ([`ComplementaryProgram`](crate::ComplementaryProgram)) take the route of
 //! the restricted simplex's general tableau, with the same retry.
+//!
+//! A linear system `M X = R` ([`LinearSystem`](crate::LinearSystem)) has a
+//! route of its own, with no retry:
+//!
+//! | `M` | route |
+//! |---|---|
+//! | dense | Cholesky factorization, then (where `M` is not numerically symmetric positive definite) LU factorization |
+//! | operator | conjugate gradient (no fallback: `p · M p <= 0` and its iteration cap are errors) |
+//!
+//! and its answer is certified like the others: every column's residual
+//! from products of the original data.
 
 use std::time::Instant;
 
@@ -32,17 +43,17 @@ use faer::Col;
 
 use crate::LcpError;
 use crate::certificate::Certificate;
-use crate::certificate::Residuals;
-use crate::linalg;
+use crate::linear::{LinearSystem, Matrix};
 use crate::methods::{
-    Answer, Failure, NotApplicable, block, conjugate_gradient, lemke_general, lemke_symmetric,
-    restricted_general, restricted_symmetric,
+    Answer, Failure, LinearAnswer, LinearAttempted, NotApplicable, block, cholesky,
+    conjugate_gradient, lemke_general, lemke_symmetric, lu, restricted_general,
+    restricted_symmetric,
 };
 use crate::operator::OperatorLcp;
 use crate::options::{Method, Options, Tableau};
 use crate::problem::{BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedBorder, MixedLcp, Problem};
 use crate::program::ComplementaryProgram;
-use crate::solution::{LcpSolution, ProgramSolution};
+use crate::solution::{LcpSolution, LinearSolution, ProgramSolution};
 use crate::statistics::{Attempt, Breakdown, Outcome, Reason, Statistics, Work};
 
 /// One kind of attempt: a method on a tableau.
@@ -53,7 +64,11 @@ enum Kind {
     RestrictedSymmetric,
     RestrictedGeneral,
     BlockPivoting,
+    /// The constrained conjugate gradient of an LCP; a linear system's plain one.
     ConjugateGradient,
+    /// A linear system's factorizations.
+    Cholesky,
+    Lu,
 }
 
 impl Kind {
@@ -63,6 +78,8 @@ impl Kind {
             Kind::RestrictedSymmetric | Kind::RestrictedGeneral => Method::RestrictedSimplex,
             Kind::BlockPivoting => Method::BlockPivoting,
             Kind::ConjugateGradient => Method::ConjugateGradient,
+            Kind::Cholesky => Method::Cholesky,
+            Kind::Lu => Method::Lu,
         }
     }
 
@@ -70,17 +87,18 @@ impl Kind {
         match self {
             Kind::LemkeSymmetric | Kind::RestrictedSymmetric => Some(Tableau::Symmetric),
             Kind::LemkeGeneral | Kind::RestrictedGeneral => Some(Tableau::General),
-            Kind::BlockPivoting | Kind::ConjugateGradient => None,
+            Kind::BlockPivoting | Kind::ConjugateGradient | Kind::Cholesky | Kind::Lu => None,
         }
     }
 
     /// The general-tableau attempt of a method (the retry's); `None` for
-    /// the conjugate gradient, which has no tableau and no retry.
+    /// the conjugate gradient and the factorizations, which have no tableau
+    /// and no retry.
     fn general(method: Method) -> Option<Self> {
         match method {
             Method::RestrictedSimplex => Some(Kind::RestrictedGeneral),
             Method::Lemke | Method::BlockPivoting => Some(Kind::LemkeGeneral),
-            Method::ConjugateGradient => None,
+            Method::ConjugateGradient | Method::Cholesky | Method::Lu => None,
         }
     }
 
@@ -114,17 +132,55 @@ trait Routed {
     fn work(answer: &Self::Answer) -> Work;
 
     /// Whether an attempt that stalled in phase 1 may be repeated with the
-    /// extra unknowns free.
-    fn relaxable(&self) -> bool;
+    /// extra unknowns free (only a mixed form's non-negative ones).
+    fn relaxable(&self) -> bool {
+        false
+    }
 
     /// Number of unknowns (for error messages).
     fn size(&self) -> usize;
+
+    /// What to do when the route broke down without an answer or an
+    /// engine error ([`LcpError::BrokeDown`]'s advice).
+    fn advice(&self) -> &'static str {
+        "let the engine choose the tableau (`Tableau::Auto`) or use another method"
+    }
 }
 
 /// An LCP's answer with `w`, filled by its certificate.
 struct Solved {
     answer: Answer,
     w: Col<f64>,
+}
+
+impl From<Answer> for Solved {
+    fn from(answer: Answer) -> Self {
+        Self {
+            answer,
+            w: Col::zeros(0),
+        }
+    }
+}
+
+impl Solved {
+    /// Keeps `w` of a certificate's `(certificate, w)`; returns the certificate.
+    fn keep_w(&mut self, (certificate, w): (Certificate, Col<f64>)) -> Certificate {
+        self.w = w;
+        certificate
+    }
+
+    /// The solution: this answer with its certificate and statistics.
+    fn solution(self, certificate: Certificate, statistics: Statistics) -> LcpSolution {
+        let Solved { answer, w } = self;
+        LcpSolution {
+            z: answer.z,
+            w,
+            u: answer.u,
+            basic: answer.basic,
+            certificate,
+            statistics,
+        }
+    }
 }
 
 impl Routed for Problem<'_> {
@@ -147,21 +203,14 @@ impl Routed for Problem<'_> {
                     Work::default(),
                 )),
             },
-        }?;
-        Ok(Solved {
-            answer,
-            w: Col::zeros(0),
-        })
+            Kind::Cholesky | Kind::Lu => Err(foreign(kind, LINEAR_ONLY)),
+        };
+        answer.map(Solved::from)
     }
 
     fn certify(&self, solved: &mut Solved, tolerance: f64) -> Certificate {
-        let (certificate, w) = self.mixed.certify(
-            solved.answer.z.as_ref(),
-            solved.answer.u.as_ref(),
-            tolerance,
-        );
-        solved.w = w;
-        certificate
+        let (z, u) = (solved.answer.z.as_ref(), solved.answer.u.as_ref());
+        solved.keep_w(self.mixed.certify(z, u, tolerance))
     }
 
     fn work(solved: &Solved) -> Work {
@@ -198,10 +247,6 @@ impl Routed for ComplementaryProgram {
         answer.work
     }
 
-    fn relaxable(&self) -> bool {
-        false
-    }
-
     fn size(&self) -> usize {
         self.rows()
     }
@@ -211,82 +256,71 @@ impl Routed for OperatorLcp<'_> {
     type Answer = Solved;
 
     fn attempt(&self, _kind: Kind, options: &Options, _relaxed: bool) -> Result<Solved, Failure> {
-        let form = conjugate_gradient::Form {
-            operator: self.operator,
-            q: self.q,
-            border: self.border,
-            resultant: self.resultant,
-        };
-        let answer = conjugate_gradient::attempt(&form, options)?;
-        Ok(Solved {
-            answer,
-            w: Col::zeros(0),
-        })
+        conjugate_gradient::attempt(self, options).map(Solved::from)
     }
 
-    /// The certificate from products of the original operator:
-    /// `w = M z - B λ + q` and `|M| z + |B| |λ| + |q|`, `B^T z - b` and
-    /// `|B|^T z + |b|`.
     fn certify(&self, solved: &mut Solved, tolerance: f64) -> Certificate {
         let (z, lambda) = (&solved.answer.z, &solved.answer.u);
-        let n = z.nrows();
-        // Two vectors of n, computed in place: at 10^6 points each is 8 MB.
-        let z_slice = z
-            .try_as_col_major()
-            .expect("an owned column is contiguous")
-            .as_slice();
-        let mut w = Col::<f64>::zeros(n);
-        let mut w_terms = Col::<f64>::zeros(n);
-        let w_out = w.try_as_col_major_mut().expect("contiguous").as_slice_mut();
-        self.operator.apply(z_slice, w_out);
-        let terms_out = w_terms
-            .try_as_col_major_mut()
-            .expect("contiguous")
-            .as_slice_mut();
-        if z_slice.iter().all(|&v| v >= 0.0) {
-            self.operator.apply_abs(z_slice, terms_out);
-        } else {
-            let z_abs: Vec<f64> = z_slice.iter().map(|v| v.abs()).collect();
-            self.operator.apply_abs(&z_abs, terms_out);
-        }
-        // w = M z - B λ + q and its terms |M| |z| + |B| |λ| + |q|.
-        linalg::sub_matvec(w.as_mut(), self.border, lambda.as_ref());
-        linalg::add_abs_matvec(w_terms.as_mut(), self.border, lambda.as_ref());
-        for i in 0..n {
-            w[i] += self.q[i];
-            w_terms[i] += self.q[i].abs();
-        }
-        let equality = linalg::matvec(self.border.transpose(), z.as_ref()) - self.resultant;
-        let mut equality_terms = self.resultant.map(|v| v.abs());
-        linalg::add_abs_matvec(equality_terms.as_mut(), self.border.transpose(), z.as_ref());
-        let nonneg = vec![false; lambda.nrows()];
-        let certificate = Certificate::from_residuals(
-            &Residuals {
-                z: z.as_ref(),
-                u: lambda.as_ref(),
-                nonneg_u: &nonneg,
-                w: w.as_ref(),
-                w_terms: w_terms.as_ref(),
-                equality: equality.as_ref(),
-                equality_terms: equality_terms.as_ref(),
-            },
-            tolerance,
-        );
-        solved.w = w;
-        certificate
+        solved.keep_w(OperatorLcp::certify(self, z, lambda, tolerance))
     }
 
     fn work(solved: &Solved) -> Work {
         solved.answer.work
     }
 
-    fn relaxable(&self) -> bool {
-        false
-    }
-
     fn size(&self) -> usize {
         OperatorLcp::size(self)
     }
+}
+
+impl Routed for LinearSystem<'_> {
+    type Answer = LinearAnswer;
+
+    fn attempt(&self, kind: Kind, options: &Options, _relaxed: bool) -> LinearAttempted {
+        match (kind, self.matrix) {
+            (Kind::Cholesky, Matrix::Dense(m)) => cholesky::attempt(m, self.rhs, options),
+            (Kind::Lu, Matrix::Dense(m)) => lu::attempt(m, self.rhs, options),
+            (Kind::ConjugateGradient, matrix) => {
+                conjugate_gradient::attempt_linear(matrix.operator(), self.rhs, options)
+            }
+            _ => Err(foreign(
+                kind,
+                "a linear system is solved by a factorization of its dense M or by the conjugate gradient",
+            )),
+        }
+    }
+
+    fn certify(&self, answer: &mut LinearAnswer, tolerance: f64) -> Certificate {
+        LinearSystem::certify(self, answer.x.as_ref(), tolerance)
+    }
+
+    fn work(answer: &LinearAnswer) -> Work {
+        answer.work
+    }
+
+    fn size(&self) -> usize {
+        LinearSystem::size(self)
+    }
+
+    fn advice(&self) -> &'static str {
+        "the conjugate gradient needs a symmetric positive definite M: give M densely \
+         (`LinearSystem::dense`), whose LU factorization takes any nonsingular M"
+    }
+}
+
+/// Why a factorization of a linear system does not solve a complementarity
+/// problem.
+const LINEAR_ONLY: &str = "it solves a linear system (`LinearSystem`), not a complementarity \
+     problem: use Lemke's method, the restricted-entry simplex, block pivoting or the conjugate gradient";
+
+/// The failure of an attempt of `kind` on a problem it does not solve (no
+/// route makes one; a guard).
+fn foreign(kind: Kind, reason: &str) -> Failure {
+    let error = LcpError::Unsupported {
+        method: described(kind.method()),
+        reason: reason.into(),
+    };
+    Failure::error(error, Work::default())
 }
 
 /// A method's name in an error message.
@@ -296,6 +330,8 @@ fn described(method: Method) -> &'static str {
         Method::RestrictedSimplex => "the restricted-entry simplex",
         Method::BlockPivoting => "block principal pivoting",
         Method::ConjugateGradient => "the conjugate gradient",
+        Method::Cholesky => "the Cholesky factorization",
+        Method::Lu => "the LU factorization",
     }
 }
 
@@ -359,6 +395,10 @@ fn route(problem: &Problem<'_>, method: Method, options: &Options) -> Result<Vec
         Method::ConjugateGradient => conjugate_gradient::applies(problem)
             .map(|_| vec![Kind::ConjugateGradient])
             .map_err(|e| unsupported(Kind::ConjugateGradient, e)),
+        Method::Cholesky | Method::Lu => Err(LcpError::Unsupported {
+            method: described(method),
+            reason: LINEAR_ONLY.into(),
+        }),
     }
 }
 
@@ -534,6 +574,7 @@ impl<'r, R: Routed> Ladder<'r, R> {
                         Outcome::Breakdown(b) => b.to_string(),
                         other => other.to_string(),
                     }),
+                    advice: self.problem.advice(),
                 }
             })),
         }
@@ -570,15 +611,7 @@ fn solve_problem(
     options.validate(lemke_general::split_size(&problem.mixed))?;
     let route = route(problem, method, options)?;
     let (solved, certificate, statistics) = solve_routed(problem, method, &route, options)?;
-    let Solved { answer, w } = solved;
-    Ok(LcpSolution {
-        z: answer.z,
-        w,
-        u: answer.u,
-        basic: answer.basic,
-        certificate,
-        statistics,
-    })
+    Ok(solved.solution(certificate, statistics))
 }
 
 impl BorderedLcpRef<'_> {
@@ -631,13 +664,29 @@ impl OperatorLcp<'_> {
         }
         let route = [Kind::ConjugateGradient];
         let (solved, certificate, statistics) = solve_routed(self, method, &route, options)?;
-        let Solved { answer, w } = solved;
-        Ok(LcpSolution {
-            z: answer.z,
-            w,
-            u: answer.u,
-            basic: answer.basic,
-            certificate,
+        Ok(solved.solution(certificate, statistics))
+    }
+}
+
+impl LinearSystem<'_> {
+    /// Solves `M X = R`, certified: a dense `M` by its Cholesky
+    /// factorization, and where `M` is not numerically symmetric positive
+    /// definite by an LU (a fallback in the statistics' log); an operator
+    /// by the conjugate gradient, whose
+    /// breakdown (`p · M p <= 0`: [`LcpError::BrokeDown`]) and iteration cap
+    /// ([`LcpError::IterationLimit`]) are errors. The answer's residual is
+    /// recomputed from products of the original data; one above the
+    /// certificate's tolerance is [`LcpError::Inaccurate`].
+    pub fn solve(&self, options: &Options) -> Result<LinearSolution, LcpError> {
+        options.validate(0)?;
+        let (method, route): (Method, &[Kind]) = match self.matrix {
+            Matrix::Dense(_) => (Method::Cholesky, &[Kind::Cholesky, Kind::Lu]),
+            Matrix::Operator(_) => (Method::ConjugateGradient, &[Kind::ConjugateGradient]),
+        };
+        let (answer, certificate, statistics) = solve_routed(self, method, route, options)?;
+        Ok(LinearSolution {
+            x: answer.x,
+            residual: certificate.equality,
             statistics,
         })
     }

@@ -9,6 +9,9 @@ use elcon_lcp::{BorderedLcp, LcpError, Method, OperatorLcp, Options, Tableau};
 use faer::{Col, Mat};
 use proptest::prelude::*;
 
+mod common;
+use common::rel_diff;
+
 /// M = A A^T / n + shift I from the entries of A (n x n, row-major).
 fn spd(n: usize, a: &[f64], shift: f64) -> Mat<f64> {
     let a = Mat::from_fn(n, n, |i, j| a[i * n + j]);
@@ -92,6 +95,38 @@ fn draw() -> impl Strategy<Value = Draw> {
         })
 }
 
+/// A xorshift generator of uniform draws in [0, 1) from `seed`: a fixed
+/// set of random problems, the same on every run.
+fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut rng = seed;
+    move || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A random problem (see [`known`]) of `points.start + next() * points.len()`
+/// points, `M` from [`spd`] with a shift 0.3, drawn from `next` (the size,
+/// then `A`, then the [`Draw`]'s fields in order).
+fn random_known(
+    next: &mut impl FnMut() -> f64,
+    points: std::ops::Range<usize>,
+    k: usize,
+    ones_last: bool,
+) -> Known {
+    let n = points.start + (next() * points.len() as f64) as usize;
+    let a: Vec<f64> = (0..n * n).map(|_| 2.0 * next() - 1.0).collect();
+    let draw = Draw {
+        coords: (0..180).map(|_| 2.0 * next() - 1.0).collect(),
+        active: (0..60).map(|_| next() < 0.5).collect(),
+        values: (0..60).map(|_| next()).collect(),
+        lambda: (0..3).map(|_| 2.0 * next() - 1.0).collect(),
+    };
+    known(spd(n, &a, 0.3), k, &draw, ones_last)
+}
+
 /// The solution by trying every active set J with |J| >= k: the KKT
 /// system `[M_JJ -B_J; B_J^T 0] [z_J; λ] = [-q_J; b]` by an LU, kept
 /// when `z_J >= 0` and `w >= 0` (n <= 10).
@@ -139,15 +174,6 @@ fn brute_force(k: &Known) -> Option<(Col<f64>, Col<f64>)> {
         }
     }
     None
-}
-
-fn rel_diff(a: &Col<f64>, b: &Col<f64>) -> f64 {
-    let scale = a
-        .iter()
-        .chain(b.iter())
-        .fold(0.0f64, |m, v| m.max(v.abs()))
-        .max(1e-300);
-    (a - b).iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
 }
 
 /// The worst residual of `(z, λ)` computed here from the problem's data,
@@ -331,26 +357,12 @@ proptest! {
 /// Lemke solve returns from it.
 #[test]
 fn the_symmetric_tableau_solves_borders_of_several_rows() {
-    let mut rng = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform(0x2545_f491_4f6c_dd1du64);
     for (k, ones_last) in [(2, false), (3, false), (2, true), (3, true)] {
         let mut symmetric = 0;
         let trials = 40;
         for _ in 0..trials {
-            let n = 20 + (next() * 30.0) as usize;
-            let a: Vec<f64> = (0..n * n).map(|_| 2.0 * next() - 1.0).collect();
-            let draw = Draw {
-                coords: (0..180).map(|_| 2.0 * next() - 1.0).collect(),
-                active: (0..60).map(|_| next() < 0.5).collect(),
-                values: (0..60).map(|_| next()).collect(),
-                lambda: (0..3).map(|_| 2.0 * next() - 1.0).collect(),
-            };
-            let known = known(spd(n, &a, 0.3), k, &draw, ones_last);
+            let known = random_known(&mut next, 20..50, k, ones_last);
             let sol = known
                 .problem
                 .solve(Method::Lemke, &Options::default())
@@ -372,26 +384,12 @@ fn the_symmetric_tableau_solves_borders_of_several_rows() {
 /// from block pivoting's own attempt.
 #[test]
 fn block_pivoting_solves_borders_of_several_rows_itself() {
-    let mut rng = 0x9e37_79b9_7f4a_7c15u64;
-    let mut next = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform(0x9e37_79b9_7f4a_7c15u64);
     for k in [1, 2, 3] {
         let mut own = 0;
         let trials = 40;
         for _ in 0..trials {
-            let n = 10 + (next() * 50.0) as usize;
-            let a: Vec<f64> = (0..n * n).map(|_| 2.0 * next() - 1.0).collect();
-            let draw = Draw {
-                coords: (0..180).map(|_| 2.0 * next() - 1.0).collect(),
-                active: (0..60).map(|_| next() < 0.5).collect(),
-                values: (0..60).map(|_| next()).collect(),
-                lambda: (0..3).map(|_| 2.0 * next() - 1.0).collect(),
-            };
-            let known = known(spd(n, &a, 0.3), k, &draw, false);
+            let known = random_known(&mut next, 10..60, k, false);
             let sol = known
                 .problem
                 .solve(Method::BlockPivoting, &Options::default())
@@ -414,24 +412,10 @@ fn block_pivoting_solves_borders_of_several_rows_itself() {
 /// the problem naming the method to use.
 #[test]
 fn operator_problems_solve_by_the_conjugate_gradient() {
-    let mut rng = 0x1234_5678_9abc_def1u64;
-    let mut next = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform(0x1234_5678_9abc_def1u64);
     for k in [0, 1, 2, 3] {
         for _ in 0..20 {
-            let n = 10 + (next() * 50.0) as usize;
-            let a: Vec<f64> = (0..n * n).map(|_| 2.0 * next() - 1.0).collect();
-            let draw = Draw {
-                coords: (0..180).map(|_| 2.0 * next() - 1.0).collect(),
-                active: (0..60).map(|_| next() < 0.5).collect(),
-                values: (0..60).map(|_| next()).collect(),
-                lambda: (0..3).map(|_| 2.0 * next() - 1.0).collect(),
-            };
-            let known = known(spd(n, &a, 0.3), k.max(1), &draw, false);
+            let known = random_known(&mut next, 10..60, k.max(1), false);
             // k = 0: the standard LCP of the same M and q (its own solution).
             let m = known.m.as_ref();
             let border = known.border.as_ref().subcols(0, k);

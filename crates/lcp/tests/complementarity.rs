@@ -8,6 +8,9 @@ use faer::linalg::solvers::Solve;
 use faer::{Col, Mat, Side};
 use proptest::prelude::*;
 
+mod common;
+use common::rel_diff;
+
 /// M = A A^T + shift I from the entries of A (n x n, row-major).
 fn spd(n: usize, a: &[f64], shift: f64) -> Mat<f64> {
     let a = Mat::from_fn(n, n, |i, j| a[i * n + j]);
@@ -44,15 +47,6 @@ fn brute_force(m: &Mat<f64>, q: &Col<f64>) -> Option<Col<f64>> {
         }
     }
     None
-}
-
-fn rel_diff(a: &Col<f64>, b: &Col<f64>) -> f64 {
-    let scale = a
-        .iter()
-        .chain(b.iter())
-        .fold(0.0f64, |m, v| m.max(v.abs()))
-        .max(1e-300);
-    (a - b).iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
 }
 
 /// The contact form `w = M z + b alpha + q`, `c^T z = load` with `c = -b`,

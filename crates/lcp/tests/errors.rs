@@ -1,13 +1,27 @@
 //! One test per error variant of the engine, checking the message a caller sees.
 
 use elcon_lcp::{
-    BorderedLcp, Bound, Lcp, LcpError, Method, MixedLcp, MixedLcpParts, Options, ProgramBuilder,
-    Tableau, Tolerances,
+    BorderedLcp, Bound, Lcp, LcpError, LinearSystem, Method, MixedLcp, MixedLcpParts, Options,
+    ProgramBuilder, Tableau, Tolerances,
 };
 use faer::{Col, Mat, col, mat};
 
 fn message(e: LcpError) -> String {
     e.to_string()
+}
+
+/// The mixed form `w = z - u`, `z = 1`, with `u` bounded by `bound`.
+fn one_pair(bound: Bound) -> MixedLcp {
+    MixedLcp::new(MixedLcpParts {
+        m: Mat::identity(1, 1),
+        b: mat![[-1.0]],
+        q: col![0.0],
+        c: mat![[1.0]],
+        d: Mat::zeros(1, 1),
+        r: col![-1.0],
+        bounds: vec![bound],
+    })
+    .unwrap()
 }
 
 #[test]
@@ -124,16 +138,7 @@ fn an_explicit_tableau_that_cannot_finish_is_an_error() {
         ),
     );
     // A mixed form has no symmetric tableau at all.
-    let mixed = MixedLcp::new(MixedLcpParts {
-        m: Mat::identity(1, 1),
-        b: mat![[-1.0]],
-        q: col![0.0],
-        c: mat![[1.0]],
-        d: Mat::zeros(1, 1),
-        r: col![-1.0],
-        bounds: vec![Bound::Free],
-    })
-    .unwrap();
+    let mixed = one_pair(Bound::Free);
     let e = mixed.solve(Method::Lemke, &opts).unwrap_err();
     assert!(matches!(e, LcpError::Unsupported { .. }));
     assert!(message(e).contains("the symmetric tableau takes a standard or bordered LCP"));
@@ -151,16 +156,7 @@ fn an_explicit_tableau_that_cannot_finish_is_an_error() {
 #[test]
 fn unsupported_forms() {
     // Non-negative extra unknown: not an LCP for Lemke or block pivoting.
-    let p = MixedLcp::new(MixedLcpParts {
-        m: Mat::identity(1, 1),
-        b: mat![[-1.0]],
-        q: col![0.0],
-        c: mat![[1.0]],
-        d: Mat::zeros(1, 1),
-        r: col![-1.0],
-        bounds: vec![Bound::NonNegative],
-    })
-    .unwrap();
+    let p = one_pair(Bound::NonNegative);
     for method in [Method::Lemke, Method::BlockPivoting] {
         let e = p.solve(method, &Options::default()).unwrap_err();
         assert!(matches!(e, LcpError::Unsupported { .. }), "{method}");
@@ -432,4 +428,43 @@ fn data_at_the_edge_of_double_precision_is_an_error_or_an_answer_never_a_panic()
             }
         }
     }
+}
+
+#[test]
+fn iteration_limit_of_a_linear_system() {
+    // A linear system's conjugate gradient returns no unconverged answer.
+    let n = 20;
+    let m = Mat::from_fn(n, n, |i, j| {
+        1.0 / (1.0 + i.abs_diff(j) as f64) + if i == j { 2.0 } else { 0.0 }
+    });
+    let r = Mat::from_fn(n, 1, |i, _| i as f64);
+    let products = m.as_ref();
+    let opts = Options {
+        max_pivots: Some(1),
+        ..Options::default()
+    };
+    let e = LinearSystem::operator(&products, r.as_ref())
+        .unwrap()
+        .solve(&opts)
+        .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            LcpError::IterationLimit {
+                size: 20,
+                column: 0,
+                limit: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let text = message(e);
+    assert!(
+        text.starts_with(
+            "the conjugate gradient reached its iteration limit 1 on right-hand side 0 (size 20) at a relative residual"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("raise `max_pivots`"), "{text}");
 }

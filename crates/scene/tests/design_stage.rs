@@ -1,48 +1,36 @@
 //! The design stage reuses the scene's own analysis where it can, and what
 //! it reuses is what it would have computed.
 
+mod common;
+
 use std::path::Path;
 
+use common::{BEAM, with_table};
 use elcon_design::{Profile, evaluate};
 use elcon_scene::{Scene, run};
 
-/// The paper's beam on a foundation, solved in full (no folding), designed
-/// for two loads, the second the scene's own.
-const BEAM: &str = r#"
-[units]
-length = "in"
-force = "lbf"
-
-[body1]
-model = "beam"
-youngs_modulus = 30e6
-width = 1.0
-depth = 4.0
-
-[body2]
-model = "winkler"
-modulus = 1e7
-
-[points]
-grid = "line"
-start = -4.45
-end = 4.45
-n = 40
-
-[loading]
-load = 50000.0
-
-[solver]
-symmetry = "none"
-
-[design]
-family = "quadratic"
-loads = [25000.0, 50000.0]
-"#;
+/// The paper's beam on a foundation (Example 2: 1 in x 4 in, 8.9 in long,
+/// 40 points, 50,000 lbf), solved in full (no folding), designed for two
+/// loads, the second the scene's own.
+fn beam() -> String {
+    let example2 = BEAM
+        .replace("second_moment = 5.0", "width = 1.0\ndepth = 4.0")
+        .replace(
+            "start = -4.0\nend = 4.0\nn = 16",
+            "start = -4.45\nend = 4.45\nn = 40",
+        )
+        .replace("load = 1000.0", "load = 50000.0");
+    let unfolded = with_table(&example2, "solver", "symmetry = \"none\"");
+    with_table(
+        &unfolded,
+        "design",
+        "family = \"quadratic\"\nloads = [25000.0, 50000.0]",
+    )
+}
 
 #[test]
 fn the_design_stage_shares_the_scenes_matrix_and_solution() {
-    let scene = Scene::from_str(Path::new("beam.toml"), BEAM).unwrap();
+    let scene = Scene::from_str(Path::new("beam.toml"), &beam()).unwrap();
     let r = run(&scene).unwrap();
     assert!(r.problem.folding().is_none());
     let d = r.design.as_ref().unwrap();
@@ -76,7 +64,7 @@ fn the_design_stage_shares_the_scenes_matrix_and_solution() {
 /// The beam designed for two loads at three misalignments (prescribed
 /// rotations about y, rad), by `method`.
 fn misaligned(method: &str) -> String {
-    let base = BEAM.replace("loads = [25000.0, 50000.0]\n", "");
+    let base = beam().replace("loads = [25000.0, 50000.0]\n", "");
     format!(
         "{base}loads = [25000.0, 50000.0]\nmisalignments = [0.0, 2e-5, 4e-5]\nmethod = \"{method}\"\n"
     )

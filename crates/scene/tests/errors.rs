@@ -1,37 +1,23 @@
 //! One test per `SceneError` variant, through the library: the message a
 //! user gets names the file, the line and column, and the field.
 
+mod common;
+
 use std::path::Path;
 
+use common::{scene, with_table};
 use elcon_scene::{Location, Scene, SceneError, run};
 
-const BASE: &str = r#"
-[units]
-length = "in"
-force = "lbf"
+/// Example 1's first sphere on a rigid plane, 11 points across the Hertz
+/// diameter on a disk of 1.3 Hertz radii.
+fn base() -> String {
+    common::sphere_on_rigid_plane("across = 11\nzone = 1.3")
+}
 
-[body1]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[body2]
-model = "rigid"
-
-[geometry]
-surface1 = { shape = "sphere", radius = 1.0 }
-
-[points]
-grid = "disk"
-across = 11
-zone = 1.3
-
-[loading]
-load = 100.0
-"#;
-
-fn scene(text: &str) -> Result<Scene, SceneError> {
-    Scene::from_str(Path::new("test.toml"), text)
+/// A roller on an absolute 5 x 8 rectangle grid, 0.8 mm by 10 mm, under
+/// 1000 N.
+fn roller() -> String {
+    common::roller("half_x = 0.4\nhalf_y = 5.0\nnx = 5\nny = 8", "1000.0")
 }
 
 #[test]
@@ -53,56 +39,58 @@ fn io_names_the_file() {
 
 #[test]
 fn syntax_names_line_column_and_key() {
-    let e = scene(&BASE.replace("[body2]", "[body2]\ncolour = 1")).unwrap_err();
+    let base = base();
+    let e = scene(&base.replace("[body2]", "[body2]\ncolour = 1")).unwrap_err();
     assert!(matches!(e, SceneError::Syntax { .. }));
     assert!(
         e.to_string()
             .starts_with("test.toml:12:1: unknown field `colour`"),
         "{e}"
     );
-    let e = scene(&BASE.replace("[loading]\nload = 100.0", "[loading]")).unwrap_err();
+    let e = scene(&base.replace("[loading]\nload = 100.0", "[loading]")).unwrap_err();
     assert!(e.to_string().contains("test.toml:"), "{e}");
-    let e = scene(&BASE.replace("[units]\nlength = \"in\"\nforce = \"lbf\"\n", "")).unwrap_err();
+    let e = scene(&base.replace("[units]\nlength = \"in\"\nforce = \"lbf\"\n", "")).unwrap_err();
     assert!(e.to_string().contains("missing field `units`"), "{e}");
     assert!(e.is_input_error());
     // A number written as a string names its field, in a section and in an
     // inline table.
-    let e = scene(&BASE.replace("load = 100.0", "load = \"100\"")).unwrap_err();
+    let e = scene(&base.replace("load = 100.0", "load = \"100\"")).unwrap_err();
     assert!(matches!(e, SceneError::Syntax { .. }));
     assert!(
         e.to_string()
             .ends_with("`loading.load`: invalid type: string \"100\", expected a number"),
         "{e}"
     );
-    let e = scene(&BASE.replace("across = 11", "across = \"11\"")).unwrap_err();
+    let e = scene(&base.replace("across = 11", "across = \"11\"")).unwrap_err();
     assert!(e.to_string().contains("`points.across`"), "{e}");
     assert!(e.to_string().contains("expected a whole number"), "{e}");
-    let e = scene(&BASE.replace("radius = 1.0 }", "radius = \"1.0\" }")).unwrap_err();
+    let e = scene(&base.replace("radius = 1.0 }", "radius = \"1.0\" }")).unwrap_err();
     assert!(e.to_string().contains("`geometry.surface1.radius`"), "{e}");
 }
 
 #[test]
 fn invalid_names_the_field_and_the_reason() {
-    let e = scene(&BASE.replace("poissons_ratio = 0.3", "poissons_ratio = -1.0")).unwrap_err();
+    let base = base();
+    let e = scene(&base.replace("poissons_ratio = 0.3", "poissons_ratio = -1.0")).unwrap_err();
     assert_eq!(
         e.to_string(),
         "test.toml:9:18: `body1.poissons_ratio` = -1: must be in (-1, 0.5): outside it the elastic energy is not positive definite"
     );
     let e =
-        scene(&BASE.replace("model = \"rigid\"", "model = \"rigid\"\nmodulus = 3.0")).unwrap_err();
+        scene(&base.replace("model = \"rigid\"", "model = \"rigid\"\nmodulus = 3.0")).unwrap_err();
     assert!(
         e.to_string()
             .contains("`body2.modulus` = 3: is not a parameter of the rigid model"),
         "{e}"
     );
-    let e = scene(&BASE.replace("across = 11", "across = 11\nnx = 4")).unwrap_err();
+    let e = scene(&base.replace("across = 11", "across = 11\nnx = 4")).unwrap_err();
     assert!(
         e.to_string()
             .contains("`points.nx`: is not a parameter of grid = \"disk\""),
         "{e}"
     );
     let e =
-        scene(&BASE.replace("shape = \"sphere\", radius = 1.0", "shape = \"plane\"")).unwrap_err();
+        scene(&base.replace("shape = \"sphere\", radius = 1.0", "shape = \"plane\"")).unwrap_err();
     assert!(
         e.to_string()
             .contains("need curved surfaces (a sphere or a cylinder)"),
@@ -113,8 +101,10 @@ fn invalid_names_the_field_and_the_reason() {
 
 #[test]
 fn run_failures_name_the_scene() {
-    let s = scene(&format!(
-        "{BASE}\n[solver]\nmethod = \"lemke\"\nmax_pivots = 1\n"
+    let s = scene(&with_table(
+        &base(),
+        "solver",
+        "method = \"lemke\"\nmax_pivots = 1",
     ))
     .unwrap();
     let e = run(&s).unwrap_err();
@@ -131,7 +121,7 @@ fn run_failures_name_the_scene() {
 fn a_batch_name_cannot_leave_the_output_directory() {
     let dir = std::env::temp_dir().join(format!("elcon-batch-name-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("base.toml"), BASE).unwrap();
+    std::fs::write(dir.join("base.toml"), base()).unwrap();
     for bad in ["../escape", "", "/tmp/x", ".hidden.1.tmp"] {
         std::fs::write(
             dir.join("b.toml"),
@@ -144,7 +134,7 @@ fn a_batch_name_cannot_leave_the_output_directory() {
     }
     // A scene's name likewise: a leading '.' is what elcon's own temporary
     // siblings look like.
-    let e = scene(&format!("[scene]\nname = \".a.1234.tmp\"\n{BASE}")).unwrap_err();
+    let e = scene(&format!("[scene]\nname = \".a.1234.tmp\"\n{}", base())).unwrap_err();
     assert!(e.to_string().contains("`scene.name`"), "{e}");
     assert!(e.to_string().contains("no leading '.'"), "{e}");
 }
@@ -153,7 +143,7 @@ fn a_batch_name_cannot_leave_the_output_directory() {
 fn a_batch_error_metric_is_one_of_the_results_columns() {
     let dir = std::env::temp_dir().join(format!("elcon-batch-error-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("base.toml"), BASE).unwrap();
+    std::fs::write(dir.join("base.toml"), base()).unwrap();
     let batch = |error: &str| {
         std::fs::write(
             dir.join("b.toml"),
@@ -175,52 +165,27 @@ fn a_batch_error_metric_is_one_of_the_results_columns() {
     assert_eq!(b.error.name(), "contact_extent");
 }
 
-/// A roller along y on a plane, on an absolute rectangle grid.
-const ROLLER: &str = r#"
-[units]
-length = "mm"
-force = "N"
-
-[body1]
-model = "uniform-patch"
-youngs_modulus = 210e3
-poissons_ratio = 0.3
-
-[body2]
-model = "uniform-patch"
-youngs_modulus = 210e3
-poissons_ratio = 0.3
-
-[geometry]
-surface1 = { shape = "cylinder", radius = 5.0 }
-
-[points]
-grid = "rectangle"
-half_x = 0.4
-half_y = 5.0
-nx = 5
-ny = 8
-
-[loading]
-load = 1000.0
-"#;
-
 #[test]
 fn relative_to_hertz_without_a_hertz_contact_is_refused_by_validation() {
     // Valid: spheres on a disk, a cylinder on a rectangle.
-    scene(&format!(
-        "{BASE}\n[design]\nfamily = \"quadratic\"\nrelative_to = \"hertz\"\n"
+    scene(&with_table(
+        &base(),
+        "design",
+        "family = \"quadratic\"\nrelative_to = \"hertz\"",
     ))
     .unwrap();
-    scene(&format!(
-        "{ROLLER}\n[design]\nfamily = \"free\"\nrelative_to = \"hertz\"\n"
+    scene(&with_table(
+        &roller(),
+        "design",
+        "family = \"free\"\nrelative_to = \"hertz\"",
     ))
     .unwrap();
     // A sphere on a rectangle grid has no line contact to compare with:
     // `elcon check` says so, not only `elcon run`.
-    let text = format!(
-        "{}\n[design]\nfamily = \"free\"\nrelative_to = \"hertz\"\n",
-        ROLLER.replace("shape = \"cylinder\"", "shape = \"sphere\"")
+    let text = with_table(
+        &roller().replace("shape = \"cylinder\"", "shape = \"sphere\""),
+        "design",
+        "family = \"free\"\nrelative_to = \"hertz\"",
     );
     let e = scene(&text).unwrap_err();
     assert!(matches!(e, SceneError::Invalid { .. }), "{e}");
@@ -241,41 +206,20 @@ fn relative_to_hertz_without_a_hertz_contact_is_refused_by_validation() {
         "{e}"
     );
     // A beam on a foundation has no Hertz contact at all.
-    let beam = r#"
-[units]
-length = "in"
-force = "lbf"
-
-[body1]
-model = "beam"
-youngs_modulus = 30e6
-second_moment = 5.0
-
-[body2]
-model = "winkler"
-modulus = 1e7
-
-[points]
-grid = "line"
-start = -4.0
-end = 4.0
-n = 16
-
-[loading]
-load = 1000.0
-
-[design]
-family = "quadratic"
-relative_to = "hertz"
-"#;
-    let e = scene(beam).unwrap_err();
+    let beam = with_table(
+        common::BEAM,
+        "design",
+        "family = \"quadratic\"\nrelative_to = \"hertz\"",
+    );
+    let e = scene(&beam).unwrap_err();
     assert!(e.to_string().contains("`design.relative_to`"), "{e}");
 }
 
 #[test]
 fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
+    let roller = roller();
     let crown = "\n[design]\nfamily = \"logarithmic-crown\"\n";
-    let s = scene(&format!("{ROLLER}{crown}")).unwrap();
+    let s = scene(&format!("{roller}{crown}")).unwrap();
     assert!(matches!(
         s.design().unwrap().family(),
         elcon_scene::DesignFamily::LogarithmicCrown {
@@ -285,7 +229,7 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
     ));
     // Lundberg's end by name; another name, or an end for another family,
     // is refused naming the field.
-    let s = scene(&format!("{ROLLER}{crown}end = \"lundberg\"\n")).unwrap();
+    let s = scene(&format!("{roller}{crown}end = \"lundberg\"\n")).unwrap();
     assert!(matches!(
         s.design().unwrap().family(),
         elcon_scene::DesignFamily::LogarithmicCrown {
@@ -293,7 +237,7 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
             ..
         }
     ));
-    let e = scene(&format!("{ROLLER}{crown}end = \"hyperbolic\"\n")).unwrap_err();
+    let e = scene(&format!("{roller}{crown}end = \"hyperbolic\"\n")).unwrap_err();
     assert!(
         e.to_string().contains(
             "`design.end`: unknown variant `hyperbolic`, expected `johns-gohar` or `lundberg`"
@@ -301,7 +245,7 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
         "{e}"
     );
     let e = scene(&format!(
-        "{ROLLER}\n[design]\nfamily = \"free\"\nend = \"lundberg\"\n"
+        "{roller}\n[design]\nfamily = \"free\"\nend = \"lundberg\"\n"
     ))
     .unwrap_err();
     assert!(e.to_string().contains("`design.end`"), "{e}");
@@ -319,17 +263,17 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
     // and fail in `run`).
     refused(format!(
         "{}{crown}",
-        ROLLER.replace("shape = \"cylinder\"", "shape = \"sphere\"")
+        roller.replace("shape = \"cylinder\"", "shape = \"sphere\"")
     ));
     // Two planes.
     refused(format!(
         "{}{crown}",
-        ROLLER.replace("surface1 = { shape = \"cylinder\", radius = 5.0 }", "")
+        roller.replace("surface1 = { shape = \"cylinder\", radius = 5.0 }", "")
     ));
     // A cylinder on a disk grid: no roller length.
     refused(format!(
         "{}{crown}",
-        ROLLER.replace(
+        roller.replace(
             "grid = \"rectangle\"\nhalf_x = 0.4\nhalf_y = 5.0\nnx = 5\nny = 8",
             "grid = \"disk\"\nspacing = 0.1\nradius = 0.5"
         )
@@ -338,38 +282,42 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
 
 #[test]
 fn a_name_a_key_does_not_take_is_refused_with_the_names_it_takes() {
-    let design = "\n[design]\nfamily = \"quadratic\"\n";
+    let base = base();
     let cases = [
         (
-            BASE.replace("model = \"rigid\"", "model = \"elastic\""),
+            base.replace("model = \"rigid\"", "model = \"elastic\""),
             "12:9: `body2.model`: unknown variant `elastic`, expected one of `rigid`, `point-force`",
         ),
         (
-            BASE.replace("shape = \"sphere\"", "shape = \"cube\""),
+            base.replace("shape = \"sphere\"", "shape = \"cube\""),
             "15:22: `geometry.surface1.shape`: unknown variant `cube`, expected one of `plane`",
         ),
         (
-            BASE.replace("grid = \"disk\"", "grid = \"hexagon\""),
+            base.replace("grid = \"disk\"", "grid = \"hexagon\""),
             "18:8: `points.grid`: unknown variant `hexagon`, expected one of `disk`, `rectangle`, `line`",
         ),
         (
-            format!("{BASE}\n[solver]\nsymmetry = \"mirror\"\n"),
+            with_table(&base, "solver", "symmetry = \"mirror\""),
             "26:12: `solver.symmetry`: unknown variant `mirror`, expected `auto` or `none`",
         ),
         (
-            format!("{BASE}\n[design]\nfamily = \"cubic\"\n"),
+            with_table(&base, "design", "family = \"cubic\""),
             "26:10: `design.family`: unknown variant `cubic`, expected one of `quadratic`",
         ),
         (
-            format!("{BASE}{design}axis = \"z\"\n"),
+            with_table(&base, "design", "family = \"quadratic\"\naxis = \"z\""),
             "27:8: `design.axis`: unknown variant `z`, expected `x` or `y`",
         ),
         (
-            format!("{BASE}{design}relative_to = \"peak\"\n"),
+            with_table(
+                &base,
+                "design",
+                "family = \"quadratic\"\nrelative_to = \"peak\"",
+            ),
             "27:15: `design.relative_to`: unknown variant `peak`, expected one of `absolute`",
         ),
         (
-            format!("{BASE}\n[outputs]\nplots = [\"pressure\", \"contour\"]\n"),
+            with_table(&base, "outputs", "plots = [\"pressure\", \"contour\"]"),
             "26:22: `outputs.plots`: unknown variant `contour`, expected `pressure` or `design`",
         ),
     ];

@@ -2,76 +2,24 @@
 //! a surface whose pressure is not a function of the radius, pressure
 //! against the radius with the closed form for one that is.
 
+mod common;
+
 use std::path::Path;
 
+use common::with_table;
 use elcon_scene::{Plot, Scene, run};
 
 /// A roller (cylinder on a plane) on a 9 x 12 rectangle: not axisymmetric.
-const ROLLER: &str = r#"
-[units]
-length = "mm"
-force = "N"
-pressure = "MPa"
-
-[body1]
-model = "uniform-patch"
-youngs_modulus = 210e3
-poissons_ratio = 0.3
-
-[body2]
-model = "uniform-patch"
-youngs_modulus = 210e3
-poissons_ratio = 0.3
-
-[geometry]
-surface1 = { shape = "cylinder", radius = 5.0 }
-surface2 = { shape = "plane" }
-
-[points]
-grid = "rectangle"
-zone = 1.6
-half_y = 5.0
-nx = 9
-ny = 12
-
-[loading]
-load = 5000.0
-
-[outputs]
-plots = ["pressure"]
-"#;
+fn roller() -> String {
+    let roller = common::roller("zone = 1.6\nhalf_y = 5.0\nnx = 9\nny = 12", "5000.0");
+    with_table(&roller, "outputs", "plots = [\"pressure\"]")
+}
 
 /// Example 1's spheres, 11 across: axisymmetric.
-const SPHERES: &str = r#"
-[units]
-length = "in"
-force = "lbf"
-
-[body1]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[body2]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[geometry]
-surface1 = { shape = "sphere", radius = 1.0 }
-surface2 = { shape = "sphere", radius = 10.0 }
-
-[points]
-grid = "disk"
-across = 11
-zone = 1.2
-
-[loading]
-load = 100.0
-
-[outputs]
-plots = ["pressure"]
-"#;
+fn spheres() -> String {
+    let spheres = common::spheres("across = 11\nzone = 1.2");
+    with_table(&spheres, "outputs", "plots = [\"pressure\"]")
+}
 
 fn pressure_svg(text: &str) -> (String, usize, usize) {
     let scene = Scene::from_str(Path::new("plot.toml"), text).unwrap();
@@ -96,7 +44,7 @@ fn pressure_svg(text: &str) -> (String, usize, usize) {
 
 #[test]
 fn a_roller_gets_a_pressure_map_with_its_boundary_and_a_colour_bar() {
-    let (svg, points, contact) = pressure_svg(ROLLER);
+    let (svg, points, contact) = pressure_svg(&roller());
     assert!(svg.contains("pressure map"), "the map's caption");
     assert!(svg.contains("contact boundary"), "the boundary's legend");
     assert!(svg.contains("pressure (MPa)"), "the colour bar's label");
@@ -121,7 +69,7 @@ fn a_roller_gets_a_pressure_map_with_its_boundary_and_a_colour_bar() {
 
 #[test]
 fn axisymmetric_spheres_keep_pressure_against_the_radius() {
-    let (svg, ..) = pressure_svg(SPHERES);
+    let (svg, ..) = pressure_svg(&spheres());
     assert!(!svg.contains("pressure map"));
     assert!(svg.contains("radius (in)"));
     assert!(svg.contains("hertz-spheres"), "the closed form's legend");

@@ -4,8 +4,11 @@
 //! `AUTO_DENSE_LIMIT`; an explicit `"conjugate-gradient"` runs matrix-free
 //! unless the scene folds; the estimate of a matrix-free scene is O(N).
 
+mod common;
+
 use std::path::Path;
 
+use common::with_table;
 use elcon_analysis::Method;
 use elcon_scene::{AUTO_DENSE_LIMIT, Estimate, Scene, Storage, run};
 
@@ -13,40 +16,11 @@ fn spheres(across: usize, solver: &str) -> Scene {
     Scene::from_str(Path::new("storage.toml"), &spheres_text(across, solver)).expect("valid scene")
 }
 
-/// The spheres' scene text with `solver` under `[solver]`.
+/// Example 1's spheres, `across` points across the Hertz diameter, with
+/// `solver` under `[solver]`.
 fn spheres_text(across: usize, solver: &str) -> String {
-    format!(
-        r#"
-[units]
-length = "in"
-force = "lbf"
-
-[body1]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[body2]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[geometry]
-surface1 = {{ shape = "sphere", radius = 1.0 }}
-surface2 = {{ shape = "sphere", radius = 10.0 }}
-
-[points]
-grid = "disk"
-across = {across}
-zone = 1.15
-
-[loading]
-load = 100.0
-
-[solver]
-{solver}
-"#
-    )
+    let spheres = common::spheres(&format!("across = {across}\nzone = 1.15"));
+    with_table(&spheres, "solver", solver)
 }
 
 #[test]
@@ -107,35 +81,12 @@ fn an_explicit_conjugate_gradient_is_matrix_free_unless_the_scene_folds() {
 
 #[test]
 fn an_unknown_method_names_auto_among_the_choices() {
-    let text = r#"
-[units]
-length = "in"
-force = "lbf"
-
-[body1]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[body2]
-model = "rigid"
-
-[geometry]
-surface1 = { shape = "sphere", radius = 1.0 }
-surface2 = { shape = "plane" }
-
-[points]
-grid = "disk"
-across = 11
-zone = 1.3
-
-[loading]
-load = 100.0
-
-[solver]
-method = "fastest"
-"#;
-    let e = Scene::from_str(Path::new("bad.toml"), text)
+    let text = with_table(
+        &common::sphere_on_rigid_plane("across = 11\nzone = 1.3"),
+        "solver",
+        "method = \"fastest\"",
+    );
+    let e = Scene::from_str(Path::new("bad.toml"), &text)
         .unwrap_err()
         .to_string();
     assert!(

@@ -4,13 +4,10 @@
 //! cost time or memory are bounded; a grid too coarse for the contact
 //! warns. Each message names the field.
 
-use std::path::Path;
+mod common;
 
-use elcon_scene::{Scene, SceneError};
-
-fn scene(text: &str) -> Result<Scene, SceneError> {
-    Scene::from_str(Path::new("test.toml"), text)
-}
+use common::{BEAM, scene, with_table};
+use elcon_scene::SceneError;
 
 /// Refused, naming `field`, with `reason` in the message.
 fn refused(text: &str, field: &str, reason: &str) {
@@ -21,57 +18,16 @@ fn refused(text: &str, field: &str, reason: &str) {
     assert!(m.contains(reason), "{reason}: {m}");
 }
 
-const SPHERES: &str = r#"
-[units]
-length = "in"
-force = "lbf"
+/// Example 1's spheres on an absolute disk grid: spacing 0.002 in, radius
+/// 0.02 in (the Hertz radius is 0.016 in).
+fn spheres() -> String {
+    common::spheres("spacing = 0.002\nradius = 0.02")
+}
 
-[body1]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[body2]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[geometry]
-surface1 = { shape = "sphere", radius = 1.0 }
-surface2 = { shape = "sphere", radius = 10.0 }
-
-[points]
-grid = "disk"
-spacing = 0.002
-radius = 0.02
-
-[loading]
-load = 100.0
-"#;
-
-const BEAM: &str = r#"
-[units]
-length = "in"
-force = "lbf"
-
-[body1]
-model = "beam"
-youngs_modulus = 30e6
-second_moment = 5.0
-
-[body2]
-model = "winkler"
-modulus = 1e7
-
-[points]
-grid = "line"
-start = -4.0
-end = 4.0
-n = 16
-
-[loading]
-load = 1000.0
-"#;
+/// [`BEAM`] with a `[design]` table of `lines`.
+fn beam_design(lines: &str) -> String {
+    with_table(BEAM, "design", lines)
+}
 
 const STRIPS: &str = r#"
 [units]
@@ -105,17 +61,17 @@ load = 100.0
 
 #[test]
 fn a_concave_surface_must_be_the_larger_radius() {
-    scene(SPHERES).unwrap();
+    scene(&spheres()).unwrap();
     // A ball in a larger socket is a contact.
-    scene(&SPHERES.replace("radius = 10.0 }", "radius = -20.0 }")).unwrap();
+    scene(&spheres().replace("radius = 10.0 }", "radius = -20.0 }")).unwrap();
     // R1 = 1 inside a concave R2 = -0.5: interpenetration everywhere.
     refused(
-        &SPHERES.replace("radius = 10.0 }", "radius = -0.5 }"),
+        &spheres().replace("radius = 10.0 }", "radius = -0.5 }"),
         "geometry.surface2.radius",
         "a concave surface must have the larger radius",
     );
     // R1 = -1 against R2 = 10 (the concave one first).
-    let e = scene(&SPHERES.replace("radius = 1.0 }", "radius = -1.0 }")).unwrap_err();
+    let e = scene(&spheres().replace("radius = 1.0 }", "radius = -1.0 }")).unwrap_err();
     assert!(
         e.to_string().starts_with(
             "test.toml:17:41: `geometry.surface1.radius` = -1: a concave surface must have the \
@@ -168,25 +124,28 @@ fn a_beams_loaded_point_must_be_on_the_beam() {
 #[test]
 fn a_design_degree_needs_the_stations_and_is_bounded() {
     let short = BEAM.replace("n = 16", "n = 4");
-    scene(&format!(
-        "{short}\n[design]\nfamily = \"polynomial\"\ndegree = 3\n"
+    scene(&with_table(
+        &short,
+        "design",
+        "family = \"polynomial\"\ndegree = 3",
     ))
     .unwrap();
     refused(
-        &format!("{short}\n[design]\nfamily = \"polynomial\"\ndegree = 4\n"),
+        &with_table(&short, "design", "family = \"polynomial\"\ndegree = 4"),
         "design.degree",
         "degree 4 needs at least 5 axial stations (distinct positions along x), the grid has 4",
     );
     refused(
-        &format!(
-            "{}\n[design]\nfamily = \"quadratic\"\n",
-            BEAM.replace("n = 16", "n = 2")
+        &with_table(
+            &BEAM.replace("n = 16", "n = 2"),
+            "design",
+            "family = \"quadratic\"",
         ),
         "design.family",
         "degree 2 needs at least 3 axial stations",
     );
     refused(
-        &format!("{BEAM}\n[design]\nfamily = \"polynomial\"\ndegree = 13\n"),
+        &beam_design("family = \"polynomial\"\ndegree = 13"),
         "design.degree",
         "at most 12",
     );
@@ -197,37 +156,34 @@ fn design_cases_and_the_constant_are_bounded() {
     let loads: Vec<String> = (1..=11).map(|i| format!("{i}.0e4")).collect();
     let angles: Vec<String> = (0..100).map(|i| format!("{i}.0e-5")).collect();
     refused(
-        &format!(
-            "{BEAM}\n[design]\nfamily = \"quadratic\"\nloads = [{}]\nmisalignments = [{}]\n",
+        &beam_design(&format!(
+            "family = \"quadratic\"\nloads = [{}]\nmisalignments = [{}]",
             loads.join(", "),
             angles.join(", ")
-        ),
+        )),
         "design.misalignments",
         "at most 1000 design cases",
     );
     refused(
-        &format!(
-            "{BEAM}\n[design]\nfamily = \"quadratic\"\nmisalignments = [{}, 0.0]\n",
+        &beam_design(&format!(
+            "family = \"quadratic\"\nmisalignments = [{}, 0.0]",
             angles.join(", ")
-        ),
+        )),
         "design.misalignments",
         "give 1 to 100 angles",
     );
     refused(
-        &format!("{BEAM}\n[design]\nfamily = \"quadratic\"\nmisalignments = []\n"),
+        &beam_design("family = \"quadratic\"\nmisalignments = []"),
         "design.misalignments",
         "give 1 to 100 angles",
     );
     refused(
-        &format!("{BEAM}\n[design]\nfamily = \"quadratic\"\nmisalignments = [0.0, 0.2]\n"),
+        &beam_design("family = \"quadratic\"\nmisalignments = [0.0, 0.2]"),
         "design.misalignments[1]",
         "at most 0.1 rad",
     );
     // An unknown name is refused by the parser, with the names it takes.
-    let e = scene(&format!(
-        "{BEAM}\n[design]\nfamily = \"quadratic\"\nmethod = \"newton\"\n"
-    ))
-    .unwrap_err();
+    let e = scene(&beam_design("family = \"quadratic\"\nmethod = \"newton\"")).unwrap_err();
     assert!(matches!(e, SceneError::Syntax { .. }), "{e}");
     assert!(
         e.to_string().contains(
@@ -236,18 +192,15 @@ fn design_cases_and_the_constant_are_bounded() {
         "{e}"
     );
     refused(
-        &format!(
-            "{BEAM}\n[design]\nfamily = \"circular-crown\"\nradius_range = [1.0, 100.0]\nmethod = \"descent\"\n"
+        &beam_design(
+            "family = \"circular-crown\"\nradius_range = [1.0, 100.0]\nmethod = \"descent\"",
         ),
         "design.method",
         "only for the families quadratic, polynomial and free",
     );
-    scene(&format!(
-        "{BEAM}\n[design]\nfamily = \"quadratic\"\nmax_constant = 1.0\n"
-    ))
-    .unwrap();
+    scene(&beam_design("family = \"quadratic\"\nmax_constant = 1.0")).unwrap();
     refused(
-        &format!("{BEAM}\n[design]\nfamily = \"quadratic\"\nmax_constant = 1e308\n"),
+        &beam_design("family = \"quadratic\"\nmax_constant = 1e308"),
         "design.max_constant",
         "at most 1e6 times the candidate zone's size",
     );
@@ -256,16 +209,18 @@ fn design_cases_and_the_constant_are_bounded() {
 #[test]
 fn solver_knobs_are_bounded() {
     refused(
-        &format!("{SPHERES}\n[solver]\nrefinement_steps = 1000000000\n"),
+        &with_table(&spheres(), "solver", "refinement_steps = 1000000000"),
         "solver.refinement_steps",
         "at most 20",
     );
-    scene(&format!(
-        "{SPHERES}\n[solver]\nrefinement_steps = 20\nmax_pivots = 10000\n"
+    scene(&with_table(
+        &spheres(),
+        "solver",
+        "refinement_steps = 20\nmax_pivots = 10000",
     ))
     .unwrap();
     refused(
-        &format!("{SPHERES}\n[solver]\nmax_pivots = 1000000000\n"),
+        &with_table(&spheres(), "solver", "max_pivots = 1000000000"),
         "solver.max_pivots",
         "at most 100 N + 10000",
     );
@@ -274,7 +229,7 @@ fn solver_knobs_are_bounded() {
 #[test]
 fn messages_name_the_field_at_fault() {
     // A modulus too small for floating point names the modulus, not the points.
-    let e = scene(&SPHERES.replacen("youngs_modulus = 30e6", "youngs_modulus = 1e-308", 1))
+    let e = scene(&spheres().replacen("youngs_modulus = 30e6", "youngs_modulus = 1e-308", 1))
         .unwrap_err();
     assert!(
         e.to_string()
@@ -282,7 +237,7 @@ fn messages_name_the_field_at_fault() {
         "{e}"
     );
     // Hertz-relative points: the condition the scene misses, not a list.
-    let relative = SPHERES.replace("spacing = 0.002\nradius = 0.02", "across = 11\nzone = 1.2");
+    let relative = spheres().replace("spacing = 0.002\nradius = 0.02", "across = 11\nzone = 1.2");
     scene(&relative).unwrap();
     refused(
         &relative.replace("load = 100.0", "approach = 0.0001"),
@@ -298,12 +253,12 @@ fn messages_name_the_field_at_fault() {
         "the \"winkler\" model has no Hertz contact",
     );
     // No empty value or empty list in a message.
-    let e = scene(&SPHERES.replace("radius = 0.02\n", "radius = 0.02\nnx = 3\n")).unwrap_err();
+    let e = scene(&spheres().replace("radius = 0.02\n", "radius = 0.02\nnx = 3\n")).unwrap_err();
     assert!(
         e.to_string().contains("`points.nx`: is not a parameter"),
         "{e}"
     );
-    let rigid = SPHERES.replace(
+    let rigid = spheres().replace(
         "[body2]\nmodel = \"uniform-patch\"\nyoungs_modulus = 30e6",
         "[body2]\nmodel = \"rigid\"\nyoungs_modulus = 30e6",
     );
@@ -317,10 +272,10 @@ fn messages_name_the_field_at_fault() {
 
 #[test]
 fn a_grid_coarser_than_the_contact_warns() {
-    assert!(scene(SPHERES).unwrap().warnings().is_empty());
+    assert!(scene(&spheres()).unwrap().warnings().is_empty());
     // Spacing equal to the disk radius: about two points across the Hertz
     // contact diameter (0.032 in).
-    let s = scene(&SPHERES.replace("spacing = 0.002", "spacing = 0.02")).unwrap();
+    let s = scene(&spheres().replace("spacing = 0.002", "spacing = 0.02")).unwrap();
     assert_eq!(s.warnings().len(), 1, "{:?}", s.warnings());
     assert!(
         s.warnings()[0].contains("about 2 points across the Hertz contact diameter"),
@@ -328,7 +283,7 @@ fn a_grid_coarser_than_the_contact_warns() {
         s.warnings()
     );
     // Without a closed form, the disk itself.
-    let flat = SPHERES
+    let flat = spheres()
         .replace("surface1 = { shape = \"sphere\", radius = 1.0 }\n", "")
         .replace("surface2 = { shape = \"sphere\", radius = 10.0 }\n", "")
         .replace("spacing = 0.002", "spacing = 0.02");
@@ -391,4 +346,18 @@ fn a_batch_is_told_from_a_scene_by_its_batch_table() {
     ));
     assert!(!elcon_scene::is_batch_text(BEAM));
     assert!(!elcon_scene::is_batch_text("this is = = not toml"));
+}
+
+#[test]
+fn the_spheres_of_these_tests_are_example_1s() {
+    // common::SPHERES says nothing that examples/scenes/example1-spheres.toml
+    // does not: each of its lines is a line of the example, comments aside.
+    let example = include_str!("../../../examples/scenes/example1-spheres.toml");
+    let lines: Vec<&str> = example
+        .lines()
+        .map(|l| l.split('#').next().unwrap_or("").trim_end())
+        .collect();
+    for line in common::SPHERES.lines() {
+        assert!(lines.contains(&line), "`{line}` is not in the example");
+    }
 }

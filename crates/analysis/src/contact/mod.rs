@@ -23,19 +23,19 @@
 //! | `geometry` | the surfaces and the initial separations eps they give |
 //! | `layout` | what a problem will be before its O(N^2) assembly: eps, the rigid unknowns, the mirror symmetry |
 //! | `problem` | [`ContactProblem`]: points, S as held, eps, loading; its variants under another loading or separation |
-//! | `storage` | [`Storage`] and [`ProblemBuilder`]: the one place that decides how S is held, and what a problem will cost |
+//! | `builder` | [`ProblemBuilder`]: the one place that decides how S is held (`crate::Storage`), and what a problem will cost |
 //! | `solution` | [`ContactSolution`], its certificate and warnings, read from the engine's answer |
 //! | `solve` | the reduction to the engine's (bordered) LCP and its solve |
 
+mod builder;
 mod geometry;
 mod layout;
 mod problem;
 mod solution;
 mod solve;
-mod storage;
 
+pub use builder::{Plan, ProblemBuilder};
 pub use geometry::{Geometry, Surface, separations};
 pub use layout::Layout;
 pub use problem::ContactProblem;
 pub use solution::{ContactCertificate, ContactSolution, Warning};
-pub use storage::{AUTO_DENSE_LIMIT, Plan, ProblemBuilder, Storage};

@@ -11,16 +11,16 @@
 use std::sync::Arc;
 
 use elcon_influence::{Folding, PointSet};
-use elcon_lcp::{Method, Operator};
-use faer::{Mat, MatRef};
+use elcon_lcp::{LinearSolution, Method, Operator, Options};
+use faer::MatRef;
 
 use super::layout::{check, symmetric_rigid, unfolded_rigid};
-use super::storage::Storage;
 use crate::AnalysisError;
 use crate::edge::EdgeLaw;
 use crate::influence::{Influence, Products};
 use crate::loading::Loading;
 use crate::rigid::Rigid;
+use crate::storage::Storage;
 
 /// A discrete contact problem: points, influence matrix, separations, loading.
 #[derive(Debug, Clone)]
@@ -138,20 +138,24 @@ impl ContactProblem {
     /// The restricted solve `S_JJ X = R` on the contact set J (`contact`,
     /// point indices) for the right-hand sides R (`rhs`, `|J|` rows): the
     /// derivative of the contact forces while J holds (a design's
-    /// sensitivities). Dense by a Cholesky factor of `S_JJ`, matrix-free by
-    /// conjugate gradients on the products; X in force per unit of R's
-    /// length.
+    /// sensitivities). Solved and certified by the engine
+    /// (`elcon_lcp::LinearSystem`, with `options`' tolerance): dense by a
+    /// Cholesky factor of `S_JJ`, matrix-free by the conjugate gradient on
+    /// the products; X in force per unit of R's length, with its residual
+    /// and the engine's log of attempts.
     ///
     /// # Errors
     /// [`AnalysisError::Incompatible`] for a folded problem (its unknowns
     /// are orbits, not points), an index out of range or `rhs` of another
     /// height; [`AnalysisError::Influence`] when a matrix-free problem's
-    /// workspace cannot be allocated.
+    /// workspace cannot be allocated; [`AnalysisError::Engine`] when the
+    /// solve breaks down, reaches its iteration limit or is not certified.
     pub fn restricted_solve(
         &self,
         contact: &[usize],
         rhs: MatRef<'_, f64>,
-    ) -> Result<Mat<f64>, AnalysisError> {
+        options: &Options,
+    ) -> Result<LinearSolution, AnalysisError> {
         if let Some(f) = &self.folding {
             return Err(AnalysisError::Incompatible {
                 field: "contact",
@@ -176,7 +180,7 @@ impl ContactProblem {
                 reason: format!("point {k} is out of range (the problem has {n} points)"),
             });
         }
-        self.influence.restricted_solve(contact, rhs)
+        self.influence.restricted_solve(contact, rhs, options)
     }
 
     /// The initial separations eps (length).

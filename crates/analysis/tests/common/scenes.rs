@@ -1,5 +1,7 @@
 //! Contact problems that several tests build: two spheres on Love patches
-//! and a rigid flat punch. Declared by stability_cases.rs (which
+//! and a rigid flat punch; and the data of Conry & Seireg's Example 1, which
+//! tests/cli.rs and the benches and examples of the root package include
+//! too (by `#[path]`). Declared by stability_cases.rs (which
 //! examples/stability_report.rs includes on its own), re-exported as
 //! `common::scenes`.
 
@@ -63,4 +65,31 @@ pub fn flat_punch(
     .expect("punch problem");
     let punch = FlatPunch::new(material.plane_strain_modulus(), radius).expect("punch");
     (problem, punch)
+}
+
+/// Conry & Seireg's Example 1: steel (E = 30e6 psi, nu = 0.3) on both sides.
+pub fn example1_steel() -> Material {
+    Material::new(30e6, 0.3).expect("steel")
+}
+
+/// Example 1's Hertz contact: steel spheres of radii 1 in and 10 in under
+/// 100 lb.
+pub fn example1_hertz() -> HertzSpheres {
+    let steel = example1_steel();
+    HertzSpheres::new(
+        combined_modulus(&steel, &steel),
+        combined_radius(1.0, 10.0),
+        100.0,
+    )
+    .expect("Hertz")
+}
+
+/// Example 1's bodies on Love patches, and its surfaces: spheres of radii
+/// 1 in and 10 in.
+pub fn example1_bodies() -> (Body, Geometry) {
+    let geometry = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    (Body::uniform_patch(example1_steel()), geometry)
 }

@@ -13,9 +13,11 @@
 #[path = "scenes.rs"]
 pub mod scenes;
 
-use elcon_analysis::references::{FlatPunch, HertzSpheres, HetenyiBeam, combined_radius};
+use elcon_analysis::references::{
+    BeamOnFoundation, FlatPunch, HertzSpheres, HetenyiBeam, combined_radius,
+};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 /// What a case's answer is compared with.
 #[derive(Debug, Clone, Copy)]
@@ -225,14 +227,27 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
         let points = PointSet::line(-0.5 * length, 0.5 * length, n).expect("line");
         let problem = ContactProblem::new(
             points,
-            &Body::beam(ei, 1.0, 0.0),
+            &Body::beam(Beam {
+                youngs_modulus: ei,
+                second_moment: 1.0,
+                loaded_point: 0.0,
+            })
+            .unwrap(),
             &Body::winkler(k),
             &Geometry::Separation(vec![0.0; n]),
             Loading::load(1e4),
         )
         .expect("beam problem");
         let reference = if lambda_l < std::f64::consts::PI {
-            Reference::Hetenyi(HetenyiBeam::new(ei, k, length, 1e4).expect("Hetenyi"))
+            Reference::Hetenyi(
+                HetenyiBeam::new(BeamOnFoundation {
+                    flexural_rigidity: ei,
+                    foundation_modulus: k,
+                    length,
+                    load: 1e4,
+                })
+                .expect("Hetenyi"),
+            )
         } else {
             Reference::None
         };
@@ -293,7 +308,12 @@ fn eccentric_and_tilted(cases: &mut Vec<Case>, across: usize) {
         let points = PointSet::line(-0.5 * length, 0.5 * length, n).expect("line");
         let problem = ContactProblem::new(
             points,
-            &Body::beam(ei, 1.0, 0.3 * length),
+            &Body::beam(Beam {
+                youngs_modulus: ei,
+                second_moment: 1.0,
+                loaded_point: 0.3 * length,
+            })
+            .unwrap(),
             &Body::winkler(k),
             &Geometry::Separation(vec![0.0; n]),
             Loading::load(1e4),

@@ -35,24 +35,19 @@ use faer::{Col, ColMut, ColRef, Mat, MatRef, Side};
 
 use crate::LcpError;
 use crate::linalg;
-use crate::methods::{Answer, Attempted, Failure, NotApplicable};
-use crate::operator::Operator;
+use crate::methods::{Answer, Attempted, Failure, LinearAnswer, LinearAttempted, NotApplicable};
+use crate::operator::{Operator, OperatorLcp};
 use crate::options::Options;
-use crate::problem::Problem;
+use crate::problem::{Bordered, Problem};
 use crate::statistics::{Breakdown, Work};
 use crate::tolerance::{
     ARMIJO, EQUALITY_CORRECTIONS, ITERATIVE_STOP, RESTORE_STEPS, RIDGE, ROUNDING_FLOOR,
     ROWS_RESTORED, ROWS_STALLED, STALL_WINDOW, STALLED_STOP,
 };
 
-/// A bordered LCP as the method reads it: `M` by its products.
-#[derive(Clone, Copy)]
-pub(crate) struct Form<'a> {
-    pub operator: &'a dyn Operator,
-    pub q: ColRef<'a, f64>,
-    pub border: MatRef<'a, f64>,
-    pub resultant: ColRef<'a, f64>,
-}
+/// A bordered LCP as the method reads it: `M` by its products (a dense
+/// problem's `M` as the operator of its products).
+type Form<'a> = OperatorLcp<'a>;
 
 /// The method applies to a dense problem with a border (or none) and a
 /// symmetric `M` with a positive diagonal.
@@ -67,8 +62,8 @@ pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotAppli
             "M must be symmetric with a positive diagonal (positive definite); use Lemke's method",
         ));
     }
-    Ok(Form {
-        operator: &problem.mixed.m,
+    Ok(Bordered {
+        m: &problem.mixed.m,
         q: problem.mixed.q,
         border: border.columns,
         resultant: border.resultant,
@@ -111,27 +106,13 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
         z,
     };
     let cap = options.iteration_cap();
-    let target = ITERATIVE_STOP * options.tolerances.certificate;
-    let (mut checkpoint, mut stalled) = (f64::INFINITY, false);
-    // The rounding floor of sums of n terms (a few eps sqrt(n)): only there
-    // is a stall the arithmetic's, not a slow convergence.
-    let floor = ROUNDING_FLOOR * f64::EPSILON * (n as f64).sqrt();
+    let mut progress = Progress::new(options.tolerances.certificate, n);
     loop {
         if let Err(b) = residual(form, &mut state) {
             return Err(Failure::new(b, work));
         }
         let c = converged(form, &state);
-        // At the rounding floor of very large sums the residuals creep
-        // down for hundreds of iterations: below the stalled target and
-        // no longer halving over a window, the iterate is as good as the
-        // arithmetic allows.
-        if work.iterations % STALL_WINDOW == 0 {
-            stalled = c <= STALLED_STOP * options.tolerances.certificate
-                && c <= floor
-                && c > 0.5 * checkpoint;
-            checkpoint = c;
-        }
-        if c <= target || stalled || work.iterations >= cap {
+        if progress.done(work.iterations, c) || work.iterations >= cap {
             // The answer copies z: free the other vectors first.
             let State {
                 z, lambda, w, t, ..
@@ -185,7 +166,7 @@ fn start(form: &Form<'_>, options: &Options) -> Result<Option<Vec<f64>>, Breakdo
             let mut e = vec![0.0; n];
             let mut column = vec![0.0; n];
             e[j] = 1.0;
-            form.operator.apply(&e, &mut column);
+            form.m.apply(&e, &mut column);
             let d = column[j];
             if !(d > 0.0 && d.is_finite()) {
                 return Err(Breakdown::NotPositiveDefinite);
@@ -208,7 +189,7 @@ fn start(form: &Form<'_>, options: &Options) -> Result<Option<Vec<f64>>, Breakdo
 /// `g = M z + q`, `λ` fitted on the contact set, `w = g - B λ` (`g` held
 /// in `w` until `λ` is known).
 fn residual(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
-    form.operator.apply(&s.z, &mut s.w);
+    form.m.apply(&s.z, &mut s.w);
     for (g, q) in s.w.iter_mut().zip(form.q.iter()) {
         *g += q;
     }
@@ -276,10 +257,7 @@ fn step(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
     let n = s.z.len();
     // The contact set J = {z_i > 0}: read from z, which the loops below
     // change only at the entry they are visiting.
-    let g_now: f64 = (0..n)
-        .filter(|&i| s.z[i] > 0.0)
-        .map(|i| s.w[i] * s.w[i])
-        .sum();
+    let g_now = dot_on(|i| s.z[i] > 0.0, &s.w, &s.w);
     let beta = if s.restart || s.g_old == 0.0 {
         0.0
     } else {
@@ -298,20 +276,9 @@ fn step(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
             }
         }
     }
-    form.operator.apply(&s.t, &mut s.w);
-    let product = &s.w;
-    let den: f64 = (0..n)
-        .filter(|&i| s.z[i] > 0.0)
-        .map(|i| product[i] * s.t[i])
-        .sum();
-    if !(den > 0.0) && num != 0.0 {
-        return Err(if den.is_finite() {
-            Breakdown::NotPositiveDefinite
-        } else {
-            Breakdown::NonFinite
-        });
-    }
-    let tau = if num == 0.0 { 0.0 } else { num / den };
+    form.m.apply(&s.t, &mut s.w);
+    let den = dot_on(|i| s.z[i] > 0.0, &s.w, &s.t);
+    let tau = step_length(num, den)?;
     s.g_old = g_now;
     let mut entered = false;
     for i in 0..n {
@@ -328,6 +295,213 @@ fn step(form: &Form<'_>, s: &mut State) -> Result<(), Breakdown> {
     }
     s.restart = entered;
     Ok(())
+}
+
+/// Solves the linear system `M X = R` for an `M` given by its products:
+/// the plain conjugate gradient, one right-hand side after the other (the
+/// iteration of the module documentation with every index in `J`, no
+/// clipping and no rows). The same checks as the constrained method's:
+/// `p · M p <= 0` breaks down ([`Breakdown::NotPositiveDefinite`]), as
+/// does a value that is not finite; a column stops by [`Progress`] on its
+/// residual relative to the data's scale, confirmed from a true product
+/// (the recursion's residual drifts from it: where it has, the iteration
+/// restarts from the true one). The iteration cap is
+/// [`LcpError::IterationLimit`], never an unconverged answer.
+pub(crate) fn attempt_linear(
+    operator: &dyn Operator,
+    rhs: MatRef<'_, f64>,
+    options: &Options,
+) -> LinearAttempted {
+    let (n, columns) = (rhs.nrows(), rhs.ncols());
+    let mut work = Work::default();
+    let allocated =
+        |what| linalg::try_zeros(n, what).map_err(|e| Failure::error(e.into(), Work::default()));
+    let mut vectors = Vectors {
+        b: allocated("the conjugate gradient's right-hand side")?,
+        r: allocated("the conjugate gradient's residual")?,
+        p: allocated("the conjugate gradient's direction")?,
+        q: allocated("the conjugate gradient's product")?,
+    };
+    let mut x = linalg::try_mat(n, columns, "the solution", |_, _| 0.0)
+        .map_err(|e| Failure::error(e.into(), work))?;
+    for c in 0..columns {
+        vectors
+            .b
+            .iter_mut()
+            .zip(rhs.col(c).iter())
+            .for_each(|(b, &v)| *b = v);
+        let x_c = x
+            .col_mut(c)
+            .try_as_col_major_mut()
+            .expect("an owned matrix's column is contiguous")
+            .as_slice_mut();
+        solve_column(operator, c, &mut vectors, x_c, options, &mut work)
+            .map_err(|b| Failure::new(b, work))?;
+    }
+    Ok(LinearAnswer { x, work })
+}
+
+/// The vectors of a linear system's conjugate gradient (four of n, used
+/// again for every right-hand side): the right-hand side `b`, the residual
+/// `r`, the direction `p` and the product `q = M p`.
+struct Vectors {
+    b: Vec<f64>,
+    r: Vec<f64>,
+    p: Vec<f64>,
+    q: Vec<f64>,
+}
+
+/// Solves `M x = b` for the right-hand side `column` (`x` zero at the
+/// start) by the conjugate gradient (see [`attempt_linear`]).
+fn solve_column(
+    operator: &dyn Operator,
+    column: usize,
+    v: &mut Vectors,
+    x: &mut [f64],
+    options: &Options,
+    work: &mut Work,
+) -> Result<(), Breakdown> {
+    let Vectors { b, r, p, q } = v;
+    let n = x.len();
+    let every = |_: usize| true;
+    r.copy_from_slice(b);
+    p.copy_from_slice(r);
+    let mut rr = dot_on(every, r, r);
+    let (cap, mut iterations) = (options.iteration_cap(), 0);
+    let mut progress = Progress::new(options.tolerances.certificate, n);
+    loop {
+        let mut c = relative(b, r);
+        if progress.done(iterations, c) {
+            // The true residual r = b - M x decides.
+            operator.apply(x, q);
+            r.iter_mut()
+                .zip(b.iter().zip(q.iter()))
+                .for_each(|(r, (b, product))| *r = b - product);
+            if r.iter().any(|v| !v.is_finite()) {
+                return Err(Breakdown::NonFinite);
+            }
+            c = relative(b, r);
+            if progress.accepts(c) {
+                return Ok(());
+            }
+            rr = dot_on(every, r, r);
+            p.copy_from_slice(r);
+            progress.restart();
+        }
+        if iterations >= cap {
+            let error = LcpError::IterationLimit {
+                size: n,
+                column,
+                limit: cap,
+                residual: c,
+            };
+            return Err(Breakdown::Error(Box::new(error)));
+        }
+        iterations += 1;
+        work.iterations += 1;
+        operator.apply(p, q);
+        let alpha = step_length(rr, dot_on(every, p, q))?;
+        for i in 0..n {
+            x[i] += alpha * p[i];
+            r[i] -= alpha * q[i];
+        }
+        let next = dot_on(every, r, r);
+        if !next.is_finite() {
+            return Err(Breakdown::NonFinite);
+        }
+        let beta = next / rr;
+        p.iter_mut()
+            .zip(r.iter())
+            .for_each(|(p, r)| *p = r + beta * *p);
+        rr = next;
+    }
+}
+
+/// The residual `r` of `M x = b` relative to its terms' scale,
+/// `‖r‖∞ / max_i (|(M x)_i| + |b_i|)`, with `M x` read as `b - r` (a
+/// stricter scale than the certificate's `|M| |x| + |b|`, as
+/// [`converged`]'s); 0 when both are 0.
+fn relative(b: &[f64], r: &[f64]) -> f64 {
+    let (mut worst, mut scale) = (0.0f64, 0.0f64);
+    for (&b, &r) in b.iter().zip(r) {
+        worst = worst.max(r.abs());
+        scale = scale.max((b - r).abs() + b.abs());
+    }
+    if scale > 0.0 { worst / scale } else { 0.0 }
+}
+
+/// When a conjugate gradient stops: its residual `c` (relative to the
+/// data's scale) at most [`ITERATIVE_STOP`] times the certificate's
+/// tolerance, or stalled: at most [`STALLED_STOP`] times the tolerance,
+/// below the rounding floor of sums of n terms, and not halved over the
+/// last [`STALL_WINDOW`] iterations (at the rounding floor of very large
+/// sums the residuals creep down for hundreds of iterations: the iterate
+/// is then as good as the arithmetic allows).
+struct Progress {
+    target: f64,
+    stalled_target: f64,
+    /// `ROUNDING_FLOOR eps sqrt(n)`: only there is a stall the
+    /// arithmetic's, not a slow convergence.
+    floor: f64,
+    /// The residual at the start of the current window.
+    checkpoint: f64,
+    stalled: bool,
+}
+
+impl Progress {
+    fn new(tolerance: f64, n: usize) -> Self {
+        Self {
+            target: ITERATIVE_STOP * tolerance,
+            stalled_target: STALLED_STOP * tolerance,
+            floor: ROUNDING_FLOOR * f64::EPSILON * (n as f64).sqrt(),
+            checkpoint: f64::INFINITY,
+            stalled: false,
+        }
+    }
+
+    /// Whether the iterate of `iteration` (counted from 0), of residual
+    /// `c`, is done: converged, or stalled (judged every window).
+    fn done(&mut self, iteration: usize, c: f64) -> bool {
+        if iteration.is_multiple_of(STALL_WINDOW) {
+            self.stalled = c <= self.stalled_target && c <= self.floor && c > 0.5 * self.checkpoint;
+            self.checkpoint = c;
+        }
+        c <= self.target || self.stalled
+    }
+
+    /// Whether a done iterate's residual `c`, recomputed from a true
+    /// product, is accepted: at the target, or after a stall at the
+    /// stalled target.
+    fn accepts(&self, c: f64) -> bool {
+        c <= self.target || (self.stalled && c <= self.stalled_target)
+    }
+
+    /// Judges afresh: the iteration restarted from a true residual.
+    fn restart(&mut self) {
+        self.checkpoint = f64::INFINITY;
+        self.stalled = false;
+    }
+}
+
+/// `Σ_{i in J} a_i b_i` over the indices `J` that `on` selects (the
+/// contact set, or every index), summed in order.
+fn dot_on(on: impl Fn(usize) -> bool, a: &[f64], b: &[f64]) -> f64 {
+    (0..a.len()).filter(|&i| on(i)).map(|i| a[i] * b[i]).sum()
+}
+
+/// The step `num / den` along a direction `p` with `den = p · M p` (on the
+/// contact set): a breakdown where `den` is not positive (`M` is not
+/// positive definite along `p`) or not finite, unless there is nothing to
+/// step (`num = 0`).
+fn step_length(num: f64, den: f64) -> Result<f64, Breakdown> {
+    if !(den > 0.0) && num != 0.0 {
+        return Err(if den.is_finite() {
+            Breakdown::NotPositiveDefinite
+        } else {
+            Breakdown::NonFinite
+        });
+    }
+    Ok(if num == 0.0 { 0.0 } else { num / den })
 }
 
 /// Restores `B^T z = b` (step 4 of the module documentation): for one row
@@ -549,4 +723,36 @@ fn fit_regularized(
     let nu = gram.llt(Side::Lower).ok()?.solve(rhs.to_owned());
     let finite = nu.iter().all(|v| v.is_finite());
     finite.then_some(nu)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_needs_a_positive_curvature() {
+        assert_eq!(step_length(2.0, 4.0), Ok(0.5));
+        assert_eq!(step_length(0.0, -1.0), Ok(0.0));
+        assert_eq!(step_length(1.0, 0.0), Err(Breakdown::NotPositiveDefinite));
+        assert_eq!(step_length(1.0, -3.0), Err(Breakdown::NotPositiveDefinite));
+        assert_eq!(step_length(1.0, f64::NAN), Err(Breakdown::NonFinite));
+    }
+
+    #[test]
+    fn progress_stops_at_the_target_or_at_a_stall_on_the_rounding_floor() {
+        let mut p = Progress::new(1e-12, 100);
+        assert!(!p.done(0, 1e-3));
+        assert!(p.done(1, 0.25e-12));
+        // A million terms: a rounding floor (8 eps sqrt(n) = 1.8e-12) above
+        // the stalled target (7.5e-13). Below that and not halved over a
+        // window: a stall, whose residual is accepted up to the stalled
+        // target.
+        let mut p = Progress::new(1e-12, 1_000_000);
+        assert!(!p.done(0, 6e-13));
+        assert!(!p.accepts(5e-13));
+        assert!(p.done(STALL_WINDOW, 5e-13));
+        assert!(p.accepts(7e-13) && !p.accepts(8e-13));
+        p.restart();
+        assert!(!p.accepts(7e-13));
+    }
 }

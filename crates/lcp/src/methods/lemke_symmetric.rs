@@ -181,6 +181,25 @@ fn larger(a: f64, v: f64) -> f64 {
     if v > a { v } else { a }
 }
 
+/// The step at which a value `x` moving at rate `r` reaches zero: 0 at or
+/// below its zero level, infinite when it does not fall (faster than the
+/// rates' zero level). `zero` holds the zero tests' levels of values and of
+/// rates, on and off the active set (`joined`): `[zscale, wscale, zrates,
+/// wrates]` times the zero tolerance.
+#[inline(always)]
+fn reach(x: f64, r: f64, joined: bool, zero: &[f64; 4]) -> f64 {
+    let (level, falls) = if joined {
+        (zero[0], -zero[2])
+    } else {
+        (zero[1], -zero[3])
+    };
+    if r < falls {
+        if x <= level { 0.0 } else { x / -r }
+    } else {
+        f64::INFINITY
+    }
+}
+
 impl Walk {
     fn new(start: Start, stop: Stop, opts: &Options) -> Self {
         let Start {
@@ -362,8 +381,7 @@ impl Walk {
             zrates = larger(zrates, on);
             wrates = larger(wrates, off);
         }
-        let [zscale, wscale, zrates, wrates] =
-            [zscale, wscale, zrates, wrates].map(|v| self.tol.zero * v);
+        let zero = [zscale, wscale, zrates, wrates].map(|v| self.tol.zero * v);
         let (mut step, mut value, mut slope) = (f64::INFINITY, 0.0, 0.0);
         for i in 0..n {
             let joined = path.into[i];
@@ -374,18 +392,9 @@ impl Walk {
                 value += self.weight[i] * xi;
                 slope += self.weight[i] * ri;
             }
-            let (zero, falls) = if joined {
-                (zscale, -zrates)
-            } else {
-                (wscale, -wrates)
-            };
-            self.reach[i] = if ri < falls {
-                let s = if xi <= zero { 0.0 } else { xi / -ri };
-                step = if s < step { s } else { step };
-                s
-            } else {
-                f64::INFINITY
-            };
+            let s = reach(xi, ri, joined, &zero);
+            self.reach[i] = s;
+            step = if s < step { s } else { step };
         }
         let to_stop = match self.stop {
             Stop::Parameter => -alpha,
@@ -485,22 +494,12 @@ impl Walk {
     /// Each falling value's step to zero along the step's direction (0 at
     /// the zero level) into `reach`; returns the least.
     fn steps(&mut self) -> f64 {
-        let [zscale, wscale, zrates, wrates] = self.scales.map(|v| self.tol.zero * v);
+        let zero = self.scales.map(|v| self.tol.zero * v);
         let mut least = f64::INFINITY;
         for i in 0..self.n() {
-            let (xi, ri) = (self.value[i], self.rate[i]);
-            let (zero, falls) = if self.path.into[i] {
-                (zscale, -zrates)
-            } else {
-                (wscale, -wrates)
-            };
-            self.reach[i] = if ri < falls {
-                let s = if xi <= zero { 0.0 } else { xi / -ri };
-                least = if s < least { s } else { least };
-                s
-            } else {
-                f64::INFINITY
-            };
+            let s = reach(self.value[i], self.rate[i], self.path.into[i], &zero);
+            self.reach[i] = s;
+            least = if s < least { s } else { least };
         }
         least
     }

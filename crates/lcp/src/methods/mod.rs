@@ -16,18 +16,24 @@
 //!   constraints);
 //! - [`block`]: block principal pivoting on Cholesky factors of active blocks;
 //! - [`conjugate_gradient`]: the constrained conjugate gradient (products
-//!   `M x` only: dense problems and matrix-free ones alike).
+//!   `M x` only: dense problems and matrix-free ones alike), and the plain
+//!   one of a linear system given by its products;
+//! - [`cholesky`]: a linear system's Cholesky factorization;
+//! - [`lu`]: a linear system's LU factorization.
 
 pub(crate) mod block;
+pub(crate) mod cholesky;
 pub(crate) mod conjugate_gradient;
 pub(crate) mod lemke_general;
 pub(crate) mod lemke_symmetric;
+pub(crate) mod lu;
 pub(crate) mod restricted_general;
 pub(crate) mod restricted_symmetric;
 
-use faer::Col;
+use faer::{Col, Mat, MatRef};
 
 use crate::LcpError;
+use crate::linalg::try_mat;
 use crate::options::Options;
 use crate::problem::Problem;
 use crate::statistics::{Breakdown, Work};
@@ -71,6 +77,29 @@ impl Failure {
 
 /// What an attempt returns.
 pub(crate) type Attempted = Result<Answer, Failure>;
+
+/// A linear system's answer before certification: `X` and the counts.
+#[derive(Debug, Clone)]
+pub(crate) struct LinearAnswer {
+    /// `X` (n x m).
+    pub x: Mat<f64>,
+    /// The attempt's counts.
+    pub work: Work,
+}
+
+/// What an attempt on a linear system returns.
+pub(crate) type LinearAttempted = Result<LinearAnswer, Failure>;
+
+/// A copy of `a` to factor or solve in place (named `what` when it cannot
+/// be allocated, after `work`).
+pub(crate) fn copied(
+    a: MatRef<'_, f64>,
+    what: &'static str,
+    work: Work,
+) -> Result<Mat<f64>, Failure> {
+    try_mat(a.nrows(), a.ncols(), what, |i, j| a[(i, j)])
+        .map_err(|e| Failure::error(e.into(), work))
+}
 
 /// Why a method does not apply to a problem (the user's error when the
 /// method or the tableau was asked for explicitly).

@@ -2,7 +2,7 @@
 //! takes, checked against their physical ranges, into an elcon-influence
 //! [`Body`] (and the material the references need).
 
-use elcon_influence::{Body, Material};
+use elcon_influence::{Beam, Body, Material};
 use toml::Spanned;
 
 use crate::ctx::Ctx;
@@ -166,7 +166,17 @@ pub(super) fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpe
                 Some(v) => ctx.finite(v, &field("loaded_point"))?,
                 None => 0.0,
             };
-            (Body::beam(e, i, x0), None)
+            let beam = Beam {
+                youngs_modulus: e,
+                second_moment: i,
+                loaded_point: x0,
+            };
+            // E, I (or w and d) and x0 are checked above; what is left is I or
+            // E I overflowing or underflowing, which the error names.
+            let body = Body::beam(beam).map_err(|err| {
+                ctx.invalid(section_span, field("second_moment"), i, err.to_string())
+            })?;
+            (body, None)
         }
     };
     Ok(BodySpec {

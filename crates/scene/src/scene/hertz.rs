@@ -2,7 +2,9 @@
 //! (point or line contact, from the layout, the bodies and the surfaces),
 //! a flat punch, a beam on a Winkler foundation.
 
-use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam};
+use elcon_analysis::references::{
+    BeamOnFoundation, FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam,
+};
 use elcon_analysis::{Geometry, Loading, Normal, Surface};
 use elcon_influence::{PointSet, combined_modulus_of};
 
@@ -205,9 +207,14 @@ pub(super) fn reference(
             let centred = (x0? - 0.5 * (lo + hi)).abs() <= 1e-9 * length;
             centred
                 .then(|| {
-                    HetenyiBeam::new(ei?, k?, length, p)
-                        .ok()
-                        .map(Reference::Hetenyi)
+                    HetenyiBeam::new(BeamOnFoundation {
+                        flexural_rigidity: ei?,
+                        foundation_modulus: k?,
+                        length,
+                        load: p,
+                    })
+                    .ok()
+                    .map(Reference::Hetenyi)
                 })
                 .flatten()
         }

@@ -1,22 +1,19 @@
-//! Candidate contact points and the measure each one stands for.
-//!
-//! The possible contact zone is covered by N cells, one per candidate point
-//! k, centred on it. A continuous pressure p is replaced by the forces
+//! The point set: the validated constructors (a line, a disk or a rectangle
+//! of lattice cells, or points as given), and what a set answers about its
+//! points. A grid stores no coordinates but its lattice runs and a rule per
+//! axis, `x_k = x(i_k)`, `y_k = y(j_k)`, with
 //!
 //! ```text
-//!     F_k = p_k A_k,      A_k = dx dy (Surface, area)   or   A_k = dx (Line, length per unit width)
+//!     x(i) = i h   (node-centred)   or   x(i) = mid + (2 i + 1 - n) h / 2   (n cells centred on mid)
 //! ```
-//!
-//! so that `sum_k F_k` is the total load (per unit width for a line). All the
-//! cells of one set have the same shape ([`Cell`]). The grid constructors
-//! also record the integer lattice indices of the points, which lets the
-//! assembly evaluate a translation-invariant kernel once per lattice offset.
 
-use crate::error::InfluenceError;
 use std::borrow::Cow;
-use std::collections::HashMap;
 
-pub use crate::dimension::Dimension;
+use super::boundary::{boundary_by_cells, lattice_boundary};
+use super::cell::Cell;
+use super::lattice::{Lattice, LatticeIndex, Run};
+use crate::dimension::Dimension;
+use crate::error::InfluenceError;
 
 /// The largest number of points a set may hold (about 4.2 million: a
 /// lattice operator's FFT grid of that many points takes about 1 GB). The
@@ -33,36 +30,8 @@ pub const MAX_DENSE_POINTS: usize = 1 << 16;
 /// radius of exactly m spacings keeps the boundary points despite rounding.
 const DISK_RADIUS_TOLERANCE: f64 = 1e-9;
 
-/// The rectangular cell every point of a set stands for, centred on the
-/// point: `dx` along x, `dy` along y (length units).
-///
-/// For a [`Dimension::Line`] set `dy` is the unit width and is stored as 1.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Cell {
-    /// Cell size along x (length).
-    pub dx: f64,
-    /// Cell size along y (length); 1 (unit width) for a line set.
-    pub dy: f64,
-}
-
-impl Cell {
-    /// A square cell of side `h`.
-    pub fn square(h: f64) -> Self {
-        Self { dx: h, dy: h }
-    }
-
-    /// The measure A_k of the cell: the area `dx dy` (Surface) or the length
-    /// `dx` (Line, per unit width).
-    pub fn measure(&self, dimension: Dimension) -> f64 {
-        match dimension {
-            Dimension::Line => self.dx,
-            Dimension::Surface => self.dx * self.dy,
-        }
-    }
-}
-
 /// A set of candidate contact points, each the centre of a cell of the same
-/// shape; see the [module documentation](self).
+/// shape; see the [module documentation](super).
 ///
 /// Built only by the validated constructors, so a `PointSet` is never empty,
 /// holds finite distinct coordinates and at most [`MAX_POINTS`] points.
@@ -120,136 +89,6 @@ impl AxisRule {
         }
     }
 }
-
-/// Points `start..` (up to the next run's start) of a grid at the lattice
-/// indices `first + t step`, t = 0, 1, ...
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Run {
-    start: usize,
-    first: (i64, i64),
-    step: (i64, i64),
-}
-
-impl Run {
-    fn at(&self, k: usize) -> (i64, i64) {
-        let t = (k - self.start) as i64;
-        (
-            self.first.0 + t * self.step.0,
-            self.first.1 + t * self.step.1,
-        )
-    }
-
-    /// The point of this run of `count` points at `(i, j)`, if any (a
-    /// grid's steps: (0, 1) or (1, 0)).
-    fn find(&self, (i, j): (i64, i64), count: usize) -> Option<usize> {
-        let ((along, across), (first_along, first_across)) = if self.step == (0, 1) {
-            ((j, i), (self.first.1, self.first.0))
-        } else {
-            ((i, j), self.first)
-        };
-        if across != first_across {
-            return None;
-        }
-        let t = usize::try_from(along.checked_sub(first_along)?).ok()?;
-        (t < count).then_some(self.start + t)
-    }
-}
-
-/// The lattice indices `(i, j)` of a set's points ([`PointSet::lattice`]):
-/// listed, or computed from a grid's runs.
-#[derive(Debug, Clone, Copy)]
-pub struct Lattice<'a>(LatticeRef<'a>);
-
-#[derive(Debug, Clone, Copy)]
-enum LatticeRef<'a> {
-    Listed(&'a [(i64, i64)]),
-    Runs { runs: &'a [Run], len: usize },
-}
-
-impl<'a> Lattice<'a> {
-    /// The number of points.
-    pub fn len(&self) -> usize {
-        match self.0 {
-            LatticeRef::Listed(l) => l.len(),
-            LatticeRef::Runs { len, .. } => len,
-        }
-    }
-
-    /// Always false: a point set holds at least one point.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// The lattice indices of point `k`. Panics if `k >= len()`.
-    pub fn get(&self, k: usize) -> (i64, i64) {
-        match self.0 {
-            LatticeRef::Listed(l) => l[k],
-            LatticeRef::Runs { runs, len } => {
-                assert!(k < len, "point {k} of {len}");
-                runs[runs.partition_point(|r| r.start <= k) - 1].at(k)
-            }
-        }
-    }
-
-    /// The lattice indices of the points, in order, as a vector.
-    pub fn to_vec(&self) -> Vec<(i64, i64)> {
-        self.iter().collect()
-    }
-
-    /// The lattice indices of the points, in order.
-    pub fn iter(&self) -> LatticeIter<'a> {
-        LatticeIter {
-            lattice: *self,
-            next: 0,
-            run: 0,
-        }
-    }
-}
-
-impl<'a> IntoIterator for Lattice<'a> {
-    type Item = (i64, i64);
-    type IntoIter = LatticeIter<'a>;
-
-    fn into_iter(self) -> LatticeIter<'a> {
-        self.iter()
-    }
-}
-
-/// The iterator of [`Lattice::iter`].
-#[derive(Debug, Clone)]
-pub struct LatticeIter<'a> {
-    lattice: Lattice<'a>,
-    next: usize,
-    run: usize,
-}
-
-impl Iterator for LatticeIter<'_> {
-    type Item = (i64, i64);
-
-    fn next(&mut self) -> Option<(i64, i64)> {
-        let k = self.next;
-        if k >= self.lattice.len() {
-            return None;
-        }
-        self.next += 1;
-        Some(match self.lattice.0 {
-            LatticeRef::Listed(l) => l[k],
-            LatticeRef::Runs { runs, .. } => {
-                while self.run + 1 < runs.len() && runs[self.run + 1].start <= k {
-                    self.run += 1;
-                }
-                runs[self.run].at(k)
-            }
-        })
-    }
-
-    fn size_hint(&self) -> (usize, Option<usize>) {
-        let left = self.lattice.len() - self.next;
-        (left, Some(left))
-    }
-}
-
-impl ExactSizeIterator for LatticeIter<'_> {}
 
 impl PartialEq for PointSet {
     /// The same points (coordinates, boundary flags, lattice indices
@@ -511,7 +350,7 @@ impl PointSet {
         let cell = Cell { dx, dy };
         let lattice = detect_lattice(&xs, &ys, cell);
         let boundary = match &lattice {
-            Some(l) => lattice_boundary(dimension, Lattice(LatticeRef::Listed(l))),
+            Some(l) => lattice_boundary(dimension, Lattice::listed(l)),
             None => boundary_by_cells(dimension, cell, &xs, &ys),
         };
         Ok(Self {
@@ -532,7 +371,7 @@ impl PointSet {
         runs: Vec<Run>,
         len: usize,
     ) -> Self {
-        let boundary = lattice_boundary(dimension, Lattice(LatticeRef::Runs { runs: &runs, len }));
+        let boundary = lattice_boundary(dimension, Lattice::of_runs(&runs, len));
         Self {
             dimension,
             cell,
@@ -651,10 +490,8 @@ impl PointSet {
     /// sets it when it detects a lattice.
     pub fn lattice(&self) -> Option<Lattice<'_>> {
         match &self.layout {
-            Layout::Listed { lattice, .. } => {
-                lattice.as_deref().map(|l| Lattice(LatticeRef::Listed(l)))
-            }
-            Layout::Grid { runs, len, .. } => Some(Lattice(LatticeRef::Runs { runs, len: *len })),
+            Layout::Listed { lattice, .. } => lattice.as_deref().map(Lattice::listed),
+            Layout::Grid { runs, len, .. } => Some(Lattice::of_runs(runs, *len)),
         }
     }
 
@@ -693,162 +530,6 @@ impl PointSet {
     }
 }
 
-/// A table may hold at most this many entries per point before the direct
-/// path is cheaper (a sparse set on a fine lattice).
-pub(crate) const TABLE_ENTRIES_PER_POINT: usize = 4;
-
-/// The bounding box of a set's lattice indices: `ni x nj` lattice cells
-/// from `(i_min, j_min)`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct LatticeBox {
-    pub(crate) i_min: i64,
-    pub(crate) j_min: i64,
-    pub(crate) ni: usize,
-    pub(crate) nj: usize,
-}
-
-impl LatticeBox {
-    /// The box of the set's lattice, or `None` without a lattice (or for a
-    /// box whose side does not fit a usize).
-    pub(crate) fn of(points: &PointSet) -> Option<Self> {
-        Self::of_lattice(points.lattice()?)
-    }
-
-    /// The box of lattice indices (`None` for none, or a side that does
-    /// not fit a usize).
-    pub(crate) fn of_lattice(lattice: Lattice<'_>) -> Option<Self> {
-        let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
-        for (i, j) in lattice.iter() {
-            i_min = i_min.min(i);
-            i_max = i_max.max(i);
-            j_min = j_min.min(j);
-            j_max = j_max.max(j);
-        }
-        let side = |lo: i64, hi: i64| usize::try_from(i128::from(hi) - i128::from(lo) + 1).ok();
-        Some(Self {
-            i_min,
-            j_min,
-            ni: side(i_min, i_max)?,
-            nj: side(j_min, j_max)?,
-        })
-    }
-
-    /// The number of lattice cells in the box, `ni nj` (saturating).
-    pub(crate) fn cells(&self) -> usize {
-        self.ni.saturating_mul(self.nj)
-    }
-
-    /// The most cells a box may hold for `n` points before a table (or a
-    /// padded grid) over it costs more than the points themselves:
-    /// [`TABLE_ENTRIES_PER_POINT`] per point, plus 64 for tiny sets.
-    pub(crate) const fn cell_limit(n: usize) -> usize {
-        TABLE_ENTRIES_PER_POINT * n + 64
-    }
-
-    /// Whether the box is small enough for `n` points ([`Self::cell_limit`]).
-    pub(crate) fn is_dense(&self, n: usize) -> bool {
-        self.cells() <= Self::cell_limit(n)
-    }
-
-    /// The lattice indices of a point shifted into the box, `0 <= i < ni`,
-    /// `0 <= j < nj`.
-    pub(crate) fn local(&self, (i, j): (i64, i64)) -> (usize, usize) {
-        ((i - self.i_min) as usize, (j - self.j_min) as usize)
-    }
-}
-
-/// The point at each lattice coordinate of a set ([`PointSet::lattice_index`]):
-/// for a grid its runs (found by a binary search over the lattice rows,
-/// O(rows) memory); else a table over the lattice's bounding box (4 bytes a
-/// cell) when the box is at most `TABLE_ENTRIES_PER_POINT` cells a point,
-/// else a hash map.
-#[derive(Debug, Clone)]
-pub struct LatticeIndex(Index);
-
-#[derive(Debug, Clone)]
-enum Index {
-    /// `cells[i * nj + j]` at the box's local `(i, j)`; `u32::MAX` where no
-    /// point is.
-    Table {
-        bounds: LatticeBox,
-        cells: Vec<u32>,
-    },
-    Map(HashMap<(i64, i64), usize>),
-    /// A grid's runs (see [`Layout::Grid`]) and its number of points.
-    Runs {
-        runs: Vec<Run>,
-        len: usize,
-    },
-}
-
-impl LatticeIndex {
-    /// The index of lattice coordinates (point k at `lattice[k]`).
-    fn of(lattice: Lattice<'_>) -> Self {
-        if let LatticeRef::Runs { runs, len } = lattice.0 {
-            return Self(Index::Runs {
-                runs: runs.to_vec(),
-                len,
-            });
-        }
-        let table = LatticeBox::of_lattice(lattice)
-            .filter(|b| b.is_dense(lattice.len()) && lattice.len() < u32::MAX as usize);
-        Self(match table {
-            Some(bounds) => {
-                let mut cells = vec![u32::MAX; bounds.cells()];
-                for (k, l) in lattice.iter().enumerate() {
-                    let (i, j) = bounds.local(l);
-                    cells[i * bounds.nj + j] = k as u32;
-                }
-                Index::Table { bounds, cells }
-            }
-            None => Index::Map(lattice.iter().enumerate().map(|(k, ij)| (ij, k)).collect()),
-        })
-    }
-
-    /// The point at lattice coordinates `(i, j)`, if any.
-    pub fn get(&self, (i, j): (i64, i64)) -> Option<usize> {
-        match &self.0 {
-            Index::Table { bounds, cells } => {
-                let r = usize::try_from(i.checked_sub(bounds.i_min)?).ok()?;
-                let c = usize::try_from(j.checked_sub(bounds.j_min)?).ok()?;
-                if r >= bounds.ni || c >= bounds.nj {
-                    return None;
-                }
-                let k = cells[r * bounds.nj + c];
-                (k != u32::MAX).then_some(k as usize)
-            }
-            Index::Map(map) => map.get(&(i, j)).copied(),
-            Index::Runs { runs, len } => {
-                let r = if runs.len() == 1 {
-                    0
-                } else {
-                    runs.partition_point(|run| run.first.0 < i)
-                };
-                let run = runs.get(r)?;
-                let end = runs.get(r + 1).map_or(*len, |next| next.start);
-                run.find((i, j), end - run.start)
-            }
-        }
-    }
-}
-
-/// `(along x, along y)`: whether a neighbour cell is missing, given a test
-/// `present(di, dj)` of the lattice neighbour at offset (di, dj).
-fn open_sides(dimension: Dimension, present: impl Fn(i64, i64) -> bool) -> (bool, bool) {
-    let x = !present(1, 0) || !present(-1, 0);
-    let y = dimension == Dimension::Surface && (!present(0, 1) || !present(0, -1));
-    (x, y)
-}
-
-/// Boundary flags of a set on a lattice: the lattice neighbour test.
-fn lattice_boundary(dimension: Dimension, lattice: Lattice<'_>) -> Vec<(bool, bool)> {
-    let members = LatticeIndex::of(lattice);
-    lattice
-        .iter()
-        .map(|(i, j)| open_sides(dimension, |di, dj| members.get((i + di, j + dj)).is_some()))
-        .collect()
-}
-
 /// Lattice indices relative to the first point, if every point lies on the
 /// lattice `(x0 + i dx, y0 + j dy)` to a relative 1e-12.
 fn detect_lattice(xs: &[f64], ys: &[f64], cell: Cell) -> Option<Vec<(i64, i64)>> {
@@ -869,112 +550,9 @@ fn detect_lattice(xs: &[f64], ys: &[f64], cell: Cell) -> Option<Vec<(i64, i64)>>
         .collect()
 }
 
-/// Boundary flags of a set without a lattice: a point is on the boundary
-/// when an adjacent cell contains no point centre. Points are bucketed by
-/// cell so the test is O(N).
-fn boundary_by_cells(
-    dimension: Dimension,
-    cell: Cell,
-    xs: &[f64],
-    ys: &[f64],
-) -> Vec<(bool, bool)> {
-    let x_min = xs.iter().copied().fold(f64::INFINITY, f64::min);
-    let y_min = ys.iter().copied().fold(f64::INFINITY, f64::min);
-    // `as` saturates, so far-away buckets merely share a key.
-    let key = |x: f64, y: f64| {
-        (
-            ((x - x_min) / cell.dx).floor() as i64,
-            ((y - y_min) / cell.dy).floor() as i64,
-        )
-    };
-    let mut buckets: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
-    for (k, (&x, &y)) in xs.iter().zip(ys).enumerate() {
-        buckets.entry(key(x, y)).or_default().push(k);
-    }
-    let (hx, hy) = (0.5 * cell.dx * (1.0 + 1e-9), 0.5 * cell.dy * (1.0 + 1e-9));
-    let occupied = |tx: f64, ty: f64| {
-        let (i0, j0) = key(tx - hx, ty - hy);
-        let (i1, j1) = key(tx + hx, ty + hy);
-        (i0..=i1).any(|i| {
-            (j0..=j1).any(|j| {
-                buckets.get(&(i, j)).is_some_and(|ks| {
-                    ks.iter()
-                        .any(|&l| (xs[l] - tx).abs() <= hx && (ys[l] - ty).abs() <= hy)
-                })
-            })
-        })
-    };
-    xs.iter()
-        .zip(ys)
-        .map(|(&x, &y)| {
-            open_sides(dimension, |di, dj| {
-                occupied(x + di as f64 * cell.dx, y + dj as f64 * cell.dy)
-            })
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_lattice_index_is_runs_on_grids_a_table_on_lattices_and_a_map_on_sparse_sets() {
-        let disk = PointSet::grid_disk(1.0, 6.0).unwrap();
-        let index = disk.lattice_index().unwrap();
-        assert!(matches!(index.0, Index::Runs { .. }));
-        let listed = PointSet::from_points(
-            Dimension::Surface,
-            disk.xs().to_vec(),
-            disk.ys().to_vec(),
-            disk.cell(),
-        )
-        .unwrap();
-        let table = listed.lattice_index().unwrap();
-        assert!(matches!(table.0, Index::Table { .. }));
-        let line = PointSet::line(-1.0, 1.0, 5).unwrap();
-        let along = line.lattice_index().unwrap();
-        assert_eq!(
-            (0..7).map(|i| along.get((i - 1, 0))).collect::<Vec<_>>(),
-            [None, Some(0), Some(1), Some(2), Some(3), Some(4), None]
-        );
-        assert_eq!(along.get((2, 1)), None);
-        let sparse = [(0, 0), (1000, -1000), (3, 2)];
-        let map = LatticeIndex::of(Lattice(LatticeRef::Listed(&sparse)));
-        assert!(matches!(map.0, Index::Map(_)));
-        // Listed indices count from point 0, the disk's (-6, 0).
-        let shifted = |l: (i64, i64)| (l.0 - 6, l.1);
-        for (k, ij) in listed.lattice().unwrap().iter().enumerate() {
-            assert_eq!(index.get(shifted(ij)), Some(k));
-        }
-        for (index, lattice) in [
-            (&index, disk.lattice().unwrap()),
-            (&map, Lattice(LatticeRef::Listed(&sparse))),
-        ] {
-            for (k, ij) in lattice.iter().enumerate() {
-                assert_eq!(index.get(ij), Some(k));
-            }
-            for absent in [
-                (7, 0),
-                (-7, 0),
-                (6, 6),
-                (i64::MIN, 0),
-                (0, i64::MAX),
-                (1, 1000),
-            ] {
-                assert_eq!(index.get(absent), None, "{absent:?}");
-            }
-        }
-        // A set without a lattice has no index.
-        let scattered = PointSet::from_points(
-            Dimension::Surface,
-            vec![0.0, 0.13, 0.5],
-            vec![0.0, 0.02, 0.31],
-            Cell::square(0.1),
-        )
-        .unwrap();
-        assert!(scattered.lattice_index().is_none());
-    }
 
     #[test]
     fn a_grid_stores_runs_and_equals_the_same_points_listed() {
@@ -1121,25 +699,6 @@ mod tests {
         let q = PointSet::from_points(Dimension::Surface, vec![0.0, 0.55], vec![0.0, 0.0], cell)
             .unwrap();
         assert!(q.lattice().is_none());
-    }
-
-    #[test]
-    fn from_points_boundary_without_lattice() {
-        // A 3 x 3 block of cells, jittered by 0.1 cell: only the centre is interior.
-        let h = 1.0;
-        let mut xs = Vec::new();
-        let mut ys = Vec::new();
-        for i in -1..=1 {
-            for j in -1..=1 {
-                let jitter = 0.1 * ((i * 3 + j) as f64).sin();
-                xs.push(i as f64 * h + jitter);
-                ys.push(j as f64 * h - jitter);
-            }
-        }
-        let p = PointSet::from_points(Dimension::Surface, xs, ys, Cell::square(h)).unwrap();
-        assert!(p.lattice().is_none());
-        let interior: Vec<usize> = (0..9).filter(|&k| !p.is_on_boundary(k)).collect();
-        assert_eq!(interior, [4]);
     }
 
     #[test]

@@ -1,0 +1,89 @@
+//! How a contact problem holds its influence matrix `S = A(1) + A(2)`:
+//! [`Storage`], resolved from [`Storage::Auto`] by
+//! [`ProblemBuilder`](crate::ProblemBuilder) (the rule is in
+//! `crate::contact::builder`), and what each storage offers by default.
+
+use elcon_lcp::Method;
+
+/// Above this many unknowns [`Storage::Auto`] holds S matrix-free where
+/// the lattice operator applies (docs/performance.md, "Dense or
+/// matrix-free": where the conjugate gradient on the lattice operator
+/// overtakes block pivoting on the dense S).
+pub const AUTO_DENSE_LIMIT: usize = 2000;
+
+/// How a contact problem holds S.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Storage {
+    /// Decided from the problem (the default; see the module documentation).
+    #[default]
+    Auto,
+    /// Every entry of S.
+    Dense,
+    /// One unknown per orbit of a mirror-symmetric problem, the folded
+    /// matrix assembled in place of S (never the full S); S dense when the
+    /// problem is not symmetric. The solution is the same and is returned
+    /// at every point.
+    Folded,
+    /// S by its products: a zero-padded FFT convolution of the lattice
+    /// kernel (`elcon_influence::LatticeKernel`), O(N) memory, for grids
+    /// too large to store S (10^4 to 10^6 points). Solved by the conjugate
+    /// gradient; the points must be a lattice and no body a beam.
+    Lattice,
+}
+
+impl Storage {
+    /// Every storage, in the order messages list them.
+    pub const ALL: [Storage; 4] = [
+        Storage::Auto,
+        Storage::Dense,
+        Storage::Folded,
+        Storage::Lattice,
+    ];
+
+    /// Its name: "auto", "dense", "folded", "lattice".
+    pub fn name(self) -> &'static str {
+        match self {
+            Storage::Auto => "auto",
+            Storage::Dense => "dense",
+            Storage::Folded => "folded",
+            Storage::Lattice => "lattice",
+        }
+    }
+
+    /// The storage of a name, if it is one.
+    pub fn of(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// How S is held, in result.json's words: "dense" (every entry, or the
+    /// folded matrix's) or "matrix-free".
+    pub fn held_as(self) -> &'static str {
+        match self {
+            Storage::Lattice => "matrix-free",
+            _ => "dense",
+        }
+    }
+
+    /// The method a problem of this storage is solved by when the caller
+    /// has no preference: the conjugate gradient matrix-free (the pivoting
+    /// methods need S's entries), block principal pivoting otherwise.
+    pub fn default_method(self) -> Method {
+        match self {
+            Storage::Lattice => Method::ConjugateGradient,
+            _ => Method::BlockPivoting,
+        }
+    }
+
+    /// Whether a problem of this storage holds S's entries (what the
+    /// pivoting methods and the paper's design program read).
+    pub fn holds_entries(self) -> bool {
+        self != Storage::Lattice
+    }
+}
+
+impl std::fmt::Display for Storage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}

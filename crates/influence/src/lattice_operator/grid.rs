@@ -1,0 +1,143 @@
+//! The padded FFT grid of a lattice box, `P_a` the smallest even 5-smooth
+//! number with
+//!
+//! ```text
+//!     P_a >= 2 n_a - 1      (no wrap-around of the n1 x n2 box)
+//! ```
+//!
+//! its bands of row frequencies, and the bytes an operator on it holds
+//! (the estimate made before anything is built), with the fallible
+//! allocation of its buffers.
+
+use rustfft::num_complex::Complex;
+
+use crate::error::InfluenceError;
+use crate::points::LatticeBox;
+
+/// A complex value of the spectra.
+pub(super) type C64 = Complex<f64>;
+
+/// Columns of the half spectrum transformed together: 16 complex values
+/// (256 bytes) of each row are read at once, and the batch (16 columns of
+/// P1 values, 256 kB at P1 = 1024) stays in the level-2 cache.
+pub(super) const COLUMN_BATCH: usize = 16;
+
+/// The row spectra are taken in this many bands of frequencies per
+/// product: the workspace holds one band, half the row spectra (8 bytes a
+/// cell of the box instead of 16), and each row is transformed once per
+/// band (the row transforms are about a third of a product's work).
+const BANDS: usize = 2;
+
+/// Bytes counted per unit of FFT length for the plans, an upper estimate:
+/// rustfft keeps about one complex twiddle factor (16 bytes) per unit of
+/// length in a plan, each axis has a forward and an inverse plan, and the
+/// count is doubled for their sub-plans. O(P1 + P2): negligible beside the
+/// O(P1 P2) buffers.
+const PLAN_BYTES_PER_LENGTH: usize = 64;
+
+/// The padded FFT grid of a lattice box.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Grid {
+    /// Lattice rows (along i, x) and columns (along j, y) of the box.
+    pub(super) rows: usize,
+    pub(super) columns: usize,
+    /// Padded lengths P1 (rows) and P2 (columns).
+    pub(super) padded_rows: usize,
+    pub(super) padded_columns: usize,
+}
+
+impl Grid {
+    pub(super) fn new(bounds: &LatticeBox) -> Self {
+        Self {
+            rows: bounds.ni,
+            columns: bounds.nj,
+            padded_rows: padded_length(bounds.ni),
+            padded_columns: padded_length(bounds.nj),
+        }
+    }
+
+    /// Frequencies kept by a real-to-complex row transform, `P2/2 + 1`.
+    pub(super) fn half_columns(&self) -> usize {
+        self.padded_columns / 2 + 1
+    }
+
+    /// Distinct frequencies of the even spectrum along the rows, `P1/2 + 1`.
+    pub(super) fn half_rows(&self) -> usize {
+        self.padded_rows / 2 + 1
+    }
+
+    /// Frequencies of a band of the row spectra (the last may hold fewer).
+    pub(super) fn band_width(&self) -> usize {
+        self.half_columns().div_ceil(BANDS)
+    }
+
+    /// Values of the stored kernel spectrum.
+    pub(super) fn spectrum_len(&self) -> usize {
+        self.half_rows() * self.half_columns()
+    }
+
+    /// An upper bound on the FFT scratch (complex values) of the plans; the
+    /// planned lengths are 5-smooth, whose in-place scratch is at most the
+    /// length.
+    fn scratch_bound(&self) -> usize {
+        self.padded_rows + self.padded_columns
+    }
+
+    /// Bytes of the plans (an estimate, [`PLAN_BYTES_PER_LENGTH`]).
+    pub(super) fn plan_bytes(&self) -> usize {
+        PLAN_BYTES_PER_LENGTH * (self.padded_rows + self.padded_columns)
+    }
+
+    /// Bytes of a workspace with `scratch` complex values of FFT scratch.
+    fn workspace_bytes(&self, scratch: usize) -> usize {
+        let complex = self.rows * self.band_width()
+            + self.half_columns()
+            + COLUMN_BATCH * self.padded_rows
+            + scratch;
+        16 * complex + 8 * self.padded_columns
+    }
+
+    /// Bytes held by an operator on this grid whose gather order takes
+    /// `gather_bytes`, its workspace included (the gather order, the
+    /// spectrum, the plans, the workspace).
+    pub(super) fn operator_bytes(&self, gather_bytes: usize) -> usize {
+        gather_bytes
+            + 8 * self.spectrum_len()
+            + self.plan_bytes()
+            + self.workspace_bytes(self.scratch_bound())
+    }
+}
+
+/// The smallest even 5-smooth number `>= 2 n - 1` (at least 2): a padded
+/// length without wrap-around and fast for the FFT.
+pub(super) fn padded_length(n: usize) -> usize {
+    let smooth = |mut m: usize| {
+        for p in [2, 3, 5] {
+            while m.is_multiple_of(p) {
+                m /= p;
+            }
+        }
+        m == 1
+    };
+    let least = (2 * n).saturating_sub(1).max(2);
+    (least..)
+        .find(|&m| m.is_multiple_of(2) && smooth(m))
+        .expect("a power of two >= least exists")
+}
+
+/// A vector of `len` copies of `value`, or [`InfluenceError::AllocationFailed`]
+/// naming `what` when the memory cannot be reserved.
+pub(super) fn try_vec<T: Clone>(
+    len: usize,
+    value: T,
+    what: &'static str,
+) -> Result<Vec<T>, InfluenceError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len)
+        .map_err(|_| InfluenceError::AllocationFailed {
+            what,
+            bytes: len.saturating_mul(std::mem::size_of::<T>()),
+        })?;
+    v.resize(len, value);
+    Ok(v)
+}

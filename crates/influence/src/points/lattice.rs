@@ -1,0 +1,346 @@
+//! The lattice indices `(i, j)` of a set's points, when the set lies on a
+//! lattice of its cell's spacing,
+//!
+//! ```text
+//!     x_k - x_l = (i_k - i_l) dx,     y_k - y_l = (j_k - j_l) dy
+//! ```
+//!
+//! listed, or as a grid's runs (a few bytes a lattice row); their bounding
+//! box; and the index from lattice coordinates back to the point.
+
+use std::collections::HashMap;
+
+/// Points `start..` (up to the next run's start) of a grid at the lattice
+/// indices `first + t step`, t = 0, 1, ...
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Run {
+    pub(super) start: usize,
+    pub(super) first: (i64, i64),
+    pub(super) step: (i64, i64),
+}
+
+impl Run {
+    fn at(&self, k: usize) -> (i64, i64) {
+        let t = (k - self.start) as i64;
+        (
+            self.first.0 + t * self.step.0,
+            self.first.1 + t * self.step.1,
+        )
+    }
+
+    /// The point of this run of `count` points at `(i, j)`, if any (a
+    /// grid's steps: (0, 1) or (1, 0)).
+    fn find(&self, (i, j): (i64, i64), count: usize) -> Option<usize> {
+        let ((along, across), (first_along, first_across)) = if self.step == (0, 1) {
+            ((j, i), (self.first.1, self.first.0))
+        } else {
+            ((i, j), self.first)
+        };
+        if across != first_across {
+            return None;
+        }
+        let t = usize::try_from(along.checked_sub(first_along)?).ok()?;
+        (t < count).then_some(self.start + t)
+    }
+}
+
+/// The lattice indices `(i, j)` of a set's points
+/// ([`PointSet::lattice`](super::PointSet::lattice)):
+/// listed, or computed from a grid's runs.
+#[derive(Debug, Clone, Copy)]
+pub struct Lattice<'a>(LatticeRef<'a>);
+
+#[derive(Debug, Clone, Copy)]
+enum LatticeRef<'a> {
+    Listed(&'a [(i64, i64)]),
+    Runs { runs: &'a [Run], len: usize },
+}
+
+impl<'a> Lattice<'a> {
+    /// The lattice indices as listed, point k at `indices[k]`.
+    pub(super) fn listed(indices: &'a [(i64, i64)]) -> Self {
+        Self(LatticeRef::Listed(indices))
+    }
+
+    /// A grid's `len` points by its runs.
+    pub(super) fn of_runs(runs: &'a [Run], len: usize) -> Self {
+        Self(LatticeRef::Runs { runs, len })
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        match self.0 {
+            LatticeRef::Listed(l) => l.len(),
+            LatticeRef::Runs { len, .. } => len,
+        }
+    }
+
+    /// Always false: a point set holds at least one point.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The lattice indices of point `k`. Panics if `k >= len()`.
+    pub fn get(&self, k: usize) -> (i64, i64) {
+        match self.0 {
+            LatticeRef::Listed(l) => l[k],
+            LatticeRef::Runs { runs, len } => {
+                assert!(k < len, "point {k} of {len}");
+                runs[runs.partition_point(|r| r.start <= k) - 1].at(k)
+            }
+        }
+    }
+
+    /// The lattice indices of the points, in order, as a vector.
+    pub fn to_vec(&self) -> Vec<(i64, i64)> {
+        self.iter().collect()
+    }
+
+    /// The lattice indices of the points, in order.
+    pub fn iter(&self) -> LatticeIter<'a> {
+        LatticeIter {
+            lattice: *self,
+            next: 0,
+            run: 0,
+        }
+    }
+}
+
+impl<'a> IntoIterator for Lattice<'a> {
+    type Item = (i64, i64);
+    type IntoIter = LatticeIter<'a>;
+
+    fn into_iter(self) -> LatticeIter<'a> {
+        self.iter()
+    }
+}
+
+/// The iterator of [`Lattice::iter`].
+#[derive(Debug, Clone)]
+pub struct LatticeIter<'a> {
+    lattice: Lattice<'a>,
+    next: usize,
+    run: usize,
+}
+
+impl Iterator for LatticeIter<'_> {
+    type Item = (i64, i64);
+
+    fn next(&mut self) -> Option<(i64, i64)> {
+        let k = self.next;
+        if k >= self.lattice.len() {
+            return None;
+        }
+        self.next += 1;
+        Some(match self.lattice.0 {
+            LatticeRef::Listed(l) => l[k],
+            LatticeRef::Runs { runs, .. } => {
+                while self.run + 1 < runs.len() && runs[self.run + 1].start <= k {
+                    self.run += 1;
+                }
+                runs[self.run].at(k)
+            }
+        })
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.lattice.len() - self.next;
+        (left, Some(left))
+    }
+}
+
+impl ExactSizeIterator for LatticeIter<'_> {}
+
+/// A table may hold at most this many entries per point before the direct
+/// path is cheaper (a sparse set on a fine lattice).
+const TABLE_ENTRIES_PER_POINT: usize = 4;
+
+/// The bounding box of a set's lattice indices: `ni x nj` lattice cells
+/// from `(i_min, j_min)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct LatticeBox {
+    pub(crate) i_min: i64,
+    pub(crate) j_min: i64,
+    pub(crate) ni: usize,
+    pub(crate) nj: usize,
+}
+
+impl LatticeBox {
+    /// The box of lattice indices (`None` for none, or a side that does
+    /// not fit a usize).
+    pub(crate) fn of_lattice(lattice: Lattice<'_>) -> Option<Self> {
+        let (mut i_min, mut i_max, mut j_min, mut j_max) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
+        for (i, j) in lattice.iter() {
+            i_min = i_min.min(i);
+            i_max = i_max.max(i);
+            j_min = j_min.min(j);
+            j_max = j_max.max(j);
+        }
+        let side = |lo: i64, hi: i64| usize::try_from(i128::from(hi) - i128::from(lo) + 1).ok();
+        Some(Self {
+            i_min,
+            j_min,
+            ni: side(i_min, i_max)?,
+            nj: side(j_min, j_max)?,
+        })
+    }
+
+    /// The number of lattice cells in the box, `ni nj` (saturating).
+    pub(crate) fn cells(&self) -> usize {
+        self.ni.saturating_mul(self.nj)
+    }
+
+    /// The most cells a box may hold for `n` points before a table (or a
+    /// padded grid) over it costs more than the points themselves:
+    /// [`TABLE_ENTRIES_PER_POINT`] per point, plus 64 for tiny sets.
+    pub(crate) const fn cell_limit(n: usize) -> usize {
+        TABLE_ENTRIES_PER_POINT * n + 64
+    }
+
+    /// Whether the box is small enough for `n` points ([`Self::cell_limit`]).
+    pub(crate) fn is_dense(&self, n: usize) -> bool {
+        self.cells() <= Self::cell_limit(n)
+    }
+
+    /// The lattice indices of a point shifted into the box, `0 <= i < ni`,
+    /// `0 <= j < nj`.
+    pub(crate) fn local(&self, (i, j): (i64, i64)) -> (usize, usize) {
+        ((i - self.i_min) as usize, (j - self.j_min) as usize)
+    }
+}
+
+/// The point at each lattice coordinate of a set
+/// ([`PointSet::lattice_index`](super::PointSet::lattice_index)):
+/// for a grid its runs (found by a binary search over the lattice rows,
+/// O(rows) memory); else a table over the lattice's bounding box (4 bytes a
+/// cell) when the box is at most `TABLE_ENTRIES_PER_POINT` cells a point,
+/// else a hash map.
+#[derive(Debug, Clone)]
+pub struct LatticeIndex(Index);
+
+#[derive(Debug, Clone)]
+enum Index {
+    /// `cells[i * nj + j]` at the box's local `(i, j)`; `u32::MAX` where no
+    /// point is.
+    Table {
+        bounds: LatticeBox,
+        cells: Vec<u32>,
+    },
+    Map(HashMap<(i64, i64), usize>),
+    /// A grid's runs (see [`Layout::Grid`](super::set::Layout::Grid)) and
+    /// its number of points.
+    Runs {
+        runs: Vec<Run>,
+        len: usize,
+    },
+}
+
+impl LatticeIndex {
+    /// The index of lattice coordinates (point k at `lattice[k]`).
+    pub(super) fn of(lattice: Lattice<'_>) -> Self {
+        if let LatticeRef::Runs { runs, len } = lattice.0 {
+            return Self(Index::Runs {
+                runs: runs.to_vec(),
+                len,
+            });
+        }
+        let table = LatticeBox::of_lattice(lattice)
+            .filter(|b| b.is_dense(lattice.len()) && lattice.len() < u32::MAX as usize);
+        Self(match table {
+            Some(bounds) => {
+                let mut cells = vec![u32::MAX; bounds.cells()];
+                for (k, l) in lattice.iter().enumerate() {
+                    let (i, j) = bounds.local(l);
+                    cells[i * bounds.nj + j] = k as u32;
+                }
+                Index::Table { bounds, cells }
+            }
+            None => Index::Map(lattice.iter().enumerate().map(|(k, ij)| (ij, k)).collect()),
+        })
+    }
+
+    /// The point at lattice coordinates `(i, j)`, if any.
+    pub fn get(&self, (i, j): (i64, i64)) -> Option<usize> {
+        match &self.0 {
+            Index::Table { bounds, cells } => {
+                let r = usize::try_from(i.checked_sub(bounds.i_min)?).ok()?;
+                let c = usize::try_from(j.checked_sub(bounds.j_min)?).ok()?;
+                if r >= bounds.ni || c >= bounds.nj {
+                    return None;
+                }
+                let k = cells[r * bounds.nj + c];
+                (k != u32::MAX).then_some(k as usize)
+            }
+            Index::Map(map) => map.get(&(i, j)).copied(),
+            Index::Runs { runs, len } => {
+                let r = if runs.len() == 1 {
+                    0
+                } else {
+                    runs.partition_point(|run| run.first.0 < i)
+                };
+                let run = runs.get(r)?;
+                let end = runs.get(r + 1).map_or(*len, |next| next.start);
+                run.find((i, j), end - run.start)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fixtures::scattered;
+    use crate::points::{Dimension, PointSet};
+
+    #[test]
+    fn the_lattice_index_is_runs_on_grids_a_table_on_lattices_and_a_map_on_sparse_sets() {
+        let disk = PointSet::grid_disk(1.0, 6.0).unwrap();
+        let index = disk.lattice_index().unwrap();
+        assert!(matches!(index.0, Index::Runs { .. }));
+        let listed = PointSet::from_points(
+            Dimension::Surface,
+            disk.xs().to_vec(),
+            disk.ys().to_vec(),
+            disk.cell(),
+        )
+        .unwrap();
+        let table = listed.lattice_index().unwrap();
+        assert!(matches!(table.0, Index::Table { .. }));
+        let line = PointSet::line(-1.0, 1.0, 5).unwrap();
+        let along = line.lattice_index().unwrap();
+        assert_eq!(
+            (0..7).map(|i| along.get((i - 1, 0))).collect::<Vec<_>>(),
+            [None, Some(0), Some(1), Some(2), Some(3), Some(4), None]
+        );
+        assert_eq!(along.get((2, 1)), None);
+        let sparse = [(0, 0), (1000, -1000), (3, 2)];
+        let map = LatticeIndex::of(Lattice(LatticeRef::Listed(&sparse)));
+        assert!(matches!(map.0, Index::Map(_)));
+        // Listed indices count from point 0, the disk's (-6, 0).
+        let shifted = |l: (i64, i64)| (l.0 - 6, l.1);
+        for (k, ij) in listed.lattice().unwrap().iter().enumerate() {
+            assert_eq!(index.get(shifted(ij)), Some(k));
+        }
+        for (index, lattice) in [
+            (&index, disk.lattice().unwrap()),
+            (&map, Lattice(LatticeRef::Listed(&sparse))),
+        ] {
+            for (k, ij) in lattice.iter().enumerate() {
+                assert_eq!(index.get(ij), Some(k));
+            }
+            for absent in [
+                (7, 0),
+                (-7, 0),
+                (6, 6),
+                (i64::MIN, 0),
+                (0, i64::MAX),
+                (1, 1000),
+            ] {
+                assert_eq!(index.get(absent), None, "{absent:?}");
+            }
+        }
+        // A set without a lattice has no index.
+        let scattered = scattered();
+        assert!(scattered.lattice_index().is_none());
+    }
+}

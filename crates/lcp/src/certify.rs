@@ -1,0 +1,287 @@
+//! The certificate of an answer: its residuals, recomputed from the
+//! ORIGINAL data (never from a tableau or an iterate), each relative to the
+//! scale of the terms it is made of ([`Certificate`] holds them).
+//!
+//! For the mixed form `w = M z + B u + q`, `0 = C z + D u + r`:
+//!
+//! ```text
+//!     z_scale  = ‖z‖∞
+//!     w_scale  = max_i ( |M| |z| + |B| |u| + |q| )_i      (size of the terms summing to w)
+//!     eq_scale = max_i ( |C| |z| + |D| |u| + |r| )_i
+//!     min_z = min_i z_i / z_scale          min_w = min_i w_i / w_scale
+//!     complementarity = max_i |z_i w_i| / (z_scale w_scale)
+//!     equality = ‖C z + D u + r‖∞ / eq_scale
+//! ```
+//!
+//! A bordered problem is the mixed form with `B -> -B`, `C = B^T`, `D = 0`,
+//! `r = -b`; a problem whose `M` is an operator computes the same residuals
+//! from products of the original operator (`M z` and `|M| |z|`). A linear
+//! system `M X = R` has only equality rows: its residual is the worst
+//! column's `‖R_c - M X_c‖∞ / ‖|M| |X_c| + |R_c|‖∞`. A solution
+//! is certified when `-min_z`, `-min_w`, `-min_u`, `complementarity` and
+//! `equality` are all at most the tolerance.
+
+use faer::{Col, ColRef, MatRef};
+
+use crate::certificate::Certificate;
+use crate::linalg::{self, abs_matvec, matvec, norm_inf};
+use crate::linear::LinearSystem;
+use crate::operator::OperatorLcp;
+use crate::problem::{BorderedLcpRef, Bound, MixedBorder, MixedLcp, MixedRef};
+
+/// The residual vectors a certificate is made of: `w` and the magnitude
+/// of its terms, the equality rows' residual and the magnitude of theirs.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Residuals<'a> {
+    pub z: ColRef<'a, f64>,
+    pub u: ColRef<'a, f64>,
+    pub nonneg_u: &'a [bool],
+    pub w: ColRef<'a, f64>,
+    pub w_terms: ColRef<'a, f64>,
+    pub equality: ColRef<'a, f64>,
+    pub equality_terms: ColRef<'a, f64>,
+}
+
+impl MixedRef<'_> {
+    /// The certificate of `(z, u)` and `w = M z + B u + q`.
+    pub(crate) fn certify(
+        &self,
+        z: ColRef<'_, f64>,
+        u: ColRef<'_, f64>,
+        tolerance: f64,
+    ) -> (Certificate, Col<f64>) {
+        let MixedRef {
+            m,
+            b,
+            q,
+            c,
+            d,
+            r,
+            bounds,
+        } = *self;
+        let nonneg_u: Vec<bool> = bounds.iter().map(|b| *b == Bound::NonNegative).collect();
+        let n = z.nrows();
+        let mut w = matvec(m, z);
+        let mut w_terms = abs_matvec(m, z);
+        if u.nrows() > 0 {
+            w += matvec(b, u);
+            w_terms += abs_matvec(b, u);
+        }
+        for i in 0..n {
+            w[i] += q[i];
+            w_terms[i] += q[i].abs();
+        }
+        let (e, e_terms) = if c.nrows() > 0 {
+            let mut e = matvec(c, z);
+            let mut e_terms = abs_matvec(c, z);
+            if u.nrows() > 0 {
+                e += matvec(d, u);
+                e_terms += abs_matvec(d, u);
+            }
+            for i in 0..c.nrows() {
+                e[i] += r[i];
+                e_terms[i] += r[i].abs();
+            }
+            (e, e_terms)
+        } else {
+            (Col::zeros(0), Col::zeros(0))
+        };
+        let cert = from_residuals(
+            &Residuals {
+                z,
+                u,
+                nonneg_u: &nonneg_u,
+                w: w.as_ref(),
+                w_terms: w_terms.as_ref(),
+                equality: e.as_ref(),
+                equality_terms: e_terms.as_ref(),
+            },
+            tolerance,
+        );
+        (cert, w)
+    }
+}
+
+impl BorderedLcpRef<'_> {
+    /// The certificate of a candidate `(z, λ)` against this problem's data,
+    /// with `w = M z - B λ + q`.
+    pub fn certify(
+        &self,
+        z: ColRef<'_, f64>,
+        lambda: ColRef<'_, f64>,
+        tolerance: f64,
+    ) -> (Certificate, Col<f64>) {
+        let parts = MixedBorder::of(self);
+        parts.view(self).certify(z, lambda, tolerance)
+    }
+}
+
+impl MixedLcp {
+    /// The certificate of a candidate `(z, u)` against this problem's data,
+    /// with `w = M z + B u + q`.
+    pub fn certify(
+        &self,
+        z: ColRef<'_, f64>,
+        u: ColRef<'_, f64>,
+        tolerance: f64,
+    ) -> (Certificate, Col<f64>) {
+        self.view().certify(z, u, tolerance)
+    }
+}
+
+impl OperatorLcp<'_> {
+    /// The certificate of `(z, λ)` from products of the original operator:
+    /// `w = M z - B λ + q` and `|M| |z| + |B| |λ| + |q|`, `B^T z - b` and
+    /// `|B|^T |z| + |b|`; also returns `w`.
+    pub(crate) fn certify(
+        &self,
+        z: &Col<f64>,
+        lambda: &Col<f64>,
+        tolerance: f64,
+    ) -> (Certificate, Col<f64>) {
+        let n = z.nrows();
+        // Two vectors of n, computed in place: at 10^6 points each is 8 MB.
+        let z_slice = z
+            .try_as_col_major()
+            .expect("an owned column is contiguous")
+            .as_slice();
+        let mut w = Col::<f64>::zeros(n);
+        let mut w_terms = Col::<f64>::zeros(n);
+        let w_out = w.try_as_col_major_mut().expect("contiguous").as_slice_mut();
+        self.m.apply(z_slice, w_out);
+        let terms_out = w_terms
+            .try_as_col_major_mut()
+            .expect("contiguous")
+            .as_slice_mut();
+        if z_slice.iter().all(|&v| v >= 0.0) {
+            self.m.apply_abs(z_slice, terms_out);
+        } else {
+            let z_abs: Vec<f64> = z_slice.iter().map(|v| v.abs()).collect();
+            self.m.apply_abs(&z_abs, terms_out);
+        }
+        // w = M z - B λ + q and its terms |M| |z| + |B| |λ| + |q|.
+        linalg::sub_matvec(w.as_mut(), self.border, lambda.as_ref());
+        linalg::add_abs_matvec(w_terms.as_mut(), self.border, lambda.as_ref());
+        for i in 0..n {
+            w[i] += self.q[i];
+            w_terms[i] += self.q[i].abs();
+        }
+        let equality = linalg::matvec(self.border.transpose(), z.as_ref()) - self.resultant;
+        let mut equality_terms = self.resultant.map(|v| v.abs());
+        linalg::add_abs_matvec(equality_terms.as_mut(), self.border.transpose(), z.as_ref());
+        let nonneg = vec![false; lambda.nrows()];
+        let certificate = from_residuals(
+            &Residuals {
+                z: z.as_ref(),
+                u: lambda.as_ref(),
+                nonneg_u: &nonneg,
+                w: w.as_ref(),
+                w_terms: w_terms.as_ref(),
+                equality: equality.as_ref(),
+                equality_terms: equality_terms.as_ref(),
+            },
+            tolerance,
+        );
+        (certificate, w)
+    }
+}
+
+impl LinearSystem<'_> {
+    /// The certificate of `X`: every column's residual `R_c - M X_c`
+    /// relative to its terms `|M| |X_c| + |R_c|`, from products of the
+    /// original `M` (dense, or by its products), the worst as the
+    /// certificate's equality residual (no complementarity: its other
+    /// residuals are 0).
+    pub(crate) fn certify(&self, x: MatRef<'_, f64>, tolerance: f64) -> Certificate {
+        let (n, operator) = (self.size(), self.matrix.operator());
+        let (mut x_c, mut magnitude) = (vec![0.0; n], vec![0.0; n]);
+        let (mut product, mut terms) = (vec![0.0; n], vec![0.0; n]);
+        let (mut worst, mut finite) = (0.0f64, true);
+        for c in 0..self.columns() {
+            for (i, v) in x.col(c).iter().enumerate() {
+                x_c[i] = *v;
+                magnitude[i] = v.abs();
+            }
+            operator.apply(&x_c, &mut product);
+            operator.apply_abs(&magnitude, &mut terms);
+            let r = self.rhs.col(c);
+            let (mut residual, mut scale) = (0.0f64, 0.0f64);
+            for i in 0..n {
+                residual = residual.max((r[i] - product[i]).abs());
+                scale = scale.max(terms[i] + r[i].abs());
+            }
+            // A NaN is left out by max: the finite flag keeps it.
+            finite &= x_c
+                .iter()
+                .chain(&product)
+                .chain(&terms)
+                .all(|v| v.is_finite());
+            worst = worst.max(if scale > 0.0 { residual / scale } else { 0.0 });
+        }
+        Certificate {
+            min_z: 0.0,
+            min_w: 0.0,
+            min_u: 0.0,
+            complementarity: 0.0,
+            equality: worst,
+            z_scale: 0.0,
+            w_scale: 0.0,
+            tolerance,
+            finite,
+        }
+    }
+}
+
+/// The certificate of residuals computed elsewhere (the mixed form's
+/// above, or a matrix-free problem's from its operator).
+pub(crate) fn from_residuals(res: &Residuals<'_>, tolerance: f64) -> Certificate {
+    let Residuals {
+        z,
+        u,
+        nonneg_u,
+        w,
+        w_terms,
+        equality,
+        equality_terms,
+    } = *res;
+    let n = z.nrows();
+    let z_scale = norm_inf(z);
+    let w_scale = norm_inf(w_terms);
+    let rel = |v: f64, s: f64| if s > 0.0 { v / s } else { 0.0 };
+    let min_z = rel(
+        z.iter()
+            .cloned()
+            .fold(f64::INFINITY, f64::min)
+            .min(f64::MAX),
+        z_scale,
+    );
+    let min_w = rel(
+        w.iter()
+            .cloned()
+            .fold(f64::INFINITY, f64::min)
+            .min(f64::MAX),
+        w_scale,
+    );
+    let comp = (0..n).fold(0.0f64, |a, i| a.max((z[i] * w[i]).abs()));
+    let complementarity = rel(comp, z_scale * w_scale);
+    let u_scale = norm_inf(u);
+    let min_u = (0..u.nrows())
+        .filter(|&j| nonneg_u[j])
+        .fold(0.0f64, |a, j| a.min(rel(u[j], u_scale)));
+    let equality = rel(norm_inf(equality), norm_inf(equality_terms));
+    Certificate {
+        min_z: if n == 0 { 0.0 } else { min_z },
+        min_w: if n == 0 { 0.0 } else { min_w },
+        min_u,
+        complementarity,
+        equality,
+        z_scale,
+        w_scale,
+        tolerance,
+        finite: z
+            .iter()
+            .chain(u.iter())
+            .chain(w.iter())
+            .all(|v| v.is_finite()),
+    }
+}
