@@ -171,3 +171,329 @@ def test_a_batch_returns_its_table(tmp_path):
         rows = rows.to_dict("records")
     assert [r["status"] for r in rows] == ["ok", "ok"]
     assert (tmp_path / "out" / "sweep" / "results.json").exists()
+
+
+# --- The scene's own checks, from Python (issue 26 item 5, issue 31) ---
+
+
+def beam_line(n=80):
+    """Example 2's beam on its foundation: 80 cells over 8.9 in."""
+    return (np.arange(n) + 0.5) * 8.9 / n - 4.45
+
+
+def test_body_dicts_are_parsed_and_checked_by_the_scenes_parser():
+    x = beam_line()
+    n = len(x)
+    h = 8.9 / n
+    foundation = {"model": "winkler", "modulus": 1e7}
+    with pytest.raises(elcon.InputError, match=r"`body1.youngs_modulus` = -30000000: must be > 0"):
+        elcon.ContactProblem(x, np.zeros(n), h,
+                             body1={"model": "beam", "youngs_modulus": -30e6,
+                                    "second_moment": -64 / 12},
+                             body2=foundation, load=5e4)
+    # An unknown key is refused by the schema, naming it.
+    with pytest.raises(elcon.InputError, match="unknown field `loaded_pt`"):
+        elcon.ContactProblem(x, np.zeros(n), h,
+                             body1={"model": "beam", "youngs_modulus": 30e6,
+                                    "second_moment": 64 / 12, "loaded_pt": 3.0},
+                             body2=foundation, load=5e4)
+    # A key of another model, as a scene refuses it.
+    with pytest.raises(elcon.InputError, match=r"`body2.poissons_ratio`.*not a parameter"):
+        elcon.ContactProblem(x, np.zeros(n), h,
+                             body1={"model": "beam", "youngs_modulus": 30e6, "second_moment": 1.0},
+                             body2={"model": "winkler", "modulus": 1e7, "poissons_ratio": 0.3},
+                             load=5e4)
+    # NaN reaches the scene's check, which names the field.
+    with pytest.raises(elcon.InputError, match=r"`body2.modulus` = NaN: must be a finite number"):
+        elcon.ContactProblem(x, np.zeros(n), h,
+                             body1={"model": "beam", "youngs_modulus": 30e6, "second_moment": 1.0},
+                             body2={"model": "winkler", "modulus": float("nan")}, load=5e4)
+    # width and depth (the scene's keys): I = w d^3 / 12, the same beam.
+    by_moment = elcon.ContactProblem(
+        x, np.zeros(n), h, body1={"model": "beam", "youngs_modulus": 30e6,
+                                  "second_moment": 4.0 ** 3 / 12},
+        body2=foundation, load=5e4).solve()
+    by_section = elcon.ContactProblem(
+        x, np.zeros(n), h, body1={"model": "beam", "youngs_modulus": 30e6, "width": 1.0,
+                                  "depth": 4.0},
+        body2=foundation, load=5e4).solve()
+    assert np.array_equal(by_moment.force, by_section.force)
+    # The bodies against the grid: a beam's loaded point on the beam.
+    with pytest.raises(elcon.InputError, match=r"`body1.loaded_point` = 9: is outside the beam"):
+        elcon.ContactProblem(x, np.zeros(n), h,
+                             body1={"model": "beam", "youngs_modulus": 30e6, "second_moment": 1.0,
+                                    "loaded_point": 9.0},
+                             body2=foundation, load=5e4)
+
+
+def test_surfaces_and_a_layout_are_parsed_by_the_scenes_parsers():
+    steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
+    spheres = {"surface1": {"shape": "sphere", "radius": 1.0},
+               "surface2": {"shape": "sphere", "radius": 10.0}}
+    h = 0.0025
+    # The layout as a scene's [points], the surfaces as its [geometry].
+    from_layout = elcon.ContactProblem(body1=steel, body2=steel, geometry=spheres,
+                                       points={"grid": "disk", "spacing": h, "radius": 0.04},
+                                       load=100.0)
+    solved = from_layout.solve()
+    assert solved.certificate["holds"]
+    # The same points and separations as arrays: the same solution.
+    r = 1.0 / (1.0 / 1.0 + 1.0 / 10.0)
+    separation = (solved.x ** 2 + solved.y ** 2) / (2 * r)
+    assert np.allclose(solved.separation, separation, rtol=1e-12, atol=1e-18)
+    from_arrays = elcon.ContactProblem(solved.x, solved.separation, h, y=solved.y, body1=steel,
+                                       body2=steel, load=100.0).solve()
+    assert np.allclose(from_arrays.force, solved.force, rtol=0, atol=1e-9 * solved.force.max())
+    # A sphere on a line, refused as the scene refuses it.
+    with pytest.raises(elcon.InputError, match=r"`geometry.surface1.shape` = \"sphere\""):
+        elcon.ContactProblem(np.linspace(-1, 1, 11), None, 0.2,
+                             body1={"model": "plane-strain", "youngs_modulus": 30e6,
+                                    "poissons_ratio": 0.3, "reference_distance": 10.0},
+                             body2={"model": "rigid"}, geometry=spheres, load=1.0)
+    with pytest.raises(elcon.InputError, match=r"`geometry.surface1.radius`"):
+        elcon.ContactProblem(body1=steel, body2=steel, load=1.0,
+                             geometry={"surface1": {"shape": "sphere", "radius": 0.0}},
+                             points={"grid": "disk", "spacing": h, "radius": 0.04})
+    with pytest.raises(elcon.InputError, match=r"`points.nx`"):
+        elcon.ContactProblem(body1=steel, body2=steel, load=1.0, geometry=spheres,
+                             points={"grid": "rectangle", "half_x": 1.0, "half_y": 1.0, "nx": 0,
+                                     "ny": 3})
+    with pytest.raises(elcon.InputError, match="not both"):
+        elcon.ContactProblem(solved.x, solved.separation, h, y=solved.y, body1=steel, body2=steel,
+                             geometry=spheres, load=100.0)
+
+
+def test_storage_auto_runs_a_large_grid_from_arrays_matrix_free():
+    steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
+    h = 0.0005
+    i, j = np.meshgrid(np.arange(250) - 124.5, np.arange(240) - 119.5, indexing="ij")
+    x, y = (i * h).ravel(), (j * h).ravel()
+    spheres = {"surface1": {"shape": "sphere", "radius": 1.0},
+               "surface2": {"shape": "sphere", "radius": 10.0}}
+    problem = elcon.ContactProblem(x, None, h, y=y, body1=steel, body2=steel, geometry=spheres,
+                                   load=100.0)
+    assert len(problem) == 60000
+    # Points on a regular grid are a lattice: "auto" holds S matrix-free
+    # above 2000 unknowns, and solve() takes the conjugate gradient.
+    assert problem.storage == "lattice"
+    assert problem.default_method == "conjugate-gradient"
+    solved = problem.solve()
+    d = solved.to_dict()
+    assert d["method"] == "conjugate-gradient" and d["influence"] == "matrix-free"
+    assert solved.certificate["holds"]
+    # The pivoting methods read S's entries, which it does not hold.
+    with pytest.raises(elcon.InputError, match="matrix-free"):
+        problem.solve("block-pivoting")
+    # Each storage by name; a beam has no lattice operator.
+    small = elcon.ContactProblem(x[:9], None, h, y=y[:9], body1=steel, body2=steel,
+                                 geometry=spheres, load=1.0, storage="dense")
+    assert small.storage == "dense" and small.default_method == "block-pivoting"
+    with pytest.raises(elcon.InputError, match=r"`storage` = \"sparse\": one of auto, dense"):
+        elcon.ContactProblem(x[:9], None, h, y=y[:9], body1=steel, body2=steel, load=1.0,
+                             storage="sparse")
+    assert elcon.storages() == ["auto", "dense", "folded", "lattice"]
+    with pytest.raises(elcon.InputError, match=r"`storage` = \"lattice\": an S given as an array"):
+        elcon.ContactProblem(x[:4], np.zeros(4), h, y=y[:4], influence=np.eye(4), load=1.0,
+                             storage="lattice")
+
+
+def test_a_problems_dict_is_result_jsons_serialization():
+    scene = elcon.run(SCENES / "example1-spheres.toml").to_dict()
+    steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
+    spheres = {"surface1": {"shape": "sphere", "radius": 1.0},
+               "surface2": {"shape": "sphere", "radius": 10.0}}
+    r = elcon.run(SCENES / "example1-spheres.toml")
+    dx = np.diff(np.unique(r.x)).min()
+    solved = elcon.ContactProblem(r.x, None, dx, y=r.y, body1=steel, body2=steel,
+                                  geometry=spheres, load=100.0).solve().to_dict()
+    # result.json's solution fields, in result.json's order, by the same
+    # serde type (SolutionJson).
+    fields = ["approach", "tilt", "moment", "load_centre", "load", "max_pressure",
+              "contact_points", "contact_extent", "certificate", "warnings"]
+    assert [k for k in solved if k in fields] == fields
+    assert [k for k in scene if k in fields] == fields
+    assert set(solved["certificate"]) == set(scene["certificate"])
+    assert solved["points"] == scene["points"] and solved["dimension"] == "surface"
+    assert solved["storage"] == "folded" and solved["symmetry"] == scene["symmetry"]
+    assert solved["max_pressure"] == pytest.approx(scene["max_pressure"], rel=1e-12)
+
+
+def roller_with_design(tmp_path, design_toml):
+    """The crowned roller's scene with its [design] replaced."""
+    text = (SCENES / "crowned-roller.toml").read_text()
+    head = text[: text.index("[design]")]
+    tail = text[text.index("[outputs]"):]
+    path = tmp_path / "roller.toml"
+    path.write_text(head + design_toml + "\n" + tail)
+    return path
+
+
+def cli_design(tmp_path, scene):
+    out = tmp_path / "out"
+    subprocess.run([str(cli()), "run", str(scene), "--out", str(out)], check=True,
+                   capture_output=True)
+    return json.loads((out / "crowned-roller" / "result.json").read_text())["design"]
+
+
+def test_design_over_the_crowned_roller_equals_the_clis_result_json(tmp_path):
+    # The free profile: the scene's own [design].
+    written = cli_design(tmp_path, SCENES / "crowned-roller.toml")
+    free = elcon.design(SCENES / "crowned-roller.toml")
+    assert without_times(free.to_dict()) == without_times(written)
+    assert free.objective == written["objective"]
+    assert free.parameters == written["parameters"]
+    assert free.table == written["table"]
+    assert [c["max_pressure_after"] for c in free.cases] == \
+        [c["max_pressure_after"] for c in written["cases"]]
+    assert free.family == "free" and free.certificates_hold
+    # A logarithmic crown: the [design] keys as keywords, and the same keys
+    # in the scene's file through the CLI.
+    keys = dict(family="logarithmic-crown", loads=[1000.0, 5000.0, 10000.0],
+                relative_to="hertz", axis="y", end="lundberg")
+    scene = roller_with_design(
+        tmp_path, '[design]\nfamily = "logarithmic-crown"\nloads = [1000.0, 5000.0, 10000.0]\n'
+        'relative_to = "hertz"\naxis = "y"\nend = "lundberg"\n')
+    written = cli_design(tmp_path / "log", scene)
+    crown = elcon.design(SCENES / "crowned-roller.toml", **keys)
+    assert without_times(crown.to_dict()) == without_times(written)
+    assert crown.objective == written["objective"]
+    assert crown.parameters == written["parameters"]
+    assert crown.table == written["table"]
+    assert [c["max_pressure_before"] for c in crown.cases] == \
+        [c["max_pressure_before"] for c in written["cases"]]
+    assert [c["max_pressure_after"] for c in crown.cases] == \
+        [c["max_pressure_after"] for c in written["cases"]]
+    assert crown.method == "set"
+    # The scene as a dict, likewise.
+    import tomllib
+
+    as_dict = tomllib.loads((SCENES / "crowned-roller.toml").read_text())
+    assert without_times(elcon.design(as_dict, **keys).to_dict()) == without_times(written)
+    # Over problems built from the same bodies, surfaces and layout, the
+    # roller is derived as the scene derives it: the same crown and the
+    # same re-analyses.
+    steel = {"model": "uniform-patch", "youngs_modulus": 210e3, "poissons_ratio": 0.3}
+    cylinder = {"surface1": {"shape": "cylinder", "radius": 5.0}, "surface2": {"shape": "plane"}}
+    layout = {"grid": "rectangle", "zone": 1.6, "half_y": 5.0, "nx": 9, "ny": 40}
+    problems = [elcon.ContactProblem(body1=steel, body2=steel, geometry=cylinder, points=layout,
+                                     load=load) for load in (1000.0, 5000.0, 10000.0)]
+    references = [c["reference_intensity"] for c in written["cases"]]
+    over = elcon.design(problems, family="logarithmic-crown", axis="y", end="lundberg",
+                        reference_intensities=references)
+    assert over.parameters == written["parameters"] and over.table == written["table"]
+    assert over.max_intensities == [c["max_pressure_after"] for c in written["cases"]]
+    assert over.objective == written["objective"]
+
+
+def test_every_family_from_problems_with_the_scenes_names_and_errors():
+    problem = elcon.ContactProblem(
+        beam_line(), np.zeros(80), 8.9 / 80,
+        body1={"model": "beam", "youngs_modulus": 30e6, "second_moment": 64.0 / 12.0},
+        body2={"model": "winkler", "modulus": 1e7}, load=50000.0)
+    quadratic = elcon.design([problem], family="quadratic")
+    cubic = elcon.design([problem], family="polynomial", degree=3)
+    free = elcon.design([problem], family="free")
+    crown = elcon.design([problem], family="circular-crown", radius_range=[1e2, 1e6])
+    log = elcon.design([problem], family="logarithmic-crown",
+                       roller={"combined_modulus": 30e6, "radius": 1.0, "length": 8.9})
+    assert quadratic.family == "quadratic" and cubic.family == "polynomial (degree 3)"
+    assert free.family == "free" and crown.method == "search" and log.method == "set"
+    assert cubic.objective <= quadratic.objective * (1 + 1e-9)
+    assert free.objective <= cubic.objective * (1 + 1e-9)
+    for d in (quadratic, cubic, free, crown, log):
+        assert d.certificates_hold and d.axis == "x" and d.relative_to == "absolute"
+    # The designed profiles improve on none (a crown, searched or set, is a
+    # crown: on a centrally loaded beam it raises the middle's peak).
+    assert crown.objective > crown.objective_before
+    for d in (quadratic, cubic, free):
+        assert d.objective <= d.objective_before * (1 + 1e-9)
+    # The scene's errors, naming the key.
+    with pytest.raises(elcon.InputError, match=r"`design.degree` = -2: must be at least 0"):
+        elcon.design([problem], family="polynomial", degree=-2)
+    with pytest.raises(elcon.InputError, match=r"`design.degree`.*only for family"):
+        elcon.design([problem], family="free", degree=2)
+    with pytest.raises(elcon.InputError, match=r"`design.radius_range`.*required"):
+        elcon.design([problem], family="circular-crown")
+    with pytest.raises(elcon.InputError, match="unknown variant `cubic`"):
+        elcon.design([problem], family="cubic")
+    with pytest.raises(elcon.InputError, match="unknown field `radius`"):
+        elcon.design([problem], family="circular-crown", radius=3.0)
+    with pytest.raises(elcon.InputError, match=r"`design.family` = \"logarithmic-crown\""):
+        elcon.design([problem], family="logarithmic-crown")
+    # On a line, the profile runs along x (as the scene refuses axis = "y").
+    with pytest.raises(elcon.InputError, match=r"`design.axis` = \"y\": a line grid lies along x"):
+        elcon.design([problem], family="free", axis="y")
+    # The problems are the cases: loads and relative_to belong to a scene.
+    with pytest.raises(elcon.InputError, match=r"`design.loads`"):
+        elcon.design([problem], family="free", loads=[1.0])
+
+
+def test_python_is_as_safe_as_the_cli(tmp_path, monkeypatch):
+    # (a) A scene too big for the memory available is refused before its
+    # assembly, with the estimate (here the ceiling is set by the variable).
+    monkeypatch.setenv("ELCON_MEMORY_LIMIT", "1G")
+    import time
+    import tomllib
+
+    punch = tomllib.loads((SCENES / "flat-punch.toml").read_text())
+    punch["points"]["spacing"] = 0.01 / 80
+    punch["solver"] = {"method": "block-pivoting", "symmetry": "none"}
+    start = time.monotonic()
+    with pytest.raises(elcon.SolveError, match=r"too big for the memory available.*ELCON_MEMORY_LIMIT"):
+        elcon.run(punch)
+    assert time.monotonic() - start < 5.0
+    steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
+    i, j = np.meshgrid(np.arange(150), np.arange(140), indexing="ij")
+    with pytest.raises(elcon.SolveError, match=r"too big for the memory available.*storage=\"lattice\""):
+        elcon.ContactProblem((i * 1e-3).ravel(), None, 1e-3, y=(j * 1e-3).ravel(), body1=steel,
+                             body2=steel, load=1.0, storage="dense")
+    monkeypatch.delenv("ELCON_MEMORY_LIMIT")
+    # (b) Arrays of any dtype and layout; 2-D where 1-D is expected refused.
+    n, h, k = 10, 0.1, 2.0e6
+    x = (np.arange(n) - 0.5 * (n - 1)) * h
+    s = np.eye(n) / (k * h)
+    reference = elcon.ContactProblem(x, np.zeros(n), h, influence=s, load=500.0).solve("lemke")
+    grid = np.zeros((n, 3))
+    grid[:, 1] = x
+    spread = np.zeros((2 * n, 2 * n))
+    spread[::2, ::2] = s
+    for xs, sep, infl in [
+        (grid[:, 1], np.zeros(n, dtype=np.int64), np.asfortranarray(s)),  # a column, ints, Fortran
+        (np.repeat(x, 2)[::2], np.zeros(2 * n)[::2], spread[::2, ::2]),  # strided views
+        (list(x), [0] * n, s.tolist()),  # lists
+    ]:
+        got = elcon.ContactProblem(xs, sep, h, influence=infl, load=500.0).solve("lemke")
+        assert np.array_equal(got.force, reference.force)
+    with pytest.raises(elcon.InputError, match=r"`x`: must be one-dimensional.*\(2, 5\)"):
+        elcon.ContactProblem(x.reshape(2, 5), np.zeros(n), h, influence=s, load=1.0)
+    with pytest.raises(elcon.InputError, match=r"`separation`: must be one-dimensional"):
+        elcon.ContactProblem(x, np.zeros((n, 1)), h, influence=s, load=1.0)
+    with pytest.raises(elcon.InputError, match=r"`influence`: must be an \(N, N\) array"):
+        elcon.ContactProblem(x, np.zeros(n), h, influence=np.ones(n), load=1.0)
+    # (c) Negative counts are input errors.
+    with pytest.raises(elcon.InputError, match=r"`jobs` = -2"):
+        elcon.batch(SCENES / "convergence.toml", jobs=-2, out=tmp_path)
+    # (d) NaN in a scene dict: the field named, not a JSON parser's column.
+    scene = tomllib.loads((SCENES / "example1-spheres.toml").read_text())
+    scene["loading"]["load"] = float("nan")
+    with pytest.raises(elcon.SceneError, match=r"`loading.load` = NaN"):
+        elcon.run(scene)
+    scene["loading"]["load"] = None
+    with pytest.raises(elcon.SceneError, match=r"`loading.load` = None"):
+        elcon.run(scene)
+    # (e) A design over a beam and a sphere at once.
+    beam = elcon.ContactProblem(
+        beam_line(20), np.zeros(20), 8.9 / 20,
+        body1={"model": "beam", "youngs_modulus": 30e6, "second_moment": 1.0},
+        body2={"model": "winkler", "modulus": 1e7}, load=10.0)
+    sphere = elcon.ContactProblem(
+        body1=steel, body2=steel, points={"grid": "disk", "spacing": 0.01, "radius": 0.05},
+        geometry={"surface1": {"shape": "sphere", "radius": 1.0}}, load=10.0)
+    with pytest.raises(elcon.InputError, match=r"`cases\[1\]`: is a surface.*case 0 is a line"):
+        elcon.design([beam, sphere])
+    # (g) A cell whose compliance overflows: said so, not the engine's `m`.
+    xs = np.arange(5) * 1e-300
+    i, j = np.meshgrid(xs, xs, indexing="ij")
+    with pytest.raises(elcon.InputError, match="not in one consistent unit system"):
+        elcon.ContactProblem(i.ravel(), np.zeros(25), 1e-300, y=j.ravel(), body1=steel,
+                             body2=steel, load=1.0).solve()

@@ -48,15 +48,16 @@ pub use plot::error_time;
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{
     DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson, Run, RunResult, Seconds,
-    SymmetryJson, XY, run,
+    SolutionJson, SymmetryJson, XY, run,
 };
 pub use sanity::{
     MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MIN_POINTS_ACROSS,
     max_pivots_bound,
 };
 pub use scene::{
-    BodySpec, DesignFamily, DesignSpec, HalfX, MethodChoice, ModelKind, Outputs, Plot, PointsSpec,
-    Reference, RelativeTo, Scene, Units,
+    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, HalfX, MethodChoice, ModelKind, Outputs,
+    Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units, design_over,
+    problem_parts, scene_with_design,
 };
 pub use schema::ErrorMetric;
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};

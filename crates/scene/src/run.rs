@@ -138,6 +138,68 @@ pub struct DesignJson {
     pub seconds: f64,
 }
 
+/// A solution's fields as result.json writes them, from the approach to
+/// the warnings: what a scene's run and a problem solved from Python
+/// (`elcon.ContactProblem.solve`) both write, by one serialization.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SolutionJson {
+    /// The approach alpha (length).
+    pub approach: f64,
+    /// The rotations of body 1 about the x and y axes through the load
+    /// point (radians; 0 where symmetry makes them so).
+    pub tilt: XY,
+    /// The moments of the contact forces about the load point (force
+    /// length): `sum F (y - y0)`, `-sum F (x - x0)`.
+    pub moment: XY,
+    /// Where the resultant of the contact forces acts (length).
+    pub load_centre: XY,
+    /// The load e^T F (force).
+    pub load: f64,
+    /// The largest load intensity max F_k / A_k (intensity unit).
+    pub max_pressure: f64,
+    /// Points in contact.
+    pub contact_points: usize,
+    /// Contact radius (surface) or half-width (line), the edge resolved within
+    /// the outermost cells (`ContactSolution::contact_extent`; length).
+    pub contact_extent: f64,
+    /// Residuals from the original data.
+    pub certificate: elcon_analysis::ContactCertificate,
+    /// Warnings (truncated zone, uncertain contact).
+    pub warnings: Vec<String>,
+}
+
+impl SolutionJson {
+    /// The fields of `solution`, its warnings after `warnings` (a scene's
+    /// own, from validation).
+    pub fn of(solution: &ContactSolution, warnings: &[String]) -> Self {
+        Self {
+            approach: solution.approach,
+            tilt: XY {
+                x: solution.tilt_x,
+                y: solution.tilt_y,
+            },
+            moment: XY {
+                x: solution.moment_x,
+                y: solution.moment_y,
+            },
+            load_centre: XY {
+                x: solution.load_centre.0,
+                y: solution.load_centre.1,
+            },
+            load: solution.load,
+            max_pressure: solution.max_pressure,
+            contact_points: solution.contact.len(),
+            contact_extent: solution.contact_extent,
+            certificate: solution.certificate,
+            warnings: warnings
+                .iter()
+                .cloned()
+                .chain(solution.warnings.iter().map(|w| w.to_string()))
+                .collect(),
+        }
+    }
+}
+
 /// What result.json holds (docs/results.md documents every field).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RunResult {
@@ -165,29 +227,11 @@ pub struct RunResult {
     pub statistics: elcon_lcp::Statistics,
     /// Seconds.
     pub seconds: Seconds,
-    /// The approach alpha (length).
-    pub approach: f64,
-    /// The rotations of body 1 about the x and y axes through the load
-    /// point (radians; 0 where symmetry makes them so).
-    pub tilt: XY,
-    /// The moments of the contact forces about the load point (force
-    /// length): `sum F (y - y0)`, `-sum F (x - x0)`.
-    pub moment: XY,
-    /// Where the resultant of the contact forces acts (length).
-    pub load_centre: XY,
-    /// The load e^T F (force).
-    pub load: f64,
-    /// The largest load intensity max F_k / A_k (intensity unit).
-    pub max_pressure: f64,
-    /// Points in contact.
-    pub contact_points: usize,
-    /// Contact radius (surface) or half-width (line), the edge resolved within
-    /// the outermost cells (`ContactSolution::contact_extent`; length).
-    pub contact_extent: f64,
-    /// Residuals from the original data.
-    pub certificate: elcon_analysis::ContactCertificate,
-    /// Warnings (truncated zone, uncertain contact).
-    pub warnings: Vec<String>,
+    /// The solution's fields (approach through warnings), written in
+    /// place: result.json has them at this level, and `RunResult` derefs
+    /// to them (`result.approach`).
+    #[serde(flatten)]
+    pub solution: SolutionJson,
     /// The closed-form comparison, where one applies.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceJson>,
@@ -203,6 +247,15 @@ pub struct XY {
     pub x: f64,
     /// About (or along) y.
     pub y: f64,
+}
+
+impl std::ops::Deref for RunResult {
+    type Target = SolutionJson;
+
+    /// The solution's fields, read in place (`result.max_pressure`).
+    fn deref(&self) -> &SolutionJson {
+        &self.solution
+    }
 }
 
 /// A run's result with what the outputs need beyond result.json.
@@ -269,7 +322,6 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         None => None,
     }
     .unzip();
-    let c = &solution.certificate;
     let result = RunResult {
         scene: scene.name().to_string(),
         file: scene.file().display().to_string(),
@@ -293,30 +345,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
             solve: solution.solve_seconds,
             total: start.elapsed().as_secs_f64(),
         },
-        approach: solution.approach,
-        tilt: XY {
-            x: solution.tilt_x,
-            y: solution.tilt_y,
-        },
-        moment: XY {
-            x: solution.moment_x,
-            y: solution.moment_y,
-        },
-        load_centre: XY {
-            x: solution.load_centre.0,
-            y: solution.load_centre.1,
-        },
-        load: solution.load,
-        max_pressure: solution.max_pressure,
-        contact_points: solution.contact.len(),
-        contact_extent: solution.contact_extent,
-        certificate: *c,
-        warnings: scene
-            .warnings()
-            .iter()
-            .cloned()
-            .chain(solution.warnings.iter().map(|w| w.to_string()))
-            .collect(),
+        solution: SolutionJson::of(&solution, scene.warnings()),
         reference,
         design: design_json,
     };

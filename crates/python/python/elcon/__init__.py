@@ -5,19 +5,27 @@ numpy arrays in and out:
 
 - ``elcon.run(path_or_dict)`` runs a scene (a TOML file, or a dict with the
   same keys and the same validation) and returns a :class:`Result`;
-- ``elcon.ContactProblem(...)`` builds a problem from arrays (points,
-  separations, and S given or assembled from body models) and ``.solve()``
-  returns a :class:`Result`;
-- ``elcon.design(problems, ...)`` designs a profile correction over
-  several problems (load cases);
+- ``elcon.ContactProblem(...)`` builds a problem from arrays or a layout
+  (points, separations or surfaces, and S given or assembled from body
+  models, held dense, folded or matrix-free) and ``.solve()`` returns a
+  :class:`Result`;
+- ``elcon.design(problems_or_scene, ...)`` designs a profile correction
+  over several problems (load cases), or runs a scene's design stage;
 - ``elcon.batch(path, jobs=...)`` runs a batch and returns its table.
 
-Units are any consistent set (the scene's ``[units]``); arrays are float64,
-one value per candidate point. Errors are ``elcon.SceneError`` (a scene
-that is not valid: file:line:col and the field), ``elcon.InputError``
-(arrays or parameters that do not go together), ``elcon.SolveError`` (a
-solve that failed, or a problem too big for the memory) and
-``elcon.DesignError``, all ``elcon.ElconError``.
+Body, surface, layout and design dicts are a scene's sections: they are
+parsed and checked by the scene crate's own parsers, with its messages
+(the field named). Every solve is estimated against the same memory
+ceiling as the command line before anything large is allocated, and a
+failure inside the crates reaches Python as an ``elcon.ElconError``.
+
+Units are any consistent set (the scene's ``[units]``); arrays of any
+dtype and layout are taken, one value per candidate point, and returned as
+float64. Errors are ``elcon.SceneError`` (a scene that is not valid:
+file:line:col and the field), ``elcon.InputError`` (arrays, dicts or
+parameters given to ContactProblem or design that are not valid or do not
+go together), ``elcon.SolveError`` (a solve that failed, or a problem too
+big for the memory) and ``elcon.DesignError``, all ``elcon.ElconError``.
 """
 
 from __future__ import annotations
@@ -39,6 +47,7 @@ __all__ = [
     "Result",
     "Design",
     "methods",
+    "storages",
     "ElconError",
     "SceneError",
     "InputError",
@@ -136,32 +145,78 @@ def run(scene: Union[str, os.PathLike, Dict[str, Any]]) -> Result:
     """Runs a scene: a TOML file's path, or a dict with the same keys.
 
     A dict is written as the same TOML a file would hold, so it is validated
-    by the same rules, with the same messages (its file named ``<dict>``).
+    by the same rules, with the same messages (its file named ``<dict>``);
+    NaN and infinities reach the scene's checks, which name the field.
+
+    As ``elcon run`` does, the scene's cost is estimated first and a scene
+    too big for the memory available is refused (``SolveError``, with the
+    estimate and the ceiling) before anything large is allocated.
 
     Raises ``SceneError`` for a scene that is not valid, ``SolveError`` for a
     solve that failed or a scene too big for the memory available.
     """
     if isinstance(scene, dict):
-        text = _elcon.toml_from_json(json.dumps(scene))
-        return Result(_elcon.run_scene(text=text, name="<dict>"))
+        return Result(_elcon.run_scene(scene=scene))
     if isinstance(scene, (str, os.PathLike)):
         return Result(_elcon.run_scene(path=os.fspath(scene)))
     raise InputError("run() takes a scene's path (a .toml file) or a dict of its keys")
 
 
+def _vector(value: Any, name: str) -> Optional[np.ndarray]:
+    """``value`` as a contiguous float64 vector (any dtype or layout), or
+    InputError naming ``name`` when it is not one-dimensional."""
+    if value is None:
+        return None
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"`{name}`: not an array of numbers ({e})") from None
+    if array.ndim != 1:
+        raise InputError(
+            f"`{name}`: must be one-dimensional, one value per point (shape (N,)); "
+            f"got shape {array.shape}"
+        )
+    return np.ascontiguousarray(array)
+
+
+def _matrix(value: Any, name: str) -> Optional[np.ndarray]:
+    """``value`` as a contiguous float64 matrix, or InputError naming
+    ``name`` when it is not two-dimensional."""
+    if value is None:
+        return None
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"`{name}`: not an array of numbers ({e})") from None
+    if array.ndim != 2:
+        raise InputError(f"`{name}`: must be an (N, N) array; got shape {array.shape}")
+    return np.ascontiguousarray(array)
+
+
 class ContactProblem:
-    """A contact problem from numpy arrays.
+    """A contact problem from numpy arrays, or from a layout.
 
     Parameters
     ----------
     x, y:
         The candidate points' coordinates (length), shape ``(N,)``; leave
-        ``y`` out for a line (a beam, a plane-strain contact).
+        ``y`` out for a line (a beam, a plane-strain contact). Any dtype
+        and layout is taken (converted to float64). Points on a regular
+        grid of the spacing are recognized as a lattice (so the
+        matrix-free storage applies to them).
     separation:
-        The initial separation at each point (length), shape ``(N,)``.
+        The initial separation at each point (length), shape ``(N,)``; or
+        give ``geometry`` instead (default: two planes, zero separation).
     spacing:
         The cell size: ``h`` or ``(dx, dy)`` (length). A point's measure is
         its cell's area (its length on a line): pressure = force / measure.
+    points:
+        Instead of ``x``, ``y`` and ``spacing``: a layout as a scene's
+        ``[points]`` (``{"grid": "rectangle", "half_x": ..., "half_y":
+        ..., "nx": ..., "ny": ...}``, ``{"grid": "disk", "spacing": ...,
+        "radius": ...}``, ``{"grid": "line", "start": ..., "end": ..., "n":
+        ...}``, or relative to the Hertz contact with ``across``/``zone``),
+        parsed and checked by the scene's parser.
     influence:
         S as an ``(N, N)`` array (length per force): deflection at k per
         unit force at j, both bodies together. Or give ``body1`` and
@@ -171,7 +226,14 @@ class ContactProblem:
         "youngs_modulus": E, "poissons_ratio": nu}``; models ``rigid``,
         ``uniform-patch``, ``point-force``, ``plane-strain``
         (``reference_distance``), ``winkler`` (``modulus``), ``beam``
-        (``youngs_modulus``, ``second_moment``, ``loaded_point``).
+        (``youngs_modulus``, ``second_moment`` or ``width`` and ``depth``,
+        ``loaded_point``). Parsed and checked by the scene's own parser: an
+        unknown key or a value out of range raises ``InputError`` naming
+        the field (``body1.youngs_modulus``).
+    geometry:
+        A dict as a scene's ``[geometry]``: ``{"surface1": {"shape":
+        "sphere", "radius": R1}, "surface2": {"shape": "plane"}}`` (or
+        ``{"separation": [...]}``), instead of ``separation``.
     load, approach:
         Load control (force) or displacement control (length): one of them.
     tilt_x, tilt_y, moment_x, moment_y:
@@ -181,13 +243,21 @@ class ContactProblem:
         origin). The gap changes by ``tilt_x y - tilt_y x``; ``moment_x``
         balances ``sum F y`` and ``moment_y`` balances ``-sum F x``. On a
         line only ``tilt_y`` / ``moment_y`` apply.
+    storage:
+        How S is held (from bodies): ``"auto"`` (default: folded when the
+        problem is mirror symmetric; matrix-free above 2000 unknowns on a
+        lattice without a beam; else dense), ``"dense"``, ``"folded"``,
+        ``"lattice"`` (matrix-free, solved by the conjugate gradient).
+
+    The problem's cost is estimated before S is assembled and a problem too
+    big for the memory available raises ``SolveError``.
     """
 
     def __init__(
         self,
-        x: Sequence[float],
-        separation: Sequence[float],
-        spacing: Union[float, Sequence[float]],
+        x: Optional[Sequence[float]] = None,
+        separation: Optional[Sequence[float]] = None,
+        spacing: Optional[Union[float, Sequence[float]]] = None,
         y: Optional[Sequence[float]] = None,
         influence: Optional[np.ndarray] = None,
         body1: Optional[Dict[str, Any]] = None,
@@ -198,19 +268,27 @@ class ContactProblem:
         tilt_y: Optional[float] = None,
         moment_x: float = 0.0,
         moment_y: float = 0.0,
+        geometry: Optional[Dict[str, Any]] = None,
+        points: Optional[Dict[str, Any]] = None,
+        storage: str = "auto",
     ):
-        spacing = (float(spacing), float(spacing)) if np.ndim(spacing) == 0 else tuple(
-            float(v) for v in spacing
-        )
-        if len(spacing) != 2:
-            raise InputError("`spacing`: h or (dx, dy)")
-        as_array = lambda v: None if v is None else np.ascontiguousarray(v, dtype=np.float64)
+        if spacing is not None:
+            if np.ndim(spacing) == 0:
+                spacing = (float(spacing), float(spacing))
+            else:
+                spacing = tuple(float(v) for v in np.asarray(spacing).ravel())
+                if len(spacing) != 2:
+                    raise InputError("`spacing`: h or (dx, dy)")
+        for name, value in (("body1", body1), ("body2", body2), ("geometry", geometry),
+                            ("points", points)):
+            if value is not None and not isinstance(value, dict):
+                raise InputError(f"`{name}`: a dict of a scene's [{name}] keys")
         self._inner = _elcon.ContactProblem(
-            as_array(x),
-            as_array(separation),
+            _vector(x, "x"),
+            _vector(separation, "separation"),
             spacing,
-            y=as_array(y),
-            influence=as_array(influence),
+            y=_vector(y, "y"),
+            influence=_matrix(influence, "influence"),
             body1=body1,
             body2=body2,
             load=load,
@@ -219,21 +297,41 @@ class ContactProblem:
             tilt_y=tilt_y,
             moment_x=moment_x,
             moment_y=moment_y,
+            geometry=geometry,
+            points=points,
+            storage_name=storage,
         )
 
     def __len__(self) -> int:
         return len(self._inner)
 
-    def solve(self, method: str = "block-pivoting") -> Result:
-        """Solves with ``method`` (``elcon.methods()``); the GIL is released."""
+    @property
+    def storage(self) -> str:
+        """How S is held: ``"dense"``, ``"folded"`` or ``"lattice"``."""
+        return self._inner.storage
+
+    @property
+    def default_method(self) -> str:
+        """The method ``solve()`` uses when given none: block pivoting on a
+        dense or folded S, the conjugate gradient matrix-free."""
+        return self._inner.default_method
+
+    def solve(self, method: Optional[str] = None) -> Result:
+        """Solves with ``method`` (``elcon.methods()``; default: the
+        problem's own, ``default_method``); the GIL is released."""
         return Result(self._inner.solve(method))
 
 
 class Design:
-    """A certified design: ``objective`` (the worst p_max over the cases,
-    over each case's reference intensity), ``max_intensities`` (per case),
-    ``positions`` and ``drops`` (the correction at the axial stations,
-    arrays), ``method`` ("program" or "descent"), ``starts``."""
+    """A certified design, as result.json's ``design`` block: ``family``,
+    ``axis``, ``relative_to``, ``parameters`` (the profile's, by name),
+    ``objective`` (the worst p_max over the cases, over each case's
+    reference intensity), ``objective_before``, ``cases`` (per case: load,
+    reference intensity, p_max before and after, certificate), ``table``,
+    ``method`` ("program", "descent", "search" or "set"), ``starts``,
+    ``seconds``. Arrays: ``positions`` and ``drops`` (the correction at the
+    axial stations). Also ``max_intensities`` (p_max per case, corrected),
+    ``max_intensity`` (their largest) and ``certificates_hold``."""
 
     def __init__(self, raw: str):
         self._dict = json.loads(raw)
@@ -247,34 +345,100 @@ class Design:
         except KeyError:
             raise AttributeError(name) from None
 
+    @property
+    def max_intensities(self) -> List[float]:
+        """The corrected p_max of each case."""
+        return [c["max_pressure_after"] for c in self._dict["cases"]]
+
+    @property
+    def max_intensity(self) -> float:
+        """The largest corrected p_max over the cases."""
+        return max(self.max_intensities)
+
+    @property
+    def certificates_hold(self) -> bool:
+        """Whether every case's re-analysis is certified."""
+        return all(c["certificate_holds"] for c in self._dict["cases"])
+
     def to_dict(self) -> Dict[str, Any]:
-        """The design as a dict."""
-        return dict(self._dict)
+        """The design as a dict: result.json's design block."""
+        return json.loads(json.dumps(self._dict))
 
 
 def design(
-    problems: Sequence[ContactProblem],
-    axis: str = "x",
-    family: str = "quadratic",
+    problems: Union[Sequence[ContactProblem], str, os.PathLike, Dict[str, Any]],
+    axis: Optional[str] = None,
+    family: Optional[str] = None,
     degree: Optional[int] = None,
-    method: str = "auto",
+    method: Optional[str] = None,
     reference_intensities: Optional[Sequence[float]] = None,
+    *,
+    roller: Optional[Dict[str, float]] = None,
+    **design_keys: Any,
 ) -> Design:
-    """The correction of ``family`` (``quadratic``, ``polynomial`` with
-    ``degree``, ``free``) along ``axis`` that minimizes the worst load
-    intensity over the problems (each a load case under a load), by the
-    paper's program or the case-decomposed descent (``method``: ``auto``,
-    ``program``, ``descent``). Raises ``DesignError`` when it fails."""
+    """Designs a profile correction, by the scene's ``[design]`` keys.
+
+    Over a scene (``problems`` a scene's path or dict): the scene's design
+    stage, its ``[design]`` replaced by the keys given (kept when none
+    are), run as ``elcon run`` runs it; the result is the scene's
+    result.json design block. Every key of a scene's ``[design]`` applies
+    (``family``, ``degree``, ``axis``, ``loads``, ``relative_to``,
+    ``max_constant``, ``radius_range``, ``flat_length``, ``design_load``,
+    ``method``, ``end``, ``misalignments``).
+
+    Over problems (a list of ``ContactProblem``, each a load case under a
+    load): the family's keys (``family``, default ``"quadratic"``;
+    ``degree``, ``axis``, ``method``, ``max_constant``, ``radius_range``,
+    ``flat_length``, ``design_load``, ``end``), checked by the scene's
+    parser; each case's p_max is measured against
+    ``reference_intensities`` (default 1). A logarithmic crown is set for
+    a roller: derived as a scene derives it when the first problem was
+    built from two half-space bodies, a cylinder and a rectangle
+    ``points`` layout, else given as ``roller={"combined_modulus": E*,
+    "radius": R, "length": L}``.
+
+    The families: ``quadratic``, ``polynomial`` (``degree``), ``free``,
+    ``circular-crown`` (``radius_range``, ``flat_length``),
+    ``logarithmic-crown`` (``design_load``, ``flat_length``, ``end``).
+    Raises ``InputError`` (``SceneError`` over a scene) for keys that are
+    not valid, ``DesignError`` when the design fails.
+    """
+    keys = dict(design_keys)
+    for name, value in (("axis", axis), ("family", family), ("degree", degree),
+                        ("method", method)):
+        if value is not None:
+            keys[name] = value
+    if isinstance(problems, (str, os.PathLike, dict)):
+        if reference_intensities is not None or roller is not None:
+            raise InputError(
+                "over a scene, the cases' references are `relative_to` and the roller is the "
+                "scene's: give `reference_intensities` and `roller` only with problems"
+            )
+        if isinstance(problems, dict):
+            raw = _elcon.design_scene(scene=problems, keys=keys)
+        else:
+            raw = _elcon.design_scene(path=os.fspath(problems), keys=keys)
+        return Design(raw["json"])
+    problems = list(problems)
+    for i, p in enumerate(problems):
+        if not isinstance(p, ContactProblem):
+            raise InputError(f"`problems[{i}]`: not an elcon.ContactProblem")
+    keys.setdefault("family", "quadratic")
+    refs = None if reference_intensities is None else [
+        float(r) for r in np.asarray(reference_intensities, dtype=np.float64).ravel()
+    ]
     inner = [p._inner for p in problems]
-    refs = None if reference_intensities is None else [float(r) for r in reference_intensities]
-    return Design(_elcon.design(inner, axis, family, degree, method, refs))
+    return Design(_elcon.design_problems(inner, keys, refs, roller))
 
 
 def batch(path: Union[str, os.PathLike], jobs: Optional[int] = None, out: Union[str, os.PathLike] = "out"):
     """Runs a batch file into ``out`` (its tables and every run's outputs, as
     ``elcon batch`` writes them) and returns its runs' table: a pandas
     DataFrame if pandas is installed, else a list of dicts."""
-    outcome = json.loads(_elcon.run_batch(os.fspath(path), os.fspath(out), jobs))
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, (int, np.integer))):
+        raise InputError(f"`jobs` = {jobs!r}: a whole number >= 1 (None: one per core)")
+    outcome = json.loads(_elcon.run_batch(
+        os.fspath(path), os.fspath(out), None if jobs is None else int(jobs)))
     rows = outcome["rows"]
     try:
         import pandas  # noqa: F401
@@ -286,3 +450,8 @@ def batch(path: Union[str, os.PathLike], jobs: Optional[int] = None, out: Union[
 def methods() -> List[str]:
     """The solve methods, by name."""
     return list(_elcon.methods())
+
+
+def storages() -> List[str]:
+    """The storages of S a ContactProblem takes, by name."""
+    return list(_elcon.storages())

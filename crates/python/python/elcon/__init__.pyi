@@ -41,10 +41,10 @@ class Result:
 class ContactProblem:
     def __init__(
         self,
-        x: Sequence[float],
-        separation: Sequence[float],
-        spacing: Union[float, Sequence[float]],
-        y: Optional[Sequence[float]] = None,
+        x: Optional[npt.ArrayLike] = None,
+        separation: Optional[npt.ArrayLike] = None,
+        spacing: Optional[Union[float, Sequence[float]]] = None,
+        y: Optional[npt.ArrayLike] = None,
         influence: Optional[npt.ArrayLike] = None,
         body1: Optional[Dict[str, Any]] = None,
         body2: Optional[Dict[str, Any]] = None,
@@ -54,26 +54,43 @@ class ContactProblem:
         tilt_y: Optional[float] = None,
         moment_x: float = 0.0,
         moment_y: float = 0.0,
+        geometry: Optional[Dict[str, Any]] = None,
+        points: Optional[Dict[str, Any]] = None,
+        storage: str = "auto",
     ) -> None: ...
     def __len__(self) -> int: ...
-    def solve(self, method: str = "block-pivoting") -> Result: ...
+    @property
+    def storage(self) -> str: ...
+    @property
+    def default_method(self) -> str: ...
+    def solve(self, method: Optional[str] = None) -> Result: ...
 
 class Design:
     positions: npt.NDArray[np.float64]
     drops: npt.NDArray[np.float64]
+    @property
+    def max_intensities(self) -> List[float]: ...
+    @property
+    def max_intensity(self) -> float: ...
+    @property
+    def certificates_hold(self) -> bool: ...
     def to_dict(self) -> Dict[str, Any]: ...
     def __getattr__(self, name: str) -> Any: ...
 
 def run(scene: Union[str, os.PathLike, Dict[str, Any]]) -> Result: ...
 def design(
-    problems: Sequence[ContactProblem],
-    axis: str = "x",
-    family: str = "quadratic",
+    problems: Union[Sequence[ContactProblem], str, os.PathLike, Dict[str, Any]],
+    axis: Optional[str] = None,
+    family: Optional[str] = None,
     degree: Optional[int] = None,
-    method: str = "auto",
+    method: Optional[str] = None,
     reference_intensities: Optional[Sequence[float]] = None,
+    *,
+    roller: Optional[Dict[str, float]] = None,
+    **design_keys: Any,
 ) -> Design: ...
 def batch(
     path: Union[str, os.PathLike], jobs: Optional[int] = None, out: Union[str, os.PathLike] = "out"
 ) -> Any: ...
 def methods() -> List[str]: ...
+def storages() -> List[str]: ...

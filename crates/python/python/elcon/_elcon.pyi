@@ -13,27 +13,30 @@ class SolveError(ElconError): ...
 class DesignError(ElconError): ...
 
 def run_scene(
-    path: Optional[str] = None, text: Optional[str] = None, name: str = "<dict>"
+    path: Optional[str] = None, scene: Optional[Dict[str, Any]] = None
 ) -> Dict[str, Any]: ...
-def toml_from_json(json: str) -> str: ...
 def run_batch(path: str, out: str, jobs: Optional[int] = None) -> str: ...
-def design(
+def design_problems(
     problems: Sequence["ContactProblem"],
-    axis: str = "x",
-    family: str = "quadratic",
-    degree: Optional[int] = None,
-    method_name: str = "auto",
+    keys: Dict[str, Any],
     reference_intensities: Optional[Sequence[float]] = None,
+    roller_dict: Optional[Dict[str, float]] = None,
 ) -> str: ...
+def design_scene(
+    path: Optional[str] = None,
+    scene: Optional[Dict[str, Any]] = None,
+    keys: Optional[Dict[str, Any]] = None,
+) -> Dict[str, str]: ...
 def methods() -> List[str]: ...
+def storages() -> List[str]: ...
 def is_file(path: str) -> bool: ...
 
 class ContactProblem:
     def __init__(
         self,
-        x: npt.NDArray[np.float64],
-        separation: npt.NDArray[np.float64],
-        spacing: Tuple[float, float],
+        x: Optional[npt.NDArray[np.float64]] = None,
+        separation: Optional[npt.NDArray[np.float64]] = None,
+        spacing: Optional[Tuple[float, float]] = None,
         y: Optional[npt.NDArray[np.float64]] = None,
         influence: Optional[npt.NDArray[np.float64]] = None,
         body1: Optional[Dict[str, Any]] = None,
@@ -44,6 +47,13 @@ class ContactProblem:
         tilt_y: Optional[float] = None,
         moment_x: float = 0.0,
         moment_y: float = 0.0,
+        geometry: Optional[Dict[str, Any]] = None,
+        points: Optional[Dict[str, Any]] = None,
+        storage_name: str = "auto",
     ) -> None: ...
     def __len__(self) -> int: ...
-    def solve(self, method_name: str = "block-pivoting") -> Dict[str, Any]: ...
+    @property
+    def storage(self) -> str: ...
+    @property
+    def default_method(self) -> str: ...
+    def solve(self, method_name: Optional[str] = None) -> Dict[str, Any]: ...

@@ -122,12 +122,32 @@ pub(super) struct DesignContext<'a> {
     pub(super) loading: Loading,
     /// The grid's dimension.
     pub(super) dimension: Dimension,
+    /// The bodies, the surfaces and the layout the Hertz contact (a
+    /// logarithmic crown's roller, `relative_to = "hertz"`) comes from;
+    /// `None` for problems given whole (from Python's arrays), which have
+    /// no layout.
+    pub(super) layout: Option<DesignLayout<'a>>,
+    /// The roller a logarithmic crown is set for when it is given rather
+    /// than derived from `layout` (Python's `roller=`).
+    pub(super) roller: Option<Roller>,
+}
+
+/// The parts of a scene its Hertz contact comes from.
+#[derive(Clone, Copy)]
+pub(super) struct DesignLayout<'a> {
     /// The two bodies.
     pub(super) bodies: &'a [BodySpec; 2],
     /// The surfaces or the separation.
     pub(super) geometry: &'a Geometry,
     /// The point layout.
     pub(super) points_spec: &'a PointsSpec,
+}
+
+impl DesignLayout<'_> {
+    /// The Hertz contact at `load`, where one applies.
+    fn hertz(&self, load: f64) -> Option<Hertz> {
+        hertz(self.bodies, self.geometry, self.points_spec, load)
+    }
 }
 
 pub(super) fn design(
@@ -247,12 +267,6 @@ fn design_family(
     loads: &[f64],
     scene: &DesignContext<'_>,
 ) -> Result<DesignFamily, SceneError> {
-    let DesignContext {
-        bodies,
-        geometry,
-        points_spec,
-        ..
-    } = *scene;
     Ok(match family_name {
         FamilyName::Quadratic => DesignFamily::Linear(Family::Quadratic),
         FamilyName::Free => DesignFamily::Linear(Family::Free),
@@ -311,15 +325,21 @@ fn design_family(
                 None => loads.iter().cloned().fold(0.0, f64::max),
             };
             // Its radius, modulus and length are those of the roller's
-            // Hertz line contact.
-            let roller = match (hertz(bodies, geometry, points_spec, q), points_spec) {
-                (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => Some(Roller {
-                    combined_modulus: h.combined_modulus,
-                    radius: h.radius,
-                    length: 2.0 * half_y,
-                }),
-                _ => None,
-            };
+            // Hertz line contact (or given).
+            let derived =
+                scene
+                    .layout
+                    .and_then(|layout| match (layout.hertz(q), layout.points_spec) {
+                        (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => {
+                            Some(Roller {
+                                combined_modulus: h.combined_modulus,
+                                radius: h.radius,
+                                length: 2.0 * half_y,
+                            })
+                        }
+                        _ => None,
+                    });
+            let roller = scene.roller.or(derived);
             let Some(roller) = roller else {
                 return Err(ctx.invalid(
                     t.family.span(),
@@ -368,12 +388,6 @@ fn design_relative_to(
     loads: &[f64],
     scene: &DesignContext<'_>,
 ) -> Result<RelativeTo, SceneError> {
-    let DesignContext {
-        bodies,
-        geometry,
-        points_spec,
-        ..
-    } = *scene;
     let t = d.get_ref();
     let relative_to = t
         .relative_to
@@ -382,7 +396,7 @@ fn design_relative_to(
     if relative_to == RelativeTo::Hertz
         && let Some(&load) = loads
             .iter()
-            .find(|&&p| hertz(bodies, geometry, points_spec, p).is_none())
+            .find(|&&p| scene.layout.and_then(|l| l.hertz(p)).is_none())
     {
         let span = t.relative_to.as_ref().map_or(d.span(), |r| r.span());
         return Err(ctx.invalid(

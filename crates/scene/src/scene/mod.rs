@@ -16,6 +16,7 @@ mod geometry;
 mod hertz;
 mod loading;
 mod outputs;
+mod parts;
 mod points;
 mod solver;
 mod units;
@@ -34,6 +35,7 @@ pub use design::{DesignFamily, DesignSpec, RelativeTo};
 pub(crate) use hertz::Hertz;
 pub use hertz::Reference;
 pub use outputs::{Outputs, Plot};
+pub use parts::{DesignLayoutParts, ProblemParts, design_over, problem_parts, scene_with_design};
 pub(crate) use points::build_points;
 pub use points::{HalfX, PointsSpec};
 pub use solver::MethodChoice;
@@ -42,7 +44,7 @@ pub use units::Units;
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
-use crate::schema::{PointsToml, SceneFile};
+use crate::schema::{BodyToml, LoadingToml, PointsToml, SceneFile};
 
 /// A validated scene.
 #[derive(Debug, Clone)]
@@ -271,7 +273,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         body::body(ctx, raw.body1.get_ref(), "body1")?,
         body::body(ctx, raw.body2.get_ref(), "body2")?,
     ];
-    let (line_models, surface_models) = model_kinds(ctx, &raw, &bodies)?;
+    let (line_models, surface_models) = model_kinds(ctx, &raw.body2, &bodies)?;
     let units = units::units(
         ctx,
         raw.units.get_ref(),
@@ -279,7 +281,14 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     )?;
     let loading = loading::loading(ctx, &raw.loading)?;
     let (points_spec, dimension) = points::points_spec(ctx, &raw.points)?;
-    grid_fits_models(ctx, &raw, dimension, line_models, surface_models)?;
+    grid_fits_models(
+        ctx,
+        &raw.points,
+        Some(raw.loading.get_ref()),
+        dimension,
+        line_models,
+        surface_models,
+    )?;
     let geometry = geometry::geometry(ctx, raw.geometry.as_ref(), dimension)?;
     sanity::curvatures(ctx, raw.geometry.as_ref(), &geometry)?;
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
@@ -301,9 +310,12 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
             &design::DesignContext {
                 loading,
                 dimension,
-                bodies: &bodies,
-                geometry: &geometry,
-                points_spec: &points_spec,
+                layout: Some(design::DesignLayout {
+                    bodies: &bodies,
+                    geometry: &geometry,
+                    points_spec: &points_spec,
+                }),
+                roller: None,
             },
         )?),
         None => None,
@@ -410,12 +422,12 @@ fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
 /// Returns (line models present, surface models present).
 fn model_kinds(
     ctx: &Ctx<'_>,
-    raw: &SceneFile,
+    body2: &Spanned<BodyToml>,
     bodies: &[BodySpec; 2],
 ) -> Result<(bool, bool), SceneError> {
     if bodies.iter().all(|b| b.body().is_rigid()) {
         return Err(ctx.invalid(
-            raw.body2.get_ref().model.span(),
+            body2.get_ref().model.span(),
             "body2.model",
             "\"rigid\"",
             "both bodies are rigid: there is no elasticity to solve for; give one an elastic model",
@@ -425,7 +437,7 @@ fn model_kinds(
     let surface_models = bodies.iter().any(|b| b.model().is_surface());
     if line_models && surface_models {
         return Err(ctx.invalid(
-            raw.body2.get_ref().model.span(),
+            body2.get_ref().model.span(),
             "body2.model",
             format!("\"{}\"", bodies[1].model()),
             format!(
@@ -442,30 +454,30 @@ fn model_kinds(
 /// about x.
 fn grid_fits_models(
     ctx: &Ctx<'_>,
-    raw: &SceneFile,
+    points: &Spanned<PointsToml>,
+    loading: Option<&LoadingToml>,
     dimension: Dimension,
     line_models: bool,
     surface_models: bool,
 ) -> Result<(), SceneError> {
     if line_models && dimension != Dimension::Line {
         return Err(ctx.invalid(
-            raw.points.get_ref().grid.span(),
+            points.get_ref().grid.span(),
             "points.grid",
-            format!("\"{}\"", raw.points.get_ref().grid.get_ref()),
+            format!("\"{}\"", points.get_ref().grid.get_ref()),
             "the bodies' models (plane-strain, beam) need grid = \"line\"",
         ));
     }
     if surface_models && dimension != Dimension::Surface {
         return Err(ctx.invalid(
-            raw.points.get_ref().grid.span(),
+            points.get_ref().grid.span(),
             "points.grid",
             "\"line\"",
             "the bodies' models (point-force, uniform-patch) need grid = \"disk\" or \"rectangle\"",
         ));
     }
-    if dimension == Dimension::Line {
+    if let (Dimension::Line, Some(l)) = (dimension, loading) {
         // A line has one rotation, about the y axis.
-        let l = raw.loading.get_ref();
         for (value, field) in [
             (&l.moment_x, "loading.moment_x"),
             (&l.tilt_x, "loading.tilt_x"),

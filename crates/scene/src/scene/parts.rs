@@ -1,0 +1,441 @@
+//! A scene's sections one at a time, for callers that build a contact
+//! problem or a design piece by piece rather than from a whole scene (the
+//! Python package's `ContactProblem` and `design`): `[body1]`, `[body2]`,
+//! `[geometry]`, `[points]` and `[design]` given as the TOML a scene would
+//! hold, parsed by the scene's own schema (an unknown key is refused) and
+//! validated by the scene's own checks, with the scene's messages (the
+//! field named, `body1.youngs_modulus`). And a scene whose `[design]` is
+//! replaced, for a design stage asked for over a scene.
+
+use std::path::Path;
+
+use elcon_analysis::{ContactProblem, Geometry, Loading, Normal};
+use elcon_design::Roller;
+use elcon_influence::{Dimension, PointSet};
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::body::{self, BodySpec};
+use super::design::{self, DesignContext, DesignLayout, DesignSpec};
+use super::geometry;
+use super::points::{self, PointsSpec, build_points};
+use super::{Scene, grid_fits_models, hertz, model_kinds};
+use crate::ctx::{Ctx, parse};
+use crate::error::SceneError;
+use crate::sanity;
+use crate::schema::{BodyToml, DesignToml, FamilyName, GeometryToml, PointsToml};
+
+/// The sections of a contact problem given piece by piece.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ProblemFile {
+    body1: Option<Spanned<BodyToml>>,
+    body2: Option<Spanned<BodyToml>>,
+    geometry: Option<Spanned<GeometryToml>>,
+    points: Option<Spanned<PointsToml>>,
+}
+
+/// A `[design]` section alone.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DesignFile {
+    design: Spanned<DesignToml>,
+}
+
+/// A contact problem's parts, each validated as a scene validates its
+/// section.
+#[derive(Debug, Clone)]
+pub struct ProblemParts {
+    /// The two bodies (`[body1]`, `[body2]`), when given.
+    pub bodies: Option<[BodySpec; 2]>,
+    /// The initial separations' source (`[geometry]`), when given.
+    pub geometry: Option<Geometry>,
+    /// The layout (`[points]`), when given.
+    pub points_spec: Option<PointsSpec>,
+    /// The candidate points: laid out from `[points]`, or those given.
+    pub points: PointSet,
+}
+
+/// Parses and validates the sections of a contact problem given piece by
+/// piece: `text` is TOML holding any of `[body1]` with `[body2]`,
+/// `[geometry]` and `[points]` as a scene holds them (`file` names it in
+/// messages); `listed` are the candidate points when `[points]` is not
+/// given; `loading` sizes a layout relative to the Hertz contact. The
+/// checks are the scene's: each body's model and parameters, the two
+/// bodies together, the surfaces against the grid's dimension, the
+/// layout's keys, and the bodies against the grid (a plane-strain datum
+/// beyond it, a beam's loaded point on it).
+///
+/// # Errors
+/// [`SceneError::Syntax`] for an unknown key or a value of the wrong type;
+/// [`SceneError::Invalid`] naming the field otherwise, also when neither or
+/// both of `[points]` and `listed` are given, or one body without the
+/// other.
+pub fn problem_parts(
+    file: &Path,
+    text: &str,
+    listed: Option<PointSet>,
+    loading: Loading,
+) -> Result<ProblemParts, SceneError> {
+    let raw: ProblemFile = parse(file, text)?;
+    let ctx = Ctx { file, text };
+    let bodies = match (&raw.body1, &raw.body2) {
+        (Some(b1), Some(b2)) => {
+            let bodies = [
+                body::body(&ctx, b1.get_ref(), "body1")?,
+                body::body(&ctx, b2.get_ref(), "body2")?,
+            ];
+            Some((model_kinds(&ctx, b2, &bodies)?, bodies))
+        }
+        (Some(b), None) | (None, Some(b)) => {
+            let missing = if raw.body1.is_none() {
+                "body1"
+            } else {
+                "body2"
+            };
+            return Err(ctx.invalid(
+                b.span(),
+                missing,
+                "(missing)",
+                "both bodies are needed to assemble S",
+            ));
+        }
+        (None, None) => None,
+    };
+    let (points_spec, dimension) = match (&raw.points, &listed) {
+        (Some(p), None) => {
+            let (spec, dimension) = points::points_spec(&ctx, p)?;
+            if let Some(((line, surface), _)) = &bodies {
+                grid_fits_models(&ctx, p, None, dimension, *line, *surface)?;
+            }
+            (Some(spec), dimension)
+        }
+        (None, Some(l)) => (None, l.dimension()),
+        (Some(p), Some(_)) => {
+            return Err(ctx.invalid(
+                p.span(),
+                "points",
+                "",
+                "give the points as a layout or as coordinates, not both",
+            ));
+        }
+        (None, None) => {
+            return Err(ctx.invalid(
+                0..0,
+                "points",
+                "(missing)",
+                "give the points as a layout or as coordinates",
+            ));
+        }
+    };
+    let geometry = match &raw.geometry {
+        Some(g) => {
+            let geometry = geometry::geometry(&ctx, Some(g), dimension)?;
+            sanity::curvatures(&ctx, Some(g), &geometry)?;
+            Some(geometry)
+        }
+        None => None,
+    };
+    let points = match (points_spec.as_ref().zip(raw.points.as_ref()), listed) {
+        (Some((spec, p)), _) => {
+            let scale = match (&bodies, &geometry, loading.normal) {
+                (Some((_, b)), Some(g), Normal::Load(load)) => hertz::hertz_scale(b, g, spec, load),
+                _ => None,
+            };
+            build_points(spec, scale).map_err(|reason| {
+                ctx.invalid(
+                    p.span(),
+                    "points",
+                    "",
+                    format!(
+                        "{reason} (a layout relative to the Hertz contact needs two bodies, \
+                         curved surfaces and a load)"
+                    ),
+                )
+            })?
+        }
+        (None, Some(l)) => l,
+        (None, None) => {
+            return Err(ctx.invalid(
+                0..0,
+                "points",
+                "(missing)",
+                "give the points as a layout or as coordinates",
+            ));
+        }
+    };
+    if let (Some((_, b)), Some(b1), Some(b2)) = (&bodies, &raw.body1, &raw.body2) {
+        sanity::bodies_on_grid(&ctx, [b1, b2], [b[0].body(), b[1].body()], &points, &[])?;
+    }
+    Ok(ProblemParts {
+        bodies: bodies.map(|(_, b)| b),
+        geometry,
+        points_spec,
+        points,
+    })
+}
+
+/// The scene parts a design over problems given piece by piece may know:
+/// what its logarithmic crown's roller is derived from.
+#[derive(Debug, Clone, Copy)]
+pub struct DesignLayoutParts<'a> {
+    /// The two bodies.
+    pub bodies: &'a [BodySpec; 2],
+    /// The surfaces.
+    pub geometry: &'a Geometry,
+    /// The layout of the points.
+    pub points_spec: &'a PointsSpec,
+}
+
+/// Parses and validates a `[design]` section (`text`, TOML, `file` naming
+/// it in messages) for a design over `cases`, contact problems built
+/// elsewhere: the scene's checks of the family and its keys, the axis
+/// against the cases' dimension, the method, and the degree and bound
+/// against the cases' grids. The cases are the load cases, so the keys
+/// that make cases (`loads`, `misalignments`) and `relative_to` (the
+/// caller gives reference intensities instead) are refused. A logarithmic
+/// crown's roller is `roller` when given, else derived as a scene derives
+/// it from `layout` (the bodies, surfaces and rectangle grid the cases
+/// were built from).
+///
+/// # Errors
+/// [`SceneError::Syntax`] for an unknown key; [`SceneError::Invalid`]
+/// naming the field, also when the cases are not all lines or all
+/// surfaces (`cases`).
+pub fn design_over(
+    file: &Path,
+    text: &str,
+    cases: &[ContactProblem],
+    layout: Option<DesignLayoutParts<'_>>,
+    roller: Option<Roller>,
+) -> Result<DesignSpec, SceneError> {
+    let raw: DesignFile = parse(file, text)?;
+    let ctx = Ctx { file, text };
+    let d = &raw.design;
+    let t = d.get_ref();
+    for (list, field) in [
+        (&t.loads, "design.loads"),
+        (&t.misalignments, "design.misalignments"),
+    ] {
+        if let Some(l) = list {
+            return Err(ctx.invalid(
+                l.span(),
+                field,
+                "",
+                "the problems given are the load cases (each with its load and tilt)",
+            ));
+        }
+    }
+    ctx.forbid(
+        &t.relative_to,
+        "design.relative_to",
+        "the problems given are the load cases: give their reference intensities instead",
+    )?;
+    let dimensions: Vec<Dimension> = cases.iter().map(|c| c.points().dimension()).collect();
+    let dimension = match dimensions.first() {
+        Some(&first) => first,
+        None => {
+            return Err(ctx.invalid(d.span(), "cases", "[]", "give at least one load case"));
+        }
+    };
+    if let Some(other) = dimensions.iter().position(|&k| k != dimension) {
+        let kind = |k: Dimension| match k {
+            Dimension::Line => "a line (beam, plane strain)",
+            Dimension::Surface => "a surface (half-space bodies)",
+        };
+        return Err(ctx.invalid(
+            d.span(),
+            format!("cases[{other}]"),
+            "",
+            format!(
+                "is {} and case 0 is {}: one design runs along one kind of problem",
+                kind(dimensions[other]),
+                kind(dimension)
+            ),
+        ));
+    }
+    if *t.family.get_ref() == FamilyName::LogarithmicCrown && layout.is_none() && roller.is_none() {
+        return Err(ctx.invalid(
+            t.family.span(),
+            "design.family",
+            "\"logarithmic-crown\"",
+            "a logarithmic crown is set for a roller: give it (its combined modulus, radius and \
+             length), or build the cases from two half-space bodies, a cylinder on a plane or a \
+             cylinder, and a rectangle grid",
+        ));
+    }
+    // The loads of the cases under load control; a displacement-controlled
+    // case is refused by elcon-design, naming it.
+    let loads: Vec<f64> = cases
+        .iter()
+        .filter_map(|c| match c.loading().normal {
+            Normal::Load(p) => Some(p),
+            Normal::Approach(_) => None,
+        })
+        .collect();
+    let largest = loads.iter().copied().fold(0.0, f64::max);
+    let spec = design::design(
+        &ctx,
+        d,
+        &DesignContext {
+            loading: Loading::load(if largest > 0.0 { largest } else { 1.0 }),
+            dimension,
+            layout: layout.map(|l| DesignLayout {
+                bodies: l.bodies,
+                geometry: l.geometry,
+                points_spec: l.points_spec,
+            }),
+            roller,
+        },
+    )?;
+    let sets: Vec<PointSet> = cases.iter().map(|c| c.points().clone()).collect();
+    let view = sanity::DesignView {
+        family: match spec.family() {
+            design::DesignFamily::Linear(f) => Some(*f),
+            _ => None,
+        },
+        axis: spec.axis(),
+        max_constant: spec.max_constant(),
+    };
+    sanity::design(&ctx, d, &view, &sets)?;
+    Ok(spec)
+}
+
+/// A scene (`text`, named `file`) with its `[design]` section replaced by
+/// `design` (TOML holding a `[design]` table), validated whole as a scene
+/// file: what a design stage asked for over a scene runs.
+///
+/// # Errors
+/// As [`Scene::from_str`]; the scene's text is located in its own
+/// messages when it is not valid TOML.
+pub fn scene_with_design(file: &Path, text: &str, design: &str) -> Result<Scene, SceneError> {
+    let mut table: toml::Table = parse(file, text)?;
+    let replacement: toml::Table = parse(file, design)?;
+    table.remove("design");
+    table.extend(replacement);
+    let joined = toml::to_string(&table).map_err(|e| SceneError::Syntax {
+        file: file.to_path_buf(),
+        at: crate::error::Location { line: 1, column: 1 },
+        message: format!("the scene with its design replaced cannot be written as TOML: {e}"),
+    })?;
+    Scene::from_str(file, &joined)
+}
+
+#[cfg(test)]
+mod tests {
+    use elcon_analysis::{Body, Material, Surface};
+
+    use super::*;
+
+    fn file() -> &'static Path {
+        Path::new("<parts>")
+    }
+
+    fn line_points() -> PointSet {
+        PointSet::line(-1.0, 1.0, 8).unwrap()
+    }
+
+    #[test]
+    fn a_body_is_checked_by_the_scenes_body_parser_naming_the_field() {
+        let text = "[body1]\nmodel = \"beam\"\nyoungs_modulus = -30e6\nsecond_moment = 1.0\n\
+                    [body2]\nmodel = \"winkler\"\nmodulus = 1e7\n";
+        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        assert!(e.is_input_error());
+        assert!(
+            e.to_string()
+                .contains("`body1.youngs_modulus` = -30000000: must be > 0"),
+            "{e}"
+        );
+        let text = "[body1]\nmodel = \"winkler\"\nmodulus = 1e7\nloaded_pt = 3.0\n\
+                    [body2]\nmodel = \"rigid\"\n";
+        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        assert!(e.to_string().contains("unknown field `loaded_pt`"), "{e}");
+        let text = "[body1]\nmodel = \"winkler\"\nmodulus = 1e7\n";
+        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        assert!(e.to_string().contains("`body2` = (missing)"), "{e}");
+    }
+
+    #[test]
+    fn surfaces_and_a_layout_are_the_scenes_sections() {
+        let text = "[body1]\nmodel = \"uniform-patch\"\nyoungs_modulus = 30e6\n\
+                    poissons_ratio = 0.3\n[body2]\nmodel = \"rigid\"\n\
+                    [geometry]\nsurface1 = { shape = \"sphere\", radius = 1.0 }\n\
+                    [points]\ngrid = \"disk\"\nspacing = 0.01\nradius = 0.05\n";
+        let parts = problem_parts(file(), text, None, Loading::load(1.0)).unwrap();
+        assert_eq!(parts.points, PointSet::grid_disk(0.01, 0.05).unwrap());
+        assert_eq!(
+            parts.geometry,
+            Some(Geometry::Surfaces(
+                Surface::Sphere { radius: 1.0 },
+                Surface::Plane
+            ))
+        );
+        assert!(parts.bodies.is_some() && parts.points_spec.is_some());
+        // A sphere on a line, as a scene refuses it.
+        let text = "[geometry]\nsurface1 = { shape = \"sphere\", radius = 1.0 }\n";
+        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("`geometry.surface1.shape` = \"sphere\""),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_design_over_problems_is_checked_against_their_kind() {
+        let bed = Body::winkler(1e7);
+        let rigid = Body::rigid();
+        let flat = Geometry::Surfaces(Surface::Plane, Surface::Plane);
+        let line =
+            ContactProblem::new(line_points(), &rigid, &bed, &flat, Loading::load(1.0)).unwrap();
+        let steel = Body::uniform_patch(Material::new(30e6, 0.3).unwrap());
+        let sphere = Geometry::Surfaces(Surface::Sphere { radius: 1.0 }, Surface::Plane);
+        let surface = ContactProblem::new(
+            PointSet::grid_disk(0.01, 0.05).unwrap(),
+            &steel,
+            &steel,
+            &sphere,
+            Loading::load(1.0),
+        )
+        .unwrap();
+        let free = "[design]\nfamily = \"free\"\n";
+        let spec = design_over(file(), free, std::slice::from_ref(&line), None, None).unwrap();
+        assert_eq!(spec.axis(), elcon_design::Axis::X);
+        let e = design_over(file(), free, &[line.clone(), surface], None, None).unwrap_err();
+        assert!(e.to_string().contains("`cases[1]`: is a surface"), "{e}");
+        let along_y = "[design]\nfamily = \"free\"\naxis = \"y\"\n";
+        let e = design_over(file(), along_y, std::slice::from_ref(&line), None, None).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("`design.axis` = \"y\": a line grid lies along x"),
+            "{e}"
+        );
+        let loads = "[design]\nfamily = \"free\"\nloads = [1.0]\n";
+        let e = design_over(file(), loads, std::slice::from_ref(&line), None, None).unwrap_err();
+        assert!(e.to_string().contains("`design.loads`"), "{e}");
+        let log = "[design]\nfamily = \"logarithmic-crown\"\n";
+        let e = design_over(file(), log, std::slice::from_ref(&line), None, None).unwrap_err();
+        assert!(e.to_string().contains("set for a roller"), "{e}");
+    }
+
+    #[test]
+    fn a_scenes_design_is_replaced_whole() {
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/crowned-roller.toml");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let log = "[design]\nfamily = \"logarithmic-crown\"\nloads = [1000.0, 10000.0]\n\
+                   axis = \"y\"\n";
+        let scene = scene_with_design(&path, &text, log).unwrap();
+        let spec = scene.design().unwrap();
+        assert!(matches!(
+            spec.family(),
+            design::DesignFamily::LogarithmicCrown { .. }
+        ));
+        assert_eq!(spec.loads(), &[1000.0, 10000.0]);
+        assert_eq!(scene.name(), "crowned-roller");
+        // The scene's own [design] is gone: its relative_to with it.
+        assert_eq!(spec.relative_to(), crate::RelativeTo::Absolute);
+        let e = scene_with_design(&path, &text, "[design]\nfamily = \"cubic\"\n").unwrap_err();
+        assert!(e.to_string().contains("unknown variant `cubic`"), "{e}");
+    }
+}
