@@ -28,7 +28,7 @@ use elcon_analysis::{
     AnalysisError, ContactProblem, ContactSolution, Dimension, Geometry, Loading, Method, Options,
     PointSet, Storage, Surface,
 };
-use elcon_design::{Axis, Profile, Roller, axial_stations, evaluate_known};
+use elcon_design::{Analysis, Axis, Profile, Roller, axial_stations, evaluate};
 use elcon_influence::Cell;
 use elcon_scene::{
     BASELINE, BodySpec, Ceiling, DesignCaseJson, DesignJson, DesignLayoutParts, PointsSpec, Scene,
@@ -800,13 +800,11 @@ fn design_problems(
                 .request(reference_intensities.clone(), method, &options)
                 .run(&cases)
                 .map_err(design_error)?;
-            let before = evaluate_known(
+            let before = evaluate(
                 &cases,
                 axis,
                 &Profile::none(),
-                method,
-                &options,
-                &vec![None; cases.len()],
+                &Analysis::new(method, &options),
             )
             .map_err(design_error)?;
             let references = reference_intensities
