@@ -19,6 +19,7 @@
 mod batch;
 mod batch_run;
 mod ctx;
+mod design_stage;
 mod error;
 mod estimate;
 mod faults;
@@ -36,6 +37,7 @@ mod tables;
 
 pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text, thousands};
 pub use batch_run::{BatchOptions, Progress, run_batch};
+pub use design_stage::{DesignCaseJson, DesignJson, DesignRun};
 pub use elcon_analysis::{AUTO_DENSE_LIMIT, Storage};
 pub use error::{Location, SceneError};
 pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass};
@@ -47,8 +49,7 @@ pub use output::{Staging, write_atomic, write_run, write_run_files};
 pub use plot::error_time;
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{
-    DesignCaseJson, DesignJson, DesignRun, Errors, ReferenceJson, Run, RunResult, Seconds,
-    SolutionJson, SymmetryJson, XY, run,
+    Errors, ReferenceJson, Run, RunResult, Seconds, SolutionJson, SymmetryJson, XY, run,
 };
 pub use sanity::{
     MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MIN_POINTS_ACROSS,

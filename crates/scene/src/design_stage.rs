@@ -1,0 +1,247 @@
+//! The design stage of a scene: every load case of `[design]` (each load
+//! at each misalignment) built as the scene's problem is, analysed without
+//! the correction, then the correction elcon-design finds for the
+//! section's request (`elcon_design::DesignRequest`) with every case
+//! re-analysed and certified; result.json's `design` block.
+
+use std::time::Instant;
+
+use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
+use elcon_design::{Analysis, Evaluation, Profile, axial_stations, evaluate};
+use serde::Serialize;
+
+use crate::error::SceneError;
+use crate::run::run_error;
+use crate::scene::{DesignSpec, RelativeTo, Scene};
+
+/// One load case of a design, before and after: gathered from the
+/// evaluations before and after the design, not the copy of one type.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DesignCaseJson {
+    /// The load (force).
+    pub load: f64,
+    /// The prescribed misalignment (rad), when the design has
+    /// `misalignments`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub misalignment: Option<f64>,
+    /// The reference intensity r_l the objective divides by.
+    pub reference_intensity: f64,
+    /// p_max without the correction.
+    pub max_pressure_before: f64,
+    /// p_max with it (re-analysed).
+    pub max_pressure_after: f64,
+    /// The re-analysis' certificate, worst residual.
+    pub certificate_worst: f64,
+    /// Whether it holds.
+    pub certificate_holds: bool,
+}
+
+/// The design stage's result: the scene's design section by name and
+/// elcon-design's outcome, not the copy of one type.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DesignJson {
+    /// The family.
+    pub family: String,
+    /// The axial coordinate, "x" or "y".
+    pub axis: String,
+    /// "absolute", "mean" or "hertz".
+    pub relative_to: String,
+    /// The profile's parameters by name (a, b, c; c0..cd; radius; design_load...).
+    pub parameters: std::collections::BTreeMap<String, f64>,
+    /// The objective reached: the worst p_max_l / r_l.
+    pub objective: f64,
+    /// The same before the correction.
+    pub objective_before: f64,
+    /// Per load case.
+    pub cases: Vec<DesignCaseJson>,
+    /// The correction as a table: (axial position, drop), lengths.
+    pub table: Vec<(f64, f64)>,
+    /// How the linear family's problem was solved: "program" or
+    /// "descent" (`design.method`, "auto" resolved); "search" for a
+    /// circular crown, "set" for a logarithmic one.
+    pub method: String,
+    /// How each start ended (linear families).
+    pub starts: Vec<String>,
+    /// Seconds of the design stage.
+    pub seconds: f64,
+}
+
+/// The design stage's data for plots.
+#[derive(Debug, Clone)]
+pub struct DesignRun {
+    /// The correction.
+    pub profile: Profile,
+    /// Every case without correction.
+    pub before: Evaluation,
+    /// Every case with it.
+    pub after: Evaluation,
+    /// The load cases' problems.
+    pub cases: Vec<ContactProblem>,
+}
+
+/// The reference intensity r_l of a load case.
+fn reference_intensity(scene: &Scene, case: &ContactProblem, load: f64) -> Result<f64, SceneError> {
+    let spec = scene.design().expect("a design stage");
+    Ok(match spec.relative_to() {
+        RelativeTo::Absolute => 1.0,
+        RelativeTo::Mean => load / case.points().total_measure(),
+        // Validation refuses relative_to = "hertz" without a Hertz contact.
+        RelativeTo::Hertz => scene
+            .hertz(load)
+            .ok_or_else(|| {
+                run_error(
+                    scene,
+                    "design.relative_to = \"hertz\" needs a Hertz contact at every design load",
+                )
+            })?
+            .peak_pressure(),
+    })
+}
+
+/// A design case's loading: the load, and the misalignment as a prescribed
+/// rotation about the axis across the profile (`tilt_x` for a profile
+/// along y, `tilt_y` along x), or the rotations free without a moment.
+fn case_loading(axis: elcon_design::Axis, load: f64, misalignment: Option<f64>) -> Loading {
+    match (misalignment, axis) {
+        (None, _) => Loading::load(load),
+        (Some(angle), elcon_design::Axis::Y) => Loading::load(load).with_tilt_x(angle),
+        (Some(angle), elcon_design::Axis::X) => Loading::load(load).with_tilt_y(angle),
+    }
+}
+
+/// The design stage: every load case analysed without and with the
+/// correction the family's method finds.
+pub(crate) fn design_stage(
+    scene: &Scene,
+    problem: &ContactProblem,
+    solution: &ContactSolution,
+) -> Result<(DesignJson, DesignRun), SceneError> {
+    let spec = scene.design().expect("a design stage");
+    let start = Instant::now();
+    let (cases, known, references) = design_cases(scene, spec, problem, solution)?;
+    let fail = |e: elcon_design::DesignError| run_error(scene, e);
+    let before = evaluate(
+        &cases,
+        spec.axis(),
+        &Profile::none(),
+        &Analysis::new(scene.method(), scene.options()).with_known(&known),
+    )
+    .map_err(fail)?;
+    let (profile, after, starts, method) = find_design(scene, spec, &cases, &references)?;
+    let objective = after.relative_worst(&references);
+    let objective_before = before.relative_worst(&references);
+    let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis());
+    let table = profile.table(&positions).map_err(fail)?;
+    let json = DesignJson {
+        family: spec.family().describe(),
+        axis: match spec.axis() {
+            elcon_design::Axis::X => "x".into(),
+            elcon_design::Axis::Y => "y".into(),
+        },
+        relative_to: match spec.relative_to() {
+            RelativeTo::Absolute => "absolute".into(),
+            RelativeTo::Mean => "mean".into(),
+            RelativeTo::Hertz => "hertz".into(),
+        },
+        parameters: profile.parameters(),
+        objective,
+        objective_before,
+        cases: spec
+            .case_loadings()
+            .into_iter()
+            .enumerate()
+            .map(|(l, (load, misalignment))| DesignCaseJson {
+                load,
+                misalignment,
+                reference_intensity: references[l],
+                max_pressure_before: before.max_intensities[l],
+                max_pressure_after: after.max_intensities[l],
+                certificate_worst: after.solutions[l].certificate.worst(),
+                certificate_holds: after.solutions[l].certificate.holds(),
+            })
+            .collect(),
+        table,
+        method: method.into(),
+        starts,
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    Ok((
+        json,
+        DesignRun {
+            profile,
+            before,
+            after,
+            cases,
+        },
+    ))
+}
+
+/// The design's load cases (each load at each misalignment), the solutions
+/// already known (the scene's own analysis, where a case is it) and the
+/// reference intensities.
+type DesignCases<'a> = (
+    Vec<ContactProblem>,
+    Vec<Option<&'a ContactSolution>>,
+    Vec<f64>,
+);
+
+/// See [`DesignCases`]: on the scene's own points a problem solved in full
+/// shares its S, and a design load's S is shared by its misalignments.
+fn design_cases<'a>(
+    scene: &Scene,
+    spec: &DesignSpec,
+    problem: &ContactProblem,
+    solution: &'a ContactSolution,
+) -> Result<DesignCases<'a>, SceneError> {
+    let mut cases = Vec::new();
+    let mut known = Vec::new();
+    let mut references = Vec::new();
+    for (load, misalignment) in spec.case_loadings() {
+        let points = scene.points_for(load)?;
+        // On the scene's own points, a problem solved in full shares its S
+        // (a folded one has no full S to share); at the scene's own load its
+        // solution is the uncorrected analysis. A design load's own S is
+        // shared by its misalignments.
+        let own = problem.folding().is_none() && points == *problem.points();
+        let loading = case_loading(spec.axis(), load, misalignment);
+        let shared = cases
+            .iter()
+            .find(|c: &&ContactProblem| c.points() == &points)
+            .or(own.then_some(problem));
+        let case = match shared {
+            Some(c) => c.with_loading(loading),
+            // Held as the scene's problem is, unfolded: the design reads
+            // every point.
+            None => scene.builder(points, loading).fold(false).build(),
+        }
+        .map_err(|e| run_error(scene, e))?;
+        let solved = misalignment.is_none()
+            && matches!(problem.loading().normal, Normal::Load(p) if own && p == load);
+        known.push(solved.then_some(solution));
+        references.push(reference_intensity(scene, &case, load)?);
+        cases.push(case);
+    }
+    Ok((cases, known, references))
+}
+
+/// The correction of the spec's family, found as its family is
+/// (`elcon_design::DesignRequest`), with its evaluation, how each start
+/// ended and the method's name.
+fn find_design(
+    scene: &Scene,
+    spec: &DesignSpec,
+    cases: &[ContactProblem],
+    references: &[f64],
+) -> Result<(Profile, Evaluation, Vec<String>, &'static str), SceneError> {
+    let outcome = spec
+        .request(Some(references.to_vec()), scene.method(), scene.options())
+        .run(cases)
+        .map_err(|e| run_error(scene, e))?;
+    let starts = outcome.found.starts();
+    Ok((
+        outcome.profile,
+        outcome.evaluation,
+        starts,
+        outcome.found.method(),
+    ))
+}
