@@ -6,7 +6,13 @@
 //! `Phi[st, i] = phi_i(s_st)`. Polynomials use the normalized coordinate
 //! `s / scale` (scale the largest |s|), so that every parameter is a length
 //! of the same size and the monomial basis stays well conditioned; the free
-//! family has one parameter per station (`Phi = I`).
+//! family has one parameter per station (`Phi = I`), or, given knots
+//! `t_0 < ... < t_m` (a profile that is a function of position, whatever
+//! the grid), one per knot, linear between them:
+//!
+//! ```text
+//!     Phi[st, i] = hat_i(s_st),   hat_i(t_j) = delta_ij,   linear between knots, constant beyond
+//! ```
 
 use faer::linalg::solvers::SolveLstsq;
 use faer::{Col, Mat};
@@ -21,12 +27,22 @@ pub(crate) struct Basis {
     pub(crate) constant: Option<usize>,
     /// The length that normalizes s.
     scale: f64,
-    /// The stations in the normalized coordinate, `s_st / scale`.
+    /// The free family's nodes (its parameters are the drops there) in the
+    /// normalized coordinate, or the polynomials' stations.
     normalized: Vec<f64>,
+    /// The free family's knots, when given (else the stations are its
+    /// nodes).
+    knots: Option<Vec<f64>>,
 }
 
 impl Basis {
-    pub(crate) fn new(family: Family, stations: &[f64]) -> Result<Self, DesignError> {
+    /// The basis of `family` at `stations`; a free family's nodes are
+    /// `knots` when given (strictly increasing), else the stations.
+    pub(crate) fn new(
+        family: Family,
+        stations: &[f64],
+        knots: Option<&[f64]>,
+    ) -> Result<Self, DesignError> {
         let n = stations.len();
         let scale = stations.iter().fold(0.0f64, |a, s| a.max(s.abs()));
         let scale = if scale > 0.0 { scale } else { 1.0 };
@@ -47,13 +63,51 @@ impl Basis {
                 }
                 Ok(Self::polynomial(degree, stations, scale))
             }
-            Family::Free => Ok(Self {
-                phi: Mat::identity(n, n),
-                constant: None,
-                scale,
-                normalized: stations.iter().map(|s| s / scale).collect(),
-            }),
+            Family::Free => match knots {
+                None => Ok(Self {
+                    phi: Mat::identity(n, n),
+                    constant: None,
+                    scale,
+                    normalized: stations.iter().map(|s| s / scale).collect(),
+                    knots: None,
+                }),
+                Some(knots) => Self::hats(stations, knots),
+            },
         }
+    }
+
+    /// The free family on `knots`: the hat functions at the stations.
+    fn hats(stations: &[f64], knots: &[f64]) -> Result<Self, DesignError> {
+        if knots.len() < 2 || knots.windows(2).any(|w| !(w[1] > w[0])) {
+            return Err(DesignError::Incompatible {
+                field: "knots",
+                reason:
+                    "a free profile's knots must be at least two, finite and strictly increasing"
+                        .into(),
+            });
+        }
+        let scale = knots.iter().fold(0.0f64, |a, s| a.max(s.abs()));
+        let scale = if scale > 0.0 { scale } else { 1.0 };
+        let mut phi = Mat::<f64>::zeros(stations.len(), knots.len());
+        for (st, &s) in stations.iter().enumerate() {
+            let i = knots.partition_point(|&t| t <= s);
+            if i == 0 {
+                phi[(st, 0)] = 1.0;
+            } else if i == knots.len() {
+                phi[(st, i - 1)] = 1.0;
+            } else {
+                let w = (s - knots[i - 1]) / (knots[i] - knots[i - 1]);
+                phi[(st, i - 1)] = 1.0 - w;
+                phi[(st, i)] = w;
+            }
+        }
+        Ok(Self {
+            phi,
+            constant: None,
+            scale,
+            normalized: knots.iter().map(|s| s / scale).collect(),
+            knots: Some(knots.to_vec()),
+        })
     }
 
     fn polynomial(degree: usize, stations: &[f64], scale: f64) -> Self {
@@ -64,6 +118,7 @@ impl Basis {
             constant: Some(0),
             scale,
             normalized: stations.iter().map(|s| s / scale).collect(),
+            knots: None,
         }
     }
 
@@ -78,7 +133,12 @@ impl Basis {
         if self.constant.is_some() && self.params() < 2 {
             return theta.to_vec();
         }
-        let y = self.drops(theta);
+        // The drops at the nodes: the free family's parameters themselves,
+        // a polynomial's values at the stations.
+        let y = match self.constant {
+            None => theta.to_vec(),
+            Some(_) => self.drops(theta),
+        };
         let u = &self.normalized;
         let (mean_u, mean_y) = (u.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
         let spread: f64 = u.iter().map(|v| (v - mean_u).powi(2)).sum();
@@ -119,17 +179,17 @@ impl Basis {
 
     /// The profile of parameters theta, shifted so its smallest drop is 0.
     pub(crate) fn profile(&self, family: Family, stations: &[f64], theta: &[f64]) -> Profile {
-        let lowest = self.drops(theta).into_iter().fold(f64::INFINITY, f64::min);
         let mut theta = theta.to_vec();
-        match family {
-            Family::Free => {
-                return Profile::Free {
-                    positions: stations.to_vec(),
-                    drops: theta.iter().map(|t| t - lowest).collect(),
-                };
-            }
-            _ => theta[0] -= lowest,
+        if let Family::Free = family {
+            // A free profile's smallest drop is at a node.
+            let lowest = theta.iter().copied().fold(f64::INFINITY, f64::min);
+            return Profile::Free {
+                positions: self.knots.as_deref().unwrap_or(stations).to_vec(),
+                drops: theta.iter().map(|t| t - lowest).collect(),
+            };
         }
+        let lowest = self.drops(&theta).into_iter().fold(f64::INFINITY, f64::min);
+        theta[0] -= lowest;
         let coefficients: Vec<f64> = theta
             .iter()
             .enumerate()
@@ -148,9 +208,15 @@ impl Basis {
     /// Least-squares parameters of drops `y` at the stations, shifted up so
     /// every drop is >= 0.
     pub(crate) fn fit(&self, y: &[f64]) -> Vec<f64> {
-        match self.constant {
-            None => y.iter().map(|v| v.max(0.0)).collect(),
-            Some(c) => {
+        match (self.constant, &self.knots) {
+            (None, None) => y.iter().map(|v| v.max(0.0)).collect(),
+            (None, Some(_)) => {
+                let rhs = Col::from_fn(y.len(), |st| y[st]);
+                let theta: Vec<f64> = self.phi.qr().solve_lstsq(&rhs).iter().copied().collect();
+                let lowest = theta.iter().copied().fold(f64::INFINITY, f64::min);
+                theta.iter().map(|t| t - lowest.min(0.0)).collect()
+            }
+            (Some(c), _) => {
                 let rhs = Col::from_fn(y.len(), |st| y[st]);
                 let sol = self.phi.qr().solve_lstsq(&rhs);
                 let mut theta: Vec<f64> = sol.iter().copied().collect();
@@ -204,7 +270,7 @@ pub fn fit_profile(
         });
     }
     let y: Vec<f64> = order.iter().map(|&i| drops[i]).collect();
-    let basis = Basis::new(family, &stations)?;
+    let basis = Basis::new(family, &stations, None)?;
     Ok(basis.profile(family, &stations, &basis.fit(&y)))
 }
 
@@ -218,7 +284,7 @@ mod tests {
         let even = |s: f64| 0.3 * s * s + 0.01 * s.powi(4);
         let line = |s: f64| 2.0 - 0.7 * s;
         // The free family: one drop per station.
-        let free = Basis::new(Family::Free, &stations).unwrap();
+        let free = Basis::new(Family::Free, &stations, None).unwrap();
         let theta: Vec<f64> = stations.iter().map(|&s| even(s) + line(s)).collect();
         let cleaned = free.drops(&free.without_line(&theta));
         let offset = cleaned[4] - even(0.0);
@@ -226,13 +292,13 @@ mod tests {
             assert!((cleaned[st] - offset - even(s)).abs() < 1e-12, "{s}");
         }
         // A quartic: the same profile by its coefficients (u = s / 4).
-        let quartic = Basis::new(Family::Polynomial { degree: 4 }, &stations).unwrap();
+        let quartic = Basis::new(Family::Polynomial { degree: 4 }, &stations, None).unwrap();
         let theta = vec![2.0, -0.7 * 4.0, 0.3 * 16.0, 0.0, 0.01 * 256.0];
         let cleaned = quartic.without_line(&theta);
         assert!(cleaned[1].abs() < 1e-12, "{cleaned:?}");
         assert_eq!(&cleaned[2..], &theta[2..]);
         // A constant alone is left as it is.
-        let constant = Basis::new(Family::Polynomial { degree: 0 }, &stations).unwrap();
+        let constant = Basis::new(Family::Polynomial { degree: 0 }, &stations, None).unwrap();
         assert_eq!(constant.without_line(&[3.0]), vec![3.0]);
     }
 }

@@ -128,7 +128,8 @@ struct Iterate {
     /// analysis used them).
     problems: Vec<ContactProblem>,
     solutions: Vec<ContactSolution>,
-    /// `f(theta)`, the worst `p_max_l / r_l`.
+    /// `f(theta)`, the worst `w_k p_k / r_l` (the worst `p_max_l / r_l`
+    /// when no weight is set, or the edges are out of contact).
     objective: f64,
 }
 
@@ -153,7 +154,7 @@ fn analyse(
             &options.reanalysis_options,
             &format!("load case {l} in the design's descent"),
         )?;
-        objective = objective.max(solution.max_pressure / case.reference);
+        objective = objective.max(case.merit(&solution));
         problems.push(problem);
         solutions.push(solution);
     }
@@ -213,7 +214,7 @@ fn model_rows(
     Ok((0..nj)
         .map(|a| {
             let k = contact[a];
-            let scale = case.reference * case.measures[k];
+            let scale = case.reference * case.measures[k] / case.weights[k];
             Constraint {
                 a: (0..m).map(|i| x[(a, i)] / scale).collect(),
                 t_coefficient: -1.0,

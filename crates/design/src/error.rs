@@ -55,6 +55,34 @@ pub enum DesignError {
         /// The tolerance it exceeded.
         tolerance: f64,
     },
+    /// A design carried over finer and finer grids that did not converge
+    /// (or whose verification on a finer grid disagreed) before a grid
+    /// exceeded the points allowed: its objective still depends on the
+    /// grid.
+    #[error(
+        "the design did not converge over the grids within {max_points} points a case: its worst \
+         objective on successive grids was {} (tolerance {tolerance:.1e} relative); allow more \
+         points (design.max_points), a looser design.grid_tolerance, or a coarser start grid",
+        listed(objectives)
+    )]
+    NotConverged {
+        /// The worst objective on each design grid, coarse to fine.
+        objectives: Vec<f64>,
+        /// The relative tolerance.
+        tolerance: f64,
+        /// The most points a case may have.
+        max_points: usize,
+    },
+}
+
+/// Objectives as a short list for a message: "1.242, 1.238, 1.241".
+fn listed(values: &[f64]) -> String {
+    let parts: Vec<String> = values.iter().map(|v| format!("{v:.4}")).collect();
+    if parts.is_empty() {
+        "none".into()
+    } else {
+        parts.join(", ")
+    }
 }
 
 impl DesignError {

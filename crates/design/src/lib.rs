@@ -63,6 +63,7 @@ pub mod options;
 mod prepared;
 pub mod profile;
 pub mod request;
+pub mod sequence;
 pub mod target;
 
 pub use basis::fit_profile;
@@ -75,4 +76,5 @@ pub use options::{DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, PROG
 pub use prepared::{Solver, Stop, axial_stations};
 pub use profile::{Axis, JOHNS_GOHAR, LogCrown, LogEnd, Profile};
 pub use request::{DesignFamily, DesignRequest, Found, Outcome, Roller};
+pub use sequence::{Converged, GridSequence, Level};
 pub use target::{TargetSeparation, target_separation, uniform_target};

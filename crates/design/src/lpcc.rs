@@ -146,7 +146,7 @@ fn program(
             let n = c.station.len();
             let ri = starts[l] + n;
             if (ri..ri + n).contains(&r) {
-                return -c.reference * c.measures[r - ri];
+                return -c.reference * c.measures[r - ri] / c.weights[r - ri];
             }
         }
         0.0
@@ -193,7 +193,7 @@ pub(crate) fn solve(
         for (k, v) in range.clone().enumerate() {
             let p = solution.x[v] / prepared[l].measures[k];
             max_intensity = max_intensity.max(p);
-            objective = objective.max(p / prepared[l].reference);
+            objective = objective.max(prepared[l].weights[k] * p / prepared[l].reference);
         }
     }
     debug_assert!(solution.x[layout.t] >= objective * (1.0 - 1e-9));

@@ -119,6 +119,10 @@ pub struct DesignOptions {
     pub reanalysis: Method,
     /// Options of the re-analysis.
     pub reanalysis_options: Options,
+    /// Start from the uncorrected geometry, as the paper does (default
+    /// true; a design refined from a coarser grid's starts from that
+    /// design alone).
+    pub uncorrected_start: bool,
     /// Also start from the least-squares fit of the uniform-pressure
     /// separation (line contacts only; default true).
     pub fitted_start: bool,
@@ -140,6 +144,20 @@ pub struct DesignOptions {
     /// The descent's iteration limit (default 500; each iteration analyses
     /// every case once).
     pub max_iterations: usize,
+    /// A free profile's knots (axial positions, strictly increasing,
+    /// length): its drops are the parameters, linear between knots and
+    /// constant beyond, so the profile is a function of position that any
+    /// grid can take. Default none: one drop per axial station of the
+    /// cases' grid.
+    pub knots: Option<Vec<f64>>,
+    /// Keep the contact off the bodies' singular edges
+    /// (`ContactProblem::singular_edge_points`: a roller's ends on a
+    /// half-space) in every case: a profile designed with the contact on
+    /// such an edge fits its grid (the edge cell averages a peak that
+    /// grows without bound as the grid refines), so a design that must
+    /// hold on any grid clears them (default false: the cases' grid as it
+    /// is).
+    pub edge_clearance: bool,
 }
 
 impl Default for DesignOptions {
@@ -150,11 +168,14 @@ impl Default for DesignOptions {
             engine: Options::default(),
             reanalysis: Method::BlockPivoting,
             reanalysis_options: Options::default(),
+            uncorrected_start: true,
             fitted_start: true,
             starts: Vec::new(),
             agreement: 1e-9,
             reference_intensities: None,
             max_iterations: 500,
+            knots: None,
+            edge_clearance: false,
         }
     }
 }

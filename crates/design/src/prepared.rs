@@ -36,6 +36,30 @@ pub(crate) struct Case<'a> {
     pub(crate) separation: Vec<f64>,
     /// Reference intensity r_l.
     pub(crate) reference: f64,
+    /// Each point's weight w_k in the objective `max_k w_k F_k / (A_k r_l)`:
+    /// [`EDGE_WEIGHT`] on the bodies' singular edges when the design keeps
+    /// the contact off them ([`DesignOptions::edge_clearance`](crate::DesignOptions::edge_clearance)), else 1.
+    pub(crate) weights: Vec<f64>,
+}
+
+/// The weight of a point on a body's singular edge (a roller's end) when
+/// the design keeps the contact off it: any force there outweighs every
+/// intensity elsewhere, so the design relieves the edge first; once it is
+/// out of contact the weight changes nothing.
+pub(crate) const EDGE_WEIGHT: f64 = 100.0;
+
+impl Case<'_> {
+    /// The design's measure of `solution`: `max_k w_k F_k / (A_k r_l)`.
+    pub(crate) fn merit(&self, solution: &ContactSolution) -> f64 {
+        solution
+            .forces
+            .iter()
+            .zip(&self.measures)
+            .zip(&self.weights)
+            .map(|((f, a), w)| w * f / a)
+            .fold(0.0f64, f64::max)
+            / self.reference
+    }
 }
 
 /// The axial stations of point sets (the load cases' points, say): the
@@ -75,11 +99,13 @@ pub fn axial_stations<'a>(
 }
 
 /// Every case prepared (each under load control and unfolded, checked by
-/// `load_of`), with each point's station among `index`.
+/// `load_of`), with each point's station among `index`, its singular edges
+/// weighted by [`EDGE_WEIGHT`] when `edge_clearance`.
 pub(crate) fn prepare<'a>(
     cases: &'a [ContactProblem],
     index: Vec<Vec<usize>>,
     references: &[f64],
+    edge_clearance: bool,
 ) -> Result<Vec<Case<'a>>, DesignError> {
     cases
         .iter()
@@ -101,6 +127,12 @@ pub(crate) fn prepare<'a>(
                     .sum::<f64>()
             };
             let eps = problem.separation();
+            let mut weights = vec![1.0; points.len()];
+            if edge_clearance {
+                for k in problem.singular_edge_points() {
+                    weights[k] = EDGE_WEIGHT;
+                }
+            }
             Ok(Case {
                 problem,
                 measures: points.measures(),
@@ -110,6 +142,7 @@ pub(crate) fn prepare<'a>(
                 resultants: rigid.free.iter().map(|&(_, v)| v).collect(),
                 separation: (0..points.len()).map(|k| eps[k] + shift(k)).collect(),
                 reference: references[l],
+                weights,
             })
         })
         .collect()

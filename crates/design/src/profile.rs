@@ -359,6 +359,35 @@ impl Profile {
         })
     }
 
+    /// A free profile carried out to `lo` and `hi` (the zone's ends beyond
+    /// its first and last stations) along the slope of its end intervals:
+    /// a grid finer than the stations' has points nearer the ends, which a
+    /// constant continuation would leave short of the relief the profile
+    /// climbs toward. Other profiles, and ends already inside the
+    /// stations, are left as they are.
+    pub fn extended(self, lo: f64, hi: f64) -> Self {
+        let Profile::Free {
+            mut positions,
+            mut drops,
+        } = self
+        else {
+            return self;
+        };
+        let n = positions.len();
+        if n >= 2 && lo < positions[0] {
+            let slope = (drops[1] - drops[0]) / (positions[1] - positions[0]);
+            drops.insert(0, drops[0] + slope * (lo - positions[0]));
+            positions.insert(0, lo);
+        }
+        let n = positions.len();
+        if n >= 2 && hi > positions[n - 1] {
+            let slope = (drops[n - 1] - drops[n - 2]) / (positions[n - 1] - positions[n - 2]);
+            drops.push(drops[n - 1] + slope * (hi - positions[n - 1]));
+            positions.push(hi);
+        }
+        Profile::Free { positions, drops }
+    }
+
     /// The separation at each position: `(position, drop)` rows, the table a
     /// designer hands to manufacturing.
     ///

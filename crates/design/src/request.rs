@@ -94,6 +94,21 @@ pub struct DesignRequest {
     pub reanalysis: Method,
     /// The options of those analyses.
     pub reanalysis_options: Options,
+    /// A free profile's knots ([`DesignOptions::knots`]); default: one drop
+    /// per axial station of the cases.
+    pub knots: Option<Vec<f64>>,
+    /// Profiles to start a linear family's design from, besides its own
+    /// starts ([`DesignOptions::starts`]).
+    pub starts: Vec<Profile>,
+    /// Whether a linear family's design also starts from the uncorrected
+    /// geometry and (on a line) the fitted uniform-pressure separation
+    /// (default true; a design refined from a coarser grid's starts from
+    /// that design alone).
+    pub own_starts: bool,
+    /// Keep the contact off the bodies' singular edges in every case
+    /// ([`DesignOptions::edge_clearance`]; default true: a design must
+    /// hold on any grid).
+    pub edge_clearance: bool,
 }
 
 impl DesignRequest {
@@ -108,6 +123,10 @@ impl DesignRequest {
             reference_intensities: None,
             reanalysis: Method::BlockPivoting,
             reanalysis_options: Options::default(),
+            knots: None,
+            starts: Vec::new(),
+            own_starts: true,
+            edge_clearance: true,
         }
     }
 
@@ -159,6 +178,11 @@ impl DesignRequest {
             reanalysis: self.reanalysis,
             reanalysis_options: self.reanalysis_options.clone(),
             reference_intensities: self.reference_intensities.clone(),
+            knots: self.knots.clone(),
+            starts: self.starts.clone(),
+            uncorrected_start: self.own_starts,
+            fitted_start: self.own_starts,
+            edge_clearance: self.edge_clearance,
             ..DesignOptions::default()
         };
         let d = design(cases, self.axis, family, &options)?;

@@ -272,6 +272,26 @@ impl ContactProblem {
         self
     }
 
+    /// The points on the bodies' own edges (declared by
+    /// [`ContactProblem::with_body_edges`]) where an elastic half-space's
+    /// pressure becomes singular if the contact reaches them: a roller's
+    /// ends, a punch's rim. Contact there makes the peak pressure depend on
+    /// the grid (it grows without bound as the grid refines), so a design
+    /// that must hold on any grid keeps them out of contact. None on a
+    /// foundation or a beam (their pressure is bounded at an edge).
+    pub fn singular_edge_points(&self) -> Vec<usize> {
+        let (along_x, along_y) = self.body_edges;
+        if self.edge != EdgeLaw::SquareRoot || !(along_x || along_y) {
+            return Vec::new();
+        }
+        (0..self.points.len())
+            .filter(|&k| {
+                let (x, y) = self.points.open_sides(k);
+                (x && along_x) || (y && along_y)
+            })
+            .collect()
+    }
+
     /// The edges declared by [`ContactProblem::with_body_edges`].
     pub fn body_edges(&self) -> (bool, bool) {
         self.body_edges
