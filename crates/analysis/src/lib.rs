@@ -73,6 +73,7 @@ pub use elcon_influence::{
 pub use elcon_lcp::{Method, Options};
 pub use error::AnalysisError;
 pub use estimate::{Estimate, Relief, Tableau};
+pub use grid::GridFamily;
 pub use influence::Products;
 pub use loading::{Loading, Normal, Tilt};
 pub use rigid::{Rigid, RigidMode};
