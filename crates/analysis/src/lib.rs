@@ -53,6 +53,7 @@
 //! ```
 
 pub mod contact;
+pub mod discretization;
 mod edge;
 mod error;
 pub mod estimate;
