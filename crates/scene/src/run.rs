@@ -1,7 +1,9 @@
 //! Running a scene: assemble `S = A(1) + A(2)` and eps, solve the contact
 //! problem (`Y = S F + eps - alpha e`, `e^T F = P`, `F, Y >= 0`,
-//! `F_k Y_k = 0`) with the scene's method, compare with the closed form
-//! that applies, and run the design stage if the scene has one. The result
+//! `F_k Y_k = 0`) with the scene's method, estimate its discretization
+//! error on coarser grids (`crate::error_estimate`), compare with the
+//! closed form that applies, and run the design stage if the scene has
+//! one. The result
 //! is what result.json holds (schema in docs/results.md).
 
 use std::time::Instant;
@@ -12,6 +14,7 @@ use serde::Serialize;
 
 use crate::design_stage::{DesignJson, DesignRun, design_stage};
 use crate::error::SceneError;
+use crate::error_estimate::{DiscretizationJson, discretization};
 use crate::scene::{Reference, Scene, Units};
 
 /// A folded problem's symmetry, as written. A mirror of
@@ -35,7 +38,10 @@ pub struct Seconds {
     pub assembly: f64,
     /// The engine's solve, certificate included.
     pub solve: f64,
-    /// The whole run (assembly, solve, reference, design).
+    /// The discretization error estimate: building and solving the
+    /// coarser grids (0 when it is off).
+    pub error_estimate: f64,
+    /// The whole run (assembly, solve, error estimate, reference, design).
     pub total: f64,
 }
 
@@ -180,6 +186,10 @@ pub struct RunResult {
     /// to them (`result.approach`).
     #[serde(flatten)]
     pub solution: SolutionJson,
+    /// The discretization error estimate (`solver.error_estimate`, on by
+    /// default).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub discretization: Option<DiscretizationJson>,
     /// The closed-form comparison, where one applies.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceJson>,
@@ -238,13 +248,17 @@ pub(crate) fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError 
 pub fn run(scene: &Scene) -> Result<Run, SceneError> {
     let start = Instant::now();
     crate::faults::panic_point(scene.name());
-    let problem = scene
-        .builder(scene.points().clone(), scene.loading())
-        .build()
-        .map_err(|e| run_error(scene, e))?;
+    let builder = scene.builder(scene.points().clone(), scene.loading());
+    let problem = builder.clone().build().map_err(|e| run_error(scene, e))?;
     let solution = problem
         .solve(scene.method(), scene.options())
         .map_err(|e| run_error(scene, e))?;
+    // The coarser grids' problems are built and dropped one at a time,
+    // each a sixteenth (surface) or a quarter (line) of S at most.
+    let discretization = scene
+        .error_estimate()
+        .then(|| discretization(scene, &builder, &solution));
+    drop(builder);
     let (reference, reference_pressures) = match scene.reference() {
         Some(r) => {
             let (json, p) = compare(r, &problem, &solution, scene.loading());
@@ -278,9 +292,13 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         seconds: Seconds {
             assembly: problem.assembly_seconds(),
             solve: solution.solve_seconds,
+            error_estimate: discretization
+                .as_ref()
+                .map_or(0.0, DiscretizationJson::coarse_seconds),
             total: start.elapsed().as_secs_f64(),
         },
         solution: SolutionJson::of(&solution, scene.warnings()),
+        discretization,
         reference,
         design: design_json,
     };

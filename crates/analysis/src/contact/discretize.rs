@@ -200,19 +200,26 @@ fn cells_across(points: &PointSet, fine: &ContactSolution, coarse: &PointSet) ->
     }
 }
 
+impl ContactSolution {
+    /// The value of `quantity` in this solution (the field it names).
+    pub fn quantity(&self, quantity: Quantity) -> f64 {
+        match quantity {
+            Quantity::Approach => self.approach,
+            Quantity::MaxPressure => self.max_pressure,
+            Quantity::ContactExtent => self.contact_extent,
+            Quantity::ContactMeasure => self.contact_measure,
+            Quantity::Load => self.load,
+            Quantity::LoadCentreX => self.load_centre.0,
+            Quantity::LoadCentreY => self.load_centre.1,
+            Quantity::TiltX => self.tilt_x,
+            Quantity::TiltY => self.tilt_y,
+        }
+    }
+}
+
 /// The value of `quantity` in `solution`.
 fn value(solution: &ContactSolution, quantity: Quantity) -> f64 {
-    match quantity {
-        Quantity::Approach => solution.approach,
-        Quantity::MaxPressure => solution.max_pressure,
-        Quantity::ContactExtent => solution.contact_extent,
-        Quantity::ContactMeasure => solution.contact_measure,
-        Quantity::Load => solution.load,
-        Quantity::LoadCentreX => solution.load_centre.0,
-        Quantity::LoadCentreY => solution.load_centre.1,
-        Quantity::TiltX => solution.tilt_x,
-        Quantity::TiltY => solution.tilt_y,
-    }
+    solution.quantity(quantity)
 }
 
 /// The scale equal values are judged against: the quantity's own
