@@ -18,6 +18,7 @@
 
 mod batch;
 mod batch_run;
+mod compare;
 mod ctx;
 mod design_stage;
 mod error;
