@@ -145,7 +145,7 @@ fn hertz_centre(loading: Loading, radius: f64) -> Result<(f64, f64), &'static st
     let load = loading.load_value();
     let offset = |tilt: Tilt, sign: f64| match (tilt, load) {
         (Tilt::Prescribed { angle }, _) => Ok(sign * angle * radius),
-        (Tilt::Free { moment }, _) if moment == 0.0 => Ok(0.0),
+        (Tilt::Free { moment: 0.0 }, _) => Ok(0.0),
         (Tilt::Free { moment }, Some(p)) => Ok(sign * moment / p),
         (Tilt::Free { .. }, None) => Err(
             "under displacement control the load, and with it where a moment centres the \
