@@ -71,17 +71,6 @@ fn row(label: &str, n: usize, d: &Discretization, quantity: Quantity, truth: Opt
         (Some(est), Some(t)) if t != 0.0 => format!("{:.2}", est / t.abs()),
         _ => "-".into(),
     };
-    if std::env::var("DEBUG_VALUES").is_ok() {
-        eprintln!(
-            "{label} {} {:?} {:?}",
-            quantity.name(),
-            e.values,
-            d.grids
-                .iter()
-                .map(|g| (g.points, g.spacing))
-                .collect::<Vec<_>>()
-        );
-    }
     println!(
         "| {label} | {n} | {} | {} | {} | {ratio} | {} | {} |",
         quantity.name(),
@@ -309,8 +298,58 @@ fn roller() -> Result<(), Box<dyn Error>> {
     Ok(())
 }
 
+fn eccentric() -> Result<(), Box<dyn Error>> {
+    let steel = Material::new(30e6, 0.3)?;
+    let r = 1.0 / 1.1;
+    let hertz = HertzSpheres::new(combined_modulus(&steel, &steel), r, 100.0)?;
+    let a = hertz.contact_radius();
+    let body = Body::uniform_patch(steel);
+    let geometry = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    // The load 0.1 a off the apex along x: M_y = -P e; Hertz translated to
+    // e, tilted by -e / R, its approach delta - e^2 / (2R).
+    let e = 0.1 * a;
+    let loading = Loading::load(100.0).with_moment_y(-100.0 * e);
+    header(
+        "Spheres loaded 0.1 a off the apex (Example 1, zone 1.4, tilts free)",
+        "across",
+    );
+    for across in [41, 81] {
+        let family = grid::hertz_disk_family(a, across, 1.4)?;
+        let (sol, d) = run(&family, [&body, &body], &geometry, loading, (false, false))?;
+        let n = sol.forces.len();
+        let label = across.to_string();
+        let approach = hertz.approach() - e * e / (2.0 * r);
+        row(
+            &label,
+            n,
+            &d,
+            Quantity::Approach,
+            Some(sol.approach / approach - 1.0),
+        );
+        row(
+            &label,
+            n,
+            &d,
+            Quantity::MaxPressure,
+            Some(sol.max_pressure / hertz.peak_pressure() - 1.0),
+        );
+        row(
+            &label,
+            n,
+            &d,
+            Quantity::TiltY,
+            Some(sol.tilt_y / (-e / r) - 1.0),
+        );
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), Box<dyn Error>> {
     spheres()?;
+    eccentric()?;
     cylinders()?;
     punch()?;
     beam()?;

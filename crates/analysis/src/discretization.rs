@@ -36,9 +36,12 @@
 //!   scale (a tilt that symmetry makes zero, a load under load control);
 //! - `not converging`: the changes do not shrink under refinement, an
 //!   observed order below 1/2 for monotone changes (a singular edge's peak
-//!   pressure grows like `h^(-1/2)`, p < 0; at p = 1/2 Richardson's error
-//!   is already 2.4 times the last change at r = 2) or at most 0 for
-//!   alternating ones;
+//!   pressure grows like `h^(-1/2)`, p = -1/2; at p = 1/2 Richardson's
+//!   error is already 2.4 times the last change at r = 2) or at most 0 for
+//!   alternating ones, and not below -1 (changes growing faster than any
+//!   contact singularity makes them, `STEEPEST_GROWTH`, say the coarser
+//!   grids are outside the range where the error follows a power of h: not
+//!   estimated);
 //! - `converging`: the error above;
 //! - `not estimated`: with the reason. Two grids give no observed order:
 //!   rather than assume one, the quantity is not estimated (its values on
@@ -55,6 +58,14 @@ pub const FORMAL_ORDER: f64 = 2.0;
 
 /// The smallest observed order of monotone changes taken as converging.
 pub const SLOWEST_ORDER: f64 = 0.5;
+
+/// The lowest observed order taken for a quantity that grows without
+/// bound: a contact pressure in linear elasticity is at most singular like
+/// `r^(-1/2)` (a rigid punch's rim), so a cell's mean grows at most like
+/// `h^(-1/2)`; changes growing faster (an order below twice that rate)
+/// come from coarse grids outside the range where the error follows a
+/// power of h, and are not estimated.
+pub const STEEPEST_GROWTH: f64 = -1.0;
 
 /// The fewest cells of a coarser grid the fine contact must span along
 /// each axis for that grid to be solved (about nine points across it).
@@ -197,7 +208,10 @@ pub fn estimate(values: &[f64], spacings: &[f64], scale: f64) -> ErrorEstimate {
         return estimate;
     }
     if e32.abs() <= tol {
-        estimate.verdict = Verdict::NotConverging;
+        estimate.verdict = Verdict::NotEstimated(
+            "the two coarser grids agree to rounding and the finest does not: no order observed"
+                .into(),
+        );
         return estimate;
     }
     let s = (e32 / e21).signum();
@@ -206,6 +220,14 @@ pub fn estimate(values: &[f64], spacings: &[f64], scale: f64) -> ErrorEstimate {
         return estimate;
     };
     estimate.order = Some(p);
+    if p < STEEPEST_GROWTH {
+        estimate.verdict = Verdict::NotEstimated(format!(
+            "the changes grow faster than a contact singularity makes them (observed order \
+             {p:.2} below {STEEPEST_GROWTH}): the coarser grids are outside the range where the \
+             error follows a power of the spacing"
+        ));
+        return estimate;
+    }
     let slowest = if s > 0.0 { SLOWEST_ORDER } else { 0.0 };
     if !(p > slowest) {
         estimate.verdict = Verdict::NotConverging;
@@ -409,8 +431,11 @@ mod tests {
             assert_eq!(e.error, None);
         }
         // Alternating changes that grow.
-        let e = estimate(&[1.0, 1.1, 1.05], &h, 1.0);
+        let e = estimate(&[1.0, 1.1, 1.04], &h, 1.0);
         assert_eq!(e.verdict, Verdict::NotConverging, "{e:?}");
+        // Changes growing faster than h^-1: erratic coarse grids.
+        let e = estimate(&[1.0, 1.1, 1.12], &h, 1.0);
+        assert!(e.verdict.reason().unwrap().contains("faster"), "{e:?}");
     }
 
     #[test]

@@ -80,7 +80,10 @@ fn eccentric_spheres_are_compared_with_hertz_translated_to_the_load_centre() {
     // A moment under displacement control: the centre is not known before
     // the solve, so no errors, and a note.
     let by_approach = eccentric
-        .replace("across = 41\nzone = 1.4", "spacing = 0.0008\nradius = 0.0225")
+        .replace(
+            "across = 41\nzone = 1.4",
+            "spacing = 0.0008\nradius = 0.0225",
+        )
         .replace("load = 100.0", "approach = 2.8e-4");
     let r = run(&scene(&by_approach).unwrap()).unwrap();
     let reference = r.result.reference.as_ref().unwrap();
