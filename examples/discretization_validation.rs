@@ -1,5 +1,5 @@
 //! The discretization error estimate against the true error, where a
-//! closed form gives the true one (docs/validation.md §5): each run solved,
+//! closed form gives the true one (docs/validation.md §4): each run solved,
 //! then solved again on the coarser grids of its family
 //! (`ProblemBuilder::discretization`), the estimated error of each quantity
 //! printed beside its error against the closed form.

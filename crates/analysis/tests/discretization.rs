@@ -1,5 +1,5 @@
 //! The discretization error estimate against the true error, where a
-//! closed form gives it (docs/validation.md §5 prints the whole table:
+//! closed form gives it (docs/validation.md §4 prints the whole table:
 //! `cargo run --release --example discretization_validation`).
 //!
 //! What holds and is asserted: on Conry & Seireg's Example 1 spheres at 41
