@@ -4,13 +4,15 @@
 //! stored runs in docs/peers/ (the same Hertz spheres on Love patches, the
 //! FFT-based peers' square domain 4a wide, h = a/16 and a/32; their times
 //! are setup plus solve, measured on the machine docs/peers/env.txt
-//! describes).
+//! describes), and beside elcon's true error its estimated discretization
+//! error (result.json's `discretization`: the approach and the peak
+//! pressure have one).
 //!
 //! Run, from the checkout:
 //!
 //! ```sh
 //! cargo run --release -- batch examples/scenes/convergence.toml --out out --jobs 1
-//! cargo run --release --example convergence_peers -- [--error pressure_l2|approach] [--out docs/img/convergence-error-time.svg]
+//! cargo run --release --example convergence_peers -- [--error max_pressure|approach|pressure_l2] [--out docs/img/convergence-error-time.svg]
 //! ```
 
 use std::error::Error;
@@ -39,7 +41,7 @@ fn peer(path: &str, error: &str) -> Result<Vec<(f64, f64)>, Box<dyn Error>> {
 
 fn main() -> Result<(), Box<dyn Error>> {
     let (mut error, mut out) = (
-        "pressure_l2".to_string(),
+        "max_pressure".to_string(),
         PathBuf::from("docs/img/convergence-error-time.svg"),
     );
     let mut it = std::env::args().skip(1);
@@ -70,6 +72,17 @@ fn main() -> Result<(), Box<dyn Error>> {
         match series.iter_mut().find(|(n, _)| *n == name) {
             Some((_, pts)) => pts.push((t, e.abs())),
             None => series.push((name, vec![(t, e.abs())])),
+        }
+        // The estimated discretization error beside the true one (every
+        // method has the same solution, so one method's estimate).
+        if m == "block-pivoting"
+            && let Some(est) = row[format!("estimated_error_{error}").as_str()].as_f64()
+        {
+            let name = "elcon's estimate (block-pivoting)".to_string();
+            match series.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, pts)) => pts.push((t, est)),
+                None => series.push((name, vec![(t, est)])),
+            }
         }
     }
     for (name, path) in [

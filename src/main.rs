@@ -176,7 +176,7 @@ fn merge_command(dirs: &[PathBuf], out: &Path) -> bool {
 
 fn header() {
     println!(
-        "{:<28} {:<18} {:>7} {:>7} {:>9} {:>12} {:>12} {:>9} {:>11}",
+        "{:<28} {:<18} {:>7} {:>7} {:>9} {:>12} {:>12} {:>9} {:>11} {:>10}",
         "scene",
         "method",
         "points",
@@ -185,7 +185,8 @@ fn header() {
         "approach",
         "max press.",
         "cert.",
-        "ref. error"
+        "ref. error",
+        "est. error"
     );
 }
 
@@ -200,8 +201,13 @@ fn row(r: &RunResult) {
                 .or(x.errors.max_pressure)
         })
         .map_or("-".to_string(), |e| format!("{e:+.2e}"));
+    // The peak pressure's estimated discretization error, relative.
+    let estimated = r
+        .discretization
+        .as_ref()
+        .map_or("-".to_string(), |d| d.quantities.max_pressure.short());
     println!(
-        "{:<28} {:<18} {:>7} {:>7} {:>9.4} {:>12.5e} {:>12.5e} {:>9.1e} {:>11}",
+        "{:<28} {:<18} {:>7} {:>7} {:>9.4} {:>12.5e} {:>12.5e} {:>9.1e} {:>11} {:>10}",
         r.scene,
         r.method,
         r.points,
@@ -210,7 +216,8 @@ fn row(r: &RunResult) {
         r.approach,
         r.max_pressure,
         r.certificate.worst(),
-        err
+        err,
+        estimated
     );
     println!(
         "{:<28} units: length {}, force {}, pressure {}",

@@ -12,6 +12,10 @@
 //! candidate zone reaches `zone` times a (or b) from the centre. A zone
 //! above 1 leaves room for a contact larger than Hertz's (a coarse grid, a
 //! misalignment, a load centre off the middle).
+//!
+//! Every layout is a member of a [`GridFamily`]: the same zone at any
+//! spacing, refined or coarsened (`crate::discretization` solves a problem
+//! on the coarser members to estimate its discretization error).
 
 use elcon_influence::PointSet;
 
@@ -44,10 +48,29 @@ fn spacing(size: f64, across: usize, zone: f64) -> Result<f64, AnalysisError> {
     Ok(2.0 * size / (across - 1) as f64)
 }
 
+/// The family of [`hertz_disk`]: a square lattice of spacing
+/// `2 contact_radius / (across - 1)` clipped to the disk of
+/// `zone * contact_radius`.
+///
+/// # Errors
+/// [`AnalysisError::InvalidInput`] naming `across`, `zone` or the contact
+/// size.
+pub fn hertz_disk_family(
+    contact_radius: f64,
+    across: usize,
+    zone: f64,
+) -> Result<GridFamily, AnalysisError> {
+    let h = spacing(contact_radius, across, zone)?;
+    Ok(GridFamily::Disk {
+        spacing: h,
+        radius: zone * contact_radius,
+    })
+}
+
 /// A square grid on a disk around the origin: `across` points over the
 /// diameter of a Hertz contact of radius `contact_radius`, out to
 /// `zone * contact_radius` (the scenes' `grid = "disk"` with `across`,
-/// `zone`).
+/// `zone`): the points of [`hertz_disk_family`].
 ///
 /// # Errors
 /// [`AnalysisError::InvalidInput`] naming `across`, `zone` or the contact
@@ -64,18 +87,22 @@ pub fn hertz_disk(
     across: usize,
     zone: f64,
 ) -> Result<PointSet, AnalysisError> {
-    let h = spacing(contact_radius, across, zone)?;
-    Ok(PointSet::grid_disk(h, zone * contact_radius)?)
+    hertz_disk_family(contact_radius, across, zone)?.points()
 }
 
-/// Points on a line, centred: `across` over the width `2 half_width` of a
-/// Hertz line contact, a whole number of spacings out to about
-/// `zone * half_width` on each side (the scenes' `grid = "line"` with
-/// `across`, `zone`).
+/// The family of [`hertz_line`]: `2 m + 1` cells of `h = 2 half_width /
+/// (across - 1)` centred on the origin, `m = round(zone half_width / h)`
+/// (at least 1).
 ///
 /// # Errors
-/// As [`hertz_disk`].
-pub fn hertz_line(half_width: f64, across: usize, zone: f64) -> Result<PointSet, AnalysisError> {
+/// [`AnalysisError::InvalidInput`] naming `across`, `zone` or the contact
+/// size, or `across` when the line would have more than `MAX_POINTS`
+/// points.
+pub fn hertz_line_family(
+    half_width: f64,
+    across: usize,
+    zone: f64,
+) -> Result<GridFamily, AnalysisError> {
     let h = spacing(half_width, across, zone)?;
     let m = (zone * half_width / h).round().max(1.0);
     if !(m <= elcon_influence::MAX_POINTS as f64) {
@@ -85,11 +112,206 @@ pub fn hertz_line(half_width: f64, across: usize, zone: f64) -> Result<PointSet,
             reason: "more than MAX_POINTS points along the line",
         });
     }
-    Ok(PointSet::line(
-        -(m + 0.5) * h,
-        (m + 0.5) * h,
-        2 * m as usize + 1,
-    )?)
+    Ok(GridFamily::Line {
+        start: -(m + 0.5) * h,
+        end: (m + 0.5) * h,
+        n: 2 * m as usize + 1,
+    })
+}
+
+/// Points on a line, centred: `across` over the width `2 half_width` of a
+/// Hertz line contact, a whole number of spacings out to about
+/// `zone * half_width` on each side (the scenes' `grid = "line"` with
+/// `across`, `zone`): the points of [`hertz_line_family`].
+///
+/// # Errors
+/// As [`hertz_line_family`]; [`AnalysisError::Influence`] when the points
+/// cannot be laid out.
+pub fn hertz_line(half_width: f64, across: usize, zone: f64) -> Result<PointSet, AnalysisError> {
+    hertz_line_family(half_width, across, zone)?.points()
+}
+
+/// The smallest number of points (cells) along an axis that
+/// [`GridFamily::coarser`] leaves a grid: a coarser grid of fewer is not
+/// made (`None`).
+pub const MIN_COARSE_COUNT: usize = 3;
+
+/// A grid and the family it belongs to: the same candidate zone at any
+/// spacing. [`GridFamily::points`] lays the points out;
+/// [`GridFamily::refined`] and [`GridFamily::coarser`] give the same zone
+/// at another spacing (a refinement study, a discretization error
+/// estimate: `crate::discretization`).
+///
+/// Coarser grids (about twice the spacing, a point or the middle cell kept
+/// at the centre):
+///
+/// ```text
+///     Disk        h' = 2 h, the same radius (the origin stays a point)
+///     Rectangle   n' = the integer nearest n / 2 with the parity of n (each of nx, ny)
+///     Line        n' = the integer nearest n / 2 with the parity of n
+/// ```
+///
+/// (an even n whose half is odd has two such integers; the larger is
+/// taken, a ratio of `n / n' < 2`). Keeping the parity keeps the centre a
+/// point (n odd) or a cell face (n even), so a symmetric problem stays
+/// symmetric on every grid. No coarser grid is made with fewer than
+/// [`MIN_COARSE_COUNT`] points along an axis (a disk's diameter, a count).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum GridFamily {
+    /// a square lattice of `spacing`, the origin on a point, clipped to a disk of `radius`
+    Disk {
+        /// The spacing h (length).
+        spacing: f64,
+        /// The radius of the candidate disk (length).
+        radius: f64,
+    },
+    /// nx x ny cells on [-half_x, half_x] x [-half_y, half_y]
+    Rectangle {
+        /// Half-size along x (length).
+        half_x: f64,
+        /// Half-size along y (length).
+        half_y: f64,
+        /// Cells along x.
+        nx: usize,
+        /// Cells along y.
+        ny: usize,
+    },
+    /// n cells on [start, end] of the x axis
+    Line {
+        /// Start (length).
+        start: f64,
+        /// End (length).
+        end: f64,
+        /// Number of cells.
+        n: usize,
+    },
+}
+
+impl GridFamily {
+    /// The grid's points: bit for bit those of [`PointSet::grid_disk`],
+    /// [`PointSet::grid_rectangle`] and [`PointSet::line`].
+    ///
+    /// # Errors
+    /// [`AnalysisError::Influence`] as those constructors refuse (a size
+    /// not finite and positive, a count of 0, more than `MAX_POINTS`).
+    pub fn points(&self) -> Result<PointSet, AnalysisError> {
+        Ok(match *self {
+            GridFamily::Disk { spacing, radius } => PointSet::grid_disk(spacing, radius)?,
+            GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx,
+                ny,
+            } => PointSet::grid_rectangle(half_x, half_y, nx, ny)?,
+            GridFamily::Line { start, end, n } => PointSet::line(start, end, n)?,
+        })
+    }
+
+    /// The representative spacing h: the disk's spacing, `sqrt(dx dy)` of
+    /// a rectangle's cells, a line's `dx = (end - start) / n`.
+    pub fn spacing(&self) -> f64 {
+        match *self {
+            GridFamily::Disk { spacing, .. } => spacing,
+            GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx,
+                ny,
+            } => (2.0 * half_x / nx as f64 * 2.0 * half_y / ny as f64).sqrt(),
+            GridFamily::Line { start, end, n } => (end - start) / n as f64,
+        }
+    }
+
+    /// The same zone at the spacing over `factor`: a disk's spacing
+    /// `h / factor`; each count `round(n factor)`, at least 1.
+    ///
+    /// # Errors
+    /// [`AnalysisError::InvalidInput`] naming `factor` when it is not
+    /// finite and > 0, or a count would overflow.
+    pub fn refined(&self, factor: f64) -> Result<GridFamily, AnalysisError> {
+        if !(factor.is_finite() && factor > 0.0) {
+            return Err(AnalysisError::InvalidInput {
+                field: "factor",
+                value: factor,
+                reason: "a refinement factor must be finite and > 0",
+            });
+        }
+        let count = |n: usize| -> Result<usize, AnalysisError> {
+            let m = (n as f64 * factor).round().max(1.0);
+            if m <= elcon_influence::MAX_POINTS as f64 {
+                Ok(m as usize)
+            } else {
+                Err(AnalysisError::InvalidInput {
+                    field: "factor",
+                    value: factor,
+                    reason: "the refined grid would have more than MAX_POINTS cells along an axis",
+                })
+            }
+        };
+        Ok(match *self {
+            GridFamily::Disk { spacing, radius } => GridFamily::Disk {
+                spacing: spacing / factor,
+                radius,
+            },
+            GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx,
+                ny,
+            } => GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx: count(nx)?,
+                ny: count(ny)?,
+            },
+            GridFamily::Line { start, end, n } => GridFamily::Line {
+                start,
+                end,
+                n: count(n)?,
+            },
+        })
+    }
+
+    /// The same zone at about twice the spacing, a point (or the middle
+    /// cell) kept at the centre (see the type's documentation): `None`
+    /// when it would have fewer than [`MIN_COARSE_COUNT`] points along an
+    /// axis.
+    pub fn coarser(&self) -> Option<GridFamily> {
+        match *self {
+            GridFamily::Disk { spacing, radius } => {
+                let h = 2.0 * spacing;
+                // The points of a diameter, as PointSet::grid_disk counts them.
+                let m = (radius / h * (1.0 + 1e-9)).floor();
+                (2.0 * m + 1.0 >= MIN_COARSE_COUNT as f64)
+                    .then_some(GridFamily::Disk { spacing: h, radius })
+            }
+            GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx,
+                ny,
+            } => Some(GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx: half_count(nx)?,
+                ny: half_count(ny)?,
+            }),
+            GridFamily::Line { start, end, n } => Some(GridFamily::Line {
+                start,
+                end,
+                n: half_count(n)?,
+            }),
+        }
+    }
+}
+
+/// The integer nearest `n / 2` with the parity of `n` (the larger of two),
+/// or `None` below [`MIN_COARSE_COUNT`].
+fn half_count(n: usize) -> Option<usize> {
+    let half = n / 2;
+    let m = if half % 2 == n % 2 { half } else { half + 1 };
+    (m >= MIN_COARSE_COUNT).then_some(m)
 }
 
 #[cfg(test)]
@@ -124,6 +346,126 @@ mod tests {
                 Err(AnalysisError::InvalidInput { field: f, .. }) => assert_eq!(f, field),
                 other => panic!("{field}: {other:?}"),
             }
+        }
+    }
+
+    fn same_points(a: &PointSet, b: &PointSet) -> bool {
+        a.len() == b.len()
+            && (0..a.len()).all(|k| {
+                a.x(k).to_bits() == b.x(k).to_bits()
+                    && a.y(k).to_bits() == b.y(k).to_bits()
+                    && a.measure(k).to_bits() == b.measure(k).to_bits()
+            })
+    }
+
+    #[test]
+    fn a_family_lays_out_the_points_of_its_constructor() {
+        let disk = GridFamily::Disk {
+            spacing: 0.1,
+            radius: 1.15,
+        };
+        assert!(same_points(
+            &disk.points().unwrap(),
+            &PointSet::grid_disk(0.1, 1.15).unwrap()
+        ));
+        let rect = GridFamily::Rectangle {
+            half_x: 0.3,
+            half_y: 5.0,
+            nx: 9,
+            ny: 40,
+        };
+        assert!(same_points(
+            &rect.points().unwrap(),
+            &PointSet::grid_rectangle(0.3, 5.0, 9, 40).unwrap()
+        ));
+        // sqrt(dx dy) of the rectangle's cells.
+        assert!((rect.spacing() - (0.6f64 / 9.0 * 10.0 / 40.0).sqrt()).abs() < 1e-15);
+        let line = hertz_line_family(1.0, 21, 1.5).unwrap();
+        assert!((line.spacing() - 0.1).abs() < 1e-15);
+        assert!(same_points(
+            &line.points().unwrap(),
+            &hertz_line(1.0, 21, 1.5).unwrap()
+        ));
+    }
+
+    #[test]
+    fn coarser_grids_halve_the_counts_keeping_their_parity_and_the_centre() {
+        assert_eq!(half_count(21), Some(11));
+        assert_eq!(half_count(27), Some(13));
+        assert_eq!(half_count(13), Some(7));
+        assert_eq!(half_count(9), Some(5));
+        assert_eq!(half_count(5), Some(3));
+        assert_eq!(half_count(80), Some(40));
+        assert_eq!(half_count(40), Some(20));
+        // 6 / 2 = 3 is odd: the even neighbours 2 and 4, the larger taken.
+        assert_eq!(half_count(6), Some(4));
+        assert_eq!(half_count(4), None);
+        assert_eq!(half_count(3), None);
+        // A disk: twice the spacing, the same radius; 21 across becomes 11.
+        let a = 1.0;
+        let fine = hertz_disk_family(a, 21, 1.15).unwrap();
+        let coarse = fine.coarser().unwrap();
+        assert!(same_points(
+            &coarse.points().unwrap(),
+            &hertz_disk(a, 11, 1.15).unwrap()
+        ));
+        // Each coarser line keeps the origin a point, the zone the same.
+        let mut family = hertz_line_family(1.0, 21, 1.3).unwrap();
+        while let Some(c) = family.coarser() {
+            let points = c.points().unwrap();
+            assert!((0..points.len()).any(|k| points.x(k) == 0.0), "{c:?}");
+            assert!(c.spacing() > 1.8 * family.spacing(), "{c:?}");
+            family = c;
+        }
+        // 27 cells, then 13, 7, 3.
+        assert!(
+            matches!(family, GridFamily::Line { n: 3, .. }),
+            "{family:?}"
+        );
+        // A disk with fewer than 3 points across at twice the spacing.
+        let small = GridFamily::Disk {
+            spacing: 0.3,
+            radius: 0.5,
+        };
+        assert_eq!(small.coarser(), None);
+    }
+
+    #[test]
+    fn refined_grids_divide_the_spacing() {
+        let line = GridFamily::Line {
+            start: -1.0,
+            end: 1.0,
+            n: 10,
+        };
+        assert_eq!(
+            line.refined(2.5).unwrap(),
+            GridFamily::Line {
+                start: -1.0,
+                end: 1.0,
+                n: 25
+            }
+        );
+        assert_eq!(
+            line.refined(0.01).unwrap(),
+            GridFamily::Line {
+                start: -1.0,
+                end: 1.0,
+                n: 1
+            }
+        );
+        let disk = GridFamily::Disk {
+            spacing: 0.2,
+            radius: 1.0,
+        };
+        assert_eq!(disk.refined(2.0).unwrap().spacing(), 0.1);
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(matches!(
+                disk.refined(bad),
+                Err(AnalysisError::InvalidInput {
+                    field: "factor",
+                    ..
+                })
+            ));
         }
     }
 }

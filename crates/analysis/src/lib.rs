@@ -53,6 +53,7 @@
 //! ```
 
 pub mod contact;
+pub mod discretization;
 mod edge;
 mod error;
 pub mod estimate;
@@ -73,6 +74,7 @@ pub use elcon_influence::{
 pub use elcon_lcp::{Method, Options};
 pub use error::AnalysisError;
 pub use estimate::{Estimate, Relief, Tableau};
+pub use grid::GridFamily;
 pub use influence::Products;
 pub use loading::{Loading, Normal, Tilt};
 pub use rigid::{Rigid, RigidMode};

@@ -19,8 +19,11 @@
 //! matrices, the design program's `R = sum_l (2 n_l + 1) + stations (+ 1)`
 //! rows and `C = sum_l n_l + L + parameters + 1` dense columns (its
 //! builder's growing buffer, the program, the engine's copy and the
-//! tableau, each about R x C, overlap). The peak is the larger of the two
-//! stages plus [`BASELINE`].
+//! tableau, each about R x C, overlap). The discretization error estimate
+//! (on by default) solves the coarser grids one at a time while the
+//! scene's S is held: `S + coarse_max`, a coarse grid's solve, at most a
+//! sixteenth of the scene's on a surface and a quarter on a line. The peak
+//! is the largest of the stages plus [`BASELINE`].
 //!
 //! The time class comes from the pivots' cost: about `c n^3` for a dense
 //! solve (a path of about n pivots of n^2 each), linear in N matrix-free,
@@ -122,7 +125,8 @@ impl Estimate {
     pub fn of(scene: &Scene) -> Result<Self, SceneError> {
         let solve = &scene.plan().estimate;
         let n = scene.points().len();
-        let mut seconds = solve.seconds;
+        let (coarse_bytes, coarse_seconds) = discretization(scene);
+        let mut seconds = solve.seconds + coarse_seconds;
         let design = match scene.design() {
             Some(spec) => {
                 let d = design(scene, spec, solve.influence_bytes)?;
@@ -140,6 +144,7 @@ impl Estimate {
             .as_ref()
             .map_or(0, |d| d.bytes)
             .max(to_bytes(solve.solve_bytes))
+            .max(to_bytes(solve.influence_bytes + coarse_bytes))
             .saturating_add(to_bytes(plot));
         Ok(Self {
             points: n,
@@ -251,6 +256,40 @@ impl Estimate {
             hints: hints.join(", or "),
         }
     }
+}
+
+/// The discretization error estimate's peak and time: the coarser grids'
+/// problems (`elcon_analysis::GridFamily::coarser`, 2h then 4h), planned as
+/// the run builds them, are solved one at a time while the scene's own S is
+/// held, so the stage's peak is the scene's S plus the largest coarse
+/// solve's bytes (`S + S / 16` and its working matrices at most on a
+/// surface, `S + S / 4` on a line); the seconds are the coarse solves'.
+/// Nothing when the estimate is off or the layout has no coarser grid.
+fn discretization(scene: &Scene) -> (f64, f64) {
+    let Some(mut family) = scene
+        .error_estimate()
+        .then(|| scene.grid_family().ok())
+        .flatten()
+    else {
+        return (0.0, 0.0);
+    };
+    let (mut bytes, mut seconds) = (0.0f64, 0.0);
+    for _ in 0..2 {
+        let Some(coarse) = family.coarser() else {
+            break;
+        };
+        let Some(plan) = coarse
+            .points()
+            .ok()
+            .and_then(|points| scene.builder(points, scene.loading()).plan().ok())
+        else {
+            break;
+        };
+        bytes = bytes.max(plan.estimate.solve_bytes);
+        seconds += plan.estimate.seconds;
+        family = coarse;
+    }
+    (bytes, seconds)
 }
 
 /// Each design load's problem, planned as the run builds it (held as the

@@ -18,9 +18,11 @@
 
 mod batch;
 mod batch_run;
+mod compare;
 mod ctx;
 mod design_stage;
 mod error;
+mod error_estimate;
 mod estimate;
 mod faults;
 mod isolate;
@@ -40,6 +42,7 @@ pub use batch_run::{BatchOptions, Progress, run_batch};
 pub use design_stage::{DesignCaseJson, DesignJson, DesignRun};
 pub use elcon_analysis::{AUTO_DENSE_LIMIT, Storage};
 pub use error::{Location, SceneError};
+pub use error_estimate::{DiscretizationJson, GridJson, QuantitiesJson, QuantityJson};
 pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass};
 pub use isolate::{install_panic_hook, isolated};
 pub use memory::{

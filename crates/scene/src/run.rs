@@ -1,18 +1,22 @@
 //! Running a scene: assemble `S = A(1) + A(2)` and eps, solve the contact
 //! problem (`Y = S F + eps - alpha e`, `e^T F = P`, `F, Y >= 0`,
-//! `F_k Y_k = 0`) with the scene's method, compare with the closed form
-//! that applies, and run the design stage if the scene has one. The result
+//! `F_k Y_k = 0`) with the scene's method, estimate its discretization
+//! error on coarser grids (`crate::error_estimate`), compare with the
+//! closed form that applies, and run the design stage if the scene has
+//! one. The result
 //! is what result.json holds (schema in docs/results.md).
 
 use std::time::Instant;
 
-use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
+use elcon_analysis::{ContactProblem, ContactSolution};
 use elcon_influence::Dimension;
 use serde::Serialize;
 
+use crate::compare::compare;
 use crate::design_stage::{DesignJson, DesignRun, design_stage};
 use crate::error::SceneError;
-use crate::scene::{Reference, Scene, Units};
+use crate::error_estimate::{DiscretizationJson, discretization};
+use crate::scene::{Scene, Units};
 
 /// A folded problem's symmetry, as written. A mirror of
 /// `elcon_influence::Folding` rather than a `Serialize` on it: result.json
@@ -35,7 +39,10 @@ pub struct Seconds {
     pub assembly: f64,
     /// The engine's solve, certificate included.
     pub solve: f64,
-    /// The whole run (assembly, solve, reference, design).
+    /// The discretization error estimate: building and solving the
+    /// coarser grids (0 when it is off).
+    pub error_estimate: f64,
+    /// The whole run (assembly, solve, error estimate, reference, design).
     pub total: f64,
 }
 
@@ -58,6 +65,12 @@ pub struct Errors {
     /// `||p - p_ref||_2 / ||p_ref||_2` over the points.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pressure_l2: Option<f64>,
+    /// The rotation about x (where the reference's is not zero).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tilt_x: Option<f64>,
+    /// The rotation about y (where the reference's is not zero).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tilt_y: Option<f64>,
 }
 
 /// The closed form's values and the errors against it: gathered from the
@@ -78,10 +91,18 @@ pub struct ReferenceJson {
     /// Reference load (force).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub load: Option<f64>,
+    /// Where the reference's contact is centred, when off the origin (a
+    /// Hertz contact translated to the load centre; length).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub load_centre: Option<XY>,
+    /// The reference's rotations, when not zero (radians).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tilt: Option<XY>,
     /// Relative errors.
     pub errors: Errors,
     /// What limits the comparison, where something does (Hetenyi's bonded
-    /// beam against a tensionless foundation that lifted off).
+    /// beam against a tensionless foundation that lifted off; a moment or
+    /// a tilt the closed form does not have).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
 }
@@ -180,6 +201,10 @@ pub struct RunResult {
     /// to them (`result.approach`).
     #[serde(flatten)]
     pub solution: SolutionJson,
+    /// The discretization error estimate (`solver.error_estimate`, on by
+    /// default).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub discretization: Option<DiscretizationJson>,
     /// The closed-form comparison, where one applies.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceJson>,
@@ -238,13 +263,17 @@ pub(crate) fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError 
 pub fn run(scene: &Scene) -> Result<Run, SceneError> {
     let start = Instant::now();
     crate::faults::panic_point(scene.name());
-    let problem = scene
-        .builder(scene.points().clone(), scene.loading())
-        .build()
-        .map_err(|e| run_error(scene, e))?;
+    let builder = scene.builder(scene.points().clone(), scene.loading());
+    let problem = builder.clone().build().map_err(|e| run_error(scene, e))?;
     let solution = problem
         .solve(scene.method(), scene.options())
         .map_err(|e| run_error(scene, e))?;
+    // The coarser grids' problems are built and dropped one at a time,
+    // each a sixteenth (surface) or a quarter (line) of S at most.
+    let discretization = scene
+        .error_estimate()
+        .then(|| discretization(scene, &builder, &solution));
+    drop(builder);
     let (reference, reference_pressures) = match scene.reference() {
         Some(r) => {
             let (json, p) = compare(r, &problem, &solution, scene.loading());
@@ -278,9 +307,13 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         seconds: Seconds {
             assembly: problem.assembly_seconds(),
             solve: solution.solve_seconds,
+            error_estimate: discretization
+                .as_ref()
+                .map_or(0.0, DiscretizationJson::coarse_seconds),
             total: start.elapsed().as_secs_f64(),
         },
         solution: SolutionJson::of(&solution, scene.warnings()),
+        discretization,
         reference,
         design: design_json,
     };
@@ -292,108 +325,4 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         design,
         result,
     })
-}
-
-/// The closed form's values, errors, and per-point reference pressures.
-fn compare(
-    reference: &Reference,
-    problem: &ContactProblem,
-    sol: &ContactSolution,
-    loading: Loading,
-) -> (ReferenceJson, Option<Vec<f64>>) {
-    let rel = |x: f64, r: f64| x / r - 1.0;
-    let points = problem.points();
-    let l2 = |p_ref: &[f64]| {
-        let (mut num, mut den) = (0.0, 0.0);
-        for (p, q) in sol.pressures.iter().zip(p_ref) {
-            num += (p - q) * (p - q);
-            den += q * q;
-        }
-        (num / den).sqrt()
-    };
-    let mut json = ReferenceJson {
-        kind: reference.kind().to_string(),
-        approach: None,
-        max_pressure: None,
-        contact_extent: None,
-        load: None,
-        errors: Errors::default(),
-        note: None,
-    };
-    let pressures = match *reference {
-        Reference::HertzSpheres(h) => {
-            let p: Vec<f64> = (0..points.len())
-                .map(|k| h.pressure(points.radius(k)))
-                .collect();
-            json.approach = Some(h.approach());
-            json.max_pressure = Some(h.peak_pressure());
-            json.contact_extent = Some(h.contact_radius());
-            json.errors.max_pressure = Some(rel(sol.max_pressure, h.peak_pressure()));
-            json.errors.contact_extent = Some(rel(sol.contact_extent, h.contact_radius()));
-            json.errors.pressure_l2 = Some(l2(&p));
-            match loading.normal {
-                Normal::Load(_) => json.errors.approach = Some(rel(sol.approach, h.approach())),
-                Normal::Approach(_) => {
-                    json.load = Some(h.load);
-                    json.errors.load = Some(rel(sol.load, h.load));
-                }
-            }
-            Some(p)
-        }
-        Reference::HertzCylinders { hertz, datum } => {
-            let p: Vec<f64> = (0..points.len())
-                .map(|k| hertz.pressure(points.x(k)))
-                .collect();
-            json.max_pressure = Some(hertz.peak_pressure());
-            json.contact_extent = Some(hertz.half_width());
-            json.errors.max_pressure = Some(rel(sol.max_pressure, hertz.peak_pressure()));
-            json.errors.contact_extent = Some(rel(sol.contact_extent, hertz.half_width()));
-            json.errors.pressure_l2 = Some(l2(&p));
-            if let Some(d0) = datum
-                && let Ok(a) = hertz.approach(d0)
-            {
-                json.approach = Some(a);
-                json.errors.approach = Some(rel(sol.approach, a));
-            }
-            Some(p)
-        }
-        Reference::FlatPunch(punch) => {
-            json.contact_extent = Some(punch.radius);
-            match loading.normal {
-                Normal::Approach(d) => {
-                    let p = punch.load(d);
-                    json.load = Some(p);
-                    json.errors.load = Some(rel(sol.load, p));
-                }
-                Normal::Load(p) => {
-                    let d = punch.approach(p);
-                    json.approach = Some(d);
-                    json.errors.approach = Some(rel(sol.approach, d));
-                }
-            }
-            // The pressure is singular at the edge: no peak or L2 comparison.
-            None
-        }
-        Reference::Hetenyi(beam) => {
-            let p: Vec<f64> = (0..points.len())
-                .map(|k| beam.load_intensity(points.x(k)))
-                .collect();
-            json.approach = Some(beam.centre_deflection());
-            json.max_pressure = Some(beam.load_intensity(0.0));
-            json.errors.approach = Some(rel(sol.approach, beam.centre_deflection()));
-            json.errors.max_pressure = Some(rel(sol.max_pressure, beam.load_intensity(0.0)));
-            json.errors.pressure_l2 = Some(l2(&p));
-            if sol.contact.len() < points.len() {
-                json.note = Some(format!(
-                    "Hetenyi's solution is that of a bonded foundation; this tensionless one \
-                     lifted off at {} of {} points, so the errors measure the lift-off as well \
-                     as the discretization",
-                    points.len() - sol.contact.len(),
-                    points.len()
-                ));
-            }
-            Some(p)
-        }
-    };
-    (json, pressures)
 }

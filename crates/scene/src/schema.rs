@@ -295,6 +295,7 @@ pub(crate) struct SolverToml {
     pub certificate_tolerance: Option<Spanned<f64>>,
     pub refinement_steps: Option<Spanned<i64>>,
     pub symmetry: Option<Spanned<Symmetry>>,
+    pub error_estimate: Option<bool>,
 }
 
 /// `[design]`.

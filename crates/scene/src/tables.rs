@@ -56,11 +56,25 @@ pub struct Row {
     pub error_pressure_l2: Option<f64>,
     /// Relative error of the load.
     pub error_load: Option<f64>,
+    /// The approach's estimated discretization error, relative (converging
+    /// or exact: result.json's `discretization`).
+    #[serde(default)]
+    pub estimated_error_approach: Option<f64>,
+    /// The estimate's verdict for the approach.
+    #[serde(default)]
+    pub verdict_approach: Option<String>,
+    /// The peak pressure's estimated discretization error, relative.
+    #[serde(default)]
+    pub estimated_error_max_pressure: Option<f64>,
+    /// The estimate's verdict for the peak pressure.
+    #[serde(default)]
+    pub verdict_max_pressure: Option<String>,
 }
 
 impl Row {
     pub(crate) fn ok(index: usize, overrides: String, r: &RunResult) -> Self {
         let e = r.reference.as_ref().map(|x| &x.errors);
+        let d = r.discretization.as_ref();
         Self {
             index,
             overrides,
@@ -79,6 +93,10 @@ impl Row {
             error_contact_extent: e.and_then(|e| e.contact_extent),
             error_pressure_l2: e.and_then(|e| e.pressure_l2),
             error_load: e.and_then(|e| e.load),
+            estimated_error_approach: d.and_then(|d| d.quantities.approach.relative_error),
+            verdict_approach: d.map(|d| d.quantities.approach.verdict.clone()),
+            estimated_error_max_pressure: d.and_then(|d| d.quantities.max_pressure.relative_error),
+            verdict_max_pressure: d.map(|d| d.quantities.max_pressure.verdict.clone()),
         }
     }
 
@@ -99,6 +117,27 @@ impl Row {
             ErrorMetric::ContactExtent => self.error_contact_extent,
             ErrorMetric::PressureL2 => self.error_pressure_l2,
             ErrorMetric::Load => self.error_load,
+        }
+    }
+
+    /// The estimated discretization error of `metric`, where the row has
+    /// one (the approach and the peak pressure).
+    fn estimated(&self, metric: ErrorMetric) -> Option<f64> {
+        match metric {
+            ErrorMetric::Approach => self.estimated_error_approach,
+            ErrorMetric::MaxPressure => self.estimated_error_max_pressure,
+            _ => None,
+        }
+    }
+
+    /// The estimated error as the Markdown table shows it: `1.2e-3`,
+    /// `exact`, `n.c.` (not converging), or empty.
+    fn estimated_cell(error: Option<f64>, verdict: Option<&String>) -> String {
+        match verdict.map(String::as_str) {
+            Some("exact") => "exact".into(),
+            Some("not converging") => "n.c.".into(),
+            Some("converging") => error.map_or(String::new(), |e| format!("{e:.1e}")),
+            _ => String::new(),
         }
     }
 }
@@ -358,16 +397,17 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
     write_atomic(&dir.join("results.json"), json.as_bytes())?;
     let mut csv = String::from(
         "index,overrides,scene,status,method,points,pivots,seconds_total,seconds_solve,approach,max_pressure,\
-         certificate_worst,error_approach,error_max_pressure,error_contact_extent,error_pressure_l2,error_load\n",
+         certificate_worst,error_approach,error_max_pressure,error_contact_extent,error_pressure_l2,error_load,\
+         estimated_error_approach,verdict_approach,estimated_error_max_pressure,verdict_max_pressure\n",
     );
     let mut md = format!(
-        "# Batch `{}`\n\n| # | overrides | method | N | pivots | seconds | certificate | error ({}) | status |\n|---|---|---|---|---|---|---|---|---|\n",
+        "# Batch `{}`\n\n| # | overrides | method | N | pivots | seconds | certificate | error ({}) | est. error (peak) | est. error (approach) | status |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
         o.batch, o.error
     );
     for r in &o.rows {
         let _ = writeln!(
             csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             r.index,
             csv_field(&r.overrides),
             csv_field(&r.scene),
@@ -385,10 +425,14 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
             opt(r.error_contact_extent),
             opt(r.error_pressure_l2),
             opt(r.error_load),
+            opt(r.estimated_error_approach),
+            csv_field(r.verdict_approach.as_deref().unwrap_or_default()),
+            opt(r.estimated_error_max_pressure),
+            csv_field(r.verdict_max_pressure.as_deref().unwrap_or_default()),
         );
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.index,
             r.overrides,
             r.method.clone().unwrap_or_default(),
@@ -399,6 +443,11 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
                 .map_or(String::new(), |c| format!("{c:.1e}")),
             r.error(o.error)
                 .map_or(String::new(), |e| format!("{e:+.3e}")),
+            Row::estimated_cell(
+                r.estimated_error_max_pressure,
+                r.verdict_max_pressure.as_ref()
+            ),
+            Row::estimated_cell(r.estimated_error_approach, r.verdict_approach.as_ref()),
             r.status.replace('|', "/"),
         );
     }
@@ -410,6 +459,17 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
             match series.iter_mut().find(|(name, _)| name == m) {
                 Some((_, pts)) => pts.push((t, e.abs())),
                 None => series.push((m.clone(), vec![(t, e.abs())])),
+            }
+        }
+    }
+    // Each method's estimated error beside its true one, where the metric
+    // has an estimate.
+    for r in &o.rows {
+        if let (Some(m), Some(t), Some(e)) = (&r.method, r.seconds_total, r.estimated(o.error)) {
+            let name = format!("{m} (estimated)");
+            match series.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, pts)) => pts.push((t, e)),
+                None => series.push((name, vec![(t, e)])),
             }
         }
     }

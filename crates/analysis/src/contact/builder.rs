@@ -216,6 +216,27 @@ impl<'a> ProblemBuilder<'a> {
         &self.points
     }
 
+    /// The same problem on other points: the bodies, the geometry, the
+    /// loading, the storage rule, the method, the folding and the body
+    /// edges kept.
+    pub(super) fn on(&self, points: PointSet) -> Self {
+        Self {
+            points,
+            bodies: self.bodies,
+            geometry: self.geometry,
+            loading: self.loading,
+            storage: self.storage,
+            method: self.method,
+            fold: self.fold,
+            body_edges: self.body_edges,
+        }
+    }
+
+    /// The geometry the separations come from.
+    pub(super) fn geometry(&self) -> &Geometry {
+        self.geometry
+    }
+
     /// The problem's [`Layout`] (its separations, rigid unknowns and
     /// symmetry) as the storage asked for would fold it, or the build's
     /// error.

@@ -26,8 +26,10 @@
 //! | `builder` | [`ProblemBuilder`]: the one place that decides how S is held (`crate::Storage`), and what a problem will cost |
 //! | `solution` | [`ContactSolution`], its certificate and warnings, read from the engine's answer |
 //! | `solve` | the reduction to the engine's (bordered) LCP and its solve |
+//! | `discretize` | the same problem solved on coarser grids of its family: its discretization error (`crate::discretization`) |
 
 mod builder;
+mod discretize;
 mod geometry;
 mod layout;
 mod problem;

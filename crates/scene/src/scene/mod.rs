@@ -24,7 +24,8 @@ mod units;
 use std::path::{Path, PathBuf};
 
 use elcon_analysis::{
-    ContactProblem, Geometry, Loading, Method, Normal, Options, Plan, ProblemBuilder, Storage,
+    ContactProblem, Geometry, GridFamily, Loading, Method, Normal, Options, Plan, ProblemBuilder,
+    Storage,
 };
 use elcon_design::DesignMethod;
 use elcon_influence::{Dimension, PointSet};
@@ -77,6 +78,9 @@ pub struct Scene {
     /// Whether to fold a mirror-symmetric problem (`solver.symmetry`,
     /// "auto" (default) or "none").
     fold: bool,
+    /// Whether the run estimates its discretization error on coarser
+    /// grids (`solver.error_estimate`, default true).
+    error_estimate: bool,
     /// The design stage, if asked for.
     design: Option<DesignSpec>,
     /// The outputs.
@@ -188,6 +192,24 @@ impl Scene {
         self.fold
     }
 
+    /// Whether the run estimates its discretization error on coarser grids
+    /// (`solver.error_estimate`, default true).
+    pub fn error_estimate(&self) -> bool {
+        self.error_estimate
+    }
+
+    /// The grid family of the scene's points (`elcon_analysis::GridFamily`:
+    /// the same zone at any spacing), laid out at the scene's load as its
+    /// points are.
+    ///
+    /// # Errors
+    /// Why the layout has no family (relative to a Hertz contact that does
+    /// not apply).
+    pub fn grid_family(&self) -> Result<GridFamily, String> {
+        let scale = self.loading.load_value().and_then(|p| self.hertz_scale(p));
+        self.points_spec.family(scale)
+    }
+
     /// The design stage, if the scene asks for one.
     pub fn design(&self) -> Option<&DesignSpec> {
         self.design.as_ref()
@@ -297,6 +319,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;
     sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
     let fold = solver::symmetry(raw.solver.as_ref());
+    let error_estimate = solver::error_estimate(raw.solver.as_ref());
     let plan = planner(points.clone(), &bodies, &geometry, loading, choice, fold)
         .plan()
         .map_err(|e| SceneError::Run {
@@ -353,6 +376,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         plan,
         options,
         fold,
+        error_estimate,
         design,
         outputs,
         reference,

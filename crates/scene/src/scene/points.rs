@@ -2,6 +2,7 @@
 //! line, absolute or relative to the Hertz contact), each key checked
 //! against the grid, and the point set a layout gives at a Hertz scale.
 
+use elcon_analysis::GridFamily;
 use elcon_influence::{Dimension, PointSet};
 use toml::Spanned;
 
@@ -282,37 +283,50 @@ pub enum HalfX {
     Zone(f64),
 }
 
-/// Builds the point set; `scale` is the Hertz radius or half-width for the
-/// relative layouts.
+impl PointsSpec {
+    /// The grid family of the layout (`elcon_analysis::GridFamily`: the
+    /// same zone at any spacing); `scale` is the Hertz radius or half-width
+    /// for the relative layouts.
+    ///
+    /// # Errors
+    /// Why the layout cannot be made: relative to a Hertz contact that does
+    /// not apply, or bad sizes.
+    pub fn family(&self, scale: Option<f64>) -> Result<GridFamily, String> {
+        let need = || {
+            scale.ok_or_else(|| {
+                "the layout is relative to a Hertz contact that does not apply".to_string()
+            })
+        };
+        let r = match *self {
+            PointsSpec::Disk { spacing, radius } => Ok(GridFamily::Disk { spacing, radius }),
+            PointsSpec::DiskHertz { across, zone } => {
+                elcon_analysis::grid::hertz_disk_family(need()?, across, zone)
+            }
+            PointsSpec::Rectangle {
+                half_x,
+                half_y,
+                nx,
+                ny,
+            } => Ok(GridFamily::Rectangle {
+                half_x: match half_x {
+                    HalfX::Length(h) => h,
+                    HalfX::Zone(z) => z * need()?,
+                },
+                half_y,
+                nx,
+                ny,
+            }),
+            PointsSpec::Line { start, end, n } => Ok(GridFamily::Line { start, end, n }),
+            PointsSpec::LineHertz { across, zone } => {
+                elcon_analysis::grid::hertz_line_family(need()?, across, zone)
+            }
+        };
+        r.map_err(|e| e.to_string())
+    }
+}
+
+/// Builds the point set of the layout's family ([`PointsSpec::family`]);
+/// `scale` is the Hertz radius or half-width for the relative layouts.
 pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, String> {
-    let need = || {
-        scale.ok_or_else(|| {
-            "the layout is relative to a Hertz contact that does not apply".to_string()
-        })
-    };
-    let r = match *spec {
-        PointsSpec::Disk { spacing, radius } => PointSet::grid_disk(spacing, radius),
-        PointsSpec::DiskHertz { across, zone } => {
-            return elcon_analysis::grid::hertz_disk(need()?, across, zone)
-                .map_err(|e| e.to_string());
-        }
-        PointsSpec::Rectangle {
-            half_x,
-            half_y,
-            nx,
-            ny,
-        } => {
-            let hx = match half_x {
-                HalfX::Length(h) => h,
-                HalfX::Zone(z) => z * need()?,
-            };
-            PointSet::grid_rectangle(hx, half_y, nx, ny)
-        }
-        PointsSpec::Line { start, end, n } => PointSet::line(start, end, n),
-        PointsSpec::LineHertz { across, zone } => {
-            return elcon_analysis::grid::hertz_line(need()?, across, zone)
-                .map_err(|e| e.to_string());
-        }
-    };
-    r.map_err(|e| e.to_string())
+    spec.family(scale)?.points().map_err(|e| e.to_string())
 }

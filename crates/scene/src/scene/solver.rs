@@ -1,5 +1,6 @@
-//! `[solver]`: the method (or "auto"), its limits and tolerance, and
-//! whether a mirror-symmetric problem is folded.
+//! `[solver]`: the method (or "auto"), its limits and tolerance,
+//! whether a mirror-symmetric problem is folded, and whether the run
+//! estimates its discretization error.
 
 use elcon_analysis::{Method, Options};
 
@@ -24,6 +25,12 @@ pub(super) fn symmetry(solver: Option<&SolverToml>) -> bool {
     solver
         .and_then(|s| s.symmetry.as_ref())
         .is_none_or(|v| *v.get_ref() == Symmetry::Auto)
+}
+
+/// `solver.error_estimate`: whether the run estimates its discretization
+/// error on coarser grids (default true).
+pub(super) fn error_estimate(solver: Option<&SolverToml>) -> bool {
+    solver.and_then(|s| s.error_estimate).unwrap_or(true)
 }
 
 pub(super) fn solver(

@@ -1,0 +1,159 @@
+//! The discretization error estimate against the true error, where a
+//! closed form gives it (docs/validation.md §4 prints the whole table:
+//! `cargo run --release --example discretization_validation`).
+//!
+//! What holds and is asserted: on Conry & Seireg's Example 1 spheres at 41
+//! and 81 points across, the estimates of the approach and of the peak
+//! pressure are within a factor 2 of their errors against Hertz; a rigid
+//! flat punch's peak pressure (singular at the rim) and a flat roller's
+//! (singular at its square ends) are `not converging`; a tilt symmetry
+//! makes zero is `exact`; at 21 points across the grid at 4h would put 5
+//! cells across the contact, so only two grids are solved and nothing is
+//! estimated, which the verdict says.
+
+use elcon_analysis::discretization::{Discretization, Quantity, Verdict};
+use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres};
+use elcon_analysis::{
+    Body, ContactProblem, ContactSolution, Geometry, GridFamily, Loading, Material, Method,
+    Options, Surface, combined_modulus, grid,
+};
+
+fn solved(
+    family: &GridFamily,
+    bodies: [&Body; 2],
+    geometry: &Geometry,
+    loading: Loading,
+) -> (ContactSolution, Discretization) {
+    let builder = ContactProblem::builder(
+        family.points().unwrap(),
+        bodies[0],
+        bodies[1],
+        geometry,
+        loading,
+    );
+    let options = Options::default();
+    let solution = builder
+        .clone()
+        .build()
+        .unwrap()
+        .solve(Method::BlockPivoting, &options)
+        .unwrap();
+    assert!(solution.certificate.holds());
+    let d = builder
+        .discretization(family, &solution, Method::BlockPivoting, &options)
+        .unwrap();
+    (solution, d)
+}
+
+/// Example 1: steel spheres, R = 1 and 10 in, 100 lb, Love patches.
+fn spheres(across: usize) -> (HertzSpheres, ContactSolution, Discretization) {
+    let steel = Material::new(30e6, 0.3).unwrap();
+    let hertz = HertzSpheres::new(combined_modulus(&steel, &steel), 1.0 / 1.1, 100.0).unwrap();
+    let family = grid::hertz_disk_family(hertz.contact_radius(), across, 1.15).unwrap();
+    let body = Body::uniform_patch(steel);
+    let geometry = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    let (sol, d) = solved(&family, [&body, &body], &geometry, Loading::load(100.0));
+    (hertz, sol, d)
+}
+
+/// The estimate over the true relative error.
+fn ratio(d: &Discretization, quantity: Quantity, true_error: f64) -> f64 {
+    let e = d.get(quantity).unwrap();
+    assert_eq!(e.verdict, Verdict::Converging, "{quantity:?}: {e:?}");
+    e.relative_error().unwrap() / true_error.abs()
+}
+
+#[test]
+fn the_spheres_approach_and_peak_are_estimated_within_a_factor_2_at_41_and_81_across() {
+    for across in [41, 81] {
+        let (hertz, sol, d) = spheres(across);
+        assert_eq!(d.grids.len(), 3, "{across}: h, 2h and 4h");
+        // A quarter and a sixteenth of the points (up to the disk's rim).
+        assert!(d.grids[1].points * 4 < d.grids[0].points + 4 * across);
+        for (quantity, truth) in [
+            (Quantity::Approach, sol.approach / hertz.approach() - 1.0),
+            (
+                Quantity::MaxPressure,
+                sol.max_pressure / hertz.peak_pressure() - 1.0,
+            ),
+        ] {
+            let r = ratio(&d, quantity, truth);
+            assert!(
+                (0.5..=2.0).contains(&r),
+                "{across} across, {quantity:?}: {r}"
+            );
+        }
+        // The load is given, and symmetry makes the tilts and the centre zero.
+        for q in [
+            Quantity::Load,
+            Quantity::TiltX,
+            Quantity::TiltY,
+            Quantity::LoadCentreX,
+        ] {
+            assert_eq!(d.get(q).unwrap().verdict, Verdict::Exact, "{q:?}");
+        }
+    }
+}
+
+#[test]
+fn too_coarse_a_grid_at_4h_leaves_two_grids_and_no_estimate() {
+    let (_, _, d) = spheres(21);
+    assert_eq!(d.grids.len(), 2);
+    let note = d.note.as_deref().unwrap();
+    assert!(
+        note.contains("4 times the spacing") && note.contains("fewer than 8"),
+        "{note}"
+    );
+    let e = d.get(Quantity::MaxPressure).unwrap();
+    assert!(
+        e.verdict.reason().unwrap().starts_with("two grids"),
+        "{e:?}"
+    );
+    assert_eq!(e.values.len(), 2);
+    assert_eq!(e.error, None);
+}
+
+#[test]
+fn a_punch_rim_and_a_flat_rollers_ends_are_not_converging() {
+    let aluminium = Material::new(70e9, 0.33).unwrap();
+    let (a, delta) = (0.01, 1e-5);
+    let punch = FlatPunch::new(aluminium.plane_strain_modulus(), a).unwrap();
+    let plane = Geometry::Surfaces(Surface::Plane, Surface::Plane);
+    for cells in [20.0, 40.0] {
+        let family = GridFamily::Disk {
+            spacing: a / cells,
+            radius: a,
+        };
+        let (sol, d) = solved(
+            &family,
+            [&Body::rigid(), &Body::uniform_patch(aluminium)],
+            &plane,
+            Loading::approach(delta),
+        );
+        // The rim cells' pressure grows like h^(-1/2): an order about -1/2.
+        let e = d.get(Quantity::MaxPressure).unwrap();
+        assert_eq!(e.verdict, Verdict::NotConverging, "{cells}: {e:?}");
+        assert!(e.order.unwrap() < 0.0, "{e:?}");
+        // The approach is prescribed.
+        assert_eq!(d.get(Quantity::Approach).unwrap().verdict, Verdict::Exact);
+        assert!((sol.load / punch.load(delta) - 1.0).abs() < 0.01);
+    }
+    let steel = Material::new(210e3, 0.3).unwrap();
+    let b = HertzCylinders::new(combined_modulus(&steel, &steel), 5.0, 1000.0)
+        .unwrap()
+        .half_width();
+    let body = Body::uniform_patch(steel);
+    let roller = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
+    let family = GridFamily::Rectangle {
+        half_x: 1.6 * b,
+        half_y: 5.0,
+        nx: 41,
+        ny: 160,
+    };
+    let (_, d) = solved(&family, [&body, &body], &roller, Loading::load(10_000.0));
+    let e = d.get(Quantity::MaxPressure).unwrap();
+    assert_eq!(e.verdict, Verdict::NotConverging, "{e:?}");
+}
