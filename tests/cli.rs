@@ -145,7 +145,9 @@ fn every_example_scene_runs_and_writes_the_documented_fields() {
     let e2 = json(&out.join("example2-beam-design/result.json"));
     let d = &e2["design"];
     let ratio = d["objective"].as_f64().unwrap() / d["objective_before"].as_f64().unwrap();
-    assert!((ratio - 0.6924).abs() < 1e-3, "{ratio}");
+    // Designed on 160 points (the scene's 80 refined once: the 80-point
+    // design peaks 1.01 % higher on 160) and verified on 240.
+    assert!((ratio - 0.6945).abs() < 1e-3, "{ratio}");
     // The units are repeated in the outputs.
     assert_eq!(e2["units"]["intensity"], "lbf/in");
     let csv = std::fs::read_to_string(out.join("hertz-cylinders/pressure.csv")).unwrap();

@@ -188,6 +188,19 @@ pub enum GridFamily {
     },
 }
 
+impl std::fmt::Display for GridFamily {
+    /// "9 x 40 cells", "80 cells", "spacing 0.001 on a disk of radius 0.02".
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            GridFamily::Disk { spacing, radius } => {
+                write!(f, "spacing {spacing:e} on a disk of radius {radius:e}")
+            }
+            GridFamily::Rectangle { nx, ny, .. } => write!(f, "{nx} x {ny} cells"),
+            GridFamily::Line { n, .. } => write!(f, "{n} cells"),
+        }
+    }
+}
+
 impl GridFamily {
     /// The grid's points: bit for bit those of [`PointSet::grid_disk`],
     /// [`PointSet::grid_rectangle`] and [`PointSet::line`].

@@ -8,15 +8,16 @@
 //! of the same size and the monomial basis stays well conditioned; the free
 //! family has one parameter per station (`Phi = I`), or, given knots
 //! `t_0 < ... < t_m` (a profile that is a function of position, whatever
-//! the grid), one per knot, linear between them:
+//! the grid), one per knot, the natural cubic spline through them:
 //!
 //! ```text
-//!     Phi[st, i] = hat_i(s_st),   hat_i(t_j) = delta_ij,   linear between knots, constant beyond
+//!     Phi[st, i] = c_i(s_st),   c_i the natural cubic spline with c_i(t_j) = delta_ij, its end slopes carried on beyond
 //! ```
 
 use faer::linalg::solvers::SolveLstsq;
 use faer::{Col, Mat};
 
+use crate::profile::{spline_at, spline_curvatures};
 use crate::{DesignError, Family, Profile};
 
 /// The basis of a family at the stations: `Phi[st, i] = phi_i(s_st)`, in the
@@ -71,13 +72,15 @@ impl Basis {
                     normalized: stations.iter().map(|s| s / scale).collect(),
                     knots: None,
                 }),
-                Some(knots) => Self::hats(stations, knots),
+                Some(knots) => Self::spline(stations, knots),
             },
         }
     }
 
-    /// The free family on `knots`: the hat functions at the stations.
-    fn hats(stations: &[f64], knots: &[f64]) -> Result<Self, DesignError> {
+    /// The free family on `knots`: the natural cubic spline through a
+    /// drop at each knot (`Profile::Spline`), so `Phi[st, i]` is the spline
+    /// through the unit drop at knot i, at station st.
+    fn spline(stations: &[f64], knots: &[f64]) -> Result<Self, DesignError> {
         if knots.len() < 2 || knots.windows(2).any(|w| !(w[1] > w[0])) {
             return Err(DesignError::Incompatible {
                 field: "knots",
@@ -89,17 +92,14 @@ impl Basis {
         let scale = knots.iter().fold(0.0f64, |a, s| a.max(s.abs()));
         let scale = if scale > 0.0 { scale } else { 1.0 };
         let mut phi = Mat::<f64>::zeros(stations.len(), knots.len());
-        for (st, &s) in stations.iter().enumerate() {
-            let i = knots.partition_point(|&t| t <= s);
-            if i == 0 {
-                phi[(st, 0)] = 1.0;
-            } else if i == knots.len() {
-                phi[(st, i - 1)] = 1.0;
-            } else {
-                let w = (s - knots[i - 1]) / (knots[i] - knots[i - 1]);
-                phi[(st, i - 1)] = 1.0 - w;
-                phi[(st, i)] = w;
+        let mut unit = vec![0.0; knots.len()];
+        for i in 0..knots.len() {
+            unit[i] = 1.0;
+            let m = spline_curvatures(knots, &unit);
+            for (st, &s) in stations.iter().enumerate() {
+                phi[(st, i)] = spline_at(knots, &unit, &m, s);
             }
+            unit[i] = 0.0;
         }
         Ok(Self {
             phi,
@@ -183,9 +183,16 @@ impl Basis {
         if let Family::Free = family {
             // A free profile's smallest drop is at a node.
             let lowest = theta.iter().copied().fold(f64::INFINITY, f64::min);
-            return Profile::Free {
-                positions: self.knots.as_deref().unwrap_or(stations).to_vec(),
-                drops: theta.iter().map(|t| t - lowest).collect(),
+            let drops = theta.iter().map(|t| t - lowest).collect();
+            return match &self.knots {
+                Some(knots) => Profile::Spline {
+                    positions: knots.clone(),
+                    drops,
+                },
+                None => Profile::Free {
+                    positions: stations.to_vec(),
+                    drops,
+                },
             };
         }
         let lowest = self.drops(&theta).into_iter().fold(f64::INFINITY, f64::min);

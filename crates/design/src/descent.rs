@@ -309,7 +309,13 @@ fn step(
     }
     let rhs = Col::from_fn(rows, |r| f64::from(r == m));
     program.rhs(rhs.as_ref())?;
-    let solution = program.build()?.solve(engine)?;
+    // The step is only as good as the basis it is read from, and that is
+    // checked below to STEP_FEASIBILITY: the engine's certificate is held to
+    // the same (a model's rows weighted to keep edges clear span a wider
+    // range than its data's rounding).
+    let mut engine = engine.clone();
+    engine.tolerances.certificate = engine.tolerances.certificate.max(STEP_FEASIBILITY);
+    let solution = program.build()?.solve(&engine)?;
     let pivots = solution.statistics.pivots();
     let unreadable = || DesignError::Incompatible {
         field: "cases",

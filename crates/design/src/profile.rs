@@ -178,6 +178,73 @@ pub enum Profile {
         /// The drop at each station (length).
         drops: Vec<f64>,
     },
+    /// A free profile through its drops at fixed knots by the natural
+    /// cubic spline (continuous slope and curvature, no curvature at the
+    /// end knots), carried on along its end slopes beyond them. Smooth, so
+    /// the pressure under it is bounded: a kink in a profile (the linear
+    /// interpolation's, at every station) puts a logarithmic peak of
+    /// pressure under it that a finer grid resolves ever higher.
+    Spline {
+        /// The knots, strictly increasing, at least two (length).
+        positions: Vec<f64>,
+        /// The drop at each knot (length).
+        drops: Vec<f64>,
+    },
+}
+
+/// The natural cubic spline's second derivatives `m_i` at the knots `t`
+/// for values `y` (`m_0 = m_n = 0`; the tridiagonal system
+/// `h_(i-1) m_(i-1) + 2 (h_(i-1) + h_i) m_i + h_i m_(i+1) = 6 (d_i - d_(i-1))`,
+/// `d_i = (y_(i+1) - y_i) / h_i`, solved by the Thomas algorithm).
+pub(crate) fn spline_curvatures(t: &[f64], y: &[f64]) -> Vec<f64> {
+    let n = t.len();
+    let mut m = vec![0.0; n];
+    if n < 3 {
+        return m;
+    }
+    let h: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    let d: Vec<f64> = (0..n - 1).map(|i| (y[i + 1] - y[i]) / h[i]).collect();
+    // Forward sweep over the interior knots 1..n-1.
+    let (mut diag, mut rhs) = (vec![0.0; n], vec![0.0; n]);
+    for i in 1..n - 1 {
+        diag[i] = 2.0 * (h[i - 1] + h[i]);
+        rhs[i] = 6.0 * (d[i] - d[i - 1]);
+        if i > 1 {
+            let w = h[i - 1] / diag[i - 1];
+            diag[i] -= w * h[i - 1];
+            rhs[i] -= w * rhs[i - 1];
+        }
+    }
+    for i in (1..n - 1).rev() {
+        let next = if i + 1 < n - 1 { h[i] * m[i + 1] } else { 0.0 };
+        m[i] = (rhs[i] - next) / diag[i];
+    }
+    m
+}
+
+/// The natural cubic spline through `(t, y)` with second derivatives `m`
+/// at `s`; beyond the end knots, the end slopes carried on.
+pub(crate) fn spline_at(t: &[f64], y: &[f64], m: &[f64], s: f64) -> f64 {
+    let n = t.len();
+    if n == 1 {
+        return y[0];
+    }
+    let i = t.partition_point(|&p| p <= s).clamp(1, n - 1);
+    let (t0, t1, h) = (t[i - 1], t[i], t[i] - t[i - 1]);
+    if s < t[0] || s > t[n - 1] {
+        // The slope at the end knot (no curvature there).
+        let (end, slope) = if s < t[0] {
+            (0, (y[1] - y[0]) / h - h * (2.0 * m[0] + m[1]) / 6.0)
+        } else {
+            (
+                n - 1,
+                (y[n - 1] - y[n - 2]) / h + h * (m[n - 2] + 2.0 * m[n - 1]) / 6.0,
+            )
+        };
+        return y[end] + slope * (s - t[end]);
+    }
+    let (a, b) = ((t1 - s) / h, (s - t0) / h);
+    a * y[i - 1] + b * y[i] + ((a * a * a - a) * m[i - 1] + (b * b * b - b) * m[i]) * h * h / 6.0
 }
 
 impl Profile {
@@ -214,7 +281,7 @@ impl Profile {
                 ("end_drop".into(), c.end_drop()),
                 ("flat_length".into(), c.flat_length),
             ],
-            Profile::Free { drops, .. } => {
+            Profile::Free { drops, .. } | Profile::Spline { drops, .. } => {
                 vec![("max_drop".into(), drops.iter().cloned().fold(0.0, f64::max))]
             }
         };
@@ -229,6 +296,7 @@ impl Profile {
             Profile::CircularCrown { .. } => "circular crown",
             Profile::LogarithmicCrown(_) => "logarithmic crown",
             Profile::Free { .. } => "free",
+            Profile::Spline { .. } => "free (cubic spline)",
         }
     }
 
@@ -284,7 +352,7 @@ impl Profile {
                 Ok(())
             }
             Profile::LogarithmicCrown(crown) => crown.validate(),
-            Profile::Free { positions, drops } => {
+            Profile::Free { positions, drops } | Profile::Spline { positions, drops } => {
                 if positions.is_empty() || positions.len() != drops.len() {
                     return Err(DesignError::Incompatible {
                         field: "free.drops",
@@ -344,6 +412,9 @@ impl Profile {
                 t * t / (radius + (radius * radius - t * t).sqrt())
             }
             Profile::LogarithmicCrown(crown) => crown.drop_at(s),
+            Profile::Spline { positions, drops } => {
+                spline_at(positions, drops, &spline_curvatures(positions, drops), s)
+            }
             Profile::Free { positions, drops } => {
                 let i = positions.partition_point(|&p| p <= s);
                 if i == 0 {
@@ -357,35 +428,6 @@ impl Profile {
                 }
             }
         })
-    }
-
-    /// A free profile carried out to `lo` and `hi` (the zone's ends beyond
-    /// its first and last stations) along the slope of its end intervals:
-    /// a grid finer than the stations' has points nearer the ends, which a
-    /// constant continuation would leave short of the relief the profile
-    /// climbs toward. Other profiles, and ends already inside the
-    /// stations, are left as they are.
-    pub fn extended(self, lo: f64, hi: f64) -> Self {
-        let Profile::Free {
-            mut positions,
-            mut drops,
-        } = self
-        else {
-            return self;
-        };
-        let n = positions.len();
-        if n >= 2 && lo < positions[0] {
-            let slope = (drops[1] - drops[0]) / (positions[1] - positions[0]);
-            drops.insert(0, drops[0] + slope * (lo - positions[0]));
-            positions.insert(0, lo);
-        }
-        let n = positions.len();
-        if n >= 2 && hi > positions[n - 1] {
-            let slope = (drops[n - 1] - drops[n - 2]) / (positions[n - 1] - positions[n - 2]);
-            drops.push(drops[n - 1] + slope * (hi - positions[n - 1]));
-            positions.push(hi);
-        }
-        Profile::Free { positions, drops }
     }
 
     /// The separation at each position: `(position, drop)` rows, the table a
@@ -407,6 +449,17 @@ impl Profile {
     /// As [`Profile::separation`].
     pub fn separations(&self, positions: &[f64]) -> Result<Vec<f64>, DesignError> {
         self.validate()?;
+        if let Profile::Spline {
+            positions: t,
+            drops,
+        } = self
+        {
+            let m = spline_curvatures(t, drops);
+            return Ok(positions
+                .iter()
+                .map(|&s| spline_at(t, drops, &m, s))
+                .collect());
+        }
         positions.iter().map(|&s| self.drop_unchecked(s)).collect()
     }
 }

@@ -90,8 +90,11 @@ pub struct DesignRequest {
     /// Reference intensities r_l, one per case (default all 1: the worst
     /// p_max itself).
     pub reference_intensities: Option<Vec<f64>>,
-    /// The method every case is analysed by.
-    pub reanalysis: Method,
+    /// The method every case is analysed by; `None` (the default): the
+    /// cases' own ([`ContactProblem::default_method`]: block pivoting on a
+    /// dense S, the conjugate gradient matrix-free), the conjugate gradient
+    /// for all when their own differ.
+    pub reanalysis: Option<Method>,
     /// The options of those analyses.
     pub reanalysis_options: Options,
     /// A free profile's knots ([`DesignOptions::knots`]); default: one drop
@@ -113,7 +116,7 @@ pub struct DesignRequest {
 
 impl DesignRequest {
     /// A request for `family` along `axis`, every other setting its default
-    /// (the method `auto`, the cases analysed by block pivoting).
+    /// (the method `auto`, the cases analysed by their own default method).
     pub fn new(family: DesignFamily, axis: Axis) -> Self {
         Self {
             family,
@@ -121,7 +124,7 @@ impl DesignRequest {
             method: DesignMethod::Auto,
             max_constant: None,
             reference_intensities: None,
-            reanalysis: Method::BlockPivoting,
+            reanalysis: None,
             reanalysis_options: Options::default(),
             knots: None,
             starts: Vec::new(),
@@ -136,12 +139,13 @@ impl DesignRequest {
     /// # Errors
     /// As [`design`], [`crown_search`] and [`evaluate`] for the family.
     pub fn run(&self, cases: &[ContactProblem]) -> Result<Outcome, DesignError> {
+        let method = self.method_for(cases);
         match &self.family {
-            DesignFamily::Linear(family) => self.designed(cases, *family),
+            DesignFamily::Linear(family) => self.designed(cases, *family, method),
             DesignFamily::CircularCrown {
                 radius_range,
                 flat_length,
-            } => self.searched(cases, *radius_range, *flat_length),
+            } => self.searched(cases, (*radius_range, *flat_length), method),
             DesignFamily::LogarithmicCrown {
                 design_load,
                 flat_length,
@@ -160,7 +164,7 @@ impl DesignRequest {
                     cases,
                     self.axis,
                     &profile,
-                    &Analysis::new(self.reanalysis, &self.reanalysis_options),
+                    &Analysis::new(method, &self.reanalysis_options),
                 )?;
                 Ok(Outcome {
                     profile,
@@ -171,11 +175,32 @@ impl DesignRequest {
         }
     }
 
-    fn designed(&self, cases: &[ContactProblem], family: Family) -> Result<Outcome, DesignError> {
+    /// The method the cases are analysed by: the one asked for, else their
+    /// own default, the conjugate gradient when theirs differ (it solves
+    /// every storage).
+    pub fn method_for(&self, cases: &[ContactProblem]) -> Method {
+        self.reanalysis.unwrap_or_else(|| {
+            let first = cases
+                .first()
+                .map_or(Method::BlockPivoting, |c| c.default_method());
+            if cases.iter().all(|c| c.check_method(first).is_ok()) {
+                first
+            } else {
+                Method::ConjugateGradient
+            }
+        })
+    }
+
+    fn designed(
+        &self,
+        cases: &[ContactProblem],
+        family: Family,
+        method: Method,
+    ) -> Result<Outcome, DesignError> {
         let options = DesignOptions {
             method: self.method,
             max_constant: self.max_constant,
-            reanalysis: self.reanalysis,
+            reanalysis: method,
             reanalysis_options: self.reanalysis_options.clone(),
             reference_intensities: self.reference_intensities.clone(),
             knots: self.knots.clone(),
@@ -199,8 +224,8 @@ impl DesignRequest {
     fn searched(
         &self,
         cases: &[ContactProblem],
-        (low, high): (f64, f64),
-        flat_length: f64,
+        ((low, high), flat_length): ((f64, f64), f64),
+        method: Method,
     ) -> Result<Outcome, DesignError> {
         let search = crown_search(
             cases,
@@ -214,7 +239,7 @@ impl DesignRequest {
             low,
             high,
             &SearchOptions {
-                method: self.reanalysis,
+                method,
                 options: self.reanalysis_options.clone(),
                 reference_intensities: self.reference_intensities.clone(),
                 ..SearchOptions::default()

@@ -1,35 +1,32 @@
-//! A design carried to convergence over a sequence of grids, and verified
-//! on a finer one.
+//! A design carried over a sequence of grids until it holds on a finer one.
 //!
 //! A design found on one grid fits that grid: a coarse grid averages a
 //! roller's edge peak over its last cell, and a profile designed there can
 //! peak far higher on a finer grid. So the correction is a function of
 //! position (a linear family's closed form, a crown's, or a free profile's
-//! drops at the stations of its grid, linear between them and carried out
-//! to the zone's ends along its end slopes: `Profile::extended`) and the
-//! design runs on grids
-//! of growing fineness `f_0 = 1 < f_1 < ...` (the caller's grid family at
-//! spacing `h / f`), each design started from the last, until the worst
-//! objective changes by less than the tolerance between two successive
-//! grids:
+//! drops at the first grid's stations, kept as knots, with the natural
+//! cubic spline through them: `Profile::Spline`), and the design runs on
+//! grids of growing fineness `f_0 = 1 < f_1 < ...` (the caller's grid
+//! family at spacing `h / f`). After the design on grid k its profile is
+//! evaluated on grid k + 1, and the design is kept when that worst
+//! objective agrees with its own to the tolerance:
 //!
 //! ```text
-//!     |t_k - t_(k-1)| <= tol t_k,     t_k = max_l p_max_l / r_l of the design on grid k
+//!     |v_(k+1) - t_k| <= tol t_k,     t_k = max_l p_max_l / r_l of the design on grid k,
+//!                                     v_(k+1) the same profile's on grid k + 1
 //! ```
 //!
-//! The converged profile is then evaluated on the next finer grid, and kept
-//! only when that verification agrees with `t_k` to the same tolerance;
-//! otherwise the design goes on from that grid. A grid whose cases exceed
-//! [`GridSequence::max_points`] ends the sequence without a design:
-//! [`DesignError::NotConverged`].
+//! Otherwise the design goes on from grid k + 1, started from the last
+//! one. A grid whose cases exceed [`GridSequence::max_points`] ends the
+//! sequence without a design: [`DesignError::NotConverged`].
 
 use std::time::Instant;
 
 use elcon_analysis::ContactProblem;
 
 use crate::evaluate::{Analysis, evaluate};
-use crate::request::{DesignRequest, Outcome};
-use crate::{Axis, DesignError};
+use crate::request::{DesignFamily, DesignRequest, Outcome};
+use crate::{DesignError, Family};
 
 /// How a design is carried over grids (see the [module documentation](self)).
 #[derive(Debug, Clone, PartialEq)]
@@ -37,9 +34,8 @@ pub struct GridSequence {
     /// The grids' fineness, in order: the caller's grid at spacing `h / f`
     /// (default 1, 2, 3, 4, 6, 8, 12, 16).
     pub fineness: Vec<f64>,
-    /// The relative change of the worst objective between two successive
-    /// grids at which the design has converged, and the verification's
-    /// agreement (default 0.01).
+    /// The relative agreement a design's worst objective on a finer grid
+    /// must have with its own for the design to hold (default 0.01).
     pub tolerance: f64,
     /// The most points a load case may have on a grid of the sequence
     /// (default 20,000).
@@ -69,15 +65,19 @@ pub struct Level {
     pub seconds: f64,
 }
 
-/// A design that converged over a sequence of grids.
+/// A design that held on a finer grid than its own.
 #[derive(Debug, Clone)]
 pub struct Converged {
     /// The design on the last design grid.
     pub outcome: Outcome,
+    /// The load cases on that grid.
+    pub cases: Vec<ContactProblem>,
     /// The design grids, coarse to fine, with the objective on each.
     pub levels: Vec<Level>,
-    /// The converged profile evaluated on the next finer grid.
-    pub verification: Level,
+    /// The last design's profile evaluated on the next finer grid, within
+    /// the tolerance of its objective (`None` for a design made on one
+    /// grid and not verified).
+    pub verification: Option<Level>,
 }
 
 impl GridSequence {
@@ -105,89 +105,72 @@ fn largest(cases: &[ContactProblem]) -> usize {
     cases.iter().map(|c| c.points().len()).max().unwrap_or(0)
 }
 
-/// The zone's ends along the profile's axis: the outermost stations of the
-/// cases' points, their cells included.
-fn zone_ends(cases: &[ContactProblem], axis: Axis) -> (f64, f64) {
-    let mut ends = (f64::INFINITY, f64::NEG_INFINITY);
-    for case in cases {
-        let points = case.points();
-        let half = 0.5
-            * match axis {
-                Axis::X => points.cell().dx,
-                Axis::Y => points.cell().dy,
-            };
-        for s in axis.positions(points) {
-            ends = (ends.0.min(s - half), ends.1.max(s + half));
-        }
-    }
-    ends
-}
-
 impl DesignRequest {
     /// The design over the load cases `cases(f)` builds on the grid of
-    /// fineness f, carried to convergence over `sequence` and verified (see
-    /// the [module documentation](crate::sequence)). The reference
+    /// fineness f (`None` when that grid is beyond what may be built),
+    /// carried over `sequence` until it holds on a finer grid (see the
+    /// [module documentation](crate::sequence)). The reference
     /// intensities, if any, are per case and the same on every grid.
     /// `report` is told of every grid as it is done (designed, or
     /// evaluated to verify), for progress.
     ///
     /// # Errors
-    /// [`DesignError::NotConverged`] when a grid would exceed
-    /// [`GridSequence::max_points`] before the design converged and was
-    /// verified; the errors of `cases` and of [`DesignRequest::run`].
+    /// [`DesignError::NotConverged`] when the grids run out (or exceed
+    /// [`GridSequence::max_points`]) before a design held; the errors of
+    /// `cases` and of [`DesignRequest::run`].
     pub fn run_converged(
         &self,
         sequence: &GridSequence,
-        mut cases: impl FnMut(f64) -> Result<Vec<ContactProblem>, DesignError>,
+        mut cases: impl FnMut(f64) -> Result<Option<Vec<ContactProblem>>, DesignError>,
         mut report: impl FnMut(&Level),
     ) -> Result<Converged, DesignError> {
         sequence.check()?;
         let mut request = self.clone();
         let mut levels: Vec<Level> = Vec::new();
-        let mut current: Option<Outcome> = None;
-        let mut converged = false;
+        // The last design, with the cases of its grid.
+        let mut current: Option<(Outcome, Vec<ContactProblem>)> = None;
         for &fineness in &sequence.fineness {
             let start = Instant::now();
-            let grid = cases(fineness)?;
+            let Some(grid) = cases(fineness)? else {
+                break;
+            };
             let points = largest(&grid);
             if points > sequence.max_points {
                 break;
             }
-            let references = request
-                .reference_intensities
-                .clone()
-                .unwrap_or_else(|| vec![1.0; grid.len()]);
-            if let (Some(outcome), true) = (&current, converged) {
-                let analysis = Analysis::new(request.reanalysis, &request.reanalysis_options);
-                let e = evaluate(&grid, request.axis, &outcome.profile, &analysis)?;
-                let objective = e.relative_worst(&references);
-                let verification = Level {
-                    fineness,
-                    points,
-                    objective,
-                    seconds: start.elapsed().as_secs_f64(),
-                };
+            if let Some((outcome, _)) = &current {
+                let verification =
+                    request.verify(&grid, &outcome.profile, fineness, points, start)?;
                 report(&verification);
-                let designed = levels.last().map_or(objective, |l| l.objective);
-                if (objective - designed).abs() <= sequence.tolerance * designed {
+                let designed = levels.last().map_or(f64::NAN, |l| l.objective);
+                if (verification.objective - designed).abs() <= sequence.tolerance * designed {
+                    let (outcome, cases) = current.expect("a design");
                     return Ok(Converged {
-                        outcome: current.expect("a design"),
+                        outcome,
+                        cases,
                         levels,
-                        verification,
+                        verification: Some(verification),
                     });
                 }
             }
-            let mut outcome = request.run(&grid)?;
-            let (lo, hi) = zone_ends(&grid, request.axis);
-            outcome.profile = outcome.profile.extended(lo, hi);
-            let objective = outcome.evaluation.relative_worst(&references);
-            converged = levels
-                .last()
-                .is_some_and(|l| (objective - l.objective).abs() <= sequence.tolerance * objective);
+            if current.is_none()
+                && request.knots.is_none()
+                && request.family == DesignFamily::Linear(Family::Free)
+            {
+                // A free profile keeps the first grid's stations as its
+                // knots: finer grids refine the analysis, not the profile,
+                // which could otherwise fit each grid's points.
+                let (stations, _) =
+                    crate::axial_stations(grid.iter().map(ContactProblem::points), request.axis);
+                request.knots = Some(stations);
+            }
+            let outcome = request.run(&grid)?;
             let level = Level {
                 fineness,
                 points,
-                objective,
+                objective: outcome
+                    .evaluation
+                    .relative_worst(&request.references(grid.len())),
                 seconds: start.elapsed().as_secs_f64(),
             };
             report(&level);
@@ -195,12 +178,39 @@ impl DesignRequest {
             // The next grid starts from this design alone.
             request.starts = vec![outcome.profile.clone()];
             request.own_starts = false;
-            current = Some(outcome);
+            current = Some((outcome, grid));
         }
         Err(DesignError::NotConverged {
             objectives: levels.iter().map(|l| l.objective).collect(),
             tolerance: sequence.tolerance,
             max_points: sequence.max_points,
+        })
+    }
+
+    /// The reference intensities of `n` cases (all 1 unless given).
+    fn references(&self, n: usize) -> Vec<f64> {
+        self.reference_intensities
+            .clone()
+            .unwrap_or_else(|| vec![1.0; n])
+    }
+
+    /// `profile` evaluated on `grid`: a verification [`Level`].
+    fn verify(
+        &self,
+        grid: &[ContactProblem],
+        profile: &crate::Profile,
+        fineness: f64,
+        points: usize,
+        start: Instant,
+    ) -> Result<Level, DesignError> {
+        let method = self.method_for(grid);
+        let analysis = Analysis::new(method, &self.reanalysis_options);
+        let e = evaluate(grid, self.axis, profile, &analysis)?;
+        Ok(Level {
+            fineness,
+            points,
+            objective: e.relative_worst(&self.references(grid.len())),
+            seconds: start.elapsed().as_secs_f64(),
         })
     }
 }

@@ -797,7 +797,7 @@ fn design_problems(
             let options = Options::default();
             let axis = spec.axis();
             let outcome = spec
-                .request(reference_intensities.clone(), method, &options)
+                .request(reference_intensities.clone(), Some(method), &options)
                 .run(&cases)
                 .map_err(design_error)?;
             let before = evaluate(

@@ -6,13 +6,13 @@
 
 use std::time::Instant;
 
-use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
+use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal, Storage};
 use elcon_design::{Analysis, Evaluation, Profile, axial_stations, evaluate};
 use serde::Serialize;
 
 use crate::error::SceneError;
 use crate::run::run_error;
-use crate::scene::{DesignSpec, RelativeTo, Scene};
+use crate::scene::{DesignSpec, MethodChoice, RelativeTo, Scene};
 
 /// One load case of a design, before and after: gathered from the
 /// evaluations before and after the design, not the copy of one type.
@@ -62,7 +62,35 @@ pub struct DesignJson {
     pub method: String,
     /// How each start ended (linear families).
     pub starts: Vec<String>,
+    /// How the profile is defined between the stations it was designed
+    /// at: its family's closed form, or the natural cubic spline through a
+    /// free profile's knots.
+    pub interpolation: String,
+    /// The grids the design went over, coarse to fine, the last its own:
+    /// each with the worst objective of the design on it.
+    pub grids: Vec<DesignGridJson>,
+    /// The design's profile evaluated on a grid finer than its own: its
+    /// worst objective there agrees with `objective` to `grid_tolerance`
+    /// (none with `design.refine = false`: not verified).
+    pub verification: Option<DesignGridJson>,
+    /// The relative agreement the verification is held to.
+    pub grid_tolerance: Option<f64>,
     /// Seconds of the design stage.
+    pub seconds: f64,
+}
+
+/// One grid of a design's sequence.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DesignGridJson {
+    /// The grid ("18 x 80 cells", ...).
+    pub grid: String,
+    /// Its fineness: the scene's grid at spacing h / fineness.
+    pub fineness: f64,
+    /// Points of its largest load case.
+    pub points: usize,
+    /// The worst p_max_l / r_l over the cases on it.
+    pub objective: f64,
+    /// Seconds spent on it.
     pub seconds: f64,
 }
 
@@ -110,7 +138,9 @@ fn case_loading(axis: elcon_design::Axis, load: f64, misalignment: Option<f64>) 
 }
 
 /// The design stage: every load case analysed without and with the
-/// correction the family's method finds.
+/// correction the family's method finds, carried over finer grids until it
+/// holds on one (`elcon_design::sequence`); both analyses on the design's
+/// own (last) grid.
 pub(crate) fn design_stage(
     scene: &Scene,
     problem: &ContactProblem,
@@ -118,20 +148,51 @@ pub(crate) fn design_stage(
 ) -> Result<(DesignJson, DesignRun), SceneError> {
     let spec = scene.design().expect("a design stage");
     let start = Instant::now();
-    let (cases, known, references) = design_cases(scene, spec, problem, solution)?;
+    let (first, known, references) = design_cases(scene, spec, problem, solution)?;
     let fail = |e: elcon_design::DesignError| run_error(scene, e);
+    let reanalysis = match scene.method_choice() {
+        MethodChoice::Auto => None,
+        MethodChoice::Given(m) => Some(m),
+    };
+    let request = spec.request(Some(references.clone()), reanalysis, scene.options());
+    let converged = match spec.sequence() {
+        Some(sequence) => {
+            let mut first = Some(first);
+            request.run_converged(
+                sequence,
+                |fineness| match first.take() {
+                    Some(cases) => Ok(Some(cases)),
+                    None => refined_cases(scene, spec, fineness),
+                },
+                |_| {},
+            )
+        }
+        None => on_scene_grid(&request, first),
+    }
+    .map_err(fail)?;
+    let own_grid = converged.levels.last().map(|l| l.fineness) == Some(1.0);
+    let none = vec![None; known.len()];
+    let known = if own_grid { known } else { none };
+    let cases = converged.cases;
+    let method = request.method_for(&cases);
     let before = evaluate(
         &cases,
         spec.axis(),
         &Profile::none(),
-        &Analysis::new(scene.method(), scene.options()).with_known(&known),
+        &Analysis::new(method, scene.options()).with_known(&known),
     )
     .map_err(fail)?;
-    let (profile, after, starts, method) = find_design(scene, spec, &cases, &references)?;
-    let objective = after.relative_worst(&references);
-    let objective_before = before.relative_worst(&references);
+    let outcome = converged.outcome;
+    let (profile, after) = (outcome.profile, outcome.evaluation);
     let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis());
     let table = profile.table(&positions).map_err(fail)?;
+    let grid = |level: &elcon_design::Level| DesignGridJson {
+        grid: grid_name(scene, spec, level.fineness),
+        fineness: level.fineness,
+        points: level.points,
+        objective: level.objective,
+        seconds: level.seconds,
+    };
     let json = DesignJson {
         family: spec.family().describe(),
         axis: match spec.axis() {
@@ -144,8 +205,8 @@ pub(crate) fn design_stage(
             RelativeTo::Hertz => "hertz".into(),
         },
         parameters: profile.parameters(),
-        objective,
-        objective_before,
+        objective: after.relative_worst(&references),
+        objective_before: before.relative_worst(&references),
         cases: spec
             .case_loadings()
             .into_iter()
@@ -161,8 +222,12 @@ pub(crate) fn design_stage(
             })
             .collect(),
         table,
-        method: method.into(),
-        starts,
+        method: outcome.found.method().into(),
+        starts: outcome.found.starts(),
+        interpolation: interpolation(&profile),
+        grids: converged.levels.iter().map(grid).collect(),
+        verification: converged.verification.as_ref().map(grid),
+        grid_tolerance: spec.sequence().map(|s| s.tolerance),
         seconds: start.elapsed().as_secs_f64(),
     };
     Ok((
@@ -174,6 +239,103 @@ pub(crate) fn design_stage(
             cases,
         },
     ))
+}
+
+/// The design on the scene's grid alone (`design.refine = false`): one
+/// level, not verified.
+fn on_scene_grid(
+    request: &elcon_design::DesignRequest,
+    cases: Vec<ContactProblem>,
+) -> Result<elcon_design::Converged, elcon_design::DesignError> {
+    let start = Instant::now();
+    let outcome = request.run(&cases)?;
+    let references = request
+        .reference_intensities
+        .clone()
+        .unwrap_or_else(|| vec![1.0; cases.len()]);
+    let level = elcon_design::Level {
+        fineness: 1.0,
+        points: cases.iter().map(|c| c.points().len()).max().unwrap_or(0),
+        objective: outcome.evaluation.relative_worst(&references),
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    Ok(elcon_design::Converged {
+        outcome,
+        cases,
+        levels: vec![level],
+        verification: None,
+    })
+}
+
+/// How a profile is defined between its stations, in words.
+fn interpolation(profile: &Profile) -> String {
+    match profile {
+        Profile::Spline { positions, .. } => format!(
+            "natural cubic spline through {} knots, its end slopes carried on beyond",
+            positions.len()
+        ),
+        Profile::Free { .. } => "linear between stations, constant beyond".into(),
+        _ => "the family's closed form".into(),
+    }
+}
+
+/// The grid of the scene's first design load at `fineness`, in words.
+fn grid_name(scene: &Scene, spec: &DesignSpec, fineness: f64) -> String {
+    let load = spec.loads().first().copied().unwrap_or(0.0);
+    scene
+        .grid_for(load, fineness)
+        .map_or_else(|_| format!("fineness {fineness}"), |g| g.to_string())
+}
+
+/// The design's load cases on the grid of `fineness` (each design load's
+/// grid refined: `Scene::grid_for`), S held as elcon-analysis decides for
+/// that size (matrix-free on a large lattice) and shared by a load's
+/// misalignments; `None` when a case would exceed `design.max_points`.
+fn refined_cases(
+    scene: &Scene,
+    spec: &DesignSpec,
+    fineness: f64,
+) -> Result<Option<Vec<ContactProblem>>, elcon_design::DesignError> {
+    let layout = |reason: String| elcon_design::DesignError::Incompatible {
+        field: "grids",
+        reason,
+    };
+    let mut cases = Vec::new();
+    // Each load's problem, shared by its misalignments.
+    let mut bases: Vec<(f64, ContactProblem)> = Vec::new();
+    for (load, misalignment) in spec.case_loadings() {
+        let base = match bases.iter().position(|(l, _)| *l == load) {
+            Some(i) => &bases[i].1,
+            None => {
+                let points = scene
+                    .grid_for(load, fineness)
+                    .and_then(|g| g.points().map_err(|e| e.to_string()))
+                    .map_err(layout)?;
+                if spec.sequence().is_some_and(|s| points.len() > s.max_points) {
+                    return Ok(None);
+                }
+                let base = scene
+                    .builder(points, Loading::load(load))
+                    .storage(Storage::Auto)
+                    .fold(false)
+                    .build()
+                    .map_err(|source| elcon_design::DesignError::Analysis {
+                        stage: format!("load {load} on the grid of fineness {fineness}"),
+                        source,
+                    })?;
+                bases.push((load, base));
+                &bases[bases.len() - 1].1
+            }
+        };
+        let loading = case_loading(spec.axis(), load, misalignment);
+        cases.push(base.with_loading(loading).map_err(|source| {
+            elcon_design::DesignError::Analysis {
+                stage: format!("load {load} misaligned by {misalignment:?}"),
+                source,
+            }
+        })?);
+    }
+    Ok(Some(cases))
 }
 
 /// The design's load cases (each load at each misalignment), the solutions
@@ -222,26 +384,4 @@ fn design_cases<'a>(
         cases.push(case);
     }
     Ok((cases, known, references))
-}
-
-/// The correction of the spec's family, found as its family is
-/// (`elcon_design::DesignRequest`), with its evaluation, how each start
-/// ended and the method's name.
-fn find_design(
-    scene: &Scene,
-    spec: &DesignSpec,
-    cases: &[ContactProblem],
-    references: &[f64],
-) -> Result<(Profile, Evaluation, Vec<String>, &'static str), SceneError> {
-    let outcome = spec
-        .request(Some(references.to_vec()), scene.method(), scene.options())
-        .run(cases)
-        .map_err(|e| run_error(scene, e))?;
-    let starts = outcome.found.starts();
-    Ok((
-        outcome.profile,
-        outcome.evaluation,
-        starts,
-        outcome.found.method(),
-    ))
 }

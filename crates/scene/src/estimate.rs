@@ -322,7 +322,7 @@ fn design(scene: &Scene, spec: &DesignSpec, own: f64) -> Result<DesignEstimate, 
     let loads: Vec<(&PointSet, elcon_analysis::Estimate)> =
         loads.iter().map(|(p, e)| (p, *e)).collect();
     Ok(spec
-        .request(None, scene.method(), scene.options())
+        .request(None, Some(scene.method()), scene.options())
         .estimate(&loads, spec.misalignments().len().max(1), own))
 }
 

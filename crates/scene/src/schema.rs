@@ -314,6 +314,9 @@ pub(crate) struct DesignToml {
     pub method: Option<Spanned<DesignMethodName>>,
     pub end: Option<Spanned<EndName>>,
     pub misalignments: Option<Spanned<Vec<Spanned<f64>>>>,
+    pub grid_tolerance: Option<Spanned<f64>>,
+    pub max_points: Option<Spanned<i64>>,
+    pub refine: Option<Spanned<bool>>,
 }
 
 /// `[outputs]`.

@@ -99,7 +99,10 @@ fn an_unknown_method_names_auto_among_the_choices() {
 fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
     // Spheres solved matrix-free, their profile along y designed for two
     // loads: the design cases are lattice problems, the method the descent.
-    let design = "method = \"conjugate-gradient\"\nsymmetry = \"none\"\n\n[design]\nfamily = \"quadratic\"\naxis = \"y\"\nloads = [80.0, 100.0]\n";
+    // On the scene's grid alone: the zone (1.15 Hertz radii) truncates the
+    // contact a quadratic along y stretches, so its peak grows with the
+    // grid and a refined design would not converge.
+    let design = "method = \"conjugate-gradient\"\nsymmetry = \"none\"\n\n[design]\nfamily = \"quadratic\"\naxis = \"y\"\nloads = [80.0, 100.0]\nrefine = false\n";
     let scene = spheres(15, design);
     assert_eq!(scene.storage(), Storage::Lattice);
     let estimate = Estimate::of(&scene).unwrap();

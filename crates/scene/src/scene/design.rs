@@ -5,7 +5,7 @@
 
 use elcon_analysis::{Geometry, Loading, Method, Normal, Options};
 pub use elcon_design::DesignFamily;
-use elcon_design::{Axis, DesignMethod, DesignRequest, Family, LogEnd, Roller};
+use elcon_design::{Axis, DesignMethod, DesignRequest, Family, GridSequence, LogEnd, Roller};
 use elcon_influence::Dimension;
 use toml::Spanned;
 
@@ -37,6 +37,10 @@ pub struct DesignSpec {
     /// profile runs along y, `tilt_y` along x); empty: the loads alone,
     /// their rotations free without a moment.
     misalignments: Vec<f64>,
+    /// How the design is carried over finer grids until it holds on one
+    /// (`design.grid_tolerance`, `design.max_points`); `None` when
+    /// `design.refine = false` (the scene's grid alone, not verified).
+    sequence: Option<GridSequence>,
 }
 
 impl DesignSpec {
@@ -76,14 +80,23 @@ impl DesignSpec {
         &self.misalignments
     }
 
+    /// The grid sequence the design is carried over until it holds on a
+    /// finer grid (`elcon_design::sequence`): `design.grid_tolerance`
+    /// (default 0.01) and `design.max_points` (default 20,000 a case);
+    /// `None` with `design.refine = false`: the design is made on the
+    /// scene's grid alone and not verified on a finer one.
+    pub fn sequence(&self) -> Option<&GridSequence> {
+        self.sequence.as_ref()
+    }
+
     /// The request elcon-design runs: the family, axis, method and bound
     /// of this section, the cases measured against `references` (one per
-    /// case; none: the worst p_max itself), analysed by `reanalysis` with
-    /// `options`.
+    /// case; none: the worst p_max itself), analysed by `reanalysis` (none:
+    /// each grid's cases by their own default method) with `options`.
     pub fn request(
         &self,
         references: Option<Vec<f64>>,
-        reanalysis: Method,
+        reanalysis: Option<Method>,
         options: &Options,
     ) -> DesignRequest {
         DesignRequest {
@@ -201,6 +214,7 @@ pub(super) fn design(
     };
     let method = design_method(ctx, t, &family)?;
     let misalignments = misalignments(ctx, t)?;
+    let sequence = grid_sequence(ctx, t)?;
     Ok(DesignSpec {
         family,
         axis,
@@ -209,6 +223,7 @@ pub(super) fn design(
         max_constant,
         method,
         misalignments,
+        sequence,
     })
 }
 
@@ -450,6 +465,38 @@ fn design_method_of(name: DesignMethodName) -> DesignMethod {
         DesignMethodName::Descent => DesignMethod::Descent,
     }
 }
+
+/// `design.grid_tolerance` (in (0, 0.5], default 0.01) and
+/// `design.max_points` (at least 4, default 20,000); none with
+/// `design.refine = false` (which takes neither key).
+fn grid_sequence(ctx: &Ctx<'_>, t: &DesignToml) -> Result<Option<GridSequence>, SceneError> {
+    if t.refine.as_ref().is_some_and(|r| !*r.get_ref()) {
+        let why = "goes with design.refine = true: the grids a design is carried over";
+        ctx.forbid(&t.grid_tolerance, "design.grid_tolerance", why)?;
+        ctx.forbid(&t.max_points, "design.max_points", why)?;
+        return Ok(None);
+    }
+    let mut sequence = GridSequence::default();
+    if let Some(v) = &t.grid_tolerance {
+        let tolerance = ctx.positive(v, "design.grid_tolerance")?;
+        if tolerance > MAX_GRID_TOLERANCE {
+            return Err(ctx.invalid(
+                v.span(),
+                "design.grid_tolerance",
+                tolerance,
+                format!("at most {MAX_GRID_TOLERANCE} (a relative agreement between two grids)"),
+            ));
+        }
+        sequence.tolerance = tolerance;
+    }
+    if let Some(v) = &t.max_points {
+        sequence.max_points = ctx.count(v, "design.max_points", 4)?;
+    }
+    Ok(Some(sequence))
+}
+
+/// The loosest `design.grid_tolerance`: half the objective.
+pub const MAX_GRID_TOLERANCE: f64 = 0.5;
 
 /// `design.misalignments` (rad), each finite and at most
 /// [`MAX_MISALIGNMENT`] in size.

@@ -210,6 +210,24 @@ impl Scene {
         self.points_spec.family(scale)
     }
 
+    /// The grid family of the points for a load case of `load` at
+    /// `fineness` (spacing h / fineness; 1: the points of
+    /// [`Scene::points_for`]).
+    ///
+    /// # Errors
+    /// Why the layout has no family, or the refined grid is invalid.
+    pub fn grid_for(&self, load: f64, fineness: f64) -> Result<GridFamily, String> {
+        self.points_spec
+            .family(self.hertz_scale(load))?
+            .refined(fineness)
+            .map_err(|e| e.to_string())
+    }
+
+    /// `solver.method` as given: "auto", or a method.
+    pub fn method_choice(&self) -> MethodChoice {
+        self.choice
+    }
+
     /// The design stage, if the scene asks for one.
     pub fn design(&self) -> Option<&DesignSpec> {
         self.design.as_ref()
