@@ -91,14 +91,13 @@ pub(crate) struct PyContactProblem {
     pub(crate) built: Option<Built>,
 }
 
-/// The loading from the keyword arguments.
+/// The loading from the keyword arguments: `load` or `approach`, and
+/// about x and y each a prescribed `tilt` or a `moment`.
 fn loading(
     load: Option<f64>,
     approach: Option<f64>,
-    tilt_x: Option<f64>,
-    tilt_y: Option<f64>,
-    moment_x: f64,
-    moment_y: f64,
+    (tilt_x, tilt_y): (Option<f64>, Option<f64>),
+    (moment_x, moment_y): (f64, f64),
 ) -> PyResult<Loading> {
     let loading = match (load, approach) {
         (Some(p), None) => Loading::load(p),
@@ -256,7 +255,7 @@ impl PyContactProblem {
         storage_name: &str,
     ) -> PyResult<Self> {
         let storage = storage(storage_name)?;
-        let loading = loading(load, approach, tilt_x, tilt_y, moment_x, moment_y)?;
+        let loading = loading(load, approach, (tilt_x, tilt_y), (moment_x, moment_y))?;
         let listed = listed_points(x.as_ref(), y.as_ref(), spacing, points.is_some())?;
         // Bodies, surfaces and a layout: the scene's sections, checked by
         // the scene's parsers.
