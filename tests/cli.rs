@@ -409,9 +409,8 @@ fn the_command_line_and_the_library_agree_bit_for_bit() {
     // The same scene through the library: Love patches, 41 across, zone 1.15.
     let a = scenes::example1_hertz().contact_radius();
     let points = PointSet::grid_disk(2.0 * a / 40.0, 1.15 * a).unwrap();
-    let (body, geometry) = scenes::example1_bodies();
     let problem =
-        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
+        scenes::example1(ContactProblem::symmetric, points, Loading::load(100.0)).unwrap();
     let sol = problem
         .solve(Method::BlockPivoting, &Options::default())
         .unwrap();
