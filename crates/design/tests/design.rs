@@ -3,6 +3,8 @@
 //! separation gives p = P / L; designs do not depend on the units; several
 //! load cases at once.
 
+mod common;
+
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options};
 use elcon_design::{
     Analysis, Axis, DesignMethod, DesignOptions, Family, Profile, SearchOptions, Solver, Stop,
@@ -14,28 +16,11 @@ use elcon_influence::{Beam, Body, PointSet};
 /// `length` long, `per_half` points per half, loaded at `x0` by `load`.
 /// `length`, `force` convert from inch and pound (1 for inch-pound).
 fn beam(per_half: usize, x0: f64, load: f64, length: f64, force: f64) -> ContactProblem {
-    let l = 8.9 * length;
-    let n = 2 * per_half;
-    let points = PointSet::line(-0.5 * l, 0.5 * l, n).unwrap();
-    let e = 30e6 * force / (length * length);
-    let i = 64.0 / 12.0 * length.powi(4);
-    let k = 1e7 * force / (length * length);
-    ContactProblem::new(
-        points,
-        &Body::beam(Beam {
-            youngs_modulus: e,
-            second_moment: i,
-            loaded_point: x0 * length,
-        })
-        .unwrap(),
-        &Body::winkler(k),
-        &Geometry::Separation(vec![0.0; n]),
-        // The rotation held at the loaded point (the paper's beam, clamped
-        // in rotation there): off centre, a free beam could not carry a
-        // uniform pressure.
-        Loading::load(load * force).with_tilt_y(0.0),
-    )
-    .unwrap()
+    // The rotation held at the loaded point (the paper's beam, clamped in
+    // rotation there): off centre, a free beam could not carry a uniform
+    // pressure.
+    let loading = Loading::load(load * force).with_tilt_y(0.0);
+    common::example2_in((length, force), 2 * per_half, x0, loading)
 }
 
 /// Largest relative difference accepted between a design's p_max and an
