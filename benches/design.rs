@@ -18,7 +18,10 @@ mod common;
 use std::time::Duration;
 
 use common::options;
-use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{
+    BenchmarkGroup, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main,
+};
 use elcon::analysis::{ContactProblem, Loading};
 use elcon::design::{Axis, DesignMethod, Family, design};
 
@@ -40,11 +43,17 @@ fn beam(per_half: usize) -> ContactProblem {
     common::example2(2 * per_half, 0.0, Loading::load(5e4))
 }
 
-fn cases(c: &mut Criterion) {
-    let mut group = c.benchmark_group("design/cases");
+/// A benchmark group of `name`: 10 samples, 1 s of warm-up, 10 s measured.
+fn group<'c>(c: &'c mut Criterion, name: &str) -> BenchmarkGroup<'c, WallTime> {
+    let mut group = c.benchmark_group(name);
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(1));
     group.measurement_time(Duration::from_secs(10));
+    group
+}
+
+fn cases(c: &mut Criterion) {
+    let mut group = group(c, "design/cases");
     for count in [1, 3, 10, 30, 100] {
         let (cases, references) = roller(count);
         let opts = options(DesignMethod::Descent, Some(references));
@@ -57,10 +66,7 @@ fn cases(c: &mut Criterion) {
 }
 
 fn points(c: &mut Criterion) {
-    let mut group = c.benchmark_group("design/points");
-    group.sample_size(10);
-    group.warm_up_time(Duration::from_secs(1));
-    group.measurement_time(Duration::from_secs(10));
+    let mut group = group(c, "design/points");
     for per_half in [40, 100, 200, 400, 800] {
         let case = [beam(per_half)];
         group.throughput(Throughput::Elements(2 * per_half as u64));
