@@ -268,12 +268,6 @@ fn a_matrix_free_case_is_designed_by_the_descent_as_the_dense_one() {
         assert!(free.evaluation.solutions[0].certificate.holds());
     }
     // The program reads S's entries; pivoting re-analyses need them too.
-    let e = design(
-        std::slice::from_ref(&lattice),
-        Axis::Y,
-        Family::Quadratic,
-        &DesignOptions::default(),
-    )
-    .unwrap_err();
+    let e = common::design_one(&lattice, Axis::Y, Family::Quadratic).unwrap_err();
     assert!(e.to_string().contains("`reanalysis`"), "{e}");
 }

@@ -6,7 +6,7 @@
 
 use elcon_analysis::references::HertzCylinders;
 use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
-use elcon_design::{DesignMethod, DesignOptions};
+use elcon_design::{Axis, Design, DesignError, DesignMethod, DesignOptions, Family, design};
 use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 /// Example 2's beam: steel (E = 30e6 psi), 1 in x 4 in (I = 64/12 in^4),
@@ -78,4 +78,19 @@ pub fn options(method: DesignMethod, references: Option<Vec<f64>>) -> DesignOpti
         reference_intensities: references,
         ..DesignOptions::default()
     }
+}
+
+/// The design of the one case `case` along `axis` in `family`, with the
+/// default options.
+pub fn design_one(
+    case: &ContactProblem,
+    axis: Axis,
+    family: Family,
+) -> Result<Design, DesignError> {
+    design(
+        std::slice::from_ref(case),
+        axis,
+        family,
+        &DesignOptions::default(),
+    )
 }
