@@ -28,6 +28,17 @@ fn roller(loads: &[f64], misalignments: &[f64]) -> (Vec<ContactProblem>, Vec<f64
     common::misaligned_roller(loads, misalignments, (5, 12))
 }
 
+/// Each of `cases` under `loading` of its own load.
+fn reloaded(cases: &[ContactProblem], loading: impl Fn(f64) -> Loading) -> Vec<ContactProblem> {
+    cases
+        .iter()
+        .map(|c| {
+            let load = c.loading().load_value().unwrap();
+            c.with_loading(loading(load)).unwrap()
+        })
+        .collect()
+}
+
 fn solve(
     cases: &[ContactProblem],
     axis: Axis,
@@ -103,14 +114,9 @@ fn the_descent_reaches_the_programs_optimum_under_moments() {
     // the middle along the roller), the rotation free: the rigid unknowns'
     // resultants are the load and the moment.
     let (aligned, references) = roller(&[2e3, 5e3], &[0.0]);
-    let cases: Vec<ContactProblem> = aligned
-        .iter()
-        .map(|c| {
-            let load = c.loading().load_value().unwrap();
-            c.with_loading(Loading::load(load).with_moment_x(0.5 * load))
-                .unwrap()
-        })
-        .collect();
+    let cases = reloaded(&aligned, |load| {
+        Loading::load(load).with_moment_x(0.5 * load)
+    });
     for family in [Family::Quadratic, Family::Free] {
         same_optimum("moments", &cases, Axis::Y, family, Some(references.clone()));
     }
@@ -199,13 +205,7 @@ fn a_line_the_free_rotation_absorbs_is_taken_out_of_the_profile() {
     // trust-region steps may drift along it. The design takes the line out:
     // on these symmetric cases the free profile comes out symmetric.
     let (misaligned, references) = roller(&[2e3, 5e3], &[0.0]);
-    let cases: Vec<ContactProblem> = misaligned
-        .iter()
-        .map(|c| {
-            let load = c.loading().load_value().unwrap();
-            c.with_loading(Loading::load(load)).unwrap()
-        })
-        .collect();
+    let cases = reloaded(&misaligned, Loading::load);
     let d = solve(
         &cases,
         Axis::Y,
