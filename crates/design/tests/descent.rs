@@ -124,23 +124,17 @@ fn the_descent_reaches_the_programs_optimum_under_moments() {
 
 #[test]
 fn auto_takes_the_program_for_few_points_and_the_descent_above() {
-    let small = solve(
-        &[beam(20, 5e4, 0.0)],
-        Axis::X,
-        Family::Quadratic,
-        DesignMethod::Auto,
-        None,
-    );
+    // The quadratic correction of the beam at `per_half` points per half, by
+    // the method "auto" picks.
+    let auto = |per_half| {
+        let beam = [beam(per_half, 5e4, 0.0)];
+        solve(&beam, Axis::X, Family::Quadratic, DesignMethod::Auto, None)
+    };
+    let small = auto(20);
     assert_eq!(small.solver.method(), DesignMethod::Program);
     assert!(matches!(small.solver, Solver::Program { .. }));
     let per_half = elcon_design::PROGRAM_LIMIT / 2 + 1;
-    let large = solve(
-        &[beam(per_half, 5e4, 0.0)],
-        Axis::X,
-        Family::Quadratic,
-        DesignMethod::Auto,
-        None,
-    );
+    let large = auto(per_half);
     assert_eq!(large.solver.method(), DesignMethod::Descent);
     assert!(matches!(large.solver, Solver::Descent { .. }));
 }
