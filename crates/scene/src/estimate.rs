@@ -105,12 +105,10 @@ pub struct Estimate {
     pub time: TimeClass,
 }
 
+/// Bytes as a whole number, rounded up: a float-to-integer cast saturates
+/// (at `u64::MAX` above it, 0 for NaN).
 fn to_bytes(b: f64) -> u64 {
-    if b >= u64::MAX as f64 {
-        u64::MAX
-    } else {
-        b.ceil() as u64
-    }
+    b.ceil() as u64
 }
 
 impl Estimate {
@@ -427,6 +425,13 @@ mod tests {
         assert_eq!((d40.cases, d40.points), (40, 8000));
         let ratio = d40.bytes as f64 / d4.bytes as f64;
         assert!((1.0..10.0).contains(&ratio), "{ratio}");
+    }
+
+    #[test]
+    fn bytes_round_up_and_saturate() {
+        assert_eq!(to_bytes(1.5), 2);
+        assert_eq!(to_bytes(u64::MAX as f64), u64::MAX);
+        assert_eq!(to_bytes(f64::INFINITY), u64::MAX);
     }
 
     #[test]
