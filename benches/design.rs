@@ -11,70 +11,49 @@
 //!
 //! docs/design.md §2 has the table and the fitted growth.
 
+// The design tests' cases; the path is relative to this file's directory.
+#[path = "../crates/design/tests/common/mod.rs"]
+mod common;
+
 use std::time::Duration;
 
-use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use elcon::analysis::references::HertzCylinders;
-use elcon::analysis::{ContactProblem, Geometry, Loading, Surface};
-use elcon::design::{Axis, DesignMethod, DesignOptions, Family, design};
-use elcon::influence::{Beam, Body, Material, PointSet, combined_modulus};
+use common::options;
+use criterion::measurement::WallTime;
+use criterion::{
+    BenchmarkGroup, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main,
+};
+use elcon::analysis::{ContactProblem, Loading};
+use elcon::design::{Axis, DesignMethod, Family, design};
 
 /// The misaligned roller's cases at 5 kN (steel, D = 10 mm, l = 10 mm, 40 x
 /// 9 Love patches): `count` misalignments spread evenly over 0 to 1 mrad,
 /// one S shared, and their aligned Hertz peak.
 fn roller(count: usize) -> (Vec<ContactProblem>, Vec<f64>) {
-    let steel = Material::new(210e3, 0.3).unwrap();
-    let hertz = HertzCylinders::new(combined_modulus(&steel, &steel), 5.0, 500.0).unwrap();
-    let points = PointSet::grid_rectangle(1.6 * hertz.half_width(), 5.0, 9, 40).unwrap();
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
-    let aligned = ContactProblem::new(points, &body, &body, &geometry, Loading::load(5e3)).unwrap();
     let step = if count > 1 {
         1e-3 / (count - 1) as f64
     } else {
         0.0
     };
-    let cases = (0..count)
-        .map(|i| {
-            aligned
-                .with_loading(Loading::load(5e3).with_tilt_x(i as f64 * step))
-                .unwrap()
-        })
-        .collect();
-    (cases, vec![hertz.peak_pressure(); count])
+    let misalignments: Vec<f64> = (0..count).map(|i| i as f64 * step).collect();
+    common::misaligned_roller(&[5e3], &misalignments, (9, 40))
 }
 
 /// Example 2's beam with `per_half` points per half.
 fn beam(per_half: usize) -> ContactProblem {
-    let n = 2 * per_half;
-    ContactProblem::new(
-        PointSet::line(-4.45, 4.45, n).unwrap(),
-        &Body::beam(Beam {
-            youngs_modulus: 30e6,
-            second_moment: 64.0 / 12.0,
-            loaded_point: 0.0,
-        })
-        .unwrap(),
-        &Body::winkler(1e7),
-        &Geometry::Separation(vec![0.0; n]),
-        Loading::load(5e4),
-    )
-    .unwrap()
+    common::example2(2 * per_half, 0.0, Loading::load(5e4))
 }
 
-fn options(method: DesignMethod, references: Option<Vec<f64>>) -> DesignOptions {
-    DesignOptions {
-        method,
-        reference_intensities: references,
-        ..DesignOptions::default()
-    }
-}
-
-fn cases(c: &mut Criterion) {
-    let mut group = c.benchmark_group("design/cases");
+/// A benchmark group of `name`: 10 samples, 1 s of warm-up, 10 s measured.
+fn group<'c>(c: &'c mut Criterion, name: &str) -> BenchmarkGroup<'c, WallTime> {
+    let mut group = c.benchmark_group(name);
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(1));
     group.measurement_time(Duration::from_secs(10));
+    group
+}
+
+fn cases(c: &mut Criterion) {
+    let mut group = group(c, "design/cases");
     for count in [1, 3, 10, 30, 100] {
         let (cases, references) = roller(count);
         let opts = options(DesignMethod::Descent, Some(references));
@@ -87,10 +66,7 @@ fn cases(c: &mut Criterion) {
 }
 
 fn points(c: &mut Criterion) {
-    let mut group = c.benchmark_group("design/points");
-    group.sample_size(10);
-    group.warm_up_time(Duration::from_secs(1));
-    group.measurement_time(Duration::from_secs(10));
+    let mut group = group(c, "design/points");
     for per_half in [40, 100, 200, 400, 800] {
         let case = [beam(per_half)];
         group.throughput(Throughput::Elements(2 * per_half as u64));

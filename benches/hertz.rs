@@ -15,6 +15,8 @@
 #[path = "../crates/analysis/tests/common/scenes.rs"]
 mod scenes;
 
+pub use scenes::Build;
+
 use elcon::analysis::references::HertzSpheres;
 use elcon::analysis::{ContactProblem, Geometry, Loading};
 use elcon::influence::{Body, PointSet};
@@ -51,7 +53,12 @@ pub fn bodies() -> (Body, Geometry) {
 
 /// The benchmark problem of about `n` points, in full.
 pub fn problem(n: usize) -> ContactProblem {
-    let (body, geometry) = bodies();
-    ContactProblem::new(points(n), &body, &body, &geometry, Loading::load(100.0))
-        .expect("the benchmark problem")
+    held(ContactProblem::new, points(n))
+}
+
+/// The benchmark problem at `points`, S held as `build` holds it
+/// (`ContactProblem::new`, dense, or `ContactProblem::lattice`,
+/// matrix-free).
+pub fn held(build: Build, points: PointSet) -> ContactProblem {
+    scenes::example1(build, points, Loading::load(100.0)).expect("the benchmark problem")
 }

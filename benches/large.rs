@@ -18,12 +18,11 @@ mod hertz;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use elcon::analysis::{ContactProblem, Loading, Method, Options};
+use elcon::analysis::{ContactProblem, Method, Options};
 use elcon::influence::PointSet;
 
 fn large(c: &mut Criterion) {
     let a = hertz::hertz_radius();
-    let (body, geometry) = hertz::bodies();
     let mut group = c.benchmark_group("large");
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(1));
@@ -37,14 +36,7 @@ fn large(c: &mut Criterion) {
             &points,
             |b, p| {
                 b.iter(|| {
-                    let problem = ContactProblem::lattice(
-                        p.clone(),
-                        &body,
-                        &body,
-                        &geometry,
-                        Loading::load(100.0),
-                    )
-                    .expect("lattice");
+                    let problem = hertz::held(ContactProblem::lattice, p.clone());
                     let sol = problem
                         .solve(Method::ConjugateGradient, &Options::default())
                         .expect("solves");
@@ -56,15 +48,7 @@ fn large(c: &mut Criterion) {
         if n <= 5_500 {
             group.bench_with_input(BenchmarkId::new("block-pivoting", n), &points, |b, p| {
                 b.iter(|| {
-                    let problem = ContactProblem::new(
-                        p.clone(),
-                        &body,
-                        &body,
-                        &geometry,
-                        Loading::load(100.0),
-                    )
-                    .expect("dense");
-                    problem
+                    hertz::held(ContactProblem::new, p.clone())
                         .solve(Method::BlockPivoting, &Options::default())
                         .expect("solves")
                 })

@@ -11,55 +11,29 @@
 //!
 //! Run: `cargo run --release --example design_scaling -- [--study beam|roller|both] [--program-limit N]`
 
+// The design tests' cases (Example 2's beam, the misaligned roller); the
+// path is relative to this file's directory.
+#[path = "../crates/design/tests/common/mod.rs"]
+mod cases;
+
 use std::error::Error;
 use std::time::Instant;
 
-use elcon::analysis::references::HertzCylinders;
-use elcon::analysis::{ContactProblem, Geometry, Loading, Surface};
-use elcon::design::{Axis, Design, DesignMethod, DesignOptions, Family, Solver, design};
-use elcon::influence::{Beam, Body, Material, PointSet, combined_modulus};
+use elcon::analysis::{ContactProblem, Loading};
+use elcon::design::{Axis, Design, DesignMethod, Family, Solver, design};
 
 /// Example 2's beam: steel, 8.9 in x 1 in x 4 in, on a Winkler foundation
-/// of 1e7 lb/in/in, 50,000 lb at the middle.
-fn beam(per_half: usize) -> Result<ContactProblem, Box<dyn Error>> {
-    let n = 2 * per_half;
-    let points = PointSet::line(-4.45, 4.45, n)?;
-    Ok(ContactProblem::new(
-        points,
-        &Body::beam(Beam {
-            youngs_modulus: 30e6,
-            second_moment: 4f64.powi(3) / 12.0,
-            loaded_point: 0.0,
-        })?,
-        &Body::winkler(1e7),
-        &Geometry::Separation(vec![0.0; n]),
-        Loading::load(5e4),
-    )?)
+/// of 1e7 lb/in/in, 50,000 lb at the middle, `per_half` points per half.
+fn beam(per_half: usize) -> ContactProblem {
+    cases::example2(2 * per_half, 0.0, Loading::load(5e4))
 }
 
 /// The roller of examples/misaligned_roller (steel, D = 10 mm, l = 10 mm,
 /// 40 x 9 Love patches per load) under `loads` x `misalignments` cases
 /// (N; rad, a prescribed rotation about x), with each case's aligned Hertz
 /// peak as its reference intensity.
-fn roller(
-    loads: &[f64],
-    misalignments: &[f64],
-) -> Result<(Vec<ContactProblem>, Vec<f64>), Box<dyn Error>> {
-    let steel = Material::new(210e3, 0.3)?;
-    let e_star = combined_modulus(&steel, &steel);
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
-    let (mut cases, mut references) = (Vec::new(), Vec::new());
-    for &load in loads {
-        let hertz = HertzCylinders::new(e_star, 5.0, load / 10.0)?;
-        let points = PointSet::grid_rectangle(1.6 * hertz.half_width(), 5.0, 9, 40)?;
-        let aligned = ContactProblem::new(points, &body, &body, &geometry, Loading::load(load))?;
-        for &angle in misalignments {
-            cases.push(aligned.with_loading(Loading::load(load).with_tilt_x(angle))?);
-            references.push(hertz.peak_pressure());
-        }
-    }
-    Ok((cases, references))
+fn roller(loads: &[f64], misalignments: &[f64]) -> (Vec<ContactProblem>, Vec<f64>) {
+    cases::misaligned_roller(loads, misalignments, (9, 40))
 }
 
 /// One design, timed.
@@ -71,16 +45,7 @@ fn run(
     references: Option<Vec<f64>>,
 ) -> Result<(Design, f64), Box<dyn Error>> {
     let start = Instant::now();
-    let d = design(
-        cases,
-        axis,
-        family,
-        &DesignOptions {
-            method,
-            reference_intensities: references,
-            ..DesignOptions::default()
-        },
-    )?;
+    let d = design(cases, axis, family, &cases::options(method, references))?;
     Ok((d, start.elapsed().as_secs_f64()))
 }
 
@@ -144,7 +109,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     if study == "beam" || study == "both" {
         println!("Example 2's beam, quadratic correction: objective (lb/in), time");
         for per_half in [10, 40, 100, 200, 400] {
-            let case = beam(per_half)?;
+            let case = beam(per_half);
             let label = format!("{per_half} points per half");
             compare(
                 &label,
@@ -165,7 +130,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             (&[5e3][..], &misalignments[..]),
             (&[1e3, 5e3, 10e3][..], &misalignments[..]),
         ] {
-            let (cases, references) = roller(loads, angles)?;
+            let (cases, references) = roller(loads, angles);
             let label = format!("{} loads x {} misalignments", loads.len(), angles.len());
             compare(
                 &label,

@@ -28,9 +28,8 @@ mod hertz;
 
 use std::time::Instant;
 
-use elcon::analysis::references::HertzSpheres;
-use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options};
-use elcon::influence::{Body, LatticeOperator, PointSet};
+use elcon::analysis::{ContactProblem, Method, Options};
+use elcon::influence::{LatticeOperator, PointSet};
 
 /// S above this many bytes is not built (the dense column is left empty).
 const DENSE_CEILING: f64 = 4e9;
@@ -46,34 +45,26 @@ fn peak_rss_mb() -> f64 {
         .map_or(f64::NAN, |kib| kib * 1024.0 / 1e6)
 }
 
-/// Example 1's spheres: the Hertz solution, the bodies' model and the
-/// surfaces.
-fn example1() -> (HertzSpheres, Body, Geometry) {
-    let (body, geometry) = hertz::bodies();
-    (hertz::reference(), body, geometry)
-}
-
 /// One size, the peers' case: h = a / `cells` on the disk of 1.3 a, the
 /// method `"auto"` picks for it.
 fn one_size(cells: f64) {
-    let (hertz, body, geometry) = example1();
+    let hertz = hertz::reference();
     let a = hertz.contact_radius();
     let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
     let n = points.len();
     let dense = n <= elcon::scene::AUTO_DENSE_LIMIT;
     let start = Instant::now();
-    let (method, sol) = if dense {
-        let problem = ContactProblem::new(points, &body, &body, &geometry, Loading::load(100.0))
-            .expect("dense problem");
-        let m = Method::BlockPivoting;
-        (m, problem.solve(m, &Options::default()).expect("solve"))
+    let (build, method) = if dense {
+        (ContactProblem::new as hertz::Build, Method::BlockPivoting)
     } else {
-        let problem =
-            ContactProblem::lattice(points, &body, &body, &geometry, Loading::load(100.0))
-                .expect("lattice problem");
-        let m = Method::ConjugateGradient;
-        (m, problem.solve(m, &Options::default()).expect("solve"))
+        (
+            ContactProblem::lattice as hertz::Build,
+            Method::ConjugateGradient,
+        )
     };
+    let sol = hertz::held(build, points)
+        .solve(method, &Options::default())
+        .expect("solve");
     let seconds = start.elapsed().as_secs_f64();
     println!(
         "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1}",
@@ -98,7 +89,7 @@ fn main() {
         .nth(1)
         .and_then(|v| v.parse().ok())
         .unwrap_or(128.0);
-    let (hertz, body, geometry) = example1();
+    let (hertz, (body, _)) = (hertz::reference(), hertz::bodies());
     let a = hertz.contact_radius();
     println!(
         "| cells per radius | N | dense: assembly + block pivoting, s | dense S, MB | matrix-free: operator + CG, s | CG iterations | operator, MB | approach error | peak error | CG certificate |"
@@ -116,15 +107,7 @@ fn main() {
         let dense_bytes = 8.0 * (n as f64) * (n as f64);
         let dense = if dense_bytes <= DENSE_CEILING {
             let start = Instant::now();
-            let problem = ContactProblem::new(
-                points.clone(),
-                &body,
-                &body,
-                &geometry,
-                Loading::load(100.0),
-            )
-            .expect("dense problem");
-            let sol = problem
+            let sol = hertz::held(ContactProblem::new, points.clone())
                 .solve(Method::BlockPivoting, &Options::default())
                 .expect("dense solve");
             Some((start.elapsed().as_secs_f64(), sol.approach))
@@ -134,10 +117,7 @@ fn main() {
         let operator_bytes =
             LatticeOperator::estimate_bytes(&points, &[&body, &body]).expect("lattice");
         let start = Instant::now();
-        let problem =
-            ContactProblem::lattice(points, &body, &body, &geometry, Loading::load(100.0))
-                .expect("lattice problem");
-        let sol = problem
+        let sol = hertz::held(ContactProblem::lattice, points)
             .solve(Method::ConjugateGradient, &Options::default())
             .expect("matrix-free solve");
         let seconds = start.elapsed().as_secs_f64();

@@ -304,14 +304,19 @@ fn a_batch_with_a_broken_run_still_writes_the_others() {
     )
     .unwrap();
     let out = dir.join("out");
-    let o = elcon(&[
-        "batch",
-        dir.join("sweep.toml").to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--jobs",
-        "2",
-    ]);
+    // `elcon batch sweep.toml --out out` with `options`.
+    let sweep = dir.join("sweep.toml");
+    let batch = |options: &[&str]| {
+        let mut args = vec![
+            "batch",
+            sweep.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend(options);
+        elcon(&args)
+    };
+    let o = batch(&["--jobs", "2"]);
     let t = text(&o);
     assert_eq!(o.status.code(), Some(1), "{t}");
     assert!(t.contains("6 runs, 2 failed"), "{t}");
@@ -339,14 +344,7 @@ fn a_batch_with_a_broken_run_still_writes_the_others() {
     }
     // Shards: two halves, merged, give the same rows.
     for k in ["1/2", "2/2"] {
-        let o = elcon(&[
-            "batch",
-            dir.join("sweep.toml").to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--shard",
-            k,
-        ]);
+        let o = batch(&["--shard", k]);
         assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     }
     let merged = dir.join("merged");
@@ -411,9 +409,8 @@ fn the_command_line_and_the_library_agree_bit_for_bit() {
     // The same scene through the library: Love patches, 41 across, zone 1.15.
     let a = scenes::example1_hertz().contact_radius();
     let points = PointSet::grid_disk(2.0 * a / 40.0, 1.15 * a).unwrap();
-    let (body, geometry) = scenes::example1_bodies();
     let problem =
-        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
+        scenes::example1(ContactProblem::symmetric, points, Loading::load(100.0)).unwrap();
     let sol = problem
         .solve(Method::BlockPivoting, &Options::default())
         .unwrap();

@@ -8,12 +8,21 @@ mod common;
 use common::scenes;
 use elcon_analysis::references::{HertzCylinders, combined_radius};
 use elcon_analysis::{
-    Body, ContactProblem, Geometry, Loading, Material, Method, Options, Surface, combined_modulus,
-    grid,
+    Body, ContactProblem, ContactSolution, Geometry, Loading, Material, Method, Options, Surface,
+    combined_modulus, grid,
 };
 
 fn steel() -> Material {
     Material::new(30e6, 0.3).unwrap()
+}
+
+/// The solution of `problem` by block pivoting, certified.
+fn certified(problem: &ContactProblem) -> ContactSolution {
+    let sol = problem
+        .solve(Method::BlockPivoting, &Options::default())
+        .unwrap();
+    assert!(sol.certificate.holds());
+    sol
 }
 
 /// The contact radius of Example 1's spheres over Hertz's, less 1, at
@@ -22,13 +31,9 @@ fn sphere_error(across: usize) -> (f64, f64) {
     let hertz = scenes::example1_hertz();
     let a = hertz.contact_radius();
     let points = grid::hertz_disk(a, across, 1.2).unwrap();
-    let (body, geometry) = scenes::example1_bodies();
     let problem =
-        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
-    let sol = problem
-        .solve(Method::BlockPivoting, &Options::default())
-        .unwrap();
-    assert!(sol.certificate.holds());
+        scenes::example1(ContactProblem::symmetric, points, Loading::load(100.0)).unwrap();
+    let sol = certified(&problem);
     (sol.contact_extent / a - 1.0, 2.0 / (across - 1) as f64)
 }
 
@@ -49,10 +54,7 @@ fn cylinder_error(across: usize) -> (f64, f64) {
     let body = Body::plane_strain(m, 10.0 * b);
     let problem =
         ContactProblem::new(points, &body, &body, &geometry, Loading::load(1000.0)).unwrap();
-    let sol = problem
-        .solve(Method::BlockPivoting, &Options::default())
-        .unwrap();
-    assert!(sol.certificate.holds());
+    let sol = certified(&problem);
     let error = sol.contact_extent / b - 1.0;
     (error, error * b / h)
 }
@@ -83,9 +85,8 @@ fn the_half_width_of_a_line_contact_is_within_a_tenth_of_a_cell() {
 
 /// Example 1's spheres on a disk of `radius` at spacing `h`: the solution.
 fn spheres_on(h: f64, radius: f64) -> elcon_analysis::ContactSolution {
-    let (body, geometry) = scenes::example1_bodies();
     let points = elcon_analysis::PointSet::grid_disk(h, radius).unwrap();
-    ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0))
+    scenes::example1(ContactProblem::symmetric, points, Loading::load(100.0))
         .unwrap()
         .solve(Method::BlockPivoting, &Options::default())
         .unwrap()

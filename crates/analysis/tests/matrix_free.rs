@@ -5,11 +5,14 @@
 //! misalignment; Hertz's closed form is met to the discretization's error;
 //! the pivoting methods and beams are refused with messages that say why.
 
+mod common;
+
+use common::scenes;
 use elcon_analysis::references::{HertzSpheres, combined_radius};
 use elcon_analysis::{
     AnalysisError, ContactProblem, Geometry, Loading, Method, Options, Storage, Surface,
 };
-use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Body, Material, PointSet, combined_modulus};
 
 fn steel() -> Material {
     Material::new(30e6, 0.3).expect("steel") // psi
@@ -150,19 +153,9 @@ fn pivoting_methods_and_beams_are_refused_on_the_lattice() {
         );
     }
     let points = PointSet::line(-1.0, 1.0, 21).expect("line");
-    let e = ContactProblem::lattice(
-        points,
-        &Body::beam(Beam {
-            youngs_modulus: 1e6,
-            second_moment: 1.0,
-            loaded_point: 0.0,
-        })
-        .unwrap(),
-        &Body::winkler(1e3),
-        &Geometry::Separation(vec![0.0; 21]),
-        Loading::load(10.0),
-    )
-    .unwrap_err();
+    let winkler = Body::winkler(1e3);
+    let e =
+        scenes::beam_on(ContactProblem::lattice, winkler, (1e6, 0.0), points, 10.0).unwrap_err();
     assert!(matches!(e, AnalysisError::Influence(_)), "{e}");
 }
 

@@ -26,6 +26,23 @@ fn agree(a: &ContactSolution, b: &ContactSolution) -> Result<(), TestCaseError> 
     Ok(())
 }
 
+/// `problem` solved by `reference` and by each of `others`: every solution
+/// checked, and each of the others agreeing with the reference's.
+fn all_agree(
+    problem: &ContactProblem,
+    reference: Method,
+    others: [Method; 2],
+) -> Result<(), TestCaseError> {
+    let reference = problem.solve(reference, &Options::default()).unwrap();
+    check(problem, &reference)?;
+    for method in others {
+        let sol = problem.solve(method, &Options::default()).unwrap();
+        check(problem, &sol)?;
+        agree(&reference, &sol)?;
+    }
+    Ok(())
+}
+
 /// A material with E from 1e3 to 1e12 (any unit) and nu in (-0.9, 0.49).
 fn material() -> impl Strategy<Value = Material> {
     (3.0f64..12.0, -0.9f64..0.49)
@@ -56,13 +73,7 @@ proptest! {
         let problem = ContactProblem::new(
             points, &Body::uniform_patch(m1), &Body::uniform_patch(m2), &geometry, Loading::load(load),
         ).unwrap();
-        let reference = problem.solve(Method::RestrictedSimplex, &Options::default()).unwrap();
-        check(&problem, &reference)?;
-        for method in [Method::Lemke, Method::BlockPivoting] {
-            let sol = problem.solve(method, &Options::default()).unwrap();
-            check(&problem, &sol)?;
-            agree(&reference, &sol)?;
-        }
+        all_agree(&problem, Method::RestrictedSimplex, [Method::Lemke, Method::BlockPivoting])?;
     }
 
     /// Arbitrary non-negative separations on a line (plane strain, optionally
@@ -88,12 +99,6 @@ proptest! {
         let problem = ContactProblem::new(
             points, &elastic, &second, &Geometry::Separation(eps), Loading::approach(approach * scale),
         ).unwrap();
-        let reference = problem.solve(Method::Lemke, &Options::default()).unwrap();
-        check(&problem, &reference)?;
-        for method in [Method::RestrictedSimplex, Method::BlockPivoting] {
-            let sol = problem.solve(method, &Options::default()).unwrap();
-            check(&problem, &sol)?;
-            agree(&reference, &sol)?;
-        }
+        all_agree(&problem, Method::Lemke, [Method::RestrictedSimplex, Method::BlockPivoting])?;
     }
 }

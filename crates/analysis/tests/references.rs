@@ -36,25 +36,18 @@ fn cases() -> Vec<(&'static str, Case)> {
     let mut out = Vec::new();
     for (name, length, force) in [("inch-pound", 1.0, 1.0), ("SI", IN, LBF)] {
         let p = psi(length, force);
-        out.push((
-            name,
-            Case {
-                m1: Material::new(30e6 * p, 0.3).unwrap(),
-                m2: Material::new(30e6 * p, 0.3).unwrap(),
-                length,
-                force,
-            },
-        ));
-        // steel on aluminium
-        out.push((
-            name,
-            Case {
-                m1: Material::new(30e6 * p, 0.3).unwrap(),
-                m2: Material::new(10e6 * p, 0.33).unwrap(),
-                length,
-                force,
-            },
-        ));
+        // steel on steel, and steel on aluminium
+        for (e2, nu2) in [(30e6, 0.3), (10e6, 0.33)] {
+            out.push((
+                name,
+                Case {
+                    m1: Material::new(30e6 * p, 0.3).unwrap(),
+                    m2: Material::new(e2 * p, nu2).unwrap(),
+                    length,
+                    force,
+                },
+            ));
+        }
     }
     out
 }
@@ -543,24 +536,16 @@ fn a_folded_problem_refuses_an_asymmetric_separation() {
 #[test]
 fn a_warm_start_from_the_previous_load_step_saves_iterations() {
     let a = 0.016;
-    let (body, geometry) = scenes::example1_bodies();
     let points = PointSet::grid_disk(a / 8.0, 1.4 * a).unwrap();
     // The data the warm solutions are checked against (folded or not).
-    let full = ContactProblem::new(
-        points.clone(),
-        &body,
-        &body,
-        &geometry,
-        Loading::load(100.0),
-    )
-    .unwrap();
+    let full = scenes::example1(ContactProblem::new, points.clone(), Loading::load(100.0)).unwrap();
     for fold in [false, true] {
         let build = if fold {
             ContactProblem::symmetric
         } else {
             ContactProblem::new
         };
-        let light = build(points.clone(), &body, &body, &geometry, Loading::load(90.0)).unwrap();
+        let light = scenes::example1(build, points.clone(), Loading::load(90.0)).unwrap();
         let heavy = light.with_loading(Loading::load(100.0)).unwrap();
         let first = light
             .solve(Method::BlockPivoting, &Options::default())
@@ -601,16 +586,19 @@ fn a_cylinder_on_a_square_grid_folds_by_its_two_mirrors() {
     let points = PointSet::grid_disk(0.002, 0.02).unwrap();
     let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 1.0 }, Surface::Plane);
     let body = Body::uniform_patch(steel);
-    let folded = ContactProblem::symmetric(
-        points.clone(),
-        &body,
-        &body,
-        &geometry,
-        Loading::load(100.0),
-    )
-    .unwrap();
+    let held = |build: scenes::Build| {
+        build(
+            points.clone(),
+            &body,
+            &body,
+            &geometry,
+            Loading::load(100.0),
+        )
+        .unwrap()
+    };
+    let folded = held(ContactProblem::symmetric);
     assert_eq!(folded.folding().map(|f| f.order()), Some(4));
-    let full = ContactProblem::new(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
+    let full = held(ContactProblem::new);
     let (a, b) = (
         folded
             .solve(Method::BlockPivoting, &Options::default())

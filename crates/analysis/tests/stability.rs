@@ -13,7 +13,7 @@ use common::checks::{assert_solves, check};
 use common::scenes;
 use common::stability_cases::{Expect, Reference, catalogue, error};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface, Warning};
-use elcon_influence::{Beam, Body, Material, PointSet};
+use elcon_influence::{Body, Material, PointSet};
 use proptest::prelude::*;
 
 #[test]
@@ -346,19 +346,8 @@ fn a_beam_alone_on_a_rigid_flat_is_solved_by_every_method() {
     // Cholesky fails; it falls back to Lemke's method. The clamped point
     // carries the whole load.
     let points = PointSet::line(-1.0, 1.0, 21).unwrap();
-    let problem = ContactProblem::new(
-        points,
-        &Body::beam(Beam {
-            youngs_modulus: 1e6,
-            second_moment: 1.0,
-            loaded_point: 0.0,
-        })
-        .unwrap(),
-        &Body::rigid(),
-        &Geometry::Separation(vec![0.0; 21]),
-        Loading::load(10.0),
-    )
-    .unwrap();
+    let problem =
+        scenes::beam_on(ContactProblem::new, Body::rigid(), (1e6, 0.0), points, 10.0).unwrap();
     // S is only semidefinite (zero at the clamped point): the conjugate
     // gradient refuses it, naming the method to use.
     let e = problem
@@ -391,9 +380,8 @@ fn lemke_ends_when_the_covering_variable_reaches_zero_outside_the_relative_tie()
     // preferred and leaves.
     let a = scenes::example1_hertz().contact_radius();
     let points = PointSet::grid_disk(2.0 * a / 130.0, 1.15 * a).unwrap();
-    let (body, geometry) = scenes::example1_bodies();
     let problem =
-        ContactProblem::symmetric(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
+        scenes::example1(ContactProblem::symmetric, points, Loading::load(100.0)).unwrap();
     let lemke = problem.solve(Method::Lemke, &Options::default()).unwrap();
     assert!(lemke.certificate.holds(), "{}", lemke.certificate);
     // Not checked from the full S (common::checks): about 17,500 points,

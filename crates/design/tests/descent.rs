@@ -7,6 +7,8 @@
 //! beam under one and several loads, off-centre loads, and a roller under
 //! loads x misalignments (each case a prescribed tilt).
 
+mod common;
+
 use elcon_analysis::references::HertzCylinders;
 use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
 use elcon_design::{Axis, Design, DesignMethod, DesignOptions, Family, Solver, Stop, design};
@@ -15,47 +17,26 @@ use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 /// The agreement between the two methods' optima (see the module docs).
 const SAME_OPTIMUM: f64 = 1e-9;
 
+/// Example 2's beam at `per_half` points per half under `load` at `x0`,
+/// its rotation held at the loaded point.
 fn beam(per_half: usize, load: f64, x0: f64) -> ContactProblem {
-    let n = 2 * per_half;
-    ContactProblem::new(
-        PointSet::line(-4.45, 4.45, n).unwrap(),
-        &Body::beam(Beam {
-            youngs_modulus: 30e6,
-            second_moment: 64.0 / 12.0,
-            loaded_point: x0,
-        })
-        .unwrap(),
-        &Body::winkler(1e7),
-        &Geometry::Separation(vec![0.0; n]),
-        Loading::load(load).with_tilt_y(0.0),
-    )
-    .unwrap()
+    common::example2(2 * per_half, x0, Loading::load(load).with_tilt_y(0.0))
 }
 
-/// A steel roller (D = 10 mm, l = 10 mm) on a coarse 5 x 12 grid, each
-/// load's grid 1.6 of its Hertz half-width across, under every misalignment
-/// (a prescribed rotation about x, rad).
+/// The misaligned roller on a coarse 5 x 12 grid.
 fn roller(loads: &[f64], misalignments: &[f64]) -> (Vec<ContactProblem>, Vec<f64>) {
-    let steel = Material::new(210e3, 0.3).unwrap();
-    let e_star = combined_modulus(&steel, &steel);
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
-    let (mut cases, mut references) = (Vec::new(), Vec::new());
-    for &load in loads {
-        let hertz = HertzCylinders::new(e_star, 5.0, load / 10.0).unwrap();
-        let points = PointSet::grid_rectangle(1.6 * hertz.half_width(), 5.0, 5, 12).unwrap();
-        let aligned =
-            ContactProblem::new(points, &body, &body, &geometry, Loading::load(load)).unwrap();
-        for &angle in misalignments {
-            cases.push(
-                aligned
-                    .with_loading(Loading::load(load).with_tilt_x(angle))
-                    .unwrap(),
-            );
-            references.push(hertz.peak_pressure());
-        }
-    }
-    (cases, references)
+    common::misaligned_roller(loads, misalignments, (5, 12))
+}
+
+/// Each of `cases` under `loading` of its own load.
+fn reloaded(cases: &[ContactProblem], loading: impl Fn(f64) -> Loading) -> Vec<ContactProblem> {
+    cases
+        .iter()
+        .map(|c| {
+            let load = c.loading().load_value().unwrap();
+            c.with_loading(loading(load)).unwrap()
+        })
+        .collect()
 }
 
 fn solve(
@@ -65,17 +46,8 @@ fn solve(
     method: DesignMethod,
     references: Option<Vec<f64>>,
 ) -> Design {
-    design(
-        cases,
-        axis,
-        family,
-        &DesignOptions {
-            method,
-            reference_intensities: references,
-            ..DesignOptions::default()
-        },
-    )
-    .unwrap_or_else(|e| panic!("{method:?} {family:?}: {e}"))
+    design(cases, axis, family, &common::options(method, references))
+        .unwrap_or_else(|e| panic!("{method:?} {family:?}: {e}"))
 }
 
 /// Both methods on `cases`; the descent's optimum equals the program's or
@@ -142,14 +114,9 @@ fn the_descent_reaches_the_programs_optimum_under_moments() {
     // the middle along the roller), the rotation free: the rigid unknowns'
     // resultants are the load and the moment.
     let (aligned, references) = roller(&[2e3, 5e3], &[0.0]);
-    let cases: Vec<ContactProblem> = aligned
-        .iter()
-        .map(|c| {
-            let load = c.loading().load_value().unwrap();
-            c.with_loading(Loading::load(load).with_moment_x(0.5 * load))
-                .unwrap()
-        })
-        .collect();
+    let cases = reloaded(&aligned, |load| {
+        Loading::load(load).with_moment_x(0.5 * load)
+    });
     for family in [Family::Quadratic, Family::Free] {
         same_optimum("moments", &cases, Axis::Y, family, Some(references.clone()));
     }
@@ -157,23 +124,17 @@ fn the_descent_reaches_the_programs_optimum_under_moments() {
 
 #[test]
 fn auto_takes_the_program_for_few_points_and_the_descent_above() {
-    let small = solve(
-        &[beam(20, 5e4, 0.0)],
-        Axis::X,
-        Family::Quadratic,
-        DesignMethod::Auto,
-        None,
-    );
+    // The quadratic correction of the beam at `per_half` points per half, by
+    // the method "auto" picks.
+    let auto = |per_half| {
+        let beam = [beam(per_half, 5e4, 0.0)];
+        solve(&beam, Axis::X, Family::Quadratic, DesignMethod::Auto, None)
+    };
+    let small = auto(20);
     assert_eq!(small.solver.method(), DesignMethod::Program);
     assert!(matches!(small.solver, Solver::Program { .. }));
     let per_half = elcon_design::PROGRAM_LIMIT / 2 + 1;
-    let large = solve(
-        &[beam(per_half, 5e4, 0.0)],
-        Axis::X,
-        Family::Quadratic,
-        DesignMethod::Auto,
-        None,
-    );
+    let large = auto(per_half);
     assert_eq!(large.solver.method(), DesignMethod::Descent);
     assert!(matches!(large.solver, Solver::Descent { .. }));
 }
@@ -238,13 +199,7 @@ fn a_line_the_free_rotation_absorbs_is_taken_out_of_the_profile() {
     // trust-region steps may drift along it. The design takes the line out:
     // on these symmetric cases the free profile comes out symmetric.
     let (misaligned, references) = roller(&[2e3, 5e3], &[0.0]);
-    let cases: Vec<ContactProblem> = misaligned
-        .iter()
-        .map(|c| {
-            let load = c.loading().load_value().unwrap();
-            c.with_loading(Loading::load(load)).unwrap()
-        })
-        .collect();
+    let cases = reloaded(&misaligned, Loading::load);
     let d = solve(
         &cases,
         Axis::Y,
@@ -307,12 +262,6 @@ fn a_matrix_free_case_is_designed_by_the_descent_as_the_dense_one() {
         assert!(free.evaluation.solutions[0].certificate.holds());
     }
     // The program reads S's entries; pivoting re-analyses need them too.
-    let e = design(
-        std::slice::from_ref(&lattice),
-        Axis::Y,
-        Family::Quadratic,
-        &DesignOptions::default(),
-    )
-    .unwrap_err();
+    let e = common::design_one(&lattice, Axis::Y, Family::Quadratic).unwrap_err();
     assert!(e.to_string().contains("`reanalysis`"), "{e}");
 }

@@ -3,6 +3,8 @@
 //! separation gives p = P / L; designs do not depend on the units; several
 //! load cases at once.
 
+mod common;
+
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options};
 use elcon_design::{
     Analysis, Axis, DesignMethod, DesignOptions, Family, Profile, SearchOptions, Solver, Stop,
@@ -14,28 +16,11 @@ use elcon_influence::{Beam, Body, PointSet};
 /// `length` long, `per_half` points per half, loaded at `x0` by `load`.
 /// `length`, `force` convert from inch and pound (1 for inch-pound).
 fn beam(per_half: usize, x0: f64, load: f64, length: f64, force: f64) -> ContactProblem {
-    let l = 8.9 * length;
-    let n = 2 * per_half;
-    let points = PointSet::line(-0.5 * l, 0.5 * l, n).unwrap();
-    let e = 30e6 * force / (length * length);
-    let i = 64.0 / 12.0 * length.powi(4);
-    let k = 1e7 * force / (length * length);
-    ContactProblem::new(
-        points,
-        &Body::beam(Beam {
-            youngs_modulus: e,
-            second_moment: i,
-            loaded_point: x0 * length,
-        })
-        .unwrap(),
-        &Body::winkler(k),
-        &Geometry::Separation(vec![0.0; n]),
-        // The rotation held at the loaded point (the paper's beam, clamped
-        // in rotation there): off centre, a free beam could not carry a
-        // uniform pressure.
-        Loading::load(load * force).with_tilt_y(0.0),
-    )
-    .unwrap()
+    // The rotation held at the loaded point (the paper's beam, clamped in
+    // rotation there): off centre, a free beam could not carry a uniform
+    // pressure.
+    let loading = Loading::load(load * force).with_tilt_y(0.0);
+    common::example2_in((length, force), 2 * per_half, x0, loading)
 }
 
 /// Largest relative difference accepted between a design's p_max and an
@@ -126,14 +111,9 @@ fn richer_families_do_at_least_as_well() {
     let case = beam(20, 0.0, 5e4, 1.0, 1.0);
     let mean = 5e4 / 8.9;
     let p = |family| {
-        design(
-            std::slice::from_ref(&case),
-            Axis::X,
-            family,
-            &DesignOptions::default(),
-        )
-        .unwrap()
-        .max_intensity
+        common::design_one(&case, Axis::X, family)
+            .unwrap()
+            .max_intensity
     };
     let (q, p4, free) = (
         p(Family::Quadratic),
@@ -174,13 +154,7 @@ fn no_grid_point_beats_the_quadratic_design() {
     // Centred and off-centre loads (the linear term b then matters), 8 points per half.
     for x0 in [0.0, 1.3] {
         let case = beam(8, x0, 5e4, 1.0, 1.0);
-        let d = design(
-            std::slice::from_ref(&case),
-            Axis::X,
-            Family::Quadratic,
-            &DesignOptions::default(),
-        )
-        .unwrap();
+        let d = common::design_one(&case, Axis::X, Family::Quadratic).unwrap();
         let Profile::Quadratic { a, b, .. } = d.profile else {
             panic!()
         };
@@ -251,20 +225,8 @@ fn designs_do_not_depend_on_the_units() {
     let ip = beam(12, 0.7, 5e4, 1.0, 1.0);
     let si = beam(12, 0.7, 5e4, m, n);
     for family in [Family::Quadratic, Family::Free] {
-        let a = design(
-            std::slice::from_ref(&ip),
-            Axis::X,
-            family,
-            &DesignOptions::default(),
-        )
-        .unwrap();
-        let b = design(
-            std::slice::from_ref(&si),
-            Axis::X,
-            family,
-            &DesignOptions::default(),
-        )
-        .unwrap();
+        let a = common::design_one(&ip, Axis::X, family).unwrap();
+        let b = common::design_one(&si, Axis::X, family).unwrap();
         // p_max in force per length: lb/in -> N/m.
         let ratio = b.max_intensity / (a.max_intensity * n / m);
         assert!((ratio - 1.0).abs() < 1e-9, "{family:?}: {ratio}");
@@ -374,13 +336,7 @@ fn the_paper_start_can_end_at_a_local_minimum_and_the_fitted_start_escapes_it() 
         Loading::load(10.0).with_tilt_y(0.0),
     )
     .unwrap();
-    let d = design(
-        std::slice::from_ref(&case),
-        Axis::X,
-        Family::Free,
-        &DesignOptions::default(),
-    )
-    .unwrap();
+    let d = common::design_one(&case, Axis::X, Family::Free).unwrap();
     let mean = 10.0 / length;
     let paper = d.starts[0].result.clone().unwrap();
     let fitted = d.starts[1].result.clone().unwrap();
@@ -418,28 +374,19 @@ fn a_warm_started_evaluation_equals_a_cold_one_in_fewer_iterations() {
     let case = beam(100, 0.0, 5e4, 1.0, 1.0);
     let cases = std::slice::from_ref(&case);
     let options = Options::default();
-    let near = evaluate(
-        cases,
-        Axis::X,
-        &hollow(&case, 1.0e-3),
-        &Analysis::new(Method::BlockPivoting, &options),
-    )
-    .unwrap();
+    // `cases` with `profile` by block pivoting, cold or from `start`.
+    let evaluated = |cases: &[ContactProblem], profile: &Profile, start: Option<&[_]>| {
+        let analysis = Analysis::new(Method::BlockPivoting, &options);
+        let analysis = match start {
+            Some(start) => analysis.starting_from(start),
+            None => analysis,
+        };
+        evaluate(cases, Axis::X, profile, &analysis)
+    };
+    let near = evaluated(cases, &hollow(&case, 1.0e-3), None).unwrap();
     let profile = hollow(&case, 1.05e-3);
-    let cold = evaluate(
-        cases,
-        Axis::X,
-        &profile,
-        &Analysis::new(Method::BlockPivoting, &options),
-    )
-    .unwrap();
-    let warm = evaluate(
-        cases,
-        Axis::X,
-        &profile,
-        &Analysis::new(Method::BlockPivoting, &options).starting_from(&near.solutions),
-    )
-    .unwrap();
+    let cold = evaluated(cases, &profile, None).unwrap();
+    let warm = evaluated(cases, &profile, Some(&near.solutions)).unwrap();
     let (c, w) = (&cold.solutions[0], &warm.solutions[0]);
     assert!(w.certificate.holds(), "{}", w.certificate);
     let scale = c.forces.iter().fold(0.0f64, |a, f| a.max(f.abs()));
@@ -454,30 +401,12 @@ fn a_warm_started_evaluation_equals_a_cold_one_in_fewer_iterations() {
     );
     // A start with the wrong number of cases is refused, naming the field.
     let two = [case.clone(), case.clone()];
-    let e = evaluate(
-        &two,
-        Axis::X,
-        &profile,
-        &Analysis::new(Method::BlockPivoting, &options).starting_from(&near.solutions),
-    )
-    .unwrap_err();
+    let e = evaluated(&two, &profile, Some(&near.solutions)).unwrap_err();
     assert!(e.to_string().contains("start"), "{e}");
     // So is a start solved on another set of points.
     let small = beam(20, 0.0, 5e4, 1.0, 1.0);
-    let other = evaluate(
-        std::slice::from_ref(&small),
-        Axis::X,
-        &hollow(&small, 1.0e-3),
-        &Analysis::new(Method::BlockPivoting, &options),
-    )
-    .unwrap();
-    let e = evaluate(
-        cases,
-        Axis::X,
-        &profile,
-        &Analysis::new(Method::BlockPivoting, &options).starting_from(&other.solutions),
-    )
-    .unwrap_err();
+    let other = evaluated(std::slice::from_ref(&small), &hollow(&small, 1.0e-3), None).unwrap();
+    let e = evaluated(cases, &profile, Some(&other.solutions)).unwrap_err();
     assert!(
         e.to_string()
             .contains("load case 0 has 40 values, the case 200 points"),

@@ -1,31 +1,18 @@
 //! One test per `DesignError` variant: the error a user gets, and that its
 //! message names the field and the reason.
 
-use elcon_analysis::{
-    AnalysisError, ContactProblem, ContactSolution, Geometry, Loading, Method, Options,
-};
+mod common;
+
+use elcon_analysis::{AnalysisError, ContactProblem, ContactSolution, Loading, Method, Options};
 use elcon_design::{
     Analysis, Axis, DesignError, DesignOptions, Family, Profile, design, evaluate,
     target_separation,
 };
-use elcon_influence::{Beam, Body, PointSet};
 use elcon_lcp::LcpError;
 
+/// Example 2's beam on 12 points under `loading`.
 fn beam(loading: Loading) -> ContactProblem {
-    let points = PointSet::line(-4.45, 4.45, 12).unwrap();
-    ContactProblem::new(
-        points,
-        &Body::beam(Beam {
-            youngs_modulus: 30e6,
-            second_moment: 64.0 / 12.0,
-            loaded_point: 0.0,
-        })
-        .unwrap(),
-        &Body::winkler(1e7),
-        &Geometry::Separation(vec![0.0; 12]),
-        loading,
-    )
-    .unwrap()
+    common::example2(12, 0.0, loading)
 }
 
 #[test]
@@ -116,21 +103,9 @@ fn incompatible_inputs_say_what_to_give() {
         e.to_string(),
         "`known`: has 0 entries, expected 1 (one per load case)"
     );
-    let other = ContactProblem::new(
-        PointSet::line(-4.45, 4.45, 8).unwrap(),
-        &Body::beam(Beam {
-            youngs_modulus: 30e6,
-            second_moment: 64.0 / 12.0,
-            loaded_point: 0.0,
-        })
-        .unwrap(),
-        &Body::winkler(1e7),
-        &Geometry::Separation(vec![0.0; 8]),
-        Loading::load(5e4),
-    )
-    .unwrap()
-    .solve(Method::Lemke, &Options::default())
-    .unwrap();
+    let other = common::example2(8, 0.0, Loading::load(5e4))
+        .solve(Method::Lemke, &Options::default())
+        .unwrap();
     let e = known_error(&case, &[Some(&other)]);
     assert_eq!(
         e.to_string(),

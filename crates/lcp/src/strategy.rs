@@ -39,7 +39,7 @@
 
 use std::time::Instant;
 
-use faer::Col;
+use faer::{Col, MatRef};
 
 use crate::LcpError;
 use crate::certificate::Certificate;
@@ -277,9 +277,11 @@ impl Routed for LinearSystem<'_> {
     type Answer = LinearAnswer;
 
     fn attempt(&self, kind: Kind, options: &Options, _relaxed: bool) -> LinearAttempted {
+        // A dense factorization's parallelism, by M's size.
+        let par = |m: MatRef<'_, f64>| options.par(m.nrows(), m.nrows());
         match (kind, self.matrix) {
-            (Kind::Cholesky, Matrix::Dense(m)) => cholesky::attempt(m, self.rhs, options),
-            (Kind::Lu, Matrix::Dense(m)) => lu::attempt(m, self.rhs, options),
+            (Kind::Cholesky, Matrix::Dense(m)) => cholesky::attempt(m, self.rhs, par(m)),
+            (Kind::Lu, Matrix::Dense(m)) => lu::attempt(m, self.rhs, par(m)),
             (Kind::ConjugateGradient, matrix) => {
                 conjugate_gradient::attempt_linear(matrix.operator(), self.rhs, options)
             }

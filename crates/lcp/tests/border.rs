@@ -5,7 +5,7 @@
 //! from the original data: against brute-force enumeration of the active
 //! sets for small n, against Lemke's general tableau for larger n.
 
-use elcon_lcp::{BorderedLcp, LcpError, Method, OperatorLcp, Options, Tableau};
+use elcon_lcp::{BorderedLcp, LcpError, LcpSolution, Method, OperatorLcp, Options, Tableau};
 use faer::{Col, Mat};
 use proptest::prelude::*;
 
@@ -125,6 +125,37 @@ fn random_known(
         lambda: (0..3).map(|_| 2.0 * next() - 1.0).collect(),
     };
     known(spd(n, &a, 0.3), k, &draw, ones_last)
+}
+
+/// For each case `(points, k, ones_last)`, 40 random problems
+/// ([`random_known`], drawn from [`uniform`] of `seed` across the cases)
+/// solved by `method`: each returns the known solution and passes `check`
+/// (its own assertions), and `check` answers true for at least nine in ten
+/// of them (else the message `message(k, counted, trials)`).
+fn nearly_every<const C: usize>(
+    seed: u64,
+    cases: [(std::ops::Range<usize>, usize, bool); C],
+    method: Method,
+    check: impl Fn(&Known, &LcpSolution) -> bool,
+    message: impl Fn(usize, usize, usize) -> String,
+) {
+    let mut next = uniform(seed);
+    let trials = 40;
+    for (points, k, ones_last) in cases {
+        let mut counted = 0;
+        for _ in 0..trials {
+            let known = random_known(&mut next, points.clone(), k, ones_last);
+            let sol = known.problem.solve(method, &Options::default()).unwrap();
+            let counts = check(&known, &sol);
+            assert!(rel_diff(&sol.z, &known.z) < 1e-8);
+            counted += usize::from(counts);
+        }
+        assert!(
+            counted * 10 >= trials * 9,
+            "{}",
+            message(k, counted, trials)
+        );
+    }
 }
 
 /// The solution by trying every active set J with |J| >= k: the KKT
@@ -296,6 +327,23 @@ fn check_routes(k: &Known, z: &Col<f64>, lambda: &Col<f64>, tolerance: f64) -> R
     Ok(())
 }
 
+/// `(n, k, A's entries, shift)` of [`spd`] with a border of k = 1, 2, 3
+/// rows and n in `sizes(k)`.
+fn sized(
+    sizes: fn(usize) -> std::ops::RangeInclusive<usize>,
+) -> impl Strategy<Value = (usize, usize, Vec<f64>, f64)> {
+    (1usize..=3).prop_flat_map(move |k| {
+        sizes(k).prop_flat_map(move |n| {
+            (
+                Just(n),
+                Just(k),
+                proptest::collection::vec(-1.0f64..1.0, n * n),
+                0.05f64..1.0,
+            )
+        })
+    })
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
 
@@ -303,12 +351,7 @@ proptest! {
     /// which equals the known one.
     #[test]
     fn small_bordered_problems_match_enumeration(
-        (n, k, a, shift) in (1usize..=3).prop_flat_map(|k| (k..=8).prop_flat_map(move |n| (
-            Just(n),
-            Just(k),
-            proptest::collection::vec(-1.0f64..1.0, n * n),
-            0.05f64..1.0,
-        ))),
+        (n, k, a, shift) in sized(|k| k..=8),
         draw in draw(),
         ones_last in any::<bool>(),
     ) {
@@ -332,12 +375,7 @@ proptest! {
     /// tableau's answer and the known solution.
     #[test]
     fn larger_bordered_problems_agree_with_the_general_tableau(
-        (n, k, a, shift) in (1usize..=3).prop_flat_map(|k| (9usize..=60).prop_flat_map(move |n| (
-            Just(n),
-            Just(k),
-            proptest::collection::vec(-1.0f64..1.0, n * n),
-            0.05f64..1.0,
-        ))),
+        (n, k, a, shift) in sized(|_| 9..=60),
         draw in draw(),
         ones_last in any::<bool>(),
     ) {
@@ -357,25 +395,17 @@ proptest! {
 /// Lemke solve returns from it.
 #[test]
 fn the_symmetric_tableau_solves_borders_of_several_rows() {
-    let mut next = uniform(0x2545_f491_4f6c_dd1du64);
-    for (k, ones_last) in [(2, false), (3, false), (2, true), (3, true)] {
-        let mut symmetric = 0;
-        let trials = 40;
-        for _ in 0..trials {
-            let known = random_known(&mut next, 20..50, k, ones_last);
-            let sol = known
-                .problem
-                .solve(Method::Lemke, &Options::default())
-                .unwrap();
+    let cases = [(2, false), (3, false), (2, true), (3, true)].map(|(k, ones)| (20..50, k, ones));
+    nearly_every(
+        0x2545_f491_4f6c_dd1du64,
+        cases,
+        Method::Lemke,
+        |_, sol| {
             assert!(sol.certificate.holds());
-            assert!(rel_diff(&sol.z, &known.z) < 1e-8);
-            symmetric += usize::from(sol.statistics.symmetric_tableau());
-        }
-        assert!(
-            symmetric * 10 >= trials * 9,
-            "k = {k}: {symmetric} of {trials} on the symmetric tableau"
-        );
-    }
+            sol.statistics.symmetric_tableau()
+        },
+        |k, symmetric, trials| format!("k = {k}: {symmetric} of {trials} on the symmetric tableau"),
+    );
 }
 
 /// Block pivoting answers borders of two and three rows itself (its k x k
@@ -384,26 +414,17 @@ fn the_symmetric_tableau_solves_borders_of_several_rows() {
 /// from block pivoting's own attempt.
 #[test]
 fn block_pivoting_solves_borders_of_several_rows_itself() {
-    let mut next = uniform(0x9e37_79b9_7f4a_7c15u64);
-    for k in [1, 2, 3] {
-        let mut own = 0;
-        let trials = 40;
-        for _ in 0..trials {
-            let known = random_known(&mut next, 10..60, k, false);
-            let sol = known
-                .problem
-                .solve(Method::BlockPivoting, &Options::default())
-                .unwrap();
-            assert!(residuals(&known, &sol.z, &sol.u) < 1e-10);
-            assert!(rel_diff(&sol.z, &known.z) < 1e-8);
+    nearly_every(
+        0x9e37_79b9_7f4a_7c15u64,
+        [1, 2, 3].map(|k| (10..60, k, false)),
+        Method::BlockPivoting,
+        |known, sol| {
+            assert!(residuals(known, &sol.z, &sol.u) < 1e-10);
             let returned = sol.statistics.returned().expect("an answer was returned");
-            own += usize::from(returned.method == Method::BlockPivoting);
-        }
-        assert!(
-            own * 10 >= trials * 9,
-            "k = {k}: block pivoting answered {own} of {trials} itself"
-        );
-    }
+            returned.method == Method::BlockPivoting
+        },
+        |k, own, trials| format!("k = {k}: block pivoting answered {own} of {trials} itself"),
+    );
 }
 
 /// The same problems with `M` given only by its products (an

@@ -6,7 +6,8 @@
 //! inputs and limits that are errors.
 
 use elcon_lcp::{
-    Breakdown, Lcp, LcpError, LinearSystem, Method, Options, Outcome, Reason, Tolerances,
+    Breakdown, Lcp, LcpError, LinearSolution, LinearSystem, Method, Options, Outcome, Reason,
+    Tolerances,
 };
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side, col, mat};
@@ -33,6 +34,21 @@ fn rhs(n: usize) -> Mat<f64> {
     })
 }
 
+/// `M X = R` with `M` dense, solved with `options`.
+fn dense(m: &Mat<f64>, r: &Mat<f64>, options: &Options) -> Result<LinearSolution, LcpError> {
+    LinearSystem::dense(m.as_ref(), r.as_ref())
+        .unwrap()
+        .solve(options)
+}
+
+/// `M X = R` with `M` given by its products, solved with `options`.
+fn by_products(m: &Mat<f64>, r: &Mat<f64>, options: &Options) -> Result<LinearSolution, LcpError> {
+    let products = m.as_ref();
+    LinearSystem::operator(&products, r.as_ref())
+        .unwrap()
+        .solve(options)
+}
+
 /// The largest difference of two matrices, relative to their largest entry.
 fn rel_diff_mat(a: &Mat<f64>, b: &Mat<f64>) -> f64 {
     (0..a.ncols())
@@ -43,10 +59,7 @@ fn rel_diff_mat(a: &Mat<f64>, b: &Mat<f64>) -> f64 {
 #[test]
 fn a_dense_system_is_solved_by_cholesky_as_faer_solves_it() {
     let (m, r) = (spd(40), rhs(40));
-    let sol = LinearSystem::dense(m.as_ref(), r.as_ref())
-        .unwrap()
-        .solve(&Options::default())
-        .unwrap();
+    let sol = dense(&m, &r, &Options::default()).unwrap();
     let faer = m.llt(Side::Lower).unwrap().solve(&r);
     assert!(rel_diff_mat(&sol.x, &faer) < 1e-13);
     assert!(sol.residual <= Tolerances::default().certificate);
@@ -69,15 +82,8 @@ fn a_dense_system_is_solved_by_cholesky_as_faer_solves_it() {
 #[test]
 fn the_same_system_by_its_products_agrees_to_the_tolerance() {
     let (m, r) = (spd(40), rhs(40));
-    let dense = LinearSystem::dense(m.as_ref(), r.as_ref())
-        .unwrap()
-        .solve(&Options::default())
-        .unwrap();
-    let products = m.as_ref();
-    let sol = LinearSystem::operator(&products, r.as_ref())
-        .unwrap()
-        .solve(&Options::default())
-        .unwrap();
+    let dense = dense(&m, &r, &Options::default()).unwrap();
+    let sol = by_products(&m, &r, &Options::default()).unwrap();
     // A residual of the tolerance, times M's condition number (about 10).
     assert!(rel_diff_mat(&sol.x, &dense.x) < 1e-10);
     assert!(sol.residual <= Tolerances::default().certificate);
@@ -94,10 +100,7 @@ fn an_indefinite_dense_matrix_falls_back_to_lu_in_the_log() {
     // pivot, the LU solves it: M^{-1} = [[-1, 2], [2, -1]] / 3.
     let m = mat![[1.0, 2.0], [2.0, 1.0]];
     let r = Mat::<f64>::identity(2, 2);
-    let sol = LinearSystem::dense(m.as_ref(), r.as_ref())
-        .unwrap()
-        .solve(&Options::default())
-        .unwrap();
+    let sol = dense(&m, &r, &Options::default()).unwrap();
     let inverse = mat![[-1.0, 2.0], [2.0, -1.0]] * (1.0 / 3.0);
     assert!(rel_diff_mat(&sol.x, &inverse) < 1e-15);
     let log = &sol.statistics.attempts;
@@ -118,10 +121,7 @@ fn an_indefinite_dense_matrix_falls_back_to_lu_in_the_log() {
     // A matrix that is not symmetric is not symmetric positive definite
     // either: the LU solves it too.
     let m = mat![[2.0, 1.0], [0.0, 2.0]];
-    let sol = LinearSystem::dense(m.as_ref(), r.as_ref())
-        .unwrap()
-        .solve(&Options::default())
-        .unwrap();
+    let sol = dense(&m, &r, &Options::default()).unwrap();
     assert_eq!(sol.statistics.returned().unwrap().method, Method::Lu);
     assert!(rel_diff_mat(&(&m * &sol.x), &r) < 1e-15);
 }
@@ -130,12 +130,8 @@ fn an_indefinite_dense_matrix_falls_back_to_lu_in_the_log() {
 fn an_indefinite_operator_is_a_typed_breakdown() {
     // p = r = (1, -1): p · M p = -2 at the first step.
     let m = mat![[1.0, 2.0], [2.0, 1.0]];
-    let products = m.as_ref();
     let r = mat![[1.0], [-1.0]];
-    let e = LinearSystem::operator(&products, r.as_ref())
-        .unwrap()
-        .solve(&Options::default())
-        .unwrap_err();
+    let e = by_products(&m, &r, &Options::default()).unwrap_err();
     let LcpError::BrokeDown {
         ref method,
         ref reason,
@@ -208,15 +204,11 @@ fn empty_and_mismatched_inputs_are_typed() {
 #[test]
 fn the_iteration_cap_is_an_error_not_an_answer() {
     let (m, r) = (spd(40), rhs(40));
-    let products = m.as_ref();
     let options = Options {
         max_pivots: Some(2),
         ..Options::default()
     };
-    let e = LinearSystem::operator(&products, r.as_ref())
-        .unwrap()
-        .solve(&options)
-        .unwrap_err();
+    let e = by_products(&m, &r, &options).unwrap_err();
     let LcpError::IterationLimit {
         size,
         column,
@@ -240,10 +232,7 @@ fn a_residual_above_the_tolerance_is_refused() {
         },
         ..Options::default()
     };
-    let e = LinearSystem::dense(m.as_ref(), r.as_ref())
-        .unwrap()
-        .solve(&strict)
-        .unwrap_err();
+    let e = dense(&m, &r, &strict).unwrap_err();
     let LcpError::Inaccurate {
         size, certificate, ..
     } = e

@@ -340,16 +340,22 @@ def cli_design(tmp_path, scene):
     return json.loads((out / "crowned-roller" / "result.json").read_text())["design"]
 
 
+def assert_as_written(design, written, *case_fields):
+    """``design`` is the CLI's ``written`` design block (but for times): its
+    objective, parameters and table, and each case's ``case_fields``."""
+    assert without_times(design.to_dict()) == without_times(written)
+    assert design.objective == written["objective"]
+    assert design.parameters == written["parameters"]
+    assert design.table == written["table"]
+    for field in case_fields:
+        assert [c[field] for c in design.cases] == [c[field] for c in written["cases"]], field
+
+
 def test_design_over_the_crowned_roller_equals_the_clis_result_json(tmp_path):
     # The free profile: the scene's own [design].
     written = cli_design(tmp_path, SCENES / "crowned-roller.toml")
     free = elcon.design(SCENES / "crowned-roller.toml")
-    assert without_times(free.to_dict()) == without_times(written)
-    assert free.objective == written["objective"]
-    assert free.parameters == written["parameters"]
-    assert free.table == written["table"]
-    assert [c["max_pressure_after"] for c in free.cases] == \
-        [c["max_pressure_after"] for c in written["cases"]]
+    assert_as_written(free, written, "max_pressure_after")
     assert free.family == "free" and free.certificates_hold
     # A logarithmic crown: the [design] keys as keywords, and the same keys
     # in the scene's file through the CLI.
@@ -360,14 +366,7 @@ def test_design_over_the_crowned_roller_equals_the_clis_result_json(tmp_path):
         'relative_to = "hertz"\naxis = "y"\nend = "lundberg"\n')
     written = cli_design(tmp_path / "log", scene)
     crown = elcon.design(SCENES / "crowned-roller.toml", **keys)
-    assert without_times(crown.to_dict()) == without_times(written)
-    assert crown.objective == written["objective"]
-    assert crown.parameters == written["parameters"]
-    assert crown.table == written["table"]
-    assert [c["max_pressure_before"] for c in crown.cases] == \
-        [c["max_pressure_before"] for c in written["cases"]]
-    assert [c["max_pressure_after"] for c in crown.cases] == \
-        [c["max_pressure_after"] for c in written["cases"]]
+    assert_as_written(crown, written, "max_pressure_before", "max_pressure_after")
     assert crown.method == "set"
     # The scene as a dict, likewise.
     import tomllib

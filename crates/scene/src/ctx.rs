@@ -37,6 +37,23 @@ impl Ctx<'_> {
         }
     }
 
+    /// `value` (of `field`, at `span`) when `holds`; else refused, saying
+    /// `why`.
+    pub(crate) fn ensure<T: std::fmt::Display>(
+        &self,
+        value: T,
+        holds: bool,
+        span: Range<usize>,
+        field: &str,
+        why: impl Into<String>,
+    ) -> Result<T, SceneError> {
+        if holds {
+            Ok(value)
+        } else {
+            Err(self.invalid(span, field, &value, why))
+        }
+    }
+
     /// A value that must be finite and > 0.
     pub(crate) fn positive(&self, v: &Spanned<f64>, field: &str) -> Result<f64, SceneError> {
         let x = *v.get_ref();
@@ -140,7 +157,8 @@ impl Ctx<'_> {
 }
 
 /// A value as a message about a key that does not belong shows it: a number
-/// as written in Rust (`3.0`), a name quoted as in the file (`"lundberg"`).
+/// as written in Rust (`3.0`), a name quoted as in the file (`"lundberg"`),
+/// a list or a table as nothing (the message names its key).
 pub(crate) trait Shown {
     /// The value, printed.
     fn shown(&self) -> String;
@@ -155,6 +173,12 @@ impl Shown for f64 {
 impl Shown for i64 {
     fn shown(&self) -> String {
         self.to_string()
+    }
+}
+
+impl<T> Shown for Vec<T> {
+    fn shown(&self) -> String {
+        String::new()
     }
 }
 

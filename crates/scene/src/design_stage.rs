@@ -224,7 +224,7 @@ pub(crate) fn design_stage(
         table,
         method: outcome.found.method().into(),
         starts: outcome.found.starts(),
-        interpolation: interpolation(&profile),
+        interpolation: profile.interpolation(),
         grids: converged.levels.iter().map(grid).collect(),
         verification: converged.verification.as_ref().map(grid),
         grid_tolerance: spec.sequence().map(|s| s.tolerance),
@@ -265,18 +265,6 @@ fn on_scene_grid(
         levels: vec![level],
         verification: None,
     })
-}
-
-/// How a profile is defined between its stations, in words.
-fn interpolation(profile: &Profile) -> String {
-    match profile {
-        Profile::Spline { positions, .. } => format!(
-            "natural cubic spline through {} knots, its end slopes carried on beyond",
-            positions.len()
-        ),
-        Profile::Free { .. } => "linear between stations, constant beyond".into(),
-        _ => "the family's closed form".into(),
-    }
 }
 
 /// The grid of the scene's first design load at `fineness`, in words.

@@ -108,12 +108,10 @@ pub struct Estimate {
     pub time: TimeClass,
 }
 
+/// Bytes as a whole number, rounded up: a float-to-integer cast saturates
+/// (at `u64::MAX` above it, 0 for NaN).
 fn to_bytes(b: f64) -> u64 {
-    if b >= u64::MAX as f64 {
-        u64::MAX
-    } else {
-        b.ceil() as u64
-    }
+    b.ceil() as u64
 }
 
 impl Estimate {
@@ -333,28 +331,12 @@ mod tests {
     use super::*;
     use crate::memory::Ceiling;
 
-    const SPHERES: &str = r#"
-[units]
-length = "in"
-force = "lbf"
-[body1]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-[body2]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-[geometry]
-surface1 = { shape = "sphere", radius = 1.0 }
-surface2 = { shape = "sphere", radius = 10.0 }
-[points]
-grid = "disk"
-spacing = 0.001
-radius = 0.02
-[loading]
-load = 100.0
-"#;
+    /// Example 1's spheres (the scene tests' spheres.toml) on a disk of
+    /// spacing 0.001 in and radius 0.02 in.
+    fn spheres() -> String {
+        include_str!("../tests/common/spheres.toml")
+            .replace("across = 41\nzone = 1.15", "spacing = 0.001\nradius = 0.02")
+    }
 
     fn scene(text: &str) -> Scene {
         Scene::from_str(Path::new("t.toml"), text).unwrap()
@@ -366,9 +348,10 @@ load = 100.0
 
     #[test]
     fn a_pressure_plot_adds_its_bytes_per_point() {
-        let plain = Estimate::of(&scene(SPHERES)).unwrap();
+        let spheres = spheres();
+        let plain = Estimate::of(&scene(&spheres)).unwrap();
         let plotted = Estimate::of(&scene(&format!(
-            "{SPHERES}[outputs]\nplots = [\"pressure\"]\n"
+            "{spheres}[outputs]\nplots = [\"pressure\"]\n"
         )))
         .unwrap();
         let n = plain.points as f64;
@@ -381,7 +364,8 @@ load = 100.0
 
     #[test]
     fn a_solve_counts_its_methods_matrices_on_the_folded_size() {
-        let folded = Estimate::of(&scene(SPHERES)).unwrap();
+        let spheres = spheres();
+        let folded = Estimate::of(&scene(&spheres)).unwrap();
         let n = folded.points;
         assert_eq!(n, 1257);
         // Eight mirror images: about N / 8 orbits.
@@ -393,12 +377,12 @@ load = 100.0
         assert_eq!(folded.solve_bytes, bytes(3.25, folded.unknowns));
         assert_eq!(folded.peak_bytes, folded.solve_bytes + BASELINE);
         let full =
-            Estimate::of(&scene(&format!("{SPHERES}[solver]\nsymmetry = \"none\"\n"))).unwrap();
+            Estimate::of(&scene(&format!("{spheres}[solver]\nsymmetry = \"none\"\n"))).unwrap();
         assert_eq!(full.unknowns, n);
         assert_eq!(full.solve_bytes, bytes(3.25, n));
         // The tableau methods: the symmetric tableau under load, the
         // restricted simplex's general tableau under an approach.
-        let lemke = format!("{SPHERES}[solver]\nmethod = \"lemke\"\nsymmetry = \"none\"\n");
+        let lemke = format!("{spheres}[solver]\nmethod = \"lemke\"\nsymmetry = \"none\"\n");
         assert_eq!(
             Estimate::of(&scene(&lemke)).unwrap().solve_bytes,
             bytes(3.25, n)
@@ -416,12 +400,13 @@ load = 100.0
 
     #[test]
     fn a_moment_or_a_misalignment_is_counted_as_the_analysis_solves_it() {
+        let spheres = spheres();
         // A moment about y breaks the mirror about x = 0: folded by the
         // other mirror only (about half the points), and the restricted
         // simplex, with a free tilt beside the approach, is on the general
         // tableau.
         let moment =
-            format!("{SPHERES}moment_y = 0.5\n[solver]\nmethod = \"restricted-simplex\"\n");
+            format!("{spheres}moment_y = 0.5\n[solver]\nmethod = \"restricted-simplex\"\n");
         let e = Estimate::of(&scene(&moment)).unwrap();
         assert!(
             e.unknowns > e.points / 2 && e.unknowns < e.points * 6 / 10,
@@ -441,28 +426,10 @@ load = 100.0
 
     #[test]
     fn the_design_program_grows_like_the_square_of_all_cases_points() {
-        let beam = r#"
-[units]
-length = "in"
-force = "lbf"
-[body1]
-model = "beam"
-youngs_modulus = 30e6
-second_moment = 5.0
-[body2]
-model = "winkler"
-modulus = 1e7
-[points]
-grid = "line"
-start = -4.0
-end = 4.0
-n = 200
-[loading]
-load = 1000.0
-[design]
-family = "quadratic"
-"#;
-        let one = Estimate::of(&scene(beam)).unwrap();
+        // The scene tests' beam (beam.toml) on 200 points, designed.
+        let beam = include_str!("../tests/common/beam.toml").replace("n = 16", "n = 200")
+            + "[design]\nfamily = \"quadratic\"\n";
+        let one = Estimate::of(&scene(&beam)).unwrap();
         let d1 = one.design.clone().unwrap();
         assert_eq!((d1.cases, d1.points), (1, 200));
         // R = 2 n + 1 + stations + 1 rows, C = n + 1 + 3 + 1 columns.
@@ -500,6 +467,13 @@ family = "quadratic"
     }
 
     #[test]
+    fn bytes_round_up_and_saturate() {
+        assert_eq!(to_bytes(1.5), 2);
+        assert_eq!(to_bytes(u64::MAX as f64), u64::MAX);
+        assert_eq!(to_bytes(f64::INFINITY), u64::MAX);
+    }
+
+    #[test]
     fn time_classes() {
         assert_eq!(TimeClass::of(0.5), TimeClass::UnderASecond);
         assert_eq!(TimeClass::of(59.0), TimeClass::Seconds);
@@ -510,7 +484,8 @@ family = "quadratic"
 
     #[test]
     fn a_refusal_names_n_the_estimate_the_ceiling_and_what_helps() {
-        let s = scene(&format!("{SPHERES}[solver]\nsymmetry = \"none\"\n"));
+        let spheres = spheres();
+        let s = scene(&format!("{spheres}[solver]\nsymmetry = \"none\"\n"));
         let e = Estimate::of(&s).unwrap();
         let ceiling = Ceiling::from_limits([(1 << 20, Limit::Option)]);
         assert!(!ceiling.admits(e.peak_bytes));

@@ -39,7 +39,7 @@ mod tables;
 
 pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text, thousands};
 pub use batch_run::{BatchOptions, Progress, run_batch};
-pub use design_stage::{DesignCaseJson, DesignJson, DesignRun};
+pub use design_stage::{DesignCaseJson, DesignGridJson, DesignJson, DesignRun};
 pub use elcon_analysis::{AUTO_DENSE_LIMIT, Storage};
 pub use error::{Location, SceneError};
 pub use error_estimate::{DiscretizationJson, GridJson, QuantitiesJson, QuantityJson};

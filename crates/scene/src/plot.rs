@@ -5,6 +5,8 @@
 //! separations and pressures before and after; a batch's error against run
 //! time (log-log, one series per method).
 
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 
@@ -25,6 +27,58 @@ const COLORS: [RGBColor; 6] = [
 
 fn err(e: impl std::fmt::Display) -> String {
     format!("plot: {e}")
+}
+
+/// An SVG of `size` on white, drawn by `draw` on its root area.
+fn svg(
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String>,
+) -> Result<String, String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        draw(&root)?;
+        root.present().map_err(err)?;
+    }
+    Ok(svg)
+}
+
+/// A chart on `area` under `caption` (of font size `size`), with label
+/// areas of `x_label` and `y_label` pixels below and left.
+fn titled<'a, 'b, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: impl AsRef<str>,
+    size: u32,
+    (x_label, y_label): (u32, u32),
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .caption(caption, ("sans-serif", size))
+        .margin(12)
+        .x_label_area_size(x_label)
+        .y_label_area_size(y_label);
+    builder
+}
+
+/// Draws the series' labels on `chart`, boxed on white.
+fn labels<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()
+        .map_err(err)
+}
+
+/// A legend's key of a line of `colour`, two pixels wide.
+fn line_key(colour: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
+    move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
 }
 
 /// `[lo, hi]` widened by 5 % (and made non-empty).
@@ -90,20 +144,15 @@ pub(crate) fn pressure(run: &Run) -> Result<String, String> {
         .chain(&reference)
         .fold(0.0f64, |a, p| a.max(p.1));
     let (x0, x1) = padded(x0, x1);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                format!("{}: pressure", run.scene.name()),
-                ("sans-serif", 22),
-            )
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x0..x1, 0.0..ymax * 1.08 + f64::MIN_POSITIVE)
-            .map_err(err)?;
+    svg(SIZE, |root| {
+        let mut chart = titled(
+            root,
+            format!("{}: pressure", run.scene.name()),
+            22,
+            (45, 80),
+        )
+        .build_cartesian_2d(x0..x1, 0.0..ymax * 1.08 + f64::MIN_POSITIVE)
+        .map_err(err)?;
         chart
             .configure_mesh()
             .x_desc(if surface {
@@ -133,19 +182,10 @@ pub(crate) fn pressure(run: &Run) -> Result<String, String> {
                 .draw_series(LineSeries::new(reference, COLORS[1].stroke_width(2)))
                 .map_err(err)?
                 .label(kind)
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], COLORS[1].stroke_width(2))
-                });
+                .legend(line_key(COLORS[1]));
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(err)?;
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        labels(&mut chart)
+    })
 }
 
 /// The largest value across the width at each axial station, sorted.
@@ -165,40 +205,50 @@ fn along(
     rows
 }
 
+/// A chart of values from 0 to above `max` (named `y_desc`) against the
+/// axial position over `stations` (in `length`), on `area` under `caption`
+/// (its text and font size).
+fn axial_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    (caption, size): (impl AsRef<str>, u32),
+    (s0, s1): (f64, f64),
+    max: f64,
+    length: &str,
+    y_desc: String,
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>, String>
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = titled(area, caption, size, (40, 90))
+        .build_cartesian_2d(s0..s1, 0.0..max * 1.1 + f64::MIN_POSITIVE)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc(format!("axial position ({length})"))
+        .y_desc(y_desc)
+        .draw()
+        .map_err(err)?;
+    Ok(chart)
+}
+
 /// A design: the correction (top) and each load case's pressure along the
 /// axis before and after (bottom).
 pub(crate) fn design(run: &Run) -> Result<String, String> {
     let d = run.design.as_ref().ok_or("no design stage")?;
     let spec = run.scene.design().ok_or("no design section")?;
     let u = run.scene.units();
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (SIZE.0, SIZE.1 + 300)).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
+    svg((SIZE.0, SIZE.1 + 300), |root| {
         let (top, bottom) = root.split_vertically(360);
         let table = &run.result.design.as_ref().ok_or("no design result")?.table;
         let (s0, s1) = padded(table[0].0, table[table.len() - 1].0);
         let ymax = table.iter().fold(0.0f64, |a, r| a.max(r.1));
-        let mut chart = ChartBuilder::on(&top)
-            .caption(
-                format!(
-                    "{}: correction ({})",
-                    run.scene.name(),
-                    run.result.design.as_ref().map_or("", |d| d.family.as_str())
-                ),
-                ("sans-serif", 22),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(90)
-            .build_cartesian_2d(s0..s1, 0.0..ymax * 1.1 + f64::MIN_POSITIVE)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc(format!("axial position ({})", u.length()))
-            .y_desc(format!("separation ({})", u.length()))
-            .draw()
-            .map_err(err)?;
+        let caption = format!(
+            "{}: correction ({})",
+            run.scene.name(),
+            run.result.design.as_ref().map_or("", |d| d.family.as_str())
+        );
+        let y_desc = format!("separation ({})", u.length());
+        let mut chart = axial_chart(&top, (caption, 22), (s0, s1), ymax, u.length(), y_desc)?;
         chart
             .draw_series(LineSeries::new(
                 table.iter().copied(),
@@ -221,22 +271,10 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
             .iter()
             .flat_map(|(_, b, a)| b.iter().chain(a))
             .fold(0.0f64, |m, p| m.max(p.1));
-        let mut chart = ChartBuilder::on(&bottom)
-            .caption(
-                "pressure along the axis (largest across the width), before (dashed) and after",
-                ("sans-serif", 18),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(90)
-            .build_cartesian_2d(s0..s1, 0.0..pmax * 1.1 + f64::MIN_POSITIVE)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc(format!("axial position ({})", u.length()))
-            .y_desc(format!("pressure ({})", u.intensity()))
-            .draw()
-            .map_err(err)?;
+        let caption =
+            "pressure along the axis (largest across the width), before (dashed) and after";
+        let y_desc = format!("pressure ({})", u.intensity());
+        let mut chart = axial_chart(&bottom, (caption, 18), (s0, s1), pmax, u.length(), y_desc)?;
         for (i, (label, before, after)) in series.into_iter().enumerate() {
             let color = COLORS[i % COLORS.len()];
             chart
@@ -246,19 +284,10 @@ pub(crate) fn design(run: &Run) -> Result<String, String> {
                 .draw_series(LineSeries::new(after, color.stroke_width(2)))
                 .map_err(err)?
                 .label(label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+                .legend(line_key(color));
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(err)?;
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        labels(&mut chart)
+    })
 }
 
 /// Error against run time, log-log, one series per method: `series` holds
@@ -286,15 +315,8 @@ pub fn error_time(
     let (e0, e1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
         (a.min(p.1), b.max(p.1))
     });
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 22))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(80)
+    svg(SIZE, |root| {
+        let mut chart = titled(root, title, 22, (45, 80))
             .build_cartesian_2d(
                 (t0 / 1.5..t1 * 1.5).log_scale(),
                 (e0 / 1.5..e1 * 1.5).log_scale(),
@@ -318,9 +340,7 @@ pub fn error_time(
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
                 .map_err(err)?
                 .label(method.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+                .legend(line_key(color));
             chart
                 .draw_series(
                     pts.into_iter()
@@ -328,15 +348,8 @@ pub fn error_time(
                 )
                 .map_err(err)?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(err)?;
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        labels(&mut chart)
+    })
 }
 
 /// The colour of `p` over `[0, top]`; out of contact, a light grey.
@@ -448,20 +461,11 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
         py.iter().fold(f64::INFINITY, |a, v| a.min(*v)) - hy,
         py.iter().fold(f64::NEG_INFINITY, |a, v| a.max(*v)) + hy,
     );
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (SIZE.0, SIZE.1 + 340)).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
+    svg((SIZE.0, SIZE.1 + 340), |root| {
         let (upper, lower) = root.split_vertically(SIZE.1);
         let (map_area, bar_area) = upper.split_horizontally(SIZE.0 - 130);
-        let mut map = ChartBuilder::on(&map_area)
-            .caption(
-                format!("{}: pressure map", run.scene.name()),
-                ("sans-serif", 22),
-            )
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(80)
+        let caption = format!("{}: pressure map", run.scene.name());
+        let mut map = titled(&map_area, caption, 22, (45, 80))
             .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)
             .map_err(err)?;
         map.configure_mesh()
@@ -485,12 +489,8 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
         )
         .map_err(err)?
         .label("contact boundary")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
-        map.configure_series_labels()
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(err)?;
+        .legend(line_key(BLACK));
+        labels(&mut map)?;
         colour_bar(&bar_area, top, u.intensity())?;
         let [along_x, along_y] = principal_axes(points, p, run.solution.load_centre);
         let (left, right) = lower.split_horizontally(SIZE.0 / 2);
@@ -512,11 +512,7 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
         .enumerate()
         {
             let colour = COLORS[i];
-            let mut axes = ChartBuilder::on(area)
-                .caption(&label, ("sans-serif", 16))
-                .margin(12)
-                .x_label_area_size(40)
-                .y_label_area_size(80)
+            let mut axes = titled(area, &label, 16, (40, 80))
                 .build_cartesian_2d(range.0..range.1, 0.0..top * 1.08)
                 .map_err(err)?;
             axes.configure_mesh()
@@ -531,9 +527,8 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
             axes.draw_series(LineSeries::new(series, colour.stroke_width(2)))
                 .map_err(err)?;
         }
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }
 
 /// A vertical colour bar of `[0, top]` labelled with the pressure's unit.

@@ -5,7 +5,7 @@
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::ctx::keywords;
+use crate::ctx::{Shown, keywords};
 
 keywords! {
     /// A body's model, as a scene names it in `model = "..."`.
@@ -254,6 +254,12 @@ pub(crate) struct GeometryToml {
 pub(crate) struct SurfaceToml {
     pub shape: Spanned<Shape>,
     pub radius: Option<Spanned<f64>>,
+}
+
+impl Shown for SurfaceToml {
+    fn shown(&self) -> String {
+        String::new()
+    }
 }
 
 /// `[points]`.

@@ -80,27 +80,17 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
         a.max((points.x(k) - x0).abs())
             .max((points.y(k) - y0).abs())
     });
+    // The forces' moment on the lever arms `arm`, and the sum of its terms'
+    // sizes.
+    let moment_on = |arm: &dyn Fn(usize) -> f64| {
+        let terms = (0..n).map(|k| sol.forces[k] * arm(k));
+        (terms.clone().sum::<f64>(), terms.map(f64::abs).sum::<f64>())
+    };
+    let (about_x, lever_x) = moment_on(&|k| points.y(k) - y0);
+    let (about_y, lever_y) = moment_on(&|k| points.x(k) - x0);
     for (moment, reported, lever, tilt) in [
-        (
-            (0..n)
-                .map(|k| sol.forces[k] * (points.y(k) - y0))
-                .sum::<f64>(),
-            sol.moment_x,
-            (0..n)
-                .map(|k| (sol.forces[k] * (points.y(k) - y0)).abs())
-                .sum::<f64>(),
-            loading.tilt_x,
-        ),
-        (
-            -(0..n)
-                .map(|k| sol.forces[k] * (points.x(k) - x0))
-                .sum::<f64>(),
-            sol.moment_y,
-            (0..n)
-                .map(|k| (sol.forces[k] * (points.x(k) - x0)).abs())
-                .sum::<f64>(),
-            loading.tilt_y,
-        ),
+        (about_x, sol.moment_x, lever_x, loading.tilt_x),
+        (-about_y, sol.moment_y, lever_y, loading.tilt_y),
     ] {
         let scale = lever.max(force_sum * reach).max(f64::MIN_POSITIVE);
         prop_assert!(

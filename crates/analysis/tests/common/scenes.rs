@@ -8,8 +8,14 @@
 #![allow(dead_code)]
 
 use elcon_analysis::references::{FlatPunch, HertzSpheres, combined_radius};
-use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
-use elcon_influence::{Body, Material, PointSet, combined_modulus};
+use elcon_analysis::{AnalysisError, ContactProblem, Geometry, Loading, Surface};
+use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
+
+/// A constructor of a contact problem, by how it holds S:
+/// `ContactProblem::new` (dense), `ContactProblem::symmetric` (folded) or
+/// `ContactProblem::lattice` (matrix-free).
+pub type Build =
+    fn(PointSet, &Body, &Body, &Geometry, Loading) -> Result<ContactProblem, AnalysisError>;
 
 /// Two spheres of radii `r1`, `r2` (negative = concave) and materials `m1`,
 /// `m2` on Love patches under the load `load`, on a disk grid of spacing
@@ -67,6 +73,27 @@ pub fn flat_punch(
     (problem, punch)
 }
 
+/// A beam of flexural rigidity `ei` (a unit second moment) loaded at
+/// `loaded_point` by `load`, on `foundation`, at the points of a line
+/// `points` with no initial separation; S held as `build` holds it.
+pub fn beam_on(
+    build: Build,
+    foundation: Body,
+    (ei, loaded_point): (f64, f64),
+    points: PointSet,
+    load: f64,
+) -> Result<ContactProblem, AnalysisError> {
+    let beam = Body::beam(Beam {
+        youngs_modulus: ei,
+        second_moment: 1.0,
+        loaded_point,
+    })
+    .expect("a valid beam");
+    let n = points.len();
+    let separation = Geometry::Separation(vec![0.0; n]);
+    build(points, &beam, &foundation, &separation, Loading::load(load))
+}
+
 /// Conry & Seireg's Example 1: steel (E = 30e6 psi, nu = 0.3) on both sides.
 pub fn example1_steel() -> Material {
     Material::new(30e6, 0.3).expect("steel")
@@ -92,4 +119,15 @@ pub fn example1_bodies() -> (Body, Geometry) {
         Surface::Sphere { radius: 10.0 },
     );
     (Body::uniform_patch(example1_steel()), geometry)
+}
+
+/// Example 1 (its bodies and surfaces, [`example1_bodies`]) at `points`
+/// under `loading`, S held as `build` holds it.
+pub fn example1(
+    build: Build,
+    points: PointSet,
+    loading: Loading,
+) -> Result<ContactProblem, AnalysisError> {
+    let (body, geometry) = example1_bodies();
+    build(points, &body, &body, &geometry, loading)
 }

@@ -17,7 +17,7 @@ use elcon_analysis::references::{
     BeamOnFoundation, FlatPunch, HertzSpheres, HetenyiBeam, combined_radius,
 };
 use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
-use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
+use elcon_influence::{Body, Material, PointSet, combined_modulus};
 
 /// What a case's answer is compared with.
 #[derive(Debug, Clone, Copy)]
@@ -221,23 +221,7 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
     }
     // A beam much stiffer than its foundation, and the reverse: lambda L from 0.01 to 100.
     for lambda_l in [0.01, 1.0, 100.0] {
-        let (length, k) = (1.0f64, 1e8f64);
-        let ei = k / (4.0 * (lambda_l / length).powi(4));
-        let n = 40;
-        let points = PointSet::line(-0.5 * length, 0.5 * length, n).expect("line");
-        let problem = ContactProblem::new(
-            points,
-            &Body::beam(Beam {
-                youngs_modulus: ei,
-                second_moment: 1.0,
-                loaded_point: 0.0,
-            })
-            .unwrap(),
-            &Body::winkler(k),
-            &Geometry::Separation(vec![0.0; n]),
-            Loading::load(1e4),
-        )
-        .expect("beam problem");
+        let (problem, BeamCase { length, k, ei }) = beam_case(lambda_l, 0.0);
         let reference = if lambda_l < std::f64::consts::PI {
             Reference::Hetenyi(
                 HetenyiBeam::new(BeamOnFoundation {
@@ -261,6 +245,32 @@ pub fn catalogue(across: usize, sizes: &[usize]) -> Vec<Case> {
     }
     eccentric_and_tilted(&mut cases, across);
     cases
+}
+
+/// A beam case's length, foundation modulus and flexural rigidity.
+struct BeamCase {
+    length: f64,
+    k: f64,
+    ei: f64,
+}
+
+/// A beam of length 1 on a Winkler foundation of 1e8, its stiffness
+/// against the foundation's `lambda_l` (lambda L), under 1e4 at
+/// `loaded_at` lengths from its middle, on 40 points.
+fn beam_case(lambda_l: f64, loaded_at: f64) -> (ContactProblem, BeamCase) {
+    let (length, k) = (1.0f64, 1e8f64);
+    let ei = k / (4.0 * (lambda_l / length).powi(4));
+    let points = PointSet::line(-0.5 * length, 0.5 * length, 40).expect("line");
+    let foundation = Body::winkler(k);
+    let problem = scenes::beam_on(
+        ContactProblem::new,
+        foundation,
+        (ei, loaded_at * length),
+        points,
+        1e4,
+    )
+    .expect("beam problem");
+    (problem, BeamCase { length, k, ei })
 }
 
 /// Loads off centre and misalignment: spheres under a load far off their
@@ -302,23 +312,7 @@ fn eccentric_and_tilted(cases: &mut Vec<Case>, across: usize) {
         });
     }
     {
-        let (length, k) = (1.0f64, 1e8f64);
-        let ei = k / (4.0 * (10.0 / length).powi(4));
-        let n = 40;
-        let points = PointSet::line(-0.5 * length, 0.5 * length, n).expect("line");
-        let problem = ContactProblem::new(
-            points,
-            &Body::beam(Beam {
-                youngs_modulus: ei,
-                second_moment: 1.0,
-                loaded_point: 0.3 * length,
-            })
-            .unwrap(),
-            &Body::winkler(k),
-            &Geometry::Separation(vec![0.0; n]),
-            Loading::load(1e4),
-        )
-        .expect("beam problem");
+        let (problem, _) = beam_case(10.0, 0.3);
         cases.push(Case {
             family: "eccentric",
             name: "free beam, load at 0.3 L, lambda L = 10".into(),

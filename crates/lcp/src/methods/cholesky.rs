@@ -13,26 +13,19 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::solve::solve_in_place_with_conj;
-use faer::{Conj, MatRef};
+use faer::{Conj, MatRef, Par};
 
 use crate::linalg::{asymmetry, cholesky_lower};
 use crate::methods::{Failure, LinearAnswer, LinearAttempted, copied};
-use crate::options::Options;
 use crate::statistics::{Breakdown, Work};
 
 /// Solves `m x = rhs` by a Cholesky factorization of `m` (see the module
-/// documentation).
-pub(crate) fn attempt(
-    m: MatRef<'_, f64>,
-    rhs: MatRef<'_, f64>,
-    options: &Options,
-) -> LinearAttempted {
-    let n = m.nrows();
+/// documentation) with the parallelism `par`.
+pub(crate) fn attempt(m: MatRef<'_, f64>, rhs: MatRef<'_, f64>, par: Par) -> LinearAttempted {
     let mut work = Work::default();
     if asymmetry(m).is_some() {
         return Err(Failure::new(Breakdown::NotPositiveDefinite, work));
     }
-    let par = options.par(n, n);
     let mut l = copied(m, "the Cholesky factor", work)?;
     work.factorizations = 1;
     if cholesky_lower(l.as_mut(), par).is_err() {
@@ -53,16 +46,17 @@ pub(crate) fn attempt(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::options::Options;
     use faer::mat;
 
     #[test]
     fn only_a_symmetric_positive_definite_matrix_is_factored() {
         let rhs = mat![[1.0], [1.0]];
-        let opts = Options::default();
-        let x = attempt(mat![[2.0, 1.0], [1.0, 2.0]].as_ref(), rhs.as_ref(), &opts).unwrap();
+        let opts = Options::default().par(2, 2);
+        let x = attempt(mat![[2.0, 1.0], [1.0, 2.0]].as_ref(), rhs.as_ref(), opts).unwrap();
         assert!((x.x[(0, 0)] - 1.0 / 3.0).abs() < 1e-15 && x.work.factorizations == 1);
         for m in [mat![[1.0, 2.0], [2.0, 1.0]], mat![[2.0, 1.0], [0.0, 2.0]]] {
-            let failure = attempt(m.as_ref(), rhs.as_ref(), &opts).unwrap_err();
+            let failure = attempt(m.as_ref(), rhs.as_ref(), opts).unwrap_err();
             assert_eq!(failure.breakdown, Breakdown::NotPositiveDefinite);
         }
     }

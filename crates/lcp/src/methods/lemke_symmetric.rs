@@ -41,7 +41,7 @@ use crate::methods::{
 use crate::options::Options;
 use crate::problem::Problem;
 use crate::statistics::{Breakdown, Work};
-use crate::tableau::swept::{Path, Start, Stop, Swept, ZeroRun, definite_pivot, start};
+use crate::tableau::swept::{Start, Stop, ZeroRun, definite_pivot, start};
 use crate::tolerance::Tolerances;
 
 /// Where the path applies (see [`symmetric_path`]).
@@ -89,15 +89,15 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
                 z: Col::zeros(n),
                 u: Col::zeros(0),
                 basic: vec![false; n],
-                work: walk.work,
+                work: walk.state.work,
             });
         }
         _ => {}
     }
     walk.run()?;
-    let Walk {
+    let Start {
         order, path, work, ..
-    } = walk;
+    } = walk.state;
     finish_on_active_set(problem, opts, &order, &path.into, work)
 }
 
@@ -142,23 +142,18 @@ impl Sums {
 /// The walk along the path.
 struct Walk {
     phase: Phase,
-    order: Vec<usize>,
-    tab: Swept,
-    diagonal: Vec<f64>,
-    path: Path,
-    /// Border weights (row-major k x n) and resultants, scaled.
-    weight: Vec<f64>,
-    load: Vec<f64>,
+    /// The order, the tableau, the path's state, the border's weights,
+    /// resultants and units, and the work: as [`start`] set them out, then
+    /// as each pivot leaves them.
+    state: Start,
     /// The free unknowns λ' (scaled: `λ_l = units_l λ'_l`).
     lambda: Vec<f64>,
-    units: Vec<f64>,
     /// The direction of the step, `dλ / ds` (scaled), and `dλ / dε` at a
     /// fixed load (0 along the approach: `λ_1` is then the parameter).
     delta: Vec<f64>,
     gamma: Vec<f64>,
     sums: Sums,
     stop: Stop,
-    work: Work,
     tol: Tolerances,
     limit: usize,
     zero_run: ZeroRun,
@@ -202,17 +197,8 @@ fn reach(x: f64, r: f64, joined: bool, zero: &[f64; 4]) -> f64 {
 
 impl Walk {
     fn new(start: Start, stop: Stop, opts: &Options) -> Self {
-        let Start {
-            order,
-            tab,
-            diagonal,
-            path,
-            weight,
-            load,
-            units,
-            work,
-        } = start;
-        let n = order.len();
+        let n = start.order.len();
+        let path = &start.path;
         // The approach's first contact, the least λ_1 at which some
         // w_i = q_i + b_i1 λ_1 is 0, the other free unknowns at 0 (a first
         // contact of k rows sets all of them from its LP instead).
@@ -225,19 +211,12 @@ impl Walk {
         delta[0] = 1.0;
         Self {
             phase: Phase::Approach,
-            order,
-            tab,
-            diagonal,
-            path,
-            weight,
-            load,
+            state: start,
             lambda: (0..k).map(|l| if l == 0 { alpha } else { 0.0 }).collect(),
-            units,
             delta,
             gamma: vec![0.0; k],
             sums: Sums::new(k),
             stop,
-            work,
             tol: opts.tolerances,
             limit: opts.pivot_limit(n, n),
             zero_run: ZeroRun::new(n),
@@ -254,7 +233,7 @@ impl Walk {
     }
 
     fn n(&self) -> usize {
-        self.order.len()
+        self.state.order.len()
     }
 
     /// The first contact of k rows: `λ` from the LP (in scaled units), and
@@ -262,16 +241,16 @@ impl Walk {
     /// Lemke's first pivot, the rest are degenerate).
     fn enter_first_contact(&mut self, basis: &[usize], lambda: &[f64]) -> Result<(), Failure> {
         for (l, &v) in lambda.iter().enumerate() {
-            self.lambda[l] = v / self.units[l];
+            self.lambda[l] = v / self.state.units[l];
         }
         let mut position = vec![0; self.n()];
-        for (t, &i) in self.order.iter().enumerate() {
+        for (t, &i) in self.state.order.iter().enumerate() {
             position[i] = t;
         }
         for &i in basis {
             let t = position[i];
-            if self.work.pivots > 0 {
-                self.work.degenerate_pivots += 1;
+            if self.state.work.pivots > 0 {
+                self.state.work.degenerate_pivots += 1;
             }
             self.pivot(t)?;
         }
@@ -295,13 +274,13 @@ impl Walk {
                 } else {
                     Breakdown::Ray
                 };
-                return Err(Failure::new(breakdown, self.work));
+                return Err(Failure::new(breakdown, self.state.work));
             }
             if to_stop <= step {
                 // The approach met the first resultant: with more rows, on
                 // to the others (nothing to do when they are met too).
                 if self.phase == Phase::Approach
-                    && self.path.columns() > 1
+                    && self.state.path.columns() > 1
                     && self.stop == Stop::Border
                 {
                     self.lambda[0] += to_stop;
@@ -314,8 +293,8 @@ impl Walk {
             if step == 0.0 {
                 // (The path starts at the first contact: its first pivot is
                 // Lemke's first, not a step of length 0.)
-                if self.work.pivots > 0 {
-                    self.work.degenerate_pivots += 1;
+                if self.state.work.pivots > 0 {
+                    self.state.work.degenerate_pivots += 1;
                 }
             } else {
                 for (l, d) in self.lambda.iter_mut().zip(&self.delta) {
@@ -323,14 +302,14 @@ impl Walk {
                 }
             }
             if !self.zero_run.record(step == 0.0) {
-                return Err(Failure::new(Breakdown::DegenerateRun, self.work));
+                return Err(Failure::new(Breakdown::DegenerateRun, self.state.work));
             }
-            if self.work.pivots >= self.limit {
+            if self.state.work.pivots >= self.limit {
                 let error = LcpError::PivotLimit {
                     size: self.n(),
                     limit: self.limit,
                 };
-                return Err(Failure::error(error, self.work));
+                return Err(Failure::error(error, self.state.work));
             }
             self.pivot(pivot_on)?;
         }
@@ -338,15 +317,18 @@ impl Walk {
 
     /// The principal pivot on position `t` (into `J` or out of it).
     fn pivot(&mut self, t: usize) -> Result<(), Failure> {
-        let joins = !self.path.into[t];
-        let c = self.tab.column(t);
+        let joins = !self.state.path.into[t];
+        let c = self.state.tab.column(t);
         // (Scaled M: its diagonal, kept from the start.)
-        if !definite_pivot(c[t], self.diagonal[t], joins, &self.tol) {
-            return Err(Failure::new(Breakdown::NotPositiveDefinite, self.work));
+        if !definite_pivot(c[t], self.state.diagonal[t], joins, &self.tol) {
+            return Err(Failure::new(
+                Breakdown::NotPositiveDefinite,
+                self.state.work,
+            ));
         }
-        self.tab.pivot(t, &c, joins);
-        self.path.sweep(t, &c, joins);
-        self.work.pivots += 1;
+        self.state.tab.pivot(t, &c, joins);
+        self.state.path.sweep(t, &c, joins);
+        self.state.work.pivots += 1;
         Ok(())
     }
 
@@ -366,7 +348,7 @@ impl Walk {
     fn approach_pass(&mut self) -> Result<(f64, f64), Failure> {
         let n = self.n();
         let alpha = self.lambda[0];
-        let path = &self.path;
+        let path = &self.state.path;
         let (mut zscale, mut wscale, mut zrates, mut wrates) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         for ((&q, &b), &joined) in path.qbar.iter().zip(&path.bbar[..n]).zip(&path.into) {
             let size = q.abs() + (alpha * b).abs();
@@ -388,9 +370,9 @@ impl Walk {
             let sigma = if joined { -1.0 } else { 1.0 };
             let b = path.bbar[i];
             let (xi, ri) = (sigma * (path.qbar[i] + alpha * b), sigma * b);
-            if joined && !self.weight.is_empty() {
-                value += self.weight[i] * xi;
-                slope += self.weight[i] * ri;
+            if joined && !self.state.weight.is_empty() {
+                value += self.state.weight[i] * xi;
+                slope += self.state.weight[i] * ri;
             }
             let s = reach(xi, ri, joined, &zero);
             self.reach[i] = s;
@@ -398,11 +380,14 @@ impl Walk {
         }
         let to_stop = match self.stop {
             Stop::Parameter => -alpha,
-            Stop::Border if slope > 0.0 => (self.load[0] - value) / slope,
+            Stop::Border if slope > 0.0 => (self.state.load[0] - value) / slope,
             // The load does not rise with the approach: M is not positive
             // definite on the contact set.
             Stop::Border if path.into.iter().any(|&j| j) => {
-                return Err(Failure::new(Breakdown::NotPositiveDefinite, self.work));
+                return Err(Failure::new(
+                    Breakdown::NotPositiveDefinite,
+                    self.state.work,
+                ));
             }
             Stop::Border => f64::INFINITY,
         };
@@ -415,10 +400,10 @@ impl Walk {
     /// the step `s` at which the path ends along it.
     fn survey(&mut self) -> Result<f64, Failure> {
         let n = self.n();
-        let k = self.path.columns();
+        let k = self.state.path.columns();
         self.sums.clear();
         let (mut zscale, mut wscale) = (0.0f64, 0.0f64);
-        let (path, sums, weight) = (&self.path, &mut self.sums, &self.weight);
+        let (path, sums, weight) = (&self.state.path, &mut self.sums, &self.state.weight);
         let (bbar, lambda) = (&path.bbar, &self.lambda);
         for i in 0..n {
             let joined = path.into[i];
@@ -454,10 +439,12 @@ impl Walk {
     /// The Newton direction to the resultants from the sums (see the
     /// module documentation); the path ends at a step of 1 along it.
     fn direction(&mut self) -> Result<f64, Failure> {
-        let k = self.path.columns();
-        let rest: Vec<f64> = (0..k).map(|l| self.load[l] - self.sums.load[l]).collect();
+        let k = self.state.path.columns();
+        let rest: Vec<f64> = (0..k)
+            .map(|l| self.state.load[l] - self.sums.load[l])
+            .collect();
         let scale: Vec<f64> = (0..k)
-            .map(|l| self.sums.size[l] + self.load[l].abs())
+            .map(|l| self.sums.size[l] + self.state.load[l].abs())
             .collect();
         if (0..k).all(|l| rest[l].abs() <= self.tol.zero * scale[l]) {
             // The resultants are met (to the zero tolerance of their terms).
@@ -466,7 +453,7 @@ impl Walk {
             return Ok(0.0);
         }
         let Some(solve) = symmetric_solver(&self.sums.g) else {
-            return Err(Failure::new(Breakdown::SingularBorder, self.work));
+            return Err(Failure::new(Breakdown::SingularBorder, self.state.work));
         };
         self.delta = solve(&rest);
         self.gamma = solve(&self.sums.h).into_iter().map(|v| -v).collect();
@@ -476,13 +463,16 @@ impl Walk {
     /// The rates of a Newton step, `σ_i sum_l δ_l b̄_il`, and their scales.
     fn newton_rates(&mut self) {
         let n = self.n();
-        let k = self.path.columns();
+        let k = self.state.path.columns();
         let (mut zrates, mut wrates) = (0.0f64, 0.0f64);
         for i in 0..n {
-            let sigma = if self.path.into[i] { -1.0 } else { 1.0 };
-            let r = sigma * (0..k).fold(0.0, |a, l| a + self.delta[l] * self.path.bbar[l * n + i]);
+            let sigma = if self.state.path.into[i] { -1.0 } else { 1.0 };
+            let r = sigma
+                * (0..k).fold(0.0, |a, l| {
+                    a + self.delta[l] * self.state.path.bbar[l * n + i]
+                });
             self.rate[i] = r;
-            if self.path.into[i] {
+            if self.state.path.into[i] {
                 zrates = larger(zrates, r.abs());
             } else {
                 wrates = larger(wrates, r.abs());
@@ -497,7 +487,7 @@ impl Walk {
         let zero = self.scales.map(|v| self.tol.zero * v);
         let mut least = f64::INFINITY;
         for i in 0..self.n() {
-            let s = reach(self.value[i], self.rate[i], self.path.into[i], &zero);
+            let s = reach(self.value[i], self.rate[i], self.state.path.into[i], &zero);
             self.reach[i] = s;
             least = if s < least { s } else { least };
         }
@@ -509,16 +499,17 @@ impl Walk {
     /// `q + ε g`: the least `ε`-coefficient over the value's fall.
     fn first_tied(&self, step: f64) -> Result<usize, Failure> {
         let n = self.n();
-        let k = self.path.columns();
+        let k = self.state.path.columns();
         let tied = step + self.tol.tie * step;
         let along_approach = self.along_approach();
         let key = |i: usize| {
-            let sigma = if self.path.into[i] { -1.0 } else { 1.0 };
+            let sigma = if self.state.path.into[i] { -1.0 } else { 1.0 };
             if along_approach {
-                return (sigma * self.path.gbar[i]).max(0.0) / (-sigma * self.path.bbar[i]);
+                return (sigma * self.state.path.gbar[i]).max(0.0)
+                    / (-sigma * self.state.path.bbar[i]);
             }
-            let e = (0..k).fold(self.path.gbar[i], |a, l| {
-                a + self.path.bbar[l * n + i] * self.gamma[l]
+            let e = (0..k).fold(self.state.path.gbar[i], |a, l| {
+                a + self.state.path.bbar[l * n + i] * self.gamma[l]
             });
             (sigma * e).max(0.0) / -self.rate[i]
         };
@@ -529,7 +520,7 @@ impl Walk {
         // A step that is not finite (overflow, a NaN bound) is a breakdown.
         match (first, step.is_finite()) {
             (Some((i, _)), true) => Ok(i),
-            _ => Err(Failure::new(Breakdown::NonFinite, self.work)),
+            _ => Err(Failure::new(Breakdown::NonFinite, self.state.work)),
         }
     }
 }

@@ -525,18 +525,24 @@ impl GeneralTableau {
             // double precision): no row can be trusted to limit the step.
             return None;
         }
-        let pick = move |row: usize| Ratio {
-            row,
+        Some(Ratio {
+            row: self.leaving(ties, prefer, tol),
             theta: theta_min,
             column: col,
-        };
+        })
+    }
+
+    /// The row that leaves among `ties` (at least one): the only one;
+    /// `prefer` when it is among them; else an artificial held at zero
+    /// (the largest pivot of them); else the lexicographic choice.
+    fn leaving(&self, ties: Vec<Limit>, prefer: Option<usize>, tol: &Tolerances) -> usize {
         if ties.len() == 1 {
-            return Some(pick(ties[0].row));
+            return ties[0].row;
         }
         if let Some(p) = prefer
             && ties.iter().any(|t| t.row == p)
         {
-            return Some(pick(p));
+            return p;
         }
         // An artificial held at zero leaves first: it must not become positive.
         if let Some(best) = ties
@@ -544,7 +550,7 @@ impl GeneralTableau {
             .filter(|t| t.fixed)
             .max_by(|a, b| a.pivot.total_cmp(&b.pivot))
         {
-            return Some(pick(best.row));
+            return best.row;
         }
         let first = ties[0].row;
         let rows = ties
@@ -554,7 +560,7 @@ impl GeneralTableau {
                 pivot: t.pivot,
             })
             .collect();
-        Some(pick(self.lex_select(rows, tol).unwrap_or(first)))
+        self.lex_select(rows, tol).unwrap_or(first)
     }
 
     /// Among rows tied on the step length, the one whose row of `B^{-1}`

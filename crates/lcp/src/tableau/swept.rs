@@ -357,31 +357,10 @@ pub(crate) struct Start {
     pub work: Work,
 }
 
-/// The start of the path for the mixed form `p` of a bordered (or standard)
-/// problem. `touch[i]` orders the indices by when they would touch (the gap
-/// at the first contact of several rows); without it, by the approach at
-/// which each touches, `q_i / -b_i` in the scaled units of one row (or
-/// the scaled `q_i` of a standard LCP).
-///
-/// # Errors
-/// [`LcpError::AllocationFailed`] (with the work of the start) when the
-/// tableau cannot be allocated.
-pub(crate) fn start(
-    p: &MixedRef<'_>,
-    opts: &Options,
-    stop: &Stop,
-    touch: Option<&[f64]>,
-) -> Result<Start, Box<(LcpError, Work)>> {
+/// The scaling of the start: each index's power of two `scale` (`D`), and
+/// each border column's unit (`k` of them; one of 1 along a parameter).
+fn scales(p: &MixedRef<'_>, opts: &Options, stop: &Stop, k: usize) -> (Vec<f64>, Vec<f64>) {
     let n = p.size();
-    let k = match stop {
-        Stop::Border => p.extras(),
-        Stop::Parameter => 1,
-    };
-    let work = Work {
-        tableau_rows: n,
-        tableau_columns: n + 1 + k,
-        ..Work::default()
-    };
     // Symmetric scaling by powers of two, D M D with a diagonal in [1/2, 2)
     // (unless `equilibrate` is off): exact, so the scaled data is the
     // original in other units.
@@ -410,6 +389,35 @@ pub(crate) fn start(
             .collect(),
         Stop::Parameter => vec![1.0],
     };
+    (scale, units)
+}
+
+/// The start of the path for the mixed form `p` of a bordered (or standard)
+/// problem. `touch[i]` orders the indices by when they would touch (the gap
+/// at the first contact of several rows); without it, by the approach at
+/// which each touches, `q_i / -b_i` in the scaled units of one row (or
+/// the scaled `q_i` of a standard LCP).
+///
+/// # Errors
+/// [`LcpError::AllocationFailed`] (with the work of the start) when the
+/// tableau cannot be allocated.
+pub(crate) fn start(
+    p: &MixedRef<'_>,
+    opts: &Options,
+    stop: &Stop,
+    touch: Option<&[f64]>,
+) -> Result<Start, Box<(LcpError, Work)>> {
+    let n = p.size();
+    let k = match stop {
+        Stop::Border => p.extras(),
+        Stop::Parameter => 1,
+    };
+    let work = Work {
+        tableau_rows: n,
+        tableau_columns: n + 1 + k,
+        ..Work::default()
+    };
+    let (scale, units) = scales(p, opts, stop, k);
     // The indices in the order in which they would touch (the pivots then
     // mostly come in increasing position, which keeps the strided parts of
     // the column reads, along rows left of the diagonal, the least in total:

@@ -32,9 +32,12 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Union
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 from . import _elcon
 from ._elcon import DesignError, ElconError, InputError, SceneError, SolveError
@@ -58,7 +61,19 @@ __all__ = [
 _ARRAYS = ("x", "y", "force", "pressure", "gap", "separation")
 
 
-class Result:
+class _Fields:
+    """A JSON object's fields (``self._dict``) read as attributes."""
+
+    _dict: Dict[str, Any]
+
+    def __getattr__(self, name: str) -> Any:
+        try:
+            return self.__dict__["_dict"][name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+
+class Result(_Fields):
     """A certified contact solution.
 
     Scalars: ``approach``, ``load``, ``max_pressure`` (floats), ``tilt``,
@@ -75,6 +90,13 @@ class Result:
     fields with the same names (for a ContactProblem).
     """
 
+    x: np.ndarray
+    y: np.ndarray
+    force: np.ndarray
+    pressure: np.ndarray
+    gap: np.ndarray
+    separation: np.ndarray
+
     def __init__(self, raw: Dict[str, Any]):
         self._json: str = raw["json"]
         self._dict: Dict[str, Any] = json.loads(self._json)
@@ -86,12 +108,6 @@ class Result:
     def to_dict(self) -> Dict[str, Any]:
         """The result as a dict: for a scene, equal to its result.json."""
         return json.loads(self._json)
-
-    def __getattr__(self, name: str) -> Any:
-        try:
-            return self.__dict__["_dict"][name]
-        except KeyError:
-            raise AttributeError(name) from None
 
     @property
     def approach(self) -> float:
@@ -162,34 +178,22 @@ def run(scene: Union[str, os.PathLike, Dict[str, Any]]) -> Result:
     raise InputError("run() takes a scene's path (a .toml file) or a dict of its keys")
 
 
-def _vector(value: Any, name: str) -> Optional[np.ndarray]:
-    """``value`` as a contiguous float64 vector (any dtype or layout), or
-    InputError naming ``name`` when it is not one-dimensional."""
+_SHAPES = {1: "must be one-dimensional, one value per point (shape (N,))",
+           2: "must be an (N, N) array"}
+
+
+def _array(value: Any, name: str, ndim: int) -> Optional[np.ndarray]:
+    """``value`` as a contiguous float64 array (any dtype or layout) of
+    ``ndim`` dimensions (1: a vector, 2: a matrix), or InputError naming
+    ``name`` when it is not one."""
     if value is None:
         return None
     try:
         array = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError) as e:
         raise InputError(f"`{name}`: not an array of numbers ({e})") from None
-    if array.ndim != 1:
-        raise InputError(
-            f"`{name}`: must be one-dimensional, one value per point (shape (N,)); "
-            f"got shape {array.shape}"
-        )
-    return np.ascontiguousarray(array)
-
-
-def _matrix(value: Any, name: str) -> Optional[np.ndarray]:
-    """``value`` as a contiguous float64 matrix, or InputError naming
-    ``name`` when it is not two-dimensional."""
-    if value is None:
-        return None
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as e:
-        raise InputError(f"`{name}`: not an array of numbers ({e})") from None
-    if array.ndim != 2:
-        raise InputError(f"`{name}`: must be an (N, N) array; got shape {array.shape}")
+    if array.ndim != ndim:
+        raise InputError(f"`{name}`: {_SHAPES[ndim]}; got shape {array.shape}")
     return np.ascontiguousarray(array)
 
 
@@ -255,11 +259,11 @@ class ContactProblem:
 
     def __init__(
         self,
-        x: Optional[Sequence[float]] = None,
-        separation: Optional[Sequence[float]] = None,
+        x: Optional[npt.ArrayLike] = None,
+        separation: Optional[npt.ArrayLike] = None,
         spacing: Optional[Union[float, Sequence[float]]] = None,
-        y: Optional[Sequence[float]] = None,
-        influence: Optional[np.ndarray] = None,
+        y: Optional[npt.ArrayLike] = None,
+        influence: Optional[npt.ArrayLike] = None,
         body1: Optional[Dict[str, Any]] = None,
         body2: Optional[Dict[str, Any]] = None,
         load: Optional[float] = None,
@@ -284,11 +288,11 @@ class ContactProblem:
             if value is not None and not isinstance(value, dict):
                 raise InputError(f"`{name}`: a dict of a scene's [{name}] keys")
         self._inner = _elcon.ContactProblem(
-            _vector(x, "x"),
-            _vector(separation, "separation"),
+            _array(x, "x", 1),
+            _array(separation, "separation", 1),
             spacing,
-            y=_vector(y, "y"),
-            influence=_matrix(influence, "influence"),
+            y=_array(y, "y", 1),
+            influence=_array(influence, "influence", 2),
             body1=body1,
             body2=body2,
             load=load,
@@ -322,7 +326,7 @@ class ContactProblem:
         return Result(self._inner.solve(method))
 
 
-class Design:
+class Design(_Fields):
     """A certified design, as result.json's ``design`` block: ``family``,
     ``axis``, ``relative_to``, ``parameters`` (the profile's, by name),
     ``objective`` (the worst p_max over the cases, over each case's
@@ -338,12 +342,6 @@ class Design:
         table = np.asarray(self._dict["table"], dtype=np.float64).reshape(-1, 2)
         self.positions = table[:, 0].copy()
         self.drops = table[:, 1].copy()
-
-    def __getattr__(self, name: str) -> Any:
-        try:
-            return self.__dict__["_dict"][name]
-        except KeyError:
-            raise AttributeError(name) from None
 
     @property
     def max_intensities(self) -> List[float]:
@@ -431,7 +429,9 @@ def design(
     return Design(_elcon.design_problems(inner, keys, refs, roller))
 
 
-def batch(path: Union[str, os.PathLike], jobs: Optional[int] = None, out: Union[str, os.PathLike] = "out"):
+def batch(
+    path: Union[str, os.PathLike], jobs: Optional[int] = None, out: Union[str, os.PathLike] = "out"
+) -> Any:
     """Runs a batch file into ``out`` (its tables and every run's outputs, as
     ``elcon batch`` writes them) and returns its runs' table: a pandas
     DataFrame if pandas is installed, else a list of dicts."""

@@ -77,14 +77,7 @@ pub(super) fn geometry(
                 (&t.surface1, "geometry.surface1"),
                 (&t.surface2, "geometry.surface2"),
             ] {
-                if let Some(f) = f {
-                    return Err(ctx.invalid(
-                        f.span(),
-                        name,
-                        "",
-                        "give either surfaces or a separation, not both",
-                    ));
-                }
+                ctx.forbid(f, name, "give either surfaces or a separation, not both")?;
             }
             let values = sep
                 .get_ref()

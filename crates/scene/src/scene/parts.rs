@@ -79,6 +79,14 @@ pub fn problem_parts(
 ) -> Result<ProblemParts, SceneError> {
     let raw: ProblemFile = parse(file, text)?;
     let ctx = Ctx { file, text };
+    let no_points = || {
+        ctx.invalid(
+            0..0,
+            "points",
+            "(missing)",
+            "give the points as a layout or as coordinates",
+        )
+    };
     let bodies = match (&raw.body1, &raw.body2) {
         (Some(b1), Some(b2)) => {
             let bodies = [
@@ -119,14 +127,7 @@ pub fn problem_parts(
                 "give the points as a layout or as coordinates, not both",
             ));
         }
-        (None, None) => {
-            return Err(ctx.invalid(
-                0..0,
-                "points",
-                "(missing)",
-                "give the points as a layout or as coordinates",
-            ));
-        }
+        (None, None) => return Err(no_points()),
     };
     let geometry = match &raw.geometry {
         Some(g) => {
@@ -155,14 +156,7 @@ pub fn problem_parts(
             })?
         }
         (None, Some(l)) => l,
-        (None, None) => {
-            return Err(ctx.invalid(
-                0..0,
-                "points",
-                "(missing)",
-                "give the points as a layout or as coordinates",
-            ));
-        }
+        (None, None) => return Err(no_points()),
     };
     if let (Some((_, b)), Some(b1), Some(b2)) = (&bodies, &raw.body1, &raw.body2) {
         sanity::bodies_on_grid(&ctx, [b1, b2], [b[0].body(), b[1].body()], &points, &[])?;
@@ -217,14 +211,11 @@ pub fn design_over(
         (&t.loads, "design.loads"),
         (&t.misalignments, "design.misalignments"),
     ] {
-        if let Some(l) = list {
-            return Err(ctx.invalid(
-                l.span(),
-                field,
-                "",
-                "the problems given are the load cases (each with its load and tilt)",
-            ));
-        }
+        ctx.forbid(
+            list,
+            field,
+            "the problems given are the load cases (each with its load and tilt)",
+        )?;
     }
     ctx.forbid(
         &t.relative_to,

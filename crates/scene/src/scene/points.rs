@@ -125,69 +125,62 @@ fn hertz_zone(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<f64, SceneError>
     let s = p.span();
     let z = ctx.required(&t.zone, s.clone(), "points.zone", "with across")?;
     let v = ctx.positive(z, "points.zone")?;
-    if v <= 1.0 {
-        return Err(ctx.invalid(
-            z.span(),
-            "points.zone",
-            v,
-            "the candidate zone must extend beyond the Hertz contact (zone > 1), or the contact is cut off",
-        ));
-    }
-    Ok(v)
+    // v is finite: not above 1 is at most 1.
+    ctx.ensure(
+        v,
+        v > 1.0,
+        z.span(),
+        "points.zone",
+        "the candidate zone must extend beyond the Hertz contact (zone > 1), or the contact is cut off",
+    )
 }
 
 /// `points.across`: odd, at least 3.
 fn hertz_across(ctx: &Ctx<'_>, a: &Spanned<i64>) -> Result<usize, SceneError> {
     let n = ctx.count(a, "points.across", 3)?;
-    if n % 2 == 0 {
-        return Err(ctx.invalid(
-            a.span(),
-            "points.across",
-            n,
-            "must be odd (the centre is a point)",
-        ));
+    let odd = n % 2 == 1;
+    ctx.ensure(
+        n,
+        odd,
+        a.span(),
+        "points.across",
+        "must be odd (the centre is a point)",
+    )
+}
+
+/// `across` and `zone`, points across the Hertz contact, when `across` is
+/// given; else `None`, `zone` refused (it goes with `across`: points across
+/// the Hertz `extent`).
+fn hertz_layout(
+    ctx: &Ctx<'_>,
+    p: &Spanned<PointsToml>,
+    extent: &str,
+) -> Result<Option<(usize, f64)>, SceneError> {
+    let t = p.get_ref();
+    match &t.across {
+        Some(a) => Ok(Some((hertz_across(ctx, a)?, hertz_zone(ctx, p)?))),
+        None => {
+            let why = format!("zone goes with across (points across the Hertz {extent})");
+            ctx.forbid(&t.zone, "points.zone", &why)?;
+            Ok(None)
+        }
     }
-    Ok(n)
 }
 
 /// A disk: `across` and `zone`, or `spacing` and `radius`.
 fn disk_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
     let (t, s) = (p.get_ref(), p.span());
-    Ok(match &t.across {
-        Some(a) => {
-            ctx.forbid(
-                &t.spacing,
-                "points.spacing",
-                "give either across and zone, or spacing and radius",
-            )?;
-            ctx.forbid(
-                &t.radius,
-                "points.radius",
-                "give either across and zone, or spacing and radius",
-            )?;
-            PointsSpec::DiskHertz {
-                across: hertz_across(ctx, a)?,
-                zone: hertz_zone(ctx, p)?,
-            }
-        }
+    if t.across.is_some() {
+        let why = "give either across and zone, or spacing and radius";
+        ctx.forbid(&t.spacing, "points.spacing", why)?;
+        ctx.forbid(&t.radius, "points.radius", why)?;
+    }
+    Ok(match hertz_layout(ctx, p, "diameter")? {
+        Some((across, zone)) => PointsSpec::DiskHertz { across, zone },
         None => {
-            ctx.forbid(
-                &t.zone,
-                "points.zone",
-                "zone goes with across (points across the Hertz diameter)",
-            )?;
-            let h = ctx.required(
-                &t.spacing,
-                s.clone(),
-                "points.spacing",
-                "for a disk (or across and zone)",
-            )?;
-            let r = ctx.required(
-                &t.radius,
-                s.clone(),
-                "points.radius",
-                "for a disk (or across and zone)",
-            )?;
+            let why = "for a disk (or across and zone)";
+            let h = ctx.required(&t.spacing, s.clone(), "points.spacing", why)?;
+            let r = ctx.required(&t.radius, s.clone(), "points.radius", why)?;
             PointsSpec::Disk {
                 spacing: ctx.positive(h, "points.spacing")?,
                 radius: ctx.positive(r, "points.radius")?,
@@ -227,44 +220,18 @@ fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, 
 /// A line: `across` and `zone`, or `start`, `end` and `n`.
 fn line_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
     let (t, s) = (p.get_ref(), p.span());
-    Ok(match &t.across {
-        Some(a) => PointsSpec::LineHertz {
-            across: hertz_across(ctx, a)?,
-            zone: hertz_zone(ctx, p)?,
-        },
+    Ok(match hertz_layout(ctx, p, "width")? {
+        Some((across, zone)) => PointsSpec::LineHertz { across, zone },
         None => {
-            ctx.forbid(
-                &t.zone,
-                "points.zone",
-                "zone goes with across (points across the Hertz width)",
-            )?;
-            let a = ctx.required(
-                &t.start,
-                s.clone(),
-                "points.start",
-                "for a line (or across and zone)",
-            )?;
-            let b = ctx.required(
-                &t.end,
-                s.clone(),
-                "points.end",
-                "for a line (or across and zone)",
-            )?;
-            let n = ctx.required(
-                &t.n,
-                s.clone(),
-                "points.n",
-                "for a line (or across and zone)",
-            )?;
+            let why = "for a line (or across and zone)";
+            let a = ctx.required(&t.start, s.clone(), "points.start", why)?;
+            let b = ctx.required(&t.end, s.clone(), "points.end", why)?;
+            let n = ctx.required(&t.n, s.clone(), "points.n", why)?;
             let (start, end) = (ctx.finite(a, "points.start")?, ctx.finite(b, "points.end")?);
-            if end <= start {
-                return Err(ctx.invalid(
-                    b.span(),
-                    "points.end",
-                    end,
-                    format!("must exceed points.start = {start}"),
-                ));
-            }
+            // Both finite: not above start is at most start.
+            let above = end > start;
+            let why = format!("must exceed points.start = {start}");
+            let end = ctx.ensure(end, above, b.span(), "points.end", why)?;
             PointsSpec::Line {
                 start,
                 end,

@@ -1,6 +1,8 @@
 //! The scenes the tests of elcon-scene start from, each written once; a test
 //! makes the variant it needs by a visible edit of one of them (a
-//! `replace`, or a table appended).
+//! `replace`, or a table appended). Example 1's spheres and the beam are
+//! the files spheres.toml and beam.toml beside this one (estimate.rs's unit
+//! tests read them too).
 //!
 //! Each text starts with a blank line, so its first table is on line 2: the
 //! tests that expect a message at a line and column count the lines of
@@ -21,33 +23,7 @@ pub fn scene(text: &str) -> Result<Scene, SceneError> {
 /// it, without its comments and optional tables: two steel spheres (R1 =
 /// 1 in, R2 = 10 in) on Love patches under 100 lbf, on a disk of 41 points
 /// across the Hertz diameter reaching 1.15 Hertz radii ([`EXAMPLE1_GRID`]).
-pub const SPHERES: &str = r#"
-[units]
-length = "in"
-force = "lbf"
-
-[body1]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[body2]
-model = "uniform-patch"
-youngs_modulus = 30e6
-poissons_ratio = 0.3
-
-[geometry]
-surface1 = { shape = "sphere", radius = 1.0 }
-surface2 = { shape = "sphere", radius = 10.0 }
-
-[points]
-grid = "disk"
-across = 41
-zone = 1.15
-
-[loading]
-load = 100.0
-"#;
+pub const SPHERES: &str = include_str!("spheres.toml");
 
 /// The lines of [`SPHERES`]'s disk grid after `grid = "disk"`.
 pub const EXAMPLE1_GRID: &str = "across = 41\nzone = 1.15";
@@ -72,29 +48,7 @@ pub fn sphere_on_rigid_plane(grid: &str) -> String {
 /// A steel beam (E = 30e6 psi, I = 5 in^4) on a tensionless Winkler
 /// foundation (1e7 lbf/in per in), a line of 16 points from -4 in to 4 in,
 /// 1000 lbf at x = 0.
-pub const BEAM: &str = r#"
-[units]
-length = "in"
-force = "lbf"
-
-[body1]
-model = "beam"
-youngs_modulus = 30e6
-second_moment = 5.0
-
-[body2]
-model = "winkler"
-modulus = 1e7
-
-[points]
-grid = "line"
-start = -4.0
-end = 4.0
-n = 16
-
-[loading]
-load = 1000.0
-"#;
+pub const BEAM: &str = include_str!("beam.toml");
 
 /// A steel roller (R = 5 mm, its axis along y) on a steel plane, both on
 /// Love patches, on the rectangle grid `grid` (its lines after `grid =

@@ -1,0 +1,102 @@
+//! The exception classes, one per kind of error, and the mappings of the
+//! crates' errors onto them (their messages the crates' own).
+
+use elcon_analysis::AnalysisError;
+use elcon_scene::{SceneError as RustSceneError, isolated};
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+
+create_exception!(
+    _elcon,
+    ElconError,
+    PyException,
+    "Base class of elcon's errors."
+);
+create_exception!(
+    _elcon,
+    SceneError,
+    ElconError,
+    "A scene or batch that is not valid: the message names the file, line, column and field."
+);
+create_exception!(
+    _elcon,
+    InputError,
+    ElconError,
+    "Arrays or parameters given to ContactProblem or design that do not go together."
+);
+create_exception!(
+    _elcon,
+    SolveError,
+    ElconError,
+    "A valid problem whose solve failed, or that is too big for the memory available."
+);
+create_exception!(_elcon, DesignError, ElconError, "A design that failed.");
+
+/// Adds the exception classes to the module `m`.
+pub(crate) fn add_classes(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("ElconError", py.get_type::<ElconError>())?;
+    m.add("SceneError", py.get_type::<SceneError>())?;
+    m.add("InputError", py.get_type::<InputError>())?;
+    m.add("SolveError", py.get_type::<SolveError>())?;
+    m.add("DesignError", py.get_type::<DesignError>())?;
+    Ok(())
+}
+
+/// A scene error as its Python class: input errors (syntax, invalid values)
+/// are `SceneError`, run failures `SolveError`.
+pub(crate) fn scene_error(e: RustSceneError) -> PyErr {
+    if e.is_input_error() {
+        SceneError::new_err(e.to_string())
+    } else {
+        SolveError::new_err(e.to_string())
+    }
+}
+
+/// A scene crate's error about the parts given to `ContactProblem` or
+/// `design` (keyword arguments, not a scene): input errors are
+/// `InputError`, the rest `SolveError`.
+pub(crate) fn parts_error(e: RustSceneError) -> PyErr {
+    if e.is_input_error() {
+        InputError::new_err(e.to_string())
+    } else {
+        SolveError::new_err(e.to_string())
+    }
+}
+
+/// An analysis error as its Python class. A non-finite entry of the
+/// engine's matrix (S itself, assembled from finite, validated moduli and
+/// cell sizes) means the cell's compliance overflowed: said so, as input.
+pub(crate) fn analysis_error(e: AnalysisError) -> PyErr {
+    if let AnalysisError::Engine(elcon_lcp::LcpError::NonFinite {
+        field: "m", value, ..
+    }) = &e
+    {
+        return InputError::new_err(format!(
+            "S, assembled from the bodies' moduli and the cell size, has a non-finite entry \
+             ({value}): a cell's compliance is outside floating-point range, so the moduli, \
+             the spacing and the load are not in one consistent unit system ({e})"
+        ));
+    }
+    match e {
+        AnalysisError::InvalidInput { .. }
+        | AnalysisError::SizeMismatch { .. }
+        | AnalysisError::NonFinite { .. }
+        | AnalysisError::Incompatible { .. }
+        | AnalysisError::NeedsEntries { .. }
+        | AnalysisError::Influence(_) => InputError::new_err(e.to_string()),
+        _ => SolveError::new_err(e.to_string()),
+    }
+}
+
+/// A design error as its Python class.
+pub(crate) fn design_error(e: elcon_design::DesignError) -> PyErr {
+    DesignError::new_err(e.to_string())
+}
+
+/// Runs `f` inside `elcon_scene::isolated`: a panic becomes a `SolveError`
+/// naming `what` ("internal error"), never a Python `PanicException`.
+pub(crate) fn guarded<T>(what: &str, f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    isolated(what, || Ok(f())).unwrap_or_else(|e| Err(SolveError::new_err(e.to_string())))
+}

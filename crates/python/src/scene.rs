@@ -1,0 +1,118 @@
+//! Scenes and batches: `run_scene` and `run_batch`, run as `elcon run` and
+//! `elcon batch` run them.
+
+use std::path::{Path, PathBuf};
+
+use elcon_scene::{Scene, isolated};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::convert::{arrays, toml_table, toml_text};
+use crate::errors::{InputError, SceneError, SolveError, guarded, scene_error};
+use crate::memory::ceiling;
+
+/// A scene's text: read from `path`, or a dict written as TOML.
+pub(crate) fn scene_text(
+    path: Option<PathBuf>,
+    scene: Option<&Bound<'_, PyDict>>,
+) -> PyResult<(PathBuf, String)> {
+    match (path, scene) {
+        (Some(p), None) => {
+            let text = std::fs::read_to_string(&p)
+                .map_err(|e| SceneError::new_err(format!("{}: {e}", p.display())))?;
+            Ok((p, text))
+        }
+        (None, Some(d)) => {
+            let text = toml_table(d, "")
+                .and_then(|t| toml_text(&t))
+                .map_err(|e| SceneError::new_err(format!("<dict>: {e}")))?;
+            Ok((PathBuf::from("<dict>"), text))
+        }
+        _ => Err(InputError::new_err(
+            "give a scene's path or its dict, one of them",
+        )),
+    }
+}
+
+/// Runs a validated scene as `elcon run` does: estimated against the
+/// memory ceiling first, the run isolated (a panic becomes an error).
+pub(crate) fn run_prepared(py: Python<'_>, scene: Scene) -> PyResult<elcon_scene::Run> {
+    let ceiling = ceiling()?;
+    let name = scene.name().to_string();
+    py.detach(|| {
+        isolated(&name, || {
+            let prepared = elcon_scene::prepare(scene, &ceiling)?;
+            elcon_scene::run(&prepared.scene)
+        })
+    })
+    .map_err(scene_error)
+}
+
+/// Runs a scene (a file, or a dict with a scene's keys); returns
+/// `{"json": result.json's text, "x": ..., "y": ..., "force": ...,
+/// "pressure": ..., "gap": ..., "separation": ...}`.
+#[pyfunction]
+#[pyo3(signature = (path=None, scene=None))]
+pub(crate) fn run_scene<'py>(
+    py: Python<'py>,
+    path: Option<PathBuf>,
+    scene: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (file, text) = scene_text(path, scene.as_ref())?;
+    let scene = guarded("scene", || {
+        Scene::from_str(&file, &text).map_err(scene_error)
+    })?;
+    let run = run_prepared(py, scene)?;
+    let json = serde_json::to_string_pretty(&run.result)
+        .map_err(|e| SolveError::new_err(format!("result.json: {e}")))?;
+    let d = arrays(
+        py,
+        run.problem.points(),
+        &run.solution,
+        run.problem.separation(),
+    )?;
+    d.set_item("json", json)?;
+    Ok(d)
+}
+
+/// Runs a batch file into `out`; returns its results.json text.
+#[pyfunction]
+#[pyo3(signature = (path, out, jobs=None))]
+pub(crate) fn run_batch(
+    py: Python<'_>,
+    path: PathBuf,
+    out: PathBuf,
+    jobs: Option<i64>,
+) -> PyResult<String> {
+    let jobs = match jobs {
+        Some(j) => Some(usize::try_from(j).map_err(|_| {
+            InputError::new_err(format!(
+                "`jobs` = {j}: must be a whole number >= 1 (None or 0: one per core)"
+            ))
+        })?),
+        None => None,
+    };
+    let batch = guarded("batch", || {
+        elcon_scene::Batch::from_file(&path).map_err(scene_error)
+    })?;
+    let options = elcon_scene::BatchOptions {
+        jobs,
+        shard: None,
+        ceiling: ceiling()?,
+    };
+    let outcome = py
+        .detach(|| {
+            isolated("batch", || {
+                elcon_scene::run_batch(&batch, &out, &options, &())
+            })
+        })
+        .map_err(scene_error)?;
+    serde_json::to_string(&outcome).map_err(|e| SolveError::new_err(format!("results.json: {e}")))
+}
+
+/// Whether `path` exists (used by the Python side to tell a path from TOML
+/// text given as a string).
+#[pyfunction]
+pub(crate) fn is_file(path: &str) -> bool {
+    Path::new(path).is_file()
+}
