@@ -162,6 +162,11 @@ fn case_rows(
             max_pressure_after: after.max_intensities[l],
             certificate_worst: after.solutions[l].certificate.worst(),
             certificate_holds: after.solutions[l].certificate.holds(),
+            warnings: after.solutions[l]
+                .warnings
+                .iter()
+                .map(ToString::to_string)
+                .collect(),
         })
         .collect()
 }

@@ -34,6 +34,9 @@ pub struct DesignCaseJson {
     pub certificate_worst: f64,
     /// Whether it holds.
     pub certificate_holds: bool,
+    /// The re-analysis' warnings, as a standalone run of the case would
+    /// give them (the contact reaching the zone's open edge: truncated).
+    pub warnings: Vec<String>,
 }
 
 /// The design stage's result: the scene's design section by name and
@@ -219,6 +222,11 @@ pub(crate) fn design_stage(
                 max_pressure_after: after.max_intensities[l],
                 certificate_worst: after.solutions[l].certificate.worst(),
                 certificate_holds: after.solutions[l].certificate.holds(),
+                warnings: after.solutions[l]
+                    .warnings
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect(),
             })
             .collect(),
         table,
