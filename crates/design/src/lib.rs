@@ -73,7 +73,7 @@ pub use estimate::DesignEstimate;
 pub use evaluate::{Analysis, Evaluation, evaluate};
 pub use optimize::{Design, StartOutcome, design};
 pub use options::{DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, PROGRAM_LIMIT};
-pub use prepared::{Solver, Stop, axial_stations};
+pub use prepared::{EDGE_WEIGHT, Solver, Stop, axial_stations};
 pub use profile::{Axis, JOHNS_GOHAR, LogCrown, LogEnd, Profile};
 pub use request::{DesignFamily, DesignRequest, Found, Outcome, Roller};
 pub use sequence::{Converged, GridSequence, Level};

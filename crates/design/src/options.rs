@@ -152,11 +152,12 @@ pub struct DesignOptions {
     pub knots: Option<Vec<f64>>,
     /// Keep the contact off the bodies' singular edges
     /// (`ContactProblem::singular_edge_points`: a roller's ends on a
-    /// half-space) in every case: a profile designed with the contact on
-    /// such an edge fits its grid (the edge cell averages a peak that
-    /// grows without bound as the grid refines), so a design that must
-    /// hold on any grid clears them (default false: the cases' grid as it
-    /// is).
+    /// half-space) in every case, their intensities weighted by
+    /// [`EDGE_WEIGHT`](crate::EDGE_WEIGHT) (at most a hundredth of the
+    /// worst intensity is left there): a profile designed with the contact
+    /// on such an edge fits its grid (the edge cell averages a peak that
+    /// grows without bound as the grid refines), so a design that must hold
+    /// on any grid clears them (default false: the cases' grid as it is).
     pub edge_clearance: bool,
 }
 

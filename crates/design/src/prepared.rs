@@ -43,10 +43,12 @@ pub(crate) struct Case<'a> {
 }
 
 /// The weight of a point on a body's singular edge (a roller's end) when
-/// the design keeps the contact off it: any force there outweighs every
-/// intensity elsewhere, so the design relieves the edge first; once it is
-/// out of contact the weight changes nothing.
-pub(crate) const EDGE_WEIGHT: f64 = 100.0;
+/// the design keeps the contact off it: an intensity there counts this
+/// many times in the objective, so the design relieves the edge first and
+/// leaves it at most a hundredth of the worst intensity elsewhere (a
+/// larger weight stretches the step programs' rows beyond what their
+/// pivots resolve).
+pub const EDGE_WEIGHT: f64 = 100.0;
 
 impl Case<'_> {
     /// The design's measure of `solution`: `max_k w_k F_k / (A_k r_l)`.

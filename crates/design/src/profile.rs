@@ -49,7 +49,8 @@ impl Axis {
 pub const JOHNS_GOHAR: f64 = 0.3033;
 
 /// How a logarithmic crown ends.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
 pub enum LogEnd {
     /// Johns & Gohar's (1981) finite end drop: `k = 1 - 0.3033 b / a`.
     #[default]
@@ -58,6 +59,24 @@ pub enum LogEnd {
     /// toward the end of the crowned length (finite at every candidate point,
     /// which stand half a cell short of it).
     Lundberg,
+    /// Fujiwara & Kawase's (2007) three-parameter crown: Johns & Gohar's
+    /// function scaled by a load coefficient `K1` and ending at the drop
+    /// `z_m` (the crowned part `K2 l` long is the crown's length less its
+    /// flat middle):
+    ///
+    /// ```text
+    ///     y(t) = K1 A ln[1 / (1 - (1 - exp(-z_m / (K1 A))) (t / a)^2)],   A = Q / (pi l E*)
+    /// ```
+    ///
+    /// with t the distance beyond the flat middle and a the crowned
+    /// half-length. Tuned, it keeps a tilted roller's ends clear where
+    /// Johns & Gohar's crown loads them.
+    FujiwaraKawase {
+        /// The load coefficient K1 (> 0).
+        k1: f64,
+        /// The drop z_m at the end of the crowned length (length, > 0).
+        end_drop: f64,
+    },
 }
 
 /// A logarithmic crown (Lundberg 1939, Johns & Gohar 1981); see the
@@ -99,13 +118,17 @@ impl LogCrown {
         if t == 0.0 {
             return 0.0;
         }
-        let k = match self.end {
-            LogEnd::JohnsGohar => 1.0 - JOHNS_GOHAR * self.half_width() / a,
-            LogEnd::Lundberg => 1.0,
+        let scale = self.design_load / (std::f64::consts::PI * self.length * self.combined_modulus);
+        let (coefficient, k) = match self.end {
+            LogEnd::JohnsGohar => (scale, 1.0 - JOHNS_GOHAR * self.half_width() / a),
+            LogEnd::Lundberg => (scale, 1.0),
+            LogEnd::FujiwaraKawase { k1, end_drop } => {
+                let c = k1 * scale;
+                (c, -(-end_drop / c).exp_m1())
+            }
         };
         let u = (t / a).min(1.0);
-        self.design_load / (std::f64::consts::PI * self.length * self.combined_modulus)
-            * -(1.0 - k * u * u).ln()
+        coefficient * -(1.0 - k * u * u).ln()
     }
 
     fn validate(&self) -> Result<(), DesignError> {
@@ -129,6 +152,17 @@ impl LogCrown {
                 value: self.flat_length,
                 reason: "must be in [0, length)",
             });
+        }
+        if let LogEnd::FujiwaraKawase { k1, end_drop } = self.end {
+            for (field, v) in [("log_crown.k1", k1), ("log_crown.end_drop", end_drop)] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(DesignError::InvalidInput {
+                        field,
+                        value: v,
+                        reason: "must be finite and > 0",
+                    });
+                }
+            }
         }
         let a = 0.5 * (self.length - self.flat_length);
         if self.end == LogEnd::JohnsGohar && JOHNS_GOHAR * self.half_width() >= a {
@@ -547,6 +581,83 @@ mod tests {
         assert!((q.separation(2.5).unwrap() / own - 1.0).abs() < 1e-14);
         assert_eq!(lundberg_crown.end_drop(), f64::INFINITY);
         assert!(q.separation(4.9).unwrap() > p.separation(4.9).unwrap());
+    }
+
+    #[test]
+    fn fujiwara_kawase_with_unit_coefficient_and_johns_gohars_end_drop_is_johns_gohars_crown() {
+        let johns_gohar = LogCrown {
+            design_load: 5e3,
+            length: 10.0,
+            combined_modulus: 115_384.6,
+            radius: 5.0,
+            flat_length: 0.0,
+            end: LogEnd::JohnsGohar,
+        };
+        let fujiwara_kawase = LogCrown {
+            end: LogEnd::FujiwaraKawase {
+                k1: 1.0,
+                end_drop: johns_gohar.end_drop(),
+            },
+            ..johns_gohar
+        };
+        for s in [0.0, 1.0, 3.3, 4.9, 5.0] {
+            let (a, b) = (johns_gohar.drop_at(s), fujiwara_kawase.drop_at(s));
+            assert!((a - b).abs() <= 1e-14 * a.abs().max(1e-300), "{s}: {a} {b}");
+        }
+        // K1 scales the crown's shape, z_m sets its end; K2 is the crowned
+        // share of the length (a flat middle of (1 - K2) l).
+        let scaled = LogCrown {
+            end: LogEnd::FujiwaraKawase {
+                k1: 2.0,
+                end_drop: 0.02,
+            },
+            flat_length: 2.0,
+            ..johns_gohar
+        };
+        assert!((scaled.end_drop() - 0.02).abs() < 1e-15);
+        assert_eq!(scaled.drop_at(0.9), 0.0);
+        assert!(scaled.validate().is_ok());
+        let bad = LogCrown {
+            end: LogEnd::FujiwaraKawase {
+                k1: -1.0,
+                end_drop: 0.02,
+            },
+            ..johns_gohar
+        };
+        assert!(bad.validate().is_err());
+    }
+
+    #[test]
+    fn a_spline_profile_goes_through_its_knots_smoothly_and_on_along_its_end_slopes() {
+        let knots = vec![-2.0, -1.0, 0.0, 1.5, 3.0];
+        let drops = vec![4.0, 1.0, 0.0, 0.5, 2.0];
+        let p = Profile::Spline {
+            positions: knots.clone(),
+            drops: drops.clone(),
+        };
+        for (t, y) in knots.iter().zip(&drops) {
+            assert!((p.separation(*t).unwrap() - y).abs() < 1e-14);
+        }
+        // Continuous slope at an interior knot, and no kink at the end knot
+        // where the line carries on.
+        let slope = |s: f64, h: f64| {
+            (p.separation(s + h).unwrap() - p.separation(s - h).unwrap()) / (2.0 * h)
+        };
+        let (left, right) = (slope(-0.001, 1e-6), slope(0.001, 1e-6));
+        assert!((left - right).abs() < 1e-2, "{left} {right}");
+        let inside = (p.separation(3.0).unwrap() - p.separation(3.0 - 1e-6).unwrap()) / 1e-6;
+        let beyond = (p.separation(4.0).unwrap() - p.separation(3.0).unwrap()) / 1.0;
+        assert!(
+            (inside - beyond).abs() < 1e-4 * inside.abs(),
+            "{inside} {beyond}"
+        );
+        // The table at many positions equals the one-by-one values.
+        let at: Vec<f64> = (0..50).map(|i| -2.5 + 0.13 * i as f64).collect();
+        let bulk = p.separations(&at).unwrap();
+        for (s, v) in at.iter().zip(bulk) {
+            assert_eq!(p.separation(*s).unwrap(), v);
+        }
+        assert_eq!(p.family(), "free (cubic spline)");
     }
 
     #[test]

@@ -304,6 +304,7 @@ impl Found {
                 match end {
                     LogEnd::JohnsGohar => "Johns-Gohar",
                     LogEnd::Lundberg => "Lundberg",
+                    LogEnd::FujiwaraKawase { .. } => "Fujiwara-Kawase",
                 }
             )],
         }
