@@ -4,12 +4,18 @@
 //! per half), the case-decomposed descent beside the paper's program where
 //! the program is small enough to run in a benchmark.
 //!
+//! And the design that holds on any grid: the misaligned roller's free
+//! crown over its 33 cases (1, 5 and 10 kN at 0 to 1 mrad), carried over
+//! grids from 9 x 40 cells until it holds on the next finer one
+//! (`DesignRequest::run_converged`), S matrix-free above 2000 points.
+//!
 //! ```sh
-//! cargo bench --bench design                    # both groups (about 5 minutes)
-//! cargo bench --bench design -- design/cases    # one group
+//! cargo bench --bench design                        # every group (about 9 minutes)
+//! cargo bench --bench design -- design/cases        # one group
+//! cargo bench --bench design -- design/converged    # the roller over grids (about 3 minutes)
 //! ```
 //!
-//! docs/design.md §2 has the table and the fitted growth.
+//! docs/design.md §2 and §7 have the tables and the fitted growth.
 
 // The design tests' cases; the path is relative to this file's directory.
 #[path = "../crates/design/tests/common/mod.rs"]
@@ -22,8 +28,10 @@ use criterion::measurement::WallTime;
 use criterion::{
     BenchmarkGroup, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main,
 };
-use elcon::analysis::{ContactProblem, Loading};
-use elcon::design::{Axis, DesignMethod, Family, design};
+use elcon::analysis::{ContactProblem, Loading, Storage};
+use elcon::design::{
+    Axis, DesignFamily, DesignMethod, DesignRequest, Family, GridSequence, design,
+};
 
 /// The misaligned roller's cases at 5 kN (steel, D = 10 mm, l = 10 mm, 40 x
 /// 9 Love patches): `count` misalignments spread evenly over 0 to 1 mrad,
@@ -86,5 +94,38 @@ fn points(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, cases, points);
+/// The misaligned roller's 33 cases on its grid refined `fineness` times.
+fn roller_at(fineness: f64) -> (Vec<ContactProblem>, Vec<f64>) {
+    let misalignments: Vec<f64> = (0..=10).map(|i| i as f64 / 1e4).collect();
+    let cells = (
+        (9.0 * fineness).round() as usize,
+        (40.0 * fineness).round() as usize,
+    );
+    common::roller_on(&[1e3, 5e3, 10e3], &misalignments, cells, Storage::Auto)
+}
+
+fn converged(c: &mut Criterion) {
+    let mut group = c.benchmark_group("design/converged");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(60));
+    let request = DesignRequest {
+        reference_intensities: Some(roller_at(1.0).1),
+        ..DesignRequest::new(DesignFamily::Linear(Family::Free), Axis::Y)
+    };
+    group.bench_function("misaligned_roller_33", |b| {
+        b.iter(|| {
+            request
+                .run_converged(
+                    &GridSequence::default(),
+                    |f| Ok(Some(roller_at(f).0)),
+                    |_| {},
+                )
+                .unwrap()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, cases, points, converged);
 criterion_main!(benches);

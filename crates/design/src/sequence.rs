@@ -63,6 +63,9 @@ pub struct Level {
     pub objective: f64,
     /// Seconds spent on it (building, designing or evaluating).
     pub seconds: f64,
+    /// Whether a design was made on it (else a design's profile was
+    /// evaluated on it, to see whether it holds there).
+    pub designed: bool,
 }
 
 /// A design that held on a finer grid than its own.
@@ -172,6 +175,7 @@ impl DesignRequest {
                     .evaluation
                     .relative_worst(&request.references(grid.len())),
                 seconds: start.elapsed().as_secs_f64(),
+                designed: true,
             };
             report(&level);
             levels.push(level);
@@ -211,6 +215,7 @@ impl DesignRequest {
             points,
             objective: e.relative_worst(&self.references(grid.len())),
             seconds: start.elapsed().as_secs_f64(),
+            designed: false,
         })
     }
 }

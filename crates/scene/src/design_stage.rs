@@ -266,6 +266,7 @@ fn on_scene_grid(
         points: cases.iter().map(|c| c.points().len()).max().unwrap_or(0),
         objective: outcome.evaluation.relative_worst(&references),
         seconds: start.elapsed().as_secs_f64(),
+        designed: true,
     };
     Ok(elcon_design::Converged {
         outcome,

@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use elcon_analysis::references::HertzCylinders;
-use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
+use elcon_analysis::{ContactProblem, Geometry, Loading, Storage, Surface};
 use elcon_design::{Axis, Design, DesignError, DesignMethod, DesignOptions, Family, design};
 use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
@@ -39,14 +39,25 @@ pub fn example2(n: usize, x0: f64, loading: Loading) -> ContactProblem {
 }
 
 /// A steel roller (D = 10 mm, l = 10 mm) on Love patches, each load's
-/// `nx` x `ny` grid 1.6 of its Hertz half-width across, under every load
-/// (N) at every misalignment (a prescribed rotation about x, rad): the
-/// cases load by load (one S per load), and each case's aligned Hertz
-/// peak.
+/// `nx` x `ny` grid 1.6 of its Hertz half-width across, its ends (along
+/// y) the body's own, under every load (N) at every misalignment (a
+/// prescribed rotation about x, rad), S dense: the cases load by load (one
+/// S per load), and each case's aligned Hertz peak.
 pub fn misaligned_roller(
     loads: &[f64],
     misalignments: &[f64],
+    cells: (usize, usize),
+) -> (Vec<ContactProblem>, Vec<f64>) {
+    roller_on(loads, misalignments, cells, Storage::Dense)
+}
+
+/// The roller of [`misaligned_roller`], S held as `storage` says
+/// (elcon-analysis's choice with `Storage::Auto`).
+pub fn roller_on(
+    loads: &[f64],
+    misalignments: &[f64],
     (nx, ny): (usize, usize),
+    storage: Storage,
 ) -> (Vec<ContactProblem>, Vec<f64>) {
     let steel = Material::new(210e3, 0.3).unwrap();
     let e_star = combined_modulus(&steel, &steel);
@@ -56,14 +67,15 @@ pub fn misaligned_roller(
     for &load in loads {
         let hertz = HertzCylinders::new(e_star, 5.0, load / 10.0).unwrap();
         let points = PointSet::grid_rectangle(1.6 * hertz.half_width(), 5.0, nx, ny).unwrap();
-        let aligned =
-            ContactProblem::new(points, &body, &body, &geometry, Loading::load(load)).unwrap();
+        let aligned = ContactProblem::builder(points, &body, &body, &geometry, Loading::load(load))
+            .storage(storage)
+            .fold(false)
+            .body_edges(false, true)
+            .build()
+            .unwrap();
         for &angle in misalignments {
-            cases.push(
-                aligned
-                    .with_loading(Loading::load(load).with_tilt_x(angle))
-                    .unwrap(),
-            );
+            let loading = Loading::load(load).with_tilt_x(angle);
+            cases.push(aligned.with_loading(loading).unwrap());
             references.push(hertz.peak_pressure());
         }
     }
