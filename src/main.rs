@@ -234,6 +234,20 @@ fn row(r: &RunResult) {
             "{:<28} design ({}): objective {:.5e} (before {:.5e})",
             "", d.family, d.objective, d.objective_before
         );
+        let own = d.grids.last().map_or("", |g| g.grid.as_str());
+        match &d.verification {
+            Some(v) => println!(
+                "{:<28} designed on {own}; on {}: {:.5e} ({:+.2} %)",
+                "",
+                v.grid,
+                v.objective,
+                100.0 * (v.objective / d.objective - 1.0)
+            ),
+            None => println!(
+                "{:<28} designed on {own} alone (not verified on a finer grid)",
+                ""
+            ),
+        }
     }
 }
 
