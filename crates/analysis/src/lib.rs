@@ -63,6 +63,7 @@ pub mod loading;
 pub mod references;
 pub mod rigid;
 mod storage;
+pub mod subsurface;
 
 pub use contact::{
     ContactCertificate, ContactProblem, ContactSolution, Geometry, Layout, Plan, ProblemBuilder,

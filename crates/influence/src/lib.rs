@@ -99,6 +99,8 @@ pub mod lattice_operator;
 pub mod material;
 pub mod models;
 pub mod points;
+pub mod stress;
+pub mod stress_layers;
 pub mod symmetry;
 mod terms;
 
@@ -111,4 +113,6 @@ pub use models::{Beam, Body, Model};
 pub use points::{
     Cell, Dimension, Lattice, LatticeIndex, LatticeIter, MAX_DENSE_POINTS, MAX_POINTS, PointSet,
 };
+pub use stress::{Stress, love_rectangle_stress, point_force, strip_stress};
+pub use stress_layers::{StressKernel, StressLayers};
 pub use symmetry::Folding;

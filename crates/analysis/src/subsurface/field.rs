@@ -1,0 +1,531 @@
+//! One body's stress field below a solved contact, its maxima found and
+//! refined, its section and depth profile (see the module documentation of
+//! `crate::subsurface`).
+
+use elcon_influence::{
+    Body, Dimension, InfluenceError, Model, PointSet, Stress, StressKernel, StressLayers,
+    love_rectangle_stress, point_force, strip_stress,
+};
+
+use crate::contact::ContactSolution;
+
+/// Depths of the grid the maxima are first looked for on, down to
+/// [`DEPTH_SPAN`] contact half-widths (or radii).
+const DEPTHS: usize = 24;
+/// How deep the depth grid reaches, in contact half-widths.
+pub const DEPTH_SPAN: f64 = 2.0;
+/// The most columns (x, y) the maxima are looked for at, before refining.
+const COLUMNS: usize = 400;
+/// Points across a section, and rows of its depth.
+const SECTION_POINTS: usize = 161;
+/// The pattern search ends when its step is below this fraction of the
+/// contact's half-width.
+const REFINED: f64 = 1e-4;
+
+/// The measures looked for, in [`BodyStresses`]' order: von Mises, Tresca,
+/// `|tau_xz|`, `|tau_yz|`.
+const MEASURES: [fn(&Stress) -> f64; 4] = [
+    |s| s.von_mises(),
+    |s| s.tresca(),
+    |s| s.xz.abs(),
+    |s| s.yz.abs(),
+];
+
+/// Direct evaluations of the compass search, about, for a maximum.
+const REFINE_EVALUATIONS: usize = 300;
+
+/// The most kernel sums (points in contact times evaluations) a maximum's
+/// compass search may take; above, the parabolic refinement of the layers
+/// stands alone.
+const DIRECT_BUDGET: usize = 1_000_000;
+
+/// A peak below every value.
+const LOWEST: Peak = Peak {
+    value: f64::NEG_INFINITY,
+    x: 0.0,
+    y: 0.0,
+    z: 0.0,
+};
+
+/// What the subsurface stresses are asked for with.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SubsurfaceOptions {
+    /// The depths of the grid the maxima are looked for on, of the
+    /// section and of the depth profile (length, each > 0, increasing);
+    /// default 24 depths down to [`DEPTH_SPAN`] contact half-widths
+    /// (a cell or more deep for the point-force model).
+    pub depths: Option<Vec<f64>>,
+}
+
+/// Where a stress quantity is largest.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Peak {
+    /// The value (stress; signed for an orthogonal shear, its largest
+    /// magnitude).
+    pub value: f64,
+    /// Position x (length).
+    pub x: f64,
+    /// Position y (length; 0 on a line).
+    pub y: f64,
+    /// Depth z below the surface (length).
+    pub z: f64,
+}
+
+/// A section of the field: `stresses[i * depths.len() + j]` at
+/// `(xs[i], y, depths[j])`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Section {
+    /// The section's y (length; 0 on a line).
+    pub y: f64,
+    /// The positions along x (length).
+    pub xs: Vec<f64>,
+    /// The depths (length).
+    pub depths: Vec<f64>,
+    /// The stresses, x-major.
+    pub stresses: Vec<Stress>,
+}
+
+/// One body's stresses below the contact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyStresses {
+    /// Its Poisson's ratio.
+    pub poissons_ratio: f64,
+    /// The largest von Mises stress.
+    pub von_mises: Peak,
+    /// The largest shear stress (Tresca: half the principal stresses'
+    /// spread).
+    pub tresca: Peak,
+    /// The orthogonal shear `tau_xz` of largest magnitude.
+    pub orthogonal_xz: Peak,
+    /// The orthogonal shear `tau_yz` of largest magnitude (0 on a line).
+    pub orthogonal_yz: Peak,
+    /// The section (x against depth) through the largest von Mises stress.
+    pub section: Section,
+    /// The stresses along depth below the peak pressure (a section of one
+    /// x).
+    pub profile: Section,
+}
+
+/// A body's subsurface stresses, or why it has none.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Subsurface {
+    /// An elastic half-space: its field.
+    Stresses(Box<BodyStresses>),
+    /// A rigid body, a beam or a foundation: why not.
+    NotApplicable(&'static str),
+}
+
+/// The stress of one body at any point below a solved contact.
+pub struct StressField<'a> {
+    points: &'a PointSet,
+    /// The points in contact and their pressures.
+    loaded: Vec<(usize, f64)>,
+    kind: Kernel,
+    nu: f64,
+}
+
+/// Which stress influence coefficient the body's model has.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Kernel {
+    Rectangle,
+    Point,
+    Strip,
+}
+
+impl<'a> StressField<'a> {
+    /// The field of `body` under `solution` on `points`, or why there is
+    /// none.
+    pub fn new(
+        points: &'a PointSet,
+        solution: &ContactSolution,
+        body: &Body,
+    ) -> Result<Self, &'static str> {
+        let (kind, nu) = match body.model() {
+            Model::UniformPatch { material } => (Kernel::Rectangle, material.poissons_ratio()),
+            Model::PointForce { material } => (Kernel::Point, material.poissons_ratio()),
+            Model::PlaneStrainStrip { material, .. } => (Kernel::Strip, material.poissons_ratio()),
+            Model::Rigid => return Err("a rigid body: no stresses"),
+            Model::Winkler { .. } => {
+                return Err(
+                    "a Winkler foundation: not a half-space, no stresses below its surface",
+                );
+            }
+            _ => return Err("a beam: not a half-space, its stresses are its bending's"),
+        };
+        let loaded = solution
+            .pressures
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| **p > 0.0)
+            .map(|(k, p)| (k, *p))
+            .collect();
+        Ok(Self {
+            points,
+            loaded,
+            kind,
+            nu,
+        })
+    }
+
+    /// The stress at `(x, y, z)`, z > 0.
+    pub fn at(&self, x: f64, y: f64, z: f64) -> Stress {
+        let cell = self.points.cell();
+        let mut total = Stress::default();
+        for &(k, p) in &self.loaded {
+            let (dx, dy) = (x - self.points.x(k), y - self.points.y(k));
+            let unit = match self.kind {
+                Kernel::Rectangle => love_rectangle_stress(dx, dy, z, cell.dx, cell.dy, self.nu),
+                Kernel::Strip => strip_stress(dx, z, cell.dx, self.nu),
+                Kernel::Point => {
+                    let s = point_force(dx, dy, z, self.nu);
+                    // A force: the pressure times the cell's area.
+                    total.add_scaled(p * cell.dx * cell.dy, &s);
+                    continue;
+                }
+            };
+            total.add_scaled(p, &unit);
+        }
+        total
+    }
+
+    /// The body's stresses: maxima, section and profile (see the module
+    /// documentation), `extent` the contact's half-width or radius. On a
+    /// lattice the depth layers are convolutions (`StressLayers`: every
+    /// point at every depth); on other points the maxima are looked for at
+    /// up to 400 of the points in contact.
+    ///
+    /// # Errors
+    /// [`InfluenceError::AllocationFailed`] when a layer's buffers cannot
+    /// be allocated.
+    pub fn stresses(
+        &self,
+        extent: f64,
+        options: &SubsurfaceOptions,
+    ) -> Result<BodyStresses, InfluenceError> {
+        let cell = self.points.cell();
+        let size = match self.points.dimension() {
+            Dimension::Line => cell.dx,
+            Dimension::Surface => cell.dx.max(cell.dy),
+        };
+        let scale = extent.max(size);
+        let depths = options.depths.clone().unwrap_or_else(|| {
+            let shallowest = if self.kind == Kernel::Point {
+                size
+            } else {
+                0.0
+            };
+            (1..=DEPTHS)
+                .map(|j| shallowest + (DEPTH_SPAN * scale - shallowest) * j as f64 / DEPTHS as f64)
+                .collect()
+        });
+        let peak = self.peak_pressure_point();
+        let (peaks, section, profile) = match self.layers()? {
+            Some(layers) => self.layered(&layers, peak, &depths, scale)?,
+            None => {
+                let peaks: Vec<Peak> = MEASURES
+                    .iter()
+                    .zip(self.sweep_direct(&depths))
+                    .map(|(m, p)| self.refine(p, m, scale))
+                    .collect();
+                let section = self.section(peaks[0].y, &depths, scale);
+                let profile = Section {
+                    y: self.points.y(peak),
+                    xs: vec![self.points.x(peak)],
+                    depths: depths.clone(),
+                    stresses: depths
+                        .iter()
+                        .map(|&z| self.at(self.points.x(peak), self.points.y(peak), z))
+                        .collect(),
+                };
+                (peaks, section, profile)
+            }
+        };
+        let signed = |p: Peak, of: fn(&Stress) -> f64| Peak {
+            value: of(&self.at(p.x, p.y, p.z)),
+            ..p
+        };
+        Ok(BodyStresses {
+            poissons_ratio: self.nu,
+            von_mises: peaks[0],
+            tresca: peaks[1],
+            orthogonal_xz: signed(peaks[2], |s| s.xz),
+            orthogonal_yz: signed(peaks[3], |s| s.yz),
+            section,
+            profile,
+        })
+    }
+
+    /// The depth layers by FFT, when the points are a lattice.
+    fn layers(&self) -> Result<Option<StressLayers>, InfluenceError> {
+        if self.points.lattice().is_none() {
+            return Ok(None);
+        }
+        let mut pressures = vec![0.0; self.points.len()];
+        for &(k, p) in &self.loaded {
+            pressures[k] = p;
+        }
+        let kernel = match self.kind {
+            Kernel::Rectangle => StressKernel::Rectangle,
+            Kernel::Point => StressKernel::PointForce,
+            Kernel::Strip => StressKernel::Strip,
+        };
+        StressLayers::new(self.points, &pressures, kernel, self.nu).map(Some)
+    }
+
+    /// The maxima, section and profile from the depth layers: every point
+    /// at every depth, the section along the lattice row of the peak
+    /// pressure (again along the row of the largest von Mises stress, when
+    /// that is another), the profile below the peak pressure. Each maximum
+    /// is refined by a parabola through the largest of its layer and of the
+    /// layers above and below it, then (where the direct sums are cheap,
+    /// [`DIRECT_BUDGET`]) by the compass search.
+    fn layered(
+        &self,
+        layers: &StressLayers,
+        peak: usize,
+        depths: &[f64],
+        scale: f64,
+    ) -> Result<(Vec<Peak>, Section, Section), InfluenceError> {
+        let y = self.points.y(peak);
+        let (per_layer, mut section, profile) = self.sweep_layers(layers, depths, y, peak)?;
+        let peaks: Vec<Peak> = (0..MEASURES.len())
+            .map(|m| {
+                let column: Vec<Peak> = per_layer.iter().map(|layer| layer[m]).collect();
+                let p = parabolic(&column);
+                if self.loaded.len() * REFINE_EVALUATIONS <= DIRECT_BUDGET {
+                    self.refine(p, &MEASURES[m], scale)
+                } else {
+                    p
+                }
+            })
+            .collect();
+        let row_y = per_layer
+            .iter()
+            .map(|layer| layer[0])
+            .fold(LOWEST, |a, b| if b.value > a.value { b } else { a })
+            .y;
+        if row_y != y {
+            section = self.sweep_layers(layers, depths, row_y, peak)?.1;
+        }
+        Ok((peaks, section, profile))
+    }
+
+    /// Each measure's largest in each layer, the section along the lattice
+    /// row at `y` and the profile below point `peak`.
+    fn sweep_layers(
+        &self,
+        layers: &StressLayers,
+        depths: &[f64],
+        y: f64,
+        peak: usize,
+    ) -> Result<(Vec<[Peak; 4]>, Section, Section), InfluenceError> {
+        let mut row: Vec<usize> = (0..self.points.len())
+            .filter(|&k| self.points.y(k) == y)
+            .collect();
+        row.sort_by(|&a, &b| self.points.x(a).total_cmp(&self.points.x(b)));
+        let mut stresses = vec![Stress::default(); row.len() * depths.len()];
+        let mut below = Vec::with_capacity(depths.len());
+        let mut per_layer = Vec::with_capacity(depths.len());
+        for (j, &z) in depths.iter().enumerate() {
+            let layer = layers.layer(z)?;
+            let mut best = [LOWEST; 4];
+            for (k, s) in layer.iter().enumerate() {
+                for (b, m) in best.iter_mut().zip(MEASURES) {
+                    let v = m(s);
+                    if v > b.value {
+                        *b = Peak {
+                            value: v,
+                            x: self.points.x(k),
+                            y: self.points.y(k),
+                            z,
+                        };
+                    }
+                }
+            }
+            per_layer.push(best);
+            for (i, &k) in row.iter().enumerate() {
+                stresses[i * depths.len() + j] = layer[k];
+            }
+            below.push(layer[peak]);
+        }
+        let section = Section {
+            y,
+            xs: row.iter().map(|&k| self.points.x(k)).collect(),
+            depths: depths.to_vec(),
+            stresses,
+        };
+        let profile = Section {
+            y: self.points.y(peak),
+            xs: vec![self.points.x(peak)],
+            depths: depths.to_vec(),
+            stresses: below,
+        };
+        Ok((per_layer, section, profile))
+    }
+
+    /// Each measure's largest over up to [`COLUMNS`] points in contact and
+    /// the depths, by direct sums.
+    fn sweep_direct(&self, depths: &[f64]) -> [Peak; 4] {
+        let mut best = [LOWEST; 4];
+        for (x, y) in self.columns() {
+            for &z in depths {
+                let s = self.at(x, y, z);
+                for (b, m) in best.iter_mut().zip(MEASURES) {
+                    let v = m(&s);
+                    if v > b.value {
+                        *b = Peak { value: v, x, y, z };
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    /// The point of peak pressure.
+    fn peak_pressure_point(&self) -> usize {
+        self.loaded
+            .iter()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map_or(0, |&(k, _)| k)
+    }
+
+    /// At most [`COLUMNS`] of the points in contact (every one, or an even
+    /// subsample), where the maxima are first looked for.
+    fn columns(&self) -> Vec<(f64, f64)> {
+        let step = self.loaded.len().div_ceil(COLUMNS).max(1);
+        self.loaded
+            .iter()
+            .step_by(step)
+            .map(|&(k, _)| (self.points.x(k), self.points.y(k)))
+            .collect()
+    }
+
+    /// `start` refined by a compass search in (x, y, z) (y held on a line,
+    /// z kept positive), its step halved until below [`REFINED`] of
+    /// `scale`.
+    fn refine(&self, start: Peak, measure: &fn(&Stress) -> f64, scale: f64) -> Peak {
+        let line = self.points.dimension() == Dimension::Line;
+        let mut best = start;
+        let mut step = 0.25 * scale / DEPTHS as f64 * DEPTH_SPAN * 4.0;
+        let floor = if self.kind == Kernel::Point {
+            self.points.cell().dx.max(self.points.cell().dy)
+        } else {
+            1e-3 * scale
+        };
+        while step > REFINED * scale {
+            let mut moved = false;
+            for (ddx, ddy, ddz) in [
+                (1.0, 0.0, 0.0),
+                (-1.0, 0.0, 0.0),
+                (0.0, 1.0, 0.0),
+                (0.0, -1.0, 0.0),
+                (0.0, 0.0, 1.0),
+                (0.0, 0.0, -1.0),
+            ] {
+                if line && ddy != 0.0 {
+                    continue;
+                }
+                let (x, y, z) = (
+                    best.x + step * ddx,
+                    best.y + step * ddy,
+                    best.z + step * ddz,
+                );
+                if z < floor {
+                    continue;
+                }
+                let v = measure(&self.at(x, y, z));
+                if v > best.value {
+                    best = Peak { value: v, x, y, z };
+                    moved = true;
+                }
+            }
+            if !moved {
+                step *= 0.5;
+            }
+        }
+        best
+    }
+
+    /// The section at `y`: [`SECTION_POINTS`] positions across the
+    /// contact and 50 % beyond it on either side, at every depth.
+    fn section(&self, y: f64, depths: &[f64], scale: f64) -> Section {
+        let (lo, hi) = self
+            .loaded
+            .iter()
+            .map(|&(k, _)| self.points.x(k))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+        let (lo, hi) = if lo <= hi { (lo, hi) } else { (-scale, scale) };
+        let margin = 0.5 * (hi - lo).max(scale);
+        let xs: Vec<f64> = (0..SECTION_POINTS)
+            .map(|i| {
+                lo - margin + (hi - lo + 2.0 * margin) * i as f64 / (SECTION_POINTS - 1) as f64
+            })
+            .collect();
+        let stresses = xs
+            .iter()
+            .flat_map(|&x| depths.iter().map(move |&z| (x, z)))
+            .map(|(x, z)| self.at(x, y, z))
+            .collect();
+        Section {
+            y,
+            xs,
+            depths: depths.to_vec(),
+            stresses,
+        }
+    }
+}
+
+/// The largest of `column` (each layer's largest, by depth) refined by the
+/// parabola through it and its neighbours in depth: its depth and value
+/// (its position the layer's).
+fn parabolic(column: &[Peak]) -> Peak {
+    let j = (0..column.len())
+        .max_by(|&a, &b| column[a].value.total_cmp(&column[b].value))
+        .unwrap_or(0);
+    let best = column.get(j).copied().unwrap_or(LOWEST);
+    if j == 0 || j + 1 >= column.len() {
+        return best;
+    }
+    let (a, b, c) = (column[j - 1], best, column[j + 1]);
+    let (h1, h2) = (b.z - a.z, c.z - b.z);
+    // The parabola through the three (z, value), its vertex.
+    let d1 = (b.value - a.value) / h1;
+    let d2 = (c.value - b.value) / h2;
+    let curvature = (d2 - d1) / (0.5 * (h1 + h2));
+    if !(curvature < 0.0) {
+        return best;
+    }
+    let slope_at_b = (d1 * h2 + d2 * h1) / (h1 + h2);
+    let shift = (-slope_at_b / curvature).clamp(-h1, h2);
+    Peak {
+        value: b.value + slope_at_b * shift + 0.5 * curvature * shift * shift,
+        z: b.z + shift,
+        ..b
+    }
+}
+
+impl Subsurface {
+    /// The stresses below `solution` on `points` of `body` (see the module
+    /// documentation).
+    pub fn of(
+        points: &PointSet,
+        solution: &ContactSolution,
+        body: &Body,
+        options: &SubsurfaceOptions,
+    ) -> Self {
+        match StressField::new(points, solution, body) {
+            Ok(field) if !field.loaded.is_empty() => {
+                match field.stresses(solution.contact_extent, options) {
+                    Ok(stresses) => Subsurface::Stresses(Box::new(stresses)),
+                    Err(_) => Subsurface::NotApplicable(
+                        "the stress layers' buffers could not be allocated: not enough memory",
+                    ),
+                }
+            }
+            Ok(_) => Subsurface::NotApplicable("no point is in contact"),
+            Err(why) => Subsurface::NotApplicable(why),
+        }
+    }
+}
