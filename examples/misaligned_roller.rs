@@ -36,8 +36,10 @@
 //! which profiles hold there.
 //!
 //! Prints the design's grids, the comparison table (worst p_max / p0 over
-//! the 33 cases on the design grid and on the verification grid, and each
-//! profile's tuned parameters), then p_max at 10 kN against misalignment
+//! the 33 cases on the design grid and on the verification grid; the
+//! largest von Mises stress below the surface over the cases on the design
+//! grid, its depth and the case it is in; and each profile's tuned
+//! parameters), then p_max at 10 kN against misalignment
 //! for every profile on the design grid; writes that table as CSV and a
 //! plot of it under `--out` (default out/misaligned_roller). Its last line
 //! is `misalignment=<rad> pmax_none=<MPa> pmax_log=<MPa>
@@ -56,6 +58,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use elcon::analysis::references::HertzCylinders;
+use elcon::analysis::subsurface::{Peak, Subsurface, SubsurfaceOptions};
 use elcon::analysis::{ContactProblem, Geometry, Loading, Options, Storage, Surface};
 use elcon::design::{
     Analysis, Axis, Converged, DesignError, DesignFamily, DesignRequest, Family, GridSequence,
@@ -160,6 +163,42 @@ impl Roller {
             &Analysis::new(method, &Options::default()),
         )?;
         Ok((e.relative_worst(&self.references), e.max_intensities))
+    }
+
+    /// The largest von Mises stress below the surface over the cases of
+    /// `profile` (with the line `slope y`), where it is, and at which load
+    /// and misalignment: roller and raceway alike (the same steel).
+    fn von_mises(&self, profile: &Profile, slope: f64) -> Result<(Peak, f64, f64), Box<dyn Error>> {
+        let cases = self.cases(slope)?;
+        let method = cases[0].default_method();
+        let e = evaluate(
+            &cases,
+            Axis::Y,
+            profile,
+            &Analysis::new(method, &Options::default()),
+        )?;
+        let body = Body::uniform_patch(Material::new(210e3, 0.3)?);
+        let mut worst = (
+            Peak {
+                value: 0.0,
+                x: 0.0,
+                y: 0.0,
+                z: 0.0,
+            },
+            0.0,
+            0.0,
+        );
+        for (l, (case, solution)) in cases.iter().zip(&e.solutions).enumerate() {
+            let options = SubsurfaceOptions::default();
+            if let Subsurface::Stresses(s) =
+                Subsurface::of(case.points(), solution, &body, &options)
+                && s.von_mises.value > worst.0.value
+            {
+                let angle = angles()[l % (STEPS + 1)];
+                worst = (s.von_mises, LOADS[l / (STEPS + 1)], angle);
+            }
+        }
+        Ok(worst)
     }
 }
 
@@ -469,10 +508,13 @@ struct Rows {
 /// grid.
 fn comparison(named: &[Named], design: &Roller, finer: &Roller) -> Result<Rows, Box<dyn Error>> {
     println!(
-        "\n{:<16} {:>12} {:>12}  parameters (slope last, rad)",
+        "\n{:<16} {:>12} {:>12} {:>10} {:>9} {:>13}  parameters (slope last, rad)",
         "profile",
         format!("{}x{}", design.cells.0, design.cells.1),
-        format!("{}x{}", finer.cells.0, finer.cells.1)
+        format!("{}x{}", finer.cells.0, finer.cells.1),
+        "vM MPa",
+        "depth mm",
+        "at kN, mrad"
     );
     let mut csv = String::from("profile,misalignment_rad,pmax_mpa,pmax_over_p0\n");
     let mut lines = Vec::new();
@@ -481,9 +523,16 @@ fn comparison(named: &[Named], design: &Roller, finer: &Roller) -> Result<Rows, 
     for n in named {
         let (worst, pmax) = design.worst(&n.profile, n.slope)?;
         let (verified, _) = finer.worst(&n.profile, n.slope)?;
+        let (vm, load, angle) = design.von_mises(&n.profile, n.slope)?;
         println!(
-            "{:<16} {:>12.4} {:>12.4}  {}",
-            n.name, worst, verified, n.parameters
+            "{:<16} {:>12.4} {:>12.4} {:>10.0} {:>9.4} {:>13}  {}",
+            n.name,
+            worst,
+            verified,
+            vm.value,
+            vm.z,
+            format!("{:.0}, {:.1}", load / 1e3, angle * 1e3),
+            n.parameters
         );
         let values: Vec<f64> = pmax[last * per_load..].to_vec();
         for (angle, p) in angles().iter().zip(&values) {

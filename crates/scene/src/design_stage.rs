@@ -13,6 +13,7 @@ use serde::Serialize;
 use crate::error::SceneError;
 use crate::run::run_error;
 use crate::scene::{DesignSpec, MethodChoice, RelativeTo, Scene};
+use crate::subsurface::{BodySubsurfaceJson, subsurface_of};
 
 /// One load case of a design, before and after: gathered from the
 /// evaluations before and after the design, not the copy of one type.
@@ -37,6 +38,13 @@ pub struct DesignCaseJson {
     /// The re-analysis' warnings, as a standalone run of the case would
     /// give them (the contact reaching the zone's open edge: truncated).
     pub warnings: Vec<String>,
+    /// Each body's stresses below the surface without the correction, when
+    /// the scene asks for them (`outputs.subsurface`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub subsurface_before: Option<[BodySubsurfaceJson; 2]>,
+    /// The same with the correction.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub subsurface_after: Option<[BodySubsurfaceJson; 2]>,
 }
 
 /// The design stage's result: the scene's design section by name and
@@ -127,6 +135,19 @@ fn reference_intensity(scene: &Scene, case: &ContactProblem, load: f64) -> Resul
             })?
             .peak_pressure(),
     })
+}
+
+/// Both bodies' subsurface maxima below one case's solution, when the
+/// scene asks for the stresses.
+fn case_subsurface(
+    scene: &Scene,
+    case: &ContactProblem,
+    solution: &ContactSolution,
+) -> Option<[BodySubsurfaceJson; 2]> {
+    let options = scene.outputs().subsurface()?;
+    let fields = subsurface_of(scene, case.points(), solution, options);
+    let models = scene.bodies().each_ref().map(|b| b.model());
+    Some([0, 1].map(|i| BodySubsurfaceJson::of(&fields[i], models[i])))
 }
 
 /// A design case's loading: the load, and the misalignment as a prescribed
@@ -227,6 +248,8 @@ pub(crate) fn design_stage(
                     .iter()
                     .map(ToString::to_string)
                     .collect(),
+                subsurface_before: case_subsurface(scene, &cases[l], &before.solutions[l]),
+                subsurface_after: case_subsurface(scene, &cases[l], &after.solutions[l]),
             })
             .collect(),
         table,

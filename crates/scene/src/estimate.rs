@@ -22,7 +22,9 @@
 //! tableau, each about R x C, overlap). The discretization error estimate
 //! (on by default) solves the coarser grids one at a time while the
 //! scene's S is held: `S + coarse_max`, a coarse grid's solve, at most a
-//! sixteenth of the scene's on a surface and a quarter on a line. The peak
+//! sixteenth of the scene's on a surface and a quarter on a line. The
+//! stresses below the surface (`outputs.subsurface`) take a layer at a
+//! time while S is held: `S + 400 N` bytes. The peak
 //! is the largest of the stages plus [`BASELINE`].
 //!
 //! The time class comes from the pivots' cost: about `c n^3` for a dense
@@ -43,6 +45,13 @@ use crate::scene::{DesignSpec, Plot, Scene};
 /// 347,949 and 262,144 points: 137 for the spheres' pressure against the
 /// radius, 90 for the roller's pressure map; docs/reliability.md).
 const PLOT_BYTES_PER_POINT: f64 = 160.0;
+
+/// Bytes a candidate point of the stresses below the surface, while the
+/// scene's problem is held: one depth layer at a time (the pressure's and
+/// the six kernels' spectra on the zero-padded lattice, the layer's
+/// stresses), rounded up from 310 measured at 106,353 points (Hertz
+/// spheres on a disk, docs/performance.md).
+const SUBSURFACE_BYTES_PER_POINT: f64 = 400.0;
 
 /// What the process holds besides the matrices (code, threads, buffers),
 /// bytes: about what a run of a scene with a handful of points peaks at.
@@ -138,11 +147,17 @@ impl Estimate {
         } else {
             0.0
         };
+        let subsurface = if scene.outputs().subsurface().is_some() {
+            SUBSURFACE_BYTES_PER_POINT * n as f64
+        } else {
+            0.0
+        };
         let stage = design
             .as_ref()
             .map_or(0, |d| d.bytes)
             .max(to_bytes(solve.solve_bytes))
             .max(to_bytes(solve.influence_bytes + coarse_bytes))
+            .max(to_bytes(solve.influence_bytes + subsurface))
             .saturating_add(to_bytes(plot));
         Ok(Self {
             points: n,
@@ -344,6 +359,16 @@ mod tests {
 
     fn bytes(matrices: f64, n: usize) -> u64 {
         to_bytes(matrices * 8.0 * (n * n) as f64)
+    }
+
+    #[test]
+    fn the_subsurface_stresses_add_their_bytes_per_point_to_the_held_problem() {
+        let lattice = format!("{}[solver]\nmethod = \"conjugate-gradient\"\n", spheres());
+        let plain = Estimate::of(&scene(&lattice)).unwrap();
+        let on = Estimate::of(&scene(&format!("{lattice}[outputs]\nsubsurface = true\n"))).unwrap();
+        let n = plain.points as f64;
+        assert!(on.peak_bytes > plain.peak_bytes);
+        assert!(on.peak_bytes >= to_bytes(SUBSURFACE_BYTES_PER_POINT * n) + BASELINE);
     }
 
     #[test]

@@ -29,12 +29,14 @@ mod isolate;
 mod memory;
 mod output;
 mod plot;
+mod plot_subsurface;
 mod prepare;
 mod run;
 mod sanity;
 mod scene;
 mod schema;
 mod shard;
+mod subsurface;
 mod tables;
 
 pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text, thousands};
@@ -65,4 +67,5 @@ pub use scene::{
 };
 pub use schema::ErrorMetric;
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};
+pub use subsurface::{BodySubsurfaceJson, PeakJson, SubsurfaceJson};
 pub use tables::{BatchOutcome, Row, merge};

@@ -18,7 +18,9 @@
 //!
 //! Per scene, in `<out>/<scene>/`: result.json (docs/results.md),
 //! pressure.csv (position, measure, force, pressure, gap, separation, and
-//! the closed form's pressure where one applies), and the plots asked for.
+//! the closed form's pressure where one applies), the subsurface sections
+//! when asked for (`subsurface_body1.csv`, `subsurface_profile_body1.csv`,
+//! and body 2's), and the plots asked for.
 
 use std::fs;
 use std::io;
@@ -29,8 +31,11 @@ use elcon_influence::Dimension;
 use crate::error::SceneError;
 use crate::faults;
 use crate::plot;
+use crate::plot_subsurface;
 use crate::run::Run;
 use crate::scene::Plot;
+use crate::subsurface::section_csv;
+use elcon_analysis::subsurface::Subsurface;
 
 /// Writes `contents` to `path` whole or not at all (temporary file in the
 /// same directory, flushed to disk, then renamed).
@@ -252,10 +257,12 @@ pub fn write_run_files(run: &Run, dir: &Path) -> Result<(), SceneError> {
         write_atomic_with(&dir.join("pressure.csv"), |w| pressure_csv(run, w))?;
         faults::write_delay();
     }
+    write_subsurface(run, dir)?;
     for plot in run.scene.outputs().plots() {
         let (name, svg) = match plot {
             Plot::Pressure => ("pressure.svg", plot::pressure(run)),
             Plot::Design => ("design.svg", plot::design(run)),
+            Plot::Subsurface => ("subsurface.svg", plot_subsurface::subsurface(run)),
         };
         let svg = svg.map_err(|reason| SceneError::Io {
             path: dir.join(name),
@@ -263,6 +270,32 @@ pub fn write_run_files(run: &Run, dir: &Path) -> Result<(), SceneError> {
         })?;
         write_atomic(&dir.join(name), svg.as_bytes())?;
         faults::write_delay();
+    }
+    Ok(())
+}
+
+/// Each body's section through its largest von Mises stress and its depth
+/// profile below the peak pressure, `subsurface_body{1,2}.csv` and
+/// `subsurface_profile_body{1,2}.csv`, when the scene asks for the
+/// stresses (bodies without a field write none).
+fn write_subsurface(run: &Run, dir: &Path) -> Result<(), SceneError> {
+    let u = run.scene.units();
+    for (i, field) in run.subsurface.iter().flatten().enumerate() {
+        let Subsurface::Stresses(body) = field else {
+            continue;
+        };
+        for (name, section) in [
+            (format!("subsurface_body{}.csv", i + 1), &body.section),
+            (
+                format!("subsurface_profile_body{}.csv", i + 1),
+                &body.profile,
+            ),
+        ] {
+            write_atomic_with(&dir.join(name), |w| {
+                section_csv(section, u.length(), u.pressure(), w)
+            })?;
+            faults::write_delay();
+        }
     }
     Ok(())
 }

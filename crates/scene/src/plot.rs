@@ -15,8 +15,8 @@ use elcon_influence::Dimension;
 
 use crate::run::Run;
 
-const SIZE: (u32, u32) = (900, 560);
-const COLORS: [RGBColor; 6] = [
+pub(crate) const SIZE: (u32, u32) = (900, 560);
+pub(crate) const COLORS: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -25,12 +25,12 @@ const COLORS: [RGBColor; 6] = [
     RGBColor(23, 190, 207),
 ];
 
-fn err(e: impl std::fmt::Display) -> String {
+pub(crate) fn err(e: impl std::fmt::Display) -> String {
     format!("plot: {e}")
 }
 
 /// An SVG of `size` on white, drawn by `draw` on its root area.
-fn svg(
+pub(crate) fn svg(
     size: (u32, u32),
     draw: impl FnOnce(&DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String>,
 ) -> Result<String, String> {
@@ -46,7 +46,7 @@ fn svg(
 
 /// A chart on `area` under `caption` (of font size `size`), with label
 /// areas of `x_label` and `y_label` pixels below and left.
-fn titled<'a, 'b, DB: DrawingBackend>(
+pub(crate) fn titled<'a, 'b, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     caption: impl AsRef<str>,
     size: u32,
@@ -62,7 +62,7 @@ fn titled<'a, 'b, DB: DrawingBackend>(
 }
 
 /// Draws the series' labels on `chart`, boxed on white.
-fn labels<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+pub(crate) fn labels<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
     chart: &mut ChartContext<'a, DB, CT>,
 ) -> Result<(), String>
 where
@@ -77,12 +77,12 @@ where
 }
 
 /// A legend's key of a line of `colour`, two pixels wide.
-fn line_key(colour: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
+pub(crate) fn line_key(colour: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
     move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
 }
 
 /// `[lo, hi]` widened by 5 % (and made non-empty).
-fn padded(lo: f64, hi: f64) -> (f64, f64) {
+pub(crate) fn padded(lo: f64, hi: f64) -> (f64, f64) {
     let span = (hi - lo)
         .abs()
         .max(hi.abs().max(lo.abs()) * 1e-6)

@@ -2,7 +2,8 @@
 //! problem (`Y = S F + eps - alpha e`, `e^T F = P`, `F, Y >= 0`,
 //! `F_k Y_k = 0`) with the scene's method, estimate its discretization
 //! error on coarser grids (`crate::error_estimate`), compare with the
-//! closed form that applies, and run the design stage if the scene has
+//! closed form that applies, compute the stresses below the surface when
+//! asked (`crate::subsurface`), and run the design stage if the scene has
 //! one. The result
 //! is what result.json holds (schema in docs/results.md).
 
@@ -17,6 +18,7 @@ use crate::design_stage::{DesignJson, DesignRun, design_stage};
 use crate::error::SceneError;
 use crate::error_estimate::{DiscretizationJson, discretization};
 use crate::scene::{Scene, Units};
+use crate::subsurface::{SubsurfaceJson, subsurface};
 
 /// A folded problem's symmetry, as written. A mirror of
 /// `elcon_influence::Folding` rather than a `Serialize` on it: result.json
@@ -42,7 +44,10 @@ pub struct Seconds {
     /// The discretization error estimate: building and solving the
     /// coarser grids (0 when it is off).
     pub error_estimate: f64,
-    /// The whole run (assembly, solve, error estimate, reference, design).
+    /// The stresses below the surface (0 unless `outputs.subsurface`).
+    pub subsurface: f64,
+    /// The whole run (assembly, solve, error estimate, subsurface,
+    /// reference, design).
     pub total: f64,
 }
 
@@ -205,6 +210,9 @@ pub struct RunResult {
     /// default).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub discretization: Option<DiscretizationJson>,
+    /// The stresses below the surface (`outputs.subsurface = true`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub subsurface: Option<SubsurfaceJson>,
     /// The closed-form comparison, where one applies.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceJson>,
@@ -244,6 +252,8 @@ pub struct Run {
     pub reference_pressures: Option<Vec<f64>>,
     /// The design stage's profile and evaluations (before, after), if any.
     pub design: Option<DesignRun>,
+    /// Each body's stresses below the surface, when the scene asks.
+    pub subsurface: Option<[elcon_analysis::subsurface::Subsurface; 2]>,
     /// The written result.
     pub result: RunResult,
 }
@@ -274,6 +284,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         .error_estimate()
         .then(|| discretization(scene, &builder, &solution));
     drop(builder);
+    let (fields, subsurface_json) = subsurface(scene, problem.points(), &solution).unzip();
     let (reference, reference_pressures) = match scene.reference() {
         Some(r) => {
             let (json, p) = compare(r, &problem, &solution, scene.loading());
@@ -310,10 +321,12 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
             error_estimate: discretization
                 .as_ref()
                 .map_or(0.0, DiscretizationJson::coarse_seconds),
+            subsurface: subsurface_json.as_ref().map_or(0.0, |s| s.seconds),
             total: start.elapsed().as_secs_f64(),
         },
         solution: SolutionJson::of(&solution, scene.warnings()),
         discretization,
+        subsurface: subsurface_json,
         reference,
         design: design_json,
     };
@@ -323,6 +336,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         solution,
         reference_pressures,
         design,
+        subsurface: fields,
         result,
     })
 }

@@ -188,6 +188,10 @@ keywords! {
         Pressure = "pressure",
         /// `"design"`: separations and pressures before and after the design.
         Design = "design",
+        /// `"subsurface"`: each body's section (x against depth) through its
+        /// largest von Mises stress, and the stresses along depth below the
+        /// peak pressure (needs `outputs.subsurface = true`).
+        Subsurface = "subsurface",
     }
 }
 
@@ -331,6 +335,8 @@ pub(crate) struct DesignToml {
 pub(crate) struct OutputsToml {
     pub plots: Option<Spanned<Vec<Spanned<Plot>>>>,
     pub pressure_csv: Option<bool>,
+    pub subsurface: Option<Spanned<bool>>,
+    pub subsurface_depths: Option<Spanned<Vec<Spanned<f64>>>>,
 }
 
 /// A batch file.

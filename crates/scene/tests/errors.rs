@@ -318,7 +318,7 @@ fn a_name_a_key_does_not_take_is_refused_with_the_names_it_takes() {
         ),
         (
             with_table(&base, "outputs", "plots = [\"pressure\", \"contour\"]"),
-            "26:22: `outputs.plots`: unknown variant `contour`, expected `pressure` or `design`",
+            "26:22: `outputs.plots`: unknown variant `contour`, expected one of `pressure`, `design`, `subsurface`",
         ),
     ];
     for (text, message) in cases {

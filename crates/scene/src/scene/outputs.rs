@@ -1,9 +1,16 @@
-//! `[outputs]`: the plots asked for and whether to write pressure.csv.
+//! `[outputs]`: the plots asked for, whether to write pressure.csv, and
+//! whether to compute the stresses below the surface (and on which depths).
+
+use elcon_analysis::subsurface::SubsurfaceOptions;
 
 use crate::ctx::Ctx;
 use crate::error::SceneError;
 use crate::schema::OutputsToml;
 pub use crate::schema::Plot;
+
+/// The most depths `outputs.subsurface_depths` may list (each a layer of
+/// the field over the whole grid).
+pub const MAX_SUBSURFACE_DEPTHS: usize = 400;
 
 /// What to write.
 #[derive(Debug, Clone, PartialEq)]
@@ -12,6 +19,8 @@ pub struct Outputs {
     plots: Vec<Plot>,
     /// Whether to write pressure.csv (default true).
     pressure_csv: bool,
+    /// The stresses below the surface, when asked for (default off).
+    subsurface: Option<SubsurfaceOptions>,
 }
 
 impl Outputs {
@@ -24,6 +33,12 @@ impl Outputs {
     pub fn pressure_csv(&self) -> bool {
         self.pressure_csv
     }
+
+    /// The options of the stresses below the surface when
+    /// `outputs.subsurface = true` (off by default).
+    pub fn subsurface(&self) -> Option<&SubsurfaceOptions> {
+        self.subsurface.as_ref()
+    }
 }
 
 pub(super) fn outputs(
@@ -34,21 +49,26 @@ pub(super) fn outputs(
     let mut out = Outputs {
         plots: Vec::new(),
         pressure_csv: true,
+        subsurface: None,
     };
     let Some(o) = o else { return Ok(out) };
     if let Some(c) = o.pressure_csv {
         out.pressure_csv = c;
     }
+    out.subsurface = subsurface(ctx, o)?;
     if let Some(plots) = &o.plots {
         for p in plots.get_ref() {
             let plot = *p.get_ref();
-            if plot == Plot::Design && !has_design {
-                return Err(ctx.invalid(
-                    p.span(),
-                    "outputs.plots",
-                    "\"design\"",
-                    "needs a [design] section",
-                ));
+            let needs = match plot {
+                Plot::Design if !has_design => Some("needs a [design] section"),
+                Plot::Subsurface if out.subsurface.is_none() => {
+                    Some("needs outputs.subsurface = true")
+                }
+                _ => None,
+            };
+            if let Some(reason) = needs {
+                let name = format!("{:?}", plot.name());
+                return Err(ctx.invalid(p.span(), "outputs.plots", name, reason));
             }
             if !out.plots.contains(&plot) {
                 out.plots.push(plot);
@@ -56,4 +76,47 @@ pub(super) fn outputs(
         }
     }
     Ok(out)
+}
+
+/// `outputs.subsurface` and `outputs.subsurface_depths`: depths each
+/// finite and > 0, increasing, at most [`MAX_SUBSURFACE_DEPTHS`].
+fn subsurface(ctx: &Ctx<'_>, o: &OutputsToml) -> Result<Option<SubsurfaceOptions>, SceneError> {
+    let on = o.subsurface.as_ref().is_some_and(|s| *s.get_ref());
+    let Some(given) = &o.subsurface_depths else {
+        return Ok(on.then(SubsurfaceOptions::default));
+    };
+    let field = "outputs.subsurface_depths";
+    if !on {
+        return Err(ctx.invalid(
+            given.span(),
+            field,
+            "[...]",
+            "needs outputs.subsurface = true",
+        ));
+    }
+    let depths = given.get_ref();
+    if depths.is_empty() || depths.len() > MAX_SUBSURFACE_DEPTHS {
+        return Err(ctx.invalid(
+            given.span(),
+            field,
+            format!("{} depths", depths.len()),
+            format!("must list 1 to {MAX_SUBSURFACE_DEPTHS} depths"),
+        ));
+    }
+    let mut previous = 0.0;
+    for d in depths {
+        let z = *d.get_ref();
+        if !(z.is_finite() && z > previous) {
+            return Err(ctx.invalid(
+                d.span(),
+                field,
+                z,
+                "depths must be finite, > 0 and increasing (lengths below the surface)",
+            ));
+        }
+        previous = z;
+    }
+    Ok(Some(SubsurfaceOptions {
+        depths: Some(depths.iter().map(|d| *d.get_ref()).collect()),
+    }))
 }
