@@ -103,6 +103,23 @@ pub fn hertz_line_family(
     across: usize,
     zone: f64,
 ) -> Result<GridFamily, AnalysisError> {
+    let family = GridFamily::HertzLine {
+        half_width,
+        across,
+        zone,
+    };
+    family.line()?;
+    Ok(family)
+}
+
+/// The line `[-(m + 1/2) h, (m + 1/2) h]` of `2 m + 1` cells, `h = 2 b /
+/// (across - 1)` and `m = round(zone b / h)`: the points of
+/// [`GridFamily::HertzLine`].
+fn hertz_line_cells(
+    half_width: f64,
+    across: usize,
+    zone: f64,
+) -> Result<(f64, usize), AnalysisError> {
     let h = spacing(half_width, across, zone)?;
     let m = (zone * half_width / h).round().max(1.0);
     if !(m <= elcon_influence::MAX_POINTS as f64) {
@@ -112,11 +129,7 @@ pub fn hertz_line_family(
             reason: "more than MAX_POINTS points along the line",
         });
     }
-    Ok(GridFamily::Line {
-        start: -(m + 0.5) * h,
-        end: (m + 0.5) * h,
-        n: 2 * m as usize + 1,
-    })
+    Ok((h, m as usize))
 }
 
 /// Points on a line, centred: `across` over the width `2 half_width` of a
@@ -149,6 +162,7 @@ pub const MIN_COARSE_COUNT: usize = 3;
 ///     Disk        h' = 2 h, the same radius (the origin stays a point)
 ///     Rectangle   n' = the integer nearest n / 2 with the parity of n (each of nx, ny)
 ///     Line        n' = the integer nearest n / 2 with the parity of n
+///     HertzLine   across' - 1 = (across - 1) / 2 (rounded up): spacing 2h exactly
 /// ```
 ///
 /// (an even n whose half is odd has two such integers; the larger is
@@ -186,6 +200,19 @@ pub enum GridFamily {
         /// Number of cells.
         n: usize,
     },
+    /// `across` points over a Hertz line contact's width `2 half_width`, a
+    /// whole number of spacings out to about `zone * half_width` on each
+    /// side ([`hertz_line`]). Coarsened by `across - 1` halved, so the
+    /// spacing doubles exactly and the contact's edge keeps its place
+    /// among the cells (on a point for an odd `across`).
+    HertzLine {
+        /// The Hertz half-width b (length).
+        half_width: f64,
+        /// Points across the contact's width.
+        across: usize,
+        /// The zone's half-length over b.
+        zone: f64,
+    },
 }
 
 impl std::fmt::Display for GridFamily {
@@ -197,6 +224,7 @@ impl std::fmt::Display for GridFamily {
             }
             GridFamily::Rectangle { nx, ny, .. } => write!(f, "{nx} x {ny} cells"),
             GridFamily::Line { n, .. } => write!(f, "{n} cells"),
+            GridFamily::HertzLine { across, .. } => write!(f, "{across} points across"),
         }
     }
 }
@@ -218,7 +246,32 @@ impl GridFamily {
                 ny,
             } => PointSet::grid_rectangle(half_x, half_y, nx, ny)?,
             GridFamily::Line { start, end, n } => PointSet::line(start, end, n)?,
+            GridFamily::HertzLine { .. } => return self.line()?.points(),
         })
+    }
+
+    /// A [`GridFamily::HertzLine`] as the [`GridFamily::Line`] it lays out
+    /// (any other family as it is).
+    ///
+    /// # Errors
+    /// [`AnalysisError::InvalidInput`] naming `across`, `zone` or the
+    /// contact size.
+    pub fn line(&self) -> Result<GridFamily, AnalysisError> {
+        match *self {
+            GridFamily::HertzLine {
+                half_width,
+                across,
+                zone,
+            } => {
+                let (h, m) = hertz_line_cells(half_width, across, zone)?;
+                Ok(GridFamily::Line {
+                    start: -(m as f64 + 0.5) * h,
+                    end: (m as f64 + 0.5) * h,
+                    n: 2 * m + 1,
+                })
+            }
+            other => Ok(other),
+        }
     }
 
     /// The representative spacing h: the disk's spacing, `sqrt(dx dy)` of
@@ -233,6 +286,9 @@ impl GridFamily {
                 ny,
             } => (2.0 * half_x / nx as f64 * 2.0 * half_y / ny as f64).sqrt(),
             GridFamily::Line { start, end, n } => (end - start) / n as f64,
+            GridFamily::HertzLine {
+                half_width, across, ..
+            } => 2.0 * half_width / (across.max(2) - 1) as f64,
         }
     }
 
@@ -283,6 +339,15 @@ impl GridFamily {
                 end,
                 n: count(n)?,
             },
+            GridFamily::HertzLine {
+                half_width,
+                across,
+                zone,
+            } => GridFamily::HertzLine {
+                half_width,
+                across: count(across.max(2) - 1)? + 1,
+                zone,
+            },
         })
     }
 
@@ -315,6 +380,28 @@ impl GridFamily {
                 end,
                 n: half_count(n)?,
             }),
+            GridFamily::HertzLine {
+                half_width,
+                across,
+                zone,
+            } => {
+                // Spacings across halved (rounded up when odd: an even
+                // `across` straddles the edge on every grid).
+                let coarse = GridFamily::HertzLine {
+                    half_width,
+                    across: (across.max(2) - 1).div_ceil(2) + 1,
+                    zone,
+                };
+                let GridFamily::HertzLine { across: fewer, .. } = coarse else {
+                    return None;
+                };
+                match coarse.line().ok()? {
+                    GridFamily::Line { n, .. } if n >= MIN_COARSE_COUNT && fewer >= 3 => {
+                        Some(coarse)
+                    }
+                    _ => None,
+                }
+            }
         }
     }
 }
@@ -360,6 +447,36 @@ mod tests {
                 other => panic!("{field}: {other:?}"),
             }
         }
+    }
+
+    #[test]
+    fn a_hertz_line_coarsens_by_doubling_its_spacing_with_the_edge_on_a_point() {
+        let b = 0.3;
+        let family = hertz_line_family(b, 41, 1.3).unwrap();
+        assert_eq!(family.to_string(), "41 points across");
+        let coarse = family.coarser().unwrap();
+        let coarsest = coarse.coarser().unwrap();
+        assert_eq!(
+            coarse,
+            GridFamily::HertzLine {
+                half_width: b,
+                across: 21,
+                zone: 1.3
+            }
+        );
+        assert!(matches!(coarsest, GridFamily::HertzLine { across: 11, .. }));
+        for (fine, coarse) in [(&family, &coarse), (&coarse, &coarsest)] {
+            assert!((coarse.spacing() / fine.spacing() - 2.0).abs() < 1e-15);
+            // The edge x = b is a point of each grid.
+            let points = coarse.points().unwrap();
+            assert!((0..points.len()).any(|k| (points.x(k) - b).abs() < 1e-12 * b));
+        }
+        // Refined by 2 it is 81 across; too coarse to halve below 3 cells.
+        assert!(matches!(
+            family.refined(2.0).unwrap(),
+            GridFamily::HertzLine { across: 81, .. }
+        ));
+        assert!(hertz_line_family(b, 3, 1.0).unwrap().coarser().is_none());
     }
 
     fn same_points(a: &PointSet, b: &PointSet) -> bool {
@@ -423,7 +540,7 @@ mod tests {
             &hertz_disk(a, 11, 1.15).unwrap()
         ));
         // Each coarser line keeps the origin a point, the zone the same.
-        let mut family = hertz_line_family(1.0, 21, 1.3).unwrap();
+        let mut family = hertz_line_family(1.0, 21, 1.3).unwrap().line().unwrap();
         while let Some(c) = family.coarser() {
             let points = c.points().unwrap();
             assert!((0..points.len()).any(|k| points.x(k) == 0.0), "{c:?}");

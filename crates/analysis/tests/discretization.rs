@@ -7,7 +7,10 @@
 //! pressure are within a factor 2 of their errors against Hertz; a rigid
 //! flat punch's peak pressure (singular at the rim) and a flat roller's
 //! (singular at its square ends) are `not converging`; a tilt symmetry
-//! makes zero is `exact`; at 21 points across the grid at 4h would put 5
+//! makes zero is `exact`; Hertz cylinders in plane strain at 41 and 201
+//! across, whose coarser grids keep the contact's edge on a point, have
+//! the approach and the peak estimated within a factor 2 too; at 21
+//! points across the grid at 4h would put 5
 //! cells across the contact, so only two grids are solved and nothing is
 //! estimated, which the verdict says.
 
@@ -156,4 +159,34 @@ fn a_punch_rim_and_a_flat_rollers_ends_are_not_converging() {
     let (_, d) = solved(&family, [&body, &body], &roller, Loading::load(10_000.0));
     let e = d.get(Quantity::MaxPressure).unwrap();
     assert_eq!(e.verdict, Verdict::NotConverging, "{e:?}");
+}
+
+#[test]
+fn the_cylinders_approach_and_peak_are_estimated_within_a_factor_2_at_41_and_201_across() {
+    // hertz-cylinders.toml's problem: steel cylinders R = 10 and 20 mm,
+    // 500 N/mm, plane strain with the datum 10 mm, zone 1.3.
+    let steel = Material::new(210e3, 0.3).unwrap();
+    let hertz =
+        HertzCylinders::new(combined_modulus(&steel, &steel), 1.0 / (0.1 + 0.05), 500.0).unwrap();
+    let body = Body::plane_strain(steel, 10.0);
+    let geometry = Geometry::Surfaces(
+        Surface::Cylinder { radius: 10.0 },
+        Surface::Cylinder { radius: 20.0 },
+    );
+    for across in [41, 201] {
+        let family = grid::hertz_line_family(hertz.half_width(), across, 1.3).unwrap();
+        let (sol, d) = solved(&family, [&body, &body], &geometry, Loading::load(500.0));
+        assert_eq!(d.grids.len(), 3, "{across}: h, 2h and 4h");
+        let approach = hertz.approach(10.0).unwrap();
+        for (quantity, truth) in [
+            (Quantity::Approach, sol.approach / approach - 1.0),
+            (
+                Quantity::MaxPressure,
+                sol.max_pressure / hertz.peak_pressure() - 1.0,
+            ),
+        ] {
+            let r = ratio(&d, quantity, truth);
+            assert!((0.5..=2.0).contains(&r), "{across} {quantity:?}: {r}");
+        }
+    }
 }
