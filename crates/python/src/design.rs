@@ -167,6 +167,10 @@ fn case_rows(
                 .iter()
                 .map(ToString::to_string)
                 .collect(),
+            // Problems from arrays carry no bodies' Poisson's ratios for
+            // a field: the stresses below the surface are a scene's.
+            subsurface_before: None,
+            subsurface_after: None,
         })
         .collect()
 }

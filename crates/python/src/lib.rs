@@ -27,6 +27,7 @@ mod errors;
 mod memory;
 mod problem;
 mod scene;
+mod subsurface;
 
 use pyo3::prelude::*;
 

@@ -10,6 +10,7 @@ use pyo3::types::PyDict;
 use crate::convert::{arrays, toml_table, toml_text};
 use crate::errors::{InputError, SceneError, SolveError, guarded, scene_error};
 use crate::memory::ceiling;
+use crate::subsurface::subsurface_arrays;
 
 /// A scene's text: read from `path`, or a dict written as TOML.
 pub(crate) fn scene_text(
@@ -50,7 +51,9 @@ pub(crate) fn run_prepared(py: Python<'_>, scene: Scene) -> PyResult<elcon_scene
 
 /// Runs a scene (a file, or a dict with a scene's keys); returns
 /// `{"json": result.json's text, "x": ..., "y": ..., "force": ...,
-/// "pressure": ..., "gap": ..., "separation": ...}`.
+/// "pressure": ..., "gap": ..., "separation": ...}`, and `"subsurface"`
+/// (each body's section and profile arrays) when the scene asks for the
+/// stresses below the surface.
 #[pyfunction]
 #[pyo3(signature = (path=None, scene=None))]
 pub(crate) fn run_scene<'py>(
@@ -72,6 +75,9 @@ pub(crate) fn run_scene<'py>(
         run.problem.separation(),
     )?;
     d.set_item("json", json)?;
+    if let Some(fields) = &run.subsurface {
+        d.set_item("subsurface", subsurface_arrays(py, fields)?)?;
+    }
     Ok(d)
 }
 

@@ -64,6 +64,32 @@ def test_arrays_have_the_documented_shapes_and_dtypes():
     assert result.statistics["attempts"]
 
 
+def test_the_stresses_below_the_surface_come_as_arrays_beside_result_json(tmp_path):
+    import tomllib
+
+    scene = tomllib.loads((SCENES / "hertz-cylinders.toml").read_text())
+    scene["outputs"] = {"subsurface": True}
+    result = elcon.run(scene)
+    assert elcon.run(SCENES / "hertz-cylinders.toml").subsurface is None
+    block = result.subsurface
+    assert block["stress_unit"] == result.to_dict()["units"]["pressure"]
+    for name in ("body1", "body2"):
+        body = block[name]
+        assert body["applicable"]
+        section = body["section"]
+        n, m = len(section["x"]), len(section["depth"])
+        for component in ("sigma_x", "sigma_z", "tau_xz", "von_mises", "tresca"):
+            assert section[component].shape == (n, m), component
+        # The block's maximum is the section's, refined between its depths.
+        largest = section["von_mises"].max()
+        assert largest <= body["von_mises"]["value"] * (1 + 1e-12)
+        assert largest > 0.97 * body["von_mises"]["value"]
+        # Johnson's line contact: the largest shear 0.30 p0 at 0.786 b.
+        p0 = result.max_pressure
+        assert body["tresca"]["value"] / p0 == pytest.approx(0.3003, rel=0.01)
+        assert body["profile"]["von_mises"].shape == (1, m)
+
+
 def test_a_scene_dict_runs_like_its_file():
     import tomllib
 

@@ -86,6 +86,16 @@ class Result(_Fields):
     ``x``, ``y``, ``force``, ``pressure``, ``gap``, ``separation`` (the
     initial separation).
 
+    ``subsurface`` (a scene with ``[outputs] subsurface = true``; None
+    otherwise): per body (``"body1"``, ``"body2"``) result.json's block
+    (``applicable``, ``von_mises``, ``tresca``, ``orthogonal_xz``,
+    ``orthogonal_yz``: each ``value``, ``x``, ``y``, ``depth``) with, for a
+    body that has a field, ``section`` and ``profile``: dicts of ``x``
+    (shape ``(n,)``), ``depth`` (``(m,)``), ``y`` and the stresses
+    ``sigma_x``, ``sigma_y``, ``sigma_z``, ``tau_xy``, ``tau_xz``,
+    ``tau_yz``, ``von_mises``, ``tresca``, each of shape ``(n, m)`` (the
+    scene's pressure unit, tension positive).
+
     ``to_dict()`` is the run's result.json (for a scene) or the solution's
     fields with the same names (for a ContactProblem).
     """
@@ -104,6 +114,22 @@ class Result(_Fields):
             array = np.asarray(raw[name], dtype=np.float64)
             array.setflags(write=False)
             setattr(self, name, array)
+        self._subsurface: Optional[Dict[str, Any]] = raw.get("subsurface")
+
+    @property
+    def subsurface(self) -> Optional[Dict[str, Any]]:
+        """The stresses below the surface, when the scene asked for them."""
+        block = self._dict.get("subsurface")
+        if block is None:
+            return None
+        bodies: Dict[str, Any] = {"stress_unit": block["stress_unit"]}
+        arrays = self._subsurface or {}
+        for name in ("body1", "body2"):
+            body = dict(block[name])
+            if arrays.get(name) is not None:
+                body.update(arrays[name])
+            bodies[name] = body
+        return bodies
 
     def to_dict(self) -> Dict[str, Any]:
         """The result as a dict: for a scene, equal to its result.json."""
