@@ -27,6 +27,7 @@ mod errors;
 mod memory;
 mod problem;
 mod scene;
+mod threads;
 
 use pyo3::prelude::*;
 
