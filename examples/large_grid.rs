@@ -239,7 +239,10 @@ fn peer(path: &str) -> Vec<(f64, f64)> {
             let v: serde_json::Value = serde_json::from_str(l).ok()?;
             let n = v["n"].as_f64()?;
             let cpu = v["cpu/wall"].as_f64()?;
-            Some((n * n, (v["t_setup_s"].as_f64()? + v["t_solve_s"].as_f64()?) * cpu))
+            Some((
+                n * n,
+                (v["t_setup_s"].as_f64()? + v["t_solve_s"].as_f64()?) * cpu,
+            ))
         })
         .collect()
 }
