@@ -54,8 +54,8 @@ impl std::fmt::Debug for Convolution {
 
 /// The scratch memory of one product `S x`: a band of the row spectra of
 /// the box (`n1 ceil((P2/2 + 1) / 2)` complex values), and a wave of
-/// columns that the threads transform at once ([`COLUMN_BATCH`] columns
-/// of P1 complex values per thread of the pool it was made in). Made by
+/// columns that the threads transform at once (a batch of 16 columns of
+/// P1 complex values per thread of the pool it was made in). Made by
 /// [`LatticeKernel::workspace`](super::LatticeKernel::workspace) for one operator (or one of the same grid);
 /// reused across calls, its contents between calls mean nothing. Its
 /// size changes nothing of a product's values: used in a pool of another
