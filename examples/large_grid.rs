@@ -1,7 +1,9 @@
 //! Dense or matrix-free: Hertz spheres (Example 1's data, Love patches)
 //! solved in full on disk grids of growing N, by block pivoting on the
 //! dense S and by the conjugate gradient on the lattice operator (an FFT
-//! convolution, O(N) memory), side by side: assembly and solve seconds,
+//! convolution, O(N) memory), side by side: assembly and solve CPU seconds
+//! (of every thread: on a machine busy with other work, less inflated than
+//! the wall time),
 //! CG iterations, the bytes each holds, the errors against Hertz and the
 //! certificate. The dense side stops where S would pass 4 GB.
 //!
@@ -9,6 +11,7 @@
 //! cargo run --release --example large_grid                # up to 128 cells per radius
 //! cargo run --release --example large_grid -- --max 256   # N up to about 260,000
 //! cargo run --release --example large_grid -- --h-over-a 64   # one size, the peers' case
+//! cargo run --release --example large_grid -- --h-over-a 64 --threads 1   # on one thread
 //! cargo run --release --example large_grid -- --max 128 --plot docs/img/large-grid.svg
 //! ```
 //!
@@ -17,7 +20,14 @@
 //! `solver.method = "auto"`'s choice for that N), and prints as its last
 //! line `n=<N> method=<name> seconds=<assembly+solve>
 //! err_delta=<approach error against Hertz> certificate=<worst residual>
-//! peak_rss_mb=<MB>` (the process's peak resident memory, VmHWM).
+//! peak_rss_mb=<MB> products=<operator products> floor_seconds=<products x
+//! one product's CPU seconds> threads=<rayon threads> cpu_seconds=<the CPU
+//! time of assembly and solve, all threads>` (peak_rss_mb the process's
+//! peak resident memory, VmHWM; products 0 for a dense solve; CPU times in
+//! steps of 10 ms, a measure that a machine busy with other work inflates
+//! less than the wall time; on one thread of an idle machine the CPU and
+//! the wall time agree, and `cpu_seconds / floor_seconds` is how far the
+//! solve is from its floor).
 //!
 //! The table is docs/performance.md's "Dense or matrix-free"; the
 //! crossover sets `elcon_scene::AUTO_DENSE_LIMIT`.
@@ -45,15 +55,34 @@ fn peak_rss_mb() -> f64 {
         .map_or(f64::NAN, |kib| kib * 1024.0 / 1e6)
 }
 
+/// The CPU seconds the process has used, all its threads (utime + stime
+/// of /proc/self/stat, in clock ticks of 10 ms).
+fn cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|t| {
+            // The fields after the command's closing parenthesis: utime and
+            // stime are the 12th and 13th of them.
+            let rest = &t[t.rfind(')')? + 2..];
+            let mut f = rest.split_whitespace().skip(11);
+            let user: f64 = f.next()?.parse().ok()?;
+            let system: f64 = f.next()?.parse().ok()?;
+            Some((user + system) / 100.0)
+        })
+        .unwrap_or(f64::NAN)
+}
+
 /// One size, the peers' case: h = a / `cells` on the disk of 1.3 a, the
-/// method `"auto"` picks for it.
+/// method `"auto"` picks for it. A matrix-free solve also reports its
+/// operator products and its floor, the products times one product's
+/// CPU seconds on the same threads (to compare with `cpu_seconds`).
 fn one_size(cells: f64) {
     let hertz = hertz::reference();
     let a = hertz.contact_radius();
     let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
     let n = points.len();
     let dense = n <= elcon::scene::AUTO_DENSE_LIMIT;
-    let start = Instant::now();
+    let (start, cpu_start) = (Instant::now(), cpu_seconds());
     let (build, method) = if dense {
         (ContactProblem::new as hertz::Build, Method::BlockPivoting)
     } else {
@@ -62,20 +91,57 @@ fn one_size(cells: f64) {
             Method::ConjugateGradient,
         )
     };
-    let sol = hertz::held(build, points)
-        .solve(method, &Options::default())
-        .expect("solve");
+    let problem = hertz::held(build, points);
+    let sol = problem.solve(method, &Options::default()).expect("solve");
     let seconds = start.elapsed().as_secs_f64();
+    let cpu = cpu_seconds() - cpu_start;
+    // The solve's peak, before the floor's products take a workspace.
+    let peak = peak_rss_mb();
+    let products = sol.statistics.products();
+    let floor = products as f64 * product_seconds(&problem);
     println!(
-        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1}",
+        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1} products={products} floor_seconds={floor:.4} threads={} cpu_seconds={cpu:.2}",
         method.name(),
         sol.approach / hertz.approach() - 1.0,
         sol.certificate.worst(),
-        peak_rss_mb()
+        peak,
+        rayon::current_num_threads(),
     );
 }
 
+/// CPU seconds of products the floor's measure takes at least.
+const FLOOR_CPU: f64 = 0.3;
+
+/// The CPU seconds (all threads) of one product `S x` of `problem`'s
+/// operator, the mean over products that take at least [`FLOOR_CPU`] (0
+/// for a dense problem, whose solve reads S's entries).
+fn product_seconds(problem: &ContactProblem) -> f64 {
+    use elcon::lcp::Operator;
+    let Ok(products) = problem.products() else {
+        return 0.0;
+    };
+    let n = products.size();
+    let (x, mut y) = (vec![1.0; n], vec![0.0; n]);
+    products.apply(&x, &mut y);
+    let (start, mut count) = (cpu_seconds(), 0);
+    while cpu_seconds() - start < FLOOR_CPU {
+        products.apply(&x, &mut y);
+        count += 1;
+    }
+    (cpu_seconds() - start) / count as f64
+}
+
 fn main() {
+    if let Some(threads) = std::env::args()
+        .skip_while(|a| a != "--threads")
+        .nth(1)
+        .and_then(|v| v.parse::<usize>().ok())
+    {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build_global()
+            .expect("the thread pool");
+    }
     if let Some(k) = std::env::args()
         .skip_while(|a| a != "--h-over-a")
         .nth(1)
@@ -92,7 +158,7 @@ fn main() {
     let (hertz, (body, _)) = (hertz::reference(), hertz::bodies());
     let a = hertz.contact_radius();
     println!(
-        "| cells per radius | N | dense: assembly + block pivoting, s | dense S, MB | matrix-free: operator + CG, s | CG iterations | operator, MB | approach error | peak error | CG certificate |"
+        "| cells per radius | N | dense: assembly + block pivoting, CPU s | dense S, MB | matrix-free: operator + CG, CPU s | CG iterations | operator, MB | approach error | peak error | CG certificate |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|");
     let plot_to = std::env::args()
@@ -106,21 +172,21 @@ fn main() {
         let n = points.len();
         let dense_bytes = 8.0 * (n as f64) * (n as f64);
         let dense = if dense_bytes <= DENSE_CEILING {
-            let start = Instant::now();
+            let start = cpu_seconds();
             let sol = hertz::held(ContactProblem::new, points.clone())
                 .solve(Method::BlockPivoting, &Options::default())
                 .expect("dense solve");
-            Some((start.elapsed().as_secs_f64(), sol.approach))
+            Some((cpu_seconds() - start, sol.approach))
         } else {
             None
         };
         let operator_bytes =
             LatticeOperator::estimate_bytes(&points, &[&body, &body]).expect("lattice");
-        let start = Instant::now();
+        let start = cpu_seconds();
         let sol = hertz::held(ContactProblem::lattice, points)
             .solve(Method::ConjugateGradient, &Options::default())
             .expect("matrix-free solve");
-        let seconds = start.elapsed().as_secs_f64();
+        let seconds = cpu_seconds() - start;
         if let Some((_, approach)) = dense {
             assert!(
                 (approach / sol.approach - 1.0).abs() < 1e-8,
@@ -128,8 +194,8 @@ fn main() {
             );
         }
         println!(
-            "| {cells} | {n} | {} | {} | {seconds:.3} | {} | {:.1} | {:+.2e} | {:+.2e} | {:.1e} |",
-            dense.map_or("-".into(), |(s, _)| format!("{s:.3}")),
+            "| {cells} | {n} | {} | {} | {seconds:.2} | {} | {:.1} | {:+.2e} | {:+.2e} | {:.1e} |",
+            dense.map_or("-".into(), |(s, _)| format!("{s:.2}")),
             if dense.is_some() {
                 format!("{:.0}", dense_bytes / 1e6)
             } else {
@@ -160,8 +226,10 @@ struct Timings {
     matrix_free: Vec<(f64, f64)>,
 }
 
-/// A peer's stored runs (docs/peers/*-large.md): (cells of its square grid,
-/// setup + solve seconds).
+/// A peer's stored runs in the fitted box (docs/peers/*-fitted.md): (cells
+/// of its square grid, setup + solve CPU seconds: the solve's wall time
+/// times its `cpu/wall`, as the machine's other work inflates the wall
+/// time of each system differently).
 fn peer(path: &str) -> Vec<(f64, f64)> {
     std::fs::read_to_string(path)
         .unwrap_or_default()
@@ -170,7 +238,11 @@ fn peer(path: &str) -> Vec<(f64, f64)> {
         .filter_map(|l| {
             let v: serde_json::Value = serde_json::from_str(l).ok()?;
             let n = v["n"].as_f64()?;
-            Some((n * n, v["t_setup_s"].as_f64()? + v["t_solve_s"].as_f64()?))
+            let cpu = v["cpu/wall"].as_f64()?;
+            Some((
+                n * n,
+                (v["t_setup_s"].as_f64()? + v["t_solve_s"].as_f64()?) * cpu,
+            ))
         })
         .collect()
 }
@@ -185,12 +257,12 @@ fn plot(path: &std::path::Path, t: &Timings) -> Result<(), Box<dyn std::error::E
             t.matrix_free.clone(),
         ),
         (
-            "Tamaas (docs/peers/tamaas-large.md)",
-            peer("docs/peers/tamaas-large.md"),
+            "Tamaas, fitted box (docs/peers/tamaas-fitted.md)",
+            peer("docs/peers/tamaas-fitted.md"),
         ),
         (
-            "ContactMechanics (docs/peers/cm-large.md)",
-            peer("docs/peers/cm-large.md"),
+            "ContactMechanics, fitted box (docs/peers/cm-fitted.md)",
+            peer("docs/peers/cm-fitted.md"),
         ),
     ];
     let all: Vec<(f64, f64)> = series.iter().flat_map(|(_, s)| s.iter().copied()).collect();
@@ -216,7 +288,7 @@ fn plot(path: &std::path::Path, t: &Timings) -> Result<(), Box<dyn std::error::E
         chart
             .configure_mesh()
             .x_desc("N (points; the peers' square grids: cells)")
-            .y_desc("seconds (assembly or setup, and solve)")
+            .y_desc("CPU seconds (assembly or setup, and solve)")
             .draw()?;
         for (i, (name, points)) in series.iter().enumerate() {
             let colour = common::labelled_line(&mut chart, i, name, points.iter().copied())?;

@@ -7,6 +7,9 @@
 //! elcon merge DIR... --out DIR
 //! ```
 //!
+//! Every command takes `--threads N` (also `ELCON_THREADS`): the threads of
+//! a solve (default: the cores the process may use).
+//!
 //! Exit codes: 0 all good; 1 some scene or run failed (the others still ran
 //! and were written), a file did not validate, a scene was too big for the
 //! memory, or merge was given inconsistent shards; 2 a usage error (unknown
@@ -34,6 +37,11 @@ use elcon_scene::{
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Threads of a solve's products and vector passes (default: the cores
+    /// this process may use; also ELCON_THREADS). A batch's runs share
+    /// `--jobs` threads instead.
+    #[arg(long, global = true)]
+    threads: Option<usize>,
 }
 
 /// `--shard`: K/N, or auto (from the scheduler's variables).
@@ -123,9 +131,35 @@ fn ceiling(limit: Option<u64>) -> Result<Ceiling, Outcome> {
     Ceiling::of_this_process(limit).map_err(Outcome::Usage)
 }
 
+/// Bounds the threads of the global rayon pool by `--threads`, else by
+/// `ELCON_THREADS`; neither: rayon's default, the cores the process may
+/// use (`std::thread::available_parallelism`: its CPU affinity and cgroup
+/// quota). A solve's values do not depend on the count.
+fn threads(arg: Option<usize>) -> Result<(), Outcome> {
+    let count = match (arg, std::env::var("ELCON_THREADS")) {
+        (Some(n), _) => n,
+        (None, Ok(v)) => v
+            .trim()
+            .parse()
+            .map_err(|_| Outcome::Usage(format!("ELCON_THREADS={v} is not a count of threads")))?,
+        (None, Err(_)) => return Ok(()),
+    };
+    if count == 0 {
+        return Err(Outcome::Usage("the threads must be at least 1".into()));
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(count)
+        .build_global()
+        .map_err(|e| Outcome::Usage(format!("the thread pool: {e}")))
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     install_panic_hook();
+    if let Err(Outcome::Usage(message)) = threads(cli.threads) {
+        eprintln!("error: {message}");
+        return ExitCode::from(2);
+    }
     let outcome = match cli.command {
         Command::Run {
             scenes,

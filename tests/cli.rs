@@ -429,3 +429,45 @@ fn the_command_line_and_the_library_agree_bit_for_bit() {
         assert_eq!(f.to_bits(), force.to_bits());
     }
 }
+
+#[test]
+fn threads_change_nothing_of_a_matrix_free_run() {
+    // Example 1 on 161 points across (about 20,000), matrix-free and in
+    // full: the same pressure.csv on one thread (--threads) and on three
+    // (ELCON_THREADS); a count that is not one is a usage error.
+    let dir = scratch("threads");
+    let scene = dir.join("spheres.toml");
+    let text_of_scene = edited(
+        &example_scene("example1-spheres"),
+        &[
+            ("across = 41", "across = 161"),
+            (
+                "method = \"block-pivoting\"",
+                "method = \"conjugate-gradient\"\nsymmetry = \"none\"\nerror_estimate = false",
+            ),
+        ],
+    );
+    std::fs::write(&scene, text_of_scene).unwrap();
+    let scene = scene.to_str().unwrap();
+    let (one, three) = (dir.join("one"), dir.join("three"));
+    let run = |out: &Path, args: &[&str], env: &[(&str, &str)]| {
+        let mut all = vec!["run", scene, "--out", out.to_str().unwrap()];
+        all.extend_from_slice(args);
+        let o = common::elcon_with(&all, env);
+        assert!(o.status.success(), "{}", text(&o));
+        std::fs::read(out.join("example1-spheres/pressure.csv")).unwrap()
+    };
+    let a = run(&one, &["--threads", "1"], &[]);
+    let b = run(&three, &[], &[("ELCON_THREADS", "3")]);
+    assert!(a == b, "pressure.csv differs between 1 and 3 threads");
+    let r = json(&three.join("example1-spheres/result.json"));
+    assert_eq!(r["influence"], "matrix-free", "{r}");
+    let bad = |args: &[&str], env: &[(&str, &str)]| {
+        let mut all = vec!["check", scene];
+        all.extend_from_slice(args);
+        common::elcon_with(&all, env).status.code()
+    };
+    assert_eq!(bad(&["--threads", "0"], &[]), Some(2));
+    assert_eq!(bad(&[], &[("ELCON_THREADS", "many")]), Some(2));
+    assert_eq!(bad(&[], &[("ELCON_THREADS", "2")]), Some(0));
+}

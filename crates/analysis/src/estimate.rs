@@ -23,11 +23,11 @@ use crate::storage::Storage;
 const ENTRY: f64 = 8.0;
 
 /// Vectors of N doubles a matrix-free solve holds besides the operator:
-/// the separations, the border, then the conjugate gradient's iterate, gap
-/// and direction, or at the end the answer and the certificate's two
-/// columns; a grid's point set holds a quarter of one (measured: a heap
-/// peak of 66 bytes a point at 347,949 points, 21 of them the operator's).
-const CG_VECTORS: f64 = 6.0;
+/// the separations, the border, then the conjugate gradient's iterate, its
+/// product `M z`, the direction and its product `M t`, or at the end the
+/// answer and the certificate's two columns; a grid's point set holds a
+/// quarter of one; rounded up.
+const CG_VECTORS: f64 = 7.0;
 
 /// Vectors of N doubles a matrix-free problem solved again and again (a
 /// design's load case) holds besides its operator: its solve's
@@ -37,8 +37,8 @@ const CG_VECTORS: f64 = 6.0;
 const HELD_VECTORS: f64 = 14.0;
 
 /// Seconds per point of a matrix-free solve (a few hundred iterations of
-/// two FFT products each; docs/performance.md, "Dense or matrix-free"),
-/// rounded up.
+/// about one FFT product each; docs/performance.md, "Dense or
+/// matrix-free"), rounded up.
 const CG_SECONDS_PER_POINT: f64 = 1e-4;
 
 /// Seconds per n^3 of a tableau method's solve on the symmetric tableau

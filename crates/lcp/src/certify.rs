@@ -132,13 +132,14 @@ impl MixedLcp {
 impl OperatorLcp<'_> {
     /// The certificate of `(z, λ)` from products of the original operator:
     /// `w = M z - B λ + q` and `|M| |z| + |B| |λ| + |q|`, `B^T z - b` and
-    /// `|B|^T |z| + |b|`; also returns `w`.
+    /// `|B|^T |z| + |b|`; also returns `w` and the number of products it
+    /// took.
     pub(crate) fn certify(
         &self,
         z: &Col<f64>,
         lambda: &Col<f64>,
         tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
+    ) -> (Certificate, Col<f64>, usize) {
         let n = z.nrows();
         // Two vectors of n, computed in place: at 10^6 points each is 8 MB.
         let z_slice = z
@@ -182,7 +183,7 @@ impl OperatorLcp<'_> {
             },
             tolerance,
         );
-        (certificate, w)
+        (certificate, w, 2)
     }
 }
 

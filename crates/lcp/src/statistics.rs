@@ -150,6 +150,9 @@ pub struct Work {
     pub tableau_rows: usize,
     /// Columns of the tableau: non-basic unknowns plus the right-hand side.
     pub tableau_columns: usize,
+    /// Products `M x` of an operator (the conjugate gradient's, and its
+    /// certificate's): the unit of a matrix-free solve's cost.
+    pub products: usize,
 }
 
 /// One attempt of a solve.
@@ -224,6 +227,12 @@ impl Statistics {
     /// Factorizations of every attempt.
     pub fn factorizations(&self) -> usize {
         self.total(|w| w.factorizations)
+    }
+
+    /// Products `M x` of an operator by every attempt and its certificate
+    /// (0 for the methods that read `M`'s entries).
+    pub fn products(&self) -> usize {
+        self.total(|w| w.products)
     }
 
     /// The attempt whose answer was returned.

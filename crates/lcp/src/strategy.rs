@@ -261,7 +261,9 @@ impl Routed for OperatorLcp<'_> {
 
     fn certify(&self, solved: &mut Solved, tolerance: f64) -> Certificate {
         let (z, lambda) = (&solved.answer.z, &solved.answer.u);
-        solved.keep_w(OperatorLcp::certify(self, z, lambda, tolerance))
+        let (certificate, w, products) = OperatorLcp::certify(self, z, lambda, tolerance);
+        solved.answer.work.products += products;
+        solved.keep_w((certificate, w))
     }
 
     fn work(solved: &Solved) -> Work {
@@ -293,6 +295,10 @@ impl Routed for LinearSystem<'_> {
     }
 
     fn certify(&self, answer: &mut LinearAnswer, tolerance: f64) -> Certificate {
+        if let Matrix::Operator(_) = self.matrix {
+            // M x and |M| |x| for every column.
+            answer.work.products += 2 * self.columns();
+        }
         LinearSystem::certify(self, answer.x.as_ref(), tolerance)
     }
 

@@ -246,7 +246,7 @@ pub(crate) fn design_scene<'py>(
             file.display()
         )));
     }
-    let run = run_prepared(py, scene)?;
+    let run = run_prepared(py, scene, None)?;
     let d = PyDict::new(py);
     let design = run
         .result

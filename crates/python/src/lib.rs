@@ -28,6 +28,7 @@ mod memory;
 mod problem;
 mod scene;
 mod subsurface;
+mod threads;
 
 use pyo3::prelude::*;
 

@@ -18,6 +18,7 @@ use serde::Serialize;
 use crate::convert::{arrays, sections_text};
 use crate::errors::{InputError, SolveError, analysis_error, guarded, parts_error};
 use crate::memory::{admit, ceiling};
+use crate::threads::with_threads;
 
 /// The names of the solve methods.
 #[pyfunction]
@@ -305,13 +306,14 @@ impl PyContactProblem {
         self.inner.default_method().name()
     }
 
-    /// Solves by `method_name` (default: the problem's own method);
-    /// returns `{"json": the solution's fields, arrays...}`.
-    #[pyo3(signature = (method_name=None))]
+    /// Solves by `method_name` (default: the problem's own method) on
+    /// `threads` threads (default: the global pool); returns `{"json": the solution's fields, arrays...}`.
+    #[pyo3(signature = (method_name=None, threads=None))]
     fn solve<'py>(
         &self,
         py: Python<'py>,
         method_name: Option<&str>,
+        threads: Option<i64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let m = match method_name {
             Some(name) => method(name)?,
@@ -322,19 +324,21 @@ impl PyContactProblem {
         let problem = &self.inner;
         let built = &self.built;
         let solution = py.detach(|| {
-            guarded("ContactProblem.solve", || {
-                if let Some(b) = built {
-                    let plan = b
-                        .builder(problem.points().clone(), problem.loading())
-                        .storage(problem.storage())
-                        .method(m)
-                        .plan()
-                        .map_err(analysis_error)?;
-                    admit(&plan, &ceiling)?;
-                }
-                problem
-                    .solve(m, &Options::default())
-                    .map_err(analysis_error)
+            with_threads(threads, || {
+                guarded("ContactProblem.solve", || {
+                    if let Some(b) = built {
+                        let plan = b
+                            .builder(problem.points().clone(), problem.loading())
+                            .storage(problem.storage())
+                            .method(m)
+                            .plan()
+                            .map_err(analysis_error)?;
+                        admit(&plan, &ceiling)?;
+                    }
+                    problem
+                        .solve(m, &Options::default())
+                        .map_err(analysis_error)
+                })
             })
         })?;
         let json = ProblemJson::of(problem, &solution, m);

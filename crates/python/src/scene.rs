@@ -11,6 +11,7 @@ use crate::convert::{arrays, toml_table, toml_text};
 use crate::errors::{InputError, SceneError, SolveError, guarded, scene_error};
 use crate::memory::ceiling;
 use crate::subsurface::subsurface_arrays;
+use crate::threads::with_threads;
 
 /// A scene's text: read from `path`, or a dict written as TOML.
 pub(crate) fn scene_text(
@@ -37,35 +38,43 @@ pub(crate) fn scene_text(
 
 /// Runs a validated scene as `elcon run` does: estimated against the
 /// memory ceiling first, the run isolated (a panic becomes an error).
-pub(crate) fn run_prepared(py: Python<'_>, scene: Scene) -> PyResult<elcon_scene::Run> {
+pub(crate) fn run_prepared(
+    py: Python<'_>,
+    scene: Scene,
+    threads: Option<i64>,
+) -> PyResult<elcon_scene::Run> {
     let ceiling = ceiling()?;
     let name = scene.name().to_string();
     py.detach(|| {
-        isolated(&name, || {
-            let prepared = elcon_scene::prepare(scene, &ceiling)?;
-            elcon_scene::run(&prepared.scene)
+        with_threads(threads, || {
+            isolated(&name, || {
+                let prepared = elcon_scene::prepare(scene, &ceiling)?;
+                elcon_scene::run(&prepared.scene)
+            })
+            .map_err(scene_error)
         })
     })
-    .map_err(scene_error)
 }
 
-/// Runs a scene (a file, or a dict with a scene's keys); returns
+/// Runs a scene (a file, or a dict with a scene's keys) on `threads`
+/// threads (default: the global pool); returns
 /// `{"json": result.json's text, "x": ..., "y": ..., "force": ...,
 /// "pressure": ..., "gap": ..., "separation": ...}`, and `"subsurface"`
 /// (each body's section and profile arrays) when the scene asks for the
 /// stresses below the surface.
 #[pyfunction]
-#[pyo3(signature = (path=None, scene=None))]
+#[pyo3(signature = (path=None, scene=None, threads=None))]
 pub(crate) fn run_scene<'py>(
     py: Python<'py>,
     path: Option<PathBuf>,
     scene: Option<Bound<'py, PyDict>>,
+    threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (file, text) = scene_text(path, scene.as_ref())?;
     let scene = guarded("scene", || {
         Scene::from_str(&file, &text).map_err(scene_error)
     })?;
-    let run = run_prepared(py, scene)?;
+    let run = run_prepared(py, scene, threads)?;
     let json = serde_json::to_string_pretty(&run.result)
         .map_err(|e| SolveError::new_err(format!("result.json: {e}")))?;
     let d = arrays(

@@ -527,3 +527,25 @@ def test_python_is_as_safe_as_the_cli(tmp_path, monkeypatch):
     with pytest.raises(elcon.InputError, match="not in one consistent unit system"):
         elcon.ContactProblem(i.ravel(), np.zeros(25), 1e-300, y=j.ravel(), body1=steel,
                              body2=steel, load=1.0).solve()
+
+
+def test_threads_change_nothing_of_a_matrix_free_solve():
+    # Example 1's spheres on about 5,000 points, matrix-free: the same
+    # forces to the bit on one thread and on three; a count below 1 is an
+    # input error.
+    steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
+    h = 0.0005
+    i = np.arange(-40, 41)
+    x, y = [v.ravel() * h for v in np.meshgrid(i, i, indexing="ij")]
+    keep = np.hypot(x, y) <= 40 * h
+    x, y = x[keep], y[keep]
+    separation = (x**2 + y**2) / (2 * (1.0 * 10.0 / 11.0))
+    problem = elcon.ContactProblem(
+        x, separation, h, y=y, body1=steel, body2=steel, load=100.0, storage="lattice"
+    )
+    one = problem.solve("conjugate-gradient", threads=1)
+    three = problem.solve("conjugate-gradient", threads=3)
+    assert one.certificate["holds"]
+    assert np.array_equal(one.force, three.force)
+    with pytest.raises(elcon.InputError):
+        problem.solve("conjugate-gradient", threads=0)

@@ -12,6 +12,7 @@
 use std::ops::Range;
 use std::sync::Arc;
 
+use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
@@ -21,6 +22,10 @@ use super::spectrum::kernel_spectrum;
 use crate::error::InfluenceError;
 use crate::points::{LatticeBox, PointSet};
 use crate::terms::Terms;
+
+/// Rows of the box a thread takes up at least at once: a few dozen
+/// microseconds of transforms, worth a hand-over to the pool.
+const ROWS_PER_TASK: usize = 8;
 
 /// The half-space part of S on the lattice: the gather order, the kernel
 /// spectrum and the FFT plans (immutable after construction).
@@ -48,24 +53,34 @@ impl std::fmt::Debug for Convolution {
 }
 
 /// The scratch memory of one product `S x`: a band of the row spectra of
-/// the box (`n1 ceil((P2/2 + 1) / 2)` complex values), a row and its
-/// spectrum, a batch of columns and the FFT scratch. Made by
+/// the box (`n1 ceil((P2/2 + 1) / 2)` complex values), and a wave of
+/// columns that the threads transform at once (a batch of 16 columns of
+/// P1 complex values per thread of the pool it was made in). Made by
 /// [`LatticeKernel::workspace`](super::LatticeKernel::workspace) for one operator (or one of the same grid);
-/// reused across calls, its contents between calls mean nothing.
+/// reused across calls, its contents between calls mean nothing. Its
+/// size changes nothing of a product's values: used in a pool of another
+/// size it works in smaller or larger waves, to the same bits.
 #[derive(Debug)]
 pub struct LatticeWorkspace {
     /// The grid it was made for (`None`: an operator without convolution).
     grid: Option<Grid>,
     spectra: Vec<C64>,
+    /// Columns of the band, zero-padded to P1, transformed together.
+    columns: Vec<C64>,
+}
+
+/// A thread's buffers for row transforms: a row, its half spectrum and the
+/// FFT scratch (O(P2), made when a thread takes up a share of the rows).
+struct RowBuffers {
     row: Vec<f64>,
-    row_spectrum: Vec<C64>,
-    batch: Vec<C64>,
+    spectrum: Vec<C64>,
     scratch: Vec<C64>,
 }
 
 impl LatticeWorkspace {
     /// The workspace of a product with `convolution` (empty for an operator
-    /// without convolution).
+    /// without convolution), with waves for the current rayon pool's
+    /// threads.
     ///
     /// # Errors
     /// [`InfluenceError::AllocationFailed`] when the memory cannot be
@@ -75,21 +90,16 @@ impl LatticeWorkspace {
             return Ok(Self {
                 grid: None,
                 spectra: Vec::new(),
-                row: Vec::new(),
-                row_spectrum: Vec::new(),
-                batch: Vec::new(),
-                scratch: Vec::new(),
+                columns: Vec::new(),
             });
         };
         let g = c.grid;
         let zero = C64::new(0.0, 0.0);
+        let wave = wave_len(&g);
         Ok(Self {
             grid: Some(g),
             spectra: try_vec(g.rows * g.band_width(), zero, "lattice row spectra")?,
-            row: try_vec(g.padded_columns, 0.0, "lattice row")?,
-            row_spectrum: try_vec(g.half_columns(), zero, "lattice row spectrum")?,
-            batch: try_vec(COLUMN_BATCH * g.padded_rows, zero, "lattice column batch")?,
-            scratch: try_vec(c.scratch_len, zero, "FFT scratch")?,
+            columns: try_vec(wave * g.padded_rows, zero, "lattice column wave")?,
         })
     }
 
@@ -100,13 +110,15 @@ impl LatticeWorkspace {
 
     /// Bytes held by the workspace.
     pub fn memory_bytes(&self) -> usize {
-        std::mem::size_of::<Self>()
-            + 16 * (self.spectra.capacity()
-                + self.row_spectrum.capacity()
-                + self.batch.capacity()
-                + self.scratch.capacity())
-            + 8 * self.row.capacity()
+        std::mem::size_of::<Self>() + 16 * (self.spectra.capacity() + self.columns.capacity())
     }
+}
+
+/// Columns of a wave on `grid`: [`COLUMN_BATCH`] per thread of the
+/// current rayon pool, at most a band's.
+pub(super) fn wave_len(grid: &Grid) -> usize {
+    let threads = rayon::current_num_threads().max(1);
+    (COLUMN_BATCH * threads).min(grid.band_width())
 }
 
 impl Convolution {
@@ -155,7 +167,9 @@ impl Convolution {
 
     /// `y` = the half-space part of `S x`, band by band of the row
     /// spectra: the inverse row transforms are linear, so the bands' rows
-    /// add up to the whole.
+    /// add up to the whole. Each row's and each column's transform is
+    /// done by one thread, with nothing summed across them: the values do
+    /// not depend on the threads.
     pub(super) fn apply(&self, x: &[f64], y: &mut [f64], ws: &mut LatticeWorkspace) {
         let g = self.grid;
         let (half, width) = (g.half_columns(), g.band_width());
@@ -167,94 +181,186 @@ impl Convolution {
         }
     }
 
+    /// A thread's buffers for the row transforms.
+    fn row_buffers(&self) -> RowBuffers {
+        let g = self.grid;
+        let zero = C64::new(0.0, 0.0);
+        RowBuffers {
+            row: vec![0.0; g.padded_columns],
+            spectrum: vec![zero; g.half_columns()],
+            scratch: vec![zero; self.scratch_len],
+        }
+    }
+
     /// The forces of each lattice row, zero-padded to P2, to their half
-    /// spectrum, of which the frequencies `band` are kept.
+    /// spectrum, of which the frequencies `band` are kept (the rows shared
+    /// among the threads).
     fn rows_forward(&self, x: &[f64], band: Range<usize>, ws: &mut LatticeWorkspace) {
         let rows = self.grid.rows * band.len();
-        for (i, spectrum) in ws.spectra[..rows].chunks_exact_mut(band.len()).enumerate() {
-            ws.row.fill(0.0);
-            for s in self.gather.row(i) {
-                ws.row[s.columns()].copy_from_slice(&x[s.points()]);
-            }
-            self.row_forward
-                .process_with_scratch(&mut ws.row, &mut ws.row_spectrum, &mut ws.scratch)
-                .expect("buffer lengths follow the plan");
-            spectrum.copy_from_slice(&ws.row_spectrum[band.clone()]);
-        }
+        ws.spectra[..rows]
+            .par_chunks_mut(band.len())
+            .with_min_len(ROWS_PER_TASK)
+            .enumerate()
+            .for_each_init(
+                || self.row_buffers(),
+                |b, (i, spectrum)| {
+                    b.row.fill(0.0);
+                    for s in self.gather.row(i) {
+                        b.row[s.columns()].copy_from_slice(&x[s.points()]);
+                    }
+                    self.row_forward
+                        .process_with_scratch(&mut b.row, &mut b.spectrum, &mut b.scratch)
+                        .expect("buffer lengths follow the plan");
+                    spectrum.copy_from_slice(&b.spectrum[band.clone()]);
+                },
+            );
     }
 
     /// Rows back from the frequencies `band` (the others zero): the first
     /// n2 values of each inverse are the box's, written to `y` for the
-    /// first band and added for the others.
+    /// first band and added for the others. The rows are shared among the
+    /// threads when the points are in lattice-row order (each row writes
+    /// its own slice of `y`), else done on the caller's thread.
     fn rows_inverse(&self, y: &mut [f64], band: Range<usize>, ws: &mut LatticeWorkspace) {
-        let half = self.grid.half_columns();
-        let rows = self.grid.rows * band.len();
+        let stride = band.len();
+        let spectra = &ws.spectra[..self.grid.rows * stride];
         let first = band.start == 0;
-        for (i, spectrum) in ws.spectra[..rows].chunks_exact(band.len()).enumerate() {
-            ws.row_spectrum.fill(C64::new(0.0, 0.0));
-            ws.row_spectrum[band.clone()].copy_from_slice(spectrum);
-            // DC and Nyquist of a real row are real; drop the rounding.
-            ws.row_spectrum[0].im = 0.0;
-            ws.row_spectrum[half - 1].im = 0.0;
-            self.row_inverse
-                .process_with_scratch(&mut ws.row_spectrum, &mut ws.row, &mut ws.scratch)
-                .expect("buffer lengths follow the plan");
+        let one_row = |b: &mut RowBuffers, i: usize, spectrum: &[C64], out: &mut [f64], base| {
+            self.row_back(b, band.clone(), spectrum);
             for s in self.gather.row(i) {
-                let (out, row) = (&mut y[s.points()], &ws.row[s.columns()]);
+                let points = s.points();
+                let out = &mut out[points.start - base..points.end - base];
+                let row = &b.row[s.columns()];
                 if first {
                     out.copy_from_slice(row);
                 } else {
                     out.iter_mut().zip(row).for_each(|(y, r)| *y += r);
                 }
             }
+        };
+        match self.gather.row_slices(y) {
+            Some(slices) => {
+                spectra
+                    .par_chunks(stride)
+                    .zip(slices)
+                    .with_min_len(ROWS_PER_TASK)
+                    .enumerate()
+                    .for_each_init(
+                        || self.row_buffers(),
+                        |b, (i, (spectrum, out))| {
+                            let base = self.gather.row(i).first().map_or(0, |s| s.points().start);
+                            one_row(b, i, spectrum, out, base);
+                        },
+                    );
+            }
+            None => {
+                let mut b = self.row_buffers();
+                for (i, spectrum) in spectra.chunks_exact(stride).enumerate() {
+                    one_row(&mut b, i, spectrum, y, 0);
+                }
+            }
         }
     }
 
-    /// The column stage on a band of the row spectra, in batches of
-    /// [`COLUMN_BATCH`] columns: zero-pad each column from n1 to P1,
-    /// transform, multiply by the kernel's spectrum (even in m1: frequency
-    /// `P1 - m` is `m`'s), transform back, keep the first n1 values.
+    /// The inverse row transform of one row's frequencies `band` (the
+    /// others zero) into `b.row`.
+    fn row_back(&self, b: &mut RowBuffers, band: Range<usize>, spectrum: &[C64]) {
+        let half = self.grid.half_columns();
+        b.spectrum.fill(C64::new(0.0, 0.0));
+        b.spectrum[band].copy_from_slice(spectrum);
+        // DC and Nyquist of a real row are real; drop the rounding.
+        b.spectrum[0].im = 0.0;
+        b.spectrum[half - 1].im = 0.0;
+        self.row_inverse
+            .process_with_scratch(&mut b.spectrum, &mut b.row, &mut b.scratch)
+            .expect("buffer lengths follow the plan");
+    }
+
+    /// The column stage on a band of the row spectra, a wave of columns at
+    /// a time, in batches of [`COLUMN_BATCH`] columns shared among the
+    /// threads: zero-pad each column from n1 to P1, transform, multiply by
+    /// the kernel's spectrum, transform back; then the first n1 values of
+    /// each back into the band (the rows shared among the threads).
     fn columns_times_kernel(&self, band: Range<usize>, ws: &mut LatticeWorkspace) {
-        let g = self.grid;
-        let (n1, p1, half_rows) = (g.rows, g.padded_rows, g.half_rows());
+        let (n1, p1) = (self.grid.rows, self.grid.padded_rows);
         let stride = band.len();
         let rows = n1 * stride;
-        for first in band.clone().step_by(COLUMN_BATCH) {
-            let width = COLUMN_BATCH.min(band.end - first);
+        let wave = ws.columns.len() / p1;
+        for first in band.clone().step_by(wave) {
+            let width = wave.min(band.end - first);
             let offset = first - band.start;
-            let batch = &mut ws.batch[..width * p1];
-            for column in batch.chunks_exact_mut(p1) {
-                column[n1..].fill(C64::new(0.0, 0.0));
-            }
-            for (i, row) in ws.spectra[..rows].chunks_exact(stride).enumerate() {
-                for (t, &z) in row[offset..offset + width].iter().enumerate() {
-                    batch[t * p1 + i] = z;
-                }
-            }
-            self.column_forward
-                .process_with_scratch(batch, &mut ws.scratch);
-            for (t, column) in batch.chunks_exact_mut(p1).enumerate() {
-                let m2 = first + t;
-                let kernel = &self.spectrum[m2 * half_rows..(m2 + 1) * half_rows];
-                let (low, high) = column.split_at_mut(half_rows);
-                for (z, &k) in low.iter_mut().zip(kernel) {
-                    *z *= k;
-                }
-                // Frequency m >= P1/2 + 1 takes P1 - m, from P1/2 - 1 down to 1.
-                for (z, &k) in high
-                    .iter_mut()
-                    .zip(kernel[1..p1 - half_rows + 1].iter().rev())
-                {
-                    *z *= k;
-                }
-            }
-            self.column_inverse
-                .process_with_scratch(batch, &mut ws.scratch);
-            for (i, row) in ws.spectra[..rows].chunks_exact_mut(stride).enumerate() {
-                for (t, z) in row[offset..offset + width].iter_mut().enumerate() {
-                    *z = batch[t * p1 + i];
-                }
+            let spectra = &ws.spectra[..rows];
+            ws.columns[..width * p1]
+                .par_chunks_mut(COLUMN_BATCH * p1)
+                .enumerate()
+                .for_each_init(
+                    || vec![C64::new(0.0, 0.0); self.scratch_len],
+                    |scratch, (b, batch)| {
+                        let at = offset + b * COLUMN_BATCH;
+                        self.batch_times_kernel(
+                            spectra,
+                            stride,
+                            at,
+                            first - offset,
+                            batch,
+                            scratch,
+                        );
+                    },
+                );
+            let columns = &ws.columns[..width * p1];
+            ws.spectra[..rows]
+                .par_chunks_mut(stride)
+                .with_min_len(ROWS_PER_TASK)
+                .enumerate()
+                .for_each(|(i, row)| {
+                    for (t, z) in row[offset..offset + width].iter_mut().enumerate() {
+                        *z = columns[t * p1 + i];
+                    }
+                });
+        }
+    }
+
+    /// One batch of columns: the band's columns `at..` (offsets in the band
+    /// whose first frequency is `band_start`) read from `spectra`,
+    /// zero-padded to P1, transformed, multiplied by the kernel's spectrum
+    /// (even in m1: frequency `P1 - m` is `m`'s) and transformed back in
+    /// `batch`.
+    fn batch_times_kernel(
+        &self,
+        spectra: &[C64],
+        stride: usize,
+        at: usize,
+        band_start: usize,
+        batch: &mut [C64],
+        scratch: &mut [C64],
+    ) {
+        let g = self.grid;
+        let (n1, p1, half_rows) = (g.rows, g.padded_rows, g.half_rows());
+        let width = batch.len() / p1;
+        for column in batch.chunks_exact_mut(p1) {
+            column[n1..].fill(C64::new(0.0, 0.0));
+        }
+        for (i, row) in spectra.chunks_exact(stride).enumerate() {
+            for (t, &z) in row[at..at + width].iter().enumerate() {
+                batch[t * p1 + i] = z;
             }
         }
+        self.column_forward.process_with_scratch(batch, scratch);
+        for (t, column) in batch.chunks_exact_mut(p1).enumerate() {
+            let m2 = band_start + at + t;
+            let kernel = &self.spectrum[m2 * half_rows..(m2 + 1) * half_rows];
+            let (low, high) = column.split_at_mut(half_rows);
+            for (z, &k) in low.iter_mut().zip(kernel) {
+                *z *= k;
+            }
+            // Frequency m >= P1/2 + 1 takes P1 - m, from P1/2 - 1 down to 1.
+            for (z, &k) in high
+                .iter_mut()
+                .zip(kernel[1..p1 - half_rows + 1].iter().rev())
+            {
+                *z *= k;
+            }
+        }
+        self.column_inverse.process_with_scratch(batch, scratch);
     }
 }

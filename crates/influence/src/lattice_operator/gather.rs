@@ -21,6 +21,9 @@ pub(super) struct GatherOrder {
     /// `segments[row_start[i]..row_start[i + 1]]`.
     segments: Vec<Segment>,
     row_start: Vec<u32>,
+    /// The points in lattice-row order: row 0's first, then row 1's, ...
+    /// (a grid's order), so that the rows' points are consecutive slices.
+    in_row_order: bool,
 }
 
 /// Points `point..point + len` on the lattice columns `column..column +
@@ -102,9 +105,16 @@ impl GatherOrder {
             placed[next[i] as usize] = s;
             next[i] += 1;
         }
+        let mut next_point = 0;
+        let in_row_order = placed.iter().all(|s| {
+            let ok = s.point == next_point;
+            next_point = s.point + s.len;
+            ok
+        });
         let gather = Self {
             segments: placed,
             row_start,
+            in_row_order,
         };
         let lattice = points.lattice().expect("Setup checked the lattice");
         gather.check_distinct_cells(lattice, bounds.nj)?;
@@ -148,6 +158,23 @@ impl GatherOrder {
     /// The segments of lattice row `i`.
     pub(super) fn row(&self, i: usize) -> &[Segment] {
         &self.segments[self.row_start[i] as usize..self.row_start[i + 1] as usize]
+    }
+
+    /// `y` cut into the slices of each lattice row's points, when the
+    /// points are in lattice-row order (else `None`).
+    pub(super) fn row_slices<'y>(&self, y: &'y mut [f64]) -> Option<Vec<&'y mut [f64]>> {
+        if !self.in_row_order {
+            return None;
+        }
+        let mut rest = y;
+        let mut slices = Vec::with_capacity(self.row_start.len() - 1);
+        for i in 0..self.row_start.len() - 1 {
+            let len: usize = self.row(i).iter().map(|s| s.len as usize).sum();
+            let (row, tail) = std::mem::take(&mut rest).split_at_mut(len);
+            slices.push(row);
+            rest = tail;
+        }
+        Some(slices)
     }
 
     /// Bytes held.

@@ -19,7 +19,8 @@ pub(super) type C64 = Complex<f64>;
 
 /// Columns of the half spectrum transformed together: 16 complex values
 /// (256 bytes) of each row are read at once, and the batch (16 columns of
-/// P1 values, 256 kB at P1 = 1024) stays in the level-2 cache.
+/// P1 values, 256 kB at P1 = 1024) stays in the level-2 cache: a thread's
+/// share of a wave of columns.
 pub(super) const COLUMN_BATCH: usize = 16;
 
 /// The row spectra are taken in this many bands of frequencies per
@@ -76,35 +77,24 @@ impl Grid {
         self.half_rows() * self.half_columns()
     }
 
-    /// An upper bound on the FFT scratch (complex values) of the plans; the
-    /// planned lengths are 5-smooth, whose in-place scratch is at most the
-    /// length.
-    fn scratch_bound(&self) -> usize {
-        self.padded_rows + self.padded_columns
-    }
-
     /// Bytes of the plans (an estimate, [`PLAN_BYTES_PER_LENGTH`]).
     pub(super) fn plan_bytes(&self) -> usize {
         PLAN_BYTES_PER_LENGTH * (self.padded_rows + self.padded_columns)
     }
 
-    /// Bytes of a workspace with `scratch` complex values of FFT scratch.
-    fn workspace_bytes(&self, scratch: usize) -> usize {
-        let complex = self.rows * self.band_width()
-            + self.half_columns()
-            + COLUMN_BATCH * self.padded_rows
-            + scratch;
-        16 * complex + 8 * self.padded_columns
+    /// Bytes of a workspace made in the current rayon pool: a band of the
+    /// row spectra and the wave of columns
+    /// ([`wave_len`](super::convolution::wave_len) of them).
+    fn workspace_bytes(&self) -> usize {
+        let wave = super::convolution::wave_len(self);
+        16 * (self.rows * self.band_width() + wave * self.padded_rows)
     }
 
     /// Bytes held by an operator on this grid whose gather order takes
     /// `gather_bytes`, its workspace included (the gather order, the
     /// spectrum, the plans, the workspace).
     pub(super) fn operator_bytes(&self, gather_bytes: usize) -> usize {
-        gather_bytes
-            + 8 * self.spectrum_len()
-            + self.plan_bytes()
-            + self.workspace_bytes(self.scratch_bound())
+        gather_bytes + 8 * self.spectrum_len() + self.plan_bytes() + self.workspace_bytes()
     }
 }
 

@@ -45,13 +45,17 @@
 //! transforms of the band (the others zero), added into y: the inverse is
 //! linear, so the bands add up to the whole (realfft over rustfft, planned
 //! once). The second band costs a second pass of row transforms, about a
-//! third more work, and halves the workspace.
+//! third more work, and halves the workspace. The row transforms and the
+//! batches of column transforms are shared among the threads of the
+//! current rayon pool; nothing is summed across them, so a product is the
+//! same to the bit on any number of threads.
 //! Memory: the stored spectrum (`8 (P1/2 + 1)(P2/2 + 1)` bytes, about
 //! `8 n1 n2`), the gather order (12 bytes per segment of consecutive points
 //! in a lattice row: one a row on a surface grid, one a point on a line,
 //! whose rows hold a point each) and one workspace of a band,
 //! `n1 ceil((P2/2 + 1) / 2)` complex values (about `8 n1 n2` bytes), plus
-//! buffers and plans of O(P1 + P2): 19 bytes per point on a 256 x 256
+//! a batch of columns per thread (`COLUMN_BATCH P1` complex values) and
+//! plans of O(P1 + P2), on one thread: 19 bytes per point on a 256 x 256
 //! grid, 27 on a disk of 51,433 points (its bounding box holds 4/pi as many
 //! cells). A grid's point set takes 2 bytes per point.
 //! [`LatticeOperator::estimate_bytes`] gives the figure before anything is

@@ -208,13 +208,35 @@ fn a_shared_workspace_gives_the_same_product() {
 
 #[test]
 fn memory_is_linear_in_the_points_and_estimated_before() {
-    // Held bytes: 16 per cell of the padded box's quarter (the spectrum
-    // 8, one band of the row spectra 8), 12 per segment of the gather
-    // order (one a lattice row on these grids), and O(sqrt N) for the
-    // plans, a row, a column batch and the scratch. A rectangle's box is
-    // its points, a disk's 4/pi of them; padding to 5-smooth lengths adds
-    // up to ~10 %. Measured: 22.9 and 19.4 B/point on the squares, 31.4
-    // and 26.8 on the disks; the bounds leave a few percent.
+    // Held bytes, made on one thread: 16 per cell of the padded box's
+    // quarter (the spectrum 8, one band of the row spectra 8), 12 per
+    // segment of the gather order (one a lattice row on these grids), and
+    // O(sqrt N) for the plans and a column batch. A rectangle's box is its
+    // points, a disk's 4/pi of them; padding to 5-smooth lengths adds up
+    // to ~10 %. The bounds leave a few percent over the figures measured.
+    // Each further thread adds a batch of columns (the workspace's wave).
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    one.install(memory_on_one_thread);
+    let points = PointSet::grid_disk(1.0, 64.0).unwrap();
+    let bodies = [&Body::uniform_patch(steel()), &Body::uniform_patch(steel())];
+    let held = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let op = LatticeOperator::new(&points, &bodies).unwrap();
+            (op.memory_bytes(), op.fft_shape().unwrap().0)
+        })
+    };
+    let ((one, p1), (three, _)) = (held(1), held(3));
+    assert_eq!(three - one, 2 * 16 * 16 * p1);
+}
+
+fn memory_on_one_thread() {
     let bodies = [&Body::uniform_patch(steel()), &Body::uniform_patch(steel())];
     for (name, small, large, bound) in [
         (
@@ -374,4 +396,41 @@ fn is_send_and_sync() {
     shared::<LatticeKernel>();
     shared::<LatticeOperator>();
     shared::<LatticeWorkspace>();
+}
+
+#[test]
+fn a_product_is_the_same_to_the_bit_on_any_number_of_threads() {
+    // A disk (points in lattice-row order: the rows write their own slices
+    // of y) and the same disk's points in reverse (the rows' values
+    // gathered on the caller's thread), each with a workspace made on one
+    // thread and on three (waves of one and of three column batches).
+    let disk = PointSet::grid_disk(1.0, 40.0).unwrap();
+    let (xs, ys): (Vec<f64>, Vec<f64>) = (0..disk.len())
+        .rev()
+        .map(|k| (disk.x(k), disk.y(k)))
+        .unzip();
+    let reversed = PointSet::from_points(Dimension::Surface, xs, ys, Cell { dx: 1.0, dy: 1.0 });
+    let bodies = [&Body::uniform_patch(steel()), &Body::point_force(steel())];
+    for (name, points) in [("disk", disk.clone()), ("reversed", reversed.unwrap())] {
+        let x = random_vector(points.len(), 11, -1.0);
+        let product = |made_on: usize, applied_on: usize| {
+            let pool = |t| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(t)
+                    .build()
+                    .unwrap()
+            };
+            let mut op = pool(made_on).install(|| LatticeOperator::new(&points, &bodies).unwrap());
+            let mut y = vec![0.0; x.len()];
+            pool(applied_on).install(|| op.apply(&x, &mut y));
+            y.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+        };
+        let one = product(1, 1);
+        for (made_on, applied_on) in [(1, 3), (3, 1), (3, 3), (2, 2)] {
+            assert!(
+                one == product(made_on, applied_on),
+                "{name}: made on {made_on}, applied on {applied_on} threads"
+            );
+        }
+    }
 }

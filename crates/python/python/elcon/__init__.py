@@ -183,8 +183,10 @@ class Result(_Fields):
         )
 
 
-def run(scene: Union[str, os.PathLike, Dict[str, Any]]) -> Result:
-    """Runs a scene: a TOML file's path, or a dict with the same keys.
+def run(scene: Union[str, os.PathLike, Dict[str, Any]], threads: Optional[int] = None) -> Result:
+    """Runs a scene: a TOML file's path, or a dict with the same keys, on
+    ``threads`` threads (default: the cores this process may use; the
+    answer does not depend on the count).
 
     A dict is written as the same TOML a file would hold, so it is validated
     by the same rules, with the same messages (its file named ``<dict>``);
@@ -198,9 +200,9 @@ def run(scene: Union[str, os.PathLike, Dict[str, Any]]) -> Result:
     solve that failed or a scene too big for the memory available.
     """
     if isinstance(scene, dict):
-        return Result(_elcon.run_scene(scene=scene))
+        return Result(_elcon.run_scene(scene=scene, threads=threads))
     if isinstance(scene, (str, os.PathLike)):
-        return Result(_elcon.run_scene(path=os.fspath(scene)))
+        return Result(_elcon.run_scene(path=os.fspath(scene), threads=threads))
     raise InputError("run() takes a scene's path (a .toml file) or a dict of its keys")
 
 
@@ -346,10 +348,12 @@ class ContactProblem:
         dense or folded S, the conjugate gradient matrix-free."""
         return self._inner.default_method
 
-    def solve(self, method: Optional[str] = None) -> Result:
+    def solve(self, method: Optional[str] = None, threads: Optional[int] = None) -> Result:
         """Solves with ``method`` (``elcon.methods()``; default: the
-        problem's own, ``default_method``); the GIL is released."""
-        return Result(self._inner.solve(method))
+        problem's own, ``default_method``) on ``threads`` threads (default:
+        the cores this process may use; the answer does not depend on the
+        count); the GIL is released."""
+        return Result(self._inner.solve(method, threads))
 
 
 class Design(_Fields):

@@ -1,0 +1,99 @@
+//! The matrix-free conjugate gradient gives the same answer to the bit on
+//! any number of threads: its passes over the vectors cut them into chunks
+//! of a fixed length and add the chunks' sums in a fixed order, whichever
+//! thread computed them. A problem of tens of thousands of points (many
+//! chunks) is solved in rayon pools of 1, 2 and 3 threads. It also counts
+//! the operator's products against the iterations.
+
+use elcon_lcp::{LcpSolution, Method, Operator, OperatorLcp, Options};
+use faer::{Col, Mat};
+
+/// `M` tridiagonal, `[c, d, c]` (diagonally dominant: symmetric positive
+/// definite, with non-negative entries as an influence operator's).
+struct Banded {
+    n: usize,
+    d: f64,
+    c: f64,
+}
+
+impl Operator for Banded {
+    fn size(&self) -> usize {
+        self.n
+    }
+
+    fn apply(&self, x: &[f64], y: &mut [f64]) {
+        for i in 0..self.n {
+            let left = if i > 0 { x[i - 1] } else { 0.0 };
+            let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
+            y[i] = self.d * x[i] + self.c * (left + right);
+        }
+    }
+
+    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
+        self.apply(x, y);
+    }
+}
+
+/// A punch on a curved gap: `q_i = gap_i - δ` (the approach `δ` inside `q`
+/// for `k = 0`), or `q_i = gap_i` with rows: ones (the load) and, for
+/// `k = 2`, the lever arm `x_i` (a moment of zero).
+fn solve(threads: usize, k: usize) -> LcpSolution {
+    let n = 30_000;
+    let m = Banded { n, d: 1.01, c: 0.5 };
+    let x = |i: usize| 2.0 * i as f64 / (n - 1) as f64 - 1.0;
+    let gap = |i: usize| x(i) * x(i) + 0.1 * x(i).powi(3);
+    let approach = if k == 0 { 0.3 } else { 0.0 };
+    let q = Col::from_fn(n, |i| gap(i) - approach);
+    let border = Mat::from_fn(n, k, |i, j| if j == 0 { 1.0 } else { x(i) });
+    let resultant = Col::from_fn(k, |j| if j == 0 { 500.0 } else { 0.0 });
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let operator: &dyn Operator = &m;
+        let lcp = OperatorLcp::new(operator, q.as_ref()).unwrap();
+        let lcp = if k == 0 {
+            lcp
+        } else {
+            lcp.with_border(border.as_ref(), resultant.as_ref())
+                .unwrap()
+        };
+        lcp.solve(Method::ConjugateGradient, &Options::default())
+            .unwrap()
+    })
+}
+
+#[test]
+fn the_answer_is_the_same_to_the_bit_on_one_thread_or_several() {
+    for k in [0, 1, 2] {
+        let one = solve(1, k);
+        assert!(one.certificate.holds(), "k = {k}: {:?}", one.certificate);
+        let contact = one.z.iter().filter(|&&v| v > 0.0).count();
+        assert!(contact > 1000 && contact < 30_000, "k = {k}: {contact}");
+        // About one product per iteration: the product `M z` is kept by
+        // the recurrence (true products at the start, where points left or
+        // entered, and for the certificate). Several rows restored by
+        // tilting need a true product after each such step.
+        let (iterations, products) = (one.statistics.iterations(), one.statistics.products());
+        assert!(iterations > 50, "k = {k}: {iterations}");
+        if k < 2 {
+            assert!(
+                4 * products <= 5 * iterations + 16,
+                "k = {k}: {products} products in {iterations} iterations"
+            );
+        }
+        for threads in [2, 3] {
+            let many = solve(threads, k);
+            let bits = |s: &LcpSolution| s.z.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&one), bits(&many), "k = {k}, {threads} threads");
+            let lambda = |s: &LcpSolution| s.u.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(lambda(&one), lambda(&many), "k = {k}, {threads} threads");
+            assert_eq!(
+                one.statistics.iterations(),
+                many.statistics.iterations(),
+                "k = {k}"
+            );
+        }
+    }
+}
