@@ -65,8 +65,9 @@ pub mod rigid;
 mod storage;
 
 pub use contact::{
-    ContactCertificate, ContactProblem, ContactSolution, Geometry, Layout, Plan, ProblemBuilder,
-    Surface, Warning, separations,
+    AxialProfile, ContactCertificate, ContactProblem, ContactSolution, Curvature, Departure,
+    Geometry, HeightMap, Layout, Plan, Principal, ProblemBuilder, ProfileAxis, Surface, Warning,
+    separations,
 };
 pub use elcon_influence::{
     Body, Dimension, Material, Model, PointSet, combined_modulus, combined_modulus_of,
