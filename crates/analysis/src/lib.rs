@@ -69,6 +69,7 @@ pub use contact::{
     Geometry, HeightMap, Layout, Plan, Principal, ProblemBuilder, ProfileAxis, Surface, Warning,
     separations,
 };
+pub use edge::ContactEllipse;
 pub use elcon_influence::{
     Body, Dimension, Material, Model, PointSet, combined_modulus, combined_modulus_of,
 };

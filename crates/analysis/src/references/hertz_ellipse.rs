@@ -174,6 +174,16 @@ impl HertzEllipse {
         (self.semi_major * self.semi_minor()).sqrt()
     }
 
+    /// The ellipse's half-extents along x and along y:
+    /// `(sqrt(a^2 c^2 + b^2 s^2), sqrt(a^2 s^2 + b^2 c^2))`, c and s the
+    /// cosine and sine of [`HertzEllipse::angle`] (what
+    /// `crate::grid::hertz_ellipse_family` sizes a grid from).
+    pub fn half_extents(&self) -> (f64, f64) {
+        let (s, c) = self.angle.sin_cos();
+        let (a, b) = (self.semi_major, self.semi_minor());
+        ((a * c).hypot(b * s), (a * s).hypot(b * c))
+    }
+
     /// The peak pressure `p0 = 3 P / (2 pi a b)`.
     pub fn peak_pressure(&self) -> f64 {
         3.0 * self.load / (2.0 * PI * self.semi_major * self.semi_minor())
