@@ -176,6 +176,12 @@ impl Shown for i64 {
     }
 }
 
+impl Shown for String {
+    fn shown(&self) -> String {
+        format!("{self:?}")
+    }
+}
+
 impl<T> Shown for Vec<T> {
     fn shown(&self) -> String {
         String::new()
