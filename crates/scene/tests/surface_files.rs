@@ -102,6 +102,42 @@ fn a_profile_file_adds_its_drops_to_the_cylinder() {
 }
 
 #[test]
+fn a_batch_sweeps_over_files_read_beside_its_base_scene() {
+    let d = dir("batch");
+    std::fs::create_dir_all(d.join("data")).unwrap();
+    std::fs::write(d.join("data/a.csv"), "-5.0, 0.0\n5.0, 0.0\n").unwrap();
+    std::fs::write(d.join("data/b.csv"), "-5.0, 0.002\n5.0, 0.002\n").unwrap();
+    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
+    let text = base().replace(
+        geometry,
+        &format!("{geometry}\nprofile = {{ file = \"data/a.csv\" }}"),
+    );
+    std::fs::write(d.join("roller.toml"), text).unwrap();
+    std::fs::write(
+        d.join("b.toml"),
+        "[batch]\nscene = \"roller.toml\"\n[[batch.group]]\n\
+         \"geometry.profile.file\" = [\"data/a.csv\", \"data/b.csv\"]\n",
+    )
+    .unwrap();
+    let batch = elcon_scene::Batch::from_file(&d.join("b.toml")).unwrap();
+    let approaches: Vec<f64> = batch
+        .runs()
+        .map(|r| {
+            run(&batch.scene(&r).unwrap())
+                .unwrap()
+                .result
+                .solution
+                .approach
+        })
+        .collect();
+    // The uniform drop of b.csv adds 0.002 to the approach.
+    assert!(
+        (approaches[1] - approaches[0] - 0.002).abs() < 1e-12,
+        "{approaches:?}"
+    );
+}
+
+#[test]
 fn bad_files_are_refused_naming_the_file_and_the_row() {
     let d = dir("bad");
     let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";

@@ -39,8 +39,7 @@ const MATCH_TOLERANCE: f64 = 1e-6;
 
 /// The path of `name` relative to the scene file's directory.
 fn resolve(ctx: &Ctx<'_>, name: &str) -> PathBuf {
-    let dir = ctx.file.parent().unwrap_or(Path::new(""));
-    dir.join(name)
+    ctx.dir().join(name)
 }
 
 /// The numbers of a CSV file, a row per line (see the module
