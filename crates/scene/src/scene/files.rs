@@ -24,13 +24,13 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use elcon_analysis::{AxialProfile, Departure, HeightMap, ProfileAxis};
+use elcon_analysis::{AxialProfile, Departure, Geometry, HeightMap, ProfileAxis};
 use elcon_influence::PointSet;
 use toml::Spanned;
 
 use crate::ctx::Ctx;
 use crate::error::SceneError;
-use crate::schema::{HeightMapToml, ProfileToml};
+use crate::schema::{GeometryToml, HeightMapToml, ProfileToml};
 
 /// How far from a candidate point, in the grid's spacings, a row of a
 /// separation file still matches it (the rounding of coordinates written
@@ -38,7 +38,7 @@ use crate::schema::{HeightMapToml, ProfileToml};
 const MATCH_TOLERANCE: f64 = 1e-6;
 
 /// The path of `name` relative to the scene file's directory.
-fn resolve(ctx: &Ctx<'_>, name: &str) -> PathBuf {
+fn path_of(ctx: &Ctx<'_>, name: &str) -> PathBuf {
     ctx.dir().join(name)
 }
 
@@ -159,7 +159,7 @@ pub(super) fn height_map(
 ) -> Result<Departure, SceneError> {
     let t = t.get_ref();
     let name = t.file.get_ref();
-    let path = resolve(ctx, name);
+    let path = path_of(ctx, name);
     let refuse = |reason: String| {
         ctx.invalid(
             t.file.span(),
@@ -207,7 +207,7 @@ pub(super) fn height_map(
 pub(super) fn profile(ctx: &Ctx<'_>, t: &Spanned<ProfileToml>) -> Result<Departure, SceneError> {
     let t = t.get_ref();
     let name = t.file.get_ref();
-    let path = resolve(ctx, name);
+    let path = path_of(ctx, name);
     let axis = match t.axis.as_ref().map(|a| (a, a.get_ref().as_str())) {
         None | Some((_, "y")) => ProfileAxis::Y,
         Some((_, "x")) => ProfileAxis::X,
@@ -248,15 +248,37 @@ pub(super) fn profile(ctx: &Ctx<'_>, t: &Spanned<ProfileToml>) -> Result<Departu
     Ok(Departure::Profile(Arc::new(p)))
 }
 
+/// The geometry on the laid-out `points`: a `separation_file`'s rows
+/// matched to them, or tables checked to cover them (said at validation,
+/// not at the run); any other geometry as it is.
+pub(super) fn on_points(
+    ctx: &Ctx<'_>,
+    raw: Option<&Spanned<GeometryToml>>,
+    geometry: Geometry,
+    points: &PointSet,
+) -> Result<Geometry, SceneError> {
+    let Some(g) = raw else {
+        return Ok(geometry);
+    };
+    if let Some(file) = &g.get_ref().separation_file {
+        return Ok(Geometry::Separation(separations(ctx, file, points)?));
+    }
+    if let Geometry::Tabulated { .. } = &geometry {
+        elcon_analysis::separations(points, &geometry)
+            .map_err(|e| ctx.invalid(g.span(), "geometry", "", e.to_string()))?;
+    }
+    Ok(geometry)
+}
+
 /// `geometry.separation_file`: a separation for each candidate point, the
 /// file's row at its position.
-pub(super) fn separations(
+fn separations(
     ctx: &Ctx<'_>,
     file: &Spanned<String>,
     points: &PointSet,
 ) -> Result<Vec<f64>, SceneError> {
     let name = file.get_ref();
-    let path = resolve(ctx, name);
+    let path = path_of(ctx, name);
     let refuse = |reason: String| {
         ctx.invalid(
             file.span(),

@@ -334,19 +334,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     sanity::curvatures(ctx, raw.geometry.as_ref(), &geometry)?;
     let points_spec = hertz::shaped(points_spec, &bodies, &geometry);
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
-    let geometry = match raw
-        .geometry
-        .as_ref()
-        .and_then(|g| g.get_ref().separation_file.as_ref())
-    {
-        Some(file) => Geometry::Separation(files::separations(ctx, file, &points)?),
-        None => geometry,
-    };
-    if let (Geometry::Tabulated { .. }, Some(g)) = (&geometry, &raw.geometry) {
-        // A table that does not cover the scene's points, said before the run.
-        elcon_analysis::separations(&points, &geometry)
-            .map_err(|e| ctx.invalid(g.span(), "geometry", "", e.to_string()))?;
-    }
+    let geometry = files::on_points(ctx, raw.geometry.as_ref(), geometry, &points)?;
     let reference = hertz::reference(&bodies, &geometry, &points_spec, &points, loading);
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;

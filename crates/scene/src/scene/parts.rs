@@ -166,16 +166,16 @@ pub fn problem_parts(
     if let (Some((_, b)), Some(b1), Some(b2)) = (&bodies, &raw.body1, &raw.body2) {
         sanity::bodies_on_grid(&ctx, [b1, b2], [b[0].body(), b[1].body()], &points, &[])?;
     }
-    // A separation file matched to the points, as a scene matches it.
-    let geometry = match raw
-        .geometry
-        .as_ref()
-        .and_then(|g| g.get_ref().separation_file.as_ref())
-    {
-        Some(file) => Some(Geometry::Separation(super::files::separations(
-            &ctx, file, &points,
-        )?)),
-        None => geometry,
+    // A separation file matched to the points, tables checked to cover
+    // them, as a scene does.
+    let geometry = match geometry {
+        Some(g) => Some(super::files::on_points(
+            &ctx,
+            raw.geometry.as_ref(),
+            g,
+            &points,
+        )?),
+        None => None,
     };
     Ok(ProblemParts {
         bodies: bodies.map(|(_, b)| b),
