@@ -58,10 +58,29 @@ pub enum AnalysisError {
         /// How the problem holds S.
         storage: crate::storage::Storage,
     },
+    /// A tabulated surface (a height map, a profile) that is not valid, or
+    /// does not cover a candidate point: `label` names it (its file).
+    #[error("{label}: {reason}")]
+    Table {
+        /// What names the table: its file, or the key it was given under.
+        label: String,
+        /// What is wrong, and where (the row, the point).
+        reason: String,
+    },
     /// The influence models rejected the bodies or the points.
     #[error(transparent)]
     Influence(#[from] InfluenceError),
     /// The pivoting engine failed (no solution, pivot limit, inaccuracy...).
     #[error("the contact solve failed: {0}")]
     Engine(#[from] LcpError),
+}
+
+impl AnalysisError {
+    /// A [`AnalysisError::Table`] error of the table `label`.
+    pub(crate) fn table(label: &str, reason: impl Into<String>) -> Self {
+        Self::Table {
+            label: label.to_string(),
+            reason: reason.into(),
+        }
+    }
 }

@@ -112,16 +112,11 @@ pub fn hertz_line_family(
     Ok(family)
 }
 
-/// The line `[-(m + 1/2) h, (m + 1/2) h]` of `2 m + 1` cells, `h = 2 b /
-/// (across - 1)` and `m = round(zone b / h)`: the points of
-/// [`GridFamily::HertzLine`].
-fn hertz_line_cells(
-    half_width: f64,
-    across: usize,
-    zone: f64,
-) -> Result<(f64, usize), AnalysisError> {
-    let h = spacing(half_width, across, zone)?;
-    let m = (zone * half_width / h).round().max(1.0);
+/// The half-length `(m + 1/2) h` and the count `2 m + 1` of the cells of
+/// [`GridFamily::HertzLine`] over a contact of half-size `size`.
+fn centred_cells(size: f64, across: usize, zone: f64) -> Result<(f64, usize), AnalysisError> {
+    let h = spacing(size, across, zone)?;
+    let m = (zone * size / h).round().max(1.0);
     if !(m <= elcon_influence::MAX_POINTS as f64) {
         return Err(AnalysisError::InvalidInput {
             field: "across",
@@ -129,7 +124,7 @@ fn hertz_line_cells(
             reason: "more than MAX_POINTS points along the line",
         });
     }
-    Ok((h, m as usize))
+    Ok(((m + 0.5) * h, 2 * m as usize + 1))
 }
 
 /// Points on a line, centred: `across` over the width `2 half_width` of a
@@ -142,6 +137,35 @@ fn hertz_line_cells(
 /// cannot be laid out.
 pub fn hertz_line(half_width: f64, across: usize, zone: f64) -> Result<PointSet, AnalysisError> {
     hertz_line_family(half_width, across, zone)?.points()
+}
+
+/// The family of an elliptical Hertz contact's grid: a rectangle of cells
+/// aligned with x and y around the ellipse whose half-extents along x and
+/// y are `half_extent` (`sqrt(a^2 c^2 + b^2 s^2)` and `sqrt(a^2 s^2 + b^2
+/// c^2)` for semi-axes a, b turned by an angle with cosine c and sine s;
+/// the semi-axes themselves when aligned): along each axis, as
+/// [`hertz_line_family`] lays a line out, `2 m + 1` cells of
+/// `h = 2 extent / (across - 1)`, `m = round(zone extent / h)`. So
+/// `across` points span each axis of an aligned ellipse and its cells are
+/// as long as the ellipse is (`dx / dy = a / b`), and the grid has about
+/// `(across zone)^2` points whatever the ellipse's slenderness.
+///
+/// # Errors
+/// [`AnalysisError::InvalidInput`] naming `across`, `zone` or the contact
+/// size.
+pub fn hertz_ellipse_family(
+    half_extent: (f64, f64),
+    across: usize,
+    zone: f64,
+) -> Result<GridFamily, AnalysisError> {
+    let (half_x, nx) = centred_cells(half_extent.0, across, zone)?;
+    let (half_y, ny) = centred_cells(half_extent.1, across, zone)?;
+    Ok(GridFamily::Rectangle {
+        half_x,
+        half_y,
+        nx,
+        ny,
+    })
 }
 
 /// The smallest number of points (cells) along an axis that
@@ -263,11 +287,11 @@ impl GridFamily {
                 across,
                 zone,
             } => {
-                let (h, m) = hertz_line_cells(half_width, across, zone)?;
+                let (half, n) = centred_cells(half_width, across, zone)?;
                 Ok(GridFamily::Line {
-                    start: -(m as f64 + 0.5) * h,
-                    end: (m as f64 + 0.5) * h,
-                    n: 2 * m + 1,
+                    start: -half,
+                    end: half,
+                    n,
                 })
             }
             other => Ok(other),

@@ -66,9 +66,11 @@ mod storage;
 pub mod subsurface;
 
 pub use contact::{
-    ContactCertificate, ContactProblem, ContactSolution, Geometry, Layout, Plan, ProblemBuilder,
-    Surface, Warning, separations,
+    AxialProfile, ContactCertificate, ContactProblem, ContactSolution, Curvature, Departure,
+    Geometry, HeightMap, Layout, Plan, Principal, ProblemBuilder, ProfileAxis, Surface, Warning,
+    separations,
 };
+pub use edge::ContactEllipse;
 pub use elcon_influence::{
     Body, Dimension, Material, Model, PointSet, combined_modulus, combined_modulus_of,
 };

@@ -32,10 +32,21 @@
 //!   solved exactly on the two spans either side of the load (four waves
 //!   each; 8 conditions: free ends, continuity of `w`, `w'`, `w''` and the
 //!   jump `P` of the shear at the load).
+//! - Hertz, an elliptical contact ([`HertzEllipse`]; Johnson §4.2): two
+//!   quadrics whose gap is `A u^2 + B v^2` touch on an ellipse of
+//!   semi-axes a, b, `B/A = (a^2 E(e)/b^2 - K(e)) / (K(e) - E(e))`,
+//!   `p = p0 sqrt(1 - u^2/a^2 - v^2/b^2)`, `p0 = 3 P / (2 pi a b)`,
+//!   `delta = p0 b K(e) / E*`; the eccentricity e solved to rounding with
+//!   the complete elliptic integrals in Carlson's symmetric forms.
 
 use std::f64::consts::PI;
 
 use crate::error::AnalysisError;
+
+mod elliptic;
+mod hertz_ellipse;
+
+pub use hertz_ellipse::HertzEllipse;
 
 fn positive(field: &'static str, value: f64) -> Result<f64, AnalysisError> {
     if value.is_finite() && value > 0.0 {

@@ -85,6 +85,7 @@ pub(crate) fn analysis_error(e: AnalysisError) -> PyErr {
         | AnalysisError::NonFinite { .. }
         | AnalysisError::Incompatible { .. }
         | AnalysisError::NeedsEntries { .. }
+        | AnalysisError::Table { .. }
         | AnalysisError::Influence(_) => InputError::new_err(e.to_string()),
         _ => SolveError::new_err(e.to_string()),
     }

@@ -21,6 +21,7 @@
 //! `SolveError` ("internal error"), never as a `PanicException`. Errors are
 //! one exception class per kind, their messages the crates' own.
 
+mod bodies;
 mod convert;
 mod design;
 mod errors;
@@ -46,5 +47,6 @@ fn _elcon(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(problem::methods, m)?)?;
     m.add_function(wrap_pyfunction!(problem::storages, m)?)?;
     m.add_function(wrap_pyfunction!(scene::is_file, m)?)?;
+    m.add_function(wrap_pyfunction!(bodies::hertz_ellipse, m)?)?;
     Ok(())
 }

@@ -234,7 +234,7 @@ impl PyContactProblem {
 impl PyContactProblem {
     /// See `elcon.ContactProblem` (python/elcon/__init__.py).
     #[new]
-    #[pyo3(signature = (x=None, separation=None, spacing=None, y=None, influence=None, body1=None, body2=None, load=None, approach=None, tilt_x=None, tilt_y=None, moment_x=0.0, moment_y=0.0, geometry=None, points=None, storage_name="auto"))]
+    #[pyo3(signature = (x=None, separation=None, spacing=None, y=None, influence=None, body1=None, body2=None, load=None, approach=None, tilt_x=None, tilt_y=None, moment_x=0.0, moment_y=0.0, geometry=None, points=None, storage_name="auto", height_map=None, height_map_spacing=None, height_map_origin=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -254,6 +254,9 @@ impl PyContactProblem {
         geometry: Option<Bound<'_, PyDict>>,
         points: Option<Bound<'_, PyDict>>,
         storage_name: &str,
+        height_map: Option<PyReadonlyArray2<'_, f64>>,
+        height_map_spacing: Option<(f64, f64)>,
+        height_map_origin: Option<(f64, f64)>,
     ) -> PyResult<Self> {
         let storage = storage(storage_name)?;
         let loading = loading(load, approach, (tilt_x, tilt_y), (moment_x, moment_y))?;
@@ -271,7 +274,12 @@ impl PyContactProblem {
             elcon_scene::problem_parts(Path::new("<ContactProblem>"), &text, listed, loading)
                 .map_err(parts_error)
         })?;
-        let geometry = geometry_of(separation, parts.geometry)?;
+        let geometry = crate::bodies::with_height_map(
+            geometry_of(separation, parts.geometry)?,
+            height_map,
+            height_map_spacing,
+            height_map_origin,
+        )?;
         let ceiling = ceiling()?;
         match (influence, parts.bodies) {
             (Some(s), None) => Self::from_influence(&s, storage, parts.points, geometry, loading),

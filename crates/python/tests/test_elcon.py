@@ -549,3 +549,62 @@ def test_threads_change_nothing_of_a_matrix_free_solve():
     assert np.array_equal(one.force, three.force)
     with pytest.raises(elcon.InputError):
         problem.solve("conjugate-gradient", threads=0)
+
+
+def test_hertz_ellipse_and_quadrics_by_keyword_match_the_ball_bearing_scene():
+    # The ball-bearing example's reference, from the function and from the scene.
+    e_star = 210e3 / (2 * (1 - 0.3 ** 2))
+    ball = (3.969, 3.969, 0.0)
+    race = (15.5, -0.52 * 7.938, 0.0)
+    h = elcon.hertz_ellipse(e_star, 1000.0, ball, race, x=[0.0, 0.0], y=[0.0, 5.0])
+    scene = elcon.run(SCENES / "ball-bearing.toml")
+    ref = scene.reference
+    assert ref["kind"] == "hertz-ellipse"
+    assert h["semi_major"] == pytest.approx(ref["semi_axes"][0], rel=1e-12)
+    assert h["semi_minor"] == pytest.approx(ref["semi_axes"][1], rel=1e-12)
+    assert h["approach"] == pytest.approx(ref["approach"], rel=1e-12)
+    assert h["angle"] == pytest.approx(90.0)
+    assert h["pressure"][0] == pytest.approx(h["peak_pressure"], rel=1e-15)
+    assert h["pressure"][1] == 0.0
+    # A sphere's limit: Hertz's circle, a^3 = 3 P R / (4 E*).
+    circle = elcon.hertz_ellipse(e_star, 100.0, (1.0, 1.0, 0.0))
+    assert circle["semi_major"] == pytest.approx((3 * 100.0 / (4 * e_star)) ** (1 / 3), rel=1e-14)
+    assert circle["eccentricity"] == 0.0
+    # A cylinder alone is a line contact: refused.
+    with pytest.raises(elcon.InputError, match="curvature"):
+        elcon.hertz_ellipse(e_star, 100.0, (1.0, float("inf"), 0.0))
+    # The quadric by keyword through the scene's parser, on the ellipse grid.
+    steel = {"model": "uniform-patch", "youngs_modulus": 210e3, "poissons_ratio": 0.3}
+    geometry = {"surface1": {"shape": "sphere", "radius": 3.969},
+                "surface2": {"shape": "quadric", "radius_x": 15.5, "radius_y": -4.12776}}
+    solved = elcon.ContactProblem(body1=steel, body2=steel, geometry=geometry,
+                                  points={"grid": "ellipse", "across": 31, "zone": 1.2},
+                                  load=1000.0).solve()
+    assert solved.approach == pytest.approx(scene.approach, rel=1e-12)
+
+
+def test_a_height_map_array_adds_to_the_surfaces_and_bad_maps_are_refused():
+    steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
+    sphere = {"surface1": {"shape": "sphere", "radius": 1.0}}
+    points = {"grid": "disk", "spacing": 0.0025, "radius": 0.04}
+    plain = elcon.ContactProblem(body1=steel, body2=steel, geometry=sphere, points=points,
+                                 load=100.0).solve()
+    # A uniform 1e-4 map adds 1e-4 to every separation and to the approach.
+    z = np.full((5, 7), 1e-4)
+    lifted = elcon.ContactProblem(body1=steel, body2=steel, geometry=sphere, points=points,
+                                  load=100.0, height_map=z,
+                                  height_map_spacing=(0.02, 0.02)).solve()
+    assert np.allclose(lifted.separation, plain.separation + 1e-4, rtol=0, atol=1e-15)
+    assert lifted.approach == pytest.approx(plain.approach + 1e-4, rel=1e-9)
+    # A hole, a map that does not cover the disk: elcon-analysis's checks.
+    holed = z.copy()
+    holed[2, 3] = np.nan
+    with pytest.raises(elcon.InputError, match="row 2, column 3"):
+        elcon.ContactProblem(body1=steel, body2=steel, geometry=sphere, points=points,
+                             load=100.0, height_map=holed, height_map_spacing=(0.02, 0.02))
+    with pytest.raises(elcon.InputError, match="does not cover"):
+        elcon.ContactProblem(body1=steel, body2=steel, geometry=sphere, points=points,
+                             load=100.0, height_map=z, height_map_spacing=(0.001, 0.001))
+    with pytest.raises(elcon.InputError, match="height_map_spacing"):
+        elcon.ContactProblem(body1=steel, body2=steel, geometry=sphere, points=points,
+                             load=100.0, height_map=z)

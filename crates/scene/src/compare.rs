@@ -22,10 +22,14 @@
 //! control the load, and with it the centre of a moment, is known only
 //! after the solve: such a comparison is omitted with a note, as are the
 //! flat punch's and the beam's under a moment or a tilt their closed forms
-//! do not have.
+//! do not have. An elliptical Hertz contact is compared centred only (no
+//! moment, no tilt): its approach, peak pressure, the radius `sqrt(a b)`
+//! of its area, and each semi-axis against the contact's ellipse (the
+//! ellipse of the outline's second moments,
+//! `ContactSolution::contact_ellipse`).
 
 use elcon_analysis::loading::Tilt;
-use elcon_analysis::references::{HertzCylinders, HertzSpheres};
+use elcon_analysis::references::{HertzCylinders, HertzEllipse, HertzSpheres};
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
 
 use crate::run::{Errors, ReferenceJson, XY};
@@ -58,6 +62,8 @@ pub(crate) fn compare(
         approach: None,
         max_pressure: None,
         contact_extent: None,
+        semi_axes: None,
+        angle: None,
         load: None,
         load_centre: None,
         tilt: None,
@@ -66,6 +72,7 @@ pub(crate) fn compare(
     };
     let pressures = match *reference {
         Reference::HertzSpheres(h) => spheres(h, problem, sol, loading, &mut json),
+        Reference::HertzEllipse(h) => ellipse(h, problem, sol, loading, &mut json),
         Reference::HertzCylinders { hertz, datum } => {
             cylinders(hertz, datum, problem, sol, loading, &mut json)
         }
@@ -256,5 +263,51 @@ fn cylinders(
         json.errors.approach = Some(rel(sol.approach, approach));
     }
     translated(json, sol, (ex, 0.0), r);
+    Some(p)
+}
+
+/// Hertz's elliptical contact, centred: the approach (or the load), the
+/// peak pressure, the equivalent radius and both semi-axes.
+fn ellipse(
+    h: HertzEllipse,
+    problem: &ContactProblem,
+    sol: &ContactSolution,
+    loading: Loading,
+    json: &mut ReferenceJson,
+) -> Option<Vec<f64>> {
+    if !aligned(loading) {
+        json.note = Some(
+            "the elliptical Hertz solution is compared centred only: with a moment or a tilt \
+             its errors are not computed"
+                .into(),
+        );
+        return None;
+    }
+    let points = problem.points();
+    let p: Vec<f64> = (0..points.len())
+        .map(|k| h.pressure(points.x(k), points.y(k)))
+        .collect();
+    let (a, b) = (h.semi_major(), h.semi_minor());
+    json.max_pressure = Some(h.peak_pressure());
+    json.contact_extent = Some(h.equivalent_radius());
+    json.semi_axes = Some([a, b]);
+    json.angle = Some(h.angle().to_degrees());
+    json.errors.max_pressure = Some(rel(sol.max_pressure, h.peak_pressure()));
+    json.errors.contact_extent = Some(rel(sol.contact_extent, h.equivalent_radius()));
+    json.errors.pressure_l2 = Some(l2(&sol.pressures, &p));
+    if let Some(e) = sol.contact_ellipse {
+        json.errors.semi_major = Some(rel(e.semi_major, a));
+        json.errors.semi_minor = Some(rel(e.semi_minor, b));
+    }
+    match loading.normal {
+        Normal::Load(_) => {
+            json.approach = Some(h.approach());
+            json.errors.approach = Some(rel(sol.approach, h.approach()));
+        }
+        Normal::Approach(_) => {
+            json.load = Some(h.load());
+            json.errors.load = Some(rel(sol.load, h.load()));
+        }
+    }
     Some(p)
 }

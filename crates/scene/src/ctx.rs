@@ -15,6 +15,20 @@ pub(crate) struct Ctx<'a> {
     pub text: &'a str,
 }
 
+impl<'a> Ctx<'a> {
+    /// The directory files named in the scene are read relative to: the
+    /// scene file's, or a batch run's base scene's (its label, `<base>
+    /// [run k: ...]`, is not a path).
+    pub(crate) fn dir(&self) -> &'a Path {
+        let file: &'a Path = self.file;
+        let text = file.to_str().unwrap_or("");
+        match text.find(" [run ") {
+            Some(i) => Path::new(&text[..i]).parent().unwrap_or(Path::new("")),
+            None => file.parent().unwrap_or(Path::new("")),
+        }
+    }
+}
+
 impl Ctx<'_> {
     pub(crate) fn at(&self, span: Range<usize>) -> Location {
         Location::of(self.text, span.start)
@@ -173,6 +187,12 @@ impl Shown for f64 {
 impl Shown for i64 {
     fn shown(&self) -> String {
         self.to_string()
+    }
+}
+
+impl Shown for String {
+    fn shown(&self) -> String {
+        format!("{self:?}")
     }
 }
 

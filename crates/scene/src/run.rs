@@ -76,13 +76,21 @@ pub struct Errors {
     /// The rotation about y (where the reference's is not zero).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tilt_y: Option<f64>,
+    /// The major semi-axis of the contact's ellipse (an elliptical
+    /// reference; `ContactSolution::contact_ellipse`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub semi_major: Option<f64>,
+    /// The minor semi-axis of the contact's ellipse.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub semi_minor: Option<f64>,
 }
 
 /// The closed form's values and the errors against it: gathered from the
 /// closed form and the solution, not the copy of one type.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ReferenceJson {
-    /// "hertz-spheres", "hertz-cylinders", "flat-punch", "hetenyi-beam".
+    /// "hertz-spheres", "hertz-cylinders", "flat-punch", "hetenyi-beam",
+    /// "hertz-ellipse".
     pub kind: String,
     /// Reference approach (length).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -90,9 +98,18 @@ pub struct ReferenceJson {
     /// Reference peak pressure (intensity unit).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_pressure: Option<f64>,
-    /// Reference contact radius or half-width (length).
+    /// Reference contact radius or half-width (length); of an ellipse,
+    /// the radius of the circle of its area, `sqrt(a b)`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub contact_extent: Option<f64>,
+    /// An elliptical reference's semi-axes `[a, b]`, a along the
+    /// direction `angle` (length).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub semi_axes: Option<[f64; 2]>,
+    /// The direction of an elliptical reference's major axis from x
+    /// (degrees).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle: Option<f64>,
     /// Reference load (force).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub load: Option<f64>,

@@ -102,7 +102,38 @@ pub(crate) fn curvatures(
             ),
         ));
     }
-    Ok(())
+    quadric_curvatures(ctx, raw, geometry)
+}
+
+/// Quadrics at an angle: the gap's principal curvatures (its form's
+/// eigenvalues, `elcon_analysis::Curvature::principal_values`) must not be
+/// negative, as the sums along x and y must not be.
+fn quadric_curvatures(
+    ctx: &Ctx<'_>,
+    raw: Option<&Spanned<GeometryToml>>,
+    geometry: &Geometry,
+) -> Result<(), SceneError> {
+    let Some(form) = geometry.curvature() else {
+        return Ok(());
+    };
+    let p = form.principal_values();
+    let size = form.xx.abs() + form.yy.abs() + 2.0 * form.xy.abs();
+    if p.smaller >= -1e-12 * size {
+        return Ok(());
+    }
+    Err(ctx.invalid(
+        raw.map_or(0..0, |g| g.span()),
+        "geometry",
+        Num(p.smaller),
+        format!(
+            "the gap's smaller principal curvature, {:.4e} along {:.2} degrees from x, is \
+             negative: the bodies would interpenetrate more and more away from the first point \
+             of contact; a concave direction needs a radius larger in magnitude than the convex \
+             one it meets",
+            p.smaller,
+            p.angle.to_degrees()
+        ),
+    ))
 }
 
 /// The plane-strain datum must lie beyond every grid the scene solves on
@@ -376,7 +407,9 @@ pub(crate) fn no_hertz_reason(
              displacement control the contact's size is not known before the solve{fix}"
         );
     }
-    let curved = matches!(geometry, Geometry::Surfaces(a, b) if a.radius().is_some() || b.radius().is_some());
+    let curved = geometry
+        .surfaces()
+        .is_some_and(|(a, b)| a.is_curved() || b.is_curved());
     if !curved {
         return format!(
             "points relative to the Hertz contact (across, zone) need curved surfaces (a sphere or \
@@ -400,7 +433,8 @@ pub(crate) fn no_hertz_reason(
     }
     format!(
         "points relative to the Hertz contact (across, zone) need a Hertz contact: spheres on a \
-         disk, cylinders (axis along y) on a line or a rectangle{fix}"
+         disk, cylinders (axis along y) on a line or a rectangle, quadrics whose gap curves both \
+         ways on an ellipse{fix}"
     )
 }
 

@@ -80,6 +80,9 @@ keywords! {
         Sphere = "sphere",
         /// `"cylinder"` (axis along y).
         Cylinder = "cylinder",
+        /// `"quadric"`: principal radii `radius_x`, `radius_y`, turned by
+        /// `angle` degrees.
+        Quadric = "quadric",
     }
 }
 
@@ -92,6 +95,9 @@ keywords! {
         Rectangle = "rectangle",
         /// `"line"`.
         Line = "line",
+        /// `"ellipse"`: a rectangle of cells around the Hertz ellipse
+        /// (`across`, `zone`).
+        Ellipse = "ellipse",
     }
 }
 
@@ -250,14 +256,51 @@ pub(crate) struct GeometryToml {
     pub surface1: Option<Spanned<SurfaceToml>>,
     pub surface2: Option<Spanned<SurfaceToml>>,
     pub separation: Option<Spanned<Vec<Spanned<f64>>>>,
+    pub separation_file: Option<Spanned<String>>,
+    pub height_map: Option<Spanned<HeightMapToml>>,
+    pub profile: Option<Spanned<ProfileToml>>,
 }
 
-/// A surface: `{ shape = "sphere", radius = 1.0 }`.
+/// `geometry.height_map`: `{ file = "rough.npy", spacing = [dx, dy],
+/// origin = [x0, y0] }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct HeightMapToml {
+    pub file: Spanned<String>,
+    pub spacing: Spanned<Vec<f64>>,
+    pub origin: Option<Spanned<Vec<f64>>>,
+}
+
+/// `geometry.profile`: `{ file = "crown.csv", axis = "y" }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ProfileToml {
+    pub file: Spanned<String>,
+    pub axis: Option<Spanned<String>>,
+}
+
+impl Shown for HeightMapToml {
+    fn shown(&self) -> String {
+        format!("{{ file = {:?} }}", self.file.get_ref())
+    }
+}
+
+impl Shown for ProfileToml {
+    fn shown(&self) -> String {
+        format!("{{ file = {:?} }}", self.file.get_ref())
+    }
+}
+
+/// A surface: `{ shape = "sphere", radius = 1.0 }`, or a quadric
+/// `{ shape = "quadric", radius_x = 15.5, radius_y = -4.128, angle = 0 }`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct SurfaceToml {
     pub shape: Spanned<Shape>,
     pub radius: Option<Spanned<f64>>,
+    pub radius_x: Option<Spanned<f64>>,
+    pub radius_y: Option<Spanned<f64>>,
+    pub angle: Option<Spanned<f64>>,
 }
 
 impl Shown for SurfaceToml {

@@ -20,7 +20,8 @@
 //!
 //! | module | what it holds |
 //! |---|---|
-//! | `geometry` | the surfaces and the initial separations eps they give |
+//! | `tabulated` | departures from the quadrics given as tables: height maps, axial profiles |
+//! | `geometry` | the surfaces (quadrics, their curvatures) and the initial separations eps they give |
 //! | `layout` | what a problem will be before its O(N^2) assembly: eps, the rigid unknowns, the mirror symmetry |
 //! | `problem` | [`ContactProblem`]: points, S as held, eps, loading; its variants under another loading or separation |
 //! | `builder` | [`ProblemBuilder`]: the one place that decides how S is held (`crate::Storage`), and what a problem will cost |
@@ -35,9 +36,11 @@ mod layout;
 mod problem;
 mod solution;
 mod solve;
+mod tabulated;
 
 pub use builder::{Plan, ProblemBuilder};
-pub use geometry::{Geometry, Surface, separations};
+pub use geometry::{Curvature, Geometry, Principal, Surface, separations};
 pub use layout::Layout;
 pub use problem::ContactProblem;
 pub use solution::{ContactCertificate, ContactSolution, Warning};
+pub use tabulated::{AxialProfile, Departure, HeightMap, ProfileAxis};

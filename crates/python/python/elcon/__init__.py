@@ -11,7 +11,10 @@ numpy arrays in and out:
   :class:`Result`;
 - ``elcon.design(problems_or_scene, ...)`` designs a profile correction
   over several problems (load cases), or runs a scene's design stage;
-- ``elcon.batch(path, jobs=...)`` runs a batch and returns its table.
+- ``elcon.batch(path, jobs=...)`` runs a batch and returns its table;
+- ``elcon.hertz_ellipse(...)`` is Hertz's elliptical contact of two
+  quadrics (the semi-axes, the approach, the peak pressure, the pressure
+  at given points).
 
 Body, surface, layout and design dicts are a scene's sections: they are
 parsed and checked by the scene crate's own parsers, with its messages
@@ -51,6 +54,7 @@ __all__ = [
     "Design",
     "methods",
     "storages",
+    "hertz_ellipse",
     "ElconError",
     "SceneError",
     "InputError",
@@ -225,6 +229,16 @@ def _array(value: Any, name: str, ndim: int) -> Optional[np.ndarray]:
     return np.ascontiguousarray(array)
 
 
+def _pair(value: Optional[Sequence[float]]) -> Optional[tuple]:
+    """Two floats, or None."""
+    if value is None:
+        return None
+    values = tuple(float(v) for v in np.asarray(value, dtype=float).ravel())
+    if len(values) != 2:
+        raise InputError("two numbers (along x, along y)")
+    return values
+
+
 class ContactProblem:
     """A contact problem from numpy arrays, or from a layout.
 
@@ -265,7 +279,17 @@ class ContactProblem:
     geometry:
         A dict as a scene's ``[geometry]``: ``{"surface1": {"shape":
         "sphere", "radius": R1}, "surface2": {"shape": "plane"}}`` (or
-        ``{"separation": [...]}``), instead of ``separation``.
+        ``{"separation": [...]}``), instead of ``separation``. A quadric
+        by keyword: ``{"shape": "quadric", "radius_x": Rx, "radius_y": Ry,
+        "angle": degrees}`` (an omitted radius straight, a negative one
+        concave).
+    height_map, height_map_spacing, height_map_origin:
+        Heights added to the surfaces: a 2-D array ``Z[j, i]`` at ``(x0 + i
+        dx, y0 + j dy)`` (rows along x, as ``numpy.meshgrid`` lays them
+        out), its spacing ``(dx, dy)`` (required) and origin ``(x0, y0)``
+        (default: the map centred on the origin), interpolated bilinearly
+        to the points. Checked by elcon-analysis (a NaN, fewer than 2 x 2
+        values, a map that does not cover the points raise ``InputError``).
     load, approach:
         Load control (force) or displacement control (length): one of them.
     tilt_x, tilt_y, moment_x, moment_y:
@@ -303,6 +327,9 @@ class ContactProblem:
         geometry: Optional[Dict[str, Any]] = None,
         points: Optional[Dict[str, Any]] = None,
         storage: str = "auto",
+        height_map: Optional[npt.ArrayLike] = None,
+        height_map_spacing: Optional[Sequence[float]] = None,
+        height_map_origin: Optional[Sequence[float]] = None,
     ):
         if spacing is not None:
             if np.ndim(spacing) == 0:
@@ -332,6 +359,9 @@ class ContactProblem:
             geometry=geometry,
             points=points,
             storage_name=storage,
+            height_map=_array(height_map, "height_map", 2),
+            height_map_spacing=_pair(height_map_spacing),
+            height_map_origin=_pair(height_map_origin),
         )
 
     def __len__(self) -> int:
@@ -475,6 +505,39 @@ def batch(
     except ImportError:
         return rows
     return pandas.DataFrame(rows)
+
+
+def hertz_ellipse(
+    combined_modulus: float,
+    load: float,
+    surface1: Sequence[float],
+    surface2: Optional[Sequence[float]] = None,
+    x: Optional[npt.ArrayLike] = None,
+    y: Optional[npt.ArrayLike] = None,
+) -> Dict[str, Any]:
+    """Hertz's elliptical contact of two quadrics under ``load``.
+
+    Each surface is ``(radius_x, radius_y, angle)``: its principal radii
+    along the direction ``angle`` degrees from x and across it
+    (``float("inf")`` straight, negative concave; a sphere ``(R, R, 0)``);
+    ``combined_modulus`` is E*. Returns ``semi_major``, ``semi_minor``,
+    ``angle`` (of the major axis, degrees from x), ``approach``,
+    ``peak_pressure``, ``eccentricity`` (solved to rounding from the
+    complete elliptic integrals), ``equivalent_radius`` (``sqrt(a b)``)
+    and, with the points ``x``, ``y``, ``pressure`` there (a numpy array).
+    A gap that does not curve both ways raises ``InputError``.
+    """
+    d = _elcon.hertz_ellipse(
+        float(combined_modulus),
+        float(load),
+        tuple(float(v) for v in surface1),
+        None if surface2 is None else tuple(float(v) for v in surface2),
+        None if x is None else [float(v) for v in np.ravel(x)],
+        None if y is None else [float(v) for v in np.ravel(y)],
+    )
+    if "pressure" in d:
+        d["pressure"] = np.asarray(d["pressure"], dtype=np.float64)
+    return d
 
 
 def methods() -> List[str]:

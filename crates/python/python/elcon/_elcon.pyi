@@ -30,6 +30,14 @@ def design_scene(
 def methods() -> List[str]: ...
 def storages() -> List[str]: ...
 def is_file(path: str) -> bool: ...
+def hertz_ellipse(
+    combined_modulus: float,
+    load: float,
+    surface1: Tuple[float, float, float],
+    surface2: Optional[Tuple[float, float, float]] = None,
+    x: Optional[List[float]] = None,
+    y: Optional[List[float]] = None,
+) -> Dict[str, Any]: ...
 
 class ContactProblem:
     def __init__(
@@ -50,6 +58,9 @@ class ContactProblem:
         geometry: Optional[Dict[str, Any]] = None,
         points: Optional[Dict[str, Any]] = None,
         storage_name: str = "auto",
+        height_map: Optional[npt.NDArray[np.float64]] = None,
+        height_map_spacing: Optional[Tuple[float, float]] = None,
+        height_map_origin: Optional[Tuple[float, float]] = None,
     ) -> None: ...
     def __len__(self) -> int: ...
     @property

@@ -1,5 +1,9 @@
-//! `[geometry]`: the two surfaces (plane, sphere, cylinder) or a given
-//! separation, and the combined curvature radius of two surfaces.
+//! `[geometry]`: the two surfaces (plane, sphere, cylinder, quadric) or a
+//! given separation, and the combined curvature radius of two surfaces.
+//! A quadric `{ shape = "quadric", radius_x, radius_y, angle }` has its
+//! principal radii along the direction `angle` degrees from x and across
+//! it (an omitted radius is straight; a negative one concave), its height
+//! `(u^2 / R_x + v^2 / R_y) / 2` in those axes (`elcon_analysis::Surface`).
 
 use elcon_analysis::{Geometry, Surface};
 use elcon_influence::Dimension;
@@ -16,6 +20,15 @@ fn surface(
     dimension: Dimension,
 ) -> Result<Surface, SceneError> {
     let t = s.get_ref();
+    if *t.shape.get_ref() != Shape::Quadric {
+        for (v, key) in [
+            (&t.radius_x, "radius_x"),
+            (&t.radius_y, "radius_y"),
+            (&t.angle, "angle"),
+        ] {
+            ctx.forbid(v, &format!("{field}.{key}"), "only a quadric has it")?;
+        }
+    }
     let radius = |ctx: &Ctx<'_>| -> Result<f64, SceneError> {
         let r = ctx.required(
             &t.radius,
@@ -59,7 +72,62 @@ fn surface(
         Shape::Cylinder => Ok(Surface::Cylinder {
             radius: radius(ctx)?,
         }),
+        Shape::Quadric => quadric(ctx, s, field, dimension),
     }
+}
+
+/// A quadric: `radius_x`, `radius_y` (at least one; an omitted one is
+/// straight), `angle` in degrees (default 0), on a surface grid.
+fn quadric(
+    ctx: &Ctx<'_>,
+    s: &Spanned<SurfaceToml>,
+    field: &str,
+    dimension: Dimension,
+) -> Result<Surface, SceneError> {
+    let t = s.get_ref();
+    ctx.forbid(
+        &t.radius,
+        &format!("{field}.radius"),
+        "a quadric has radius_x and radius_y",
+    )?;
+    if dimension == Dimension::Line {
+        return Err(ctx.invalid(
+            t.shape.span(),
+            format!("{field}.shape"),
+            "\"quadric\"",
+            "a quadric needs a surface grid; on a line use a cylinder",
+        ));
+    }
+    if t.radius_x.is_none() && t.radius_y.is_none() {
+        return Err(ctx.invalid(
+            s.span(),
+            format!("{field}.radius_x"),
+            "",
+            "a quadric needs radius_x, radius_y or both (an omitted one is straight)",
+        ));
+    }
+    let radius = |v: &Option<Spanned<f64>>, key: &str| -> Result<f64, SceneError> {
+        let Some(r) = v else {
+            return Ok(f64::INFINITY);
+        };
+        let value = ctx.finite(r, &format!("{field}.{key}"))?;
+        ctx.ensure(
+            value,
+            value != 0.0,
+            r.span(),
+            &format!("{field}.{key}"),
+            "must be non-zero (negative for a concave direction; omit it for a straight one)",
+        )
+    };
+    let angle = match &t.angle {
+        Some(a) => ctx.finite(a, &format!("{field}.angle"))?.to_radians(),
+        None => 0.0,
+    };
+    Ok(Surface::Quadric {
+        radius_x: radius(&t.radius_x, "radius_x")?,
+        radius_y: radius(&t.radius_y, "radius_y")?,
+        angle,
+    })
 }
 
 pub(super) fn geometry(
@@ -71,42 +139,76 @@ pub(super) fn geometry(
         return Ok(Geometry::Surfaces(Surface::Plane, Surface::Plane));
     };
     let t: &GeometryToml = g.get_ref();
-    match &t.separation {
-        Some(sep) => {
-            for (f, name) in [
-                (&t.surface1, "geometry.surface1"),
-                (&t.surface2, "geometry.surface2"),
-            ] {
-                ctx.forbid(f, name, "give either surfaces or a separation, not both")?;
-            }
-            let values = sep
-                .get_ref()
-                .iter()
-                .enumerate()
-                .map(|(k, v)| ctx.finite(v, &format!("geometry.separation[{k}]")))
-                .collect::<Result<Vec<f64>, _>>()?;
-            Ok(Geometry::Separation(values))
-        }
-        None => {
-            let s1 = match &t.surface1 {
-                Some(s) => surface(ctx, s, "geometry.surface1", dimension)?,
-                None => Surface::Plane,
-            };
-            let s2 = match &t.surface2 {
-                Some(s) => surface(ctx, s, "geometry.surface2", dimension)?,
-                None => Surface::Plane,
-            };
-            Ok(Geometry::Surfaces(s1, s2))
-        }
+    if t.separation.is_some() || t.separation_file.is_some() {
+        let why = "give either surfaces (with height_map, profile) or separations, not both";
+        ctx.forbid(&t.surface1, "geometry.surface1", why)?;
+        ctx.forbid(&t.surface2, "geometry.surface2", why)?;
+        ctx.forbid(&t.height_map, "geometry.height_map", why)?;
+        ctx.forbid(&t.profile, "geometry.profile", why)?;
     }
+    if let Some(file) = &t.separation_file {
+        ctx.forbid(
+            &t.separation,
+            "geometry.separation",
+            "give separation (inline) or separation_file, not both",
+        )?;
+        ctx.ensure(
+            file.get_ref(),
+            !file.get_ref().is_empty(),
+            file.span(),
+            "geometry.separation_file",
+            "must name a file",
+        )?;
+        // Matched to the candidate points once they are laid out
+        // (`super::files::separations`).
+        return Ok(Geometry::Surfaces(Surface::Plane, Surface::Plane));
+    }
+    if let Some(sep) = &t.separation {
+        let values = sep
+            .get_ref()
+            .iter()
+            .enumerate()
+            .map(|(k, v)| ctx.finite(v, &format!("geometry.separation[{k}]")))
+            .collect::<Result<Vec<f64>, _>>()?;
+        return Ok(Geometry::Separation(values));
+    }
+    let s1 = match &t.surface1 {
+        Some(s) => surface(ctx, s, "geometry.surface1", dimension)?,
+        None => Surface::Plane,
+    };
+    let s2 = match &t.surface2 {
+        Some(s) => surface(ctx, s, "geometry.surface2", dimension)?,
+        None => Surface::Plane,
+    };
+    let mut departures = Vec::new();
+    if let Some(m) = &t.height_map {
+        if dimension == Dimension::Line {
+            return Err(ctx.invalid(
+                m.span(),
+                "geometry.height_map",
+                "",
+                "a height map needs a surface grid; on a line use a profile along x",
+            ));
+        }
+        departures.push(super::files::height_map(ctx, m)?);
+    }
+    if let Some(p) = &t.profile {
+        departures.push(super::files::profile(ctx, p)?);
+    }
+    Ok(if departures.is_empty() {
+        Geometry::Surfaces(s1, s2)
+    } else {
+        Geometry::Tabulated {
+            surfaces: (s1, s2),
+            departures,
+        }
+    })
 }
 
 /// Curvature radius of the surfaces' sum (`1/R = 1/R1 + 1/R2`) if both are
 /// spheres/planes (`spheres`) or cylinders/planes, and not both planes.
 pub(super) fn combined(geometry: &Geometry, spheres: bool) -> Option<f64> {
-    let Geometry::Surfaces(a, b) = geometry else {
-        return None;
-    };
+    let (a, b) = &geometry.surfaces()?;
     let curvature = |s: &Surface| match (*s, spheres) {
         (Surface::Plane, _) => Some(0.0),
         (Surface::Sphere { radius }, true) | (Surface::Cylinder { radius }, false) => {

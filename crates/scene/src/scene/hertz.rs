@@ -3,7 +3,7 @@
 //! a flat punch, a beam on a Winkler foundation.
 
 use elcon_analysis::references::{
-    BeamOnFoundation, FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam,
+    BeamOnFoundation, FlatPunch, HertzCylinders, HertzEllipse, HertzSpheres, HetenyiBeam,
 };
 use elcon_analysis::{Geometry, Loading, Normal, Surface};
 use elcon_influence::{PointSet, combined_modulus_of};
@@ -29,12 +29,17 @@ pub enum Reference {
     FlatPunch(FlatPunch),
     /// A free-free beam on a Winkler foundation under a central load.
     Hetenyi(HetenyiBeam),
+    /// Hertz, an elliptical contact of quadrics (or a sphere's against a
+    /// quadric): the gap curves both ways, not equally.
+    HertzEllipse(HertzEllipse),
 }
 
 impl Reference {
-    /// A short name: "hertz-spheres", "hertz-cylinders", "flat-punch", "hetenyi-beam".
+    /// A short name: "hertz-spheres", "hertz-cylinders", "flat-punch",
+    /// "hetenyi-beam", "hertz-ellipse".
     pub fn kind(&self) -> &'static str {
         match self {
+            Reference::HertzEllipse(_) => "hertz-ellipse",
             Reference::HertzSpheres(_) => "hertz-spheres",
             Reference::HertzCylinders { .. } => "hertz-cylinders",
             Reference::FlatPunch(_) => "flat-punch",
@@ -64,6 +69,8 @@ pub(crate) enum Hertz {
     /// Line contact: cylinders (or a cylinder on a plane) on a line, or a
     /// roller along y on a rectangle grid (per unit length `2 half_y`).
     Cylinders(HertzCylinders),
+    /// An elliptical contact of quadrics, on a disk or an ellipse grid.
+    Ellipse(HertzEllipse),
 }
 
 impl Hertz {
@@ -72,6 +79,7 @@ impl Hertz {
         match self {
             Hertz::Spheres(h) => h.contact_radius(),
             Hertz::Cylinders(h) => h.half_width(),
+            Hertz::Ellipse(h) => h.equivalent_radius(),
         }
     }
 
@@ -80,6 +88,7 @@ impl Hertz {
         match self {
             Hertz::Spheres(h) => h.peak_pressure(),
             Hertz::Cylinders(h) => h.peak_pressure(),
+            Hertz::Ellipse(h) => h.peak_pressure(),
         }
     }
 }
@@ -96,6 +105,10 @@ pub(super) fn hertz(
     load: f64,
 ) -> Option<Hertz> {
     match spec {
+        PointsSpec::Disk { .. } if combined(geometry, true).is_none() => {
+            ellipse(bodies, geometry, load).map(Hertz::Ellipse)
+        }
+        PointsSpec::EllipseHertz { .. } => ellipse(bodies, geometry, load).map(Hertz::Ellipse),
         PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
             let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
             let r = combined(geometry, true)?;
@@ -113,6 +126,31 @@ pub(super) fn hertz(
                 .ok()
                 .map(Hertz::Cylinders)
         }
+    }
+}
+
+/// The elliptical Hertz contact of half-space (or rigid) surface bodies
+/// whose gap's curvature is the surfaces' (`Geometry::curvature`).
+fn ellipse(bodies: &[BodySpec; 2], geometry: &Geometry, load: f64) -> Option<HertzEllipse> {
+    let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+    HertzEllipse::new(e, geometry.curvature()?, load).ok()
+}
+
+/// An ellipse grid's shape, the ellipse's half-extents over its equivalent
+/// radius, set from the surfaces (the same at any load); other layouts,
+/// and an ellipse grid with no elliptical Hertz contact, as they are.
+pub(super) fn shaped(spec: PointsSpec, bodies: &[BodySpec; 2], geometry: &Geometry) -> PointsSpec {
+    match (spec, ellipse(bodies, geometry, 1.0)) {
+        (PointsSpec::EllipseHertz { across, zone, .. }, Some(h)) => {
+            let (ex, ey) = h.half_extents();
+            let r = h.equivalent_radius();
+            PointsSpec::EllipseHertz {
+                across,
+                zone,
+                shape: (ex / r, ey / r),
+            }
+        }
+        (spec, _) => spec,
     }
 }
 
@@ -135,12 +173,20 @@ pub(super) fn reference(
     points: &PointSet,
     loading: Loading,
 ) -> Option<Reference> {
+    if matches!(geometry, Geometry::Tabulated { .. }) {
+        // Departures from the quadrics have no closed form.
+        return None;
+    }
     let flat = match geometry {
         Geometry::Surfaces(Surface::Plane, Surface::Plane) => true,
         Geometry::Separation(eps) => eps.iter().all(|&e| e == eps[0]),
         _ => false,
     };
     match spec {
+        PointsSpec::EllipseHertz { .. } => ellipse_reference(bodies, geometry, loading),
+        PointsSpec::Disk { .. } if !flat && combined(geometry, true).is_none() => {
+            ellipse_reference(bodies, geometry, loading)
+        }
         PointsSpec::Disk { radius, .. } if flat => {
             // A rigid flat punch: one rigid body, the candidate disk its face.
             let rigid = bodies.iter().filter(|b| b.body().is_rigid()).count() == 1;
@@ -220,4 +266,18 @@ pub(super) fn reference(
         }
         PointsSpec::Rectangle { .. } => None,
     }
+}
+
+/// The elliptical Hertz contact at the scene's load, or at the load of its
+/// approach (`HertzEllipse::at_approach`).
+fn ellipse_reference(
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    loading: Loading,
+) -> Option<Reference> {
+    let h = match loading.normal {
+        Normal::Load(p) => ellipse(bodies, geometry, p)?,
+        Normal::Approach(d) => ellipse(bodies, geometry, 1.0)?.at_approach(d).ok()?,
+    };
+    Some(Reference::HertzEllipse(h))
 }

@@ -12,6 +12,7 @@
 
 mod body;
 mod design;
+mod files;
 mod geometry;
 mod hertz;
 mod loading;
@@ -331,7 +332,9 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     )?;
     let geometry = geometry::geometry(ctx, raw.geometry.as_ref(), dimension)?;
     sanity::curvatures(ctx, raw.geometry.as_ref(), &geometry)?;
+    let points_spec = hertz::shaped(points_spec, &bodies, &geometry);
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
+    let geometry = files::on_points(ctx, raw.geometry.as_ref(), geometry, &points)?;
     let reference = hertz::reference(&bodies, &geometry, &points_spec, &points, loading);
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;
@@ -573,7 +576,9 @@ fn lay_out(
     let scale = sizing_load.and_then(|p| hertz::hertz_scale(bodies, geometry, points_spec, p));
     let relative = matches!(
         points_spec,
-        PointsSpec::DiskHertz { .. } | PointsSpec::LineHertz { .. }
+        PointsSpec::DiskHertz { .. }
+            | PointsSpec::LineHertz { .. }
+            | PointsSpec::EllipseHertz { .. }
     ) || matches!(
         points_spec,
         PointsSpec::Rectangle {

@@ -137,6 +137,11 @@ pub fn problem_parts(
         }
         None => None,
     };
+    // An ellipse grid's shape, from the surfaces (as a scene sets it).
+    let points_spec = match (points_spec, &bodies, &geometry) {
+        (Some(spec), Some((_, b)), Some(g)) => Some(hertz::shaped(spec, b, g)),
+        (spec, _, _) => spec,
+    };
     let points = match (points_spec.as_ref().zip(raw.points.as_ref()), listed) {
         (Some((spec, p)), _) => {
             let scale = match (&bodies, &geometry, loading.normal) {
@@ -161,6 +166,17 @@ pub fn problem_parts(
     if let (Some((_, b)), Some(b1), Some(b2)) = (&bodies, &raw.body1, &raw.body2) {
         sanity::bodies_on_grid(&ctx, [b1, b2], [b[0].body(), b[1].body()], &points, &[])?;
     }
+    // A separation file matched to the points, tables checked to cover
+    // them, as a scene does.
+    let geometry = match geometry {
+        Some(g) => Some(super::files::on_points(
+            &ctx,
+            raw.geometry.as_ref(),
+            g,
+            &points,
+        )?),
+        None => None,
+    };
     Ok(ProblemParts {
         bodies: bodies.map(|(_, b)| b),
         geometry,

@@ -58,6 +58,20 @@ pub enum PointsSpec {
         /// Candidate zone over the Hertz half-width (> 1).
         zone: f64,
     },
+    /// A rectangle of cells around an elliptical Hertz contact
+    /// (`elcon_analysis::grid::hertz_ellipse_family`): `across` points over
+    /// each of the ellipse's extents along x and y, out to `zone` times
+    /// them.
+    EllipseHertz {
+        /// Points across each extent (odd: the centre is a point).
+        across: usize,
+        /// Candidate zone over the ellipse (> 1).
+        zone: f64,
+        /// The ellipse's half-extents along x and y over its equivalent
+        /// radius `sqrt(a b)` (the Hertz scale): fixed by the surfaces,
+        /// whatever the load (`HertzEllipse::half_extents`).
+        shape: (f64, f64),
+    },
 }
 
 /// `[points]`: the grid and its parameters, each key checked against the grid.
@@ -71,12 +85,22 @@ pub(super) fn points_spec(
         Grid::Disk => &["spacing", "radius", "across", "zone"],
         Grid::Rectangle => &["half_x", "half_y", "nx", "ny", "zone"],
         Grid::Line => &["start", "end", "n", "across", "zone"],
+        Grid::Ellipse => &["across", "zone"],
     };
     grid_keys(ctx, t, grid.name(), allowed)?;
     let spec = match grid {
         Grid::Disk => disk_spec(ctx, p)?,
         Grid::Rectangle => rectangle_spec(ctx, p)?,
         Grid::Line => line_spec(ctx, p)?,
+        Grid::Ellipse => {
+            let a = ctx.required(&t.across, p.span(), "points.across", "for an ellipse")?;
+            PointsSpec::EllipseHertz {
+                across: hertz_across(ctx, a)?,
+                zone: hertz_zone(ctx, p)?,
+                // Set from the surfaces once they are read (super::hertz::shaped).
+                shape: (1.0, 1.0),
+            }
+        }
     };
     let dimension = if grid == Grid::Line {
         Dimension::Line
@@ -286,6 +310,14 @@ impl PointsSpec {
             PointsSpec::Line { start, end, n } => Ok(GridFamily::Line { start, end, n }),
             PointsSpec::LineHertz { across, zone } => {
                 elcon_analysis::grid::hertz_line_family(need()?, across, zone)
+            }
+            PointsSpec::EllipseHertz {
+                across,
+                zone,
+                shape: (fx, fy),
+            } => {
+                let r = need()?;
+                elcon_analysis::grid::hertz_ellipse_family((fx * r, fy * r), across, zone)
             }
         };
         r.map_err(|e| e.to_string())

@@ -1,0 +1,339 @@
+//! Surfaces and separations from files named in `[geometry]`, read
+//! relative to the scene file, in the scene's units:
+//!
+//! - `height_map = { file, spacing = [dx, dy], origin = [x0, y0] }`: a
+//!   height map on a regular grid, `.npy` (a 2-D array of float64 or
+//!   float32, C order, `Z[j, i]` at `(x0 + i dx, y0 + j dy)`) or CSV (one
+//!   grid row along x per line, rows in increasing y), interpolated
+//!   bilinearly to the candidate points (`elcon_analysis::HeightMap`) and
+//!   added to the surfaces' heights; `origin` defaults to the map centred
+//!   on the first point of contact;
+//! - `profile = { file, axis = "y" }`: an axial profile, CSV rows
+//!   `position, drop` (a roller's crown along y, a beam's along x),
+//!   interpolated linearly (`elcon_analysis::AxialProfile`);
+//! - `separation_file = "eps.csv"`: CSV rows `x, y, separation` (or
+//!   `x, separation` on a line), each candidate point taking the row at its
+//!   position (within `MATCH_TOLERANCE` of the grid's spacing).
+//!
+//! CSV: values separated by commas or blanks; blank lines and lines
+//! starting with `#` skipped; a first line that is not numbers is a
+//! header. The tables' own checks (a NaN, a hole, a wrong shape, a table
+//! that does not cover the points) are elcon-analysis's, their messages
+//! naming the file and the row.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use elcon_analysis::{AxialProfile, Departure, Geometry, HeightMap, ProfileAxis};
+use elcon_influence::PointSet;
+use toml::Spanned;
+
+use crate::ctx::Ctx;
+use crate::error::SceneError;
+use crate::schema::{GeometryToml, HeightMapToml, ProfileToml};
+
+/// How far from a candidate point, in the grid's spacings, a row of a
+/// separation file still matches it (the rounding of coordinates written
+/// to a file and read back).
+const MATCH_TOLERANCE: f64 = 1e-6;
+
+/// The path of `name` relative to the scene file's directory.
+fn path_of(ctx: &Ctx<'_>, name: &str) -> PathBuf {
+    ctx.dir().join(name)
+}
+
+/// The numbers of a CSV file, a row per line (see the module
+/// documentation), each with its line number (from 1).
+fn csv_rows(path: &Path) -> Result<Vec<(usize, Vec<f64>)>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot be read: {e}"))?;
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let values: Result<Vec<f64>, _> = line
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|f| !f.is_empty())
+            .map(str::parse::<f64>)
+            .collect();
+        match values {
+            Ok(v) => rows.push((i + 1, v)),
+            Err(_) if rows.is_empty() && i == first_content_line(&text) => {}
+            Err(_) => return Err(format!("line {}: {line:?} is not numbers", i + 1)),
+        }
+    }
+    if rows.is_empty() {
+        return Err("has no rows of numbers".into());
+    }
+    Ok(rows)
+}
+
+/// The index of the first line that is neither blank nor a comment.
+fn first_content_line(text: &str) -> usize {
+    text.lines()
+        .position(|l| !(l.trim().is_empty() || l.trim().starts_with('#')))
+        .unwrap_or(0)
+}
+
+/// A 2-D `.npy` array of float64 or float32 in C order: its values row by
+/// row and its shape `(rows, columns)`.
+fn npy(path: &Path) -> Result<(Vec<f64>, usize, usize), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot be read: {e}"))?;
+    if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
+        return Err("is not a .npy file (no \\x93NUMPY magic)".into());
+    }
+    let (header_len, start) = match bytes[6] {
+        1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
+        2 | 3 if bytes.len() >= 12 => (
+            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
+            12,
+        ),
+        v => return Err(format!("has .npy format version {v}, not 1, 2 or 3")),
+    };
+    let header = bytes
+        .get(start..start + header_len)
+        .and_then(|h| std::str::from_utf8(h).ok())
+        .ok_or("has a truncated .npy header")?;
+    if header.contains("'fortran_order': True") {
+        return Err("is in Fortran order; save it in C order (np.ascontiguousarray)".into());
+    }
+    let width = if header.contains("'<f8'") {
+        8
+    } else if header.contains("'<f4'") {
+        4
+    } else {
+        return Err("holds no little-endian float64 or float32 ('<f8', '<f4')".into());
+    };
+    let shape = header
+        .split("'shape':")
+        .nth(1)
+        .and_then(|s| s.split(')').next())
+        .map(|s| s.trim().trim_start_matches('('))
+        .ok_or("has no shape in its header")?;
+    let dims: Vec<usize> = shape
+        .split(',')
+        .map(str::trim)
+        .filter(|d| !d.is_empty())
+        .map(|d| d.parse::<usize>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("has a shape ({shape}) that is not counts"))?;
+    let [ny, nx] = dims[..] else {
+        return Err(format!("holds a {}-D array, not a 2-D one", dims.len()));
+    };
+    let data = &bytes[start + header_len..];
+    let n = nx.checked_mul(ny).ok_or("has a shape too large")?;
+    if data.len() != n * width {
+        return Err(format!(
+            "holds {} bytes for {ny} x {nx} values of {width} bytes",
+            data.len()
+        ));
+    }
+    let values = data
+        .chunks_exact(width)
+        .map(|c| match width {
+            8 => f64::from_le_bytes(c.try_into().unwrap_or([0; 8])),
+            _ => f32::from_le_bytes(c.try_into().unwrap_or([0; 4])) as f64,
+        })
+        .collect();
+    Ok((values, ny, nx))
+}
+
+/// Two finite numbers under `key` (`spacing`, `origin`).
+fn pair(ctx: &Ctx<'_>, v: &Spanned<Vec<f64>>, field: &str) -> Result<(f64, f64), SceneError> {
+    match v.get_ref()[..] {
+        [a, b] if a.is_finite() && b.is_finite() => Ok((a, b)),
+        _ => Err(ctx.invalid(
+            v.span(),
+            field,
+            format!("{:?}", v.get_ref()),
+            "must be two finite numbers [along x, along y]",
+        )),
+    }
+}
+
+/// `geometry.height_map`: the map read and checked.
+pub(super) fn height_map(
+    ctx: &Ctx<'_>,
+    t: &Spanned<HeightMapToml>,
+) -> Result<Departure, SceneError> {
+    let t = t.get_ref();
+    let name = t.file.get_ref();
+    let path = path_of(ctx, name);
+    let refuse = |reason: String| {
+        ctx.invalid(
+            t.file.span(),
+            "geometry.height_map.file",
+            format!("{name:?}"),
+            format!("{}: {reason}", path.display()),
+        )
+    };
+    let (values, ny, nx) = if name.ends_with(".npy") {
+        npy(&path).map_err(refuse)?
+    } else {
+        let rows = csv_rows(&path).map_err(refuse)?;
+        let nx = rows[0].1.len();
+        if let Some((line, r)) = rows.iter().find(|(_, r)| r.len() != nx) {
+            return Err(refuse(format!(
+                "line {line} has {} values, the first row {nx}: a height map's rows are all \
+                 as long",
+                r.len()
+            )));
+        }
+        let ny = rows.len();
+        (rows.into_iter().flat_map(|(_, r)| r).collect(), ny, nx)
+    };
+    let spacing = pair(ctx, &t.spacing, "geometry.height_map.spacing")?;
+    let origin = match &t.origin {
+        Some(o) => pair(ctx, o, "geometry.height_map.origin")?,
+        None => (
+            -0.5 * nx.saturating_sub(1) as f64 * spacing.0,
+            -0.5 * ny.saturating_sub(1) as f64 * spacing.1,
+        ),
+    };
+    let label = path.display().to_string();
+    let map = HeightMap::new(label, values, nx, ny, spacing, origin).map_err(|e| {
+        ctx.invalid(
+            t.file.span(),
+            "geometry.height_map",
+            format!("{name:?}"),
+            e.to_string(),
+        )
+    })?;
+    Ok(Departure::HeightMap(Arc::new(map)))
+}
+
+/// `geometry.profile`: the profile read and checked.
+pub(super) fn profile(ctx: &Ctx<'_>, t: &Spanned<ProfileToml>) -> Result<Departure, SceneError> {
+    let t = t.get_ref();
+    let name = t.file.get_ref();
+    let path = path_of(ctx, name);
+    let axis = match t.axis.as_ref().map(|a| (a, a.get_ref().as_str())) {
+        None | Some((_, "y")) => ProfileAxis::Y,
+        Some((_, "x")) => ProfileAxis::X,
+        Some((a, other)) => {
+            return Err(ctx.invalid(
+                a.span(),
+                "geometry.profile.axis",
+                format!("{other:?}"),
+                "must be \"x\" or \"y\" (the axis the profile runs along)",
+            ));
+        }
+    };
+    let refuse = |reason: String| {
+        ctx.invalid(
+            t.file.span(),
+            "geometry.profile.file",
+            format!("{name:?}"),
+            format!("{}: {reason}", path.display()),
+        )
+    };
+    let rows = csv_rows(&path).map_err(refuse)?;
+    if let Some((line, r)) = rows.iter().find(|(_, r)| r.len() != 2) {
+        return Err(refuse(format!(
+            "line {line} has {} values: a profile's rows are (position, drop)",
+            r.len()
+        )));
+    }
+    let (positions, drops) = rows.iter().map(|(_, r)| (r[0], r[1])).unzip();
+    let label = path.display().to_string();
+    let p = AxialProfile::new(label, axis, positions, drops).map_err(|e| {
+        ctx.invalid(
+            t.file.span(),
+            "geometry.profile",
+            format!("{name:?}"),
+            e.to_string(),
+        )
+    })?;
+    Ok(Departure::Profile(Arc::new(p)))
+}
+
+/// The geometry on the laid-out `points`: a `separation_file`'s rows
+/// matched to them, or tables checked to cover them (said at validation,
+/// not at the run); any other geometry as it is.
+pub(super) fn on_points(
+    ctx: &Ctx<'_>,
+    raw: Option<&Spanned<GeometryToml>>,
+    geometry: Geometry,
+    points: &PointSet,
+) -> Result<Geometry, SceneError> {
+    let Some(g) = raw else {
+        return Ok(geometry);
+    };
+    if let Some(file) = &g.get_ref().separation_file {
+        return Ok(Geometry::Separation(separations(ctx, file, points)?));
+    }
+    if let Geometry::Tabulated { .. } = &geometry {
+        elcon_analysis::separations(points, &geometry)
+            .map_err(|e| ctx.invalid(g.span(), "geometry", "", e.to_string()))?;
+    }
+    Ok(geometry)
+}
+
+/// `geometry.separation_file`: a separation for each candidate point, the
+/// file's row at its position.
+fn separations(
+    ctx: &Ctx<'_>,
+    file: &Spanned<String>,
+    points: &PointSet,
+) -> Result<Vec<f64>, SceneError> {
+    let name = file.get_ref();
+    let path = path_of(ctx, name);
+    let refuse = |reason: String| {
+        ctx.invalid(
+            file.span(),
+            "geometry.separation_file",
+            format!("{name:?}"),
+            format!("{}: {reason}", path.display()),
+        )
+    };
+    let rows = csv_rows(&path).map_err(refuse)?;
+    let line = points.dimension() == elcon_influence::Dimension::Line;
+    let width = if line { 2 } else { 3 };
+    let mut table = Vec::with_capacity(rows.len());
+    for (n, r) in &rows {
+        if r.len() != width || r.iter().any(|v| !v.is_finite()) {
+            return Err(refuse(format!(
+                "line {n}: {r:?} is not {} finite numbers ({})",
+                width,
+                if line {
+                    "x, separation"
+                } else {
+                    "x, y, separation"
+                }
+            )));
+        }
+        let (x, y) = if line { (r[0], 0.0) } else { (r[0], r[1]) };
+        table.push((x, y, r[width - 1]));
+    }
+    // Rows keyed by their position in half spacings (cell centres fall on
+    // odd multiples, lattice points on even ones: both round stably).
+    let cell = points.cell();
+    let key = |x: f64, y: f64| {
+        (
+            (2.0 * x / cell.dx).round() as i64,
+            (2.0 * y / cell.dy).round() as i64,
+        )
+    };
+    let mut index = std::collections::HashMap::with_capacity(table.len());
+    for (i, &(x, y, _)) in table.iter().enumerate() {
+        index.entry(key(x, y)).or_insert(i);
+    }
+    let (tx, ty) = (MATCH_TOLERANCE * cell.dx, MATCH_TOLERANCE * cell.dy);
+    (0..points.len())
+        .map(|k| {
+            let (x, y) = (points.x(k), points.y(k));
+            index
+                .get(&key(x, if line { 0.0 } else { y }))
+                .map(|&i| table[i])
+                .filter(|(a, b, _)| (a - x).abs() <= tx && (line || (b - y).abs() <= ty))
+                .map(|r| r.2)
+                .ok_or_else(|| {
+                    refuse(format!(
+                        "has no row at candidate point {k} ({x}, {y}); give a row at every \
+                         candidate point"
+                    ))
+                })
+        })
+        .collect()
+}
