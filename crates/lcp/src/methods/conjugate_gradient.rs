@@ -108,6 +108,7 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
     let cap = options.iteration_cap();
     let mut progress = Progress::new(options.tolerances.certificate, n);
     loop {
+        crate::cancel::check().map_err(|c| Failure::new(c.into(), work))?;
         if let Err(b) = residual(form, &mut state) {
             return Err(Failure::new(b, work));
         }
@@ -370,6 +371,7 @@ fn solve_column(
     let (cap, mut iterations) = (options.iteration_cap(), 0);
     let mut progress = Progress::new(options.tolerances.certificate, n);
     loop {
+        crate::cancel::check()?;
         let mut c = relative(b, r);
         if progress.done(iterations, c) {
             // The true residual r = b - M x decides.
