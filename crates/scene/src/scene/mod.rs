@@ -269,7 +269,7 @@ impl Scene {
     /// invalid TOML, unknown or missing keys and wrong types;
     /// [`SceneError::Invalid`] for values out of their physical range.
     pub fn from_file(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError::io(path, e))?;
+        let text = crate::ctx::read_text(path)?;
         Self::from_str(path, &text)
     }
 
