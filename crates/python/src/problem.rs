@@ -18,6 +18,7 @@ use serde::Serialize;
 use crate::convert::{arrays, sections_text};
 use crate::errors::{InputError, SolveError, analysis_error, guarded, parts_error};
 use crate::memory::{admit, ceiling};
+use crate::signals::detach;
 
 /// The names of the solve methods.
 #[pyfunction]
@@ -217,11 +218,11 @@ impl PyContactProblem {
         storage: Storage,
         ceiling: &Ceiling,
     ) -> PyResult<Self> {
-        let inner = py.detach(|| {
+        let inner = detach(py, |_| {
             guarded("ContactProblem", || {
                 build_admitted(built.builder(points, loading).storage(storage), ceiling)
             })
-        })?;
+        })??;
         Ok(Self {
             inner,
             built: Some(built),
@@ -321,7 +322,7 @@ impl PyContactProblem {
         let ceiling = ceiling()?;
         let problem = &self.inner;
         let built = &self.built;
-        let solution = py.detach(|| {
+        let solution = detach(py, |_| {
             guarded("ContactProblem.solve", || {
                 if let Some(b) = built {
                     let plan = b
@@ -336,7 +337,7 @@ impl PyContactProblem {
                     .solve(m, &Options::default())
                     .map_err(analysis_error)
             })
-        })?;
+        })??;
         let json = ProblemJson::of(problem, &solution, m);
         let text = serde_json::to_string(&json)
             .map_err(|e| SolveError::new_err(format!("the solution's fields: {e}")))?;

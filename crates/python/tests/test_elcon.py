@@ -501,3 +501,27 @@ def test_python_is_as_safe_as_the_cli(tmp_path, monkeypatch):
     with pytest.raises(elcon.InputError, match="not in one consistent unit system"):
         elcon.ContactProblem(i.ravel(), np.zeros(25), 1e-300, y=j.ravel(), body1=steel,
                              body2=steel, load=1.0).solve()
+
+
+def test_ctrl_c_ends_a_long_solve_with_keyboard_interrupt():
+    # Example 1 unfolded at 71 across by Lemke's method: 5089 points, about
+    # 10 s of pivots. SIGINT a second into the pivots stops the solve at its
+    # next pivot (the solver polls the cancel token the signal check sets)
+    # and raises KeyboardInterrupt, not the solve's result a while later.
+    import signal
+    import threading
+    import tomllib
+
+    slow = tomllib.loads((SCENES / "example1-spheres.toml").read_text())
+    slow["points"]["across"] = 71
+    slow["solver"]["method"] = "lemke"
+    slow["solver"]["symmetry"] = "none"
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            elcon.run(slow)
+    finally:
+        timer.cancel()
+    # Nothing is left running: the next run is answered as usual.
+    assert elcon.run(SCENES / "example1-spheres.toml").load > 0
