@@ -59,7 +59,8 @@ pub use run::{
     Errors, ReferenceJson, Run, RunResult, Seconds, SolutionJson, SymmetryJson, XY, run,
 };
 pub use sanity::{
-    MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MIN_POINTS_ACROSS,
+    MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MAX_ROTATION,
+    MIN_POINTS_ACROSS,
     max_pivots_bound,
 };
 pub use scene::{

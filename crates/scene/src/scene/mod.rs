@@ -332,6 +332,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let geometry = geometry::geometry(ctx, raw.geometry.as_ref(), dimension)?;
     sanity::curvatures(ctx, raw.geometry.as_ref(), &geometry)?;
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
+    sanity::load_centre(ctx, &raw.loading, loading, &points)?;
     let reference = hertz::reference(&bodies, &geometry, &points_spec, &points, loading);
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;
