@@ -60,8 +60,7 @@ pub use run::{
 };
 pub use sanity::{
     MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MAX_ROTATION,
-    MIN_POINTS_ACROSS,
-    max_pivots_bound,
+    MIN_POINTS_ACROSS, max_pivots_bound,
 };
 pub use scene::{
     BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, HalfX, MethodChoice, ModelKind, Outputs,
