@@ -129,8 +129,8 @@ pub struct BatchDone {
     pub interrupted: bool,
 }
 
-/// Runs a batch (or one shard of it) into `out/<batch>` (see [`Journal`]
-/// for what makes it resumable): every run's outputs are renamed into
+/// Runs a batch (or one shard of it) into `out/<batch>` (see the journal,
+/// [`JOURNAL`](crate::JOURNAL), for what makes it resumable): every run's outputs are renamed into
 /// place whole and journaled as it finishes; the finished runs of an
 /// earlier invocation of the same batch are kept, not run again. Failed and
 /// refused runs are rows with their reason. When `options.cancel` is
