@@ -14,7 +14,11 @@
 //! and were written), a file did not validate, a scene was too big for the
 //! memory, or merge was given inconsistent shards; 2 a usage error (unknown
 //! option, missing argument, a malformed size or shard, `--shard auto`
-//! outside a scheduler).
+//! outside a scheduler, `--jobs` 0 or above [`MAX_JOBS_PER_CORE`] per core);
+//! 130 interrupted (SIGINT or SIGTERM: the solves in flight stop within a
+//! pivot or an iteration, what finished is written, a batch's tables list
+//! the finished runs and the same command finishes it; a second signal ends
+//! the process at once).
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -23,9 +27,9 @@ use std::sync::Mutex;
 
 use clap::{Parser, Subcommand};
 use elcon_scene::{
-    Batch, BatchOptions, BatchRun, Ceiling, Progress, RunResult, Scene, SceneError, Shard, Staging,
-    check_batch, install_panic_hook, isolated, merge, parse_size, prepare, run, run_batch,
-    thousands, write_run_files,
+    Batch, BatchOptions, BatchRun, Cancel, Ceiling, Progress, RunResult, Scene, SceneError, Shard,
+    Staging, check_batch, install_panic_hook, interruptible, isolated, merge, parse_size, prepare,
+    read_text, run, run_batch, thousands, write_run_files,
 };
 
 #[derive(Parser)]
@@ -59,6 +63,31 @@ fn shard_arg(s: &str) -> Result<ShardArg, String> {
     }
 }
 
+/// `--jobs` may ask for at most this many runs per core: runs solve on
+/// all cores already, so more only add memory and contention.
+const MAX_JOBS_PER_CORE: usize = 4;
+
+fn jobs_arg(s: &str) -> Result<usize, String> {
+    let jobs: usize = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}`: a whole number of runs in parallel, e.g. 2"))?;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let most = MAX_JOBS_PER_CORE * cores;
+    if jobs == 0 {
+        return Err(
+            "0: give at least 1 run in parallel (leave --jobs out for one per core)".into(),
+        );
+    }
+    if jobs > most {
+        return Err(format!(
+            "{jobs}: at most {MAX_JOBS_PER_CORE} runs per core, {most} on this machine's {cores} \
+             cores (more only add memory and contention)"
+        ));
+    }
+    Ok(jobs)
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Solve scenes; write result.json, pressure.csv and the plots asked for under DIR/<scene>/.
@@ -80,8 +109,8 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "out")]
         out: PathBuf,
-        /// Runs in parallel (default: one per core).
-        #[arg(long)]
+        /// Runs in parallel (default: one per core; at most 4 per core).
+        #[arg(long, value_parser = jobs_arg)]
         jobs: Option<usize>,
         /// Run only the K-th of N slices of the sweep (K from 1), e.g. 2/8; or
         /// auto: K and N from a SLURM job array or a Kubernetes indexed Job.
@@ -119,6 +148,7 @@ enum Outcome {
     Ok,
     Failed,
     Usage(String),
+    Interrupted,
 }
 
 impl From<bool> for Outcome {
@@ -153,6 +183,20 @@ fn threads(arg: Option<usize>) -> Result<(), Outcome> {
         .map_err(|e| Outcome::Usage(format!("the thread pool: {e}")))
 }
 
+/// A token that SIGINT and SIGTERM cancel (the solves watching it stop);
+/// a second signal, once it is cancelled, ends the process at once with
+/// exit code 130.
+fn interrupts() -> Cancel {
+    let cancel = Cancel::new();
+    for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM] {
+        // The order matters: the shutdown sees the flag as it was before
+        // this signal set it.
+        let _ = signal_hook::flag::register_conditional_shutdown(signal, 130, cancel.flag());
+        let _ = signal_hook::flag::register(signal, cancel.flag());
+    }
+    cancel
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     install_panic_hook();
@@ -160,19 +204,21 @@ fn main() -> ExitCode {
         eprintln!("error: {message}");
         return ExitCode::from(2);
     }
+    let cancel = interrupts();
     let outcome = match cli.command {
         Command::Run {
             scenes,
             out,
             memory_limit,
-        } => ceiling(memory_limit).map(|c| run_scenes(&scenes, &out, &c).into()),
+        } => ceiling(memory_limit).map(|c| run_scenes(&scenes, &out, &c, &cancel)),
         Command::Batch {
             batch,
             out,
             jobs,
             shard,
             memory_limit,
-        } => ceiling(memory_limit).and_then(|c| batch_command(&batch, &out, jobs, shard, c)),
+        } => ceiling(memory_limit)
+            .and_then(|c| batch_command(&batch, &out, jobs, shard, c, cancel.clone())),
         Command::Check {
             files,
             memory_limit,
@@ -187,6 +233,7 @@ fn main() -> ExitCode {
             eprintln!("error: {message}");
             ExitCode::from(2)
         }
+        Outcome::Interrupted => ExitCode::from(130),
     }
 }
 
@@ -291,7 +338,7 @@ fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
     let mut ok = true;
     let mut scenes: Vec<Scene> = Vec::new();
     for path in paths {
-        match isolated(&path.display().to_string(), || Scene::from_file(path)) {
+        match isolated(&path.display().to_string(), || scene_file(path)) {
             Ok(s) => scenes.push(s),
             Err(e) => {
                 eprintln!("error: {e}");
@@ -322,17 +369,19 @@ fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
     (unique, ok)
 }
 
-fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling) -> bool {
+fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling, cancel: &Cancel) -> Outcome {
     let (scenes, mut ok) = validated(paths, out);
     let mut header_printed = false;
     for scene in scenes {
         let name = scene.name().to_string();
-        let outcome = isolated(&name, || {
-            let prepared = prepare(scene, ceiling)?;
-            let staging = Staging::begin(&out.join(&name), &|m| eprintln!("{m}"))?;
-            let r = run(&prepared.scene)?;
-            write_run_files(&r, staging.path())?;
-            Ok((r.result, staging.commit()?))
+        let outcome = interruptible(cancel, &name, || {
+            isolated(&name, || {
+                let prepared = prepare(scene, ceiling)?;
+                let staging = Staging::begin(&out.join(&name), &|m| eprintln!("{m}"))?;
+                let r = run(&prepared.scene)?;
+                write_run_files(&r, staging.path())?;
+                Ok((r.result, staging.commit()?))
+            })
         });
         match outcome {
             Ok((r, dir)) => {
@@ -343,17 +392,33 @@ fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling) -> bool {
                 row(&r);
                 println!("{:<28} wrote {}", "", dir.display());
             }
+            Err(e @ SceneError::Interrupted { .. }) => {
+                eprintln!("{e}; the scenes after it did not run");
+                return Outcome::Interrupted;
+            }
             Err(e) => {
                 eprintln!("error: {e}");
                 ok = false;
             }
         }
     }
-    ok
+    ok.into()
 }
 
-fn is_batch(path: &Path) -> bool {
-    std::fs::read_to_string(path).is_ok_and(|t| elcon_scene::is_batch_text(&t))
+/// A scene file, read once (as `check` reads it); a batch file is refused
+/// with the command that runs it.
+fn scene_file(path: &Path) -> Result<Scene, SceneError> {
+    let text = read_text(path)?;
+    if elcon_scene::is_batch_text(&text) {
+        return Err(SceneError::Io {
+            path: path.to_path_buf(),
+            reason: format!(
+                "is a batch file (it has a [batch] table): run it with `elcon batch {}`",
+                path.display()
+            ),
+        });
+    }
+    Scene::from_str(path, &text)
 }
 
 fn check_scene(path: &Path, scene: Scene, ceiling: &Ceiling) -> bool {
@@ -377,8 +442,8 @@ fn check_scene(path: &Path, scene: Scene, ceiling: &Ceiling) -> bool {
     }
 }
 
-fn check_batch_file(path: &Path, ceiling: &Ceiling, every_run: bool) -> bool {
-    let batch = match Batch::from_file(path) {
+fn check_batch_file(path: &Path, text: &str, ceiling: &Ceiling, every_run: bool) -> bool {
+    let batch = match Batch::from_text(path, text) {
         Ok(b) => b,
         Err(e) => {
             eprintln!("error: {e}");
@@ -430,9 +495,17 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
     let mut ok = true;
     let mut names: Vec<(String, &Path)> = Vec::new();
     for path in files {
-        if is_batch(path) {
+        let text = match read_text(path) {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ok = false;
+                continue;
+            }
+        };
+        if elcon_scene::is_batch_text(&text) {
             let checked = isolated(&path.display().to_string(), || {
-                Ok(check_batch_file(path, ceiling, every_run))
+                Ok(check_batch_file(path, &text, ceiling, every_run))
             });
             ok &= checked.unwrap_or_else(|e| {
                 eprintln!("error: {e}");
@@ -440,7 +513,7 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
             });
             continue;
         }
-        match isolated(&path.display().to_string(), || Scene::from_file(path)) {
+        match isolated(&path.display().to_string(), || Scene::from_str(path, &text)) {
             Ok(scene) => {
                 if let Some((_, other)) = names.iter().find(|(n, _)| *n == scene.name()) {
                     eprintln!(
@@ -523,6 +596,7 @@ fn batch_command(
     jobs: Option<usize>,
     shard: Option<ShardArg>,
     ceiling: Ceiling,
+    cancel: Cancel,
 ) -> Result<Outcome, Outcome> {
     let shard = match shard {
         None => None,
@@ -564,15 +638,26 @@ fn batch_command(
         jobs,
         shard,
         ceiling,
+        cancel,
     };
-    match run_batch(&batch, out, &options, &report) {
-        Ok(o) => {
-            if let Some(bar) = &report.bar {
-                bar.finish_and_clear();
-            }
+    let done = run_batch(&batch, out, &options, &report);
+    if let Some(bar) = &report.bar {
+        bar.finish_and_clear();
+    }
+    match done {
+        Ok(done) => {
+            let o = &done.outcome;
             let dir = batch.output_dir(out, shard);
+            let kept = if done.kept > 0 {
+                format!(
+                    " ({} kept from the last invocation)",
+                    thousands(done.kept as u64)
+                )
+            } else {
+                String::new()
+            };
             println!(
-                "batch `{}`: {} runs, {} failed; tables in {}",
+                "batch `{}`: {} runs, {} failed{kept}; tables in {}",
                 o.batch,
                 thousands(o.rows.len() as u64),
                 thousands(o.failures() as u64),
@@ -580,6 +665,15 @@ fn batch_command(
             );
             for r in o.rows.iter().filter(|r| r.status != "ok") {
                 println!("  run {} ({}): {}", r.index, r.overrides, r.status);
+            }
+            if done.interrupted {
+                eprintln!(
+                    "interrupted: {} runs did not finish; the same command again runs them and \
+                     keeps the {} that finished",
+                    thousands(o.pending as u64),
+                    thousands(o.rows.iter().filter(|r| r.status == "ok").count() as u64)
+                );
+                return Ok(Outcome::Interrupted);
             }
             Ok((o.failures() == 0).into())
         }

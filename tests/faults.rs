@@ -607,3 +607,263 @@ fn a_huge_sweep_is_checked_by_size_and_a_too_large_one_refused() {
         );
     }
 }
+
+/// Each run directory's result.json under a batch directory, by name.
+fn run_results(dir: &Path) -> std::collections::BTreeMap<String, String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().join("result.json").exists())
+        .map(|e| {
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                std::fs::read_to_string(e.path().join("result.json")).unwrap(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn a_batch_killed_at_any_point_resumes_without_redoing_finished_runs() {
+    let dir = scratch("resume");
+    let batch = six_runs(&dir, "sweep", "50.0, 150.0");
+    let whole_out = dir.join("whole");
+    let o = elcon(&["batch", s(&batch), "--out", s(&whole_out)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let whole = json(&whole_out.join("sweep/results.json"));
+    // Killed (SIGKILL) before the first run is journaled (its directory
+    // in place), after the second and after the sixth; stopped by SIGTERM
+    // after the third. One run at a time, so the journal's order is the
+    // runs'.
+    for (fault, signal) in [
+        ("kill_before_record=1", "KILL"),
+        ("kill_after_record=2", "KILL"),
+        ("kill_after_record=6", "KILL"),
+        ("term_after_record=3", "TERM"),
+    ] {
+        let out = dir.join(fault.replace('=', "-"));
+        let o = elcon_with(
+            &["batch", s(&batch), "--out", s(&out), "--jobs", "1"],
+            &[(FAULTS, fault)],
+        );
+        let t = text(&o);
+        let target = out.join("sweep");
+        let journaled = std::fs::read_to_string(target.join("journal.jsonl"))
+            .unwrap()
+            .lines()
+            .count()
+            - 1;
+        if signal == "KILL" {
+            assert_eq!(o.status.code(), None, "{fault}: killed by a signal: {t}");
+            assert!(!target.join("results.json").exists(), "{fault}");
+        } else {
+            // SIGTERM: the run in flight stops, the tables of what finished
+            // are written, exit 130.
+            assert_eq!(o.status.code(), Some(130), "{fault}: {t}");
+            assert!(t.contains("interrupted:"), "{t}");
+            let partial = json(&target.join("results.json"));
+            let rows = partial["rows"].as_array().unwrap().len();
+            assert!(rows >= 3, "{fault}: {partial}");
+            assert_eq!(partial["pending"].as_u64().unwrap() as usize, 8 - rows);
+            // An unfinished table does not merge.
+            let o = elcon(&["merge", s(&target), "--out", s(&dir.join("m"))]);
+            assert!(text(&o).contains("unfinished"), "{}", text(&o));
+        }
+        let before = run_results(&target);
+        let finished = journaled.min(before.len());
+        // The same command again keeps what finished and runs the rest.
+        let o = elcon(&["batch", s(&batch), "--out", s(&out), "--jobs", "1"]);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(0), "{fault}: {t}");
+        if finished > 0 {
+            assert!(
+                t.contains(&format!(
+                    "{finished} finished runs kept, {} to run",
+                    8 - finished
+                )),
+                "{fault}: {t}"
+            );
+        }
+        assert!(litter(&target).is_empty(), "{:?}", litter(&target));
+        // The kept runs were not run again: their files are as they were.
+        let after = run_results(&target);
+        let kept = before
+            .iter()
+            .filter(|(k, v)| after.get(*k) == Some(v))
+            .count();
+        assert!(kept >= finished, "{fault}: {kept} of {finished} kept");
+        let resumed = json(&target.join("results.json"));
+        assert_eq!(
+            rows_without_times(&resumed),
+            rows_without_times(&whole),
+            "{fault}"
+        );
+        assert_eq!(resumed["batch_hash"], whole["batch_hash"]);
+        assert!(resumed.get("pending").is_none(), "{resumed}");
+    }
+}
+
+#[test]
+fn resumed_shards_merge_to_exactly_an_unbroken_run() {
+    let dir = scratch("resume-shards");
+    let batch = six_runs(&dir, "sweep", "50.0, 150.0");
+    let out = dir.join("out");
+    let o = elcon(&["batch", s(&batch), "--out", s(&out)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let whole = json(&out.join("sweep/results.json"));
+    for k in ["1/2", "2/2"] {
+        // Each shard killed after its first run, then run again.
+        let o = elcon_with(
+            &[
+                "batch",
+                s(&batch),
+                "--out",
+                s(&out),
+                "--shard",
+                k,
+                "--jobs",
+                "1",
+            ],
+            &[(FAULTS, "kill_after_record=1")],
+        );
+        assert_eq!(o.status.code(), None, "{}", text(&o));
+        let o = elcon(&["batch", s(&batch), "--out", s(&out), "--shard", k]);
+        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+        assert!(text(&o).contains("1 finished runs kept"), "{}", text(&o));
+    }
+    let merged = dir.join("merged");
+    let o = elcon(&[
+        "merge",
+        s(&out.join("sweep-shard-1-of-2")),
+        s(&out.join("sweep-shard-2-of-2")),
+        "--out",
+        s(&merged),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let m = json(&merged.join("results.json"));
+    assert_eq!(rows_without_times(&m), rows_without_times(&whole));
+    // Every value of every row to the last digit: the rows are their runs'
+    // result.json, read back exactly.
+    for (r, w) in m["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(whole["rows"].as_array().unwrap())
+    {
+        assert_eq!(r["approach"].as_f64(), w["approach"].as_f64());
+        assert_eq!(r["max_pressure"].as_f64(), w["max_pressure"].as_f64());
+    }
+    // A hand-edited value is refused, naming the field.
+    let shard2 = out.join("sweep-shard-2-of-2");
+    let mut t = json(&shard2.join("results.json"));
+    t["rows"][0]["approach"] = serde_json::json!(1.0);
+    std::fs::write(shard2.join("results.json"), t.to_string()).unwrap();
+    let o = elcon(&[
+        "merge",
+        s(&out.join("sweep-shard-1-of-2")),
+        s(&shard2),
+        "--out",
+        s(&dir.join("merged2")),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(
+        text(&o).contains("does not hold its run's values: `approach` is 1.0 in the table"),
+        "{}",
+        text(&o)
+    );
+    // Another version of the batch into the same directory starts afresh.
+    let edited = six_runs(&dir, "sweep", "60.0, 150.0");
+    let o = elcon(&["batch", s(&edited), "--out", s(&out)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(
+        text(&o).contains("another version of the batch"),
+        "{}",
+        text(&o)
+    );
+    assert!(!text(&o).contains("kept"), "{}", text(&o));
+}
+
+#[test]
+fn long_and_huge_override_values_name_short_directories() {
+    let dir = scratch("names");
+    small_scene(&dir, "base", "base", &[]);
+    let long = (0..40)
+        .map(|i| format!("{}.0", 100 + i))
+        .collect::<Vec<_>>()
+        .join(", ");
+    std::fs::write(
+        dir.join("names.toml"),
+        format!(
+            "[batch]\nscene = \"base.toml\"\n[[batch.group]]\n\"loading.load\" = [1e300, 100.0]\n\
+             [[batch.group]]\n\"design.loads\" = [[{long}]]\n\"points.across\" = [9]\n"
+        ),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = elcon(&["batch", s(&dir.join("names.toml")), "--out", s(&out)]);
+    let t = text(&o);
+    assert!(!t.contains("File name too long"), "{t}");
+    assert!(t.contains("loading.load=1e300"), "{t}");
+    let names: Vec<String> = std::fs::read_dir(out.join("names"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.iter().all(|n| n.len() <= 120), "{names:?}");
+    assert!(
+        names.iter().any(|n| n == "001-loading.load-100.0"),
+        "{names:?}"
+    );
+}
+
+#[test]
+fn an_interrupt_ends_a_long_solve_at_once_and_writes_nothing_half() {
+    let dir = scratch("interrupt");
+    let out = dir.join("out");
+    // Example 1 unfolded at 71 across by Lemke's method: 5089 points, about
+    // 10 s of pivots on the reference machine.
+    let slow = dir.join("slow.toml");
+    std::fs::write(
+        &slow,
+        edited(
+            &example_scene("example1-spheres"),
+            &[
+                ("across = 41", "across = 71"),
+                (
+                    "method = \"block-pivoting\"",
+                    "method = \"lemke\"\nsymmetry = \"none\"",
+                ),
+            ],
+        ),
+    )
+    .unwrap();
+    for signal in ["INT", "TERM"] {
+        let child = spawn(&["run", s(&slow), "--out", s(&out)], &[]);
+        // Well into the pivots (the assembly takes a fraction of a second).
+        std::thread::sleep(Duration::from_millis(1500));
+        let sent = Instant::now();
+        let status = std::process::Command::new("kill")
+            .args([format!("-{signal}"), child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let o = child.wait_with_output().unwrap();
+        let t = text(&o);
+        // The typed outcome: exit 130, the scene interrupted, nothing written.
+        assert_eq!(o.status.code(), Some(130), "SIG{signal}: {t}");
+        assert!(
+            t.contains("scene `example1-spheres`: interrupted before it finished"),
+            "{t}"
+        );
+        assert!(!out.join("example1-spheres").exists());
+        assert!(litter(&out).is_empty(), "{:?}", litter(&out));
+        // The solves poll between pivots (a pivot here takes milliseconds):
+        // a generous bound for a loaded 2-core machine, against the ~10 s
+        // the solve would still take.
+        assert!(
+            sent.elapsed() < Duration::from_secs(5),
+            "{:?}",
+            sent.elapsed()
+        );
+    }
+}

@@ -53,7 +53,7 @@
 //! the end, and `Phi theta >= 0` is never a constraint of the steps.
 
 use elcon_analysis::{ContactProblem, ContactSolution};
-use elcon_lcp::{Bound, ProgramBuilder};
+use elcon_lcp::{Bound, LcpError, ProgramBuilder};
 use faer::linalg::solvers::Solve;
 use faer::{Col, Mat};
 
@@ -309,23 +309,62 @@ fn step(
     }
     let rhs = Col::from_fn(rows, |r| f64::from(r == m));
     program.rhs(rhs.as_ref())?;
+    let program = program.build()?;
     // The step is only as good as the basis it is read from, and that is
-    // checked below to STEP_FEASIBILITY: the engine's certificate is held to
-    // the same (a model's rows weighted to keep edges clear span a wider
-    // range than its data's rounding).
+    // checked to STEP_FEASIBILITY (`read_step`): the engine's certificate is
+    // held to the same (a model's rows weighted to keep edges clear span a
+    // wider range than its data's rounding).
     let mut engine = engine.clone();
     engine.tolerances.certificate = engine.tolerances.certificate.max(STEP_FEASIBILITY);
-    let solution = program.build()?.solve(&engine)?;
-    let pivots = solution.statistics.pivots();
-    let unreadable = || DesignError::Incompatible {
-        field: "cases",
-        reason: "the descent's step program ended without a basis of its own columns".into(),
-    };
-    if solution.basis.len() != rows || solution.basis.iter().any(|&v| v >= columns.len()) {
-        return Err(unreadable());
+    // The engine's equilibration can end phase 2 at a basis whose
+    // multipliers are not a feasible step (rows of parameters whose model
+    // columns nearly depend on one another over the grid: a polynomial of
+    // degree 4 on a disk); the same program unscaled is the fallback, its
+    // step checked alike.
+    let mut pivots = 0;
+    let mut failure = None;
+    for equilibrate in [engine.equilibrate, !engine.equilibrate] {
+        engine.equilibrate = equilibrate;
+        match program.solve(&engine) {
+            Ok(solution) => {
+                pivots += solution.statistics.pivots();
+                if let Some((d, t)) = read_step(&solution.basis, &columns, own.len(), m, radius) {
+                    return Ok((d, t, pivots));
+                }
+            }
+            Err(LcpError::Cancelled) => return Err(LcpError::Cancelled.into()),
+            Err(e) => failure = Some(e),
+        }
     }
-    let basis = Mat::from_fn(rows, rows, |r, i| entry(r, columns[solution.basis[i]]));
-    let costs = Col::from_fn(rows, |i| columns[solution.basis[i]].b);
+    Err(DesignError::Incompatible {
+        field: "cases",
+        reason: match failure {
+            Some(e) => format!("the descent's step program failed: {e}"),
+            None => "the descent's step program (with and without equilibration) ended at no \
+                     basis whose multipliers are a feasible step"
+                .into(),
+        },
+    })
+}
+
+/// The step `(d, t)` read from the dual program's final basis (indices into
+/// `columns`, whose first `own` are the trust region's and the floor's), or
+/// `None` when that basis is not one of the program's own columns or its
+/// multipliers are not a feasible step to [`STEP_FEASIBILITY`].
+fn read_step(
+    basic: &[usize],
+    columns: &[&Constraint],
+    own: usize,
+    m: usize,
+    radius: f64,
+) -> Option<(Vec<f64>, f64)> {
+    let rows = m + 1;
+    if basic.len() != rows || basic.iter().any(|&v| v >= columns.len()) {
+        return None;
+    }
+    let entry = |r: usize, c: &Constraint| if r < m { c.a[r] } else { -c.t_coefficient };
+    let basis = Mat::from_fn(rows, rows, |r, i| entry(r, columns[basic[i]]));
+    let costs = Col::from_fn(rows, |i| columns[basic[i]].b);
     let pi = basis.transpose().partial_piv_lu().solve(&costs);
     // The trust region's bounds are exact: the solve's rounding, relative
     // to the model rows' terms (intensities), can put d_i beyond a radius
@@ -334,7 +373,7 @@ fn step(
     let raw: Vec<f64> = (0..m).map(|i| pi[i]).collect();
     let d: Vec<f64> = raw.iter().map(|v| v.clamp(-radius, radius)).collect();
     let t = -pi[m];
-    let clamped = columns[own.len()..]
+    let clamped = columns[own..]
         .iter()
         .map(|c| {
             let moved: f64 =
@@ -352,10 +391,7 @@ fn step(
         .map(|c| c.violation(&d, t))
         .fold(0.0f64, f64::max);
     let finite = t.is_finite() && d.iter().all(|v| v.is_finite());
-    if !(finite && worst <= STEP_FEASIBILITY && clamped <= STEP_FEASIBILITY) {
-        return Err(unreadable());
-    }
-    Ok((d, t, pivots))
+    (finite && worst <= STEP_FEASIBILITY && clamped <= STEP_FEASIBILITY).then_some((d, t))
 }
 
 /// The descent from `theta0`; `scale` is the cases' elastic deflection
@@ -485,5 +521,61 @@ mod tests {
             assert!(d.iter().all(|v| v.abs() <= radius), "{d:?} {radius:e}");
             assert!(t <= 1.640_658e5, "{t}");
         }
+    }
+
+    /// A step is read from a basis only when its multipliers are a
+    /// feasible step: the optimal basis of a one-parameter program gives
+    /// one, a basis whose multipliers violate the program's rows (the
+    /// fallback's trigger) none.
+    #[test]
+    fn a_step_is_read_only_from_a_basis_whose_multipliers_are_feasible() {
+        // minimize t subject to t >= 2 + d, t >= 2 - 3 d, |d| <= 1:
+        // d = 0, t = 2.
+        let radius = 1.0;
+        let own = [
+            Constraint {
+                a: vec![1.0],
+                t_coefficient: 0.0,
+                b: radius,
+            },
+            Constraint {
+                a: vec![0.0],
+                t_coefficient: -1.0,
+                b: 10.0,
+            },
+            Constraint {
+                a: vec![-1.0],
+                t_coefficient: 0.0,
+                b: radius,
+            },
+        ];
+        let model = [
+            Constraint {
+                a: vec![1.0],
+                t_coefficient: -1.0,
+                b: -2.0,
+            },
+            Constraint {
+                a: vec![-3.0],
+                t_coefficient: -1.0,
+                b: -2.0,
+            },
+        ];
+        let columns: Vec<&Constraint> = own.iter().chain(&model).collect();
+        let (d, t) = read_step(&[3, 4], &columns, own.len(), 1, radius).unwrap();
+        assert!(d[0].abs() < 1e-12 && (t - 2.0).abs() < 1e-12, "{d:?} {t}");
+        // A feasible basis that is not optimal still gives a feasible step
+        // (d = 1, t = 3: the descent's acceptance test judges it).
+        let (d, t) = read_step(&[0, 3], &columns, own.len(), 1, radius).unwrap();
+        assert!(
+            (d[0] - 1.0).abs() < 1e-12 && (t - 3.0).abs() < 1e-12,
+            "{d:?} {t}"
+        );
+        // The floor's row and the second model row: d = 4, beyond the
+        // trust region, t = -10 below both model rows.
+        assert!(read_step(&[1, 4], &columns, own.len(), 1, radius).is_none());
+        // A basis of the wrong size, or naming no column of the program.
+        assert!(read_step(&[3], &columns, own.len(), 1, radius).is_none());
+        assert!(read_step(&[3, 9], &columns, own.len(), 1, radius).is_none());
     }
 }

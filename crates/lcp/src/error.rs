@@ -202,4 +202,8 @@ pub enum LcpError {
         /// The size asked for (saturated at usize::MAX on overflow).
         bytes: usize,
     },
+    /// The solve was cancelled through its [`Cancel`](crate::Cancel) token
+    /// (an interrupt: Ctrl-C, SIGTERM) before it found an answer.
+    #[error("the solve was cancelled (interrupted) before it finished")]
+    Cancelled,
 }

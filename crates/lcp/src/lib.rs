@@ -79,6 +79,7 @@
 //! assert!((sol.u[0] - 5.0).abs() < 1e-12);
 //! ```
 
+mod cancel;
 mod certificate;
 mod certify;
 mod error;
@@ -95,6 +96,7 @@ mod strategy;
 mod tableau;
 pub mod tolerance;
 
+pub use cancel::Cancel;
 pub use certificate::Certificate;
 pub use error::LcpError;
 pub use linalg::condition_estimate;

@@ -72,6 +72,8 @@ pub enum Breakdown {
     ActiveSetRejected,
     /// Block pivoting's iteration cap was reached.
     IterationCap,
+    /// The solve was cancelled ([`Cancel`](crate::Cancel)).
+    Cancelled,
     /// The engine's own error (pivot limit, singular basis, infeasible,
     /// unbounded, ray termination).
     Error(Box<LcpError>),
@@ -95,6 +97,7 @@ impl fmt::Display for Breakdown {
                 f.write_str("the final active set does not solve the problem from the data")
             }
             Breakdown::IterationCap => f.write_str("the iteration cap was reached"),
+            Breakdown::Cancelled => f.write_str("cancelled"),
             Breakdown::Error(e) => write!(f, "{e}"),
         }
     }

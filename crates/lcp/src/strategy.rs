@@ -435,6 +435,10 @@ impl<'r, R: Routed> Ladder<'r, R> {
     /// Runs and logs one attempt; keeps its answer when it certifies better
     /// than the best so far. Returns whether an answer now certifies.
     fn run(&mut self, kind: Kind, reason: Reason, options: &Options, relaxed: bool) -> bool {
+        // A cancelled solve makes no further attempt (`finish` says why).
+        if crate::cancel::requested() {
+            return self.certified();
+        }
         let start = Instant::now();
         let result = self.problem.attempt(kind, options, relaxed);
         let index = self.statistics.attempts.len();
@@ -556,6 +560,9 @@ impl<'r, R: Routed> Ladder<'r, R> {
         started: Instant,
     ) -> Result<(R::Answer, Certificate, Statistics), LcpError> {
         self.statistics.seconds = started.elapsed().as_secs_f64();
+        if !self.certified() && crate::cancel::requested() {
+            return Err(LcpError::Cancelled);
+        }
         match self.best {
             Some(kept) if kept.certificate.holds() => {
                 Ok((kept.answer, kept.certificate, self.statistics))

@@ -18,6 +18,7 @@ use crate::errors::{InputError, SolveError, design_error, guarded, parts_error, 
 use crate::memory::ceiling;
 use crate::problem::{Built, PyContactProblem, build_admitted};
 use crate::scene::{run_prepared, scene_text};
+use crate::signals::detach;
 
 /// A logarithmic crown's roller from `{"combined_modulus", "radius",
 /// "length"}` (elcon-design checks the values, naming each).
@@ -60,14 +61,14 @@ fn unfolded_cases(
     let mut cases = Vec::with_capacity(given.len());
     for (problem, built) in given {
         let case = match (built, problem.folding()) {
-            (Some(b), Some(_)) => py.detach(|| {
+            (Some(b), Some(_)) => detach(py, |_| {
                 guarded("design", || {
                     let builder = b
                         .builder(problem.points().clone(), problem.loading())
                         .fold(false);
                     build_admitted(builder, ceiling)
                 })
-            })?,
+            })??,
             _ => problem.clone(),
         };
         cases.push(case);
@@ -209,11 +210,11 @@ pub(crate) fn design_problems(
         elcon_scene::design_over(Path::new("<design>"), &text, &cases, layout, roller)
             .map_err(parts_error)
     })?;
-    let json = py.detach(|| {
+    let json = detach(py, |_| {
         guarded("design", || {
             design_json(&spec, &cases, reference_intensities, start)
         })
-    })?;
+    })??;
     serde_json::to_string(&json).map_err(|e| SolveError::new_err(format!("the design: {e}")))
 }
 

@@ -20,6 +20,11 @@
 //! `elcon_scene::isolated`, so a Rust panic reaches Python as a
 //! `SolveError` ("internal error"), never as a `PanicException`. Errors are
 //! one exception class per kind, their messages the crates' own.
+//!
+//! Ctrl-C during a solve raises KeyboardInterrupt within about a tenth of
+//! a second: the work runs on a worker thread whose solves poll a cancel
+//! token, which the calling thread sets when Python's signal check says so
+//! (the `signals` module).
 
 mod bodies;
 mod convert;
@@ -28,6 +33,7 @@ mod errors;
 mod memory;
 mod problem;
 mod scene;
+mod signals;
 mod subsurface;
 mod threads;
 

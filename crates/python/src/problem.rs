@@ -18,6 +18,7 @@ use serde::Serialize;
 use crate::convert::{arrays, sections_text};
 use crate::errors::{InputError, SolveError, analysis_error, guarded, parts_error};
 use crate::memory::{admit, ceiling};
+use crate::signals::detach;
 use crate::threads::with_threads;
 
 /// The names of the solve methods.
@@ -218,11 +219,11 @@ impl PyContactProblem {
         storage: Storage,
         ceiling: &Ceiling,
     ) -> PyResult<Self> {
-        let inner = py.detach(|| {
+        let inner = detach(py, |_| {
             guarded("ContactProblem", || {
                 build_admitted(built.builder(points, loading).storage(storage), ceiling)
             })
-        })?;
+        })??;
         Ok(Self {
             inner,
             built: Some(built),
@@ -331,24 +332,28 @@ impl PyContactProblem {
         let ceiling = ceiling()?;
         let problem = &self.inner;
         let built = &self.built;
-        let solution = py.detach(|| {
+        // The token is watched on the thread that runs the solve: inside
+        // the pool of `threads` when one is given.
+        let solution = detach(py, |cancel| {
             with_threads(threads, || {
-                guarded("ContactProblem.solve", || {
-                    if let Some(b) = built {
-                        let plan = b
-                            .builder(problem.points().clone(), problem.loading())
-                            .storage(problem.storage())
-                            .method(m)
-                            .plan()
-                            .map_err(analysis_error)?;
-                        admit(&plan, &ceiling)?;
-                    }
-                    problem
-                        .solve(m, &Options::default())
-                        .map_err(analysis_error)
+                cancel.watch(|| {
+                    guarded("ContactProblem.solve", || {
+                        if let Some(b) = built {
+                            let plan = b
+                                .builder(problem.points().clone(), problem.loading())
+                                .storage(problem.storage())
+                                .method(m)
+                                .plan()
+                                .map_err(analysis_error)?;
+                            admit(&plan, &ceiling)?;
+                        }
+                        problem
+                            .solve(m, &Options::default())
+                            .map_err(analysis_error)
+                    })
                 })
             })
-        })?;
+        })??;
         let json = ProblemJson::of(problem, &solution, m);
         let text = serde_json::to_string(&json)
             .map_err(|e| SolveError::new_err(format!("the solution's fields: {e}")))?;

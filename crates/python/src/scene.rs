@@ -10,6 +10,7 @@ use pyo3::types::PyDict;
 use crate::convert::{arrays, toml_table, toml_text};
 use crate::errors::{InputError, SceneError, SolveError, guarded, scene_error};
 use crate::memory::ceiling;
+use crate::signals::detach;
 use crate::subsurface::subsurface_arrays;
 use crate::threads::with_threads;
 
@@ -45,15 +46,19 @@ pub(crate) fn run_prepared(
 ) -> PyResult<elcon_scene::Run> {
     let ceiling = ceiling()?;
     let name = scene.name().to_string();
-    py.detach(|| {
+    // The token is watched on the thread that runs the solve: inside the
+    // pool of `threads` when one is given.
+    detach(py, |cancel| {
         with_threads(threads, || {
-            isolated(&name, || {
-                let prepared = elcon_scene::prepare(scene, &ceiling)?;
-                elcon_scene::run(&prepared.scene)
+            cancel.watch(|| {
+                isolated(&name, || {
+                    let prepared = elcon_scene::prepare(scene, &ceiling)?;
+                    elcon_scene::run(&prepared.scene)
+                })
+                .map_err(scene_error)
             })
-            .map_err(scene_error)
         })
-    })
+    })?
 }
 
 /// Runs a scene (a file, or a dict with a scene's keys) on `threads`
@@ -110,19 +115,25 @@ pub(crate) fn run_batch(
     let batch = guarded("batch", || {
         elcon_scene::Batch::from_file(&path).map_err(scene_error)
     })?;
-    let options = elcon_scene::BatchOptions {
-        jobs,
-        shard: None,
-        ceiling: ceiling()?,
-    };
-    let outcome = py
-        .detach(|| {
-            isolated("batch", || {
-                elcon_scene::run_batch(&batch, &out, &options, &())
-            })
+    let ceiling = ceiling()?;
+    // The batch's runs watch the token the signal check cancels: on
+    // Ctrl-C the runs in flight stop, the tables of what finished are
+    // written, and KeyboardInterrupt is raised; the same call again
+    // finishes the batch.
+    let done = detach(py, |cancel| {
+        let options = elcon_scene::BatchOptions {
+            jobs,
+            shard: None,
+            ceiling,
+            cancel: cancel.clone(),
+        };
+        isolated("batch", || {
+            elcon_scene::run_batch(&batch, &out, &options, &())
         })
-        .map_err(scene_error)?;
-    serde_json::to_string(&outcome).map_err(|e| SolveError::new_err(format!("results.json: {e}")))
+    })?
+    .map_err(scene_error)?;
+    serde_json::to_string(&done.outcome)
+        .map_err(|e| SolveError::new_err(format!("results.json: {e}")))
 }
 
 /// Whether `path` exists (used by the Python side to tell a path from TOML

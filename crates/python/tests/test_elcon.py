@@ -608,3 +608,27 @@ def test_a_height_map_array_adds_to_the_surfaces_and_bad_maps_are_refused():
     with pytest.raises(elcon.InputError, match="height_map_spacing"):
         elcon.ContactProblem(body1=steel, body2=steel, geometry=sphere, points=points,
                              load=100.0, height_map=z)
+
+
+def test_ctrl_c_ends_a_long_solve_with_keyboard_interrupt():
+    # Example 1 unfolded at 71 across by Lemke's method: 5089 points, about
+    # 10 s of pivots. SIGINT a second into the pivots stops the solve at its
+    # next pivot (the solver polls the cancel token the signal check sets)
+    # and raises KeyboardInterrupt, not the solve's result a while later.
+    import signal
+    import threading
+    import tomllib
+
+    slow = tomllib.loads((SCENES / "example1-spheres.toml").read_text())
+    slow["points"]["across"] = 71
+    slow["solver"]["method"] = "lemke"
+    slow["solver"]["symmetry"] = "none"
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            elcon.run(slow)
+    finally:
+        timer.cancel()
+    # Nothing is left running: the next run is answered as usual.
+    assert elcon.run(SCENES / "example1-spheres.toml").load > 0

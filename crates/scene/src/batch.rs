@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use sha2::{Digest, Sha256};
 
-use crate::ctx::{Ctx, parse};
+use crate::ctx::{Ctx, parse, read_text};
 use crate::error::{Location, SceneError};
 use crate::scene::Scene;
 use crate::schema::{BatchFile, ErrorMetric};
@@ -76,7 +76,10 @@ impl BatchRun {
             .join(", ")
     }
 
-    /// A directory-safe name: `007-points.across-41_solver.method-lemke`.
+    /// A directory-safe name: `007-points.across-41_solver.method-lemke`;
+    /// above [`MAX_SLUG`] bytes, its first part and a hash of the whole
+    /// (`007-loading.load-...-h1a2b3c4d5e6f`), so every name fits a file
+    /// system's limit (255 bytes) and two runs never share one.
     pub fn slug(&self) -> String {
         let body: String = self
             .overrides
@@ -93,13 +96,29 @@ impl BatchRun {
                 }
             })
             .collect();
-        format!("{:03}-{body}", self.index)
+        let whole = format!("{:03}-{body}", self.index);
+        if whole.len() <= MAX_SLUG {
+            return whole;
+        }
+        let digest: String = Sha256::digest(whole.as_bytes())[..6]
+            .iter()
+            .map(|b| format!("{b:02x}"))
+            .collect();
+        // ASCII only, so any byte index is a character boundary.
+        format!("{}-h{digest}", &whole[..MAX_SLUG - 14])
     }
 }
 
+/// The longest run directory name, in bytes (a file system allows 255;
+/// the staging sibling adds a dot, the process id and `.tmp`).
+pub const MAX_SLUG: usize = 120;
+
+/// A value as labels and directory names show it: a string bare, a
+/// number in its shortest round-trip form (`1e300`, not 301 digits).
 fn display(v: &toml::Value) -> String {
     match v {
         toml::Value::String(s) => s.clone(),
+        toml::Value::Float(x) => format!("{x:?}"),
         other => other.to_string(),
     }
 }
@@ -113,7 +132,16 @@ impl Batch {
     /// non-empty array, or a sweep of more than [`MAX_RUNS`] runs is
     /// [`SceneError::Invalid`].
     pub fn from_file(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError::io(path, e))?;
+        Self::from_text(path, &read_text(path)?)
+    }
+
+    /// Validates a batch given as text (read from `path`, which names it
+    /// and places its base scene).
+    ///
+    /// # Errors
+    /// As [`Batch::from_file`], without the batch file's I/O.
+    pub fn from_text(path: &Path, text: &str) -> Result<Self, SceneError> {
+        let text = text.to_string();
         let raw: BatchFile = parse(path, &text)?;
         let ctx = Ctx {
             file: path,
@@ -142,8 +170,7 @@ impl Batch {
             .parent()
             .unwrap_or(Path::new("."))
             .join(b.scene.get_ref());
-        let base_text =
-            std::fs::read_to_string(&scene_file).map_err(|e| SceneError::io(&scene_file, e))?;
+        let base_text = read_text(&scene_file)?;
         // The base scene must be valid on its own.
         Scene::from_str(&scene_file, &base_text)?;
         let base: toml_edit::DocumentMut =

@@ -2,20 +2,24 @@
 //! each made from its index when a thread takes it, each isolated (a
 //! failure, a refusal or a panic is its row, the others still run), each
 //! admitted only when its estimated peak memory fits beside the runs in
-//! flight (a run over the whole ceiling is refused). The batch directory is
-//! written as a unit ([`Staging`]) with every run's outputs and the tables.
+//! flight (a run over the whole ceiling is refused). Each run's directory
+//! is written whole and journaled as it finishes, so a batch killed at any
+//! point resumes without running again what finished (the journal module);
+//! the tables are written at the end, or when the batch is interrupted.
 
 use std::path::Path;
 use std::sync::{Condvar, Mutex};
 
+use elcon_lcp::Cancel;
 use rayon::prelude::*;
 
 use crate::batch::{Batch, BatchRun};
 use crate::error::SceneError;
 use crate::estimate::{BASELINE, Estimate};
-use crate::isolate::isolated;
+use crate::isolate::{interruptible, isolated};
+use crate::journal::Journal;
 use crate::memory::Ceiling;
-use crate::output::{Staging, write_run_files};
+use crate::output::{lock_dir, replace_dir, write_run_files};
 use crate::run::{RunResult, run};
 use crate::shard::Shard;
 use crate::tables::{BatchOutcome, Row, write_tables};
@@ -43,6 +47,9 @@ pub struct BatchOptions {
     pub shard: Option<Shard>,
     /// The memory the runs in flight may use together.
     pub ceiling: Ceiling,
+    /// Cancelled (by a signal handler), the runs in flight stop and no
+    /// new one starts; the tables of what finished are written.
+    pub cancel: Cancel,
 }
 
 /// The memory the runs in flight share: a run takes its estimate before
@@ -68,86 +75,153 @@ impl Budget {
     }
 }
 
-/// One run, validated, estimated, admitted under the budget, solved and
-/// written into `dir`.
-fn one_run(
-    batch: &Batch,
-    r: &BatchRun,
-    ceiling: &Ceiling,
-    budget: &Budget,
-    dir: &Path,
-) -> Result<RunResult, SceneError> {
-    let scene = batch.scene(r)?;
+/// What one run of a batch needs besides itself.
+struct Shared<'a> {
+    batch: &'a Batch,
+    ceiling: &'a Ceiling,
+    budget: Budget,
+    cancel: &'a Cancel,
+    /// The batch's directory.
+    dir: &'a Path,
+}
+
+/// One run, validated, estimated, admitted under the budget, solved,
+/// written into its directory (staged beside it and renamed into place).
+fn one_run(shared: &Shared<'_>, r: &BatchRun) -> Result<RunResult, SceneError> {
+    let scene = shared.batch.scene(r)?;
     let estimate = Estimate::of(&scene)?;
-    if !ceiling.admits(estimate.peak_bytes) {
-        return Err(estimate.refusal(&scene, ceiling));
+    if !shared.ceiling.admits(estimate.peak_bytes) {
+        return Err(estimate.refusal(&scene, shared.ceiling));
     }
     let share = estimate.peak_bytes.saturating_sub(BASELINE);
-    budget.take(share);
-    let outcome = isolated(scene.name(), || {
-        let result = run(&scene)?;
-        write_run_files(&result, &dir.join(r.slug()))?;
-        Ok(result.result)
-    });
-    budget.give(share);
+    shared.budget.take(share);
+    let outcome = if shared.cancel.is_cancelled() {
+        Err(SceneError::Interrupted { scene: r.slug() })
+    } else {
+        isolated(scene.name(), || {
+            let result = run(&scene)?;
+            let tmp = shared
+                .dir
+                .join(format!(".{}.{}.tmp", r.slug(), std::process::id()));
+            let written = std::fs::create_dir(&tmp)
+                .map_err(|e| SceneError::io(&tmp, e))
+                .and_then(|()| write_run_files(&result, &tmp))
+                .and_then(|()| replace_dir(&tmp, &shared.dir.join(r.slug())));
+            if let Err(e) = written {
+                let _ = std::fs::remove_dir_all(&tmp);
+                return Err(e);
+            }
+            Ok(result.result)
+        })
+    };
+    shared.budget.give(share);
     outcome
 }
 
-/// Runs a batch (or one shard of it), writing every run's outputs and the
-/// batch tables under `out` as one directory. Failed and refused runs are
-/// rows with their reason; the others are written regardless.
+/// A batch that ran (or was interrupted): its table and what was kept.
+#[derive(Debug, Clone)]
+pub struct BatchDone {
+    /// The tables written (a row per finished run; `pending` the others).
+    pub outcome: BatchOutcome,
+    /// Finished runs kept from an earlier invocation into the same directory.
+    pub kept: usize,
+    /// Whether the batch was interrupted before every run finished.
+    pub interrupted: bool,
+}
+
+/// Runs a batch (or one shard of it) into `out/<batch>` (see the journal,
+/// [`JOURNAL`](crate::JOURNAL), for what makes it resumable): every run's outputs are renamed into
+/// place whole and journaled as it finishes; the finished runs of an
+/// earlier invocation of the same batch are kept, not run again. Failed and
+/// refused runs are rows with their reason. When `options.cancel` is
+/// cancelled (SIGINT, SIGTERM), the runs in flight stop, no new one
+/// starts, and the tables of what finished are written (`pending` counts
+/// the others); running the same batch again finishes it.
 ///
 /// # Errors
-/// [`SceneError::Io`] when the directory or the tables cannot be written
-/// (run failures are rows, not errors).
+/// [`SceneError::Io`] when the directory, the journal or the tables cannot
+/// be written (run failures are rows, not errors).
 pub fn run_batch(
     batch: &Batch,
     out: &Path,
     options: &BatchOptions,
     progress: &dyn Progress,
-) -> Result<BatchOutcome, SceneError> {
+) -> Result<BatchDone, SceneError> {
     let shard = options.shard;
     let target = batch.output_dir(out, shard);
-    let staging = Staging::begin(&target, &|m| progress.notice(m))?;
-    let whole = Shard { index: 1, count: 1 };
-    let slice = shard.unwrap_or(whole);
+    let notice = |m: &str| progress.notice(m);
+    let _lock = lock_dir(&target, &notice)?;
+    let journal = Journal::open(&target, batch, shard, &notice)?;
+    let slice = shard.unwrap_or(Shard { index: 1, count: 1 });
     let count = slice.len_of(batch.len());
-    progress.start(count);
+    let todo: Vec<usize> = (0..count)
+        .map(|j| slice.nth(j))
+        .filter(|i| !journal.kept().contains_key(i))
+        .collect();
+    let kept = journal.kept().len();
+    if kept > 0 {
+        progress.notice(&format!(
+            "resuming batch `{}` in {}: {kept} finished runs kept, {} to run",
+            batch.name,
+            target.display(),
+            todo.len()
+        ));
+    }
+    progress.start(todo.len());
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs.unwrap_or(0))
         .build()
         .map_err(|e| SceneError::io(&target, e))?;
-    let budget = Budget {
-        free: Mutex::new(options.ceiling.bytes.saturating_sub(BASELINE)),
-        returned: Condvar::new(),
+    let shared = Shared {
+        batch,
+        ceiling: &options.ceiling,
+        budget: Budget {
+            free: Mutex::new(options.ceiling.bytes.saturating_sub(BASELINE)),
+            returned: Condvar::new(),
+        },
+        cancel: &options.cancel,
+        dir: &target,
     };
-    let dir = staging.path();
-    let mut rows: Vec<Row> = pool.install(|| {
-        (0..count)
-            .into_par_iter()
-            .filter_map(|j| batch.run(slice.nth(j)))
-            .map(|r| {
-                let outcome = isolated(&r.slug(), || {
-                    one_run(batch, &r, &options.ceiling, &budget, dir)
+    let fresh: Vec<Row> = pool.install(|| {
+        todo.into_par_iter()
+            .filter_map(|i| {
+                let r = batch.run(i)?;
+                let slug = r.slug();
+                let outcome = interruptible(shared.cancel, &slug, || {
+                    isolated(&slug, || one_run(&shared, &r))
                 });
-                progress.finished(&r, outcome.as_ref());
-                match outcome {
-                    Ok(res) => Row::ok(r.index, r.label(), &res),
-                    Err(e) => Row::failed(r.index, r.label(), r.slug(), &e),
+                if matches!(outcome, Err(SceneError::Interrupted { .. })) {
+                    return None;
                 }
+                progress.finished(&r, outcome.as_ref());
+                let row = match outcome {
+                    Ok(res) => Row::ok(r.index, r.label(), &res),
+                    Err(e) => Row::failed(r.index, r.label(), slug, &e),
+                };
+                if let Err(e) = journal.record(&row) {
+                    progress.notice(&format!("warning: {e}: run {i} will run again on a resume"));
+                }
+                Some(row)
             })
             .collect()
     });
+    let mut rows: Vec<Row> = journal.kept().values().cloned().collect();
+    rows.extend(fresh);
     rows.sort_by_key(|r| r.index);
+    let pending = count - rows.len();
     let outcome = BatchOutcome {
         batch: batch.name.clone(),
         error: batch.error,
         shard: shard.map(|s| s.to_string()),
         batch_hash: Some(batch.hash.clone()),
         runs: Some(batch.len()),
+        pending,
         rows,
     };
-    write_tables(&outcome, dir)?;
-    staging.commit()?;
-    Ok(outcome)
+    write_tables(&outcome, &target)?;
+    Ok(BatchDone {
+        outcome,
+        kept,
+        interrupted: pending > 0,
+    })
 }

@@ -9,6 +9,37 @@ use toml::Spanned;
 
 use crate::error::{Location, SceneError};
 
+/// The largest scene or batch file read, in bytes: a scene is a page of
+/// TOML (point sets and surfaces from files are read on their own), so a
+/// file above this is not a scene, and is refused before it is held in
+/// memory.
+pub const MAX_INPUT_BYTES: u64 = 16 << 20;
+
+/// A scene or batch file's text, read once (so `/dev/stdin` and a pipe
+/// work as a file does) and at most [`MAX_INPUT_BYTES`] of it.
+///
+/// # Errors
+/// [`SceneError::Io`] when it cannot be read, is not UTF-8, or is larger.
+pub fn read_text(path: &Path) -> Result<String, SceneError> {
+    use std::io::Read as _;
+    let file = std::fs::File::open(path).map_err(|e| SceneError::io(path, e))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| SceneError::io(path, e))?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(SceneError::io(
+            path,
+            format!(
+                "larger than {} MiB, the most a scene or batch file may be (MAX_INPUT_BYTES): \
+                 is it the scene? (point sets go in their own files)",
+                MAX_INPUT_BYTES >> 20
+            ),
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| SceneError::io(path, format!("not UTF-8 text: {e}")))
+}
+
 /// Validation context: the file and its text, for locations.
 pub(crate) struct Ctx<'a> {
     pub file: &'a Path,

@@ -100,6 +100,13 @@ pub enum SceneError {
         /// What is wrong, naming the directories.
         reason: String,
     },
+    /// A run stopped by an interrupt (Ctrl-C, SIGINT, SIGTERM, Python's
+    /// KeyboardInterrupt) before it finished: nothing of it was written.
+    #[error("scene `{scene}`: interrupted before it finished; nothing of it was written")]
+    Interrupted {
+        /// The scene's name.
+        scene: String,
+    },
     /// A valid scene whose solve failed (no solution, pivot limit, a design
     /// that could not be certified...).
     #[error("scene `{scene}`: {reason}")]

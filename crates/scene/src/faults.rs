@@ -6,9 +6,12 @@
 //!
 //! - `panic=NAME`: a panic in the solve of the scene (or batch run) named NAME;
 //! - `write_delay_ms=T`: a pause of T ms after each file of a scene's
-//!   outputs is written (so that a test can kill or race a run mid-write).
+//!   outputs is written (so that a test can kill or race a run mid-write);
+//! - `kill_before_record=K`, `kill_after_record=K`, `term_after_record=K`:
+//!   SIGKILL just before, SIGKILL or SIGTERM just after, the K-th finished
+//!   run of a batch is written to its journal.
 //!
-//! Without the feature both points compile to nothing.
+//! Without the feature every point compiles to nothing.
 
 /// The variable read.
 #[cfg(feature = "fault-injection")]
@@ -48,3 +51,44 @@ pub(crate) fn panic_point(_name: &str) {}
 /// Without the feature: nothing.
 #[cfg(not(feature = "fault-injection"))]
 pub(crate) fn write_delay() {}
+
+/// Sends `signal` to this process (through kill(1), as a scheduler
+/// would) and waits for it to take effect.
+#[cfg(feature = "fault-injection")]
+fn signal_self(signal: &str) {
+    let _ = std::process::Command::new("kill")
+        .arg(format!("-{signal}"))
+        .arg(std::process::id().to_string())
+        .status();
+    std::thread::sleep(std::time::Duration::from_millis(200));
+}
+
+/// Before the `n`-th run of this process is journaled (its directory in
+/// place): `kill_before_record=n` kills the process (SIGKILL).
+#[cfg(feature = "fault-injection")]
+pub(crate) fn before_record(n: usize) {
+    if fault("kill_before_record").is_some_and(|v| v == n.to_string()) {
+        signal_self("KILL");
+    }
+}
+
+/// After the `n`-th run of this process is journaled:
+/// `kill_after_record=n` kills the process (SIGKILL),
+/// `term_after_record=n` sends it SIGTERM.
+#[cfg(feature = "fault-injection")]
+pub(crate) fn after_record(n: usize) {
+    if fault("kill_after_record").is_some_and(|v| v == n.to_string()) {
+        signal_self("KILL");
+    }
+    if fault("term_after_record").is_some_and(|v| v == n.to_string()) {
+        signal_self("TERM");
+    }
+}
+
+/// Without the feature: nothing.
+#[cfg(not(feature = "fault-injection"))]
+pub(crate) fn before_record(_n: usize) {}
+
+/// Without the feature: nothing.
+#[cfg(not(feature = "fault-injection"))]
+pub(crate) fn after_record(_n: usize) {}

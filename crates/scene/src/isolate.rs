@@ -14,6 +14,8 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Once;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use elcon_lcp::Cancel;
+
 use crate::error::SceneError;
 
 /// Scenes running inside [`isolated`] on any thread (a panic of a solver's
@@ -78,6 +80,35 @@ pub fn isolated<T>(
     })
 }
 
+/// Runs `f` for scene `scene` with `cancel` watched ([`Cancel::watch`]):
+/// the solves inside stop when it is cancelled, and whatever error they
+/// then return becomes [`SceneError::Interrupted`] (a cancelled solve is
+/// not a failure of the scene). A scene that finished before the cancel
+/// keeps its result.
+///
+/// # Errors
+/// `f`'s error, or [`SceneError::Interrupted`].
+pub fn interruptible<T>(
+    cancel: &Cancel,
+    scene: &str,
+    f: impl FnOnce() -> Result<T, SceneError>,
+) -> Result<T, SceneError> {
+    if cancel.is_cancelled() {
+        return Err(SceneError::Interrupted {
+            scene: scene.to_string(),
+        });
+    }
+    cancel.watch(f).map_err(|e| {
+        if cancel.is_cancelled() {
+            SceneError::Interrupted {
+                scene: scene.to_string(),
+            }
+        } else {
+            e
+        }
+    })
+}
+
 /// A panic's message: its `&str` or `String` payload.
 fn payload_text(payload: &(dyn std::any::Any + Send)) -> &str {
     payload
@@ -113,5 +144,23 @@ mod tests {
         })
         .unwrap_err();
         assert!(matches!(e, SceneError::Run { .. }));
+    }
+
+    #[test]
+    fn a_cancelled_run_is_interrupted_not_failed() {
+        let cancel = Cancel::new();
+        assert_eq!(interruptible(&cancel, "s", || Ok(1)).unwrap(), 1);
+        let e = interruptible::<()>(&cancel, "s", || {
+            cancel.cancel();
+            Err(SceneError::Run {
+                scene: "s".into(),
+                reason: "the solve was cancelled".into(),
+            })
+        })
+        .unwrap_err();
+        assert!(matches!(e, SceneError::Interrupted { .. }), "{e}");
+        // Once cancelled, nothing more starts.
+        let e = interruptible(&cancel, "t", || Ok(2)).unwrap_err();
+        assert!(e.to_string().contains("scene `t`: interrupted"), "{e}");
     }
 }

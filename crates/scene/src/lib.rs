@@ -26,6 +26,7 @@ mod error_estimate;
 mod estimate;
 mod faults;
 mod isolate;
+mod journal;
 mod memory;
 mod output;
 mod plot;
@@ -39,14 +40,17 @@ mod shard;
 mod subsurface;
 mod tables;
 
-pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text, thousands};
-pub use batch_run::{BatchOptions, Progress, run_batch};
+pub use batch::{Batch, BatchRun, MAX_RUNS, MAX_SLUG, is_batch_text, thousands};
+pub use batch_run::{BatchDone, BatchOptions, Progress, run_batch};
+pub use ctx::{MAX_INPUT_BYTES, read_text};
 pub use design_stage::{DesignCaseJson, DesignGridJson, DesignJson, DesignRun};
 pub use elcon_analysis::{AUTO_DENSE_LIMIT, Storage};
+pub use elcon_lcp::Cancel;
 pub use error::{Location, SceneError};
 pub use error_estimate::{DiscretizationJson, GridJson, QuantitiesJson, QuantityJson};
 pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass};
-pub use isolate::{install_panic_hook, isolated};
+pub use isolate::{install_panic_hook, interruptible, isolated};
+pub use journal::JOURNAL;
 pub use memory::{
     ADDRESS_SPACE_RESERVE, Ceiling, LIMIT_VARIABLE, Limit, MARGIN, gemm_reserve, human, parse_size,
 };
@@ -57,8 +61,8 @@ pub use run::{
     Errors, ReferenceJson, Run, RunResult, Seconds, SolutionJson, SymmetryJson, XY, run,
 };
 pub use sanity::{
-    MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MIN_POINTS_ACROSS,
-    max_pivots_bound,
+    MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MAX_ROTATION,
+    MIN_POINTS_ACROSS, max_pivots_bound,
 };
 pub use scene::{
     BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, HalfX, MethodChoice, ModelKind, Outputs,

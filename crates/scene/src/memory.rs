@@ -7,13 +7,16 @@
 //! the allocator's slack):
 //!
 //! ```text
-//!     ceiling = (1 - MARGIN) min(MemAvailable, cgroup memory.max - memory.current,
+//!     ceiling = (1 - MARGIN) min(MemAvailable,
+//!                                cgroup memory.max - (memory.current - inactive_file),
 //!                                RLIMIT_AS - VmSize - address-space reserve,
 //!                                --memory-limit, ELCON_MEMORY_LIMIT)
 //! ```
 //!
 //! read from /proc/meminfo, the current cgroup's memory controller (v2
-//! `memory.max`, or v1 `memory.limit_in_bytes`, every ancestor included),
+//! `memory.max`, or v1 `memory.limit_in_bytes`, every ancestor included;
+//! the usage less the reclaimable page cache, `inactive_file` of
+//! `memory.stat`, as the kubelet's working set counts it),
 //! /proc/self/limits and /proc/self/status. A limit that cannot be read is
 //! left out (on a system without /proc only the option and the environment
 //! variable count, and without them the ceiling is unlimited).
@@ -285,7 +288,11 @@ fn address_space_limit(limits: &str) -> Option<u64> {
 }
 
 /// What the memory controller leaves this process: over the cgroup and each
-/// ancestor with a limit, the least of `limit - usage`. `proc_cgroup` is
+/// ancestor with a limit, the least of `limit - working set`, the working
+/// set being the usage less the page cache the kernel reclaims before it
+/// refuses memory (`inactive_file` of `memory.stat`; v1's hierarchical
+/// `total_inactive_file`): a job that has written files is not refused for
+/// their cache. `proc_cgroup` is
 /// /proc/self/cgroup; `root` the cgroup file system's mount point.
 fn cgroup_available(proc_cgroup: &str, root: &Path) -> Option<u64> {
     let mut best: Option<u64> = None;
@@ -321,12 +328,29 @@ fn cgroup_available(proc_cgroup: &str, root: &Path) -> Option<u64> {
                     .ok()
             };
             if let Some(limit) = read(max_file).filter(|&l| l < UNLIMITED) {
-                let left = limit.saturating_sub(read(usage_file).unwrap_or(0));
+                let usage = read(usage_file).unwrap_or(0);
+                let cache = std::fs::read_to_string(dir.join("memory.stat"))
+                    .ok()
+                    .and_then(|stat| inactive_file(&stat))
+                    .unwrap_or(0);
+                let left = limit.saturating_sub(usage.saturating_sub(cache));
                 best = Some(best.map_or(left, |b| b.min(left)));
             }
         }
     }
     best
+}
+
+/// The reclaimable page cache of a cgroup's `memory.stat`: v1's
+/// hierarchical `total_inactive_file` when given, else `inactive_file`.
+fn inactive_file(stat: &str) -> Option<u64> {
+    let value = |key: &str| {
+        stat.lines().find_map(|line| {
+            let (k, v) = line.split_once(' ')?;
+            (k == key).then(|| v.trim().parse().ok()).flatten()
+        })
+    };
+    value("total_inactive_file").or_else(|| value("inactive_file"))
 }
 
 /// The directories of a cgroup `path` and of its ancestors under `base`
@@ -411,6 +435,18 @@ mod tests {
         std::fs::write(step.join("memory.max"), format!("{}\n", 6u64 << 30)).unwrap();
         std::fs::write(step.join("memory.current"), format!("{}\n", 3u64 << 30)).unwrap();
         assert_eq!(cgroup_available("0::/job/step\n", &root), Some(3 << 30));
+        // Page cache the kernel reclaims is not counted as used: a step that
+        // wrote 2.5 GiB of files (inactive) of its 3 GiB is left 5.5 GiB,
+        // under its parent's 7 GiB.
+        let stat = format!(
+            "anon 524288000\nfile 2952790016\ninactive_file {}\n",
+            5u64 << 29
+        );
+        std::fs::write(step.join("memory.stat"), stat).unwrap();
+        assert_eq!(cgroup_available("0::/job/step\n", &root), Some(11 << 29));
+        // An unreadable stat counts the whole usage.
+        std::fs::write(step.join("memory.stat"), "inactive_file many\n").unwrap();
+        assert_eq!(cgroup_available("0::/job/step\n", &root), Some(3 << 30));
         // A path above the mount's root (a container): only the root counts.
         assert_eq!(cgroup_available("0::/elsewhere\n", &root), None);
         // cgroup v1: an unlimited group.
@@ -420,6 +456,23 @@ mod tests {
         assert_eq!(cgroup_available("4:memory:/x\n", &root), None);
         std::fs::write(v1.join("memory.limit_in_bytes"), "1073741824\n").unwrap();
         assert_eq!(cgroup_available("4:memory:/x\n", &root), Some(1 << 30));
+        // v1: usage 900 MiB, of which 800 MiB inactive page cache (the
+        // hierarchical total taken over the group's own figure).
+        std::fs::write(
+            v1.join("memory.usage_in_bytes"),
+            format!("{}\n", 900u64 << 20),
+        )
+        .unwrap();
+        std::fs::write(
+            v1.join("memory.stat"),
+            format!(
+                "inactive_file {}\ntotal_inactive_file {}\n",
+                1u64 << 20,
+                800u64 << 20
+            ),
+        )
+        .unwrap();
+        assert_eq!(cgroup_available("4:memory:/x\n", &root), Some(924 << 20));
         std::fs::remove_dir_all(&root).unwrap();
     }
 

@@ -84,8 +84,8 @@ pub fn write_atomic_with(
 pub struct Staging {
     target: PathBuf,
     tmp: PathBuf,
-    /// The OS lock on `.<name>.lock`, released when the file is closed.
-    _lock: Option<fs::File>,
+    /// The OS lock on `.<name>.lock`, released when dropped.
+    _lock: DirLock,
     done: bool,
 }
 
@@ -114,35 +114,7 @@ impl Staging {
     /// be created, or the lock fails for a reason other than another writer.
     pub fn begin(target: &Path, notice: &dyn Fn(&str)) -> Result<Self, SceneError> {
         let (parent, name) = split(target)?;
-        fs::create_dir_all(&parent).map_err(|e| SceneError::io(&parent, e))?;
-        let lock_path = parent.join(format!(".{name}.lock"));
-        let file = fs::OpenOptions::new()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(&lock_path)
-            .map_err(|e| SceneError::io(&lock_path, e))?;
-        let lock = match file.try_lock() {
-            Ok(()) => Some(file),
-            Err(fs::TryLockError::WouldBlock) => {
-                notice(&format!(
-                    "waiting: another elcon is writing {} (it holds {})",
-                    target.display(),
-                    lock_path.display()
-                ));
-                file.lock().map_err(|e| SceneError::io(&lock_path, e))?;
-                Some(file)
-            }
-            Err(fs::TryLockError::Error(e)) => {
-                notice(&format!(
-                    "warning: cannot lock {} ({e}); a concurrent writer of {} would not be kept out",
-                    lock_path.display(),
-                    target.display()
-                ));
-                None
-            }
-        };
-        clean_leftovers(&parent, &name);
+        let lock = lock_dir(target, notice)?;
         let tmp = parent.join(format!(".{name}.{}.tmp", std::process::id()));
         fs::create_dir(&tmp).map_err(|e| SceneError::io(&tmp, e))?;
         Ok(Self {
@@ -199,6 +171,80 @@ impl Drop for Staging {
             let _ = fs::remove_dir_all(&self.tmp);
         }
     }
+}
+
+/// The OS lock on an output directory (`.<name>.lock` beside it), held
+/// until dropped; `None` inside when the file system has no locks (the
+/// writer is warned through `notice` and goes on).
+#[derive(Debug)]
+pub(crate) struct DirLock {
+    _file: Option<fs::File>,
+}
+
+/// Locks `target` (waiting for another writer of it: `notice` is told
+/// once, before the wait) and removes what killed writers left beside it.
+///
+/// # Errors
+/// [`SceneError::Io`] when the parent cannot be created, or the lock fails
+/// for a reason other than another writer.
+pub(crate) fn lock_dir(target: &Path, notice: &dyn Fn(&str)) -> Result<DirLock, SceneError> {
+    let (parent, name) = split(target)?;
+    fs::create_dir_all(&parent).map_err(|e| SceneError::io(&parent, e))?;
+    let lock_path = parent.join(format!(".{name}.lock"));
+    let file = fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&lock_path)
+        .map_err(|e| SceneError::io(&lock_path, e))?;
+    let lock = match file.try_lock() {
+        Ok(()) => Some(file),
+        Err(fs::TryLockError::WouldBlock) => {
+            notice(&format!(
+                "waiting: another elcon is writing {} (it holds {})",
+                target.display(),
+                lock_path.display()
+            ));
+            file.lock().map_err(|e| SceneError::io(&lock_path, e))?;
+            Some(file)
+        }
+        Err(fs::TryLockError::Error(e)) => {
+            notice(&format!(
+                "warning: cannot lock {} ({e}); a concurrent writer of {} would not be kept out",
+                lock_path.display(),
+                target.display()
+            ));
+            None
+        }
+    };
+    clean_leftovers(&parent, &name);
+    Ok(DirLock { _file: lock })
+}
+
+/// Makes a directory's entries durable (fsync of the directory itself, so
+/// that a rename into it survives a crash). A file system that cannot sync
+/// a directory is not an error.
+pub(crate) fn sync_dir(dir: &Path) {
+    if let Ok(d) = fs::File::open(dir) {
+        let _ = d.sync_all();
+    }
+}
+
+/// Moves the complete directory `tmp` to `target` in the same parent,
+/// replacing whatever `target` held (the caller holds the parent's lock),
+/// and makes the rename durable.
+///
+/// # Errors
+/// [`SceneError::Io`] when the rename fails.
+pub(crate) fn replace_dir(tmp: &Path, target: &Path) -> Result<(), SceneError> {
+    if fs::symlink_metadata(target).is_ok() {
+        fs::remove_dir_all(target)
+            .or_else(|_| fs::remove_file(target))
+            .map_err(|e| SceneError::io(target, e))?;
+    }
+    fs::rename(tmp, target).map_err(|e| SceneError::io(target, e))?;
+    sync_dir(target.parent().unwrap_or(Path::new(".")));
+    Ok(())
 }
 
 /// Removes `.<name>.<pid>.tmp` and `.<name>.<pid>.old` in `parent`: what

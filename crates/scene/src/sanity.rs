@@ -18,7 +18,7 @@ use toml::Spanned;
 
 use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
-use crate::schema::{BodyToml, DesignToml, GeometryToml, SolverToml};
+use crate::schema::{BodyToml, DesignToml, GeometryToml, LoadingToml, SolverToml};
 
 /// The most iterative-refinement steps (each an N x N product;
 /// refinement settles in one to three).
@@ -33,6 +33,12 @@ pub const MAX_DESIGN_CASES: usize = 1000;
 /// axial coordinate: past about 12 the basis is too ill-conditioned for
 /// the design program's pivots).
 pub const MAX_DEGREE: usize = 12;
+
+/// The largest rotation of a body (rad), prescribed (`loading.tilt_x`,
+/// `tilt_y`) or solved under a moment: the rigid rotation is linearized
+/// (`theta x`), which holds to 0.5 % of the angle up to 0.1 rad, as for a
+/// design's misalignments.
+pub const MAX_ROTATION: f64 = 0.1;
 
 /// A grid with fewer points than this across the Hertz contact (or the
 /// candidate disk) gets a warning.
@@ -442,4 +448,58 @@ pub(crate) fn no_hertz_reason(
 /// moduli and radii are outside floating-point range together.
 pub(crate) fn scale_out_of_range(scale: Option<f64>) -> bool {
     scale.is_some_and(|a| !(a.is_finite() && a > 0.0))
+}
+
+/// A moment whose load centre lies outside the candidate zone is refused:
+/// the contact forces, all inside the zone, balance the moment only when
+/// their centre, the load centre `(-M_y / P, M_x / P)`, lies within the
+/// zone's extent. (Under displacement control the load, and with it the
+/// centre, is known only after the solve, whose rotation is bounded
+/// then: `crate::run`.)
+pub(crate) fn load_centre(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<LoadingToml>,
+    loading: Loading,
+    points: &PointSet,
+) -> Result<(), SceneError> {
+    let Some(load) = loading.load_value() else {
+        return Ok(());
+    };
+    let extent = |coordinate: &dyn Fn(usize) -> f64| {
+        (0..points.len())
+            .map(coordinate)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            })
+    };
+    let t = raw.get_ref();
+    for (moment, field, sign, axis) in [
+        (&t.moment_x, "loading.moment_x", 1.0, "y"),
+        (&t.moment_y, "loading.moment_y", -1.0, "x"),
+    ] {
+        let Some(m) = moment else { continue };
+        let centre = sign * *m.get_ref() / load;
+        let (lo, hi) = if axis == "x" {
+            extent(&|k| points.x(k))
+        } else {
+            extent(&|k| points.y(k))
+        };
+        if !(lo <= centre && centre <= hi) {
+            return Err(ctx.invalid(
+                m.span(),
+                field,
+                Num(*m.get_ref()),
+                format!(
+                    "puts the load centre at {axis} = {} (the moment over the load), outside \
+                     the candidate zone ({} to {} along {axis}): no contact inside the zone \
+                     balances it. Give a smaller moment, or a larger zone (points.zone or \
+                     points.radius)",
+                    Num(centre),
+                    Num(lo),
+                    Num(hi)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

@@ -72,32 +72,64 @@ pub struct Row {
 }
 
 impl Row {
+    /// The row of a run that finished: read from its result.json as
+    /// written ([`Row::from_result_json`]), so a row made as the run ends,
+    /// one rebuilt from its directory on a resume and one merge checks are
+    /// the same to the last digit.
     pub(crate) fn ok(index: usize, overrides: String, r: &RunResult) -> Self {
-        let e = r.reference.as_ref().map(|x| &x.errors);
-        let d = r.discretization.as_ref();
-        Self {
+        let value = serde_json::to_value(r).unwrap_or_default();
+        Self::from_result_json(index, overrides, &value).unwrap_or_else(|e| Self {
+            index,
+            scene: r.scene.clone(),
+            status: format!("failed: result.json: {e}"),
+            ..Self::default()
+        })
+    }
+
+    /// The row of run `index` from its result.json (parsed).
+    ///
+    /// # Errors
+    /// The first field result.json lacks or holds with the wrong type.
+    pub(crate) fn from_result_json(
+        index: usize,
+        overrides: String,
+        v: &serde_json::Value,
+    ) -> Result<Self, String> {
+        let at = |path: &str| path.split('.').try_fold(v, |v, k| v.get(k));
+        let num = |path: &str| at(path).and_then(serde_json::Value::as_f64);
+        let need = |path: &str| num(path).ok_or_else(|| format!("no number `{path}`"));
+        let count = |path: &str| {
+            at(path)
+                .and_then(serde_json::Value::as_u64)
+                .map(|n| n as usize)
+                .ok_or_else(|| format!("no count `{path}`"))
+        };
+        let text = |path: &str| at(path).and_then(|s| s.as_str().map(str::to_string));
+        Ok(Self {
             index,
             overrides,
-            scene: r.scene.clone(),
+            scene: text("scene").ok_or("no `scene`")?,
             status: "ok".into(),
-            method: Some(r.method.clone()),
-            points: Some(r.points),
-            pivots: Some(r.statistics.pivots()),
-            seconds_total: Some(r.seconds.total),
-            seconds_solve: Some(r.seconds.solve),
-            approach: Some(r.approach),
-            max_pressure: Some(r.max_pressure),
-            certificate_worst: Some(r.certificate.worst()),
-            error_approach: e.and_then(|e| e.approach),
-            error_max_pressure: e.and_then(|e| e.max_pressure),
-            error_contact_extent: e.and_then(|e| e.contact_extent),
-            error_pressure_l2: e.and_then(|e| e.pressure_l2),
-            error_load: e.and_then(|e| e.load),
-            estimated_error_approach: d.and_then(|d| d.quantities.approach.relative_error),
-            verdict_approach: d.map(|d| d.quantities.approach.verdict.clone()),
-            estimated_error_max_pressure: d.and_then(|d| d.quantities.max_pressure.relative_error),
-            verdict_max_pressure: d.map(|d| d.quantities.max_pressure.verdict.clone()),
-        }
+            method: Some(text("method").ok_or("no `method`")?),
+            points: Some(count("points")?),
+            pivots: Some(count("statistics.pivots")?),
+            seconds_total: Some(need("seconds.total")?),
+            seconds_solve: Some(need("seconds.solve")?),
+            approach: Some(need("approach")?),
+            max_pressure: Some(need("max_pressure")?),
+            certificate_worst: Some(need("certificate.worst")?),
+            error_approach: num("reference.errors.approach"),
+            error_max_pressure: num("reference.errors.max_pressure"),
+            error_contact_extent: num("reference.errors.contact_extent"),
+            error_pressure_l2: num("reference.errors.pressure_l2"),
+            error_load: num("reference.errors.load"),
+            estimated_error_approach: num("discretization.quantities.approach.relative_error"),
+            verdict_approach: text("discretization.quantities.approach.verdict"),
+            estimated_error_max_pressure: num(
+                "discretization.quantities.max_pressure.relative_error",
+            ),
+            verdict_max_pressure: text("discretization.quantities.max_pressure.verdict"),
+        })
     }
 
     pub(crate) fn failed(index: usize, overrides: String, scene: String, e: &SceneError) -> Self {
@@ -157,6 +189,10 @@ pub struct BatchOutcome {
     /// Runs of the whole sweep (all shards together).
     #[serde(default)]
     pub runs: Option<usize>,
+    /// Runs of this table's slice that did not finish (an interrupted
+    /// batch: running it again finishes them); absent when 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub pending: usize,
     /// One row per run, failed ones included, by index.
     pub rows: Vec<Row>,
 }
@@ -166,6 +202,10 @@ impl BatchOutcome {
     pub fn failures(&self) -> usize {
         self.rows.iter().filter(|r| r.status != "ok").count()
     }
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// One shard directory's table, read.
@@ -195,6 +235,14 @@ fn read_part(dir: &Path) -> Result<Part, SceneError> {
             Some((parsed.index, parsed.count))
         }
     };
+    if table.pending > 0 {
+        return Err(merge_error(format!(
+            "{}: unfinished: {} of its runs did not run (the batch was interrupted); run the same \
+             `elcon batch` command again to finish it",
+            path.display(),
+            table.pending
+        )));
+    }
     if table.batch_hash.is_none() || table.runs.is_none() {
         return Err(merge_error(format!(
             "{}: has no batch hash or sweep size (written by an older elcon): run the shards again",
@@ -300,6 +348,57 @@ fn check_rows(parts: &[Part], runs: usize, count: usize) -> Result<(), SceneErro
     Ok(())
 }
 
+/// Checks that each finished row holds the values of its run's own
+/// result.json (in the run's directory beside the table): a table edited
+/// by hand, or of a run whose directory was replaced, is refused.
+fn check_values(parts: &[Part]) -> Result<(), SceneError> {
+    for p in parts {
+        for r in p.table.rows.iter().filter(|r| r.status == "ok") {
+            let plain =
+                !r.scene.is_empty() && !r.scene.starts_with('.') && !r.scene.contains(['/', '\\']);
+            let path = p.dir.join(&r.scene).join("result.json");
+            let rebuilt = plain
+                .then(|| std::fs::read_to_string(&path).ok())
+                .flatten()
+                .ok_or_else(|| format!("its run's {} cannot be read", path.display()))
+                .and_then(|t| serde_json::from_str(&t).map_err(|e| e.to_string()))
+                .and_then(|v| Row::from_result_json(r.index, r.overrides.clone(), &v));
+            let differs = match rebuilt {
+                Ok(own) if own == *r => continue,
+                Ok(own) => differing(r, &own),
+                Err(e) => e,
+            };
+            return Err(merge_error(format!(
+                "{}: row {} (scene `{}`) does not hold its run's values: {differs}; merge takes \
+                 the shard directories as `elcon batch` wrote them",
+                p.dir.display(),
+                r.index,
+                r.scene
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The first field in which `row` differs from `own` (its run's), named.
+fn differing(row: &Row, own: &Row) -> String {
+    let (a, b) = (
+        serde_json::to_value(row).unwrap_or_default(),
+        serde_json::to_value(own).unwrap_or_default(),
+    );
+    let first = a.as_object().and_then(|a| {
+        a.iter()
+            .find(|(k, v)| b.get(k.as_str()) != Some(v))
+            .map(|(k, v)| {
+                format!(
+                    "`{k}` is {v} in the table, {} in result.json",
+                    b[k.as_str()]
+                )
+            })
+    });
+    first.unwrap_or_else(|| "the rows differ".into())
+}
+
 /// Joins the results.json of a batch's shard directories (or of one whole
 /// batch) into one table under `out`, written as a unit; `notice` hears
 /// that another writer of `out` is waited for.
@@ -324,6 +423,7 @@ pub fn merge(
         .collect::<Result<Vec<_>, _>>()?;
     let (runs, count) = check_parts(&parts)?;
     check_rows(&parts, runs, count)?;
+    check_values(&parts)?;
     let first = &parts[0].table;
     let mut merged = BatchOutcome {
         batch: first.batch.clone(),
@@ -331,6 +431,7 @@ pub fn merge(
         shard: None,
         batch_hash: first.batch_hash.clone(),
         runs: Some(runs),
+        pending: 0,
         rows: parts.iter().flat_map(|p| p.table.rows.clone()).collect(),
     };
     merged.rows.sort_by_key(|r| r.index);

@@ -331,3 +331,49 @@ fn a_name_a_key_does_not_take_is_refused_with_the_names_it_takes() {
         );
     }
 }
+
+#[test]
+fn rotations_outside_the_small_rotation_theory_are_refused() {
+    // The sphere's Hertz radius is about 0.0131 in; the zone reaches 1.3 of
+    // it, about 0.0171 in.
+    let base = base();
+    let loaded = |extra: &str| base.replace("load = 100.0", &format!("load = 100.0\n{extra}"));
+    // A prescribed tilt is bounded as a design's misalignments are.
+    let e = scene(&loaded("tilt_x = 1e300")).unwrap_err();
+    assert!(matches!(e, SceneError::Invalid { .. }));
+    assert!(
+        e.to_string()
+            .contains("`loading.tilt_x` = 1e300: at most 0.1 rad in size"),
+        "{e}"
+    );
+    assert!(scene(&loaded("tilt_y = -0.1")).is_ok());
+    // A load centre (M / P) outside the zone: no contact inside balances it.
+    let e = scene(&loaded("moment_x = 2.0")).unwrap_err();
+    assert!(
+        e.to_string().contains(
+            "`loading.moment_x` = 2: puts the load centre at y = 0.02 (the moment over the load), \
+             outside the candidate zone"
+        ),
+        "{e}"
+    );
+    let e = scene(&loaded("moment_y = 2.0")).unwrap_err();
+    assert!(e.to_string().contains("load centre at x = -0.02"), "{e}");
+    // Inside the zone but near its edge: the solved contact leans on the
+    // zone's edge (or turns past 0.1 rad), and the answer is refused.
+    for moment in ["1.0", "1.5"] {
+        let s = scene(&loaded(&format!("moment_x = {moment}"))).unwrap();
+        let e = run(&s).unwrap_err();
+        assert!(matches!(e, SceneError::Run { .. }));
+        let text = e.to_string();
+        assert!(
+            (text.contains("against the candidate zone's edge")
+                || text.contains("beyond the small-rotation theory's 0.1 rad"))
+                && text.contains("give a smaller moment, or a larger zone"),
+            "{moment}: {e}"
+        );
+    }
+    // A small moment, its contact well inside the zone, runs.
+    let s = scene(&loaded("moment_x = 0.1")).unwrap();
+    let r = run(&s).unwrap();
+    assert!(r.solution.tilt_x.abs() < 0.1);
+}

@@ -75,6 +75,7 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
     };
     loop {
         work.iterations += 1;
+        crate::cancel::check().map_err(|c| Failure::new(c.into(), work))?;
         // Iterations only need the signs of z and w; the solution is refined
         // once the active set is found (below).
         let solved = factor

@@ -254,6 +254,7 @@ fn walk(
     let limit = opts.pivot_limit(n, n);
     let refactor_every = opts.refactor_every(n);
     while leaving != z0 {
+        crate::cancel::check()?;
         let entering = if leaving < n {
             leaving + n
         } else {

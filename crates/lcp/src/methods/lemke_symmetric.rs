@@ -260,6 +260,7 @@ impl Walk {
     /// Walks until the end (see the module documentation).
     fn run(&mut self) -> Result<(), Failure> {
         loop {
+            crate::cancel::check().map_err(|c| Failure::new(c.into(), self.state.work))?;
             let (to_stop, step) = if self.along_approach() {
                 self.approach_pass()?
             } else {

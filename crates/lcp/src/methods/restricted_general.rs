@@ -459,6 +459,7 @@ impl Run<'_> {
         let cost_tol = tol.cost * cost_scale.max(f64::MIN_POSITIVE);
         let mut visited: HashSet<Vec<usize>> = HashSet::new();
         loop {
+            crate::cancel::check()?;
             if self.tab.objective_value(k) <= stop {
                 return Ok(());
             }

@@ -258,6 +258,7 @@ impl Pinned {
     /// Phase 1, to its end.
     fn run(&mut self) -> Result<(), Breakdown> {
         loop {
+            crate::cancel::check()?;
             let Some(state) = self.state()? else {
                 return Ok(());
             };

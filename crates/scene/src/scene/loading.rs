@@ -4,8 +4,9 @@
 use elcon_analysis::Loading;
 use toml::Spanned;
 
-use crate::ctx::Ctx;
+use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
+use crate::sanity::MAX_ROTATION;
 use crate::schema::LoadingToml;
 
 pub(super) fn loading(ctx: &Ctx<'_>, l: &Spanned<LoadingToml>) -> Result<Loading, SceneError> {
@@ -48,8 +49,20 @@ pub(super) fn loading(ctx: &Ctx<'_>, l: &Spanned<LoadingToml>) -> Result<Loading
                     loading.with_moment_y(m)
                 }
             }
-            (None, Some(a)) => {
-                let a = ctx.finite(a, tilt_field)?;
+            (None, Some(angle)) => {
+                let a = ctx.finite(angle, tilt_field)?;
+                if a.abs() > MAX_ROTATION {
+                    return Err(ctx.invalid(
+                        angle.span(),
+                        tilt_field,
+                        Num(a),
+                        format!(
+                            "at most {MAX_ROTATION} rad in size, as a design's misalignments: \
+                             the rigid rotation is linearized (theta x), which holds to 0.5 % of \
+                             the angle up to {MAX_ROTATION} rad"
+                        ),
+                    ));
+                }
                 if x_axis {
                     loading.with_tilt_x(a)
                 } else {

@@ -270,7 +270,7 @@ impl Scene {
     /// invalid TOML, unknown or missing keys and wrong types;
     /// [`SceneError::Invalid`] for values out of their physical range.
     pub fn from_file(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError::io(path, e))?;
+        let text = crate::ctx::read_text(path)?;
         Self::from_str(path, &text)
     }
 
@@ -335,6 +335,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let points_spec = hertz::shaped(points_spec, &bodies, &geometry);
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
     let geometry = files::on_points(ctx, raw.geometry.as_ref(), geometry, &points)?;
+    sanity::load_centre(ctx, &raw.loading, loading, &points)?;
     let reference = hertz::reference(&bodies, &geometry, &points_spec, &points, loading);
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;

@@ -91,6 +91,7 @@ fn solve_column(
     let (cap, mut iterations) = (options.iteration_cap(), 0);
     let mut progress = Progress::new(options.tolerances.certificate, n);
     loop {
+        crate::cancel::check()?;
         let mut c = relative(b, r);
         if progress.done(iterations, c) {
             // The true residual r = b - M x decides.

@@ -304,6 +304,7 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
     let mut progress = Progress::new(options.tolerances.certificate, n);
     let mut confirming = false;
     loop {
+        crate::cancel::check().map_err(|c| Failure::new(c.into(), work))?;
         if state.stale {
             state.refresh(form, &data, &mut work);
         }
