@@ -7,6 +7,8 @@ use elcon_influence::{
     love_rectangle_stress, point_force, strip_stress,
 };
 
+use rayon::prelude::*;
+
 use crate::contact::ContactSolution;
 
 /// Depths of the grid the maxima are first looked for on, down to
@@ -353,30 +355,40 @@ impl<'a> StressField<'a> {
             .filter(|&k| self.points.y(k) == y)
             .collect();
         row.sort_by(|&a, &b| self.points.x(a).total_cmp(&self.points.x(b)));
+        // Each layer on a thread of the pool, one layer a thread held at a
+        // time; gathered in depth order, so the result does not depend on
+        // the threads.
+        let per_depth: Vec<([Peak; 4], Vec<Stress>, Stress)> = depths
+            .par_iter()
+            .map(|&z| {
+                let layer = layers.layer(z)?;
+                let mut best = [LOWEST; 4];
+                for (k, s) in layer.iter().enumerate() {
+                    for (b, m) in best.iter_mut().zip(MEASURES) {
+                        let v = m(s);
+                        if v > b.value {
+                            *b = Peak {
+                                value: v,
+                                x: self.points.x(k),
+                                y: self.points.y(k),
+                                z,
+                            };
+                        }
+                    }
+                }
+                let on_row: Vec<Stress> = row.iter().map(|&k| layer[k]).collect();
+                Ok((best, on_row, layer[peak]))
+            })
+            .collect::<Result<_, InfluenceError>>()?;
         let mut stresses = vec![Stress::default(); row.len() * depths.len()];
         let mut below = Vec::with_capacity(depths.len());
         let mut per_layer = Vec::with_capacity(depths.len());
-        for (j, &z) in depths.iter().enumerate() {
-            let layer = layers.layer(z)?;
-            let mut best = [LOWEST; 4];
-            for (k, s) in layer.iter().enumerate() {
-                for (b, m) in best.iter_mut().zip(MEASURES) {
-                    let v = m(s);
-                    if v > b.value {
-                        *b = Peak {
-                            value: v,
-                            x: self.points.x(k),
-                            y: self.points.y(k),
-                            z,
-                        };
-                    }
-                }
-            }
+        for (j, (best, on_row, under)) in per_depth.into_iter().enumerate() {
             per_layer.push(best);
-            for (i, &k) in row.iter().enumerate() {
-                stresses[i * depths.len() + j] = layer[k];
+            for (i, s) in on_row.into_iter().enumerate() {
+                stresses[i * depths.len() + j] = s;
             }
-            below.push(layer[peak]);
+            below.push(under);
         }
         let section = Section {
             y,
