@@ -60,7 +60,8 @@ pub struct Design {
     /// The axial stations (distinct axial positions of the points; length).
     pub stations: Vec<f64>,
     /// The method's objective: the worst `p_max_l / r_l` over the cases
-    /// (the worst p_max when every r_l = 1), from its own solutions.
+    /// (the worst p_max when every r_l = 1), from its own solutions; for a
+    /// stress objective ([`Design::criterion`]) the worst stress over r_l.
     pub objective: f64,
     /// The method's worst load intensity over the cases, max_k F_k / A_k.
     pub max_intensity: f64,

@@ -169,6 +169,9 @@ fn case_rows(
                 .iter()
                 .map(ToString::to_string)
                 .collect(),
+            // Problems given whole carry no bodies to take a field from.
+            subsurface_before: None,
+            subsurface_after: None,
         })
         .collect()
 }
