@@ -51,6 +51,10 @@
 //! A uniform shift of the profile only moves the approach (every case is
 //! under load control), so the drops are normalized (smallest 0) only at
 //! the end, and `Phi theta >= 0` is never a constraint of the steps.
+//!
+//! A stress objective (`DesignOptions::objective`: the worst von Mises or
+//! largest shear stress below the surface) measures each case by
+//! `crate::subsurface` and takes its model rows from there, with the same X.
 
 use elcon_analysis::{ContactProblem, ContactSolution};
 use elcon_lcp::{Bound, ProgramBuilder};
