@@ -51,6 +51,10 @@
 //! A uniform shift of the profile only moves the approach (every case is
 //! under load control), so the drops are normalized (smallest 0) only at
 //! the end, and `Phi theta >= 0` is never a constraint of the steps.
+//!
+//! A stress objective (`DesignOptions::objective`: the worst von Mises or
+//! largest shear stress below the surface) measures each case by
+//! `crate::subsurface` and takes its model rows from there, with the same X.
 
 use elcon_analysis::{ContactProblem, ContactSolution};
 use elcon_lcp::{Bound, LcpError, ProgramBuilder};
@@ -62,6 +66,7 @@ use crate::DesignOptions;
 use crate::basis::Basis;
 use crate::evaluate::solve_corrected;
 use crate::prepared::{Case, Found, Solver, Stop};
+use crate::subsurface::{Criterion, StressObjective};
 
 /// Stationarity: the model's predicted decrease below this fraction of the
 /// objective ends the descent. The forces are certified to about 1e-13 of
@@ -86,11 +91,11 @@ const EXPAND: f64 = 0.75;
 const RESOLUTION: f64 = 1e-13;
 
 /// One linear constraint of a step, `a . d + t_coefficient t <= b`.
-struct Constraint {
-    a: Vec<f64>,
+pub(crate) struct Constraint {
+    pub(crate) a: Vec<f64>,
     /// -1 for a model row (an intensity below t), 0 for a bound.
-    t_coefficient: f64,
-    b: f64,
+    pub(crate) t_coefficient: f64,
+    pub(crate) b: f64,
 }
 
 impl Constraint {
@@ -133,13 +138,14 @@ struct Iterate {
     objective: f64,
 }
 
-/// Analyses every case at `theta`, warm-started from `previous`.
+/// Analyses every case at `theta`, warm-started from `previous`, each
+/// measured by `criterion`.
 fn analyse(
     cases: &[Case<'_>],
     basis: &Basis,
     theta: Vec<f64>,
     previous: Option<&[ContactSolution]>,
-    options: &DesignOptions,
+    (options, criterion): (&DesignOptions, &Criterion),
 ) -> Result<Iterate, DesignError> {
     let drops = basis.drops(&theta);
     let mut problems = Vec::with_capacity(cases.len());
@@ -154,7 +160,7 @@ fn analyse(
             &options.reanalysis_options,
             &format!("load case {l} in the design's descent"),
         )?;
-        objective = objective.max(case.merit(&solution));
+        objective = objective.max(criterion.merit(l, case, &solution)?);
         problems.push(problem);
         solutions.push(solution);
     }
@@ -167,19 +173,47 @@ fn analyse(
 }
 
 /// Case l's model rows at its solution: for each point in contact its
-/// intensity over r_l and the derivative of that with respect to theta.
+/// intensity over r_l and the derivative of that with respect to theta
+/// (or, for a stress criterion, its rows: `crate::subsurface`).
 fn model_rows(
+    (l, case): (usize, &Case<'_>),
+    problem: &ContactProblem,
+    solution: &ContactSolution,
+    basis: &Basis,
+    (reanalysis, criterion): (&elcon_lcp::Options, &Criterion),
+) -> Result<Vec<Constraint>, DesignError> {
+    let contact = &solution.contact;
+    if contact.is_empty() {
+        return Ok(Vec::new());
+    }
+    let x = sensitivities(case, problem, solution, basis, reanalysis)?;
+    if let Criterion::Stress(stress) = criterion {
+        return stress.rows(l, case, solution, x.as_ref());
+    }
+    let m = basis.params();
+    Ok((0..contact.len())
+        .map(|a| {
+            let k = contact[a];
+            let scale = case.reference * case.measures[k] / case.weights[k];
+            Constraint {
+                a: (0..m).map(|i| x[(a, i)] / scale).collect(),
+                t_coefficient: -1.0,
+                b: -solution.forces[k] / scale,
+            }
+        })
+        .collect())
+}
+
+/// `X = dF_J / dtheta` of case l's contact set J at its solution (|J| x m).
+pub(crate) fn sensitivities(
     case: &Case<'_>,
     problem: &ContactProblem,
     solution: &ContactSolution,
     basis: &Basis,
     reanalysis: &elcon_lcp::Options,
-) -> Result<Vec<Constraint>, DesignError> {
+) -> Result<Mat<f64>, DesignError> {
     let contact = &solution.contact;
     let (nj, m) = (contact.len(), basis.params());
-    if nj == 0 {
-        return Ok(Vec::new());
-    }
     let rigid = problem.rigid();
     let points = problem.points();
     let levers = Mat::from_fn(nj, rigid.free.len(), |a, j| {
@@ -211,17 +245,7 @@ fn model_rows(
         let lambda = reduced.partial_piv_lu().solve(levers.transpose() * v);
         u * &lambda - v
     };
-    Ok((0..nj)
-        .map(|a| {
-            let k = contact[a];
-            let scale = case.reference * case.measures[k] / case.weights[k];
-            Constraint {
-                a: (0..m).map(|i| x[(a, i)] / scale).collect(),
-                t_coefficient: -1.0,
-                b: -solution.forces[k] / scale,
-            }
-        })
-        .collect())
+    Ok(x)
 }
 
 /// The bounds on the normalized constant of a polynomial family at every
@@ -395,17 +419,32 @@ fn read_step(
 }
 
 /// The descent from `theta0`; `scale` is the cases' elastic deflection
-/// (length), the first trust radius.
+/// (length), the first trust radius; `stress` the stress objective, if
+/// any (its depths fixed from the start's solutions).
 pub(crate) fn solve(
     cases: &[Case<'_>],
     basis: &Basis,
-    c_max: Option<f64>,
+    (c_max, stress): (Option<f64>, Option<&StressObjective>),
     theta0: &[f64],
     scale: f64,
     options: &DesignOptions,
 ) -> Result<Found, DesignError> {
     let m = basis.params();
-    let mut current = analyse(cases, basis, theta0.to_vec(), None, options)?;
+    let mut current = analyse(
+        cases,
+        basis,
+        theta0.to_vec(),
+        None,
+        (options, &Criterion::Pressure),
+    )?;
+    let criterion = match stress {
+        None => Criterion::Pressure,
+        Some(stress) => {
+            let criterion = Criterion::Stress(stress.at(cases, &current.solutions));
+            current.objective = objective_of(cases, &current.solutions, &criterion)?;
+            criterion
+        }
+    };
     let mut radius = scale;
     let (mut iterations, mut accepted) = (0, 0);
     let mut analyses = cases.len();
@@ -428,7 +467,7 @@ pub(crate) fn solve(
                 basis,
                 c_max,
                 &current,
-                &options.reanalysis_options,
+                (&options.reanalysis_options, &criterion),
             )?),
         };
         let (d, model, p) = step(pool, m, radius, &options.engine)?;
@@ -438,7 +477,13 @@ pub(crate) fn solve(
             break Stop::Stationary;
         }
         let theta: Vec<f64> = current.theta.iter().zip(&d).map(|(t, d)| t + d).collect();
-        let trial = analyse(cases, basis, theta, Some(&current.solutions), options)?;
+        let trial = analyse(
+            cases,
+            basis,
+            theta,
+            Some(&current.solutions),
+            (options, &criterion),
+        )?;
         analyses += cases.len();
         pivots += pivots_of(&trial.solutions);
         let ratio = (current.objective - trial.objective) / predicted;
@@ -470,7 +515,21 @@ pub(crate) fn solve(
             pivots,
             stop,
         },
+        criterion,
     })
+}
+
+/// The worst merit of `solutions` under `criterion`.
+fn objective_of(
+    cases: &[Case<'_>],
+    solutions: &[ContactSolution],
+    criterion: &Criterion,
+) -> Result<f64, DesignError> {
+    let mut worst = 0.0f64;
+    for (l, (case, solution)) in cases.iter().zip(solutions).enumerate() {
+        worst = worst.max(criterion.merit(l, case, solution)?);
+    }
+    Ok(worst)
 }
 
 /// The step's constraints at `current`: the constant's bounds and every
@@ -480,11 +539,16 @@ fn model_of(
     basis: &Basis,
     c_max: Option<f64>,
     current: &Iterate,
-    reanalysis: &elcon_lcp::Options,
+    model: (&elcon_lcp::Options, &Criterion),
 ) -> Result<Vec<Constraint>, DesignError> {
     let mut pool = constant_rows(basis, &current.theta, c_max);
-    for ((case, problem), solution) in cases.iter().zip(&current.problems).zip(&current.solutions) {
-        pool.extend(model_rows(case, problem, solution, basis, reanalysis)?);
+    for (l, ((case, problem), solution)) in cases
+        .iter()
+        .zip(&current.problems)
+        .zip(&current.solutions)
+        .enumerate()
+    {
+        pool.extend(model_rows((l, case), problem, solution, basis, model)?);
     }
     Ok(pool)
 }

@@ -55,6 +55,16 @@ pub enum DesignError {
         /// The tolerance it exceeded.
         tolerance: f64,
     },
+    /// A design's stress objective (`design.objective` = "von-mises" or
+    /// "max-shear") that cannot be met: no body has a field below its
+    /// surface, or the method asked for cannot take it.
+    #[error("`design.objective` = \"{objective}\": {reason}")]
+    Objective {
+        /// The objective's name.
+        objective: &'static str,
+        /// Why, and what to give instead.
+        reason: String,
+    },
     /// A design carried over finer and finer grids that did not converge
     /// (or whose verification on a finer grid disagreed) before a grid
     /// exceeded the points allowed: its objective still depends on the

@@ -17,6 +17,9 @@
 //!   the forces exactly a target distribution (the seed's Fig. 6 curve);
 //! - [`evaluate()`]: the certified analysis of any profile under every load
 //!   case; [`crown_search`]: the best parameter of a one-parameter crown;
+//! - [`Objective`]: the worst intensity (the paper's), or the worst von
+//!   Mises or largest shear stress below the surface (`subsurface`),
+//!   minimized by the case-decomposed descent;
 //! - [`DesignRequest`]: a design as a scene or Python asks for it (any
 //!   family, linear or a crown), routed to the one of the above that finds
 //!   it.
@@ -64,6 +67,7 @@ mod prepared;
 pub mod profile;
 pub mod request;
 pub mod sequence;
+pub mod subsurface;
 pub mod target;
 
 pub use basis::fit_profile;
@@ -77,4 +81,5 @@ pub use prepared::{EDGE_WEIGHT, Solver, Stop, axial_stations};
 pub use profile::{Axis, JOHNS_GOHAR, LogCrown, LogEnd, Profile};
 pub use request::{DesignFamily, DesignRequest, Found, Outcome, Roller};
 pub use sequence::{Converged, GridSequence, Level};
+pub use subsurface::Objective;
 pub use target::{TargetSeparation, target_separation, uniform_target};

@@ -206,5 +206,6 @@ pub(crate) fn solve(
             certificate: solution.certificate,
             statistics: solution.statistics,
         },
+        criterion: crate::subsurface::Criterion::Pressure,
     })
 }

@@ -33,8 +33,11 @@ use crate::evaluate::{Analysis, Evaluation, evaluate};
 use crate::prepared::{
     Case, Found, Solver, axial_stations, deflection_scale, prepare, reference_intensities,
 };
+use crate::subsurface::{Criterion, StressObjective};
 use crate::target::uniform_target;
-use crate::{Axis, DesignError, DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, Profile};
+use crate::{
+    Axis, DesignError, DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, Objective, Profile,
+};
 use crate::{descent, lpcc};
 
 /// How one start ended.
@@ -57,7 +60,8 @@ pub struct Design {
     /// The axial stations (distinct axial positions of the points; length).
     pub stations: Vec<f64>,
     /// The method's objective: the worst `p_max_l / r_l` over the cases
-    /// (the worst p_max when every r_l = 1), from its own solutions.
+    /// (the worst p_max when every r_l = 1), from its own solutions; for a
+    /// stress objective ([`Design::criterion`]) the worst stress over r_l.
     pub objective: f64,
     /// The method's worst load intensity over the cases, max_k F_k / A_k.
     pub max_intensity: f64,
@@ -70,6 +74,12 @@ pub struct Design {
     pub solver: Solver,
     /// The bound c_max used (polynomial families).
     pub max_constant: Option<f64>,
+    /// What it minimized ([`DesignOptions::objective`]); `objective` is
+    /// the worst stress over r_l for a stress objective.
+    pub criterion: Objective,
+    /// For a stress objective, the worst stress measure over the cases
+    /// (stress) of the re-analysis, on each case's grid of depths.
+    pub worst_stress: Option<f64>,
     /// Whether the normalized constant (smallest drop 0) needs the whole of
     /// c_max: the bound then limits the design; raise it.
     pub constant_at_bound: bool,
@@ -93,6 +103,8 @@ struct Setup<'a> {
     /// profile is given without one.
     line_free: bool,
     method: DesignMethod,
+    /// The stress objective, if the design minimizes one.
+    stress: Option<StressObjective>,
     /// The agreement the re-analysis is held to: the options', or
     /// [`ITERATIVE_AGREEMENT`] if larger when the cases are solved by the
     /// conjugate gradient (matrix-free, or `options.reanalysis`).
@@ -227,7 +239,20 @@ fn setup<'a>(
     let line_free = cases
         .iter()
         .all(|c| c.rigid().prescribed.iter().all(|&(mode, _)| mode != across));
-    let method = options.method.resolve(points, entries);
+    let stress = StressObjective::new(options.objective, &options.bodies)?;
+    let method = match (stress.is_some(), options.method) {
+        (false, method) => method.resolve(points, entries),
+        (true, DesignMethod::Program) => {
+            return Err(DesignError::Objective {
+                objective: options.objective.name(),
+                reason:
+                    "the design program's objective is linear in the forces; a stress below the \
+                         surface is minimized by method = \"descent\" (or \"auto\")"
+                        .into(),
+            });
+        }
+        (true, _) => DesignMethod::Descent,
+    };
     // The cases are solved iteratively (a matrix-free case can be solved no
     // other way: `check_method`).
     let agreement = if options.reanalysis == elcon_analysis::Method::ConjugateGradient {
@@ -246,6 +271,7 @@ fn setup<'a>(
         scale,
         line_free,
         method,
+        stress,
         agreement,
     })
 }
@@ -328,7 +354,7 @@ fn run_start(
         DesignMethod::Descent => descent::solve(
             &setup.prepared,
             &setup.basis,
-            setup.c_max,
+            (setup.c_max, setup.stress.as_ref()),
             theta0,
             setup.scale,
             options,
@@ -353,6 +379,7 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
         max_intensity,
         solutions,
         solver,
+        criterion,
     } = found;
     let theta = if setup.line_free {
         setup.basis.without_line(&theta)
@@ -377,12 +404,15 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
     };
     // The re-analysis measured as the method measured its own solutions
     // (the worst p_max_l / r_l, edges weighted when they are kept clear).
-    let reanalysed = setup
-        .prepared
-        .iter()
-        .zip(&evaluation.solutions)
-        .map(|(c, s)| c.merit(s))
-        .fold(0.0f64, f64::max);
+    let mut reanalysed = 0.0f64;
+    let mut worst_stress = None;
+    for (l, (c, s)) in setup.prepared.iter().zip(&evaluation.solutions).enumerate() {
+        reanalysed = reanalysed.max(criterion.merit(l, c, s)?);
+        if let Criterion::Stress(stress) = &criterion {
+            let largest = stress.largest(l, c, s)?;
+            worst_stress = Some(worst_stress.map_or(largest, |w: f64| w.max(largest)));
+        }
+    }
     agree(objective, reanalysed, setup.agreement)?;
     // A uniform shift of the profile only moves the approach, so the bound
     // constrains the design only if the normalized profile (smallest drop 0)
@@ -404,6 +434,11 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
         solver,
         max_constant: setup.c_max,
         constant_at_bound,
+        criterion: match &criterion {
+            Criterion::Pressure => Objective::Pressure,
+            Criterion::Stress(s) => s.objective(),
+        },
+        worst_stress,
     })
 }
 

@@ -4,7 +4,9 @@
 
 use elcon_analysis::{Method, Options};
 
-use crate::Profile;
+use elcon_influence::Body;
+
+use crate::{Objective, Profile};
 
 /// A profile family linear in its parameters, for the design program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -159,6 +161,15 @@ pub struct DesignOptions {
     /// grows without bound as the grid refines), so a design that must hold
     /// on any grid clears them (default false: the cases' grid as it is).
     pub edge_clearance: bool,
+    /// What the design minimizes (default [`Objective::Pressure`], the
+    /// paper's worst intensity); a stress below the surface
+    /// ([`Objective::VonMises`], [`Objective::MaxShear`]) is minimized by
+    /// the descent alone, over the fields of [`DesignOptions::bodies`].
+    pub objective: Objective,
+    /// The bodies whose stresses below the surface a stress objective
+    /// measures (the worst over those with a field: elastic half-spaces;
+    /// twin bodies count once). Default none.
+    pub bodies: Vec<Body>,
 }
 
 impl Default for DesignOptions {
@@ -177,6 +188,8 @@ impl Default for DesignOptions {
             max_iterations: 500,
             knots: None,
             edge_clearance: false,
+            objective: Objective::Pressure,
+            bodies: Vec::new(),
         }
     }
 }

@@ -257,4 +257,6 @@ pub(crate) struct Found {
     /// The descent's last analyses (warm starts of the re-analysis).
     pub(crate) solutions: Option<Vec<ContactSolution>>,
     pub(crate) solver: Solver,
+    /// How its objective was measured (the re-analysis is measured alike).
+    pub(crate) criterion: crate::subsurface::Criterion,
 }

@@ -18,7 +18,10 @@ use elcon_analysis::{ContactProblem, Method, Options};
 use crate::crown::{SearchOptions, crown_search};
 use crate::evaluate::{Analysis, Evaluation, evaluate};
 use crate::optimize::{StartOutcome, design};
-use crate::{Axis, DesignError, DesignMethod, DesignOptions, Family, LogCrown, LogEnd, Profile};
+use crate::{
+    Axis, DesignError, DesignMethod, DesignOptions, Family, LogCrown, LogEnd, Objective, Profile,
+};
+use elcon_influence::Body;
 
 /// The roller a logarithmic crown is set for: its Hertz line contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,6 +115,11 @@ pub struct DesignRequest {
     /// ([`DesignOptions::edge_clearance`]; default true: a design must
     /// hold on any grid).
     pub edge_clearance: bool,
+    /// What a linear family's design minimizes ([`DesignOptions::objective`];
+    /// default the worst intensity). The crowns refuse a stress objective.
+    pub objective: Objective,
+    /// The bodies a stress objective measures ([`DesignOptions::bodies`]).
+    pub bodies: Vec<Body>,
 }
 
 impl DesignRequest {
@@ -130,6 +138,8 @@ impl DesignRequest {
             starts: Vec::new(),
             own_starts: true,
             edge_clearance: true,
+            objective: Objective::Pressure,
+            bodies: Vec::new(),
         }
     }
 
@@ -140,6 +150,16 @@ impl DesignRequest {
     /// As [`design`], [`crown_search`] and [`evaluate`] for the family.
     pub fn run(&self, cases: &[ContactProblem]) -> Result<Outcome, DesignError> {
         let method = self.method_for(cases);
+        if self.objective.is_stress() && !matches!(self.family, DesignFamily::Linear(_)) {
+            return Err(DesignError::Objective {
+                objective: self.objective.name(),
+                reason: format!(
+                    "a {} is searched or set for the worst intensity; a stress objective designs a \
+                     linear family (quadratic, polynomial, free)",
+                    self.family.describe()
+                ),
+            });
+        }
         match &self.family {
             DesignFamily::Linear(family) => self.designed(cases, *family, method),
             DesignFamily::CircularCrown {
@@ -208,6 +228,8 @@ impl DesignRequest {
             uncorrected_start: self.own_starts,
             fitted_start: self.own_starts,
             edge_clearance: self.edge_clearance,
+            objective: self.objective,
+            bodies: self.bodies.clone(),
             ..DesignOptions::default()
         };
         let d = design(cases, self.axis, family, &options)?;
@@ -217,6 +239,9 @@ impl DesignRequest {
             found: Found::Designed {
                 method: d.solver.method(),
                 starts: d.starts,
+                objective: d.criterion,
+                value: d.objective,
+                worst_stress: d.worst_stress,
             },
         })
     }
@@ -265,6 +290,14 @@ pub enum Found {
         method: DesignMethod,
         /// Every start and where it ended.
         starts: Vec<StartOutcome>,
+        /// What it minimized.
+        objective: Objective,
+        /// Its objective's value: the worst intensity (or stress) over
+        /// r_l, over the cases.
+        value: f64,
+        /// For a stress objective, the worst stress measure over the cases
+        /// (stress), on each case's grid of depths.
+        worst_stress: Option<f64>,
     },
     /// A circular crown's radius searched.
     Searched {
@@ -285,6 +318,24 @@ impl Found {
             Found::Designed { method, .. } => method.name(),
             Found::Searched { .. } => "search",
             Found::Set { .. } => "set",
+        }
+    }
+
+    /// What it minimized: a design's [`Objective`]; the worst intensity for
+    /// a crown.
+    pub fn minimized(&self) -> Objective {
+        match self {
+            Found::Designed { objective, .. } => *objective,
+            _ => Objective::Pressure,
+        }
+    }
+
+    /// A stress objective's worst stress over the cases (stress), on each
+    /// case's grid of depths; none for the worst intensity.
+    pub fn worst_stress(&self) -> Option<f64> {
+        match self {
+            Found::Designed { worst_stress, .. } => *worst_stress,
+            _ => None,
         }
     }
 

@@ -124,6 +124,8 @@ fn design_json(
         cases: case_rows(cases, &references, &before, after),
         table,
         method: outcome.found.method().into(),
+        minimized: outcome.found.minimized().name().into(),
+        worst_stress: outcome.found.worst_stress(),
         starts: outcome.found.starts(),
         interpolation: outcome.profile.interpolation(),
         // Problems from arrays have no grid family to refine: the design is

@@ -59,8 +59,15 @@ pub struct DesignJson {
     pub relative_to: String,
     /// The profile's parameters by name (a, b, c; c0..cd; radius; design_load...).
     pub parameters: std::collections::BTreeMap<String, f64>,
-    /// The objective reached: the worst p_max_l / r_l.
+    /// The worst p_max_l / r_l reached (what `minimized` = "pressure"
+    /// minimizes).
     pub objective: f64,
+    /// What the design minimized: "pressure", "von-mises" or "max-shear"
+    /// (`design.objective`).
+    pub minimized: String,
+    /// A stress objective's worst stress over the cases (stress), on each
+    /// case's depth grid; none for "pressure".
+    pub worst_stress: Option<f64>,
     /// The same before the correction.
     pub objective_before: f64,
     /// Per load case.
@@ -254,6 +261,8 @@ pub(crate) fn design_stage(
             .collect(),
         table,
         method: outcome.found.method().into(),
+        minimized: outcome.found.minimized().name().into(),
+        worst_stress: outcome.found.worst_stress(),
         starts: outcome.found.starts(),
         interpolation: profile.interpolation(),
         grids: converged.levels.iter().map(grid).collect(),

@@ -178,6 +178,18 @@ keywords! {
 }
 
 keywords! {
+    /// `design.objective`.
+    pub(crate) enum ObjectiveName {
+        /// `"pressure"`: the worst intensity.
+        Pressure = "pressure",
+        /// `"von-mises"`: the worst von Mises stress below the surface.
+        VonMises = "von-mises",
+        /// `"max-shear"`: the worst largest shear stress below the surface.
+        MaxShear = "max-shear",
+    }
+}
+
+keywords! {
     /// `design.end` of a logarithmic crown.
     pub(crate) enum EndName {
         /// `"johns-gohar"`: Johns & Gohar's finite end drop.
@@ -365,6 +377,7 @@ pub(crate) struct DesignToml {
     pub flat_length: Option<Spanned<f64>>,
     pub design_load: Option<Spanned<f64>>,
     pub method: Option<Spanned<DesignMethodName>>,
+    pub objective: Option<Spanned<ObjectiveName>>,
     pub end: Option<Spanned<EndName>>,
     pub misalignments: Option<Spanned<Vec<Spanned<f64>>>>,
     pub grid_tolerance: Option<Spanned<f64>>,

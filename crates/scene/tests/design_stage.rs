@@ -132,3 +132,35 @@ fn the_scenes_descent_and_program_reach_one_optimum() {
         "{descent} vs {program}"
     );
 }
+
+/// Example 1's spheres designed for `objective` (a quadratic along y on
+/// the scene's grid alone).
+fn spheres_for(objective: &str) -> String {
+    let unfolded = with_table(
+        &common::spheres("spacing = 0.002\nradius = 0.02"),
+        "solver",
+        "symmetry = \"none\"",
+    );
+    with_table(
+        &unfolded,
+        "design",
+        &format!("family = \"quadratic\"\nrefine = false\nobjective = \"{objective}\""),
+    )
+}
+
+#[test]
+fn a_von_mises_design_states_its_objective_and_worst_stress() {
+    let designed = |objective: &str| {
+        let scene = Scene::from_str(Path::new("spheres.toml"), &spheres_for(objective)).unwrap();
+        run(&scene).unwrap().result.design.unwrap()
+    };
+    let stress = designed("von-mises");
+    assert_eq!(stress.minimized, "von-mises");
+    assert_eq!(stress.method, "descent");
+    assert!(stress.cases.iter().all(|c| c.certificate_holds));
+    let worst = stress.worst_stress.expect("a stress objective's value");
+    assert!(worst > 0.0 && worst.is_finite(), "{worst}");
+    let pressure = designed("pressure");
+    assert_eq!(pressure.minimized, "pressure");
+    assert_eq!(pressure.worst_stress, None);
+}

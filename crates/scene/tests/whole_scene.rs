@@ -207,6 +207,41 @@ fn design_cases_and_the_constant_are_bounded() {
 }
 
 #[test]
+fn a_stress_objective_needs_a_field_a_linear_family_and_the_descent() {
+    refused(
+        &beam_design("family = \"quadratic\"\nobjective = \"von-mises\""),
+        "design.objective",
+        "needs an elastic half-space body",
+    );
+    refused(
+        &beam_design(
+            "family = \"circular-crown\"\nradius_range = [1.0, 100.0]\nobjective = \"max-shear\"",
+        ),
+        "design.objective",
+        "only for the families quadratic, polynomial and free",
+    );
+    refused(
+        &with_table(
+            &spheres(),
+            "design",
+            "family = \"quadratic\"\nmethod = \"program\"\nobjective = \"von-mises\"",
+        ),
+        "design.objective",
+        "needs design.method = \"descent\"",
+    );
+    scene(&with_table(
+        &spheres(),
+        "design",
+        "family = \"quadratic\"\nobjective = \"von-mises\"",
+    ))
+    .unwrap();
+    scene(&beam_design(
+        "family = \"quadratic\"\nobjective = \"pressure\"",
+    ))
+    .unwrap();
+}
+
+#[test]
 fn solver_knobs_are_bounded() {
     refused(
         &with_table(&spheres(), "solver", "refinement_steps = 1000000000"),

@@ -5,8 +5,10 @@
 
 use elcon_analysis::{Geometry, Loading, Method, Normal, Options};
 pub use elcon_design::DesignFamily;
-use elcon_design::{Axis, DesignMethod, DesignRequest, Family, GridSequence, LogEnd, Roller};
-use elcon_influence::Dimension;
+use elcon_design::{
+    Axis, DesignMethod, DesignRequest, Family, GridSequence, LogEnd, Objective, Roller,
+};
+use elcon_influence::{Body, Dimension};
 use toml::Spanned;
 
 use super::body::BodySpec;
@@ -15,7 +17,7 @@ use super::points::PointsSpec;
 use crate::ctx::Ctx;
 use crate::error::SceneError;
 pub use crate::schema::RelativeTo;
-use crate::schema::{AxisName, DesignMethodName, DesignToml, EndName, FamilyName};
+use crate::schema::{AxisName, DesignMethodName, DesignToml, EndName, FamilyName, ObjectiveName};
 
 /// A validated `[design]` section.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,6 +34,10 @@ pub struct DesignSpec {
     max_constant: Option<f64>,
     /// How a linear family's problem is solved (`design.method`).
     method: DesignMethod,
+    /// What the design minimizes (`design.objective`).
+    objective: Objective,
+    /// The bodies a stress objective measures (those with a field).
+    bodies: Vec<Body>,
     /// Misalignments (rad): every load is a case at each, a prescribed
     /// rotation about the axis across the profile (`tilt_x` when the
     /// profile runs along y, `tilt_y` along x); empty: the loads alone,
@@ -105,6 +111,8 @@ impl DesignSpec {
             reference_intensities: references,
             reanalysis,
             reanalysis_options: options.clone(),
+            objective: self.objective,
+            bodies: self.bodies.clone(),
             ..DesignRequest::new(self.family.clone(), self.axis)
         }
     }
@@ -213,6 +221,7 @@ pub(super) fn design(
         None => None,
     };
     let method = design_method(ctx, t, &family)?;
+    let (objective, bodies) = design_objective(ctx, t, (&family, method), scene)?;
     let misalignments = misalignments(ctx, t)?;
     let sequence = grid_sequence(ctx, t)?;
     Ok(DesignSpec {
@@ -222,9 +231,65 @@ pub(super) fn design(
         relative_to,
         max_constant,
         method,
+        objective,
+        bodies,
         misalignments,
         sequence,
     })
+}
+
+/// `design.objective` (default "pressure"): a stress below the surface
+/// for a linear family by the descent, over the bodies with a field
+/// (elastic half-spaces); refused, naming the key and why, otherwise.
+fn design_objective(
+    ctx: &Ctx<'_>,
+    t: &DesignToml,
+    (family, method): (&DesignFamily, DesignMethod),
+    scene: &DesignContext<'_>,
+) -> Result<(Objective, Vec<Body>), SceneError> {
+    let Some(o) = &t.objective else {
+        return Ok((Objective::Pressure, Vec::new()));
+    };
+    let objective = match o.get_ref() {
+        ObjectiveName::Pressure => return Ok((Objective::Pressure, Vec::new())),
+        ObjectiveName::VonMises => Objective::VonMises,
+        ObjectiveName::MaxShear => Objective::MaxShear,
+    };
+    let refuse = |why: &str| {
+        ctx.invalid(
+            o.span(),
+            "design.objective",
+            format!("\"{}\"", o.get_ref()),
+            why,
+        )
+    };
+    if !matches!(family, DesignFamily::Linear(_)) {
+        return Err(refuse(
+            "only for the families quadratic, polynomial and free (a crown is searched or set for the worst intensity)",
+        ));
+    }
+    if method == DesignMethod::Program {
+        return Err(refuse(
+            "the design program's objective is linear in the forces: a stress below the surface needs design.method = \"descent\" or \"auto\"",
+        ));
+    }
+    let Some(layout) = scene.layout else {
+        return Err(refuse(
+            "a stress below the surface needs the bodies' materials: give the problem as a scene's bodies",
+        ));
+    };
+    let bodies: Vec<Body> = layout
+        .bodies
+        .iter()
+        .filter(|b| b.material().is_some())
+        .map(|b| *b.body())
+        .collect();
+    if bodies.is_empty() {
+        return Err(refuse(
+            "needs an elastic half-space body (a stress field below its surface): rigid bodies, beams and Winkler foundations have none",
+        ));
+    }
+    Ok((objective, bodies))
 }
 
 /// The keys of `[design]` that belong to other families than `family_name`

@@ -1,0 +1,657 @@
+//! Designs judged below the surface: the objective of a design as the
+//! largest subsurface stress of the bodies with a field (the von Mises
+//! stress or the largest shear, Tresca), and the descent's linear model of
+//! it.
+//!
+//! A body's stress at q is linear in the contact pressures, each point's
+//! stress influence coefficient `T_qk` (Love's rectangle, the point force
+//! or the strip, with that body's Poisson's ratio: `elcon_influence`'s
+//! kernels),
+//!
+//! ```text
+//!     sigma_q = sum_k T_qk F_k / A_k,          case l's merit  max_q s(sigma_q) / r_l
+//! ```
+//!
+//! with s the von Mises stress (convex in the tensor) or Tresca's. The
+//! maximum is taken over a fixed set of points per case: every point of the
+//! grid at each of [`DEPTHS`] depths down to [`DEPTH_SPAN`] of the case's
+//! contact half-width at the descent's start (the depth layers by FFT on a
+//! lattice, direct sums elsewhere). The descent's model rows are the
+//! linearizations at candidate points q (each axial station's largest,
+//! and the points above and below it),
+//!
+//! ```text
+//!     (s_q + g_q^T T_qJ diag(1/A_J) X d) / r_l <= t,      g_q = ds/dsigma at sigma_q,  X = dF_J/dtheta
+//! ```
+//!
+//! `g_q` is `3 s'/(2 s)` (s' the deviator, shears counted twice) for von
+//! Mises, `(n1 n1^T - n3 n3^T) / 2` for Tresca (n1, n3 the principal
+//! directions of the largest and smallest principal stresses). A body's
+//! singular edges kept clear ([`crate::DesignOptions::edge_clearance`])
+//! keep their weighted pressure rows (`w_k F_k / (A_k r_l)`) beside the
+//! stress rows, so the contact stays off them as in a pressure design.
+
+use elcon_analysis::ContactSolution;
+use elcon_influence::{
+    Body, Dimension, Model, PointSet, Stress, StressKernel, StressLayers, love_rectangle_stress,
+    point_force, strip_stress,
+};
+use faer::{Mat, MatRef, Side};
+
+use crate::DesignError;
+use crate::descent::Constraint;
+use crate::prepared::Case;
+
+/// Depths of each case's fixed grid of depths.
+pub const DEPTHS: usize = 32;
+/// How deep the depth grid reaches, in the start's contact half-widths.
+pub const DEPTH_SPAN: f64 = 2.0;
+/// A candidate point becomes a model row when its stress is at least this
+/// share of its case's largest: lower ones cannot bind within a trust
+/// region the model is good in.
+const CANDIDATE_SHARE: f64 = 0.5;
+
+/// What a design minimizes over its load cases.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Objective {
+    /// The worst load intensity `max_k w_k F_k / (A_k r_l)` (the paper's).
+    #[default]
+    Pressure,
+    /// The worst von Mises stress below the surface over r_l.
+    VonMises,
+    /// The worst largest shear stress (Tresca: half the principal
+    /// stresses' spread) below the surface over r_l.
+    MaxShear,
+}
+
+impl Objective {
+    /// Every objective, in the order messages list them.
+    pub const ALL: [Objective; 3] = [
+        Objective::Pressure,
+        Objective::VonMises,
+        Objective::MaxShear,
+    ];
+
+    /// Its name in a scene's `design.objective`: "pressure", "von-mises",
+    /// "max-shear".
+    pub fn name(self) -> &'static str {
+        match self {
+            Objective::Pressure => "pressure",
+            Objective::VonMises => "von-mises",
+            Objective::MaxShear => "max-shear",
+        }
+    }
+
+    /// The objective of a name, if it is one.
+    pub fn of(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|o| o.name() == name)
+    }
+
+    /// Whether it is a stress below the surface (needs a body with a
+    /// field).
+    pub fn is_stress(self) -> bool {
+        self != Objective::Pressure
+    }
+
+    /// Its stress measure of a tensor (0 for the pressure objective).
+    pub fn measure(self, s: &Stress) -> f64 {
+        match self {
+            Objective::Pressure => 0.0,
+            Objective::VonMises => s.von_mises(),
+            Objective::MaxShear => s.tresca(),
+        }
+    }
+
+    /// `ds/dsigma` at `s`, in the order (xx, yy, zz, xy, xz, yz), each
+    /// shear counted for both of its tensor entries (so that
+    /// `g . dsigma` is the measure's first-order change).
+    pub fn gradient(self, s: &Stress) -> [f64; 6] {
+        match self {
+            Objective::Pressure => [0.0; 6],
+            Objective::VonMises => {
+                let vm = s.von_mises();
+                if vm <= 0.0 {
+                    return [0.0; 6];
+                }
+                let h = 0.5 / vm;
+                [
+                    h * (2.0 * s.xx - s.yy - s.zz),
+                    h * (2.0 * s.yy - s.zz - s.xx),
+                    h * (2.0 * s.zz - s.xx - s.yy),
+                    3.0 * s.xy / vm,
+                    3.0 * s.xz / vm,
+                    3.0 * s.yz / vm,
+                ]
+            }
+            Objective::MaxShear => tresca_gradient(s),
+        }
+    }
+}
+
+/// Tresca's gradient `(n1 n1^T - n3 n3^T) / 2` from the principal
+/// directions (faer's self-adjoint eigensolver; eigenvalues increasing).
+fn tresca_gradient(s: &Stress) -> [f64; 6] {
+    let a = Mat::from_fn(3, 3, |i, j| match (i.min(j), i.max(j)) {
+        (0, 0) => s.xx,
+        (1, 1) => s.yy,
+        (2, 2) => s.zz,
+        (0, 1) => s.xy,
+        (0, 2) => s.xz,
+        _ => s.yz,
+    });
+    let Ok(eigen) = a.self_adjoint_eigen(Side::Lower) else {
+        return [0.0; 6];
+    };
+    let u = eigen.U();
+    let (n3, n1) = (u.col(0), u.col(2));
+    let e = |i: usize, j: usize| 0.5 * (n1[i] * n1[j] - n3[i] * n3[j]);
+    [
+        e(0, 0),
+        e(1, 1),
+        e(2, 2),
+        2.0 * e(0, 1),
+        2.0 * e(0, 2),
+        2.0 * e(1, 2),
+    ]
+}
+
+/// The components of a stress in [`Objective::gradient`]'s order.
+fn components(s: &Stress) -> [f64; 6] {
+    [s.xx, s.yy, s.zz, s.xy, s.xz, s.yz]
+}
+
+/// A body's stress influence coefficient and Poisson's ratio, or why it
+/// has no field.
+fn kernel_of(body: &Body) -> Result<(StressKernel, f64), &'static str> {
+    match body.model() {
+        Model::UniformPatch { material } => {
+            Ok((StressKernel::Rectangle, material.poissons_ratio()))
+        }
+        Model::PointForce { material } => Ok((StressKernel::PointForce, material.poissons_ratio())),
+        Model::PlaneStrainStrip { material, .. } => {
+            Ok((StressKernel::Strip, material.poissons_ratio()))
+        }
+        Model::Rigid => Err("a rigid body has no stresses"),
+        Model::Winkler { .. } => Err("a Winkler foundation is not a half-space: no field"),
+        _ => Err("a beam is not a half-space: its stresses are its bending's"),
+    }
+}
+
+/// The stress at depth z of a unit pressure on point k's cell, at a
+/// horizontal offset `(dx, dy)` from it.
+fn unit(kernel: StressKernel, points: &PointSet, (dx, dy, z): (f64, f64, f64), nu: f64) -> Stress {
+    let cell = points.cell();
+    match kernel {
+        StressKernel::Rectangle => love_rectangle_stress(dx, dy, z, cell.dx, cell.dy, nu),
+        StressKernel::Strip => strip_stress(dx, z, cell.dx, nu),
+        _ => {
+            let mut s = Stress::default();
+            s.add_scaled(cell.dx * cell.dy, &point_force(dx, dy, z, nu));
+            s
+        }
+    }
+}
+
+/// A stress objective as a design's setup holds it: the measure and the
+/// bodies with a field (distinct kernels and ratios: twin bodies count
+/// once).
+#[derive(Debug, Clone)]
+pub(crate) struct StressObjective {
+    objective: Objective,
+    fields: Vec<(StressKernel, f64)>,
+}
+
+impl StressObjective {
+    /// The stress objective over `bodies`, or `None` for the pressure
+    /// objective.
+    ///
+    /// # Errors
+    /// [`DesignError::Objective`] when no body has a field (rigid, beams,
+    /// Winkler foundations) or none is given.
+    pub(crate) fn new(objective: Objective, bodies: &[Body]) -> Result<Option<Self>, DesignError> {
+        if !objective.is_stress() {
+            return Ok(None);
+        }
+        let mut fields: Vec<(StressKernel, f64)> = Vec::new();
+        let mut why = Vec::new();
+        for body in bodies {
+            match kernel_of(body) {
+                Ok(f) if !fields.contains(&f) => fields.push(f),
+                Ok(_) => {}
+                Err(reason) => why.push(reason),
+            }
+        }
+        if fields.is_empty() {
+            let reason = if bodies.is_empty() {
+                "no body given to measure the stresses of (DesignOptions::bodies)".to_string()
+            } else {
+                format!(
+                    "no body has a stress field below its surface ({}); use objective = \"pressure\"",
+                    why.join("; ")
+                )
+            };
+            return Err(DesignError::Objective {
+                objective: objective.name(),
+                reason,
+            });
+        }
+        Ok(Some(Self { objective, fields }))
+    }
+
+    /// The criterion with each case's depths fixed from its solution at the
+    /// start: [`DEPTHS`] depths down to [`DEPTH_SPAN`] of its contact
+    /// half-width (a cell or more deep for the point-force kernel).
+    pub(crate) fn at(&self, cases: &[Case<'_>], solutions: &[ContactSolution]) -> StressCriterion {
+        let depths = cases
+            .iter()
+            .zip(solutions)
+            .map(|(case, solution)| {
+                let points = case.problem.points();
+                let cell = points.cell();
+                let size = match points.dimension() {
+                    Dimension::Line => cell.dx,
+                    Dimension::Surface => cell.dx.max(cell.dy),
+                };
+                let half = half_width(points, solution).max(size);
+                let point = self.fields.iter().any(|f| f.0 == StressKernel::PointForce);
+                let shallowest = if point { size } else { 0.0 };
+                (1..=DEPTHS)
+                    .map(|j| {
+                        shallowest + (DEPTH_SPAN * half - shallowest) * j as f64 / DEPTHS as f64
+                    })
+                    .collect()
+            })
+            .collect();
+        StressCriterion {
+            objective: self.objective,
+            fields: self.fields.clone(),
+            depths,
+        }
+    }
+}
+
+/// How the descent measures a case: its weighted intensity
+/// ([`Case::merit`]) or a stress below the surface.
+#[derive(Debug, Clone)]
+pub(crate) enum Criterion {
+    /// The worst weighted intensity.
+    Pressure,
+    /// The worst stress.
+    Stress(StressCriterion),
+}
+
+impl Criterion {
+    /// Case l's merit under the criterion.
+    pub(crate) fn merit(
+        &self,
+        l: usize,
+        case: &Case<'_>,
+        solution: &ContactSolution,
+    ) -> Result<f64, DesignError> {
+        match self {
+            Criterion::Pressure => Ok(case.merit(solution)),
+            Criterion::Stress(c) => c.merit(l, case, solution),
+        }
+    }
+}
+
+/// A stress objective with each case's depths fixed (see the module
+/// documentation).
+#[derive(Debug, Clone)]
+pub(crate) struct StressCriterion {
+    objective: Objective,
+    fields: Vec<(StressKernel, f64)>,
+    /// Each case's depths.
+    depths: Vec<Vec<f64>>,
+}
+
+/// A point of a case's field: its field, column (a point of the grid) and
+/// depth.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Node {
+    field: usize,
+    column: usize,
+    z: f64,
+}
+
+/// A case's field swept: its largest stress measure and the candidate
+/// points of its model rows.
+struct Sweep {
+    largest: f64,
+    candidates: Vec<Node>,
+}
+
+impl StressCriterion {
+    /// The objective it measures.
+    pub(crate) fn objective(&self) -> Objective {
+        self.objective
+    }
+
+    /// The largest stress measure of case l's fields (stress), over its
+    /// grid of points and depths.
+    pub(crate) fn largest(
+        &self,
+        l: usize,
+        case: &Case<'_>,
+        solution: &ContactSolution,
+    ) -> Result<f64, DesignError> {
+        Ok(self.sweep(l, case, solution)?.largest)
+    }
+
+    /// Case l's merit: its largest stress over r_l, or a kept-clear edge's
+    /// weighted intensity over r_l if larger.
+    pub(crate) fn merit(
+        &self,
+        l: usize,
+        case: &Case<'_>,
+        solution: &ContactSolution,
+    ) -> Result<f64, DesignError> {
+        Ok((self.largest(l, case, solution)? / case.reference).max(edge_merit(case, solution)))
+    }
+
+    /// Every grid point at every depth of case l, each field: the largest
+    /// measure, and per axial station its largest point with the points
+    /// above and below it (those at least [`CANDIDATE_SHARE`] of the
+    /// largest).
+    fn sweep(
+        &self,
+        l: usize,
+        case: &Case<'_>,
+        solution: &ContactSolution,
+    ) -> Result<Sweep, DesignError> {
+        let points = case.problem.points();
+        let depths = &self.depths[l];
+        let stations = case.station.iter().max().map_or(0, |s| s + 1);
+        let mut best: Vec<(f64, Node, usize)> = Vec::new();
+        let mut largest = 0.0f64;
+        for (f, &(kernel, nu)) in self.fields.iter().enumerate() {
+            let mut station_best = vec![(f64::NEG_INFINITY, 0usize, 0usize); stations];
+            for (j, layer) in layers(points, solution, (kernel, nu), depths, self.objective)?
+                .into_iter()
+                .enumerate()
+            {
+                for (k, s) in layer.iter().enumerate() {
+                    let v = self.objective.measure(s);
+                    largest = largest.max(v);
+                    let b = &mut station_best[case.station[k]];
+                    if v > b.0 {
+                        *b = (v, k, j);
+                    }
+                }
+            }
+            best.extend(station_best.into_iter().filter(|b| b.0.is_finite()).map(
+                |(v, column, j)| {
+                    (
+                        v,
+                        Node {
+                            field: f,
+                            column,
+                            z: depths[j],
+                        },
+                        j,
+                    )
+                },
+            ));
+        }
+        let mut candidates = Vec::new();
+        for (v, node, j) in best {
+            if v < CANDIDATE_SHARE * largest {
+                continue;
+            }
+            for jj in j.saturating_sub(1)..(j + 2).min(depths.len()) {
+                candidates.push(Node {
+                    z: depths[jj],
+                    ..node
+                });
+            }
+        }
+        Ok(Sweep {
+            largest,
+            candidates,
+        })
+    }
+
+    /// Case l's model rows: each candidate's linearized measure over r_l
+    /// (`x` the derivative of the forces of its contact set,
+    /// `solution.contact`, with respect to the parameters), and the
+    /// kept-clear edges' pressure rows.
+    pub(crate) fn rows(
+        &self,
+        l: usize,
+        case: &Case<'_>,
+        solution: &ContactSolution,
+        x: MatRef<'_, f64>,
+    ) -> Result<Vec<Constraint>, DesignError> {
+        let contact = &solution.contact;
+        let m = x.ncols();
+        let sweep = self.sweep(l, case, solution)?;
+        let (values, gradients) = self.linearized(case, solution, &sweep.candidates);
+        let rows = &gradients * x;
+        let r = case.reference;
+        let mut out: Vec<Constraint> = (0..sweep.candidates.len())
+            .map(|q| Constraint {
+                a: (0..m).map(|i| rows[(q, i)] / r).collect(),
+                t_coefficient: -1.0,
+                b: -values[q] / r,
+            })
+            .collect();
+        for (a, &k) in contact.iter().enumerate() {
+            if case.weights[k] == 1.0 {
+                continue;
+            }
+            let scale = r * case.measures[k] / case.weights[k];
+            out.push(Constraint {
+                a: (0..m).map(|i| x[(a, i)] / scale).collect(),
+                t_coefficient: -1.0,
+                b: -solution.forces[k] / scale,
+            });
+        }
+        Ok(out)
+    }
+
+    /// Each candidate's measure and its gradient with respect to the
+    /// forces of the contact set: `g_q^T T_qk / A_k` (|candidates| x |J|).
+    fn linearized(
+        &self,
+        case: &Case<'_>,
+        solution: &ContactSolution,
+        candidates: &[Node],
+    ) -> (Vec<f64>, Mat<f64>) {
+        let points = case.problem.points();
+        let contact = &solution.contact;
+        let mut values = Vec::with_capacity(candidates.len());
+        let mut gradients = Mat::zeros(candidates.len(), contact.len());
+        for (q, node) in candidates.iter().enumerate() {
+            let (kernel, nu) = self.fields[node.field];
+            let (xq, yq) = (points.x(node.column), points.y(node.column));
+            let units: Vec<Stress> = contact
+                .iter()
+                .map(|&k| {
+                    unit(
+                        kernel,
+                        points,
+                        (xq - points.x(k), yq - points.y(k), node.z),
+                        nu,
+                    )
+                })
+                .collect();
+            let mut sigma = Stress::default();
+            for (u, &k) in units.iter().zip(contact) {
+                sigma.add_scaled(solution.forces[k] / case.measures[k], u);
+            }
+            let g = self.objective.gradient(&sigma);
+            values.push(self.objective.measure(&sigma));
+            for (a, (u, &k)) in units.iter().zip(contact).enumerate() {
+                let c = components(u);
+                let dot: f64 = g.iter().zip(&c).map(|(g, c)| g * c).sum();
+                gradients[(q, a)] = dot / case.measures[k];
+            }
+        }
+        (values, gradients)
+    }
+}
+
+/// The worst weighted intensity over r_l of a case's kept-clear edge
+/// points (0 when none is kept clear).
+fn edge_merit(case: &Case<'_>, solution: &ContactSolution) -> f64 {
+    solution
+        .forces
+        .iter()
+        .zip(&case.measures)
+        .zip(&case.weights)
+        .filter(|(_, w)| **w != 1.0)
+        .map(|((f, a), w)| w * f / a)
+        .fold(0.0f64, f64::max)
+        / case.reference
+}
+
+/// The field's stresses at every point of the grid at each depth: by FFT
+/// on a lattice, by direct sums over the points in contact elsewhere.
+fn layers(
+    points: &PointSet,
+    solution: &ContactSolution,
+    (kernel, nu): (StressKernel, f64),
+    depths: &[f64],
+    objective: Objective,
+) -> Result<Vec<Vec<Stress>>, DesignError> {
+    let layer_error = |e: elcon_influence::InfluenceError| DesignError::Objective {
+        objective: objective.name(),
+        reason: format!("the stress layers failed: {e}"),
+    };
+    if points.lattice().is_some() {
+        let layers =
+            StressLayers::new(points, &solution.pressures, kernel, nu).map_err(layer_error)?;
+        return depths
+            .iter()
+            .map(|&z| layers.layer(z).map_err(layer_error))
+            .collect();
+    }
+    Ok(depths
+        .iter()
+        .map(|&z| {
+            (0..points.len())
+                .map(|q| {
+                    let mut s = Stress::default();
+                    for &k in &solution.contact {
+                        let offset = (points.x(q) - points.x(k), points.y(q) - points.y(k), z);
+                        s.add_scaled(solution.pressures[k], &unit(kernel, points, offset, nu));
+                    }
+                    s
+                })
+                .collect()
+        })
+        .collect())
+}
+
+/// The contact's half-width across its narrower direction: half the span
+/// of the points in contact along x or y (the smaller; x on a line), their
+/// cells included (as `elcon_analysis::subsurface::StressField::half_width`).
+fn half_width(points: &PointSet, solution: &ContactSolution) -> f64 {
+    let cell = points.cell();
+    let span = |of: &dyn Fn(usize) -> f64, size: f64| {
+        let (lo, hi) = solution
+            .contact
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &k| {
+                (lo.min(of(k)), hi.max(of(k)))
+            });
+        if lo <= hi {
+            0.5 * (hi - lo + size)
+        } else {
+            0.0
+        }
+    };
+    let along_x = span(&|k| points.x(k), cell.dx);
+    match points.dimension() {
+        Dimension::Line => along_x,
+        Dimension::Surface => along_x.min(span(&|k| points.y(k), cell.dy)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface};
+    use elcon_influence::{Material, PointSet};
+
+    use super::*;
+    use crate::basis::Basis;
+    use crate::descent::sensitivities;
+    use crate::evaluate::solve_corrected;
+    use crate::prepared::{axial_stations, prepare};
+    use crate::{Axis, Family};
+
+    /// The model rows of both stress measures against central differences
+    /// of the measures at the same points, the parameters of a quadratic
+    /// crown on a misaligned roller moved by a step too small to change its
+    /// contact set.
+    #[test]
+    fn the_gradient_rows_match_finite_differences() {
+        let steel = Body::uniform_patch(Material::new(210e3, 0.3).unwrap());
+        let points = PointSet::grid_rectangle(0.3, 5.0, 7, 16).unwrap();
+        let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
+        let loading = Loading::load(5e3).with_tilt_x(2e-4);
+        let problem = ContactProblem::builder(points, &steel, &steel, &geometry, loading)
+            .fold(false)
+            .build()
+            .unwrap();
+        let cases = std::slice::from_ref(&problem);
+        let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), Axis::Y);
+        let prepared = prepare(cases, index, &[2000.0], false).unwrap();
+        let case = &prepared[0];
+        let basis = Basis::new(Family::Quadratic, &stations, None).unwrap();
+        let crown: Vec<f64> = stations.iter().map(|s| 4e-3 * (s / 5.0).powi(2)).collect();
+        let theta = basis.fit(&crown);
+        let options = Options::default();
+        let solve = |theta: &[f64]| {
+            let drops = basis.drops(theta);
+            let drops = case.station.iter().map(|&st| drops[st]);
+            solve_corrected(
+                case.problem,
+                drops,
+                None,
+                Method::BlockPivoting,
+                &options,
+                "t",
+            )
+            .unwrap()
+        };
+        let (corrected, solution) = solve(&theta);
+        let x = sensitivities(case, &corrected, &solution, &basis, &options).unwrap();
+        for objective in [Objective::VonMises, Objective::MaxShear] {
+            let stress = StressObjective::new(objective, &[steel]).unwrap().unwrap();
+            let criterion = stress.at(&prepared, std::slice::from_ref(&solution));
+            let rows = criterion.rows(0, case, &solution, x.as_ref()).unwrap();
+            let sweep = criterion.sweep(0, case, &solution).unwrap();
+            assert!(!sweep.candidates.is_empty());
+            let largest = rows
+                .iter()
+                .map(|r| r.a.iter().fold(0.0f64, |a, v| a.max(v.abs())));
+            let largest = largest.fold(0.0f64, f64::max);
+            for i in 0..basis.params() {
+                let column = (0..basis.phi.nrows()).map(|st| basis.phi[(st, i)].abs());
+                let h = 1e-8 / column.fold(0.0f64, f64::max);
+                let at = |sign: f64| {
+                    let mut moved = theta.clone();
+                    moved[i] += sign * h;
+                    let (_, s) = solve(&moved);
+                    assert_eq!(
+                        s.contact, solution.contact,
+                        "the step changed the contact set"
+                    );
+                    criterion.linearized(case, &s, &sweep.candidates).0
+                };
+                let (up, down) = (at(1.0), at(-1.0));
+                for (q, row) in rows.iter().take(sweep.candidates.len()).enumerate() {
+                    let fd = (up[q] - down[q]) / (2.0 * h) / case.reference;
+                    let error = (fd - row.a[i]).abs();
+                    assert!(
+                        error <= 1e-5 * largest,
+                        "{objective:?} q {q} i {i}: {fd} {}",
+                        row.a[i]
+                    );
+                }
+            }
+        }
+    }
+}
