@@ -17,7 +17,7 @@
 //!   error over it, relative to p0).
 //!
 //! Seconds are the field's (both maxima searches, section and profile),
-//! beside the contact solve's, on one core.
+//! beside the contact solve's, on the pool's threads (all cores).
 //!
 //! Run: `cargo run --release --example subsurface_validation`
 
