@@ -64,8 +64,10 @@ use faer::{Col, Mat};
 use crate::DesignError;
 use crate::DesignOptions;
 use crate::basis::Basis;
+use crate::constraint::Constraint;
 use crate::evaluate::solve_corrected;
-use crate::prepared::{Case, Found, Solver, Stop};
+use crate::found::Found;
+use crate::prepared::{Case, Solver, Stop};
 use crate::subsurface::{Criterion, StressObjective};
 
 /// Stationarity: the model's predicted decrease below this fraction of the
@@ -89,42 +91,6 @@ const EXPAND: f64 = 0.75;
 /// cases' elastic deflection: the drops change by less than the rounding
 /// of the separations they are added to.
 const RESOLUTION: f64 = 1e-13;
-
-/// One linear constraint of a step, `a . d + t_coefficient t <= b`.
-pub(crate) struct Constraint {
-    pub(crate) a: Vec<f64>,
-    /// -1 for a model row (an intensity below t), 0 for a bound.
-    pub(crate) t_coefficient: f64,
-    pub(crate) b: f64,
-}
-
-impl Constraint {
-    /// Its largest value of `a . d - b` over the trust region at t = 0
-    /// (model rows) or at all (bounds).
-    fn reach(&self, radius: f64) -> f64 {
-        self.a.iter().map(|v| v.abs()).sum::<f64>() * radius - self.b
-    }
-
-    /// The size of its terms at `(d, t)`: `sum |a_i d_i| + |b| + |t_coefficient t|`
-    /// (at least the smallest positive double).
-    fn size(&self, d: &[f64], t: f64) -> f64 {
-        let size: f64 = self
-            .a
-            .iter()
-            .zip(d)
-            .map(|(a, d)| (a * d).abs())
-            .sum::<f64>()
-            + self.b.abs()
-            + (self.t_coefficient * t).abs();
-        size.max(f64::MIN_POSITIVE)
-    }
-
-    /// How far `(d, t)` violates it, relative to its terms' size.
-    fn violation(&self, d: &[f64], t: f64) -> f64 {
-        let ad: f64 = self.a.iter().zip(d).map(|(a, d)| a * d).sum();
-        (ad + self.t_coefficient * t - self.b) / self.size(d, t)
-    }
-}
 
 /// Every case analysed at one theta.
 struct Iterate {

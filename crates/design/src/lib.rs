@@ -55,11 +55,13 @@
 //! ```
 
 mod basis;
+mod constraint;
 pub mod crown;
 mod descent;
 mod error;
 pub mod estimate;
 pub mod evaluate;
+mod found;
 mod lpcc;
 pub mod optimize;
 pub mod options;

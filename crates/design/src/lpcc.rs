@@ -29,7 +29,8 @@ use faer::{Col, Mat};
 
 use crate::DesignError;
 use crate::basis::Basis;
-use crate::prepared::{Case, Found, Solver};
+use crate::found::Found;
+use crate::prepared::{Case, Solver};
 
 /// Variables of the design program.
 struct Layout {

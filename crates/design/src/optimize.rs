@@ -30,8 +30,9 @@ use elcon_influence::Dimension;
 
 use crate::basis::Basis;
 use crate::evaluate::{Analysis, Evaluation, evaluate};
+use crate::found::Found;
 use crate::prepared::{
-    Case, Found, Solver, axial_stations, deflection_scale, prepare, reference_intensities,
+    Case, Solver, axial_stations, deflection_scale, prepare, reference_intensities,
 };
 use crate::subsurface::{Criterion, StressObjective};
 use crate::target::uniform_target;

@@ -39,7 +39,7 @@ use elcon_influence::{
 use faer::{Mat, MatRef, Side};
 
 use crate::DesignError;
-use crate::descent::Constraint;
+use crate::constraint::Constraint;
 use crate::prepared::Case;
 
 /// Depths of each case's fixed grid of depths.

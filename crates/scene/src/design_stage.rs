@@ -11,8 +11,7 @@ use elcon_design::{Analysis, Evaluation, Profile, axial_stations, evaluate};
 use serde::Serialize;
 
 use crate::error::SceneError;
-use crate::run::run_error;
-use crate::scene::{DesignSpec, MethodChoice, RelativeTo, Scene};
+use crate::scene::{DesignSpec, MethodChoice, RelativeTo, Scene, run_error};
 use crate::subsurface::{BodySubsurfaceJson, subsurface_of};
 
 /// One load case of a design, before and after: gathered from the

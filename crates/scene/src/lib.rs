@@ -42,6 +42,7 @@ mod tables;
 
 pub use batch::{Batch, BatchRun, MAX_RUNS, MAX_SLUG, is_batch_text, thousands};
 pub use batch_run::{BatchDone, BatchOptions, Progress, run_batch};
+pub use compare::{Errors, ReferenceJson, XY};
 pub use ctx::{MAX_INPUT_BYTES, read_text};
 pub use design_stage::{DesignCaseJson, DesignGridJson, DesignJson, DesignRun};
 pub use elcon_analysis::{AUTO_DENSE_LIMIT, Storage};
@@ -57,9 +58,7 @@ pub use memory::{
 pub use output::{Staging, write_atomic, write_run, write_run_files};
 pub use plot::error_time;
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
-pub use run::{
-    Errors, ReferenceJson, Run, RunResult, Seconds, SolutionJson, SymmetryJson, XY, run,
-};
+pub use run::{Run, RunResult, Seconds, SolutionJson, SymmetryJson, run};
 pub use sanity::{
     MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MAX_ROTATION,
     MIN_POINTS_ACROSS, max_pivots_bound,

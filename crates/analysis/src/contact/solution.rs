@@ -9,7 +9,6 @@ use elcon_influence::Dimension;
 use elcon_lcp::{Certificate, Statistics};
 
 use super::problem::ContactProblem;
-use super::solve::Engine;
 use crate::rigid::RigidMode;
 
 /// A warning about a solution that is certified but may not mean what it seems.
@@ -277,4 +276,19 @@ impl ContactProblem {
             warnings,
         }
     }
+}
+
+/// The engine's answer at every point, before the solution's reading.
+pub(super) struct Engine {
+    pub(super) forces: Vec<f64>,
+    pub(super) gaps: Vec<f64>,
+    /// The engine's w at every point (the gap, or for a folded problem the
+    /// gap over its orbit's s_a): the scaling the certificate's `w_scale`
+    /// measures. `None` when unfolded: then it is `gaps`.
+    pub(super) slack: Option<Vec<f64>>,
+    /// The free rigid motions, in the order of `Rigid::free`.
+    pub(super) lambda: Vec<f64>,
+    pub(super) certificate: Certificate,
+    pub(super) statistics: Statistics,
+    pub(super) solve_seconds: f64,
 }

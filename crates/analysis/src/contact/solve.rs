@@ -9,11 +9,11 @@
 
 use std::time::Instant;
 
-use elcon_lcp::{Certificate, Method, Options, Statistics};
+use elcon_lcp::{Method, Options};
 use faer::{Col, ColRef, Mat};
 
 use super::problem::ContactProblem;
-use super::solution::ContactSolution;
+use super::solution::{ContactSolution, Engine};
 use crate::AnalysisError;
 use crate::rigid::point;
 
@@ -143,19 +143,4 @@ impl ContactProblem {
 /// A column's values as a vector (the column is freed).
 fn into_vec(col: Col<f64>) -> Vec<f64> {
     col.iter().copied().collect()
-}
-
-/// The engine's answer at every point, before the solution's reading.
-pub(super) struct Engine {
-    pub(super) forces: Vec<f64>,
-    pub(super) gaps: Vec<f64>,
-    /// The engine's w at every point (the gap, or for a folded problem the
-    /// gap over its orbit's s_a): the scaling the certificate's `w_scale`
-    /// measures. `None` when unfolded: then it is `gaps`.
-    pub(super) slack: Option<Vec<f64>>,
-    /// The free rigid motions, in the order of `Rigid::free`.
-    pub(super) lambda: Vec<f64>,
-    pub(super) certificate: Certificate,
-    pub(super) statistics: Statistics,
-    pub(super) solve_seconds: f64,
 }

@@ -17,7 +17,7 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
 use super::gather::GatherOrder;
-use super::grid::{C64, COLUMN_BATCH, Grid, try_vec};
+use super::grid::{C64, COLUMN_BATCH, Grid, try_vec, wave_len};
 use super::spectrum::kernel_spectrum;
 use crate::error::InfluenceError;
 use crate::points::{LatticeBox, PointSet};
@@ -112,13 +112,6 @@ impl LatticeWorkspace {
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Self>() + 16 * (self.spectra.capacity() + self.columns.capacity())
     }
-}
-
-/// Columns of a wave on `grid`: [`COLUMN_BATCH`] per thread of the
-/// current rayon pool, at most a band's.
-pub(super) fn wave_len(grid: &Grid) -> usize {
-    let threads = rayon::current_num_threads().max(1);
-    (COLUMN_BATCH * threads).min(grid.band_width())
 }
 
 impl Convolution {

@@ -84,9 +84,9 @@ impl Grid {
 
     /// Bytes of a workspace made in the current rayon pool: a band of the
     /// row spectra and the wave of columns
-    /// ([`wave_len`](super::convolution::wave_len) of them).
+    /// ([`wave_len`] of them).
     fn workspace_bytes(&self) -> usize {
-        let wave = super::convolution::wave_len(self);
+        let wave = wave_len(self);
         16 * (self.rows * self.band_width() + wave * self.padded_rows)
     }
 
@@ -130,4 +130,11 @@ pub(super) fn try_vec<T: Clone>(
         })?;
     v.resize(len, value);
     Ok(v)
+}
+
+/// Columns of a wave on `grid`: [`COLUMN_BATCH`] per thread of the
+/// current rayon pool, at most a band's.
+pub(super) fn wave_len(grid: &Grid) -> usize {
+    let threads = rayon::current_num_threads().max(1);
+    (COLUMN_BATCH * threads).min(grid.band_width())
 }

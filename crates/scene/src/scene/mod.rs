@@ -738,3 +738,12 @@ fn check_zone(
     }
     Ok(())
 }
+
+/// A failure of the run of `scene` (its assembly, solve or design stage),
+/// named by the scene.
+pub(crate) fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError {
+    SceneError::Run {
+        scene: scene.name().to_string(),
+        reason: e.to_string(),
+    }
+}
