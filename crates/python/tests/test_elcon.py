@@ -632,3 +632,24 @@ def test_ctrl_c_ends_a_long_solve_with_keyboard_interrupt():
         timer.cancel()
     # Nothing is left running: the next run is answered as usual.
     assert elcon.run(SCENES / "example1-spheres.toml").load > 0
+
+
+def test_a_design_for_the_von_mises_stress_over_a_scene_and_refused_over_problems():
+    import tomllib
+
+    scene = tomllib.loads((SCENES / "example1-spheres.toml").read_text())
+    scene["points"] = {"grid": "disk", "spacing": 0.002, "radius": 0.02}
+    scene["solver"] = {"symmetry": "none"}
+    scene.pop("outputs", None)
+    d = elcon.design(scene, family="quadratic", refine=False, objective="von-mises")
+    assert d.minimized == "von-mises" and d.method == "descent"
+    assert d.worst_stress > 0 and d.certificates_hold
+    # Problems from arrays carry no body to take a field from: the design
+    # crate's refusal, naming the key.
+    steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
+    i = np.arange(-10, 11) * 0.002
+    x, y = [v.ravel() for v in np.meshgrid(i, i, indexing="ij")]
+    problem = elcon.ContactProblem(x, (x**2 + y**2) / 2.0, 0.002, y=y, body1=steel,
+                                   body2=steel, load=100.0)
+    with pytest.raises(elcon.ElconError, match="objective"):
+        elcon.design([problem], axis="y", objective="von-mises")

@@ -442,7 +442,9 @@ def design(
     result.json design block. Every key of a scene's ``[design]`` applies
     (``family``, ``degree``, ``axis``, ``loads``, ``relative_to``,
     ``max_constant``, ``radius_range``, ``flat_length``, ``design_load``,
-    ``method``, ``end``, ``misalignments``).
+    ``method``, ``end``, ``misalignments``, ``objective``: ``"pressure"``,
+    ``"von-mises"`` or ``"max-shear"``, the worst stress below the surface
+    of the scene's elastic bodies).
 
     Over problems (a list of ``ContactProblem``, each a load case under a
     load): the family's keys (``family``, default ``"quadratic"``;
