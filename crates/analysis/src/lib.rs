@@ -62,6 +62,7 @@ mod influence;
 pub mod loading;
 pub mod references;
 pub mod rigid;
+pub mod rotation;
 mod storage;
 pub mod subsurface;
 

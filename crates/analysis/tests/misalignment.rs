@@ -324,3 +324,62 @@ fn a_misaligned_cylinder_loads_one_end() {
         .sum();
     assert!((tilted.moment_x - moment).abs() <= 1e-12 * load * length);
 }
+
+/// Example 1's Hertz radius (in).
+fn example1_radius() -> f64 {
+    let steel = Material::new(30e6, 0.3).unwrap();
+    HertzSpheres::new(combined_modulus(&steel, &steel), 1.0 / 1.1, 100.0)
+        .unwrap()
+        .contact_radius()
+}
+
+/// Example 1's spheres on a disk of 1.3 Hertz radii under `loading`,
+/// solved by block pivoting.
+fn spheres_under(loading: Loading) -> elcon_analysis::ContactSolution {
+    let steel = Material::new(30e6, 0.3).unwrap();
+    let a = example1_radius();
+    let points = PointSet::grid_disk(a / 10.0, 1.3 * a).unwrap();
+    let body = Body::uniform_patch(steel);
+    let geometry = Geometry::Surfaces(
+        Surface::Sphere { radius: 1.0 },
+        Surface::Sphere { radius: 10.0 },
+    );
+    ContactProblem::builder(points, &body, &body, &geometry, loading)
+        .build()
+        .unwrap()
+        .solve(Method::BlockPivoting, &Options::default())
+        .unwrap()
+}
+
+#[test]
+fn a_moment_that_pushes_the_contact_to_the_zones_edge_is_outside_the_small_rotation_theory() {
+    use elcon_analysis::rotation::{RotationRefusal, small_rotation};
+    // No moment, and a small one (load centre 0.1 a off the apex): within.
+    let plain = Loading::load(100.0);
+    assert_eq!(small_rotation(&plain, &spheres_under(plain)), Ok(()));
+    let a = example1_radius();
+    let small = Loading::load(100.0).with_moment_x(0.1 * a * 100.0);
+    assert_eq!(small_rotation(&small, &spheres_under(small)), Ok(()));
+    // The load centre at 0.9 a, inside the zone (1.3 a), the contact
+    // pushed to its edge: refused, and the message says what to change.
+    let large = Loading::load(100.0).with_moment_x(0.9 * a * 100.0);
+    let refused = small_rotation(&large, &spheres_under(large)).unwrap_err();
+    assert!(
+        matches!(
+            refused,
+            RotationRefusal::AtEdge { .. } | RotationRefusal::Beyond { .. }
+        ),
+        "{refused:?}"
+    );
+    assert!(
+        refused
+            .to_string()
+            .contains("give a smaller moment, or a larger zone")
+    );
+    let beyond = RotationRefusal::Beyond { rotation: 3.47 };
+    assert!(
+        beyond
+            .to_string()
+            .contains("beyond the small-rotation theory's 0.1 rad")
+    );
+}

@@ -354,6 +354,9 @@ impl PyContactProblem {
                 })
             })
         })??;
+        // The small-rotation theory's bounds, as a scene's run applies them.
+        elcon_analysis::rotation::small_rotation(&problem.loading(), &solution)
+            .map_err(|why| SolveError::new_err(format!("ContactProblem.solve: {why}")))?;
         let json = ProblemJson::of(problem, &solution, m);
         let text = serde_json::to_string(&json)
             .map_err(|e| SolveError::new_err(format!("the solution's fields: {e}")))?;

@@ -653,3 +653,25 @@ def test_a_design_for_the_von_mises_stress_over_a_scene_and_refused_over_problem
                                    body2=steel, load=100.0)
     with pytest.raises(elcon.ElconError, match="objective"):
         elcon.design([problem], axis="y", objective="von-mises")
+
+
+def test_a_contact_problem_under_a_moment_keeps_to_the_small_rotation_theory():
+    # Example 1's spheres from arrays on a disk of 1.3 Hertz radii: the load
+    # centre at 0.1 a runs; at 0.9 a the contact leans on the zone's edge
+    # and the answer is refused, as a scene's run refuses it.
+    steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
+    radius = 1.0 * 10.0 / 11.0
+    a = (3 * 100.0 * radius / (4 * 30e6 / (2 * (1 - 0.3**2)))) ** (1 / 3)   # Hertz
+    h = a / 10
+    i = np.arange(-13, 14)
+    x, y = [v.ravel() * h for v in np.meshgrid(i, i, indexing="ij")]
+    keep = np.hypot(x, y) <= 1.3 * a + 1e-12
+    x, y = x[keep], y[keep]
+    separation = (x**2 + y**2) / (2 * radius)
+
+    def solved(moment):
+        return elcon.ContactProblem(x, separation, h, y=y, body1=steel, body2=steel,
+                                    load=100.0, moment_x=moment).solve()
+    assert solved(0.1 * a * 100.0).certificate["holds"]
+    with pytest.raises(elcon.SolveError, match="smaller moment, or a larger zone"):
+        solved(0.9 * a * 100.0)

@@ -9,17 +9,14 @@
 
 use std::time::Instant;
 
-use elcon_analysis::loading::Tilt;
-use elcon_analysis::{ContactProblem, ContactSolution, Warning};
+use elcon_analysis::{ContactProblem, ContactSolution};
 use elcon_influence::Dimension;
 use serde::Serialize;
 
 use crate::compare::{ReferenceJson, XY, compare};
-use crate::ctx::Num;
 use crate::design_stage::{DesignJson, DesignRun, design_stage};
 use crate::error::SceneError;
 use crate::error_estimate::{DiscretizationJson, discretization};
-use crate::sanity::MAX_ROTATION;
 use crate::scene::{Scene, Units, run_error};
 use crate::subsurface::{SubsurfaceJson, subsurface};
 
@@ -192,44 +189,12 @@ pub struct Run {
 }
 
 /// Refuses the answer of a moment-loaded scene whose solved rotation lies
-/// outside the small-rotation theory the model rests on: beyond
-/// [`MAX_ROTATION`], or with the contact pushed against the candidate
-/// zone's edge (the zone's edge, not the bodies, then balances the moment,
-/// and the rotation grows without bound as the load centre nears it).
+/// outside the small-rotation theory the model rests on
+/// (`elcon_analysis::rotation::small_rotation`: beyond its
+/// `MAX_ROTATION`, or the contact pushed against the zone's edge).
 fn small_rotation(scene: &Scene, solution: &ContactSolution) -> Result<(), SceneError> {
-    let loading = scene.loading();
-    let moment = |t: Tilt| matches!(t, Tilt::Free { moment } if moment != 0.0);
-    if !moment(loading.tilt_x) && !moment(loading.tilt_y) {
-        return Ok(());
-    }
-    let rotation = solution.tilt_x.abs().max(solution.tilt_y.abs());
-    let at_edge = solution
-        .warnings
-        .iter()
-        .any(|w| matches!(w, Warning::ContactAtEdge { .. }));
-    let why = if !(rotation <= MAX_ROTATION) {
-        format!(
-            "the moment turns the body by {} rad, beyond the small-rotation theory's \
-             {MAX_ROTATION} rad (the rigid rotation is linearized)",
-            Num(rotation)
-        )
-    } else if at_edge {
-        format!(
-            "the moment pushes the contact against the candidate zone's edge (a rotation of \
-             {} rad): the zone's edge, not the bodies, balances it, and the answer depends on \
-             where the zone ends",
-            Num(rotation)
-        )
-    } else {
-        return Ok(());
-    };
-    Err(run_error(
-        scene,
-        format!(
-            "{why}. The load centre (the moment over the load) must lie well inside the \
-             contact: give a smaller moment, or a larger zone (points.zone or points.radius)"
-        ),
-    ))
+    elcon_analysis::rotation::small_rotation(&scene.loading(), solution)
+        .map_err(|why| run_error(scene, format!("{why} (points.zone or points.radius)")))
 }
 
 /// Runs a validated scene.

@@ -37,8 +37,9 @@ pub const MAX_DEGREE: usize = 12;
 /// The largest rotation of a body (rad), prescribed (`loading.tilt_x`,
 /// `tilt_y`) or solved under a moment: the rigid rotation is linearized
 /// (`theta x`), which holds to 0.5 % of the angle up to 0.1 rad, as for a
-/// design's misalignments.
-pub const MAX_ROTATION: f64 = 0.1;
+/// design's misalignments (elcon-analysis's, which refuses the solved
+/// rotation beyond it).
+pub use elcon_analysis::rotation::MAX_ROTATION;
 
 /// A grid with fewer points than this across the Hertz contact (or the
 /// candidate disk) gets a warning.
