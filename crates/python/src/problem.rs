@@ -354,9 +354,16 @@ impl PyContactProblem {
                 })
             })
         })??;
-        // The small-rotation theory's bounds, as a scene's run applies them.
-        elcon_analysis::rotation::small_rotation(&problem.loading(), &solution)
-            .map_err(|why| SolveError::new_err(format!("ContactProblem.solve: {why}")))?;
+        // The small-rotation theory's bound on the solved rotation, as a
+        // scene's run applies it. A contact reaching the points' edge stays
+        // the warning the result carries: points from arrays (a foundation
+        // loaded whole, an influence matrix given) may end where the body
+        // ends, which a scene declares and arrays cannot.
+        if let Err(why @ elcon_analysis::rotation::RotationRefusal::Beyond { .. }) =
+            elcon_analysis::rotation::small_rotation(&problem.loading(), &solution)
+        {
+            return Err(SolveError::new_err(format!("ContactProblem.solve: {why}")));
+        }
         let json = ProblemJson::of(problem, &solution, m);
         let text = serde_json::to_string(&json)
             .map_err(|e| SolveError::new_err(format!("the solution's fields: {e}")))?;

@@ -657,8 +657,9 @@ def test_a_design_for_the_von_mises_stress_over_a_scene_and_refused_over_problem
 
 def test_a_contact_problem_under_a_moment_keeps_to_the_small_rotation_theory():
     # Example 1's spheres from arrays on a disk of 1.3 Hertz radii: the load
-    # centre at 0.1 a runs; at 0.9 a the contact leans on the zone's edge
-    # and the answer is refused, as a scene's run refuses it.
+    # centre at 0.1 a runs; at 0.9 a the contact leans on the points' edge,
+    # which the result's warnings say (arrays cannot declare where the body
+    # ends); a moment that turns the body past 0.1 rad is refused.
     steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
     radius = 1.0 * 10.0 / 11.0
     a = (3 * 100.0 * radius / (4 * 30e6 / (2 * (1 - 0.3**2)))) ** (1 / 3)   # Hertz
@@ -669,9 +670,18 @@ def test_a_contact_problem_under_a_moment_keeps_to_the_small_rotation_theory():
     x, y = x[keep], y[keep]
     separation = (x**2 + y**2) / (2 * radius)
 
-    def solved(moment):
+    def solved(moment, load=100.0):
         return elcon.ContactProblem(x, separation, h, y=y, body1=steel, body2=steel,
-                                    load=100.0, moment_x=moment).solve()
+                                    load=load, moment_x=moment).solve()
+
     assert solved(0.1 * a * 100.0).certificate["holds"]
-    with pytest.raises(elcon.SolveError, match="smaller moment, or a larger zone"):
-        solved(0.9 * a * 100.0)
+    leaning = solved(0.9 * a * 100.0)
+    assert any("edge" in w for w in leaning.warnings), leaning.warnings
+    # Rigid bodies on a soft diagonal influence: a moment tips the flat
+    # line by more than 0.1 rad, beyond the linearized rotation.
+    n, h1 = 20, 0.05
+    xs = (np.arange(n) - 0.5 * (n - 1)) * h1
+    soft = np.eye(n) * 10.0
+    with pytest.raises(elcon.SolveError, match="beyond the small-rotation theory"):
+        elcon.ContactProblem(xs, np.zeros(n), h1, influence=soft, load=1.0,
+                             moment_y=-0.4).solve()
