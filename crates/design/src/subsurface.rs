@@ -32,14 +32,12 @@
 //! stress rows, so the contact stays off them as in a pressure design.
 
 use elcon_analysis::ContactSolution;
-use elcon_influence::{
-    Body, Dimension, Model, PointSet, Stress, StressKernel, StressLayers, love_rectangle_stress,
-    point_force, strip_stress,
-};
-use faer::{Mat, MatRef, Side};
+use elcon_influence::{Body, Dimension, PointSet, Stress, StressKernel, StressLayers};
+use faer::{Mat, MatRef};
 
 use crate::DesignError;
 use crate::constraint::Constraint;
+use crate::objective::Objective;
 use crate::prepared::Case;
 
 /// Depths of each case's fixed grid of depths.
@@ -51,146 +49,9 @@ pub const DEPTH_SPAN: f64 = 2.0;
 /// region the model is good in.
 const CANDIDATE_SHARE: f64 = 0.5;
 
-/// What a design minimizes over its load cases.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[non_exhaustive]
-pub enum Objective {
-    /// The worst load intensity `max_k w_k F_k / (A_k r_l)` (the paper's).
-    #[default]
-    Pressure,
-    /// The worst von Mises stress below the surface over r_l.
-    VonMises,
-    /// The worst largest shear stress (Tresca: half the principal
-    /// stresses' spread) below the surface over r_l.
-    MaxShear,
-}
-
-impl Objective {
-    /// Every objective, in the order messages list them.
-    pub const ALL: [Objective; 3] = [
-        Objective::Pressure,
-        Objective::VonMises,
-        Objective::MaxShear,
-    ];
-
-    /// Its name in a scene's `design.objective`: "pressure", "von-mises",
-    /// "max-shear".
-    pub fn name(self) -> &'static str {
-        match self {
-            Objective::Pressure => "pressure",
-            Objective::VonMises => "von-mises",
-            Objective::MaxShear => "max-shear",
-        }
-    }
-
-    /// The objective of a name, if it is one.
-    pub fn of(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|o| o.name() == name)
-    }
-
-    /// Whether it is a stress below the surface (needs a body with a
-    /// field).
-    pub fn is_stress(self) -> bool {
-        self != Objective::Pressure
-    }
-
-    /// Its stress measure of a tensor (0 for the pressure objective).
-    pub fn measure(self, s: &Stress) -> f64 {
-        match self {
-            Objective::Pressure => 0.0,
-            Objective::VonMises => s.von_mises(),
-            Objective::MaxShear => s.tresca(),
-        }
-    }
-
-    /// `ds/dsigma` at `s`, in the order (xx, yy, zz, xy, xz, yz), each
-    /// shear counted for both of its tensor entries (so that
-    /// `g . dsigma` is the measure's first-order change).
-    pub fn gradient(self, s: &Stress) -> [f64; 6] {
-        match self {
-            Objective::Pressure => [0.0; 6],
-            Objective::VonMises => {
-                let vm = s.von_mises();
-                if vm <= 0.0 {
-                    return [0.0; 6];
-                }
-                let h = 0.5 / vm;
-                [
-                    h * (2.0 * s.xx - s.yy - s.zz),
-                    h * (2.0 * s.yy - s.zz - s.xx),
-                    h * (2.0 * s.zz - s.xx - s.yy),
-                    3.0 * s.xy / vm,
-                    3.0 * s.xz / vm,
-                    3.0 * s.yz / vm,
-                ]
-            }
-            Objective::MaxShear => tresca_gradient(s),
-        }
-    }
-}
-
-/// Tresca's gradient `(n1 n1^T - n3 n3^T) / 2` from the principal
-/// directions (faer's self-adjoint eigensolver; eigenvalues increasing).
-fn tresca_gradient(s: &Stress) -> [f64; 6] {
-    let a = Mat::from_fn(3, 3, |i, j| match (i.min(j), i.max(j)) {
-        (0, 0) => s.xx,
-        (1, 1) => s.yy,
-        (2, 2) => s.zz,
-        (0, 1) => s.xy,
-        (0, 2) => s.xz,
-        _ => s.yz,
-    });
-    let Ok(eigen) = a.self_adjoint_eigen(Side::Lower) else {
-        return [0.0; 6];
-    };
-    let u = eigen.U();
-    let (n3, n1) = (u.col(0), u.col(2));
-    let e = |i: usize, j: usize| 0.5 * (n1[i] * n1[j] - n3[i] * n3[j]);
-    [
-        e(0, 0),
-        e(1, 1),
-        e(2, 2),
-        2.0 * e(0, 1),
-        2.0 * e(0, 2),
-        2.0 * e(1, 2),
-    ]
-}
-
 /// The components of a stress in [`Objective::gradient`]'s order.
 fn components(s: &Stress) -> [f64; 6] {
     [s.xx, s.yy, s.zz, s.xy, s.xz, s.yz]
-}
-
-/// A body's stress influence coefficient and Poisson's ratio, or why it
-/// has no field.
-fn kernel_of(body: &Body) -> Result<(StressKernel, f64), &'static str> {
-    match body.model() {
-        Model::UniformPatch { material } => {
-            Ok((StressKernel::Rectangle, material.poissons_ratio()))
-        }
-        Model::PointForce { material } => Ok((StressKernel::PointForce, material.poissons_ratio())),
-        Model::PlaneStrainStrip { material, .. } => {
-            Ok((StressKernel::Strip, material.poissons_ratio()))
-        }
-        Model::Rigid => Err("a rigid body has no stresses"),
-        Model::Winkler { .. } => Err("a Winkler foundation is not a half-space: no field"),
-        _ => Err("a beam is not a half-space: its stresses are its bending's"),
-    }
-}
-
-/// The stress at depth z of a unit pressure on point k's cell, at a
-/// horizontal offset `(dx, dy)` from it.
-fn unit(kernel: StressKernel, points: &PointSet, (dx, dy, z): (f64, f64, f64), nu: f64) -> Stress {
-    let cell = points.cell();
-    match kernel {
-        StressKernel::Rectangle => love_rectangle_stress(dx, dy, z, cell.dx, cell.dy, nu),
-        StressKernel::Strip => strip_stress(dx, z, cell.dx, nu),
-        _ => {
-            let mut s = Stress::default();
-            s.add_scaled(cell.dx * cell.dy, &point_force(dx, dy, z, nu));
-            s
-        }
-    }
 }
 
 /// A stress objective as a design's setup holds it: the measure and the
@@ -216,7 +77,7 @@ impl StressObjective {
         let mut fields: Vec<(StressKernel, f64)> = Vec::new();
         let mut why = Vec::new();
         for body in bodies {
-            match kernel_of(body) {
+            match StressKernel::of(body) {
                 Ok(f) if !fields.contains(&f) => fields.push(f),
                 Ok(_) => {}
                 Err(reason) => why.push(reason),
@@ -468,10 +329,10 @@ impl StressCriterion {
             let units: Vec<Stress> = contact
                 .iter()
                 .map(|&k| {
-                    unit(
-                        kernel,
-                        points,
+                    let cell = points.cell();
+                    kernel.unit(
                         (xq - points.x(k), yq - points.y(k), node.z),
+                        (cell.dx, cell.dy),
                         nu,
                     )
                 })
@@ -527,6 +388,7 @@ fn layers(
             .map(|&z| layers.layer(z).map_err(layer_error))
             .collect();
     }
+    let cell = points.cell();
     Ok(depths
         .iter()
         .map(|&z| {
@@ -535,7 +397,8 @@ fn layers(
                     let mut s = Stress::default();
                     for &k in &solution.contact {
                         let offset = (points.x(q) - points.x(k), points.y(q) - points.y(k), z);
-                        s.add_scaled(solution.pressures[k], &unit(kernel, points, offset, nu));
+                        let unit = kernel.unit(offset, (cell.dx, cell.dy), nu);
+                        s.add_scaled(solution.pressures[k], &unit);
                     }
                     s
                 })

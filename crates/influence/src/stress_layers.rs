@@ -26,6 +26,7 @@ use std::sync::Arc;
 
 use crate::dimension::Dimension;
 use crate::error::InfluenceError;
+use crate::models::{Body, Model};
 use crate::points::PointSet;
 use crate::stress::{Stress, love_rectangle_stress, point_force, strip_stress};
 
@@ -40,6 +41,49 @@ pub enum StressKernel {
     PointForce,
     /// A uniform strip in plane strain (line).
     Strip,
+}
+
+impl StressKernel {
+    /// The kernel of a body's model and its Poisson's ratio, or why the
+    /// body has no field below its surface (a rigid body, a Winkler
+    /// foundation, a beam).
+    ///
+    /// # Errors
+    /// The reason, for a body that is not an elastic half-space.
+    pub fn of(body: &Body) -> Result<(StressKernel, f64), &'static str> {
+        match body.model() {
+            Model::UniformPatch { material } => {
+                Ok((StressKernel::Rectangle, material.poissons_ratio()))
+            }
+            Model::PointForce { material } => {
+                Ok((StressKernel::PointForce, material.poissons_ratio()))
+            }
+            Model::PlaneStrainStrip { material, .. } => {
+                Ok((StressKernel::Strip, material.poissons_ratio()))
+            }
+            Model::Rigid => Err("a rigid body has no stresses"),
+            Model::Winkler { .. } => {
+                Err("a Winkler foundation is not a half-space: no stresses below its surface")
+            }
+            _ => Err("a beam is not a half-space: its stresses are its bending's"),
+        }
+    }
+
+    /// The stress at `(x, y)` from a cell's centre and depth `z` > 0 of a
+    /// unit pressure on the cell of `dx` x `dy` (the point force of the
+    /// cell's area for [`StressKernel::PointForce`]; `dy` unused on a
+    /// line), Poisson's ratio `nu`.
+    pub fn unit(self, (x, y, z): (f64, f64, f64), (dx, dy): (f64, f64), nu: f64) -> Stress {
+        match self {
+            StressKernel::Rectangle => love_rectangle_stress(x, y, z, dx, dy, nu),
+            StressKernel::Strip => strip_stress(x, z, dx, nu),
+            StressKernel::PointForce => {
+                let mut s = Stress::default();
+                s.add_scaled(dx * dy, &point_force(x, y, z, nu));
+                s
+            }
+        }
+    }
 }
 
 /// The stress layers of one pressure field on a lattice (see the module
@@ -177,23 +221,8 @@ impl StressLayers {
     /// The kernel's stress at the lattice offset `(di, dj)` and depth `z`.
     fn coefficient(&self, di: i64, dj: i64, z: f64) -> Stress {
         let (dx, dy) = self.cell;
-        let (x, y) = (di as f64 * dx, dj as f64 * dy);
-        match self.kernel {
-            StressKernel::Rectangle => love_rectangle_stress(x, y, z, dx, dy, self.nu),
-            StressKernel::Strip => strip_stress(x, z, dx, self.nu),
-            StressKernel::PointForce => {
-                let s = point_force(x, y, z, self.nu);
-                let area = dx * dy;
-                Stress {
-                    xx: area * s.xx,
-                    yy: area * s.yy,
-                    zz: area * s.zz,
-                    xy: area * s.xy,
-                    xz: area * s.xz,
-                    yz: area * s.yz,
-                }
-            }
-        }
+        self.kernel
+            .unit((di as f64 * dx, dj as f64 * dy, z), self.cell, self.nu)
     }
 
     /// The stresses at depth `z` > 0 below every point, in the points'

@@ -3,8 +3,7 @@
 //! `crate::subsurface`).
 
 use elcon_influence::{
-    Body, Dimension, InfluenceError, Model, PointSet, Stress, StressKernel, StressLayers,
-    love_rectangle_stress, point_force, strip_stress,
+    Body, Dimension, InfluenceError, PointSet, Stress, StressKernel, StressLayers,
 };
 
 use rayon::prelude::*;
@@ -122,16 +121,8 @@ pub struct StressField<'a> {
     points: &'a PointSet,
     /// The points in contact and their pressures.
     loaded: Vec<(usize, f64)>,
-    kind: Kernel,
+    kind: StressKernel,
     nu: f64,
-}
-
-/// Which stress influence coefficient the body's model has.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Kernel {
-    Rectangle,
-    Point,
-    Strip,
 }
 
 impl<'a> StressField<'a> {
@@ -142,18 +133,7 @@ impl<'a> StressField<'a> {
         solution: &ContactSolution,
         body: &Body,
     ) -> Result<Self, &'static str> {
-        let (kind, nu) = match body.model() {
-            Model::UniformPatch { material } => (Kernel::Rectangle, material.poissons_ratio()),
-            Model::PointForce { material } => (Kernel::Point, material.poissons_ratio()),
-            Model::PlaneStrainStrip { material, .. } => (Kernel::Strip, material.poissons_ratio()),
-            Model::Rigid => return Err("a rigid body: no stresses"),
-            Model::Winkler { .. } => {
-                return Err(
-                    "a Winkler foundation: not a half-space, no stresses below its surface",
-                );
-            }
-            _ => return Err("a beam: not a half-space, its stresses are its bending's"),
-        };
+        let (kind, nu) = StressKernel::of(body)?;
         let loaded = solution
             .pressures
             .iter()
@@ -197,16 +177,7 @@ impl<'a> StressField<'a> {
         let mut total = Stress::default();
         for &(k, p) in &self.loaded {
             let (dx, dy) = (x - self.points.x(k), y - self.points.y(k));
-            let unit = match self.kind {
-                Kernel::Rectangle => love_rectangle_stress(dx, dy, z, cell.dx, cell.dy, self.nu),
-                Kernel::Strip => strip_stress(dx, z, cell.dx, self.nu),
-                Kernel::Point => {
-                    let s = point_force(dx, dy, z, self.nu);
-                    // A force: the pressure times the cell's area.
-                    total.add_scaled(p * cell.dx * cell.dy, &s);
-                    continue;
-                }
-            };
+            let unit = self.kind.unit((dx, dy, z), (cell.dx, cell.dy), self.nu);
             total.add_scaled(p, &unit);
         }
         total
@@ -234,7 +205,7 @@ impl<'a> StressField<'a> {
         };
         let scale = extent.max(size);
         let depths = options.depths.clone().unwrap_or_else(|| {
-            let shallowest = if self.kind == Kernel::Point {
+            let shallowest = if self.kind == StressKernel::PointForce {
                 size
             } else {
                 0.0
@@ -289,12 +260,7 @@ impl<'a> StressField<'a> {
         for &(k, p) in &self.loaded {
             pressures[k] = p;
         }
-        let kernel = match self.kind {
-            Kernel::Rectangle => StressKernel::Rectangle,
-            Kernel::Point => StressKernel::PointForce,
-            Kernel::Strip => StressKernel::Strip,
-        };
-        StressLayers::new(self.points, &pressures, kernel, self.nu).map(Some)
+        StressLayers::new(self.points, &pressures, self.kind, self.nu).map(Some)
     }
 
     /// The maxima, section and profile from the depth layers: every point
@@ -449,7 +415,7 @@ impl<'a> StressField<'a> {
         let line = self.points.dimension() == Dimension::Line;
         let mut best = start;
         let mut step = 0.25 * scale / DEPTHS as f64 * DEPTH_SPAN * 4.0;
-        let floor = if self.kind == Kernel::Point {
+        let floor = if self.kind == StressKernel::PointForce {
             self.points.cell().dx.max(self.points.cell().dy)
         } else {
             1e-3 * scale
