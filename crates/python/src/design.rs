@@ -157,23 +157,11 @@ fn case_rows(
     cases
         .iter()
         .enumerate()
-        .map(|(l, c)| DesignCaseJson {
-            load: c.loading().load_value().unwrap_or(f64::NAN),
-            misalignment: None,
-            reference_intensity: references[l],
-            max_pressure_before: before.max_intensities[l],
-            max_pressure_after: after.max_intensities[l],
-            certificate_worst: after.solutions[l].certificate.worst(),
-            certificate_holds: after.solutions[l].certificate.holds(),
-            warnings: after.solutions[l]
-                .warnings
-                .iter()
-                .map(ToString::to_string)
-                .collect(),
-            // Problems from arrays carry no bodies' Poisson's ratios for
-            // a field: the stresses below the surface are a scene's.
-            subsurface_before: None,
-            subsurface_after: None,
+        // Problems from arrays carry no bodies' Poisson's ratios for a
+        // field: the stresses below the surface are a scene's.
+        .map(|(l, c)| {
+            let load = c.loading().load_value().unwrap_or(f64::NAN);
+            DesignCaseJson::of(l, load, references[l], before, after)
         })
         .collect()
 }

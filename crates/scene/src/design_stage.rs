@@ -46,6 +46,37 @@ pub struct DesignCaseJson {
     pub subsurface_after: Option<[BodySubsurfaceJson; 2]>,
 }
 
+impl DesignCaseJson {
+    /// Case `l`'s row under `load` with its reference intensity: p_max
+    /// `before` and `after` the correction, the certificate and warnings
+    /// after; no misalignment and no subsurface maxima (a scene's design
+    /// stage adds them).
+    pub fn of(
+        l: usize,
+        load: f64,
+        reference: f64,
+        before: &Evaluation,
+        after: &Evaluation,
+    ) -> Self {
+        Self {
+            load,
+            misalignment: None,
+            reference_intensity: reference,
+            max_pressure_before: before.max_intensities[l],
+            max_pressure_after: after.max_intensities[l],
+            certificate_worst: after.solutions[l].certificate.worst(),
+            certificate_holds: after.solutions[l].certificate.holds(),
+            warnings: after.solutions[l]
+                .warnings
+                .iter()
+                .map(ToString::to_string)
+                .collect(),
+            subsurface_before: None,
+            subsurface_after: None,
+        }
+    }
+}
+
 /// The design stage's result: the scene's design section by name and
 /// elcon-design's outcome, not the copy of one type.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -242,20 +273,10 @@ pub(crate) fn design_stage(
             .into_iter()
             .enumerate()
             .map(|(l, (load, misalignment))| DesignCaseJson {
-                load,
                 misalignment,
-                reference_intensity: references[l],
-                max_pressure_before: before.max_intensities[l],
-                max_pressure_after: after.max_intensities[l],
-                certificate_worst: after.solutions[l].certificate.worst(),
-                certificate_holds: after.solutions[l].certificate.holds(),
-                warnings: after.solutions[l]
-                    .warnings
-                    .iter()
-                    .map(ToString::to_string)
-                    .collect(),
                 subsurface_before: case_subsurface(scene, &cases[l], &before.solutions[l]),
                 subsurface_after: case_subsurface(scene, &cases[l], &after.solutions[l]),
+                ..DesignCaseJson::of(l, load, references[l], &before, &after)
             })
             .collect(),
         table,
