@@ -34,9 +34,17 @@
 //!
 //! (`+` into `J`, `-` out): a symmetric rank-1 update. As in the general
 //! tableau, the updates are delayed, `A = A0 - U Λ U^T` with up to
-//! `SWEEP_BLOCK` pivots, and applied every block as one faer product;
+//! `SWEEP_BLOCK` pivots, and applied every block as faer products;
 //! here only to the lower triangle of `A0`, `n^2 k` flops per block instead
-//! of the general tableau's `2 n (n + 1) k`. A pivot writes row and column
+//! of the general tableau's `2 n (n + 1) k`. Fewer still: with `f` the
+//! frontier (every position before it on `J`), the block `A_JJ` of the
+//! leading `f` positions (`-M_JJ^{-1}` there) is read only when one of them
+//! leaves `J`, so a block's update skips the leading `f x f` triangle,
+//! `k (n^2 - f^2)` flops, and keeps its vectors' leading `f` rows; the first
+//! read of a column before the frontier replays them on the triangles they
+//! skipped (the same flops, later) and the frontier starts again from 0. A
+//! path that activates its first `|J|` positions in order and never
+//! releases one skips `|J|^3 / 3` of the `n^2 |J|` flops. A pivot writes row and column
 //! `p` of that triangle exactly (the part left of the diagonal along row
 //! `p`) and reads column `p` (its part above the diagonal along row `p`).
 //! The indices are held in the order in which they would touch, so that the
@@ -92,8 +100,29 @@ pub(crate) struct Swept {
     lambda: Vec<f64>,
     /// Number of delayed updates held.
     k: usize,
+    /// Whether each position is on `J` (as the pivots left it).
+    into: Vec<bool>,
+    /// The frontier `f`: every position before it is on `J`, and the
+    /// leading `f x f` triangle of `A0` may lack the updates in `stale`.
+    front: usize,
+    /// The applied blocks whose leading triangles were skipped, in order.
+    stale: Vec<Skipped>,
+    /// Entries held in `stale` (bounded: see [`STALE_SHARE`]).
+    stale_len: usize,
     par: Par,
 }
+
+/// The part of one applied block of updates that its leading triangle
+/// missed: the vectors' leading `rows` rows (`rows x k`, `rows` the
+/// frontier at the time) and their weights.
+struct Skipped {
+    u: Mat<f64>,
+    lambda: Vec<f64>,
+}
+
+/// The stale blocks' entries are bounded by `n^2 / STALE_SHARE`: past it
+/// they are applied (so their memory stays a fraction of the tableau's).
+const STALE_SHARE: usize = 4;
 
 impl Swept {
     /// The tableau of `J = {}`: `A0 = D M D` with rows and columns in the
@@ -148,6 +177,10 @@ impl Swept {
             u: Mat::zeros(n, block),
             lambda: vec![0.0; block],
             k: 0,
+            into: vec![false; n],
+            front: 0,
+            stale: Vec::new(),
+            stale_len: 0,
             par,
         })
     }
@@ -157,8 +190,13 @@ impl Swept {
     }
 
     /// Column `p` of the current `A`: rows from `p` down from column `p`,
-    /// the rows above from row `p`.
-    pub(crate) fn column(&self, p: usize) -> Col<f64> {
+    /// the rows above from row `p`. Before the frontier, the skipped
+    /// updates are applied first (every entry read from row `p` down is
+    /// current otherwise).
+    pub(crate) fn column(&mut self, p: usize) -> Col<f64> {
+        if p < self.front {
+            self.catch_up();
+        }
         let n = self.n;
         let a = self.a();
         let below = &self.a0[p * n + p..(p + 1) * n];
@@ -179,34 +217,77 @@ impl Swept {
 
     /// Entry `(i, i)` of the current `A`.
     #[cfg(test)]
-    fn diagonal(&self, i: usize) -> f64 {
+    fn diagonal(&mut self, i: usize) -> f64 {
+        if i < self.front {
+            self.catch_up();
+        }
         (0..self.k).fold(self.a0[i * self.n + i], |v, l| {
             v - self.lambda[l] * self.u[(i, l)] * self.u[(i, l)]
         })
     }
 
-    /// Applies the delayed updates to the lower triangle of `A0` (one
-    /// triangular matrix product: half the flops of a full one).
+    /// Applies the delayed updates to the lower triangle of `A0` from row
+    /// `f` (the frontier, advanced over the positions now on `J`) down: the
+    /// rows below the leading triangle (one product) and the trailing
+    /// triangle (one triangular product: half the flops of a full one).
+    /// The leading triangle's part is kept in `stale`.
     fn flush(&mut self) {
         if self.k == 0 {
             return;
         }
-        let k = self.k;
-        let n = self.n;
+        let (k, n) = (self.k, self.n);
+        while self.front < n && self.into[self.front] {
+            self.front += 1;
+        }
+        let f = self.front;
+        if f > 0 && self.stale_len + f * k > n * n / STALE_SHARE {
+            // Past the bound: the leading triangle is brought up to date,
+            // this block included.
+            self.catch_up();
+        }
+        let f = self.front;
         let weighted = Mat::from_fn(n, k, |i, l| self.lambda[l] * self.u[(i, l)]);
         let (u, w) = (self.u.as_ref().subcols(0, k), weighted.as_ref());
-        triangular::matmul(
-            MatMut::from_column_major_slice_mut(&mut self.a0, n, n),
-            BlockStructure::TriangularLower,
-            Accum::Add,
-            u,
-            BlockStructure::Rectangular,
-            w.transpose(),
-            BlockStructure::Rectangular,
-            -1.0,
-            self.par,
-        );
+        let a = MatMut::from_column_major_slice_mut(&mut self.a0, n, n);
+        let (_, _, left, trailing) = a.split_at_mut(f, f);
+        if f > 0 {
+            matmul(
+                left,
+                Accum::Add,
+                u.subrows(f, n - f),
+                w.subrows(0, f).transpose(),
+                -1.0,
+                self.par,
+            );
+            self.stale_len += f * k;
+            self.stale.push(Skipped {
+                u: u.subrows(0, f).to_owned(),
+                lambda: self.lambda[..k].to_vec(),
+            });
+        }
+        lower_update(trailing, u.subrows(f, n - f), w.subrows(f, n - f), self.par);
         self.k = 0;
+    }
+
+    /// Applies the skipped updates to the leading triangles they skipped
+    /// (in any order: each is a sum of terms), and moves the frontier back
+    /// to 0.
+    fn catch_up(&mut self) {
+        let n = self.n;
+        for block in std::mem::take(&mut self.stale) {
+            let f = block.u.nrows();
+            let weighted =
+                Mat::from_fn(f, block.u.ncols(), |i, l| block.lambda[l] * block.u[(i, l)]);
+            let a = MatMut::from_column_major_slice_mut(&mut self.a0, n, n);
+            lower_update(
+                a.submatrix_mut(0, 0, f, f),
+                block.u.as_ref(),
+                weighted.as_ref(),
+                self.par,
+            );
+        }
+        self.stale_len = 0;
+        self.front = 0;
     }
 
     /// The principal pivot on `p`, given its current column `c`; `into`
@@ -216,6 +297,11 @@ impl Swept {
         let a = c[p];
         if self.k == self.u.ncols() {
             self.flush();
+        }
+        if p < self.front {
+            // Row and column p are about to be written exactly: no skipped
+            // update may reach them afterwards.
+            self.catch_up();
         }
         let k = self.k;
         // Row and column p are written exactly; their delayed entries are
@@ -236,7 +322,27 @@ impl Swept {
             self.a0[j * n + p] = s * c[j];
         }
         self.a0[p * n + p] = -1.0 / a;
+        self.into[p] = into;
     }
+}
+
+/// `A -= U W^T` on the lower triangle of the square `A` (one triangular
+/// faer product).
+fn lower_update(a: MatMut<'_, f64>, u: MatRef<'_, f64>, w: MatRef<'_, f64>, par: Par) {
+    if a.nrows() == 0 {
+        return;
+    }
+    triangular::matmul(
+        a,
+        BlockStructure::TriangularLower,
+        Accum::Add,
+        u,
+        BlockStructure::Rectangular,
+        w.transpose(),
+        BlockStructure::Rectangular,
+        -1.0,
+        par,
+    );
 }
 
 /// Steps of length 0 in a row. The perturbation orders ties, so a run
@@ -512,10 +618,9 @@ mod tests {
         a
     }
 
-    #[test]
-    fn delayed_sweeps_in_and_out_read_the_explicit_swept_matrix() {
-        let n = 9;
-        // Symmetric positive definite: every principal pivot exists.
+    /// A symmetric positive definite matrix of order `n`: every principal
+    /// pivot exists.
+    fn definite(n: usize) -> Mat<f64> {
         let g = Mat::from_fn(n, n, |i, j| ((i * 7 + j * 3) % 5) as f64 - 2.0);
         let mut m = Mat::<f64>::identity(n, n) * 4.0;
         matmul(
@@ -526,6 +631,55 @@ mod tests {
             0.3,
             Par::Seq,
         );
+        m
+    }
+
+    /// Asserts that column `j` read from the tableau is that of `expect`.
+    fn assert_column(col: &Col<f64>, expect: &Mat<f64>, j: usize) {
+        for i in 0..expect.nrows() {
+            assert!(
+                (col[i] - expect[(i, j)]).abs() <= 1e-12 * expect.norm_max(),
+                "entry ({i}, {j}): {} against {}",
+                col[i],
+                expect[(i, j)]
+            );
+        }
+    }
+
+    #[test]
+    fn a_path_in_order_skips_the_leading_triangle_and_replays_it_on_a_release() {
+        let n = 14;
+        let m = definite(n);
+        let order: Vec<usize> = (0..n).collect();
+        let mut tab = Swept::gather(m.as_ref(), &order, &vec![1.0; n], 2, Par::Seq).unwrap();
+        let mut into = vec![false; n];
+        // In order (the frontier advances and the leading triangle goes
+        // stale), then releases before the frontier (a replay) and after
+        // it, rejoins, and more in order; only the pivots' columns are read
+        // until the end, as a pivot rule reads them.
+        let mut skipped = false;
+        for &p in &[0, 1, 2, 3, 4, 5, 6, 7, 2, 8, 9, 2, 4, 10, 4, 11] {
+            let c = tab.column(p);
+            assert_column(&c, &swept_explicitly(&m, &into), p);
+            let joins = !into[p];
+            tab.pivot(p, &c, joins);
+            into[p] = joins;
+            skipped |= !tab.stale.is_empty();
+        }
+        assert!(skipped, "some block skipped its leading triangle");
+        let expect = swept_explicitly(&m, &into);
+        for j in 0..n {
+            let c = tab.column(j);
+            assert_column(&c, &expect, j);
+        }
+        // The bound on the skipped blocks' memory holds throughout.
+        assert!(tab.stale_len <= n * n / STALE_SHARE);
+    }
+
+    #[test]
+    fn delayed_sweeps_in_and_out_read_the_explicit_swept_matrix() {
+        let n = 9;
+        let m = definite(n);
         // Block 2: flushes between pivots, and indices pivoted in one block
         // and read in the next.
         let order: Vec<usize> = (0..n).collect();
