@@ -42,9 +42,15 @@
 //! leaves `J`, so a block's update skips the leading `f x f` triangle,
 //! `k (n^2 - f^2)` flops, and keeps its vectors' leading `f` rows; the first
 //! read of a column before the frontier replays them on the triangles they
-//! skipped (the same flops, later) and the frontier starts again from 0. A
-//! path that activates its first `|J|` positions in order and never
-//! releases one skips `|J|^3 / 3` of the `n^2 |J|` flops. A pivot writes row and column
+//! skipped (the same flops, later) and the frontier starts again from 0.
+//! Likewise at the back: the trailing triangle of the positions from `g`
+//! on, none of which has pivoted yet, is read only when one of them
+//! pivots, so its updates are kept (the vectors' rows from `g`) and applied
+//! when a column from `g` on is first read, to the columns up to `p + W`
+//! (`W` two blocks), `g` moving there. A path that activates its first
+//! `|J|` positions in order and never releases one skips `|J|^3 / 3` of the
+//! `n^2 |J|` flops at the front, and `|J| (n - |J|)^2` at the back (the
+//! positions that never touch). A pivot writes row and column
 //! `p` of that triangle exactly (the part left of the diagonal along row
 //! `p`) and reads column `p` (its part above the diagonal along row `p`).
 //! The indices are held in the order in which they would touch, so that the
@@ -109,6 +115,13 @@ pub(crate) struct Swept {
     stale: Vec<Skipped>,
     /// Entries held in `stale` (bounded: see [`STALE_SHARE`]).
     stale_len: usize,
+    /// The back frontier `g`: no position from it on has pivoted since the
+    /// trailing triangle from `g` was last brought up to date.
+    back: usize,
+    /// The applied updates that trailing triangle misses: their vectors'
+    /// rows from `g` (column-major, `n - g` rows) and their weights.
+    trail: Vec<f64>,
+    trail_lambda: Vec<f64>,
     par: Par,
 }
 
@@ -121,8 +134,13 @@ struct Skipped {
 }
 
 /// The stale blocks' entries are bounded by `n^2 / STALE_SHARE`: past it
-/// they are applied (so their memory stays a fraction of the tableau's).
+/// they are applied (so their memory stays a fraction of the tableau's);
+/// the same bound holds for the trailing triangle's.
 const STALE_SHARE: usize = 4;
+
+/// The trailing triangle is brought up to date this many blocks of
+/// positions past the column read (`W` in the module documentation).
+const BACK_WINDOW: usize = 2;
 
 impl Swept {
     /// The tableau of `J = {}`: `A0 = D M D` with rows and columns in the
@@ -181,6 +199,9 @@ impl Swept {
             front: 0,
             stale: Vec::new(),
             stale_len: 0,
+            back: n.min(BACK_WINDOW * block),
+            trail: Vec::new(),
+            trail_lambda: Vec::new(),
             par,
         })
     }
@@ -196,6 +217,9 @@ impl Swept {
     pub(crate) fn column(&mut self, p: usize) -> Col<f64> {
         if p < self.front {
             self.catch_up();
+        }
+        if p >= self.back {
+            self.catch_up_back(p);
         }
         let n = self.n;
         let a = self.a();
@@ -221,16 +245,21 @@ impl Swept {
         if i < self.front {
             self.catch_up();
         }
+        if i >= self.back {
+            self.catch_up_back(i);
+        }
         (0..self.k).fold(self.a0[i * self.n + i], |v, l| {
             v - self.lambda[l] * self.u[(i, l)] * self.u[(i, l)]
         })
     }
 
     /// Applies the delayed updates to the lower triangle of `A0` from row
-    /// `f` (the frontier, advanced over the positions now on `J`) down: the
-    /// rows below the leading triangle (one product) and the trailing
-    /// triangle (one triangular product: half the flops of a full one).
-    /// The leading triangle's part is kept in `stale`.
+    /// `f` (the frontier, advanced over the positions now on `J`) down and
+    /// left of column `g` (the back frontier): the rows below the leading
+    /// triangle (one product), the triangle between the frontiers (one
+    /// triangular product: half the flops of a full one) and the rows
+    /// below it (one product). The leading triangle's part is kept in
+    /// `stale`, the trailing triangle's in `trail`.
     fn flush(&mut self) {
         if self.k == 0 {
             return;
@@ -245,7 +274,10 @@ impl Swept {
             // this block included.
             self.catch_up();
         }
-        let f = self.front;
+        if self.back < n && (n - self.back) * (self.trail_lambda.len() + k) > n * n / STALE_SHARE {
+            self.catch_up_back(n - 1);
+        }
+        let (f, g) = (self.front, self.back);
         let weighted = Mat::from_fn(n, k, |i, l| self.lambda[l] * self.u[(i, l)]);
         let (u, w) = (self.u.as_ref().subcols(0, k), weighted.as_ref());
         let a = MatMut::from_column_major_slice_mut(&mut self.a0, n, n);
@@ -265,8 +297,63 @@ impl Swept {
                 lambda: self.lambda[..k].to_vec(),
             });
         }
-        lower_update(trailing, u.subrows(f, n - f), w.subrows(f, n - f), self.par);
+        // (f <= g: a position before the frontier has pivoted, so it was
+        // before the back frontier then, and that one only moves on.)
+        let (middle, _, below, _) = trailing.split_at_mut(g - f, g - f);
+        lower_update(middle, u.subrows(f, g - f), w.subrows(f, g - f), self.par);
+        if g < n {
+            matmul(
+                below,
+                Accum::Add,
+                u.subrows(g, n - g),
+                w.subrows(f, g - f).transpose(),
+                -1.0,
+                self.par,
+            );
+            for l in 0..k {
+                self.trail.extend_from_slice(&self.u.col_as_slice(l)[g..]);
+            }
+            self.trail_lambda.extend_from_slice(&self.lambda[..k]);
+        }
         self.k = 0;
+    }
+
+    /// Applies the updates the trailing triangle from `g` missed to its
+    /// columns up to `p + W` (or all), the back frontier moving there; the
+    /// rest stays in `trail`.
+    fn catch_up_back(&mut self, p: usize) {
+        let (n, g) = (self.n, self.back);
+        let to = n.min(p + 1 + BACK_WINDOW * self.u.ncols()).max(g);
+        let (rows, cols) = (n - g, self.trail_lambda.len());
+        if cols > 0 && to > g {
+            let v = MatRef::from_column_major_slice(&self.trail, rows, cols);
+            let lambda = &self.trail_lambda;
+            let w = Mat::from_fn(to - g, cols, |i, l| lambda[l] * v[(i, l)]);
+            let a = MatMut::from_column_major_slice_mut(&mut self.a0, n, n);
+            let (_, _, _, trailing) = a.split_at_mut(g, g);
+            let (reached, _, below, _) = trailing.split_at_mut(to - g, to - g);
+            lower_update(reached, v.subrows(0, to - g), w.as_ref(), self.par);
+            matmul(
+                below,
+                Accum::Add,
+                v.subrows(to - g, n - to),
+                w.transpose(),
+                -1.0,
+                self.par,
+            );
+            // The rows kept, moved down in place (column l's land at or
+            // before where they were).
+            let (keep, drop) = (n - to, to - g);
+            for l in 0..cols {
+                let from = l * rows + drop;
+                self.trail.copy_within(from..from + keep, l * keep);
+            }
+            self.trail.truncate(keep * cols);
+            if to == n {
+                self.trail_lambda.clear();
+            }
+        }
+        self.back = to;
     }
 
     /// Applies the skipped updates to the leading triangles they skipped
@@ -302,6 +389,9 @@ impl Swept {
             // Row and column p are about to be written exactly: no skipped
             // update may reach them afterwards.
             self.catch_up();
+        }
+        if p >= self.back {
+            self.catch_up_back(p);
         }
         let k = self.k;
         // Row and column p are written exactly; their delayed entries are
@@ -647,7 +737,7 @@ mod tests {
     }
 
     #[test]
-    fn a_path_in_order_skips_the_leading_triangle_and_replays_it_on_a_release() {
+    fn a_path_in_order_skips_both_triangles_and_replays_them_when_read() {
         let n = 14;
         let m = definite(n);
         let order: Vec<usize> = (0..n).collect();
@@ -657,7 +747,7 @@ mod tests {
         // stale), then releases before the frontier (a replay) and after
         // it, rejoins, and more in order; only the pivots' columns are read
         // until the end, as a pivot rule reads them.
-        let mut skipped = false;
+        let (mut skipped, mut trailing) = (false, false);
         for &p in &[0, 1, 2, 3, 4, 5, 6, 7, 2, 8, 9, 2, 4, 10, 4, 11] {
             let c = tab.column(p);
             assert_column(&c, &swept_explicitly(&m, &into), p);
@@ -665,8 +755,10 @@ mod tests {
             tab.pivot(p, &c, joins);
             into[p] = joins;
             skipped |= !tab.stale.is_empty();
+            trailing |= !tab.trail_lambda.is_empty() && tab.back < n;
         }
         assert!(skipped, "some block skipped its leading triangle");
+        assert!(trailing, "some block skipped the trailing triangle");
         let expect = swept_explicitly(&m, &into);
         for j in 0..n {
             let c = tab.column(j);
