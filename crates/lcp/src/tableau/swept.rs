@@ -119,8 +119,11 @@ pub(crate) struct Swept {
     /// trailing triangle from `g` was last brought up to date.
     back: usize,
     /// The applied updates that trailing triangle misses: their vectors'
-    /// rows from `g` (column-major, `n - g` rows) and their weights.
+    /// rows from the back frontier where the first of them was kept
+    /// (column-major, `trail_rows` a column; the rows above `g` are no
+    /// longer read) and their weights.
     trail: Vec<f64>,
+    trail_rows: usize,
     trail_lambda: Vec<f64>,
     par: Par,
 }
@@ -201,6 +204,7 @@ impl Swept {
             stale_len: 0,
             back: n.min(BACK_WINDOW * block),
             trail: Vec::new(),
+            trail_rows: 0,
             trail_lambda: Vec::new(),
             par,
         })
@@ -274,7 +278,19 @@ impl Swept {
             // this block included.
             self.catch_up();
         }
-        if self.back < n && (n - self.back) * (self.trail_lambda.len() + k) > n * n / STALE_SHARE {
+        let bound = n * n / STALE_SHARE;
+        let starts = self.trail_lambda.is_empty();
+        // (Reserved at once, so the kept rows never move; memory that
+        // cannot be had leaves the triangle to the flushes.)
+        if self.back < n
+            && ((if starts {
+                n - self.back
+            } else {
+                self.trail_rows
+            }) * (self.trail_lambda.len() + k)
+                > bound
+                || (starts && self.trail.try_reserve(bound).is_err()))
+        {
             self.catch_up_back(n - 1);
         }
         let (f, g) = (self.front, self.back);
@@ -310,8 +326,16 @@ impl Swept {
                 -1.0,
                 self.par,
             );
+            if self.trail_lambda.is_empty() {
+                self.trail_rows = n - g;
+                self.trail.clear();
+            }
+            let first = n - self.trail_rows;
             for l in 0..k {
-                self.trail.extend_from_slice(&self.u.col_as_slice(l)[g..]);
+                // (The rows above g, no longer read, are left at zero.)
+                let start = self.trail.len() + g - first;
+                self.trail.resize(self.trail.len() + self.trail_rows, 0.0);
+                self.trail[start..].copy_from_slice(&self.u.col_as_slice(l)[g..]);
             }
             self.trail_lambda.extend_from_slice(&self.lambda[..k]);
         }
@@ -326,7 +350,13 @@ impl Swept {
         let to = n.min(p + 1 + BACK_WINDOW * self.u.ncols()).max(g);
         let (rows, cols) = (n - g, self.trail_lambda.len());
         if cols > 0 && to > g {
-            let v = MatRef::from_column_major_slice(&self.trail, rows, cols);
+            let skip = g - (n - self.trail_rows);
+            let v = MatRef::from_column_major_slice_with_stride(
+                &self.trail[skip..],
+                rows,
+                cols,
+                self.trail_rows,
+            );
             let lambda = &self.trail_lambda;
             let w = Mat::from_fn(to - g, cols, |i, l| lambda[l] * v[(i, l)]);
             let a = MatMut::from_column_major_slice_mut(&mut self.a0, n, n);
@@ -341,14 +371,6 @@ impl Swept {
                 -1.0,
                 self.par,
             );
-            // The rows kept, moved down in place (column l's land at or
-            // before where they were).
-            let (keep, drop) = (n - to, to - g);
-            for l in 0..cols {
-                let from = l * rows + drop;
-                self.trail.copy_within(from..from + keep, l * keep);
-            }
-            self.trail.truncate(keep * cols);
             if to == n {
                 self.trail_lambda.clear();
             }
