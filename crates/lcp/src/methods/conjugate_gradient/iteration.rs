@@ -57,39 +57,44 @@ fn ranges(n: usize) -> Vec<std::ops::Range<usize>> {
 }
 
 /// The border's shift `(B λ)_i` over a chunk's entries `base..base +
-/// shift.len()`, into `shift`, and the magnitude of its terms into `terms`
-/// when asked: column after column, each entry's terms added in the
-/// columns' order (as one entry's sum would add them), so that every loop
-/// is a plain sweep the compiler vectorizes.
-fn shift_into(
+/// len`, and the magnitude of its terms when asked (`terms`): column after
+/// column, each entry's terms added in the columns' order from 0 (as one
+/// entry's sum would add them), so that every loop is a plain sweep the
+/// compiler vectorizes. Written without clearing first (no memset of
+/// buffers the first column overwrites).
+fn shift_of(
     columns: &[&[f64]],
     lambda: &[f64],
     base: usize,
-    shift: &mut [f64],
-    mut terms: Option<&mut [f64]>,
-) {
-    let len = shift.len();
-    shift.fill(0.0);
-    if let Some(t) = terms.as_deref_mut() {
-        t.fill(0.0);
-    }
-    for (b, &l) in columns.iter().zip(lambda) {
+    len: usize,
+    terms: bool,
+) -> (Vec<f64>, Vec<f64>) {
+    let mut pairs = columns.iter().zip(lambda);
+    let Some((b, &l)) = pairs.next() else {
+        return (
+            vec![0.0; len],
+            if terms { vec![0.0; len] } else { Vec::new() },
+        );
+    };
+    let b = &b[base..base + len];
+    let mut shift: Vec<f64> = b.iter().map(|&b| 0.0 + b * l).collect();
+    let mut magnitude: Vec<f64> = if terms {
+        b.iter().map(|&b| 0.0 + (b * l).abs()).collect()
+    } else {
+        Vec::new()
+    };
+    for (b, &l) in pairs {
         let b = &b[base..base + len];
-        match terms.as_deref_mut() {
-            Some(t) => {
-                for i in 0..len {
-                    let v = b[i] * l;
-                    shift[i] += v;
-                    t[i] += v.abs();
-                }
-            }
-            None => {
-                for i in 0..len {
-                    shift[i] += b[i] * l;
-                }
+        for i in 0..len {
+            shift[i] += b[i] * l;
+        }
+        if terms {
+            for i in 0..len {
+                magnitude[i] += (b[i] * l).abs();
             }
         }
     }
+    (shift, magnitude)
 }
 
 /// Adds `f(i)` for `i` in `0..len` to a compensated sum, `i` to lane
@@ -269,9 +274,7 @@ pub(super) fn measure_pass(
             z.iter_mut().for_each(|v| *v *= scale);
             u.iter_mut().for_each(|v| *v *= scale);
         }
-        let (mut s, mut s_terms) = ([0.0; CHUNK], [0.0; CHUNK]);
-        let (s, s_terms) = (&mut s[..len], &mut s_terms[..len]);
-        shift_into(&columns, lambda, base, s, Some(&mut *s_terms));
+        let (s, s_terms) = shift_of(&columns, lambda, base, len, true);
         let (mut min_w, mut comp) = ([0.0f64; LANES], [0.0f64; LANES]);
         let (mut w_scale, mut z_scale) = ([0.0f64; LANES], [0.0f64; LANES]);
         let (mut g, mut bad) = (Lanes::default(), [false; LANES]);
@@ -283,7 +286,11 @@ pub(super) fn measure_pass(
             let terms = u[i].abs() + q[i].abs() + s_terms[i];
             min_w[l] = if w < min_w[l] { w } else { min_w[l] };
             comp[l] = if cw > comp[l] { cw } else { comp[l] };
-            w_scale[l] = if terms > w_scale[l] { terms } else { w_scale[l] };
+            w_scale[l] = if terms > w_scale[l] {
+                terms
+            } else {
+                w_scale[l]
+            };
             z_scale[l] = if zi > z_scale[l] { zi } else { z_scale[l] };
             g.add(l, if zi > 0.0 { w * w } else { 0.0 });
         });
@@ -330,10 +337,12 @@ pub(super) fn direction_pass(
     let parts = map_parts(parts, |(c, t)| {
         let base = c * CHUNK;
         let len = t.len();
-        let (z, u, q) = (&z[base..base + len], &u[base..base + len], &q[base..base + len]);
-        let mut s = [0.0; CHUNK];
-        let s = &mut s[..len];
-        shift_into(&columns, lambda, base, s, None);
+        let (z, u, q) = (
+            &z[base..base + len],
+            &u[base..base + len],
+            &q[base..base + len],
+        );
+        let (s, _) = shift_of(&columns, lambda, base, len, false);
         let mut num = Lanes::default();
         for_lanes(len, |i, l| {
             let w = (u[i] + q[i]) - s[i];
@@ -401,7 +410,11 @@ pub(super) fn update_pass(
     let parts = map_parts(parts, |(c, (z, u))| {
         let base = c * CHUNK;
         let len = z.len();
-        let (t, r, q) = (&t[base..base + len], &r[base..base + len], &q[base..base + len]);
+        let (t, r, q) = (
+            &t[base..base + len],
+            &r[base..base + len],
+            &q[base..base + len],
+        );
         let mut p = UpdateParts {
             clipped: 0,
             entered: 0,
@@ -409,9 +422,7 @@ pub(super) fn update_pass(
             rows_terms: vec![Lanes::default(); k],
             fit: FitParts::new(k),
         };
-        let mut s = [0.0; CHUNK];
-        let s = &mut s[..len];
-        shift_into(&columns, lambda, base, s, None);
+        let (s, _) = shift_of(&columns, lambda, base, len, false);
         let (mut clipped, mut entered) = (0usize, 0usize);
         for i in 0..len {
             let old = z[i];
