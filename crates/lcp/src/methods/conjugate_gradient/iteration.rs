@@ -1,7 +1,11 @@
 //! The passes of one iteration over the method's vectors (`z`, `u = M z`,
 //! the direction `t`, the product `r = M t`) and the data (`q`, `B`), each
-//! a single sweep, chunk by chunk ([`passes`](super::passes): the same
-//! bits on any number of threads):
+//! a single pass, chunk by chunk ([`passes`](super::passes): the same
+//! bits on any number of threads). Inside a chunk (32 kB a vector, in
+//! cache) the border's shift `B λ` is formed column by column and each sum
+//! runs in a loop of its own, its lanes in registers (loops the compiler
+//! vectorizes); every lane still adds the same terms in the same order as
+//! one loop over the entries would:
 //!
 //! ```text
 //!     fit:        Σ_J B u,  Σ_J B q,  B_J^T B_J                     (after a true product)
