@@ -1,7 +1,11 @@
 //! The passes of one iteration over the method's vectors (`z`, `u = M z`,
 //! the direction `t`, the product `r = M t`) and the data (`q`, `B`), each
-//! a single sweep, chunk by chunk ([`passes`](super::passes): the same
-//! bits on any number of threads):
+//! a single pass, chunk by chunk ([`passes`](super::passes): the same
+//! bits on any number of threads). Inside a chunk (32 kB a vector, in
+//! cache) the border's shift `B λ` is formed column by column and each sum
+//! runs in a loop of its own, its lanes in registers (loops the compiler
+//! vectorizes); every lane still adds the same terms in the same order as
+//! one loop over the entries would:
 //!
 //! ```text
 //!     fit:        Σ_J B u,  Σ_J B q,  B_J^T B_J                     (after a true product)
@@ -56,16 +60,62 @@ fn ranges(n: usize) -> Vec<std::ops::Range<usize>> {
         .collect()
 }
 
-/// The border's shift `(B λ)_i` and the magnitude of its terms.
-#[inline(always)]
-fn shift(columns: &[&[f64]], lambda: &[f64], i: usize) -> (f64, f64) {
-    let (mut s, mut terms) = (0.0, 0.0);
-    for (b, l) in columns.iter().zip(lambda) {
-        let v = b[i] * l;
-        s += v;
-        terms += v.abs();
+/// The border's shift `(B λ)_i` over a chunk's entries `base..base +
+/// len`, and the magnitude of its terms when asked (`terms`): column after
+/// column, each entry's terms added in the columns' order from 0 (as one
+/// entry's sum would add them), so that every loop is a plain sweep the
+/// compiler vectorizes. Written without clearing first (no memset of
+/// buffers the first column overwrites).
+fn shift_of(
+    columns: &[&[f64]],
+    lambda: &[f64],
+    base: usize,
+    len: usize,
+    terms: bool,
+) -> (Vec<f64>, Vec<f64>) {
+    let mut pairs = columns.iter().zip(lambda);
+    let Some((b, &l)) = pairs.next() else {
+        return (
+            vec![0.0; len],
+            if terms { vec![0.0; len] } else { Vec::new() },
+        );
+    };
+    let b = &b[base..base + len];
+    let mut shift: Vec<f64> = b.iter().map(|&b| 0.0 + b * l).collect();
+    let mut magnitude: Vec<f64> = if terms {
+        b.iter().map(|&b| 0.0 + (b * l).abs()).collect()
+    } else {
+        Vec::new()
+    };
+    for (b, &l) in pairs {
+        let b = &b[base..base + len];
+        for i in 0..len {
+            shift[i] += b[i] * l;
+        }
+        if terms {
+            for i in 0..len {
+                magnitude[i] += (b[i] * l).abs();
+            }
+        }
     }
-    (s, terms)
+    (shift, magnitude)
+}
+
+/// Adds `f(i)` for `i` in `0..len` to a compensated sum, `i` to lane
+/// `i mod LANES` (a chunk's loop of its own: the sum in registers).
+#[inline(always)]
+fn add_compensated(sum: &mut Compensated, len: usize, f: impl Fn(usize) -> f64) {
+    let mut local = *sum;
+    for_lanes(len, |i, l| local.add(l, f(i)));
+    *sum = local;
+}
+
+/// Adds `f(i)` for `i` in `0..len` to a plain sum in lanes.
+#[inline(always)]
+fn add_lanes(sum: &mut Lanes, len: usize, f: impl Fn(usize) -> f64) {
+    let mut local = *sum;
+    local.add_all(len, f);
+    *sum = local;
 }
 
 /// The fit's sums over the contact set `J`: `Σ_J B_j u`, `Σ_J B_j q`
@@ -128,21 +178,20 @@ pub(super) fn fit_pass(data: &Data<'_>, z: &[f64], u: &[f64]) -> FitSums {
     let k = columns.len();
     let parts = map_parts(ranges(z.len()), |range| {
         let mut p = FitParts::new(k);
-        let base = range.start;
-        for_lanes(range.len(), |i, l| {
-            let i = base + i;
-            let on = z[i] > 0.0;
-            let mut e = 0;
-            for a in 0..k {
-                let ba = if on { columns[a][i] } else { 0.0 };
-                p.bu[a].add(l, ba * u[i]);
-                p.bq[a].add(l, ba * q[i]);
-                for b in 0..=a {
-                    p.gram[e].add(l, ba * columns[b][i]);
-                    e += 1;
-                }
+        let (z, u, q) = (&z[range.clone()], &u[range.clone()], &q[range.clone()]);
+        let len = range.len();
+        let mut e = 0;
+        for a in 0..k {
+            let ba = &columns[a][range.clone()];
+            let on = |i: usize| if z[i] > 0.0 { ba[i] } else { 0.0 };
+            add_compensated(&mut p.bu[a], len, |i| on(i) * u[i]);
+            add_compensated(&mut p.bq[a], len, |i| on(i) * q[i]);
+            for b in 0..=a {
+                let bb = &columns[b][range.clone()];
+                add_lanes(&mut p.gram[e], len, |i| on(i) * bb[i]);
+                e += 1;
             }
-        });
+        }
         p
     });
     FitParts::merge(&parts, k)
@@ -222,36 +271,40 @@ pub(super) fn measure_pass(
         .collect();
     let parts = map_parts(parts, |(c, (z, u))| {
         let base = c * CHUNK;
+        let len = z.len();
+        let q = &q[base..base + len];
         let mut p = MeasureParts::new(k);
-        let mut bad = false;
-        for_lanes(z.len(), |i, l| {
-            if scale != 1.0 {
-                z[i] *= scale;
-                u[i] *= scale;
-            }
-            let (s, s_terms) = shift(&columns, lambda, base + i);
-            let qi = q[base + i];
-            let w = (u[i] + qi) - s;
+        if scale != 1.0 {
+            z.iter_mut().for_each(|v| *v *= scale);
+            u.iter_mut().for_each(|v| *v *= scale);
+        }
+        let (s, s_terms) = shift_of(&columns, lambda, base, len, true);
+        let (mut min_w, mut comp) = ([0.0f64; LANES], [0.0f64; LANES]);
+        let (mut w_scale, mut z_scale) = ([0.0f64; LANES], [0.0f64; LANES]);
+        let (mut g, mut bad) = (Lanes::default(), [false; LANES]);
+        for_lanes(len, |i, l| {
+            let w = (u[i] + q[i]) - s[i];
             let zi = z[i];
-            bad |= !w.is_finite();
+            bad[l] |= !w.is_finite();
             let cw = (zi * w).abs();
-            let terms = u[i].abs() + qi.abs() + s_terms;
-            p.min_w[l] = if w < p.min_w[l] { w } else { p.min_w[l] };
-            p.comp[l] = if cw > p.comp[l] { cw } else { p.comp[l] };
-            p.w_scale[l] = if terms > p.w_scale[l] {
+            let terms = u[i].abs() + q[i].abs() + s_terms[i];
+            min_w[l] = if w < min_w[l] { w } else { min_w[l] };
+            comp[l] = if cw > comp[l] { cw } else { comp[l] };
+            w_scale[l] = if terms > w_scale[l] {
                 terms
             } else {
-                p.w_scale[l]
+                w_scale[l]
             };
-            p.z_scale[l] = if zi > p.z_scale[l] { zi } else { p.z_scale[l] };
-            p.g.add(l, if zi > 0.0 { w * w } else { 0.0 });
-            for j in 0..k {
-                let v = columns[j][base + i] * zi;
-                p.rows[j].add(l, v);
-                p.rows_terms[j].add(l, v.abs());
-            }
+            z_scale[l] = if zi > z_scale[l] { zi } else { z_scale[l] };
+            g.add(l, if zi > 0.0 { w * w } else { 0.0 });
         });
-        p.finite = !bad;
+        (p.min_w, p.comp, p.w_scale, p.z_scale, p.g) = (min_w, comp, w_scale, z_scale, g);
+        for j in 0..k {
+            let b = &columns[j][base..base + len];
+            add_compensated(&mut p.rows[j], len, |i| b[i] * z[i]);
+            add_lanes(&mut p.rows_terms[j], len, |i| (b[i] * z[i]).abs());
+        }
+        p.finite = !bad.iter().any(|&b| b);
         p
     });
     let mut rows = vec![Compensated::default(); k];
@@ -287,11 +340,17 @@ pub(super) fn direction_pass(
     let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
     let parts = map_parts(parts, |(c, t)| {
         let base = c * CHUNK;
+        let len = t.len();
+        let (z, u, q) = (
+            &z[base..base + len],
+            &u[base..base + len],
+            &q[base..base + len],
+        );
+        let (s, _) = shift_of(&columns, lambda, base, len, false);
         let mut num = Lanes::default();
-        for_lanes(t.len(), |i, l| {
-            let g = base + i;
-            let w = (u[g] + q[g]) - shift(&columns, lambda, g).0;
-            let next = if z[g] > 0.0 { w + beta * t[i] } else { 0.0 };
+        for_lanes(len, |i, l| {
+            let w = (u[i] + q[i]) - s[i];
+            let next = if z[i] > 0.0 { w + beta * t[i] } else { 0.0 };
             t[i] = next;
             num.add(l, w * next);
         });
@@ -354,6 +413,12 @@ pub(super) fn update_pass(
         .collect();
     let parts = map_parts(parts, |(c, (z, u))| {
         let base = c * CHUNK;
+        let len = z.len();
+        let (t, r, q) = (
+            &t[base..base + len],
+            &r[base..base + len],
+            &q[base..base + len],
+        );
         let mut p = UpdateParts {
             clipped: 0,
             entered: 0,
@@ -361,35 +426,36 @@ pub(super) fn update_pass(
             rows_terms: vec![Lanes::default(); k],
             fit: FitParts::new(k),
         };
-        for_lanes(z.len(), |i, l| {
-            let g = base + i;
+        let (s, _) = shift_of(&columns, lambda, base, len, false);
+        let (mut clipped, mut entered) = (0usize, 0usize);
+        for i in 0..len {
             let old = z[i];
             let next = if old > 0.0 {
-                let v = old - tau * t[g];
-                p.clipped += usize::from(!(v > 0.0));
+                let v = old - tau * t[i];
+                clipped += usize::from(!(v > 0.0));
                 v.max(0.0)
             } else {
-                let w = (u[i] + q[g]) - shift(&columns, lambda, g).0;
+                let w = (u[i] + q[i]) - s[i];
                 if w < 0.0 {
-                    p.entered += 1;
+                    entered += 1;
                     if tau > 0.0 { -tau * w } else { -w }
                 } else {
                     old
                 }
             };
             z[i] = next;
-            u[i] -= tau * r[g];
-            let on = next > 0.0;
-            for j in 0..k {
-                let b = columns[j][g];
-                let v = b * next;
-                p.rows[j].add(l, v);
-                p.rows_terms[j].add(l, v.abs());
-                let b = if on { b } else { 0.0 };
-                p.fit.bu[j].add(l, b * u[i]);
-                p.fit.bq[j].add(l, b * q[g]);
-            }
-        });
+            u[i] -= tau * r[i];
+        }
+        (p.clipped, p.entered) = (clipped, entered);
+        let (z, u) = (&*z, &*u);
+        for j in 0..k {
+            let b = &columns[j][base..base + len];
+            add_compensated(&mut p.rows[j], len, |i| b[i] * z[i]);
+            add_lanes(&mut p.rows_terms[j], len, |i| (b[i] * z[i]).abs());
+            let on = |i: usize| if z[i] > 0.0 { b[i] } else { 0.0 };
+            add_compensated(&mut p.fit.bu[j], len, |i| on(i) * u[i]);
+            add_compensated(&mut p.fit.bq[j], len, |i| on(i) * q[i]);
+        }
         p
     });
     let fits: Vec<FitParts> = parts.iter().map(|p| p.fit.clone()).collect();

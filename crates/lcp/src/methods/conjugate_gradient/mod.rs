@@ -30,7 +30,7 @@
 //! Where a step clipped a point or let one enter, or several rows had to be
 //! restored, `u` is recomputed from a true product `M z` (a second product
 //! in that iteration: while the contact set settles; on Hertz's problem at
-//! 87,013 points, 26 in 140 iterations). So the method costs about one
+//! 87,013 points, 26 in 137 iterations). So the method costs about one
 //! product per iteration, as Polonsky & Keer's, where computing `g` afresh
 //! would cost two.
 //!
