@@ -232,7 +232,7 @@ fn setup<'a>(
     let references = reference_intensities(options.reference_intensities.as_deref(), cases.len())?;
     let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), axis);
     let basis = Basis::new(family, &stations, options.knots.as_deref())?;
-    let prepared = prepare(cases, index, &references, options.edge_clearance)?;
+    let prepared = prepare(cases, index, &references, (options.edge_clearance, axis))?;
     let mut scale = 0.0f64;
     for case in &prepared {
         scale = scale.max(deflection_scale(case)?);

@@ -133,19 +133,23 @@ pub fn axial_stations<'a>(
 
 /// The points a design that must hold on any grid keeps out of contact:
 /// those on the bodies' singular edges (a roller's ends), and those on
-/// the candidate zone's open edges (a side that is not a body's own). A
-/// contact there is cut off by the zone: the bodies would go on touching
-/// beyond it, and a design free to spread the load (a polynomial across a
-/// disk) would otherwise press it against the zone's edge, whose cut peak
-/// grows as the grid refines. Kept clear, the design stays inside the
-/// zone: the zone bounds how far it may spread the contact.
-pub(crate) fn cleared_points(problem: &ContactProblem) -> Vec<usize> {
+/// the candidate zone's open edges along the profile's `axis` (a side
+/// that is not a body's own). A contact there is cut off by the zone: the
+/// bodies would go on touching beyond it, and a family free to spread the
+/// load along its axis (a polynomial across a disk) would otherwise press
+/// it against the zone's edge, whose cut peak grows as the grid refines.
+/// Kept clear, the design stays inside the zone: the zone bounds how far
+/// it may spread the contact.
+pub(crate) fn cleared_points(problem: &ContactProblem, axis: Axis) -> Vec<usize> {
     let mut cleared = problem.singular_edge_points();
     let (body_x, body_y) = problem.body_edges();
     let points = problem.points();
     cleared.extend((0..points.len()).filter(|&k| {
         let (x, y) = points.open_sides(k);
-        (x && !body_x) || (y && !body_y)
+        match axis {
+            Axis::X => x && !body_x,
+            Axis::Y => y && !body_y,
+        }
     }));
     cleared.sort_unstable();
     cleared.dedup();
@@ -154,12 +158,13 @@ pub(crate) fn cleared_points(problem: &ContactProblem) -> Vec<usize> {
 
 /// Every case prepared (each under load control and unfolded, checked by
 /// `load_of`), with each point's station among `index`, its singular edges
-/// weighted by [`EDGE_WEIGHT`] when `edge_clearance`.
+/// and the zone's open edges along `axis` weighted by [`EDGE_WEIGHT`] when
+/// `edge_clearance`.
 pub(crate) fn prepare<'a>(
     cases: &'a [ContactProblem],
     index: Vec<Vec<usize>>,
     references: &[f64],
-    edge_clearance: bool,
+    (edge_clearance, axis): (bool, Axis),
 ) -> Result<Vec<Case<'a>>, DesignError> {
     cases
         .iter()
@@ -189,7 +194,7 @@ pub(crate) fn prepare<'a>(
             let eps = problem.separation();
             let mut weights = vec![1.0; points.len()];
             if edge_clearance {
-                for k in cleared_points(problem) {
+                for k in cleared_points(problem, axis) {
                     weights[k] = EDGE_WEIGHT;
                 }
             }
@@ -329,13 +334,15 @@ mod tests {
             "the analysis holds the rotations by symmetry"
         );
         let (_, index) = axial_stations([case.points()], Axis::Y);
-        let prepared = prepare(std::slice::from_ref(&case), index, &[1.0], false).unwrap();
+        let prepared =
+            prepare(std::slice::from_ref(&case), index, &[1.0], (false, Axis::Y)).unwrap();
         assert_eq!(prepared[0].levers.ncols(), 3);
         assert_eq!(prepared[0].resultants, vec![100.0, 0.0, 0.0]);
     }
 
-    /// The points kept clear: a roller's ends (its body edges along y) and
-    /// the zone's open sides across it (along x), no interior point.
+    /// The points kept clear along y: on a roller's ends (its body edges
+    /// along y); on a zone open along y, its ends too; never the sides
+    /// across the axis or an interior point.
     #[test]
     fn the_cleared_points_are_the_body_edges_and_the_zones_open_sides() {
         let steel = Material::new(210e3, 0.3).unwrap();
@@ -345,22 +352,22 @@ mod tests {
         let case = ContactProblem::new(points, &body, &body, &geometry, Loading::load(5e3))
             .unwrap()
             .with_body_edges(false, true);
-        let cleared = cleared_points(&case);
-        let points = case.points();
-        // The border of a 5 x 12 rectangle: 2 * 5 + 2 * 12 - 4 points.
-        assert_eq!(cleared.len(), 30);
-        assert!(cleared.iter().all(|&k| {
-            let (x, y) = points.open_sides(k);
-            x || y
-        }));
+        let cleared = cleared_points(&case, Axis::Y);
+        // The two rows of 5 points at the roller's ends.
+        assert_eq!(cleared.len(), 10);
+        assert!(cleared.iter().all(|&k| case.points().open_sides(k).1));
+        // The same rows when the zone's ends along y are open, none along x.
+        let open = case.clone().with_body_edges(false, false);
+        assert_eq!(cleared_points(&open, Axis::Y), cleared);
+        assert!(cleared_points(&open, Axis::X).len() == 24);
         // Without edge clearance every weight is 1; with it the border's is EDGE_WEIGHT.
         let (_, index) = axial_stations([case.points()], Axis::Y);
-        let kept = prepare(std::slice::from_ref(&case), index, &[1.0], true).unwrap();
+        let kept = prepare(std::slice::from_ref(&case), index, &[1.0], (true, Axis::Y)).unwrap();
         let weighted = kept[0]
             .weights
             .iter()
             .filter(|&&w| w == EDGE_WEIGHT)
             .count();
-        assert_eq!(weighted, 30);
+        assert_eq!(weighted, 10);
     }
 }
