@@ -180,24 +180,14 @@ pub(crate) fn sensitivities(
 ) -> Result<Mat<f64>, DesignError> {
     let contact = &solution.contact;
     let (nj, m) = (contact.len(), basis.params());
-    // Every motion free before symmetry drops any: at a symmetric iterate
-    // a rotation is zero, but a step that breaks the symmetry turns it.
-    // A rotation with no lever over J (contact on its axis alone) carries
-    // no moment there and is left out.
-    let rigid = problem
-        .rigid_without_symmetry()
-        .map_err(DesignError::analysis("a design sensitivity"))?;
+    let rigid = problem.rigid();
     let points = problem.points();
-    let lever = |a: usize, j: usize| {
+    let levers = Mat::from_fn(nj, rigid.free.len(), |a, j| {
         let k = contact[a];
         rigid.free[j]
             .0
             .lever((points.x(k), points.y(k)), rigid.load_point)
-    };
-    let free: Vec<usize> = (0..rigid.free.len())
-        .filter(|&j| (0..nj).any(|a| lever(a, j) != 0.0))
-        .collect();
-    let levers = Mat::from_fn(nj, free.len(), |a, c| lever(a, free[c]));
+    });
     // X = -V + U Lambda with U = S^-1 L, V = S^-1 D and (L^T U) Lambda = L^T V:
     // both from one factor (or one set of CG solves), the right-hand side
     // [L | D].
