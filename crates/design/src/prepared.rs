@@ -134,7 +134,8 @@ pub fn axial_stations<'a>(
 /// The points a design that must hold on any grid keeps out of contact:
 /// those on the bodies' singular edges (a roller's ends), and those on
 /// the candidate zone's open edges along the profile's `axis` (a side
-/// that is not a body's own). A contact there is cut off by the zone: the
+/// that is not a body's own) of elastic half-spaces. A contact there is
+/// cut off by the zone: the
 /// bodies would go on touching beyond it, and a family free to spread the
 /// load along its axis (a polynomial across a disk) would otherwise press
 /// it against the zone's edge, whose cut peak grows as the grid refines.
@@ -142,6 +143,13 @@ pub fn axial_stations<'a>(
 /// it may spread the contact.
 pub(crate) fn cleared_points(problem: &ContactProblem, axis: Axis) -> Vec<usize> {
     let mut cleared = problem.singular_edge_points();
+    // Only where the pressure at a cut edge is singular (elastic
+    // half-spaces: every zone edge would be singular if it were the
+    // bodies'); a beam's or a foundation's stays bounded and converges.
+    let every_edge = problem.clone().with_body_edges(true, true);
+    if every_edge.singular_edge_points().is_empty() {
+        return cleared;
+    }
     let (body_x, body_y) = problem.body_edges();
     let points = problem.points();
     cleared.extend((0..points.len()).filter(|&k| {
@@ -357,6 +365,8 @@ mod tests {
         assert_eq!(cleared.len(), 10);
         assert!(cleared.iter().all(|&k| case.points().open_sides(k).1));
         // The same rows when the zone's ends along y are open, none along x.
+        // (A beam or a foundation clears none: its pressure at a cut edge
+        // is bounded.)
         let open = case.clone().with_body_edges(false, false);
         assert_eq!(cleared_points(&open, Axis::Y), cleared);
         assert!(cleared_points(&open, Axis::X).len() == 24);
@@ -369,5 +379,21 @@ mod tests {
             .filter(|&&w| w == EDGE_WEIGHT)
             .count();
         assert_eq!(weighted, 10);
+        // A beam on a foundation: its pressure at a cut edge is bounded,
+        // and no point is cleared, its ends open or not.
+        let beam = elcon_influence::Beam {
+            youngs_modulus: 30e6,
+            second_moment: 16.0 / 3.0,
+            loaded_point: 0.0,
+        };
+        let line = ContactProblem::new(
+            PointSet::line(-4.45, 4.45, 20).unwrap(),
+            &Body::beam(beam).unwrap(),
+            &Body::winkler(1e7),
+            &Geometry::Separation(vec![0.0; 20]),
+            Loading::load(5e4),
+        )
+        .unwrap();
+        assert!(cleared_points(&line, Axis::X).is_empty());
     }
 }
