@@ -37,7 +37,10 @@ pub enum DesignError {
         source: AnalysisError,
     },
     /// The design program could not be built or solved by the engine.
-    #[error("the design program failed: {0}")]
+    #[error(
+        "the design program failed: {0}; the descent solves the same problem by analyses \
+         alone (design.method = \"descent\")"
+    )]
     Engine(#[from] LcpError),
     /// The design's objective (its worst p_max) and that of its re-analysis
     /// differ by more than the tolerance: the design is not returned.

@@ -170,6 +170,21 @@ pub fn design(
             d.starts = outcomes;
             Ok(d)
         }
+        // The program chosen by `Auto` ended without its certificate (its
+        // tableau mixes forces, lengths and intensities, and a problem
+        // whose scales lie decades apart, a stiff beam on a soft
+        // foundation, can leave it short of the engine's tolerance): the
+        // descent, which solves the same problem by analyses alone, takes
+        // over.
+        (None, Some(DesignError::Engine(elcon_lcp::LcpError::Inaccurate { .. })))
+            if options.method == DesignMethod::Auto && setup.method == DesignMethod::Program =>
+        {
+            let descent = DesignOptions {
+                method: DesignMethod::Descent,
+                ..options.clone()
+            };
+            design(cases, axis, family, &descent)
+        }
         (None, Some(e)) => Err(e),
         (None, None) => Err(DesignError::Incompatible {
             field: "starts",
@@ -217,7 +232,7 @@ fn setup<'a>(
     let references = reference_intensities(options.reference_intensities.as_deref(), cases.len())?;
     let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), axis);
     let basis = Basis::new(family, &stations, options.knots.as_deref())?;
-    let prepared = prepare(cases, index, &references, options.edge_clearance)?;
+    let prepared = prepare(cases, index, &references, (options.edge_clearance, axis))?;
     let mut scale = 0.0f64;
     for case in &prepared {
         scale = scale.max(deflection_scale(case)?);
@@ -360,15 +375,31 @@ fn run_start(
             setup.scale,
             options,
         )?,
-        _ => lpcc::solve(
-            &setup.prepared,
-            &setup.basis,
-            setup.c_max,
-            theta0,
-            &options.engine,
-        )?,
+        _ => program(setup, theta0, options)?,
     };
     finish(setup, found, options)
+}
+
+/// The design program from `theta0`, every case's rotations free (a
+/// correction may break a case's symmetry, and its re-analysis then frees
+/// them); when the engine finds no complementary start so, again with the
+/// rotations a symmetric case's analysis holds at zero.
+fn program(
+    setup: &Setup<'_>,
+    theta0: &[f64],
+    options: &DesignOptions,
+) -> Result<Found, DesignError> {
+    let solve =
+        |cases: &[Case<'_>]| lpcc::solve(cases, &setup.basis, setup.c_max, theta0, &options.engine);
+    match solve(&setup.prepared) {
+        Err(DesignError::Engine(elcon_lcp::LcpError::Infeasible { .. }))
+            if setup.prepared.iter().any(Case::holds_rotations) =>
+        {
+            let held: Vec<Case<'_>> = setup.prepared.iter().map(Case::held).collect();
+            solve(&held)
+        }
+        found => found,
+    }
 }
 
 /// The profile of what a start found (smallest drop 0), re-analysed and

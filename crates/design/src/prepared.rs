@@ -19,11 +19,10 @@ use crate::evaluate::load_of;
 use crate::{Axis, DesignError};
 
 /// One load case, prepared: its points' stations, measures and load, and
-/// its free rigid motions (the approach first, then the free rotations that
-/// its symmetry does not make zero) with the separations shifted by the
-/// prescribed ones. (A correction that breaks a case's symmetry makes its
-/// re-analysis free a rotation the program held: the re-analysis then
-/// disagrees, and the design says so.)
+/// its free rigid motions (the approach first, then the free rotations,
+/// including those its symmetry makes zero: a correction may break the
+/// symmetry, and its re-analysis then frees them) with the separations
+/// shifted by the prescribed ones.
 pub(crate) struct Case<'a> {
     pub(crate) problem: &'a ContactProblem,
     pub(crate) station: Vec<usize>,
@@ -50,7 +49,39 @@ pub(crate) struct Case<'a> {
 /// pivots resolve).
 pub const EDGE_WEIGHT: f64 = 100.0;
 
-impl Case<'_> {
+impl<'a> Case<'a> {
+    /// The case with the rotations its symmetry makes zero held, as its
+    /// own analysis holds them (`ContactProblem::rigid`; the same motions
+    /// when its symmetry holds none, [`Case::holds_rotations`]). The design
+    /// program falls back to it when it finds no complementary start with
+    /// them free (the restricted-entry rule can stall on a symmetric
+    /// case's free rotation: Example 2's centred beam).
+    pub(crate) fn held(&self) -> Case<'a> {
+        let rigid = self.problem.rigid();
+        let points = self.problem.points();
+        Case {
+            problem: self.problem,
+            station: self.station.clone(),
+            measures: self.measures.clone(),
+            load: self.load,
+            levers: Mat::from_fn(points.len(), rigid.free.len(), |k, j| {
+                rigid.free[j]
+                    .0
+                    .lever((points.x(k), points.y(k)), rigid.load_point)
+            }),
+            resultants: rigid.free.iter().map(|&(_, v)| v).collect(),
+            separation: self.separation.clone(),
+            reference: self.reference,
+            weights: self.weights.clone(),
+        }
+    }
+
+    /// Whether the case's analysis holds a rotation at zero by symmetry
+    /// that the design leaves free.
+    pub(crate) fn holds_rotations(&self) -> bool {
+        self.problem.rigid().free.len() != self.resultants.len()
+    }
+
     /// The design's measure of `solution`: `max_k w_k F_k / (A_k r_l)`.
     pub(crate) fn merit(&self, solution: &ContactSolution) -> f64 {
         solution
@@ -100,14 +131,48 @@ pub fn axial_stations<'a>(
     (stations, index)
 }
 
+/// The points a design that must hold on any grid keeps out of contact:
+/// those on the bodies' singular edges (a roller's ends), and those on
+/// the candidate zone's open edges along the profile's `axis` (a side
+/// that is not a body's own) of elastic half-spaces. A contact there is
+/// cut off by the zone: the
+/// bodies would go on touching beyond it, and a family free to spread the
+/// load along its axis (a polynomial across a disk) would otherwise press
+/// it against the zone's edge, whose cut peak grows as the grid refines.
+/// Kept clear, the design stays inside the zone: the zone bounds how far
+/// it may spread the contact.
+pub(crate) fn cleared_points(problem: &ContactProblem, axis: Axis) -> Vec<usize> {
+    let mut cleared = problem.singular_edge_points();
+    // Only where the pressure at a cut edge is singular (elastic
+    // half-spaces: every zone edge would be singular if it were the
+    // bodies'); a beam's or a foundation's stays bounded and converges.
+    let every_edge = problem.clone().with_body_edges(true, true);
+    if every_edge.singular_edge_points().is_empty() {
+        return cleared;
+    }
+    let (body_x, body_y) = problem.body_edges();
+    let points = problem.points();
+    cleared.extend((0..points.len()).filter(|&k| {
+        let (x, y) = points.open_sides(k);
+        match axis {
+            Axis::X => x && !body_x,
+            Axis::Y => y && !body_y,
+        }
+    }));
+    cleared.sort_unstable();
+    cleared.dedup();
+    cleared
+}
+
 /// Every case prepared (each under load control and unfolded, checked by
 /// `load_of`), with each point's station among `index`, its singular edges
-/// weighted by [`EDGE_WEIGHT`] when `edge_clearance`.
+/// and the zone's open edges along `axis` weighted by [`EDGE_WEIGHT`] when
+/// `edge_clearance`.
 pub(crate) fn prepare<'a>(
     cases: &'a [ContactProblem],
     index: Vec<Vec<usize>>,
     references: &[f64],
-    edge_clearance: bool,
+    (edge_clearance, axis): (bool, Axis),
 ) -> Result<Vec<Case<'a>>, DesignError> {
     cases
         .iter()
@@ -115,7 +180,13 @@ pub(crate) fn prepare<'a>(
         .enumerate()
         .map(|(l, (problem, station))| {
             let load = load_of(problem, l)?;
-            let rigid = problem.rigid();
+            // The motions free before symmetry drops any: a correction may
+            // break the case's symmetry (an odd term of a polynomial), and
+            // the re-analysis then frees the rotation that symmetry held at
+            // zero, so the program must leave it free too.
+            let rigid = &problem
+                .rigid_without_symmetry()
+                .map_err(DesignError::analysis(format!("load case {l}")))?;
             let points = problem.points();
             let at = |k: usize| (points.x(k), points.y(k));
             let levers = Mat::from_fn(points.len(), rigid.free.len(), |k, j| {
@@ -131,7 +202,7 @@ pub(crate) fn prepare<'a>(
             let eps = problem.separation();
             let mut weights = vec![1.0; points.len()];
             if edge_clearance {
-                for k in problem.singular_edge_points() {
+                for k in cleared_points(problem, axis) {
                     weights[k] = EDGE_WEIGHT;
                 }
             }
@@ -243,4 +314,86 @@ pub enum Stop {
     TrustRegion,
     /// `DesignOptions::max_iterations` reached.
     IterationLimit,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use elcon_analysis::{Geometry, Loading, Surface};
+    use elcon_influence::{Body, Material};
+
+    /// Two spheres on a disk: symmetric, so the analysis drops both
+    /// rotations (zero at the solution); the design keeps them free, since
+    /// an odd correction breaks the symmetry and its re-analysis frees them.
+    #[test]
+    fn a_symmetric_case_keeps_the_rotations_its_symmetry_drops() {
+        let steel = Material::new(30e6, 0.3).unwrap();
+        let points = PointSet::grid_disk(0.002, 0.02).unwrap();
+        let body = Body::uniform_patch(steel);
+        let geometry = Geometry::Surfaces(
+            Surface::Sphere { radius: 1.0 },
+            Surface::Sphere { radius: 10.0 },
+        );
+        let case =
+            ContactProblem::new(points, &body, &body, &geometry, Loading::load(100.0)).unwrap();
+        assert_eq!(
+            case.rigid().free.len(),
+            1,
+            "the analysis holds the rotations by symmetry"
+        );
+        let (_, index) = axial_stations([case.points()], Axis::Y);
+        let prepared =
+            prepare(std::slice::from_ref(&case), index, &[1.0], (false, Axis::Y)).unwrap();
+        assert_eq!(prepared[0].levers.ncols(), 3);
+        assert_eq!(prepared[0].resultants, vec![100.0, 0.0, 0.0]);
+    }
+
+    /// The points kept clear along y: on a roller's ends (its body edges
+    /// along y); on a zone open along y, its ends too; never the sides
+    /// across the axis or an interior point.
+    #[test]
+    fn the_cleared_points_are_the_body_edges_and_the_zones_open_sides() {
+        let steel = Material::new(210e3, 0.3).unwrap();
+        let points = PointSet::grid_rectangle(0.5, 5.0, 5, 12).unwrap();
+        let body = Body::uniform_patch(steel);
+        let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
+        let case = ContactProblem::new(points, &body, &body, &geometry, Loading::load(5e3))
+            .unwrap()
+            .with_body_edges(false, true);
+        let cleared = cleared_points(&case, Axis::Y);
+        // The two rows of 5 points at the roller's ends.
+        assert_eq!(cleared.len(), 10);
+        assert!(cleared.iter().all(|&k| case.points().open_sides(k).1));
+        // The same rows when the zone's ends along y are open, none along x.
+        // (A beam or a foundation clears none: its pressure at a cut edge
+        // is bounded.)
+        let open = case.clone().with_body_edges(false, false);
+        assert_eq!(cleared_points(&open, Axis::Y), cleared);
+        assert!(cleared_points(&open, Axis::X).len() == 24);
+        // Without edge clearance every weight is 1; with it the border's is EDGE_WEIGHT.
+        let (_, index) = axial_stations([case.points()], Axis::Y);
+        let kept = prepare(std::slice::from_ref(&case), index, &[1.0], (true, Axis::Y)).unwrap();
+        let weighted = kept[0]
+            .weights
+            .iter()
+            .filter(|&&w| w == EDGE_WEIGHT)
+            .count();
+        assert_eq!(weighted, 10);
+        // A beam on a foundation: its pressure at a cut edge is bounded,
+        // and no point is cleared, its ends open or not.
+        let beam = elcon_influence::Beam {
+            youngs_modulus: 30e6,
+            second_moment: 16.0 / 3.0,
+            loaded_point: 0.0,
+        };
+        let line = ContactProblem::new(
+            PointSet::line(-4.45, 4.45, 20).unwrap(),
+            &Body::beam(beam).unwrap(),
+            &Body::winkler(1e7),
+            &Geometry::Separation(vec![0.0; 20]),
+            Loading::load(5e4),
+        )
+        .unwrap();
+        assert!(cleared_points(&line, Axis::X).is_empty());
+    }
 }

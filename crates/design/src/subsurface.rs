@@ -460,7 +460,7 @@ mod tests {
             .unwrap();
         let cases = std::slice::from_ref(&problem);
         let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), Axis::Y);
-        let prepared = prepare(cases, index, &[2000.0], false).unwrap();
+        let prepared = prepare(cases, index, &[2000.0], (false, crate::Axis::Y)).unwrap();
         let case = &prepared[0];
         let basis = Basis::new(Family::Quadratic, &stations, None).unwrap();
         let crown: Vec<f64> = stations.iter().map(|s| 4e-3 * (s / 5.0).powi(2)).collect();

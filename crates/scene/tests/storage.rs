@@ -99,11 +99,19 @@ fn an_unknown_method_names_auto_among_the_choices() {
 fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
     // Spheres solved matrix-free, their profile along y designed for two
     // loads: the design cases are lattice problems, the method the descent.
-    // On the scene's grid alone: the zone (1.15 Hertz radii) truncates the
-    // contact a quadratic along y stretches, so its peak grows with the
-    // grid and a refined design would not converge.
+    // On the scene's grid alone, in a zone of 1.5 Hertz radii (the design
+    // keeps the contact off the zone's rim along y; the uncorrected contact
+    // of this coarse grid reaches the rim of a 1.15 zone).
     let design = "method = \"conjugate-gradient\"\nsymmetry = \"none\"\n\n[design]\nfamily = \"quadratic\"\naxis = \"y\"\nloads = [80.0, 100.0]\nrefine = false\n";
-    let scene = spheres(15, design);
+    let scene = Scene::from_str(
+        Path::new("storage.toml"),
+        &with_table(
+            &common::spheres("across = 15\nzone = 1.5"),
+            "solver",
+            design,
+        ),
+    )
+    .unwrap();
     assert_eq!(scene.storage(), Storage::Lattice);
     let estimate = Estimate::of(&scene).unwrap();
     let d = estimate.design.clone().unwrap();

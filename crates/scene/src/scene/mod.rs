@@ -663,6 +663,7 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
                 )
             })?);
         }
+        design_grids_resolve(ctx, raw, scene, &sets)?;
         let view = sanity::DesignView {
             family: match spec.family() {
                 DesignFamily::Linear(f) => Some(*f),
@@ -670,6 +671,9 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
             },
             axis: spec.axis(),
             max_constant: spec.max_constant(),
+            loads: spec.loads().to_vec(),
+            relative: spec.relative_to() != RelativeTo::Absolute,
+            sequence: spec.sequence().cloned(),
         };
         sanity::design(ctx, raw_design, &view, &sets)?;
     }
@@ -695,6 +699,76 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
         _ => None,
     };
     Ok(sanity::coarse_grid(&scene.points, hertz, disk))
+}
+
+/// Every design load's grid resolves its Hertz contact (where a closed
+/// form gives one) with [`sanity::MIN_POINTS_ACROSS`] points across: what
+/// a scene's analysis only warns of refuses a design, whose objective
+/// compares each load's `p_max` over grids and cannot be met on a grid
+/// that averages the contact over a cell or two.
+fn design_grids_resolve(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    scene: &Scene,
+    sets: &[PointSet],
+) -> Result<(), SceneError> {
+    let Some(spec) = &scene.design else {
+        return Ok(());
+    };
+    for (&load, set) in spec.loads().iter().zip(sets) {
+        let cell = set.cell();
+        let aspect = (cell.dx / cell.dy).max(cell.dy / cell.dx);
+        if set.dimension() == Dimension::Surface && aspect > sanity::MAX_DESIGN_CELL_ASPECT {
+            return Err(ctx.invalid(
+                raw.points.span(),
+                "points",
+                "",
+                format!(
+                    "the design load {} has cells {aspect:.1e} times longer than wide ({:.4e} by \
+                     {:.4e}), more than {:.0e}: the influence coefficients of such cells resolve \
+                     too few digits for the certified analyses a design makes on finer and finer \
+                     grids. Give cells closer to square (points.half_y and points.ny against the \
+                     contact's width and points.nx)",
+                    crate::ctx::Num(load),
+                    cell.dx,
+                    cell.dy,
+                    sanity::MAX_DESIGN_CELL_ASPECT
+                ),
+            ));
+        }
+        let Some((what, size)) = scene.hertz(load).map(|h| match h {
+            hertz::Hertz::Cylinders(c) => ("width", 2.0 * c.half_width()),
+            other => ("diameter", 2.0 * other.scale()),
+        }) else {
+            continue;
+        };
+        let h = set.cell().dx;
+        let across = (size / h).floor() + 1.0;
+        if across >= sanity::MIN_POINTS_ACROSS as f64 {
+            continue;
+        }
+        let keys = match scene.points_spec {
+            PointsSpec::Rectangle { .. } => {
+                "more points.nx, or a smaller points.zone or points.half_x"
+            }
+            PointsSpec::Disk { .. } => "a smaller points.spacing",
+            PointsSpec::Line { .. } => "more points.n, or a shorter line",
+            _ => "more points.across, or a smaller points.zone",
+        };
+        return Err(ctx.invalid(
+            raw.points.span(),
+            "points",
+            "",
+            format!(
+                "the design load {} has about {across:.0} points across its Hertz contact {what} \
+                 ({size:.4e}, spacing {h:.4e}), fewer than {}: a design compares each load's \
+                 p_max over grids and needs its contact resolved. Give {keys}",
+                crate::ctx::Num(load),
+                sanity::MIN_POINTS_ACROSS
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// An absolute grid that cannot hold the Hertz contact is an error.

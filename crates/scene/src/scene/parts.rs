@@ -303,6 +303,9 @@ pub fn design_over(
         },
         axis: spec.axis(),
         max_constant: spec.max_constant(),
+        loads: spec.loads().to_vec(),
+        relative: spec.relative_to() != crate::RelativeTo::Absolute,
+        sequence: spec.sequence().cloned(),
     };
     sanity::design(&ctx, d, &view, &sets)?;
     Ok(spec)
