@@ -838,7 +838,8 @@ def _mutate(scene, rng):
 def test_fuzz_run_and_check_raise_only_elcons_errors():
     # Mutated example scenes through check, and through run when the check
     # passes and the estimate is small: every case ends in a result or an
-    # ElconError subclass, never a PanicException or another exception.
+    # ElconError subclass, never a PanicException, another exception or a
+    # panic caught at the boundary (a SolveError saying "internal error").
     # ELCON_FUZZ_SEED and ELCON_FUZZ_CASES explore further.
     import collections
     import copy
@@ -853,6 +854,7 @@ def test_fuzz_run_and_check_raise_only_elcons_errors():
         if "[batch]" not in text:
             scenes.append(tomllib.loads(text))
     counts = collections.Counter()
+    solve_errors = collections.Counter()
     failures = []
     for case in range(cases):
         scene = copy.deepcopy(scenes[rng.integers(len(scenes))])
@@ -867,9 +869,14 @@ def test_fuzz_run_and_check_raise_only_elcons_errors():
                 assert isinstance(result, elcon.Result)
         except elcon.ElconError as e:
             counts[type(e).__name__] += 1
+            if "internal error" in str(e):  # a panic caught at the boundary
+                failures.append((case, type(e).__name__, str(e)[:300], repr(scene)[:300]))
+            elif isinstance(e, elcon.SolveError):
+                solve_errors[str(e)[:120]] += 1
         except BaseException as e:  # a PanicException is a BaseException
             if isinstance(e, KeyboardInterrupt):
                 raise
             failures.append((case, type(e).__name__, str(e)[:300], repr(scene)[:300]))
     print(f"\nfuzz seed {seed}, {cases} cases: {dict(counts)}; {len(failures)} failures")
+    print(f"solve errors: {dict(solve_errors)}")
     assert not failures, failures[:5]
