@@ -65,19 +65,33 @@ pub(crate) fn parts_error(e: RustSceneError) -> PyErr {
     }
 }
 
-/// An analysis error as its Python class. A non-finite entry of the
-/// engine's matrix (S itself, assembled from finite, validated moduli and
-/// cell sizes) means the cell's compliance overflowed: said so, as input.
+/// The value of the engine's matrix that is not finite, when `e` says S
+/// held one: S is assembled from finite, validated moduli and cell sizes,
+/// so a cell's compliance overflowed (or S was given so).
+pub(crate) fn overflowed(e: &AnalysisError) -> Option<f64> {
+    match e {
+        AnalysisError::Engine(elcon_lcp::LcpError::NonFinite {
+            field: "m", value, ..
+        }) => Some(*value),
+        _ => None,
+    }
+}
+
+/// The error of a problem whose S overflowed (`value`): `fields` names
+/// what S came from, as the user gave it.
+pub(crate) fn overflow_error(fields: &str, value: f64) -> PyErr {
+    InputError::new_err(format!(
+        "{fields}: S assembled from them has a non-finite entry ({value}): a cell's compliance \
+         is outside floating-point range, so the moduli, the spacing and the load are not in \
+         one consistent unit system"
+    ))
+}
+
+/// An analysis error as its Python class (an S that overflowed said so,
+/// as input).
 pub(crate) fn analysis_error(e: AnalysisError) -> PyErr {
-    if let AnalysisError::Engine(elcon_lcp::LcpError::NonFinite {
-        field: "m", value, ..
-    }) = &e
-    {
-        return InputError::new_err(format!(
-            "S, assembled from the bodies' moduli and the cell size, has a non-finite entry \
-             ({value}): a cell's compliance is outside floating-point range, so the moduli, \
-             the spacing and the load are not in one consistent unit system ({e})"
-        ));
+    if let Some(value) = overflowed(&e) {
+        return overflow_error("the bodies' moduli and the cell size", value);
     }
     match e {
         AnalysisError::InvalidInput { .. }

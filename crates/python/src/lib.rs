@@ -1,7 +1,7 @@
 //! `elcon._elcon`: the Rust side of the Python package.
 //!
-//! Thin bindings over the crates: a scene from a file or a dict
-//! (`run_scene`), a batch (`run_batch`), a contact problem from numpy
+//! Thin bindings over the crates: a scene from a file or a dict, run
+//! (`run_scene`) or checked as `elcon check` checks it (`check_scene`), a batch (`run_batch`), a contact problem from numpy
 //! arrays or from a layout (`ContactProblem`: points, separations, and S
 //! given or assembled from body models) and a design over such problems or
 //! over a scene (`design_problems`, `design_scene`). Python's dicts become
@@ -48,6 +48,7 @@ fn _elcon(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<problem::PyContactProblem>()?;
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene::run_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::check_scene, m)?)?;
     m.add_function(wrap_pyfunction!(design::design_problems, m)?)?;
     m.add_function(wrap_pyfunction!(design::design_scene, m)?)?;
     m.add_function(wrap_pyfunction!(problem::methods, m)?)?;

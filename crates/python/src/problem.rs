@@ -16,10 +16,12 @@ use pyo3::types::PyDict;
 use serde::Serialize;
 
 use crate::convert::{arrays, sections_text};
-use crate::errors::{InputError, SolveError, analysis_error, guarded, parts_error};
+use crate::errors::{
+    InputError, SolveError, analysis_error, guarded, overflow_error, overflowed, parts_error,
+};
 use crate::memory::{admit, ceiling};
 use crate::signals::detach;
-use crate::threads::with_threads;
+use crate::threads::{threads, with_threads};
 
 /// The names of the solve methods.
 #[pyfunction]
@@ -198,6 +200,13 @@ impl PyContactProblem {
             )));
         }
         let s = s.as_array();
+        // The engine would refuse it at the solve, by its own name for the
+        // matrix: said here, by the argument's, with the entry.
+        if let Some(((i, j), v)) = s.indexed_iter().find(|(_, v)| !v.is_finite()) {
+            return Err(InputError::new_err(format!(
+                "`influence`[{i}, {j}] = {v}: must be a finite number (deflection per unit force)"
+            )));
+        }
         let eps = match geometry {
             Geometry::Separation(eps) => eps,
             surfaces => elcon_analysis::separations(&points, &surfaces).map_err(analysis_error)?,
@@ -228,6 +237,24 @@ impl PyContactProblem {
             inner,
             built: Some(built),
         })
+    }
+}
+
+impl PyContactProblem {
+    /// What S came from, by the arguments' names (for a message).
+    fn sources(&self) -> String {
+        let cell = self.inner.points().cell();
+        match &self.built {
+            Some(Built {
+                points_spec: Some(_),
+                ..
+            }) => "`body1`, `body2` and the `points` layout's cells".to_string(),
+            Some(_) => format!(
+                "`body1`, `body2` and `spacing` = ({:e}, {:e})",
+                cell.dx, cell.dy
+            ),
+            None => "`influence` (S as given)".to_string(),
+        }
     }
 }
 
@@ -322,8 +349,9 @@ impl PyContactProblem {
         &self,
         py: Python<'py>,
         method_name: Option<&str>,
-        threads: Option<i64>,
+        threads: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let threads = self::threads(threads.as_ref())?;
         let m = match method_name {
             Some(name) => method(name)?,
             None => self.inner.default_method(),
@@ -332,6 +360,7 @@ impl PyContactProblem {
         let ceiling = ceiling()?;
         let problem = &self.inner;
         let built = &self.built;
+        let sources = self.sources();
         // The token is watched on the thread that runs the solve: inside
         // the pool of `threads` when one is given.
         let solution = detach(py, |cancel| {
@@ -349,7 +378,10 @@ impl PyContactProblem {
                         }
                         problem
                             .solve(m, &Options::default())
-                            .map_err(analysis_error)
+                            .map_err(|e| match overflowed(&e) {
+                                Some(value) => overflow_error(&sources, value),
+                                None => analysis_error(e),
+                            })
                     })
                 })
             })

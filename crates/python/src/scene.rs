@@ -12,7 +12,7 @@ use crate::errors::{InputError, SceneError, SolveError, guarded, scene_error};
 use crate::memory::ceiling;
 use crate::signals::detach;
 use crate::subsurface::subsurface_arrays;
-use crate::threads::with_threads;
+use crate::threads::{count, with_threads};
 
 /// A scene's text: read from `path`, or a dict written as TOML.
 pub(crate) fn scene_text(
@@ -42,7 +42,7 @@ pub(crate) fn scene_text(
 pub(crate) fn run_prepared(
     py: Python<'_>,
     scene: Scene,
-    threads: Option<i64>,
+    threads: Option<usize>,
 ) -> PyResult<elcon_scene::Run> {
     let ceiling = ceiling()?;
     let name = scene.name().to_string();
@@ -73,8 +73,9 @@ pub(crate) fn run_scene<'py>(
     py: Python<'py>,
     path: Option<PathBuf>,
     scene: Option<Bound<'py, PyDict>>,
-    threads: Option<i64>,
+    threads: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let threads = crate::threads::threads(threads.as_ref())?;
     let (file, text) = scene_text(path, scene.as_ref())?;
     let scene = guarded("scene", || {
         Scene::from_str(&file, &text).map_err(scene_error)
@@ -102,16 +103,9 @@ pub(crate) fn run_batch(
     py: Python<'_>,
     path: PathBuf,
     out: PathBuf,
-    jobs: Option<i64>,
+    jobs: Option<Bound<'_, PyAny>>,
 ) -> PyResult<String> {
-    let jobs = match jobs {
-        Some(j) => Some(usize::try_from(j).map_err(|_| {
-            InputError::new_err(format!(
-                "`jobs` = {j}: must be a whole number >= 1 (None or 0: one per core)"
-            ))
-        })?),
-        None => None,
-    };
+    let jobs = count("jobs", jobs.as_ref(), 0, "one per core; 0 too")?;
     let batch = guarded("batch", || {
         elcon_scene::Batch::from_file(&path).map_err(scene_error)
     })?;
@@ -134,6 +128,36 @@ pub(crate) fn run_batch(
     .map_err(scene_error)?;
     serde_json::to_string(&done.outcome)
         .map_err(|e| SolveError::new_err(format!("results.json: {e}")))
+}
+
+/// Checks a scene (a file, or a dict with a scene's keys) as `elcon check`
+/// does: parsed, validated and estimated against the memory ceiling, not
+/// run. Returns `{"name": the scene's name, "estimate": the estimate's
+/// summary, "points", "unknowns", "peak_bytes", "seconds": the estimate's
+/// figures, "warnings": the scene's warnings}`.
+#[pyfunction]
+#[pyo3(signature = (path=None, scene=None))]
+pub(crate) fn check_scene<'py>(
+    py: Python<'py>,
+    path: Option<PathBuf>,
+    scene: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (file, text) = scene_text(path, scene.as_ref())?;
+    let ceiling = ceiling()?;
+    let prepared = guarded("scene", || {
+        let scene = Scene::from_str(&file, &text).map_err(scene_error)?;
+        elcon_scene::prepare(scene, &ceiling).map_err(scene_error)
+    })?;
+    let e = &prepared.estimate;
+    let d = PyDict::new(py);
+    d.set_item("name", prepared.scene.name())?;
+    d.set_item("estimate", e.summary())?;
+    d.set_item("points", e.points)?;
+    d.set_item("unknowns", e.unknowns)?;
+    d.set_item("peak_bytes", e.peak_bytes)?;
+    d.set_item("seconds", e.seconds)?;
+    d.set_item("warnings", prepared.scene.warnings().to_vec())?;
+    Ok(d)
 }
 
 /// Whether `path` exists (used by the Python side to tell a path from TOML

@@ -524,9 +524,16 @@ def test_python_is_as_safe_as_the_cli(tmp_path, monkeypatch):
     # (g) A cell whose compliance overflows: said so, not the engine's `m`.
     xs = np.arange(5) * 1e-300
     i, j = np.meshgrid(xs, xs, indexing="ij")
-    with pytest.raises(elcon.InputError, match="not in one consistent unit system"):
+    with pytest.raises(elcon.InputError,
+                       match=r"`body1`, `body2` and `spacing` = \(1e-300, 1e-300\).*"
+                             r"not in one consistent unit system"):
         elcon.ContactProblem(i.ravel(), np.zeros(25), 1e-300, y=j.ravel(), body1=steel,
                              body2=steel, load=1.0).solve()
+    # A modulus below the normal floating-point range: the scene's check.
+    with pytest.raises(elcon.InputError,
+                       match=r"`body1.youngs_modulus` = 1e-308: must be at least 2.2e-308"):
+        elcon.ContactProblem(i.ravel() * 1e300, np.zeros(25), 1.0, y=j.ravel() * 1e300,
+                             body1={**steel, "youngs_modulus": 1e-308}, body2=steel, load=1.0)
 
 
 def test_threads_change_nothing_of_a_matrix_free_solve():
@@ -685,3 +692,191 @@ def test_a_contact_problem_under_a_moment_keeps_to_the_small_rotation_theory():
     with pytest.raises(elcon.SolveError, match="beyond the small-rotation theory"):
         elcon.ContactProblem(xs, np.zeros(n), h1, influence=soft, load=1.0,
                              moment_y=-0.4).solve()
+
+
+def test_every_argument_is_converted_or_refused_naming_it():
+    # Numbers of any real type, arrays of any real dtype: the same problem.
+    # Everything else (strings, shapes, bools, complex, counts out of range)
+    # is an InputError naming the argument, never TypeError, ValueError or
+    # OverflowError.
+    n, h, k = 8, 0.25, 2.0**21
+    x = (np.arange(n) - 3.5) * h  # x and S exact in float32
+    s = np.eye(n) / (k * h)
+    reference = elcon.ContactProblem(x, np.zeros(n), h, influence=s, load=500.0).solve("lemke")
+    narrow = elcon.ContactProblem(x.astype(np.float32), np.zeros(n, dtype=np.int32),
+                                  np.float32(h), influence=s.astype(np.float32),
+                                  load=np.int16(500)).solve("lemke")
+    assert np.array_equal(narrow.force, reference.force)
+    problem = elcon.ContactProblem(x, np.zeros(n), h, influence=s, load=500.0)
+    refused = [
+        (r"`spacing` = 'a'", dict(spacing="a")),
+        (r"`spacing`: must be h or \(dx, dy\); got 3", dict(spacing=(h, h, h))),
+        (r"`load` = 'a'", dict(load="a")),
+        (r"`load` = array", dict(load=np.array([500.0, 1.0]))),
+        (r"`load` = True", dict(load=True)),
+        (r"`tilt_y` = \(1\+1j\)", dict(tilt_y=1 + 1j)),
+        (r"`x`: not an array of real numbers", dict(x=x + 1j)),
+        (r"`x`: not an array of numbers", dict(x=["a"] * n)),
+        (r"`storage` = 3: must be a name", dict(storage=3)),
+        (r"`body1` = 3: must be a dict", dict(body1=3)),
+        (r"`height_map_spacing`: must be two numbers.*got 3", dict(
+            height_map=np.zeros((3, 3)), height_map_spacing=(1.0, 2.0, 3.0))),
+        (r"`height_map`: must be a 2-D array", dict(height_map=np.zeros(3))),
+        (r"`influence`\[2, 3\] = NaN: must be a finite number",
+         dict(influence=np.where(np.arange(n * n).reshape(n, n) == 19, np.nan, s))),
+    ]
+    for message, change in refused:
+        given = dict(x=x, separation=np.zeros(n), spacing=h, influence=s, load=500.0)
+        given.update(change)
+        with pytest.raises(elcon.InputError, match=message):
+            elcon.ContactProblem(**given)
+    with pytest.raises(elcon.InputError, match=r"`method` = 3: must be a name"):
+        problem.solve(3)
+    for threads in ("2", 2**70, True, -1, 1.5):
+        with pytest.raises(elcon.InputError, match=r"`threads` = .*: must be a whole number >= 1"):
+            problem.solve("lemke", threads=threads)
+    with pytest.raises(elcon.InputError, match=r"`threads` = 1180591620717411303424"):
+        elcon.run(SCENES / "example1-spheres.toml", threads=2**70)
+    assert problem.solve("lemke", threads=np.int64(1)).force.tolist() == reference.force.tolist()
+    for jobs in (2**70, -1, "1"):
+        with pytest.raises(elcon.InputError, match=r"`jobs` = .*: must be a whole number >= 0"):
+            elcon.batch(SCENES / "convergence.toml", jobs=jobs, out="unused")
+    with pytest.raises(elcon.InputError, match=r"`path` = 3: must be a path"):
+        elcon.batch(3)
+    # The design's and Hertz's arguments.
+    with pytest.raises(elcon.InputError, match=r"`problems`: a list of elcon.ContactProblem"):
+        elcon.design(3)
+    with pytest.raises(elcon.InputError, match=r"`roller` = 3: must be a dict"):
+        elcon.design([problem], family="logarithmic-crown", roller=3)
+    with pytest.raises(elcon.InputError, match=r"`reference_intensities`: must be one-dim"):
+        elcon.design([problem], reference_intensities=np.ones((1, 1)))
+    with pytest.raises(elcon.InputError, match=r"`design.degree` = 1180591620717411303424"):
+        elcon.design([problem], family="polynomial", degree=2**70)
+    with pytest.raises(elcon.InputError, match=r"`surface1`: must be \(radius_x, radius_y, angle\)"):
+        elcon.hertz_ellipse(1e5, 1.0, np.ones((3, 1)))
+    with pytest.raises(elcon.InputError, match=r"`surface1`: .*got 2 numbers"):
+        elcon.hertz_ellipse(1e5, 1.0, (1.0, 1.0))
+    with pytest.raises(elcon.InputError, match=r"`x`: must be one-dimensional.*\(2, 2\)"):
+        elcon.hertz_ellipse(1e5, 1.0, (1.0, 1.0, 0.0), x=np.zeros((2, 2)), y=np.zeros((2, 2)))
+    with pytest.raises(elcon.InputError, match=r"`load` = 'a'"):
+        elcon.hertz_ellipse(1e5, "a", (1.0, 1.0, 0.0))
+
+
+def test_check_validates_and_estimates_a_scene_without_solving(monkeypatch):
+    import tomllib
+
+    scene = tomllib.loads((SCENES / "example1-spheres.toml").read_text())
+    checked = elcon.check(scene)
+    assert checked == elcon.check(SCENES / "example1-spheres.toml")
+    assert checked["name"] == "example1-spheres"
+    assert checked["points"] == elcon.run(scene).to_dict()["points"]
+    assert checked["unknowns"] <= checked["points"] and checked["peak_bytes"] > 0
+    assert checked["estimate"] and isinstance(checked["warnings"], list)
+    # The refusals of `run`, before its solve.
+    scene["body1"]["youngs_modulu"] = 30e6
+    with pytest.raises(elcon.SceneError, match="unknown field `youngs_modulu`"):
+        elcon.check(scene)
+    del scene["body1"]["youngs_modulu"]
+    monkeypatch.setenv("ELCON_MEMORY_LIMIT", "1M")
+    with pytest.raises(elcon.SolveError, match="too big for the memory available"):
+        elcon.check(scene)
+    with pytest.raises(elcon.InputError, match="check\\(\\) takes a scene's path"):
+        elcon.check(3)
+
+
+# --- A fuzz of run and check from Python (ELCON_FUZZ=1 to run it) ---
+
+_EXTREMES = [0, -1, 1, 3, 0.5, 1e308, -1e308, 1e-308, 5e-324, float("nan"), float("inf"),
+             float("-inf"), 2**63 - 1, -(2**63), 2**70, "", "x", "plane", "sphere", [], {},
+             True, None, [1.0, 2.0], [-1.0, 1e300], np.float32("nan"), np.int64(-7),
+             np.array([1.0, 2.0]), np.zeros((2, 2)), 1 + 2j, object()]
+
+
+def _leaves(d, path=()):
+    """The paths of a nested dict's values (lists' items included)."""
+    items = d.items() if isinstance(d, dict) else enumerate(d)
+    for k, v in items:
+        yield path + (k,)
+        if isinstance(v, (dict, list)):
+            yield from _leaves(v, path + (k,))
+
+
+def _mutate(scene, rng):
+    """One random edit of ``scene`` (in place): a value set to an extreme,
+    scaled or negated, or to a string; a key dropped, renamed (a typo, or
+    another section's key) or a section duplicated under another name."""
+    paths = list(_leaves(scene))
+    path = paths[rng.integers(len(paths))]
+    parent = scene
+    for k in path[:-1]:
+        parent = parent[k]
+    key = path[-1]
+    value = parent[key]
+    # Scaling a number keeps most scenes valid, so that the solves see
+    # extreme values too: it is drawn as often as the other edits together.
+    kind = rng.choice(7, p=[0.15, 0.5, 0.07, 0.07, 0.07, 0.04, 0.1])
+    if kind == 0:
+        parent[key] = _EXTREMES[rng.integers(len(_EXTREMES))]
+    elif kind == 1 and isinstance(value, (int, float)) and not isinstance(value, bool):
+        parent[key] = value * [-1, 0, 1e-300, 1e300, 10, 0.1][rng.integers(6)]
+    elif kind == 2 and isinstance(parent, dict):
+        del parent[key]
+    elif kind == 3 and isinstance(parent, dict):
+        typo = key[:-1] if len(key) > 1 and rng.integers(2) else key + "s"
+        parent[typo] = parent.pop(key)
+    elif kind == 4 and isinstance(parent, dict):
+        other = [p[-1] for p in paths if isinstance(p[-1], str) and p[-1] != key]
+        if other:
+            parent[other[rng.integers(len(other))]] = parent.pop(key)
+    elif kind == 5 and isinstance(parent, list):
+        del parent[key]
+    else:
+        parent[key] = str(value)
+
+
+@pytest.mark.skipif(os.environ.get("ELCON_FUZZ") != "1", reason="set ELCON_FUZZ=1 to fuzz")
+def test_fuzz_run_and_check_raise_only_elcons_errors():
+    # Mutated example scenes through check, and through run when the check
+    # passes and the estimate is small: every case ends in a result or an
+    # ElconError subclass, never a PanicException, another exception or a
+    # panic caught at the boundary (a SolveError saying "internal error").
+    # ELCON_FUZZ_SEED and ELCON_FUZZ_CASES explore further.
+    import collections
+    import copy
+    import tomllib
+
+    seed = int(os.environ.get("ELCON_FUZZ_SEED", "20261"))
+    cases = int(os.environ.get("ELCON_FUZZ_CASES", "300"))
+    rng = np.random.default_rng(seed)
+    scenes = []
+    for path in sorted(SCENES.glob("*.toml")):
+        text = path.read_text()
+        if "[batch]" not in text:
+            scenes.append(tomllib.loads(text))
+    counts = collections.Counter()
+    solve_errors = collections.Counter()
+    failures = []
+    for case in range(cases):
+        scene = copy.deepcopy(scenes[rng.integers(len(scenes))])
+        for _ in range(1 + rng.integers(2)):
+            _mutate(scene, rng)
+        try:
+            checked = elcon.check(scene)
+            counts["check: valid"] += 1
+            if checked["seconds"] < 0.5 and checked["points"] <= 5000:
+                result = elcon.run(scene)
+                counts["run: result"] += 1
+                assert isinstance(result, elcon.Result)
+        except elcon.ElconError as e:
+            counts[type(e).__name__] += 1
+            if "internal error" in str(e):  # a panic caught at the boundary
+                failures.append((case, type(e).__name__, str(e)[:300], repr(scene)[:300]))
+            elif isinstance(e, elcon.SolveError):
+                solve_errors[str(e)[:120]] += 1
+        except BaseException as e:  # a PanicException is a BaseException
+            if isinstance(e, KeyboardInterrupt):
+                raise
+            failures.append((case, type(e).__name__, str(e)[:300], repr(scene)[:300]))
+    print(f"\nfuzz seed {seed}, {cases} cases: {dict(counts)}; {len(failures)} failures")
+    print(f"solve errors: {dict(solve_errors)}")
+    assert not failures, failures[:5]

@@ -5,6 +5,7 @@ numpy arrays in and out:
 
 - ``elcon.run(path_or_dict)`` runs a scene (a TOML file, or a dict with the
   same keys and the same validation) and returns a :class:`Result`;
+  ``elcon.check(path_or_dict)`` validates and estimates it without solving;
 - ``elcon.ContactProblem(...)`` builds a problem from arrays or a layout
   (points, separations or surfaces, and S given or assembled from body
   models, held dense, folded or matrix-free) and ``.solve()`` returns a
@@ -47,6 +48,7 @@ from ._elcon import DesignError, ElconError, InputError, SceneError, SolveError
 
 __all__ = [
     "run",
+    "check",
     "batch",
     "design",
     "ContactProblem",
@@ -210,33 +212,101 @@ def run(scene: Union[str, os.PathLike, Dict[str, Any]], threads: Optional[int] =
     raise InputError("run() takes a scene's path (a .toml file) or a dict of its keys")
 
 
+def check(scene: Union[str, os.PathLike, Dict[str, Any]]) -> Dict[str, Any]:
+    """Checks a scene (a TOML file's path, or a dict with the same keys) as
+    ``elcon check`` does: parsed, validated and its cost estimated against
+    the memory ceiling, without solving.
+
+    Returns a dict: ``name``, ``estimate`` (the estimate's summary, as
+    ``elcon check`` prints it), ``points``, ``unknowns``, ``peak_bytes``,
+    ``seconds`` (the estimate's figures) and ``warnings`` (a list of
+    strings). Raises what ``run`` raises before its solve: ``SceneError``
+    for a scene that is not valid, ``SolveError`` for one too big for the
+    memory available.
+    """
+    if isinstance(scene, dict):
+        return dict(_elcon.check_scene(scene=scene))
+    if isinstance(scene, (str, os.PathLike)):
+        return dict(_elcon.check_scene(path=os.fspath(scene)))
+    raise InputError("check() takes a scene's path (a .toml file) or a dict of its keys")
+
+
 _SHAPES = {1: "must be one-dimensional, one value per point (shape (N,))",
            2: "must be an (N, N) array"}
 
 
-def _array(value: Any, name: str, ndim: int) -> Optional[np.ndarray]:
-    """``value`` as a contiguous float64 array (any dtype or layout) of
-    ``ndim`` dimensions (1: a vector, 2: a matrix), or InputError naming
-    ``name`` when it is not one."""
+def _array(value: Any, name: str, ndim: int, shape: Optional[str] = None) -> Optional[np.ndarray]:
+    """``value`` as a contiguous float64 array (any real dtype or layout)
+    of ``ndim`` dimensions (1: a vector, 2: a matrix), or InputError naming
+    ``name`` and the shape expected (``shape``, else the usual one)."""
     if value is None:
         return None
+    if isinstance(value, (str, bytes, dict)) or np.iscomplexobj(value):
+        raise InputError(f"`{name}`: not an array of real numbers (got {type(value).__name__})")
     try:
         array = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError) as e:
         raise InputError(f"`{name}`: not an array of numbers ({e})") from None
     if array.ndim != ndim:
-        raise InputError(f"`{name}`: {_SHAPES[ndim]}; got shape {array.shape}")
+        raise InputError(f"`{name}`: {shape or _SHAPES[ndim]}; got shape {array.shape}")
     return np.ascontiguousarray(array)
 
 
-def _pair(value: Optional[Sequence[float]]) -> Optional[tuple]:
-    """Two floats, or None."""
+def _number(value: Any, name: str, required: bool = False) -> Optional[float]:
+    """``value`` as a float (any real number: int, float, numpy's scalars
+    and 0-d arrays), or None when it may be left out; InputError naming
+    ``name`` otherwise. The value's range is the crates' to check."""
     if value is None:
+        if required:
+            raise InputError(f"`{name}`: required, a number")
         return None
-    values = tuple(float(v) for v in np.asarray(value, dtype=float).ravel())
-    if len(values) != 2:
-        raise InputError("two numbers (along x, along y)")
-    return values
+    if (isinstance(value, (bool, np.bool_, str, bytes)) or np.iscomplexobj(value)
+            or np.ndim(value) != 0):
+        raise InputError(f"`{name}` = {value!r}: must be a number")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"`{name}` = {value!r}: must be a number") from None
+
+
+def _numbers(value: Any, name: str, count: int, shape: str,
+             required: bool = False) -> Optional[tuple]:
+    """``count`` floats (``shape`` says which), or None when it may be left
+    out; InputError naming ``name`` otherwise."""
+    if value is None:
+        if required:
+            raise InputError(f"`{name}`: required, {shape}")
+        return None
+    array = _array(value, name, 1, f"must be {shape}")
+    if len(array) != count:
+        raise InputError(f"`{name}`: must be {shape}; got {len(array)} numbers")
+    return tuple(float(v) for v in array)
+
+
+def _pair(value: Any, name: str) -> Optional[tuple]:
+    """Two floats (along x, along y), or None."""
+    return _numbers(value, name, 2, "two numbers (along x, along y)")
+
+
+def _path(value: Any, name: str) -> str:
+    """A path (a string or an os.PathLike); InputError naming ``name``."""
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value)
+    raise InputError(f"`{name}` = {value!r}: must be a path (a string or a pathlib.Path)")
+
+
+def _name(value: Any, name: str) -> Optional[str]:
+    """A name (a string), or None; InputError naming ``name`` otherwise."""
+    if value is None or isinstance(value, str):
+        return value
+    raise InputError(f"`{name}` = {value!r}: must be a name (a string)")
+
+
+def _section(value: Any, name: str) -> Optional[Dict[str, Any]]:
+    """A dict of a scene's section, or None; InputError naming ``name``."""
+    if value is None or isinstance(value, dict):
+        return value
+    raise InputError(f"`{name}` = {value!r}: must be a dict of a scene's [{name}] keys")
 
 
 class ContactProblem:
@@ -331,37 +401,31 @@ class ContactProblem:
         height_map_spacing: Optional[Sequence[float]] = None,
         height_map_origin: Optional[Sequence[float]] = None,
     ):
-        if spacing is not None:
-            if np.ndim(spacing) == 0:
-                spacing = (float(spacing), float(spacing))
-            else:
-                spacing = tuple(float(v) for v in np.asarray(spacing).ravel())
-                if len(spacing) != 2:
-                    raise InputError("`spacing`: h or (dx, dy)")
-        for name, value in (("body1", body1), ("body2", body2), ("geometry", geometry),
-                            ("points", points)):
-            if value is not None and not isinstance(value, dict):
-                raise InputError(f"`{name}`: a dict of a scene's [{name}] keys")
+        if spacing is not None and np.ndim(spacing) == 0:
+            h = _number(spacing, "spacing")
+            spacing = (h, h)
+        else:
+            spacing = _numbers(spacing, "spacing", 2, "h or (dx, dy)")
         self._inner = _elcon.ContactProblem(
             _array(x, "x", 1),
             _array(separation, "separation", 1),
             spacing,
             y=_array(y, "y", 1),
             influence=_array(influence, "influence", 2),
-            body1=body1,
-            body2=body2,
-            load=load,
-            approach=approach,
-            tilt_x=tilt_x,
-            tilt_y=tilt_y,
-            moment_x=moment_x,
-            moment_y=moment_y,
-            geometry=geometry,
-            points=points,
-            storage_name=storage,
-            height_map=_array(height_map, "height_map", 2),
-            height_map_spacing=_pair(height_map_spacing),
-            height_map_origin=_pair(height_map_origin),
+            body1=_section(body1, "body1"),
+            body2=_section(body2, "body2"),
+            load=_number(load, "load"),
+            approach=_number(approach, "approach"),
+            tilt_x=_number(tilt_x, "tilt_x"),
+            tilt_y=_number(tilt_y, "tilt_y"),
+            moment_x=_number(moment_x, "moment_x", required=True),
+            moment_y=_number(moment_y, "moment_y", required=True),
+            geometry=_section(geometry, "geometry"),
+            points=_section(points, "points"),
+            storage_name=_name(storage, "storage"),
+            height_map=_array(height_map, "height_map", 2, "must be a 2-D array z[j, i]"),
+            height_map_spacing=_pair(height_map_spacing, "height_map_spacing"),
+            height_map_origin=_pair(height_map_origin, "height_map_origin"),
         )
 
     def __len__(self) -> int:
@@ -383,7 +447,7 @@ class ContactProblem:
         problem's own, ``default_method``) on ``threads`` threads (default:
         the cores this process may use; the answer does not depend on the
         count); the GIL is released."""
-        return Result(self._inner.solve(method, threads))
+        return Result(self._inner.solve(_name(method, "method"), threads))
 
 
 class Design(_Fields):
@@ -479,16 +543,21 @@ def design(
         else:
             raw = _elcon.design_scene(path=os.fspath(problems), keys=keys)
         return Design(raw["json"])
-    problems = list(problems)
+    try:
+        problems = list(problems)
+    except TypeError:
+        raise InputError(
+            "`problems`: a list of elcon.ContactProblem, or a scene's path or dict"
+        ) from None
     for i, p in enumerate(problems):
         if not isinstance(p, ContactProblem):
             raise InputError(f"`problems[{i}]`: not an elcon.ContactProblem")
     keys.setdefault("family", "quadratic")
-    refs = None if reference_intensities is None else [
-        float(r) for r in np.asarray(reference_intensities, dtype=np.float64).ravel()
-    ]
+    refs = _array(reference_intensities, "reference_intensities", 1,
+                  "must be one-dimensional, one value per problem")
     inner = [p._inner for p in problems]
-    return Design(_elcon.design_problems(inner, keys, refs, roller))
+    return Design(_elcon.design_problems(
+        inner, keys, None if refs is None else refs.tolist(), _section(roller, "roller")))
 
 
 def batch(
@@ -497,10 +566,7 @@ def batch(
     """Runs a batch file into ``out`` (its tables and every run's outputs, as
     ``elcon batch`` writes them) and returns its runs' table: a pandas
     DataFrame if pandas is installed, else a list of dicts."""
-    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, (int, np.integer))):
-        raise InputError(f"`jobs` = {jobs!r}: a whole number >= 1 (None: one per core)")
-    outcome = json.loads(_elcon.run_batch(
-        os.fspath(path), os.fspath(out), None if jobs is None else int(jobs)))
+    outcome = json.loads(_elcon.run_batch(_path(path, "path"), _path(out, "out"), jobs))
     rows = outcome["rows"]
     try:
         import pandas  # noqa: F401
@@ -529,13 +595,15 @@ def hertz_ellipse(
     and, with the points ``x``, ``y``, ``pressure`` there (a numpy array).
     A gap that does not curve both ways raises ``InputError``.
     """
+    quadric = "(radius_x, radius_y, angle)"
+    xs, ys = _array(x, "x", 1), _array(y, "y", 1)
     d = _elcon.hertz_ellipse(
-        float(combined_modulus),
-        float(load),
-        tuple(float(v) for v in surface1),
-        None if surface2 is None else tuple(float(v) for v in surface2),
-        None if x is None else [float(v) for v in np.ravel(x)],
-        None if y is None else [float(v) for v in np.ravel(y)],
+        _number(combined_modulus, "combined_modulus", required=True),
+        _number(load, "load", required=True),
+        _numbers(surface1, "surface1", 3, quadric, required=True),
+        _numbers(surface2, "surface2", 3, quadric),
+        None if xs is None else xs.tolist(),
+        None if ys is None else ys.tolist(),
     )
     if "pressure" in d:
         d["pressure"] = np.asarray(d["pressure"], dtype=np.float64)
