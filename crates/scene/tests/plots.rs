@@ -78,7 +78,7 @@ fn axisymmetric_spheres_keep_pressure_against_the_radius() {
 /// A misaligned roller of 10,400 points, more than 512 cells along x
 /// (MAX_DRAWN = 256): its map is drawn in 174 x 7 blocks of 3 x 3 cells,
 /// each its largest pressure. Any grid is drawn in at most 256 x 256 blocks, about
-/// 90 bytes each: under 6 MB (cell by cell, a 2048 x 2048 map was 361 MB).
+/// 90 bytes each: under 6 MB.
 #[test]
 fn a_large_grid_s_map_is_drawn_in_blocks_of_bounded_size() {
     let roller = common::roller("zone = 1.6\nhalf_y = 5.0\nnx = 520\nny = 20", "10000.0")
