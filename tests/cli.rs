@@ -471,3 +471,68 @@ fn threads_change_nothing_of_a_matrix_free_run() {
     assert_eq!(bad(&[], &[("ELCON_THREADS", "many")]), Some(2));
     assert_eq!(bad(&[], &[("ELCON_THREADS", "2")]), Some(0));
 }
+
+/// `elcon check /dev/stdin` and `elcon run /dev/stdin` read a piped scene
+/// once and alike: the same name (the file's stem, `stdin`, when the scene
+/// names none), the same refusal of an invalid one, and `run` of a piped
+/// batch points to `elcon batch`.
+#[test]
+fn check_and_run_treat_a_piped_scene_alike() {
+    use std::io::Write as _;
+    use std::process::Stdio;
+    let dir = scratch("stdin");
+    let piped = |args: &[&str], input: &str| {
+        let mut child = common::command(args, &[])
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("the elcon binary starts");
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(input.as_bytes())
+            .unwrap();
+        child.wait_with_output().unwrap()
+    };
+    let out = dir.join("out");
+    let out = out.to_str().unwrap();
+    let unnamed = edited(
+        &example_scene("example1-paper-model"),
+        &[("name = \"example1-paper-model\"", "")],
+    );
+    let o = piped(&["check", "/dev/stdin"], &unnamed);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(
+        text(&o).contains("/dev/stdin: scene `stdin`: valid"),
+        "{}",
+        text(&o)
+    );
+    let o = piped(&["run", "/dev/stdin", "--out", out], &unnamed);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(dir.join("out/stdin/result.json").exists(), "{}", text(&o));
+    // An invalid scene: one message, the same from both.
+    let invalid = edited(&unnamed, &[("load = 100.0", "load = -1.0")]);
+    let c = piped(&["check", "/dev/stdin"], &invalid);
+    let r = piped(&["run", "/dev/stdin", "--out", out], &invalid);
+    assert_eq!((c.status.code(), r.status.code()), (Some(1), Some(1)));
+    let message = |o: &std::process::Output| {
+        String::from_utf8_lossy(&o.stderr)
+            .lines()
+            .find(|l| l.starts_with("error: /dev/stdin:"))
+            .map(String::from)
+    };
+    assert!(message(&c).is_some(), "{}", text(&c));
+    assert_eq!(message(&c), message(&r));
+    // A batch piped to `run`.
+    let batch =
+        "[batch]\nname = \"b\"\nscene = \"x.toml\"\n[[batch.group]]\n\"loading.load\" = [1.0]\n";
+    let o = piped(&["run", "/dev/stdin", "--out", out], batch);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(
+        text(&o).contains("run it with `elcon batch /dev/stdin`"),
+        "{}",
+        text(&o)
+    );
+}

@@ -468,6 +468,40 @@ fn a_sweep_run_as_scheduler_tasks_merges_to_exactly_the_unsharded_tables() {
         rows_without_times(&json(&merged2.join("results.json"))),
         rows_without_times(&whole)
     );
+    // A SLURM array of listed ids (--array=1,3,7) says no shard by its
+    // ids, and SLURM and Kubernetes naming different shards are refused:
+    // usage errors, nothing run.
+    let sparse = [
+        ("SLURM_ARRAY_TASK_ID", "3"),
+        ("SLURM_ARRAY_TASK_COUNT", "3"),
+        ("SLURM_ARRAY_TASK_MIN", "1"),
+        ("SLURM_ARRAY_TASK_MAX", "7"),
+    ];
+    let refused = dir.join("refused");
+    let o = elcon_with(
+        &["batch", s(&batch), "--out", s(&refused), "--shard", "auto"],
+        &sparse,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("not a regular range"), "{}", text(&o));
+    let o = elcon_with(
+        &["batch", s(&batch), "--out", s(&refused), "--shard", "auto"],
+        &[
+            ("SLURM_ARRAY_TASK_ID", "0"),
+            ("SLURM_ARRAY_TASK_COUNT", "2"),
+            ("SLURM_ARRAY_TASK_MIN", "0"),
+            ("JOB_COMPLETION_INDEX", "1"),
+            ("ELCON_SHARD_COUNT", "2"),
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("shard 1/2 (SLURM_ARRAY_TASK_ID)")
+            && text(&o).contains("shard 2/2 (JOB_COMPLETION_INDEX"),
+        "{}",
+        text(&o)
+    );
+    assert!(!refused.exists());
     // Outside a scheduler, --shard auto is a usage error.
     let o = elcon(&["batch", s(&batch), "--out", s(&out), "--shard", "auto"]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));

@@ -33,17 +33,21 @@ pub enum RotationRefusal {
 
 impl std::fmt::Display for RotationRefusal {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // Four significant digits, shown plainly (0.04457, 3.467).
+        let short = |r: f64| -> f64 { format!("{r:.3e}").parse().unwrap_or(r) };
         match *self {
             RotationRefusal::Beyond { rotation } => write!(
                 f,
-                "the moment turns the body by {rotation:e} rad, beyond the small-rotation \
-                 theory's {MAX_ROTATION} rad (the rigid rotation is linearized)"
+                "the moment turns the body by {} rad, beyond the small-rotation theory's \
+                 {MAX_ROTATION} rad (the rigid rotation is linearized)",
+                short(rotation)
             ),
             RotationRefusal::AtEdge { rotation } => write!(
                 f,
                 "the moment pushes the contact against the candidate zone's edge (a rotation \
-                 of {rotation:e} rad): the zone's edge, not the bodies, balances it, and the \
-                 answer depends on where the zone ends"
+                 of {} rad): the zone's edge, not the bodies, balances it, and the answer \
+                 depends on where the zone ends",
+                short(rotation)
             ),
         }?;
         f.write_str(

@@ -290,6 +290,13 @@ impl std::fmt::Display for Num {
     }
 }
 
+/// A derived quantity (a load centre, a distance) for a message: rounded
+/// to four significant digits and shown as [`Num`] shows it (`0.013`, not
+/// `0.013000000000000001`).
+pub(crate) fn rounded(v: f64) -> Num {
+    Num(format!("{v:.3e}").parse().unwrap_or(v))
+}
+
 /// Parses TOML text into `T`, turning a parser error into a located
 /// [`SceneError::Syntax`].
 pub(crate) fn parse<T: serde::de::DeserializeOwned>(

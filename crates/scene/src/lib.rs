@@ -39,6 +39,7 @@ mod schema;
 mod shard;
 mod subsurface;
 mod tables;
+mod zone;
 
 pub use batch::{Batch, BatchRun, MAX_RUNS, MAX_SLUG, is_batch_text, thousands};
 pub use batch_run::{BatchDone, BatchOptions, Progress, run_batch};

@@ -109,6 +109,46 @@ fn axisymmetric(run: &Run) -> bool {
     surfaces && level && centred
 }
 
+/// The most bins of position a pressure-against-position plot draws: a
+/// run of more than twice as many points is drawn by the largest and the
+/// smallest pressure of each bin (pressure.csv keeps every point).
+pub(crate) const MAX_MARKS: usize = 2048;
+
+/// `(position, value)` pairs reduced to [`MAX_MARKS`] equal bins of
+/// position: each bin's largest pair and, with `smallest`, its smallest.
+fn extremes(pairs: &[(f64, f64)], smallest: bool) -> Vec<(f64, f64)> {
+    let (lo, hi) = pairs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let width = (hi - lo) / MAX_MARKS as f64;
+    // Each bin's (largest, smallest) pair.
+    type Bin = Option<((f64, f64), (f64, f64))>;
+    let mut bins: Vec<Bin> = vec![None; MAX_MARKS];
+    for &p in pairs {
+        let i = if width > 0.0 {
+            (((p.0 - lo) / width) as usize).min(MAX_MARKS - 1)
+        } else {
+            0
+        };
+        let (most, least) = bins[i].get_or_insert((p, p));
+        if p.1 > most.1 {
+            *most = p;
+        }
+        if p.1 < least.1 {
+            *least = p;
+        }
+    }
+    bins.into_iter()
+        .flatten()
+        .flat_map(|(most, least)| {
+            let second = (smallest && least != most).then_some(least);
+            std::iter::once(most).chain(second)
+        })
+        .collect()
+}
+
 /// Pressure (intensity) against the radius (an axisymmetric surface run)
 /// or x (line); the closed form as a line where one applies. Other surface
 /// runs get [`pressure_map`].
@@ -126,11 +166,20 @@ pub(crate) fn pressure(run: &Run) -> Result<String, String> {
             points.x(k)
         }
     };
-    let data: Vec<(f64, f64)> = (0..points.len())
+    let all: Vec<(f64, f64)> = (0..points.len())
         .map(|k| (pos(k), run.solution.pressures[k]))
         .collect();
+    let binned = all.len() > 2 * MAX_MARKS;
+    let data = if binned { extremes(&all, true) } else { all };
     let mut reference: Vec<(f64, f64)> = match &run.reference_pressures {
-        Some(r) => (0..points.len()).map(|k| (pos(k), r[k])).collect(),
+        Some(r) => {
+            let curve: Vec<(f64, f64)> = (0..points.len()).map(|k| (pos(k), r[k])).collect();
+            if binned {
+                extremes(&curve, false)
+            } else {
+                curve
+            }
+        }
         None => Vec::new(),
     };
     reference.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -166,11 +215,15 @@ pub(crate) fn pressure(run: &Run) -> Result<String, String> {
         chart
             .draw_series(data.iter().map(|&p| Circle::new(p, 2, COLORS[0].filled())))
             .map_err(err)?
-            .label(format!(
-                "elcon, {} points, {}",
-                points.len(),
-                run.scene.method()
-            ))
+            .label(if binned {
+                format!(
+                    "elcon, {} points, {} (largest and smallest of each of {MAX_MARKS} bins)",
+                    points.len(),
+                    run.scene.method()
+                )
+            } else {
+                format!("elcon, {} points, {}", points.len(), run.scene.method())
+            })
             .legend(|(x, y)| Circle::new((x + 10, y), 3, COLORS[0].filled()));
         if !reference.is_empty() {
             let kind = run
@@ -361,36 +414,110 @@ fn shade(p: f64, top: f64) -> RGBColor {
     }
 }
 
-/// The faces between a cell in contact and one that is not (or the grid's
-/// edge), as segments: the contact's boundary on the cells.
-fn boundary(points: &elcon_influence::PointSet, pressures: &[f64]) -> Vec<[(f64, f64); 2]> {
-    let (Some(lattice), Some(index)) = (points.lattice(), points.lattice_index()) else {
-        return Vec::new();
-    };
-    let cell = points.cell();
-    let (hx, hy) = (0.5 * cell.dx, 0.5 * cell.dy);
-    let mut faces = Vec::new();
-    for k in (0..points.len()).filter(|&k| pressures[k] > 0.0) {
-        let (i, j) = lattice.get(k);
-        let (x, y) = (points.x(k), points.y(k));
-        for (di, dj) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
-            let pressed = index
-                .get((i + di, j + dj))
-                .is_some_and(|n| pressures[n] > 0.0);
-            if pressed {
-                continue;
-            }
-            let face = if di != 0 {
-                let fx = x + di as f64 * hx;
-                [(fx, y - hy), (fx, y + hy)]
+/// The most cells a pressure map draws along x or along y: a larger grid
+/// is drawn in square blocks of cells, each in the colour of its largest
+/// pressure, so the SVG stays a few MB however many points the run has
+/// (pressure.csv keeps every point).
+pub(crate) const MAX_DRAWN: usize = 256;
+
+/// A block of the cells of a map as drawn: the extent of its cells and
+/// the largest pressure among them.
+#[derive(Debug, Clone, Copy)]
+struct Block {
+    x: (f64, f64),
+    y: (f64, f64),
+    top: f64,
+}
+
+/// The cells of `points` merged into square blocks of `side` cells, at
+/// most [`MAX_DRAWN`] along x and along y (`side` is 1 for a grid that
+/// small): the blocks by column and row (`None` where no point lies).
+struct Blocks {
+    side: usize,
+    columns: usize,
+    rows: usize,
+    cells: Vec<Option<Block>>,
+}
+
+impl Blocks {
+    fn of(points: &elcon_influence::PointSet, pressures: &[f64]) -> Self {
+        let cell = points.cell();
+        let (hx, hy) = (0.5 * cell.dx, 0.5 * cell.dy);
+        let (px, py) = (points.xs(), points.ys());
+        let low = |v: &[f64]| v.iter().fold(f64::INFINITY, |a, b| a.min(*b));
+        let high = |v: &[f64]| v.iter().fold(f64::NEG_INFINITY, |a, b| a.max(*b));
+        let (x0, y0) = (low(&px), low(&py));
+        // A cell's index along an axis: its centre's offset in cells.
+        let index = |v: f64, origin: f64, width: f64| -> usize {
+            let i = ((v - origin) / width).round();
+            if i.is_finite() && i > 0.0 {
+                i as usize
             } else {
-                let fy = y + dj as f64 * hy;
-                [(x - hx, fy), (x + hx, fy)]
-            };
-            faces.push(face);
+                0
+            }
+        };
+        let cells_x = index(high(&px), x0, cell.dx) + 1;
+        let cells_y = index(high(&py), y0, cell.dy) + 1;
+        let side = cells_x.max(cells_y).div_ceil(MAX_DRAWN).max(1);
+        let (columns, rows) = (cells_x.div_ceil(side), cells_y.div_ceil(side));
+        let mut cells: Vec<Option<Block>> = vec![None; columns * rows];
+        for k in 0..points.len() {
+            let (x, y) = (px[k], py[k]);
+            let (i, j) = (
+                (index(x, x0, cell.dx) / side).min(columns - 1),
+                (index(y, y0, cell.dy) / side).min(rows - 1),
+            );
+            let b = cells[j * columns + i].get_or_insert(Block {
+                x: (x - hx, x + hx),
+                y: (y - hy, y + hy),
+                top: pressures[k],
+            });
+            b.x = (b.x.0.min(x - hx), b.x.1.max(x + hx));
+            b.y = (b.y.0.min(y - hy), b.y.1.max(y + hy));
+            b.top = b.top.max(pressures[k]);
+        }
+        Self {
+            side,
+            columns,
+            rows,
+            cells,
         }
     }
-    faces
+
+    fn get(&self, i: isize, j: isize) -> Option<Block> {
+        let inside =
+            (0..self.columns as isize).contains(&i) && (0..self.rows as isize).contains(&j);
+        if inside {
+            self.cells[j as usize * self.columns + i as usize]
+        } else {
+            None
+        }
+    }
+
+    /// The faces between a block in contact and one that is not (or the
+    /// grid's edge), as segments: the contact's boundary on the blocks.
+    fn boundary(&self) -> Vec<[(f64, f64); 2]> {
+        let mut faces = Vec::new();
+        for j in 0..self.rows as isize {
+            for i in 0..self.columns as isize {
+                let Some(b) = self.get(i, j).filter(|b| b.top > 0.0) else {
+                    continue;
+                };
+                for (di, dj) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
+                    if self.get(i + di, j + dj).is_some_and(|n| n.top > 0.0) {
+                        continue;
+                    }
+                    faces.push(match (di, dj) {
+                        (1, _) => [(b.x.1, b.y.0), (b.x.1, b.y.1)],
+                        (-1, _) => [(b.x.0, b.y.0), (b.x.0, b.y.1)],
+                        (_, 1) => [(b.x.0, b.y.1), (b.x.1, b.y.1)],
+                        _ => [(b.x.0, b.y.0), (b.x.1, b.y.0)],
+                    });
+                }
+            }
+        }
+        faces
+    }
 }
 
 /// The pressure along one grid line: where it lies (the other coordinate)
@@ -464,7 +591,18 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
     svg((SIZE.0, SIZE.1 + 340), |root| {
         let (upper, lower) = root.split_vertically(SIZE.1);
         let (map_area, bar_area) = upper.split_horizontally(SIZE.0 - 130);
-        let caption = format!("{}: pressure map", run.scene.name());
+        let blocks = Blocks::of(points, p);
+        let caption = if blocks.side == 1 {
+            format!("{}: pressure map", run.scene.name())
+        } else {
+            format!(
+                "{}: pressure map ({} x {} blocks of {s} x {s} cells, each its largest)",
+                run.scene.name(),
+                blocks.columns,
+                blocks.rows,
+                s = blocks.side
+            )
+        };
         let mut map = titled(&map_area, caption, 22, (45, 80))
             .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)
             .map_err(err)?;
@@ -474,16 +612,21 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, String> {
             .y_desc(format!("y ({})", u.length()))
             .draw()
             .map_err(err)?;
-        map.draw_series((0..points.len()).map(|k| {
-            let (x, y) = (points.x(k), points.y(k));
-            Rectangle::new(
-                [(x - hx, y - hy), (x + hx, y + hy)],
-                shade(p[k], top).filled(),
-            )
-        }))
-        .map_err(err)?;
         map.draw_series(
-            boundary(points, p)
+            blocks.cells.iter().flatten().map(|b| {
+                Rectangle::new([(b.x.0, b.y.0), (b.x.1, b.y.1)], shade(b.top, top).filled())
+            }),
+        )
+        .map_err(err)?;
+        // The boundary on a lattice's cells (or blocks); scattered points
+        // have no neighbours to tell it by.
+        let faces = if points.lattice().is_some() {
+            blocks.boundary()
+        } else {
+            Vec::new()
+        };
+        map.draw_series(
+            faces
                 .into_iter()
                 .map(|face| PathElement::new(face.to_vec(), BLACK.stroke_width(2))),
         )

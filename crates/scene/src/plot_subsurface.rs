@@ -9,7 +9,7 @@ use plotters::style::colors::colormaps::ViridisRGB;
 
 use elcon_analysis::subsurface::{BodyStresses, Subsurface};
 
-use crate::plot::{COLORS, SIZE, err, labels, line_key, padded, svg, titled};
+use crate::plot::{COLORS, MAX_DRAWN, SIZE, err, labels, line_key, padded, svg, titled};
 use crate::run::Run;
 
 /// One stress measure of a tensor.
@@ -69,8 +69,13 @@ where
         .fold(f64::MIN_POSITIVE, |a, v| a.max(v.von_mises()));
     let (x0, x1) = (s.xs[0], s.xs[s.xs.len() - 1]);
     let deepest = s.depths[s.depths.len() - 1];
+    let merged = if s.xs.len() > MAX_DRAWN || s.depths.len() > MAX_DRAWN {
+        "; blocks of cells, each its largest"
+    } else {
+        ""
+    };
     let caption = format!(
-        "{}: body {number}, von Mises at y = {:.3e} (max {:.4e} {} at depth {:.3e})",
+        "{}: body {number}, von Mises at y = {:.3e} (max {:.4e} {} at depth {:.3e}{merged})",
         run.scene.name(),
         s.y,
         body.von_mises.value,
@@ -103,21 +108,31 @@ where
     };
     let mut depths = vec![0.0];
     depths.extend_from_slice(&s.depths);
+    // A long section (or many depths) is drawn in blocks of columns and
+    // depths, at most MAX_DRAWN each way, each its largest stress.
+    let (gx, gz) = (
+        s.xs.len().div_ceil(MAX_DRAWN).max(1),
+        rows.div_ceil(MAX_DRAWN).max(1),
+    );
+    let block = |bi: usize, bj: usize| {
+        let (i0, i1) = (bi * gx, ((bi + 1) * gx).min(s.xs.len()) - 1);
+        let (j0, j1) = (bj * gz, ((bj + 1) * gz).min(rows) - 1);
+        let value = (i0..=i1)
+            .flat_map(|i| (j0..=j1).map(move |j| i * rows + j))
+            .fold(0.0f64, |a, k| a.max(s.stresses[k].von_mises()));
+        Rectangle::new(
+            [
+                (half(&s.xs, i0).0, depths[j0]),
+                (half(&s.xs, i1).1, depths[j1 + 1]),
+            ],
+            ViridisRGB::get_color_normalized(value, 0.0, top).filled(),
+        )
+    };
     chart
         .draw_series(
-            (0..s.xs.len())
-                .flat_map(|i| {
-                    let (xa, xb) = half(&s.xs, i);
-                    (0..rows).map(move |j| (i, j, xa, xb))
-                })
-                .map(|(i, j, xa, xb)| {
-                    let (za, zb) = (depths[j], depths[j + 1]);
-                    let value = s.stresses[i * rows + j].von_mises();
-                    Rectangle::new(
-                        [(xa, za), (xb, zb)],
-                        ViridisRGB::get_color_normalized(value, 0.0, top).filled(),
-                    )
-                }),
+            (0..s.xs.len().div_ceil(gx))
+                .flat_map(|bi| (0..rows.div_ceil(gz)).map(move |bj| (bi, bj)))
+                .map(|(bi, bj)| block(bi, bj)),
         )
         .map_err(err)?;
     chart

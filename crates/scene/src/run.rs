@@ -9,16 +9,19 @@
 
 use std::time::Instant;
 
-use elcon_analysis::{ContactProblem, ContactSolution};
+use elcon_analysis::{AnalysisError, ContactProblem, ContactSolution, Tilt};
 use elcon_influence::Dimension;
+use elcon_lcp::LcpError;
 use serde::Serialize;
 
 use crate::compare::{ReferenceJson, XY, compare};
+use crate::ctx::{Num, rounded};
 use crate::design_stage::{DesignJson, DesignRun, design_stage};
 use crate::error::SceneError;
 use crate::error_estimate::{DiscretizationJson, discretization};
 use crate::scene::{Scene, Units, run_error};
 use crate::subsurface::{SubsurfaceJson, subsurface};
+use crate::zone::Zone;
 
 /// A folded problem's symmetry, as written. A mirror of
 /// `elcon_influence::Folding` rather than a `Serialize` on it: result.json
@@ -197,6 +200,71 @@ fn small_rotation(scene: &Scene, solution: &ContactSolution) -> Result<(), Scene
         .map_err(|why| run_error(scene, format!("{why} (points.zone or points.radius)")))
 }
 
+/// A failed solve's error. Under a moment the engine's failures that mean
+/// "no solution" (a ray, an infeasible or unbounded tableau, a broken-down
+/// attempt, a certificate that does not hold) say that the contact cannot
+/// carry the moment: the message says so in the scene's terms (the
+/// moments as written, the load centre against the candidate zone, what
+/// to change), with the engine's own words on a second line.
+fn solve_error(scene: &Scene, e: AnalysisError) -> SceneError {
+    let loading = scene.loading();
+    let moment = |t: Tilt| match t {
+        Tilt::Free { moment } if moment != 0.0 => Some(moment),
+        _ => None,
+    };
+    let (mx, my) = (moment(loading.tilt_x), moment(loading.tilt_y));
+    let no_solution = matches!(
+        &e,
+        AnalysisError::Engine(
+            LcpError::RayTermination { .. }
+                | LcpError::Infeasible { .. }
+                | LcpError::Unbounded { .. }
+                | LcpError::BrokeDown { .. }
+                | LcpError::Inaccurate { .. }
+        )
+    );
+    if !no_solution || (mx.is_none() && my.is_none()) {
+        return run_error(scene, e);
+    }
+    let moments: Vec<String> = [("moment_x", mx), ("moment_y", my)]
+        .into_iter()
+        .filter_map(|(name, m)| m.map(|m| format!("`loading.{name}` = {}", Num(m))))
+        .collect();
+    let zone = Zone::of(scene.points());
+    let centre = match loading.load_value() {
+        Some(load) => {
+            let c = (0.0 - my.unwrap_or(0.0) / load, mx.unwrap_or(0.0) / load);
+            let depth = zone.depth(c);
+            let place = if depth > 0.0 {
+                format!("{} inside", rounded(depth))
+            } else {
+                "on".to_string()
+            };
+            format!(
+                "the load centre (the moment over the load) at (x, y) = ({}, {}) lies {place} \
+                 the outline of the candidate zone ({}), too near its edge for the bodies' \
+                 pressure to balance the moment",
+                rounded(c.0),
+                rounded(c.1),
+                zone.describe()
+            )
+        }
+        None => format!(
+            "under the approach given, no contact inside the candidate zone ({}) balances the \
+             moment",
+            zone.describe()
+        ),
+    };
+    run_error(
+        scene,
+        format!(
+            "{} cannot be carried by the contact: {centre}. Give a smaller moment, or a larger \
+             zone (points.zone or points.radius)\n  the solver: {e}",
+            moments.join(" and ")
+        ),
+    )
+}
+
 /// Runs a validated scene.
 ///
 /// # Errors
@@ -209,7 +277,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
     let problem = builder.clone().build().map_err(|e| run_error(scene, e))?;
     let solution = problem
         .solve(scene.method(), scene.options())
-        .map_err(|e| run_error(scene, e))?;
+        .map_err(|e| solve_error(scene, e))?;
     small_rotation(scene, &solution)?;
     // The coarser grids' problems are built and dropped one at a time,
     // each a sixteenth (surface) or a quarter (line) of S at most.
@@ -272,4 +340,93 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         subsurface: fields,
         result,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+
+    fn spheres(loading: &str) -> Scene {
+        let text = include_str!("../tests/common/spheres.toml")
+            .replace("load = 100.0", loading)
+            .replace("across = 41", "across = 11");
+        Scene::from_str(Path::new("t.toml"), &text).unwrap()
+    }
+
+    fn ray() -> AnalysisError {
+        AnalysisError::Engine(LcpError::RayTermination {
+            size: 97,
+            pivot: 40,
+            entering: "w[77]".into(),
+        })
+    }
+
+    #[test]
+    fn a_moment_the_contact_cannot_carry_is_said_in_the_scene_s_terms() {
+        let s = spheres("load = 100.0\nmoment_x = 1.0\nmoment_y = -0.5");
+        let e = solve_error(&s, ray()).to_string();
+        assert!(
+            e.starts_with(
+                "scene `t`: `loading.moment_x` = 1 and `loading.moment_y` = -0.5 cannot be \
+                 carried by the contact: the load centre (the moment over the load) at (x, y) = \
+                 (0.005, 0.01) lies "
+            ),
+            "{e}"
+        );
+        assert!(
+            e.contains("inside the outline of the candidate zone (x from"),
+            "{e}"
+        );
+        assert!(
+            e.contains("Give a smaller moment, or a larger zone (points.zone"),
+            "{e}"
+        );
+        // The engine's words follow on a line of their own.
+        let (_, engine) = e.split_once('\n').unwrap();
+        assert!(
+            engine.starts_with("  the solver: the contact solve failed: ray termination"),
+            "{e}"
+        );
+        // A certificate that does not hold is translated alike.
+        let inaccurate = AnalysisError::Engine(LcpError::Inaccurate {
+            size: 97,
+            pivots: 0,
+            certificate: Box::new(elcon_lcp::Certificate {
+                min_z: 0.0,
+                min_w: -0.49,
+                min_u: 0.0,
+                complementarity: 0.0,
+                equality: 0.39,
+                z_scale: 1.0,
+                w_scale: 1.0,
+                tolerance: 1e-12,
+                finite: true,
+            }),
+        });
+        assert!(
+            solve_error(&s, inaccurate)
+                .to_string()
+                .contains("cannot be carried by the contact")
+        );
+    }
+
+    #[test]
+    fn other_failures_keep_the_engine_s_words() {
+        // No moment: the engine's message as it is.
+        let e = solve_error(&spheres("load = 100.0"), ray()).to_string();
+        assert!(
+            e.starts_with("scene `t`: the contact solve failed: ray termination"),
+            "{e}"
+        );
+        // A pivot limit under a moment is not the moment's fault.
+        let s = spheres("load = 100.0\nmoment_x = 1.0");
+        let limit = AnalysisError::Engine(LcpError::PivotLimit { size: 97, limit: 3 });
+        let e = solve_error(&s, limit).to_string();
+        assert!(
+            e.starts_with("scene `t`: the contact solve failed: pivot limit"),
+            "{e}"
+        );
+    }
 }

@@ -16,9 +16,10 @@ use elcon_design::{Axis, Family, GridSequence, axial_stations};
 use elcon_influence::{Body, Dimension, Model, PointSet};
 use toml::Spanned;
 
-use crate::ctx::{Ctx, Num};
+use crate::ctx::{Ctx, Num, rounded};
 use crate::error::SceneError;
 use crate::schema::{BodyToml, DesignToml, GeometryToml, LoadingToml, SolverToml};
+use crate::zone::Zone;
 
 /// The most iterative-refinement steps (each an N x N product;
 /// refinement settles in one to three).
@@ -570,11 +571,11 @@ pub(crate) fn scale_out_of_range(scale: Option<f64>) -> bool {
 }
 
 /// A moment whose load centre lies outside the candidate zone is refused:
-/// the contact forces, all inside the zone, balance the moment only when
-/// their centre, the load centre `(-M_y / P, M_x / P)`, lies within the
-/// zone's extent. (Under displacement control the load, and with it the
-/// centre, is known only after the solve, whose rotation is bounded
-/// then: `crate::run`.)
+/// the contact forces, all at the zone's points, balance the moment only
+/// when their centre, the load centre `(-M_y / P, M_x / P)`, lies within
+/// the points' convex hull (`crate::zone`). (Under displacement control
+/// the load, and with it the centre, is known only after the solve, whose
+/// rotation is bounded then: `crate::run`.)
 pub(crate) fn load_centre(
     ctx: &Ctx<'_>,
     raw: &Spanned<LoadingToml>,
@@ -584,41 +585,36 @@ pub(crate) fn load_centre(
     let Some(load) = loading.load_value() else {
         return Ok(());
     };
-    let extent = |coordinate: &dyn Fn(usize) -> f64| {
-        (0..points.len())
-            .map(coordinate)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(v), hi.max(v))
-            })
-    };
     let t = raw.get_ref();
-    for (moment, field, sign, axis) in [
-        (&t.moment_x, "loading.moment_x", 1.0, "y"),
-        (&t.moment_y, "loading.moment_y", -1.0, "x"),
-    ] {
-        let Some(m) = moment else { continue };
-        let centre = sign * *m.get_ref() / load;
-        let (lo, hi) = if axis == "x" {
-            extent(&|k| points.x(k))
-        } else {
-            extent(&|k| points.y(k))
-        };
-        if !(lo <= centre && centre <= hi) {
-            return Err(ctx.invalid(
-                m.span(),
-                field,
-                Num(*m.get_ref()),
-                format!(
-                    "puts the load centre at {axis} = {} (the moment over the load), outside \
-                     the candidate zone ({} to {} along {axis}): no contact inside the zone \
-                     balances it. Give a smaller moment, or a larger zone (points.zone or \
-                     points.radius)",
-                    Num(centre),
-                    Num(lo),
-                    Num(hi)
-                ),
-            ));
-        }
+    let given = (t.moment_x.as_ref().map(|m| (m, "loading.moment_x")))
+        .or_else(|| t.moment_y.as_ref().map(|m| (m, "loading.moment_y")));
+    let Some((blamed, blamed_field)) = given else {
+        return Ok(());
+    };
+    let value = |m: &Option<Spanned<f64>>| m.as_ref().map_or(0.0, |m| *m.get_ref());
+    // `0.0 -`: no moment about y puts the centre at x = 0, not -0.
+    let centre = (0.0 - value(&t.moment_y) / load, value(&t.moment_x) / load);
+    let zone = Zone::of(points);
+    if zone.holds(centre) {
+        return Ok(());
     }
-    Ok(())
+    let other = match (&t.moment_x, &t.moment_y) {
+        (Some(_), Some(my)) => format!("with `loading.moment_y` = {}", Num(*my.get_ref())),
+        _ => String::new(),
+    };
+    Err(ctx.invalid(
+        blamed.span(),
+        blamed_field,
+        Num(*blamed.get_ref()),
+        format!(
+            "{other}{}puts the load centre (the moment over the load) at (x, y) = ({}, {}), {} \
+             outside the candidate zone ({}): no contact inside the zone balances it. Give a \
+             smaller moment, or a larger zone (points.zone or points.radius)",
+            if other.is_empty() { "" } else { ", " },
+            rounded(centre.0),
+            rounded(centre.1),
+            rounded(-zone.depth(centre)),
+            zone.describe()
+        ),
+    ))
 }

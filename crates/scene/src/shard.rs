@@ -4,9 +4,12 @@
 //! their tables. `--shard auto` takes K and N from the scheduler that
 //! started the process: a SLURM job array (`SLURM_ARRAY_TASK_ID` with
 //! `SLURM_ARRAY_TASK_COUNT`, or `SLURM_ARRAY_TASK_MIN`/`_MAX`, and
-//! `SLURM_ARRAY_TASK_STEP`), or a Kubernetes indexed Job
+//! `SLURM_ARRAY_TASK_STEP`: task `id` of a regular range `--array=MIN-MAX:STEP`
+//! is shard `(id - MIN) / STEP + 1` of `(MAX - MIN) / STEP + 1`; an array of
+//! listed ids such as `--array=1,3,7` is refused), or a Kubernetes indexed Job
 //! (`JOB_COMPLETION_INDEX`, from 0, with the count in `ELCON_SHARD_COUNT`,
-//! the Job's `completions`). docs/scenes.md has a script for each.
+//! the Job's `completions`); when both are set they must agree.
+//! docs/scenes.md has a script for each.
 
 /// The K-th of N slices of a sweep (1-based K).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -80,10 +83,13 @@ impl Shard {
 
     /// The shard of this process from its scheduler's variables, read
     /// through `var` (`std::env::var` in the command line; tests pass a
-    /// table): SLURM's job array first, then a Kubernetes indexed Job.
+    /// table): a SLURM job array, or a Kubernetes indexed Job. When both
+    /// are set they must name the same shard.
     ///
     /// # Errors
-    /// A message naming the variables when none is set or they disagree.
+    /// A message naming the variables when none is set, they are
+    /// malformed, the SLURM array is not a regular range, or SLURM and
+    /// Kubernetes give different shards.
     pub fn from_scheduler(var: impl Fn(&str) -> Option<String>) -> Result<Self, String> {
         let number = |name: &str| -> Result<Option<usize>, String> {
             match var(name) {
@@ -95,48 +101,111 @@ impl Shard {
                     .map_err(|_| format!("{name}={v}: not a whole number")),
             }
         };
-        if let Some(id) = number("SLURM_ARRAY_TASK_ID")? {
-            let min = number("SLURM_ARRAY_TASK_MIN")?.unwrap_or(0);
-            let step = number("SLURM_ARRAY_TASK_STEP")?.unwrap_or(1).max(1);
-            let count = match (
-                number("SLURM_ARRAY_TASK_COUNT")?,
-                number("SLURM_ARRAY_TASK_MAX")?,
-            ) {
-                (Some(c), _) => c,
-                (None, Some(max)) if max >= min => (max - min) / step + 1,
-                _ => {
-                    return Err(
-                        "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
-                         SLURM_ARRAY_TASK_MAX: is this a job array (sbatch --array)?"
-                            .into(),
-                    );
-                }
-            };
-            if id < min || (id - min) % step != 0 {
-                return Err(format!(
-                    "SLURM_ARRAY_TASK_ID={id} is not in the array from {min} by {step}"
-                ));
+        let slurm = Self::from_slurm(&number)?;
+        let kubernetes = Self::from_indexed_job(&number)?;
+        match (slurm, kubernetes) {
+            (Some(s), Some(k)) if s != k => Err(format!(
+                "the SLURM job array says shard {s} (SLURM_ARRAY_TASK_ID) and the Kubernetes \
+                 indexed Job says shard {k} (JOB_COMPLETION_INDEX with {SHARD_COUNT_VARIABLE}): \
+                 unset the variables of the scheduler that did not start this process, or give \
+                 --shard K/N explicitly"
+            )),
+            (Some(s), _) | (None, Some(s)) => Ok(s),
+            (None, None) => Err(
+                "--shard auto needs a scheduler's variables: SLURM_ARRAY_TASK_ID with \
+                 SLURM_ARRAY_TASK_COUNT (a SLURM job array), or JOB_COMPLETION_INDEX with \
+                 ELCON_SHARD_COUNT (a Kubernetes indexed Job); none is set"
+                    .into(),
+            ),
+        }
+    }
+
+    /// The shard of a SLURM job array task, if `SLURM_ARRAY_TASK_ID` is
+    /// set. The array must be a regular range (`--array=MIN-MAX[:STEP]`):
+    /// task `id` is shard `(id - MIN) / STEP + 1` of `(MAX - MIN) / STEP + 1`.
+    /// A list of ids (`--array=1,3,7`) has no such map, and is refused.
+    fn from_slurm(
+        number: &dyn Fn(&str) -> Result<Option<usize>, String>,
+    ) -> Result<Option<Self>, String> {
+        let Some(id) = number("SLURM_ARRAY_TASK_ID")? else {
+            return Ok(None);
+        };
+        let count = number("SLURM_ARRAY_TASK_COUNT")?;
+        let max = number("SLURM_ARRAY_TASK_MAX")?;
+        let min = match (number("SLURM_ARRAY_TASK_MIN")?, count) {
+            (Some(min), _) => min,
+            // An old SLURM without MIN: a count alone means 0..count.
+            (None, Some(_)) => 0,
+            (None, None) => {
+                return Err(
+                    "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
+                     SLURM_ARRAY_TASK_MAX: is this a job array (sbatch --array)?"
+                        .into(),
+                );
             }
-            return Self::new((id - min) / step + 1, count)
-                .map_err(|e| format!("SLURM_ARRAY_TASK_ID={id} of {count} tasks from {min}: {e}"));
+        };
+        let step = match number("SLURM_ARRAY_TASK_STEP")? {
+            Some(0) => return Err("SLURM_ARRAY_TASK_STEP=0: not a job array's step".into()),
+            Some(s) => s,
+            None => 1,
+        };
+        let (count, max) = match (count, max) {
+            (Some(c), Some(max)) => (c, max),
+            (Some(c), None) => (c, min + c.saturating_sub(1) * step),
+            (None, Some(max)) if max >= min => ((max - min) / step + 1, max),
+            (None, _) => {
+                return Err(
+                    "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
+                     SLURM_ARRAY_TASK_MAX: is this a job array (sbatch --array)?"
+                        .into(),
+                );
+            }
+        };
+        let regular = max >= min && (max - min) % step == 0 && (max - min) / step + 1 == count;
+        if !regular {
+            return Err(format!(
+                "the SLURM job array is not a regular range: its {count} tasks \
+                 (SLURM_ARRAY_TASK_COUNT) are not the ids from {min} to {max} by {step} \
+                 (SLURM_ARRAY_TASK_MIN, _MAX, _STEP), which are {}, so a task's id does not say \
+                 which shard it is (an array of listed ids, e.g. --array=1,3,7?); submit a \
+                 range, --array=0-{} or --array=MIN-MAX:STEP, or give each task --shard K/N \
+                 explicitly",
+                if max >= min {
+                    ((max - min) / step + 1).to_string()
+                } else {
+                    "none".to_string()
+                },
+                count.saturating_sub(1)
+            ));
         }
-        if let Some(index) = number("JOB_COMPLETION_INDEX")? {
-            let count = number(SHARD_COUNT_VARIABLE)?.ok_or_else(|| {
-                format!(
-                    "JOB_COMPLETION_INDEX is set but {SHARD_COUNT_VARIABLE} is not: set it to the \
-                     indexed Job's completions"
-                )
-            })?;
-            return Self::new(index + 1, count).map_err(|e| {
-                format!("JOB_COMPLETION_INDEX={index} with {SHARD_COUNT_VARIABLE}={count}: {e}")
-            });
+        if id < min || id > max || (id - min) % step != 0 {
+            return Err(format!(
+                "SLURM_ARRAY_TASK_ID={id} is not in the array from {min} to {max} by {step}"
+            ));
         }
-        Err(
-            "--shard auto needs a scheduler's variables: SLURM_ARRAY_TASK_ID with \
-             SLURM_ARRAY_TASK_COUNT (a SLURM job array), or JOB_COMPLETION_INDEX with \
-             ELCON_SHARD_COUNT (a Kubernetes indexed Job); none is set"
-                .into(),
-        )
+        Self::new((id - min) / step + 1, count)
+            .map(Some)
+            .map_err(|e| format!("SLURM_ARRAY_TASK_ID={id} of {count} tasks from {min}: {e}"))
+    }
+
+    /// The shard of a Kubernetes indexed Job's pod, if
+    /// `JOB_COMPLETION_INDEX` is set: index i (from 0) of
+    /// [`SHARD_COUNT_VARIABLE`] completions is shard i + 1.
+    fn from_indexed_job(
+        number: &dyn Fn(&str) -> Result<Option<usize>, String>,
+    ) -> Result<Option<Self>, String> {
+        let Some(index) = number("JOB_COMPLETION_INDEX")? else {
+            return Ok(None);
+        };
+        let count = number(SHARD_COUNT_VARIABLE)?.ok_or_else(|| {
+            format!(
+                "JOB_COMPLETION_INDEX is set but {SHARD_COUNT_VARIABLE} is not: set it to the \
+                 indexed Job's completions"
+            )
+        })?;
+        Self::new(index + 1, count).map(Some).map_err(|e| {
+            format!("JOB_COMPLETION_INDEX={index} with {SHARD_COUNT_VARIABLE}={count}: {e}")
+        })
     }
 }
 
@@ -204,6 +273,79 @@ mod tests {
         ]))
         .unwrap_err();
         assert!(e.contains("not a whole number"), "{e}");
+    }
+
+    #[test]
+    fn sparse_slurm_arrays_are_refused_with_what_to_do() {
+        // --array=1,3,7: three tasks between 1 and 7, no uniform step.
+        for step in [None, Some("1"), Some("2")] {
+            let mut vars = vec![
+                ("SLURM_ARRAY_TASK_ID", "3"),
+                ("SLURM_ARRAY_TASK_COUNT", "3"),
+                ("SLURM_ARRAY_TASK_MIN", "1"),
+                ("SLURM_ARRAY_TASK_MAX", "7"),
+            ];
+            if let Some(s) = step {
+                vars.push(("SLURM_ARRAY_TASK_STEP", s));
+            }
+            let e = Shard::from_scheduler(env(&vars)).unwrap_err();
+            assert!(e.contains("not a regular range"), "{step:?}: {e}");
+            assert!(
+                e.contains("--shard K/N") && e.contains("--array=0-2"),
+                "{e}"
+            );
+        }
+        // --array=1-7:3 is tasks 1, 4, 7: task 7 is the third of three.
+        let s = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "7"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "7"),
+            ("SLURM_ARRAY_TASK_STEP", "3"),
+        ]));
+        assert_eq!(s, Ok(Shard { index: 3, count: 3 }));
+        // An id off the range's step, and a zero step.
+        let e = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "5"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "7"),
+            ("SLURM_ARRAY_TASK_STEP", "3"),
+        ]))
+        .unwrap_err();
+        assert!(e.contains("not in the array from 1 to 7 by 3"), "{e}");
+        let e = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "1"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "7"),
+            ("SLURM_ARRAY_TASK_STEP", "0"),
+        ]))
+        .unwrap_err();
+        assert!(e.contains("SLURM_ARRAY_TASK_STEP=0"), "{e}");
+    }
+
+    #[test]
+    fn slurm_and_kubernetes_must_agree() {
+        let both = |index: &str| {
+            Shard::from_scheduler(env(&[
+                ("SLURM_ARRAY_TASK_ID", "1"),
+                ("SLURM_ARRAY_TASK_COUNT", "3"),
+                ("SLURM_ARRAY_TASK_MIN", "0"),
+                ("SLURM_ARRAY_TASK_MAX", "2"),
+                ("JOB_COMPLETION_INDEX", index),
+                ("ELCON_SHARD_COUNT", "3"),
+            ]))
+        };
+        assert_eq!(both("1"), Ok(Shard { index: 2, count: 3 }));
+        let e = both("2").unwrap_err();
+        assert!(
+            e.contains("SLURM") && e.contains("shard 2/3") && e.contains("Kubernetes"),
+            "{e}"
+        );
+        assert!(
+            e.contains("shard 3/3") && e.contains("JOB_COMPLETION_INDEX"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -549,7 +549,7 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
                 r.verdict_max_pressure.as_ref()
             ),
             Row::estimated_cell(r.estimated_error_approach, r.verdict_approach.as_ref()),
-            r.status.replace('|', "/"),
+            r.status.replace('|', "/").replace('\n', " "),
         );
     }
     write_atomic(&dir.join("results.csv"), csv.as_bytes())?;

@@ -352,13 +352,25 @@ fn rotations_outside_the_small_rotation_theory_are_refused() {
     let e = scene(&loaded("moment_x = 2.0")).unwrap_err();
     assert!(
         e.to_string().contains(
-            "`loading.moment_x` = 2: puts the load centre at y = 0.02 (the moment over the load), \
-             outside the candidate zone"
-        ),
+            "`loading.moment_x` = 2: puts the load centre (the moment over the load) at (x, y) = \
+             (0, 0.02), "
+        ) && e.to_string().contains("outside the candidate zone (x from"),
         "{e}"
     );
     let e = scene(&loaded("moment_y = 2.0")).unwrap_err();
-    assert!(e.to_string().contains("load centre at x = -0.02"), "{e}");
+    assert!(e.to_string().contains("at (x, y) = (-0.02, 0)"), "{e}");
+    // Inside the zone's extent along x and along y, outside the disk: the
+    // zone is its points' convex hull (the engine had answered "ray
+    // termination ... unbounded" or a failed certificate).
+    let e = scene(&loaded("moment_x = 1.3\nmoment_y = -1.3")).unwrap_err();
+    assert!(matches!(e, SceneError::Invalid { .. }));
+    assert!(
+        e.to_string().contains(
+            "`loading.moment_x` = 1.3: with `loading.moment_y` = -1.3, puts the load centre \
+             (the moment over the load) at (x, y) = (0.013, 0.013), "
+        ),
+        "{e}"
+    );
     // Inside the zone but near its edge: the solved contact leans on the
     // zone's edge (or turns past 0.1 rad), and the answer is refused.
     for moment in ["1.0", "1.5"] {

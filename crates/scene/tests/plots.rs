@@ -49,8 +49,8 @@ fn a_roller_gets_a_pressure_map_with_its_boundary_and_a_colour_bar() {
     assert!(svg.contains("contact boundary"), "the boundary's legend");
     assert!(svg.contains("pressure (MPa)"), "the colour bar's label");
     assert!(svg.contains("along x, at y =") && svg.contains("along y, at x ="));
-    // One rectangle per cell and a hundred for the colour bar, besides the
-    // frames.
+    // One rectangle per cell (a grid this small is drawn cell by cell) and
+    // a hundred for the colour bar, besides the frames.
     let rects = svg.matches("<rect").count();
     assert!(
         rects >= points + 100,
@@ -73,4 +73,29 @@ fn axisymmetric_spheres_keep_pressure_against_the_radius() {
     assert!(!svg.contains("pressure map"));
     assert!(svg.contains("radius (in)"));
     assert!(svg.contains("hertz-spheres"), "the closed form's legend");
+}
+
+/// A misaligned roller of 10,400 points, more than 512 cells along x
+/// (MAX_DRAWN = 256): its map is drawn in 174 x 7 blocks of 3 x 3 cells,
+/// each its largest pressure. Any grid is drawn in at most 256 x 256 blocks, about
+/// 90 bytes each: under 6 MB.
+#[test]
+fn a_large_grid_s_map_is_drawn_in_blocks_of_bounded_size() {
+    let roller = common::roller("zone = 1.6\nhalf_y = 5.0\nnx = 520\nny = 20", "10000.0")
+        .replace("load = 10000.0", "load = 10000.0\ntilt_x = 2e-4");
+    let text = with_table(
+        &with_table(&roller, "outputs", "plots = [\"pressure\"]"),
+        "solver",
+        "method = \"conjugate-gradient\"\nerror_estimate = false",
+    );
+    let (svg, points, _) = pressure_svg(&text);
+    assert_eq!(points, 10_400);
+    assert!(
+        svg.contains("pressure map (174 x 7 blocks of 3 x 3 cells, each its largest)"),
+        "the caption says how the map is drawn: {}",
+        &svg[svg.find("pressure map").unwrap_or(0)..][..80]
+    );
+    let rects = svg.matches("<rect").count();
+    assert!(rects <= 174 * 7 + 100 + 10, "{rects} rectangles");
+    assert!(svg.len() < 400_000, "{} bytes", svg.len());
 }
