@@ -200,3 +200,35 @@ fn the_lattice_drops_rotations_its_symmetry_makes_zero_and_keeps_the_others() {
     assert_eq!(free.rigid().free, dense.rigid().free);
     assert!(free.rigid().dropped.is_empty());
 }
+
+/// Asked for the conjugate gradient, a folding problem keeps its folded S
+/// while that is small and goes matrix-free above `AUTO_DENSE_LIMIT`
+/// unknowns, where the folded S's N^2 products would cost more than the
+/// lattice's FFT products (and its memory could run to gigabytes).
+#[test]
+fn the_conjugate_gradient_folds_only_a_small_problem() {
+    let storage = |cells: f64| {
+        let hertz = HertzSpheres::new(
+            combined_modulus(&steel(), &steel()),
+            combined_radius(1.0, 10.0),
+            100.0,
+        )
+        .expect("Hertz");
+        let a = hertz.contact_radius();
+        let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
+        let geometry = Geometry::Surfaces(
+            Surface::Sphere { radius: 1.0 },
+            Surface::Sphere { radius: 10.0 },
+        );
+        let body = Body::uniform_patch(steel());
+        let plan = ContactProblem::builder(points, &body, &body, &geometry, Loading::load(100.0))
+            .method(Method::ConjugateGradient)
+            .plan()
+            .expect("plan");
+        (plan.storage, plan.method)
+    };
+    // 8 cells a radius: 349 points, folded to about an eighth.
+    assert_eq!(storage(8.0), (Storage::Folded, Method::ConjugateGradient));
+    // 64 cells a radius: 21,749 points, folded to about 2,700 > 2000.
+    assert_eq!(storage(64.0), (Storage::Lattice, Method::ConjugateGradient));
+}

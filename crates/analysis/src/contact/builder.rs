@@ -12,8 +12,9 @@
 //! (after folding) it holds S matrix-free when the points are a lattice and
 //! no body is a beam, unless the method asked for reads S's entries; else
 //! it holds S dense. Asked for the conjugate gradient, it holds S
-//! matrix-free whenever the lattice operator applies and the problem does
-//! not fold (a folded problem is smaller dense).
+//! matrix-free whenever the lattice operator applies, unless the problem
+//! folds to at most [`AUTO_DENSE_LIMIT`] unknowns (a small folded S is
+//! cheaper dense; a large one's N^2 products cost more than the lattice's).
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -274,7 +275,14 @@ impl<'a> ProblemBuilder<'a> {
             // A pivoting method reads S's entries, and a folded problem is
             // smaller dense.
             Storage::Auto => match self.method {
-                Some(Method::ConjugateGradient) if !folds && lattice_applies() => Storage::Lattice,
+                // The conjugate gradient on a folded S only while that S is
+                // small: above the limit its N^2 products cost more than
+                // the lattice's FFT products over every point.
+                Some(Method::ConjugateGradient)
+                    if (!folds || unknowns > AUTO_DENSE_LIMIT) && lattice_applies() =>
+                {
+                    Storage::Lattice
+                }
                 None if unknowns > AUTO_DENSE_LIMIT && lattice_applies() => Storage::Lattice,
                 _ if folds => Storage::Folded,
                 _ => Storage::Dense,
