@@ -10,6 +10,7 @@ use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal, Storage};
 use elcon_design::{Analysis, Evaluation, Profile, axial_stations, evaluate};
 use serde::Serialize;
 
+use crate::ctx::Num;
 use crate::error::SceneError;
 use crate::scene::{DesignSpec, MethodChoice, RelativeTo, Scene, run_error};
 use crate::subsurface::{BodySubsurfaceJson, subsurface_of};
@@ -333,7 +334,7 @@ fn grid_name(scene: &Scene, spec: &DesignSpec, fineness: f64) -> String {
     let load = spec.loads().first().copied().unwrap_or(0.0);
     scene
         .grid_for(load, fineness)
-        .map_or_else(|_| format!("fineness {fineness}"), |g| g.to_string())
+        .map_or_else(|_| format!("fineness {}", Num(fineness)), |g| g.to_string())
 }
 
 /// The design's load cases on the grid of `fineness` (each design load's
@@ -369,7 +370,11 @@ fn refined_cases(
                     .fold(false)
                     .build()
                     .map_err(|source| elcon_design::DesignError::Analysis {
-                        stage: format!("load {load} on the grid of fineness {fineness}"),
+                        stage: format!(
+                            "load {} on the grid of fineness {}",
+                            Num(load),
+                            Num(fineness)
+                        ),
                         source,
                     })?;
                 bases.push((load, base));
@@ -379,7 +384,10 @@ fn refined_cases(
         let loading = case_loading(spec.axis(), load, misalignment);
         cases.push(base.with_loading(loading).map_err(|source| {
             elcon_design::DesignError::Analysis {
-                stage: format!("load {load} misaligned by {misalignment:?}"),
+                stage: match misalignment {
+                    Some(angle) => format!("load {} misaligned by {} rad", Num(load), Num(angle)),
+                    None => format!("load {}", Num(load)),
+                },
                 source,
             }
         })?);
