@@ -9,7 +9,7 @@ use elcon_lcp::LcpError;
 #[non_exhaustive]
 pub enum AnalysisError {
     /// A scalar input is out of its physical range.
-    #[error("`{field}` = {value}: {reason}")]
+    #[error("`{field}` = {}: {reason}", Num(*value))]
     InvalidInput {
         /// The field.
         field: &'static str,
@@ -29,7 +29,7 @@ pub enum AnalysisError {
         found: usize,
     },
     /// A vector holds NaN or an infinity.
-    #[error("`{field}` has a non-finite value ({value}) at point {index}")]
+    #[error("`{field}` has a non-finite value ({}) at point {index}", Num(*value))]
     NonFinite {
         /// The field.
         field: &'static str,
@@ -75,6 +75,25 @@ pub enum AnalysisError {
     Engine(#[from] LcpError),
 }
 
+/// A number as a message shows it, in its shortest round-trip form: as
+/// written for everyday magnitudes (`-30000000`, `0.5`), in scientific
+/// notation beyond them (`1e300`, `1e-308`), so that no message holds a
+/// run of hundreds of digits. Every crate above shows a user's number
+/// through it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || !a.is_finite() || (1e-4..1e16).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
 impl AnalysisError {
     /// A [`AnalysisError::Table`] error of the table `label`.
     pub(crate) fn table(label: &str, reason: impl Into<String>) -> Self {
@@ -82,5 +101,46 @@ impl AnalysisError {
             label: label.to_string(),
             reason: reason.into(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_number_is_shown_in_its_shortest_round_trip_form() {
+        for (v, shown) in [
+            (1e300, "1e300"),
+            (-1e300, "-1e300"),
+            (1e-300, "1e-300"),
+            (-30e6, "-30000000"),
+            (0.5, "0.5"),
+            (0.0, "0"),
+            (f64::INFINITY, "inf"),
+            (f64::MAX, "1.7976931348623157e308"),
+        ] {
+            assert_eq!(Num(v).to_string(), shown);
+            assert_eq!(Num(v).to_string().parse::<f64>().ok(), Some(v));
+        }
+    }
+
+    #[test]
+    fn an_invalid_input_shows_its_value_briefly() {
+        let e = AnalysisError::InvalidInput {
+            field: "load",
+            value: 1e300,
+            reason: "too large",
+        };
+        assert_eq!(e.to_string(), "`load` = 1e300: too large");
+        let e = AnalysisError::NonFinite {
+            field: "separation",
+            index: 3,
+            value: f64::NAN,
+        };
+        assert_eq!(
+            e.to_string(),
+            "`separation` has a non-finite value (NaN) at point 3"
+        );
     }
 }

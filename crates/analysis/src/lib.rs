@@ -76,7 +76,7 @@ pub use elcon_influence::{
     Body, Dimension, Material, Model, PointSet, combined_modulus, combined_modulus_of,
 };
 pub use elcon_lcp::{Method, Options};
-pub use error::AnalysisError;
+pub use error::{AnalysisError, Num};
 pub use estimate::{Estimate, Relief, Tableau};
 pub use grid::GridFamily;
 pub use influence::Products;

@@ -2,7 +2,7 @@
 //! layers below passed through, and a design whose re-analysis disagrees
 //! with it (never returned as a result).
 
-use elcon_analysis::AnalysisError;
+use elcon_analysis::{AnalysisError, Num};
 use elcon_lcp::LcpError;
 
 /// Everything that can stop a design.
@@ -10,7 +10,7 @@ use elcon_lcp::LcpError;
 #[non_exhaustive]
 pub enum DesignError {
     /// A scalar parameter is out of its range.
-    #[error("`{field}` = {value}: {reason}")]
+    #[error("`{field}` = {}: {reason}", Num(*value))]
     InvalidInput {
         /// The parameter.
         field: &'static str,
@@ -103,5 +103,23 @@ impl DesignError {
     pub(crate) fn analysis(stage: impl Into<String>) -> impl FnOnce(AnalysisError) -> Self {
         let stage = stage.into();
         move |source| Self::Analysis { stage, source }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_invalid_input_shows_its_value_in_the_shortest_form() {
+        let e = DesignError::InvalidInput {
+            field: "log_crown.design_load",
+            value: 1e300,
+            reason: "must be finite and > 0",
+        };
+        assert_eq!(
+            e.to_string(),
+            "`log_crown.design_load` = 1e300: must be finite and > 0"
+        );
     }
 }

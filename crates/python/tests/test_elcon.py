@@ -519,7 +519,7 @@ def test_python_is_as_safe_as_the_cli(tmp_path, monkeypatch):
     sphere = elcon.ContactProblem(
         body1=steel, body2=steel, points={"grid": "disk", "spacing": 0.01, "radius": 0.05},
         geometry={"surface1": {"shape": "sphere", "radius": 1.0}}, load=10.0)
-    with pytest.raises(elcon.InputError, match=r"`cases\[1\]`: is a surface.*case 0 is a line"):
+    with pytest.raises(elcon.InputError, match=r"`problems\[1\]`: is a surface.*problems\[0\] is a line"):
         elcon.design([beam, sphere])
     # (g) A cell whose compliance overflows: said so, not the engine's `m`.
     xs = np.arange(5) * 1e-300

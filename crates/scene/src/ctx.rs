@@ -70,21 +70,21 @@ impl Ctx<'_> {
         &self,
         span: Range<usize>,
         field: impl Into<String>,
-        value: impl std::fmt::Display,
+        value: impl Printed,
         reason: impl Into<String>,
     ) -> SceneError {
         SceneError::Invalid {
             file: self.file.to_path_buf(),
             at: self.at(span),
             field: field.into(),
-            value: value.to_string(),
+            value: value.printed(),
             reason: reason.into(),
         }
     }
 
     /// `value` (of `field`, at `span`) when `holds`; else refused, saying
     /// `why`.
-    pub(crate) fn ensure<T: std::fmt::Display>(
+    pub(crate) fn ensure<T: Printed>(
         &self,
         value: T,
         holds: bool,
@@ -274,19 +274,55 @@ macro_rules! keywords {
 }
 pub(crate) use keywords;
 
-/// A number as a message shows it: as written for everyday magnitudes
-/// (`-30000000`, `0.5`), in scientific notation beyond them (`1e-308`).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Num(pub f64);
+/// A number as a message shows it: elcon-analysis's shortest round-trip
+/// form (`-30000000`, `0.5`, `1e300`).
+pub(crate) use elcon_analysis::Num;
 
-impl std::fmt::Display for Num {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let a = self.0.abs();
-        if a == 0.0 || !a.is_finite() || (1e-4..1e16).contains(&a) {
-            write!(f, "{}", self.0)
-        } else {
-            write!(f, "{:e}", self.0)
+/// A value as an `Invalid` message prints it: a number as [`Num`] shows
+/// it (never a run of hundreds of digits), a count as it is, a text (a
+/// quoted name, "(missing)") as it is.
+pub(crate) trait Printed {
+    /// The value, printed.
+    fn printed(&self) -> String;
+}
+
+impl Printed for f64 {
+    fn printed(&self) -> String {
+        Num(*self).to_string()
+    }
+}
+
+impl Printed for Num {
+    fn printed(&self) -> String {
+        self.to_string()
+    }
+}
+
+/// Counts and texts print as they are.
+macro_rules! printed_as_displayed {
+    ($($t:ty),+) => {
+        $(impl Printed for $t {
+            fn printed(&self) -> String {
+                self.to_string()
+            }
+        })+
+    };
+}
+printed_as_displayed!(i64, u64, usize, u32, str, String);
+
+/// A TOML value as the file holds it, a number as [`Num`] shows it.
+impl Printed for toml::Value {
+    fn printed(&self) -> String {
+        match self {
+            toml::Value::Float(x) => Num(*x).to_string(),
+            other => other.to_string(),
         }
+    }
+}
+
+impl<T: Printed + ?Sized> Printed for &T {
+    fn printed(&self) -> String {
+        (**self).printed()
     }
 }
 

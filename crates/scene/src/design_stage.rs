@@ -7,9 +7,10 @@
 use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal, Storage};
-use elcon_design::{Analysis, Evaluation, Profile, axial_stations, evaluate};
+use elcon_design::{Analysis, DesignError, Evaluation, Profile, axial_stations, evaluate};
 use serde::Serialize;
 
+use crate::ctx::Num;
 use crate::error::SceneError;
 use crate::scene::{DesignSpec, MethodChoice, RelativeTo, Scene, run_error};
 use crate::subsurface::{BodySubsurfaceJson, subsurface_of};
@@ -210,7 +211,7 @@ pub(crate) fn design_stage(
     let spec = scene.design().expect("a design stage");
     let start = Instant::now();
     let (first, known, references) = design_cases(scene, spec, problem, solution)?;
-    let fail = |e: elcon_design::DesignError| run_error(scene, e);
+    let fail = |e: DesignError| design_failure(scene, e);
     let reanalysis = match scene.method_choice() {
         MethodChoice::Auto => None,
         MethodChoice::Given(m) => Some(m),
@@ -301,6 +302,58 @@ pub(crate) fn design_stage(
     ))
 }
 
+/// What a scene's user wrote for a parameter elcon-design names by its
+/// own name: the scene's key, and, when the value is not that key's own
+/// but one derived from it, what the value is.
+fn scene_key(field: &str) -> Option<(&'static str, Option<&'static str>)> {
+    Some(match field {
+        "circular_crown.radius" => ("design.radius_range", Some("a crown radius searched in it")),
+        "circular_crown.flat_length" | "log_crown.flat_length" => ("design.flat_length", None),
+        "log_crown.design_load" => (
+            "design.design_load",
+            Some("the design load, by default the largest of design.loads"),
+        ),
+        "log_crown.length" => ("points.half_y", Some("the roller's length, twice it")),
+        "log_crown.radius" => ("geometry", Some("the roller's radius, from its surfaces")),
+        "log_crown.combined_modulus" => (
+            "body1, body2",
+            Some("the roller's combined modulus, from the bodies' materials"),
+        ),
+        "family.degree" => ("design.degree", None),
+        "max_constant" => ("design.max_constant", None),
+        "grid_tolerance" => ("design.grid_tolerance", None),
+        "cases" => (
+            "design.loads",
+            Some("the load cases, each load at each misalignment"),
+        ),
+        "reference_intensities" => ("design.relative_to", Some("the reference intensities")),
+        "reanalysis" => ("solver.method", Some("the method of the analyses")),
+        _ => return None,
+    })
+}
+
+/// A design's failure as the scene's user reads it: a parameter
+/// elcon-design names by its own name (`circular_crown.radius`) is named
+/// by the scene's key for it (`design.radius_range`), its value in the
+/// shortest form ([`Num`]).
+fn design_failure(scene: &Scene, e: DesignError) -> SceneError {
+    let named = |field: &str, rest: String| match scene_key(field) {
+        Some((key, None)) => format!("`{key}`{rest}"),
+        Some((key, Some(what))) => format!("`{key}` ({what}){rest}"),
+        None => format!("`{field}`{rest}"),
+    };
+    let reason = match &e {
+        DesignError::InvalidInput {
+            field,
+            value,
+            reason,
+        } => named(field, format!(" = {}: {reason}", Num(*value))),
+        DesignError::Incompatible { field, reason } => named(field, format!(": {reason}")),
+        _ => e.to_string(),
+    };
+    run_error(scene, reason)
+}
+
 /// The design on the scene's grid alone (`design.refine = false`): one
 /// level, not verified.
 fn on_scene_grid(
@@ -333,7 +386,7 @@ fn grid_name(scene: &Scene, spec: &DesignSpec, fineness: f64) -> String {
     let load = spec.loads().first().copied().unwrap_or(0.0);
     scene
         .grid_for(load, fineness)
-        .map_or_else(|_| format!("fineness {fineness}"), |g| g.to_string())
+        .map_or_else(|_| format!("fineness {}", Num(fineness)), |g| g.to_string())
 }
 
 /// The design's load cases on the grid of `fineness` (each design load's
@@ -346,7 +399,7 @@ fn refined_cases(
     fineness: f64,
 ) -> Result<Option<Vec<ContactProblem>>, elcon_design::DesignError> {
     let layout = |reason: String| elcon_design::DesignError::Incompatible {
-        field: "grids",
+        field: "points",
         reason,
     };
     let mut cases = Vec::new();
@@ -369,7 +422,11 @@ fn refined_cases(
                     .fold(false)
                     .build()
                     .map_err(|source| elcon_design::DesignError::Analysis {
-                        stage: format!("load {load} on the grid of fineness {fineness}"),
+                        stage: format!(
+                            "load {} on the grid of fineness {}",
+                            Num(load),
+                            Num(fineness)
+                        ),
                         source,
                     })?;
                 bases.push((load, base));
@@ -379,7 +436,10 @@ fn refined_cases(
         let loading = case_loading(spec.axis(), load, misalignment);
         cases.push(base.with_loading(loading).map_err(|source| {
             elcon_design::DesignError::Analysis {
-                stage: format!("load {load} misaligned by {misalignment:?}"),
+                stage: match misalignment {
+                    Some(angle) => format!("load {} misaligned by {} rad", Num(load), Num(angle)),
+                    None => format!("load {}", Num(load)),
+                },
                 source,
             }
         })?);

@@ -102,8 +102,10 @@ pub(crate) fn curvatures(
             .unwrap_or(0..0);
         let against = match other.radius() {
             None => "a plane".to_string(),
-            Some(radius) if radius < 0.0 => format!("another concave surface (radius {radius})"),
-            Some(radius) => format!("the convex radius {radius}"),
+            Some(radius) if radius < 0.0 => {
+                format!("another concave surface (radius {})", Num(radius))
+            }
+            Some(radius) => format!("the convex radius {}", Num(radius)),
         };
         return Err(ctx.invalid(
             span,
@@ -201,8 +203,10 @@ pub(crate) fn bodies_on_grid(
                         format!("{section}.loaded_point"),
                         Num(loaded_point),
                         format!(
-                            "is outside the beam, which is the line grid from {lo} to {hi}; give a \
-                             point on it (default 0)"
+                            "is outside the beam, which is the line grid from {} to {}; give a \
+                             point on it (default 0)",
+                            Num(lo),
+                            Num(hi)
                         ),
                     ));
                 }

@@ -390,3 +390,82 @@ fn rotations_outside_the_small_rotation_theory_are_refused() {
     let r = run(&s).unwrap();
     assert!(r.solution.tilt_x.abs() < 0.1);
 }
+
+/// The longest run of digits in `text`.
+fn longest_digit_run(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0)
+}
+
+#[test]
+fn a_huge_value_is_shown_in_its_shortest_form() {
+    let roller = roller();
+    let line = "grid = \"line\"\nstart = 1e300\nend = 0.0\nn = 11";
+    let cases = [
+        (
+            roller.replace(
+                "grid = \"rectangle\"\nhalf_x = 0.2\nhalf_y = 5.0\nnx = 11\nny = 8",
+                line,
+            ),
+            "`points.end` = 0: must exceed points.start = 1e300",
+        ),
+        (
+            format!(
+                "{roller}\n[design]\nfamily = \"circular-crown\"\nradius_range = [1.0, 2.0]\n\
+                 flat_length = -1e300\n"
+            ),
+            "`design.flat_length` = -1e300: must be >= 0",
+        ),
+        (
+            format!(
+                "{roller}\n[design]\nfamily = \"circular-crown\"\nradius_range = [1e300, 1e299]\n"
+            ),
+            "`design.radius_range[1]` = 1e299: must exceed",
+        ),
+        (
+            format!("{roller}\n[design]\nfamily = \"quadratic\"\ngrid_tolerance = 1e300\n"),
+            "`design.grid_tolerance` = 1e300: at most 0.5",
+        ),
+        (
+            format!("{roller}\n[design]\nfamily = \"quadratic\"\nmisalignments = [-1e300]\n"),
+            "`design.misalignments[0]` = -1e300: at most",
+        ),
+    ];
+    for (text, expected) in cases {
+        let e = scene(&text).unwrap_err();
+        let message = e.to_string();
+        assert!(message.contains(expected), "{message}");
+        assert!(longest_digit_run(&message) <= 20, "{message}");
+    }
+}
+
+#[test]
+fn a_design_failure_names_the_scenes_key() {
+    let roller = roller();
+    // A design load whose Hertz half-width exceeds the crowned half-length
+    // over 0.3033: the logarithmic profile is undefined.
+    let s = scene(&format!(
+        "{roller}\n[design]\nfamily = \"logarithmic-crown\"\ndesign_load = 1e9\n"
+    ))
+    .unwrap();
+    let e = run(&s).unwrap_err().to_string();
+    assert!(
+        e.contains("`design.design_load` (the design load, by default"),
+        "{e}"
+    );
+    assert!(e.contains("= 1000000000: the Hertz half-width"), "{e}");
+    assert!(!e.contains("log_crown"), "{e}");
+    // A crown radius below the crowned half-length (5 mm).
+    let s = scene(&format!(
+        "{roller}\n[design]\nfamily = \"circular-crown\"\nradius_range = [1.0, 2.0]\n"
+    ))
+    .unwrap();
+    let e = run(&s).unwrap_err().to_string();
+    assert!(
+        e.contains("`design.radius_range` (a crown radius searched in it) = "),
+        "{e}"
+    );
+    assert!(!e.contains("circular_crown"), "{e}");
+}

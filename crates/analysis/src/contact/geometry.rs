@@ -26,7 +26,7 @@ use std::ops::Add;
 use elcon_influence::{Dimension, PointSet};
 
 use super::tabulated::Departure;
-use crate::AnalysisError;
+use crate::{AnalysisError, Num};
 
 /// The shape of one surface near the initial point of contact, as its height
 /// above the common tangent plane. Radii are positive for convex surfaces and
@@ -387,8 +387,10 @@ fn not_covered(departure: &Departure, k: usize, x: f64, y: f64) -> AnalysisError
     AnalysisError::table(
         departure.label(),
         format!(
-            "does not cover candidate point {k} at ({x}, {y}): {}; give a table over the whole \
+            "does not cover candidate point {k} at ({}, {}): {}; give a table over the whole \
              candidate zone",
+            Num(x),
+            Num(y),
             departure.describe_extent()
         ),
     )

@@ -15,7 +15,7 @@
 //! a billionth of its spacing) has no departure: the separations refuse it,
 //! naming the table.
 
-use crate::AnalysisError;
+use crate::{AnalysisError, Num};
 
 /// How far outside a table, in its spacings, a point still counts as on
 /// its edge (the rounding of coordinates computed two ways).
@@ -41,7 +41,7 @@ fn positive(label: &str, what: &str, value: f64) -> Result<f64, AnalysisError> {
     } else {
         Err(AnalysisError::table(
             label,
-            format!("{what} = {value}: must be finite and > 0"),
+            format!("{what} = {}: must be finite and > 0", Num(value)),
         ))
     }
 }
@@ -85,7 +85,7 @@ impl HeightMap {
                     "row {}, column {} (from 0): {} is not a height (a hole in the map); fill it",
                     k / nx,
                     k % nx,
-                    heights[k]
+                    Num(heights[k])
                 ),
             ));
         }
@@ -97,7 +97,7 @@ impl HeightMap {
             if !v.is_finite() {
                 return Err(AnalysisError::table(
                     &label,
-                    format!("{what} = {v}: must be finite"),
+                    format!("{what} = {}: must be finite", Num(v)),
                 ));
             }
         }
@@ -217,16 +217,21 @@ impl AxialProfile {
             if !(p.is_finite() && d.is_finite()) {
                 return Err(AnalysisError::table(
                     &label,
-                    format!("row {k} (from 0): ({p}, {d}) is not a finite position and drop"),
+                    format!(
+                        "row {k} (from 0): ({}, {}) is not a finite position and drop",
+                        Num(p),
+                        Num(d)
+                    ),
                 ));
             }
             if k > 0 && !(p > positions[k - 1]) {
                 return Err(AnalysisError::table(
                     &label,
                     format!(
-                        "row {k} (from 0): position {p} is not above the row before's {}; \
+                        "row {k} (from 0): position {} is not above the row before's {}; \
                          positions must increase",
-                        positions[k - 1]
+                        Num(p),
+                        Num(positions[k - 1])
                     ),
                 ));
             }
@@ -307,7 +312,13 @@ impl Departure {
         match self {
             Departure::HeightMap(m) => {
                 let ((x0, x1), (y0, y1)) = m.extent();
-                format!("it covers x in [{x0}, {x1}], y in [{y0}, {y1}]")
+                format!(
+                    "it covers x in [{}, {}], y in [{}, {}]",
+                    Num(x0),
+                    Num(x1),
+                    Num(y0),
+                    Num(y1)
+                )
             }
             Departure::Profile(p) => {
                 let (lo, hi) = p.extent();
@@ -315,7 +326,7 @@ impl Departure {
                     ProfileAxis::X => "x",
                     ProfileAxis::Y => "y",
                 };
-                format!("it covers {axis} in [{lo}, {hi}]")
+                format!("it covers {axis} in [{}, {}]", Num(lo), Num(hi))
             }
         }
     }

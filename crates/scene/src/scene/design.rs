@@ -14,7 +14,7 @@ use toml::Spanned;
 use super::body::BodySpec;
 use super::hertz::{Hertz, hertz};
 use super::points::PointsSpec;
-use crate::ctx::Ctx;
+use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
 pub use crate::schema::RelativeTo;
 use crate::schema::{AxisName, DesignMethodName, DesignToml, EndName, FamilyName, ObjectiveName};
@@ -484,9 +484,10 @@ fn design_relative_to(
             "design.relative_to",
             "\"hertz\"",
             format!(
-                "needs a Hertz contact at every design load ({load} has none): sphere or cylinder \
+                "needs a Hertz contact at every design load ({} has none): sphere or cylinder \
                  surfaces (not both planes) and elastic half-space bodies, spheres on a disk grid, \
-                 cylinders on a line or a rectangle grid; use \"mean\" or \"absolute\""
+                 cylinders on a line or a rectangle grid; use \"mean\" or \"absolute\"",
+                Num(load)
             ),
         ));
     }

@@ -28,7 +28,7 @@ use elcon_analysis::{AxialProfile, Departure, Geometry, HeightMap, ProfileAxis};
 use elcon_influence::PointSet;
 use toml::Spanned;
 
-use crate::ctx::Ctx;
+use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
 use crate::schema::{GeometryToml, HeightMapToml, ProfileToml};
 
@@ -330,8 +330,10 @@ fn separations(
                 .map(|r| r.2)
                 .ok_or_else(|| {
                     refuse(format!(
-                        "has no row at candidate point {k} ({x}, {y}); give a row at every \
-                         candidate point"
+                        "has no row at candidate point {k} ({}, {}); give a row at every \
+                         candidate point",
+                        Num(x),
+                        Num(y)
                     ))
                 })
         })

@@ -211,7 +211,7 @@ pub struct DesignLayoutParts<'a> {
 /// # Errors
 /// [`SceneError::Syntax`] for an unknown key; [`SceneError::Invalid`]
 /// naming the field, also when the cases are not all lines or all
-/// surfaces (`cases`).
+/// surfaces (named as Python's `design` names them, `problems`).
 pub fn design_over(
     file: &Path,
     text: &str,
@@ -242,7 +242,7 @@ pub fn design_over(
     let dimension = match dimensions.first() {
         Some(&first) => first,
         None => {
-            return Err(ctx.invalid(d.span(), "cases", "[]", "give at least one load case"));
+            return Err(ctx.invalid(d.span(), "problems", "[]", "give at least one load case"));
         }
     };
     if let Some(other) = dimensions.iter().position(|&k| k != dimension) {
@@ -252,10 +252,10 @@ pub fn design_over(
         };
         return Err(ctx.invalid(
             d.span(),
-            format!("cases[{other}]"),
+            format!("problems[{other}]"),
             "",
             format!(
-                "is {} and case 0 is {}: one design runs along one kind of problem",
+                "is {} and problems[0] is {}: one design runs along one kind of problem",
                 kind(dimensions[other]),
                 kind(dimension)
             ),
@@ -412,7 +412,7 @@ mod tests {
         let spec = design_over(file(), free, std::slice::from_ref(&line), None, None).unwrap();
         assert_eq!(spec.axis(), elcon_design::Axis::X);
         let e = design_over(file(), free, &[line.clone(), surface], None, None).unwrap_err();
-        assert!(e.to_string().contains("`cases[1]`: is a surface"), "{e}");
+        assert!(e.to_string().contains("`problems[1]`: is a surface"), "{e}");
         let along_y = "[design]\nfamily = \"free\"\naxis = \"y\"\n";
         let e = design_over(file(), along_y, std::slice::from_ref(&line), None, None).unwrap_err();
         assert!(

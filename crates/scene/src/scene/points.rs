@@ -6,7 +6,7 @@ use elcon_analysis::GridFamily;
 use elcon_influence::{Dimension, PointSet};
 use toml::Spanned;
 
-use crate::ctx::Ctx;
+use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
 use crate::schema::{Grid, PointsToml};
 
@@ -254,7 +254,7 @@ fn line_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, Scene
             let (start, end) = (ctx.finite(a, "points.start")?, ctx.finite(b, "points.end")?);
             // Both finite: not above start is at most start.
             let above = end > start;
-            let why = format!("must exceed points.start = {start}");
+            let why = format!("must exceed points.start = {}", Num(start));
             let end = ctx.ensure(end, above, b.span(), "points.end", why)?;
             PointsSpec::Line {
                 start,
