@@ -11,7 +11,12 @@
 //!     matrix-free  operator + 6 x 8 N bytes,       1e-4 N seconds
 //! ```
 //!
-//! The factors were measured through `elcon run` on the reference machine
+//! A pivot of a dense method costs about `c n^2` and a path takes about a
+//! pivot per point in contact, so `c_method n^3` is the case of every point
+//! in contact (a beam on a foundation, a flat punch): an upper-ish bound,
+//! which a Hertz contact (some of the points in contact, pivots that skip
+//! what they never read) stays below by up to about 2 times. The factors
+//! were measured through `elcon run` on the reference machine
 //! (docs/reliability.md, docs/performance.md) and rounded up.
 
 use elcon_influence::PointSet;
@@ -37,20 +42,33 @@ const CG_VECTORS: f64 = 7.0;
 const HELD_VECTORS: f64 = 14.0;
 
 /// Seconds per point of a matrix-free solve (a few hundred iterations of
-/// about one FFT product each; docs/performance.md, "Dense or
-/// matrix-free"), rounded up.
+/// about one FFT product each, growing a little faster than N): Example 1
+/// unfolded on the lattice, 1.9 s at N = 68,085 and 16.6 s at N = 272,321
+/// for the whole run (2.8e-5 and 6.1e-5 a point), rounded up.
 const CG_SECONDS_PER_POINT: f64 = 1e-4;
 
 /// Seconds per n^3 of a tableau method's solve on the symmetric tableau
 /// (Lemke's method; the restricted simplex under load without initial
-/// interference): 3.2 s at N = 3745.
-const TABLEAU_SECONDS_PER_CUBE: f64 = 7e-11;
+/// interference). A pivot costs about c n^2 and a path takes a pivot per
+/// contact point, so n^3 is the case of every point in contact: Example
+/// 2's beam unfolded, Lemke's method 5.7 s at N = 4000 and 14.7 s at
+/// N = 6000 (8.8e-11 and 6.8e-11 n^3), the restricted simplex 4.1 and
+/// 11.7 s, rounded up. A Hertz contact takes fewer and cheaper pivots:
+/// Example 1 unfolded at N = 6625, 5057 in contact, 12.1 s (docs/reliability.md).
+const TABLEAU_SECONDS_PER_CUBE: f64 = 1e-10;
 
 /// Seconds per n^3 of the restricted simplex on the general tableau
-/// (displacement control, or initial interference): 17.7 s at N = 3729.
-const GENERAL_SECONDS_PER_CUBE: f64 = 3.5e-10;
+/// (displacement control, or initial interference): about a pivot per
+/// point of a tableau up to twice as wide. Example 2's beam unfolded under
+/// an approach, every point in contact: 9.3 s at N = 3000 and 49 s at
+/// N = 4500 (3.4e-10 and 5.4e-10 n^3), rounded up; Example 1 under an
+/// approach, 6.9 s at N = 2933 (2.7e-10 n^3), but 185 s at N = 3801
+/// (docs/reliability.md: such a run is under-estimated).
+const GENERAL_SECONDS_PER_CUBE: f64 = 6e-10;
 
-/// Seconds per n^3 of block principal pivoting: 1.7 s at N = 3745.
+/// Seconds per n^3 of block principal pivoting (a few factorizations of
+/// the contact set's block): Example 2's beam unfolded, 1.9 s at N = 4000
+/// and 5.3 s at N = 6000 (2.9e-11 and 2.5e-11 n^3), rounded up.
 const BLOCK_SECONDS_PER_CUBE: f64 = 3.5e-11;
 
 /// Which tableau a tableau method works on.
@@ -228,5 +246,52 @@ impl Estimate {
             }
         }
         reliefs
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seconds(method: Method, tableau: Tableau, n: usize) -> f64 {
+        Estimate::dense(Storage::Dense, method, tableau, n, n).seconds
+    }
+
+    #[test]
+    fn a_dense_solve_s_seconds_grow_like_the_cube_of_its_unknowns() {
+        let cases = [
+            (Method::BlockPivoting, Tableau::Symmetric),
+            (Method::Lemke, Tableau::Symmetric),
+            (Method::RestrictedSimplex, Tableau::Symmetric),
+            (Method::RestrictedSimplex, Tableau::General),
+        ];
+        for (method, tableau) in cases {
+            let mut last = 0.0;
+            for n in [1, 10, 100, 1000, 4000, 6000, 65_536] {
+                let s = seconds(method, tableau, n);
+                assert!(s > last, "{method:?} {tableau:?} {n}: {s}");
+                last = s;
+            }
+            // Twice the unknowns, eight times the pivots' work.
+            let ratio = seconds(method, tableau, 4000) / seconds(method, tableau, 2000);
+            assert!((ratio - 8.0).abs() < 8.0 * f64::EPSILON * 16.0, "{ratio}");
+        }
+    }
+
+    #[test]
+    fn the_methods_are_ordered_by_their_measured_cost() {
+        let n = 4000;
+        let block = seconds(Method::BlockPivoting, Tableau::Symmetric, n);
+        let lemke = seconds(Method::Lemke, Tableau::Symmetric, n);
+        let simplex = seconds(Method::RestrictedSimplex, Tableau::Symmetric, n);
+        let general = seconds(Method::RestrictedSimplex, Tableau::General, n);
+        assert!(block < lemke && lemke == simplex && simplex < general);
+        // Lemke's method on a beam of 4000 points, every one in contact,
+        // runs in seconds (5.7 s measured), not under a second or minutes.
+        assert!((1.0..60.0).contains(&lemke), "{lemke}");
+        // The general tableau on the beam of 4500 points under an
+        // approach (49 s measured, 61 s the whole run) is estimated above it.
+        let general = seconds(Method::RestrictedSimplex, Tableau::General, 4500);
+        assert!(general > 49.0, "{general}");
     }
 }

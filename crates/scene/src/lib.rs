@@ -50,7 +50,7 @@ pub use elcon_analysis::{AUTO_DENSE_LIMIT, Storage};
 pub use elcon_lcp::Cancel;
 pub use error::{Location, SceneError};
 pub use error_estimate::{DiscretizationJson, GridJson, QuantitiesJson, QuantityJson};
-pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass};
+pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass, TimeFigure};
 pub use isolate::{install_panic_hook, interruptible, isolated};
 pub use journal::JOURNAL;
 pub use memory::{
