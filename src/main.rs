@@ -482,10 +482,10 @@ fn check_batch_file(path: &Path, text: &str, ceiling: &Ceiling, every_run: bool)
     );
     if let Some(l) = &c.largest {
         println!(
-            "{}: largest run checked: {}; the runs checked: about {:.0} s of solving in all",
+            "{}: largest run checked: {}; the runs checked: {} of solving in all",
             path.display(),
             l.summary(),
-            c.seconds
+            elcon_scene::TimeFigure::of(c.seconds)
         );
     }
     c.failed == 0

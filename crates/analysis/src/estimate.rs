@@ -90,7 +90,8 @@ pub enum Tableau {
 /// assumes: block pivoting 3.13 (S, its Cholesky factor of the whole
 /// contact set, whose capacity doubles in place, and the blocks of the
 /// last update), the symmetric tableau 3.16 (S, the swept tableau, then
-/// the contact block's factor); a Hertz contact takes less (1.96, 2.19);
+/// the contact block's factor); a Hertz contact takes less (1.96; the
+/// symmetric tableau 3.0, with the updates its blocks skip kept);
 /// the conjugate gradient S alone (rounded up to 1.25 for its vectors);
 /// the restricted simplex's general tableau 7.3 to 7.6 (S, the constraint
 /// data, a tableau of twice S's width when most rows start with an
