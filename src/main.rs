@@ -67,6 +67,11 @@ fn shard_arg(s: &str) -> Result<ShardArg, String> {
 /// all cores already, so more only add memory and contention.
 const MAX_JOBS_PER_CORE: usize = 4;
 
+/// `--threads` (or `ELCON_THREADS`) may ask for at most this many threads
+/// per core: a solve's threads share the cores, and 100,000 of them took
+/// minutes to start.
+const MAX_THREADS_PER_CORE: usize = 4;
+
 fn jobs_arg(s: &str) -> Result<usize, String> {
     let jobs: usize = s
         .trim()
@@ -176,6 +181,14 @@ fn threads(arg: Option<usize>) -> Result<(), Outcome> {
     };
     if count == 0 {
         return Err(Outcome::Usage("the threads must be at least 1".into()));
+    }
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let most = MAX_THREADS_PER_CORE * cores;
+    if count > most {
+        return Err(Outcome::Usage(format!(
+            "--threads / ELCON_THREADS = {count}: at most {MAX_THREADS_PER_CORE} threads per \
+             core, {most} on this machine's {cores} (more only switch between themselves)"
+        )));
     }
     rayon::ThreadPoolBuilder::new()
         .num_threads(count)

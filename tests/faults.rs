@@ -894,3 +894,18 @@ fn an_interrupt_ends_a_long_solve_at_once_and_writes_nothing_half() {
         assert!(litter(&out).is_empty(), "{:?}", litter(&out));
     }
 }
+
+/// `--threads` and `ELCON_THREADS` are bounded by the cores, as `--jobs`
+/// is: 100,000 threads took minutes to start on a 149-point scene.
+#[test]
+fn a_thread_count_beyond_the_cores_is_refused() {
+    let dir = scratch("threads");
+    let batch = six_runs(&dir, "sweep", "50.0, 150.0");
+    let o = elcon(&["check", s(&batch), "--threads", "100000"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("threads per core"), "{}", text(&o));
+    let o = elcon_with(&["check", s(&batch)], &[("ELCON_THREADS", "100000")]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let o = elcon(&["check", s(&batch), "--threads", "2"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+}

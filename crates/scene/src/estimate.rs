@@ -131,7 +131,7 @@ impl TimeUnit {
     }
 }
 
-/// A time estimate rounded for print: [`SIGNIFICANT`] digits in the
+/// A time estimate rounded for print: two significant digits in the
 /// largest unit (s, min, h) it reaches once rounded, so that the figure and
 /// its [`TimeClass`] agree ("about 45 s (seconds)", "about 2.3 min
 /// (minutes)").

@@ -154,6 +154,10 @@ fn bad_files_are_refused_naming_the_file_and_the_row() {
         why.contains("missing.csv") && why.contains("cannot be read"),
         "{why}"
     );
+    // A device that never ends: read up to the data files' bound, refused.
+    let (field, why) = reason(scene_in(&d, &map("/dev/zero")));
+    assert_eq!(field, "geometry.height_map.file");
+    assert!(why.contains("larger than 256 MiB"), "{why}");
     // A hole (NaN) at row 1, column 2.
     std::fs::write(d.join("hole.csv"), "0,0,0\n0,0,nan\n0,0,0\n").unwrap();
     let (_, why) = reason(scene_in(&d, &map("hole.csv")));

@@ -195,7 +195,8 @@ impl PointSet {
         if !(std::f64::consts::PI * m_f * m_f <= 2.0 * MAX_POINTS as f64) {
             return Err(InfluenceError::points(
                 "radius / spacing",
-                radius / h,
+                // (Debug: the shortest form, 1e300 rather than 301 digits.)
+                format!("{:?}", radius / h),
                 format!("the disk would hold more than MAX_POINTS = {MAX_POINTS} points"),
             ));
         }
@@ -735,6 +736,9 @@ mod tests {
         assert_eq!(field(PointSet::grid_disk(-1.0, 1.0)), "spacing");
         assert_eq!(field(PointSet::grid_disk(1.0, f64::INFINITY)), "radius");
         assert_eq!(field(PointSet::grid_disk(1e-9, 1.0)), "radius / spacing");
+        // A huge ratio in its shortest form, not 301 digits.
+        let why = PointSet::grid_disk(1.0, 1e300).unwrap_err().to_string();
+        assert!(why.contains("= 1e300:"), "{why}");
         assert_eq!(field(PointSet::grid_rectangle(1.0, 0.0, 2, 2)), "half_y");
         assert_eq!(field(PointSet::grid_rectangle(1.0, 1.0, 0, 2)), "nx");
         assert_eq!(

@@ -42,10 +42,33 @@ fn path_of(ctx: &Ctx<'_>, name: &str) -> PathBuf {
     ctx.dir().join(name)
 }
 
+/// The most bytes a data file (height map, profile, separations) may hold:
+/// a height map of 5792 x 5792 doubles. Read once, no further: a device
+/// or a runaway file is refused instead of filling the memory.
+pub const MAX_DATA_BYTES: u64 = 256 << 20;
+
+/// The bytes of a data file, at most [`MAX_DATA_BYTES`].
+fn read_data(path: &Path) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).map_err(|e| format!("cannot be read: {e}"))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_DATA_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("cannot be read: {e}"))?;
+    if bytes.len() as u64 > MAX_DATA_BYTES {
+        return Err(format!(
+            "is larger than {} MiB, the most a data file may be (MAX_DATA_BYTES)",
+            MAX_DATA_BYTES >> 20
+        ));
+    }
+    Ok(bytes)
+}
+
 /// The numbers of a CSV file, a row per line (see the module
 /// documentation), each with its line number (from 1).
 fn csv_rows(path: &Path) -> Result<Vec<(usize, Vec<f64>)>, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot be read: {e}"))?;
+    let text = String::from_utf8(read_data(path)?)
+        .map_err(|_| "cannot be read: it is not text (UTF-8)".to_string())?;
     let mut rows = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let line = line.trim();
@@ -79,7 +102,7 @@ fn first_content_line(text: &str) -> usize {
 /// A 2-D `.npy` array of float64 or float32 in C order: its values row by
 /// row and its shape `(rows, columns)`.
 fn npy(path: &Path) -> Result<(Vec<f64>, usize, usize), String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot be read: {e}"))?;
+    let bytes = read_data(path)?;
     if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
         return Err("is not a .npy file (no \\x93NUMPY magic)".into());
     }
