@@ -138,6 +138,12 @@ fn a_batch_name_cannot_leave_the_output_directory() {
     let e = scene(&format!("[scene]\nname = \".a.1234.tmp\"\n{}", base())).unwrap_err();
     assert!(e.to_string().contains("`scene.name`"), "{e}");
     assert!(e.to_string().contains("no leading '.'"), "{e}");
+    // Too long for a directory with its lock, or with a control character.
+    for bad in ["x".repeat(300), "a\\u0001b".to_string()] {
+        let e = scene(&format!("[scene]\nname = \"{bad}\"\n{}", base())).unwrap_err();
+        assert!(e.to_string().contains("`scene.name`"), "{e}");
+        assert!(e.to_string().contains("at most 120 bytes"), "{e}");
+    }
 }
 
 #[test]

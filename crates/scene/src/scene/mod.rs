@@ -446,7 +446,13 @@ fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
             .file_stem()
             .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned()),
     };
-    if name.contains(['/', '\\']) || name.starts_with('.') {
+    // A directory's name is at most 255 bytes, and the lock beside it adds a
+    // '.' and ".lock"; control characters make names no terminal shows.
+    if name.contains(['/', '\\'])
+        || name.starts_with('.')
+        || name.len() > crate::MAX_SLUG
+        || name.chars().any(char::is_control)
+    {
         let span = raw
             .scene
             .as_ref()
@@ -456,8 +462,12 @@ fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
             span,
             "scene.name",
             &name,
-            "names an output directory: no path separators, and no leading '.' (elcon's \
-             temporary siblings and locks start with one)",
+            &format!(
+                "names an output directory: at most {} bytes, no control characters, no path \
+                 separators, and no leading '.' (elcon's temporary siblings and locks start \
+                 with one)",
+                crate::MAX_SLUG
+            ),
         ));
     }
     Ok(name)
