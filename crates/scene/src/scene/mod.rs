@@ -462,7 +462,7 @@ fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
             span,
             "scene.name",
             &name,
-            &format!(
+            format!(
                 "names an output directory: at most {} bytes, no control characters, no path \
                  separators, and no leading '.' (elcon's temporary siblings and locks start \
                  with one)",
