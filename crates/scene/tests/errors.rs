@@ -475,3 +475,27 @@ fn a_design_failure_names_the_scenes_key() {
     );
     assert!(!e.contains("circular_crown"), "{e}");
 }
+
+#[test]
+fn a_certificate_tolerance_below_rounding_is_refused() {
+    let e = scene(&with_table(
+        &base(),
+        "solver",
+        "certificate_tolerance = 1e-300",
+    ))
+    .unwrap_err();
+    assert!(e.is_input_error());
+    let text = e.to_string();
+    assert!(
+        text.contains("`solver.certificate_tolerance` = 1e-300"),
+        "{text}"
+    );
+    assert!(text.contains("at least 2.2e-16"), "{text}");
+    // The bound itself is accepted.
+    scene(&with_table(
+        &base(),
+        "solver",
+        "certificate_tolerance = 2.3e-16",
+    ))
+    .unwrap();
+}

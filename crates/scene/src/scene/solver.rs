@@ -58,6 +58,15 @@ pub(super) fn solver(
                 "a relative tolerance must be < 1",
             ));
         }
+        if v < f64::EPSILON {
+            return Err(ctx.invalid(
+                t.span(),
+                "solver.certificate_tolerance",
+                v,
+                "must be at least 2.2e-16 (f64::EPSILON): residuals recomputed in doubles \
+                 cannot be smaller than their rounding, so no solve could meet it",
+            ));
+        }
         options.tolerances.certificate = v;
     }
     if let Some(r) = &s.refinement_steps {
