@@ -18,13 +18,9 @@ fn steel() -> Material {
     Material::new(30e6, 0.3).expect("steel") // psi
 }
 
-/// Example 1's spheres (R1 = 1 in, R2 = 10 in, P = 100 lb) on a disk grid
-/// of `a / cells` spacing and radius `zone a`, dense and matrix-free.
-fn spheres(
-    cells: f64,
-    zone: f64,
-    loading: Loading,
-) -> (ContactProblem, ContactProblem, HertzSpheres) {
+/// Example 1's candidate disk of `a / cells` spacing and radius `zone a`,
+/// its geometry and its Hertz solution.
+fn example1(cells: f64, zone: f64) -> (PointSet, Geometry, HertzSpheres) {
     let hertz = HertzSpheres::new(
         combined_modulus(&steel(), &steel()),
         combined_radius(1.0, 10.0),
@@ -37,6 +33,17 @@ fn spheres(
         Surface::Sphere { radius: 1.0 },
         Surface::Sphere { radius: 10.0 },
     );
+    (points, geometry, hertz)
+}
+
+/// Example 1's spheres (R1 = 1 in, R2 = 10 in, P = 100 lb) on a disk grid
+/// of `a / cells` spacing and radius `zone a`, dense and matrix-free.
+fn spheres(
+    cells: f64,
+    zone: f64,
+    loading: Loading,
+) -> (ContactProblem, ContactProblem, HertzSpheres) {
+    let (points, geometry, hertz) = example1(cells, zone);
     let body = Body::uniform_patch(steel());
     let dense =
         ContactProblem::new(points.clone(), &body, &body, &geometry, loading).expect("dense");
@@ -208,18 +215,7 @@ fn the_lattice_drops_rotations_its_symmetry_makes_zero_and_keeps_the_others() {
 #[test]
 fn the_conjugate_gradient_folds_only_a_small_problem() {
     let storage = |cells: f64| {
-        let hertz = HertzSpheres::new(
-            combined_modulus(&steel(), &steel()),
-            combined_radius(1.0, 10.0),
-            100.0,
-        )
-        .expect("Hertz");
-        let a = hertz.contact_radius();
-        let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
-        let geometry = Geometry::Surfaces(
-            Surface::Sphere { radius: 1.0 },
-            Surface::Sphere { radius: 10.0 },
-        );
+        let (points, geometry, _) = example1(cells, 1.3);
         let body = Body::uniform_patch(steel());
         let plan = ContactProblem::builder(points, &body, &body, &geometry, Loading::load(100.0))
             .method(Method::ConjugateGradient)
