@@ -16,7 +16,7 @@ use sha2::{Digest, Sha256};
 
 use crate::ctx::{Ctx, parse, read_text};
 use crate::error::{Location, SceneError};
-use crate::scene::Scene;
+use crate::scene::{MAX_SLUG, Scene};
 use crate::schema::{BatchFile, ErrorMetric};
 use crate::shard::Shard;
 
@@ -108,10 +108,6 @@ impl BatchRun {
         format!("{}-h{digest}", &whole[..MAX_SLUG - 14])
     }
 }
-
-/// The longest run directory name, in bytes (a file system allows 255;
-/// the staging sibling adds a dot, the process id and `.tmp`).
-pub const MAX_SLUG: usize = 120;
 
 /// A value as labels and directory names show it: a string bare, a
 /// number in its shortest round-trip form (`1e300`, not 301 digits).

@@ -41,7 +41,7 @@ mod subsurface;
 mod tables;
 mod zone;
 
-pub use batch::{Batch, BatchRun, MAX_RUNS, MAX_SLUG, is_batch_text, thousands};
+pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text, thousands};
 pub use batch_run::{BatchDone, BatchOptions, Progress, run_batch};
 pub use compare::{Errors, ReferenceJson, XY};
 pub use ctx::{MAX_INPUT_BYTES, read_text};
@@ -65,9 +65,9 @@ pub use sanity::{
     MIN_POINTS_ACROSS, max_pivots_bound,
 };
 pub use scene::{
-    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, HalfX, MethodChoice, ModelKind, Outputs,
-    Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units, design_over,
-    problem_parts, scene_with_design,
+    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, HalfX, MAX_SLUG, MethodChoice,
+    ModelKind, Outputs, Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units,
+    design_over, problem_parts, scene_with_design,
 };
 pub use schema::ErrorMetric;
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};

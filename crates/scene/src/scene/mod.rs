@@ -434,6 +434,12 @@ fn planner<'a>(
     }
 }
 
+/// The most bytes of a name that becomes a directory: a scene's name, a
+/// batch run's directory (longer ones keep their first part and a hash of
+/// the whole), leaving room under NAME_MAX (255) for the lock's and the
+/// temporary sibling's additions.
+pub const MAX_SLUG: usize = 120;
+
 /// `scene.name` (default: the file's stem): it names an output directory.
 fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
     let name = match raw.scene.as_ref().and_then(|m| m.name.as_ref()) {
@@ -450,7 +456,7 @@ fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
     // '.' and ".lock"; control characters make names no terminal shows.
     if name.contains(['/', '\\'])
         || name.starts_with('.')
-        || name.len() > crate::MAX_SLUG
+        || name.len() > MAX_SLUG
         || name.chars().any(char::is_control)
     {
         let span = raw
@@ -466,7 +472,7 @@ fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
                 "names an output directory: at most {} bytes, no control characters, no path \
                  separators, and no leading '.' (elcon's temporary siblings and locks start \
                  with one)",
-                crate::MAX_SLUG
+                MAX_SLUG
             ),
         ));
     }
