@@ -227,6 +227,34 @@ impl GeneralTableau {
         v
     }
 
+    /// Whether row `r` can be the leaving row of a ratio test of column `s`
+    /// in direction `sigma` under rule `rule`, judged from the one entry
+    /// `T[r, s]` (`O(k)`, no column read): a free row never leaves, and a
+    /// bounded one only when its value falls, `-sigma T[r, s] > 0`.
+    ///
+    /// `false` only when [`ratio_test`](Self::ratio_test) certainly leaves
+    /// `r` out: the entry is summed here in another order than the column
+    /// the ratio test reads, so the sign test allows for that rounding
+    /// (`2 (k + 2) ε` times the sum of the magnitudes of its terms, twice
+    /// the bound of a sum of `k + 1` products, either way).
+    pub fn may_leave(&self, r: usize, s: usize, sigma: f64, rule: RowRule) -> bool {
+        match rule {
+            RowRule::Skip => false,
+            RowRule::Fixed => true,
+            RowRule::Bounded => {
+                let mut value = self.t0[(r, s)];
+                let mut size = value.abs();
+                for l in 0..self.k {
+                    let term = self.u[(r, l)] * self.v[(s, l)];
+                    value -= term;
+                    size += term.abs();
+                }
+                let rounding = 4.0 * (self.k as f64 + 2.0) * f64::EPSILON * size;
+                -sigma * value + rounding > 0.0
+            }
+        }
+    }
+
     /// Column `j` of the current tableau, all rows (objective rows included).
     pub fn column(&self, j: usize) -> Col<f64> {
         let mut c = self.t0.col(j).to_owned();
@@ -622,5 +650,94 @@ impl GeneralTableau {
         }
         self.recompute_objectives(system);
         Ok(factor.pivot_ratio)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tableau::system::Column;
+
+    /// The tableau of `-M z + w = q` (`w` basic) for a 6 x 6 symmetric
+    /// positive definite `M` with entries of both signs off the diagonal,
+    /// after three pivots held as delayed updates.
+    fn pivoted() -> (GeneralTableau, Tolerances) {
+        let m = 6;
+        let entry = |i: usize, j: usize| {
+            if i == j {
+                4.0 + i as f64
+            } else {
+                ((i * 7 + j * 7 + i * j) % 5) as f64 * 0.3 - 0.6
+            }
+        };
+        let mut columns: Vec<Column> = (0..m).map(Column::Dense).collect();
+        columns.extend((0..m).map(|row| Column::Unit { row, coef: 1.0 }));
+        let system = System {
+            rows: m,
+            dense: Mat::from_fn(m, m, |i, j| -entry(i, j)),
+            columns,
+            b: Col::from_fn(m, |i| 1.0 + 0.25 * i as f64),
+            costs: vec![vec![0.0; 2 * m]],
+            col_scale: vec![1.0; 2 * m],
+            row_scale: vec![1.0; m],
+        };
+        let basis = (m..2 * m).collect();
+        let mut tab = GeneralTableau::from_identity(&system, basis, Par::Seq, UPDATE_BLOCK)
+            .expect("a small tableau");
+        let tol = Tolerances::default();
+        for var in [0, 2, 4] {
+            let Position::Nonbasic(s) = tab.position[var] else {
+                panic!("z_{var} starts non-basic");
+            };
+            let ratio = tab
+                .ratio_test(s, 1.0, |_| RowRule::Bounded, None, &tol, 0.0)
+                .expect("a positive definite M limits every z");
+            tab.pivot(ratio.row, s, ratio.column);
+        }
+        assert_eq!(tab.k, 3, "the pivots are held as delayed updates");
+        (tab, tol)
+    }
+
+    #[test]
+    fn may_leave_follows_the_sign_of_the_entry_and_never_drops_the_leaving_row() {
+        let (tab, tol) = pivoted();
+        let (mut kept, mut dropped) = (0, 0);
+        for s in 0..tab.n() {
+            let column = tab.column(s);
+            for r in 0..tab.m {
+                for sigma in [1.0, -1.0] {
+                    let may = tab.may_leave(r, s, sigma, RowRule::Bounded);
+                    // Away from zero the answer is the sign of the entry.
+                    if column[r].abs() > 1e-12 * norm(&column) {
+                        assert_eq!(may, -sigma * column[r] > 0.0, "row {r}, column {s}");
+                    }
+                    let picked = tab
+                        .ratio_test(s, sigma, |_| RowRule::Bounded, Some(r), &tol, 0.0)
+                        .map(|ratio| ratio.row);
+                    if may {
+                        kept += 1;
+                    } else {
+                        dropped += 1;
+                        assert_ne!(picked, Some(r), "row {r}, column {s}: dropped but leaves");
+                    }
+                }
+            }
+        }
+        assert!(kept > 0 && dropped > 0, "both answers are exercised");
+    }
+
+    #[test]
+    fn a_free_row_never_leaves_and_a_fixed_one_always_may() {
+        let (tab, _) = pivoted();
+        for s in 0..tab.n() {
+            for r in 0..tab.m {
+                assert!(!tab.may_leave(r, s, 1.0, RowRule::Skip));
+                assert!(tab.may_leave(r, s, -1.0, RowRule::Fixed));
+            }
+        }
+    }
+
+    fn norm(c: &Col<f64>) -> f64 {
+        c.iter().fold(0.0f64, |a, v| a.max(v.abs()))
     }
 }
