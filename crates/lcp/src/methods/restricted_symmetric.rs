@@ -165,6 +165,10 @@ struct Pinned {
     es: Vec<f64>,
     rates: Vec<f64>,
     reach: Vec<f64>,
+    /// The positions whose steps were within the tie bound of the least so
+    /// far when the ratio test reached them (a superset of the final ties,
+    /// in increasing position).
+    near: Vec<usize>,
     /// Candidates found inadmissible at this pivot.
     rejected: Vec<Entering>,
 }
@@ -251,6 +255,7 @@ impl Pinned {
             es: vec![0.0; n],
             rates: vec![0.0; n],
             reach: vec![0.0; n],
+            near: Vec::new(),
             rejected: Vec::new(),
         })
     }
@@ -426,7 +431,13 @@ impl Pinned {
             },
         );
         let (zsmall, wsmall) = (self.tol.pivot * zmax, self.tol.pivot * wmax);
+        let tie = self.tol.tie;
         let mut least = f64::INFINITY;
+        // The ties are gathered in the same pass: a step within `tie` of the
+        // least so far (steps are >= 0, so that bound only falls as the least
+        // does) holds every step that ties the final least; `leaving` keeps
+        // those within the final bound.
+        self.near.clear();
         for i in 0..n {
             let (zero, small) = if self.path.into[i] {
                 (st.zzero, zsmall)
@@ -443,6 +454,9 @@ impl Pinned {
                 // (A plain comparison: a NaN step is left out here and
                 // caught below, where no least step is finite.)
                 least = if theta < least { theta } else { least };
+                if theta <= least + tie * least.abs() {
+                    self.near.push(i);
+                }
                 theta
             } else {
                 f64::INFINITY
@@ -479,8 +493,12 @@ impl Pinned {
         match entering {
             Entering::Index(j) if j != st.s => (self.reach[j] <= tied).then_some(Leaving::Value(j)),
             _ => {
-                let tied =
-                    (0..=n).filter(|&i| if i == n { to_load } else { self.reach[i] } <= tied);
+                let tied = self
+                    .near
+                    .iter()
+                    .copied()
+                    .chain(std::iter::once(n))
+                    .filter(|&i| if i == n { to_load } else { self.reach[i] } <= tied);
                 let key = |i: usize| {
                     if i == n {
                         st.excess_g / -d
