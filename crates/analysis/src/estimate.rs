@@ -62,8 +62,8 @@ const TABLEAU_SECONDS_PER_CUBE: f64 = 1e-10;
 /// point of a tableau up to twice as wide. Example 2's beam unfolded under
 /// an approach, every point in contact: 9.3 s at N = 3000 and 49 s at
 /// N = 4500 (3.4e-10 and 5.4e-10 n^3), rounded up; Example 1 under an
-/// approach, 6.9 s at N = 2933 (2.7e-10 n^3), but 185 s at N = 3801
-/// (docs/reliability.md: such a run is under-estimated).
+/// approach, 5.9 s of CPU at N = 2933 and 14.5 s at N = 3801 (2.3e-10 and
+/// 2.6e-10 n^3; docs/reliability.md).
 const GENERAL_SECONDS_PER_CUBE: f64 = 6e-10;
 
 /// Seconds per n^3 of block principal pivoting (a few factorizations of
