@@ -224,10 +224,7 @@ impl Convolution {
             ROWS_PER_TASK,
             || self.row_buffers(),
             |b, i, spectrum| {
-                b.row.fill(0.0);
-                for s in self.gather.row(i) {
-                    b.row[s.columns()].copy_from_slice(&x[s.points()]);
-                }
+                self.spread_row(i, x, &mut b.row);
                 self.row_forward
                     .process_with_scratch(&mut b.row, &mut b.spectrum, &mut b.scratch)
                     .expect("buffer lengths follow the plan");
@@ -277,11 +274,36 @@ impl Convolution {
         }
     }
 
+    /// `row` (P2 values, garbage in: the transforms use their input as
+    /// scratch) = lattice row i of the box spread from `x`, zero on the
+    /// cells without a point and on the padding. A row of one segment (a
+    /// grid's, a disk's) clears only the cells around it.
+    fn spread_row(&self, i: usize, x: &[f64], row: &mut [f64]) {
+        match self.gather.row(i) {
+            [s] => {
+                let columns = s.columns();
+                row[..columns.start].fill(0.0);
+                row[columns.end..].fill(0.0);
+                row[columns].copy_from_slice(&x[s.points()]);
+            }
+            segments => {
+                row.fill(0.0);
+                for s in segments {
+                    row[s.columns()].copy_from_slice(&x[s.points()]);
+                }
+            }
+        }
+    }
+
     /// The inverse row transform of one row's frequencies `band` (the
     /// others zero) into `b.row`.
     fn row_back(&self, b: &mut RowBuffers, band: Range<usize>, spectrum: &[C64]) {
         let half = self.grid.half_columns();
-        b.spectrum.fill(C64::new(0.0, 0.0));
+        // Only the frequencies outside the band are cleared: the band's
+        // are overwritten.
+        let zero = C64::new(0.0, 0.0);
+        b.spectrum[..band.start].fill(zero);
+        b.spectrum[band.end..].fill(zero);
         b.spectrum[band].copy_from_slice(spectrum);
         // DC and Nyquist of a real row are real; drop the rounding.
         b.spectrum[0].im = 0.0;
