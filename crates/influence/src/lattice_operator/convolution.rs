@@ -27,6 +27,34 @@ use crate::terms::Terms;
 /// microseconds of transforms, worth a hand-over to the pool.
 const ROWS_PER_TASK: usize = 8;
 
+/// Calls `body(state, i, item)` for each item `i` of `items`, `state` a
+/// thread's buffers made by `init`: shared among the threads of the current
+/// rayon pool (at least `min_len` items a task) when it has several and
+/// there are more than `min_len` items, else on the caller's thread, in
+/// order, with one `state` (a hand-over to a pool of one thread costs two
+/// context switches a pass and buys nothing). `body` must write each
+/// item from the item and `i` alone (the state is scratch): the results
+/// are then the same to the bit on either path.
+fn share<I: Send, S>(
+    items: Vec<I>,
+    min_len: usize,
+    init: impl Fn() -> S + Sync + Send,
+    body: impl Fn(&mut S, usize, I) + Sync + Send,
+) {
+    if items.len() > min_len && rayon::current_num_threads() > 1 {
+        items
+            .into_par_iter()
+            .with_min_len(min_len)
+            .enumerate()
+            .for_each_init(init, |state, (i, item)| body(state, i, item));
+    } else {
+        let mut state = init();
+        for (i, item) in items.into_iter().enumerate() {
+            body(&mut state, i, item);
+        }
+    }
+}
+
 /// The half-space part of S on the lattice: the gather order, the kernel
 /// spectrum and the FFT plans (immutable after construction).
 pub(super) struct Convolution {
@@ -190,23 +218,19 @@ impl Convolution {
     /// among the threads).
     fn rows_forward(&self, x: &[f64], band: Range<usize>, ws: &mut LatticeWorkspace) {
         let rows = self.grid.rows * band.len();
-        ws.spectra[..rows]
-            .par_chunks_mut(band.len())
-            .with_min_len(ROWS_PER_TASK)
-            .enumerate()
-            .for_each_init(
-                || self.row_buffers(),
-                |b, (i, spectrum)| {
-                    b.row.fill(0.0);
-                    for s in self.gather.row(i) {
-                        b.row[s.columns()].copy_from_slice(&x[s.points()]);
-                    }
-                    self.row_forward
-                        .process_with_scratch(&mut b.row, &mut b.spectrum, &mut b.scratch)
-                        .expect("buffer lengths follow the plan");
-                    spectrum.copy_from_slice(&b.spectrum[band.clone()]);
-                },
-            );
+        let spectra: Vec<&mut [C64]> = ws.spectra[..rows].chunks_mut(band.len()).collect();
+        share(
+            spectra,
+            ROWS_PER_TASK,
+            || self.row_buffers(),
+            |b, i, spectrum| {
+                self.spread_row(i, x, &mut b.row);
+                self.row_forward
+                    .process_with_scratch(&mut b.row, &mut b.spectrum, &mut b.scratch)
+                    .expect("buffer lengths follow the plan");
+                spectrum.copy_from_slice(&b.spectrum[band.clone()]);
+            },
+        );
     }
 
     /// Rows back from the frequencies `band` (the others zero): the first
@@ -232,20 +256,15 @@ impl Convolution {
             }
         };
         match self.gather.row_slices(y) {
-            Some(slices) => {
-                spectra
-                    .par_chunks(stride)
-                    .zip(slices)
-                    .with_min_len(ROWS_PER_TASK)
-                    .enumerate()
-                    .for_each_init(
-                        || self.row_buffers(),
-                        |b, (i, (spectrum, out))| {
-                            let base = self.gather.row(i).first().map_or(0, |s| s.points().start);
-                            one_row(b, i, spectrum, out, base);
-                        },
-                    );
-            }
+            Some(slices) => share(
+                slices,
+                ROWS_PER_TASK,
+                || self.row_buffers(),
+                |b, i, out| {
+                    let base = self.gather.row(i).first().map_or(0, |s| s.points().start);
+                    one_row(b, i, &spectra[i * stride..(i + 1) * stride], out, base);
+                },
+            ),
             None => {
                 let mut b = self.row_buffers();
                 for (i, spectrum) in spectra.chunks_exact(stride).enumerate() {
@@ -255,11 +274,36 @@ impl Convolution {
         }
     }
 
+    /// `row` (P2 values, garbage in: the transforms use their input as
+    /// scratch) = lattice row i of the box spread from `x`, zero on the
+    /// cells without a point and on the padding. A row of one segment (a
+    /// grid's, a disk's) clears only the cells around it.
+    fn spread_row(&self, i: usize, x: &[f64], row: &mut [f64]) {
+        match self.gather.row(i) {
+            [s] => {
+                let columns = s.columns();
+                row[..columns.start].fill(0.0);
+                row[columns.end..].fill(0.0);
+                row[columns].copy_from_slice(&x[s.points()]);
+            }
+            segments => {
+                row.fill(0.0);
+                for s in segments {
+                    row[s.columns()].copy_from_slice(&x[s.points()]);
+                }
+            }
+        }
+    }
+
     /// The inverse row transform of one row's frequencies `band` (the
     /// others zero) into `b.row`.
     fn row_back(&self, b: &mut RowBuffers, band: Range<usize>, spectrum: &[C64]) {
         let half = self.grid.half_columns();
-        b.spectrum.fill(C64::new(0.0, 0.0));
+        // Only the frequencies outside the band are cleared: the band's
+        // are overwritten.
+        let zero = C64::new(0.0, 0.0);
+        b.spectrum[..band.start].fill(zero);
+        b.spectrum[band.end..].fill(zero);
         b.spectrum[band].copy_from_slice(spectrum);
         // DC and Nyquist of a real row are real; drop the rounding.
         b.spectrum[0].im = 0.0;
@@ -283,33 +327,28 @@ impl Convolution {
             let width = wave.min(band.end - first);
             let offset = first - band.start;
             let spectra = &ws.spectra[..rows];
-            ws.columns[..width * p1]
-                .par_chunks_mut(COLUMN_BATCH * p1)
-                .enumerate()
-                .for_each_init(
-                    || vec![C64::new(0.0, 0.0); self.scratch_len],
-                    |scratch, (b, batch)| {
-                        let at = offset + b * COLUMN_BATCH;
-                        self.batch_times_kernel(
-                            spectra,
-                            stride,
-                            at,
-                            first - offset,
-                            batch,
-                            scratch,
-                        );
-                    },
-                );
+            share(
+                ws.columns[..width * p1]
+                    .chunks_mut(COLUMN_BATCH * p1)
+                    .collect(),
+                1,
+                || vec![C64::new(0.0, 0.0); self.scratch_len],
+                |scratch, b, batch| {
+                    let at = offset + b * COLUMN_BATCH;
+                    self.batch_times_kernel(spectra, stride, at, first - offset, batch, scratch);
+                },
+            );
             let columns = &ws.columns[..width * p1];
-            ws.spectra[..rows]
-                .par_chunks_mut(stride)
-                .with_min_len(ROWS_PER_TASK)
-                .enumerate()
-                .for_each(|(i, row)| {
+            share(
+                ws.spectra[..rows].chunks_mut(stride).collect(),
+                ROWS_PER_TASK,
+                || (),
+                |_, i, row| {
                     for (t, z) in row[offset..offset + width].iter_mut().enumerate() {
                         *z = columns[t * p1 + i];
                     }
-                });
+                },
+            );
         }
     }
 
@@ -355,5 +394,56 @@ impl Convolution {
             }
         }
         self.column_inverse.process_with_scratch(batch, scratch);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    use super::share;
+
+    /// `share` on pools of 1 to 3 threads: every item written once from its
+    /// index, the same bits on each; on one thread, on the caller's thread
+    /// with one state (the inline path: no task handed over).
+    #[test]
+    fn shared_items_are_the_same_inline_and_on_the_pool() {
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let states = AtomicUsize::new(0);
+            let mut out = vec![0.0f64; 100 * 3];
+            pool.install(|| {
+                let caller = std::thread::current().id();
+                share(
+                    out.chunks_mut(3).collect(),
+                    2,
+                    || {
+                        states.fetch_add(1, Ordering::Relaxed);
+                        [0.0f64; 3]
+                    },
+                    |scratch, i, item: &mut [f64]| {
+                        if threads == 1 {
+                            assert_eq!(std::thread::current().id(), caller);
+                        }
+                        for (t, v) in item.iter_mut().enumerate() {
+                            scratch[t] = (i as f64 + 0.1).sqrt() * (t as f64 + 1.0);
+                            *v += scratch[t];
+                        }
+                    },
+                );
+            });
+            (out, states.into_inner())
+        };
+        let (one, states) = run(1);
+        assert_eq!(states, 1, "one state on the caller's thread");
+        assert_eq!(one[3 * 7 + 2], (7.1f64).sqrt() * 3.0);
+        for threads in [2, 3] {
+            let (many, _) = run(threads);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&one), bits(&many), "{threads} threads");
+        }
     }
 }

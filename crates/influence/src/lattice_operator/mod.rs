@@ -47,8 +47,9 @@
 //! once). The second band costs a second pass of row transforms, about a
 //! third more work, and halves the workspace. The row transforms and the
 //! batches of column transforms are shared among the threads of the
-//! current rayon pool; nothing is summed across them, so a product is the
-//! same to the bit on any number of threads.
+//! current rayon pool (on a pool of one thread, done on the caller's);
+//! nothing is summed across them, so a product is the same to the bit on
+//! any number of threads.
 //! Memory: the stored spectrum (`8 (P1/2 + 1)(P2/2 + 1)` bytes, about
 //! `8 n1 n2`), the gather order (12 bytes per segment of consecutive points
 //! in a lattice row: one a row on a surface grid, one a point on a line,
