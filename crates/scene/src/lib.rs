@@ -61,8 +61,8 @@ pub use plot::error_time;
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{Run, RunResult, Seconds, SolutionJson, SymmetryJson, run};
 pub use sanity::{
-    MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES, MAX_REFINEMENT_STEPS, MAX_ROTATION,
-    MIN_POINTS_ACROSS, max_pivots_bound,
+    CANCELLING_CURVATURE, MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES,
+    MAX_REFINEMENT_STEPS, MAX_ROTATION, MAX_STRAIN, MIN_POINTS_ACROSS, max_pivots_bound,
 };
 pub use scene::{
     BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, HalfX, MAX_SLUG, MethodChoice,

@@ -9,11 +9,24 @@
 //! `k_x = 1/R1 + 1/R2` (spheres and cylinders, axis along y) and
 //! `k_y = 1/R1 + 1/R2` (spheres only); a negative k means the bodies
 //! interpenetrate more the farther from the first point of contact, which
-//! no contact solution describes.
+//! no contact solution describes. Two curvatures of opposite signs whose
+//! sum is rounding (`|k_1 + k_2| < CANCELLING_CURVATURE max(|k_1|, |k_2|)`)
+//! describe no gap at all: the relative curvature is the difference of two
+//! nearly equal numbers.
+//!
+//! Small strain: every influence model is linear elasticity under small
+//! strain (or small deflection, for a beam), so a load whose mean pressure
+//! over the candidate zone `p = P / A` is not small against the combined
+//! modulus (`p / E* <= MAX_STRAIN`), that compresses a Winkler foundation by
+//! more than [`MAX_STRAIN`] of the zone's size (`p / k <= MAX_STRAIN L`),
+//! or bends a beam by a slope beyond [`MAX_STRAIN`] rad, and an approach
+//! beyond [`MAX_STRAIN`] of the zone's size, are refused: the answer would
+//! be a number of a model that does not hold there (and at extreme
+//! magnitudes the solve overflows).
 
 use elcon_analysis::{Geometry, Loading, Normal};
 use elcon_design::{Axis, Family, GridSequence, axial_stations};
-use elcon_influence::{Body, Dimension, Model, PointSet};
+use elcon_influence::{Body, Dimension, Model, PointSet, combined_modulus_of};
 use toml::Spanned;
 
 use crate::ctx::{Ctx, Num, rounded};
@@ -59,6 +72,30 @@ pub const MAX_DESIGN_CELL_ASPECT: f64 = 1e4;
 /// program's sums.
 pub const MAX_CONSTANT_OVER_ZONE: f64 = 1e6;
 
+/// The largest strain a scene may ask of the linear models: the mean
+/// pressure over the candidate zone against the combined modulus E*, a
+/// Winkler foundation's compression and an approach or a separation
+/// against the zone's size, a beam's bending slope (rad). Linear elasticity
+/// and the rigid rotation's linearization (`MAX_ROTATION`, also 0.1) hold
+/// to a few percent up to it; every example scene is well within it.
+pub const MAX_STRAIN: f64 = 0.1;
+
+/// Two curvatures of opposite signs cancel when their sum is below this
+/// fraction of the larger one: a thousand times the rounding of one f64
+/// (`f64::EPSILON`), so that the relative curvature keeps at least a few
+/// significant digits. (A radius -1.0000000000001 against 1 leaves 1e-13.)
+pub const CANCELLING_CURVATURE: f64 = 1e3 * f64::EPSILON;
+
+/// The size of the candidate zone: its larger extent (a line's length).
+pub(crate) fn zone_size(points: &PointSet) -> f64 {
+    let (a, b) = points.extent();
+    if points.dimension() == Dimension::Line {
+        a
+    } else {
+        a.max(b)
+    }
+}
+
 /// The largest `solver.max_pivots` for N points: `100 N + 10,000`, well
 /// above every method's default (about 40 N for the tableau methods); a
 /// pivoting path that has not ended by then is cycling.
@@ -79,7 +116,10 @@ pub(crate) fn curvatures(
     let (ka, kb) = (a.curvatures(), b.curvatures());
     for (axis, k1, k2) in [("x", ka.0, kb.0), ("y", ka.1, kb.1)] {
         let sum = k1 + k2;
-        if sum >= -1e-12 * (k1.abs() + k2.abs()) {
+        if k1 * k2 < 0.0 && sum.abs() < CANCELLING_CURVATURE * k1.abs().max(k2.abs()) {
+            return Err(cancelling(ctx, raw, axis, (k1, k2), sum));
+        }
+        if sum >= 0.0 {
             continue;
         }
         // Blame the concave surface (the first, if both are).
@@ -122,6 +162,57 @@ pub(crate) fn curvatures(
     quadric_curvatures(ctx, raw, geometry)
 }
 
+/// Curvatures along `axis` of opposite signs (`k`) whose sum is rounding:
+/// the refusal, naming both surfaces' radii along that axis.
+fn cancelling(
+    ctx: &Ctx<'_>,
+    raw: Option<&Spanned<GeometryToml>>,
+    axis: &str,
+    k: (f64, f64),
+    sum: f64,
+) -> SceneError {
+    // Blame the concave surface: the one of negative curvature.
+    let (field, first) = if k.0 < 0.0 {
+        ("geometry.surface1", true)
+    } else {
+        ("geometry.surface2", false)
+    };
+    let surface = raw.and_then(|g| {
+        let g = g.get_ref();
+        if first {
+            g.surface1.as_ref()
+        } else {
+            g.surface2.as_ref()
+        }
+    });
+    let (key, span) = surface.map_or_else(
+        || ("radius", raw.map_or(0..0, |g| g.span())),
+        |s| {
+            let t = s.get_ref();
+            let (key, value) = match (&t.radius, axis) {
+                (Some(r), _) => ("radius", Some(r)),
+                (None, "x") => ("radius_x", t.radius_x.as_ref()),
+                (None, _) => ("radius_y", t.radius_y.as_ref()),
+            };
+            (key, value.map_or(s.span(), |r| r.span()))
+        },
+    );
+    ctx.invalid(
+        span,
+        format!("{field}.{key}"),
+        Num(1.0 / if first { k.0 } else { k.1 }),
+        format!(
+            "cancels the other surface: geometry.surface1's radius along {axis} is {} and \
+             geometry.surface2's {}, so the relative curvature 1/R1 + 1/R2 = {sum:.3e} is below \
+             {CANCELLING_CURVATURE:.1e} of the larger curvature, within rounding of zero: the gap \
+             along {axis} is no number the solve can use (a conforming contact, which the \
+             half-space models do not describe). Give radii whose curvatures differ by more than that",
+            Num(1.0 / k.0),
+            Num(1.0 / k.1),
+        ),
+    )
+}
+
 /// Quadrics at an angle: the gap's principal curvatures (its form's
 /// eigenvalues, `elcon_analysis::Curvature::principal_values`) must not be
 /// negative, as the sums along x and y must not be.
@@ -135,7 +226,7 @@ fn quadric_curvatures(
     };
     let p = form.principal_values();
     let size = form.xx.abs() + form.yy.abs() + 2.0 * form.xy.abs();
-    if p.smaller >= -1e-12 * size {
+    if p.smaller >= -CANCELLING_CURVATURE * size {
         return Ok(());
     }
     Err(ctx.invalid(
@@ -194,8 +285,9 @@ pub(crate) fn bodies_on_grid(
                 }
             }
             Model::Beam { loaded_point, .. } => {
-                let h = own.cell().dx;
-                let (lo, hi) = (own.x(0) - 0.5 * h, own.x(own.len() - 1) + 0.5 * h);
+                // The contact forces act at the points: a load beyond the
+                // last of them is balanced by none (the solve ends in a ray).
+                let (lo, hi) = (own.x(0), own.x(own.len() - 1));
                 if !(lo..=hi).contains(&loaded_point) {
                     let span = t.loaded_point.as_ref().map_or(t.model.span(), |v| v.span());
                     return Err(ctx.invalid(
@@ -203,8 +295,9 @@ pub(crate) fn bodies_on_grid(
                         format!("{section}.loaded_point"),
                         Num(loaded_point),
                         format!(
-                            "is outside the beam, which is the line grid from {} to {}; give a \
-                             point on it (default 0)",
+                            "is outside the beam's points, not between its first and last, {} \
+                             and {}: the contact forces act at the points, and no forces there \
+                             balance a load beyond them; give a point between them (default 0)",
                             Num(lo),
                             Num(hi)
                         ),
@@ -354,17 +447,7 @@ pub(crate) fn design(
     }
     load_range(ctx, raw, spec, sets)?;
     if let (Some(c), Some(raw_c)) = (spec.max_constant, &t.max_constant) {
-        let zone = sets
-            .iter()
-            .map(|p| {
-                let (a, b) = p.extent();
-                if p.dimension() == Dimension::Line {
-                    a
-                } else {
-                    a.max(b)
-                }
-            })
-            .fold(0.0f64, f64::max);
+        let zone = sets.iter().map(zone_size).fold(0.0f64, f64::max);
         let bound = MAX_CONSTANT_OVER_ZONE * zone;
         if c > bound {
             return Err(ctx.invalid(
@@ -621,4 +704,210 @@ pub(crate) fn load_centre(
             zone.describe()
         ),
     ))
+}
+
+/// The unit labels a strain refusal quotes (the scene's `[units]`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Labels<'a> {
+    /// Length.
+    pub length: &'a str,
+    /// Force.
+    pub force: &'a str,
+    /// The load intensity: pressure, or force per length on a beam.
+    pub intensity: &'a str,
+}
+
+/// Why `normal` (a load, or an approach) on `points` strains the bodies
+/// beyond [`MAX_STRAIN`], if it does: the mean pressure `P / A` over the
+/// zone against E* (half-space models), a Winkler foundation's mean
+/// compression `P / (A k)` against the zone's size, a beam's bending slope
+/// (the larger of its arms from the loaded point as a cantilever under the
+/// mean intensity, `q l^3 / (6 E I)`, or on a Winkler foundation
+/// Hetenyi's `0.32 P beta^2 / k`, `beta = (k / (4 E I))^(1/4)`, whichever is
+/// smaller), an approach against the zone's size.
+pub(crate) fn strain(
+    bodies: [&Body; 2],
+    normal: Normal,
+    points: &PointSet,
+    labels: Labels<'_>,
+) -> Option<String> {
+    let Labels {
+        length,
+        intensity: pressure,
+        ..
+    } = labels;
+    let size = zone_size(points);
+    let small = "beyond the small strain (at most 0.1) of the linear elasticity the influence \
+                 models rest on";
+    let load = match normal {
+        Normal::Load(p) => p,
+        Normal::Approach(d) => {
+            let s = d.abs() / size;
+            return beyond(s).then(|| {
+                format!(
+                    "the approach is {s:.1e} times the candidate zone's size, {} {length}: {small}; \
+                     give an approach below {} {length}, or check its units",
+                    Num(size),
+                    rounded(MAX_STRAIN * size)
+                )
+            });
+        }
+    };
+    let measure = points.total_measure();
+    let mean = load / measure;
+    let area = match points.dimension() {
+        Dimension::Surface => format!("{} {length}^2", rounded(measure)),
+        Dimension::Line => format!("{} {length} long", rounded(measure)),
+    };
+    let fix = "give a smaller load, or check the units of the load and the moduli";
+    if bodies.iter().any(|b| b.material().is_some()) {
+        let e = combined_modulus_of(bodies[0].material(), bodies[1].material());
+        let s = mean / e;
+        if beyond(s) {
+            return Some(format!(
+                "the mean pressure over the candidate zone ({area}), {} {pressure}, is {s:.1e} \
+                 times E* = {} {pressure} (of the bodies' youngs_modulus and poissons_ratio): \
+                 {small}; {fix}",
+                rounded(mean),
+                rounded(e)
+            ));
+        }
+    }
+    let foundation = bodies.iter().find_map(|b| match *b.model() {
+        Model::Winkler { modulus } => Some(modulus),
+        _ => None,
+    });
+    if let Some(k) = foundation {
+        let s = mean / k / size;
+        if beyond(s) {
+            return Some(format!(
+                "the foundation's mean compression under the load over the candidate zone \
+                 ({area}), {} {length} (the mean intensity over the modulus k = {}), is {s:.1e} \
+                 times the zone's size, {} {length}: {small}; {fix}",
+                rounded(mean / k),
+                Num(k),
+                Num(size)
+            ));
+        }
+    }
+    bodies
+        .iter()
+        .find_map(|b| beam_slope(b, (load, mean), points, foundation, labels))
+}
+
+/// A beam body `b` bent beyond [`MAX_STRAIN`] rad by `load` spread over
+/// `points` (mean intensity `mean`), on a Winkler `foundation` if there is
+/// one ([`strain`]).
+fn beam_slope(
+    b: &Body,
+    (load, mean): (f64, f64),
+    points: &PointSet,
+    foundation: Option<f64>,
+    Labels { length, force, .. }: Labels<'_>,
+) -> Option<String> {
+    let fix = "give a smaller load, or check the units of the load and the moduli";
+    let Model::Beam {
+        flexural_rigidity: ei,
+        loaded_point,
+    } = *b.model()
+    else {
+        return None;
+    };
+    let h = points.cell().dx;
+    let arm = (loaded_point - points.x(0) + 0.5 * h)
+        .max(points.x(points.len() - 1) + 0.5 * h - loaded_point);
+    let cantilever = mean * arm.powi(3) / (6.0 * ei);
+    let slope = foundation.map_or(cantilever, |k| {
+        let beta = (k / (4.0 * ei)).powf(0.25);
+        cantilever.min(0.32 * load * beta * beta / k)
+    });
+    if beyond(slope) {
+        return Some(format!(
+            "bends the beam (E I = {} {force} {length}^2) by a slope of about {} rad (its \
+             longer arm from the loaded point, {} {length}, under the mean intensity{}): \
+             beyond the small slope (at most 0.1 rad) of the linear beam theory the beam \
+             model rests on; {fix}",
+            rounded(ei),
+            rounded(slope),
+            rounded(arm),
+            if foundation.is_some() {
+                ", or Hetenyi's beam on the foundation"
+            } else {
+                ""
+            }
+        ));
+    }
+    None
+}
+
+/// Whether a strain `s` exceeds [`MAX_STRAIN`] (or is no number).
+fn beyond(s: f64) -> bool {
+    s.is_nan() || s > MAX_STRAIN
+}
+
+/// The scene's load or approach within [`MAX_STRAIN`] ([`strain`]).
+pub(crate) fn small_strain(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<LoadingToml>,
+    bodies: [&Body; 2],
+    loading: Loading,
+    points: &PointSet,
+    labels: Labels<'_>,
+) -> Result<(), SceneError> {
+    let Some(reason) = strain(bodies, loading.normal, points, labels) else {
+        return Ok(());
+    };
+    let t = raw.get_ref();
+    let (field, given) = match loading.normal {
+        Normal::Load(_) => ("loading.load", t.load.as_ref()),
+        Normal::Approach(_) => ("loading.approach", t.approach.as_ref()),
+    };
+    let value = match loading.normal {
+        Normal::Load(v) | Normal::Approach(v) => v,
+    };
+    Err(ctx.invalid(
+        given.map_or(raw.span(), |v| v.span()),
+        field,
+        Num(value),
+        reason,
+    ))
+}
+
+/// Given separations, or surfaces with tabulated departures (a height map,
+/// a profile), whose largest size at the candidate points `eps` exceeds
+/// [`MAX_STRAIN`] of the zone's size: the influence models take the
+/// surfaces as nearly flat against the candidate zone.
+pub(crate) fn small_separations(eps: &[f64], points: &PointSet, length: &str) -> Option<String> {
+    let size = zone_size(points);
+    let (k, largest) =
+        eps.iter()
+            .map(|e| e.abs())
+            .enumerate()
+            .fold(
+                (0, 0.0f64),
+                |(k, m), (j, e)| {
+                    if e > m { (j, e) } else { (k, m) }
+                },
+            );
+    let s = largest / size;
+    beyond(s).then(|| {
+        let at = match points.dimension() {
+            Dimension::Line => format!("x = {}", rounded(points.x(k))),
+            Dimension::Surface => {
+                format!(
+                    "(x, y) = ({}, {})",
+                    rounded(points.x(k)),
+                    rounded(points.y(k))
+                )
+            }
+        };
+        format!(
+            "the separation at {at} is {} {length}, {s:.1e} times the candidate zone's size, {} \
+             {length}: the influence models take the surfaces as nearly flat against the \
+             candidate zone (heights at most {MAX_STRAIN} of its size); check the values and \
+             their units",
+            Num(eps[k]),
+            Num(size)
+        )
+    })
 }

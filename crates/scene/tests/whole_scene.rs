@@ -100,24 +100,36 @@ fn the_plane_strain_datum_must_lie_beyond_the_grid() {
 
 #[test]
 fn a_beams_loaded_point_must_be_on_the_beam() {
+    // The line's 16 cells of 0.5 in from -4 to 4 have their points from
+    // -3.75 to 3.75: a load at the last point is balanced there.
     scene(&BEAM.replace(
         "second_moment = 5.0",
-        "second_moment = 5.0\nloaded_point = 3.9",
+        "second_moment = 5.0\nloaded_point = 3.75",
     ))
     .unwrap();
+    // On the beam but past its last point: no contact force balances it
+    // (the solve would end in a ray).
+    refused(
+        &BEAM.replace(
+            "second_moment = 5.0",
+            "second_moment = 5.0\nloaded_point = 3.9",
+        ),
+        "body1.loaded_point",
+        "is outside the beam's points, not between its first and last, -3.75 and 3.75",
+    );
     refused(
         &BEAM.replace(
             "second_moment = 5.0",
             "second_moment = 5.0\nloaded_point = 10.0",
         ),
         "body1.loaded_point",
-        "is outside the beam, which is the line grid from -4 to 4",
+        "is outside the beam's points",
     );
     // The default, 0, off a line from 1 to 9.
     refused(
         &BEAM.replace("start = -4.0\nend = 4.0", "start = 1.0\nend = 9.0"),
         "body1.loaded_point",
-        "is outside the beam",
+        "is outside the beam's points",
     );
 }
 
@@ -395,4 +407,196 @@ fn the_spheres_of_these_tests_are_example_1s() {
     for line in common::SPHERES.lines() {
         assert!(lines.contains(&line), "`{line}` is not in the example");
     }
+}
+
+#[test]
+fn a_load_beyond_small_strain_is_refused() {
+    // 100 lbf over the disk's 1.26e-3 in^2 strains by 5e-3 of E*; 1e4 lbf
+    // by 0.48, 1e300 lbf by far more than any model describes.
+    scene(&spheres()).unwrap();
+    for load in ["1e4", "1e300"] {
+        refused(
+            &spheres().replace("load = 100.0", &format!("load = {load}")),
+            "loading.load",
+            "times E* = 16480000 ",
+        );
+    }
+    // The same 100 lbf on bodies of E = 1e-300 psi.
+    refused(
+        &spheres().replace("youngs_modulus = 30e6", "youngs_modulus = 1e-300"),
+        "loading.load",
+        "beyond the small strain (at most 0.1)",
+    );
+}
+
+#[test]
+fn an_approach_beyond_small_strain_is_refused() {
+    // The disk is 0.042 in across: 1e-4 in is 2.4e-3 of it, 0.01 in 0.24.
+    scene(&spheres().replace("load = 100.0", "approach = 1e-4")).unwrap();
+    for approach in ["0.01", "-0.01", "1e300"] {
+        refused(
+            &spheres().replace("load = 100.0", &format!("approach = {approach}")),
+            "loading.approach",
+            "times the candidate zone's size",
+        );
+    }
+}
+
+#[test]
+fn a_foundation_or_a_beam_strained_beyond_small_strain_is_refused() {
+    // 1000 lbf over 8 in on k = 1e-3 lbf/in per in: a compression of
+    // 1.25e5 in.
+    refused(
+        &BEAM.replace("modulus = 1e7", "modulus = 1e-3"),
+        "loading.load",
+        "the foundation's mean compression",
+    );
+    // I = 1e-290 in^4: the beam bends by a slope of 1e287 rad.
+    refused(
+        &BEAM.replace("second_moment = 5.0", "second_moment = 1e-290"),
+        "loading.load",
+        "bends the beam",
+    );
+    // Each design load is bounded as the scene's own.
+    scene(&beam_design(
+        "family = \"quadratic\"\nloads = [500.0, 1000.0]",
+    ))
+    .unwrap();
+    refused(
+        &beam_design("family = \"quadratic\"\nloads = [1000.0, 1e12]"),
+        "design.loads[1]",
+        "the foundation's mean compression",
+    );
+}
+
+#[test]
+fn separations_beyond_the_zones_size_are_refused() {
+    let values = |last: &str| {
+        let mut v = vec!["0.0"; 15];
+        v.push(last);
+        format!("separation = [{}]", v.join(", "))
+    };
+    scene(&with_table(BEAM, "geometry", &values("1e-3"))).unwrap();
+    refused(
+        &with_table(BEAM, "geometry", &values("-1e300")),
+        "geometry.separation",
+        "the separation at x = 3.75 is -1e300 in",
+    );
+}
+
+#[test]
+fn curvatures_that_cancel_to_rounding_are_refused() {
+    scene(&spheres().replace("radius = 10.0 }", "radius = -10.0 }")).unwrap();
+    refused(
+        &spheres().replace("radius = 10.0 }", "radius = -1.0000000000001 }"),
+        "geometry.surface2.radius",
+        "geometry.surface1's radius along x is 1 and geometry.surface2's -1.0000000000001",
+    );
+    // Exactly conforming: no gap at all.
+    refused(
+        &spheres().replace("radius = 10.0 }", "radius = -1.0 }"),
+        "geometry.surface2.radius",
+        "cancels the other surface",
+    );
+}
+
+#[test]
+fn a_quadrics_angle_is_bounded() {
+    let quadric = |angle: &str| {
+        spheres().replace(
+            "surface2 = { shape = \"sphere\", radius = 10.0 }",
+            &format!(
+                "surface2 = {{ shape = \"quadric\", radius_x = 10.0, radius_y = 20.0, angle = {angle} }}"
+            ),
+        )
+    };
+    scene(&quadric("-30.0")).unwrap();
+    for angle in ["400.0", "1e300"] {
+        refused(
+            &quadric(angle),
+            "geometry.surface2.angle",
+            "must be within -360 to 360 degrees",
+        );
+    }
+}
+
+/// A roller on an absolute 11 x 8 grid (0.4 mm by 10 mm, 1000 N) with a
+/// `[design]` table of `lines`.
+fn roller_design(lines: &str) -> String {
+    with_table(
+        &common::roller("half_x = 0.2\nhalf_y = 5.0\nnx = 11\nny = 8", "1000.0"),
+        "design",
+        lines,
+    )
+}
+
+#[test]
+fn a_log_crowns_flat_part_is_shorter_than_the_roller() {
+    let log = "family = \"logarithmic-crown\"\naxis = \"y\"\n";
+    scene(&roller_design(&format!("{log}flat_length = 4.0"))).unwrap();
+    let text = roller_design(&format!("{log}flat_length = 20.0"));
+    refused(&text, "design.flat_length", "must be in [0, length)");
+    // Located at the key, as every refusal of check is.
+    let m = scene(&text).unwrap_err().to_string();
+    assert!(m.starts_with("test.toml:"), "{m}");
+}
+
+#[test]
+fn design_max_points_admits_the_verifying_grid() {
+    let free = "family = \"free\"\naxis = \"y\"\n";
+    // 88 points on the scene's grid, 352 on the second (h / 2).
+    scene(&roller_design(&format!("{free}max_points = 352"))).unwrap();
+    refused(
+        &roller_design(&format!("{free}max_points = 5")),
+        "design.max_points",
+        "the largest load case has 352 points on the second grid",
+    );
+}
+
+#[test]
+fn a_punch_that_does_not_press_has_a_note_not_a_reference() {
+    let punch = |approach: &str| {
+        common::sphere_on_rigid_plane("spacing = 0.002\nradius = 0.02")
+            .replace("surface1 = { shape = \"sphere\", radius = 1.0 }\n", "")
+            .replace("load = 100.0", &format!("approach = {approach}"))
+    };
+    let pressed = scene(&punch("1e-5")).unwrap();
+    assert_eq!(pressed.reference().map(|r| r.kind()), Some("flat-punch"));
+    for (approach, word) in [("-1e-5", "tensile"), ("0.0", "zero")] {
+        let s = scene(&punch(approach)).unwrap();
+        assert!(s.reference().is_none(), "{approach}");
+        assert!(
+            s.warnings()
+                .iter()
+                .any(|w| w.starts_with("no flat-punch reference") && w.contains(word)),
+            "{approach}: {:?}",
+            s.warnings()
+        );
+    }
+}
+
+#[test]
+fn every_example_scene_passes_check() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&dir).unwrap().flatten() {
+        let path = entry.path();
+        if path.extension().is_none_or(|x| x != "toml") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        if elcon_scene::is_batch_text(&text) {
+            let batch = elcon_scene::Batch::from_file(&path).unwrap();
+            for i in 0..batch.len() {
+                let run = batch.run(i).unwrap();
+                if let Err(e) = batch.scene(&run) {
+                    panic!("{}: run {i}: {e}", path.display());
+                }
+            }
+        } else if let Err(e) = elcon_scene::Scene::from_file(&path) {
+            panic!("{e}");
+        }
+        checked += 1;
+    }
+    assert!(checked >= 10, "{checked} example scenes");
 }

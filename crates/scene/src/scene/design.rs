@@ -6,7 +6,8 @@
 use elcon_analysis::{Geometry, Loading, Method, Normal, Options};
 pub use elcon_design::DesignFamily;
 use elcon_design::{
-    Axis, DesignMethod, DesignRequest, Family, GridSequence, LogEnd, Objective, Roller,
+    Axis, DesignError, DesignMethod, DesignRequest, Family, GridSequence, LogCrown, LogEnd,
+    Objective, Profile, Roller,
 };
 use elcon_influence::{Body, Dimension};
 use toml::Spanned;
@@ -429,10 +430,12 @@ fn design_family(
                      a cylinder (axis along y) on a plane or a cylinder",
                 ));
             };
+            let end = log_end(t);
+            log_crown_valid(ctx, t, q, flat, end, &roller)?;
             DesignFamily::LogarithmicCrown {
                 design_load: q,
                 flat_length: flat,
-                end: log_end(t),
+                end,
                 roller,
             }
         }
@@ -496,6 +499,57 @@ fn design_relative_to(
 
 /// `design.end` of a logarithmic crown: "johns-gohar" (the default) or
 /// "lundberg".
+/// The logarithmic crown the design stage will set, checked as elcon-design
+/// checks it (`Profile::validate`: a flat part shorter than the roller, a
+/// Hertz half-width that leaves Johns and Gohar's profile defined), its
+/// parameters named by the scene's keys.
+fn log_crown_valid(
+    ctx: &Ctx<'_>,
+    t: &DesignToml,
+    design_load: f64,
+    flat_length: f64,
+    end: LogEnd,
+    roller: &Roller,
+) -> Result<(), SceneError> {
+    let crown = Profile::LogarithmicCrown(LogCrown {
+        design_load,
+        length: roller.length,
+        combined_modulus: roller.combined_modulus,
+        radius: roller.radius,
+        flat_length,
+        end,
+    });
+    let Err(e) = crown.validate() else {
+        return Ok(());
+    };
+    let (field, value, span) = match &e {
+        DesignError::InvalidInput { field, .. } if field.ends_with("flat_length") => (
+            "design.flat_length",
+            flat_length,
+            t.flat_length.as_ref().map(|f| f.span()),
+        ),
+        DesignError::InvalidInput { field, .. } if field.ends_with("design_load") => (
+            "design.design_load",
+            design_load,
+            t.design_load.as_ref().map(|q| q.span()),
+        ),
+        _ => ("design.family", design_load, None),
+    };
+    let reason = match e {
+        DesignError::InvalidInput { reason, .. } => reason.to_string(),
+        other => other.to_string(),
+    };
+    Err(ctx.invalid(
+        span.unwrap_or(t.family.span()),
+        field,
+        value,
+        format!(
+            "{reason} (the logarithmic crown of a roller {} long, points.half_y twice)",
+            Num(roller.length)
+        ),
+    ))
+}
+
 fn log_end(t: &DesignToml) -> LogEnd {
     match t.end.as_ref().map(|e| *e.get_ref()) {
         None | Some(EndName::JohnsGohar) => LogEnd::JohnsGohar,

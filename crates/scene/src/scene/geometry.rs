@@ -13,6 +13,9 @@ use crate::ctx::Ctx;
 use crate::error::SceneError;
 use crate::schema::{GeometryToml, Shape, SurfaceToml};
 
+/// The largest size of a quadric's `angle` (degrees): one turn either way.
+pub(crate) const MAX_ANGLE: f64 = 360.0;
+
 fn surface(
     ctx: &Ctx<'_>,
     s: &Spanned<SurfaceToml>,
@@ -120,7 +123,21 @@ fn quadric(
         )
     };
     let angle = match &t.angle {
-        Some(a) => ctx.finite(a, &format!("{field}.angle"))?.to_radians(),
+        Some(a) => {
+            let key = format!("{field}.angle");
+            let degrees = ctx.finite(a, &key)?;
+            ctx.ensure(
+                degrees,
+                degrees.abs() <= MAX_ANGLE,
+                a.span(),
+                &key,
+                format!(
+                    "must be within -{MAX_ANGLE} to {MAX_ANGLE} degrees (a quadric repeats every \
+                     180 degrees; far beyond a turn the rounding of the value exceeds a degree)"
+                ),
+            )?
+            .to_radians()
+        }
         None => 0.0,
     };
     Ok(Surface::Quadric {

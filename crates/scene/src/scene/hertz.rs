@@ -281,3 +281,25 @@ fn ellipse_reference(
     };
     Some(Reference::HertzEllipse(h))
 }
+
+/// The reference of a scene under `loading`, and why it was dropped: a
+/// flat punch under an approach that does not press it in (`delta <= 0`)
+/// carries no load, and Boussinesq's `P = 2 a E* delta` would be zero or
+/// tensile, no reference to measure an error against.
+pub(super) fn pressing(
+    reference: Option<Reference>,
+    loading: Loading,
+) -> (Option<Reference>, Option<String>) {
+    match (reference, loading.normal) {
+        (Some(Reference::FlatPunch(_)), Normal::Approach(d)) if d <= 0.0 => (
+            None,
+            Some(format!(
+                "no flat-punch reference: the approach {} does not press the punch in, so the \
+                 contact carries no load (Boussinesq's P = 2 a E* delta would be {})",
+                crate::ctx::Num(d),
+                if d == 0.0 { "zero" } else { "tensile" }
+            )),
+        ),
+        (reference, _) => (reference, None),
+    }
+}

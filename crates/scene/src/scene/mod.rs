@@ -46,7 +46,7 @@ pub use units::Units;
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
-use crate::schema::{BodyToml, LoadingToml, PointsToml, SceneFile};
+use crate::schema::{BodyToml, GeometryToml, LoadingToml, PointsToml, SceneFile};
 
 /// A validated scene.
 #[derive(Debug, Clone)]
@@ -335,9 +335,13 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let points_spec = hertz::shaped(points_spec, &bodies, &geometry);
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
     let geometry = files::on_points(ctx, raw.geometry.as_ref(), geometry, &points)?;
+    small_strain(ctx, &raw, &bodies, &geometry, &points, loading, &units)?;
     sanity::load_centre(ctx, &raw.loading, loading, &points)?;
     let reference = hertz::reference(&bodies, &geometry, &points_spec, &points, loading);
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
+    // The zone's edges are a punch's rim whatever its approach.
+    let body_edges = body_edges(&bodies, reference.as_ref(), &points_spec);
+    let (reference, note) = hertz::pressing(reference, loading);
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;
     sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
     let fold = solver::symmetry(raw.solver.as_ref());
@@ -365,25 +369,8 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         )?),
         None => None,
     };
-    if let (Some(d), Some(raw_design)) = (&design, &raw.design)
-        && d.method() == DesignMethod::Program
-        && !plan.storage.holds_entries()
-    {
-        let span = raw_design
-            .get_ref()
-            .method
-            .as_ref()
-            .map_or(raw_design.span(), |m| m.span());
-        return Err(ctx.invalid(
-            span,
-            "design.method",
-            "\"program\"",
-            "the program reads S's entries and this scene holds S matrix-free (solver.method); \
-             use \"descent\" or \"auto\"",
-        ));
-    }
+    program_reads_entries(ctx, &raw, design.as_ref(), &plan)?;
     let outputs = outputs::outputs(ctx, raw.outputs.as_ref(), design.is_some())?;
-    let body_edges = body_edges(&bodies, reference.as_ref(), &points_spec);
     let mut scene = Scene {
         name,
         file: ctx.file.to_path_buf(),
@@ -406,7 +393,102 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         warnings: Vec::new(),
     };
     scene.warnings = whole_scene(ctx, &raw, &scene)?;
+    scene.warnings.extend(note);
     Ok(scene)
+}
+
+/// The design program reads S's entries: not of a scene that holds S
+/// matrix-free.
+fn program_reads_entries(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    design: Option<&DesignSpec>,
+    plan: &Plan,
+) -> Result<(), SceneError> {
+    if let (Some(d), Some(raw_design)) = (design, &raw.design)
+        && d.method() == DesignMethod::Program
+        && !plan.storage.holds_entries()
+    {
+        let span = raw_design
+            .get_ref()
+            .method
+            .as_ref()
+            .map_or(raw_design.span(), |m| m.span());
+        return Err(ctx.invalid(
+            span,
+            "design.method",
+            "\"program\"",
+            "the program reads S's entries and this scene holds S matrix-free (solver.method); \
+             use \"descent\" or \"auto\"",
+        ));
+    }
+    Ok(())
+}
+
+/// The scene within the small strain of the linear models
+/// ([`sanity::MAX_STRAIN`]): its separations against the zone's size, its
+/// load or approach against the bodies' stiffness.
+fn small_strain(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    points: &PointSet,
+    loading: Loading,
+    units: &Units,
+) -> Result<(), SceneError> {
+    small_separations(ctx, raw.geometry.as_ref(), geometry, points, units.length())?;
+    sanity::small_strain(
+        ctx,
+        &raw.loading,
+        [bodies[0].body(), bodies[1].body()],
+        loading,
+        points,
+        strain_labels(units),
+    )
+}
+
+/// The unit labels the small-strain refusals quote.
+fn strain_labels(units: &Units) -> sanity::Labels<'_> {
+    sanity::Labels {
+        length: units.length(),
+        force: units.force(),
+        intensity: units.intensity(),
+    }
+}
+
+/// Given separations, or surfaces with tabulated departures, within
+/// [`sanity::MAX_STRAIN`] of the zone's size at every candidate point
+/// ([`sanity::small_separations`]); the quadrics alone are bounded by
+/// their radii and the small strain of the load.
+fn small_separations(
+    ctx: &Ctx<'_>,
+    raw: Option<&Spanned<GeometryToml>>,
+    geometry: &Geometry,
+    points: &PointSet,
+    length: &str,
+) -> Result<(), SceneError> {
+    let (Some(g), Geometry::Separation(_) | Geometry::Tabulated { .. }) = (raw, geometry) else {
+        return Ok(());
+    };
+    let eps = elcon_analysis::separations(points, geometry)
+        .map_err(|e| ctx.invalid(g.span(), "geometry", "", e.to_string()))?;
+    let Some(reason) = sanity::small_separations(&eps, points, length) else {
+        return Ok(());
+    };
+    let t = g.get_ref();
+    let (field, span) = if let Some(f) = &t.separation_file {
+        ("geometry.separation_file", f.span())
+    } else if let Some(v) = &t.separation {
+        ("geometry.separation", v.span())
+    } else if let Some(m) = &t.height_map {
+        ("geometry.height_map", m.span())
+    } else if let Some(p) = &t.profile {
+        ("geometry.profile", p.span())
+    } else {
+        ("geometry", g.span())
+    };
+    Err(ctx.invalid(span, field, "", reason))
 }
 
 /// The builder of a scene's problem before its storage is decided: the
@@ -679,7 +761,9 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
                 )
             })?);
         }
+        design_loads_small(ctx, raw_design, scene, &sets)?;
         design_grids_resolve(ctx, raw, scene, &sets)?;
+        design_grids_fit(ctx, raw_design, scene)?;
         let view = sanity::DesignView {
             family: match spec.family() {
                 DesignFamily::Linear(f) => Some(*f),
@@ -715,6 +799,75 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
         _ => None,
     };
     Ok(sanity::coarse_grid(&scene.points, hertz, disk))
+}
+
+/// Every design load within [`sanity::MAX_STRAIN`] on its grid
+/// ([`sanity::strain`]), as the scene's own load is.
+fn design_loads_small(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<crate::schema::DesignToml>,
+    scene: &Scene,
+    sets: &[PointSet],
+) -> Result<(), SceneError> {
+    let Some(spec) = &scene.design else {
+        return Ok(());
+    };
+    let bodies = [scene.bodies[0].body(), scene.bodies[1].body()];
+    let units = &scene.units;
+    let labels = strain_labels(units);
+    for (i, (&load, set)) in spec.loads().iter().zip(sets).enumerate() {
+        if let Some(reason) = sanity::strain(bodies, Normal::Load(load), set, labels) {
+            let loads = raw.get_ref().loads.as_ref();
+            let (field, span) = match loads.and_then(|l| l.get_ref().get(i)) {
+                Some(v) => (format!("design.loads[{i}]"), v.span()),
+                None => ("loading.load".to_string(), raw.span()),
+            };
+            return Err(ctx.invalid(span, field, crate::ctx::Num(load), reason));
+        }
+    }
+    Ok(())
+}
+
+/// `design.max_points` admits every load case on the sequence's second
+/// grid: a design made on the first holds only once verified on a finer
+/// one, and a case beyond `max_points` ends the sequence before that.
+fn design_grids_fit(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<crate::schema::DesignToml>,
+    scene: &Scene,
+) -> Result<(), SceneError> {
+    let Some(spec) = &scene.design else {
+        return Ok(());
+    };
+    let Some(sequence) = spec.sequence() else {
+        return Ok(());
+    };
+    let Some(&fineness) = sequence.fineness.get(1) else {
+        return Ok(());
+    };
+    // A layout without a family is refused by the run, naming its reason.
+    let largest = spec
+        .loads()
+        .iter()
+        .filter_map(|&load| scene.grid_for(load, fineness).ok())
+        .filter_map(|g| g.points().ok())
+        .map(|p| p.len())
+        .max()
+        .unwrap_or(0);
+    if largest <= sequence.max_points {
+        return Ok(());
+    }
+    let t = raw.get_ref();
+    Err(ctx.invalid(
+        t.max_points.as_ref().map_or(raw.span(), |m| m.span()),
+        "design.max_points",
+        sequence.max_points,
+        format!(
+            "admits no grid to verify a design on: the largest load case has {largest} points on \
+             the second grid (spacing h / {fineness}), where a design made on the scene's grid is \
+             verified; give at least {largest}, or a coarser grid"
+        ),
+    ))
 }
 
 /// Every design load's grid resolves its Hertz contact (where a closed
