@@ -1,0 +1,273 @@
+//! An approximate inverse of the lattice operator, for a preconditioned
+//! conjugate gradient (Vollebregt 2014, "A new solver for the elastic
+//! normal contact problem using conjugate gradients, deflation, and an
+//! FFT-based preconditioner", J. Comput. Phys. 257): the inverse of the
+//! operator's symbol, applied by a periodic FFT on the half-size grid
+//! `Q1 x Q2`, `Q_a = P_a / 2 >= n_a` (the padded grid's halves, 5-smooth,
+//! holding the box without padding):
+//!
+//! ```text
+//!     z = IDFT_Q( DFT_Q(r) / Ŝ_Q ) / (Q1 Q2),     Ŝ_Q[m1, m2] = P1 P2 ŝ[2 m1, 2 m2] + 1/(k_w A)
+//! ```
+//!
+//! with `ŝ = DFT(Kc) / (P1 P2)` the convolution's stored spectrum and the
+//! Winkler diagonal added. `Ŝ_Q` is exactly the spectrum of the kernel
+//! folded onto the periodic Q grid, `Kf[a] = Kc[a] + Kc[a + Q]`
+//! (`DFT_P(Kc)` at the even frequencies `2 m` is `DFT_Q(Kf)` at `m`), so
+//! `z` solves `Kf ⊛ z = r` on the periodic box: near `S^{-1} r` away from
+//! the box's edges, the `|k|`-weighting (`Ŝ ~ 2 / (E* |k| h^2)`) that
+//! undoes the half-space operator's smoothing. A value of `Ŝ_Q` below
+//! [`SYMBOL_FLOOR`] times the largest is raised to it: the map stays
+//! symmetric positive definite.
+//!
+//! Cost: `n1` real row transforms of length `Q2` and `Q2/2 + 1` complex
+//! column transforms of length `Q1`, each forward and back: a quarter of
+//! the product's transforms on the `P1 x P2` grid (half the rows, half the
+//! columns, no second band). Memory: the symbol (`8 (Q1/2 + 1)(Q2/2 + 1)`
+//! bytes) and two spectra of the box (`16 (n1 + Q1)(Q2/2 + 1)` bytes),
+//! about 18 bytes a cell of the box. Each row's and column's transform is
+//! done by one thread, nothing summed across threads: the values do not
+//! depend on their number.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+use rustfft::{Fft, FftPlanner};
+
+use super::convolution::Convolution;
+use super::grid::{C64, try_vec};
+use crate::error::InfluenceError;
+
+/// The smallest symbol value kept, relative to the largest: a floor that
+/// keeps the map positive definite (the folded kernel's spectrum is
+/// positive on every half-space kernel tried; the floor is a guard).
+pub const SYMBOL_FLOOR: f64 = 1e-8;
+
+/// Rows or columns a thread takes up at least at once.
+const LINES_PER_TASK: usize = 8;
+
+/// The approximate inverse `r -> z` of a [`LatticeKernel`](super::LatticeKernel)
+/// (see the [module documentation](self)), with its buffers: made by
+/// [`LatticeKernel::preconditioner`](super::LatticeKernel::preconditioner),
+/// applied by [`LatticeKernel::precondition_with`](super::LatticeKernel::precondition_with).
+pub struct LatticePreconditioner {
+    /// The box's rows and columns `n1 x n2`, the periodic grid `Q1 x Q2`.
+    rows: usize,
+    q1: usize,
+    q2: usize,
+    /// `1 / (Q1 Q2 Ŝ_Q[m1, m2])` at `m2 (Q1/2 + 1) + m1`, `m1 <= Q1/2`,
+    /// `m2 <= Q2/2` (even in both).
+    symbol: Vec<f64>,
+    row_forward: Arc<dyn RealToComplex<f64>>,
+    row_inverse: Arc<dyn ComplexToReal<f64>>,
+    column_forward: Arc<dyn Fft<f64>>,
+    column_inverse: Arc<dyn Fft<f64>>,
+    scratch_len: usize,
+    /// The box's row spectra, `n1 x (Q2/2 + 1)`.
+    row_spectra: Vec<C64>,
+    /// The columns of the row spectra, `(Q2/2 + 1) x Q1`.
+    columns: Vec<C64>,
+}
+
+impl std::fmt::Debug for LatticePreconditioner {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LatticePreconditioner")
+            .field("periodic_grid", &(self.q1, self.q2))
+            .finish_non_exhaustive()
+    }
+}
+
+/// A thread's buffers for the row transforms.
+struct RowBuffers {
+    row: Vec<f64>,
+    spectrum: Vec<C64>,
+    scratch: Vec<C64>,
+}
+
+impl LatticePreconditioner {
+    /// The preconditioner of `convolution` with the Winkler diagonal
+    /// `winkler` (see the module documentation).
+    ///
+    /// # Errors
+    /// [`InfluenceError::AllocationFailed`] when its memory cannot be
+    /// allocated.
+    pub(super) fn new(convolution: &Convolution, winkler: f64) -> Result<Self, InfluenceError> {
+        let g = convolution.grid;
+        let (q1, q2) = (g.padded_rows / 2, g.padded_columns / 2);
+        let (h1, h2) = (q1 / 2 + 1, q2 / 2 + 1);
+        let scale = g.padded_rows as f64 * g.padded_columns as f64;
+        let stored = g.half_rows();
+        let mut symbol = try_vec(h1 * h2, 0.0, "preconditioner symbol")?;
+        for m2 in 0..h2 {
+            for m1 in 0..h1 {
+                let s = convolution.spectrum[2 * m2 * stored + 2 * m1];
+                symbol[m2 * h1 + m1] = scale * s + winkler;
+            }
+        }
+        let largest = symbol.iter().fold(0.0f64, |m, &v| m.max(v));
+        let floor = SYMBOL_FLOOR * largest;
+        let periodic = q1 as f64 * q2 as f64;
+        for v in &mut symbol {
+            *v = 1.0 / (periodic * v.max(floor));
+        }
+        let mut real_planner = RealFftPlanner::<f64>::new();
+        let row_forward = real_planner.plan_fft_forward(q2);
+        let row_inverse = real_planner.plan_fft_inverse(q2);
+        let mut planner = FftPlanner::<f64>::new();
+        let column_forward = planner.plan_fft_forward(q1);
+        let column_inverse = planner.plan_fft_inverse(q1);
+        let scratch_len = [
+            row_forward.get_scratch_len(),
+            row_inverse.get_scratch_len(),
+            column_forward.get_inplace_scratch_len(),
+            column_inverse.get_inplace_scratch_len(),
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(0);
+        let zero = C64::new(0.0, 0.0);
+        Ok(Self {
+            rows: g.rows,
+            q1,
+            q2,
+            symbol,
+            row_forward,
+            row_inverse,
+            column_forward,
+            column_inverse,
+            scratch_len,
+            row_spectra: try_vec(g.rows * h2, zero, "preconditioner row spectra")?,
+            columns: try_vec(h2 * q1, zero, "preconditioner columns")?,
+        })
+    }
+
+    /// The periodic grid `(Q1, Q2)` it works on.
+    pub fn periodic_grid(&self) -> (usize, usize) {
+        (self.q1, self.q2)
+    }
+
+    /// Bytes held: the symbol and the two spectra (the plans, O(Q1 + Q2),
+    /// are left out).
+    pub fn memory_bytes(&self) -> usize {
+        std::mem::size_of::<Self>()
+            + 8 * self.symbol.capacity()
+            + 16 * (self.row_spectra.capacity() + self.columns.capacity())
+    }
+
+    fn row_buffers(&self) -> RowBuffers {
+        let zero = C64::new(0.0, 0.0);
+        RowBuffers {
+            row: vec![0.0; self.q2],
+            spectrum: vec![zero; self.q2 / 2 + 1],
+            scratch: vec![zero; self.scratch_len],
+        }
+    }
+
+    /// `z = IDFT(DFT(r) / Ŝ_Q) / (Q1 Q2)` on the box, `r` spread on it and
+    /// `z` gathered from it by `convolution`'s gather order.
+    pub(super) fn apply(&mut self, convolution: &Convolution, r: &[f64], z: &mut [f64]) {
+        self.rows_forward(convolution, r);
+        self.columns_times_symbol();
+        self.rows_inverse(convolution, z);
+    }
+
+    /// Each lattice row of `r`, zero-padded to Q2, to its half spectrum.
+    fn rows_forward(&mut self, convolution: &Convolution, r: &[f64]) {
+        let h2 = self.q2 / 2 + 1;
+        let gather = &convolution.gather;
+        let mut spectra = std::mem::take(&mut self.row_spectra);
+        let this = &*self;
+        let (plan, buffers) = (&this.row_forward, || this.row_buffers());
+        spectra
+            .par_chunks_mut(h2)
+            .with_min_len(LINES_PER_TASK)
+            .enumerate()
+            .for_each_init(buffers, |b, (i, out)| {
+                b.row.fill(0.0);
+                for s in gather.row(i) {
+                    b.row[s.columns()].copy_from_slice(&r[s.points()]);
+                }
+                plan.process_with_scratch(&mut b.row, out, &mut b.scratch)
+                    .expect("buffer lengths follow the plan");
+            });
+        self.row_spectra = spectra;
+    }
+
+    /// Each column of the row spectra, zero-padded from n1 to Q1,
+    /// transformed, divided by the symbol and transformed back.
+    fn columns_times_symbol(&mut self) {
+        let (n1, q1, h1, h2) = (self.rows, self.q1, self.q1 / 2 + 1, self.q2 / 2 + 1);
+        let mut columns = std::mem::take(&mut self.columns);
+        let this = &*self;
+        columns
+            .par_chunks_mut(q1)
+            .with_min_len(LINES_PER_TASK)
+            .enumerate()
+            .for_each_init(
+                || vec![C64::new(0.0, 0.0); this.scratch_len],
+                |scratch, (m2, column)| {
+                    for (i, c) in column[..n1].iter_mut().enumerate() {
+                        *c = this.row_spectra[i * h2 + m2];
+                    }
+                    column[n1..].fill(C64::new(0.0, 0.0));
+                    this.column_forward.process_with_scratch(column, scratch);
+                    let symbol = &this.symbol[m2 * h1..(m2 + 1) * h1];
+                    for (m1, c) in column.iter_mut().enumerate() {
+                        *c *= symbol[m1.min(q1 - m1)];
+                    }
+                    this.column_inverse.process_with_scratch(column, scratch);
+                },
+            );
+        self.columns = columns;
+    }
+
+    /// Each lattice row back from its column values, gathered into `z`
+    /// (the rows shared among the threads when the points are in
+    /// lattice-row order, each writing its own slice of `z`).
+    fn rows_inverse(&self, convolution: &Convolution, z: &mut [f64]) {
+        let gather = &convolution.gather;
+        let one_row = |b: &mut RowBuffers, i: usize, out: &mut [f64], base: usize| {
+            self.row_back(b, i);
+            for s in gather.row(i) {
+                let points = s.points();
+                out[points.start - base..points.end - base].copy_from_slice(&b.row[s.columns()]);
+            }
+        };
+        match gather.row_slices(z) {
+            Some(slices) => slices
+                .into_par_iter()
+                .with_min_len(LINES_PER_TASK)
+                .enumerate()
+                .for_each_init(
+                    || self.row_buffers(),
+                    |b, (i, out)| {
+                        let base = gather.row(i).first().map_or(0, |s| s.points().start);
+                        one_row(b, i, out, base);
+                    },
+                ),
+            None => {
+                let mut b = self.row_buffers();
+                for i in 0..self.rows {
+                    one_row(&mut b, i, z, 0);
+                }
+            }
+        }
+    }
+
+    /// The inverse row transform of row `i` into `b.row`.
+    fn row_back(&self, b: &mut RowBuffers, i: usize) {
+        let last = b.spectrum.len() - 1;
+        for (m2, v) in b.spectrum.iter_mut().enumerate() {
+            *v = self.columns[m2 * self.q1 + i];
+        }
+        // DC and (Q2 even) Nyquist of a real row are real; drop the rounding.
+        b.spectrum[0].im = 0.0;
+        if self.q2.is_multiple_of(2) {
+            b.spectrum[last].im = 0.0;
+        }
+        self.row_inverse
+            .process_with_scratch(&mut b.spectrum, &mut b.row, &mut b.scratch)
+            .expect("buffer lengths follow the plan");
+    }
+}
