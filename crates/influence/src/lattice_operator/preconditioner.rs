@@ -39,10 +39,38 @@ use super::convolution::Convolution;
 use super::grid::{C64, try_vec};
 use crate::error::InfluenceError;
 
-/// The smallest symbol value kept, relative to the largest: a floor that
-/// keeps the map positive definite (the folded kernel's spectrum is
-/// positive on every half-space kernel tried; the floor is a guard).
-pub const SYMBOL_FLOOR: f64 = 1e-8;
+/// The symbol's floor: a value of `Ŝ_Q` below `max Ŝ_Q / (SYMBOL_FLOOR
+/// max(Q1, Q2))` is raised to it. A half-space symbol falls like `1/|k|`,
+/// from the lowest frequency to the highest by about `max(Q1, Q2)`: the
+/// floor leaves it whole and keeps the map positive definite where the
+/// windowed, truncated kernel's spectrum comes near 0.
+pub const SYMBOL_FLOOR: f64 = 8.0;
+
+/// The padded spectrum `ŝ` at `(j1, j2)` smoothed by `[1/4, 1/2, 1/4]`
+/// along both axes: the spectrum of the kernel times the Hann window
+/// `(1 + cos(2π a1/P1))(1 + cos(2π a2/P2)) / 4`, which tapers the kernel
+/// to 0 at the padded grid's half-length. The box-truncated kernel's own
+/// spectrum rings (Gibbs) and dips below 0 where `P = 2 n` exactly; the
+/// window, a positive definite function, takes most of that away.
+fn windowed(convolution: &Convolution, j1: usize, j2: usize) -> f64 {
+    let g = convolution.grid;
+    let stored = g.half_rows();
+    // The spectrum is even with period P: index j reflected into 0..=P/2.
+    let reflect = |j: isize, p: usize| {
+        let j = j.unsigned_abs();
+        if j > p / 2 { p - j } else { j }
+    };
+    let weights = [(-1isize, 0.25), (0, 0.5), (1, 0.25)];
+    let mut sum = 0.0;
+    for (d2, w2) in weights {
+        let i2 = reflect(j2 as isize + d2, g.padded_columns);
+        for (d1, w1) in weights {
+            let i1 = reflect(j1 as isize + d1, g.padded_rows);
+            sum += w1 * w2 * convolution.spectrum[i2 * stored + i1];
+        }
+    }
+    sum
+}
 
 /// Rows or columns a thread takes up at least at once.
 const LINES_PER_TASK: usize = 8;
@@ -97,16 +125,19 @@ impl LatticePreconditioner {
         let (q1, q2) = (g.padded_rows / 2, g.padded_columns / 2);
         let (h1, h2) = (q1 / 2 + 1, q2 / 2 + 1);
         let scale = g.padded_rows as f64 * g.padded_columns as f64;
-        let stored = g.half_rows();
         let mut symbol = try_vec(h1 * h2, 0.0, "preconditioner symbol")?;
         for m2 in 0..h2 {
             for m1 in 0..h1 {
-                let s = convolution.spectrum[2 * m2 * stored + 2 * m1];
-                symbol[m2 * h1 + m1] = scale * s + winkler;
+                symbol[m2 * h1 + m1] = scale * windowed(convolution, 2 * m1, 2 * m2) + winkler;
             }
         }
         let largest = symbol.iter().fold(0.0f64, |m, &v| m.max(v));
-        let floor = SYMBOL_FLOOR * largest;
+        let floor = largest / (SYMBOL_FLOOR * q1.max(q2) as f64);
+        if std::env::var("PC_DEBUG").is_ok() {
+            let smallest = symbol.iter().fold(f64::INFINITY, |m, &v| m.min(v));
+            let floored = symbol.iter().filter(|&&v| v < floor).count();
+            eprintln!("pc debug: n {}x{} q {q1}x{q2} symbol {smallest:e}..{largest:e} floored {floored}", g.rows, g.columns);
+        }
         let periodic = q1 as f64 * q2 as f64;
         for v in &mut symbol {
             *v = 1.0 / (periodic * v.max(floor));
