@@ -133,11 +133,6 @@ impl LatticePreconditioner {
         }
         let largest = symbol.iter().fold(0.0f64, |m, &v| m.max(v));
         let floor = largest / (SYMBOL_FLOOR * q1.max(q2) as f64);
-        if std::env::var("PC_DEBUG").is_ok() {
-            let smallest = symbol.iter().fold(f64::INFINITY, |m, &v| m.min(v));
-            let floored = symbol.iter().filter(|&&v| v < floor).count();
-            eprintln!("pc debug: n {}x{} q {q1}x{q2} symbol {smallest:e}..{largest:e} floored {floored}", g.rows, g.columns);
-        }
         let periodic = q1 as f64 * q2 as f64;
         for v in &mut symbol {
             *v = 1.0 / (periodic * v.max(floor));
@@ -300,5 +295,152 @@ impl LatticePreconditioner {
         self.row_inverse
             .process_with_scratch(&mut b.spectrum, &mut b.row, &mut b.scratch)
             .expect("buffer lengths follow the plan");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::LatticeKernel;
+    use crate::assembly::assemble;
+    use crate::material::Material;
+    use crate::models::Body;
+    use crate::points::{Cell, Dimension, PointSet};
+
+    fn steel() -> Material {
+        Material::new(30e6, 0.3).unwrap()
+    }
+
+    /// On a box whose padded lengths are exactly `2 n` the periodic grid
+    /// is the box (`Q = n`), and a Fourier mode `cos(2π (m1 i / Q1 + m2 j /
+    /// Q2))` on it is an eigenvector of the periodic convolution by the
+    /// folded, windowed kernel: the preconditioner returns it divided by
+    /// the eigenvalue, computed here in closed form from the dense S's
+    /// entries, `Σ_{a, b} Kf(a, b) cos(2π (m1 a / Q1 + m2 b / Q2))` with
+    /// `Kf(a, b) = Σ w(a*) w(b*) K(a*, b*)` over the images `a* ∈ {a, a -
+    /// Q}` of the table (`|a*| < n`) and the Hann window `w(a) = (1 +
+    /// cos(2π a / P)) / 2`.
+    #[test]
+    fn divides_a_fourier_mode_by_the_folded_kernels_eigenvalue() {
+        let cases = [
+            (
+                16,
+                16,
+                vec![Body::uniform_patch(steel()), Body::point_force(steel())],
+            ),
+            (
+                10,
+                8,
+                vec![Body::uniform_patch(steel()), Body::winkler(3e8)],
+            ),
+        ];
+        for (n1, n2, bodies) in cases {
+            let points = PointSet::grid_rectangle(1.0, 0.7, n1, n2).unwrap();
+            let refs: Vec<&Body> = bodies.iter().collect();
+            let s = assemble(&points, &refs).unwrap();
+            let kernel = LatticeKernel::new(&points, &refs).unwrap();
+            let mut pc = kernel.preconditioner().unwrap().unwrap();
+            assert_eq!(pc.periodic_grid(), (n1, n2));
+            let lattice = points.lattice().unwrap();
+            let (i0, j0) = lattice
+                .iter()
+                .fold((i64::MAX, i64::MAX), |m, (i, j)| (m.0.min(i), m.1.min(j)));
+            let at: Vec<(usize, usize)> = lattice
+                .iter()
+                .map(|(i, j)| ((i - i0) as usize, (j - j0) as usize))
+                .collect();
+            let origin = at.iter().position(|&c| c == (0, 0)).unwrap();
+            let k_of = |a: i64, b: i64| {
+                let c = (a.unsigned_abs() as usize, b.unsigned_abs() as usize);
+                s[(origin, at.iter().position(|&p| p == c).unwrap())]
+            };
+            let (p1, p2) = (2.0 * n1 as f64, 2.0 * n2 as f64);
+            let hann = |a: i64, p: f64| (1.0 + (std::f64::consts::TAU * a as f64 / p).cos()) / 2.0;
+            let images = |a: usize, n: usize| {
+                let mut v = vec![a as i64];
+                if a > 0 {
+                    v.push(a as i64 - n as i64);
+                }
+                v
+            };
+            for (m1, m2) in [
+                (0, 0),
+                (1, 0),
+                (0, 3),
+                (2, 5),
+                (n1 / 2, n2 / 2),
+                (n1 - 3, 1),
+            ] {
+                let phase = |i: usize, j: usize| {
+                    std::f64::consts::TAU
+                        * (m1 as f64 * i as f64 / n1 as f64 + m2 as f64 * j as f64 / n2 as f64)
+                };
+                let mut eigenvalue = 0.0;
+                for a in 0..n1 {
+                    for b in 0..n2 {
+                        let mut folded = 0.0;
+                        for &a_star in &images(a, n1) {
+                            for &b_star in &images(b, n2) {
+                                folded +=
+                                    hann(a_star, p1) * hann(b_star, p2) * k_of(a_star, b_star);
+                            }
+                        }
+                        eigenvalue += folded * phase(a, b).cos();
+                    }
+                }
+                let x: Vec<f64> = at.iter().map(|&(i, j)| phase(i, j).cos()).collect();
+                let mut z = vec![0.0; x.len()];
+                kernel.precondition_with(&x, &mut z, &mut pc);
+                let scale = 1.0 / eigenvalue.abs();
+                for (k, (&xk, &zk)) in x.iter().zip(&z).enumerate() {
+                    assert!(
+                        (zk - xk / eigenvalue).abs() <= 1e-10 * scale,
+                        "{n1} x {n2}, mode ({m1}, {m2}), point {k}: {zk:e} against {:e}",
+                        xk / eigenvalue
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_foundation_alone_has_none() {
+        let points = PointSet::grid_rectangle(1.0, 1.0, 6, 6).unwrap();
+        let kernel = LatticeKernel::new(&points, &[&Body::winkler(3e8), &Body::rigid()]).unwrap();
+        assert!(kernel.preconditioner().unwrap().is_none());
+    }
+
+    #[test]
+    fn the_same_to_the_bit_on_any_number_of_threads() {
+        // A disk in lattice-row order (rows written in parallel) and the
+        // same points reversed (gathered on the caller's thread).
+        let disk = PointSet::grid_disk(1.0, 40.0).unwrap();
+        let (xs, ys): (Vec<f64>, Vec<f64>) = (0..disk.len())
+            .rev()
+            .map(|k| (disk.x(k), disk.y(k)))
+            .unzip();
+        let reversed =
+            PointSet::from_points(Dimension::Surface, xs, ys, Cell { dx: 1.0, dy: 1.0 }).unwrap();
+        let bodies = [&Body::uniform_patch(steel()), &Body::point_force(steel())];
+        for (name, points) in [("disk", disk), ("reversed", reversed)] {
+            let kernel = LatticeKernel::new(&points, &bodies).unwrap();
+            let r: Vec<f64> = (0..points.len())
+                .map(|k| ((k * 7919) % 1000) as f64 - 500.0)
+                .collect();
+            let on = |threads: usize| {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| {
+                    let mut pc = kernel.preconditioner().unwrap().unwrap();
+                    let mut z = vec![0.0; r.len()];
+                    kernel.precondition_with(&r, &mut z, &mut pc);
+                    z.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+                })
+            };
+            let one = on(1);
+            assert!(one.iter().any(|&b| f64::from_bits(b) != 0.0), "{name}");
+            assert!(one == on(2) && one == on(3), "{name}");
+        }
     }
 }
