@@ -13,6 +13,10 @@
 //!     direction:  t_J = w_J + β t_J, t = 0 off J;  w_J · t_J
 //!     curvature:  r_J · t_J
 //!     update:     z_J -= τ t_J (clipped at 0), entries off J;  u -= τ r;  Σ_J' B u, Σ_J' B q, B^T z
+//!   preconditioned, in place of direction:
+//!     residual:   r = w on J, 0 off it                               (then p = P r)
+//!     projection: Σ_J B p,  Σ_J B r,  r_J · p_J
+//!     direction:  t_J = (p - B μ)_J + β t_J, t = 0 off J;  r_J · t_J
 //! ```
 //!
 //! with `J = {i : z_i > 0}`. The measure pass also applies a pending scale

@@ -27,6 +27,19 @@
 //!    step keeps several rows to rounding (`B_J^T t_J = 0`), and they are
 //!    left as they are.
 //!
+//! Preconditioned (where the operator has a preconditioner `P ≈ M^{-1}`,
+//! [`Operator::precondition`](crate::Operator::precondition), and
+//! `Options::preconditioner` is set; after Vollebregt 2014), step 2 is
+//!
+//! ```text
+//!     r = w_J,  p = P r,  p_J -= B_J μ  (B_J^T B_J μ = B_J^T p_J),  ρ = r · p_J,
+//!     t_J = p_J + δ (ρ / ρ_old) t_J
+//! ```
+//!
+//! (the projection keeps `B_J^T t_J = 0`, so the step keeps the rows), and
+//! steps 1, 3 and 4 are the same: one application of `P` an iteration
+//! besides the product.
+//!
 //! Where a step clipped a point or let one enter, or several rows had to be
 //! restored, `u` is recomputed from a true product `M z` (a second product
 //! in that iteration: while the contact set settles; on Hertz's problem at
@@ -101,7 +114,7 @@ pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotAppli
 }
 
 /// The method's state: the iterate and what it has computed of it (four
-/// vectors of n: the memory of a large solve).
+/// vectors of n, five preconditioned: the memory of a large solve).
 struct State {
     z: Vec<f64>,
     /// `u = M z`, from a true product or kept by the recurrence.
