@@ -160,7 +160,8 @@ impl Operator for Restricted<'_> {
 pub(crate) struct LatticeProducts<'a> {
     operator: &'a LatticeKernel,
     workspace: RefCell<LatticeWorkspace>,
-    preconditioner: Option<RefCell<LatticePreconditioner>>,
+    /// Boxed: its plans and buffers would make every `LatticeProducts` large.
+    preconditioner: Option<Box<RefCell<LatticePreconditioner>>>,
 }
 
 impl<'a> LatticeProducts<'a> {
@@ -176,7 +177,10 @@ impl<'a> LatticeProducts<'a> {
     /// The same with the operator's preconditioner (none where S has no
     /// half-space kernel: a foundation's S is a multiple of the identity).
     pub fn with_preconditioner(self) -> Result<Self, elcon_influence::InfluenceError> {
-        let preconditioner = self.operator.preconditioner()?.map(RefCell::new);
+        let preconditioner = self
+            .operator
+            .preconditioner()?
+            .map(|p| Box::new(RefCell::new(p)));
         Ok(Self {
             preconditioner,
             ..self
