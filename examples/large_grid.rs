@@ -21,8 +21,13 @@
 //! line `n=<N> method=<name> seconds=<assembly+solve>
 //! err_delta=<approach error against Hertz> certificate=<worst residual>
 //! peak_rss_mb=<MB> products=<operator products> floor_seconds=<products x
-//! one product's CPU seconds> threads=<rayon threads> cpu_seconds=<the CPU
-//! time of assembly and solve, all threads>` (peak_rss_mb the process's
+//! one product's CPU seconds + preconditioner applications x one
+//! application's> threads=<rayon threads> cpu_seconds=<the CPU
+//! time of assembly and solve, all threads> iterations=<CG iterations>
+//! preconditioner_applications=<its count>
+//! preconditioner_products=<one application's CPU time in products>`
+//! (`--no-preconditioner`: the conjugate gradient without its
+//! preconditioner, `Options::preconditioner`; peak_rss_mb the process's
 //! peak resident memory, VmHWM; products 0 for a dense solve; CPU times in
 //! steps of 10 ms, a measure that a machine busy with other work inflates
 //! less than the wall time; on one thread of an idle machine the CPU and
@@ -91,22 +96,61 @@ fn one_size(cells: f64) {
             Method::ConjugateGradient,
         )
     };
-    let problem = hertz::held(build, points);
-    let sol = problem.solve(method, &Options::default()).expect("solve");
+    let options = Options {
+        preconditioner: !std::env::args().any(|a| a == "--no-preconditioner"),
+        ..Options::default()
+    };
+    let problem = hertz::held(build, points.clone());
+    let sol = problem.solve(method, &options).expect("solve");
     let seconds = start.elapsed().as_secs_f64();
     let cpu = cpu_seconds() - cpu_start;
     // The solve's peak, before the floor's products take a workspace.
     let peak = peak_rss_mb();
     let products = sol.statistics.products();
-    let floor = products as f64 * product_seconds(&problem);
+    let preconditionings = sol.statistics.preconditionings();
+    let (product, preconditioning) = (
+        product_seconds(&problem),
+        preconditioner_seconds(&points, preconditionings),
+    );
+    let floor = products as f64 * product + preconditionings as f64 * preconditioning;
     println!(
-        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1} products={products} floor_seconds={floor:.4} threads={} cpu_seconds={cpu:.2}",
+        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1} products={products} floor_seconds={floor:.4} threads={} cpu_seconds={cpu:.2} iterations={} preconditioner_applications={preconditionings} preconditioner_products={:.3}",
         method.name(),
         sol.approach / hertz.approach() - 1.0,
         sol.certificate.worst(),
         peak,
         rayon::current_num_threads(),
+        sol.statistics.iterations(),
+        if product > 0.0 {
+            preconditioning / product
+        } else {
+            0.0
+        },
     );
+}
+
+/// The CPU seconds (all threads) of one application of the lattice
+/// operator's preconditioner on `points`, the mean over applications that
+/// take at least [`FLOOR_CPU`] (0 when the solve applied none).
+fn preconditioner_seconds(points: &PointSet, applications: usize) -> f64 {
+    if applications == 0 {
+        return 0.0;
+    }
+    let (body, _) = hertz::bodies();
+    let kernel = elcon::influence::LatticeKernel::new(points, &[&body, &body]).expect("lattice");
+    let mut preconditioner = kernel
+        .preconditioner()
+        .expect("memory")
+        .expect("a half-space kernel");
+    let n = points.len();
+    let (r, mut z) = (vec![1.0; n], vec![0.0; n]);
+    kernel.precondition_with(&r, &mut z, &mut preconditioner);
+    let (start, mut count) = (cpu_seconds(), 0);
+    while cpu_seconds() - start < FLOOR_CPU {
+        kernel.precondition_with(&r, &mut z, &mut preconditioner);
+        count += 1;
+    }
+    (cpu_seconds() - start) / count as f64
 }
 
 /// CPU seconds of products the floor's measure takes at least.

@@ -10,7 +10,7 @@
 use std::cell::RefCell;
 use std::sync::Arc;
 
-use elcon_influence::{LatticeKernel, LatticeWorkspace};
+use elcon_influence::{LatticeKernel, LatticePreconditioner, LatticeWorkspace};
 use elcon_lcp::{
     BorderedLcpRef, LcpSolution, LinearSolution, LinearSystem, Method, Operator, OperatorLcp,
     Options,
@@ -70,7 +70,10 @@ impl Influence {
                 .with_border(border, resultant)?
                 .solve(method, options)?,
             Influence::Lattice(kernel) => {
-                let products = LatticeProducts::new(kernel)?;
+                let mut products = LatticeProducts::new(kernel)?;
+                if options.preconditioner {
+                    products = products.with_preconditioner()?;
+                }
                 OperatorLcp::new(&products, q)?
                     .with_border(border, resultant)?
                     .solve(method, options)?
@@ -151,10 +154,14 @@ impl Operator for Restricted<'_> {
 }
 
 /// The lattice operator with a workspace of its own, as the engine applies
-/// it (one solve, one thread).
+/// it (one solve, one thread), and for the conjugate gradient its
+/// preconditioner (`elcon_influence::LatticePreconditioner`: the inverse of
+/// the kernel's symbol by a periodic FFT on the half-size grid).
 pub(crate) struct LatticeProducts<'a> {
     operator: &'a LatticeKernel,
     workspace: RefCell<LatticeWorkspace>,
+    /// Boxed: its plans and buffers would make every `LatticeProducts` large.
+    preconditioner: Option<Box<RefCell<LatticePreconditioner>>>,
 }
 
 impl<'a> LatticeProducts<'a> {
@@ -163,6 +170,20 @@ impl<'a> LatticeProducts<'a> {
         Ok(Self {
             operator,
             workspace: RefCell::new(operator.workspace()?),
+            preconditioner: None,
+        })
+    }
+
+    /// The same with the operator's preconditioner (none where S has no
+    /// half-space kernel: a foundation's S is a multiple of the identity).
+    pub fn with_preconditioner(self) -> Result<Self, elcon_influence::InfluenceError> {
+        let preconditioner = self
+            .operator
+            .preconditioner()?
+            .map(|p| Box::new(RefCell::new(p)));
+        Ok(Self {
+            preconditioner,
+            ..self
         })
     }
 }
@@ -181,6 +202,17 @@ impl Operator for LatticeProducts<'_> {
     /// `|S| x = S x` for `x >= 0`.
     fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
         self.apply(x, y);
+    }
+
+    fn has_preconditioner(&self) -> bool {
+        self.preconditioner.is_some()
+    }
+
+    fn precondition(&self, r: &[f64], z: &mut [f64]) {
+        match &self.preconditioner {
+            Some(p) => self.operator.precondition_with(r, z, &mut p.borrow_mut()),
+            None => z.copy_from_slice(r),
+        }
     }
 }
 

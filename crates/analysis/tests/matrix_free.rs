@@ -228,3 +228,36 @@ fn the_conjugate_gradient_folds_only_a_small_problem() {
     // 64 cells a radius: 21,749 points, folded to about 2,700 > 2000.
     assert_eq!(storage(64.0), (Storage::Lattice, Method::ConjugateGradient));
 }
+
+#[test]
+fn the_preconditioned_conjugate_gradient_gives_the_plain_answer_on_any_threads() {
+    // Hertz at 32 cells per radius (N = 5,025): the lattice operator's
+    // preconditioner (the default) against none, the same forces to the
+    // certificate's tolerance in fewer iterations; and the same bits on one
+    // thread and two.
+    let (_, free, hertz) = spheres(32.0, 1.25, Loading::load(100.0));
+    let solve = |preconditioner: bool, threads: usize| {
+        let options = Options {
+            preconditioner,
+            ..Options::default()
+        };
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool")
+            .install(|| free.solve(Method::ConjugateGradient, &options))
+            .expect("solve")
+    };
+    let (pre, plain) = (solve(true, 1), solve(false, 1));
+    assert!(pre.certificate.holds() && pre.certificate.worst() <= 1e-12);
+    assert!(rel(&pre.forces, &plain.forces) < 1e-9, "forces");
+    assert!((pre.approach / plain.approach - 1.0).abs() < 1e-9);
+    assert!((pre.approach / hertz.approach() - 1.0).abs() < 2e-3);
+    let (i_pre, i_plain) = (pre.statistics.iterations(), plain.statistics.iterations());
+    assert!(2 * i_pre < i_plain, "{i_pre} iterations against {i_plain}");
+    assert_eq!(pre.statistics.preconditionings(), i_pre);
+    assert_eq!(plain.statistics.preconditionings(), 0);
+    let two = solve(true, 2);
+    let bits = |f: &[f64]| f.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&pre.forces), bits(&two.forces));
+}

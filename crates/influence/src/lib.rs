@@ -107,7 +107,9 @@ mod terms;
 pub use assembly::{assemble, assemble_direct, assemble_folded, influence};
 pub use error::InfluenceError;
 pub use kernels::{boussinesq, love_rectangle, plane_strain_strip};
-pub use lattice_operator::{LatticeKernel, LatticeOperator, LatticeWorkspace};
+pub use lattice_operator::{
+    LatticeKernel, LatticeOperator, LatticePreconditioner, LatticeWorkspace,
+};
 pub use material::{Material, combined_modulus, combined_modulus_of};
 pub use models::{Beam, Body, Model};
 pub use points::{

@@ -32,6 +32,24 @@ pub trait Operator {
     /// judged against. An operator with non-negative entries (every
     /// half-space influence kernel) returns `M x`.
     fn apply_abs(&self, x: &[f64], y: &mut [f64]);
+
+    /// Whether [`precondition`](Self::precondition) applies an
+    /// approximation of `M^{-1}` (default: no preconditioner). The
+    /// conjugate gradient then runs preconditioned (module
+    /// `methods::conjugate_gradient`; [`Options::preconditioner`](crate::Options::preconditioner)
+    /// turns it off).
+    fn has_preconditioner(&self) -> bool {
+        false
+    }
+
+    /// `z = P r`, `P` a symmetric positive definite approximation of
+    /// `M^{-1}` that is cheaper than a product (the conjugate gradient
+    /// restricts it to its contact set: `r` is 0 off it, and `z` is read
+    /// on it only). The default, for an operator without one, is the
+    /// identity. The values must not depend on the number of threads.
+    fn precondition(&self, r: &[f64], z: &mut [f64]) {
+        z.copy_from_slice(r);
+    }
 }
 
 impl Operator for MatRef<'_, f64> {

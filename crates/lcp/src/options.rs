@@ -194,6 +194,10 @@ pub struct Options {
     /// (clipped to `z >= 0` and restored to the border's rows), e.g. the
     /// `z` of a previous, similar solve. Length `n`.
     pub initial_z: Option<Vec<f64>>,
+    /// The conjugate gradient applies its operator's preconditioner where
+    /// it has one ([`Operator::has_preconditioner`](crate::Operator::has_preconditioner);
+    /// default true).
+    pub preconditioner: bool,
 }
 
 impl Default for Options {
@@ -209,6 +213,7 @@ impl Default for Options {
             parallelism: None,
             warm_start: None,
             initial_z: None,
+            preconditioner: true,
         }
     }
 }

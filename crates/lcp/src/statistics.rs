@@ -156,6 +156,10 @@ pub struct Work {
     /// Products `M x` of an operator (the conjugate gradient's, and its
     /// certificate's): the unit of a matrix-free solve's cost.
     pub products: usize,
+    /// Applications of the operator's preconditioner (the preconditioned
+    /// conjugate gradient's, one an iteration; each cheaper than a
+    /// product: [`Operator::precondition`](crate::Operator::precondition)).
+    pub preconditionings: usize,
 }
 
 /// One attempt of a solve.
@@ -236,6 +240,11 @@ impl Statistics {
     /// (0 for the methods that read `M`'s entries).
     pub fn products(&self) -> usize {
         self.total(|w| w.products)
+    }
+
+    /// Applications of an operator's preconditioner by every attempt.
+    pub fn preconditionings(&self) -> usize {
+        self.total(|w| w.preconditionings)
     }
 
     /// The attempt whose answer was returned.

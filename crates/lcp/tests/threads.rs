@@ -9,11 +9,23 @@ use elcon_lcp::{LcpSolution, Method, Operator, OperatorLcp, Options};
 use faer::{Col, Mat};
 
 /// `M` tridiagonal, `[c, d, c]` (diagonally dominant: symmetric positive
-/// definite, with non-negative entries as an influence operator's).
+/// definite, with non-negative entries as an influence operator's); with
+/// `preconditioned`, the first two terms of its inverse's Neumann series,
+/// `P = (I - (c/d) T) / d` (`T` the neighbours' sum; positive definite for
+/// `2 c < d`).
 struct Banded {
     n: usize,
     d: f64,
     c: f64,
+    preconditioned: bool,
+}
+
+impl Banded {
+    fn neighbours(&self, x: &[f64], i: usize) -> f64 {
+        let left = if i > 0 { x[i - 1] } else { 0.0 };
+        let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
+        left + right
+    }
 }
 
 impl Operator for Banded {
@@ -23,23 +35,36 @@ impl Operator for Banded {
 
     fn apply(&self, x: &[f64], y: &mut [f64]) {
         for i in 0..self.n {
-            let left = if i > 0 { x[i - 1] } else { 0.0 };
-            let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
-            y[i] = self.d * x[i] + self.c * (left + right);
+            y[i] = self.d * x[i] + self.c * self.neighbours(x, i);
         }
     }
 
     fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
         self.apply(x, y);
     }
+
+    fn has_preconditioner(&self) -> bool {
+        self.preconditioned
+    }
+
+    fn precondition(&self, r: &[f64], z: &mut [f64]) {
+        for i in 0..self.n {
+            z[i] = (r[i] - self.c / self.d * self.neighbours(r, i)) / self.d;
+        }
+    }
 }
 
 /// A punch on a curved gap: `q_i = gap_i - δ` (the approach `δ` inside `q`
 /// for `k = 0`), or `q_i = gap_i` with rows: ones (the load) and, for
 /// `k = 2`, the lever arm `x_i` (a moment of zero).
-fn solve(threads: usize, k: usize) -> LcpSolution {
+fn solve(threads: usize, k: usize, preconditioned: bool) -> LcpSolution {
     let n = 30_000;
-    let m = Banded { n, d: 1.01, c: 0.5 };
+    let m = Banded {
+        n,
+        d: 1.01,
+        c: 0.5,
+        preconditioned,
+    };
     let x = |i: usize| 2.0 * i as f64 / (n - 1) as f64 - 1.0;
     let gap = |i: usize| x(i) * x(i) + 0.1 * x(i).powi(3);
     let approach = if k == 0 { 0.3 } else { 0.0 };
@@ -67,7 +92,7 @@ fn solve(threads: usize, k: usize) -> LcpSolution {
 #[test]
 fn the_answer_is_the_same_to_the_bit_on_one_thread_or_several() {
     for k in [0, 1, 2] {
-        let one = solve(1, k);
+        let one = solve(1, k, false);
         assert!(one.certificate.holds(), "k = {k}: {:?}", one.certificate);
         let contact = one.z.iter().filter(|&&v| v > 0.0).count();
         assert!(contact > 1000 && contact < 30_000, "k = {k}: {contact}");
@@ -84,7 +109,7 @@ fn the_answer_is_the_same_to_the_bit_on_one_thread_or_several() {
             );
         }
         for threads in [2, 3] {
-            let many = solve(threads, k);
+            let many = solve(threads, k, false);
             let bits = |s: &LcpSolution| s.z.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
             assert_eq!(bits(&one), bits(&many), "k = {k}, {threads} threads");
             let lambda = |s: &LcpSolution| s.u.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
@@ -95,5 +120,32 @@ fn the_answer_is_the_same_to_the_bit_on_one_thread_or_several() {
                 "k = {k}"
             );
         }
+    }
+}
+
+/// Preconditioned, the same answer as without to the certificate's
+/// tolerance, in fewer iterations, one application of the preconditioner
+/// an iteration, and the same bits on one thread or two.
+#[test]
+fn the_preconditioned_answer_is_the_plain_one_and_the_same_on_any_threads() {
+    for k in [0, 1, 2] {
+        let (plain, pre) = (solve(1, k, false), solve(1, k, true));
+        assert!(pre.certificate.holds(), "k = {k}: {:?}", pre.certificate);
+        let scale = plain.z.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let gap = (0..plain.z.nrows()).fold(0.0f64, |m, i| m.max((plain.z[i] - pre.z[i]).abs()));
+        assert!(
+            gap <= 1e-9 * scale,
+            "k = {k}: z apart by {gap:e} of {scale:e}"
+        );
+        let (i_plain, i_pre) = (plain.statistics.iterations(), pre.statistics.iterations());
+        assert!(
+            i_pre < i_plain,
+            "k = {k}: {i_pre} iterations against {i_plain}"
+        );
+        assert_eq!(plain.statistics.preconditionings(), 0, "k = {k}");
+        assert_eq!(pre.statistics.preconditionings(), i_pre, "k = {k}");
+        let two = solve(2, k, true);
+        let bits = |s: &LcpSolution| s.z.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&pre), bits(&two), "k = {k}");
     }
 }

@@ -59,10 +59,10 @@ fn share<I: Send, S>(
 /// spectrum and the FFT plans (immutable after construction).
 pub(super) struct Convolution {
     pub(super) grid: Grid,
-    gather: GatherOrder,
+    pub(super) gather: GatherOrder,
     /// `DFT(Kc) / (P1 P2)` at frequency `(m1, m2)`, `m1 <= P1/2`,
     /// `m2 <= P2/2`, at `m2 (P1/2 + 1) + m1` (real: Kc is even).
-    spectrum: Vec<f64>,
+    pub(super) spectrum: Vec<f64>,
     row_forward: Arc<dyn RealToComplex<f64>>,
     row_inverse: Arc<dyn ComplexToReal<f64>>,
     column_forward: Arc<dyn Fft<f64>>,

@@ -77,16 +77,19 @@
 //!
 //! The module's parts: the operator and its kernel (`operator`), the
 //! convolution's banded transforms and their workspace (`convolution`), the
-//! kernel's spectrum (`spectrum`), the gather order of the points on the
+//! kernel's spectrum (`spectrum`), an approximate inverse for a
+//! preconditioned conjugate gradient (`preconditioner`), the gather order of the points on the
 //! box (`gather`), and the padded grid with its byte counts (`grid`).
 
 mod convolution;
 mod gather;
 mod grid;
 mod operator;
+mod preconditioner;
 mod spectrum;
 #[cfg(test)]
 mod tests;
 
 pub use convolution::LatticeWorkspace;
 pub use operator::{LatticeKernel, LatticeOperator};
+pub use preconditioner::{LatticePreconditioner, SYMBOL_FLOOR};

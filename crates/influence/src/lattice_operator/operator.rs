@@ -7,6 +7,7 @@
 use super::convolution::{Convolution, LatticeWorkspace};
 use super::gather::{GatherOrder, segments};
 use super::grid::Grid;
+use super::preconditioner::LatticePreconditioner;
 use crate::error::InfluenceError;
 use crate::models::{Body, Model};
 use crate::points::{LatticeBox, PointSet};
@@ -256,6 +257,50 @@ impl LatticeKernel {
     /// allocated.
     pub fn workspace(&self) -> Result<LatticeWorkspace, InfluenceError> {
         LatticeWorkspace::new(self.convolution.as_ref())
+    }
+
+    /// An approximate inverse of S for a preconditioned conjugate gradient
+    /// (the inverse of the kernel's symbol on the periodic half-size grid,
+    /// [`LatticePreconditioner`]), with its buffers, applied by
+    /// [`precondition_with`](Self::precondition_with); `None` when there is
+    /// no half-space kernel (only foundations: S is a multiple of the
+    /// identity).
+    ///
+    /// # Errors
+    /// [`InfluenceError::AllocationFailed`] when its memory (about 18
+    /// bytes a cell of the lattice's bounding box) cannot be allocated.
+    pub fn preconditioner(&self) -> Result<Option<LatticePreconditioner>, InfluenceError> {
+        self.convolution
+            .as_ref()
+            .map(|c| LatticePreconditioner::new(c, self.winkler))
+            .transpose()
+    }
+
+    /// `z ≈ S^{-1} r` by `preconditioner` (made by
+    /// [`preconditioner`](Self::preconditioner) of this kernel), in the
+    /// point set's order.
+    ///
+    /// # Panics
+    /// If `r` or `z` does not have [`len`](Self::len) entries, or the
+    /// kernel has no convolution.
+    pub fn precondition_with(
+        &self,
+        r: &[f64],
+        z: &mut [f64],
+        preconditioner: &mut LatticePreconditioner,
+    ) {
+        assert!(
+            r.len() == self.len && z.len() == self.len,
+            "r and z have {} and {} entries for {} points",
+            r.len(),
+            z.len(),
+            self.len
+        );
+        let c = self
+            .convolution
+            .as_ref()
+            .expect("a preconditioner is made for a kernel with a convolution");
+        preconditioner.apply(c, r, z);
     }
 
     /// `y = S x` as [`LatticeOperator::apply`], with a caller's workspace:

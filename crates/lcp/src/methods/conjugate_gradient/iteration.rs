@@ -13,6 +13,10 @@
 //!     direction:  t_J = w_J + β t_J, t = 0 off J;  w_J · t_J
 //!     curvature:  r_J · t_J
 //!     update:     z_J -= τ t_J (clipped at 0), entries off J;  u -= τ r;  Σ_J' B u, Σ_J' B q, B^T z
+//!   preconditioned, in place of direction:
+//!     residual:   r = w on J, 0 off it                               (then p = P r)
+//!     projection: Σ_J B p,  Σ_J B r,  r_J · p_J
+//!     direction:  t_J = (p - B μ)_J + β t_J, t = 0 off J;  r_J · t_J
 //! ```
 //!
 //! with `J = {i : z_i > 0}`. The measure pass also applies a pending scale
@@ -482,4 +486,108 @@ pub(super) fn update_pass(
 pub(super) fn scale_pass(z: &mut [f64], scale: f64) {
     let parts: Vec<_> = z.chunks_mut(CHUNK).collect();
     map_parts(parts, |z| z.iter_mut().for_each(|v| *v *= scale));
+}
+
+/// `r = w` on `J`, 0 off it: the residual the preconditioner is applied to.
+pub(super) fn residual_pass(data: &Data<'_>, z: &[f64], u: &[f64], r: &mut [f64], lambda: &[f64]) {
+    let (columns, q) = (data.columns(), &*data.q);
+    let parts: Vec<_> = r.chunks_mut(CHUNK).enumerate().collect();
+    map_parts(parts, |(c, r)| {
+        let base = c * CHUNK;
+        let len = r.len();
+        let (z, u, q) = (
+            &z[base..base + len],
+            &u[base..base + len],
+            &q[base..base + len],
+        );
+        let (s, _) = shift_of(&columns, lambda, base, len, false);
+        for i in 0..len {
+            r[i] = if z[i] > 0.0 {
+                (u[i] + q[i]) - s[i]
+            } else {
+                0.0
+            };
+        }
+    });
+}
+
+/// The sums that project the preconditioned residual `p` onto the rows'
+/// null space on `J`: `Σ_J B_j p`, `Σ_J B_j r` (compensated) and `r_J · p_J`.
+pub(super) struct Projection {
+    pub bp: Vec<f64>,
+    pub br: Vec<f64>,
+    pub rp: f64,
+}
+
+/// The [`Projection`]'s sums of `r` (0 off `J`) and `p`.
+pub(super) fn projection_pass(data: &Data<'_>, z: &[f64], r: &[f64], p: &[f64]) -> Projection {
+    let columns = data.columns();
+    let k = columns.len();
+    let parts = map_parts(ranges(z.len()), |range| {
+        let (z, r, p) = (&z[range.clone()], &r[range.clone()], &p[range.clone()]);
+        let len = range.len();
+        let mut bp = vec![Compensated::default(); k];
+        let mut br = vec![Compensated::default(); k];
+        for j in 0..k {
+            let b = &columns[j][range.clone()];
+            let on = |i: usize| if z[i] > 0.0 { b[i] } else { 0.0 };
+            add_compensated(&mut bp[j], len, |i| on(i) * p[i]);
+            add_compensated(&mut br[j], len, |i| on(i) * r[i]);
+        }
+        let mut rp = Lanes::default();
+        rp.add_all(len, |i| if z[i] > 0.0 { r[i] * p[i] } else { 0.0 });
+        (bp, br, rp.value())
+    });
+    let (mut bp, mut br) = (
+        vec![Compensated::default(); k],
+        vec![Compensated::default(); k],
+    );
+    for (pb, pr, _) in &parts {
+        for j in 0..k {
+            bp[j].merge(&pb[j]);
+            br[j].merge(&pr[j]);
+        }
+    }
+    Projection {
+        bp: bp.iter().map(Compensated::value).collect(),
+        br: br.iter().map(Compensated::value).collect(),
+        rp: total(parts.iter().map(|p| p.2)),
+    }
+}
+
+/// The preconditioned direction: `t_J = (p - B μ)_J + β t_J`, `t = 0` off
+/// `J`; returns `r_J · t_J` (`r = w` on `J`).
+pub(super) fn preconditioned_direction_pass(
+    data: &Data<'_>,
+    z: &[f64],
+    r: &[f64],
+    p: &[f64],
+    t: &mut [f64],
+    mu: &[f64],
+    beta: f64,
+) -> f64 {
+    let columns = data.columns();
+    let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
+    let parts = map_parts(parts, |(c, t)| {
+        let base = c * CHUNK;
+        let len = t.len();
+        let (z, r, p) = (
+            &z[base..base + len],
+            &r[base..base + len],
+            &p[base..base + len],
+        );
+        let (s, _) = shift_of(&columns, mu, base, len, false);
+        let mut num = Lanes::default();
+        for_lanes(len, |i, l| {
+            let next = if z[i] > 0.0 {
+                (p[i] - s[i]) + beta * t[i]
+            } else {
+                0.0
+            };
+            t[i] = next;
+            num.add(l, r[i] * next);
+        });
+        num.value()
+    });
+    total(parts.into_iter())
 }

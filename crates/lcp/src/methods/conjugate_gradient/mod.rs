@@ -27,6 +27,19 @@
 //!    step keeps several rows to rounding (`B_J^T t_J = 0`), and they are
 //!    left as they are.
 //!
+//! Preconditioned (where the operator has a preconditioner `P ≈ M^{-1}`,
+//! [`Operator::precondition`](crate::Operator::precondition), and
+//! `Options::preconditioner` is set; after Vollebregt 2014), step 2 is
+//!
+//! ```text
+//!     r = w_J,  p = P r,  p_J -= B_J μ  (B_J^T B_J μ = B_J^T p_J),  ρ = r · p_J,
+//!     t_J = p_J + δ (ρ / ρ_old) t_J
+//! ```
+//!
+//! (the projection keeps `B_J^T t_J = 0`, so the step keeps the rows), and
+//! steps 1, 3 and 4 are the same: one application of `P` an iteration
+//! besides the product.
+//!
 //! Where a step clipped a point or let one enter, or several rows had to be
 //! restored, `u` is recomputed from a true product `M z` (a second product
 //! in that iteration: while the contact set settles; on Hertz's problem at
@@ -101,22 +114,24 @@ pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotAppli
 }
 
 /// The method's state: the iterate and what it has computed of it (four
-/// vectors of n: the memory of a large solve).
+/// vectors of n, five preconditioned: the memory of a large solve).
 struct State {
     z: Vec<f64>,
     /// `u = M z`, from a true product or kept by the recurrence.
     u: Vec<f64>,
     /// The conjugate direction.
     t: Vec<f64>,
-    /// `r = M t`.
+    /// `r = M t`; before the product, in a preconditioned step, `w_J`.
     r: Vec<f64>,
+    /// The preconditioned residual `P w_J` (`None`: no preconditioner).
+    p: Option<Vec<f64>>,
     lambda: Col<f64>,
     /// A factor of `z` and `u` not applied yet (the one-row restoration's):
     /// the next pass that reads them applies it.
     scale: f64,
     /// The fit's sums over the contact set, at `scale` 1.
     fit: FitSums,
-    /// `‖w_J‖²` of the previous iteration.
+    /// `ρ` of the previous iteration: `‖w_J‖²`, preconditioned `w_J · P w_J`.
     g_old: f64,
     /// Whether the contact set grew in the last step (restart the direction).
     restart: bool,
@@ -128,10 +143,14 @@ struct State {
 }
 
 impl State {
-    fn new(z: Vec<f64>, k: usize) -> Result<Self, LcpError> {
+    fn new(z: Vec<f64>, k: usize, preconditioned: bool) -> Result<Self, LcpError> {
         let n = z.len();
         let vector = |what| linalg::try_zeros(n, what).map_err(LcpError::from);
         Ok(Self {
+            p: match preconditioned {
+                true => Some(vector("the conjugate gradient's preconditioned residual")?),
+                false => None,
+            },
             u: vector("the conjugate gradient's product M z")?,
             t: vector("the conjugate gradient's direction")?,
             r: vector("the conjugate gradient's product M t")?,
@@ -187,18 +206,18 @@ impl State {
         g_now: f64,
         work: &mut Work,
     ) -> Result<(), Breakdown> {
-        let beta = if self.restart || self.g_old == 0.0 {
-            0.0
-        } else {
-            g_now / self.g_old
-        };
         let lambda: Vec<f64> = self.lambda.iter().copied().collect();
-        let num = iteration::direction_pass(data, &self.z, &self.u, &mut self.t, &lambda, beta);
+        let num = if self.p.is_some() {
+            self.preconditioned_direction(form, data, &lambda, work)?
+        } else {
+            let beta = self.beta(g_now);
+            self.g_old = g_now;
+            iteration::direction_pass(data, &self.z, &self.u, &mut self.t, &lambda, beta)
+        };
         form.m.apply(&self.t, &mut self.r);
         work.products += 1;
         let den = iteration::curvature_pass(&self.t, &self.r);
         let tau = step_length(num, den)?;
-        self.g_old = g_now;
         let update = iteration::update_pass(
             data,
             &mut self.z,
@@ -211,6 +230,51 @@ impl State {
         self.restart = update.entered > 0;
         self.fresh = false;
         self.rows_after(form, update)
+    }
+
+    /// `β = ρ / ρ_old` (0 after a restart).
+    fn beta(&self, rho: f64) -> f64 {
+        if self.restart || self.g_old == 0.0 {
+            0.0
+        } else {
+            rho / self.g_old
+        }
+    }
+
+    /// Step 2 preconditioned: `r = w_J`, `p = P r`, projected on the rows'
+    /// null space on `J` (`p_J - B_J μ`, `B_J^T B_J μ = B_J^T p_J`), `ρ =
+    /// r_J · p_J`, `t_J = p_J + (ρ / ρ_old) t_J`; returns `w_J · t_J`.
+    fn preconditioned_direction(
+        &mut self,
+        form: &Form<'_>,
+        data: &Data<'_>,
+        lambda: &[f64],
+        work: &mut Work,
+    ) -> Result<f64, Breakdown> {
+        let p = self.p.as_mut().expect("a preconditioned state");
+        iteration::residual_pass(data, &self.z, &self.u, &mut self.r, lambda);
+        form.m.precondition(&self.r, p);
+        work.preconditionings += 1;
+        let sums = iteration::projection_pass(data, &self.z, &self.r, p);
+        let k = sums.bp.len();
+        let mu = solve_fit(&self.fit, Col::from_fn(k, |j| sums.bp[j]))?;
+        let mu: Vec<f64> = mu.iter().copied().collect();
+        let rho = sums.rp - (0..k).map(|j| mu[j] * sums.br[j]).sum::<f64>();
+        if !rho.is_finite() {
+            return Err(Breakdown::NonFinite);
+        }
+        let beta = self.beta(rho);
+        self.g_old = rho;
+        let p = self.p.as_ref().expect("a preconditioned state");
+        Ok(iteration::preconditioned_direction_pass(
+            data,
+            &self.z,
+            &self.r,
+            p,
+            &mut self.t,
+            &mu,
+            beta,
+        ))
     }
 
     /// Step 4: the rows restored after a step, and whether `u` still is
@@ -298,7 +362,9 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
         Ok(None) => return Ok(answer(vec![0.0; n], Col::zeros(form.border.ncols()), work)),
         Err(breakdown) => return Err(Failure::new(breakdown, work)),
     };
-    let mut state = State::new(z, form.border.ncols()).map_err(|e| Failure::error(e, work))?;
+    let preconditioned = options.preconditioner && form.m.has_preconditioner();
+    let mut state =
+        State::new(z, form.border.ncols(), preconditioned).map_err(|e| Failure::error(e, work))?;
     let data = Data::new(form.q, form.border);
     let cap = options.iteration_cap();
     let mut progress = Progress::new(options.tolerances.certificate, n);
@@ -332,9 +398,15 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
         if done || work.iterations >= cap {
             // The answer copies z: free the other vectors first.
             let State {
-                z, lambda, u, t, r, ..
+                z,
+                lambda,
+                u,
+                t,
+                r,
+                p,
+                ..
             } = state;
-            drop((u, t, r));
+            drop((u, t, r, p));
             return Ok(answer(z, lambda, work));
         }
         work.iterations += 1;
