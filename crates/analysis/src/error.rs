@@ -39,6 +39,19 @@ pub enum AnalysisError {
         /// The value.
         value: f64,
     },
+    /// A matrix holds NaN or an infinity (an influence matrix given by
+    /// [`ContactProblem::from_parts`](crate::ContactProblem::from_parts)).
+    #[error("`{field}`[{row}, {column}] = {}: must be a finite number", Num(*value))]
+    NonFiniteEntry {
+        /// The field.
+        field: &'static str,
+        /// The entry's row.
+        row: usize,
+        /// The entry's column.
+        column: usize,
+        /// The value.
+        value: f64,
+    },
     /// Inputs that do not go together (a sphere on a line contact...).
     #[error("`{field}`: {reason}")]
     Incompatible {

@@ -97,6 +97,7 @@ pub(crate) fn analysis_error(e: AnalysisError) -> PyErr {
         AnalysisError::InvalidInput { .. }
         | AnalysisError::SizeMismatch { .. }
         | AnalysisError::NonFinite { .. }
+        | AnalysisError::NonFiniteEntry { .. }
         | AnalysisError::Incompatible { .. }
         | AnalysisError::NeedsEntries { .. }
         | AnalysisError::Table { .. }
