@@ -104,7 +104,7 @@ enum Command {
         #[arg(long, default_value = "out")]
         out: PathBuf,
         /// Lower the memory ceiling (e.g. 4G, 512M; also ELCON_MEMORY_LIMIT).
-        #[arg(long, value_parser = parse_size)]
+        #[arg(long, value_parser = parse_size, allow_hyphen_values = true)]
         memory_limit: Option<u64>,
     },
     /// Run a batch of sweeps in parallel; write every run and the results table.
@@ -122,7 +122,7 @@ enum Command {
         #[arg(long, value_parser = shard_arg)]
         shard: Option<ShardArg>,
         /// Lower the memory ceiling (e.g. 4G, 512M; also ELCON_MEMORY_LIMIT).
-        #[arg(long, value_parser = parse_size)]
+        #[arg(long, value_parser = parse_size, allow_hyphen_values = true)]
         memory_limit: Option<u64>,
     },
     /// Validate scene or batch files without solving; print each one's memory and time estimate.
@@ -131,7 +131,7 @@ enum Command {
         #[arg(required = true)]
         files: Vec<PathBuf>,
         /// Lower the memory ceiling (e.g. 4G, 512M; also ELCON_MEMORY_LIMIT).
-        #[arg(long, value_parser = parse_size)]
+        #[arg(long, value_parser = parse_size, allow_hyphen_values = true)]
         memory_limit: Option<u64>,
         /// Validate every run of a batch, however large its sweep.
         #[arg(long)]

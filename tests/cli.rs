@@ -536,3 +536,20 @@ fn check_and_run_treat_a_piped_scene_alike() {
         text(&o)
     );
 }
+
+#[test]
+fn a_negative_memory_limit_is_refused_as_a_size() {
+    let o = elcon(&[
+        "check",
+        "examples/scenes/example1-spheres.toml",
+        "--memory-limit",
+        "-1",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("`-1`: a memory limit must be a positive size, like 8GiB"),
+        "{}",
+        text(&o)
+    );
+    assert!(!text(&o).contains("unexpected argument"), "{}", text(&o));
+}

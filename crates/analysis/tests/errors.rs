@@ -94,6 +94,28 @@ fn non_finite_separation_is_located() {
 }
 
 #[test]
+fn a_non_finite_entry_of_a_given_influence_matrix_is_located() {
+    let n = disk().len();
+    let mut s = Mat::<f64>::identity(n, n);
+    s[(2, 3)] = f64::NAN;
+    s[(4, 1)] = f64::INFINITY;
+    let e = ContactProblem::from_parts(disk(), s, vec![0.0; n], Loading::load(1.0)).unwrap_err();
+    assert!(matches!(
+        e,
+        AnalysisError::NonFiniteEntry {
+            field: "influence",
+            row: 2,
+            column: 3,
+            ..
+        }
+    ));
+    assert_eq!(
+        e.to_string(),
+        "`influence`[2, 3] = NaN: must be a finite number"
+    );
+}
+
+#[test]
 fn incompatible_geometry_says_what_to_use() {
     let line = PointSet::line(-1.0, 1.0, 11).unwrap();
     let body = Body::plane_strain(steel(), 10.0);

@@ -5,6 +5,8 @@
 //! coefficients a_kj of the other modules are defined (E > 0, -1 < nu < 0.5,
 //! finite positive sizes, d0 at least the extent of the zone).
 
+use elcon_lcp::Num;
+
 use crate::dimension::Dimension;
 
 /// Everything that can stop the construction of a material, a point set or
@@ -16,7 +18,7 @@ use crate::dimension::Dimension;
 #[non_exhaustive]
 pub enum InfluenceError {
     /// A material constant is out of its physical range.
-    #[error("invalid material: {field} = {value}: {reason}")]
+    #[error("invalid material: {field} = {}: {reason}", Num(*value))]
     InvalidMaterial {
         /// The constant: `youngs_modulus` or `poissons_ratio`.
         field: &'static str,
@@ -31,7 +33,8 @@ pub enum InfluenceError {
     InvalidPoints {
         /// The parameter, e.g. `spacing`, `n`, `xs[3]`.
         field: String,
-        /// The value given, printed.
+        /// The value given, printed (a number in its shortest form, as
+        /// [`Num`] shows it).
         value: String,
         /// Why it is rejected.
         reason: String,
@@ -54,7 +57,7 @@ pub enum InfluenceError {
     },
     /// A parameter of an influence model is out of range (Winkler modulus,
     /// plane-strain reference distance, beam rigidity or loaded point).
-    #[error("invalid {model} parameter: {field} = {value}: {reason}")]
+    #[error("invalid {model} parameter: {field} = {}: {reason}", Num(*value))]
     InvalidModel {
         /// The model's name.
         model: &'static str,
@@ -153,6 +156,17 @@ mod tests {
             e.to_string(),
             "invalid material: youngs_modulus = -1: must be positive"
         );
+        // Tiny and huge values in their shortest form, never hundreds of digits.
+        let e = Material::new(-1e-300, 0.3).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid material: youngs_modulus = -1e-300: must be positive"
+        );
+        let e = Material::new(30e6, -1e300).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid material: poissons_ratio = -1e300: must be in (-1, 0.5)"
+        );
     }
 
     #[test]
@@ -165,6 +179,28 @@ mod tests {
         let e = PointSet::line(0.0, 1.0, 0).unwrap_err();
         assert!(
             e.to_string().starts_with("invalid point set: n = 0:"),
+            "{e}"
+        );
+        let e = PointSet::grid_disk(-1e-300, 1.0).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid point set: spacing = -1e-300: must be positive"
+        );
+        let e = PointSet::line(1e-300, -1e-300, 3).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid point set: end = -1e-300: must exceed start = 1e-300"
+        );
+        let e = PointSet::grid_disk(1e-300, 1e300).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("invalid point set: radius / spacing = inf:"),
+            "{e}"
+        );
+        let e = PointSet::grid_disk(1.0, 1e300).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("invalid point set: radius / spacing = 1e300:"),
             "{e}"
         );
     }
@@ -213,6 +249,11 @@ mod tests {
         assert_eq!(
             e.to_string(),
             "invalid Winkler foundation parameter: modulus = NaN: must be finite"
+        );
+        let e = assemble(&line, &[&Body::winkler(-1e-300)]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid Winkler foundation parameter: modulus = -1e-300: must be positive"
         );
         let steel = Material::new(30e6, 0.3).unwrap();
         let e = assemble(&line, &[&Body::plane_strain(steel, 1.5)]).unwrap_err();

@@ -21,6 +21,7 @@
 
 use std::f64::consts::PI;
 
+use elcon_lcp::Num;
 use faer::Mat;
 
 use crate::error::InfluenceError;
@@ -308,9 +309,10 @@ fn check_reference_distance(
     let extent = points.extent().0;
     if !(d0 >= extent) {
         return Err(bad(format!(
-            "must be at least the extent of the point set ({extent}): the 2D displacement is \
+            "must be at least the extent of the point set ({}): the 2D displacement is \
              measured from a datum outside the loaded zone, and the logarithmic kernel is \
-             positive definite only when d0 exceeds a quarter of the extent"
+             positive definite only when d0 exceeds a quarter of the extent",
+            Num(extent)
         )));
     }
     Ok(())

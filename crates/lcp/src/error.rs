@@ -2,6 +2,7 @@
 //! what the caller can do about it.
 
 use crate::certificate::Certificate;
+use crate::num::Num;
 
 /// Everything that can stop a solve of the engine.
 ///
@@ -23,7 +24,7 @@ pub enum LcpError {
         unit: &'static str,
     },
     /// An input holds NaN or an infinity.
-    #[error("`{field}` has a non-finite entry ({value}) at index {index}")]
+    #[error("`{field}` has a non-finite entry ({}) at index {index}", Num(*value))]
     NonFinite {
         /// The argument or field.
         field: &'static str,
@@ -54,7 +55,8 @@ pub enum LcpError {
     InvalidOption {
         /// The option's name.
         field: &'static str,
-        /// The given value, printed.
+        /// The given value, printed (a number in its shortest form, as
+        /// [`Num`] shows it).
         value: String,
         /// Why it is rejected.
         reason: &'static str,

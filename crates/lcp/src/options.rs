@@ -6,6 +6,7 @@
 use faer::Par;
 
 use crate::LcpError;
+use crate::num::Num;
 use crate::tolerance::Tolerances;
 
 /// A method of the engine: the four that solve complementarity problems
@@ -240,7 +241,7 @@ impl Options {
         {
             return Err(LcpError::InvalidOption {
                 field: "initial_z",
-                value: format!("entry {index} = {value}"),
+                value: format!("entry {index} = {}", Num(value)),
                 reason: "every entry must be finite",
             });
         }
@@ -269,7 +270,7 @@ impl Options {
         {
             return Err(LcpError::InvalidOption {
                 field: "covering_vector",
-                value: format!("entry {index} = {value}"),
+                value: format!("entry {index} = {}", Num(value)),
                 reason: "every entry must be finite and > 0",
             });
         }

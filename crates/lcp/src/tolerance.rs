@@ -26,6 +26,7 @@
 //! `n u`), i.e. below `1e-13` up to `n = 10^4` after refinement.
 
 use crate::LcpError;
+use crate::num::Num;
 
 /// The relative tolerances of the engine (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,7 +69,7 @@ impl Tolerances {
             if !(value.is_finite() && (0.0..1.0).contains(&value)) {
                 return Err(LcpError::InvalidOption {
                     field,
-                    value: format!("{value:e}"),
+                    value: Num(value).to_string(),
                     reason: "a relative tolerance must be finite and in [0, 1)",
                 });
             }

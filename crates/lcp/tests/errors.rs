@@ -71,7 +71,20 @@ fn invalid_options() {
     let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
     assert_eq!(
         message(e),
-        "option `tolerances.pivot` = 2e0: a relative tolerance must be finite and in [0, 1)"
+        "option `tolerances.pivot` = 2: a relative tolerance must be finite and in [0, 1)"
+    );
+    // A tiny value in its shortest form, not as hundreds of zeros.
+    let opts = Options {
+        tolerances: Tolerances {
+            zero: -1e-300,
+            ..Tolerances::default()
+        },
+        ..Options::default()
+    };
+    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
+    assert_eq!(
+        message(e),
+        "option `tolerances.zero` = -1e-300: a relative tolerance must be finite and in [0, 1)"
     );
     let opts = Options {
         max_pivots: Some(0),
@@ -86,6 +99,16 @@ fn invalid_options() {
     };
     let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
     assert!(message(e).starts_with("option `covering_vector` = entry 0 = -1"));
+    let opts = Options {
+        tableau: Tableau::General,
+        covering_vector: Some(vec![-1e-300]),
+        ..Options::default()
+    };
+    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
+    assert_eq!(
+        message(e),
+        "option `covering_vector` = entry 0 = -1e-300: every entry must be finite and > 0"
+    );
     // A covering vector is the general tableau's: with another tableau it
     // is refused, not silently ignored or used to pick the tableau.
     let opts = Options {

@@ -78,13 +78,17 @@ fn unfolded_cases(
 
 /// The design over `cases` by `spec`, as result.json's design block:
 /// each case's p_max before and after, relative to `reference_intensities`
-/// (1 each when not given); `start` is when the design began.
+/// (1 each when not given); `roller_given` says whether the call gave the
+/// logarithmic crown's roller (its failures name `roller.*`); `start` is
+/// when the design began.
 fn design_json(
     spec: &DesignSpec,
     cases: &[ContactProblem],
     reference_intensities: Option<Vec<f64>>,
+    roller_given: bool,
     start: Instant,
 ) -> PyResult<DesignJson> {
+    let design_error = |e| design_error(e, roller_given);
     let method = cases
         .first()
         .map_or(Method::BlockPivoting, ContactProblem::default_method);
@@ -180,6 +184,7 @@ pub(crate) fn design_problems(
 ) -> PyResult<String> {
     let text = design_text(&keys)?;
     let roller = roller_dict.as_ref().map(roller).transpose()?;
+    let roller_given = roller.is_some();
     let ceiling = ceiling()?;
     let start = Instant::now();
     let given: Vec<(ContactProblem, Option<Built>)> = problems
@@ -202,7 +207,7 @@ pub(crate) fn design_problems(
     })?;
     let json = detach(py, |_| {
         guarded("design", || {
-            design_json(&spec, &cases, reference_intensities, start)
+            design_json(&spec, &cases, reference_intensities, roller_given, start)
         })
     })??;
     serde_json::to_string(&json).map_err(|e| SolveError::new_err(format!("the design: {e}")))

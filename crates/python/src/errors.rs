@@ -2,7 +2,7 @@
 //! crates' errors onto them (their messages the crates' own).
 
 use elcon_analysis::AnalysisError;
-use elcon_scene::{SceneError as RustSceneError, isolated};
+use elcon_scene::{DesignKey, SceneError as RustSceneError, isolated, scene_design_key};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
@@ -97,6 +97,7 @@ pub(crate) fn analysis_error(e: AnalysisError) -> PyErr {
         AnalysisError::InvalidInput { .. }
         | AnalysisError::SizeMismatch { .. }
         | AnalysisError::NonFinite { .. }
+        | AnalysisError::NonFiniteEntry { .. }
         | AnalysisError::Incompatible { .. }
         | AnalysisError::NeedsEntries { .. }
         | AnalysisError::Table { .. }
@@ -105,9 +106,35 @@ pub(crate) fn analysis_error(e: AnalysisError) -> PyErr {
     }
 }
 
-/// A design error as its Python class.
-pub(crate) fn design_error(e: elcon_design::DesignError) -> PyErr {
-    DesignError::new_err(e.to_string())
+/// A design error over problems as its Python class, said as a scene's
+/// design stage says it ([`elcon_scene::design_reason`]): a parameter
+/// elcon-design names by its own name is named by the argument or the
+/// scene's key the user gave (`design.radius_range`); the roller's
+/// parameters by `roller.*` when `roller_given` (else, derived from the
+/// problems' bodies, geometry and points, by the scene's keys).
+pub(crate) fn design_error(e: elcon_design::DesignError, roller_given: bool) -> PyErr {
+    DesignError::new_err(elcon_scene::design_reason(&e, |field| {
+        python_design_key(field, roller_given)
+    }))
+}
+
+/// The argument of `elcon.design` over problems that holds what
+/// elcon-design names `field`; the scene's key ([`scene_design_key`]) for
+/// the `[design]` keys the call takes by the scene's names.
+fn python_design_key(field: &str, roller_given: bool) -> Option<DesignKey> {
+    let key = |key, what| Some(DesignKey { key, what });
+    match field {
+        "cases" => key("problems", Some("the load cases, one per problem")),
+        "reference_intensities" => key("reference_intensities", None),
+        "reanalysis" => key(
+            "problems",
+            Some("the method of the analyses, the first problem's default"),
+        ),
+        "log_crown.length" if roller_given => key("roller.length", None),
+        "log_crown.radius" if roller_given => key("roller.radius", None),
+        "log_crown.combined_modulus" if roller_given => key("roller.combined_modulus", None),
+        _ => scene_design_key(field),
+    }
 }
 
 /// Runs `f` inside `elcon_scene::isolated`: a panic becomes a `SolveError`

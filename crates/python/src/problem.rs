@@ -200,13 +200,6 @@ impl PyContactProblem {
             )));
         }
         let s = s.as_array();
-        // The engine would refuse it at the solve, by its own name for the
-        // matrix: said here, by the argument's, with the entry.
-        if let Some(((i, j), v)) = s.indexed_iter().find(|(_, v)| !v.is_finite()) {
-            return Err(InputError::new_err(format!(
-                "`influence`[{i}, {j}] = {v}: must be a finite number (deflection per unit force)"
-            )));
-        }
         let eps = match geometry {
             Geometry::Separation(eps) => eps,
             surfaces => elcon_analysis::separations(&points, &surfaces).map_err(analysis_error)?,

@@ -456,6 +456,13 @@ def test_every_family_from_problems_with_the_scenes_names_and_errors():
     # The problems are the cases: loads and relative_to belong to a scene.
     with pytest.raises(elcon.InputError, match=r"`design.loads`"):
         elcon.design([problem], family="free", loads=[1.0])
+    # A design that fails names the scene's key, as `elcon run` does: a
+    # crown radius below the beam's half-length (4.45 in).
+    with pytest.raises(elcon.DesignError,
+                       match=r"^`design.radius_range` \(a crown radius searched in it\) = "
+                             r"[0-9.e+-]+: the crown is asked beyond its radius") as failed:
+        elcon.design([problem], family="circular-crown", radius_range=[1.0, 2.0])
+    assert "circular_crown" not in str(failed.value)
 
 
 def test_python_is_as_safe_as_the_cli(tmp_path, monkeypatch):

@@ -166,7 +166,17 @@ impl Batch {
             .parent()
             .unwrap_or(Path::new("."))
             .join(b.scene.get_ref());
-        let base_text = read_text(&scene_file)?;
+        // A base scene that cannot be read is the batch file's error, at
+        // the key that names it.
+        let base_text = read_text(&scene_file).map_err(|e| match e {
+            SceneError::Io { path, reason } => ctx.invalid(
+                b.scene.span(),
+                "batch.scene",
+                format!("\"{}\"", b.scene.get_ref()),
+                format!("the base scene {} cannot be read: {reason}", path.display()),
+            ),
+            other => other,
+        })?;
         // The base scene must be valid on its own.
         Scene::from_str(&scene_file, &base_text)?;
         let base: toml_edit::DocumentMut =

@@ -45,7 +45,10 @@ pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text, thousands};
 pub use batch_run::{BatchDone, BatchOptions, Progress, run_batch};
 pub use compare::{Errors, ReferenceJson, XY};
 pub use ctx::{MAX_INPUT_BYTES, read_text};
-pub use design_stage::{DesignCaseJson, DesignGridJson, DesignJson, DesignRun};
+pub use design_stage::{
+    DesignCaseJson, DesignGridJson, DesignJson, DesignKey, DesignRun, design_reason,
+    scene_design_key,
+};
 pub use elcon_analysis::{AUTO_DENSE_LIMIT, Storage};
 pub use elcon_lcp::Cancel;
 pub use error::{Location, SceneError};

@@ -190,7 +190,12 @@ impl std::fmt::Display for Ceiling {
 /// A message saying what a size looks like.
 pub fn parse_size(s: &str) -> Result<u64, String> {
     let t = s.trim();
-    let bad = || format!("`{s}` is not a size: give bytes or a number with K, M, G or T, e.g. 4G");
+    let bad = || {
+        format!(
+            "`{s}`: a memory limit must be a positive size, like 8GiB or 512M (a number of \
+             bytes, or one with K, M, G or T)"
+        )
+    };
     let digits = t
         .find(|c: char| !(c.is_ascii_digit() || c == '.'))
         .unwrap_or(t.len());
@@ -212,7 +217,7 @@ pub fn parse_size(s: &str) -> Result<u64, String> {
     let bytes = value * scale;
     if !(bytes.is_finite() && bytes >= 1.0 && bytes < u64::MAX as f64) {
         return Err(format!(
-            "`{s}`: a memory limit must be at least 1 byte and finite"
+            "`{s}`: a memory limit must be a positive size of at least 1 byte, like 8GiB"
         ));
     }
     Ok(bytes as u64)
@@ -380,8 +385,13 @@ mod tests {
         assert_eq!(parse_size("1.5GiB"), Ok(3 << 29));
         assert_eq!(parse_size("1048576"), Ok(1 << 20));
         assert_eq!(parse_size(" 2 T "), Ok(2 << 40));
-        for bad in ["", "G", "4X", "-1G", "0", "1e400", "four"] {
-            assert!(parse_size(bad).is_err(), "{bad}");
+        for bad in ["", "G", "4X", "-1G", "-1", "0", "1e400", "four"] {
+            let e = parse_size(bad).unwrap_err();
+            assert!(
+                e.starts_with(&format!("`{bad}`: a memory limit must be a positive size")),
+                "{e}"
+            );
+            assert!(e.contains("like 8GiB"), "{e}");
         }
     }
 

@@ -24,6 +24,12 @@ pub struct Shard {
 /// `JOB_COMPLETION_INDEX` (set it to the Job's `completions`).
 pub const SHARD_COUNT_VARIABLE: &str = "ELCON_SHARD_COUNT";
 
+/// The largest task id, count or step a scheduler's variable may hold:
+/// SLURM's array task ids are 32-bit (and its arrays far smaller), and so
+/// are a Kubernetes Job's completions. Below it, no id, count or step of
+/// an array computed from them overflows.
+const MAX_SCHEDULER_NUMBER: usize = u32::MAX as usize;
+
 impl std::str::FromStr for Shard {
     type Err = String;
 
@@ -92,14 +98,20 @@ impl Shard {
     /// Kubernetes give different shards.
     pub fn from_scheduler(var: impl Fn(&str) -> Option<String>) -> Result<Self, String> {
         let number = |name: &str| -> Result<Option<usize>, String> {
-            match var(name) {
-                None => Ok(None),
-                Some(v) => v
-                    .trim()
-                    .parse()
-                    .map(Some)
-                    .map_err(|_| format!("{name}={v}: not a whole number")),
+            let Some(v) = var(name) else {
+                return Ok(None);
+            };
+            let n: usize = v
+                .trim()
+                .parse()
+                .map_err(|_| format!("{name}={v}: not a whole number"))?;
+            if n > MAX_SCHEDULER_NUMBER {
+                return Err(format!(
+                    "{name}={v}: more than {MAX_SCHEDULER_NUMBER}, beyond any job array's task id \
+                     or count (a scheduler's are 32-bit)"
+                ));
             }
+            Ok(Some(n))
         };
         let slurm = Self::from_slurm(&number)?;
         let kubernetes = Self::from_indexed_job(&number)?;
@@ -144,6 +156,12 @@ impl Shard {
                 );
             }
         };
+        if let Some(max) = max.filter(|&max| max < min) {
+            return Err(format!(
+                "SLURM_ARRAY_TASK_MIN={min} > SLURM_ARRAY_TASK_MAX={max}: not a job array's \
+                 range (its first task id is at most its last)"
+            ));
+        }
         let step = match number("SLURM_ARRAY_TASK_STEP")? {
             Some(0) => return Err("SLURM_ARRAY_TASK_STEP=0: not a job array's step".into()),
             Some(s) => s,
@@ -322,6 +340,64 @@ mod tests {
         ]))
         .unwrap_err();
         assert!(e.contains("SLURM_ARRAY_TASK_STEP=0"), "{e}");
+    }
+
+    #[test]
+    fn a_slurm_value_beyond_any_array_is_refused_naming_its_variable() {
+        for var in [
+            "SLURM_ARRAY_TASK_ID",
+            "SLURM_ARRAY_TASK_COUNT",
+            "SLURM_ARRAY_TASK_MIN",
+            "SLURM_ARRAY_TASK_STEP",
+        ] {
+            let mut vars = vec![
+                ("SLURM_ARRAY_TASK_ID", "1"),
+                ("SLURM_ARRAY_TASK_COUNT", "3"),
+                ("SLURM_ARRAY_TASK_MIN", "1"),
+            ];
+            vars.retain(|(n, _)| *n != var);
+            vars.push((var, "18446744073709551615"));
+            let e = Shard::from_scheduler(env(&vars)).unwrap_err();
+            assert!(
+                e.starts_with(&format!("{var}=18446744073709551615: more than 4294967295")),
+                "{e}"
+            );
+        }
+        // The bound itself, in every variable at once: the last id,
+        // MIN + (COUNT - 1) STEP, is computed without overflow.
+        let bound = "4294967295";
+        let s = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", bound),
+            ("SLURM_ARRAY_TASK_COUNT", bound),
+            ("SLURM_ARRAY_TASK_MIN", bound),
+            ("SLURM_ARRAY_TASK_STEP", bound),
+        ]))
+        .unwrap();
+        assert_eq!(s, Shard::new(1, u32::MAX as usize).unwrap());
+        let e = Shard::from_scheduler(env(&[
+            ("JOB_COMPLETION_INDEX", "18446744073709551615"),
+            (SHARD_COUNT_VARIABLE, "3"),
+        ]))
+        .unwrap_err();
+        assert!(
+            e.starts_with("JOB_COMPLETION_INDEX=18446744073709551615: more"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_slurm_array_whose_min_exceeds_its_max_is_said_so() {
+        let e = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "5"),
+            ("SLURM_ARRAY_TASK_MIN", "7"),
+            ("SLURM_ARRAY_TASK_MAX", "3"),
+        ]))
+        .unwrap_err();
+        assert!(
+            e.starts_with("SLURM_ARRAY_TASK_MIN=7 > SLURM_ARRAY_TASK_MAX=3"),
+            "{e}"
+        );
+        assert!(!e.contains("neither"), "{e}");
     }
 
     #[test]

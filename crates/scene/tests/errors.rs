@@ -173,6 +173,30 @@ fn a_batch_error_metric_is_one_of_the_results_columns() {
 }
 
 #[test]
+fn a_batch_whose_base_scene_is_missing_names_its_key_and_path() {
+    let dir = std::env::temp_dir().join(format!("elcon-batch-scene-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("b.toml"),
+        "[batch]\nscene = \"absent.toml\"\n[[batch.group]]\n\"loading.load\" = [1.0]\n",
+    )
+    .unwrap();
+    let e = elcon_scene::Batch::from_file(&dir.join("b.toml")).unwrap_err();
+    assert!(e.is_input_error(), "{e}");
+    let text = e.to_string();
+    assert!(text.contains("b.toml:2:9"), "{text}");
+    assert!(text.contains("`batch.scene` = \"absent.toml\""), "{text}");
+    assert!(
+        text.contains(&format!(
+            "the base scene {} cannot be read",
+            dir.join("absent.toml").display()
+        )),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn relative_to_hertz_without_a_hertz_contact_is_refused_by_validation() {
     // Valid: spheres on a disk, a cylinder on a rectangle.
     scene(&with_table(

@@ -147,6 +147,12 @@ impl ContactProblem {
     /// A problem from an influence matrix (N x N, length per force) and
     /// separations (N, length) built elsewhere, held dense; moments and
     /// rotations are about the origin.
+    ///
+    /// # Errors
+    /// [`AnalysisError::SizeMismatch`] when S is not N x N,
+    /// [`AnalysisError::NonFiniteEntry`] at S's first entry (by rows) that
+    /// is NaN or infinite, and the checks of the separations and the
+    /// loading every problem has.
     pub fn from_parts(
         points: PointSet,
         influence: Mat<f64>,
@@ -163,6 +169,18 @@ impl ContactProblem {
                 } else {
                     influence.ncols()
                 },
+            });
+        }
+        if let Some((row, column, value)) = (0..n)
+            .flat_map(|i| (0..n).map(move |j| (i, j)))
+            .map(|(i, j)| (i, j, influence[(i, j)]))
+            .find(|(_, _, v)| !v.is_finite())
+        {
+            return Err(AnalysisError::NonFiniteEntry {
+                field: "influence",
+                row,
+                column,
+                value,
             });
         }
         let rigid = check(&points, &separation, &loading, (0.0, 0.0))?;

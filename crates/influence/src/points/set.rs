@@ -9,6 +9,8 @@
 
 use std::borrow::Cow;
 
+use elcon_lcp::Num;
+
 use super::boundary::{boundary_by_cells, lattice_boundary};
 use super::cell::Cell;
 use super::lattice::{Lattice, LatticeIndex, Run};
@@ -114,9 +116,13 @@ impl PartialEq for PointSet {
 /// `value` if finite and positive, else an InvalidPoints error for `field`.
 fn positive(field: &str, value: f64) -> Result<f64, InfluenceError> {
     if !value.is_finite() {
-        Err(InfluenceError::points(field, value, "must be finite"))
+        Err(InfluenceError::points(field, Num(value), "must be finite"))
     } else if value <= 0.0 {
-        Err(InfluenceError::points(field, value, "must be positive"))
+        Err(InfluenceError::points(
+            field,
+            Num(value),
+            "must be positive",
+        ))
     } else {
         Ok(value)
     }
@@ -150,14 +156,14 @@ impl PointSet {
     pub fn line(start: f64, end: f64, n: usize) -> Result<Self, InfluenceError> {
         for (field, v) in [("start", start), ("end", end)] {
             if !v.is_finite() {
-                return Err(InfluenceError::points(field, v, "must be finite"));
+                return Err(InfluenceError::points(field, Num(v), "must be finite"));
             }
         }
         if end <= start {
             return Err(InfluenceError::points(
                 "end",
-                end,
-                format!("must exceed start = {start}"),
+                Num(end),
+                format!("must exceed start = {}", Num(start)),
             ));
         }
         let n = count("n", n)?;
@@ -195,8 +201,7 @@ impl PointSet {
         if !(std::f64::consts::PI * m_f * m_f <= 2.0 * MAX_POINTS as f64) {
             return Err(InfluenceError::points(
                 "radius / spacing",
-                // (Debug: the shortest form, 1e300 rather than 301 digits.)
-                format!("{:?}", radius / h),
+                Num(radius / h),
                 format!("the disk would hold more than MAX_POINTS = {MAX_POINTS} points"),
             ));
         }
@@ -317,21 +322,21 @@ impl PointSet {
             if !x.is_finite() {
                 return Err(InfluenceError::points(
                     format!("xs[{k}]"),
-                    x,
+                    Num(x),
                     "must be finite",
                 ));
             }
             if !y.is_finite() {
                 return Err(InfluenceError::points(
                     format!("ys[{k}]"),
-                    y,
+                    Num(y),
                     "must be finite",
                 ));
             }
             if dimension == Dimension::Line && y != 0.0 {
                 return Err(InfluenceError::points(
                     format!("ys[{k}]"),
-                    y,
+                    Num(y),
                     "must be 0: the points of a line set lie on the x axis",
                 ));
             }
@@ -343,7 +348,7 @@ impl PointSet {
             if xs[a] == xs[b] && ys[a] == ys[b] {
                 return Err(InfluenceError::points(
                     format!("(xs[{b}], ys[{b}])"),
-                    format!("({}, {})", xs[b], ys[b]),
+                    format!("({}, {})", Num(xs[b]), Num(ys[b])),
                     format!("repeats point {a}: the points must be distinct"),
                 ));
             }

@@ -1,0 +1,47 @@
+//! How a number is shown in a message: its shortest round-trip form
+//! (Rust's `{}` of an f64), switched to scientific notation outside
+//! `1e-4 <= |x| < 1e16` so that `1e-300` is not printed as three hundred
+//! zeros. No equation; the lowest crate holds it so that every crate above
+//! shows a user's number the same way.
+
+/// A number as a message shows it, in its shortest round-trip form: as
+/// written for everyday magnitudes (`-30000000`, `0.5`), in scientific
+/// notation beyond them (`1e300`, `1e-308`), so that no message holds a
+/// run of hundreds of digits. Every crate above shows a user's number
+/// through it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || !a.is_finite() || (1e-4..1e16).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_number_is_shown_in_its_shortest_round_trip_form() {
+        for (v, shown) in [
+            (1e300, "1e300"),
+            (-1e300, "-1e300"),
+            (1e-300, "1e-300"),
+            (-30e6, "-30000000"),
+            (0.5, "0.5"),
+            (0.0, "0"),
+            (f64::INFINITY, "inf"),
+            (f64::MAX, "1.7976931348623157e308"),
+        ] {
+            assert_eq!(Num(v).to_string(), shown);
+            assert_eq!(Num(v).to_string().parse::<f64>().ok(), Some(v));
+        }
+        assert_eq!(Num(f64::NAN).to_string(), "NaN");
+    }
+}
