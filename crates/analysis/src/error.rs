@@ -3,7 +3,7 @@
 
 use elcon_influence::InfluenceError;
 use elcon_lcp::LcpError;
-pub use elcon_lcp::Num;
+pub use elcon_num::Num;
 
 /// Everything that can stop a contact analysis.
 #[derive(Debug, Clone, thiserror::Error)]

@@ -5,7 +5,7 @@
 //! coefficients a_kj of the other modules are defined (E > 0, -1 < nu < 0.5,
 //! finite positive sizes, d0 at least the extent of the zone).
 
-use elcon_lcp::Num;
+use elcon_num::Num;
 
 use crate::dimension::Dimension;
 

@@ -21,7 +21,7 @@
 
 use std::f64::consts::PI;
 
-use elcon_lcp::Num;
+use elcon_num::Num;
 use faer::Mat;
 
 use crate::error::InfluenceError;

@@ -2,7 +2,7 @@
 //! what the caller can do about it.
 
 use crate::certificate::Certificate;
-use crate::num::Num;
+use elcon_num::Num;
 
 /// Everything that can stop a solve of the engine.
 ///

@@ -6,8 +6,8 @@
 use faer::Par;
 
 use crate::LcpError;
-use crate::num::Num;
 use crate::tolerance::Tolerances;
+use elcon_num::Num;
 
 /// A method of the engine: the four that solve complementarity problems
 /// ([`Method::ALL`]), and the factorizations of a linear system

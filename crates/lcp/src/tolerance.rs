@@ -26,7 +26,7 @@
 //! `n u`), i.e. below `1e-13` up to `n = 10^4` after refinement.
 
 use crate::LcpError;
-use crate::num::Num;
+use elcon_num::Num;
 
 /// The relative tolerances of the engine (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq)]

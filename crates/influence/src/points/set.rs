@@ -9,7 +9,7 @@
 
 use std::borrow::Cow;
 
-use elcon_lcp::Num;
+use elcon_num::Num;
 
 use super::boundary::{boundary_by_cells, lattice_boundary};
 use super::cell::Cell;

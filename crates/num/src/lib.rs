@@ -1,8 +1,9 @@
 //! How a number is shown in a message: its shortest round-trip form
 //! (Rust's `{}` of an f64), switched to scientific notation outside
 //! `1e-4 <= |x| < 1e16` so that `1e-300` is not printed as three hundred
-//! zeros. No equation; the lowest crate holds it so that every crate above
-//! shows a user's number the same way.
+//! zeros. No equation: a crate of its own, below every other, so that
+//! elcon-lcp and elcon-influence (which do not depend on each other) and
+//! every crate above show a user's number the same way.
 
 /// A number as a message shows it, in its shortest round-trip form: as
 /// written for everyday magnitudes (`-30000000`, `0.5`), in scientific
