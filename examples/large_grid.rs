@@ -138,16 +138,17 @@ fn preconditioner_seconds(points: &PointSet, applications: usize) -> f64 {
     }
     let (body, _) = hertz::bodies();
     let kernel = elcon::influence::LatticeKernel::new(points, &[&body, &body]).expect("lattice");
-    let mut preconditioner = kernel
+    let preconditioner = kernel
         .preconditioner()
         .expect("memory")
         .expect("a half-space kernel");
+    let mut workspace = kernel.workspace().expect("memory");
     let n = points.len();
     let (r, mut z) = (vec![1.0; n], vec![0.0; n]);
-    kernel.precondition_with(&r, &mut z, &mut preconditioner);
+    kernel.precondition_with(&r, &mut z, &preconditioner, &mut workspace);
     let (start, mut count) = (cpu_seconds(), 0);
     while cpu_seconds() - start < FLOOR_CPU {
-        kernel.precondition_with(&r, &mut z, &mut preconditioner);
+        kernel.precondition_with(&r, &mut z, &preconditioner, &mut workspace);
         count += 1;
     }
     (cpu_seconds() - start) / count as f64
