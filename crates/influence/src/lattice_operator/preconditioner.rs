@@ -440,6 +440,24 @@ mod tests {
         }
     }
 
+    /// The preconditioner holds its symbol and no buffer of the box's
+    /// size: `8 (Q1/2 + 1)(Q2/2 + 1)` bytes (about 2 a cell of the box) and
+    /// its struct, and an application needs no workspace but a product's.
+    #[test]
+    fn holds_only_its_symbol() {
+        let points = PointSet::grid_disk(1.0, 60.0).unwrap();
+        let kernel = LatticeKernel::new(&points, &[&Body::uniform_patch(steel())]).unwrap();
+        let pc = kernel.preconditioner().unwrap().unwrap();
+        let (q1, q2) = pc.periodic_grid();
+        let symbol = 8 * (q1 / 2 + 1) * (q2 / 2 + 1);
+        assert_eq!(
+            pc.memory_bytes(),
+            symbol + std::mem::size_of_val(&pc),
+            "{q1} x {q2}"
+        );
+        assert!(pc.memory_bytes() < 3 * q1 * q2, "{q1} x {q2}");
+    }
+
     #[test]
     fn a_foundation_alone_has_none() {
         let points = PointSet::grid_rectangle(1.0, 1.0, 6, 6).unwrap();
