@@ -156,12 +156,14 @@ impl Operator for Restricted<'_> {
 /// The lattice operator with a workspace of its own, as the engine applies
 /// it (one solve, one thread), and for the conjugate gradient its
 /// preconditioner (`elcon_influence::LatticePreconditioner`: the inverse of
-/// the kernel's symbol by a periodic FFT on the half-size grid).
+/// the kernel's symbol by a periodic FFT on the half-size grid), applied
+/// in the same workspace (products and applications take turns: one
+/// buffer of the box's spectra serves both).
 pub(crate) struct LatticeProducts<'a> {
     operator: &'a LatticeKernel,
     workspace: RefCell<LatticeWorkspace>,
-    /// Boxed: its plans and buffers would make every `LatticeProducts` large.
-    preconditioner: Option<Box<RefCell<LatticePreconditioner>>>,
+    /// Boxed: its plans would make every `LatticeProducts` large.
+    preconditioner: Option<Box<LatticePreconditioner>>,
 }
 
 impl<'a> LatticeProducts<'a> {
@@ -177,10 +179,7 @@ impl<'a> LatticeProducts<'a> {
     /// The same with the operator's preconditioner (none where S has no
     /// half-space kernel: a foundation's S is a multiple of the identity).
     pub fn with_preconditioner(self) -> Result<Self, elcon_influence::InfluenceError> {
-        let preconditioner = self
-            .operator
-            .preconditioner()?
-            .map(|p| Box::new(RefCell::new(p)));
+        let preconditioner = self.operator.preconditioner()?.map(Box::new);
         Ok(Self {
             preconditioner,
             ..self
@@ -210,7 +209,9 @@ impl Operator for LatticeProducts<'_> {
 
     fn precondition(&self, r: &[f64], z: &mut [f64]) {
         match &self.preconditioner {
-            Some(p) => self.operator.precondition_with(r, z, &mut p.borrow_mut()),
+            Some(p) => self
+                .operator
+                .precondition_with(r, z, p, &mut self.workspace.borrow_mut()),
             None => z.copy_from_slice(r),
         }
     }

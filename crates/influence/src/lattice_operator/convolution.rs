@@ -35,7 +35,7 @@ const ROWS_PER_TASK: usize = 8;
 /// context switches a pass and buys nothing). `body` must write each
 /// item from the item and `i` alone (the state is scratch): the results
 /// are then the same to the bit on either path.
-fn share<I: Send, S>(
+pub(super) fn share<I: Send, S>(
     items: Vec<I>,
     min_len: usize,
     init: impl Fn() -> S + Sync + Send,
@@ -83,7 +83,10 @@ impl std::fmt::Debug for Convolution {
 /// The scratch memory of one product `S x`: a band of the row spectra of
 /// the box (`n1 ceil((P2/2 + 1) / 2)` complex values), and a wave of
 /// columns that the threads transform at once (a batch of 16 columns of
-/// P1 complex values per thread of the pool it was made in). Made by
+/// P1 complex values per thread of the pool it was made in); the same
+/// buffers serve an application of the preconditioner (its row spectra on
+/// the half-size grid are the band's size,
+/// [`LatticeKernel::precondition_with`](super::LatticeKernel::precondition_with)). Made by
 /// [`LatticeKernel::workspace`](super::LatticeKernel::workspace) for one operator (or one of the same grid);
 /// reused across calls, its contents between calls mean nothing. Its
 /// size changes nothing of a product's values: used in a pool of another
@@ -126,7 +129,7 @@ impl LatticeWorkspace {
         let wave = wave_len(&g);
         Ok(Self {
             grid: Some(g),
-            spectra: try_vec(g.rows * g.band_width(), zero, "lattice row spectra")?,
+            spectra: try_vec(g.rows * g.spectra_width(), zero, "lattice row spectra")?,
             columns: try_vec(wave * g.padded_rows, zero, "lattice column wave")?,
         })
     }
@@ -134,6 +137,12 @@ impl LatticeWorkspace {
     /// The grid it was made for (`None`: an operator without convolution).
     pub(super) fn grid(&self) -> Option<Grid> {
         self.grid
+    }
+
+    /// The row spectra (`n1` rows of [`Grid::spectra_width`] values) and
+    /// the wave of columns, for the preconditioner's application.
+    pub(super) fn buffers(&mut self) -> (&mut [C64], &mut [C64]) {
+        (&mut self.spectra, &mut self.columns)
     }
 
     /// Bytes held by the workspace.

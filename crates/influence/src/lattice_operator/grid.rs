@@ -72,6 +72,20 @@ impl Grid {
         self.half_columns().div_ceil(BANDS)
     }
 
+    /// Frequencies kept by a real-to-complex row transform on the
+    /// preconditioner's periodic half-size grid, `Q2/2 + 1` with `Q2 = P2/2`
+    /// (the same as [`band_width`](Self::band_width) with two bands).
+    pub(super) fn periodic_half_columns(&self) -> usize {
+        self.padded_columns / 2 / 2 + 1
+    }
+
+    /// Values a row of a workspace's spectra holds: a band's for a product,
+    /// the periodic grid's half spectrum for the preconditioner, which
+    /// borrows them (equal with two bands, for every P2).
+    pub(super) fn spectra_width(&self) -> usize {
+        self.band_width().max(self.periodic_half_columns())
+    }
+
     /// Values of the stored kernel spectrum.
     pub(super) fn spectrum_len(&self) -> usize {
         self.half_rows() * self.half_columns()
@@ -87,7 +101,7 @@ impl Grid {
     /// ([`wave_len`] of them).
     fn workspace_bytes(&self) -> usize {
         let wave = wave_len(self);
-        16 * (self.rows * self.band_width() + wave * self.padded_rows)
+        16 * (self.rows * self.spectra_width() + wave * self.padded_rows)
     }
 
     /// Bytes held by an operator on this grid whose gather order takes
@@ -137,4 +151,30 @@ pub(super) fn try_vec<T: Clone>(
 pub(super) fn wave_len(grid: &Grid) -> usize {
     let threads = rayon::current_num_threads().max(1);
     (COLUMN_BATCH * threads).min(grid.band_width())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Grid, padded_length};
+
+    /// The preconditioner's row spectra fit a product's band on every grid:
+    /// borrowing the workspace's spectra costs it nothing more.
+    #[test]
+    fn the_periodic_half_spectrum_is_a_band() {
+        for n in 1..3000 {
+            let p = padded_length(n);
+            let g = Grid {
+                rows: 1,
+                columns: n,
+                padded_rows: 2,
+                padded_columns: p,
+            };
+            assert_eq!(
+                g.periodic_half_columns(),
+                g.band_width(),
+                "n = {n}, P = {p}"
+            );
+            assert_eq!(g.spectra_width(), g.band_width(), "n = {n}");
+        }
+    }
 }

@@ -261,14 +261,14 @@ impl LatticeKernel {
 
     /// An approximate inverse of S for a preconditioned conjugate gradient
     /// (the inverse of the kernel's symbol on the periodic half-size grid,
-    /// [`LatticePreconditioner`]), with its buffers, applied by
-    /// [`precondition_with`](Self::precondition_with); `None` when there is
-    /// no half-space kernel (only foundations: S is a multiple of the
-    /// identity).
+    /// [`LatticePreconditioner`]), applied by
+    /// [`precondition_with`](Self::precondition_with) in a product's
+    /// workspace; `None` when there is no half-space kernel (only
+    /// foundations: S is a multiple of the identity).
     ///
     /// # Errors
-    /// [`InfluenceError::AllocationFailed`] when its memory (about 18
-    /// bytes a cell of the lattice's bounding box) cannot be allocated.
+    /// [`InfluenceError::AllocationFailed`] when its symbol (about 2 bytes
+    /// a cell of the lattice's bounding box) cannot be allocated.
     pub fn preconditioner(&self) -> Result<Option<LatticePreconditioner>, InfluenceError> {
         self.convolution
             .as_ref()
@@ -278,16 +278,22 @@ impl LatticeKernel {
 
     /// `z ≈ S^{-1} r` by `preconditioner` (made by
     /// [`preconditioner`](Self::preconditioner) of this kernel), in the
-    /// point set's order.
+    /// point set's order, in the buffers of `workspace` (one
+    /// [`workspace`](Self::workspace) of this kernel serves its products and
+    /// its preconditioner's applications in turn: the application needs no
+    /// memory of the box's size besides; its contents between calls mean
+    /// nothing).
     ///
     /// # Panics
-    /// If `r` or `z` does not have [`len`](Self::len) entries, or the
-    /// kernel has no convolution.
+    /// If `r` or `z` does not have [`len`](Self::len) entries, the kernel
+    /// has no convolution, or the workspace was made for an operator of
+    /// another grid.
     pub fn precondition_with(
         &self,
         r: &[f64],
         z: &mut [f64],
-        preconditioner: &mut LatticePreconditioner,
+        preconditioner: &LatticePreconditioner,
+        workspace: &mut LatticeWorkspace,
     ) {
         assert!(
             r.len() == self.len && z.len() == self.len,
@@ -300,7 +306,12 @@ impl LatticeKernel {
             .convolution
             .as_ref()
             .expect("a preconditioner is made for a kernel with a convolution");
-        preconditioner.apply(c, r, z);
+        assert_eq!(
+            workspace.grid(),
+            Some(c.grid),
+            "the workspace was made for an operator of another grid"
+        );
+        preconditioner.apply(c, r, z, workspace);
     }
 
     /// `y = S x` as [`LatticeOperator::apply`], with a caller's workspace:

@@ -23,20 +23,23 @@
 //! Cost: `n1` real row transforms of length `Q2` and `Q2/2 + 1` complex
 //! column transforms of length `Q1`, each forward and back: a quarter of
 //! the product's transforms on the `P1 x P2` grid (half the rows, half the
-//! columns, no second band). Memory: the symbol (`8 (Q1/2 + 1)(Q2/2 + 1)`
-//! bytes) and two spectra of the box (`16 (n1 + Q1)(Q2/2 + 1)` bytes),
-//! about 18 bytes a cell of the box. Each row's and column's transform is
-//! done by one thread, nothing summed across threads: the values do not
-//! depend on their number.
+//! columns, no second band). Memory: the symbol, `8 (Q1/2 + 1)(Q2/2 + 1)`
+//! bytes (about 2 bytes a cell of the box), and the plans; an application
+//! borrows a product's [`LatticeWorkspace`]: the box's row spectra,
+//! `n1 x (Q2/2 + 1)` complex values, are exactly a band of the product's,
+//! and the column stage works in place on them a wave of columns at a time
+//! (gathered into the workspace's wave, transformed, written back), as the
+//! product's does. Each row's and column's transform is done by one
+//! thread, nothing summed across threads: the values do not depend on
+//! their number, nor on the wave's size.
 
 use std::sync::Arc;
 
-use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
-use super::convolution::Convolution;
-use super::grid::{C64, try_vec};
+use super::convolution::{Convolution, LatticeWorkspace, share};
+use super::grid::{C64, COLUMN_BATCH, try_vec};
 use crate::error::InfluenceError;
 
 /// The symbol's floor: a value of `Ŝ_Q` below `max Ŝ_Q / (SYMBOL_FLOOR
@@ -76,7 +79,8 @@ fn windowed(convolution: &Convolution, j1: usize, j2: usize) -> f64 {
 const LINES_PER_TASK: usize = 8;
 
 /// The approximate inverse `r -> z` of a [`LatticeKernel`](super::LatticeKernel)
-/// (see the [module documentation](self)), with its buffers: made by
+/// (see the [module documentation](self)): its symbol and plans, no buffer
+/// of the box's size (an application borrows a product's workspace). Made by
 /// [`LatticeKernel::preconditioner`](super::LatticeKernel::preconditioner),
 /// applied by [`LatticeKernel::precondition_with`](super::LatticeKernel::precondition_with).
 pub struct LatticePreconditioner {
@@ -92,10 +96,6 @@ pub struct LatticePreconditioner {
     column_forward: Arc<dyn Fft<f64>>,
     column_inverse: Arc<dyn Fft<f64>>,
     scratch_len: usize,
-    /// The box's row spectra, `n1 x (Q2/2 + 1)`.
-    row_spectra: Vec<C64>,
-    /// The columns of the row spectra, `(Q2/2 + 1) x Q1`.
-    columns: Vec<C64>,
 }
 
 impl std::fmt::Debug for LatticePreconditioner {
@@ -152,7 +152,6 @@ impl LatticePreconditioner {
         .into_iter()
         .max()
         .unwrap_or(0);
-        let zero = C64::new(0.0, 0.0);
         Ok(Self {
             rows: g.rows,
             q1,
@@ -163,8 +162,6 @@ impl LatticePreconditioner {
             column_forward,
             column_inverse,
             scratch_len,
-            row_spectra: try_vec(g.rows * h2, zero, "preconditioner row spectra")?,
-            columns: try_vec(h2 * q1, zero, "preconditioner columns")?,
         })
     }
 
@@ -173,12 +170,10 @@ impl LatticePreconditioner {
         (self.q1, self.q2)
     }
 
-    /// Bytes held: the symbol and the two spectra (the plans, O(Q1 + Q2),
-    /// are left out).
+    /// Bytes held: the symbol (the plans, O(Q1 + Q2), are left out; the
+    /// buffers are the workspace's).
     pub fn memory_bytes(&self) -> usize {
-        std::mem::size_of::<Self>()
-            + 8 * self.symbol.capacity()
-            + 16 * (self.row_spectra.capacity() + self.columns.capacity())
+        std::mem::size_of::<Self>() + 8 * self.symbol.capacity()
     }
 
     fn row_buffers(&self) -> RowBuffers {
@@ -191,87 +186,131 @@ impl LatticePreconditioner {
     }
 
     /// `z = IDFT(DFT(r) / Ŝ_Q) / (Q1 Q2)` on the box, `r` spread on it and
-    /// `z` gathered from it by `convolution`'s gather order.
-    pub(super) fn apply(&mut self, convolution: &Convolution, r: &[f64], z: &mut [f64]) {
-        self.rows_forward(convolution, r);
-        self.columns_times_symbol();
-        self.rows_inverse(convolution, z);
+    /// `z` gathered from it by `convolution`'s gather order, in the buffers
+    /// of `ws` (a workspace of `convolution`'s grid: its row spectra hold
+    /// `n1` rows of `Q2/2 + 1` values, its wave at least one column of Q1).
+    pub(super) fn apply(
+        &self,
+        convolution: &Convolution,
+        r: &[f64],
+        z: &mut [f64],
+        ws: &mut LatticeWorkspace,
+    ) {
+        let (spectra, wave) = ws.buffers();
+        let spectra = &mut spectra[..self.rows * (self.q2 / 2 + 1)];
+        self.rows_forward(convolution, r, spectra);
+        self.columns_times_symbol(spectra, wave);
+        self.rows_inverse(convolution, spectra, z);
     }
 
-    /// Each lattice row of `r`, zero-padded to Q2, to its half spectrum.
-    fn rows_forward(&mut self, convolution: &Convolution, r: &[f64]) {
-        let h2 = self.q2 / 2 + 1;
+    /// Each lattice row of `r`, zero-padded to Q2, to its half spectrum in
+    /// `spectra` (the rows shared among the threads).
+    fn rows_forward(&self, convolution: &Convolution, r: &[f64], spectra: &mut [C64]) {
         let gather = &convolution.gather;
-        let mut spectra = std::mem::take(&mut self.row_spectra);
-        let this = &*self;
-        let (plan, buffers) = (&this.row_forward, || this.row_buffers());
-        spectra
-            .par_chunks_mut(h2)
-            .with_min_len(LINES_PER_TASK)
-            .enumerate()
-            .for_each_init(buffers, |b, (i, out)| {
+        share(
+            spectra.chunks_mut(self.q2 / 2 + 1).collect(),
+            LINES_PER_TASK,
+            || self.row_buffers(),
+            |b, i, out| {
                 b.row.fill(0.0);
                 for s in gather.row(i) {
                     b.row[s.columns()].copy_from_slice(&r[s.points()]);
                 }
-                plan.process_with_scratch(&mut b.row, out, &mut b.scratch)
+                self.row_forward
+                    .process_with_scratch(&mut b.row, out, &mut b.scratch)
                     .expect("buffer lengths follow the plan");
-            });
-        self.row_spectra = spectra;
+            },
+        );
     }
 
     /// Each column of the row spectra, zero-padded from n1 to Q1,
-    /// transformed, divided by the symbol and transformed back.
-    fn columns_times_symbol(&mut self) {
-        let (n1, q1, h1, h2) = (self.rows, self.q1, self.q1 / 2 + 1, self.q2 / 2 + 1);
-        let mut columns = std::mem::take(&mut self.columns);
-        let this = &*self;
-        columns
-            .par_chunks_mut(q1)
-            .with_min_len(LINES_PER_TASK)
-            .enumerate()
-            .for_each_init(
-                || vec![C64::new(0.0, 0.0); this.scratch_len],
-                |scratch, (m2, column)| {
-                    for (i, c) in column[..n1].iter_mut().enumerate() {
-                        *c = this.row_spectra[i * h2 + m2];
-                    }
-                    column[n1..].fill(C64::new(0.0, 0.0));
-                    this.column_forward.process_with_scratch(column, scratch);
-                    let symbol = &this.symbol[m2 * h1..(m2 + 1) * h1];
-                    for (m1, c) in column.iter_mut().enumerate() {
-                        *c *= symbol[m1.min(q1 - m1)];
-                    }
-                    this.column_inverse.process_with_scratch(column, scratch);
+    /// transformed, divided by the symbol and transformed back, in place: a
+    /// wave of columns (as many Q1-long columns as `wave` holds) at a time,
+    /// in batches of [`COLUMN_BATCH`] shared among the threads, then the
+    /// first n1 values of each written back into its rows (the rows shared
+    /// among the threads).
+    fn columns_times_symbol(&self, spectra: &mut [C64], wave: &mut [C64]) {
+        let (q1, h2) = (self.q1, self.q2 / 2 + 1);
+        let per_wave = wave.len() / q1;
+        assert!(per_wave > 0, "the workspace's wave holds a column of Q1");
+        for first in (0..h2).step_by(per_wave) {
+            let width = per_wave.min(h2 - first);
+            let rows = &*spectra;
+            share(
+                wave[..width * q1].chunks_mut(COLUMN_BATCH * q1).collect(),
+                1,
+                || vec![C64::new(0.0, 0.0); self.scratch_len],
+                |scratch, b, batch| {
+                    self.batch_times_symbol(rows, first + b * COLUMN_BATCH, batch, scratch);
                 },
             );
-        self.columns = columns;
+            let columns = &wave[..width * q1];
+            share(
+                spectra.chunks_mut(h2).collect(),
+                LINES_PER_TASK,
+                || (),
+                |_, i, row| {
+                    for (t, v) in row[first..first + width].iter_mut().enumerate() {
+                        *v = columns[t * q1 + i];
+                    }
+                },
+            );
+        }
     }
 
-    /// Each lattice row back from its column values, gathered into `z`
-    /// (the rows shared among the threads when the points are in
-    /// lattice-row order, each writing its own slice of `z`).
-    fn rows_inverse(&self, convolution: &Convolution, z: &mut [f64]) {
+    /// One batch of columns: the row spectra's columns `at..` read from
+    /// `spectra`, zero-padded to Q1, each transformed, multiplied by the
+    /// symbol (even in m1: frequency `Q1 - m` is `m`'s) and transformed
+    /// back in `batch`.
+    fn batch_times_symbol(
+        &self,
+        spectra: &[C64],
+        at: usize,
+        batch: &mut [C64],
+        scratch: &mut [C64],
+    ) {
+        let (n1, q1, h1, h2) = (self.rows, self.q1, self.q1 / 2 + 1, self.q2 / 2 + 1);
+        let width = batch.len() / q1;
+        for (i, row) in spectra.chunks_exact(h2).enumerate() {
+            for (t, &v) in row[at..at + width].iter().enumerate() {
+                batch[t * q1 + i] = v;
+            }
+        }
+        for (t, column) in batch.chunks_exact_mut(q1).enumerate() {
+            let m2 = at + t;
+            column[n1..].fill(C64::new(0.0, 0.0));
+            self.column_forward.process_with_scratch(column, scratch);
+            let symbol = &self.symbol[m2 * h1..(m2 + 1) * h1];
+            for (m1, c) in column.iter_mut().enumerate() {
+                *c *= symbol[m1.min(q1 - m1)];
+            }
+            self.column_inverse.process_with_scratch(column, scratch);
+        }
+    }
+
+    /// Each lattice row back from its spectrum, gathered into `z` (the rows
+    /// shared among the threads when the points are in lattice-row order,
+    /// each writing its own slice of `z`).
+    fn rows_inverse(&self, convolution: &Convolution, spectra: &[C64], z: &mut [f64]) {
         let gather = &convolution.gather;
+        let h2 = self.q2 / 2 + 1;
         let one_row = |b: &mut RowBuffers, i: usize, out: &mut [f64], base: usize| {
-            self.row_back(b, i);
+            self.row_back(b, &spectra[i * h2..(i + 1) * h2]);
             for s in gather.row(i) {
                 let points = s.points();
                 out[points.start - base..points.end - base].copy_from_slice(&b.row[s.columns()]);
             }
         };
         match gather.row_slices(z) {
-            Some(slices) => slices
-                .into_par_iter()
-                .with_min_len(LINES_PER_TASK)
-                .enumerate()
-                .for_each_init(
-                    || self.row_buffers(),
-                    |b, (i, out)| {
-                        let base = gather.row(i).first().map_or(0, |s| s.points().start);
-                        one_row(b, i, out, base);
-                    },
-                ),
+            Some(slices) => share(
+                slices,
+                LINES_PER_TASK,
+                || self.row_buffers(),
+                |b, i, out| {
+                    let base = gather.row(i).first().map_or(0, |s| s.points().start);
+                    one_row(b, i, out, base);
+                },
+            ),
             None => {
                 let mut b = self.row_buffers();
                 for i in 0..self.rows {
@@ -281,12 +320,10 @@ impl LatticePreconditioner {
         }
     }
 
-    /// The inverse row transform of row `i` into `b.row`.
-    fn row_back(&self, b: &mut RowBuffers, i: usize) {
+    /// The inverse row transform of one row's half spectrum into `b.row`.
+    fn row_back(&self, b: &mut RowBuffers, spectrum: &[C64]) {
         let last = b.spectrum.len() - 1;
-        for (m2, v) in b.spectrum.iter_mut().enumerate() {
-            *v = self.columns[m2 * self.q1 + i];
-        }
+        b.spectrum.copy_from_slice(spectrum);
         // DC and (Q2 even) Nyquist of a real row are real; drop the rounding.
         b.spectrum[0].im = 0.0;
         if self.q2.is_multiple_of(2) {
@@ -338,7 +375,8 @@ mod tests {
             let refs: Vec<&Body> = bodies.iter().collect();
             let s = assemble(&points, &refs).unwrap();
             let kernel = LatticeKernel::new(&points, &refs).unwrap();
-            let mut pc = kernel.preconditioner().unwrap().unwrap();
+            let pc = kernel.preconditioner().unwrap().unwrap();
+            let mut ws = kernel.workspace().unwrap();
             assert_eq!(pc.periodic_grid(), (n1, n2));
             let lattice = points.lattice().unwrap();
             let (i0, j0) = lattice
@@ -389,7 +427,7 @@ mod tests {
                 }
                 let x: Vec<f64> = at.iter().map(|&(i, j)| phase(i, j).cos()).collect();
                 let mut z = vec![0.0; x.len()];
-                kernel.precondition_with(&x, &mut z, &mut pc);
+                kernel.precondition_with(&x, &mut z, &pc, &mut ws);
                 let scale = 1.0 / eigenvalue.abs();
                 for (k, (&xk, &zk)) in x.iter().zip(&z).enumerate() {
                     assert!(
@@ -400,6 +438,24 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The preconditioner holds its symbol and no buffer of the box's
+    /// size: `8 (Q1/2 + 1)(Q2/2 + 1)` bytes (about 2 a cell of the box) and
+    /// its struct, and an application needs no workspace but a product's.
+    #[test]
+    fn holds_only_its_symbol() {
+        let points = PointSet::grid_disk(1.0, 60.0).unwrap();
+        let kernel = LatticeKernel::new(&points, &[&Body::uniform_patch(steel())]).unwrap();
+        let pc = kernel.preconditioner().unwrap().unwrap();
+        let (q1, q2) = pc.periodic_grid();
+        let symbol = 8 * (q1 / 2 + 1) * (q2 / 2 + 1);
+        assert_eq!(
+            pc.memory_bytes(),
+            symbol + std::mem::size_of_val(&pc),
+            "{q1} x {q2}"
+        );
+        assert!(pc.memory_bytes() < 3 * q1 * q2, "{q1} x {q2}");
     }
 
     #[test]
@@ -426,21 +482,50 @@ mod tests {
             let r: Vec<f64> = (0..points.len())
                 .map(|k| ((k * 7919) % 1000) as f64 - 500.0)
                 .collect();
-            let on = |threads: usize| {
-                let pool = rayon::ThreadPoolBuilder::new()
+            let pool = |threads: usize| {
+                rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
                     .build()
-                    .unwrap();
-                pool.install(|| {
-                    let mut pc = kernel.preconditioner().unwrap().unwrap();
+                    .unwrap()
+            };
+            // On `threads`, with a workspace made on `made_on` threads (its
+            // wave of columns sized for them), `dirty` after a product.
+            let on = |threads: usize, made_on: usize, dirty: bool| {
+                let mut ws = pool(made_on).install(|| kernel.workspace().unwrap());
+                pool(threads).install(|| {
+                    let pc = kernel.preconditioner().unwrap().unwrap();
                     let mut z = vec![0.0; r.len()];
-                    kernel.precondition_with(&r, &mut z, &mut pc);
+                    if dirty {
+                        kernel.apply_with(&r, &mut z, &mut ws);
+                    }
+                    kernel.precondition_with(&r, &mut z, &pc, &mut ws);
                     z.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
                 })
             };
-            let one = on(1);
+            let one = on(1, 1, false);
             assert!(one.iter().any(|&b| f64::from_bits(b) != 0.0), "{name}");
-            assert!(one == on(2) && one == on(3), "{name}");
+            for (threads, made_on, dirty) in
+                [(2, 2, false), (3, 3, true), (1, 3, true), (3, 1, false)]
+            {
+                assert!(
+                    one == on(threads, made_on, dirty),
+                    "{name}: {threads} threads, a workspace of {made_on}, dirty: {dirty}"
+                );
+            }
         }
+    }
+
+    #[test]
+    #[should_panic(expected = "the workspace was made for an operator of another grid")]
+    fn a_workspace_of_another_grid_panics() {
+        let bodies = [&Body::uniform_patch(steel())];
+        let small = PointSet::grid_rectangle(1.0, 1.0, 6, 6).unwrap();
+        let large = PointSet::grid_rectangle(1.0, 1.0, 12, 12).unwrap();
+        let kernel = LatticeKernel::new(&small, &bodies).unwrap();
+        let other = LatticeKernel::new(&large, &bodies).unwrap();
+        let pc = kernel.preconditioner().unwrap().unwrap();
+        let mut ws = other.workspace().unwrap();
+        let (r, mut z) = (vec![1.0; small.len()], vec![0.0; small.len()]);
+        kernel.precondition_with(&r, &mut z, &pc, &mut ws);
     }
 }
