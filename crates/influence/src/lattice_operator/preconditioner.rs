@@ -78,9 +78,11 @@ fn windowed(convolution: &Convolution, j1: usize, j2: usize) -> f64 {
 /// Rows or columns a thread takes up at least at once.
 const LINES_PER_TASK: usize = 8;
 
-/// The approximate inverse `r -> z` of a [`LatticeKernel`](super::LatticeKernel)
-/// (see the [module documentation](self)): its symbol and plans, no buffer
-/// of the box's size (an application borrows a product's workspace). Made by
+/// The approximate inverse `r -> z` of a [`LatticeKernel`](super::LatticeKernel):
+/// `z = IDFT_Q(DFT_Q(r) / Ŝ_Q) / (Q1 Q2)`, the inverse of the kernel's
+/// symbol by a periodic FFT on the half-size grid `Q1 x Q2` (Vollebregt
+/// 2014). It holds its symbol and plans, no buffer of the box's size (an
+/// application borrows a product's workspace). Made by
 /// [`LatticeKernel::preconditioner`](super::LatticeKernel::preconditioner),
 /// applied by [`LatticeKernel::precondition_with`](super::LatticeKernel::precondition_with).
 pub struct LatticePreconditioner {
