@@ -463,6 +463,13 @@ def test_every_family_from_problems_with_the_scenes_names_and_errors():
                              r"[0-9.e+-]+: the crown is asked beyond its radius") as failed:
         elcon.design([problem], family="circular-crown", radius_range=[1.0, 2.0])
     assert "circular_crown" not in str(failed.value)
+    # A design load whose Hertz width passes the crowned length: refused
+    # by the scene's parser before the design, naming the call's key.
+    with pytest.raises(elcon.InputError, match=r"`design.design_load` = 1000000000000: the Hertz "
+                       r"half-width at this load exceeds the crowned half-length") as failed:
+        elcon.design([problem], family="logarithmic-crown", design_load=1e12,
+                     roller={"combined_modulus": 30e6, "radius": 1.0, "length": 8.9})
+    assert "log_crown" not in str(failed.value)
 
 
 def test_python_is_as_safe_as_the_cli(tmp_path, monkeypatch):
