@@ -55,6 +55,30 @@ pub(super) fn share<I: Send, S>(
     }
 }
 
+/// A wave of transformed columns back into the rows they were read from:
+/// entry `i` of column `t` (`columns[t * len + i]`, each `len` long) to
+/// `rows[i][first + t]`, the rows shared among the threads as [`share`]
+/// does (copies only: the same values for any thread count).
+pub(super) fn columns_back(
+    rows: Vec<&mut [C64]>,
+    min_len: usize,
+    first: usize,
+    columns: &[C64],
+    len: usize,
+) {
+    let width = columns.len() / len;
+    share(
+        rows,
+        min_len,
+        || (),
+        |_, i, row| {
+            for (t, v) in row[first..first + width].iter_mut().enumerate() {
+                *v = columns[t * len + i];
+            }
+        },
+    );
+}
+
 /// The half-space part of S on the lattice: the gather order, the kernel
 /// spectrum and the FFT plans (immutable after construction).
 pub(super) struct Convolution {
@@ -347,16 +371,12 @@ impl Convolution {
                     self.batch_times_kernel(spectra, stride, at, first - offset, batch, scratch);
                 },
             );
-            let columns = &ws.columns[..width * p1];
-            share(
+            columns_back(
                 ws.spectra[..rows].chunks_mut(stride).collect(),
                 ROWS_PER_TASK,
-                || (),
-                |_, i, row| {
-                    for (t, z) in row[offset..offset + width].iter_mut().enumerate() {
-                        *z = columns[t * p1 + i];
-                    }
-                },
+                offset,
+                &ws.columns[..width * p1],
+                p1,
             );
         }
     }

@@ -38,7 +38,7 @@ use std::sync::Arc;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
-use super::convolution::{Convolution, LatticeWorkspace, share};
+use super::convolution::{Convolution, LatticeWorkspace, columns_back, share};
 use super::grid::{C64, COLUMN_BATCH, try_vec};
 use crate::error::InfluenceError;
 
@@ -246,16 +246,12 @@ impl LatticePreconditioner {
                     self.batch_times_symbol(rows, first + b * COLUMN_BATCH, batch, scratch);
                 },
             );
-            let columns = &wave[..width * q1];
-            share(
+            columns_back(
                 spectra.chunks_mut(h2).collect(),
                 LINES_PER_TASK,
-                || (),
-                |_, i, row| {
-                    for (t, v) in row[first..first + width].iter_mut().enumerate() {
-                        *v = columns[t * q1 + i];
-                    }
-                },
+                first,
+                &wave[..width * q1],
+                q1,
             );
         }
     }
