@@ -126,6 +126,16 @@ fn bad_subsurface_keys_name_the_field_and_the_reason() {
             "> 0",
         ),
         (
+            "subsurface = true\nsubsurface_depths = [0.001, 1e4]",
+            "outputs.subsurface_depths",
+            "deeper than 10 times the candidate zone's size",
+        ),
+        (
+            "subsurface = true\nsubsurface_depths = [1e300]",
+            "outputs.subsurface_depths",
+            "a point force's",
+        ),
+        (
             "subsurface = true\nsubsurface_depths = []",
             "outputs.subsurface_depths",
             "1 to 400",

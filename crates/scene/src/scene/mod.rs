@@ -370,7 +370,12 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         None => None,
     };
     program_reads_entries(ctx, &raw, design.as_ref(), &plan)?;
-    let outputs = outputs::outputs(ctx, raw.outputs.as_ref(), design.is_some())?;
+    let outputs = outputs::outputs(
+        ctx,
+        raw.outputs.as_ref(),
+        design.is_some(),
+        crate::sanity::zone_size(&points),
+    )?;
     let mut scene = Scene {
         name,
         file: ctx.file.to_path_buf(),

@@ -1,6 +1,7 @@
 //! `[outputs]`: the plots asked for, whether to write pressure.csv, and
 //! whether to compute the stresses below the surface (and on which depths).
 
+use elcon_analysis::Num;
 use elcon_analysis::subsurface::SubsurfaceOptions;
 
 use crate::ctx::Ctx;
@@ -11,6 +12,13 @@ pub use crate::schema::Plot;
 /// The most depths `outputs.subsurface_depths` may list (each a layer of
 /// the field over the whole grid).
 pub const MAX_SUBSURFACE_DEPTHS: usize = 400;
+
+/// The deepest `outputs.subsurface_depths` may reach, in sizes of the
+/// candidate zone: deeper, the field is a point force's (falling like
+/// `P / z^2`, a hundredth of the surface's peak and less), which the depth
+/// layers on the zone's box no longer resolve, and each layer's cost grows
+/// with its depth.
+pub const MAX_DEPTH_IN_ZONES: f64 = 10.0;
 
 /// What to write.
 #[derive(Debug, Clone, PartialEq)]
@@ -45,6 +53,7 @@ pub(super) fn outputs(
     ctx: &Ctx<'_>,
     o: Option<&OutputsToml>,
     has_design: bool,
+    zone: f64,
 ) -> Result<Outputs, SceneError> {
     let mut out = Outputs {
         plots: Vec::new(),
@@ -55,7 +64,7 @@ pub(super) fn outputs(
     if let Some(c) = o.pressure_csv {
         out.pressure_csv = c;
     }
-    out.subsurface = subsurface(ctx, o)?;
+    out.subsurface = subsurface(ctx, o, zone)?;
     if let Some(plots) = &o.plots {
         for p in plots.get_ref() {
             let plot = *p.get_ref();
@@ -79,8 +88,13 @@ pub(super) fn outputs(
 }
 
 /// `outputs.subsurface` and `outputs.subsurface_depths`: depths each
-/// finite and > 0, increasing, at most [`MAX_SUBSURFACE_DEPTHS`].
-fn subsurface(ctx: &Ctx<'_>, o: &OutputsToml) -> Result<Option<SubsurfaceOptions>, SceneError> {
+/// finite and > 0, increasing, at most [`MAX_SUBSURFACE_DEPTHS`], none
+/// deeper than [`MAX_DEPTH_IN_ZONES`] times the candidate zone's size `zone`.
+fn subsurface(
+    ctx: &Ctx<'_>,
+    o: &OutputsToml,
+    zone: f64,
+) -> Result<Option<SubsurfaceOptions>, SceneError> {
     let on = o.subsurface.as_ref().is_some_and(|s| *s.get_ref());
     let Some(given) = &o.subsurface_depths else {
         return Ok(on.then(SubsurfaceOptions::default));
@@ -112,6 +126,20 @@ fn subsurface(ctx: &Ctx<'_>, o: &OutputsToml) -> Result<Option<SubsurfaceOptions
                 field,
                 z,
                 "depths must be finite, > 0 and increasing (lengths below the surface)",
+            ));
+        }
+        if z > MAX_DEPTH_IN_ZONES * zone {
+            return Err(ctx.invalid(
+                d.span(),
+                field,
+                Num(z),
+                format!(
+                    "is deeper than {MAX_DEPTH_IN_ZONES} times the candidate zone's size, {}: \
+                     the field there is a point force's, which the depth layers on the \
+                     zone's box do not resolve; give depths within {}",
+                    Num(zone),
+                    Num(MAX_DEPTH_IN_ZONES * zone)
+                ),
             ));
         }
         previous = z;
