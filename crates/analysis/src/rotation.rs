@@ -29,6 +29,13 @@ pub enum RotationRefusal {
         /// The larger solved rotation, about x or y (rad).
         rotation: f64,
     },
+    /// A prescribed tilt pushes the contact against the candidate zone's
+    /// edge: the zone, not the bodies, ends the contact, and the answer
+    /// (peak, approach) depends on where the zone ends.
+    TiltAtEdge {
+        /// The larger prescribed tilt, about x or y (rad).
+        tilt: f64,
+    },
 }
 
 impl std::fmt::Display for RotationRefusal {
@@ -49,6 +56,15 @@ impl std::fmt::Display for RotationRefusal {
                  depends on where the zone ends",
                 short(rotation)
             ),
+            RotationRefusal::TiltAtEdge { tilt } => {
+                return write!(
+                    f,
+                    "the prescribed tilt of {} rad pushes the contact against the candidate \
+                     zone's edge: the zone's edge, not the bodies, ends the contact, and the \
+                     answer depends on where the zone ends. Give a smaller tilt, or a larger zone",
+                    short(tilt)
+                );
+            }
         }?;
         f.write_str(
             ". The load centre (the moment over the load) must lie well inside the contact: \
@@ -59,8 +75,9 @@ impl std::fmt::Display for RotationRefusal {
 
 /// Checks a solution of a problem under `loading`: when a moment is given
 /// about x or y, its solved rotation must be within [`MAX_ROTATION`] and
-/// the contact clear of the zone's open edge. Without a moment it always
-/// holds (a prescribed tilt is bounded where it is given).
+/// the contact clear of the zone's open edge; under a prescribed tilt
+/// (bounded where it is given) the contact must be clear of that edge too.
+/// Without a moment or a tilt it always holds.
 ///
 /// # Errors
 /// The [`RotationRefusal`] that says why.
@@ -69,18 +86,27 @@ pub fn small_rotation(
     solution: &ContactSolution,
 ) -> Result<(), RotationRefusal> {
     let moment = |t: Tilt| matches!(t, Tilt::Free { moment } if moment != 0.0);
+    let at_edge = solution
+        .warnings
+        .iter()
+        .any(|w| matches!(w, Warning::ContactAtEdge { .. }));
     if !moment(loading.tilt_x) && !moment(loading.tilt_y) {
-        return Ok(());
+        let tilt = |t: Tilt| match t {
+            Tilt::Prescribed { angle } => angle.abs(),
+            Tilt::Free { .. } => 0.0,
+        };
+        let tilt = tilt(loading.tilt_x).max(tilt(loading.tilt_y));
+        return if tilt > 0.0 && at_edge {
+            Err(RotationRefusal::TiltAtEdge { tilt })
+        } else {
+            Ok(())
+        };
     }
     let rotation = solution.tilt_x.abs().max(solution.tilt_y.abs());
     if !(rotation <= MAX_ROTATION) {
         return Err(RotationRefusal::Beyond { rotation });
     }
-    if solution
-        .warnings
-        .iter()
-        .any(|w| matches!(w, Warning::ContactAtEdge { .. }))
-    {
+    if at_edge {
         return Err(RotationRefusal::AtEdge { rotation });
     }
     Ok(())

@@ -376,6 +376,23 @@ fn a_moment_that_pushes_the_contact_to_the_zones_edge_is_outside_the_small_rotat
             .to_string()
             .contains("give a smaller moment, or a larger zone")
     );
+    // A prescribed tilt shifts the contact by about tilt x R (R = 1/1.1 in,
+    // the relative radius): 0.1 a stays clear of the zone's edge, 0.9 a
+    // pushes the contact to it and is refused in the tilt's terms.
+    let radius = 1.0 / 1.1;
+    let tilted = Loading::load(100.0).with_tilt_x(0.1 * a / radius);
+    assert_eq!(small_rotation(&tilted, &spheres_under(tilted)), Ok(()));
+    let tilted = Loading::load(100.0).with_tilt_x(0.9 * a / radius);
+    let refused = small_rotation(&tilted, &spheres_under(tilted)).unwrap_err();
+    assert!(
+        matches!(refused, RotationRefusal::TiltAtEdge { tilt } if tilt == 0.9 * a / radius),
+        "{refused:?}"
+    );
+    assert!(
+        refused
+            .to_string()
+            .contains("Give a smaller tilt, or a larger zone")
+    );
     let beyond = RotationRefusal::Beyond { rotation: 3.47 };
     assert!(
         beyond
