@@ -104,13 +104,14 @@ pub fn max_pivots_bound(points: usize) -> usize {
 }
 
 /// A concave surface must have the larger radius: the summed curvature
-/// along x and along y must not be negative.
+/// along x and along y must not be negative, whether or not tabulated
+/// departures (a height map, a profile) are added to the surfaces.
 pub(crate) fn curvatures(
     ctx: &Ctx<'_>,
     raw: Option<&Spanned<GeometryToml>>,
     geometry: &Geometry,
 ) -> Result<(), SceneError> {
-    let Geometry::Surfaces(a, b) = geometry else {
+    let Some((a, b)) = geometry.surfaces() else {
         return Ok(());
     };
     let (ka, kb) = (a.curvatures(), b.curvatures());

@@ -600,3 +600,27 @@ fn every_example_scene_passes_check() {
     }
     assert!(checked >= 10, "{checked} example scenes");
 }
+
+#[test]
+fn a_height_map_does_not_let_a_concave_surface_through() {
+    // The rough sphere with its sphere made concave against the plane: the
+    // height map's departures do not change the quadrics' interpenetration.
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes");
+    let text = std::fs::read_to_string(dir.join("rough-sphere.toml"))
+        .unwrap()
+        .replace(
+            "file = \"data/rough-surface.npy\"",
+            &format!("file = {:?}", dir.join("data/rough-surface.npy")),
+        );
+    scene(&text).unwrap();
+    let concave = text.replace(
+        "surface1 = { shape = \"sphere\", radius = 10.0 }",
+        "surface1 = { shape = \"sphere\", radius = -10.0 }",
+    );
+    assert_ne!(concave, text);
+    refused(
+        &concave,
+        "geometry.surface1.radius",
+        "a concave surface must have the larger radius: against a plane",
+    );
+}
