@@ -10,14 +10,12 @@
 //! needs ([`LatticeWorkspace`]).
 
 use std::ops::Range;
-use std::sync::Arc;
 
 use rayon::prelude::*;
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use rustfft::{Fft, FftPlanner};
+use realfft::RealFftPlanner;
 
 use super::gather::GatherOrder;
-use super::grid::{C64, COLUMN_BATCH, Grid, try_vec, wave_len};
+use super::grid::{C64, COLUMN_BATCH, Grid, Plans, RowBuffers, try_vec, wave_len};
 use super::spectrum::kernel_spectrum;
 use crate::error::InfluenceError;
 use crate::points::{LatticeBox, PointSet};
@@ -87,12 +85,8 @@ pub(super) struct Convolution {
     /// `DFT(Kc) / (P1 P2)` at frequency `(m1, m2)`, `m1 <= P1/2`,
     /// `m2 <= P2/2`, at `m2 (P1/2 + 1) + m1` (real: Kc is even).
     pub(super) spectrum: Vec<f64>,
-    row_forward: Arc<dyn RealToComplex<f64>>,
-    row_inverse: Arc<dyn ComplexToReal<f64>>,
-    column_forward: Arc<dyn Fft<f64>>,
-    column_inverse: Arc<dyn Fft<f64>>,
-    /// FFT scratch (complex values) the plans need.
-    scratch_len: usize,
+    /// The FFT plans of its grid.
+    plans: Plans,
 }
 
 impl std::fmt::Debug for Convolution {
@@ -122,14 +116,6 @@ pub struct LatticeWorkspace {
     spectra: Vec<C64>,
     /// Columns of the band, zero-padded to P1, transformed together.
     columns: Vec<C64>,
-}
-
-/// A thread's buffers for row transforms: a row, its half spectrum and the
-/// FFT scratch (O(P2), made when a thread takes up a share of the rows).
-struct RowBuffers {
-    row: Vec<f64>,
-    spectrum: Vec<C64>,
-    scratch: Vec<C64>,
 }
 
 impl LatticeWorkspace {
@@ -187,29 +173,12 @@ impl Convolution {
         let gather = GatherOrder::new(points, bounds)?;
         let mut real_planner = RealFftPlanner::<f64>::new();
         let (spectrum, self_term) = kernel_spectrum(terms, &grid, &mut real_planner)?;
-        let row_forward = real_planner.plan_fft_forward(grid.padded_columns);
-        let row_inverse = real_planner.plan_fft_inverse(grid.padded_columns);
-        let mut planner = FftPlanner::<f64>::new();
-        let column_forward = planner.plan_fft_forward(grid.padded_rows);
-        let column_inverse = planner.plan_fft_inverse(grid.padded_rows);
-        let scratch_len = [
-            row_forward.get_scratch_len(),
-            row_inverse.get_scratch_len(),
-            column_forward.get_inplace_scratch_len(),
-            column_inverse.get_inplace_scratch_len(),
-        ]
-        .into_iter()
-        .max()
-        .unwrap_or(0);
+        let plans = Plans::new(&mut real_planner, grid.padded_rows, grid.padded_columns);
         let convolution = Self {
             grid,
             gather,
             spectrum,
-            row_forward,
-            row_inverse,
-            column_forward,
-            column_inverse,
-            scratch_len,
+            plans,
         };
         Ok((convolution, self_term))
     }
@@ -235,17 +204,6 @@ impl Convolution {
         }
     }
 
-    /// A thread's buffers for the row transforms.
-    fn row_buffers(&self) -> RowBuffers {
-        let g = self.grid;
-        let zero = C64::new(0.0, 0.0);
-        RowBuffers {
-            row: vec![0.0; g.padded_columns],
-            spectrum: vec![zero; g.half_columns()],
-            scratch: vec![zero; self.scratch_len],
-        }
-    }
-
     /// The forces of each lattice row, zero-padded to P2, to their half
     /// spectrum, of which the frequencies `band` are kept (the rows shared
     /// among the threads).
@@ -255,10 +213,11 @@ impl Convolution {
         share(
             spectra,
             ROWS_PER_TASK,
-            || self.row_buffers(),
+            || self.plans.row_buffers(),
             |b, i, spectrum| {
                 self.spread_row(i, x, &mut b.row);
-                self.row_forward
+                self.plans
+                    .row_forward
                     .process_with_scratch(&mut b.row, &mut b.spectrum, &mut b.scratch)
                     .expect("buffer lengths follow the plan");
                 spectrum.copy_from_slice(&b.spectrum[band.clone()]);
@@ -292,14 +251,14 @@ impl Convolution {
             Some(slices) => share(
                 slices,
                 ROWS_PER_TASK,
-                || self.row_buffers(),
+                || self.plans.row_buffers(),
                 |b, i, out| {
                     let base = self.gather.row(i).first().map_or(0, |s| s.points().start);
                     one_row(b, i, &spectra[i * stride..(i + 1) * stride], out, base);
                 },
             ),
             None => {
-                let mut b = self.row_buffers();
+                let mut b = self.plans.row_buffers();
                 for (i, spectrum) in spectra.chunks_exact(stride).enumerate() {
                     one_row(&mut b, i, spectrum, y, 0);
                 }
@@ -341,7 +300,8 @@ impl Convolution {
         // DC and Nyquist of a real row are real; drop the rounding.
         b.spectrum[0].im = 0.0;
         b.spectrum[half - 1].im = 0.0;
-        self.row_inverse
+        self.plans
+            .row_inverse
             .process_with_scratch(&mut b.spectrum, &mut b.row, &mut b.scratch)
             .expect("buffer lengths follow the plan");
     }
@@ -365,7 +325,7 @@ impl Convolution {
                     .chunks_mut(COLUMN_BATCH * p1)
                     .collect(),
                 1,
-                || vec![C64::new(0.0, 0.0); self.scratch_len],
+                || self.plans.scratch(),
                 |scratch, b, batch| {
                     let at = offset + b * COLUMN_BATCH;
                     self.batch_times_kernel(spectra, stride, at, first - offset, batch, scratch);
@@ -406,7 +366,9 @@ impl Convolution {
                 batch[t * p1 + i] = z;
             }
         }
-        self.column_forward.process_with_scratch(batch, scratch);
+        self.plans
+            .column_forward
+            .process_with_scratch(batch, scratch);
         for (t, column) in batch.chunks_exact_mut(p1).enumerate() {
             let m2 = band_start + at + t;
             let kernel = &self.spectrum[m2 * half_rows..(m2 + 1) * half_rows];
@@ -422,7 +384,9 @@ impl Convolution {
                 *z *= k;
             }
         }
-        self.column_inverse.process_with_scratch(batch, scratch);
+        self.plans
+            .column_inverse
+            .process_with_scratch(batch, scratch);
     }
 }
 

@@ -9,7 +9,11 @@
 //! (the estimate made before anything is built), with the fallible
 //! allocation of its buffers.
 
+use std::sync::Arc;
+
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
 
 use crate::error::InfluenceError;
 use crate::points::LatticeBox;
@@ -151,6 +155,71 @@ pub(super) fn try_vec<T: Clone>(
 pub(super) fn wave_len(grid: &Grid) -> usize {
     let threads = rayon::current_num_threads().max(1);
     (COLUMN_BATCH * threads).min(grid.band_width())
+}
+
+/// The four FFT plans of a 2-D transform on a `rows x columns` grid (real
+/// transforms of length `columns` along the rows, complex ones of length
+/// `rows` along the columns) and the scratch they need: the product's on
+/// its padded grid, the preconditioner's on its periodic one.
+pub(super) struct Plans {
+    pub(super) row_forward: Arc<dyn RealToComplex<f64>>,
+    pub(super) row_inverse: Arc<dyn ComplexToReal<f64>>,
+    pub(super) column_forward: Arc<dyn Fft<f64>>,
+    pub(super) column_inverse: Arc<dyn Fft<f64>>,
+    /// FFT scratch (complex values) the plans need.
+    pub(super) scratch_len: usize,
+    columns: usize,
+}
+
+/// A thread's buffers for row transforms: a row, its half spectrum and the
+/// FFT scratch (O(columns), made when a thread takes up a share of the rows).
+pub(super) struct RowBuffers {
+    pub(super) row: Vec<f64>,
+    pub(super) spectrum: Vec<C64>,
+    pub(super) scratch: Vec<C64>,
+}
+
+impl Plans {
+    /// The plans of a `rows x columns` grid, the row plans from `real_planner`
+    /// (which caches them across its callers).
+    pub(super) fn new(real_planner: &mut RealFftPlanner<f64>, rows: usize, columns: usize) -> Self {
+        let row_forward = real_planner.plan_fft_forward(columns);
+        let row_inverse = real_planner.plan_fft_inverse(columns);
+        let mut planner = FftPlanner::<f64>::new();
+        let column_forward = planner.plan_fft_forward(rows);
+        let column_inverse = planner.plan_fft_inverse(rows);
+        let scratch_len = [
+            row_forward.get_scratch_len(),
+            row_inverse.get_scratch_len(),
+            column_forward.get_inplace_scratch_len(),
+            column_inverse.get_inplace_scratch_len(),
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(0);
+        Self {
+            row_forward,
+            row_inverse,
+            column_forward,
+            column_inverse,
+            scratch_len,
+            columns,
+        }
+    }
+
+    /// The FFT scratch of one thread.
+    pub(super) fn scratch(&self) -> Vec<C64> {
+        vec![C64::new(0.0, 0.0); self.scratch_len]
+    }
+
+    /// A thread's buffers for the row transforms.
+    pub(super) fn row_buffers(&self) -> RowBuffers {
+        RowBuffers {
+            row: vec![0.0; self.columns],
+            spectrum: vec![C64::new(0.0, 0.0); self.columns / 2 + 1],
+            scratch: self.scratch(),
+        }
+    }
 }
 
 #[cfg(test)]

@@ -33,13 +33,10 @@
 //! thread, nothing summed across threads: the values do not depend on
 //! their number, nor on the wave's size.
 
-use std::sync::Arc;
-
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use rustfft::{Fft, FftPlanner};
+use realfft::RealFftPlanner;
 
 use super::convolution::{Convolution, LatticeWorkspace, columns_back, share};
-use super::grid::{C64, COLUMN_BATCH, try_vec};
+use super::grid::{C64, COLUMN_BATCH, Plans, RowBuffers, try_vec};
 use crate::error::InfluenceError;
 
 /// The symbol's floor: a value of `Ŝ_Q` below `max Ŝ_Q / (SYMBOL_FLOOR
@@ -93,11 +90,8 @@ pub struct LatticePreconditioner {
     /// `1 / (Q1 Q2 Ŝ_Q[m1, m2])` at `m2 (Q1/2 + 1) + m1`, `m1 <= Q1/2`,
     /// `m2 <= Q2/2` (even in both).
     symbol: Vec<f64>,
-    row_forward: Arc<dyn RealToComplex<f64>>,
-    row_inverse: Arc<dyn ComplexToReal<f64>>,
-    column_forward: Arc<dyn Fft<f64>>,
-    column_inverse: Arc<dyn Fft<f64>>,
-    scratch_len: usize,
+    /// The FFT plans of its grid.
+    plans: Plans,
 }
 
 impl std::fmt::Debug for LatticePreconditioner {
@@ -106,13 +100,6 @@ impl std::fmt::Debug for LatticePreconditioner {
             .field("periodic_grid", &(self.q1, self.q2))
             .finish_non_exhaustive()
     }
-}
-
-/// A thread's buffers for the row transforms.
-struct RowBuffers {
-    row: Vec<f64>,
-    spectrum: Vec<C64>,
-    scratch: Vec<C64>,
 }
 
 impl LatticePreconditioner {
@@ -139,31 +126,13 @@ impl LatticePreconditioner {
         for v in &mut symbol {
             *v = 1.0 / (periodic * v.max(floor));
         }
-        let mut real_planner = RealFftPlanner::<f64>::new();
-        let row_forward = real_planner.plan_fft_forward(q2);
-        let row_inverse = real_planner.plan_fft_inverse(q2);
-        let mut planner = FftPlanner::<f64>::new();
-        let column_forward = planner.plan_fft_forward(q1);
-        let column_inverse = planner.plan_fft_inverse(q1);
-        let scratch_len = [
-            row_forward.get_scratch_len(),
-            row_inverse.get_scratch_len(),
-            column_forward.get_inplace_scratch_len(),
-            column_inverse.get_inplace_scratch_len(),
-        ]
-        .into_iter()
-        .max()
-        .unwrap_or(0);
+        let plans = Plans::new(&mut RealFftPlanner::<f64>::new(), q1, q2);
         Ok(Self {
             rows: g.rows,
             q1,
             q2,
             symbol,
-            row_forward,
-            row_inverse,
-            column_forward,
-            column_inverse,
-            scratch_len,
+            plans,
         })
     }
 
@@ -176,15 +145,6 @@ impl LatticePreconditioner {
     /// buffers are the workspace's).
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Self>() + 8 * self.symbol.capacity()
-    }
-
-    fn row_buffers(&self) -> RowBuffers {
-        let zero = C64::new(0.0, 0.0);
-        RowBuffers {
-            row: vec![0.0; self.q2],
-            spectrum: vec![zero; self.q2 / 2 + 1],
-            scratch: vec![zero; self.scratch_len],
-        }
     }
 
     /// `z = IDFT(DFT(r) / Ŝ_Q) / (Q1 Q2)` on the box, `r` spread on it and
@@ -212,13 +172,14 @@ impl LatticePreconditioner {
         share(
             spectra.chunks_mut(self.q2 / 2 + 1).collect(),
             LINES_PER_TASK,
-            || self.row_buffers(),
+            || self.plans.row_buffers(),
             |b, i, out| {
                 b.row.fill(0.0);
                 for s in gather.row(i) {
                     b.row[s.columns()].copy_from_slice(&r[s.points()]);
                 }
-                self.row_forward
+                self.plans
+                    .row_forward
                     .process_with_scratch(&mut b.row, out, &mut b.scratch)
                     .expect("buffer lengths follow the plan");
             },
@@ -241,7 +202,7 @@ impl LatticePreconditioner {
             share(
                 wave[..width * q1].chunks_mut(COLUMN_BATCH * q1).collect(),
                 1,
-                || vec![C64::new(0.0, 0.0); self.scratch_len],
+                || self.plans.scratch(),
                 |scratch, b, batch| {
                     self.batch_times_symbol(rows, first + b * COLUMN_BATCH, batch, scratch);
                 },
@@ -277,12 +238,16 @@ impl LatticePreconditioner {
         for (t, column) in batch.chunks_exact_mut(q1).enumerate() {
             let m2 = at + t;
             column[n1..].fill(C64::new(0.0, 0.0));
-            self.column_forward.process_with_scratch(column, scratch);
+            self.plans
+                .column_forward
+                .process_with_scratch(column, scratch);
             let symbol = &self.symbol[m2 * h1..(m2 + 1) * h1];
             for (m1, c) in column.iter_mut().enumerate() {
                 *c *= symbol[m1.min(q1 - m1)];
             }
-            self.column_inverse.process_with_scratch(column, scratch);
+            self.plans
+                .column_inverse
+                .process_with_scratch(column, scratch);
         }
     }
 
@@ -303,14 +268,14 @@ impl LatticePreconditioner {
             Some(slices) => share(
                 slices,
                 LINES_PER_TASK,
-                || self.row_buffers(),
+                || self.plans.row_buffers(),
                 |b, i, out| {
                     let base = gather.row(i).first().map_or(0, |s| s.points().start);
                     one_row(b, i, out, base);
                 },
             ),
             None => {
-                let mut b = self.row_buffers();
+                let mut b = self.plans.row_buffers();
                 for i in 0..self.rows {
                     one_row(&mut b, i, z, 0);
                 }
@@ -327,7 +292,8 @@ impl LatticePreconditioner {
         if self.q2.is_multiple_of(2) {
             b.spectrum[last].im = 0.0;
         }
-        self.row_inverse
+        self.plans
+            .row_inverse
             .process_with_scratch(&mut b.spectrum, &mut b.row, &mut b.scratch)
             .expect("buffer lengths follow the plan");
     }
