@@ -215,21 +215,41 @@ impl Terms {
 
     /// The half-space part of S at every lattice offset `(di, dj)`,
     /// `0 <= di < ni`, `0 <= dj < nj`, at index `di * nj + dj`
-    /// ([`TableLayout::offset`]): one kernel evaluation per offset, at
-    /// `(di dx, dj dy)`, the self-term at (0, 0).
+    /// ([`TableLayout::offset`]): one kernel evaluation per distinct
+    /// offset, at `(di dx, dj dy)`, the self-term at (0, 0) (see
+    /// [`Terms::fill_table`]).
     pub(crate) fn table(&self, ni: usize, nj: usize) -> Vec<f64> {
         let mut table = vec![0.0; ni * nj];
-        for (di, row) in table.chunks_exact_mut(nj).enumerate() {
-            self.table_row(di, row);
-        }
+        self.fill_table(ni, nj, &mut table, (nj, 1));
         table
     }
 
-    /// Row `di` of [`Terms::table`]: `row[dj]` for `dj < row.len()`.
-    pub(crate) fn table_row(&self, di: usize, row: &mut [f64]) {
+    /// Writes the half-space part of S at lattice offset `(di, dj)`,
+    /// `0 <= di < ni`, `0 <= dj < nj`, to `out[di * strides.0 + dj *
+    /// strides.1]`, rows di in order. On square cells (dx = dy) the kernels
+    /// are symmetric bit for bit, `K(di, dj) = K(dj, di)` (Love's patch
+    /// sums the same two corner terms in the other order, Boussinesq's
+    /// `hypot` is symmetric), so an offset below the diagonal whose mirror
+    /// lies in the table is copied from it, evaluated once: about half the
+    /// evaluations of a square box.
+    pub(crate) fn fill_table(
+        &self,
+        ni: usize,
+        nj: usize,
+        out: &mut [f64],
+        strides: (usize, usize),
+    ) {
         let Cell { dx, dy } = self.cell;
-        for (dj, v) in row.iter_mut().enumerate() {
-            *v = self.coefficient(di as f64 * dx, dj as f64 * dy, di == 0 && dj == 0);
+        let at = |di: usize, dj: usize| di * strides.0 + dj * strides.1;
+        let symmetric = dx == dy;
+        for di in 0..ni {
+            for dj in 0..nj {
+                out[at(di, dj)] = if symmetric && dj < di && di < nj {
+                    out[at(dj, di)]
+                } else {
+                    self.coefficient(di as f64 * dx, dj as f64 * dy, di == 0 && dj == 0)
+                };
+            }
         }
     }
 
@@ -349,4 +369,55 @@ pub(crate) fn table_layout(points: &PointSet) -> Option<TableLayout> {
         ni: bounds.ni,
         nj: bounds.nj,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::Material;
+
+    /// The table entry by entry, each offset evaluated (no mirror).
+    fn evaluated(terms: &Terms, ni: usize, nj: usize) -> Vec<f64> {
+        let Cell { dx, dy } = terms.cell;
+        (0..ni)
+            .flat_map(|di| (0..nj).map(move |dj| (di, dj)))
+            .map(|(di, dj)| terms.coefficient(di as f64 * dx, dj as f64 * dy, di == 0 && dj == 0))
+            .collect()
+    }
+
+    #[test]
+    fn the_mirrored_table_equals_every_offset_evaluated_bit_for_bit() {
+        let steel = Material::new(210e9, 0.3).unwrap();
+        let soft = Material::new(3e9, 0.45).unwrap();
+        let (patch, force) = (Body::uniform_patch(steel), Body::point_force(soft));
+        let sets = [
+            PointSet::grid_disk(0.1, 0.73).unwrap(),
+            PointSet::grid_rectangle(1.0, 2.5, 4, 7).unwrap(),
+            PointSet::grid_rectangle(1.0, 1.0, 9, 9).unwrap(),
+            PointSet::grid_rectangle(0.3, 1.7, 1, 5).unwrap(),
+        ];
+        for points in &sets {
+            let terms = Terms::collect(points, &[&patch, &force]).unwrap();
+            // Boxes wider, taller and square, odd and even.
+            for (ni, nj) in [(7, 7), (5, 9), (9, 4), (1, 6), (6, 1), (8, 8)] {
+                let table = terms.table(ni, nj);
+                assert_eq!(table, evaluated(&terms, ni, nj), "{ni} x {nj}");
+                // Transposed into a wider buffer: the same entries.
+                let stride = ni + 2;
+                let mut out = vec![f64::NAN; stride * nj];
+                terms.fill_table(ni, nj, &mut out, (1, stride));
+                for (di, dj) in (0..ni).flat_map(|di| (0..nj).map(move |dj| (di, dj))) {
+                    assert_eq!(out[dj * stride + di], table[di * nj + dj]);
+                }
+            }
+        }
+        // Square cells mirror; the evaluations agree with their mirror.
+        let terms = Terms::collect(&sets[0], &[&patch, &force]).unwrap();
+        let (dx, dy) = (terms.cell.dx, terms.cell.dy);
+        assert_eq!(dx, dy);
+        for (a, b) in [(1, 3), (0, 5), (2, 7)] {
+            let at = |i: usize, j: usize| terms.coefficient(i as f64 * dx, j as f64 * dy, false);
+            assert_eq!(at(a, b), at(b, a));
+        }
+    }
 }

@@ -14,7 +14,7 @@ use crate::error::InfluenceError;
 use crate::terms::Terms;
 
 /// The kernel table of the bodies on the lattice's offsets (the one
-/// [`assemble`](crate::assemble) gathers from, computed a row at a time)
+/// [`assemble`](crate::assemble) gathers from, computed into the result)
 /// and its spectrum `DFT(Kc) / (P1 P2)` on `(P1/2 + 1) x (P2/2 + 1)`
 /// frequencies (see [`Convolution::spectrum`](super::convolution::Convolution::spectrum)); also the table's self-term.
 /// Kc is even along both axes, so both stages are real transforms of even
@@ -22,7 +22,7 @@ use crate::terms::Terms;
 /// The row stage writes its spectra into the result, transposed (frequency
 /// m2's values over i where the column stage reads them, `n1 <= P1/2 + 1`),
 /// and the column stage transforms them in place: nothing of the box's
-/// size is allocated but the result.
+/// size is allocated but the result, which first holds the table.
 pub(super) fn kernel_spectrum(
     terms: &Terms,
     grid: &Grid,
@@ -35,15 +35,19 @@ pub(super) fn kernel_spectrum(
     let zero = C64::new(0.0, 0.0);
     let mut scratch = vec![zero; row_fft.get_scratch_len().max(column_fft.get_scratch_len())];
     let mut spectrum = try_vec(grid.spectrum_len(), 0.0, "kernel spectrum")?;
+    // The kernel table, transposed into the result (offset (di, dj) at
+    // dj * half_rows + di: n2 <= P2/2 + 1 columns of n1 <= P1/2 + 1), so
+    // that the row stage reads row di before it writes frequency m2's
+    // values over the same di.
+    terms.fill_table(n1, n2, &mut spectrum, (1, half_rows));
+    let self_term = spectrum[0];
     // Rows: the even extension of each offset row di, transformed along j.
     let mut values = vec![0.0; n2];
     let mut row = vec![0.0; grid.padded_columns];
     let mut row_spectrum = vec![zero; grid.half_columns()];
-    let mut self_term = 0.0;
     for di in 0..n1 {
-        terms.table_row(di, &mut values);
-        if di == 0 {
-            self_term = values[0];
+        for (dj, v) in values.iter_mut().enumerate() {
+            *v = spectrum[dj * half_rows + di];
         }
         even_extension(&values, &mut row);
         row_fft

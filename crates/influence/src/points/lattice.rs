@@ -7,6 +7,11 @@
 //!
 //! listed, or as a grid's runs (a few bytes a lattice row); their bounding
 //! box; and the index from lattice coordinates back to the point.
+//!
+//! A grid's point k is found without a search: its run is the one the
+//! bucket `k / 64` starts in, or one of the few after it
+//! ([`GridRuns`]); the point at `(i, j)` of a grid whose runs are the
+//! consecutive lattice rows is in run `i - i_0`.
 
 use std::collections::HashMap;
 
@@ -44,6 +49,61 @@ impl Run {
     }
 }
 
+/// log2 of the points a bucket of [`GridRuns`] spans.
+const BUCKET_SHIFT: u32 = 6;
+
+/// A grid's runs (in increasing `start`, the first at 0), its number of
+/// points, and the run each bucket of `2^BUCKET_SHIFT` points starts in
+/// (4 bytes per 64 points): point k's run is found from its bucket's, not
+/// by a search over all the runs.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) struct GridRuns {
+    runs: Vec<Run>,
+    buckets: Vec<u32>,
+    len: usize,
+}
+
+impl GridRuns {
+    /// The runs of a grid of `len` points; `runs[0].start` is 0 and the
+    /// starts increase.
+    pub(super) fn new(runs: Vec<Run>, len: usize) -> Self {
+        debug_assert!(runs.first().is_some_and(|r| r.start == 0));
+        let mut buckets = Vec::with_capacity(len.div_ceil(1 << BUCKET_SHIFT));
+        let mut r = 0;
+        for first in (0..len).step_by(1 << BUCKET_SHIFT) {
+            while r + 1 < runs.len() && runs[r + 1].start <= first {
+                r += 1;
+            }
+            buckets.push(u32::try_from(r).expect("at most MAX_POINTS runs"));
+        }
+        Self { runs, buckets, len }
+    }
+
+    /// The number of points.
+    pub(super) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// The lattice indices, by the runs.
+    pub(super) fn lattice(&self) -> Lattice<'_> {
+        Lattice(LatticeRef::Runs {
+            runs: &self.runs,
+            buckets: &self.buckets,
+            len: self.len,
+        })
+    }
+}
+
+/// The run of `runs` that holds point `k < len`: the last that starts at
+/// or before k, looked for from the run k's bucket starts in up to the
+/// next bucket's (usually that one run).
+fn run_of(runs: &[Run], buckets: &[u32], k: usize) -> usize {
+    let b = k >> BUCKET_SHIFT;
+    let lo = buckets[b] as usize;
+    let hi = buckets.get(b + 1).map_or(runs.len(), |&r| r as usize + 1);
+    lo + runs[lo + 1..hi].partition_point(|r| r.start <= k)
+}
+
 /// The lattice indices `(i, j)` of a set's points
 /// ([`PointSet::lattice`](super::PointSet::lattice)):
 /// listed, or computed from a grid's runs.
@@ -53,18 +113,17 @@ pub struct Lattice<'a>(LatticeRef<'a>);
 #[derive(Debug, Clone, Copy)]
 enum LatticeRef<'a> {
     Listed(&'a [(i64, i64)]),
-    Runs { runs: &'a [Run], len: usize },
+    Runs {
+        runs: &'a [Run],
+        buckets: &'a [u32],
+        len: usize,
+    },
 }
 
 impl<'a> Lattice<'a> {
     /// The lattice indices as listed, point k at `indices[k]`.
     pub(super) fn listed(indices: &'a [(i64, i64)]) -> Self {
         Self(LatticeRef::Listed(indices))
-    }
-
-    /// A grid's `len` points by its runs.
-    pub(super) fn of_runs(runs: &'a [Run], len: usize) -> Self {
-        Self(LatticeRef::Runs { runs, len })
     }
 
     /// The number of points.
@@ -84,9 +143,9 @@ impl<'a> Lattice<'a> {
     pub fn get(&self, k: usize) -> (i64, i64) {
         match self.0 {
             LatticeRef::Listed(l) => l[k],
-            LatticeRef::Runs { runs, len } => {
+            LatticeRef::Runs { runs, buckets, len } => {
                 assert!(k < len, "point {k} of {len}");
-                runs[runs.partition_point(|r| r.start <= k) - 1].at(k)
+                runs[run_of(runs, buckets, k)].at(k)
             }
         }
     }
@@ -211,8 +270,9 @@ impl LatticeBox {
 
 /// The point at each lattice coordinate of a set
 /// ([`PointSet::lattice_index`](super::PointSet::lattice_index)):
-/// for a grid its runs (found by a binary search over the lattice rows,
-/// O(rows) memory); else a table over the lattice's bounding box (4 bytes a
+/// for a grid its runs (O(rows) memory; the run of lattice row i is
+/// `i - i_0` when the runs are the consecutive rows, as the grid
+/// constructors' are, else found by a binary search over the rows); else a table over the lattice's bounding box (4 bytes a
 /// cell) when the box is at most `TABLE_ENTRIES_PER_POINT` cells a point,
 /// else a hash map.
 #[derive(Debug, Clone)]
@@ -227,21 +287,33 @@ enum Index {
         cells: Vec<u32>,
     },
     Map(HashMap<(i64, i64), usize>),
-    /// A grid's runs (see [`Layout::Grid`](super::set::Layout::Grid)) and
-    /// its number of points.
+    /// A grid's runs (see [`Layout::Grid`](super::set::Layout::Grid)), its
+    /// number of points, and `i_0` when run r is lattice row `i_0 + r`
+    /// (along j).
     Runs {
         runs: Vec<Run>,
         len: usize,
+        first_row: Option<i64>,
     },
+}
+
+/// `i_0` when run r of `runs` is the lattice row `i_0 + r`, along j.
+fn consecutive_rows(runs: &[Run]) -> Option<i64> {
+    let i0 = runs.first()?.first.0;
+    runs.iter()
+        .zip(0..)
+        .all(|(run, r)| run.step == (0, 1) && i0.checked_add(r) == Some(run.first.0))
+        .then_some(i0)
 }
 
 impl LatticeIndex {
     /// The index of lattice coordinates (point k at `lattice[k]`).
     pub(super) fn of(lattice: Lattice<'_>) -> Self {
-        if let LatticeRef::Runs { runs, len } = lattice.0 {
+        if let LatticeRef::Runs { runs, len, .. } = lattice.0 {
             return Self(Index::Runs {
                 runs: runs.to_vec(),
                 len,
+                first_row: consecutive_rows(runs),
             });
         }
         let table = LatticeBox::of_lattice(lattice)
@@ -272,11 +344,15 @@ impl LatticeIndex {
                 (k != u32::MAX).then_some(k as usize)
             }
             Index::Map(map) => map.get(&(i, j)).copied(),
-            Index::Runs { runs, len } => {
-                let r = if runs.len() == 1 {
-                    0
-                } else {
-                    runs.partition_point(|run| run.first.0 < i)
+            Index::Runs {
+                runs,
+                len,
+                first_row,
+            } => {
+                let r = match first_row {
+                    Some(i0) => usize::try_from(i.checked_sub(*i0)?).ok()?,
+                    None if runs.len() == 1 => 0,
+                    None => runs.partition_point(|run| run.first.0 < i),
                 };
                 let run = runs.get(r)?;
                 let end = runs.get(r + 1).map_or(*len, |next| next.start);
@@ -342,5 +418,72 @@ mod tests {
         // A set without a lattice has no index.
         let scattered = scattered();
         assert!(scattered.lattice_index().is_none());
+    }
+
+    /// Runs of the given lengths along j, at rows `rows[r]`, each from j =
+    /// -r (a ragged grid).
+    fn ragged(rows: &[i64], lengths: &[usize]) -> GridRuns {
+        let mut start = 0;
+        let runs = rows
+            .iter()
+            .zip(lengths)
+            .enumerate()
+            .map(|(r, (&i, &n))| {
+                let run = Run {
+                    start,
+                    first: (i, -(r as i64)),
+                    step: (0, 1),
+                };
+                start += n;
+                run
+            })
+            .collect();
+        GridRuns::new(runs, start)
+    }
+
+    #[test]
+    fn grid_points_and_lattice_rows_are_found_by_arithmetic_as_by_a_search() {
+        let disk = PointSet::grid_disk(0.01, 0.73).unwrap();
+        let column = PointSet::grid_rectangle(2.0, 0.5, 200, 1).unwrap();
+        let line = PointSet::line(-1.0, 1.0, 300).unwrap();
+        // Runs of 1 to 150 points, many in one bucket, some spanning several.
+        let lengths: Vec<usize> = (0..120).map(|r| 1 + (r * r * 7) % 150).collect();
+        let rows: Vec<i64> = (0..120).map(|r| r - 60).collect();
+        let consecutive = ragged(&rows, &lengths);
+        // The same rows with gaps between them: the index searches.
+        let gapped_rows: Vec<i64> = (0..120).map(|r| 3 * r + r % 2).collect();
+        let gapped = ragged(&gapped_rows, &lengths);
+        let lattices = [
+            disk.lattice().unwrap(),
+            column.lattice().unwrap(),
+            line.lattice().unwrap(),
+            consecutive.lattice(),
+            gapped.lattice(),
+        ];
+        for (lattice, first_row) in lattices.into_iter().zip([true, true, false, true, false]) {
+            let LatticeRef::Runs { runs, len, .. } = lattice.0 else {
+                panic!("a grid's lattice is its runs");
+            };
+            // Point k by a linear scan of the runs: the run starting last at or before k.
+            for k in 0..len {
+                let r = runs.iter().rposition(|run| run.start <= k).unwrap();
+                assert_eq!(lattice.get(k), runs[r].at(k), "point {k}");
+            }
+            assert_eq!(lattice.iter().collect::<Vec<_>>(), lattice.to_vec());
+            let index = LatticeIndex::of(lattice);
+            let Index::Runs { first_row: i0, .. } = &index.0 else {
+                panic!("a grid's index is its runs");
+            };
+            assert_eq!(i0.is_some(), first_row);
+            for (k, (i, j)) in lattice.iter().enumerate() {
+                assert_eq!(index.get((i, j)), Some(k));
+                for absent in [(i, j + 1000), (i + 1000, j), (i64::MIN, j), (i64::MAX, j)] {
+                    assert_eq!(index.get(absent), None, "{absent:?}");
+                }
+            }
+        }
+        // Between the gapped rows, nothing.
+        let index = LatticeIndex::of(gapped.lattice());
+        assert_eq!(index.get((gapped_rows[3] + 1, 0)), None);
     }
 }

@@ -13,7 +13,7 @@ use elcon_num::Num;
 
 use super::boundary::{boundary_by_cells, lattice_boundary};
 use super::cell::Cell;
-use super::lattice::{Lattice, LatticeIndex, Run};
+use super::lattice::{GridRuns, Lattice, LatticeIndex, Run};
 use crate::dimension::Dimension;
 use crate::error::InfluenceError;
 
@@ -68,8 +68,7 @@ enum Layout {
     Grid {
         x: AxisRule,
         y: AxisRule,
-        runs: Vec<Run>,
-        len: usize,
+        runs: GridRuns,
     },
 }
 
@@ -377,11 +376,12 @@ impl PointSet {
         runs: Vec<Run>,
         len: usize,
     ) -> Self {
-        let boundary = lattice_boundary(dimension, Lattice::of_runs(&runs, len));
+        let runs = GridRuns::new(runs, len);
+        let boundary = lattice_boundary(dimension, runs.lattice());
         Self {
             dimension,
             cell,
-            layout: Layout::Grid { x, y, runs, len },
+            layout: Layout::Grid { x, y, runs },
             boundary,
         }
     }
@@ -390,7 +390,7 @@ impl PointSet {
     pub fn len(&self) -> usize {
         match &self.layout {
             Layout::Listed { xs, .. } => xs.len(),
-            Layout::Grid { len, .. } => *len,
+            Layout::Grid { runs, .. } => runs.len(),
         }
     }
 
@@ -497,7 +497,7 @@ impl PointSet {
     pub fn lattice(&self) -> Option<Lattice<'_>> {
         match &self.layout {
             Layout::Listed { lattice, .. } => lattice.as_deref().map(Lattice::listed),
-            Layout::Grid { runs, len, .. } => Some(Lattice::of_runs(runs, *len)),
+            Layout::Grid { runs, .. } => Some(runs.lattice()),
         }
     }
 
