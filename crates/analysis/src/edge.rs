@@ -25,6 +25,8 @@
 //! counts whole (t = h / 2), as it does for a problem built from a given S
 //! (`ContactProblem::from_parts`), whose edge law is not known.
 
+use std::cell::OnceCell;
+
 use elcon_influence::{Body, Dimension, Lattice, LatticeIndex, Model, PointSet};
 
 /// How the pressure falls to zero at a smooth edge of the contact.
@@ -68,13 +70,16 @@ impl EdgeLaw {
 
 /// A solution's pressures on its points, read for the contact's edge: the
 /// lattice's index built once (the measure and every boundary point's
-/// truncation test use it).
+/// truncation test use it), and the outline found once (the measure and
+/// the ellipse read it).
 pub(crate) struct Edge<'a> {
     points: &'a PointSet,
     pressures: &'a [f64],
     /// The lattice, its index and the power q of the law; `None` where the
     /// edge cannot be resolved (points not on a lattice, an unknown law).
     grid: Option<Grid<'a>>,
+    /// [`Edge::outline`], once asked for.
+    outline: OnceCell<Option<Vec<(f64, f64)>>>,
 }
 
 /// The lattice coordinates of the points, their index, and q.
@@ -98,7 +103,24 @@ impl<'a> Edge<'a> {
             points,
             pressures,
             grid,
+            outline: OnceCell::new(),
         }
+    }
+
+    /// The cells' measure of the contact: the sum of the measures of the
+    /// points where the pressure is positive.
+    fn cells(&self) -> f64 {
+        (0..self.points.len())
+            .filter(|&k| self.pressures[k] > 0.0)
+            .map(|k| self.points.measure(k))
+            .sum()
+    }
+
+    /// [`Edge::outline`] of the contact's cells, found on the first call.
+    fn outline_once(&self) -> Option<&[(f64, f64)]> {
+        self.outline
+            .get_or_init(|| self.outline(self.cells()))
+            .as_deref()
     }
 
     /// The point at lattice coordinates `ij`, if it is in contact.
@@ -161,19 +183,19 @@ impl<'a> Edge<'a> {
     /// the cells' own measure where the edge cannot be resolved.
     pub(crate) fn measure(&self) -> f64 {
         let (points, pressures) = (self.points, self.pressures);
-        let pressed_points = (0..points.len()).filter(|&k| pressures[k] > 0.0);
-        let cells: f64 = pressed_points.clone().map(|k| points.measure(k)).sum();
+        let cells = self.cells();
         let Some(g) = &self.grid else {
             return cells;
         };
         let cell = points.cell();
         if points.dimension() == Dimension::Line {
-            return pressed_points
+            return (0..points.len())
+                .filter(|&k| pressures[k] > 0.0)
                 .map(|k| self.reach(g, k, (1, 0), cell.dx) + self.reach(g, k, (-1, 0), cell.dx))
                 .sum();
         }
-        self.outline(cells)
-            .map_or(cells, |edge| polygon_moments(&edge).area)
+        self.outline_once()
+            .map_or(cells, |edge| polygon_moments(edge).area)
     }
 
     /// The ellipse of the contact's outline on a surface: the ellipse with
@@ -182,15 +204,10 @@ impl<'a> Edge<'a> {
     /// eigenvalues `a^2 / 4`, `b^2 / 4`); `None` on a line or where the
     /// edge cannot be resolved.
     pub(crate) fn ellipse(&self) -> Option<ContactEllipse> {
-        let (points, pressures) = (self.points, self.pressures);
-        if self.grid.is_none() || points.dimension() == Dimension::Line {
+        if self.grid.is_none() || self.points.dimension() == Dimension::Line {
             return None;
         }
-        let cells: f64 = (0..points.len())
-            .filter(|&k| pressures[k] > 0.0)
-            .map(|k| points.measure(k))
-            .sum();
-        let m = polygon_moments(&self.outline(cells)?);
+        let m = polygon_moments(self.outline_once()?);
         // The covariance [[sxx, sxy], [sxy, syy]] and its eigenvalues.
         let mean = 0.5 * (m.sxx + m.syy);
         let d = (0.5 * (m.sxx - m.syy)).hypot(m.sxy);
