@@ -38,8 +38,9 @@ const DISK_RADIUS_TOLERANCE: f64 = 1e-9;
 /// Built only by the validated constructors, so a `PointSet` is never empty,
 /// holds finite distinct coordinates and at most [`MAX_POINTS`] points.
 /// A grid constructor's set stores no coordinates: they follow from the
-/// lattice indices, which it stores as runs (a few bytes a lattice row), so
-/// a grid takes 2 bytes a point (its boundary flags).
+/// lattice indices, which it stores as runs (a few bytes a lattice row, and
+/// 4 bytes per 64 points that find a point's run), so a grid takes 2 bytes
+/// a point (its boundary flags).
 #[derive(Debug, Clone)]
 pub struct PointSet {
     dimension: Dimension,
