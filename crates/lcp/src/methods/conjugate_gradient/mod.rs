@@ -60,7 +60,10 @@
 //! (what is left above the recurrence's residual is that drift, or the
 //! rounding floor of sums of n terms), else the iteration goes on from the
 //! true product. The strategy then certifies the answer from the original
-//! operator and data. With `k = 0` it is the method under displacement
+//! operator and data. At the iteration cap
+//! ([`Options::max_pivots`](crate::Options::max_pivots)) short of its
+//! stopping rule it returns no answer
+//! ([`LcpError::ConjugateGradientLimit`]). With `k = 0` it is the method under displacement
 //! control (the approach inside `q`).
 //!
 //! Every pass over the vectors runs on the current rayon pool's threads,
@@ -449,7 +452,16 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
         } else {
             false
         };
-        if done || work.iterations >= cap {
+        if !done && work.iterations >= cap {
+            let error = LcpError::ConjugateGradientLimit {
+                size: n,
+                limit: cap,
+                residual: c,
+                tolerance: options.tolerances.certificate,
+            };
+            return Err(Failure::error(error, work));
+        }
+        if done {
             // The answer copies z: free the other vectors first.
             let State {
                 z,
