@@ -372,3 +372,64 @@ pub struct Outcome {
     /// How it was found.
     pub found: Found,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use elcon_analysis::{Geometry, Loading};
+    use elcon_influence::{Beam, PointSet};
+
+    /// Conry & Seireg's Example 2 beam (steel, 1 in x 4 in, 8.9 in long, 80
+    /// points, 50,000 lbf at its centre) on a Winkler foundation of
+    /// `modulus` lbf/in per in.
+    fn example2_on(modulus: f64) -> ContactProblem {
+        let points = PointSet::line(-4.45, 4.45, 80).unwrap();
+        let beam = Body::beam(Beam {
+            youngs_modulus: 30e6,
+            second_moment: 64.0 / 12.0,
+            loaded_point: 0.0,
+        })
+        .unwrap();
+        let foundation = Body::winkler(modulus);
+        let separation = Geometry::Separation(vec![0.0; 80]);
+        ContactProblem::new(points, &beam, &foundation, &separation, Loading::load(5e4)).unwrap()
+    }
+
+    #[test]
+    fn auto_hands_a_program_without_its_certificate_to_the_descent() {
+        // On a foundation of 0.5 lbf/in^2 the beam sinks 11,000 in and bends
+        // by thousandths of that: the program's tableau, which mixes forces,
+        // lengths and intensities, ends short of its certificate.
+        let cases = [example2_on(0.5)];
+        let quadratic = DesignFamily::Linear(Family::Quadratic);
+        let program = DesignRequest {
+            method: DesignMethod::Program,
+            ..DesignRequest::new(quadratic.clone(), Axis::X)
+        };
+        let e = program.run(&cases).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                DesignError::Engine(elcon_lcp::LcpError::Inaccurate { .. })
+            ),
+            "{e}"
+        );
+        // Auto (80 points: the program's range) falls back on the descent,
+        // whose design certifies.
+        let auto = DesignRequest::new(quadratic, Axis::X);
+        assert_eq!(auto.method, DesignMethod::Auto);
+        let outcome = auto.run(&cases).unwrap();
+        assert_eq!(outcome.found.method(), "descent");
+        let solution = &outcome.evaluation.solutions[0];
+        assert!(solution.certificate.holds(), "{:?}", solution.certificate);
+        assert!(
+            (solution.load - 5e4).abs() <= 1e-9 * 5e4,
+            "{}",
+            solution.load
+        );
+        // On the paper's foundation (1e7 lbf/in^2) Auto's program designs
+        // it itself.
+        let paper = auto.run(&[example2_on(1e7)]).unwrap();
+        assert_eq!(paper.found.method(), "program");
+    }
+}

@@ -175,6 +175,25 @@ pub enum LcpError {
         /// Its relative residual when the cap was reached.
         residual: f64,
     },
+    /// The conjugate gradient of an LCP reached its iteration cap before
+    /// its residuals met its stopping rule: it returns no unconverged
+    /// answer.
+    #[error(
+        "iteration limit {limit} of the conjugate gradient reached (size {size}) at a worst relative \
+         residual {residual:.3e} (tolerance {tolerance:.1e}); raise `max_pivots` (its iteration cap) \
+         or check the problem"
+    )]
+    ConjugateGradientLimit {
+        /// Number of unknowns.
+        size: usize,
+        /// The cap that was reached ([`Options::max_pivots`](crate::Options::max_pivots)).
+        limit: usize,
+        /// The worst of the residuals the certificate measures, relative to
+        /// their scale, at the last iterate.
+        residual: f64,
+        /// The certificate's tolerance.
+        tolerance: f64,
+    },
     /// The final solution does not satisfy its certificate to the tolerance
     /// even after refactorization and refinement: it is not returned as solved.
     #[error(

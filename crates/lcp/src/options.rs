@@ -163,7 +163,7 @@ pub struct Options {
     /// 100`); block pivoting takes at most this many iterations (default
     /// `3 n + 50`) before it breaks down; the conjugate gradient at most
     /// this many iterations (default `ITERATION_CAP`, 10,000), after which
-    /// its last iterate is certified like any answer; a linear system's
+    /// the solve ends with [`LcpError::ConjugateGradientLimit`]; a linear system's
     /// conjugate gradient at most this many per right-hand side, after
     /// which the solve ends with [`LcpError::IterationLimit`] (it returns no
     /// unconverged answer).

@@ -1,8 +1,8 @@
 //! One test per error variant of the engine, checking the message a caller sees.
 
 use elcon_lcp::{
-    BorderedLcp, Bound, Lcp, LcpError, LinearSystem, Method, MixedLcp, MixedLcpParts, Options,
-    ProgramBuilder, Tableau, Tolerances,
+    BorderedLcp, Bound, Lcp, LcpError, LinearSystem, Method, MixedLcp, MixedLcpParts, OperatorLcp,
+    Options, ProgramBuilder, Tableau, Tolerances,
 };
 use faer::{Col, Mat, col, mat};
 
@@ -490,4 +490,71 @@ fn iteration_limit_of_a_linear_system() {
         "{text}"
     );
     assert!(text.contains("raise `max_pivots`"), "{text}");
+}
+
+#[test]
+fn iteration_limit_of_the_conjugate_gradient() {
+    // The conjugate gradient of an LCP returns no unconverged answer: at
+    // its cap (`max_pivots`, counting iterations) it stops with its own
+    // error, whatever the problem's form.
+    let n = 20;
+    let m = Mat::from_fn(n, n, |i, j| {
+        1.0 / (1.0 + i.abs_diff(j) as f64) + if i == j { 2.0 } else { 0.0 }
+    });
+    let q = Col::from_fn(n, |i| if i % 3 == 0 { 1.0 } else { -1.0 - i as f64 });
+    let lcp = Lcp::new(m.clone(), q.clone()).unwrap();
+    let method = Method::ConjugateGradient;
+    let needed = lcp
+        .solve(method, &Options::default())
+        .unwrap()
+        .statistics
+        .iterations();
+    assert!(needed >= 2, "{needed}");
+    let capped = |limit| Options {
+        max_pivots: Some(limit),
+        ..Options::default()
+    };
+    // Its own count is enough; one fewer is the error.
+    let sol = lcp.solve(method, &capped(needed)).unwrap();
+    assert!(sol.certificate.holds());
+    let e = lcp.solve(method, &capped(needed - 1)).unwrap_err();
+    let LcpError::ConjugateGradientLimit {
+        size,
+        limit,
+        residual,
+        tolerance,
+    } = e
+    else {
+        panic!("{e}")
+    };
+    assert_eq!((size, limit), (n, needed - 1));
+    assert!(residual > tolerance && tolerance == Tolerances::default().certificate);
+    // Given by its products, the same.
+    let products = m.as_ref();
+    let e = OperatorLcp::new(&products, q.as_ref())
+        .unwrap()
+        .solve(method, &capped(1))
+        .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            LcpError::ConjugateGradientLimit {
+                size: 20,
+                limit: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let text = message(e);
+    assert!(
+        text.starts_with(
+            "iteration limit 1 of the conjugate gradient reached (size 20) at a worst relative residual"
+        ),
+        "{text}"
+    );
+    assert!(
+        text.ends_with("raise `max_pivots` (its iteration cap) or check the problem"),
+        "{text}"
+    );
 }

@@ -591,3 +591,49 @@ pub(super) fn preconditioned_direction_pass(
     });
     total(parts.into_iter())
 }
+
+/// The longest step `z_J - τ t_J` that keeps `z >= 0`: `min z_i / t_i`
+/// over `z_i > 0`, `t_i > 0` (infinite where no entry decreases).
+pub(super) fn boundary_pass(z: &[f64], t: &[f64]) -> f64 {
+    let parts = map_parts(ranges(z.len()), |range| {
+        let (z, t) = (&z[range.clone()], &t[range]);
+        (0..z.len())
+            .filter(|&i| z[i] > 0.0 && t[i] > 0.0)
+            .fold(f64::INFINITY, |m, i| m.min(z[i] / t[i]))
+    });
+    parts.into_iter().fold(f64::INFINITY, f64::min)
+}
+
+/// The step cut at the boundary: `z = before - τ_b t` on the contact set
+/// of `before`, `τ_b` from [`boundary_pass`]; the points that reach the
+/// boundary (ratio `before_i / t_i` at most `τ_b`) leave with `z_i = 0`
+/// exactly, the others stay positive.
+pub(super) fn boundary_step(z: &mut [f64], before: &[f64], t: &[f64], boundary: f64) {
+    for i in 0..z.len() {
+        let (b, ti) = (before[i], t[i]);
+        z[i] = if !(b > 0.0) || (ti > 0.0 && b / ti <= boundary) {
+            0.0
+        } else {
+            (b - boundary * ti).max(0.0)
+        };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_cut_at_the_boundary_lets_the_first_point_leave() {
+        let z = [0.3, 0.2, 0.0, 0.4];
+        let t = [0.1, 0.4, 0.0, -0.2];
+        // z_1 / t_1 = 0.5 is the first ratio; z_3 grows, z_2 is off J.
+        let boundary = boundary_pass(&z, &t);
+        assert_eq!(boundary, 0.2 / 0.4);
+        let mut cut = [9.0; 4];
+        boundary_step(&mut cut, &z, &t, boundary);
+        assert_eq!(cut, [0.3 - 0.5 * 0.1, 0.0, 0.0, 0.4 + 0.5 * 0.2]);
+        // Nothing decreases: no boundary.
+        assert_eq!(boundary_pass(&z, &[0.0, -1.0, 1.0, 0.0]), f64::INFINITY);
+    }
+}

@@ -22,10 +22,13 @@
 //! 4. the rows `B^T z = b` restored: for one row by scaling `z` and `u`
 //!    (Polonsky & Keer's load balance; `M (c z) = c u`), for several by
 //!    `z_i <- z_i exp(B_i ν)`, the nearest point on the rows that keeps the
-//!    contact set (no clipping), or where the contact set cannot carry the
-//!    rows by adding `B_J ν` and clipping, repeated. Without clipping the
-//!    step keeps several rows to rounding (`B_J^T t_J = 0`), and they are
-//!    left as they are.
+//!    contact set (no clipping); where the step clipped points and the
+//!    contact set left cannot carry the rows, the step is cut where the
+//!    first point reaches 0 (`τ_b = min z_i / t_i` over `t_i > 0`: one point
+//!    leaves and `B_J^T t_J = 0` keeps the rows), and failing that the
+//!    rows are restored by adding `B_J ν` and clipping, repeated. Without
+//!    clipping the step keeps several rows to rounding (`B_J^T t_J = 0`),
+//!    and they are left as they are.
 //!
 //! Preconditioned (where the operator has a preconditioner `P ≈ M^{-1}`,
 //! [`Operator::precondition`](crate::Operator::precondition), and
@@ -57,7 +60,10 @@
 //! (what is left above the recurrence's residual is that drift, or the
 //! rounding floor of sums of n terms), else the iteration goes on from the
 //! true product. The strategy then certifies the answer from the original
-//! operator and data. With `k = 0` it is the method under displacement
+//! operator and data. At the iteration cap
+//! ([`Options::max_pivots`](crate::Options::max_pivots)) short of its
+//! stopping rule it returns no answer
+//! ([`LcpError::ConjugateGradientLimit`]). With `k = 0` it is the method under displacement
 //! control (the approach inside `q`).
 //!
 //! Every pass over the vectors runs on the current rayon pool's threads,
@@ -75,7 +81,7 @@ use faer::{Col, Side};
 
 use iteration::{Data, FitSums, Measures, Update};
 use progress::{Progress, step_length};
-use rows::{fit, restore_rows};
+use rows::{fit, restore_on_support, restore_rows, shift_into_rows};
 
 pub(crate) use linear::attempt_linear;
 
@@ -114,7 +120,8 @@ pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotAppli
 }
 
 /// The method's state: the iterate and what it has computed of it (four
-/// vectors of n, five preconditioned: the memory of a large solve).
+/// vectors of n, five preconditioned, one more with several rows once a
+/// step clipped: the memory of a large solve).
 struct State {
     z: Vec<f64>,
     /// `u = M z`, from a true product or kept by the recurrence.
@@ -140,6 +147,12 @@ struct State {
     stale: bool,
     /// `u` came from a true product since the last step.
     fresh: bool,
+    /// With several rows, `z` before a step that clips points (allocated
+    /// at the first such step).
+    before: Option<Vec<f64>>,
+    /// The step to the first boundary ([`iteration::boundary_pass`]) of
+    /// the current step, where it clips points and `before` holds `z`.
+    boundary: Option<f64>,
 }
 
 impl State {
@@ -166,6 +179,8 @@ impl State {
             restart: true,
             stale: true,
             fresh: false,
+            before: None,
+            boundary: None,
         })
     }
 
@@ -218,6 +233,7 @@ impl State {
         work.products += 1;
         let den = iteration::curvature_pass(&self.t, &self.r);
         let tau = step_length(num, den)?;
+        self.keep_before_clipping(form.border.ncols(), tau)?;
         let update = iteration::update_pass(
             data,
             &mut self.z,
@@ -230,6 +246,31 @@ impl State {
         self.restart = update.entered > 0;
         self.fresh = false;
         self.rows_after(form, update)
+    }
+
+    /// With several rows, keeps `z` where the step `τ` will clip points
+    /// (it reaches the boundary `τ_b <= τ`): should the clipped contact set
+    /// not carry the rows, the step is cut at `τ_b` instead
+    /// ([`rows_after`](Self::rows_after)).
+    fn keep_before_clipping(&mut self, k: usize, tau: f64) -> Result<(), Breakdown> {
+        self.boundary = None;
+        if k < 2 || !(tau > 0.0) {
+            return Ok(());
+        }
+        let boundary = iteration::boundary_pass(&self.z, &self.t);
+        if boundary > tau {
+            return Ok(());
+        }
+        if self.before.is_none() {
+            let what = "the conjugate gradient's iterate before a step";
+            let v = linalg::try_zeros(self.z.len(), what)
+                .map_err(|e| Breakdown::Error(Box::new(e.into())))?;
+            self.before = Some(v);
+        }
+        let before = self.before.as_mut().expect("allocated above");
+        before.copy_from_slice(&self.z);
+        self.boundary = Some(boundary);
+        Ok(())
     }
 
     /// `β = ρ / ρ_old` (0 after a restart).
@@ -278,7 +319,13 @@ impl State {
     }
 
     /// Step 4: the rows restored after a step, and whether `u` still is
-    /// `M z`.
+    /// `M z`. Where the step clipped points and the contact set left
+    /// cannot carry several rows, the step is cut at the first boundary
+    /// (one point leaves; the rows hold as `B_J^T t_J = 0`): restoring the
+    /// rows from the clipped iterate by an additive correction could
+    /// return it to where the step started, and the iteration would cycle
+    /// (a step overshooting by its full length on a contact set of the
+    /// rows' size).
     fn rows_after(&mut self, form: &Form<'_>, update: Update) -> Result<(), Breakdown> {
         let moved = update.clipped + update.entered > 0;
         let k = form.border.ncols();
@@ -303,7 +350,17 @@ impl State {
             }
         }
         self.stale = true;
-        restore_rows(form, &mut self.z)
+        if restore_on_support(form, &mut self.z) {
+            return Ok(());
+        }
+        if let (Some(boundary), Some(before)) = (self.boundary.take(), &self.before) {
+            iteration::boundary_step(&mut self.z, before, &self.t, boundary);
+            self.restart = true;
+            if restore_on_support(form, &mut self.z) {
+                return Ok(());
+            }
+        }
+        shift_into_rows(form, &mut self.z)
     }
 }
 
@@ -395,7 +452,16 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
         } else {
             false
         };
-        if done || work.iterations >= cap {
+        if !done && work.iterations >= cap {
+            let error = LcpError::ConjugateGradientLimit {
+                size: n,
+                limit: cap,
+                residual: c,
+                tolerance: options.tolerances.certificate,
+            };
+            return Err(Failure::error(error, work));
+        }
+        if done {
             // The answer copies z: free the other vectors first.
             let State {
                 z,

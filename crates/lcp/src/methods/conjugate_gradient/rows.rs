@@ -12,14 +12,24 @@ use crate::linalg;
 use crate::statistics::Breakdown;
 use crate::tolerance::{ARMIJO, EQUALITY_CORRECTIONS, RESTORE_STEPS, ROWS_RESTORED, ROWS_STALLED};
 
-/// Restores `B^T z = b` (step 4 of the iteration in the parent module's documentation): for one row
-/// by scaling, else by [`tilt_into_rows`] on the contact set, or failing
+/// Restores `B^T z = b` (step 4 of the iteration in the parent module's
+/// documentation): on the contact set ([`restore_on_support`]), or failing
 /// that (the set's cone does not hold the resultants) by
 /// [`shift_into_rows`].
 pub(super) fn restore_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
+    if restore_on_support(form, z) {
+        return Ok(());
+    }
+    shift_into_rows(form, z)
+}
+
+/// Restores `B^T z = b` keeping the contact set: for one row by scaling,
+/// else by [`tilt_into_rows`]. False, with `z` as it was, where the contact
+/// set cannot carry the rows.
+pub(super) fn restore_on_support(form: &Form<'_>, z: &mut [f64]) -> bool {
     let k = form.border.ncols();
     if k == 0 {
-        return Ok(());
+        return true;
     }
     if k == 1 {
         let col = form.border.col(0);
@@ -27,22 +37,17 @@ pub(super) fn restore_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdo
         let ratio = form.resultant[0] / row;
         if ratio.is_finite() && ratio > 0.0 {
             z.iter_mut().for_each(|v| *v *= ratio);
-            return Ok(());
+            return true;
         }
     }
-    let kept = z.to_vec();
-    if tilt_into_rows(form, z).is_ok() {
-        return Ok(());
-    }
-    z.copy_from_slice(&kept);
-    shift_into_rows(form, z)
+    tilt_into_rows(form, z).is_ok()
 }
 
 /// Adds the least-squares correction `B_J ν` on the contact set `J` (on
 /// every point when `B_J` cannot carry the rows) and clips at zero,
 /// repeated: the restoration when the contact set's cone does not hold the
 /// resultants (points must enter or leave).
-fn shift_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
+pub(super) fn shift_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
     let n = z.len();
     for _ in 0..EQUALITY_CORRECTIONS {
         let mut active: Vec<bool> = z.iter().map(|&v| v > 0.0).collect();
@@ -75,7 +80,8 @@ fn shift_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
 /// support of `z` (no clipping, so a point that entered stays). Newton's
 /// method with backtracking on `φ`; for one row of ones it is Polonsky &
 /// Keer's scaling. Fails when `b` is not inside the cone of the supported
-/// points' `B_i` (the contact set cannot carry the rows).
+/// points' `B_i` (the contact set cannot carry the rows), leaving `z` as
+/// it was.
 fn tilt_into_rows(form: &Form<'_>, z: &mut [f64]) -> Result<(), Breakdown> {
     let (border, b) = (form.border, form.resultant);
     let (n, k) = (z.len(), border.ncols());
