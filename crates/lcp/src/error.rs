@@ -197,16 +197,19 @@ pub enum LcpError {
     /// The final solution does not satisfy its certificate to the tolerance
     /// even after refactorization and refinement: it is not returned as solved.
     #[error(
-        "the solution's certificate does not hold after {pivots} pivots (size {size}): worst relative residual \
+        "the solution's certificate does not hold after {} (size {size}): worst relative residual \
          {:.3e} > tolerance {:.1e} ({certificate})",
+        Spent { pivots: *pivots, iterations: *iterations },
         certificate.worst(),
         certificate.tolerance
     )]
     Inaccurate {
         /// Number of unknowns.
         size: usize,
-        /// Pivots spent.
+        /// Pivots spent (over all attempts).
         pivots: usize,
+        /// Conjugate-gradient iterations spent (over all attempts).
+        iterations: usize,
         /// The certificate that failed.
         certificate: Box<Certificate>,
     },
@@ -227,4 +230,54 @@ pub enum LcpError {
     /// (an interrupt: Ctrl-C, SIGTERM) before it found an answer.
     #[error("the solve was cancelled (interrupted) before it finished")]
     Cancelled,
+}
+
+/// The work a failed solve spent, as a message names it: pivots for the
+/// pivoting methods, iterations for the conjugate gradient, both when a
+/// solve tried both.
+struct Spent {
+    pivots: usize,
+    iterations: usize,
+}
+
+impl std::fmt::Display for Spent {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match (self.pivots, self.iterations) {
+            (p, 0) => write!(f, "{p} pivots"),
+            (0, i) => write!(f, "{i} iterations"),
+            (p, i) => write!(f, "{p} pivots and {i} iterations"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inaccurate(pivots: usize, iterations: usize) -> String {
+        LcpError::Inaccurate {
+            size: 3,
+            pivots,
+            iterations,
+            certificate: Box::new(Certificate {
+                min_z: 0.0,
+                min_w: -0.5,
+                min_u: 0.0,
+                complementarity: 0.0,
+                equality: 0.0,
+                z_scale: 1.0,
+                w_scale: 1.0,
+                tolerance: 1e-12,
+                finite: true,
+            }),
+        }
+        .to_string()
+    }
+
+    #[test]
+    fn an_inaccurate_answer_names_the_work_its_method_spent() {
+        assert!(inaccurate(7, 0).contains("after 7 pivots (size 3)"));
+        assert!(inaccurate(0, 40).contains("after 40 iterations (size 3)"));
+        assert!(inaccurate(7, 40).contains("after 7 pivots and 40 iterations (size 3)"));
+    }
 }

@@ -576,6 +576,7 @@ impl<'r, R: Routed> Ladder<'r, R> {
                 Err(LcpError::Inaccurate {
                     size: self.problem.size(),
                     pivots: self.statistics.pivots(),
+                    iterations: self.statistics.iterations(),
                     certificate: Box::new(kept.certificate),
                 })
             }

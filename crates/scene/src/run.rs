@@ -393,6 +393,7 @@ mod tests {
         let inaccurate = AnalysisError::Engine(LcpError::Inaccurate {
             size: 97,
             pivots: 0,
+            iterations: 40,
             certificate: Box::new(elcon_lcp::Certificate {
                 min_z: 0.0,
                 min_w: -0.49,
