@@ -418,7 +418,7 @@ impl Pinned {
             zero: [st.zzero, st.wzero],
         };
         let rule = Rates {
-            column,
+            column: column.map(|c| c.try_as_col_major().expect("contiguous").as_slice()),
             f,
             s,
             tol: self.tol,
@@ -585,7 +585,7 @@ impl Values<'_> {
 /// of `A` (none for the release, whose column is `b̄ / b̄_s`), `f` its
 /// entry in the pin's row over `b̄_s`, and 0 at the pin `s`.
 struct Rates<'a> {
-    column: Option<&'a Col<f64>>,
+    column: Option<&'a [f64]>,
     f: f64,
     s: usize,
     tol: Tolerances,
@@ -615,26 +615,31 @@ impl Rates<'_> {
         near: &mut Vec<usize>,
     ) -> f64 {
         let tie = self.tol.tie;
-        // The largest rate and the slowest fall of each kind.
-        let (mut largest, mut slowest) = ([0.0f64; 2], [f64::INFINITY; 2]);
+        // The largest rate and the slowest fall of each kind, in registers
+        // (an array indexed by the kind would carry each position's
+        // update to the next through memory).
+        let (mut zlargest, mut wlargest) = (0.0f64, 0.0f64);
+        let (mut zslowest, mut wslowest) = (f64::INFINITY, f64::INFINITY);
         let mut least = f64::INFINITY;
         near.clear();
         for i in 0..rates.len() {
+            let on = values.into[i];
             let r = self.unsigned(values, i);
-            let kind = usize::from(!values.into[i]);
-            let r = if kind == 0 { -r } else { r };
+            let r = if on { -r } else { r };
             rates[i] = r;
-            largest[kind] = if r.abs() > largest[kind] {
-                r.abs()
+            let a = r.abs();
+            if on {
+                zlargest = if a > zlargest { a } else { zlargest };
             } else {
-                largest[kind]
-            };
+                wlargest = if a > wlargest { a } else { wlargest };
+            }
             reach[i] = if r < 0.0 {
-                slowest[kind] = if -r < slowest[kind] {
-                    -r
+                let fall = -r;
+                if on {
+                    zslowest = if fall < zslowest { fall } else { zslowest };
                 } else {
-                    slowest[kind]
-                };
+                    wslowest = if fall < wslowest { fall } else { wslowest };
+                }
                 let (x, zero) = values.at(i);
                 let theta = if x <= zero { 0.0 } else { x / -r };
                 least = if theta < least { theta } else { least };
@@ -646,8 +651,8 @@ impl Rates<'_> {
                 f64::INFINITY
             };
         }
-        let small = largest.map(|v| self.tol.pivot * v);
-        if slowest[0] > small[0] && slowest[1] > small[1] {
+        let small = [zlargest, wlargest].map(|v| self.tol.pivot * v);
+        if zslowest > small[0] && wslowest > small[1] {
             least
         } else {
             falling_steps(values, small, tie, rates, reach, near)
@@ -768,7 +773,7 @@ mod tests {
         qbar: Vec<f64>,
         bbar: Vec<f64>,
         into: Vec<bool>,
-        column: Col<f64>,
+        column: Vec<f64>,
     }
 
     fn case(seed: u64, n: usize, slow: bool) -> Case {
@@ -778,10 +783,12 @@ mod tests {
             .collect();
         let bbar = (0..n).map(|_| g.next()).collect();
         let into = (0..n).map(|_| g.next() < 0.0).collect();
-        let column = Col::from_fn(n, |i| {
-            let a = g.next();
-            if slow && i % 5 == 1 { a * 1e-18 } else { a }
-        });
+        let column = (0..n)
+            .map(|i| {
+                let a = g.next();
+                if slow && i % 5 == 1 { a * 1e-18 } else { a }
+            })
+            .collect();
         Case {
             qbar,
             bbar,
@@ -791,7 +798,7 @@ mod tests {
     }
 
     /// The one-pass steps against their two-pass definition, bit for bit.
-    fn assert_same_steps(c: &Case, column: Option<&Col<f64>>, f: f64, s: usize) {
+    fn assert_same_steps(c: &Case, column: Option<&[f64]>, f: f64, s: usize) {
         let n = c.qbar.len();
         let values = Values {
             qbar: &c.qbar,
@@ -824,8 +831,8 @@ mod tests {
                 let c = case(seed, 37 + seed as usize, slow);
                 // An entering index's column (not the pin's), the pin's,
                 // and the release's (no column).
-                assert_same_steps(&c, Some(&c.column), 0.8, 5);
-                assert_same_steps(&c, Some(&c.column), c.column[5] * 1.3, 5);
+                assert_same_steps(&c, Some(c.column.as_slice()), 0.8, 5);
+                assert_same_steps(&c, Some(c.column.as_slice()), c.column[5] * 1.3, 5);
                 assert_same_steps(&c, None, -1.3, 5);
             }
         }
@@ -837,7 +844,7 @@ mod tests {
         // tolerance of the largest): only the first has a step, although the
         // second would reach zero first.
         let (qbar, bbar, into) = (vec![1.0, 1e-20, 1.0], vec![0.0; 3], vec![false; 3]);
-        let column = Col::from_fn(3, |i| [-1.0, -1e-18, 0.5][i]);
+        let column = [-1.0, -1e-18, 0.5];
         let values = Values {
             qbar: &qbar,
             bbar: &bbar,
@@ -846,7 +853,7 @@ mod tests {
             zero: [0.0, 0.0],
         };
         let rule = Rates {
-            column: Some(&column),
+            column: Some(&column[..]),
             f: 0.0,
             s: 2,
             tol: Tolerances::default(),
