@@ -159,10 +159,9 @@ struct Pinned {
     zero_run: ZeroRun,
     /// The reduced costs' tolerance, from their scale at the start of phase 1.
     cost_tol: Option<f64>,
-    /// Per iteration: the basic values and their ε coefficients, the
-    /// entering column's rates, and each falling value's step to zero.
-    xs: Vec<f64>,
-    es: Vec<f64>,
+    /// Per iteration: the entering column's rates, and each falling
+    /// value's step to zero (the values themselves are read from the
+    /// path's state where a step needs them).
     rates: Vec<f64>,
     reach: Vec<f64>,
     /// The positions whose steps were within the tie bound of the least so
@@ -180,6 +179,9 @@ struct PinState {
     cs: Col<f64>,
     /// `1 / b̄_s`.
     inv_bs: f64,
+    /// The approach `α` and its ε coefficient under the perturbation.
+    alpha: f64,
+    alpha_g: f64,
     /// Zero levels of the forces (on `J`) and the gaps (off it).
     zzero: f64,
     wzero: f64,
@@ -251,8 +253,6 @@ impl Pinned {
             limit: opts.pivot_limit(n + 1, 2 * n + 1),
             zero_run: ZeroRun::new(n),
             cost_tol: None,
-            xs: vec![0.0; n],
-            es: vec![0.0; n],
             rates: vec![0.0; n],
             reach: vec![0.0; n],
             near: Vec::new(),
@@ -279,7 +279,7 @@ impl Pinned {
     /// is `Z = P - L`), and the zero tests' scales (the largest term on `J`
     /// and off it). `None` when the artificial is at zero: phase 1 ends.
     fn state(&mut self) -> Result<Option<PinState>, Breakdown> {
-        let n = self.xs.len();
+        let n = self.rates.len();
         let tol = self.tol;
         let s = self.pin;
         let cs = self.tab.column(s);
@@ -291,23 +291,22 @@ impl Pinned {
             return Err(Breakdown::NonFinite);
         }
         let (path, weight) = (&self.path, &self.weight);
-        let (xs, es) = (&mut self.xs, &mut self.es);
+        // (The values themselves are not kept: the ratio test recomputes
+        // the falling ones, by the same expression.)
         let [carried, carried_g, slope, zscale, wscale] = in_lanes(
             n,
             #[inline(always)]
             |i, lane| {
                 let (q, b) = (path.qbar[i], path.bbar[i]);
-                let (x, e) = (q + alpha * b, path.gbar[i] + alpha_g * b);
                 let size = q.abs() + (alpha * b).abs();
                 if path.into[i] {
-                    (xs[i], es[i]) = (-x, -e);
+                    let (x, e) = (q + alpha * b, path.gbar[i] + alpha_g * b);
                     let w = weight[i];
                     lane[0] -= w * x;
                     lane[1] -= w * e;
                     lane[2] -= w * b;
                     lane[3] = if size > lane[3] { size } else { lane[3] };
                 } else {
-                    (xs[i], es[i]) = (x, e);
                     lane[4] = if size > lane[4] { size } else { lane[4] };
                 }
             },
@@ -331,6 +330,8 @@ impl Pinned {
             s,
             cs,
             inv_bs,
+            alpha,
+            alpha_g,
             zzero: tol.zero * zscale,
             wzero: tol.zero * wscale,
             excess,
@@ -346,7 +347,7 @@ impl Pinned {
     /// restricted entry's complement must fall, tested only for a candidate
     /// that would be the best so far.
     fn best_candidate(&self, st: &PinState) -> Option<(Entering, f64)> {
-        let n = self.xs.len();
+        let n = self.rates.len();
         let (mut best_d, mut best_j) = (-st.ctol, usize::MAX);
         for j in 0..n {
             let d = self.kappa * self.path.bbar[j] + st.lift * st.cs[j];
@@ -400,7 +401,6 @@ impl Pinned {
     /// step to zero, the load row's last. `None` when the entry is not
     /// admissible (its complement does not leave) or nothing limits it.
     fn ratio_test(&mut self, st: &PinState, entering: Entering, d: f64) -> Option<Chosen> {
-        let n = self.xs.len();
         let s = st.s;
         let (read, f) = match entering {
             Entering::Index(j) => ((j != s).then(|| self.tab.column(j)), st.cs[j] * st.inv_bs),
@@ -410,58 +410,20 @@ impl Pinned {
             Entering::Index(j) if j == s => Some(&st.cs),
             _ => read.as_ref(),
         };
-        let (path, rates) = (&self.path, &mut self.rates);
-        // The rates and the largest of each kind (forces and gaps have their
-        // own units), in one pass.
-        let [.., zmax, wmax] = in_lanes(
-            n,
-            #[inline(always)]
-            |i, lane| {
-                // The release's column is b̄ / b̄_s: as a swept column of 0.
-                let a = column.map_or(0.0, |c| c[i]);
-                let r = a - path.bbar[i] * f;
-                let r = if i == s { 0.0 } else { r };
-                if path.into[i] {
-                    rates[i] = -r;
-                    lane[3] = if r.abs() > lane[3] { r.abs() } else { lane[3] };
-                } else {
-                    rates[i] = r;
-                    lane[4] = if r.abs() > lane[4] { r.abs() } else { lane[4] };
-                }
-            },
-        );
-        let (zsmall, wsmall) = (self.tol.pivot * zmax, self.tol.pivot * wmax);
-        let tie = self.tol.tie;
-        let mut least = f64::INFINITY;
-        // The ties are gathered in the same pass: a step within `tie` of the
-        // least so far (steps are >= 0, so that bound only falls as the least
-        // does) holds every step that ties the final least; `leaving` keeps
-        // those within the final bound.
-        self.near.clear();
-        for i in 0..n {
-            let (zero, small) = if self.path.into[i] {
-                (st.zzero, zsmall)
-            } else {
-                (st.wzero, wsmall)
-            };
-            let r = self.rates[i];
-            self.reach[i] = if r < -small {
-                let theta = if self.xs[i] <= zero {
-                    0.0
-                } else {
-                    self.xs[i] / -r
-                };
-                // (A plain comparison: a NaN step is left out here and
-                // caught below, where no least step is finite.)
-                least = if theta < least { theta } else { least };
-                if theta <= least + tie * least.abs() {
-                    self.near.push(i);
-                }
-                theta
-            } else {
-                f64::INFINITY
-            };
-        }
+        let values = Values {
+            qbar: &self.path.qbar,
+            bbar: &self.path.bbar,
+            into: &self.path.into,
+            alpha: st.alpha,
+            zero: [st.zzero, st.wzero],
+        };
+        let rule = Rates {
+            column: column.map(|c| c.try_as_col_major().expect("contiguous").as_slice()),
+            f,
+            s,
+            tol: self.tol,
+        };
+        let mut least = rule.steps(&values, &mut self.rates, &mut self.reach, &mut self.near);
         let to_load = st.excess / -d;
         least = least.min(to_load);
         if !least.is_finite() {
@@ -488,7 +450,7 @@ impl Pinned {
         least: f64,
         to_load: f64,
     ) -> Option<Leaving> {
-        let n = self.xs.len();
+        let n = self.rates.len();
         let tied = least + self.tol.tie * least.abs();
         match entering {
             Entering::Index(j) if j != st.s => (self.reach[j] <= tied).then_some(Leaving::Value(j)),
@@ -503,7 +465,11 @@ impl Pinned {
                     if i == n {
                         st.excess_g / -d
                     } else {
-                        self.es[i] / -self.rates[i]
+                        // The value's ε coefficient, as the state's pass
+                        // forms it.
+                        let e = self.path.gbar[i] + st.alpha_g * self.path.bbar[i];
+                        let e = if self.path.into[i] { -e } else { e };
+                        e / -self.rates[i]
                     }
                 };
                 match first_under_perturbation(tied, key)? {
@@ -544,7 +510,7 @@ impl Pinned {
         let s = st.s;
         if self.work.pivots >= self.limit {
             return Err(Breakdown::Error(Box::new(LcpError::PivotLimit {
-                size: self.xs.len() + 1,
+                size: self.rates.len() + 1,
                 limit: self.limit,
             })));
         }
@@ -591,6 +557,164 @@ impl Pinned {
     }
 }
 
+/// The basic values at the pin's approach: `x_i = σ_i (q̄_i + α b̄_i)`,
+/// and their zero levels on `J` and off it.
+struct Values<'a> {
+    /// The path's `q̄`, `b̄` (its one column) and active set.
+    qbar: &'a [f64],
+    bbar: &'a [f64],
+    into: &'a [bool],
+    alpha: f64,
+    zero: [f64; 2],
+}
+
+impl Values<'_> {
+    /// The value at position `i` and its zero level.
+    #[inline(always)]
+    fn at(&self, i: usize) -> (f64, f64) {
+        let x = self.qbar[i] + self.alpha * self.bbar[i];
+        if self.into[i] {
+            (-x, self.zero[0])
+        } else {
+            (x, self.zero[1])
+        }
+    }
+}
+
+/// The entering column's rates: `σ_i (a_i - b̄_i f)` with `a` the column
+/// of `A` (none for the release, whose column is `b̄ / b̄_s`), `f` its
+/// entry in the pin's row over `b̄_s`, and 0 at the pin `s`.
+struct Rates<'a> {
+    column: Option<&'a [f64]>,
+    f: f64,
+    s: usize,
+    tol: Tolerances,
+}
+
+impl Rates<'_> {
+    /// The rate at position `i`, before its sign `σ_i`.
+    #[inline(always)]
+    fn unsigned(&self, values: &Values<'_>, i: usize) -> f64 {
+        let a = self.column.map_or(0.0, |c| c[i]);
+        let r = a - values.bbar[i] * self.f;
+        if i == self.s { 0.0 } else { r }
+    }
+
+    /// The rates into `rates`, each falling value's step to zero into
+    /// `reach` (infinite when it does not fall), the positions within the
+    /// tie bound of the least so far into `near`; returns the least step.
+    /// A value falls when its rate is below `-pivot` times the largest
+    /// rate of its kind (forces and gaps have their own units), which one
+    /// pass cannot know: it takes every negative rate, and a second pass
+    /// redoes the steps when one of them is not below that bound.
+    fn steps(
+        &self,
+        values: &Values<'_>,
+        rates: &mut [f64],
+        reach: &mut [f64],
+        near: &mut Vec<usize>,
+    ) -> f64 {
+        let tie = self.tol.tie;
+        // The largest rate and the slowest fall of each kind, in registers
+        // (an array indexed by the kind would carry each position's
+        // update to the next through memory).
+        let (mut zlargest, mut wlargest) = (0.0f64, 0.0f64);
+        let (mut zslowest, mut wslowest) = (f64::INFINITY, f64::INFINITY);
+        let mut least = f64::INFINITY;
+        near.clear();
+        for i in 0..rates.len() {
+            let on = values.into[i];
+            let r = self.unsigned(values, i);
+            let r = if on { -r } else { r };
+            rates[i] = r;
+            let a = r.abs();
+            if on {
+                zlargest = if a > zlargest { a } else { zlargest };
+            } else {
+                wlargest = if a > wlargest { a } else { wlargest };
+            }
+            reach[i] = if r < 0.0 {
+                let fall = -r;
+                if on {
+                    zslowest = if fall < zslowest { fall } else { zslowest };
+                } else {
+                    wslowest = if fall < wslowest { fall } else { wslowest };
+                }
+                let (x, zero) = values.at(i);
+                let theta = if x <= zero { 0.0 } else { x / -r };
+                least = if theta < least { theta } else { least };
+                if theta <= least + tie * least.abs() {
+                    near.push(i);
+                }
+                theta
+            } else {
+                f64::INFINITY
+            };
+        }
+        let small = [zlargest, wlargest].map(|v| self.tol.pivot * v);
+        if zslowest > small[0] && wslowest > small[1] {
+            least
+        } else {
+            falling_steps(values, small, tie, rates, reach, near)
+        }
+    }
+
+    /// The rates and steps in two passes (the rates and their largest,
+    /// then the steps): what [`Rates::steps`] returns, by definition.
+    #[cfg(test)]
+    fn steps_in_two_passes(
+        &self,
+        values: &Values<'_>,
+        rates: &mut [f64],
+        reach: &mut [f64],
+        near: &mut Vec<usize>,
+    ) -> f64 {
+        let mut largest = [0.0f64; 2];
+        for (i, rate) in rates.iter_mut().enumerate() {
+            let kind = usize::from(!values.into[i]);
+            let r = self.unsigned(values, i);
+            *rate = if kind == 0 { -r } else { r };
+            largest[kind] = largest[kind].max(r.abs());
+        }
+        let small = largest.map(|v| self.tol.pivot * v);
+        falling_steps(values, small, self.tol.tie, rates, reach, near)
+    }
+}
+
+/// Each value's step to zero at `rates` (infinite unless its rate is below
+/// `-small` of its kind), the positions within the tie bound of the least
+/// so far into `near` (steps are >= 0, so that bound only falls as the
+/// least does, and holds every step that ties the final least); returns
+/// the least step.
+fn falling_steps(
+    values: &Values<'_>,
+    small: [f64; 2],
+    tie: f64,
+    rates: &[f64],
+    reach: &mut [f64],
+    near: &mut Vec<usize>,
+) -> f64 {
+    let mut least = f64::INFINITY;
+    near.clear();
+    for (i, (&r, step)) in rates.iter().zip(reach.iter_mut()).enumerate() {
+        let small = small[usize::from(!values.into[i])];
+        *step = if r < -small {
+            let (x, zero) = values.at(i);
+            let theta = if x <= zero { 0.0 } else { x / -r };
+            // (A plain comparison: a NaN step is left out here and caught
+            // by the caller, where no least step is finite.)
+            least = if theta < least { theta } else { least };
+            if theta <= least + tie * least.abs() {
+                near.push(i);
+            }
+            theta
+        } else {
+            f64::INFINITY
+        };
+    }
+    least
+}
+
 /// Five sums or maxima over `0..n`, each lane of four accumulating its own
 /// (`body(i, lane)`; lanes start at 0): the additions and comparisons of
 /// one index then do not wait on the previous one's. Returns the lanes'
@@ -622,4 +746,122 @@ fn first_under_perturbation(
     tied.map(|i| (i, key(i)))
         .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
         .map(|(i, _)| i)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A reproducible stream in [-1, 1) (a linear congruential generator).
+    struct Stream(u64);
+
+    impl Stream {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// One ratio test's data: values of both signs, some exactly zero, on
+    /// and off `J`, and a column whose rates include falls far slower than
+    /// the pivot tolerance allows (when `slow`), for the one-pass rule and
+    /// the two-pass definition to be compared on.
+    struct Case {
+        qbar: Vec<f64>,
+        bbar: Vec<f64>,
+        into: Vec<bool>,
+        column: Vec<f64>,
+    }
+
+    fn case(seed: u64, n: usize, slow: bool) -> Case {
+        let mut g = Stream(seed);
+        let qbar = (0..n)
+            .map(|i| if i % 7 == 3 { 0.0 } else { g.next() })
+            .collect();
+        let bbar = (0..n).map(|_| g.next()).collect();
+        let into = (0..n).map(|_| g.next() < 0.0).collect();
+        let column = (0..n)
+            .map(|i| {
+                let a = g.next();
+                if slow && i % 5 == 1 { a * 1e-18 } else { a }
+            })
+            .collect();
+        Case {
+            qbar,
+            bbar,
+            into,
+            column,
+        }
+    }
+
+    /// The one-pass steps against their two-pass definition, bit for bit.
+    fn assert_same_steps(c: &Case, column: Option<&[f64]>, f: f64, s: usize) {
+        let n = c.qbar.len();
+        let values = Values {
+            qbar: &c.qbar,
+            bbar: &c.bbar,
+            into: &c.into,
+            alpha: 0.37,
+            zero: [1e-3, 2e-3],
+        };
+        let rule = Rates {
+            column,
+            f,
+            s,
+            tol: Tolerances::default(),
+        };
+        let (mut rates, mut reach, mut near) = (vec![0.0; n], vec![0.0; n], Vec::new());
+        let least = rule.steps(&values, &mut rates, &mut reach, &mut near);
+        let (mut rates2, mut reach2, mut near2) = (vec![0.0; n], vec![0.0; n], Vec::new());
+        let least2 = rule.steps_in_two_passes(&values, &mut rates2, &mut reach2, &mut near2);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(least.to_bits(), least2.to_bits());
+        assert_eq!(bits(&rates), bits(&rates2));
+        assert_eq!(bits(&reach), bits(&reach2));
+        assert_eq!(near, near2);
+    }
+
+    #[test]
+    fn one_pass_steps_are_those_of_the_two_pass_definition() {
+        for seed in 0..40 {
+            for slow in [false, true] {
+                let c = case(seed, 37 + seed as usize, slow);
+                // An entering index's column (not the pin's), the pin's,
+                // and the release's (no column).
+                assert_same_steps(&c, Some(c.column.as_slice()), 0.8, 5);
+                assert_same_steps(&c, Some(c.column.as_slice()), c.column[5] * 1.3, 5);
+                assert_same_steps(&c, None, -1.3, 5);
+            }
+        }
+    }
+
+    #[test]
+    fn a_fall_slower_than_the_pivot_tolerance_is_no_step() {
+        // Gaps off J falling at rates -1 and -1e-18 (below the pivot
+        // tolerance of the largest): only the first has a step, although the
+        // second would reach zero first.
+        let (qbar, bbar, into) = (vec![1.0, 1e-20, 1.0], vec![0.0; 3], vec![false; 3]);
+        let column = [-1.0, -1e-18, 0.5];
+        let values = Values {
+            qbar: &qbar,
+            bbar: &bbar,
+            into: &into,
+            alpha: 0.0,
+            zero: [0.0, 0.0],
+        };
+        let rule = Rates {
+            column: Some(&column[..]),
+            f: 0.0,
+            s: 2,
+            tol: Tolerances::default(),
+        };
+        let (mut rates, mut reach, mut near) = (vec![0.0; 3], vec![0.0; 3], Vec::new());
+        let least = rule.steps(&values, &mut rates, &mut reach, &mut near);
+        assert_eq!(least, 1.0);
+        assert_eq!(reach, vec![1.0, f64::INFINITY, f64::INFINITY]);
+        assert_eq!(near, vec![0]);
+    }
 }
