@@ -75,7 +75,8 @@ pub const MIN_POINTS_ACROSS: usize = 5;
 /// refused: three points (a centre and one on each side, as
 /// `points.across` asks at least) are the fewest that tell the pressure's
 /// profile from its mean; with one point the answer is the load over one
-/// cell (a flat punch on one point is 44 % off its closed form).
+/// cell (a flat punch of radius 0.01 on one cell of spacing 1 carried
+/// 44.6 times its closed form's load).
 pub const MIN_POINTS_RESOLVED: usize = 3;
 
 /// The most a design's cells may be longer than wide (on a surface grid):
