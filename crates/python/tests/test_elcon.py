@@ -470,6 +470,9 @@ def test_every_family_from_problems_with_the_scenes_names_and_errors():
         elcon.design([problem], family="logarithmic-crown", design_load=1e12,
                      roller={"combined_modulus": 30e6, "radius": 1.0, "length": 8.9})
     assert "log_crown" not in str(failed.value)
+    # The roller given by the call is named by the call's key, not the
+    # scene's grid.
+    assert "roller.length" in str(failed.value) and "half_y" not in str(failed.value)
 
 
 def test_python_is_as_safe_as_the_cli(tmp_path, monkeypatch):

@@ -409,7 +409,7 @@ fn groups(
                     "batch.group",
                     format!("{} runs", count(whole)),
                     format!(
-                        "a sweep has at most MAX_RUNS = {} runs (its tables hold a row per run); \
+                        "a sweep has at most {} runs (its tables hold a row per run); \
                          split the study into several batch files",
                         count(MAX_RUNS as f64)
                     ),

@@ -31,7 +31,7 @@ pub fn read_text(path: &Path) -> Result<String, SceneError> {
         return Err(SceneError::io(
             path,
             format!(
-                "larger than {} MiB, the most a scene or batch file may be (MAX_INPUT_BYTES): \
+                "larger than {} MiB, the largest scene or batch file elcon reads: \
                  is it the scene? (point sets go in their own files)",
                 MAX_INPUT_BYTES >> 20
             ),
@@ -342,20 +342,28 @@ pub(crate) fn parse<T: serde::de::DeserializeOwned>(
     toml::from_str(text).map_err(|e| {
         let offset = e.span().map_or(0, |s| s.start);
         let message = e.message().trim();
-        // A value of the wrong type (a number written as a string, say):
-        // the parser names the types, not the key; the key is read from the
-        // text at the value.
-        // Likewise a name that is not one of a key's (`unknown variant`).
-        let about_a_value =
-            message.starts_with("invalid type") || message.starts_with("unknown variant");
-        let message = match (about_a_value, key_at(text, offset)) {
-            (true, Some(key)) => format!(
-                "`{key}`: {}",
-                message
-                    .replace("expected f64", "expected a number")
-                    .replace("expected i64", "expected a whole number")
+        // The parser names the types, not the key (a value of the wrong
+        // type, an unknown variant, a duplicate key, an integer beyond
+        // range, nesting too deep): the key is read from the text at the
+        // place it points to, when that line assigns one.
+        let message = message
+            .replace("expected f64", "expected a number")
+            .replace("expected i64", "expected a whole number");
+        let message = match message.as_str() {
+            "duplicate key" => "duplicate key: each key may be given once in its table".to_string(),
+            m if m.contains("recursion") => format!(
+                "{m}: arrays or tables nested too deep (a scene's tables and arrays nest a few \
+                 levels at most)"
             ),
-            _ => message.to_string(),
+            m if m.contains("as i128") => m.replace(
+                "expected a whole number",
+                "expected a whole number within +-9.2e18",
+            ),
+            _ => message,
+        };
+        let message = match key_at(text, offset) {
+            Some(key) => format!("`{key}`: {message}"),
+            None => message,
         };
         SceneError::Syntax {
             file: file.to_path_buf(),

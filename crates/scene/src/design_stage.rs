@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use crate::ctx::Num;
 use crate::error::SceneError;
-use crate::scene::{DesignSpec, MethodChoice, RelativeTo, Scene, run_error};
+use crate::scene::{DesignFamily, DesignSpec, MethodChoice, RelativeTo, Scene, run_error};
 use crate::subsurface::{BodySubsurfaceJson, subsurface_of};
 
 /// One load case of a design, before and after: gathered from the
@@ -383,7 +383,36 @@ pub fn design_reason(e: &DesignError, key_of: impl Fn(&str) -> Option<DesignKey>
 /// A design's failure as the scene's error: [`design_reason`] with the
 /// scene's keys.
 fn design_failure(scene: &Scene, e: DesignError) -> SceneError {
-    run_error(scene, design_reason(&e, scene_design_key))
+    let mut reason = design_reason(&e, scene_design_key);
+    if let DesignError::NotConverged { objectives, .. } = &e {
+        reason.push_str(&growing_hint(scene, objectives));
+    }
+    run_error(scene, reason)
+}
+
+/// What to change when a design's worst objective grew on every finer
+/// grid: no grid will do, the profile leaves a peak the grids sharpen (an
+/// edge, a point load); the keys that set the profile's reach.
+fn growing_hint(scene: &Scene, objectives: &[f64]) -> String {
+    let growing = objectives.len() >= 3 && objectives.windows(2).all(|w| w[1] > w[0]);
+    if !growing {
+        return String::new();
+    }
+    let keys = match scene.design().map(|d| d.family()) {
+        Some(DesignFamily::LogarithmicCrown { design_load, .. }) => format!(
+            "`design.design_load` = {} sets the crown's depth: give about the heaviest design \
+             load",
+            Num(*design_load)
+        ),
+        _ => "the loads (loading.load, design.loads), the bodies' stiffness (youngs_modulus, \
+              modulus) or the family (design.family, design.max_constant)"
+            .to_string(),
+    };
+    format!(
+        ". The worst objective grew on every finer grid, so more points will not help: the \
+         profile leaves a peak each finer grid resolves higher (an edge, a concentrated load); \
+         change {keys}"
+    )
 }
 
 /// The design on the scene's grid alone (`design.refine = false`): one
@@ -525,4 +554,28 @@ fn design_cases<'a>(
         cases.push(case);
     }
     Ok((cases, known, references))
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+
+    #[test]
+    fn a_design_that_grows_on_every_grid_names_the_keys_that_set_its_reach() {
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/crowned-roller.toml");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let log = "[design]\nfamily = \"logarithmic-crown\"\ndesign_load = 20.0\naxis = \"y\"\n";
+        let scene = crate::scene_with_design(&path, &text, log).unwrap();
+        let hint = growing_hint(&scene, &[1.6, 2.1, 2.4]);
+        assert!(hint.contains("`design.design_load` = 20"), "{hint}");
+        assert!(hint.contains("more points will not help"), "{hint}");
+        // Objectives that settle, or too few to tell, say nothing more.
+        assert!(growing_hint(&scene, &[1.6, 1.5, 1.55]).is_empty());
+        assert!(growing_hint(&scene, &[1.6, 2.1]).is_empty());
+        let free = crate::scene_with_design(&path, &text, "[design]\nfamily = \"free\"\n").unwrap();
+        assert!(growing_hint(&free, &[1.0, 2.0, 3.0]).contains("design.family"));
+    }
 }

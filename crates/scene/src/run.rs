@@ -9,7 +9,7 @@
 
 use std::time::Instant;
 
-use elcon_analysis::{AnalysisError, ContactProblem, ContactSolution, Tilt};
+use elcon_analysis::{AnalysisError, ContactProblem, ContactSolution, Normal, Tilt};
 use elcon_influence::Dimension;
 use elcon_lcp::LcpError;
 use serde::Serialize;
@@ -200,6 +200,36 @@ fn small_rotation(scene: &Scene, solution: &ContactSolution) -> Result<(), Scene
         .map_err(|why| run_error(scene, format!("{why} (points.zone or points.radius)")))
 }
 
+/// Refuses the answer of a load-controlled scene whose solved approach is
+/// beyond [`crate::MAX_STRAIN`] of the candidate zone's smaller extent
+/// (as `check` refuses a given approach, `crate::sanity::strain`):
+/// the mean pressure over the zone can be small against E* while the
+/// contact sinks half a roller's length into a soft body.
+fn small_approach(scene: &Scene, solution: &ContactSolution) -> Result<(), SceneError> {
+    let Normal::Load(load) = scene.loading().normal else {
+        return Ok(());
+    };
+    let extent = crate::sanity::strain_length(scene.points());
+    let s = solution.approach.abs() / extent;
+    if s.is_finite() && s <= crate::MAX_STRAIN {
+        return Ok(());
+    }
+    let length = scene.units().length();
+    Err(run_error(
+        scene,
+        format!(
+            "`loading.load` = {}: the solved approach, {} {length}, is {s:.1e} times the \
+             candidate zone's smaller extent, {} {length}: beyond the small strain (at most \
+             {}) of the linear elasticity the influence models rest on; give a smaller load or \
+             stiffer bodies (youngs_modulus, modulus), or check their units",
+            Num(load),
+            rounded(solution.approach),
+            rounded(extent),
+            crate::MAX_STRAIN
+        ),
+    ))
+}
+
 /// A failed solve's error. Under a moment the engine's failures that mean
 /// "no solution" (a ray, an infeasible or unbounded tableau, a broken-down
 /// attempt, a certificate that does not hold) say that the contact cannot
@@ -279,6 +309,7 @@ pub fn run(scene: &Scene) -> Result<Run, SceneError> {
         .solve(scene.method(), scene.options())
         .map_err(|e| solve_error(scene, e))?;
     small_rotation(scene, &solution)?;
+    small_approach(scene, &solution)?;
     // The coarser grids' problems are built and dropped one at a time,
     // each a sixteenth (surface) or a quarter (line) of S at most.
     let discretization = scene

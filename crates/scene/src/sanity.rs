@@ -22,9 +22,20 @@
 //! or bends a beam by a slope beyond [`MAX_STRAIN`] rad, and an approach
 //! beyond [`MAX_STRAIN`] of the zone's size, are refused: the answer would
 //! be a number of a model that does not hold there (and at extreme
-//! magnitudes the solve overflows).
+//! magnitudes the solve overflows). The zone's size there is its smaller
+//! extent: an approach of half a roller's length strains it however wide
+//! the zone is across the roller.
+//!
+//! Resolvability: a load (or an approach) whose largest elastic
+//! deformation `w` (the whole load on one cell: its pressure against E*
+//! times the cell's side, a Winkler foundation's compression under it, a
+//! free beam's tip deflection `P l^3 / (3 E I)`; an approach is its own)
+//! is below
+//! [`MIN_RESOLVED_DEFORMATION`] of the largest initial separation over the
+//! candidate zone, or below [`MIN_DEFORMATION`], is refused: the contact it
+//! makes is lost in the rounding of the separations.
 
-use elcon_analysis::{Geometry, Loading, Normal};
+use elcon_analysis::{Curvature, Geometry, Loading, Normal};
 use elcon_design::{Axis, Family, GridSequence, axial_stations};
 use elcon_influence::{Body, Dimension, Model, PointSet, combined_modulus_of};
 use toml::Spanned;
@@ -59,6 +70,15 @@ pub use elcon_analysis::rotation::MAX_ROTATION;
 /// candidate disk) gets a warning.
 pub const MIN_POINTS_ACROSS: usize = 5;
 
+/// A grid with fewer points than this across the contact's expected size
+/// (the Hertz contact's diameter or width, a candidate disk's diameter) is
+/// refused: three points (a centre and one on each side, as
+/// `points.across` asks at least) are the fewest that tell the pressure's
+/// profile from its mean; with one point the answer is the load over one
+/// cell (a flat punch of radius 0.01 on one cell of spacing 1 carried
+/// 44.6 times its closed form's load).
+pub const MIN_POINTS_RESOLVED: usize = 3;
+
 /// The most a design's cells may be longer than wide (on a surface grid):
 /// a roller 131 km long on 40 cells, each 4.5e6 times longer than wide,
 /// designs on its first grids and then fails the certificate of an
@@ -85,6 +105,37 @@ pub const MAX_STRAIN: f64 = 0.1;
 /// (`f64::EPSILON`), so that the relative curvature keeps at least a few
 /// significant digits. (A radius -1.0000000000001 against 1 leaves 1e-13.)
 pub const CANCELLING_CURVATURE: f64 = 1e3 * f64::EPSILON;
+
+/// The smallest elastic deformation a solve resolves, as a fraction of the
+/// largest initial separation over the candidate zone. Each separation is
+/// exact to about `f64::EPSILON` (2.2e-16) of the largest, and the gaps
+/// near the contact are differences of separations and deformations: a
+/// deformation of 1e-8 of the largest separation keeps about seven
+/// significant digits above that rounding (4.5e7 times it), the most a
+/// certificate relative to the data's scale can tell from noise. Below it
+/// the contact is rounding: the conjugate gradient wanders, a pivoting
+/// method's certificate fails, or the answer is the separations' noise.
+pub const MIN_RESOLVED_DEFORMATION: f64 = 1e-8;
+
+/// The smallest elastic deformation (length), and the smallest mean force
+/// a candidate point carries (force), a solve is given: below
+/// `f64::MIN_POSITIVE / f64::EPSILON` (about 1e-292) their products and
+/// sums fall among the subnormal numbers, which carry fewer than the 16
+/// digits of an f64 (a ball bearing's load of 1e-297 N, its grid sized by
+/// its own Hertz ellipse, solved to semi-axes 100 % off).
+pub const MIN_DEFORMATION: f64 = f64::MIN_POSITIVE / f64::EPSILON;
+
+/// The length the strain bounds measure the zone by: its smaller extent on
+/// a surface (an approach or a separation large against the zone's width
+/// strains it however long it is), a line's length.
+pub(crate) fn strain_length(points: &PointSet) -> f64 {
+    let (a, b) = points.extent();
+    if points.dimension() == Dimension::Line {
+        a
+    } else {
+        a.min(b)
+    }
+}
 
 /// The size of the candidate zone: its larger extent (a line's length).
 pub(crate) fn zone_size(points: &PointSet) -> f64 {
@@ -222,10 +273,53 @@ fn quadric_curvatures(
     raw: Option<&Spanned<GeometryToml>>,
     geometry: &Geometry,
 ) -> Result<(), SceneError> {
-    let Some(form) = geometry.curvature() else {
+    let (Some(form), Some((a, b))) = (geometry.curvature(), geometry.surfaces()) else {
         return Ok(());
     };
     let p = form.principal_values();
+    // Along the sum's smaller principal direction, each surface's own
+    // curvature: of opposite signs and summing to rounding, they cancel
+    // (as along x or y, `curvatures`), whatever the angle.
+    let (c, s) = (p.angle.cos(), p.angle.sin());
+    let along = |k: Curvature| k.xx * c * c + 2.0 * k.xy * c * s + k.yy * s * s;
+    let (k1, k2) = (along(Curvature::of(&a)), along(Curvature::of(&b)));
+    if k1 * k2 < 0.0 && p.smaller.abs() < CANCELLING_CURVATURE * k1.abs().max(k2.abs()) {
+        let (field, raw_surface) = if k1 < 0.0 {
+            (
+                "geometry.surface1",
+                raw.and_then(|g| g.get_ref().surface1.as_ref()),
+            )
+        } else {
+            (
+                "geometry.surface2",
+                raw.and_then(|g| g.get_ref().surface2.as_ref()),
+            )
+        };
+        let (key, span) = raw_surface.map_or(("", raw.map_or(0..0, |g| g.span())), |t| {
+            let r = t.get_ref();
+            match (&r.angle, &r.radius) {
+                (Some(v), _) => (".angle", v.span()),
+                (None, Some(v)) => (".radius", v.span()),
+                _ => ("", t.span()),
+            }
+        });
+        return Err(ctx.invalid(
+            span,
+            format!("{field}{key}"),
+            "",
+            format!(
+                "cancels the other surface along the gap's principal direction at {:.2} degrees \
+                 from x: there geometry.surface1's curvature is {k1:.4e} and geometry.surface2's \
+                 {k2:.4e}, so the relative curvature, {:.3e}, is below \
+                 {CANCELLING_CURVATURE:.1e} of the larger, within rounding of zero: the gap along \
+                 that direction is no number the solve can use (a conforming contact, which the \
+                 half-space models do not describe). Give radii or angles whose curvatures there \
+                 differ by more than that",
+                p.angle.to_degrees(),
+                p.smaller
+            ),
+        ));
+    }
     let size = form.xx.abs() + form.yy.abs() + 2.0 * form.xy.abs();
     if p.smaller >= -CANCELLING_CURVATURE * size {
         return Ok(());
@@ -606,6 +700,53 @@ pub(crate) fn coarse_grid(
     warnings
 }
 
+/// A grid too coarse to resolve the contact at all: fewer than
+/// [`MIN_POINTS_RESOLVED`] points across the contact's expected size (the
+/// Hertz contact's `(what, half-size)`, or the candidate disk's `(spacing,
+/// radius)`, as [`coarse_grid`] takes them). Gives the points across, the
+/// size across and the largest spacing that resolves it.
+pub(crate) fn unresolved_grid(
+    points: &PointSet,
+    hertz: Option<(&str, f64)>,
+    disk: Option<(f64, f64)>,
+) -> Option<Unresolved> {
+    let (h, size, what) = match (hertz, disk) {
+        (Some((what, a)), _) => (
+            points.cell().dx,
+            2.0 * a,
+            format!("the Hertz contact {what}"),
+        ),
+        (None, Some((spacing, radius))) => (
+            spacing,
+            2.0 * radius,
+            "the candidate disk's diameter".to_string(),
+        ),
+        (None, None) => return None,
+    };
+    // A grid laid out with exactly `across` points over the contact
+    // (`points.across`) lands there up to rounding.
+    let across = (size / h * (1.0 + 1e-9)).floor() + 1.0;
+    (across < MIN_POINTS_RESOLVED as f64).then(|| Unresolved {
+        across: across as usize,
+        size,
+        what,
+        spacing: size / (MIN_POINTS_RESOLVED - 1) as f64,
+    })
+}
+
+/// A grid that cannot resolve the contact ([`unresolved_grid`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Unresolved {
+    /// The points across the contact's size.
+    pub across: usize,
+    /// The contact's size across (length).
+    pub size: f64,
+    /// What the size is ("the Hertz contact width").
+    pub what: String,
+    /// The largest spacing that puts [`MIN_POINTS_RESOLVED`] points across.
+    pub spacing: f64,
+}
+
 /// Why points relative to the Hertz contact (across, zone) cannot be laid
 /// out: the first condition the scene misses.
 pub(crate) fn no_hertz_reason(
@@ -737,7 +878,7 @@ pub(crate) fn strain(
         intensity: pressure,
         ..
     } = labels;
-    let size = zone_size(points);
+    let size = strain_length(points);
     let small = "beyond the small strain (at most 0.1) of the linear elasticity the influence \
                  models rest on";
     let load = match normal {
@@ -746,7 +887,8 @@ pub(crate) fn strain(
             let s = d.abs() / size;
             return beyond(s).then(|| {
                 format!(
-                    "the approach is {s:.1e} times the candidate zone's size, {} {length}: {small}; \
+                    "the approach is {s:.1e} times the candidate zone's smaller extent, {} \
+                     {length}: {small}; \
                      give an approach below {} {length}, or check its units",
                     Num(size),
                     rounded(MAX_STRAIN * size)
@@ -784,7 +926,7 @@ pub(crate) fn strain(
             return Some(format!(
                 "the foundation's mean compression under the load over the candidate zone \
                  ({area}), {} {length} (the mean intensity over the modulus k = {}), is {s:.1e} \
-                 times the zone's size, {} {length}: {small}; {fix}",
+                 times the zone's smaller extent, {} {length}: {small}; {fix}",
                 rounded(mean / k),
                 Num(k),
                 Num(size)
@@ -794,6 +936,133 @@ pub(crate) fn strain(
     bodies
         .iter()
         .find_map(|b| beam_slope(b, (load, mean), points, foundation, labels))
+}
+
+/// The largest elastic deformation `normal` can make on `points`
+/// (length): an approach is its own; a load's is the largest of the whole
+/// load on one cell (the contact is at least one cell): its pressure
+/// against E* times the cell's smaller side (half-space models), a Winkler
+/// foundation's compression under it `P / (A_cell k)`, and, without a
+/// foundation, a beam's tip deflection under it as a cantilever over its
+/// longer arm, `P l^3 / (3 E I)`. An upper bound, so that a refusal never
+/// blames a load whose contact is resolved.
+pub(crate) fn deformation(bodies: [&Body; 2], normal: Normal, points: &PointSet) -> f64 {
+    let load = match normal {
+        Normal::Approach(d) => return d.abs(),
+        Normal::Load(p) => p,
+    };
+    let cell = points.cell();
+    let measure = cell.measure(points.dimension());
+    let side = match points.dimension() {
+        Dimension::Line => cell.dx,
+        Dimension::Surface => cell.dx.min(cell.dy),
+    };
+    let pressure = load / measure;
+    let mut w = 0.0f64;
+    if bodies.iter().any(|b| b.material().is_some()) {
+        let e = combined_modulus_of(bodies[0].material(), bodies[1].material());
+        w = w.max(pressure / e * side);
+    }
+    let foundation = bodies.iter().find_map(|b| match *b.model() {
+        Model::Winkler { modulus } => Some(modulus),
+        _ => None,
+    });
+    if let Some(k) = foundation {
+        w = w.max(pressure / k);
+    }
+    for b in bodies {
+        if let (
+            None,
+            Model::Beam {
+                flexural_rigidity: ei,
+                loaded_point,
+            },
+        ) = (foundation, *b.model())
+        {
+            let arm = beam_arm(points, loaded_point);
+            w = w.max(load * arm.powi(3) / (3.0 * ei));
+        }
+    }
+    w
+}
+
+/// Why `normal` on `points` cannot be resolved against the largest initial
+/// separation over the zone, `largest` (length), if it cannot: its
+/// [`deformation`] below [`MIN_RESOLVED_DEFORMATION`] of `largest`, or
+/// below [`MIN_DEFORMATION`]. The message gives the smallest load (or
+/// approach) resolved: the deformation is linear in it.
+pub(crate) fn unresolved(
+    bodies: [&Body; 2],
+    normal: Normal,
+    points: &PointSet,
+    largest: f64,
+    length: &str,
+) -> Option<String> {
+    if let Normal::Load(p) = normal {
+        let per_point = p / points.len() as f64;
+        if per_point < MIN_DEFORMATION {
+            return Some(format!(
+                "is {} per candidate point (of {}), below {MIN_DEFORMATION:.1e}, where the \
+                 solve's products and sums fall among the subnormal numbers and lose their \
+                 digits; give a load of at least {}, or check its units",
+                rounded(per_point),
+                points.len(),
+                rounded(MIN_DEFORMATION * points.len() as f64 * 1.001)
+            ));
+        }
+    }
+    // An approach of 0 or less presses nothing (the run says so).
+    if matches!(normal, Normal::Approach(d) if d <= 0.0) {
+        return None;
+    }
+    let w = deformation(bodies, normal, points);
+    let needed = (MIN_RESOLVED_DEFORMATION * largest.abs()).max(MIN_DEFORMATION);
+    if w >= needed {
+        return None;
+    }
+    let (value, what, estimate) = match normal {
+        Normal::Load(p) => (
+            p,
+            "a load",
+            "the whole load on one cell, against the bodies' stiffness",
+        ),
+        Normal::Approach(d) => (d.abs(), "an approach", "the approach"),
+    };
+    // The deformation is linear in the load: scale it up to `needed`,
+    // rounded up to four digits.
+    let least = if w > 0.0 && w.is_finite() {
+        format!("{}", rounded(value * (needed / w) * 1.001))
+    } else {
+        "a larger one".to_string()
+    };
+    let against = if MIN_RESOLVED_DEFORMATION * largest.abs() >= MIN_DEFORMATION {
+        format!(
+            "{:.1e} of the largest initial separation over the candidate zone, {} {length}: \
+             below {MIN_RESOLVED_DEFORMATION:.0e} of it the gaps near the contact are lost \
+             among the rounding of the separations (each exact to about 2.2e-16 of the \
+             largest), to which the solve's tolerances are scaled",
+            w / largest.abs(),
+            rounded(largest.abs())
+        )
+    } else {
+        format!(
+            "below {MIN_DEFORMATION:.1e} {length}, where the solve's products fall among the \
+             subnormal numbers and lose their digits"
+        )
+    };
+    Some(format!(
+        "deforms the bodies by at most about {} {length} ({estimate}), {against}, so no \
+         contact can be resolved; give {what} of at least {least}, a smaller candidate zone or a \
+         finer grid, or check the units and the moduli",
+        rounded(w)
+    ))
+}
+
+/// A beam's longer arm from its loaded point to the far edge of the last
+/// cell on either side.
+fn beam_arm(points: &PointSet, loaded_point: f64) -> f64 {
+    let h = points.cell().dx;
+    (loaded_point - points.x(0) + 0.5 * h).max(points.x(points.len() - 1) + 0.5 * h - loaded_point)
 }
 
 /// A beam body `b` bent beyond [`MAX_STRAIN`] rad by `load` spread over
@@ -814,9 +1083,7 @@ fn beam_slope(
     else {
         return None;
     };
-    let h = points.cell().dx;
-    let arm = (loaded_point - points.x(0) + 0.5 * h)
-        .max(points.x(points.len() - 1) + 0.5 * h - loaded_point);
+    let arm = beam_arm(points, loaded_point);
     let cantilever = mean * arm.powi(3) / (6.0 * ei);
     let slope = foundation.map_or(cantilever, |k| {
         let beta = (k / (4.0 * ei)).powf(0.25);
@@ -875,40 +1142,74 @@ pub(crate) fn small_strain(
 }
 
 /// Given separations, or surfaces with tabulated departures (a height map,
-/// a profile), whose largest size at the candidate points `eps` exceeds
-/// [`MAX_STRAIN`] of the zone's size: the influence models take the
-/// surfaces as nearly flat against the candidate zone.
+/// a profile), that vary along a row of the grid by more than
+/// [`MAX_STRAIN`] of the zone's extent along that row (along x, and along
+/// y on a surface): the influence models take the surfaces as nearly flat
+/// against the candidate zone, and a surface's slope is its variation over
+/// the extent along each axis (a roller's curvature across a zone 10^5
+/// times wider than long is flat along x, whatever it does over the
+/// roller's length along y).
 pub(crate) fn small_separations(eps: &[f64], points: &PointSet, length: &str) -> Option<String> {
-    let size = zone_size(points);
-    let (k, largest) =
-        eps.iter()
-            .map(|e| e.abs())
-            .enumerate()
-            .fold(
-                (0, 0.0f64),
-                |(k, m), (j, e)| {
-                    if e > m { (j, e) } else { (k, m) }
-                },
-            );
-    let s = largest / size;
-    beyond(s).then(|| {
-        let at = match points.dimension() {
-            Dimension::Line => format!("x = {}", rounded(points.x(k))),
-            Dimension::Surface => {
-                format!(
-                    "(x, y) = ({}, {})",
-                    rounded(points.x(k)),
-                    rounded(points.y(k))
-                )
+    let (ex, ey) = points.extent();
+    let cell = points.cell();
+    let surface = points.dimension() == Dimension::Surface;
+    // Rows along x (one key per y) and, on a surface, columns along y.
+    let mut axes = vec![(
+        "x",
+        ex,
+        Box::new(|k: usize| (points.y(k) / cell.dy).round() as i64) as Box<dyn Fn(usize) -> i64>,
+    )];
+    if surface {
+        axes.push((
+            "y",
+            ey,
+            Box::new(|k: usize| (points.x(k) / cell.dx).round() as i64),
+        ));
+    }
+    for (axis, extent, key) in axes {
+        // Each row's lowest and highest separation, with their points.
+        let mut rows: std::collections::HashMap<i64, (usize, usize)> =
+            std::collections::HashMap::new();
+        for (k, e) in eps.iter().enumerate() {
+            let row = rows.entry(key(k)).or_insert((k, k));
+            if *e < eps[row.0] {
+                row.0 = k;
+            }
+            if *e > eps[row.1] {
+                row.1 = k;
+            }
+        }
+        let worst = rows
+            .values()
+            .map(|&(lo, hi)| (lo, hi, eps[hi] - eps[lo]))
+            .max_by(|a, b| a.2.total_cmp(&b.2));
+        let Some((lo, hi, range)) = worst else {
+            continue;
+        };
+        let s = range / extent;
+        if !beyond(s) {
+            continue;
+        }
+        let at = |k: usize| {
+            if surface {
+                format!("({}, {})", rounded(points.x(k)), rounded(points.y(k)))
+            } else {
+                format!("x = {}", rounded(points.x(k)))
             }
         };
-        format!(
-            "the separation at {at} is {} {length}, {s:.1e} times the candidate zone's size, {} \
-             {length}: the influence models take the surfaces as nearly flat against the \
-             candidate zone (heights at most {MAX_STRAIN} of its size); check the values and \
+        return Some(format!(
+            "the separation varies along {axis} by {} {length}, from {} at {} to {} at {}, {s:.1e} \
+             times the candidate zone's extent along {axis}, {} {length}: the influence models \
+             take the surfaces as nearly flat against the candidate zone (a variation along each \
+             axis at most {MAX_STRAIN} of the zone's extent along it); check the values and \
              their units",
-            Num(eps[k]),
-            Num(size)
-        )
-    })
+            rounded(range),
+            Num(eps[lo]),
+            at(lo),
+            Num(eps[hi]),
+            at(hi),
+            Num(extent)
+        ));
+    }
+    None
 }

@@ -97,7 +97,9 @@ fn a_design_load_too_light_for_the_axial_grid_is_refused_naming_the_loads() {
 
 #[test]
 fn a_design_on_a_grid_that_does_not_resolve_the_contact_is_refused() {
-    let grid = "zone = 65536.0\nhalf_y = 5.0\nnx = 9\nny = 40";
+    // 9 cells over 32 Hertz half-widths: about 1 point across each load's
+    // contact.
+    let grid = "zone = 16.0\nhalf_y = 5.0\nnx = 9\nny = 40";
     let e = scene(&crowned_roller(grid, "[1000.0, 5000.0, 10000.0]"))
         .unwrap_err()
         .to_string();
@@ -107,8 +109,12 @@ fn a_design_on_a_grid_that_does_not_resolve_the_contact_is_refused() {
         e.contains("the design load 1000 has about 1 points across"),
         "{e}"
     );
-    // The same grid without a design is analysed, with a warning only.
-    assert!(scene(&roller(grid, "10000.0")).is_ok());
+    // The same grid without a design is refused too: one point across the
+    // contact (MIN_POINTS_RESOLVED), naming the cells across it.
+    let e = scene(&roller(grid, "10000.0")).unwrap_err().to_string();
+    assert!(e.contains("`points.nx` = 9"), "{e}");
+    assert!(e.contains("at least 33 cells"), "{e}");
+    assert!(scene(&roller(&grid.replace("nx = 9", "nx = 33"), "10000.0")).is_ok());
 }
 
 #[test]

@@ -45,7 +45,7 @@ fn syntax_names_line_column_and_key() {
     assert!(matches!(e, SceneError::Syntax { .. }));
     assert!(
         e.to_string()
-            .starts_with("test.toml:12:1: unknown field `colour`"),
+            .starts_with("test.toml:12:1: `body2.colour`: unknown field `colour`"),
         "{e}"
     );
     let e = scene(&base.replace("[loading]\nload = 100.0", "[loading]")).unwrap_err();

@@ -17,9 +17,10 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
-/// A roller on an absolute 5 x 8 grid (0.8 mm by 10 mm, 1000 N).
+/// A roller on an absolute 11 x 8 grid (0.8 mm by 10 mm, 1000 N: 3 points
+/// across the Hertz width, the fewest the scene takes).
 fn base() -> String {
-    roller("half_x = 0.4\nhalf_y = 5.0\nnx = 5\nny = 8", "1000.0")
+    roller("half_x = 0.4\nhalf_y = 5.0\nnx = 11\nny = 8", "1000.0")
 }
 
 /// The scene `text` as the file `scene.toml` of `d`.
@@ -94,7 +95,7 @@ fn a_profile_file_adds_its_drops_to_the_cylinder() {
     // A profile that stops short of the roller's ends is refused at check.
     std::fs::write(d.join("short.csv"), "-4.0, 0.0\n4.0, 0.0\n").unwrap();
     let (field, why) = reason(scene_in(&d, &with.replace("crown.csv", "short.csv")));
-    assert_eq!(field, "geometry");
+    assert_eq!(field, "geometry.profile.file");
     assert!(
         why.contains("short.csv") && why.contains("does not cover"),
         "{why}"

@@ -320,14 +320,20 @@ fn messages_name_the_field_at_fault() {
 #[test]
 fn a_grid_coarser_than_the_contact_warns() {
     assert!(scene(&spheres()).unwrap().warnings().is_empty());
-    // Spacing equal to the disk radius: about two points across the Hertz
-    // contact diameter (0.032 in).
-    let s = scene(&spheres().replace("spacing = 0.002", "spacing = 0.02")).unwrap();
+    // Spacing 0.01 in: about four points across the Hertz contact diameter
+    // (0.032 in), a warning.
+    let s = scene(&spheres().replace("spacing = 0.002", "spacing = 0.01")).unwrap();
     assert_eq!(s.warnings().len(), 1, "{:?}", s.warnings());
     assert!(
-        s.warnings()[0].contains("about 2 points across the Hertz contact diameter"),
+        s.warnings()[0].contains("about 4 points across the Hertz contact diameter"),
         "{:?}",
         s.warnings()
+    );
+    // Spacing equal to the disk radius: two points across, refused.
+    refused(
+        &spheres().replace("spacing = 0.002", "spacing = 0.02"),
+        "points.spacing",
+        "puts 2 point(s) across the Hertz contact diameter",
     );
     // Without a closed form, the disk itself.
     let flat = spheres()
@@ -437,7 +443,7 @@ fn an_approach_beyond_small_strain_is_refused() {
         refused(
             &spheres().replace("load = 100.0", &format!("approach = {approach}")),
             "loading.approach",
-            "times the candidate zone's size",
+            "times the candidate zone's smaller extent",
         );
     }
 }
@@ -480,7 +486,7 @@ fn separations_beyond_the_zones_size_are_refused() {
     refused(
         &with_table(BEAM, "geometry", &values("-1e300")),
         "geometry.separation",
-        "the separation at x = 3.75 is -1e300 in",
+        "the separation varies along x by 1e300 in, from -1e300 at x = 3.75",
     );
 }
 

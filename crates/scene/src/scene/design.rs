@@ -431,7 +431,8 @@ fn design_family(
                 ));
             };
             let end = log_end(t);
-            log_crown_valid(ctx, t, q, flat, end, &roller)?;
+            let given = scene.roller.is_some();
+            log_crown_valid(ctx, t, q, flat, end, (&roller, given))?;
             DesignFamily::LogarithmicCrown {
                 design_load: q,
                 flat_length: flat,
@@ -502,14 +503,15 @@ fn design_relative_to(
 /// The logarithmic crown the design stage will set, checked as elcon-design
 /// checks it (`Profile::validate`: a flat part shorter than the roller, a
 /// Hertz half-width that leaves Johns and Gohar's profile defined), its
-/// parameters named by the scene's keys.
+/// parameters named by the scene's keys; the roller's length by
+/// `roller.length` when the roller was `given` with the design.
 fn log_crown_valid(
     ctx: &Ctx<'_>,
     t: &DesignToml,
     design_load: f64,
     flat_length: f64,
     end: LogEnd,
-    roller: &Roller,
+    (roller, given): (&Roller, bool),
 ) -> Result<(), SceneError> {
     let crown = Profile::LogarithmicCrown(LogCrown {
         design_load,
@@ -544,8 +546,15 @@ fn log_crown_valid(
         field,
         value,
         format!(
-            "{reason} (the logarithmic crown of a roller {} long, points.half_y twice)",
-            Num(roller.length)
+            "{reason} (the logarithmic crown of a roller {} long, {})",
+            Num(roller.length),
+            // The roller given with the design (Python's `roller=`), or
+            // derived from the scene's grid.
+            if given {
+                "roller.length"
+            } else {
+                "twice points.half_y"
+            }
         ),
     ))
 }

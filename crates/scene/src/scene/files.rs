@@ -57,7 +57,7 @@ fn read_data(path: &Path) -> Result<Vec<u8>, String> {
         .map_err(|e| format!("cannot be read: {e}"))?;
     if bytes.len() as u64 > MAX_DATA_BYTES {
         return Err(format!(
-            "is larger than {} MiB, the most a data file may be (MAX_DATA_BYTES)",
+            "is larger than {} MiB, the largest data file elcon reads",
             MAX_DATA_BYTES >> 20
         ));
     }
@@ -287,10 +287,33 @@ pub(super) fn on_points(
         return Ok(Geometry::Separation(separations(ctx, file, points)?));
     }
     if let Geometry::Tabulated { .. } = &geometry {
-        elcon_analysis::separations(points, &geometry)
-            .map_err(|e| ctx.invalid(g.span(), "geometry", "", e.to_string()))?;
+        elcon_analysis::separations(points, &geometry).map_err(|e| {
+            let (field, span, value) = data_file(g);
+            ctx.invalid(span, field, value, e.to_string())
+        })?;
     }
     Ok(geometry)
+}
+
+/// The data file a geometry's separations are read from, as a refusal
+/// names it: its key (`geometry.height_map.file`, `geometry.profile.file`,
+/// `geometry.separation_file`), where it is written and its name; the
+/// `geometry` table when it reads none.
+pub(super) fn data_file(
+    g: &Spanned<GeometryToml>,
+) -> (&'static str, std::ops::Range<usize>, String) {
+    let t = g.get_ref();
+    let named = |f: &Spanned<String>| (f.span(), format!("{:?}", f.get_ref()));
+    let (field, (span, value)) = if let Some(m) = &t.height_map {
+        ("geometry.height_map.file", named(&m.get_ref().file))
+    } else if let Some(p) = &t.profile {
+        ("geometry.profile.file", named(&p.get_ref().file))
+    } else if let Some(f) = &t.separation_file {
+        ("geometry.separation_file", named(f))
+    } else {
+        ("geometry", (g.span(), String::new()))
+    };
+    (field, span, value)
 }
 
 /// `geometry.separation_file`: a separation for each candidate point, the

@@ -443,18 +443,54 @@ fn small_strain(
     units: &Units,
 ) -> Result<(), SceneError> {
     small_separations(ctx, raw.geometry.as_ref(), geometry, points, units.length())?;
+    let pair = [bodies[0].body(), bodies[1].body()];
     sanity::small_strain(
         ctx,
         &raw.loading,
-        [bodies[0].body(), bodies[1].body()],
+        pair,
         loading,
         points,
         strain_labels(units),
-    )
+    )?;
+    let largest = largest_separation(ctx, raw.geometry.as_ref(), geometry, points)?;
+    let Some(reason) = sanity::unresolved(pair, loading.normal, points, largest, units.length())
+    else {
+        return Ok(());
+    };
+    let t = raw.loading.get_ref();
+    let (field, given, value) = match loading.normal {
+        Normal::Load(v) => ("loading.load", t.load.as_ref(), v),
+        Normal::Approach(v) => ("loading.approach", t.approach.as_ref(), v),
+    };
+    Err(ctx.invalid(
+        given.map_or(raw.loading.span(), |v| v.span()),
+        field,
+        crate::ctx::Num(value),
+        reason,
+    ))
+}
+
+/// The largest initial separation (in magnitude) over `points`: what a
+/// load's deformation must be resolved against
+/// ([`sanity::MIN_RESOLVED_DEFORMATION`]).
+pub(crate) fn largest_separation(
+    ctx: &Ctx<'_>,
+    raw: Option<&Spanned<GeometryToml>>,
+    geometry: &Geometry,
+    points: &PointSet,
+) -> Result<f64, SceneError> {
+    let eps = elcon_analysis::separations(points, geometry).map_err(|e| match raw {
+        Some(g) => {
+            let (field, span, value) = files::data_file(g);
+            ctx.invalid(span, field, value, e.to_string())
+        }
+        None => ctx.invalid(0..0, "geometry", "", e.to_string()),
+    })?;
+    Ok(eps.iter().fold(0.0f64, |m, e| m.max(e.abs())))
 }
 
 /// The unit labels the small-strain refusals quote.
-fn strain_labels(units: &Units) -> sanity::Labels<'_> {
+pub(crate) fn strain_labels(units: &Units) -> sanity::Labels<'_> {
     sanity::Labels {
         length: units.length(),
         force: units.force(),
@@ -476,8 +512,10 @@ fn small_separations(
     let (Some(g), Geometry::Separation(_) | Geometry::Tabulated { .. }) = (raw, geometry) else {
         return Ok(());
     };
-    let eps = elcon_analysis::separations(points, geometry)
-        .map_err(|e| ctx.invalid(g.span(), "geometry", "", e.to_string()))?;
+    let eps = elcon_analysis::separations(points, geometry).map_err(|e| {
+        let (field, span, value) = files::data_file(g);
+        ctx.invalid(span, field, value, e.to_string())
+    })?;
     let Some(reason) = sanity::small_separations(&eps, points, length) else {
         return Ok(());
     };
@@ -767,6 +805,7 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
             })?);
         }
         design_loads_small(ctx, raw_design, scene, &sets)?;
+        log_crown_resolved(ctx, raw_design, scene)?;
         design_grids_resolve(ctx, raw, scene, &sets)?;
         design_grids_fit(ctx, raw_design, scene)?;
         let view = sanity::DesignView {
@@ -803,7 +842,68 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
         PointsSpec::Disk { spacing, radius } => Some((spacing, radius)),
         _ => None,
     };
+    if let Some(u) = sanity::unresolved_grid(&scene.points, hertz, disk) {
+        return Err(unresolved_grid(ctx, &raw.points, scene, &u));
+    }
     Ok(sanity::coarse_grid(&scene.points, hertz, disk))
+}
+
+/// The refusal of a grid too coarse to resolve the contact
+/// ([`sanity::unresolved_grid`]), naming the field that sets its spacing
+/// and the value that would resolve it.
+fn unresolved_grid(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<PointsToml>,
+    scene: &Scene,
+    u: &sanity::Unresolved,
+) -> SceneError {
+    let t = raw.get_ref();
+    let h = scene.points.cell().dx;
+    // The count that brings the spacing below `u.spacing` (strictly: at
+    // exactly it, rounding may leave one point fewer across).
+    let count = |n: i64| ((n as f64) * h / u.spacing * (1.0 + 1e-6)).ceil() as i64;
+    let (field, span, value, needed) = match (&t.spacing, &t.nx, &t.n) {
+        (Some(s), _, _) => (
+            "points.spacing",
+            s.span(),
+            crate::ctx::Num(*s.get_ref()).to_string(),
+            format!("a spacing of at most {}", crate::ctx::rounded(u.spacing)),
+        ),
+        (None, Some(nx), _) => (
+            "points.nx",
+            nx.span(),
+            nx.get_ref().to_string(),
+            format!("at least {} cells", count(*nx.get_ref())),
+        ),
+        (None, None, Some(n)) => (
+            "points.n",
+            n.span(),
+            n.get_ref().to_string(),
+            format!("at least {} cells", count(*n.get_ref())),
+        ),
+        _ => (
+            "points",
+            raw.span(),
+            String::new(),
+            format!("a spacing of at most {}", crate::ctx::rounded(u.spacing)),
+        ),
+    };
+    ctx.invalid(
+        span,
+        field,
+        value,
+        format!(
+            "puts {} point(s) across {} ({} {}, spacing {}): fewer than {}, the fewest that tell \
+             the pressure's profile from its mean (a contact on one point is the load over one \
+             cell); give {needed}",
+            u.across,
+            u.what,
+            crate::ctx::rounded(u.size),
+            scene.units.length(),
+            crate::ctx::rounded(h),
+            sanity::MIN_POINTS_RESOLVED,
+        ),
+    )
 }
 
 /// Every design load within [`sanity::MAX_STRAIN`] on its grid
@@ -821,7 +921,17 @@ fn design_loads_small(
     let units = &scene.units;
     let labels = strain_labels(units);
     for (i, (&load, set)) in spec.loads().iter().zip(sets).enumerate() {
-        if let Some(reason) = sanity::strain(bodies, Normal::Load(load), set, labels) {
+        // A geometry tabulated on the scene's own points has no separations
+        // on another grid: the run refuses that, naming it.
+        let largest = elcon_analysis::separations(set, &scene.geometry)
+            .ok()
+            .map(|eps| eps.iter().fold(0.0f64, |m, e| m.max(e.abs())));
+        let reason = sanity::strain(bodies, Normal::Load(load), set, labels).or_else(|| {
+            largest.and_then(|largest| {
+                sanity::unresolved(bodies, Normal::Load(load), set, largest, units.length())
+            })
+        });
+        if let Some(reason) = reason {
             let loads = raw.get_ref().loads.as_ref();
             let (field, span) = match loads.and_then(|l| l.get_ref().get(i)) {
                 Some(v) => (format!("design.loads[{i}]"), v.span()),
@@ -831,6 +941,44 @@ fn design_loads_small(
         }
     }
     Ok(())
+}
+
+/// A logarithmic crown's `design.design_load` resolved on the scene's grid
+/// ([`sanity::unresolved`]): the crown's depth is the deformation of its
+/// design load, and a crown within the rounding of the separations
+/// relieves nothing, so the design never converges.
+fn log_crown_resolved(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<crate::schema::DesignToml>,
+    scene: &Scene,
+) -> Result<(), SceneError> {
+    let Some(DesignFamily::LogarithmicCrown { design_load, .. }) =
+        scene.design.as_ref().map(|d| d.family())
+    else {
+        return Ok(());
+    };
+    let bodies = [scene.bodies[0].body(), scene.bodies[1].body()];
+    let largest = largest_separation(ctx, None, &scene.geometry, &scene.points)?;
+    let Some(reason) = sanity::unresolved(
+        bodies,
+        Normal::Load(*design_load),
+        &scene.points,
+        largest,
+        scene.units.length(),
+    ) else {
+        return Ok(());
+    };
+    let span = raw
+        .get_ref()
+        .design_load
+        .as_ref()
+        .map_or(raw.span(), |q| q.span());
+    Err(ctx.invalid(
+        span,
+        "design.design_load",
+        crate::ctx::Num(*design_load),
+        reason,
+    ))
 }
 
 /// `design.max_points` admits every load case on the sequence's second

@@ -426,6 +426,25 @@ mod tests {
         let log = "[design]\nfamily = \"logarithmic-crown\"\n";
         let e = design_over(file(), log, std::slice::from_ref(&line), None, None).unwrap_err();
         assert!(e.to_string().contains("set for a roller"), "{e}");
+        // A roller given with the design (Python's `roller=`) is named by
+        // its own key, not by the scene's grid it was not derived from.
+        let roller = Roller {
+            combined_modulus: 30e6,
+            radius: 1.0,
+            length: 8.9,
+        };
+        let heavy = "[design]\nfamily = \"logarithmic-crown\"\ndesign_load = 1e12\n";
+        let e = design_over(
+            file(),
+            heavy,
+            std::slice::from_ref(&line),
+            None,
+            Some(roller),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("`design.design_load`"), "{e}");
+        assert!(e.contains("roller.length") && !e.contains("half_y"), "{e}");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! against the grid, and the point set a layout gives at a Hertz scale.
 
 use elcon_analysis::GridFamily;
-use elcon_influence::{Dimension, PointSet};
+use elcon_influence::{Dimension, MAX_POINTS, PointSet};
 use toml::Spanned;
 
 use crate::ctx::{Ctx, Num};
@@ -327,5 +327,12 @@ impl PointsSpec {
 /// Builds the point set of the layout's family ([`PointsSpec::family`]);
 /// `scale` is the Hertz radius or half-width for the relative layouts.
 pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, String> {
-    spec.family(scale)?.points().map_err(|e| e.to_string())
+    // elcon-influence names its bound by its constant; a user reads the
+    // number and what it is.
+    spec.family(scale)?.points().map_err(|e| {
+        e.to_string().replace(
+            &format!("MAX_POINTS = {MAX_POINTS} points"),
+            &format!("{MAX_POINTS} points, the most elcon lays out"),
+        )
+    })
 }

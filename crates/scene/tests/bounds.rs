@@ -1,0 +1,228 @@
+//! The bounds `check` and `run` share on what a solve can resolve: a load
+//! or approach whose deformation is lost in the rounding of the
+//! separations, a grid with one point across the contact, strain measured
+//! along the zone's smaller extent, quadrics cancelling at an angle; and
+//! the keys the parser's and the data files' messages name.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::scene;
+use elcon_scene::{MIN_POINTS_RESOLVED, Scene, SceneError, run};
+
+/// An example scene's path.
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/scenes")
+        .join(name)
+}
+
+/// An example scene's text with `from` replaced by `to` (which must occur),
+/// validated as if it were the example (its data files found beside it).
+fn example_with(name: &str, from: &str, to: &str) -> Result<Scene, SceneError> {
+    let path = example(name);
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains(from), "{name} has no {from:?}");
+    Scene::from_str(&path, &text.replacen(from, to, 1))
+}
+
+/// The field an `Invalid` refusal names, and its message.
+fn refused(r: Result<Scene, SceneError>) -> (String, String) {
+    match r {
+        Err(e @ SceneError::Invalid { .. }) => {
+            let SceneError::Invalid { field, .. } = &e else {
+                unreachable!()
+            };
+            (field.clone(), e.to_string())
+        }
+        Err(e) => panic!("not a refusal of a value: {e}"),
+        Ok(_) => panic!("accepted"),
+    }
+}
+
+/// Example 1's spheres on a rigid plane on an absolute disk of radius
+/// 0.02 in: the largest separation over it is 2e-4 in, and a load P
+/// deforms the bodies by at most 1.5e-5 P in (P on one cell of 0.002 in
+/// against E* = 3.3e7 psi).
+fn spheres_on_disk(loading: &str) -> String {
+    common::sphere_on_rigid_plane("spacing = 0.002\nradius = 0.02").replace("load = 100.0", loading)
+}
+
+#[test]
+fn every_example_scene_passes_the_bounds() {
+    for entry in std::fs::read_dir(example("")).unwrap() {
+        let path = entry.unwrap().path();
+        let batch = std::fs::read_to_string(&path).is_ok_and(|t| t.contains("[batch]"));
+        if path.extension().is_some_and(|e| e == "toml") && !batch {
+            Scene::from_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        }
+    }
+}
+
+#[test]
+fn a_load_lost_in_the_rounding_of_the_separations_is_refused() {
+    // 1e-8 lbf on one cell of 0.002 in deforms the bodies by at most
+    // 1.5e-13 in, 7e-10 of the separations: refused, with the smallest
+    // load resolved.
+    let (field, e) = refused(scene(&spheres_on_disk("load = 1e-8")));
+    assert_eq!(field, "loading.load", "{e}");
+    assert!(e.contains("of the largest initial separation"), "{e}");
+    assert!(e.contains("give a load of at least"), "{e}");
+    // Example 1's load is resolved.
+    scene(&spheres_on_disk("load = 100.0")).unwrap();
+    // An approach likewise.
+    let (field, e) = refused(scene(&spheres_on_disk("approach = 1e-14")));
+    assert_eq!(field, "loading.approach", "{e}");
+    scene(&spheres_on_disk("approach = 1e-4")).unwrap();
+}
+
+#[test]
+fn a_load_near_the_subnormal_numbers_never_reaches_a_solver() {
+    // On a grid sized by its own Hertz contact the separations shrink with
+    // the load: the force per point is what is bounded.
+    let tiny = common::sphere_on_rigid_plane("across = 11\nzone = 1.3")
+        .replace("load = 100.0", "load = 1e-297");
+    let (field, e) = refused(scene(&tiny));
+    assert_eq!(field, "loading.load", "{e}");
+    assert!(e.contains("per candidate point"), "{e}");
+    // A beam on its foundation: no separations, the deformation is bounded.
+    // (1e-286 lbf is 6e-288 a point, and compresses the foundation by
+    // 1.25e-294 in.)
+    let beam = include_str!("common/beam.toml").replace("load = 1000.0", "load = 1e-286");
+    let (field, e) = refused(scene(&beam));
+    assert_eq!(field, "loading.load", "{e}");
+    assert!(e.contains("subnormal"), "{e}");
+    // So is a foundation so stiff that it does not move within them.
+    let (field, _) = refused(example_with(
+        "example2-beam-design.toml",
+        "modulus = 1e7",
+        "modulus = 1e300",
+    ));
+    assert_eq!(field, "loading.load");
+}
+
+#[test]
+fn a_logarithmic_crown_for_a_load_it_cannot_resolve_is_refused_by_check() {
+    let (field, e) = refused(example_with(
+        "crowned-roller.toml",
+        "[design]\n",
+        "[design]\ndesign_load = 1e-300\n",
+    ));
+    assert_eq!(field, "design.design_load", "{e}");
+}
+
+#[test]
+fn a_grid_with_one_point_across_the_contact_is_refused() {
+    let (field, e) = refused(example_with(
+        "flat-punch.toml",
+        "spacing = 0.0005",
+        "spacing = 1.0",
+    ));
+    assert_eq!(field, "points.spacing", "{e}");
+    assert!(e.contains("at most 0.01"), "{e}");
+    assert!(
+        e.contains(&format!("fewer than {MIN_POINTS_RESOLVED}")),
+        "{e}"
+    );
+    // Three points across (spacing = radius) pass, with a warning.
+    let s = example_with("flat-punch.toml", "spacing = 0.0005", "spacing = 0.01").unwrap();
+    assert!(!s.warnings().is_empty());
+    // One cell across the roller's Hertz width (0.149 mm): nx names it.
+    let roller = common::roller("half_x = 0.2\nhalf_y = 5.0\nnx = 1\nny = 8", "1000.0");
+    let (field, e) = refused(scene(&roller));
+    assert_eq!(field, "points.nx", "{e}");
+    assert!(e.contains("at least 6 cells"), "{e}");
+}
+
+#[test]
+fn an_approach_is_bounded_by_the_zone_s_smaller_extent() {
+    // 0.05 mm is 0.5 % of the roller's length but 12.5 % of the zone's
+    // width (0.4 mm).
+    let roller = common::roller("half_x = 0.2\nhalf_y = 5.0\nnx = 11\nny = 8", "1000.0")
+        .replace("load = 1000.0", "approach = 0.05");
+    let (field, e) = refused(scene(&roller));
+    assert_eq!(field, "loading.approach", "{e}");
+    assert!(e.contains("smaller extent"), "{e}");
+}
+
+#[test]
+fn a_solved_approach_beyond_the_small_strain_fails_the_run() {
+    // The measured crown on a body of E = 0.21 MPa and a roller radius of
+    // 5e6 mm: the mean pressure over the (wide) zone is small against E*,
+    // but the roller sinks about half its length.
+    let path = example("measured-crown.toml");
+    let text = std::fs::read_to_string(&path)
+        .unwrap()
+        .replacen("youngs_modulus = 210e3", "youngs_modulus = 0.21", 1)
+        .replace("radius = 5.0 }", "radius = 5e6 }");
+    let s = Scene::from_str(&path, &text).unwrap();
+    let e = run(&s).unwrap_err().to_string();
+    assert!(e.contains("`loading.load` = 10000"), "{e}");
+    assert!(e.contains("the solved approach"), "{e}");
+    assert!(e.contains("smaller extent, 10 mm"), "{e}");
+}
+
+#[test]
+fn quadrics_that_cancel_along_a_turned_direction_are_refused() {
+    // Along 30 degrees the curvatures are 1 and -1; along x and y they do
+    // not cancel (0.875 - 0.6875, 0.625 - 0.0625).
+    let quadrics = |r: &str| {
+        common::spheres("spacing = 0.002\nradius = 0.02").replace(
+            "surface1 = { shape = \"sphere\", radius = 1.0 }\nsurface2 = { shape = \"sphere\", \
+             radius = 10.0 }",
+            &format!(
+                "surface1 = {{ shape = \"quadric\", radius_x = 1.0, radius_y = 2.0, angle = 30.0 \
+                 }}\nsurface2 = {{ shape = \"quadric\", radius_x = {r}, radius_y = 4.0, angle = \
+                 30.0 }}"
+            ),
+        )
+    };
+    let text = quadrics("-1.0");
+    assert!(text.contains("quadric"));
+    let (field, e) = refused(scene(&text));
+    assert_eq!(field, "geometry.surface2.angle", "{e}");
+    assert!(e.contains("principal direction at 30.00 degrees"), "{e}");
+    // A convex second surface is a contact like any other.
+    scene(&quadrics("1.0")).unwrap();
+}
+
+#[test]
+fn parse_errors_name_the_key() {
+    let base = common::sphere_on_rigid_plane("across = 11\nzone = 1.3");
+    let e = scene(&base.replace("load = 100.0", "load = 100.0\nload = 200.0"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`loading.load`: duplicate key"), "{e}");
+    let e = scene(&base.replace("across = 11", "across = 99999999999999999999999"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`points.across`"), "{e}");
+    let deep = format!("{}{}", "[".repeat(200), "]".repeat(200));
+    let e = scene(&base.replace("zone = 1.3", &format!("zone = {deep}")))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`points.zone`"), "{e}");
+    assert!(e.contains("nested too deep"), "{e}");
+}
+
+#[test]
+fn a_data_file_s_errors_name_its_key() {
+    // A profile's table read as a height map covers a sliver of the
+    // candidate zone.
+    let (field, e) = refused(example_with(
+        "rough-sphere.toml",
+        "file = \"data/rough-surface.npy\"",
+        "file = \"data/measured-crown.csv\"",
+    ));
+    assert_eq!(field, "geometry.height_map.file", "{e}");
+    // A device read to the bound: the bound said as a user reads it.
+    let (field, e) = refused(example_with(
+        "measured-crown.toml",
+        "file = \"data/measured-crown.csv\"",
+        "file = \"/dev/zero\"",
+    ));
+    assert_eq!(field, "geometry.profile.file", "{e}");
+    assert!(e.contains("the largest data file elcon reads"), "{e}");
+    assert!(!e.contains("MAX_"), "{e}");
+}
