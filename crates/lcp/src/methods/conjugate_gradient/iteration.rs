@@ -14,7 +14,7 @@
 //!     curvature:  r_J · t_J
 //!     update:     z_J -= τ t_J (clipped at 0), entries off J;  u -= τ r;  Σ_J' B u, Σ_J' B q, B^T z
 //!   preconditioned, in place of direction:
-//!     residual:   r = w on J, 0 off it                               (then p = P r)
+//!     (measure)   also r = w on J, 0 off it                          (then p = P r)
 //!     projection: Σ_J B p,  Σ_J B r,  r_J · p_J
 //!     direction:  t_J = (p - B μ)_J + β t_J, t = 0 off J;  r_J · t_J
 //! ```
@@ -32,7 +32,27 @@ use super::passes::{CHUNK, Compensated, LANES, Lanes, for_lanes, map_parts, tota
 /// contiguous).
 pub(super) struct Data<'a> {
     pub q: Cow<'a, [f64]>,
-    pub border: Vec<Cow<'a, [f64]>>,
+    border: Vec<Column<'a>>,
+}
+
+/// A border column as the passes read it: its entries, or, where they are
+/// all the same number (the approach's column of ones), a chunk's length
+/// of that number, which stays in cache (the passes then read one vector
+/// fewer from memory; the terms are the same to the bit).
+enum Column<'a> {
+    Entries(Cow<'a, [f64]>),
+    Constant(Vec<f64>),
+}
+
+impl Column<'_> {
+    /// The entries `base..base + len` of a chunk.
+    #[inline(always)]
+    fn part(&self, base: usize, len: usize) -> &[f64] {
+        match self {
+            Column::Entries(c) => &c[base..base + len],
+            Column::Constant(c) => &c[..len],
+        }
+    }
 }
 
 fn slice_of<'a>(c: ColRef<'a, f64>) -> Cow<'a, [f64]> {
@@ -47,13 +67,24 @@ impl<'a> Data<'a> {
         Self {
             q: slice_of(q),
             border: (0..border.ncols())
-                .map(|j| slice_of(border.col(j)))
+                .map(|j| column_of(border.col(j)))
                 .collect(),
         }
     }
 
-    fn columns(&self) -> Vec<&[f64]> {
-        self.border.iter().map(|c| &**c).collect()
+    fn columns(&self) -> &[Column<'a>] {
+        &self.border
+    }
+}
+
+/// A border column, [`Column::Constant`] where every entry has the bits of
+/// the first.
+fn column_of(c: ColRef<'_, f64>) -> Column<'_> {
+    match c.iter().next() {
+        Some(&first) if c.iter().all(|v| v.to_bits() == first.to_bits()) => {
+            Column::Constant(vec![first; c.nrows().min(CHUNK)])
+        }
+        _ => Column::Entries(slice_of(c)),
     }
 }
 
@@ -71,7 +102,7 @@ fn ranges(n: usize) -> Vec<std::ops::Range<usize>> {
 /// compiler vectorizes. Written without clearing first (no memset of
 /// buffers the first column overwrites).
 fn shift_of(
-    columns: &[&[f64]],
+    columns: &[Column<'_>],
     lambda: &[f64],
     base: usize,
     len: usize,
@@ -84,7 +115,7 @@ fn shift_of(
             if terms { vec![0.0; len] } else { Vec::new() },
         );
     };
-    let b = &b[base..base + len];
+    let b = b.part(base, len);
     let mut shift: Vec<f64> = b.iter().map(|&b| 0.0 + b * l).collect();
     let mut magnitude: Vec<f64> = if terms {
         b.iter().map(|&b| 0.0 + (b * l).abs()).collect()
@@ -92,7 +123,7 @@ fn shift_of(
         Vec::new()
     };
     for (b, &l) in pairs {
-        let b = &b[base..base + len];
+        let b = b.part(base, len);
         for i in 0..len {
             shift[i] += b[i] * l;
         }
@@ -110,7 +141,7 @@ fn shift_of(
 #[inline(always)]
 fn add_compensated(sum: &mut Compensated, len: usize, f: impl Fn(usize) -> f64) {
     let mut local = *sum;
-    for_lanes(len, |i, l| local.add(l, f(i)));
+    local.add_all(len, f);
     *sum = local;
 }
 
@@ -186,12 +217,12 @@ pub(super) fn fit_pass(data: &Data<'_>, z: &[f64], u: &[f64]) -> FitSums {
         let len = range.len();
         let mut e = 0;
         for a in 0..k {
-            let ba = &columns[a][range.clone()];
+            let ba = columns[a].part(range.start, len);
             let on = |i: usize| if z[i] > 0.0 { ba[i] } else { 0.0 };
             add_compensated(&mut p.bu[a], len, |i| on(i) * u[i]);
             add_compensated(&mut p.bq[a], len, |i| on(i) * q[i]);
             for b in 0..=a {
-                let bb = &columns[b][range.clone()];
+                let bb = columns[b].part(range.start, len);
                 add_lanes(&mut p.gram[e], len, |i| on(i) * bb[i]);
                 e += 1;
             }
@@ -258,22 +289,30 @@ fn lanes_min(a: &[f64; LANES]) -> f64 {
 }
 
 /// Applies the pending `scale` to `z` and `u`, then measures `w = u + q -
-/// B λ` (see [`Measures`]).
+/// B λ` (see [`Measures`]); with a `residual` to write (a preconditioned
+/// step's), also `r = w` on `J`, 0 off it, the same bits as
+/// [`residual_pass`] after this pass, from the chunk while it is in cache.
 pub(super) fn measure_pass(
     data: &Data<'_>,
     z: &mut [f64],
     u: &mut [f64],
+    residual: Option<&mut [f64]>,
     scale: f64,
     lambda: &[f64],
 ) -> Measures {
     let (columns, q) = (data.columns(), &*data.q);
     let k = columns.len();
+    let residuals: Vec<Option<&mut [f64]>> = match residual {
+        Some(r) => r.chunks_mut(CHUNK).map(Some).collect(),
+        None => (0..z.len().div_ceil(CHUNK)).map(|_| None).collect(),
+    };
     let parts: Vec<_> = z
         .chunks_mut(CHUNK)
         .zip(u.chunks_mut(CHUNK))
+        .zip(residuals)
         .enumerate()
         .collect();
-    let parts = map_parts(parts, |(c, (z, u))| {
+    let parts = map_parts(parts, |(c, ((z, u), r))| {
         let base = c * CHUNK;
         let len = z.len();
         let q = &q[base..base + len];
@@ -282,7 +321,7 @@ pub(super) fn measure_pass(
             z.iter_mut().for_each(|v| *v *= scale);
             u.iter_mut().for_each(|v| *v *= scale);
         }
-        let (s, s_terms) = shift_of(&columns, lambda, base, len, true);
+        let (s, s_terms) = shift_of(columns, lambda, base, len, true);
         let (mut min_w, mut comp) = ([0.0f64; LANES], [0.0f64; LANES]);
         let (mut w_scale, mut z_scale) = ([0.0f64; LANES], [0.0f64; LANES]);
         let (mut g, mut bad) = (Lanes::default(), [false; LANES]);
@@ -302,9 +341,12 @@ pub(super) fn measure_pass(
             z_scale[l] = if zi > z_scale[l] { zi } else { z_scale[l] };
             g.add(l, if zi > 0.0 { w * w } else { 0.0 });
         });
+        if let Some(r) = r {
+            residual_of(z, u, q, &s, r);
+        }
         (p.min_w, p.comp, p.w_scale, p.z_scale, p.g) = (min_w, comp, w_scale, z_scale, g);
         for j in 0..k {
-            let b = &columns[j][base..base + len];
+            let b = columns[j].part(base, len);
             add_compensated(&mut p.rows[j], len, |i| b[i] * z[i]);
             add_lanes(&mut p.rows_terms[j], len, |i| (b[i] * z[i]).abs());
         }
@@ -350,7 +392,7 @@ pub(super) fn direction_pass(
             &u[base..base + len],
             &q[base..base + len],
         );
-        let (s, _) = shift_of(&columns, lambda, base, len, false);
+        let (s, _) = shift_of(columns, lambda, base, len, false);
         let mut num = Lanes::default();
         for_lanes(len, |i, l| {
             let w = (u[i] + q[i]) - s[i];
@@ -374,17 +416,22 @@ pub(super) fn curvature_pass(t: &[f64], r: &[f64]) -> f64 {
     total(parts.into_iter())
 }
 
-/// What a step changed: the points clipped to 0 and the points that
-/// entered, the rows' sums `B^T z` and `|B|^T z`, and the fit's sums over
-/// the new contact set (valid for the next iteration when no point left or
-/// entered: the Gram matrix is then the same).
+/// What a step changed: the points that entered, and, where no point left
+/// or entered, the sums the next iteration reads.
 pub(super) struct Update {
-    pub clipped: usize,
     pub entered: usize,
+    /// `None` where a point left or entered: the contact set changed and
+    /// `u` is recomputed from a true product, with the fit's sums.
+    pub sums: Option<UpdateSums>,
+}
+
+/// The rows' sums `B^T z` and `|B|^T z` after a step that kept the contact
+/// set, and the fit's `Σ_J B u` (its `Σ_J B q` and Gram matrix are the
+/// same, to the bit, as before the step: the same terms in the same order).
+pub(super) struct UpdateSums {
     pub rows: Vec<f64>,
     pub rows_terms: Vec<f64>,
     pub bu: Vec<f64>,
-    pub bq: Vec<f64>,
 }
 
 struct UpdateParts {
@@ -392,12 +439,13 @@ struct UpdateParts {
     entered: usize,
     rows: Vec<Compensated>,
     rows_terms: Vec<Lanes>,
-    fit: FitParts,
+    bu: Vec<Compensated>,
 }
 
 /// The step `z_J -= τ t_J`, clipped at 0; a point off `J` with `w_i < 0`
 /// (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ = 0`); the
-/// product by its recurrence, `u -= τ r`.
+/// product by its recurrence, `u -= τ r`. A chunk where a point left or
+/// entered skips the sums (the step's are then not read).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn update_pass(
     data: &Data<'_>,
@@ -428,9 +476,9 @@ pub(super) fn update_pass(
             entered: 0,
             rows: vec![Compensated::default(); k],
             rows_terms: vec![Lanes::default(); k],
-            fit: FitParts::new(k),
+            bu: vec![Compensated::default(); k],
         };
-        let (s, _) = shift_of(&columns, lambda, base, len, false);
+        let (s, _) = shift_of(columns, lambda, base, len, false);
         let (mut clipped, mut entered) = (0usize, 0usize);
         for i in 0..len {
             let old = z[i];
@@ -451,35 +499,41 @@ pub(super) fn update_pass(
             u[i] -= tau * r[i];
         }
         (p.clipped, p.entered) = (clipped, entered);
+        if clipped + entered > 0 {
+            return p;
+        }
         let (z, u) = (&*z, &*u);
         for j in 0..k {
-            let b = &columns[j][base..base + len];
+            let b = columns[j].part(base, len);
             add_compensated(&mut p.rows[j], len, |i| b[i] * z[i]);
             add_lanes(&mut p.rows_terms[j], len, |i| (b[i] * z[i]).abs());
             let on = |i: usize| if z[i] > 0.0 { b[i] } else { 0.0 };
-            add_compensated(&mut p.fit.bu[j], len, |i| on(i) * u[i]);
-            add_compensated(&mut p.fit.bq[j], len, |i| on(i) * q[i]);
+            add_compensated(&mut p.bu[j], len, |i| on(i) * u[i]);
         }
         p
     });
-    let fits: Vec<FitParts> = parts.iter().map(|p| p.fit.clone()).collect();
-    let fit = FitParts::merge(&fits, k);
-    let mut rows = vec![Compensated::default(); k];
-    for p in &parts {
-        for j in 0..k {
-            rows[j].merge(&p.rows[j]);
+    let clipped: usize = parts.iter().map(|p| p.clipped).sum();
+    let entered: usize = parts.iter().map(|p| p.entered).sum();
+    let sums = (clipped + entered == 0).then(|| {
+        let (mut rows, mut bu) = (
+            vec![Compensated::default(); k],
+            vec![Compensated::default(); k],
+        );
+        for p in &parts {
+            for j in 0..k {
+                rows[j].merge(&p.rows[j]);
+                bu[j].merge(&p.bu[j]);
+            }
         }
-    }
-    Update {
-        clipped: parts.iter().map(|p| p.clipped).sum(),
-        entered: parts.iter().map(|p| p.entered).sum(),
-        rows: rows.iter().map(Compensated::value).collect(),
-        rows_terms: (0..k)
-            .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
-            .collect(),
-        bu: fit.bu,
-        bq: fit.bq,
-    }
+        UpdateSums {
+            rows: rows.iter().map(Compensated::value).collect(),
+            rows_terms: (0..k)
+                .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
+                .collect(),
+            bu: bu.iter().map(Compensated::value).collect(),
+        }
+    });
+    Update { entered, sums }
 }
 
 /// `z *= scale` (a pending scale applied before a true product).
@@ -488,7 +542,21 @@ pub(super) fn scale_pass(z: &mut [f64], scale: f64) {
     map_parts(parts, |z| z.iter_mut().for_each(|v| *v *= scale));
 }
 
-/// `r = w` on `J`, 0 off it: the residual the preconditioner is applied to.
+/// `r = w` on `J`, 0 off it, over a chunk whose shift `B λ` is `s`.
+#[inline(always)]
+fn residual_of(z: &[f64], u: &[f64], q: &[f64], s: &[f64], r: &mut [f64]) {
+    for i in 0..r.len() {
+        r[i] = if z[i] > 0.0 {
+            (u[i] + q[i]) - s[i]
+        } else {
+            0.0
+        };
+    }
+}
+
+/// `r = w` on `J`, 0 off it: the residual the preconditioner is applied to
+/// (as a pass of its own: the reference of [`measure_pass`]'s).
+#[cfg(test)]
 pub(super) fn residual_pass(data: &Data<'_>, z: &[f64], u: &[f64], r: &mut [f64], lambda: &[f64]) {
     let (columns, q) = (data.columns(), &*data.q);
     let parts: Vec<_> = r.chunks_mut(CHUNK).enumerate().collect();
@@ -500,14 +568,8 @@ pub(super) fn residual_pass(data: &Data<'_>, z: &[f64], u: &[f64], r: &mut [f64]
             &u[base..base + len],
             &q[base..base + len],
         );
-        let (s, _) = shift_of(&columns, lambda, base, len, false);
-        for i in 0..len {
-            r[i] = if z[i] > 0.0 {
-                (u[i] + q[i]) - s[i]
-            } else {
-                0.0
-            };
-        }
+        let (s, _) = shift_of(columns, lambda, base, len, false);
+        residual_of(z, u, q, &s, r);
     });
 }
 
@@ -529,7 +591,7 @@ pub(super) fn projection_pass(data: &Data<'_>, z: &[f64], r: &[f64], p: &[f64]) 
         let mut bp = vec![Compensated::default(); k];
         let mut br = vec![Compensated::default(); k];
         for j in 0..k {
-            let b = &columns[j][range.clone()];
+            let b = columns[j].part(range.start, len);
             let on = |i: usize| if z[i] > 0.0 { b[i] } else { 0.0 };
             add_compensated(&mut bp[j], len, |i| on(i) * p[i]);
             add_compensated(&mut br[j], len, |i| on(i) * r[i]);
@@ -576,7 +638,7 @@ pub(super) fn preconditioned_direction_pass(
             &r[base..base + len],
             &p[base..base + len],
         );
-        let (s, _) = shift_of(&columns, mu, base, len, false);
+        let (s, _) = shift_of(columns, mu, base, len, false);
         let mut num = Lanes::default();
         for_lanes(len, |i, l| {
             let next = if z[i] > 0.0 {
@@ -635,5 +697,122 @@ mod tests {
         assert_eq!(cut, [0.3 - 0.5 * 0.1, 0.0, 0.0, 0.4 + 0.5 * 0.2]);
         // Nothing decreases: no boundary.
         assert_eq!(boundary_pass(&z, &[0.0, -1.0, 1.0, 0.0]), f64::INFINITY);
+    }
+
+    /// The vectors of an iteration, from a fixed sequence.
+    struct Sample {
+        q: faer::Col<f64>,
+        z: Vec<f64>,
+        u: Vec<f64>,
+        t: Vec<f64>,
+        r: Vec<f64>,
+    }
+
+    /// `n` entries (three chunks and a tail for the tests): `z` about half
+    /// in contact.
+    fn sample(n: usize) -> Sample {
+        let h = |i: usize| (i as f64 * 0.618_033_988_749_895).fract() - 0.4;
+        Sample {
+            q: faer::Col::from_fn(n, |i| h(i + 7)),
+            z: (0..n).map(|i| h(i).max(0.0)).collect(),
+            u: (0..n).map(|i| h(i + 3)).collect(),
+            t: (0..n).map(|i| h(i + 5) * 1e-3).collect(),
+            r: (0..n).map(|i| h(i + 11) * 1e-3).collect(),
+        }
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    fn measures_bits(m: &Measures) -> Vec<u64> {
+        let mut v = vec![m.min_w, m.complementarity, m.w_scale, m.z_scale, m.g];
+        v.extend(&m.rows);
+        v.extend(&m.rows_terms);
+        bits(&v)
+    }
+
+    #[test]
+    fn the_measure_pass_writes_the_residual_pass_bits() {
+        let n = 3 * CHUNK + 13;
+        let Sample { q, z, u, .. } = sample(n);
+        let b = faer::Mat::from_fn(n, 2, |i, j| 1.0 + (i * (j + 1)) as f64 * 1e-4);
+        let data = Data::new(q.as_ref(), b.as_ref());
+        let lambda = [0.01, -0.02];
+        let (mut z1, mut u1) = (z.clone(), u.clone());
+        let separate = measure_pass(&data, &mut z1, &mut u1, None, 1.5, &lambda);
+        let mut r1 = vec![0.0; n];
+        residual_pass(&data, &z1, &u1, &mut r1, &lambda);
+        let (mut z2, mut u2, mut r2) = (z, u, vec![9.0; n]);
+        let fused = measure_pass(&data, &mut z2, &mut u2, Some(&mut r2), 1.5, &lambda);
+        assert_eq!(measures_bits(&separate), measures_bits(&fused));
+        assert_eq!((bits(&z1), bits(&u1)), (bits(&z2), bits(&u2)));
+        assert_eq!(bits(&r1), bits(&r2));
+        assert!(r2.iter().zip(&z2).all(|(r, z)| *z > 0.0 || *r == 0.0));
+    }
+
+    #[test]
+    fn a_constant_column_is_read_from_a_chunk_with_the_same_bits() {
+        let n = 3 * CHUNK + 13;
+        let Sample { q, z, u, t, r } = sample(n);
+        let ones = faer::Mat::from_fn(n, 1, |_, _| 1.0);
+        let constant = Data::new(q.as_ref(), ones.as_ref());
+        assert!(matches!(constant.border[0], Column::Constant(ref c) if c.len() == CHUNK));
+        let entries = Data {
+            q: constant.q.clone(),
+            border: vec![Column::Entries(Cow::Owned(vec![1.0; n]))],
+        };
+        let lambda = [0.03];
+        let fits = [&constant, &entries].map(|d| fit_pass(d, &z, &u));
+        assert_eq!(bits(&fits[0].bu), bits(&fits[1].bu));
+        assert_eq!(bits(&fits[0].bq), bits(&fits[1].bq));
+        assert_eq!(
+            fits[0].gram[(0, 0)].to_bits(),
+            fits[1].gram[(0, 0)].to_bits()
+        );
+        let measures = [&constant, &entries].map(|d| {
+            let (mut z, mut u, mut r) = (z.clone(), u.clone(), vec![0.0; n]);
+            let m = measure_pass(d, &mut z, &mut u, Some(&mut r), 0.75, &lambda);
+            (measures_bits(&m), bits(&r))
+        });
+        assert_eq!(measures[0], measures[1]);
+        let projections = [&constant, &entries].map(|d| {
+            let p = projection_pass(d, &z, &r, &t);
+            bits(&[p.bp, p.br, vec![p.rp]].concat())
+        });
+        assert_eq!(projections[0], projections[1]);
+        let directions = [&constant, &entries].map(|d| {
+            let mut tt = t.clone();
+            let num = preconditioned_direction_pass(d, &z, &r, &u, &mut tt, &lambda, 0.5);
+            (num.to_bits(), bits(&tt))
+        });
+        assert_eq!(directions[0], directions[1]);
+    }
+
+    #[test]
+    fn a_step_that_keeps_the_contact_set_updates_the_fit_as_a_fresh_fit_pass() {
+        let n = 3 * CHUNK + 13;
+        let Sample { q, z, u, r, .. } = sample(n);
+        let b = faer::Mat::from_fn(n, 2, |i, j| 1.0 + (i * (j + 1)) as f64 * 1e-4);
+        let data = Data::new(q.as_ref(), b.as_ref());
+        let before = fit_pass(&data, &z, &u);
+        // A direction that moves every point in contact by 1 % and enters
+        // none: the points off J have w >= 0 with λ = -1e3.
+        let t: Vec<f64> = z.iter().map(|&v| 0.01 * v).collect();
+        let lambda = [-1e3, 0.0];
+        let (mut z1, mut u1) = (z.clone(), u.clone());
+        let update = update_pass(&data, &mut z1, &mut u1, &t, &r, &lambda, 0.5);
+        let sums = update.sums.expect("no point left or entered");
+        let after = fit_pass(&data, &z1, &u1);
+        assert_eq!(bits(&sums.bu), bits(&after.bu));
+        assert_eq!(bits(&before.bq), bits(&after.bq));
+        let measured = measure_pass(&data, &mut z1.clone(), &mut u1.clone(), None, 1.0, &lambda);
+        assert_eq!(bits(&sums.rows), bits(&measured.rows));
+        assert_eq!(bits(&sums.rows_terms), bits(&measured.rows_terms));
+        // A full step clips the points in contact: no sums.
+        let t: Vec<f64> = z.iter().map(|&v| 2.0 * v).collect();
+        let (mut z2, mut u2) = (z, u);
+        let update = update_pass(&data, &mut z2, &mut u2, &t, &r, &lambda, 1.0);
+        assert!(update.sums.is_none());
     }
 }

@@ -128,7 +128,8 @@ struct State {
     u: Vec<f64>,
     /// The conjugate direction.
     t: Vec<f64>,
-    /// `r = M t`; before the product, in a preconditioned step, `w_J`.
+    /// `r = M t`; before the product, in a preconditioned step, `w_J`
+    /// (written by the measure pass).
     r: Vec<f64>,
     /// The preconditioned residual `P w_J` (`None`: no preconditioner).
     p: Option<Vec<f64>>,
@@ -204,7 +205,20 @@ impl State {
         let rhs = Col::from_fn(k, |j| self.scale * self.fit.bu[j] + self.fit.bq[j]);
         self.lambda = solve_fit(&self.fit, rhs)?;
         let lambda: Vec<f64> = self.lambda.iter().copied().collect();
-        let m = iteration::measure_pass(data, &mut self.z, &mut self.u, self.scale, &lambda);
+        // A preconditioned step's residual `w_J`, written while the pass
+        // has the chunk in cache.
+        let residual = match self.p {
+            Some(_) => Some(&mut self.r[..]),
+            None => None,
+        };
+        let m = iteration::measure_pass(
+            data,
+            &mut self.z,
+            &mut self.u,
+            residual,
+            self.scale,
+            &lambda,
+        );
         self.scale = 1.0;
         if !m.finite {
             return Err(Breakdown::NonFinite);
@@ -223,7 +237,7 @@ impl State {
     ) -> Result<(), Breakdown> {
         let lambda: Vec<f64> = self.lambda.iter().copied().collect();
         let num = if self.p.is_some() {
-            self.preconditioned_direction(form, data, &lambda, work)?
+            self.preconditioned_direction(form, data, work)?
         } else {
             let beta = self.beta(g_now);
             self.g_old = g_now;
@@ -282,18 +296,16 @@ impl State {
         }
     }
 
-    /// Step 2 preconditioned: `r = w_J`, `p = P r`, projected on the rows'
+    /// Step 2 preconditioned: `r = w_J` (from the measure pass), `p = P r`, projected on the rows'
     /// null space on `J` (`p_J - B_J μ`, `B_J^T B_J μ = B_J^T p_J`), `ρ =
     /// r_J · p_J`, `t_J = p_J + (ρ / ρ_old) t_J`; returns `w_J · t_J`.
     fn preconditioned_direction(
         &mut self,
         form: &Form<'_>,
         data: &Data<'_>,
-        lambda: &[f64],
         work: &mut Work,
     ) -> Result<f64, Breakdown> {
         let p = self.p.as_mut().expect("a preconditioned state");
-        iteration::residual_pass(data, &self.z, &self.u, &mut self.r, lambda);
         form.m.precondition(&self.r, p);
         work.preconditionings += 1;
         let sums = iteration::projection_pass(data, &self.z, &self.r, p);
@@ -319,7 +331,7 @@ impl State {
     }
 
     /// Step 4: the rows restored after a step, and whether `u` still is
-    /// `M z`. Where the step clipped points and the contact set left
+    /// `M z` (no point left or entered: the update's sums are there). Where the step clipped points and the contact set left
     /// cannot carry several rows, the step is cut at the first boundary
     /// (one point leaves; the rows hold as `B_J^T t_J = 0`): restoring the
     /// rows from the clipped iterate by an additive correction could
@@ -327,12 +339,11 @@ impl State {
     /// (a step overshooting by its full length on a contact set of the
     /// rows' size).
     fn rows_after(&mut self, form: &Form<'_>, update: Update) -> Result<(), Breakdown> {
-        let moved = update.clipped + update.entered > 0;
         let k = form.border.ncols();
-        if !moved {
-            // The same contact set: its Gram matrix holds, the sums are new.
+        if let Some(update) = update.sums {
+            // The same contact set: its Gram matrix and `Σ_J B q` hold,
+            // `Σ_J B u` is new.
             self.fit.bu = update.bu;
-            self.fit.bq = update.bq;
             if k == 1 {
                 let ratio = form.resultant[0] / update.rows[0];
                 if ratio.is_finite() && ratio > 0.0 {

@@ -69,14 +69,17 @@ impl Lanes {
         self.0[l] += v;
     }
 
-    /// Adds `f(i)` for `i` in `0..len`, `i` to lane `i mod LANES`.
+    /// Adds `f(i)` for `i` in `0..len`, `i` to lane `i mod LANES`: a
+    /// group's terms formed first, then added in one straight run (the
+    /// form the compiler turns into vector additions).
     #[inline(always)]
     pub(super) fn add_all(&mut self, len: usize, f: impl Fn(usize) -> f64) {
         let full = len - len % LANES;
         let mut i = 0;
         while i < full {
+            let v: [f64; LANES] = std::array::from_fn(|l| f(i + l));
             for l in 0..LANES {
-                self.0[l] += f(i + l);
+                self.0[l] += v[l];
             }
             i += LANES;
         }
@@ -121,6 +124,26 @@ impl Compensated {
         let (s, e) = two_sum(self.sum[l], v);
         self.sum[l] = s;
         self.carry[l] += e;
+    }
+
+    /// Adds `f(i)` for `i` in `0..len`, `i` to lane `i mod LANES`: a
+    /// group's terms formed first, then added by two-sums in one straight
+    /// run (the form the compiler turns into vector instructions; the same
+    /// operations in the same order as [`add`](Self::add) term by term).
+    #[inline(always)]
+    pub(super) fn add_all(&mut self, len: usize, f: impl Fn(usize) -> f64) {
+        let full = len - len % LANES;
+        let mut i = 0;
+        while i < full {
+            let v: [f64; LANES] = std::array::from_fn(|l| f(i + l));
+            for l in 0..LANES {
+                self.add(l, v[l]);
+            }
+            i += LANES;
+        }
+        for l in 0..len - full {
+            self.add(l, f(full + l));
+        }
     }
 
     /// Adds another compensated sum (lane by lane).
@@ -177,6 +200,25 @@ mod tests {
         b.merge(&a);
         b.merge(&a);
         assert_eq!(b.value(), 2.0);
+    }
+
+    #[test]
+    fn sums_by_groups_keep_the_bits_of_sums_term_by_term() {
+        let term = |i: usize| {
+            ((i as f64 * 0.618_033_988_749_895).fract() - 0.5) * 1e3f64.powi((i % 7) as i32)
+        };
+        for len in [0, 5, LANES, 8 * LANES + 3] {
+            let (mut grouped, mut single) = (Compensated::default(), Compensated::default());
+            grouped.add_all(len, term);
+            for_lanes(len, |i, l| single.add(l, term(i)));
+            assert_eq!(grouped.value().to_bits(), single.value().to_bits());
+            let mut plain = Lanes::default();
+            plain.add_all(len, term);
+            let mut by_lane = [0.0f64; LANES];
+            (0..len).for_each(|i| by_lane[i % LANES] += term(i));
+            let expected = by_lane.iter().fold(0.0, |a, &v| a + v);
+            assert_eq!(plain.value().to_bits(), expected.to_bits());
+        }
     }
 
     #[test]
