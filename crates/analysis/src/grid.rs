@@ -116,7 +116,13 @@ pub fn hertz_line_family(
 /// [`GridFamily::HertzLine`] over a contact of half-size `size`.
 fn centred_cells(size: f64, across: usize, zone: f64) -> Result<(f64, usize), AnalysisError> {
     let h = spacing(size, across, zone)?;
-    let m = (zone * size / h).round().max(1.0);
+    cells_of(size, h, across, zone)
+}
+
+/// `2 m + 1` cells of the spacing `h` centred on the origin over the
+/// half-length `(m + 1/2) h`, `m = round(zone extent / h)` (at least 1).
+fn cells_of(extent: f64, h: f64, across: usize, zone: f64) -> Result<(f64, usize), AnalysisError> {
+    let m = (zone * extent / h).round().max(1.0);
     if !(m <= elcon_influence::MAX_POINTS as f64) {
         return Err(AnalysisError::InvalidInput {
             field: "across",
@@ -139,27 +145,75 @@ pub fn hertz_line(half_width: f64, across: usize, zone: f64) -> Result<PointSet,
     hertz_line_family(half_width, across, zone)?.points()
 }
 
+/// The size of an elliptical Hertz contact a grid is laid around
+/// ([`hertz_ellipse_family`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EllipseExtent {
+    /// The ellipse's half-extent along x (length):
+    /// `sqrt(a^2 c^2 + b^2 s^2)` for semi-axes a, b turned by an angle of
+    /// cosine c and sine s.
+    pub half_x: f64,
+    /// The ellipse's half-extent along y (length):
+    /// `sqrt(a^2 s^2 + b^2 c^2)`.
+    pub half_y: f64,
+    /// The semi-minor axis b (length).
+    pub semi_minor: f64,
+}
+
+impl EllipseExtent {
+    /// Whether the ellipse is turned from x and y: its smaller half-extent
+    /// exceeds its semi-minor axis by more than rounding
+    /// ([`ALIGNED_TOLERANCE`] relative). An aligned ellipse's half-extents
+    /// are its semi-axes.
+    pub fn is_turned(&self) -> bool {
+        self.half_x.min(self.half_y) > self.semi_minor * (1.0 + ALIGNED_TOLERANCE)
+    }
+}
+
+/// How far (relative) an ellipse's smaller half-extent may exceed its
+/// semi-minor axis and still count as aligned with x and y: the rounding
+/// of the half-extents `sqrt(a^2 c^2 + b^2 s^2)` computed from an angle
+/// that is a multiple of 90 degrees to rounding, and of their scaling
+/// with the load.
+pub const ALIGNED_TOLERANCE: f64 = 64.0 * f64::EPSILON;
+
 /// The family of an elliptical Hertz contact's grid: a rectangle of cells
-/// aligned with x and y around the ellipse whose half-extents along x and
-/// y are `half_extent` (`sqrt(a^2 c^2 + b^2 s^2)` and `sqrt(a^2 s^2 + b^2
-/// c^2)` for semi-axes a, b turned by an angle with cosine c and sine s;
-/// the semi-axes themselves when aligned): along each axis, as
-/// [`hertz_line_family`] lays a line out, `2 m + 1` cells of
-/// `h = 2 extent / (across - 1)`, `m = round(zone extent / h)`. So
-/// `across` points span each axis of an aligned ellipse and its cells are
-/// as long as the ellipse is (`dx / dy = a / b`), and the grid has about
-/// `(across zone)^2` points whatever the ellipse's slenderness.
+/// aligned with x and y around the ellipse, out to `zone` times its
+/// half-extents along x and y, centred on the origin as
+/// [`hertz_line_family`] lays a line out (`2 m + 1` cells of `h` along an
+/// axis of half-extent e, `m = round(zone e / h)`).
+///
+/// - Aligned with x and y (a, b along the axes): along each axis
+///   `h = 2 e / (across - 1)`, so `across` points span each axis and the
+///   cells are as long as the ellipse is (`dx / dy = a / b`); the grid has
+///   about `(across zone)^2` points whatever the slenderness.
+/// - Turned ([`EllipseExtent::is_turned`]): square cells of
+///   `h = 2 b / (across - 1)`, so `across` points span the minor axis in
+///   every direction (cells sized by the half-extents would be wider than
+///   a slender turned ellipse). The grid has about
+///   `(across zone)^2 ex ey / b^2` points: many for a slender ellipse
+///   (turning the surfaces to lay it along x is the cheap layout).
 ///
 /// # Errors
 /// [`AnalysisError::InvalidInput`] naming `across`, `zone` or the contact
 /// size.
 pub fn hertz_ellipse_family(
-    half_extent: (f64, f64),
+    extent: EllipseExtent,
     across: usize,
     zone: f64,
 ) -> Result<GridFamily, AnalysisError> {
-    let (half_x, nx) = centred_cells(half_extent.0, across, zone)?;
-    let (half_y, ny) = centred_cells(half_extent.1, across, zone)?;
+    let ((half_x, nx), (half_y, ny)) = if extent.is_turned() {
+        let h = spacing(extent.semi_minor, across, zone)?;
+        (
+            cells_of(extent.half_x, h, across, zone)?,
+            cells_of(extent.half_y, h, across, zone)?,
+        )
+    } else {
+        (
+            centred_cells(extent.half_x, across, zone)?,
+            centred_cells(extent.half_y, across, zone)?,
+        )
+    };
     Ok(GridFamily::Rectangle {
         half_x,
         half_y,
@@ -456,6 +510,73 @@ mod tests {
         assert_eq!(on_axis.len(), 11);
         let line = hertz_line(1.0, 21, 1.5).unwrap();
         assert_eq!(line.len(), 31);
+    }
+
+    /// The extents of semi-axes `(a, b)` turned by `angle` from x.
+    fn extent_of(a: f64, b: f64, angle: f64) -> EllipseExtent {
+        let (s, c) = angle.sin_cos();
+        EllipseExtent {
+            half_x: (a * c).hypot(b * s),
+            half_y: (a * s).hypot(b * c),
+            semi_minor: b,
+        }
+    }
+
+    #[test]
+    fn a_turned_ellipse_gets_square_cells_spanning_its_minor_axis() {
+        let (a, b, across, zone) = (4.0, 0.5, 11, 1.2);
+        let turned = extent_of(a, b, 30f64.to_radians());
+        assert!(turned.is_turned());
+        let GridFamily::Rectangle {
+            half_x,
+            half_y,
+            nx,
+            ny,
+        } = hertz_ellipse_family(turned, across, zone).unwrap()
+        else {
+            panic!("a rectangle");
+        };
+        let (dx, dy) = (2.0 * half_x / nx as f64, 2.0 * half_y / ny as f64);
+        assert!((dx - dy).abs() <= 4.0 * f64::EPSILON * dx, "{dx} {dy}");
+        // The minor axis 2 b, in any direction, spans at least across - 1 cells.
+        let cells = 2.0 * b / dx.max(dy);
+        assert!(
+            cells >= (across - 1) as f64 * (1.0 - 1e3 * f64::EPSILON),
+            "{cells}"
+        );
+        // Cells sized by the half-extent along x would be 6.9 times wider.
+        assert!(2.0 * turned.half_x / (across - 1) as f64 > 6.0 * dx);
+        // The zone still covers zone times the half-extents (to half a cell).
+        assert!(half_x >= zone * turned.half_x - 0.5 * dx);
+        assert!(half_y >= zone * turned.half_y - 0.5 * dy);
+    }
+
+    #[test]
+    fn an_aligned_ellipse_keeps_across_points_over_each_axis() {
+        let (a, b, across, zone) = (4.0, 0.5, 11, 1.2);
+        for angle in [0.0, std::f64::consts::FRAC_PI_2] {
+            let aligned = extent_of(a, b, angle);
+            assert!(!aligned.is_turned(), "{angle}");
+            let family = hertz_ellipse_family(aligned, across, zone).unwrap();
+            let (hx, nx) = centred_cells(aligned.half_x, across, zone).unwrap();
+            let (hy, ny) = centred_cells(aligned.half_y, across, zone).unwrap();
+            assert_eq!(
+                family,
+                GridFamily::Rectangle {
+                    half_x: hx,
+                    half_y: hy,
+                    nx,
+                    ny
+                }
+            );
+            // dx / dy = a / b (or b / a): not square.
+            let GridFamily::Rectangle { half_x, nx, .. } = family else {
+                unreachable!()
+            };
+            let dx = 2.0 * half_x / nx as f64;
+            let along_x = aligned.half_x;
+            assert!((dx - 2.0 * along_x / (across - 1) as f64).abs() <= 1e-12 * dx);
+        }
     }
 
     #[test]

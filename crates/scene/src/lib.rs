@@ -69,9 +69,9 @@ pub use sanity::{
     MIN_POINTS_RESOLVED, MIN_RESOLVED_DEFORMATION, max_pivots_bound,
 };
 pub use scene::{
-    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, HalfX, MAX_SLUG, MethodChoice,
-    ModelKind, Outputs, Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units,
-    design_over, problem_parts, scene_with_design,
+    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, EllipseShape, HalfX, MAX_SLUG,
+    MethodChoice, ModelKind, Outputs, Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene,
+    Units, design_over, problem_parts, scene_with_design,
 };
 pub use schema::ErrorMetric;
 pub use shard::{SHARD_COUNT_VARIABLE, Shard};

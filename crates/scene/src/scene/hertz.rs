@@ -10,7 +10,7 @@ use elcon_influence::{PointSet, combined_modulus_of};
 
 use super::body::{BodySpec, ModelKind};
 use super::geometry::combined;
-use super::points::PointsSpec;
+use super::points::{EllipseShape, PointsSpec};
 
 /// The closed form a scene is compared with, when one applies.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -147,7 +147,12 @@ pub(super) fn shaped(spec: PointsSpec, bodies: &[BodySpec; 2], geometry: &Geomet
             PointsSpec::EllipseHertz {
                 across,
                 zone,
-                shape: (ex / r, ey / r),
+                shape: EllipseShape {
+                    half_x: ex / r,
+                    half_y: ey / r,
+                    semi_minor: h.semi_minor() / r,
+                    angle: h.angle(),
+                },
             }
         }
         (spec, _) => spec,

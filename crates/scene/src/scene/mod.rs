@@ -39,7 +39,7 @@ pub use hertz::Reference;
 pub use outputs::{Outputs, Plot};
 pub use parts::{DesignLayoutParts, ProblemParts, design_over, problem_parts, scene_with_design};
 pub(crate) use points::build_points;
-pub use points::{HalfX, PointsSpec};
+pub use points::{EllipseShape, HalfX, PointsSpec};
 pub use solver::MethodChoice;
 pub use units::Units;
 

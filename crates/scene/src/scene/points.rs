@@ -3,6 +3,7 @@
 //! against the grid, and the point set a layout gives at a Hertz scale.
 
 use elcon_analysis::GridFamily;
+use elcon_analysis::grid::EllipseExtent;
 use elcon_influence::{Dimension, MAX_POINTS, PointSet};
 use toml::Spanned;
 
@@ -59,19 +60,53 @@ pub enum PointsSpec {
         zone: f64,
     },
     /// A rectangle of cells around an elliptical Hertz contact
-    /// (`elcon_analysis::grid::hertz_ellipse_family`): `across` points over
-    /// each of the ellipse's extents along x and y, out to `zone` times
-    /// them.
+    /// (`elcon_analysis::grid::hertz_ellipse_family`), out to `zone` times
+    /// its half-extents along x and y: `across` points over each axis of
+    /// an ellipse aligned with x and y; square cells with `across` points
+    /// over the minor axis of a turned one.
     EllipseHertz {
         /// Points across each extent (odd: the centre is a point).
         across: usize,
         /// Candidate zone over the ellipse (> 1).
         zone: f64,
-        /// The ellipse's half-extents along x and y over its equivalent
-        /// radius `sqrt(a b)` (the Hertz scale): fixed by the surfaces,
-        /// whatever the load (`HertzEllipse::half_extents`).
-        shape: (f64, f64),
+        /// The ellipse's shape: fixed by the surfaces, whatever the load.
+        shape: EllipseShape,
     },
+}
+
+/// An elliptical Hertz contact's shape, its lengths over its equivalent
+/// radius `sqrt(a b)` (the Hertz scale of an ellipse grid): the same at
+/// any load.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EllipseShape {
+    /// The half-extent along x over `sqrt(a b)`
+    /// (`HertzEllipse::half_extents`).
+    pub half_x: f64,
+    /// The half-extent along y over `sqrt(a b)`.
+    pub half_y: f64,
+    /// The semi-minor axis b over `sqrt(a b)`, `sqrt(b / a)`.
+    pub semi_minor: f64,
+    /// The major axis's direction from x (radians, `HertzEllipse::angle`).
+    pub angle: f64,
+}
+
+impl EllipseShape {
+    /// The shape of a circle: its half-extents and semi-axes are its radius.
+    pub const CIRCLE: EllipseShape = EllipseShape {
+        half_x: 1.0,
+        half_y: 1.0,
+        semi_minor: 1.0,
+        angle: 0.0,
+    };
+
+    /// The lengths at the Hertz scale `r` (the equivalent radius).
+    fn extent(&self, r: f64) -> EllipseExtent {
+        EllipseExtent {
+            half_x: self.half_x * r,
+            half_y: self.half_y * r,
+            semi_minor: self.semi_minor * r,
+        }
+    }
 }
 
 /// `[points]`: the grid and its parameters, each key checked against the grid.
@@ -98,7 +133,7 @@ pub(super) fn points_spec(
                 across: hertz_across(ctx, a)?,
                 zone: hertz_zone(ctx, p)?,
                 // Set from the surfaces once they are read (super::hertz::shaped).
-                shape: (1.0, 1.0),
+                shape: EllipseShape::CIRCLE,
             }
         }
     };
@@ -314,14 +349,48 @@ impl PointsSpec {
             PointsSpec::EllipseHertz {
                 across,
                 zone,
-                shape: (fx, fy),
+                shape,
             } => {
-                let r = need()?;
-                elcon_analysis::grid::hertz_ellipse_family((fx * r, fy * r), across, zone)
+                let family =
+                    elcon_analysis::grid::hertz_ellipse_family(shape.extent(need()?), across, zone)
+                        .map_err(|e| e.to_string())?;
+                return turned_too_many(&shape, across, zone, family);
             }
         };
         r.map_err(|e| e.to_string())
     }
+}
+
+/// The family of an ellipse grid, or why a turned ellipse's grid is not
+/// laid out: square cells spanning its minor axis take more than
+/// `MAX_POINTS` points when the ellipse is slender. The message says
+/// what turning the surfaces to lay the ellipse along x would need.
+fn turned_too_many(
+    shape: &EllipseShape,
+    across: usize,
+    zone: f64,
+    family: GridFamily,
+) -> Result<GridFamily, String> {
+    let GridFamily::Rectangle { nx, ny, .. } = family else {
+        return Ok(family);
+    };
+    let count = nx as f64 * ny as f64;
+    if !shape.extent(1.0).is_turned() || count <= MAX_POINTS as f64 {
+        return Ok(family);
+    }
+    let theta = shape.angle.to_degrees();
+    let aligned = (across as f64 * zone).powi(2);
+    Err(format!(
+        "the Hertz ellipse is turned by {theta:.2} degrees from x (its semi-axes {:.1} : 1): a \
+         grid with {across} points across its minor axis in every direction needs {nx} x {ny} \
+         = {} points, more than {MAX_POINTS}, the most elcon lays out. Turning both surfaces \
+         by {:.2} degrees (add it to each quadric's `angle`; a sphere needs none) lays the \
+         ellipse along x, where the grid needs about (across zone)^2 = {} points",
+        1.0 / shape.semi_minor.powi(2),
+        Num(count),
+        -theta,
+        Num(aligned.round()),
+    ))
 }
 
 /// Builds the point set of the layout's family ([`PointsSpec::family`]);
