@@ -64,7 +64,7 @@ pub use plot::error_time;
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::{Run, RunResult, Seconds, SolutionJson, SymmetryJson, run};
 pub use sanity::{
-    CANCELLING_CURVATURE, MAX_CONSTANT_OVER_ZONE, MAX_DEGREE, MAX_DESIGN_CASES,
+    CANCELLING_CURVATURE, MAX_CONSTANT_OVER_ZONE, MAX_DEFORMATION, MAX_DEGREE, MAX_DESIGN_CASES,
     MAX_REFINEMENT_STEPS, MAX_ROTATION, MAX_STRAIN, MIN_DEFORMATION, MIN_POINTS_ACROSS,
     MIN_POINTS_RESOLVED, MIN_RESOLVED_DEFORMATION, max_pivots_bound,
 };

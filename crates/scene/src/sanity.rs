@@ -33,7 +33,11 @@
 //! is below
 //! [`MIN_RESOLVED_DEFORMATION`] of the largest initial separation over the
 //! candidate zone, or below [`MIN_DEFORMATION`], is refused: the contact it
-//! makes is lost in the rounding of the separations.
+//! makes is lost in the rounding of the separations (or, below
+//! [`MIN_DEFORMATION`], the squares of its residuals among the subnormal
+//! numbers). A deformation or a mean force per point above
+//! [`MAX_DEFORMATION`] is refused too: the squares the solve sums
+//! overflow.
 
 use elcon_analysis::{Curvature, Geometry, Loading, Normal};
 use elcon_design::{Axis, Family, GridSequence, axial_stations};
@@ -118,12 +122,24 @@ pub const CANCELLING_CURVATURE: f64 = 1e3 * f64::EPSILON;
 pub const MIN_RESOLVED_DEFORMATION: f64 = 1e-8;
 
 /// The smallest elastic deformation (length), and the smallest mean force
-/// a candidate point carries (force), a solve is given: below
-/// `f64::MIN_POSITIVE / f64::EPSILON` (about 1e-292) their products and
-/// sums fall among the subnormal numbers, which carry fewer than the 16
-/// digits of an f64 (a ball bearing's load of 1e-297 N, its grid sized by
-/// its own Hertz ellipse, solved to semi-axes 100 % off).
-pub const MIN_DEFORMATION: f64 = f64::MIN_POSITIVE / f64::EPSILON;
+/// a candidate point carries (force), a solve is given:
+/// `sqrt(f64::MIN_POSITIVE) / f64::EPSILON` (6.718e-139) rounded up. The
+/// solvers' certificates and the conjugate gradient measure residuals of
+/// about the tolerance (`f64::EPSILON` times the data's scale) by their
+/// squared norms: below this bound the square of (deformation x
+/// tolerance) falls below the smallest normal number, among the subnormal
+/// numbers (fewer than 16 digits, then zero), and the conjugate gradient
+/// stalls or breaks down (Example 1 at 1e-250 lbf, its grid sized by its
+/// own Hertz contact, or at E = 1e153 psi under 100 lbf, ran out of
+/// iterations or broke down).
+pub const MIN_DEFORMATION: f64 = 6.72e-139;
+
+/// The largest elastic deformation (length), and the largest mean force a
+/// candidate point carries (force), a solve is given: `1 /
+/// MIN_DEFORMATION`, about 1.5e138, so that their squares and the sums of
+/// their squares over a grid (the solvers' norms) stay far below the
+/// largest f64 (1.8e308) rather than overflowing to infinity.
+pub const MAX_DEFORMATION: f64 = 1.0 / MIN_DEFORMATION;
 
 /// The length the strain bounds measure the zone by: its smaller extent on
 /// a surface (an approach or a separation large against the zone's width
@@ -989,8 +1005,9 @@ pub(crate) fn deformation(bodies: [&Body; 2], normal: Normal, points: &PointSet)
 /// Why `normal` on `points` cannot be resolved against the largest initial
 /// separation over the zone, `largest` (length), if it cannot: its
 /// [`deformation`] below [`MIN_RESOLVED_DEFORMATION`] of `largest`, or
-/// below [`MIN_DEFORMATION`]. The message gives the smallest load (or
-/// approach) resolved: the deformation is linear in it.
+/// below [`MIN_DEFORMATION`]; or a deformation or a mean force per point
+/// above [`MAX_DEFORMATION`]. The message gives the smallest (largest)
+/// load or approach accepted: the deformation is linear in it.
 pub(crate) fn unresolved(
     bodies: [&Body; 2],
     normal: Normal,
@@ -1002,12 +1019,23 @@ pub(crate) fn unresolved(
         let per_point = p / points.len() as f64;
         if per_point < MIN_DEFORMATION {
             return Some(format!(
-                "is {} per candidate point (of {}), below {MIN_DEFORMATION:.1e}, where the \
-                 solve's products and sums fall among the subnormal numbers and lose their \
-                 digits; give a load of at least {}, or check its units",
+                "is {} per candidate point (of {}), below {MIN_DEFORMATION:.2e}, where the \
+                 squares of forces times the solve's tolerance (2.2e-16 of them) fall among \
+                 the subnormal numbers and lose their digits; give a load of at least {}, or \
+                 check its units",
                 rounded(per_point),
                 points.len(),
                 rounded(MIN_DEFORMATION * points.len() as f64 * 1.001)
+            ));
+        }
+        if per_point > MAX_DEFORMATION {
+            return Some(format!(
+                "is {} per candidate point (of {}), above {MAX_DEFORMATION:.2e}, where the \
+                 solve's sums of squared forces overflow; give a load of at most {}, or check \
+                 its units and the moduli",
+                rounded(per_point),
+                points.len(),
+                rounded(MAX_DEFORMATION * points.len() as f64 * 0.999)
             ));
         }
     }
@@ -1016,6 +1044,19 @@ pub(crate) fn unresolved(
         return None;
     }
     let w = deformation(bodies, normal, points);
+    if w > MAX_DEFORMATION {
+        let (value, what) = match normal {
+            Normal::Load(p) => (p, "a load"),
+            Normal::Approach(d) => (d, "an approach"),
+        };
+        return Some(format!(
+            "deforms the bodies by up to about {} {length}, above {MAX_DEFORMATION:.2e} \
+             {length}, where the solve's sums of squared deformations overflow; give {what} of \
+             at most {}, or check the units and the moduli",
+            rounded(w),
+            rounded(value * (MAX_DEFORMATION / w) * 0.999)
+        ));
+    }
     let needed = (MIN_RESOLVED_DEFORMATION * largest.abs()).max(MIN_DEFORMATION);
     if w >= needed {
         return None;
@@ -1046,8 +1087,9 @@ pub(crate) fn unresolved(
         )
     } else {
         format!(
-            "below {MIN_DEFORMATION:.1e} {length}, where the solve's products fall among the \
-             subnormal numbers and lose their digits"
+            "below {MIN_DEFORMATION:.2e} {length}, where the squares of deformations times \
+             the solve's tolerance (2.2e-16 of them) fall among the subnormal numbers and lose \
+             their digits"
         )
     };
     Some(format!(

@@ -103,6 +103,43 @@ fn a_load_near_the_subnormal_numbers_never_reaches_a_solver() {
 }
 
 #[test]
+fn a_load_whose_residuals_square_below_the_normal_numbers_is_refused() {
+    // Example 1 at 1e-250 lbf on its own Hertz grid: an approach of about
+    // 1e-168 in, whose residuals' squares (1e-32 of its square) are
+    // subnormal; the conjugate gradient ran out of iterations there.
+    let tiny = common::sphere_on_rigid_plane("across = 41\nzone = 1.15")
+        .replace("load = 100.0", "load = 1e-250");
+    let (field, e) = refused(scene(&tiny));
+    assert_eq!(field, "loading.load", "{e}");
+    assert!(e.contains("below 6.72e-139"), "{e}");
+    assert!(e.contains("subnormal"), "{e}");
+    assert!(!e.contains("EPSILON") && !e.contains("MIN_"), "{e}");
+    // The load the message names is accepted.
+    let least = e.split("at least ").nth(1).unwrap().split(',').next().unwrap();
+    scene(&tiny.replace("load = 1e-250", &format!("load = {least}"))).unwrap();
+}
+
+#[test]
+fn forces_and_deformations_whose_squares_overflow_are_refused() {
+    // Moduli of 1e200 psi: 1e145 lbf is a small strain, but 6e141 lbf a
+    // point, whose square overflows.
+    let stiff = common::sphere_on_rigid_plane("across = 41\nzone = 1.15")
+        .replace("youngs_modulus = 30e6", "youngs_modulus = 1e200")
+        .replace("load = 100.0", "load = 1e145");
+    let (field, e) = refused(scene(&stiff));
+    assert_eq!(field, "loading.load", "{e}");
+    assert!(e.contains("above 1.49e138"), "{e}");
+    assert!(e.contains("give a load of at most"), "{e}");
+    // An approach of 1e140 in on a zone of 1e150 in.
+    let wide = spheres_on_disk("approach = 1e140")
+        .replace("spacing = 0.002", "spacing = 1e148")
+        .replace("radius = 0.02", "radius = 1e150");
+    let (field, e) = refused(scene(&wide));
+    assert_eq!(field, "loading.approach", "{e}");
+    assert!(e.contains("above 1.49e138"), "{e}");
+}
+
+#[test]
 fn a_logarithmic_crown_for_a_load_it_cannot_resolve_is_refused_by_check() {
     let (field, e) = refused(example_with(
         "crowned-roller.toml",
