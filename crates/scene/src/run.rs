@@ -195,9 +195,38 @@ pub struct Run {
 /// outside the small-rotation theory the model rests on
 /// (`elcon_analysis::rotation::small_rotation`: beyond its
 /// `MAX_ROTATION`, or the contact pushed against the zone's edge).
+/// The message names the tilts or moments as written (`loading.tilt_x`,
+/// `loading.moment_y`, ...) and the zone's keys.
 fn small_rotation(scene: &Scene, solution: &ContactSolution) -> Result<(), SceneError> {
-    elcon_analysis::rotation::small_rotation(&scene.loading(), solution)
-        .map_err(|why| run_error(scene, format!("{why} (points.zone or points.radius)")))
+    let loading = scene.loading();
+    elcon_analysis::rotation::small_rotation(&loading, solution).map_err(|why| {
+        run_error(
+            scene,
+            format!(
+                "{}: {why} (points.zone or points.radius)",
+                rotation_fields(&loading)
+            ),
+        )
+    })
+}
+
+/// The tilts and moments a loading gives, as a user wrote them:
+/// "`loading.tilt_x` = 0.1, `loading.moment_y` = 5".
+fn rotation_fields(loading: &elcon_analysis::Loading) -> String {
+    let named = |axis: &str, t: Tilt| match t {
+        Tilt::Prescribed { angle } if angle != 0.0 => {
+            Some(format!("`loading.tilt_{axis}` = {}", Num(angle)))
+        }
+        Tilt::Free { moment } if moment != 0.0 => {
+            Some(format!("`loading.moment_{axis}` = {}", Num(moment)))
+        }
+        _ => None,
+    };
+    [named("x", loading.tilt_x), named("y", loading.tilt_y)]
+        .into_iter()
+        .flatten()
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Refuses the answer of a load-controlled scene whose solved approach is
@@ -209,11 +238,10 @@ fn small_approach(scene: &Scene, solution: &ContactSolution) -> Result<(), Scene
     let Normal::Load(load) = scene.loading().normal else {
         return Ok(());
     };
-    let extent = crate::sanity::strain_length(scene.points());
-    let s = solution.approach.abs() / extent;
-    if s.is_finite() && s <= crate::MAX_STRAIN {
+    let Some((s, extent)) = crate::sanity::approach_strain(solution.approach, scene.points())
+    else {
         return Ok(());
-    }
+    };
     let length = scene.units().length();
     Err(run_error(
         scene,

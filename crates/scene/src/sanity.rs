@@ -39,7 +39,7 @@
 //! [`MAX_DEFORMATION`] is refused too: the squares the solve sums
 //! overflow.
 
-use elcon_analysis::{Curvature, Geometry, Loading, Normal};
+use elcon_analysis::{Curvature, Geometry, Loading, Normal, Tilt};
 use elcon_design::{Axis, Family, GridSequence, axial_stations};
 use elcon_influence::{Body, Dimension, Model, PointSet, combined_modulus_of};
 use toml::Spanned;
@@ -952,6 +952,94 @@ pub(crate) fn strain(
     bodies
         .iter()
         .find_map(|b| beam_slope(b, (load, mean), points, foundation, labels))
+}
+
+/// An approach beyond the small strain: `|approach|` over the candidate
+/// zone's smaller extent ([`strain_length`]) above [`MAX_STRAIN`], or not
+/// finite: `Some((strain, extent))`. The bound `run` applies to a solved
+/// approach and `check` to Hertz's approach at the scene's load.
+pub(crate) fn approach_strain(approach: f64, points: &PointSet) -> Option<(f64, f64)> {
+    let extent = strain_length(points);
+    let s = approach.abs() / extent;
+    (!(s.is_finite() && s <= MAX_STRAIN)).then_some((s, extent))
+}
+
+/// Why Hertz's approach at `load`, `approach`, is beyond the small strain
+/// on `points` ([`approach_strain`]), if it is: the run would refuse the
+/// solved approach. A point contact's approach grows as `P^(2/3)`, and a
+/// grid sized by the Hertz contact (`sized_by_hertz`) as `P^(1/3)`: the
+/// strain as `P^(2/3)` or `P^(1/3)`, so the message gives the load at the
+/// bound.
+pub(crate) fn hertz_approach_strain(
+    (load, approach): (f64, f64),
+    sized_by_hertz: bool,
+    points: &PointSet,
+    length: &str,
+) -> Option<String> {
+    let (s, extent) = approach_strain(approach, points)?;
+    let power = if sized_by_hertz { 3.0 } else { 1.5 };
+    Some(format!(
+        "Hertz's approach at this load, {} {length}, is {s:.4} times the candidate zone's \
+         smaller extent, {} {length}: beyond the small strain (at most {MAX_STRAIN}) of the \
+         linear elasticity the influence models rest on, so the run would refuse the solved \
+         approach; give a load of at most {}, stiffer bodies (youngs_modulus), or check their \
+         units",
+        rounded(approach),
+        rounded(extent),
+        rounded(load * (MAX_STRAIN / s).powf(power) * 0.999)
+    ))
+}
+
+/// Prescribed tilts that move the gap's minimum of spheres of combined
+/// radius `radius` by `R (tilt_y, tilt_x)` (a rotation about x moves it
+/// along y) so far that the Hertz contact of radius `contact` around it
+/// reaches beyond the candidate zone (the points' largest distance from
+/// the origin, plus half a cell): the field to name (the larger tilt) and
+/// why. The run would find the contact against the zone's edge.
+pub(crate) fn tilt_off_zone(
+    (radius, contact): (f64, f64),
+    loading: Loading,
+    points: &PointSet,
+    length: &str,
+) -> Option<(&'static str, String)> {
+    let angle = |t: Tilt| match t {
+        Tilt::Prescribed { angle } => angle,
+        Tilt::Free { .. } => 0.0,
+    };
+    let (tx, ty) = (angle(loading.tilt_x), angle(loading.tilt_y));
+    let shift = radius * tx.hypot(ty);
+    let cell = points.cell();
+    let reach = (0..points.len())
+        .map(|k| points.x(k).hypot(points.y(k)))
+        .fold(0.0f64, f64::max)
+        + 0.5 * cell.dx.max(cell.dy);
+    if !(shift > 0.0) || shift + contact <= reach {
+        return None;
+    }
+    let field = if tx.abs() >= ty.abs() {
+        "loading.tilt_x"
+    } else {
+        "loading.tilt_y"
+    };
+    let most = ((reach - contact) / radius).max(0.0);
+    Some((
+        field,
+        format!(
+            "the tilts (tilt_x {}, tilt_y {} rad) move the gap's minimum by R tilt = {} {length} \
+             (R = {} {length}, the spheres' combined radius); with the Hertz contact's radius, \
+             {} {length}, it reaches {} {length} from the centre, beyond the candidate zone's {} \
+             {length}: the contact would lie against the zone's edge. Give tilts of at most {} \
+             rad together, or a larger zone (points.zone or points.radius)",
+            Num(tx),
+            Num(ty),
+            rounded(shift),
+            rounded(radius),
+            rounded(contact),
+            rounded(shift + contact),
+            rounded(reach),
+            rounded(most)
+        ),
+    ))
 }
 
 /// The largest elastic deformation `normal` can make on `points`

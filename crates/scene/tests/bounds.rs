@@ -115,7 +115,13 @@ fn a_load_whose_residuals_square_below_the_normal_numbers_is_refused() {
     assert!(e.contains("subnormal"), "{e}");
     assert!(!e.contains("EPSILON") && !e.contains("MIN_"), "{e}");
     // The load the message names is accepted.
-    let least = e.split("at least ").nth(1).unwrap().split(',').next().unwrap();
+    let least = e
+        .split("at least ")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap();
     scene(&tiny.replace("load = 1e-250", &format!("load = {least}"))).unwrap();
 }
 
@@ -137,6 +143,66 @@ fn forces_and_deformations_whose_squares_overflow_are_refused() {
     let (field, e) = refused(scene(&wide));
     assert_eq!(field, "loading.approach", "{e}");
     assert!(e.contains("above 1.49e138"), "{e}");
+}
+
+#[test]
+fn a_load_whose_hertz_approach_strains_the_zone_is_refused_by_check() {
+    // Example 1 on its own Hertz grid: the zone grows as P^(1/3), Hertz's
+    // approach as P^(2/3); at 3e5 lbf it is 0.108 of the zone, and the run
+    // would refuse the solved approach.
+    let heavy = |load: &str| {
+        common::spheres("across = 41\nzone = 1.15")
+            .replace("load = 100.0", &format!("load = {load}"))
+    };
+    let (field, e) = refused(scene(&heavy("3e5")));
+    assert_eq!(field, "loading.load", "{e}");
+    assert!(e.contains("Hertz's approach at this load"), "{e}");
+    assert!(e.contains("beyond the small strain (at most 0.1)"), "{e}");
+    // The load the message names passes check and runs.
+    let most = e
+        .split("at most ")
+        .nth(2)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap();
+    let s = scene(&heavy(most)).unwrap();
+    run(&s).unwrap();
+}
+
+#[test]
+fn a_tilt_that_moves_the_contact_off_the_zone_is_refused_by_check() {
+    // R tilt = 0.09 in against a zone of 0.019 in.
+    let tilted = |tilt: &str| {
+        common::spheres("across = 41\nzone = 1.15")
+            .replace("load = 100.0", &format!("load = 100.0\ntilt_x = {tilt}"))
+    };
+    let (field, e) = refused(scene(&tilted("0.1")));
+    assert_eq!(field, "loading.tilt_x", "{e}");
+    assert!(e.contains("R tilt = 0.09091 in"), "{e}");
+    assert!(e.contains("beyond the candidate zone's"), "{e}");
+    // Within the bound but near it the run finds the contact against the
+    // zone's edge, and names the tilt.
+    let e = run(&scene(&tilted("0.0025")).unwrap())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("`loading.tilt_x` = 0.0025: the prescribed tilt"),
+        "{e}"
+    );
+    assert!(e.contains("against the candidate zone's edge"), "{e}");
+    run(&scene(&tilted("0.002")).unwrap()).unwrap();
+}
+
+#[test]
+fn a_moment_against_the_zone_s_edge_names_the_moment() {
+    let s = scene(
+        &common::spheres("across = 41\nzone = 1.15")
+            .replace("load = 100.0", "load = 100.0\nmoment_y = 0.8"),
+    )
+    .unwrap();
+    let e = run(&s).unwrap_err().to_string();
+    assert!(e.contains("`loading.moment_y` = 0.8: "), "{e}");
 }
 
 #[test]

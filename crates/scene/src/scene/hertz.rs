@@ -83,6 +83,16 @@ impl Hertz {
         }
     }
 
+    /// The approach of a point contact (spheres, an ellipse); `None` for a
+    /// line contact, whose approach depends on where it is measured.
+    pub(crate) fn approach(&self) -> Option<f64> {
+        match self {
+            Hertz::Spheres(h) => Some(h.approach()),
+            Hertz::Ellipse(h) => Some(h.approach()),
+            Hertz::Cylinders(_) => None,
+        }
+    }
+
     /// The peak pressure (intensity unit).
     pub(crate) fn peak_pressure(&self) -> f64 {
         match self {
@@ -168,6 +178,21 @@ pub(super) fn hertz_scale(
     load: f64,
 ) -> Option<f64> {
     hertz(bodies, geometry, spec, load).map(|h| h.scale())
+}
+
+/// The combined radius `R` of spheres (or a sphere on a plane) and the
+/// Hertz radius `a` at `load`, on a disk grid: what a prescribed tilt's
+/// shift of the gap's minimum, `R tilt`, is measured against.
+pub(super) fn spheres_at(
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    spec: &PointsSpec,
+    load: f64,
+) -> Option<(f64, f64)> {
+    match hertz(bodies, geometry, spec, load)? {
+        Hertz::Spheres(h) => Some((combined(geometry, true)?, h.contact_radius())),
+        _ => None,
+    }
 }
 
 /// The closed form that applies to the scene, if one does.

@@ -336,6 +336,16 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
     let geometry = files::on_points(ctx, raw.geometry.as_ref(), geometry, &points)?;
     small_strain(ctx, &raw, &bodies, &geometry, &points, loading, &units)?;
+    hertz_bounds(
+        ctx,
+        &raw,
+        &bodies,
+        &geometry,
+        &points_spec,
+        &points,
+        loading,
+        &units,
+    )?;
     sanity::load_centre(ctx, &raw.loading, loading, &points)?;
     let reference = hertz::reference(&bodies, &geometry, &points_spec, &points, loading);
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
@@ -426,6 +436,54 @@ fn program_reads_entries(
             "the program reads S's entries and this scene holds S matrix-free (solver.method); \
              use \"descent\" or \"auto\"",
         ));
+    }
+    Ok(())
+}
+
+/// What the run would refuse that Hertz's closed form tells before it:
+/// Hertz's approach at the scene's load beyond the small strain
+/// ([`sanity::hertz_approach_strain`]), prescribed tilts moving the
+/// spheres' contact off the candidate zone ([`sanity::tilt_off_zone`]).
+#[allow(clippy::too_many_arguments)]
+fn hertz_bounds(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    bodies: &[BodySpec; 2],
+    geometry: &Geometry,
+    spec: &PointsSpec,
+    points: &PointSet,
+    loading: Loading,
+    units: &Units,
+) -> Result<(), SceneError> {
+    let Normal::Load(load) = loading.normal else {
+        return Ok(());
+    };
+    let t = raw.loading.get_ref();
+    let approach = hertz::hertz(bodies, geometry, spec, load).and_then(|h| h.approach());
+    let sized_by_hertz = matches!(
+        spec,
+        PointsSpec::DiskHertz { .. } | PointsSpec::EllipseHertz { .. }
+    );
+    if let Some(reason) = approach.and_then(|d| {
+        sanity::hertz_approach_strain((load, d), sized_by_hertz, points, units.length())
+    }) {
+        let span = t.load.as_ref().map_or(raw.loading.span(), |l| l.span());
+        return Err(ctx.invalid(span, "loading.load", crate::ctx::Num(load), reason));
+    }
+    let off = hertz::spheres_at(bodies, geometry, spec, load)
+        .and_then(|rc| sanity::tilt_off_zone(rc, loading, points, units.length()));
+    if let Some((field, reason)) = off {
+        let (given, value) = if field == "loading.tilt_x" {
+            (t.tilt_x.as_ref(), loading.tilt_x)
+        } else {
+            (t.tilt_y.as_ref(), loading.tilt_y)
+        };
+        let angle = match value {
+            elcon_analysis::Tilt::Prescribed { angle } => angle,
+            elcon_analysis::Tilt::Free { .. } => 0.0,
+        };
+        let span = given.map_or(raw.loading.span(), |v| v.span());
+        return Err(ctx.invalid(span, field, crate::ctx::Num(angle), reason));
     }
     Ok(())
 }
