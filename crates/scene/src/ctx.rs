@@ -355,10 +355,15 @@ pub(crate) fn parse<T: serde::de::DeserializeOwned>(
                 "{m}: arrays or tables nested too deep (a scene's tables and arrays nest a few \
                  levels at most)"
             ),
-            m if m.contains("as i128") => m.replace(
-                "expected a whole number",
-                "expected a whole number within +-9.2e18",
-            ),
+            m if m.contains(" as i128") => match m.split('`').nth(1) {
+                Some(digits) => format!(
+                    "the integer {digits} is out of range: a whole number here must be \
+                     within +-9.2e18"
+                ),
+                None => "an integer out of range: a whole number here must be within \
+                         +-9.2e18"
+                    .to_string(),
+            },
             _ => message,
         };
         let message = match key_at(text, offset) {

@@ -198,6 +198,11 @@ fn parse_errors_name_the_key() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("`points.across`"), "{e}");
+    assert!(
+        e.contains("the integer 99999999999999999999999 is out of range"),
+        "{e}"
+    );
+    assert!(!e.contains("i128"), "{e}");
     let deep = format!("{}{}", "[".repeat(200), "]".repeat(200));
     let e = scene(&base.replace("zone = 1.3", &format!("zone = {deep}")))
         .unwrap_err()
