@@ -237,8 +237,10 @@ fn cancelling(
             g.surface2.as_ref()
         }
     });
-    let (key, span) = surface.map_or_else(
-        || ("radius", raw.map_or(0..0, |g| g.span())),
+    // The value as the file writes it (at an angle, the radius along the
+    // axis is not the one written).
+    let (key, span, written) = surface.map_or_else(
+        || ("radius", raw.map_or(0..0, |g| g.span()), None),
         |s| {
             let t = s.get_ref();
             let (key, value) = match (&t.radius, axis) {
@@ -246,13 +248,17 @@ fn cancelling(
                 (None, "x") => ("radius_x", t.radius_x.as_ref()),
                 (None, _) => ("radius_y", t.radius_y.as_ref()),
             };
-            (key, value.map_or(s.span(), |r| r.span()))
+            (
+                key,
+                value.map_or(s.span(), |r| r.span()),
+                value.map(|r| *r.get_ref()),
+            )
         },
     );
     ctx.invalid(
         span,
         format!("{field}.{key}"),
-        Num(1.0 / if first { k.0 } else { k.1 }),
+        Num(written.unwrap_or(1.0 / if first { k.0 } else { k.1 })),
         format!(
             "cancels the other surface: geometry.surface1's radius along {axis} is {} and \
              geometry.surface2's {}, so the relative curvature 1/R1 + 1/R2 = {sum:.3e} is below \

@@ -504,6 +504,16 @@ fn curvatures_that_cancel_to_rounding_are_refused() {
         "geometry.surface2.radius",
         "cancels the other surface",
     );
+    // Turned 45 degrees, the radius along x is twice the one written; the
+    // message quotes the value as the file writes it.
+    let turned = |r: &str| format!("{{ shape = \"quadric\", radius_x = {r}, angle = 45.0 }}");
+    refused(
+        &spheres()
+            .replace("{ shape = \"sphere\", radius = 1.0 }", &turned("3.0"))
+            .replace("{ shape = \"sphere\", radius = 10.0 }", &turned("-3.0")),
+        "geometry.surface2.radius_x",
+        "` = -3: cancels the other surface",
+    );
 }
 
 #[test]
