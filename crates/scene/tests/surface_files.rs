@@ -161,11 +161,33 @@ fn bad_files_are_refused_naming_the_file_and_the_row() {
     assert!(why.contains("larger than 256 MiB"), "{why}");
     // A hole (NaN) at row 1, column 2.
     std::fs::write(d.join("hole.csv"), "0,0,0\n0,0,nan\n0,0,0\n").unwrap();
-    let (_, why) = reason(scene_in(&d, &map("hole.csv")));
+    let (field, why) = reason(scene_in(&d, &map("hole.csv")));
+    assert_eq!(field, "geometry.height_map.file");
     assert!(
         why.contains("hole.csv") && why.contains("row 1, column 2"),
         "{why}"
     );
+    // One row: the content is the file's fault.
+    std::fs::write(d.join("row.csv"), "0,0,0\n").unwrap();
+    let (field, why) = reason(scene_in(&d, &map("row.csv")));
+    assert_eq!(field, "geometry.height_map.file", "{why}");
+    // A zero spacing is the spacing's fault, quoted as written.
+    std::fs::write(d.join("ok.csv"), "0,0,0\n0,0,0\n0,0,0\n").unwrap();
+    let zero = map("ok.csv").replace("spacing = [0.5, 5.0]", "spacing = [0.0, 5.0]");
+    let e = scene_in(&d, &zero).unwrap_err().to_string();
+    assert!(
+        e.contains("`geometry.height_map.spacing` = [0.0, 5.0]: both spacings"),
+        "{e}"
+    );
+    // A profile whose positions do not increase names its file.
+    let profile = base().replace(
+        geometry,
+        &format!("{geometry}\nprofile = {{ file = \"down.csv\" }}"),
+    );
+    std::fs::write(d.join("down.csv"), "1,0\n0,0\n").unwrap();
+    let (field, why) = reason(scene_in(&d, &profile));
+    assert_eq!(field, "geometry.profile.file", "{why}");
+    assert!(why.contains("positions must increase"), "{why}");
     // Ragged rows.
     std::fs::write(d.join("ragged.csv"), "0,0,0\n0,0\n0,0,0\n").unwrap();
     let (_, why) = reason(scene_in(&d, &map("ragged.csv")));

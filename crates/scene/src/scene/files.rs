@@ -207,6 +207,15 @@ pub(super) fn height_map(
         (rows.into_iter().flat_map(|(_, r)| r).collect(), ny, nx)
     };
     let spacing = pair(ctx, &t.spacing, "geometry.height_map.spacing")?;
+    if !(spacing.0 > 0.0 && spacing.1 > 0.0) {
+        return Err(ctx.invalid(
+            t.spacing.span(),
+            "geometry.height_map.spacing",
+            format!("{:?}", t.spacing.get_ref()),
+            "both spacings [along x, along y] must be > 0 (the distance between the map's \
+             columns and between its rows)",
+        ));
+    }
     let origin = match &t.origin {
         Some(o) => pair(ctx, o, "geometry.height_map.origin")?,
         None => (
@@ -218,7 +227,7 @@ pub(super) fn height_map(
     let map = HeightMap::new(label, values, nx, ny, spacing, origin).map_err(|e| {
         ctx.invalid(
             t.file.span(),
-            "geometry.height_map",
+            "geometry.height_map.file",
             format!("{name:?}"),
             e.to_string(),
         )
@@ -263,7 +272,7 @@ pub(super) fn profile(ctx: &Ctx<'_>, t: &Spanned<ProfileToml>) -> Result<Departu
     let p = AxialProfile::new(label, axis, positions, drops).map_err(|e| {
         ctx.invalid(
             t.file.span(),
-            "geometry.profile",
+            "geometry.profile.file",
             format!("{name:?}"),
             e.to_string(),
         )
