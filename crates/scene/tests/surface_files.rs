@@ -76,6 +76,38 @@ fn a_separation_file_equal_to_the_inline_separations_is_bit_identical() {
         why.contains("short.csv") && why.contains("candidate point 0"),
         "{why}"
     );
+    // Two rows for one point: the same separation twice is harmless,
+    // another one is refused naming both lines and the point.
+    let full = std::fs::read_to_string(d.join("eps.csv")).unwrap();
+    let n = points.len();
+    let again = format!("{full}{:?},{:?},{:?}\n", points.x(0), points.y(0), eps[0]);
+    std::fs::write(d.join("again.csv"), again).unwrap();
+    scene_in(
+        &d,
+        &base().replace(geometry, "separation_file = \"again.csv\""),
+    )
+    .unwrap();
+    let twice = format!(
+        "{full}{:?},{:?},{:?}\n",
+        points.x(0),
+        points.y(0),
+        eps[0] + 1e-3
+    );
+    std::fs::write(d.join("twice.csv"), twice).unwrap();
+    let (field, why) = reason(scene_in(
+        &d,
+        &base().replace(geometry, "separation_file = \"twice.csv\""),
+    ));
+    assert_eq!(field, "geometry.separation_file");
+    assert!(
+        why.contains("twice.csv")
+            && why.contains(&format!(
+                "lines {} and {} both give candidate point 0",
+                n + 1,
+                n + 2
+            )),
+        "{why}"
+    );
 }
 
 #[test]
