@@ -79,14 +79,31 @@ pub(crate) fn compare(
         }
         Reference::FlatPunch(punch) => {
             json.contact_extent = Some(punch.radius);
+            // A uniform separation e0 (the punch's face e0 from the other
+            // surface) offsets the approach: Boussinesq's indentation is
+            // delta - e0.
+            let e0 = problem.separation().first().copied().unwrap_or(0.0);
+            let mut notes = Vec::new();
+            if e0 != 0.0 {
+                notes.push(format!(
+                    "the uniform separation {} offsets the approach: Boussinesq's indentation \
+                     is the approach minus it",
+                    crate::ctx::Num(e0)
+                ));
+            }
             match loading.normal {
-                Normal::Approach(d) => {
-                    let p = punch.load(d);
+                Normal::Approach(d) if d - e0 > 0.0 => {
+                    let p = punch.load(d - e0);
                     json.load = Some(p);
                     json.errors.load = Some(rel(sol.load, p));
                 }
+                Normal::Approach(_) => notes.push(
+                    "the approach does not press the punch past the separation: no load to \
+                     compare"
+                        .into(),
+                ),
                 Normal::Load(p) => {
-                    let d = punch.approach(p);
+                    let d = punch.approach(p) + e0;
                     json.approach = Some(d);
                     json.errors.approach = Some(rel(sol.approach, d));
                 }
@@ -95,12 +112,13 @@ pub(crate) fn compare(
                 // Superposed on the central load, a moment or a tilt turns
                 // the punch about its centre and leaves the approach and the
                 // load there as they are; their closed forms stand.
-                json.note = Some(
+                notes.push(
                     "a moment or a tilt turns the punch about its centre: the load and the \
                      approach at the centre are compared (they do not change), the tilt is not"
                         .into(),
                 );
             }
+            json.note = (!notes.is_empty()).then(|| notes.join("; "));
             // The pressure is singular at the edge: no peak or L2 comparison.
             None
         }

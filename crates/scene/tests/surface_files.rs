@@ -296,3 +296,43 @@ fn npy(shape: &[usize], values: &[f64]) -> Vec<u8> {
     }
     out
 }
+
+#[test]
+fn a_flat_punch_s_reference_takes_a_uniform_separation_as_an_offset() {
+    let d = dir("punch");
+    let punch = "[units]\nlength = \"m\"\nforce = \"N\"\npressure = \"Pa\"\n\n[body1]\nmodel = \
+                 \"rigid\"\n\n[body2]\nmodel = \"uniform-patch\"\nyoungs_modulus = 70e9\n\
+                 poissons_ratio = 0.33\n\n[geometry]\nGEOMETRY\n\n[points]\ngrid = \"disk\"\n\
+                 spacing = 0.001\nradius = 0.01\n\n[loading]\napproach = 1e-5\n";
+    let flat = punch.replace(
+        "GEOMETRY",
+        "surface1 = { shape = \"plane\" }\nsurface2 = { shape = \"plane\" }",
+    );
+    let plain = run(&scene_in(&d, &flat).unwrap()).unwrap();
+    // The same punch 1e-5 into the other surface before any approach: it
+    // carries the load of an approach of 2e-5, and the reference says so.
+    let s = scene_in(&d, &flat).unwrap();
+    let mut csv = String::new();
+    for k in 0..s.points().len() {
+        csv += &format!("{:?},{:?},-1e-5\n", s.points().x(k), s.points().y(k));
+    }
+    std::fs::write(d.join("offset.csv"), csv).unwrap();
+    let offset = punch.replace("GEOMETRY", "separation_file = \"offset.csv\"");
+    let r = run(&scene_in(&d, &offset).unwrap()).unwrap();
+    let (a, b) = (
+        plain.result.reference.as_ref().unwrap(),
+        r.result.reference.as_ref().unwrap(),
+    );
+    assert_eq!(b.kind, "flat-punch");
+    let ratio = b.load.unwrap() / a.load.unwrap();
+    assert!((ratio - 2.0).abs() < 1e-12, "{ratio}");
+    // The same relative error: the punch's answer is linear in the
+    // indentation.
+    let (ea, eb) = (a.errors.load.unwrap(), b.errors.load.unwrap());
+    assert!((ea - eb).abs() < 1e-9 * (1.0 + ea.abs()), "{ea} {eb}");
+    assert!(
+        b.note.as_deref().unwrap().contains("uniform separation"),
+        "{:?}",
+        b.note
+    );
+}
