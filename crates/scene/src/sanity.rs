@@ -681,8 +681,12 @@ pub(crate) fn coarse_grid(
     let h = points.cell().dx;
     let scale = hertz;
     let mut warnings = Vec::new();
+    // Points on a size laid out at `size / (n - 1)` count n, not n - 1
+    // when the quotient rounds just below n - 1.
+    let count =
+        |size: f64, spacing: f64| (size / spacing * (1.0 + 8.0 * f64::EPSILON)).floor() + 1.0;
     if let Some((what, a)) = scale {
-        let across = (2.0 * a / h).floor() + 1.0;
+        let across = count(2.0 * a, h);
         if across < MIN_POINTS_ACROSS as f64 {
             warnings.push(format!(
                 "the grid has about {across:.0} points across the Hertz contact {what} \
@@ -694,7 +698,7 @@ pub(crate) fn coarse_grid(
         return warnings;
     }
     if let Some((spacing, radius)) = disk {
-        let across = (2.0 * radius / spacing).floor() + 1.0;
+        let across = count(2.0 * radius, spacing);
         if across < MIN_POINTS_ACROSS as f64 {
             warnings.push(format!(
                 "the candidate disk has about {across:.0} points across (spacing {spacing} against \

@@ -329,6 +329,18 @@ fn a_grid_coarser_than_the_contact_warns() {
         "{:?}",
         s.warnings()
     );
+    // A line of 3 points across the width counts 3 (its spacing is the
+    // width over 2, rounded), as a disk does.
+    let line = include_str!("../../../examples/scenes/hertz-cylinders.toml");
+    let across = line.lines().find(|l| l.starts_with("across")).unwrap();
+    let s = scene(&line.replace(across, "across = 3")).unwrap();
+    assert!(
+        s.warnings()
+            .iter()
+            .any(|w| w.contains("about 3 points across the Hertz contact width")),
+        "{:?}",
+        s.warnings()
+    );
     // Spacing equal to the disk radius: two points across, refused.
     refused(
         &spheres().replace("spacing = 0.002", "spacing = 0.02"),
