@@ -144,14 +144,19 @@ pub enum LcpError {
     /// The only attempt allowed (an explicit tableau, the conjugate
     /// gradient of a problem given by its products) broke down without an
     /// answer.
-    #[error("{method} broke down after {pivots} pivots (size {size}): {reason}; {advice}")]
+    #[error(
+        "{method} broke down after {} (size {size}): {reason}; {advice}",
+        Spent { pivots: *pivots, iterations: *iterations }
+    )]
     BrokeDown {
         /// The method and tableau that ran.
         method: String,
         /// Number of unknowns.
         size: usize,
-        /// Pivots spent.
+        /// Pivots spent (over all attempts).
         pivots: usize,
+        /// Conjugate-gradient iterations spent (over all attempts).
+        iterations: usize,
         /// What happened.
         reason: String,
         /// What to do: let the engine choose the tableau, or use another
@@ -232,6 +237,12 @@ pub enum LcpError {
     Cancelled,
 }
 
+/// What a complementarity problem's [`LcpError::BrokeDown`] advises: an
+/// explicit tableau is the one attempt; the automatic choice retries on
+/// another, and another method may not break down at all.
+pub const TABLEAU_ADVICE: &str =
+    "let the engine choose the tableau (the automatic choice, the default) or use another method";
+
 /// The work a failed solve spent, as a message names it: pivots for the
 /// pivoting methods, iterations for the conjugate gradient, both when a
 /// solve tried both.
@@ -272,6 +283,25 @@ mod tests {
             }),
         }
         .to_string()
+    }
+
+    #[test]
+    fn a_breakdown_names_the_work_its_method_spent() {
+        let broke = |pivots, iterations| {
+            LcpError::BrokeDown {
+                method: "conjugate-gradient".into(),
+                size: 4,
+                pivots,
+                iterations,
+                reason: "a direction of non-positive curvature".into(),
+                advice: crate::TABLEAU_ADVICE,
+            }
+            .to_string()
+        };
+        let cg = broke(0, 3);
+        assert!(cg.contains("after 3 iterations (size 4)"), "{cg}");
+        assert!(!cg.contains("::") && !cg.contains('`'), "{cg}");
+        assert!(broke(2, 0).contains("after 2 pivots (size 4)"));
     }
 
     #[test]
