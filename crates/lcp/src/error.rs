@@ -253,10 +253,14 @@ struct Spent {
 
 impl std::fmt::Display for Spent {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let count = |n: usize, what: &str| {
+            let s = if n == 1 { "" } else { "s" };
+            format!("{n} {what}{s}")
+        };
         match (self.pivots, self.iterations) {
-            (p, 0) => write!(f, "{p} pivots"),
-            (0, i) => write!(f, "{i} iterations"),
-            (p, i) => write!(f, "{p} pivots and {i} iterations"),
+            (p, 0) => write!(f, "{}", count(p, "pivot")),
+            (0, i) => write!(f, "{}", count(i, "iteration")),
+            (p, i) => write!(f, "{} and {}", count(p, "pivot"), count(i, "iteration")),
         }
     }
 }
@@ -309,5 +313,6 @@ mod tests {
         assert!(inaccurate(7, 0).contains("after 7 pivots (size 3)"));
         assert!(inaccurate(0, 40).contains("after 40 iterations (size 3)"));
         assert!(inaccurate(7, 40).contains("after 7 pivots and 40 iterations (size 3)"));
+        assert!(inaccurate(1, 1).contains("after 1 pivot and 1 iteration (size 3)"));
     }
 }
