@@ -342,6 +342,22 @@ fn a_batch_with_a_broken_run_still_writes_the_others() {
     for file in ["results.csv", "results.md", "error-time.svg"] {
         assert!(out.join("sweep").join(file).exists(), "{file}");
     }
+    // Block pivoting's work is its iterations (its blocks), beside the
+    // pivots a tableau method counts.
+    for row in rows.iter().filter(|r| r["status"] == "ok") {
+        let work = |key: &str| row[key].as_u64().unwrap();
+        match row["method"].as_str().unwrap() {
+            "block-pivoting" => assert!(work("iterations") > 0, "{row}"),
+            _ => assert!(work("pivots") > 0, "{row}"),
+        }
+    }
+    let md = std::fs::read_to_string(out.join("sweep/results.md")).unwrap();
+    assert!(md.contains("| pivots | iterations |"), "{md}");
+    let csv = std::fs::read_to_string(out.join("sweep/results.csv")).unwrap();
+    assert!(
+        csv.lines().next().unwrap().ends_with(",iterations"),
+        "{csv}"
+    );
     // Shards: two halves, merged, give the same rows.
     for k in ["1/2", "2/2"] {
         let o = batch(&["--shard", k]);

@@ -137,8 +137,11 @@ impl<'a> Edge<'a> {
         let b = self.pressed(g, (i - di, j - dj))?;
         let (pk, pb) = (self.pressures[k], self.pressures[b]);
         (pb > pk && pk > 0.0).then(|| {
-            let (pk, pb) = (pk.powi(g.q), pb.powi(g.q));
-            h * pk / (pb - pk)
+            // h pk^q / (pb^q - pk^q), on the ratio: powers of pressures
+            // near the bottom (or top) of the doubles would underflow (or
+            // overflow) to 0 / 0.
+            let r = (pk / pb).powi(g.q);
+            h * r / (1.0 - r)
         })
     }
 
@@ -335,6 +338,11 @@ mod tests {
             .map(|&x| (1.0 - x.abs()).max(0.0).sqrt())
             .collect();
         let length = Edge::new(&points, &p, EdgeLaw::SquareRoot).measure();
+        assert!((length - 2.0).abs() < 1e-12, "{length}");
+        // Pressures near the smallest doubles (a huge contact's): the
+        // same edge, their squares underflowing notwithstanding.
+        let tiny: Vec<f64> = p.iter().map(|q| q * 1e-200).collect();
+        let length = Edge::new(&points, &tiny, EdgeLaw::SquareRoot).measure();
         assert!((length - 2.0).abs() < 1e-12, "{length}");
         // A linear fall under the linear law, likewise.
         let linear: Vec<f64> = p.iter().map(|v| v * v).collect();

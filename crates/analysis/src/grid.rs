@@ -96,8 +96,8 @@ pub fn hertz_disk(
 ///
 /// # Errors
 /// [`AnalysisError::InvalidInput`] naming `across`, `zone` or the contact
-/// size, or `across` when the line would have more than `MAX_POINTS`
-/// points.
+/// size; `zone` or `across`, whichever is the larger factor of the count,
+/// when the line would have more than `MAX_POINTS` points.
 pub fn hertz_line_family(
     half_width: f64,
     across: usize,
@@ -124,10 +124,13 @@ fn centred_cells(size: f64, across: usize, zone: f64) -> Result<(f64, usize), An
 fn cells_of(extent: f64, h: f64, across: usize, zone: f64) -> Result<(f64, usize), AnalysisError> {
     let m = (zone * extent / h).round().max(1.0);
     if !(m <= elcon_influence::MAX_POINTS as f64) {
+        // m = zone (across - 1) / 2: blame the factor that makes it big.
+        let zone_is_larger = zone >= (across - 1) as f64;
         return Err(AnalysisError::InvalidInput {
-            field: "across",
-            value: across as f64,
-            reason: "more than MAX_POINTS points along the line",
+            field: if zone_is_larger { "zone" } else { "across" },
+            value: if zone_is_larger { zone } else { across as f64 },
+            reason: "the line would hold more than 4,194,304 points, the most elcon lays out \
+                     (the count is about zone * (across - 1))",
         });
     }
     Ok(((m + 0.5) * h, 2 * m as usize + 1))
@@ -392,7 +395,8 @@ impl GridFamily {
                 Err(AnalysisError::InvalidInput {
                     field: "factor",
                     value: factor,
-                    reason: "the refined grid would have more than MAX_POINTS cells along an axis",
+                    reason: "the refined grid would have more than 4,194,304 cells along an axis, \
+                             the most elcon lays out",
                 })
             }
         };
@@ -586,12 +590,16 @@ mod tests {
             (hertz_disk(1.0, 11, 0.5), "zone"),
             (hertz_disk(f64::NAN, 11, 1.2), "contact size"),
             (hertz_line(-1.0, 11, 1.2), "contact size"),
+            (hertz_line(1.0, 101, 1.3e300), "zone"),
+            (hertz_line(1.0, 20_000_001, 1.5), "across"),
         ] {
             match e {
                 Err(AnalysisError::InvalidInput { field: f, .. }) => assert_eq!(f, field),
                 other => panic!("{field}: {other:?}"),
             }
         }
+        let e = hertz_line(1.0, 101, 1.3e300).unwrap_err().to_string();
+        assert!(e.contains("4,194,304 points") && !e.contains("MAX_"), "{e}");
     }
 
     #[test]

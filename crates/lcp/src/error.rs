@@ -144,14 +144,19 @@ pub enum LcpError {
     /// The only attempt allowed (an explicit tableau, the conjugate
     /// gradient of a problem given by its products) broke down without an
     /// answer.
-    #[error("{method} broke down after {pivots} pivots (size {size}): {reason}; {advice}")]
+    #[error(
+        "{method} broke down after {} (size {size}): {reason}; {advice}",
+        Spent { pivots: *pivots, iterations: *iterations }
+    )]
     BrokeDown {
         /// The method and tableau that ran.
         method: String,
         /// Number of unknowns.
         size: usize,
-        /// Pivots spent.
+        /// Pivots spent (over all attempts).
         pivots: usize,
+        /// Conjugate-gradient iterations spent (over all attempts).
+        iterations: usize,
         /// What happened.
         reason: String,
         /// What to do: let the engine choose the tableau, or use another
@@ -232,6 +237,12 @@ pub enum LcpError {
     Cancelled,
 }
 
+/// What a complementarity problem's [`LcpError::BrokeDown`] advises: an
+/// explicit tableau is the one attempt; the automatic choice retries on
+/// another, and another method may not break down at all.
+pub const TABLEAU_ADVICE: &str =
+    "let the engine choose the tableau (the automatic choice, the default) or use another method";
+
 /// The work a failed solve spent, as a message names it: pivots for the
 /// pivoting methods, iterations for the conjugate gradient, both when a
 /// solve tried both.
@@ -242,10 +253,14 @@ struct Spent {
 
 impl std::fmt::Display for Spent {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let count = |n: usize, what: &str| {
+            let s = if n == 1 { "" } else { "s" };
+            format!("{n} {what}{s}")
+        };
         match (self.pivots, self.iterations) {
-            (p, 0) => write!(f, "{p} pivots"),
-            (0, i) => write!(f, "{i} iterations"),
-            (p, i) => write!(f, "{p} pivots and {i} iterations"),
+            (p, 0) => write!(f, "{}", count(p, "pivot")),
+            (0, i) => write!(f, "{}", count(i, "iteration")),
+            (p, i) => write!(f, "{} and {}", count(p, "pivot"), count(i, "iteration")),
         }
     }
 }
@@ -275,9 +290,29 @@ mod tests {
     }
 
     #[test]
+    fn a_breakdown_names_the_work_its_method_spent() {
+        let broke = |pivots, iterations| {
+            LcpError::BrokeDown {
+                method: "conjugate-gradient".into(),
+                size: 4,
+                pivots,
+                iterations,
+                reason: "a direction of non-positive curvature".into(),
+                advice: crate::TABLEAU_ADVICE,
+            }
+            .to_string()
+        };
+        let cg = broke(0, 3);
+        assert!(cg.contains("after 3 iterations (size 4)"), "{cg}");
+        assert!(!cg.contains("::") && !cg.contains('`'), "{cg}");
+        assert!(broke(2, 0).contains("after 2 pivots (size 4)"));
+    }
+
+    #[test]
     fn an_inaccurate_answer_names_the_work_its_method_spent() {
         assert!(inaccurate(7, 0).contains("after 7 pivots (size 3)"));
         assert!(inaccurate(0, 40).contains("after 40 iterations (size 3)"));
         assert!(inaccurate(7, 40).contains("after 7 pivots and 40 iterations (size 3)"));
+        assert!(inaccurate(1, 1).contains("after 1 pivot and 1 iteration (size 3)"));
     }
 }

@@ -99,7 +99,7 @@ pub mod tolerance;
 pub use cancel::Cancel;
 pub use certificate::Certificate;
 pub use elcon_num::Num;
-pub use error::LcpError;
+pub use error::{LcpError, TABLEAU_ADVICE};
 pub use linalg::condition_estimate;
 pub use linear::LinearSystem;
 pub use operator::{Operator, OperatorLcp};

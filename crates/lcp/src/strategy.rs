@@ -143,7 +143,7 @@ trait Routed {
     /// What to do when the route broke down without an answer or an
     /// engine error ([`LcpError::BrokeDown`]'s advice).
     fn advice(&self) -> &'static str {
-        "let the engine choose the tableau (`Tableau::Auto`) or use another method"
+        crate::TABLEAU_ADVICE
     }
 }
 
@@ -312,7 +312,7 @@ impl Routed for LinearSystem<'_> {
 
     fn advice(&self) -> &'static str {
         "the conjugate gradient needs a symmetric positive definite M: give M densely \
-         (`LinearSystem::dense`), whose LU factorization takes any nonsingular M"
+         (as a matrix, not by its products), whose LU factorization takes any nonsingular M"
     }
 }
 
@@ -586,6 +586,7 @@ impl<'r, R: Routed> Ladder<'r, R> {
                     method: self.last.map_or_else(String::new, Kind::name),
                     size: self.problem.size(),
                     pivots: self.statistics.pivots(),
+                    iterations: self.statistics.iterations(),
                     reason: last.map_or_else(String::new, |a| match &a.outcome {
                         Outcome::Breakdown(b) => b.to_string(),
                         other => other.to_string(),

@@ -157,7 +157,7 @@ fn an_explicit_tableau_that_cannot_finish_is_an_error() {
     assert!(matches!(e, LcpError::BrokeDown { size: 2, .. }), "{e}");
     assert!(
         message(e).starts_with(
-            "lemke on the symmetric tableau broke down after 1 pivots (size 2): a pivot a positive definite matrix would not give"
+            "lemke on the symmetric tableau broke down after 1 pivot (size 2): a pivot a positive definite matrix would not give"
         ),
     );
     // A mixed form has no symmetric tableau at all.

@@ -42,9 +42,14 @@ fn rel(x: f64, r: f64) -> f64 {
 }
 
 /// `||p - p_ref||_2 / ||p_ref||_2` over the points.
+/// Both are scaled by the largest reference pressure first: squares of
+/// pressures near the ends of the doubles' range would underflow or
+/// overflow.
 fn l2(pressures: &[f64], reference: &[f64]) -> f64 {
+    let scale = reference.iter().fold(0.0f64, |m, q| m.max(q.abs()));
     let (mut num, mut den) = (0.0, 0.0);
     for (p, q) in pressures.iter().zip(reference) {
+        let (p, q) = (p / scale, q / scale);
         num += (p - q) * (p - q);
         den += q * q;
     }
@@ -79,14 +84,31 @@ pub(crate) fn compare(
         }
         Reference::FlatPunch(punch) => {
             json.contact_extent = Some(punch.radius);
+            // A uniform separation e0 (the punch's face e0 from the other
+            // surface) offsets the approach: Boussinesq's indentation is
+            // delta - e0.
+            let e0 = problem.separation().first().copied().unwrap_or(0.0);
+            let mut notes = Vec::new();
+            if e0 != 0.0 {
+                notes.push(format!(
+                    "the uniform separation {} offsets the approach: Boussinesq's indentation \
+                     is the approach minus it",
+                    crate::ctx::Num(e0)
+                ));
+            }
             match loading.normal {
-                Normal::Approach(d) => {
-                    let p = punch.load(d);
+                Normal::Approach(d) if d - e0 > 0.0 => {
+                    let p = punch.load(d - e0);
                     json.load = Some(p);
                     json.errors.load = Some(rel(sol.load, p));
                 }
+                Normal::Approach(_) => notes.push(
+                    "the approach does not press the punch past the separation: no load to \
+                     compare"
+                        .into(),
+                ),
                 Normal::Load(p) => {
-                    let d = punch.approach(p);
+                    let d = punch.approach(p) + e0;
                     json.approach = Some(d);
                     json.errors.approach = Some(rel(sol.approach, d));
                 }
@@ -95,12 +117,13 @@ pub(crate) fn compare(
                 // Superposed on the central load, a moment or a tilt turns
                 // the punch about its centre and leaves the approach and the
                 // load there as they are; their closed forms stand.
-                json.note = Some(
+                notes.push(
                     "a moment or a tilt turns the punch about its centre: the load and the \
                      approach at the centre are compared (they do not change), the tilt is not"
                         .into(),
                 );
             }
+            json.note = (!notes.is_empty()).then(|| notes.join("; "));
             // The pressure is singular at the edge: no peak or L2 comparison.
             None
         }
@@ -165,8 +188,18 @@ fn hertz_centre(loading: Loading, radius: f64) -> Result<(f64, f64), &'static st
 }
 
 /// Writes the centre and the tilts of a translated reference (when off the
-/// origin) and the tilts' errors (where the reference's is not zero).
-fn translated(json: &mut ReferenceJson, sol: &ContactSolution, (ex, ey): (f64, f64), radius: f64) {
+/// origin) and the tilts' errors, where the reference's tilt is not (nearly)
+/// zero: a centre offset below `sqrt(eps)` of the contact's `size` (its
+/// radius or half-width) is within the solve's rounding of the origin, and
+/// a relative error against a tilt that small would be the solve's
+/// rounding over nothing; it is omitted with a note.
+fn translated(
+    json: &mut ReferenceJson,
+    sol: &ContactSolution,
+    (ex, ey): (f64, f64),
+    radius: f64,
+    size: f64,
+) {
     if (ex, ey) == (0.0, 0.0) {
         return;
     }
@@ -176,8 +209,25 @@ fn translated(json: &mut ReferenceJson, sol: &ContactSolution, (ex, ey): (f64, f
         x: tilt_x,
         y: tilt_y,
     });
-    json.errors.tilt_x = (tilt_x != 0.0).then(|| rel(sol.tilt_x, tilt_x));
-    json.errors.tilt_y = (tilt_y != 0.0).then(|| rel(sol.tilt_y, tilt_y));
+    let resolved = |offset: f64| offset.abs() > f64::EPSILON.sqrt() * size;
+    json.errors.tilt_x = resolved(ey).then(|| rel(sol.tilt_x, tilt_x));
+    json.errors.tilt_y = resolved(ex).then(|| rel(sol.tilt_y, tilt_y));
+    let unresolved: Vec<&str> = [("tilt_x", ey), ("tilt_y", ex)]
+        .into_iter()
+        .filter(|&(_, offset)| offset != 0.0 && !resolved(offset))
+        .map(|(name, _)| name)
+        .collect();
+    if !unresolved.is_empty() {
+        let note = format!(
+            "the reference {} of the load centre's offset is within rounding of zero (the \
+             offset is below 1.5e-8 of the contact's size): no relative error is given for it",
+            unresolved.join(" and ")
+        );
+        json.note = Some(match json.note.take() {
+            Some(n) => format!("{n}; {note}"),
+            None => note,
+        });
+    }
 }
 
 /// Hertz spheres, translated to the load centre.
@@ -226,7 +276,7 @@ fn spheres(
             json.errors.load = Some(rel(sol.load, h.load));
         }
     }
-    translated(json, sol, (ex, ey), r);
+    translated(json, sol, (ex, ey), r, h.contact_radius());
     Some(p)
 }
 
@@ -263,7 +313,7 @@ fn cylinders(
         json.approach = Some(approach);
         json.errors.approach = Some(rel(sol.approach, approach));
     }
-    translated(json, sol, (ex, 0.0), r);
+    translated(json, sol, (ex, 0.0), r, hertz.half_width());
     Some(p)
 }
 
@@ -398,4 +448,26 @@ pub struct XY {
     pub x: f64,
     /// About (or along) y.
     pub y: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_l2_error_holds_at_the_ends_of_the_doubles_range() {
+        let reference = [1.0, 2.0, 2.0];
+        let computed = [1.0, 2.0, 1.0];
+        let e = l2(&computed, &reference);
+        assert!((e - 1.0 / 3.0).abs() < 1e-15, "{e}");
+        for scale in [1e-200, 1e200] {
+            let (r, c): (Vec<f64>, Vec<f64>) = reference
+                .iter()
+                .zip(&computed)
+                .map(|(r, c)| (r * scale, c * scale))
+                .unzip();
+            let e = l2(&c, &r);
+            assert!((e - 1.0 / 3.0).abs() < 1e-15, "{scale}: {e}");
+        }
+    }
 }

@@ -355,21 +355,113 @@ pub(crate) fn parse<T: serde::de::DeserializeOwned>(
                 "{m}: arrays or tables nested too deep (a scene's tables and arrays nest a few \
                  levels at most)"
             ),
-            m if m.contains("as i128") => m.replace(
-                "expected a whole number",
-                "expected a whole number within +-9.2e18",
-            ),
+            m if m.contains(" as i128") => match m.split('`').nth(1) {
+                Some(digits) => format!(
+                    "the integer {digits} is out of range: a whole number here must be \
+                     within +-9.2e18"
+                ),
+                None => "an integer out of range: a whole number here must be within \
+                         +-9.2e18"
+                    .to_string(),
+            },
             _ => message,
         };
-        let message = match key_at(text, offset) {
-            Some(key) => format!("`{key}`: {message}"),
-            None => message,
+        // An array of tables `[[name]]` where a table belongs fails inside
+        // it, in the terms of a sequence (or of an enum read from one).
+        let structural = [
+            "wanted exactly",
+            "sequence",
+            "unknown variant",
+            "invalid length",
+        ]
+        .iter()
+        .any(|m| message.contains(m));
+        let message = match (key_at(text, offset), header_at(text, offset)) {
+            (_, Some(header)) if header.array && structural => header.explain(&message),
+            (Some(key), _) => format!("`{key}`: {message}"),
+            (None, Some(header)) if header.here => header.explain(&message),
+            (None, _) => message,
         };
         SceneError::Syntax {
             file: file.to_path_buf(),
             at: Location::of(text, offset),
             message,
         }
+    })
+}
+
+/// A table header of a TOML text: `[name]`, or `[[name]]` for an element
+/// of an array of tables.
+#[derive(Debug, PartialEq)]
+pub(crate) struct Header {
+    /// The dotted name between the brackets.
+    name: String,
+    /// Whether it is written `[[name]]`.
+    array: bool,
+    /// Whether it is on the line asked about (else above it).
+    here: bool,
+}
+
+impl Header {
+    /// The parser's message about the header, said in TOML terms: which
+    /// key, what it must be, and how it is written.
+    fn explain(&self, message: &str) -> String {
+        let name = &self.name;
+        if message.starts_with("duplicate key") {
+            return format!(
+                "`{name}`: the table `[{name}]` is given twice: give each table once and put \
+                 all its keys under that one header"
+            );
+        }
+        if self.array {
+            return format!(
+                "`{name}` must be a table `[{name}]`, not an array of tables `[[{name}]]`"
+            );
+        }
+        match message.strip_prefix("invalid type: map, expected ") {
+            Some("a sequence") => {
+                format!("`{name}` must be an array of tables `[[{name}]]`, not a table `[{name}]`")
+            }
+            Some(wanted) => {
+                let last = name.rsplit('.').next().unwrap_or(name);
+                format!(
+                    "`{name}` must be {wanted} (`{last} = ...` under its table), not a table \
+                     `[{name}]`"
+                )
+            }
+            None => format!("`{name}`: {message}"),
+        }
+    }
+}
+
+/// The table header of byte `offset` of a TOML text: the one on its line,
+/// else the last one above it (`[name]` or `[[name]]`, comments aside).
+pub(crate) fn header_at(text: &str, offset: usize) -> Option<Header> {
+    let offset = offset.min(text.len());
+    if !text.is_char_boundary(offset) {
+        return None;
+    }
+    let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
+    let (back, line) = text[..end]
+        .lines()
+        .rev()
+        .map(|l| l.split('#').next().unwrap_or_default().trim())
+        .enumerate()
+        .find(|(_, l)| l.starts_with('['))?;
+    let here = back == 0 && start < end;
+    let (inner, array) = match line.strip_prefix("[[") {
+        Some(rest) => (rest.strip_suffix("]]")?, true),
+        None => (line.strip_prefix('[')?.strip_suffix(']')?, false),
+    };
+    let name: Vec<&str> = inner
+        .split('.')
+        .map(|p| p.trim().trim_matches('"'))
+        .collect();
+    Some(Header {
+        name: name.join("."),
+        array,
+        here,
     })
 }
 

@@ -253,8 +253,10 @@ fn cancelling(
             g.surface2.as_ref()
         }
     });
-    let (key, span) = surface.map_or_else(
-        || ("radius", raw.map_or(0..0, |g| g.span())),
+    // The value as the file writes it (at an angle, the radius along the
+    // axis is not the one written).
+    let (key, span, written) = surface.map_or_else(
+        || ("radius", raw.map_or(0..0, |g| g.span()), None),
         |s| {
             let t = s.get_ref();
             let (key, value) = match (&t.radius, axis) {
@@ -262,13 +264,17 @@ fn cancelling(
                 (None, "x") => ("radius_x", t.radius_x.as_ref()),
                 (None, _) => ("radius_y", t.radius_y.as_ref()),
             };
-            (key, value.map_or(s.span(), |r| r.span()))
+            (
+                key,
+                value.map_or(s.span(), |r| r.span()),
+                value.map(|r| *r.get_ref()),
+            )
         },
     );
     ctx.invalid(
         span,
         format!("{field}.{key}"),
-        Num(1.0 / if first { k.0 } else { k.1 }),
+        Num(written.unwrap_or(1.0 / if first { k.0 } else { k.1 })),
         format!(
             "cancels the other surface: geometry.surface1's radius along {axis} is {} and \
              geometry.surface2's {}, so the relative curvature 1/R1 + 1/R2 = {sum:.3e} is below \
@@ -691,8 +697,12 @@ pub(crate) fn coarse_grid(
     let h = points.cell().dx;
     let scale = hertz;
     let mut warnings = Vec::new();
+    // Points on a size laid out at `size / (n - 1)` count n, not n - 1
+    // when the quotient rounds just below n - 1.
+    let count =
+        |size: f64, spacing: f64| (size / spacing * (1.0 + 8.0 * f64::EPSILON)).floor() + 1.0;
     if let Some((what, a)) = scale {
-        let across = (2.0 * a / h).floor() + 1.0;
+        let across = count(2.0 * a, h);
         if across < MIN_POINTS_ACROSS as f64 {
             warnings.push(format!(
                 "the grid has about {across:.0} points across the Hertz contact {what} \
@@ -704,7 +714,7 @@ pub(crate) fn coarse_grid(
         return warnings;
     }
     if let Some((spacing, radius)) = disk {
-        let across = (2.0 * radius / spacing).floor() + 1.0;
+        let across = count(2.0 * radius, spacing);
         if across < MIN_POINTS_ACROSS as f64 {
             warnings.push(format!(
                 "the candidate disk has about {across:.0} points across (spacing {spacing} against \

@@ -69,6 +69,10 @@ pub struct Row {
     /// The estimate's verdict for the peak pressure.
     #[serde(default)]
     pub verdict_max_pressure: Option<String>,
+    /// Iterations (block pivoting's blocks, the conjugate gradient's
+    /// steps: the work of a method that spends no pivots).
+    #[serde(default)]
+    pub iterations: Option<usize>,
 }
 
 impl Row {
@@ -113,6 +117,7 @@ impl Row {
             method: Some(text("method").ok_or("no `method`")?),
             points: Some(count("points")?),
             pivots: Some(count("statistics.pivots")?),
+            iterations: Some(count("statistics.iterations")?),
             seconds_total: Some(need("seconds.total")?),
             seconds_solve: Some(need("seconds.solve")?),
             approach: Some(need("approach")?),
@@ -499,16 +504,16 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
     let mut csv = String::from(
         "index,overrides,scene,status,method,points,pivots,seconds_total,seconds_solve,approach,max_pressure,\
          certificate_worst,error_approach,error_max_pressure,error_contact_extent,error_pressure_l2,error_load,\
-         estimated_error_approach,verdict_approach,estimated_error_max_pressure,verdict_max_pressure\n",
+         estimated_error_approach,verdict_approach,estimated_error_max_pressure,verdict_max_pressure,iterations\n",
     );
     let mut md = format!(
-        "# Batch `{}`\n\n| # | overrides | method | N | pivots | seconds | certificate | error ({}) | est. error (peak) | est. error (approach) | status |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "# Batch `{}`\n\n| # | overrides | method | N | pivots | iterations | seconds | certificate | error ({}) | est. error (peak) | est. error (approach) | status |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
         o.batch, o.error
     );
     for r in &o.rows {
         let _ = writeln!(
             csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             r.index,
             csv_field(&r.overrides),
             csv_field(&r.scene),
@@ -530,15 +535,17 @@ pub(crate) fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), SceneErro
             csv_field(r.verdict_approach.as_deref().unwrap_or_default()),
             opt(r.estimated_error_max_pressure),
             csv_field(r.verdict_max_pressure.as_deref().unwrap_or_default()),
+            r.iterations.map_or(String::new(), |n| n.to_string()),
         );
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.index,
             r.overrides,
             r.method.clone().unwrap_or_default(),
             r.points.map_or(String::new(), |n| n.to_string()),
             r.pivots.map_or(String::new(), |n| n.to_string()),
+            r.iterations.map_or(String::new(), |n| n.to_string()),
             r.seconds_total.map_or(String::new(), |s| format!("{s:.4}")),
             r.certificate_worst
                 .map_or(String::new(), |c| format!("{c:.1e}")),

@@ -301,12 +301,43 @@ fn parse_errors_name_the_key() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("`points.across`"), "{e}");
+    assert!(
+        e.contains("the integer 99999999999999999999999 is out of range"),
+        "{e}"
+    );
+    assert!(!e.contains("i128"), "{e}");
     let deep = format!("{}{}", "[".repeat(200), "]".repeat(200));
     let e = scene(&base.replace("zone = 1.3", &format!("zone = {deep}")))
         .unwrap_err()
         .to_string();
     assert!(e.contains("`points.zone`"), "{e}");
     assert!(e.contains("nested too deep"), "{e}");
+}
+
+#[test]
+fn table_header_errors_name_the_table_and_say_how_to_write_it() {
+    let base = common::sphere_on_rigid_plane("across = 11\nzone = 1.3");
+    let refusal = |text: String| scene(&text).unwrap_err().to_string();
+    let e = refusal(format!("{base}\n[loading]\nload = 200.0\n"));
+    assert!(
+        e.contains("`loading`: the table `[loading]` is given twice"),
+        "{e}"
+    );
+    let e = refusal(base.replace("[body2]", "[[body2]]"));
+    assert!(
+        e.contains("`body2` must be a table `[body2]`, not an array of tables `[[body2]]`"),
+        "{e}"
+    );
+    let e = refusal(base.replace("[points]", "[[points]]"));
+    assert!(
+        e.contains("`points` must be a table `[points]`, not an array of tables"),
+        "{e}"
+    );
+    let e = refusal(format!("[scene]\n[scene.name]\nname = \"spheres\"\n{base}"));
+    assert!(
+        e.contains("`scene.name` must be a string (`name = ...` under its table), not a table `[scene.name]`"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -119,6 +119,24 @@ fn run_failures_name_the_scene() {
 }
 
 #[test]
+fn a_conjugate_gradient_breakdown_counts_iterations_and_names_the_scene_key() {
+    // Moduli near the top of the doubles: the conjugate gradient's
+    // curvature test fails at once.
+    let huge = base().replace("youngs_modulus = 30e6", "youngs_modulus = 1e200");
+    let s = scene(&with_table(
+        &huge,
+        "solver",
+        "method = \"conjugate-gradient\"",
+    ))
+    .unwrap();
+    let e = run(&s).unwrap_err().to_string();
+    assert!(e.contains("conjugate-gradient broke down after"), "{e}");
+    assert!(e.contains(" iterations (size "), "{e}");
+    assert!(e.contains("`solver.method`"), "{e}");
+    assert!(!e.contains("::") && !e.contains("tableau"), "{e}");
+}
+
+#[test]
 fn a_batch_name_cannot_leave_the_output_directory() {
     let dir = std::env::temp_dir().join(format!("elcon-batch-name-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -76,6 +76,38 @@ fn a_separation_file_equal_to_the_inline_separations_is_bit_identical() {
         why.contains("short.csv") && why.contains("candidate point 0"),
         "{why}"
     );
+    // Two rows for one point: the same separation twice is harmless,
+    // another one is refused naming both lines and the point.
+    let full = std::fs::read_to_string(d.join("eps.csv")).unwrap();
+    let n = points.len();
+    let again = format!("{full}{:?},{:?},{:?}\n", points.x(0), points.y(0), eps[0]);
+    std::fs::write(d.join("again.csv"), again).unwrap();
+    scene_in(
+        &d,
+        &base().replace(geometry, "separation_file = \"again.csv\""),
+    )
+    .unwrap();
+    let twice = format!(
+        "{full}{:?},{:?},{:?}\n",
+        points.x(0),
+        points.y(0),
+        eps[0] + 1e-3
+    );
+    std::fs::write(d.join("twice.csv"), twice).unwrap();
+    let (field, why) = reason(scene_in(
+        &d,
+        &base().replace(geometry, "separation_file = \"twice.csv\""),
+    ));
+    assert_eq!(field, "geometry.separation_file");
+    assert!(
+        why.contains("twice.csv")
+            && why.contains(&format!(
+                "lines {} and {} both give candidate point 0",
+                n + 1,
+                n + 2
+            )),
+        "{why}"
+    );
 }
 
 #[test]
@@ -161,11 +193,33 @@ fn bad_files_are_refused_naming_the_file_and_the_row() {
     assert!(why.contains("larger than 256 MiB"), "{why}");
     // A hole (NaN) at row 1, column 2.
     std::fs::write(d.join("hole.csv"), "0,0,0\n0,0,nan\n0,0,0\n").unwrap();
-    let (_, why) = reason(scene_in(&d, &map("hole.csv")));
+    let (field, why) = reason(scene_in(&d, &map("hole.csv")));
+    assert_eq!(field, "geometry.height_map.file");
     assert!(
         why.contains("hole.csv") && why.contains("row 1, column 2"),
         "{why}"
     );
+    // One row: the content is the file's fault.
+    std::fs::write(d.join("row.csv"), "0,0,0\n").unwrap();
+    let (field, why) = reason(scene_in(&d, &map("row.csv")));
+    assert_eq!(field, "geometry.height_map.file", "{why}");
+    // A zero spacing is the spacing's fault, quoted as written.
+    std::fs::write(d.join("ok.csv"), "0,0,0\n0,0,0\n0,0,0\n").unwrap();
+    let zero = map("ok.csv").replace("spacing = [0.5, 5.0]", "spacing = [0.0, 5.0]");
+    let e = scene_in(&d, &zero).unwrap_err().to_string();
+    assert!(
+        e.contains("`geometry.height_map.spacing` = [0.0, 5.0]: both spacings"),
+        "{e}"
+    );
+    // A profile whose positions do not increase names its file.
+    let profile = base().replace(
+        geometry,
+        &format!("{geometry}\nprofile = {{ file = \"down.csv\" }}"),
+    );
+    std::fs::write(d.join("down.csv"), "1,0\n0,0\n").unwrap();
+    let (field, why) = reason(scene_in(&d, &profile));
+    assert_eq!(field, "geometry.profile.file", "{why}");
+    assert!(why.contains("positions must increase"), "{why}");
     // Ragged rows.
     std::fs::write(d.join("ragged.csv"), "0,0,0\n0,0\n0,0,0\n").unwrap();
     let (_, why) = reason(scene_in(&d, &map("ragged.csv")));
@@ -241,4 +295,44 @@ fn npy(shape: &[usize], values: &[f64]) -> Vec<u8> {
         out.extend(v.to_le_bytes());
     }
     out
+}
+
+#[test]
+fn a_flat_punch_s_reference_takes_a_uniform_separation_as_an_offset() {
+    let d = dir("punch");
+    let punch = "[units]\nlength = \"m\"\nforce = \"N\"\npressure = \"Pa\"\n\n[body1]\nmodel = \
+                 \"rigid\"\n\n[body2]\nmodel = \"uniform-patch\"\nyoungs_modulus = 70e9\n\
+                 poissons_ratio = 0.33\n\n[geometry]\nGEOMETRY\n\n[points]\ngrid = \"disk\"\n\
+                 spacing = 0.001\nradius = 0.01\n\n[loading]\napproach = 1e-5\n";
+    let flat = punch.replace(
+        "GEOMETRY",
+        "surface1 = { shape = \"plane\" }\nsurface2 = { shape = \"plane\" }",
+    );
+    let plain = run(&scene_in(&d, &flat).unwrap()).unwrap();
+    // The same punch 1e-5 into the other surface before any approach: it
+    // carries the load of an approach of 2e-5, and the reference says so.
+    let s = scene_in(&d, &flat).unwrap();
+    let mut csv = String::new();
+    for k in 0..s.points().len() {
+        csv += &format!("{:?},{:?},-1e-5\n", s.points().x(k), s.points().y(k));
+    }
+    std::fs::write(d.join("offset.csv"), csv).unwrap();
+    let offset = punch.replace("GEOMETRY", "separation_file = \"offset.csv\"");
+    let r = run(&scene_in(&d, &offset).unwrap()).unwrap();
+    let (a, b) = (
+        plain.result.reference.as_ref().unwrap(),
+        r.result.reference.as_ref().unwrap(),
+    );
+    assert_eq!(b.kind, "flat-punch");
+    let ratio = b.load.unwrap() / a.load.unwrap();
+    assert!((ratio - 2.0).abs() < 1e-12, "{ratio}");
+    // The same relative error: the punch's answer is linear in the
+    // indentation.
+    let (ea, eb) = (a.errors.load.unwrap(), b.errors.load.unwrap());
+    assert!((ea - eb).abs() < 1e-9 * (1.0 + ea.abs()), "{ea} {eb}");
+    assert!(
+        b.note.as_deref().unwrap().contains("uniform separation"),
+        "{:?}",
+        b.note
+    );
 }

@@ -329,6 +329,18 @@ fn a_grid_coarser_than_the_contact_warns() {
         "{:?}",
         s.warnings()
     );
+    // A line of 3 points across the width counts 3 (its spacing is the
+    // width over 2, rounded), as a disk does.
+    let line = include_str!("../../../examples/scenes/hertz-cylinders.toml");
+    let across = line.lines().find(|l| l.starts_with("across")).unwrap();
+    let s = scene(&line.replace(across, "across = 3")).unwrap();
+    assert!(
+        s.warnings()
+            .iter()
+            .any(|w| w.contains("about 3 points across the Hertz contact width")),
+        "{:?}",
+        s.warnings()
+    );
     // Spacing equal to the disk radius: two points across, refused.
     refused(
         &spheres().replace("spacing = 0.002", "spacing = 0.02"),
@@ -504,6 +516,16 @@ fn curvatures_that_cancel_to_rounding_are_refused() {
         "geometry.surface2.radius",
         "cancels the other surface",
     );
+    // Turned 45 degrees, the radius along x is twice the one written; the
+    // message quotes the value as the file writes it.
+    let turned = |r: &str| format!("{{ shape = \"quadric\", radius_x = {r}, angle = 45.0 }}");
+    refused(
+        &spheres()
+            .replace("{ shape = \"sphere\", radius = 1.0 }", &turned("3.0"))
+            .replace("{ shape = \"sphere\", radius = 10.0 }", &turned("-3.0")),
+        "geometry.surface2.radius_x",
+        "` = -3: cancels the other surface",
+    );
 }
 
 #[test]
@@ -629,4 +651,49 @@ fn a_height_map_does_not_let_a_concave_surface_through() {
         "geometry.surface1.radius",
         "a concave surface must have the larger radius: against a plane",
     );
+}
+
+#[test]
+fn a_reference_tilt_within_rounding_of_zero_has_no_relative_error() {
+    let tilted = |moment: &str| {
+        let s = scene(&spheres().replace(
+            "load = 100.0",
+            &format!("load = 100.0\nmoment_x = {moment}"),
+        ))
+        .unwrap();
+        elcon_scene::run(&s).unwrap().result.reference.unwrap()
+    };
+    let r = tilted("-1e-300");
+    assert_eq!(r.errors.tilt_x, None);
+    assert!(
+        r.note.as_deref().unwrap().contains("tilt_x"),
+        "{:?}",
+        r.note
+    );
+    // A moment that moves the centre by a resolvable fraction of the
+    // contact is compared.
+    let r = tilted("-0.1");
+    assert!(r.errors.tilt_x.unwrap().abs() < 0.5, "{:?}", r.errors);
+    assert_eq!(r.note, None);
+}
+
+#[test]
+fn a_huge_contact_s_extent_and_errors_are_finite() {
+    // A sphere of radius 1e301 on a plane: a contact radius near 1e98 and
+    // pressures near 1e-196, whose squares underflow.
+    let s = scene(
+        &common::spheres("across = 11\nzone = 1.4")
+            .replace("surface1 = { shape = \"sphere\", radius = 1.0 }\n", "")
+            .replace("radius = 10.0 }", "radius = 1e301 }"),
+    )
+    .unwrap();
+    let r = elcon_scene::run(&s).unwrap().result;
+    assert!(r.contact_extent.is_finite(), "{}", r.contact_extent);
+    let reference = r.reference.unwrap();
+    assert!(
+        reference.errors.contact_extent.unwrap().abs() < 0.05,
+        "{:?}",
+        reference.errors
+    );
+    assert!(reference.errors.pressure_l2.unwrap().is_finite());
 }

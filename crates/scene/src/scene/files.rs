@@ -207,6 +207,15 @@ pub(super) fn height_map(
         (rows.into_iter().flat_map(|(_, r)| r).collect(), ny, nx)
     };
     let spacing = pair(ctx, &t.spacing, "geometry.height_map.spacing")?;
+    if !(spacing.0 > 0.0 && spacing.1 > 0.0) {
+        return Err(ctx.invalid(
+            t.spacing.span(),
+            "geometry.height_map.spacing",
+            format!("{:?}", t.spacing.get_ref()),
+            "both spacings [along x, along y] must be > 0 (the distance between the map's \
+             columns and between its rows)",
+        ));
+    }
     let origin = match &t.origin {
         Some(o) => pair(ctx, o, "geometry.height_map.origin")?,
         None => (
@@ -218,7 +227,7 @@ pub(super) fn height_map(
     let map = HeightMap::new(label, values, nx, ny, spacing, origin).map_err(|e| {
         ctx.invalid(
             t.file.span(),
-            "geometry.height_map",
+            "geometry.height_map.file",
             format!("{name:?}"),
             e.to_string(),
         )
@@ -263,7 +272,7 @@ pub(super) fn profile(ctx: &Ctx<'_>, t: &Spanned<ProfileToml>) -> Result<Departu
     let p = AxialProfile::new(label, axis, positions, drops).map_err(|e| {
         ctx.invalid(
             t.file.span(),
-            "geometry.profile",
+            "geometry.profile.file",
             format!("{name:?}"),
             e.to_string(),
         )
@@ -361,17 +370,34 @@ fn separations(
             (2.0 * y / cell.dy).round() as i64,
         )
     };
+    // Each key's first row, and the first later row that gives it another
+    // separation (refused when a candidate point falls there).
     let mut index = std::collections::HashMap::with_capacity(table.len());
-    for (i, &(x, y, _)) in table.iter().enumerate() {
-        index.entry(key(x, y)).or_insert(i);
+    for (i, &(x, y, e)) in table.iter().enumerate() {
+        let entry = index.entry(key(x, y)).or_insert((i, None));
+        if entry.1.is_none() && table[entry.0].2 != e {
+            entry.1 = Some(i);
+        }
     }
     let (tx, ty) = (MATCH_TOLERANCE * cell.dx, MATCH_TOLERANCE * cell.dy);
     (0..points.len())
         .map(|k| {
             let (x, y) = (points.x(k), points.y(k));
-            index
-                .get(&key(x, if line { 0.0 } else { y }))
-                .map(|&i| table[i])
+            let found = index.get(&key(x, if line { 0.0 } else { y }));
+            if let Some(&(first, Some(other))) = found {
+                return Err(refuse(format!(
+                    "lines {} and {} both give candidate point {k} ({}, {}), with separations \
+                     {} and {}; give one row for each point",
+                    rows[first].0,
+                    rows[other].0,
+                    Num(x),
+                    Num(y),
+                    Num(table[first].2),
+                    Num(table[other].2)
+                )));
+            }
+            found
+                .map(|&(i, _)| table[i])
                 .filter(|(a, b, _)| (a - x).abs() <= tx && (line || (b - y).abs() <= ty))
                 .map(|r| r.2)
                 .ok_or_else(|| {

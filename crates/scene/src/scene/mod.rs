@@ -1196,8 +1196,15 @@ fn check_zone(
 /// A failure of the run of `scene` (its assembly, solve or design stage),
 /// named by the scene.
 pub(crate) fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError {
+    // A scene has no tableau key (elcon chooses it): the engine's advice
+    // about one becomes the scene's key that helps.
+    let reason = e.to_string().replace(
+        elcon_lcp::TABLEAU_ADVICE,
+        "use another method (`solver.method`: a pivoting method takes what the conjugate \
+         gradient cannot)",
+    );
     SceneError::Run {
         scene: scene.name().to_string(),
-        reason: e.to_string(),
+        reason,
     }
 }

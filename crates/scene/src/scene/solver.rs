@@ -63,8 +63,8 @@ pub(super) fn solver(
                 t.span(),
                 "solver.certificate_tolerance",
                 v,
-                "must be at least 2.2e-16 (f64::EPSILON): residuals recomputed in doubles \
-                 cannot be smaller than their rounding, so no solve could meet it",
+                "must be at least 2.2e-16 (the rounding of a double): residuals recomputed \
+                 in doubles cannot be smaller than their rounding, so no solve could meet it",
             ));
         }
         options.tolerances.certificate = v;
