@@ -339,12 +339,10 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     hertz_bounds(
         ctx,
         &raw,
-        &bodies,
-        &geometry,
-        &points_spec,
+        (&bodies, &geometry, &points_spec),
         &points,
         loading,
-        &units,
+        units.length(),
     )?;
     sanity::load_centre(ctx, &raw.loading, loading, &points)?;
     let reference = hertz::reference(&bodies, &geometry, &points_spec, &points, loading);
@@ -444,16 +442,14 @@ fn program_reads_entries(
 /// Hertz's approach at the scene's load beyond the small strain
 /// ([`sanity::hertz_approach_strain`]), prescribed tilts moving the
 /// spheres' contact off the candidate zone ([`sanity::tilt_off_zone`]).
-#[allow(clippy::too_many_arguments)]
+/// The closed form comes from the bodies, the surfaces and the layout.
 fn hertz_bounds(
     ctx: &Ctx<'_>,
     raw: &SceneFile,
-    bodies: &[BodySpec; 2],
-    geometry: &Geometry,
-    spec: &PointsSpec,
+    (bodies, geometry, spec): (&[BodySpec; 2], &Geometry, &PointsSpec),
     points: &PointSet,
     loading: Loading,
-    units: &Units,
+    length: &str,
 ) -> Result<(), SceneError> {
     let Normal::Load(load) = loading.normal else {
         return Ok(());
@@ -464,14 +460,14 @@ fn hertz_bounds(
         spec,
         PointsSpec::DiskHertz { .. } | PointsSpec::EllipseHertz { .. }
     );
-    if let Some(reason) = approach.and_then(|d| {
-        sanity::hertz_approach_strain((load, d), sized_by_hertz, points, units.length())
-    }) {
+    if let Some(reason) = approach
+        .and_then(|d| sanity::hertz_approach_strain((load, d), sized_by_hertz, points, length))
+    {
         let span = t.load.as_ref().map_or(raw.loading.span(), |l| l.span());
         return Err(ctx.invalid(span, "loading.load", crate::ctx::Num(load), reason));
     }
     let off = hertz::spheres_at(bodies, geometry, spec, load)
-        .and_then(|rc| sanity::tilt_off_zone(rc, loading, points, units.length()));
+        .and_then(|rc| sanity::tilt_off_zone(rc, loading, points, length));
     if let Some((field, reason)) = off {
         let (given, value) = if field == "loading.tilt_x" {
             (t.tilt_x.as_ref(), loading.tilt_x)
@@ -903,7 +899,9 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
     if let Some(u) = sanity::unresolved_grid(&scene.points, hertz, disk) {
         return Err(unresolved_grid(ctx, &raw.points, scene, &u));
     }
-    Ok(sanity::coarse_grid(&scene.points, hertz, disk))
+    let mut warnings = sanity::coarse_grid(&scene.points, hertz, disk);
+    warnings.extend(points::turned_note(&scene.points_spec, &scene.points));
+    Ok(warnings)
 }
 
 /// The refusal of a grid too coarse to resolve the contact

@@ -378,20 +378,68 @@ fn turned_too_many(
     if !shape.extent(1.0).is_turned() || count <= MAX_POINTS as f64 {
         return Ok(family);
     }
-    let theta = shape.angle.to_degrees();
-    let aligned = (across as f64 * zone).powi(2);
     Err(format!(
-        "the Hertz ellipse is turned by {theta:.2} degrees from x (its semi-axes {:.1} : 1): a \
-         grid with {across} points across its minor axis in every direction needs {nx} x {ny} \
-         = {} points, more than {MAX_POINTS}, the most elcon lays out. Turning both surfaces \
-         by {:.2} degrees (add it to each quadric's `angle`; a sphere needs none) lays the \
-         ellipse along x, where the grid needs about (across zone)^2 = {} points",
-        1.0 / shape.semi_minor.powi(2),
+        "{} = {} points, more than {MAX_POINTS}, the most elcon lays out. {}",
+        turned_cells(shape, across, (nx, ny)),
         Num(count),
-        -theta,
-        Num(aligned.round()),
+        align_hint(shape, across, zone)
     ))
 }
+
+/// "the Hertz ellipse is turned by 30.00 degrees from x ...: a grid with
+/// 31 points across its minor axis in every direction needs 11 x 13".
+fn turned_cells(shape: &EllipseShape, across: usize, (nx, ny): (usize, usize)) -> String {
+    format!(
+        "the Hertz ellipse is turned by {:.2} degrees from x (its semi-axes {:.1} : 1): a grid \
+         with {across} points across its minor axis in every direction needs {nx} x {ny}",
+        shape.angle.to_degrees(),
+        1.0 / shape.semi_minor.powi(2),
+    )
+}
+
+/// What turning the surfaces to lay the ellipse along x does.
+fn align_hint(shape: &EllipseShape, across: usize, zone: f64) -> String {
+    format!(
+        "Turning both surfaces by {:.2} degrees (add it to each quadric's `angle`; a sphere \
+         needs none) lays the ellipse along x, where the grid needs about (across zone)^2 = {} \
+         points",
+        -shape.angle.to_degrees(),
+        Num((across as f64 * zone).powi(2).round())
+    )
+}
+
+/// A note for an ellipse grid around a turned ellipse that has more than
+/// [`TURNED_NOTE_RATIO`] times the points the aligned ellipse's grid
+/// would: the turn that lays it along x.
+pub(crate) fn turned_note(spec: &PointsSpec, points: &PointSet) -> Option<String> {
+    let PointsSpec::EllipseHertz {
+        across,
+        zone,
+        shape,
+    } = *spec
+    else {
+        return None;
+    };
+    let aligned = (across as f64 * zone).powi(2);
+    if !shape.extent(1.0).is_turned() || (points.len() as f64) < TURNED_NOTE_RATIO * aligned {
+        return None;
+    }
+    let ((ex, ey), cell) = (points.extent(), points.cell());
+    let (nx, ny) = (
+        (ex / cell.dx).round() as usize,
+        (ey / cell.dy).round() as usize,
+    );
+    Some(format!(
+        "{} = {} points. {}",
+        turned_cells(&shape, across, (nx, ny)),
+        points.len(),
+        align_hint(&shape, across, zone)
+    ))
+}
+
+/// How many times the aligned ellipse's grid's points a turned ellipse's
+/// grid has before `check` notes the turn that would save them.
+pub const TURNED_NOTE_RATIO: f64 = 4.0;
 
 /// Builds the point set of the layout's family ([`PointsSpec::family`]);
 /// `scale` is the Hertz radius or half-width for the relative layouts.
