@@ -1100,6 +1100,64 @@ pub(crate) fn deformation(bodies: [&Body; 2], normal: Normal, points: &PointSet)
     w
 }
 
+/// The bodies' compliance on one cell, `c`, the [`deformation`] a unit
+/// force on one cell makes (about `1 / (E* h)` on a half-space, `1 / (k
+/// A_cell)` on a foundation, `l^3 / (3 E I)` on a cantilevered beam, length
+/// per force), against the size of the solve's residuals, `r`, the larger
+/// of the load's deformation and the largest initial separation, `largest`:
+/// the conjugate gradient's step divides squared residuals by `t . S t`
+/// for a direction `t` of the residuals' size, about `r^2 c`. That must
+/// stay between [`MIN_DEFORMATION`]^2 and [`MAX_DEFORMATION`]^2 (about
+/// 4.5e-277 and 2.2e276), or it underflows or overflows whatever the
+/// method: the moduli (or the grid's scale) are out of range for doubles.
+/// Names the first body's stiffness key.
+pub(crate) fn compliance_in_range(
+    ctx: &Ctx<'_>,
+    raw: [&Spanned<BodyToml>; 2],
+    bodies: [&Body; 2],
+    points: &PointSet,
+    (normal, largest): (Normal, f64),
+    labels: Labels<'_>,
+) -> Result<(), SceneError> {
+    let c = deformation(bodies, Normal::Load(1.0), points);
+    let r = deformation(bodies, normal, points).max(largest.abs());
+    // In decades: the product itself can underflow to 0 or overflow.
+    let decades = 2.0 * r.log10() + c.log10();
+    let range = MIN_DEFORMATION * MIN_DEFORMATION..=MAX_DEFORMATION * MAX_DEFORMATION;
+    // 0: no elastic body or nothing pressed (said elsewhere); in range:
+    // nothing to say.
+    if c == 0.0 || r == 0.0 || (range.start().log10()..=range.end().log10()).contains(&decades) {
+        return Ok(());
+    }
+    let stiffness = ["body1", "body2"].into_iter().zip(raw).find_map(|(s, r)| {
+        let t = r.get_ref();
+        let keyed = |v: &Option<Spanned<f64>>, key: &str| {
+            v.as_ref()
+                .map(|v| (format!("{s}.{key}"), v.span(), *v.get_ref()))
+        };
+        keyed(&t.youngs_modulus, "youngs_modulus").or_else(|| keyed(&t.modulus, "modulus"))
+    });
+    let Some((field, span, value)) = stiffness else {
+        return Ok(());
+    };
+    let Labels { length, force, .. } = labels;
+    Err(ctx.invalid(
+        span,
+        field,
+        Num(value),
+        format!(
+            "the bodies' compliance on one cell of the grid, about {c:.2e} {length} per \
+             {force} (a unit force's deflection there), times the square of the solve's \
+             residuals, about {r:.2e} {length} (the load's deformation or the largest \
+             separation), is about 1e{decades:.0}, outside {:.1e} to {:.1e}: the solve's products \
+             of them underflow or overflow among doubles; check the units of the moduli, the \
+             lengths and the load",
+            range.start(),
+            range.end()
+        ),
+    ))
+}
+
 /// Why `normal` on `points` cannot be resolved against the largest initial
 /// separation over the zone, `largest` (length), if it cannot: its
 /// [`deformation`] below [`MIN_RESOLVED_DEFORMATION`] of `largest`, or

@@ -360,3 +360,20 @@ fn a_data_file_s_errors_name_its_key() {
     assert!(e.contains("the largest data file elcon reads"), "{e}");
     assert!(!e.contains("MAX_"), "{e}");
 }
+
+#[test]
+fn moduli_whose_influence_products_underflow_are_refused() {
+    // Moduli of 1e200 psi at 100 lbf on the Hertz grid: one cell's
+    // compliance 3e-133 in/lbf against residuals of 3e-131 in makes the
+    // conjugate gradient's t.S t about 1e-393, and it broke down after one
+    // iteration; 1e130 psi keeps it near 1e-253 and solves.
+    let stiff = |e: &str| {
+        common::sphere_on_rigid_plane("across = 11\nzone = 1.3")
+            .replace("youngs_modulus = 30e6", &format!("youngs_modulus = {e}"))
+    };
+    let (field, e) = refused(scene(&stiff("1e200")));
+    assert_eq!(field, "body1.youngs_modulus", "{e}");
+    assert!(e.contains("is about 1e-39"), "{e}");
+    assert!(e.contains("check the units of the moduli"), "{e}");
+    scene(&stiff("1e130")).unwrap();
+}

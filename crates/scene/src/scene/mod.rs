@@ -507,9 +507,17 @@ fn small_strain(
         strain_labels(units),
     )?;
     let largest = largest_separation(ctx, raw.geometry.as_ref(), geometry, points)?;
+    // The load's own bounds first: a user who mistyped the load is told so.
     let Some(reason) = sanity::unresolved(pair, loading.normal, points, largest, units.length())
     else {
-        return Ok(());
+        return sanity::compliance_in_range(
+            ctx,
+            [&raw.body1, &raw.body2],
+            pair,
+            points,
+            (loading.normal, largest),
+            strain_labels(units),
+        );
     };
     let t = raw.loading.get_ref();
     let (field, given, value) = match loading.normal {
