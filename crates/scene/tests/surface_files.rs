@@ -335,4 +335,15 @@ fn a_flat_punch_s_reference_takes_a_uniform_separation_as_an_offset() {
         "{:?}",
         b.note
     );
+    // At no approach the punch still presses 1e-5 in: its reference stays,
+    // half the load of the approach of 1e-5 (the indentation 2e-5 before).
+    let at_zero = offset.replace("approach = 1e-5", "approach = 0.0");
+    let z = run(&scene_in(&d, &at_zero).unwrap()).unwrap();
+    let c = z
+        .result
+        .reference
+        .as_ref()
+        .expect("a reference at no approach");
+    let ratio = c.load.unwrap() / a.load.unwrap();
+    assert!((ratio - 1.0).abs() < 1e-12, "{ratio}");
 }

@@ -313,21 +313,34 @@ fn ellipse_reference(
 }
 
 /// The reference of a scene under `loading`, and why it was dropped: a
-/// flat punch under an approach that does not press it in (`delta <= 0`)
+/// flat punch under an approach that does not press it in (`delta - e0 <= 0`,
+/// e0 a uniform separation)
 /// carries no load, and Boussinesq's `P = 2 a E* delta` would be zero or
 /// tensile, no reference to measure an error against.
 pub(super) fn pressing(
     reference: Option<Reference>,
     loading: Loading,
+    geometry: &Geometry,
 ) -> (Option<Reference>, Option<String>) {
+    // A uniform separation e0 holds the punch's face e0 off the other
+    // surface: the indentation is the approach minus it.
+    let e0 = match geometry {
+        Geometry::Separation(eps) => eps.first().copied().unwrap_or(0.0),
+        _ => 0.0,
+    };
     match (reference, loading.normal) {
-        (Some(Reference::FlatPunch(_)), Normal::Approach(d)) if d <= 0.0 => (
+        (Some(Reference::FlatPunch(_)), Normal::Approach(d)) if d - e0 <= 0.0 => (
             None,
             Some(format!(
-                "no flat-punch reference: the approach {} does not press the punch in, so the \
-                 contact carries no load (Boussinesq's P = 2 a E* delta would be {})",
+                "no flat-punch reference: the approach {}{} does not press the punch in, so \
+                 the contact carries no load (Boussinesq's P = 2 a E* delta would be {})",
                 crate::ctx::Num(d),
-                if d == 0.0 { "zero" } else { "tensile" }
+                if e0 == 0.0 {
+                    String::new()
+                } else {
+                    format!(" less the uniform separation {}", crate::ctx::Num(e0))
+                },
+                if d - e0 == 0.0 { "zero" } else { "tensile" }
             )),
         ),
         (reference, _) => (reference, None),

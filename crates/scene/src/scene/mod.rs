@@ -349,7 +349,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     check_zone(ctx, &raw.points, reference.as_ref(), &points)?;
     // The zone's edges are a punch's rim whatever its approach.
     let body_edges = body_edges(&bodies, reference.as_ref(), &points_spec);
-    let (reference, note) = hertz::pressing(reference, loading);
+    let (reference, note) = hertz::pressing(reference, loading, &geometry);
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;
     sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
     let fold = solver::symmetry(raw.solver.as_ref());
