@@ -489,4 +489,25 @@ mod tests {
             "{e}"
         );
     }
+
+    #[test]
+    fn a_conjugate_gradient_breakdown_counts_iterations_and_names_the_scene_key() {
+        // The engine advises on a tableau; a scene has no tableau key, so
+        // the message names the scene's key that helps.
+        let broke = AnalysisError::Engine(LcpError::BrokeDown {
+            method: "conjugate-gradient".into(),
+            size: 227,
+            pivots: 0,
+            iterations: 1,
+            reason: "a direction of non-positive curvature".into(),
+            advice: elcon_lcp::TABLEAU_ADVICE,
+        });
+        let e = solve_error(&spheres("load = 100.0"), broke).to_string();
+        assert!(
+            e.contains("conjugate-gradient broke down after 1 iteration (size 227)"),
+            "{e}"
+        );
+        assert!(e.contains("`solver.method`"), "{e}");
+        assert!(!e.contains("::") && !e.contains("tableau"), "{e}");
+    }
 }
