@@ -679,12 +679,14 @@ fn a_reference_tilt_within_rounding_of_zero_has_no_relative_error() {
 
 #[test]
 fn a_huge_contact_s_extent_and_errors_are_finite() {
-    // A sphere of radius 1e301 on a plane: a contact radius near 1e98 and
-    // pressures near 1e-196, whose squares underflow.
+    // A sphere of radius 1e240 on a plane: a contact radius near 1e78 and
+    // pressures near 1e-155, whose squares underflow (a radius of 1e301,
+    // pressures near 1e-196, is refused by check: its influence
+    // coefficients times the squared residuals underflow too).
     let s = scene(
         &common::spheres("across = 11\nzone = 1.4")
             .replace("surface1 = { shape = \"sphere\", radius = 1.0 }\n", "")
-            .replace("radius = 10.0 }", "radius = 1e301 }"),
+            .replace("radius = 10.0 }", "radius = 1e240 }"),
     )
     .unwrap();
     let r = elcon_scene::run(&s).unwrap().result;
