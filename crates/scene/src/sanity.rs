@@ -1109,14 +1109,16 @@ pub(crate) fn deformation(bodies: [&Body; 2], normal: Normal, points: &PointSet)
 /// for a direction `t` of the residuals' size, about `r^2 c`. That must
 /// stay between [`MIN_DEFORMATION`]^2 and [`MAX_DEFORMATION`]^2 (about
 /// 4.5e-277 and 2.2e276), or it underflows or overflows whatever the
-/// method: the moduli (or the grid's scale) are out of range for doubles.
-/// Names the first body's stiffness key.
+/// method. Names the stiffness key (a foundation's `modulus`, else the
+/// first `youngs_modulus`), else `load` (the loading's field, span and
+/// value).
 pub(crate) fn compliance_in_range(
     ctx: &Ctx<'_>,
     raw: [&Spanned<BodyToml>; 2],
     bodies: [&Body; 2],
     points: &PointSet,
     (normal, largest): (Normal, f64),
+    load: (String, std::ops::Range<usize>, f64),
     labels: Labels<'_>,
 ) -> Result<(), SceneError> {
     let c = deformation(bodies, Normal::Load(1.0), points);
@@ -1129,17 +1131,26 @@ pub(crate) fn compliance_in_range(
     if c == 0.0 || r == 0.0 || (range.start().log10()..=range.end().log10()).contains(&decades) {
         return Ok(());
     }
-    let stiffness = ["body1", "body2"].into_iter().zip(raw).find_map(|(s, r)| {
-        let t = r.get_ref();
-        let keyed = |v: &Option<Spanned<f64>>, key: &str| {
+    // The stiffness is blamed (a foundation's modulus before a body's): the
+    // load's and the approach's own bounds ran before this one, and on a
+    // grid sized by the Hertz contact the residuals scale with the moduli.
+    let stiffness = {
+        let keyed = |(s, r): (&str, &Spanned<BodyToml>), key: &str| {
+            let t = r.get_ref();
+            let v = if key == "modulus" {
+                &t.modulus
+            } else {
+                &t.youngs_modulus
+            };
             v.as_ref()
                 .map(|v| (format!("{s}.{key}"), v.span(), *v.get_ref()))
         };
-        keyed(&t.youngs_modulus, "youngs_modulus").or_else(|| keyed(&t.modulus, "modulus"))
-    });
-    let Some((field, span, value)) = stiffness else {
-        return Ok(());
+        let sections = || ["body1", "body2"].into_iter().zip(raw);
+        sections()
+            .find_map(|b| keyed(b, "modulus"))
+            .or_else(|| sections().find_map(|b| keyed(b, "youngs_modulus")))
     };
+    let (field, span, value) = stiffness.unwrap_or(load);
     let Labels { length, force, .. } = labels;
     Err(ctx.invalid(
         span,
