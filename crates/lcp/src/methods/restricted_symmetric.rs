@@ -640,13 +640,7 @@ impl Rates<'_> {
                 } else {
                     wslowest = if fall < wslowest { fall } else { wslowest };
                 }
-                let (x, zero) = values.at(i);
-                let theta = if x <= zero { 0.0 } else { x / -r };
-                least = if theta < least { theta } else { least };
-                if theta <= least + tie * least.abs() {
-                    near.push(i);
-                }
-                theta
+                falling_step(values, i, r, tie, &mut least, near)
             } else {
                 f64::INFINITY
             };
@@ -699,20 +693,35 @@ fn falling_steps(
     for (i, (&r, step)) in rates.iter().zip(reach.iter_mut()).enumerate() {
         let small = small[usize::from(!values.into[i])];
         *step = if r < -small {
-            let (x, zero) = values.at(i);
-            let theta = if x <= zero { 0.0 } else { x / -r };
-            // (A plain comparison: a NaN step is left out here and caught
-            // by the caller, where no least step is finite.)
-            least = if theta < least { theta } else { least };
-            if theta <= least + tie * least.abs() {
-                near.push(i);
-            }
-            theta
+            falling_step(values, i, r, tie, &mut least, near)
         } else {
             f64::INFINITY
         };
     }
     least
+}
+
+/// Value `i`'s step to zero at its falling rate `r < 0` (0 when it is
+/// already at zero), folded into the least step so far, `least`, and into
+/// `near` when within the tie bound of it. (A plain comparison: a NaN step
+/// is left out of `least` and caught by the caller, where no least step is
+/// finite.)
+#[inline(always)]
+fn falling_step(
+    values: &Values<'_>,
+    i: usize,
+    r: f64,
+    tie: f64,
+    least: &mut f64,
+    near: &mut Vec<usize>,
+) -> f64 {
+    let (x, zero) = values.at(i);
+    let theta = if x <= zero { 0.0 } else { x / -r };
+    *least = if theta < *least { theta } else { *least };
+    if theta <= *least + tie * least.abs() {
+        near.push(i);
+    }
+    theta
 }
 
 /// Five sums or maxima over `0..n`, each lane of four accumulating its own

@@ -74,23 +74,32 @@ impl Lanes {
     /// form the compiler turns into vector additions).
     #[inline(always)]
     pub(super) fn add_all(&mut self, len: usize, f: impl Fn(usize) -> f64) {
-        let full = len - len % LANES;
-        let mut i = 0;
-        while i < full {
-            let v: [f64; LANES] = std::array::from_fn(|l| f(i + l));
-            for l in 0..LANES {
-                self.0[l] += v[l];
-            }
-            i += LANES;
-        }
-        for l in 0..len - full {
-            self.0[l] += f(full + l);
-        }
+        in_groups(len, f, |l, v| self.add(l, v));
     }
 
     /// The lanes' sum, in lane order.
     pub(super) fn value(&self) -> f64 {
         self.0.iter().fold(0.0, |a, &v| a + v)
+    }
+}
+
+/// Calls `add(i mod LANES, f(i))` for `i` in `0..len`, in order, a
+/// group of [`LANES`] terms formed first and then added in one straight
+/// run: the form the compiler turns into vector instructions, with the
+/// same operations in the same order as term by term.
+#[inline(always)]
+fn in_groups(len: usize, f: impl Fn(usize) -> f64, mut add: impl FnMut(usize, f64)) {
+    let full = len - len % LANES;
+    let mut i = 0;
+    while i < full {
+        let v: [f64; LANES] = std::array::from_fn(|l| f(i + l));
+        for (l, &v) in v.iter().enumerate() {
+            add(l, v);
+        }
+        i += LANES;
+    }
+    for l in 0..len - full {
+        add(l, f(full + l));
     }
 }
 
@@ -132,18 +141,7 @@ impl Compensated {
     /// operations in the same order as [`add`](Self::add) term by term).
     #[inline(always)]
     pub(super) fn add_all(&mut self, len: usize, f: impl Fn(usize) -> f64) {
-        let full = len - len % LANES;
-        let mut i = 0;
-        while i < full {
-            let v: [f64; LANES] = std::array::from_fn(|l| f(i + l));
-            for l in 0..LANES {
-                self.add(l, v[l]);
-            }
-            i += LANES;
-        }
-        for l in 0..len - full {
-            self.add(l, f(full + l));
-        }
+        in_groups(len, f, |l, v| self.add(l, v));
     }
 
     /// Adds another compensated sum (lane by lane).
