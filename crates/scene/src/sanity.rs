@@ -1110,15 +1110,13 @@ pub(crate) fn deformation(bodies: [&Body; 2], normal: Normal, points: &PointSet)
 /// stay between [`MIN_DEFORMATION`]^2 and [`MAX_DEFORMATION`]^2 (about
 /// 4.5e-277 and 2.2e276), or it underflows or overflows whatever the
 /// method. Names the stiffness key (a foundation's `modulus`, else the
-/// first `youngs_modulus`), else `load` (the loading's field, span and
-/// value).
+/// first `youngs_modulus`).
 pub(crate) fn compliance_in_range(
     ctx: &Ctx<'_>,
     raw: [&Spanned<BodyToml>; 2],
     bodies: [&Body; 2],
     points: &PointSet,
     (normal, largest): (Normal, f64),
-    load: (String, std::ops::Range<usize>, f64),
     labels: Labels<'_>,
 ) -> Result<(), SceneError> {
     let c = deformation(bodies, Normal::Load(1.0), points);
@@ -1134,23 +1132,19 @@ pub(crate) fn compliance_in_range(
     // The stiffness is blamed (a foundation's modulus before a body's): the
     // load's and the approach's own bounds ran before this one, and on a
     // grid sized by the Hertz contact the residuals scale with the moduli.
-    let stiffness = {
-        let keyed = |(s, r): (&str, &Spanned<BodyToml>), key: &str| {
-            let t = r.get_ref();
-            let v = if key == "modulus" {
-                &t.modulus
-            } else {
-                &t.youngs_modulus
-            };
-            v.as_ref()
+    let keyed = |key: &str, pick: fn(&BodyToml) -> &Option<Spanned<f64>>| {
+        ["body1", "body2"].into_iter().zip(raw).find_map(|(s, r)| {
+            pick(r.get_ref())
+                .as_ref()
                 .map(|v| (format!("{s}.{key}"), v.span(), *v.get_ref()))
-        };
-        let sections = || ["body1", "body2"].into_iter().zip(raw);
-        sections()
-            .find_map(|b| keyed(b, "modulus"))
-            .or_else(|| sections().find_map(|b| keyed(b, "youngs_modulus")))
+        })
     };
-    let (field, span, value) = stiffness.unwrap_or(load);
+    let stiffness =
+        keyed("modulus", |t| &t.modulus).or_else(|| keyed("youngs_modulus", |t| &t.youngs_modulus));
+    // No stiffness key: no elastic body, refused elsewhere.
+    let Some((field, span, value)) = stiffness else {
+        return Ok(());
+    };
     let Labels { length, force, .. } = labels;
     Err(ctx.invalid(
         span,

@@ -508,23 +508,22 @@ fn small_strain(
     )?;
     let largest = largest_separation(ctx, raw.geometry.as_ref(), geometry, points)?;
     // The load's own bounds first: a user who mistyped the load is told so.
-    let t = raw.loading.get_ref();
-    let (field, given, value) = match loading.normal {
-        Normal::Load(v) => ("loading.load", t.load.as_ref(), v),
-        Normal::Approach(v) => ("loading.approach", t.approach.as_ref(), v),
-    };
+    // The load's own bounds first: a user who mistyped the load is told so.
     let Some(reason) = sanity::unresolved(pair, loading.normal, points, largest, units.length())
     else {
-        let span = given.map_or(raw.loading.span(), |v| v.span());
         return sanity::compliance_in_range(
             ctx,
             [&raw.body1, &raw.body2],
             pair,
             points,
             (loading.normal, largest),
-            (field.to_string(), span, value),
             strain_labels(units),
         );
+    };
+    let t = raw.loading.get_ref();
+    let (field, given, value) = match loading.normal {
+        Normal::Load(v) => ("loading.load", t.load.as_ref(), v),
+        Normal::Approach(v) => ("loading.approach", t.approach.as_ref(), v),
     };
     Err(ctx.invalid(
         given.map_or(raw.loading.span(), |v| v.span()),
