@@ -434,15 +434,23 @@ impl Header {
     }
 }
 
-/// The table header of byte `offset` of a TOML text: the one on its line,
-/// else the last one above it (`[name]` or `[[name]]`, comments aside).
-pub(crate) fn header_at(text: &str, offset: usize) -> Option<Header> {
+/// The byte range `(start, end)` of the line holding byte `offset` of
+/// `text` (clamped to its end), its newline excluded; `None` inside a
+/// character.
+fn line_around(text: &str, offset: usize) -> Option<(usize, usize)> {
     let offset = offset.min(text.len());
     if !text.is_char_boundary(offset) {
         return None;
     }
     let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
     let end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
+    Some((start, end))
+}
+
+/// The table header of byte `offset` of a TOML text: the one on its line,
+/// else the last one above it (`[name]` or `[[name]]`, comments aside).
+pub(crate) fn header_at(text: &str, offset: usize) -> Option<Header> {
+    let (start, end) = line_around(text, offset)?;
     let (back, line) = text[..end]
         .lines()
         .rev()
@@ -471,11 +479,7 @@ pub(crate) fn header_at(text: &str, offset: usize) -> Option<Header> {
 /// the line has no `key =`).
 pub(crate) fn key_at(text: &str, offset: usize) -> Option<String> {
     let offset = offset.min(text.len());
-    if !text.is_char_boundary(offset) {
-        return None;
-    }
-    let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
-    let end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
+    let (start, end) = line_around(text, offset)?;
     let line = &text[start..end];
     let section = text[..start]
         .lines()
