@@ -246,6 +246,9 @@ pub(super) struct Measures {
     pub z_scale: f64,
     /// `‖w_J‖²`.
     pub g: f64,
+    /// `‖β‖²`, `β_i = w_i` where `z_i = 0` and `w_i < 0` (the points that
+    /// interfere off `J`: Dostál's chopped gradient), 0 elsewhere.
+    pub chopped: f64,
     /// `B^T z` and `|B|^T z`, by row.
     pub rows: Vec<f64>,
     pub rows_terms: Vec<f64>,
@@ -260,6 +263,7 @@ struct MeasureParts {
     w_scale: [f64; LANES],
     z_scale: [f64; LANES],
     g: Lanes,
+    chopped: Lanes,
     rows: Vec<Compensated>,
     rows_terms: Vec<Lanes>,
     finite: bool,
@@ -273,6 +277,7 @@ impl MeasureParts {
             w_scale: [0.0; LANES],
             z_scale: [0.0; LANES],
             g: Lanes::default(),
+            chopped: Lanes::default(),
             rows: vec![Compensated::default(); k],
             rows_terms: vec![Lanes::default(); k],
             finite: true,
@@ -324,7 +329,8 @@ pub(super) fn measure_pass(
         let (s, s_terms) = shift_of(columns, lambda, base, len, true);
         let (mut min_w, mut comp) = ([0.0f64; LANES], [0.0f64; LANES]);
         let (mut w_scale, mut z_scale) = ([0.0f64; LANES], [0.0f64; LANES]);
-        let (mut g, mut bad) = (Lanes::default(), [false; LANES]);
+        let (mut g, mut chopped) = (Lanes::default(), Lanes::default());
+        let mut bad = [false; LANES];
         for_lanes(len, |i, l| {
             let w = (u[i] + q[i]) - s[i];
             let zi = z[i];
@@ -340,11 +346,13 @@ pub(super) fn measure_pass(
             };
             z_scale[l] = if zi > z_scale[l] { zi } else { z_scale[l] };
             g.add(l, if zi > 0.0 { w * w } else { 0.0 });
+            chopped.add(l, if zi > 0.0 || w >= 0.0 { 0.0 } else { w * w });
         });
         if let Some(r) = r {
             residual_of(z, u, q, &s, r);
         }
-        (p.min_w, p.comp, p.w_scale, p.z_scale, p.g) = (min_w, comp, w_scale, z_scale, g);
+        (p.min_w, p.comp, p.w_scale, p.z_scale) = (min_w, comp, w_scale, z_scale);
+        (p.g, p.chopped) = (g, chopped);
         for j in 0..k {
             let b = columns[j].part(base, len);
             add_compensated(&mut p.rows[j], len, |i| b[i] * z[i]);
@@ -365,6 +373,7 @@ pub(super) fn measure_pass(
         w_scale: parts.iter().fold(0.0, |m, p| m.max(lanes_max(&p.w_scale))),
         z_scale: parts.iter().fold(0.0, |m, p| m.max(lanes_max(&p.z_scale))),
         g: total(parts.iter().map(|p| p.g.value())),
+        chopped: total(parts.iter().map(|p| p.chopped.value())),
         rows: rows.iter().map(Compensated::value).collect(),
         rows_terms: (0..k)
             .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
@@ -399,6 +408,38 @@ pub(super) fn direction_pass(
             let next = if z[i] > 0.0 { w + beta * t[i] } else { 0.0 };
             t[i] = next;
             num.add(l, w * next);
+        });
+        num.value()
+    });
+    total(parts.into_iter())
+}
+
+/// The proportioning direction: `t_i = w_i` where `z_i = 0` and `w_i < 0`
+/// (Dostál's chopped gradient `β`), 0 elsewhere; returns `t · t`.
+pub(super) fn chopped_pass(
+    data: &Data<'_>,
+    z: &[f64],
+    u: &[f64],
+    t: &mut [f64],
+    lambda: &[f64],
+) -> f64 {
+    let (columns, q) = (data.columns(), &*data.q);
+    let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
+    let parts = map_parts(parts, |(c, t)| {
+        let base = c * CHUNK;
+        let len = t.len();
+        let (z, u, q) = (
+            &z[base..base + len],
+            &u[base..base + len],
+            &q[base..base + len],
+        );
+        let (s, _) = shift_of(columns, lambda, base, len, false);
+        let mut num = Lanes::default();
+        for_lanes(len, |i, l| {
+            let w = (u[i] + q[i]) - s[i];
+            let next = if z[i] > 0.0 || w >= 0.0 { 0.0 } else { w };
+            t[i] = next;
+            num.add(l, next * next);
         });
         num.value()
     });
@@ -443,9 +484,10 @@ struct UpdateParts {
 }
 
 /// The step `z_J -= τ t_J`, clipped at 0; a point off `J` with `w_i < 0`
-/// (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ = 0`); the
-/// product by its recurrence, `u -= τ r`. A chunk where a point left or
-/// entered skips the sums (the step's are then not read).
+/// (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ = 0`) where
+/// `enter` is set, else stays at 0; the product by its recurrence, `u -=
+/// τ r`. A chunk where a point left or entered skips the sums (the step's
+/// are then not read).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn update_pass(
     data: &Data<'_>,
@@ -455,6 +497,7 @@ pub(super) fn update_pass(
     r: &[f64],
     lambda: &[f64],
     tau: f64,
+    enter: bool,
 ) -> Update {
     let (columns, q) = (data.columns(), &*data.q);
     let k = columns.len();
@@ -486,7 +529,7 @@ pub(super) fn update_pass(
                 let v = old - tau * t[i];
                 clipped += usize::from(!(v > 0.0));
                 v.max(0.0)
-            } else {
+            } else if enter {
                 let w = (u[i] + q[i]) - s[i];
                 if w < 0.0 {
                     entered += 1;
@@ -494,6 +537,8 @@ pub(super) fn update_pass(
                 } else {
                     old
                 }
+            } else {
+                old
             };
             z[i] = next;
             u[i] -= tau * r[i];
@@ -801,7 +846,7 @@ mod tests {
         let t: Vec<f64> = z.iter().map(|&v| 0.01 * v).collect();
         let lambda = [-1e3, 0.0];
         let (mut z1, mut u1) = (z.clone(), u.clone());
-        let update = update_pass(&data, &mut z1, &mut u1, &t, &r, &lambda, 0.5);
+        let update = update_pass(&data, &mut z1, &mut u1, &t, &r, &lambda, 0.5, true);
         let sums = update.sums.expect("no point left or entered");
         let after = fit_pass(&data, &z1, &u1);
         assert_eq!(bits(&sums.bu), bits(&after.bu));
@@ -812,7 +857,7 @@ mod tests {
         // A full step clips the points in contact: no sums.
         let t: Vec<f64> = z.iter().map(|&v| 2.0 * v).collect();
         let (mut z2, mut u2) = (z, u);
-        let update = update_pass(&data, &mut z2, &mut u2, &t, &r, &lambda, 1.0);
+        let update = update_pass(&data, &mut z2, &mut u2, &t, &r, &lambda, 1.0, true);
         assert!(update.sums.is_none());
     }
 }
