@@ -23,11 +23,14 @@ fn turned(angle: &str) -> Result<Scene, SceneError> {
 #[test]
 fn the_ball_bearing_turned_by_30_degrees_meets_hertz_s_ellipse() {
     let s = turned("angle = 30.0").unwrap();
-    // 50689 points where the aligned ellipse takes 1369: check notes the turn.
+    // 50689 points where the aligned ellipse takes 1369: check notes the
+    // smallest turn that aligns it, -30 degrees (along y), not 60 (along x).
     assert!(
         s.warnings()
             .iter()
-            .any(|w| w.contains("turned by -60.00 degrees") && w.contains("by 60.00 degrees")),
+            .any(|w| w.contains("turned by -60.00 degrees")
+                && w.contains("by -30.00 degrees")
+                && w.contains("lays the ellipse along y")),
         "{:?}",
         s.warnings()
     );
