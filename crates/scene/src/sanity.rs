@@ -964,38 +964,60 @@ pub(crate) fn strain(
         .find_map(|b| beam_slope(b, (load, mean), points, foundation, labels))
 }
 
-/// An approach beyond the small strain: `|approach|` over the candidate
-/// zone's smaller extent ([`strain_length`]) above [`MAX_STRAIN`], or not
-/// finite: `Some((strain, extent))`. The bound `run` applies to a solved
-/// approach and `check` to Hertz's approach at the scene's load.
-pub(crate) fn approach_strain(approach: f64, points: &PointSet) -> Option<(f64, f64)> {
-    let extent = strain_length(points);
-    let s = approach.abs() / extent;
-    (!(s.is_finite() && s <= MAX_STRAIN)).then_some((s, extent))
+/// The length an approach is measured against for the small strain, and
+/// its name in messages: the candidate zone's smaller extent
+/// ([`strain_length`]), or on an ellipse grid the zone across the Hertz
+/// ellipse's minor axis in the ellipse's own frame, whatever its turn
+/// (`crate::scene` lays both out).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct StrainExtent {
+    /// The length (length unit).
+    pub length: f64,
+    /// What it is, for messages ("the candidate zone's smaller extent").
+    pub what: &'static str,
+}
+
+impl StrainExtent {
+    /// The candidate zone's smaller extent ([`strain_length`]).
+    pub(crate) fn of(points: &PointSet) -> Self {
+        Self {
+            length: strain_length(points),
+            what: "the candidate zone's smaller extent",
+        }
+    }
+}
+
+/// An approach beyond the small strain: `|approach|` over `extent` above
+/// [`MAX_STRAIN`], or not finite: `Some(strain)`. The bound `run` applies
+/// to a solved approach and `check` to Hertz's approach at the scene's
+/// load.
+pub(crate) fn approach_strain(approach: f64, extent: StrainExtent) -> Option<f64> {
+    let s = approach.abs() / extent.length;
+    (!(s.is_finite() && s <= MAX_STRAIN)).then_some(s)
 }
 
 /// Why Hertz's approach at `load`, `approach`, is beyond the small strain
-/// on `points` ([`approach_strain`]), if it is: the run would refuse the
-/// solved approach. A point contact's approach grows as `P^(2/3)`, and a
-/// grid sized by the Hertz contact (`sized_by_hertz`) as `P^(1/3)`: the
+/// against `extent` ([`approach_strain`]), if it is: the run would refuse
+/// the solved approach. A point contact's approach grows as `P^(2/3)`, and
+/// a grid sized by the Hertz contact (`sized_by_hertz`) as `P^(1/3)`: the
 /// strain as `P^(2/3)` or `P^(1/3)`, so the message gives the load at the
 /// bound.
 pub(crate) fn hertz_approach_strain(
     (load, approach): (f64, f64),
     sized_by_hertz: bool,
-    points: &PointSet,
+    extent: StrainExtent,
     length: &str,
 ) -> Option<String> {
-    let (s, extent) = approach_strain(approach, points)?;
+    let s = approach_strain(approach, extent)?;
     let power = if sized_by_hertz { 3.0 } else { 1.5 };
     Some(format!(
-        "Hertz's approach at this load, {} {length}, is {s:.4} times the candidate zone's \
-         smaller extent, {} {length}: beyond the small strain (at most {MAX_STRAIN}) of the \
-         linear elasticity the influence models rest on, so the run would refuse the solved \
-         approach; give a load of at most {}, stiffer bodies (youngs_modulus), or check their \
-         units",
+        "Hertz's approach at this load, {} {length}, is {s:.4} times {}, {} {length}: beyond \
+         the small strain (at most {MAX_STRAIN}) of the linear elasticity the influence models \
+         rest on, so the run would refuse the solved approach; give a load of at most {}, \
+         stiffer bodies (youngs_modulus), or check their units",
         rounded(approach),
-        rounded(extent),
+        extent.what,
+        rounded(extent.length),
         rounded(load * (MAX_STRAIN / s).powf(power) * 0.999)
     ))
 }
@@ -1048,6 +1070,141 @@ pub(crate) fn tilt_off_zone(
             rounded(shift + contact),
             rounded(reach),
             rounded(most)
+        ),
+    ))
+}
+
+/// A line contact whose approach, Hertz's measured from the plane-strain
+/// bodies' datums, is beyond the small strain of the candidate line's
+/// length because of one body's `reference_distance`: each body's
+/// compression is `(2 P' / pi) (1 - nu^2) / E (ln(2 d0 / b) + 1/2)`
+/// (their sum is `HertzCylinders::approach` for a common d0), so a datum
+/// far beyond the contact adds its logarithm to the approach the run then
+/// refuses. The body to name (0 or 1: the farther datum) and why, with
+/// the range of its datum that keeps the approach within the bound:
+/// from `widest`, the grid's extent (the datum lies beyond the grid), to
+/// the largest the other body's compression leaves room for. `None` when
+/// the approach is within the bound, or no datum in that range brings it
+/// there (then the load strains the bodies, refused by the run).
+pub(crate) fn datum_strain(
+    h: &elcon_analysis::references::HertzCylinders,
+    bodies: [&Body; 2],
+    points: &PointSet,
+    length: &str,
+) -> Option<(usize, String)> {
+    let (p, b) = (h.load_per_length, h.half_width());
+    // Each plane-strain body's compliance and datum.
+    let strips: Vec<(usize, f64, f64)> = bodies
+        .iter()
+        .enumerate()
+        .filter_map(|(i, body)| match *body.model() {
+            Model::PlaneStrainStrip {
+                material,
+                reference_distance,
+            } => Some((i, material.compliance(), reference_distance)),
+            _ => None,
+        })
+        .collect();
+    let compression =
+        |c: f64, d0: f64| 2.0 * p / std::f64::consts::PI * c * ((2.0 * d0 / b).ln() + 0.5);
+    let approach: f64 = strips.iter().map(|&(_, c, d0)| compression(c, d0)).sum();
+    let extent = StrainExtent::of(points);
+    let s = approach_strain(approach, extent)?;
+    let &(i, c, d0) = strips.iter().max_by(|a, b| a.2.total_cmp(&b.2))?;
+    let others: f64 = strips
+        .iter()
+        .filter(|s| s.0 != i)
+        .map(|&(_, c, d0)| compression(c, d0))
+        .sum();
+    let room = MAX_STRAIN * extent.length - others;
+    let farthest = 0.5 * b * (room * std::f64::consts::PI / (2.0 * p * c) - 0.5).exp();
+    let widest = points.extent().0;
+    if !(farthest >= widest && farthest < d0) {
+        return None;
+    }
+    Some((
+        i,
+        format!(
+            "the line contact's approach measured from the bodies' datums, Hertz's at this load, \
+             is {} {length}, {s:.1e} times {}, {} {length}: beyond the small strain (at most \
+             {MAX_STRAIN}) of the linear elasticity the influence models rest on, so the run \
+             would refuse the solved approach; this datum adds {} {length} of it (its compression \
+             grows as the logarithm of the datum over the Hertz half-width, {} {length}). Give \
+             a reference_distance from {} (the grid's extent) to {} {length}, or check its units",
+            rounded(approach),
+            extent.what,
+            rounded(extent.length),
+            rounded(compression(c, d0)),
+            rounded(b),
+            rounded(widest),
+            rounded(farthest * 0.999)
+        ),
+    ))
+}
+
+/// Prescribed tilts that move the minimum of an elliptical Hertz
+/// contact's gap (`h`, of the gap's curvature form K) so far that the
+/// contact ellipse around it reaches beyond the candidate zone (its
+/// points' outline grown by half a cell): the gap `K(x, x) / 2 + tilt_x y
+/// - tilt_y x` has its minimum at `s = K^-1 (tilt_y, -tilt_x)` (for
+/// spheres `R (tilt_y, -tilt_x)`, [`tilt_off_zone`]), and the contact is
+/// Hertz's ellipse moved there. The field to name (the larger tilt) and
+/// why, as [`tilt_off_zone`] says it. The run would find the contact
+/// against the zone's edge.
+pub(crate) fn tilt_off_zone_ellipse(
+    h: &elcon_analysis::references::HertzEllipse,
+    loading: Loading,
+    points: &PointSet,
+    length: &str,
+) -> Option<(&'static str, String)> {
+    let angle = |t: Tilt| match t {
+        Tilt::Prescribed { angle } => angle,
+        Tilt::Free { .. } => 0.0,
+    };
+    let (tx, ty) = (angle(loading.tilt_x), angle(loading.tilt_y));
+    let k = h.curvature();
+    let det = k.xx * k.yy - k.xy * k.xy;
+    let shift = (
+        (k.yy * ty + k.xy * tx) / det,
+        -(k.xy * ty + k.xx * tx) / det,
+    );
+    let distance = shift.0.hypot(shift.1);
+    if !(distance > 0.0) {
+        return None;
+    }
+    let (a, b) = (h.semi_major(), h.semi_minor());
+    let (s, c) = h.angle().sin_cos();
+    // The ellipse's reach along a unit direction n.
+    let support = |n: (f64, f64)| (a * (n.0 * c + n.1 * s)).hypot(b * (n.1 * c - n.0 * s));
+    let cell = points.cell();
+    let margin = |n: (f64, f64)| 0.5 * (n.0.abs() * cell.dx + n.1.abs() * cell.dy);
+    let zone = Zone::of(points);
+    let most = zone.largest_shift(shift, support, margin);
+    if most >= 1.0 {
+        return None;
+    }
+    let field = if tx.abs() >= ty.abs() {
+        "loading.tilt_x"
+    } else {
+        "loading.tilt_y"
+    };
+    Some((
+        field,
+        format!(
+            "the tilts (tilt_x {}, tilt_y {} rad) move the gap's minimum by K^-1 tilt = {} \
+             {length} to (x, y) = ({}, {}) (K the gap's curvature); with the Hertz ellipse's \
+             semi-axes, {} and {} {length}, the contact reaches beyond the candidate zone ({}, \
+             and half a cell): the contact would lie against the zone's edge. Give tilts of at \
+             most {} rad together, or a larger zone (points.zone or points.radius)",
+            Num(tx),
+            Num(ty),
+            rounded(distance),
+            rounded(shift.0),
+            rounded(shift.1),
+            rounded(a),
+            rounded(b),
+            zone.describe(),
+            rounded(most * tx.hypot(ty))
         ),
     ))
 }

@@ -377,3 +377,96 @@ fn moduli_whose_influence_products_underflow_are_refused() {
     assert!(e.contains("check the units of the moduli"), "{e}");
     scene(&stiff("1e130")).unwrap();
 }
+
+/// An aluminium ball of radius 10 mm in a groove (a quadric of radii 20
+/// and -10.4 mm) at `angle` degrees, on an ellipse grid, under `load` N.
+fn ball_in_groove(angle: &str, load: &str) -> String {
+    format!(
+        "[units]\nlength = \"m\"\nforce = \"N\"\npressure = \"Pa\"\n\
+         [body1]\nmodel = \"uniform-patch\"\nyoungs_modulus = 7e10\npoissons_ratio = 0.33\n\
+         [body2]\nmodel = \"uniform-patch\"\nyoungs_modulus = 7e10\npoissons_ratio = 0.33\n\
+         [geometry]\nsurface1 = {{ shape = \"sphere\", radius = 0.01 }}\n\
+         surface2 = {{ shape = \"quadric\", radius_x = 0.02, radius_y = -0.0104, angle = {angle} }}\n\
+         [points]\ngrid = \"ellipse\"\nacross = 21\nzone = 1.2\n\
+         [loading]\nload = {load}\n"
+    )
+}
+
+#[test]
+fn hertz_s_approach_on_an_ellipse_grid_is_measured_across_the_ellipse_whatever_its_turn() {
+    // At 1 MN Hertz's approach is 1.754 mm against the zone's 6.223 mm
+    // across the ellipse's minor axis: refused turned or not (turned by 20
+    // degrees, the grid's extents along x and y are larger, and were the
+    // measure).
+    let mut messages = Vec::new();
+    for angle in ["0.0", "20.0", "-35.0"] {
+        let (field, e) = refused(scene(&ball_in_groove(angle, "1e6")));
+        assert_eq!(field, "loading.load", "{angle}: {e}");
+        assert!(
+            e.contains("is 0.2818 times the candidate zone's extent across the Hertz ellipse's minor axis, 0.006223 m"),
+            "{angle}: {e}"
+        );
+        messages.push(e.split("`loading.load`").nth(1).unwrap().to_string());
+    }
+    assert!(messages.iter().all(|m| *m == messages[0]), "{messages:?}");
+    // The load the message names passes check at either turn.
+    let most = messages[0]
+        .split("at most ")
+        .nth(2)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap();
+    assert_eq!(most, "44640");
+    for angle in ["0.0", "20.0"] {
+        scene(&ball_in_groove(angle, most)).unwrap();
+    }
+}
+
+#[test]
+fn a_tilt_that_moves_an_elliptical_contact_off_the_zone_is_refused_by_check() {
+    // The ball-bearing example (its contact ellipse 1.311 x 0.1403 mm,
+    // along y) tilted about x: the gap's minimum moves by tilt / k_yy =
+    // 103.2 tilt mm along y, 1.032 mm at 0.01 rad against a zone reaching
+    // 1.574 mm: the run found the contact against the zone's edge.
+    let tilted = |tilt: &str| {
+        example_with(
+            "ball-bearing.toml",
+            "load = 1000.0 ",
+            &format!("load = 1000.0\ntilt_x = {tilt} "),
+        )
+    };
+    let (field, e) = refused(tilted("0.01"));
+    assert_eq!(field, "loading.tilt_x", "{e}");
+    assert!(
+        e.contains("K^-1 tilt = 1.032 mm to (x, y) = (0, -1.032)"),
+        "{e}"
+    );
+    assert!(e.contains("against the zone's edge"), "{e}");
+    assert!(e.contains("at most 0.002965 rad"), "{e}");
+    // Within the bound the run keeps the contact clear of the edge.
+    run(&tilted("0.0025").unwrap()).unwrap();
+}
+
+#[test]
+fn a_plane_strain_datum_that_strains_the_zone_is_refused_naming_it() {
+    // Hertz's cylinders (0.5025 mm of zone) with body 2's datum at 1e301
+    // mm: its compression, 1.379e-3 (ln(2 d0 / b) + 1/2) mm, is 0.96 mm,
+    // and the run refused the solved approach naming the load.
+    let datum = |d0: &str| {
+        example_with(
+            "hertz-cylinders.toml",
+            "poissons_ratio = 0.3\nreference_distance = 10.0\n\n[geometry]",
+            &format!("poissons_ratio = 0.3\nreference_distance = {d0}\n\n[geometry]"),
+        )
+    };
+    let (field, e) = refused(datum("1e301"));
+    assert_eq!(field, "body2.reference_distance", "{e}");
+    assert!(e.contains("is 0.967 mm"), "{e}");
+    assert!(e.contains("this datum adds 0.9599 mm of it"), "{e}");
+    assert!(e.contains("from 0.5025 (the grid's extent) to "), "{e}");
+    // The largest datum the message names passes check and runs.
+    let most = e.split(" to ").last().unwrap().split(' ').next().unwrap();
+    run(&datum(most).unwrap()).unwrap();
+    run(&datum("1e8").unwrap()).unwrap();
+}

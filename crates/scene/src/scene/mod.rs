@@ -300,6 +300,14 @@ impl Scene {
         hertz::hertz_scale(&self.bodies, &self.geometry, &self.points_spec, load)
     }
 
+    /// The length the run's bound on the solved approach measures the
+    /// candidate zone by (`hertz::approach_extent`: on an ellipse grid the
+    /// zone across the Hertz ellipse's minor axis, whatever its turn).
+    pub(crate) fn approach_extent(&self) -> crate::sanity::StrainExtent {
+        let contact = self.loading.load_value().and_then(|p| self.hertz(p));
+        hertz::approach_extent(&self.points_spec, contact.as_ref(), &self.points)
+    }
+
     /// The Hertz contact at `load`, where one applies (the layout, bodies
     /// and surfaces of a Hertz contact).
     pub(crate) fn hertz(&self, load: f64) -> Option<Hertz> {
@@ -441,7 +449,10 @@ fn program_reads_entries(
 /// What the run would refuse that Hertz's closed form tells before it:
 /// Hertz's approach at the scene's load beyond the small strain
 /// ([`sanity::hertz_approach_strain`]), prescribed tilts moving the
-/// spheres' contact off the candidate zone ([`sanity::tilt_off_zone`]).
+/// spheres' or an elliptical contact off the candidate zone
+/// ([`sanity::tilt_off_zone`], [`sanity::tilt_off_zone_ellipse`]), a
+/// plane-strain datum so far that the line contact's approach strains
+/// the zone ([`sanity::datum_strain`]).
 /// The closed form comes from the bodies, the surfaces and the layout.
 fn hertz_bounds(
     ctx: &Ctx<'_>,
@@ -455,19 +466,47 @@ fn hertz_bounds(
         return Ok(());
     };
     let t = raw.loading.get_ref();
-    let approach = hertz::hertz(bodies, geometry, spec, load).and_then(|h| h.approach());
+    let contact = hertz::hertz(bodies, geometry, spec, load);
+    let extent = hertz::approach_extent(spec, contact.as_ref(), points);
     let sized_by_hertz = matches!(
         spec,
         PointsSpec::DiskHertz { .. } | PointsSpec::EllipseHertz { .. }
     );
-    if let Some(reason) = approach
-        .and_then(|d| sanity::hertz_approach_strain((load, d), sized_by_hertz, points, length))
+    if let Some(reason) = contact
+        .and_then(|h| h.approach())
+        .and_then(|d| sanity::hertz_approach_strain((load, d), sized_by_hertz, extent, length))
     {
         let span = t.load.as_ref().map_or(raw.loading.span(), |l| l.span());
         return Err(ctx.invalid(span, "loading.load", crate::ctx::Num(load), reason));
     }
-    let off = hertz::spheres_at(bodies, geometry, spec, load)
-        .and_then(|rc| sanity::tilt_off_zone(rc, loading, points, length));
+    let pair = [bodies[0].body(), bodies[1].body()];
+    if let Some(Hertz::Cylinders(h)) = contact
+        && let Some((i, reason)) = sanity::datum_strain(&h, pair, points, length)
+    {
+        let (section, raw_body) = [("body1", &raw.body1), ("body2", &raw.body2)][i];
+        let b = raw_body.get_ref();
+        let span = b
+            .reference_distance
+            .as_ref()
+            .map_or(b.model.span(), |v| v.span());
+        let value = match *pair[i].model() {
+            elcon_influence::Model::PlaneStrainStrip {
+                reference_distance, ..
+            } => reference_distance,
+            _ => 0.0,
+        };
+        return Err(ctx.invalid(
+            span,
+            format!("{section}.reference_distance"),
+            crate::ctx::Num(value),
+            reason,
+        ));
+    }
+    let off = match contact {
+        Some(Hertz::Ellipse(h)) => sanity::tilt_off_zone_ellipse(&h, loading, points, length),
+        _ => hertz::spheres_at(bodies, geometry, spec, load)
+            .and_then(|rc| sanity::tilt_off_zone(rc, loading, points, length)),
+    };
     if let Some((field, reason)) = off {
         let (given, value) = if field == "loading.tilt_x" {
             (t.tilt_x.as_ref(), loading.tilt_x)
