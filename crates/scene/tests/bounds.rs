@@ -93,13 +93,47 @@ fn a_load_near_the_subnormal_numbers_never_reaches_a_solver() {
     let (field, e) = refused(scene(&beam));
     assert_eq!(field, "loading.load", "{e}");
     assert!(e.contains("subnormal"), "{e}");
-    // So is a foundation so stiff that it does not move within them.
-    let (field, _) = refused(example_with(
-        "example2-beam-design.toml",
-        "modulus = 1e7",
-        "modulus = 1e300",
+}
+
+#[test]
+fn a_resolvability_refusal_names_the_input_out_of_scale_with_its_range() {
+    // Example 2's foundation at 1e307 lbf/in per in: 50,000 lbf compresses
+    // it by 4.5e-302 in, below the doubles' floor; the load is sensible
+    // against the beam, the modulus is 1e300 times the beam's E.
+    let foundation = |k: &str| example_with("example2-beam-design.toml", "modulus = 1e7", k);
+    let (field, e) = refused(foundation("modulus = 1e307"));
+    assert_eq!(field, "body2.modulus", "{e}");
+    assert!(e.contains("below 6.72e-139 in"), "{e}");
+    assert!(
+        e.contains("body2.modulus is the farthest out of scale"),
+        "{e}"
+    );
+    // The range: the foundation's small strain (mean compression 0.1 of
+    // the beam's 8.9 in) below, the solve's product above.
+    assert!(e.contains("give a modulus from 6319 to 1.589e96"), "{e}");
+    for k in ["modulus = 6320", "modulus = 1.589e96"] {
+        foundation(k).unwrap_or_else(|e| panic!("{k}: {e}"));
+    }
+    // A sphere of radius 1e301 on a rigid plane, on its Hertz grid: a cell
+    // of 1e97 in, whose compliance times the squared residuals is 1e-312;
+    // the radius, not the moduli, is out of scale.
+    let huge = |r: &str| {
+        common::sphere_on_rigid_plane("across = 11\nzone = 1.4")
+            .replace("radius = 1.0 }", &format!("radius = {r} }}"))
+    };
+    let (field, e) = refused(scene(&huge("1e301")));
+    assert_eq!(field, "geometry.surface1.radius", "{e}");
+    assert!(e.contains("is about 1e-312"), "{e}");
+    let most = e.split(" to ").last().unwrap().split(',').next().unwrap();
+    scene(&huge(most)).unwrap();
+    // An approach of 1e-305 m names the approach, not the modulus.
+    let (field, e) = refused(example_with(
+        "flat-punch.toml",
+        "approach = ",
+        "approach = 1e-305 # ",
     ));
-    assert_eq!(field, "loading.load");
+    assert_eq!(field, "loading.approach", "{e}");
+    assert!(e.contains("give an approach of at least"), "{e}");
 }
 
 #[test]

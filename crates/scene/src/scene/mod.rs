@@ -12,6 +12,7 @@
 
 mod body;
 mod design;
+mod factors;
 mod files;
 mod geometry;
 mod hertz;
@@ -343,7 +344,15 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let points_spec = hertz::shaped(points_spec, &bodies, &geometry);
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
     let geometry = files::on_points(ctx, raw.geometry.as_ref(), geometry, &points)?;
-    small_strain(ctx, &raw, &bodies, &geometry, &points, loading, &units)?;
+    small_strain(
+        ctx,
+        &raw,
+        (&bodies, &points_spec),
+        &geometry,
+        &points,
+        loading,
+        &units,
+    )?;
     hertz_bounds(
         ctx,
         &raw,
@@ -529,7 +538,7 @@ fn hertz_bounds(
 fn small_strain(
     ctx: &Ctx<'_>,
     raw: &SceneFile,
-    bodies: &[BodySpec; 2],
+    (bodies, spec): (&[BodySpec; 2], &PointsSpec),
     geometry: &Geometry,
     points: &PointSet,
     loading: Loading,
@@ -546,19 +555,36 @@ fn small_strain(
         strain_labels(units),
     )?;
     let largest = largest_separation(ctx, raw.geometry.as_ref(), geometry, points)?;
-    // The load's own bounds first: a user who mistyped the load is told so.
-    // The load's own bounds first: a user who mistyped the load is told so.
+    let factors = |quantity| factors::factors(raw, pair, spec, loading.normal, points, quantity);
+    // The load's own bounds first: a user who mistyped the load is told
+    // so; a deformation out of the doubles' range blames the input out of
+    // scale (a foundation's modulus of 1e307, not the load).
     let Some(reason) = sanity::unresolved(pair, loading.normal, points, largest, units.length())
     else {
         return sanity::compliance_in_range(
             ctx,
-            [&raw.body1, &raw.body2],
+            &|load| factors(factors::Quantity::Product { load }),
             pair,
             points,
             (loading.normal, largest),
             strain_labels(units),
         );
     };
+    if let Some((f, reason)) = sanity::deformation_out_of_scale(
+        pair,
+        loading.normal,
+        points,
+        largest,
+        (
+            &factors(factors::Quantity::Deformation),
+            &factors(factors::Quantity::Product {
+                load: sanity::deformation(pair, loading.normal, points) >= largest.abs(),
+            }),
+        ),
+        units.length(),
+    ) {
+        return Err(ctx.invalid(f.span, f.field, crate::ctx::Num(f.value), reason));
+    }
     let t = raw.loading.get_ref();
     let (field, given, value) = match loading.normal {
         Normal::Load(v) => ("loading.load", t.load.as_ref(), v),
