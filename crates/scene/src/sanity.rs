@@ -1145,8 +1145,9 @@ pub(crate) fn datum_strain(
 /// Prescribed tilts that move the minimum of an elliptical Hertz
 /// contact's gap (`h`, of the gap's curvature form K) so far that the
 /// contact ellipse around it reaches beyond the candidate zone (its
-/// points' outline grown by half a cell): the gap `K(x, x) / 2 + tilt_x y
-/// - tilt_y x` has its minimum at `s = K^-1 (tilt_y, -tilt_x)` (for
+/// points' outline grown by half a cell): the gap
+/// `K(x, x) / 2 + tilt_x y - tilt_y x` has its minimum at
+/// `s = K^-1 (tilt_y, -tilt_x)` (for
 /// spheres `R (tilt_y, -tilt_x)`, [`tilt_off_zone`]), and the contact is
 /// Hertz's ellipse moved there. The field to name (the larger tilt) and
 /// why, as [`tilt_off_zone`] says it. The run would find the contact
