@@ -173,6 +173,21 @@ impl EllipseExtent {
     }
 }
 
+/// The candidate zone's extent across an elliptical Hertz contact's minor
+/// axis (semi-minor axis `semi_minor`), in the ellipse's own frame: the
+/// `(2 m + 1) h` of [`hertz_ellipse_family`]'s cells along the minor axis
+/// of an aligned ellipse, `h = 2 b / (across - 1)`, `m = round(zone b /
+/// h)`. Turned or not, the ellipse gets the same spacing across its minor
+/// axis, so this is the same at any turn (what an approach is measured
+/// against for the small strain).
+///
+/// # Errors
+/// [`AnalysisError::InvalidInput`] naming `across`, `zone` or the contact
+/// size.
+pub fn ellipse_minor_zone(semi_minor: f64, across: usize, zone: f64) -> Result<f64, AnalysisError> {
+    centred_cells(semi_minor, across, zone).map(|(half, _)| 2.0 * half)
+}
+
 /// How far (relative) an ellipse's smaller half-extent may exceed its
 /// semi-minor axis and still count as aligned with x and y: the rounding
 /// of the half-extents `sqrt(a^2 c^2 + b^2 s^2)` computed from an angle
@@ -553,6 +568,29 @@ mod tests {
         // The zone still covers zone times the half-extents (to half a cell).
         assert!(half_x >= zone * turned.half_x - 0.5 * dx);
         assert!(half_y >= zone * turned.half_y - 0.5 * dy);
+    }
+
+    #[test]
+    fn the_zone_across_the_minor_axis_is_the_aligned_grid_s_whatever_the_turn() {
+        let (a, b, across, zone) = (4.0, 0.5, 11, 1.2);
+        let minor = ellipse_minor_zone(b, across, zone).unwrap();
+        // Aligned along x: the grid's extent along y is the zone across b.
+        let GridFamily::Rectangle { half_y, .. } =
+            hertz_ellipse_family(extent_of(a, b, 0.0), across, zone).unwrap()
+        else {
+            panic!("a rectangle");
+        };
+        assert_eq!(minor, 2.0 * half_y);
+        // Turned by 30 degrees the grid's extents are larger, the minor
+        // axis the same; 2 m + 1 = 13 cells of 0.1 here.
+        let GridFamily::Rectangle { half_x, half_y, .. } =
+            hertz_ellipse_family(extent_of(a, b, 30f64.to_radians()), across, zone).unwrap()
+        else {
+            panic!("a rectangle");
+        };
+        assert!(2.0 * half_x.min(half_y) > 2.0 * minor);
+        assert!((minor - 1.3).abs() < 1e-12, "{minor}");
+        assert!(ellipse_minor_zone(b, 1, zone).is_err());
     }
 
     #[test]

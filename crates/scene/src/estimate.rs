@@ -418,8 +418,9 @@ fn discretization(scene: &Scene) -> (f64, f64) {
 }
 
 /// Each design load's problem on the grid of `fineness` (1: the scene's
-/// own), planned as the run builds it (held as the scene's, unfolded)
-/// under its load alone.
+/// own), planned as the run builds it (unfolded; held as the scene's on
+/// its own grid, as elcon-analysis decides on a finer one) under its load
+/// alone.
 fn design_loads(
     scene: &Scene,
     spec: &DesignSpec,
@@ -440,11 +441,18 @@ fn design_loads(
                     .and_then(|g| g.points().map_err(|e| e.to_string()))
                     .map_err(failed)?
             };
-            let plan = scene
+            // The scene's grid holds S as the scene does; a finer grid as
+            // elcon-analysis decides for its size (the design stage's
+            // refined cases: matrix-free on a large lattice).
+            let builder = scene
                 .builder(points.clone(), Loading::load(load))
-                .fold(false)
-                .plan()
-                .map_err(|e| failed(e.to_string()))?;
+                .fold(false);
+            let builder = if fineness == 1.0 {
+                builder
+            } else {
+                builder.storage(elcon_analysis::Storage::Auto)
+            };
+            let plan = builder.plan().map_err(|e| failed(e.to_string()))?;
             Ok((points, plan.estimate))
         })
         .collect()
@@ -463,8 +471,11 @@ const GRID_SECONDS: f64 = 0.005;
 const REFINED_ANALYSES: f64 = 4.0;
 
 /// The design stage's estimate; `own` the bytes of the scene's own S,
-/// alive through the stage. Its memory is the design on the scene's grid;
-/// its seconds those of the shortest path over the grid sequence
+/// alive through the stage. Its memory is the largest the grids of its
+/// path hold at once: the design on the scene's grid; the design on the
+/// second grid beside the first grid's cases (kept until the second
+/// grid's design replaces them); the third grid's cases, verifying,
+/// beside the second's, with one analysis's work. Its seconds those of the shortest path over the grid sequence
 /// (`design.refine`, the default): the design on the scene's grid, the
 /// design on the second grid within `design.max_points` a case (its full
 /// estimate, or [`REFINED_ANALYSES`] of each case, whichever is less), and
@@ -486,7 +497,18 @@ fn design(scene: &Scene, spec: &DesignSpec, own: f64) -> Result<DesignEstimate, 
     let analyses = |loads: &[(PointSet, elcon_analysis::Estimate)]| {
         angles * loads.iter().map(|(_, e)| e.seconds).sum::<f64>()
     };
-    let mut estimate = at(&design_loads(scene, spec, 1.0)?);
+    // Each grid's cases' held problems, and one analysis's work among them.
+    let held = |loads: &[(PointSet, elcon_analysis::Estimate)]| {
+        loads.iter().map(|(_, e)| e.held_bytes).sum::<f64>()
+    };
+    let work = |loads: &[(PointSet, elcon_analysis::Estimate)]| {
+        loads
+            .iter()
+            .map(|(_, e)| e.work_bytes)
+            .fold(0.0f64, f64::max)
+    };
+    let first = design_loads(scene, spec, 1.0)?;
+    let mut estimate = at(&first);
     estimate.seconds = estimate.seconds.max(GRID_SECONDS);
     let Some(sequence) = spec.sequence() else {
         return Ok(estimate);
@@ -500,10 +522,16 @@ fn design(scene: &Scene, spec: &DesignSpec, own: f64) -> Result<DesignEstimate, 
     };
     let mut levels = sequence.fineness.iter().copied().filter(|&f| f != 1.0);
     if let Some(loads) = levels.next().and_then(within) {
-        let second = at(&loads).seconds.min(REFINED_ANALYSES * analyses(&loads));
+        let designed = at(&loads);
+        estimate.bytes = estimate
+            .bytes
+            .max(designed.bytes.saturating_add(to_bytes(held(&first))));
+        let second = designed.seconds.min(REFINED_ANALYSES * analyses(&loads));
         estimate.seconds += second.max(GRID_SECONDS);
-        if let Some(loads) = levels.next().and_then(within) {
-            estimate.seconds += analyses(&loads).max(GRID_SECONDS);
+        if let Some(third) = levels.next().and_then(within) {
+            let verifying = own + held(&loads) + held(&third) + work(&third);
+            estimate.bytes = estimate.bytes.max(to_bytes(verifying));
+            estimate.seconds += analyses(&third).max(GRID_SECONDS);
         }
     }
     Ok(estimate)
@@ -660,6 +688,29 @@ mod tests {
         assert_eq!((d40.cases, d40.points), (40, 8000));
         let ratio = d40.bytes as f64 / d4.bytes as f64;
         assert!((1.0..10.0).contains(&ratio), "{ratio}");
+    }
+
+    #[test]
+    fn a_refined_design_s_memory_is_the_largest_of_its_grids() {
+        // The beam on 200 points, designed on 200 and 400 cells, verified
+        // on 600: the design on 400 cells (its program of about 4 x 1205 x
+        // 406 entries, beside the 200 cells' S) outweighs the one on 200.
+        let beam = include_str!("../tests/common/beam.toml").replace("n = 16", "n = 200")
+            + "[design]\nfamily = \"quadratic\"\nmethod = \"program\"\n";
+        let refined = Estimate::of(&scene(&beam)).unwrap().design.unwrap();
+        let alone = Estimate::of(&scene(&format!("{beam}refine = false\n")))
+            .unwrap()
+            .design
+            .unwrap();
+        assert_eq!(alone.program, Some((602, 205)));
+        // The second grid's program alone: 4.25 x 8 x R x C, R = 2 x 400 +
+        // 1 + 400 + 1, C = 400 + 1 + 3 + 1.
+        let program = to_bytes(4.25 * 8.0 * 1202.0 * 405.0);
+        assert!(refined.bytes > alone.bytes, "{refined:?} {alone:?}");
+        assert!(refined.bytes >= program, "{} {program}", refined.bytes);
+        // The verifying grid's 600 points alone are dense S of 600^2
+        // beside 400^2: within the estimate.
+        assert!(refined.bytes >= to_bytes(8.0 * (600.0f64.powi(2) + 400.0f64.powi(2))));
     }
 
     #[test]

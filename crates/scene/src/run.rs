@@ -230,29 +230,32 @@ fn rotation_fields(loading: &elcon_analysis::Loading) -> String {
 }
 
 /// Refuses the answer of a load-controlled scene whose solved approach is
-/// beyond [`crate::MAX_STRAIN`] of the candidate zone's smaller extent
-/// (as `check` refuses a given approach, `crate::sanity::strain`):
-/// the mean pressure over the zone can be small against E* while the
-/// contact sinks half a roller's length into a soft body.
+/// beyond [`crate::MAX_STRAIN`] of the candidate zone's smaller extent, or
+/// on an ellipse grid of the zone across the Hertz ellipse's minor axis
+/// whatever its turn (`Scene::approach_extent`, as `check` measures
+/// Hertz's approach): the mean pressure over the zone can be small
+/// against E* while the contact sinks half a roller's length into a soft
+/// body.
 fn small_approach(scene: &Scene, solution: &ContactSolution) -> Result<(), SceneError> {
     let Normal::Load(load) = scene.loading().normal else {
         return Ok(());
     };
-    let Some((s, extent)) = crate::sanity::approach_strain(solution.approach, scene.points())
-    else {
+    let extent = scene.approach_extent();
+    let Some(s) = crate::sanity::approach_strain(solution.approach, extent) else {
         return Ok(());
     };
     let length = scene.units().length();
     Err(run_error(
         scene,
         format!(
-            "`loading.load` = {}: the solved approach, {} {length}, is {s:.1e} times the \
-             candidate zone's smaller extent, {} {length}: beyond the small strain (at most \
-             {}) of the linear elasticity the influence models rest on; give a smaller load or \
-             stiffer bodies (youngs_modulus, modulus), or check their units",
+            "`loading.load` = {}: the solved approach, {} {length}, is {s:.1e} times {}, {} \
+             {length}: beyond the small strain (at most {}) of the linear elasticity the \
+             influence models rest on; give a smaller load or stiffer bodies (youngs_modulus, \
+             modulus), or check their units",
             Num(load),
             rounded(solution.approach),
-            rounded(extent),
+            extent.what,
+            rounded(extent.length),
             crate::MAX_STRAIN
         ),
     ))

@@ -964,38 +964,60 @@ pub(crate) fn strain(
         .find_map(|b| beam_slope(b, (load, mean), points, foundation, labels))
 }
 
-/// An approach beyond the small strain: `|approach|` over the candidate
-/// zone's smaller extent ([`strain_length`]) above [`MAX_STRAIN`], or not
-/// finite: `Some((strain, extent))`. The bound `run` applies to a solved
-/// approach and `check` to Hertz's approach at the scene's load.
-pub(crate) fn approach_strain(approach: f64, points: &PointSet) -> Option<(f64, f64)> {
-    let extent = strain_length(points);
-    let s = approach.abs() / extent;
-    (!(s.is_finite() && s <= MAX_STRAIN)).then_some((s, extent))
+/// The length an approach is measured against for the small strain, and
+/// its name in messages: the candidate zone's smaller extent
+/// ([`strain_length`]), or on an ellipse grid the zone across the Hertz
+/// ellipse's minor axis in the ellipse's own frame, whatever its turn
+/// (`crate::scene` lays both out).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct StrainExtent {
+    /// The length (length unit).
+    pub length: f64,
+    /// What it is, for messages ("the candidate zone's smaller extent").
+    pub what: &'static str,
+}
+
+impl StrainExtent {
+    /// The candidate zone's smaller extent ([`strain_length`]).
+    pub(crate) fn of(points: &PointSet) -> Self {
+        Self {
+            length: strain_length(points),
+            what: "the candidate zone's smaller extent",
+        }
+    }
+}
+
+/// An approach beyond the small strain: `|approach|` over `extent` above
+/// [`MAX_STRAIN`], or not finite: `Some(strain)`. The bound `run` applies
+/// to a solved approach and `check` to Hertz's approach at the scene's
+/// load.
+pub(crate) fn approach_strain(approach: f64, extent: StrainExtent) -> Option<f64> {
+    let s = approach.abs() / extent.length;
+    (!(s.is_finite() && s <= MAX_STRAIN)).then_some(s)
 }
 
 /// Why Hertz's approach at `load`, `approach`, is beyond the small strain
-/// on `points` ([`approach_strain`]), if it is: the run would refuse the
-/// solved approach. A point contact's approach grows as `P^(2/3)`, and a
-/// grid sized by the Hertz contact (`sized_by_hertz`) as `P^(1/3)`: the
+/// against `extent` ([`approach_strain`]), if it is: the run would refuse
+/// the solved approach. A point contact's approach grows as `P^(2/3)`, and
+/// a grid sized by the Hertz contact (`sized_by_hertz`) as `P^(1/3)`: the
 /// strain as `P^(2/3)` or `P^(1/3)`, so the message gives the load at the
 /// bound.
 pub(crate) fn hertz_approach_strain(
     (load, approach): (f64, f64),
     sized_by_hertz: bool,
-    points: &PointSet,
+    extent: StrainExtent,
     length: &str,
 ) -> Option<String> {
-    let (s, extent) = approach_strain(approach, points)?;
+    let s = approach_strain(approach, extent)?;
     let power = if sized_by_hertz { 3.0 } else { 1.5 };
     Some(format!(
-        "Hertz's approach at this load, {} {length}, is {s:.4} times the candidate zone's \
-         smaller extent, {} {length}: beyond the small strain (at most {MAX_STRAIN}) of the \
-         linear elasticity the influence models rest on, so the run would refuse the solved \
-         approach; give a load of at most {}, stiffer bodies (youngs_modulus), or check their \
-         units",
+        "Hertz's approach at this load, {} {length}, is {s:.4} times {}, {} {length}: beyond \
+         the small strain (at most {MAX_STRAIN}) of the linear elasticity the influence models \
+         rest on, so the run would refuse the solved approach; give a load of at most {}, \
+         stiffer bodies (youngs_modulus), or check their units",
         rounded(approach),
-        rounded(extent),
+        extent.what,
+        rounded(extent.length),
         rounded(load * (MAX_STRAIN / s).powf(power) * 0.999)
     ))
 }
@@ -1052,6 +1074,142 @@ pub(crate) fn tilt_off_zone(
     ))
 }
 
+/// A line contact whose approach, Hertz's measured from the plane-strain
+/// bodies' datums, is beyond the small strain of the candidate line's
+/// length because of one body's `reference_distance`: each body's
+/// compression is `(2 P' / pi) (1 - nu^2) / E (ln(2 d0 / b) + 1/2)`
+/// (their sum is `HertzCylinders::approach` for a common d0), so a datum
+/// far beyond the contact adds its logarithm to the approach the run then
+/// refuses. The body to name (0 or 1: the farther datum) and why, with
+/// the range of its datum that keeps the approach within the bound:
+/// from `widest`, the grid's extent (the datum lies beyond the grid), to
+/// the largest the other body's compression leaves room for. `None` when
+/// the approach is within the bound, or no datum in that range brings it
+/// there (then the load strains the bodies, refused by the run).
+pub(crate) fn datum_strain(
+    h: &elcon_analysis::references::HertzCylinders,
+    bodies: [&Body; 2],
+    points: &PointSet,
+    length: &str,
+) -> Option<(usize, String)> {
+    let (p, b) = (h.load_per_length, h.half_width());
+    // Each plane-strain body's compliance and datum.
+    let strips: Vec<(usize, f64, f64)> = bodies
+        .iter()
+        .enumerate()
+        .filter_map(|(i, body)| match *body.model() {
+            Model::PlaneStrainStrip {
+                material,
+                reference_distance,
+            } => Some((i, material.compliance(), reference_distance)),
+            _ => None,
+        })
+        .collect();
+    let compression =
+        |c: f64, d0: f64| 2.0 * p / std::f64::consts::PI * c * ((2.0 * d0 / b).ln() + 0.5);
+    let approach: f64 = strips.iter().map(|&(_, c, d0)| compression(c, d0)).sum();
+    let extent = StrainExtent::of(points);
+    let s = approach_strain(approach, extent)?;
+    let &(i, c, d0) = strips.iter().max_by(|a, b| a.2.total_cmp(&b.2))?;
+    let others: f64 = strips
+        .iter()
+        .filter(|s| s.0 != i)
+        .map(|&(_, c, d0)| compression(c, d0))
+        .sum();
+    let room = MAX_STRAIN * extent.length - others;
+    let farthest = 0.5 * b * (room * std::f64::consts::PI / (2.0 * p * c) - 0.5).exp();
+    let widest = points.extent().0;
+    if !(farthest >= widest && farthest < d0) {
+        return None;
+    }
+    Some((
+        i,
+        format!(
+            "the line contact's approach measured from the bodies' datums, Hertz's at this load, \
+             is {} {length}, {s:.1e} times {}, {} {length}: beyond the small strain (at most \
+             {MAX_STRAIN}) of the linear elasticity the influence models rest on, so the run \
+             would refuse the solved approach; this datum adds {} {length} of it (its compression \
+             grows as the logarithm of the datum over the Hertz half-width, {} {length}). Give \
+             a reference_distance from {} (the grid's extent) to {} {length}, or check its units",
+            rounded(approach),
+            extent.what,
+            rounded(extent.length),
+            rounded(compression(c, d0)),
+            rounded(b),
+            rounded(widest),
+            rounded(farthest * 0.999)
+        ),
+    ))
+}
+
+/// Prescribed tilts that move the minimum of an elliptical Hertz
+/// contact's gap (`h`, of the gap's curvature form K) so far that the
+/// contact ellipse around it reaches beyond the candidate zone (its
+/// points' outline grown by half a cell): the gap
+/// `K(x, x) / 2 + tilt_x y - tilt_y x` has its minimum at
+/// `s = K^-1 (tilt_y, -tilt_x)` (for
+/// spheres `R (tilt_y, -tilt_x)`, [`tilt_off_zone`]), and the contact is
+/// Hertz's ellipse moved there. The field to name (the larger tilt) and
+/// why, as [`tilt_off_zone`] says it. The run would find the contact
+/// against the zone's edge.
+pub(crate) fn tilt_off_zone_ellipse(
+    h: &elcon_analysis::references::HertzEllipse,
+    loading: Loading,
+    points: &PointSet,
+    length: &str,
+) -> Option<(&'static str, String)> {
+    let angle = |t: Tilt| match t {
+        Tilt::Prescribed { angle } => angle,
+        Tilt::Free { .. } => 0.0,
+    };
+    let (tx, ty) = (angle(loading.tilt_x), angle(loading.tilt_y));
+    let k = h.curvature();
+    let det = k.xx * k.yy - k.xy * k.xy;
+    let shift = (
+        (k.yy * ty + k.xy * tx) / det,
+        -(k.xy * ty + k.xx * tx) / det,
+    );
+    let distance = shift.0.hypot(shift.1);
+    if !(distance > 0.0) {
+        return None;
+    }
+    let (a, b) = (h.semi_major(), h.semi_minor());
+    let (s, c) = h.angle().sin_cos();
+    // The ellipse's reach along a unit direction n.
+    let support = |n: (f64, f64)| (a * (n.0 * c + n.1 * s)).hypot(b * (n.1 * c - n.0 * s));
+    let cell = points.cell();
+    let margin = |n: (f64, f64)| 0.5 * (n.0.abs() * cell.dx + n.1.abs() * cell.dy);
+    let zone = Zone::of(points);
+    let most = zone.largest_shift(shift, support, margin);
+    if most >= 1.0 {
+        return None;
+    }
+    let field = if tx.abs() >= ty.abs() {
+        "loading.tilt_x"
+    } else {
+        "loading.tilt_y"
+    };
+    Some((
+        field,
+        format!(
+            "the tilts (tilt_x {}, tilt_y {} rad) move the gap's minimum by K^-1 tilt = {} \
+             {length} to (x, y) = ({}, {}) (K the gap's curvature); with the Hertz ellipse's \
+             semi-axes, {} and {} {length}, the contact reaches beyond the candidate zone ({}, \
+             and half a cell): the contact would lie against the zone's edge. Give tilts of at \
+             most {} rad together, or a larger zone (points.zone or points.radius)",
+            Num(tx),
+            Num(ty),
+            rounded(distance),
+            rounded(shift.0),
+            rounded(shift.1),
+            rounded(a),
+            rounded(b),
+            zone.describe(),
+            rounded(most * tx.hypot(ty))
+        ),
+    ))
+}
+
 /// The largest elastic deformation `normal` can make on `points`
 /// (length): an approach is its own; a load's is the largest of the whole
 /// load on one cell (the contact is at least one cell): its pressure
@@ -1100,6 +1258,152 @@ pub(crate) fn deformation(bodies: [&Body; 2], normal: Normal, points: &PointSet)
     w
 }
 
+/// An input a magnitude bound depends on, as the scene writes it (the
+/// load, a modulus, a radius): the bound's quantity grows as `value^power`
+/// with the other inputs held, so the input that takes the quantity out of
+/// its range is the one whose contribution `power log10(value)` is the
+/// most extreme in that direction ([`extreme`]), and its accepted range
+/// follows ([`Factor::range`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Factor {
+    /// The field, as the user writes it (`body2.modulus`).
+    pub field: String,
+    /// Where the value is written.
+    pub span: std::ops::Range<usize>,
+    /// The value.
+    pub value: f64,
+    /// The power the quantity grows with.
+    pub power: f64,
+    /// What it is, for the message ("a modulus").
+    pub what: &'static str,
+}
+
+impl Factor {
+    /// The values of this factor that bring a quantity of `decades`
+    /// (log10) within `lo..=hi` (log10), the other inputs held:
+    /// `value 10^((lo - decades) / power)` to `value 10^((hi - decades) /
+    /// power)`, in increasing order.
+    pub(crate) fn range(&self, decades: f64, (lo, hi): (f64, f64)) -> (f64, f64) {
+        // In decades: the factor 10^((lo - decades) / power) alone can
+        // underflow where the value it scales does not.
+        let at = |bound: f64| {
+            let exponent = self.value.abs().log10() + (bound - decades) / self.power;
+            self.value.signum() * 10f64.powf(exponent)
+        };
+        let (a, b) = (at(lo), at(hi));
+        (a.min(b), a.max(b))
+    }
+}
+
+/// Of `factors`, the one that takes a quantity out of its range the most:
+/// the most negative contribution `power log10(value)` when the quantity
+/// is too small (`too_small`), the most positive when it is too large;
+/// `None` when none contributes in that direction.
+pub(crate) fn extreme(factors: &[Factor], too_small: bool) -> Option<&Factor> {
+    let toward = |f: &&Factor| {
+        let c = f.power * f.value.abs().log10();
+        if too_small { -c } else { c }
+    };
+    factors
+        .iter()
+        .filter(|f| f.value != 0.0 && f.value.is_finite() && toward(f) > 0.0)
+        .max_by(|a, b| toward(a).total_cmp(&toward(b)))
+}
+
+/// The smallest value of a stiffness `f` (a foundation's `modulus`, a
+/// half-space body's `youngs_modulus`) the small strain ([`strain`])
+/// accepts under `normal` on `points`, the other body held: the mean
+/// pressure over the zone at most [`MAX_STRAIN`] of E*, a foundation's
+/// mean compression at most [`MAX_STRAIN`] of the zone's smaller extent.
+/// 0 for any other input.
+pub(crate) fn strain_floor(
+    f: &Factor,
+    bodies: [&Body; 2],
+    normal: Normal,
+    points: &PointSet,
+) -> f64 {
+    let Normal::Load(load) = normal else {
+        return 0.0;
+    };
+    let mean = load / points.total_measure();
+    let index = match f.field.as_str() {
+        "body1.modulus" | "body1.youngs_modulus" => 0,
+        "body2.modulus" | "body2.youngs_modulus" => 1,
+        _ => return 0.0,
+    };
+    match *bodies[index].model() {
+        Model::Winkler { .. } => mean / (MAX_STRAIN * strain_length(points)),
+        _ => match bodies[index].material() {
+            Some(m) => {
+                // 1 / E* = (1 - nu^2) / E + the other's compliance <= MAX_STRAIN / mean.
+                let other = bodies[1 - index].material().map_or(0.0, |m| m.compliance());
+                let room = MAX_STRAIN / mean - other;
+                let nu = m.poissons_ratio();
+                if room > 0.0 {
+                    (1.0 - nu * nu) / room
+                } else {
+                    f64::INFINITY
+                }
+            }
+            None => 0.0,
+        },
+    }
+}
+
+/// What makes a load's deformation on a grid ([`deformation`]): the
+/// mechanism whose term is the largest under a unit load.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Mechanism {
+    /// The half-space bodies' `P / (E* h)`.
+    HalfSpace,
+    /// A Winkler foundation's `P / (k A_cell)`.
+    Foundation,
+    /// A free beam's `P l^3 / (3 E I)`.
+    Beam,
+}
+
+/// The mechanism of [`deformation`] on `points`, `None` without an
+/// elastic body.
+pub(crate) fn mechanism(bodies: [&Body; 2], points: &PointSet) -> Option<Mechanism> {
+    let cell = points.cell();
+    let measure = cell.measure(points.dimension());
+    let side = match points.dimension() {
+        Dimension::Line => cell.dx,
+        Dimension::Surface => cell.dx.min(cell.dy),
+    };
+    let foundation = bodies.iter().find_map(|b| match *b.model() {
+        Model::Winkler { modulus } => Some(modulus),
+        _ => None,
+    });
+    let mut terms = Vec::new();
+    if bodies.iter().any(|b| b.material().is_some()) {
+        let e = combined_modulus_of(bodies[0].material(), bodies[1].material());
+        terms.push((Mechanism::HalfSpace, side / (measure * e)));
+    }
+    if let Some(k) = foundation {
+        terms.push((Mechanism::Foundation, 1.0 / (measure * k)));
+    }
+    for b in bodies {
+        if let (
+            None,
+            Model::Beam {
+                flexural_rigidity: ei,
+                loaded_point,
+            },
+        ) = (foundation, *b.model())
+        {
+            terms.push((
+                Mechanism::Beam,
+                beam_arm(points, loaded_point).powi(3) / (3.0 * ei),
+            ));
+        }
+    }
+    terms
+        .into_iter()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(m, _)| m)
+}
+
 /// The bodies' compliance on one cell, `c`, the [`deformation`] a unit
 /// force on one cell makes (about `1 / (E* h)` on a half-space, `1 / (k
 /// A_cell)` on a foundation, `l^3 / (3 E I)` on a cantilevered beam, length
@@ -1113,52 +1417,52 @@ pub(crate) fn deformation(bodies: [&Body; 2], normal: Normal, points: &PointSet)
 /// first `youngs_modulus`).
 pub(crate) fn compliance_in_range(
     ctx: &Ctx<'_>,
-    raw: [&Spanned<BodyToml>; 2],
+    factors: &dyn Fn(bool) -> Vec<Factor>,
     bodies: [&Body; 2],
     points: &PointSet,
     (normal, largest): (Normal, f64),
     labels: Labels<'_>,
 ) -> Result<(), SceneError> {
     let c = deformation(bodies, Normal::Load(1.0), points);
-    let r = deformation(bodies, normal, points).max(largest.abs());
+    let w = deformation(bodies, normal, points);
+    let r = w.max(largest.abs());
     // In decades: the product itself can underflow to 0 or overflow.
     let decades = 2.0 * r.log10() + c.log10();
     let range = MIN_DEFORMATION * MIN_DEFORMATION..=MAX_DEFORMATION * MAX_DEFORMATION;
+    let bounds = (range.start().log10(), range.end().log10());
     // 0: no elastic body or nothing pressed (said elsewhere); in range:
     // nothing to say.
-    if c == 0.0 || r == 0.0 || (range.start().log10()..=range.end().log10()).contains(&decades) {
+    if c == 0.0 || r == 0.0 || (bounds.0..=bounds.1).contains(&decades) {
         return Ok(());
     }
-    // The stiffness is blamed (a foundation's modulus before a body's): the
-    // load's and the approach's own bounds ran before this one, and on a
-    // grid sized by the Hertz contact the residuals scale with the moduli.
-    let keyed = |key: &str, pick: fn(&BodyToml) -> &Option<Spanned<f64>>| {
-        ["body1", "body2"].into_iter().zip(raw).find_map(|(s, r)| {
-            pick(r.get_ref())
-                .as_ref()
-                .map(|v| (format!("{s}.{key}"), v.span(), *v.get_ref()))
-        })
-    };
-    let stiffness =
-        keyed("modulus", |t| &t.modulus).or_else(|| keyed("youngs_modulus", |t| &t.youngs_modulus));
-    // No stiffness key: no elastic body, refused elsewhere.
-    let Some((field, span, value)) = stiffness else {
+    // The input farthest out of scale in the product's direction (the
+    // residuals are the load's deformation, or the largest separation).
+    let candidates = factors(w >= largest.abs());
+    let Some(f) = extreme(&candidates, decades < bounds.0) else {
         return Ok(());
     };
+    let (low, high) = f.range(decades, bounds);
+    let low = low.max(strain_floor(f, bodies, normal, points));
     let Labels { length, force, .. } = labels;
     Err(ctx.invalid(
-        span,
-        field,
-        Num(value),
+        f.span.clone(),
+        f.field.clone(),
+        Num(f.value),
         format!(
             "the bodies' compliance on one cell of the grid, about {c:.2e} {length} per \
              {force} (a unit force's deflection there), times the square of the solve's \
              residuals, about {r:.2e} {length} (the load's deformation or the largest \
              separation), is about 1e{decades:.0}, outside {:.1e} to {:.1e}: the solve's products \
-             of them underflow or overflow among doubles; check the units of the moduli, the \
-             lengths and the load",
+             of them underflow or overflow among doubles. Of the load, the moduli and the radii \
+             this product grows with, {} is the farthest out of scale; with the others as they \
+             are, give {} from {} to {}, or check the units of the moduli, the lengths and the \
+             load",
             range.start(),
-            range.end()
+            range.end(),
+            f.field,
+            f.what,
+            rounded(low * 1.001),
+            rounded(high * 0.999)
         ),
     ))
 }
@@ -1259,6 +1563,73 @@ pub(crate) fn unresolved(
          finer grid, or check the units and the moduli",
         rounded(w)
     ))
+}
+
+/// A load whose largest [`deformation`] on `points` is outside the
+/// doubles' range ([`MIN_DEFORMATION`] to [`MAX_DEFORMATION`], where that
+/// floor binds rather than [`MIN_RESOLVED_DEFORMATION`] of the largest
+/// separation) because another input among `factors` is out of scale: that
+/// input ([`extreme`]) and why, with its accepted range, the others held.
+/// `None` when the load itself is the farthest out of scale (the load's
+/// own refusal, [`unresolved`], says so), or the load's deformation is
+/// resolvable.
+pub(crate) fn deformation_out_of_scale(
+    bodies: [&Body; 2],
+    normal: Normal,
+    points: &PointSet,
+    largest: f64,
+    (factors, product): (&[Factor], &[Factor]),
+    length: &str,
+) -> Option<(Factor, String)> {
+    let Normal::Load(p) = normal else {
+        return None;
+    };
+    let per_point = p / points.len() as f64;
+    if !(MIN_DEFORMATION..=MAX_DEFORMATION).contains(&per_point) {
+        return None;
+    }
+    let w = deformation(bodies, normal, points);
+    let floor = (MIN_RESOLVED_DEFORMATION * largest.abs()).max(MIN_DEFORMATION);
+    let too_small = w < floor && floor == MIN_DEFORMATION;
+    if !(too_small || w > MAX_DEFORMATION) || !(w > 0.0 && w.is_finite()) {
+        return None;
+    }
+    let f = extreme(factors, too_small)?;
+    if f.field == "loading.load" {
+        return None;
+    }
+    let (mut low, mut high) = f.range(w.log10(), (floor.log10(), MAX_DEFORMATION.log10()));
+    // Within the solve's product's range too ([`compliance_in_range`]),
+    // where it depends on the same input: the range both bounds accept.
+    let c = deformation(bodies, Normal::Load(1.0), points);
+    let decades = 2.0 * w.max(largest.abs()).log10() + c.log10();
+    let bounds = (2.0 * MIN_DEFORMATION.log10(), 2.0 * MAX_DEFORMATION.log10());
+    if let Some(g) = product.iter().find(|g| g.field == f.field) {
+        let (a, b) = g.range(decades, bounds);
+        (low, high) = (low.max(a), high.min(b));
+    }
+    low = low.max(strain_floor(f, bodies, normal, points));
+    let against = if too_small {
+        format!(
+            "below {MIN_DEFORMATION:.2e} {length}, where the squares of deformations times the solve's tolerance (2.2e-16 of them) fall among the subnormal numbers and lose their digits"
+        )
+    } else {
+        format!(
+            "above {MAX_DEFORMATION:.2e} {length}, where the solve's sums of squared deformations overflow"
+        )
+    };
+    let reason = format!(
+        "the load deforms the bodies by at most about {} {length} (the whole load on one cell, \
+         against the bodies' stiffness), {against}, so no contact can be resolved. Of the load, \
+         the moduli and the radii it grows with, {} is the farthest out of scale; with the \
+         others as they are, give {} from {} to {}, or check its units",
+        rounded(w),
+        f.field,
+        f.what,
+        rounded(low * 1.001),
+        rounded(high * 0.999)
+    );
+    Some((f.clone(), reason))
 }
 
 /// A beam's longer arm from its loaded point to the far edge of the last

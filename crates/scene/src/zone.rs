@@ -98,6 +98,39 @@ impl Zone {
         }
     }
 
+    /// The largest `t >= 0` for which a convex shape centred at `t shift`
+    /// lies inside the outline grown by `margin(n)` along each outward
+    /// unit normal `n` of its edges, `support(n)` the shape's reach from
+    /// its centre along `n`: on every edge of normal `n` and offset `c`,
+    /// `t (n . shift) + support(n) <= c + margin(n)`. Edges the shift does
+    /// not move the shape towards bound nothing; infinite for points on
+    /// one line (no edges).
+    pub(crate) fn largest_shift(
+        &self,
+        shift: (f64, f64),
+        support: impl Fn((f64, f64)) -> f64,
+        margin: impl Fn((f64, f64)) -> f64,
+    ) -> f64 {
+        let h = &self.hull;
+        if h.len() < 3 {
+            return f64::INFINITY;
+        }
+        (0..h.len())
+            .filter_map(|i| {
+                let (a, b) = (h[i], h[(i + 1) % h.len()]);
+                let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+                let length = dx.hypot(dy);
+                // Counter-clockwise: the outward normal is on the right.
+                let n = (dy / length, -dx / length);
+                let towards = n.0 * shift.0 + n.1 * shift.1;
+                (towards > 0.0).then(|| {
+                    let room = n.0 * a.0 + n.1 * a.1 + margin(n) - support(n);
+                    (room / towards).max(0.0)
+                })
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Whether `c` lies inside the outline or on it (to a billionth of the
     /// zone's size, for points on one line).
     pub(crate) fn holds(&self, c: (f64, f64)) -> bool {
@@ -135,6 +168,24 @@ mod tests {
         assert!(!zone.holds((0.8, 0.8)));
         assert!(zone.depth((0.8, 0.8)) < -0.1);
         assert!(zone.describe().starts_with("x from -1 to 1, y from"));
+    }
+
+    #[test]
+    fn a_shape_shifted_to_the_outline_of_a_rectangle_stops_at_its_edge() {
+        // Points at -1, 0, 1 both ways; a disk of radius 0.5 moved along
+        // x fits until its edge reaches x = 1 + margin 0.25: t = 0.75 / 2.
+        let square = PointSet::grid_rectangle(1.5, 1.5, 3, 3).unwrap();
+        let zone = Zone::of(&square);
+        let t = zone.largest_shift((2.0, 0.0), |_| 0.5, |_| 0.25);
+        assert!((t - 0.375).abs() < 1e-12, "{t}");
+        // Along the diagonal the corner edges bind x and y alike.
+        let t = zone.largest_shift((1.0, 1.0), |_| 0.5, |_| 0.0);
+        assert!((t - 0.5).abs() < 1e-12, "{t}");
+        // No shift: nothing binds.
+        assert_eq!(
+            zone.largest_shift((0.0, 0.0), |_| 0.5, |_| 0.0),
+            f64::INFINITY
+        );
     }
 
     #[test]

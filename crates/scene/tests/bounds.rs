@@ -93,13 +93,47 @@ fn a_load_near_the_subnormal_numbers_never_reaches_a_solver() {
     let (field, e) = refused(scene(&beam));
     assert_eq!(field, "loading.load", "{e}");
     assert!(e.contains("subnormal"), "{e}");
-    // So is a foundation so stiff that it does not move within them.
-    let (field, _) = refused(example_with(
-        "example2-beam-design.toml",
-        "modulus = 1e7",
-        "modulus = 1e300",
+}
+
+#[test]
+fn a_resolvability_refusal_names_the_input_out_of_scale_with_its_range() {
+    // Example 2's foundation at 1e307 lbf/in per in: 50,000 lbf compresses
+    // it by 4.5e-302 in, below the doubles' floor; the load is sensible
+    // against the beam, the modulus is 1e300 times the beam's E.
+    let foundation = |k: &str| example_with("example2-beam-design.toml", "modulus = 1e7", k);
+    let (field, e) = refused(foundation("modulus = 1e307"));
+    assert_eq!(field, "body2.modulus", "{e}");
+    assert!(e.contains("below 6.72e-139 in"), "{e}");
+    assert!(
+        e.contains("body2.modulus is the farthest out of scale"),
+        "{e}"
+    );
+    // The range: the foundation's small strain (mean compression 0.1 of
+    // the beam's 8.9 in) below, the solve's product above.
+    assert!(e.contains("give a modulus from 6319 to 1.589e96"), "{e}");
+    for k in ["modulus = 6320", "modulus = 1.589e96"] {
+        foundation(k).unwrap_or_else(|e| panic!("{k}: {e}"));
+    }
+    // A sphere of radius 1e301 on a rigid plane, on its Hertz grid: a cell
+    // of 1e97 in, whose compliance times the squared residuals is 1e-312;
+    // the radius, not the moduli, is out of scale.
+    let huge = |r: &str| {
+        common::sphere_on_rigid_plane("across = 11\nzone = 1.4")
+            .replace("radius = 1.0 }", &format!("radius = {r} }}"))
+    };
+    let (field, e) = refused(scene(&huge("1e301")));
+    assert_eq!(field, "geometry.surface1.radius", "{e}");
+    assert!(e.contains("is about 1e-312"), "{e}");
+    let most = e.split(" to ").last().unwrap().split(',').next().unwrap();
+    scene(&huge(most)).unwrap();
+    // An approach of 1e-305 m names the approach, not the modulus.
+    let (field, e) = refused(example_with(
+        "flat-punch.toml",
+        "approach = ",
+        "approach = 1e-305 # ",
     ));
-    assert_eq!(field, "loading.load");
+    assert_eq!(field, "loading.approach", "{e}");
+    assert!(e.contains("give an approach of at least"), "{e}");
 }
 
 #[test]
@@ -376,4 +410,97 @@ fn moduli_whose_influence_products_underflow_are_refused() {
     assert!(e.contains("is about 1e-39"), "{e}");
     assert!(e.contains("check the units of the moduli"), "{e}");
     scene(&stiff("1e130")).unwrap();
+}
+
+/// An aluminium ball of radius 10 mm in a groove (a quadric of radii 20
+/// and -10.4 mm) at `angle` degrees, on an ellipse grid, under `load` N.
+fn ball_in_groove(angle: &str, load: &str) -> String {
+    format!(
+        "[units]\nlength = \"m\"\nforce = \"N\"\npressure = \"Pa\"\n\
+         [body1]\nmodel = \"uniform-patch\"\nyoungs_modulus = 7e10\npoissons_ratio = 0.33\n\
+         [body2]\nmodel = \"uniform-patch\"\nyoungs_modulus = 7e10\npoissons_ratio = 0.33\n\
+         [geometry]\nsurface1 = {{ shape = \"sphere\", radius = 0.01 }}\n\
+         surface2 = {{ shape = \"quadric\", radius_x = 0.02, radius_y = -0.0104, angle = {angle} }}\n\
+         [points]\ngrid = \"ellipse\"\nacross = 21\nzone = 1.2\n\
+         [loading]\nload = {load}\n"
+    )
+}
+
+#[test]
+fn hertz_s_approach_on_an_ellipse_grid_is_measured_across_the_ellipse_whatever_its_turn() {
+    // At 1 MN Hertz's approach is 1.754 mm against the zone's 6.223 mm
+    // across the ellipse's minor axis: refused turned or not (turned by 20
+    // degrees, the grid's extents along x and y are larger, and were the
+    // measure).
+    let mut messages = Vec::new();
+    for angle in ["0.0", "20.0", "-35.0"] {
+        let (field, e) = refused(scene(&ball_in_groove(angle, "1e6")));
+        assert_eq!(field, "loading.load", "{angle}: {e}");
+        assert!(
+            e.contains("is 0.2818 times the candidate zone's extent across the Hertz ellipse's minor axis, 0.006223 m"),
+            "{angle}: {e}"
+        );
+        messages.push(e.split("`loading.load`").nth(1).unwrap().to_string());
+    }
+    assert!(messages.iter().all(|m| *m == messages[0]), "{messages:?}");
+    // The load the message names passes check at either turn.
+    let most = messages[0]
+        .split("at most ")
+        .nth(2)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap();
+    assert_eq!(most, "44640");
+    for angle in ["0.0", "20.0"] {
+        scene(&ball_in_groove(angle, most)).unwrap();
+    }
+}
+
+#[test]
+fn a_tilt_that_moves_an_elliptical_contact_off_the_zone_is_refused_by_check() {
+    // The ball-bearing example (its contact ellipse 1.311 x 0.1403 mm,
+    // along y) tilted about x: the gap's minimum moves by tilt / k_yy =
+    // 103.2 tilt mm along y, 1.032 mm at 0.01 rad against a zone reaching
+    // 1.574 mm: the run found the contact against the zone's edge.
+    let tilted = |tilt: &str| {
+        example_with(
+            "ball-bearing.toml",
+            "load = 1000.0 ",
+            &format!("load = 1000.0\ntilt_x = {tilt} "),
+        )
+    };
+    let (field, e) = refused(tilted("0.01"));
+    assert_eq!(field, "loading.tilt_x", "{e}");
+    assert!(
+        e.contains("K^-1 tilt = 1.032 mm to (x, y) = (0, -1.032)"),
+        "{e}"
+    );
+    assert!(e.contains("against the zone's edge"), "{e}");
+    assert!(e.contains("at most 0.002965 rad"), "{e}");
+    // Within the bound the run keeps the contact clear of the edge.
+    run(&tilted("0.0025").unwrap()).unwrap();
+}
+
+#[test]
+fn a_plane_strain_datum_that_strains_the_zone_is_refused_naming_it() {
+    // Hertz's cylinders (0.5025 mm of zone) with body 2's datum at 1e301
+    // mm: its compression, 1.379e-3 (ln(2 d0 / b) + 1/2) mm, is 0.96 mm,
+    // and the run refused the solved approach naming the load.
+    let datum = |d0: &str| {
+        example_with(
+            "hertz-cylinders.toml",
+            "poissons_ratio = 0.3\nreference_distance = 10.0\n\n[geometry]",
+            &format!("poissons_ratio = 0.3\nreference_distance = {d0}\n\n[geometry]"),
+        )
+    };
+    let (field, e) = refused(datum("1e301"));
+    assert_eq!(field, "body2.reference_distance", "{e}");
+    assert!(e.contains("is 0.967 mm"), "{e}");
+    assert!(e.contains("this datum adds 0.9599 mm of it"), "{e}");
+    assert!(e.contains("from 0.5025 (the grid's extent) to "), "{e}");
+    // The largest datum the message names passes check and runs.
+    let most = e.split(" to ").last().unwrap().split(' ').next().unwrap();
+    run(&datum(most).unwrap()).unwrap();
+    run(&datum("1e8").unwrap()).unwrap();
 }

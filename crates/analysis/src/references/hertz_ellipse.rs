@@ -74,31 +74,33 @@ impl HertzEllipse {
         let combined_modulus = super::positive("combined_modulus", combined_modulus)?;
         let load = super::positive("load", load)?;
         let p = curvature.principal_values();
-        if !(p.smaller.is_finite() && p.larger.is_finite() && p.smaller > 0.0) {
+        // A circular gap's smaller value, `det / larger`, can round a unit
+        // in the last place above the larger (equal radii, crossed equal
+        // cylinders): it is a circle, Hertz's spheres, not a refusal.
+        let (smaller, larger) = (p.smaller.min(p.larger), p.larger.max(p.smaller));
+        if !(smaller.is_finite() && larger.is_finite() && smaller > 0.0) {
             return Err(AnalysisError::InvalidInput {
                 field: "curvature",
-                value: p.smaller,
+                value: smaller,
                 reason: "both principal curvatures of the gap must be finite and > 0: a line \
                          contact (one of them zero) or surfaces that part have no elliptical \
                          Hertz contact",
             });
         }
-        let ratio_squared =
-            eccentricity(p.larger / p.smaller).ok_or(AnalysisError::InvalidInput {
-                field: "curvature",
-                value: p.larger / p.smaller,
-                reason: "the principal curvatures' ratio is beyond what a double resolves: a \
+        let ratio_squared = eccentricity(larger / smaller).ok_or(AnalysisError::InvalidInput {
+            field: "curvature",
+            value: larger / smaller,
+            reason: "the principal curvatures' ratio is beyond what a double resolves: a \
                          line contact to rounding",
-            })?;
+        })?;
         // a^3 = P R_D(0, q, 1) / (2 pi E* A), A = k_smaller / 2.
-        let semi_major = (load * carlson_rd(0.0, ratio_squared, 1.0)
-            / (PI * combined_modulus * p.smaller))
-            .cbrt();
+        let semi_major =
+            (load * carlson_rd(0.0, ratio_squared, 1.0) / (PI * combined_modulus * smaller)).cbrt();
         Ok(Self {
             combined_modulus,
             curvature,
             load,
-            principal: (p.smaller, p.larger),
+            principal: (smaller, larger),
             angle: p.angle,
             ratio_squared,
             semi_major,
@@ -324,6 +326,28 @@ mod tests {
         let near = HertzEllipse::new(e, Curvature::principal(k, k * (1.0 + 1e-9), 0.0), p).unwrap();
         assert!((near.semi_major() / s.contact_radius() - 1.0).abs() < 1e-9);
         assert!((near.approach() / s.approach() - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_circular_gap_whose_smaller_value_rounds_above_the_larger_is_a_circle() {
+        // Two quadrics of radii 10 both ways: k = 0.2 both ways, and
+        // det / larger = 0.04 / 0.2 rounds to 0.20000000000000004.
+        let (e, p) = (115.38e3, 1000.0);
+        let k = 1.0 / 10.0 + 1.0 / 10.0;
+        let form = Curvature::principal(k, k, 0.0);
+        let v = form.principal_values();
+        assert!(v.smaller > v.larger, "{v:?}");
+        let h = HertzEllipse::new(e, form, p).unwrap();
+        let s = HertzSpheres::new(e, 1.0 / k, p).unwrap();
+        let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-14;
+        assert!(close(h.semi_major(), s.contact_radius()));
+        assert!(close(h.semi_minor(), s.contact_radius()));
+        assert!(close(h.peak_pressure(), s.peak_pressure()));
+        assert!(close(h.approach(), s.approach()));
+        let (smaller, larger) = h.principal_curvatures();
+        assert!(smaller <= larger, "{smaller} {larger}");
+        // A ratio a unit above 1: q = 1 - 1.1e-16, e = sqrt(1 - q) ~ 1e-8.
+        assert!(h.eccentricity() < 1e-7, "{}", h.eccentricity());
     }
 
     #[test]

@@ -11,6 +11,7 @@ use elcon_influence::{PointSet, combined_modulus_of};
 use super::body::{BodySpec, ModelKind};
 use super::geometry::combined;
 use super::points::{EllipseShape, PointsSpec};
+use crate::sanity::StrainExtent;
 
 /// The closed form a scene is compared with, when one applies.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -193,6 +194,28 @@ pub(super) fn spheres_at(
         Hertz::Spheres(h) => Some((combined(geometry, true)?, h.contact_radius())),
         _ => None,
     }
+}
+
+/// The length the small strain measures an approach against on `points`
+/// laid out by `spec` around the Hertz contact `hertz`: on an ellipse grid
+/// the zone across the Hertz ellipse's minor axis in the ellipse's own
+/// frame (`elcon_analysis::grid::ellipse_minor_zone`: the same at any
+/// turn, where the grid's extents along x and y grow with the turn), else
+/// the zone's smaller extent.
+pub(crate) fn approach_extent(
+    spec: &PointsSpec,
+    hertz: Option<&Hertz>,
+    points: &PointSet,
+) -> StrainExtent {
+    if let (PointsSpec::EllipseHertz { across, zone, .. }, Some(Hertz::Ellipse(h))) = (spec, hertz)
+        && let Ok(length) = elcon_analysis::grid::ellipse_minor_zone(h.semi_minor(), *across, *zone)
+    {
+        return StrainExtent {
+            length,
+            what: "the candidate zone's extent across the Hertz ellipse's minor axis",
+        };
+    }
+    StrainExtent::of(points)
 }
 
 /// The closed form that applies to the scene, if one does.

@@ -12,6 +12,7 @@
 
 mod body;
 mod design;
+mod factors;
 mod files;
 mod geometry;
 mod hertz;
@@ -300,6 +301,14 @@ impl Scene {
         hertz::hertz_scale(&self.bodies, &self.geometry, &self.points_spec, load)
     }
 
+    /// The length the run's bound on the solved approach measures the
+    /// candidate zone by (`hertz::approach_extent`: on an ellipse grid the
+    /// zone across the Hertz ellipse's minor axis, whatever its turn).
+    pub(crate) fn approach_extent(&self) -> crate::sanity::StrainExtent {
+        let contact = self.loading.load_value().and_then(|p| self.hertz(p));
+        hertz::approach_extent(&self.points_spec, contact.as_ref(), &self.points)
+    }
+
     /// The Hertz contact at `load`, where one applies (the layout, bodies
     /// and surfaces of a Hertz contact).
     pub(crate) fn hertz(&self, load: f64) -> Option<Hertz> {
@@ -335,7 +344,15 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let points_spec = hertz::shaped(points_spec, &bodies, &geometry);
     let points = lay_out(ctx, &raw, &bodies, &geometry, &points_spec, loading)?;
     let geometry = files::on_points(ctx, raw.geometry.as_ref(), geometry, &points)?;
-    small_strain(ctx, &raw, &bodies, &geometry, &points, loading, &units)?;
+    small_strain(
+        ctx,
+        &raw,
+        (&bodies, &points_spec),
+        &geometry,
+        &points,
+        loading,
+        &units,
+    )?;
     hertz_bounds(
         ctx,
         &raw,
@@ -441,7 +458,10 @@ fn program_reads_entries(
 /// What the run would refuse that Hertz's closed form tells before it:
 /// Hertz's approach at the scene's load beyond the small strain
 /// ([`sanity::hertz_approach_strain`]), prescribed tilts moving the
-/// spheres' contact off the candidate zone ([`sanity::tilt_off_zone`]).
+/// spheres' or an elliptical contact off the candidate zone
+/// ([`sanity::tilt_off_zone`], [`sanity::tilt_off_zone_ellipse`]), a
+/// plane-strain datum so far that the line contact's approach strains
+/// the zone ([`sanity::datum_strain`]).
 /// The closed form comes from the bodies, the surfaces and the layout.
 fn hertz_bounds(
     ctx: &Ctx<'_>,
@@ -455,19 +475,47 @@ fn hertz_bounds(
         return Ok(());
     };
     let t = raw.loading.get_ref();
-    let approach = hertz::hertz(bodies, geometry, spec, load).and_then(|h| h.approach());
+    let contact = hertz::hertz(bodies, geometry, spec, load);
+    let extent = hertz::approach_extent(spec, contact.as_ref(), points);
     let sized_by_hertz = matches!(
         spec,
         PointsSpec::DiskHertz { .. } | PointsSpec::EllipseHertz { .. }
     );
-    if let Some(reason) = approach
-        .and_then(|d| sanity::hertz_approach_strain((load, d), sized_by_hertz, points, length))
+    if let Some(reason) = contact
+        .and_then(|h| h.approach())
+        .and_then(|d| sanity::hertz_approach_strain((load, d), sized_by_hertz, extent, length))
     {
         let span = t.load.as_ref().map_or(raw.loading.span(), |l| l.span());
         return Err(ctx.invalid(span, "loading.load", crate::ctx::Num(load), reason));
     }
-    let off = hertz::spheres_at(bodies, geometry, spec, load)
-        .and_then(|rc| sanity::tilt_off_zone(rc, loading, points, length));
+    let pair = [bodies[0].body(), bodies[1].body()];
+    if let Some(Hertz::Cylinders(h)) = contact
+        && let Some((i, reason)) = sanity::datum_strain(&h, pair, points, length)
+    {
+        let (section, raw_body) = [("body1", &raw.body1), ("body2", &raw.body2)][i];
+        let b = raw_body.get_ref();
+        let span = b
+            .reference_distance
+            .as_ref()
+            .map_or(b.model.span(), |v| v.span());
+        let value = match *pair[i].model() {
+            elcon_influence::Model::PlaneStrainStrip {
+                reference_distance, ..
+            } => reference_distance,
+            _ => 0.0,
+        };
+        return Err(ctx.invalid(
+            span,
+            format!("{section}.reference_distance"),
+            crate::ctx::Num(value),
+            reason,
+        ));
+    }
+    let off = match contact {
+        Some(Hertz::Ellipse(h)) => sanity::tilt_off_zone_ellipse(&h, loading, points, length),
+        _ => hertz::spheres_at(bodies, geometry, spec, load)
+            .and_then(|rc| sanity::tilt_off_zone(rc, loading, points, length)),
+    };
     if let Some((field, reason)) = off {
         let (given, value) = if field == "loading.tilt_x" {
             (t.tilt_x.as_ref(), loading.tilt_x)
@@ -490,7 +538,7 @@ fn hertz_bounds(
 fn small_strain(
     ctx: &Ctx<'_>,
     raw: &SceneFile,
-    bodies: &[BodySpec; 2],
+    (bodies, spec): (&[BodySpec; 2], &PointsSpec),
     geometry: &Geometry,
     points: &PointSet,
     loading: Loading,
@@ -507,19 +555,36 @@ fn small_strain(
         strain_labels(units),
     )?;
     let largest = largest_separation(ctx, raw.geometry.as_ref(), geometry, points)?;
-    // The load's own bounds first: a user who mistyped the load is told so.
-    // The load's own bounds first: a user who mistyped the load is told so.
+    let factors = |quantity| factors::factors(raw, pair, spec, loading.normal, points, quantity);
+    // The load's own bounds first: a user who mistyped the load is told
+    // so; a deformation out of the doubles' range blames the input out of
+    // scale (a foundation's modulus of 1e307, not the load).
     let Some(reason) = sanity::unresolved(pair, loading.normal, points, largest, units.length())
     else {
         return sanity::compliance_in_range(
             ctx,
-            [&raw.body1, &raw.body2],
+            &|load| factors(factors::Quantity::Product { load }),
             pair,
             points,
             (loading.normal, largest),
             strain_labels(units),
         );
     };
+    if let Some((f, reason)) = sanity::deformation_out_of_scale(
+        pair,
+        loading.normal,
+        points,
+        largest,
+        (
+            &factors(factors::Quantity::Deformation),
+            &factors(factors::Quantity::Product {
+                load: sanity::deformation(pair, loading.normal, points) >= largest.abs(),
+            }),
+        ),
+        units.length(),
+    ) {
+        return Err(ctx.invalid(f.span, f.field, crate::ctx::Num(f.value), reason));
+    }
     let t = raw.loading.get_ref();
     let (field, given, value) = match loading.normal {
         Normal::Load(v) => ("loading.load", t.load.as_ref(), v),

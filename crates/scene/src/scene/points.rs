@@ -364,7 +364,7 @@ impl PointsSpec {
 /// The family of an ellipse grid, or why a turned ellipse's grid is not
 /// laid out: square cells spanning its minor axis take more than
 /// `MAX_POINTS` points when the ellipse is slender. The message says
-/// what turning the surfaces to lay the ellipse along x would need.
+/// what turning the surfaces to lay the ellipse along x or y would need.
 fn turned_too_many(
     shape: &EllipseShape,
     across: usize,
@@ -397,20 +397,43 @@ fn turned_cells(shape: &EllipseShape, across: usize, (nx, ny): (usize, usize)) -
     )
 }
 
-/// What turning the surfaces to lay the ellipse along x does.
+/// The smallest turn (degrees, in [-45, 45]) that lays an ellipse whose
+/// major axis is at `angle` (radians, in (-90, 90] degrees) from x along a
+/// grid axis, and that axis: the grid lays an aligned ellipse out with
+/// `across` points over each axis whether its major axis is along x or
+/// along y, so the turn is `-angle` (along x) or `90 - angle` taken
+/// modulo 180 (along y), whichever is smaller.
+pub(crate) fn aligning_turn(angle: f64) -> (f64, &'static str) {
+    let degrees = angle.to_degrees();
+    let along_x = -degrees;
+    // 90 - angle, brought into (-90, 90].
+    let along_y = if degrees > 0.0 {
+        90.0 - degrees
+    } else {
+        -90.0 - degrees
+    };
+    if along_x.abs() <= along_y.abs() {
+        (along_x, "x")
+    } else {
+        (along_y, "y")
+    }
+}
+
+/// What turning the surfaces to lay the ellipse along a grid axis does
+/// ([`aligning_turn`]).
 fn align_hint(shape: &EllipseShape, across: usize, zone: f64) -> String {
+    let (turn, axis) = aligning_turn(shape.angle);
     format!(
-        "Turning both surfaces by {:.2} degrees (add it to each quadric's `angle`; a sphere \
-         needs none) lays the ellipse along x, where the grid needs about (across zone)^2 = {} \
-         points",
-        -shape.angle.to_degrees(),
+        "Turning both surfaces by {turn:.2} degrees (add it to each quadric's `angle`; a sphere \
+         needs none) lays the ellipse along {axis}, where the grid needs about (across zone)^2 = \
+         {} points",
         Num((across as f64 * zone).powi(2).round())
     )
 }
 
 /// A note for an ellipse grid around a turned ellipse that has more than
 /// [`TURNED_NOTE_RATIO`] times the points the aligned ellipse's grid
-/// would: the turn that lays it along x.
+/// would: the smallest turn that lays it along x or y.
 pub(crate) fn turned_note(spec: &PointsSpec, points: &PointSet) -> Option<String> {
     let PointsSpec::EllipseHertz {
         across,
@@ -452,4 +475,27 @@ pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<Poin
             &format!("{MAX_POINTS} points, the most elcon lays out"),
         )
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_aligning_turn_is_the_smaller_of_the_turns_to_x_and_to_y() {
+        let turn = |degrees: f64| aligning_turn(degrees.to_radians());
+        let close = |(a, axis): (f64, &str), (b, expected): (f64, &str)| {
+            (a - b).abs() < 1e-9 && axis == expected
+        };
+        // An ellipse at -70 degrees: -20 lays it along y, not 70 along x.
+        assert!(close(turn(-70.0), (-20.0, "y")), "{:?}", turn(-70.0));
+        assert!(close(turn(70.0), (20.0, "y")), "{:?}", turn(70.0));
+        assert!(close(turn(30.0), (-30.0, "x")), "{:?}", turn(30.0));
+        assert!(close(turn(-30.0), (30.0, "x")), "{:?}", turn(-30.0));
+        assert!(close(turn(90.0), (0.0, "y")), "{:?}", turn(90.0));
+        // Never more than 45 degrees.
+        for k in -89..=90 {
+            assert!(turn(f64::from(k)).0.abs() <= 45.0 + 1e-9, "{k}");
+        }
+    }
 }
