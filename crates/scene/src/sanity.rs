@@ -47,7 +47,7 @@ use toml::Spanned;
 use crate::ctx::{Ctx, Num, rounded};
 use crate::error::SceneError;
 use crate::schema::{BodyToml, DesignToml, GeometryToml, LoadingToml, SolverToml};
-use crate::zone::Zone;
+use crate::zone::{OpenEdge, Zone};
 
 /// The most iterative-refinement steps (each an N x N product;
 /// refinement settles in one to three).
@@ -1023,55 +1023,63 @@ pub(crate) fn hertz_approach_strain(
 }
 
 /// Prescribed tilts that move the gap's minimum of spheres of combined
-/// radius `radius` by `R (tilt_y, tilt_x)` (a rotation about x moves it
+/// radius `radius` to `R (tilt_y, -tilt_x)` (a rotation about x moves it
 /// along y) so far that the Hertz contact of radius `contact` around it
-/// reaches beyond the candidate zone (the points' largest distance from
-/// the origin, plus half a cell): the field to name (the larger tilt) and
-/// why. The run would find the contact against the zone's edge.
+/// reaches past the candidate zone's open edge ([`OpenEdge`]: a boundary
+/// point's cell, half a cell out, as the run tests it): the field to name
+/// (the larger tilt) and why. The run would find the contact against the
+/// zone's edge.
 pub(crate) fn tilt_off_zone(
     (radius, contact): (f64, f64),
     loading: Loading,
     points: &PointSet,
     length: &str,
 ) -> Option<(&'static str, String)> {
+    let (tx, ty) = prescribed_tilts(loading);
+    let shift = (radius * ty, -radius * tx);
+    let distance = shift.0.hypot(shift.1);
+    if !(distance > 0.0) {
+        return None;
+    }
+    let edge = OpenEdge::of(points);
+    let most = edge.largest_shift(shift, |d: (f64, f64)| d.0.hypot(d.1) < contact);
+    if most >= 1.0 {
+        return None;
+    }
+    Some((
+        larger_tilt(tx, ty),
+        format!(
+            "the tilts (tilt_x {}, tilt_y {} rad) move the gap's minimum by R tilt = {} {length} \
+             (R = {} {length}, the spheres' combined radius); with the Hertz contact's radius, \
+             {} {length}, the contact reaches beyond the candidate zone's boundary points by \
+             half a cell or more: the contact would lie against the zone's edge. Give tilts of \
+             at most {} rad together, or a larger zone (points.zone or points.radius)",
+            Num(tx),
+            Num(ty),
+            rounded(distance),
+            rounded(radius),
+            rounded(contact),
+            rounded(most * tx.hypot(ty))
+        ),
+    ))
+}
+
+/// The prescribed tilts about x and y (rad; 0 where free).
+fn prescribed_tilts(loading: Loading) -> (f64, f64) {
     let angle = |t: Tilt| match t {
         Tilt::Prescribed { angle } => angle,
         Tilt::Free { .. } => 0.0,
     };
-    let (tx, ty) = (angle(loading.tilt_x), angle(loading.tilt_y));
-    let shift = radius * tx.hypot(ty);
-    let cell = points.cell();
-    let reach = (0..points.len())
-        .map(|k| points.x(k).hypot(points.y(k)))
-        .fold(0.0f64, f64::max)
-        + 0.5 * cell.dx.max(cell.dy);
-    if !(shift > 0.0) || shift + contact <= reach {
-        return None;
-    }
-    let field = if tx.abs() >= ty.abs() {
+    (angle(loading.tilt_x), angle(loading.tilt_y))
+}
+
+/// The field of the larger of the tilts about x and y.
+fn larger_tilt(tx: f64, ty: f64) -> &'static str {
+    if tx.abs() >= ty.abs() {
         "loading.tilt_x"
     } else {
         "loading.tilt_y"
-    };
-    let most = ((reach - contact) / radius).max(0.0);
-    Some((
-        field,
-        format!(
-            "the tilts (tilt_x {}, tilt_y {} rad) move the gap's minimum by R tilt = {} {length} \
-             (R = {} {length}, the spheres' combined radius); with the Hertz contact's radius, \
-             {} {length}, it reaches {} {length} from the centre, beyond the candidate zone's {} \
-             {length}: the contact would lie against the zone's edge. Give tilts of at most {} \
-             rad together, or a larger zone (points.zone or points.radius)",
-            Num(tx),
-            Num(ty),
-            rounded(shift),
-            rounded(radius),
-            rounded(contact),
-            rounded(shift + contact),
-            rounded(reach),
-            rounded(most)
-        ),
-    ))
+    }
 }
 
 /// A line contact whose approach, Hertz's measured from the plane-strain
@@ -1144,25 +1152,20 @@ pub(crate) fn datum_strain(
 
 /// Prescribed tilts that move the minimum of an elliptical Hertz
 /// contact's gap (`h`, of the gap's curvature form K) so far that the
-/// contact ellipse around it reaches beyond the candidate zone (its
-/// points' outline grown by half a cell): the gap
+/// contact ellipse around it reaches past the candidate zone's open edge
+/// ([`OpenEdge`], as the run tests it): the gap
 /// `K(x, x) / 2 + tilt_x y - tilt_y x` has its minimum at
-/// `s = K^-1 (tilt_y, -tilt_x)` (for
-/// spheres `R (tilt_y, -tilt_x)`, [`tilt_off_zone`]), and the contact is
-/// Hertz's ellipse moved there. The field to name (the larger tilt) and
-/// why, as [`tilt_off_zone`] says it. The run would find the contact
-/// against the zone's edge.
+/// `s = K^-1 (tilt_y, -tilt_x)` (for spheres `R (tilt_y, -tilt_x)`,
+/// [`tilt_off_zone`]), and the contact is Hertz's ellipse moved there.
+/// The field to name (the larger tilt) and why, as [`tilt_off_zone`] says
+/// it. The run would find the contact against the zone's edge.
 pub(crate) fn tilt_off_zone_ellipse(
     h: &elcon_analysis::references::HertzEllipse,
     loading: Loading,
     points: &PointSet,
     length: &str,
 ) -> Option<(&'static str, String)> {
-    let angle = |t: Tilt| match t {
-        Tilt::Prescribed { angle } => angle,
-        Tilt::Free { .. } => 0.0,
-    };
-    let (tx, ty) = (angle(loading.tilt_x), angle(loading.tilt_y));
+    let (tx, ty) = prescribed_tilts(loading);
     let k = h.curvature();
     let det = k.xx * k.yy - k.xy * k.xy;
     let shift = (
@@ -1175,28 +1178,24 @@ pub(crate) fn tilt_off_zone_ellipse(
     }
     let (a, b) = (h.semi_major(), h.semi_minor());
     let (s, c) = h.angle().sin_cos();
-    // The ellipse's reach along a unit direction n.
-    let support = |n: (f64, f64)| (a * (n.0 * c + n.1 * s)).hypot(b * (n.1 * c - n.0 * s));
-    let cell = points.cell();
-    let margin = |n: (f64, f64)| 0.5 * (n.0.abs() * cell.dx + n.1.abs() * cell.dy);
-    let zone = Zone::of(points);
-    let most = zone.largest_shift(shift, support, margin);
+    // A point at d from the centre, in the ellipse's axes.
+    let inside = |d: (f64, f64)| {
+        let (u, v) = (d.0 * c + d.1 * s, d.1 * c - d.0 * s);
+        (u / a).powi(2) + (v / b).powi(2) < 1.0
+    };
+    let most = OpenEdge::of(points).largest_shift(shift, inside);
     if most >= 1.0 {
         return None;
     }
-    let field = if tx.abs() >= ty.abs() {
-        "loading.tilt_x"
-    } else {
-        "loading.tilt_y"
-    };
     Some((
-        field,
+        larger_tilt(tx, ty),
         format!(
             "the tilts (tilt_x {}, tilt_y {} rad) move the gap's minimum by K^-1 tilt = {} \
              {length} to (x, y) = ({}, {}) (K the gap's curvature); with the Hertz ellipse's \
-             semi-axes, {} and {} {length}, the contact reaches beyond the candidate zone ({}, \
-             and half a cell): the contact would lie against the zone's edge. Give tilts of at \
-             most {} rad together, or a larger zone (points.zone or points.radius)",
+             semi-axes, {} and {} {length}, the contact reaches beyond the candidate zone's \
+             boundary points ({}) by half a cell or more: the contact would lie against the \
+             zone's edge. Give tilts of at most {} rad together, or a larger zone (points.zone \
+             or points.radius)",
             Num(tx),
             Num(ty),
             rounded(distance),
@@ -1204,7 +1203,7 @@ pub(crate) fn tilt_off_zone_ellipse(
             rounded(shift.1),
             rounded(a),
             rounded(b),
-            zone.describe(),
+            Zone::of(points).describe(),
             rounded(most * tx.hypot(ty))
         ),
     ))

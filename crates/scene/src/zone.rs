@@ -6,6 +6,11 @@
 //! whether a load centre lies inside and how far from the outline, for
 //! `check`'s refusal and for the message of a moment-loaded solve that
 //! failed.
+//!
+//! The zone's open edge ([`OpenEdge`]) is where the run finds a contact
+//! cut off by the zone: a boundary point in contact whose contact goes on
+//! at least half a cell past it on an open side. `check` tests a tilted
+//! Hertz contact against it the same way.
 
 use elcon_influence::PointSet;
 
@@ -98,39 +103,6 @@ impl Zone {
         }
     }
 
-    /// The largest `t >= 0` for which a convex shape centred at `t shift`
-    /// lies inside the outline grown by `margin(n)` along each outward
-    /// unit normal `n` of its edges, `support(n)` the shape's reach from
-    /// its centre along `n`: on every edge of normal `n` and offset `c`,
-    /// `t (n . shift) + support(n) <= c + margin(n)`. Edges the shift does
-    /// not move the shape towards bound nothing; infinite for points on
-    /// one line (no edges).
-    pub(crate) fn largest_shift(
-        &self,
-        shift: (f64, f64),
-        support: impl Fn((f64, f64)) -> f64,
-        margin: impl Fn((f64, f64)) -> f64,
-    ) -> f64 {
-        let h = &self.hull;
-        if h.len() < 3 {
-            return f64::INFINITY;
-        }
-        (0..h.len())
-            .filter_map(|i| {
-                let (a, b) = (h[i], h[(i + 1) % h.len()]);
-                let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-                let length = dx.hypot(dy);
-                // Counter-clockwise: the outward normal is on the right.
-                let n = (dy / length, -dx / length);
-                let towards = n.0 * shift.0 + n.1 * shift.1;
-                (towards > 0.0).then(|| {
-                    let room = n.0 * a.0 + n.1 * a.1 + margin(n) - support(n);
-                    (room / towards).max(0.0)
-                })
-            })
-            .fold(f64::INFINITY, f64::min)
-    }
-
     /// Whether `c` lies inside the outline or on it (to a billionth of the
     /// zone's size, for points on one line).
     pub(crate) fn holds(&self, c: (f64, f64)) -> bool {
@@ -154,9 +126,135 @@ impl Zone {
     }
 }
 
+/// The candidate zone's open edge as the run tests a contact against it:
+/// each point on the zone's boundary paired with the point half a cell
+/// beyond it on each open side (the adjacent cell holds no point). A
+/// contact that holds both goes on past the point's cell: the zone, not
+/// the bodies, ends it (the run's truncation test extrapolates the
+/// pressure's edge there and refuses an edge half a cell out or more).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct OpenEdge {
+    /// (boundary point, half a cell beyond it on an open side).
+    probes: Vec<((f64, f64), (f64, f64))>,
+    /// The zone's outline: a contact whose centre leaves it has crossed
+    /// the edge.
+    zone: Zone,
+    /// The smaller side of a cell.
+    cell: f64,
+}
+
+impl OpenEdge {
+    /// The open edge of `points` (sides told apart by the lattice's
+    /// neighbours; without a lattice both sides of an open direction).
+    pub(crate) fn of(points: &PointSet) -> Self {
+        let cell = points.cell();
+        let lattice = points.lattice();
+        let index = points.lattice_index();
+        let mut probes = Vec::new();
+        for k in (0..points.len()).filter(|&k| points.is_on_boundary(k)) {
+            let p = (points.x(k), points.y(k));
+            let (open_x, open_y) = points.open_sides(k);
+            let sides = [
+                (1, 0, open_x),
+                (-1, 0, open_x),
+                (0, 1, open_y),
+                (0, -1, open_y),
+            ];
+            for (di, dj, open) in sides {
+                let missing = match (&lattice, &index) {
+                    (Some(l), Some(index)) => {
+                        let (i, j) = l.get(k);
+                        index.get((i + di, j + dj)).is_none()
+                    }
+                    _ => open,
+                };
+                if open && missing {
+                    let out = (
+                        p.0 + 0.5 * di as f64 * cell.dx,
+                        p.1 + 0.5 * dj as f64 * cell.dy,
+                    );
+                    probes.push((p, out));
+                }
+            }
+        }
+        Self {
+            probes,
+            zone: Zone::of(points),
+            cell: cell.dx.min(cell.dy),
+        }
+    }
+
+    /// Whether a contact centred at `c` (`inside(d)`: the point at `d`
+    /// from its centre lies in it) reaches past the open edge.
+    pub(crate) fn reached(&self, c: (f64, f64), inside: &impl Fn((f64, f64)) -> bool) -> bool {
+        let at = |p: (f64, f64)| inside((p.0 - c.0, p.1 - c.1));
+        self.probes.iter().any(|&(p, out)| at(p) && at(out))
+    }
+
+    /// The largest `t` in `[0, 1]` for which a contact centred at `t'
+    /// shift` stays clear of the open edge for every `t' <= t` (1 where
+    /// the whole shift does; a contact that crossed the edge and left the
+    /// zone is not clear again): stepped by a quarter of a cell, then
+    /// bisected to a millionth of the shift.
+    pub(crate) fn largest_shift(
+        &self,
+        shift: (f64, f64),
+        inside: impl Fn((f64, f64)) -> bool,
+    ) -> f64 {
+        let at = |t: f64| (t * shift.0, t * shift.1);
+        let clear = |t: f64| self.zone.holds(at(t)) && !self.reached(at(t), &inside);
+        let length = shift.0.hypot(shift.1);
+        if !clear(0.0) {
+            return 0.0;
+        }
+        if !(length > 0.0) {
+            return 1.0;
+        }
+        let step = (0.25 * self.cell / length).max(1e-6);
+        let mut lo = 0.0f64;
+        loop {
+            let hi = (lo + step).min(1.0);
+            if !clear(hi) {
+                let mut hi = hi;
+                while hi - lo > 1e-6 {
+                    let mid = 0.5 * (lo + hi);
+                    if clear(mid) { lo = mid } else { hi = mid }
+                }
+                return lo;
+            }
+            if hi >= 1.0 {
+                return 1.0;
+            }
+            lo = hi;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_contact_past_a_boundary_point_by_half_a_cell_reaches_the_open_edge() {
+        // Points at -1, 0, 1 both ways (cells of 1): a circle of radius
+        // 0.5 moved along x holds (1, 0) and (1.5, 0) once its centre
+        // passes 1.
+        let square = PointSet::grid_rectangle(1.5, 1.5, 3, 3).unwrap();
+        let edge = OpenEdge::of(&square);
+        let circle = |r: f64| move |d: (f64, f64)| d.0.hypot(d.1) < r;
+        assert!(!edge.reached((0.99, 0.0), &circle(0.5)));
+        assert!(edge.reached((1.01, 0.0), &circle(0.5)));
+        // The centre itself is no boundary point: a circle around it of
+        // radius 1 holds every boundary point but no point half a cell out.
+        assert!(!edge.reached((0.0, 0.0), &circle(1.0)));
+        let t = edge.largest_shift((2.0, 0.0), circle(0.5));
+        assert!((t - 0.5).abs() < 1e-6, "{t}");
+        assert_eq!(edge.largest_shift((0.5, 0.0), circle(0.5)), 1.0);
+        assert_eq!(edge.largest_shift((0.5, 0.0), circle(2.0)), 0.0);
+        // A shift far past the zone crosses the edge on its way out.
+        let t = edge.largest_shift((100.0, 0.0), circle(0.5));
+        assert!((t - 0.01).abs() < 1e-6, "{t}");
+    }
 
     #[test]
     fn a_disk_holds_its_centre_and_not_a_corner_of_its_box() {
@@ -168,24 +266,6 @@ mod tests {
         assert!(!zone.holds((0.8, 0.8)));
         assert!(zone.depth((0.8, 0.8)) < -0.1);
         assert!(zone.describe().starts_with("x from -1 to 1, y from"));
-    }
-
-    #[test]
-    fn a_shape_shifted_to_the_outline_of_a_rectangle_stops_at_its_edge() {
-        // Points at -1, 0, 1 both ways; a disk of radius 0.5 moved along
-        // x fits until its edge reaches x = 1 + margin 0.25: t = 0.75 / 2.
-        let square = PointSet::grid_rectangle(1.5, 1.5, 3, 3).unwrap();
-        let zone = Zone::of(&square);
-        let t = zone.largest_shift((2.0, 0.0), |_| 0.5, |_| 0.25);
-        assert!((t - 0.375).abs() < 1e-12, "{t}");
-        // Along the diagonal the corner edges bind x and y alike.
-        let t = zone.largest_shift((1.0, 1.0), |_| 0.5, |_| 0.0);
-        assert!((t - 0.5).abs() < 1e-12, "{t}");
-        // No shift: nothing binds.
-        assert_eq!(
-            zone.largest_shift((0.0, 0.0), |_| 0.5, |_| 0.0),
-            f64::INFINITY
-        );
     }
 
     #[test]
