@@ -13,10 +13,10 @@
 //! ```
 //!
 //! the mean of 1/r over the rectangle. Each edge of the rectangle
-//! contributes a pair of corner terms; on a lattice, neighbouring cells share
-//! their edges and [`LoveRows`] evaluates each once. For a 2D (plane-strain) half-space the
-//! surface displacement under a line load is only defined relative to a datum
-//! at distance d0; under a uniform pressure of unit resultant on the strip
+//! contributes a pair of corner terms; on a lattice, neighbouring cells
+//! share their edges and the kernel table evaluates each once. For a 2D
+//! (plane-strain) half-space the surface displacement under a line load is
+//! only defined relative to a datum at distance d0; under a uniform pressure of unit resultant on the strip
 //! `[-h/2, h/2]`
 //!
 //! ```text
