@@ -237,18 +237,22 @@ impl<'a> Edge<'a> {
         let (points, pressures) = (self.points, self.pressures);
         let g = self.grid.as_ref()?;
         let cell = points.cell();
-        let pressed_points = (0..points.len()).filter(|&k| pressures[k] > 0.0);
+        // Each pressed point's index, lattice indices and coordinates, the
+        // set walked in order (a grid's by its runs, not point by point).
+        let pressed_points = || {
+            points
+                .positions()
+                .zip(g.lattice.iter())
+                .enumerate()
+                .filter(|&(k, _)| pressures[k] > 0.0)
+        };
         let total: f64 = pressures.iter().filter(|&&p| p > 0.0).sum();
-        let centre = pressed_points.clone().fold((0.0, 0.0), |(x, y), k| {
-            (
-                x + pressures[k] * points.x(k),
-                y + pressures[k] * points.y(k),
-            )
+        let centre = pressed_points().fold((0.0, 0.0), |(x, y), (k, ((xk, yk), _))| {
+            (x + pressures[k] * xk, y + pressures[k] * yk)
         });
         let (cx, cy) = (centre.0 / total, centre.1 / total);
         let mut edge: Vec<(f64, f64, f64)> = Vec::new();
-        for k in pressed_points {
-            let (i, j) = g.lattice.get(k);
+        for (k, ((xk, yk), (i, j))) in pressed_points() {
             for (di, dj, h) in [
                 (1, 0, cell.dx),
                 (-1, 0, cell.dx),
@@ -259,7 +263,7 @@ impl<'a> Edge<'a> {
                     continue;
                 }
                 let t = self.reach(g, k, (di, dj), h);
-                let (x, y) = (points.x(k) + di as f64 * t, points.y(k) + dj as f64 * t);
+                let (x, y) = (xk + di as f64 * t, yk + dj as f64 * t);
                 edge.push(((y - cy).atan2(x - cx), x, y));
             }
         }

@@ -155,8 +155,9 @@ impl Rigid {
         let mut rigid = self.clone();
         rigid.free.clear();
         for &(mode, resultant) in &self.free {
-            let levers: Vec<f64> = (0..points.len())
-                .map(|k| mode.lever(point(points, k), self.load_point))
+            let levers: Vec<f64> = points
+                .positions()
+                .map(|at| mode.lever(at, self.load_point))
                 .collect();
             let scale = levers.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             if folding.is_invariant(&levers, LEVER_SYMMETRY) {

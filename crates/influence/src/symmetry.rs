@@ -137,9 +137,9 @@ impl Lookup {
         (map.len() == points.len()).then_some(Self::Keys { map, cell })
     }
 
-    /// The point nearest `(x, y)` on the lattice, if the set holds one
-    /// there.
-    fn find(&self, (x, y): (f64, f64)) -> Option<usize> {
+    /// The point of `points` nearest `(x, y)` on the lattice, if the set
+    /// holds one there, and its coordinates.
+    fn find(&self, points: &PointSet, (x, y): (f64, f64)) -> Option<(usize, (f64, f64))> {
         match self {
             Self::Lattice {
                 index,
@@ -153,9 +153,13 @@ impl Lookup {
                 let j = base
                     .1
                     .checked_add(((y - origin.1) / cell.dy).round() as i64)?;
-                index.get((i, j))
+                let k = index.get((i, j))?;
+                Some((k, points.position_at(k, (i, j))))
             }
-            Self::Keys { map, cell } => map.get(&doubled_key((x, y), *cell)).map(|&k| k as usize),
+            Self::Keys { map, cell } => {
+                let k = *map.get(&doubled_key((x, y), *cell))? as usize;
+                Some((k, (points.x(k), points.y(k))))
+            }
         }
     }
 }
@@ -215,13 +219,12 @@ impl Folding {
         };
         groups.into_iter().filter_map(move |(group, elements)| {
             let lookup = lookup.as_ref()?;
-            let image = |g: Element, k: usize| -> Option<usize> {
-                let (x, y) = g.apply_xy((points.x(k), points.y(k)));
-                let j = lookup.find((x, y))?;
-                ((points.x(j) - x).abs() <= tolerance && (points.y(j) - y).abs() <= tolerance)
-                    .then_some(j)
+            let image = |g: Element, at: (f64, f64)| -> Option<usize> {
+                let (x, y) = g.apply_xy(at);
+                let (j, (xj, yj)) = lookup.find(points, (x, y))?;
+                ((xj - x).abs() <= tolerance && (yj - y).abs() <= tolerance).then_some(j)
             };
-            let orbits = orbits_of(points.len(), &elements, image)?;
+            let orbits = orbits_of(points.len(), points.positions(), &elements, image)?;
             (orbits.starts.len() - 1 < points.len()).then_some(Self {
                 group,
                 order: elements.len(),
@@ -297,9 +300,10 @@ struct Orbits {
     rep_of: Vec<u32>,
 }
 
-/// The orbits of the points `0..n` under `elements` (a group: the identity
-/// first), each sorted, and the orbit of every point; `None` as soon as a
-/// point has no image under some element.
+/// The orbits of the points `0..n` at `positions` under `elements` (a
+/// group: the identity first), each sorted, and the orbit of every point;
+/// `None` as soon as a point has no image under some element
+/// (`image(g, position)`).
 ///
 /// The points are visited in order and a point not yet in an orbit starts
 /// one, so every orbit's first (smallest) point is the one that started it:
@@ -307,21 +311,22 @@ struct Orbits {
 /// this one in its orbit (orbits of a group are disjoint).
 fn orbits_of(
     n: usize,
+    positions: impl Iterator<Item = (f64, f64)>,
     elements: &[Element],
-    image: impl Fn(Element, usize) -> Option<usize>,
+    image: impl Fn(Element, (f64, f64)) -> Option<usize>,
 ) -> Option<Orbits> {
     // Indices fit in u32: a point set holds at most MAX_POINTS = 2^22.
     let mut rep_of = vec![u32::MAX; n];
     let mut members = Vec::with_capacity(n);
     let mut starts = vec![0u32];
     let mut orbit = Vec::with_capacity(elements.len());
-    for k in 0..n {
+    for (k, at) in positions.enumerate().take(n) {
         if rep_of[k] != u32::MAX {
             continue;
         }
         orbit.clear();
         for &g in elements {
-            let j = image(g, k)?;
+            let j = image(g, at)?;
             if !orbit.contains(&j) {
                 orbit.push(j);
             }

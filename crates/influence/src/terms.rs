@@ -25,7 +25,7 @@ use elcon_num::Num;
 use faer::Mat;
 
 use crate::error::InfluenceError;
-use crate::kernels::{boussinesq, love_rectangle, plane_strain_strip};
+use crate::kernels::{LoveRows, boussinesq, love_rectangle, plane_strain_strip};
 use crate::models::{Body, Model, positive};
 use crate::points::{Cell, Dimension, LatticeBox, PointSet};
 
@@ -226,12 +226,14 @@ impl Terms {
 
     /// Writes the half-space part of S at lattice offset `(di, dj)`,
     /// `0 <= di < ni`, `0 <= dj < nj`, to `out[di * strides.0 + dj *
-    /// strides.1]`, rows di in order. On square cells (dx = dy) the kernels
-    /// are symmetric bit for bit, `K(di, dj) = K(dj, di)` (Love's patch
-    /// sums the same two corner terms in the other order, Boussinesq's
-    /// `hypot` is symmetric), so an offset below the diagonal whose mirror
-    /// lies in the table is copied from it, evaluated once: about half the
-    /// evaluations of a square box.
+    /// strides.1]`, rows di in order. Love's patch is evaluated row by row
+    /// from edge terms shared between neighbouring cells ([`LoveRows`]),
+    /// the other kernels offset by offset ([`Terms::kernel_at`]). On
+    /// square cells (dx = dy) the kernels are symmetric bit for bit,
+    /// `K(di, dj) = K(dj, di)` (Love's patch sums the same edge terms in the
+    /// other order, Boussinesq's `hypot` is symmetric), so an offset below
+    /// the diagonal whose mirror lies in the table is copied from it,
+    /// evaluated once: about half the evaluations of a square box.
     pub(crate) fn fill_table(
         &self,
         ni: usize,
@@ -240,15 +242,49 @@ impl Terms {
         strides: (usize, usize),
     ) {
         let Cell { dx, dy } = self.cell;
+        self.fill_table_mirrored(ni, nj, out, strides, dx == dy);
+    }
+
+    /// [`Terms::fill_table`], copying the offsets below the diagonal from
+    /// their mirror if `mirror` (square cells only).
+    fn fill_table_mirrored(
+        &self,
+        ni: usize,
+        nj: usize,
+        out: &mut [f64],
+        strides: (usize, usize),
+        mirror: bool,
+    ) {
+        let Cell { dx, dy } = self.cell;
         let at = |di: usize, dj: usize| di * strides.0 + dj * strides.1;
-        let symmetric = dx == dy;
+        let mut love = self
+            .kernels
+            .iter()
+            .any(|&(kernel, _)| kernel == Kernel::UniformPatch)
+            .then(|| LoveRows::new(dx, dy, nj));
         for di in 0..ni {
-            for dj in 0..nj {
-                out[at(di, dj)] = if symmetric && dj < di && di < nj {
-                    out[at(dj, di)]
-                } else {
-                    self.coefficient(di as f64 * dx, dj as f64 * dy, di == 0 && dj == 0)
-                };
+            // The offsets evaluated: those at or above the diagonal where
+            // the mirror applies, all of the row otherwise.
+            let from = if mirror && di < nj { di } else { 0 };
+            if let Some(love) = love.as_mut() {
+                love.next_row(from);
+            }
+            for dj in 0..from {
+                out[at(di, dj)] = out[at(dj, di)];
+            }
+            for dj in from..nj {
+                let (x, y) = (di as f64 * dx, dj as f64 * dy);
+                out[at(di, dj)] = self
+                    .kernels
+                    .iter()
+                    .map(|&(kernel, compliance)| {
+                        let k = match (kernel, love.as_ref()) {
+                            (Kernel::UniformPatch, Some(love)) => love.cell(dj) / PI,
+                            _ => self.kernel_at(kernel, x, y, di == 0 && dj == 0),
+                        };
+                        compliance * k
+                    })
+                    .sum();
             }
         }
     }
@@ -256,21 +292,24 @@ impl Terms {
     /// The half-space part of S for an offset (x, y) = field point minus
     /// loaded point; `same_point` selects the self-terms.
     pub(crate) fn coefficient(&self, x: f64, y: f64, same_point: bool) -> f64 {
-        let Cell { dx, dy } = self.cell;
         self.kernels
             .iter()
-            .map(|&(kernel, compliance)| {
-                let k = match kernel {
-                    Kernel::PointForce if same_point => self.centre / PI,
-                    Kernel::PointForce => boussinesq(x, y) / PI,
-                    Kernel::UniformPatch => love_rectangle(x, y, dx, dy) / PI,
-                    Kernel::Strip { reference_distance } => {
-                        2.0 / PI * plane_strain_strip(x, dx, reference_distance)
-                    }
-                };
-                compliance * k
-            })
+            .map(|&(kernel, compliance)| compliance * self.kernel_at(kernel, x, y, same_point))
             .sum()
+    }
+
+    /// One kernel's value (without its compliance) at the offset (x, y);
+    /// `same_point` selects the point force's self-term.
+    fn kernel_at(&self, kernel: Kernel, x: f64, y: f64, same_point: bool) -> f64 {
+        let Cell { dx, dy } = self.cell;
+        match kernel {
+            Kernel::PointForce if same_point => self.centre / PI,
+            Kernel::PointForce => boussinesq(x, y) / PI,
+            Kernel::UniformPatch => love_rectangle(x, y, dx, dy) / PI,
+            Kernel::Strip { reference_distance } => {
+                2.0 / PI * plane_strain_strip(x, dx, reference_distance)
+            }
+        }
     }
 }
 
@@ -376,7 +415,7 @@ mod tests {
     use super::*;
     use crate::material::Material;
 
-    /// The table entry by entry, each offset evaluated (no mirror).
+    /// The table entry by entry, each offset evaluated on its own.
     fn evaluated(terms: &Terms, ni: usize, nj: usize) -> Vec<f64> {
         let Cell { dx, dy } = terms.cell;
         (0..ni)
@@ -385,8 +424,15 @@ mod tests {
             .collect()
     }
 
+    /// The table without the mirror: every offset of every row evaluated.
+    fn unmirrored(terms: &Terms, ni: usize, nj: usize) -> Vec<f64> {
+        let mut table = vec![0.0; ni * nj];
+        terms.fill_table_mirrored(ni, nj, &mut table, (nj, 1), false);
+        table
+    }
+
     #[test]
-    fn the_mirrored_table_equals_every_offset_evaluated_bit_for_bit() {
+    fn the_table_mirrors_bit_for_bit_and_equals_every_offset_evaluated() {
         let steel = Material::new(210e9, 0.3).unwrap();
         let soft = Material::new(3e9, 0.45).unwrap();
         let (patch, force) = (Body::uniform_patch(steel), Body::point_force(soft));
@@ -398,10 +444,19 @@ mod tests {
         ];
         for points in &sets {
             let terms = Terms::collect(points, &[&patch, &force]).unwrap();
+            let forces = Terms::collect(points, &[&force]).unwrap();
             // Boxes wider, taller and square, odd and even.
             for (ni, nj) in [(7, 7), (5, 9), (9, 4), (1, 6), (6, 1), (8, 8)] {
                 let table = terms.table(ni, nj);
-                assert_eq!(table, evaluated(&terms, ni, nj), "{ni} x {nj}");
+                assert_eq!(table, unmirrored(&terms, ni, nj), "{ni} x {nj}");
+                // Boussinesq alone: the per-offset kernel, bit for bit.
+                assert_eq!(forces.table(ni, nj), evaluated(&forces, ni, nj));
+                // Love's patch from shared edges: the per-offset kernel to
+                // its rounding (a few ulps this close; see
+                // kernels::tests::shared_edges_agree_with_each_cell_evaluated_to_its_rounding).
+                for (t, e) in table.iter().zip(evaluated(&terms, ni, nj)) {
+                    assert!((t / e - 1.0).abs() < 64.0 * f64::EPSILON, "{t} vs {e}");
+                }
                 // Transposed into a wider buffer: the same entries.
                 let stride = ni + 2;
                 let mut out = vec![f64::NAN; stride * nj];
@@ -418,6 +473,10 @@ mod tests {
         for (a, b) in [(1, 3), (0, 5), (2, 7)] {
             let at = |i: usize, j: usize| terms.coefficient(i as f64 * dx, j as f64 * dy, false);
             assert_eq!(at(a, b), at(b, a));
+        }
+        let table = unmirrored(&terms, 9, 9);
+        for (a, b) in (0..9).flat_map(|a| (0..9).map(move |b| (a, b))) {
+            assert_eq!(table[a * 9 + b], table[b * 9 + a]);
         }
     }
 }

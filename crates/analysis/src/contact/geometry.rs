@@ -343,11 +343,9 @@ pub fn separations(points: &PointSet, geometry: &Geometry) -> Result<Vec<f64>, A
         Geometry::Surfaces(s1, s2) => {
             s1.validate("surface1.radius", points.dimension())?;
             s2.validate("surface2.radius", points.dimension())?;
-            Ok((0..n)
-                .map(|k| {
-                    let (x, y) = (points.x(k), points.y(k));
-                    s1.height(x, y) + s2.height(x, y)
-                })
+            Ok(points
+                .positions()
+                .map(|(x, y)| s1.height(x, y) + s2.height(x, y))
                 .collect())
         }
         Geometry::Tabulated {
@@ -356,9 +354,10 @@ pub fn separations(points: &PointSet, geometry: &Geometry) -> Result<Vec<f64>, A
         } => {
             s1.validate("surface1.radius", points.dimension())?;
             s2.validate("surface2.radius", points.dimension())?;
-            (0..n)
-                .map(|k| {
-                    let (x, y) = (points.x(k), points.y(k));
+            points
+                .positions()
+                .enumerate()
+                .map(|(k, (x, y))| {
                     departures
                         .iter()
                         .try_fold(s1.height(x, y) + s2.height(x, y), |eps, d| {

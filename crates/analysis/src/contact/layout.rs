@@ -11,7 +11,7 @@ use elcon_influence::{Body, Folding, Model, PointSet};
 use super::geometry::{Geometry, separations};
 use crate::AnalysisError;
 use crate::loading::Loading;
-use crate::rigid::{Rigid, point};
+use crate::rigid::Rigid;
 
 /// Separations equal to this fraction of their largest magnitude count as
 /// symmetric (they come from the same formula at mirrored points, so they
@@ -171,7 +171,9 @@ pub(crate) fn respected(
 /// The separations shifted by the prescribed rigid motions (what the
 /// engine's `q` holds at every point).
 pub(crate) fn shifted(points: &PointSet, separation: &[f64], rigid: &Rigid) -> Vec<f64> {
-    (0..points.len())
-        .map(|k| separation[k] + rigid.shift(point(points, k)))
+    points
+        .positions()
+        .zip(separation)
+        .map(|(at, &s)| s + rigid.shift(at))
         .collect()
 }

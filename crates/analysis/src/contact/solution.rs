@@ -248,10 +248,17 @@ impl ContactProblem {
         let max_pressure = pressures.iter().fold(0.0f64, |a, p| a.max(*p));
         let value = |mode| self.rigid.value(mode, &lambda);
         let (x0, y0) = self.rigid.load_point;
-        let first_moment =
-            |lever: &dyn Fn(usize) -> f64| -> f64 { (0..n).map(|k| forces[k] * lever(k)).sum() };
-        let moment_x = first_moment(&|k| self.points.y(k) - y0);
-        let moment_y = -first_moment(&|k| self.points.x(k) - x0);
+        // The points' coordinates walked once (a grid's by its runs), not
+        // looked up point by point.
+        let first_moment = |lever: &dyn Fn((f64, f64)) -> f64| -> f64 {
+            self.points
+                .positions()
+                .zip(&forces)
+                .map(|(at, &f)| f * lever(at))
+                .sum()
+        };
+        let moment_x = first_moment(&|(_, y)| y - y0);
+        let moment_y = -first_moment(&|(x, _)| x - x0);
         let centre = |moment: f64| if load > 0.0 { moment / load } else { 0.0 };
         ContactSolution {
             forces,

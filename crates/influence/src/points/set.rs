@@ -13,7 +13,7 @@ use elcon_num::Num;
 
 use super::boundary::{boundary_by_cells, lattice_boundary};
 use super::cell::Cell;
-use super::lattice::{GridRuns, Lattice, LatticeIndex, Run};
+use super::lattice::{GridRuns, Lattice, LatticeIndex, LatticeIter, Run};
 use crate::dimension::Dimension;
 use crate::error::InfluenceError;
 
@@ -426,6 +426,30 @@ impl PointSet {
         }
     }
 
+    /// The points' coordinates `(x, y)` in order (y = 0 on a line): the
+    /// values of [`PointSet::x`] and [`PointSet::y`], walked along a grid's
+    /// runs rather than looked up point by point, and nothing allocated.
+    pub fn positions(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        match &self.layout {
+            Layout::Listed { xs, ys, .. } => Positions::Listed { xs, ys, next: 0 },
+            Layout::Grid { x, y, runs } => Positions::Grid {
+                x: *x,
+                y: *y,
+                lattice: runs.lattice().iter(),
+            },
+        }
+    }
+
+    /// The coordinates of point `k`, whose lattice indices are `ij` (from
+    /// the set's [`PointSet::lattice_index`]): [`PointSet::x`] and
+    /// [`PointSet::y`] without looking the indices up again.
+    pub(crate) fn position_at(&self, k: usize, (i, j): (i64, i64)) -> (f64, f64) {
+        match &self.layout {
+            Layout::Listed { xs, ys, .. } => (xs[k], ys[k]),
+            Layout::Grid { x, y, .. } => (x.at(i), y.at(j)),
+        }
+    }
+
     /// All x coordinates (length): borrowed for a set built from
     /// coordinates, computed (N values) for a grid.
     pub fn xs(&self) -> Cow<'_, [f64]> {
@@ -537,6 +561,37 @@ impl PointSet {
     }
 }
 
+/// The iterator of [`PointSet::positions`].
+enum Positions<'a> {
+    Listed {
+        xs: &'a [f64],
+        ys: &'a [f64],
+        next: usize,
+    },
+    Grid {
+        x: AxisRule,
+        y: AxisRule,
+        lattice: LatticeIter<'a>,
+    },
+}
+
+impl Iterator for Positions<'_> {
+    type Item = (f64, f64);
+
+    #[inline]
+    fn next(&mut self) -> Option<(f64, f64)> {
+        match self {
+            Self::Listed { xs, ys, next } => {
+                let k = *next;
+                let at = (*xs.get(k)?, ys[k]);
+                *next += 1;
+                Some(at)
+            }
+            Self::Grid { x, y, lattice } => lattice.next().map(|(i, j)| (x.at(i), y.at(j))),
+        }
+    }
+}
+
 /// Lattice indices relative to the first point, if every point lies on the
 /// lattice `(x0 + i dx, y0 + j dy)` to a relative 1e-12.
 fn detect_lattice(xs: &[f64], ys: &[f64], cell: Cell) -> Option<Vec<(i64, i64)>> {
@@ -560,6 +615,34 @@ fn detect_lattice(xs: &[f64], ys: &[f64], cell: Cell) -> Option<Vec<(i64, i64)>>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn positions_walk_the_coordinates_of_each_point() {
+        let grids = [
+            PointSet::grid_disk(0.1, 0.73).unwrap(),
+            PointSet::grid_rectangle(1.0, 2.5, 4, 7).unwrap(),
+            PointSet::line(-1.0, 2.0, 9).unwrap(),
+        ];
+        for grid in grids {
+            let listed = PointSet::from_points(
+                grid.dimension(),
+                grid.xs().to_vec(),
+                grid.ys().to_vec(),
+                grid.cell(),
+            )
+            .unwrap();
+            for set in [&grid, &listed] {
+                let positions: Vec<(f64, f64)> = set.positions().collect();
+                let lookups: Vec<(f64, f64)> =
+                    (0..set.len()).map(|k| (set.x(k), set.y(k))).collect();
+                assert_eq!(positions, lookups);
+                let lattice = set.lattice().unwrap();
+                for (k, at) in positions.iter().enumerate() {
+                    assert_eq!(set.position_at(k, lattice.get(k)), *at);
+                }
+            }
+        }
+    }
 
     #[test]
     fn a_grid_stores_runs_and_equals_the_same_points_listed() {
