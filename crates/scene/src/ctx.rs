@@ -333,6 +333,14 @@ pub(crate) fn rounded(v: f64) -> Num {
     Num(format!("{v:.3e}").parse().unwrap_or(v))
 }
 
+/// `v >= 0` to four significant digits, never above it: a bound a message
+/// hands back ("at most ...") that passes when given back. Rounding to
+/// the nearest moves a value by at most half a unit of its fourth digit,
+/// 5e-4 of it, so rounding `v (1 - 5e-4)` stays below `v`.
+pub(crate) fn at_most(v: f64) -> Num {
+    rounded(v * (1.0 - 5e-4))
+}
+
 /// Parses TOML text into `T`, turning a parser error into a located
 /// [`SceneError::Syntax`].
 pub(crate) fn parse<T: serde::de::DeserializeOwned>(

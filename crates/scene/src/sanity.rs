@@ -44,7 +44,7 @@ use elcon_design::{Axis, Family, GridSequence, axial_stations};
 use elcon_influence::{Body, Dimension, Model, PointSet, combined_modulus_of};
 use toml::Spanned;
 
-use crate::ctx::{Ctx, Num, rounded};
+use crate::ctx::{Ctx, Num, at_most, rounded};
 use crate::error::SceneError;
 use crate::schema::{BodyToml, DesignToml, GeometryToml, LoadingToml, SolverToml};
 use crate::zone::{OpenEdge, Zone};
@@ -1059,7 +1059,7 @@ pub(crate) fn tilt_off_zone(
             rounded(distance),
             rounded(radius),
             rounded(contact),
-            rounded(most * tx.hypot(ty))
+            at_most(most * tx.hypot(ty))
         ),
     ))
 }
@@ -1204,7 +1204,7 @@ pub(crate) fn tilt_off_zone_ellipse(
             rounded(a),
             rounded(b),
             Zone::of(points).describe(),
-            rounded(most * tx.hypot(ty))
+            at_most(most * tx.hypot(ty))
         ),
     ))
 }
@@ -1275,23 +1275,64 @@ pub(crate) struct Factor {
     pub power: f64,
     /// What it is, for the message ("a modulus").
     pub what: &'static str,
+    /// `(k, o)`: the quantity grows as a power of `1 / (k / value + o)`,
+    /// the value combined with the other body's or surface's term `o`
+    /// (E* of two half-space bodies, `k = 1 - nu^2` and `o` the other's
+    /// compliance; the spheres' combined radius, `k = 1`, `o = 1 / R_2`);
+    /// `(1, 0)`: of the value alone.
+    pub combined: (f64, f64),
 }
 
 impl Factor {
     /// The values of this factor that bring a quantity of `decades`
-    /// (log10) within `lo..=hi` (log10), the other inputs held:
-    /// `value 10^((lo - decades) / power)` to `value 10^((hi - decades) /
-    /// power)`, in increasing order.
+    /// (log10) within `lo..=hi` (log10), the other inputs held, in
+    /// increasing order: the combined value `X` ([`Factor::combined`])
+    /// scaled by `10^((bound - decades) / power)`, turned back into the
+    /// value, `k / (1 / X - o)`. A bound no value reaches (the other term
+    /// alone is beyond it) is infinite: `(low, high)` with `low` infinite
+    /// or `low >= high` is an empty range.
     pub(crate) fn range(&self, decades: f64, (lo, hi): (f64, f64)) -> (f64, f64) {
+        let (k, o) = self.combined;
         // In decades: the factor 10^((lo - decades) / power) alone can
         // underflow where the value it scales does not.
         let at = |bound: f64| {
-            let exponent = self.value.abs().log10() + (bound - decades) / self.power;
-            self.value.signum() * 10f64.powf(exponent)
+            let shift = (bound - decades) / self.power;
+            let alone = || self.value.signum() * 10f64.powf(self.value.abs().log10() + shift);
+            if o == 0.0 || !(self.value > 0.0 && k > 0.0) {
+                return alone();
+            }
+            let inverse = (k / self.value + o) * 10f64.powf(-shift);
+            let rest = inverse - o;
+            match rest > 0.0 {
+                // The other term is negligible where `1 / X` leaves the doubles.
+                _ if !(inverse.is_finite() && inverse > 0.0) => alone(),
+                true => k / rest,
+                false => f64::INFINITY,
+            }
         };
         let (a, b) = (at(lo), at(hi));
         (a.min(b), a.max(b))
     }
+}
+
+/// The range `low..high` of an input a refusal hands back ("give a
+/// modulus from ... to ..."), each end inside the range by 1e-3, or, where
+/// the range is empty, why no value of that input alone will do.
+pub(crate) fn range_advice(what: &str, (low, high): (f64, f64)) -> String {
+    if !(low.is_finite() && low < high) {
+        return format!(
+            "no value of it alone brings the scene within range (the other inputs are out of \
+             scale too): change them together, giving {what} of ordinary size"
+        );
+    }
+    if high.is_infinite() {
+        return format!("give {what} of at least {}", rounded(low * 1.001));
+    }
+    format!(
+        "give {what} from {} to {}",
+        rounded(low * 1.001),
+        rounded(high * 0.999)
+    )
 }
 
 /// Of `factors`, the one that takes a quantity out of its range the most:
@@ -1442,6 +1483,13 @@ pub(crate) fn compliance_in_range(
     };
     let (low, high) = f.range(decades, bounds);
     let low = low.max(strain_floor(f, bodies, normal, points));
+    // An approach is bounded by the small strain of the zone too.
+    let high = match normal {
+        Normal::Approach(_) if f.field == "loading.approach" => {
+            high.min(MAX_STRAIN * StrainExtent::of(points).length)
+        }
+        _ => high,
+    };
     let Labels { length, force, .. } = labels;
     Err(ctx.invalid(
         f.span.clone(),
@@ -1454,14 +1502,11 @@ pub(crate) fn compliance_in_range(
              separation), is about 1e{decades:.0}, outside {:.1e} to {:.1e}: the solve's products \
              of them underflow or overflow among doubles. Of the load, the moduli and the radii \
              this product grows with, {} is the farthest out of scale; with the others as they \
-             are, give {} from {} to {}, or check the units of the moduli, the lengths and the \
-             load",
+             are, {}, or check the units of the moduli, the lengths and the load",
             range.start(),
             range.end(),
             f.field,
-            f.what,
-            rounded(low * 1.001),
-            rounded(high * 0.999)
+            range_advice(f.what, (low, high)),
         ),
     ))
 }
@@ -1621,12 +1666,10 @@ pub(crate) fn deformation_out_of_scale(
         "the load deforms the bodies by at most about {} {length} (the whole load on one cell, \
          against the bodies' stiffness), {against}, so no contact can be resolved. Of the load, \
          the moduli and the radii it grows with, {} is the farthest out of scale; with the \
-         others as they are, give {} from {} to {}, or check its units",
+         others as they are, {}, or check its units",
         rounded(w),
         f.field,
-        f.what,
-        rounded(low * 1.001),
-        rounded(high * 0.999)
+        range_advice(f.what, (low, high)),
     );
     Some((f.clone(), reason))
 }

@@ -137,6 +137,57 @@ fn a_resolvability_refusal_names_the_input_out_of_scale_with_its_range() {
 }
 
 #[test]
+fn a_modulus_range_of_two_elastic_bodies_holds_at_its_ends() {
+    // Example 1's two steel spheres with moduli of 1e200 psi: the solve's
+    // product underflows. Body 2's modulus enters through E*, `1 / E* =
+    // (1 - nu^2) (1 / E1 + 1 / E2)`, not alone: the range it names (the
+    // upper end half what scaling E* by E2 alone gave) passes at both
+    // ends.
+    let stiff = |e2: &str| {
+        common::spheres("across = 41\nzone = 1.15")
+            .replacen("youngs_modulus = 30e6", "youngs_modulus = 1e200", 1)
+            .replacen(
+                "youngs_modulus = 30e6",
+                &format!("youngs_modulus = {e2}"),
+                1,
+            )
+    };
+    let (field, e) = refused(scene(&stiff("1e200")));
+    assert!(field.ends_with(".youngs_modulus"), "{e}");
+    let range = e.split("give a youngs_modulus from ").nth(1).unwrap();
+    let (low, rest) = range.split_once(" to ").unwrap();
+    let high = rest.split(',').next().unwrap();
+    let other = if field == "body1.youngs_modulus" {
+        "body2"
+    } else {
+        "body1"
+    };
+    assert!(other != field.split('.').next().unwrap());
+    for end in [low, high] {
+        let text = if field == "body2.youngs_modulus" {
+            stiff(end)
+        } else {
+            stiff("1e200").replacen(
+                "youngs_modulus = 1e200",
+                &format!("youngs_modulus = {end}"),
+                1,
+            )
+        };
+        scene(&text).unwrap_or_else(|e| panic!("{end}: {e}"));
+    }
+    // Both at 1e300: no modulus of one body alone brings E* back.
+    let (_, e) = refused(scene(&stiff("1e300").replacen(
+        "youngs_modulus = 1e200",
+        "youngs_modulus = 1e300",
+        1,
+    )));
+    assert!(
+        e.contains("no value of it alone brings the scene within range"),
+        "{e}"
+    );
+}
+
+#[test]
 fn a_load_whose_residuals_square_below_the_normal_numbers_is_refused() {
     // Example 1 at 1e-250 lbf on its own Hertz grid: an approach of about
     // 1e-168 in, whose residuals' squares (1e-32 of its square) are
@@ -485,9 +536,11 @@ fn a_tilt_that_moves_an_elliptical_contact_off_the_zone_is_refused_by_check() {
         "{e}"
     );
     assert!(e.contains("against the zone's edge"), "{e}");
-    assert!(e.contains("at most 0.002965 rad"), "{e}");
-    // Within the bound the run keeps the contact clear of the edge.
+    assert!(e.contains("at most 0.002964 rad"), "{e}");
+    // Within the bound the run keeps the contact clear of the edge, and
+    // the bound itself (rounded down) runs.
     run(&tilted("0.0025").unwrap()).unwrap();
+    run(&tilted("0.002964").unwrap()).unwrap();
 }
 
 #[test]

@@ -25,6 +25,7 @@ use elcon_influence::{Body, Model, PointSet};
 use super::points::{HalfX, PointsSpec};
 use crate::sanity::{Factor, Mechanism, mechanism};
 use crate::schema::SceneFile;
+use toml::Spanned;
 
 /// The quantity a bound limits.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -101,6 +102,7 @@ pub(super) fn factors(
             value: *v.get_ref(),
             power: p,
             what,
+            combined: (1.0, 0.0),
         });
     }
     if let Some(f) = stiffness(raw, pair, mechanism, s) {
@@ -143,6 +145,16 @@ fn stiffness(
         Mechanism::Beam => (0..2).find(|&i| matches!(pair[i].model(), Model::Beam { .. }))?,
     };
     let (section, t) = sections[index];
+    // Two half-space bodies deform by E*: `1 / E* = (1 - nu^2) / E + the
+    // other's compliance`.
+    let combined = match (mechanism, pair[index].material()) {
+        (Mechanism::HalfSpace, Some(m)) => {
+            let nu = m.poissons_ratio();
+            let other = pair[1 - index].material().map_or(0.0, |m| m.compliance());
+            (1.0 - nu * nu, other)
+        }
+        _ => (1.0, 0.0),
+    };
     let (key, value, what) = match mechanism {
         Mechanism::Foundation => ("modulus", t.modulus.as_ref()?, "a modulus"),
         _ => (
@@ -157,15 +169,17 @@ fn stiffness(
         value: *value.get_ref(),
         power,
         what,
+        combined,
     })
 }
 
 /// The radius of the surface that curves most (the smallest in
 /// magnitude of the spheres' and cylinders' `radius`), which sets the
-/// gap's curvature.
+/// gap's curvature with the other surface's (`1 / R = 1 / R_1 + 1 /
+/// R_2`, a plane's 0).
 fn radius(raw: &SceneFile, power: f64) -> Option<Factor> {
     let g = raw.geometry.as_ref()?.get_ref();
-    [
+    let radii: Vec<(&str, &Spanned<f64>)> = [
         ("geometry.surface1", &g.surface1),
         ("geometry.surface2", &g.surface2),
     ]
@@ -174,12 +188,22 @@ fn radius(raw: &SceneFile, power: f64) -> Option<Factor> {
         let r = s.as_ref()?.get_ref().radius.as_ref()?;
         Some((field, r))
     })
-    .min_by(|a, b| a.1.get_ref().abs().total_cmp(&b.1.get_ref().abs()))
-    .map(|(field, r)| Factor {
+    .collect();
+    let (i, &(field, r)) = radii
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.1.get_ref().abs().total_cmp(&b.1.1.get_ref().abs()))?;
+    let other = radii
+        .iter()
+        .enumerate()
+        .find(|&(j, _)| j != i)
+        .map_or(0.0, |(_, (_, r))| 1.0 / *r.get_ref());
+    Some(Factor {
         field: format!("{field}.radius"),
         span: r.span(),
         value: *r.get_ref(),
         power,
         what: "a radius",
+        combined: (1.0, other),
     })
 }
