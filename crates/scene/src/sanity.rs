@@ -1579,9 +1579,20 @@ pub(crate) fn unresolved(
         Normal::Approach(d) => (d.abs(), "an approach", "the approach"),
     };
     // The deformation is linear in the load: scale it up to `needed`,
-    // rounded up to four digits.
+    // and to where the solve's product `r^2 c` stays normal
+    // ([`compliance_in_range`], `r` at least the deformation), rounded up
+    // to four digits.
+    let c = deformation(bodies, Normal::Load(1.0), points);
+    let product_floor = if c > 0.0 && largest.abs().powi(2) * c < MIN_DEFORMATION.powi(2) {
+        MIN_DEFORMATION / c.sqrt()
+    } else {
+        0.0
+    };
     let least = if w > 0.0 && w.is_finite() {
-        format!("{}", rounded(value * (needed / w) * 1.001))
+        format!(
+            "{}",
+            rounded(value * (needed.max(product_floor) / w) * 1.001)
+        )
     } else {
         "a larger one".to_string()
     };

@@ -134,6 +134,21 @@ fn a_resolvability_refusal_names_the_input_out_of_scale_with_its_range() {
     ));
     assert_eq!(field, "loading.approach", "{e}");
     assert!(e.contains("give an approach of at least"), "{e}");
+    // The least approach it names passes the solve's product bound too
+    // (6.7e-139 m, the deformations' floor alone, did not).
+    let least = e
+        .split("at least ")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap();
+    example_with(
+        "flat-punch.toml",
+        "approach = ",
+        &format!("approach = {least} # "),
+    )
+    .unwrap_or_else(|e| panic!("{least}: {e}"));
 }
 
 #[test]
