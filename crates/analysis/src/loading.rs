@@ -64,6 +64,14 @@ impl Tilt {
     pub fn is_free_without_moment(&self) -> bool {
         *self == Tilt::Free { moment: 0.0 }
     }
+
+    /// The prescribed rotation `θ` (radians), 0 where the rotation is free.
+    pub fn prescribed_angle(&self) -> f64 {
+        match *self {
+            Tilt::Prescribed { angle } => angle,
+            Tilt::Free { .. } => 0.0,
+        }
+    }
 }
 
 /// How the bodies are pressed together (see the module documentation).

@@ -91,11 +91,8 @@ pub fn small_rotation(
         .iter()
         .any(|w| matches!(w, Warning::ContactAtEdge { .. }));
     if !moment(loading.tilt_x) && !moment(loading.tilt_y) {
-        let tilt = |t: Tilt| match t {
-            Tilt::Prescribed { angle } => angle.abs(),
-            Tilt::Free { .. } => 0.0,
-        };
-        let tilt = tilt(loading.tilt_x).max(tilt(loading.tilt_y));
+        let tilt =
+            (loading.tilt_x.prescribed_angle().abs()).max(loading.tilt_y.prescribed_angle().abs());
         return if tilt > 0.0 && at_edge {
             Err(RotationRefusal::TiltAtEdge { tilt })
         } else {

@@ -39,7 +39,7 @@
 //! [`MAX_DEFORMATION`] is refused too: the squares the solve sums
 //! overflow.
 
-use elcon_analysis::{Curvature, Geometry, Loading, Normal, Tilt};
+use elcon_analysis::{Curvature, Geometry, Loading, Normal};
 use elcon_design::{Axis, Family, GridSequence, axial_stations};
 use elcon_influence::{Body, Dimension, Model, PointSet, combined_modulus_of};
 use toml::Spanned;
@@ -1066,11 +1066,10 @@ pub(crate) fn tilt_off_zone(
 
 /// The prescribed tilts about x and y (rad; 0 where free).
 fn prescribed_tilts(loading: Loading) -> (f64, f64) {
-    let angle = |t: Tilt| match t {
-        Tilt::Prescribed { angle } => angle,
-        Tilt::Free { .. } => 0.0,
-    };
-    (angle(loading.tilt_x), angle(loading.tilt_y))
+    (
+        loading.tilt_x.prescribed_angle(),
+        loading.tilt_y.prescribed_angle(),
+    )
 }
 
 /// The field of the larger of the tilts about x and y.

@@ -522,12 +522,9 @@ fn hertz_bounds(
         } else {
             (t.tilt_y.as_ref(), loading.tilt_y)
         };
-        let angle = match value {
-            elcon_analysis::Tilt::Prescribed { angle } => angle,
-            elcon_analysis::Tilt::Free { .. } => 0.0,
-        };
         let span = given.map_or(raw.loading.span(), |v| v.span());
-        return Err(ctx.invalid(span, field, crate::ctx::Num(angle), reason));
+        let angle = crate::ctx::Num(value.prescribed_angle());
+        return Err(ctx.invalid(span, field, angle, reason));
     }
     Ok(())
 }
