@@ -391,37 +391,31 @@ pub(super) fn direction_pass(
     lambda: &[f64],
     beta: f64,
 ) -> f64 {
-    let (columns, q) = (data.columns(), &*data.q);
-    let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
-    let parts = map_parts(parts, |(c, t)| {
-        let base = c * CHUNK;
-        let len = t.len();
-        let (z, u, q) = (
-            &z[base..base + len],
-            &u[base..base + len],
-            &q[base..base + len],
-        );
-        let (s, _) = shift_of(columns, lambda, base, len, false);
-        let mut num = Lanes::default();
-        for_lanes(len, |i, l| {
-            let w = (u[i] + q[i]) - s[i];
-            let next = if z[i] > 0.0 { w + beta * t[i] } else { 0.0 };
-            t[i] = next;
-            num.add(l, w * next);
-        });
-        num.value()
-    });
-    total(parts.into_iter())
+    let rule = |w: f64, z: f64, t: f64| if z > 0.0 { w + beta * t } else { 0.0 };
+    direction_by(data, (z, u), t, lambda, rule)
 }
 
 /// The proportioning direction: `t_i = w_i` where `z_i = 0` and `w_i < 0`
-/// (Dostál's chopped gradient `β`), 0 elsewhere; returns `t · t`.
+/// (Dostál's chopped gradient `β`), 0 elsewhere; returns `w · t = t · t`.
 pub(super) fn chopped_pass(
     data: &Data<'_>,
     z: &[f64],
     u: &[f64],
     t: &mut [f64],
     lambda: &[f64],
+) -> f64 {
+    let rule = |w: f64, z: f64, _: f64| if z > 0.0 || w >= 0.0 { 0.0 } else { w };
+    direction_by(data, (z, u), t, lambda, rule)
+}
+
+/// A direction `t_i = rule(w_i, z_i, t_i)` from `w = u + q - B λ`, in one
+/// pass; returns `w · t`.
+fn direction_by(
+    data: &Data<'_>,
+    (z, u): (&[f64], &[f64]),
+    t: &mut [f64],
+    lambda: &[f64],
+    rule: impl Fn(f64, f64, f64) -> f64 + Sync,
 ) -> f64 {
     let (columns, q) = (data.columns(), &*data.q);
     let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
@@ -437,9 +431,9 @@ pub(super) fn chopped_pass(
         let mut num = Lanes::default();
         for_lanes(len, |i, l| {
             let w = (u[i] + q[i]) - s[i];
-            let next = if z[i] > 0.0 || w >= 0.0 { 0.0 } else { w };
+            let next = rule(w, z[i], t[i]);
             t[i] = next;
-            num.add(l, next * next);
+            num.add(l, w * next);
         });
         num.value()
     });

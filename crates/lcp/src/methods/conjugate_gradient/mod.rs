@@ -262,6 +262,22 @@ impl State {
             self.g_old = g_now;
             iteration::direction_pass(data, &self.z, &self.u, &mut self.t, &lambda, beta)
         };
+        let enter = !self.guarded;
+        self.advance(form, data, (&lambda, num), enter, work)
+    }
+
+    /// Steps along the direction `t` from `w · t = num`: the product `r =
+    /// M t`, the step `τ = num / (t · r)`, the update (points off `J` that
+    /// interfere enter where `enter` is set), then the rows restored; the
+    /// direction restarts where points entered.
+    fn advance(
+        &mut self,
+        form: &Form<'_>,
+        data: &Data<'_>,
+        (lambda, num): (&[f64], f64),
+        enter: bool,
+        work: &mut Work,
+    ) -> Result<(), Breakdown> {
         form.m.apply(&self.t, &mut self.r);
         work.products += 1;
         let den = iteration::curvature_pass(&self.t, &self.r);
@@ -273,9 +289,9 @@ impl State {
             &mut self.u,
             &self.t,
             &self.r,
-            &lambda,
+            lambda,
             tau,
-            !self.guarded,
+            enter,
         );
         self.restart = update.entered > 0;
         self.fresh = false;
@@ -296,24 +312,8 @@ impl State {
         work: &mut Work,
     ) -> Result<(), Breakdown> {
         let num = iteration::chopped_pass(data, &self.z, &self.u, &mut self.t, lambda);
-        form.m.apply(&self.t, &mut self.r);
-        work.products += 1;
-        let den = iteration::curvature_pass(&self.t, &self.r);
-        let tau = step_length(num, den)?;
-        self.boundary = None;
-        let update = iteration::update_pass(
-            data,
-            &mut self.z,
-            &mut self.u,
-            &self.t,
-            &self.r,
-            lambda,
-            tau,
-            true,
-        );
-        self.restart = true;
-        self.fresh = false;
-        self.rows_after(form, update)
+        // `t` is 0 on `J`: no point leaves, and every point along `β` enters.
+        self.advance(form, data, (lambda, num), true, work)
     }
 
     /// With several rows, keeps `z` where the step `τ` will clip points
