@@ -1217,28 +1217,36 @@ pub(crate) fn tilt_off_zone_ellipse(
 /// longer arm, `P l^3 / (3 E I)`. An upper bound, so that a refusal never
 /// blames a load whose contact is resolved.
 pub(crate) fn deformation(bodies: [&Body; 2], normal: Normal, points: &PointSet) -> f64 {
-    let load = match normal {
-        Normal::Approach(d) => return d.abs(),
-        Normal::Load(p) => p,
-    };
+    match normal {
+        Normal::Approach(d) => d.abs(),
+        Normal::Load(p) => compliances(bodies, points)
+            .into_iter()
+            .fold(0.0f64, |w, (_, c)| w.max(p * c)),
+    }
+}
+
+/// Each mechanism's deflection under a unit force on one cell of
+/// `points` (length per force, [`deformation`]): the half-space bodies'
+/// `h / (A_cell E*)`, a Winkler foundation's `1 / (A_cell k)`, and,
+/// without a foundation, a free beam's `l^3 / (3 E I)`.
+fn compliances(bodies: [&Body; 2], points: &PointSet) -> Vec<(Mechanism, f64)> {
     let cell = points.cell();
     let measure = cell.measure(points.dimension());
     let side = match points.dimension() {
         Dimension::Line => cell.dx,
         Dimension::Surface => cell.dx.min(cell.dy),
     };
-    let pressure = load / measure;
-    let mut w = 0.0f64;
-    if bodies.iter().any(|b| b.material().is_some()) {
-        let e = combined_modulus_of(bodies[0].material(), bodies[1].material());
-        w = w.max(pressure / e * side);
-    }
     let foundation = bodies.iter().find_map(|b| match *b.model() {
         Model::Winkler { modulus } => Some(modulus),
         _ => None,
     });
+    let mut terms = Vec::new();
+    if bodies.iter().any(|b| b.material().is_some()) {
+        let e = combined_modulus_of(bodies[0].material(), bodies[1].material());
+        terms.push((Mechanism::HalfSpace, side / (measure * e)));
+    }
     if let Some(k) = foundation {
-        w = w.max(pressure / k);
+        terms.push((Mechanism::Foundation, 1.0 / (measure * k)));
     }
     for b in bodies {
         if let (
@@ -1249,11 +1257,13 @@ pub(crate) fn deformation(bodies: [&Body; 2], normal: Normal, points: &PointSet)
             },
         ) = (foundation, *b.model())
         {
-            let arm = beam_arm(points, loaded_point);
-            w = w.max(load * arm.powi(3) / (3.0 * ei));
+            terms.push((
+                Mechanism::Beam,
+                beam_arm(points, loaded_point).powi(3) / (3.0 * ei),
+            ));
         }
     }
-    w
+    terms
 }
 
 /// An input a magnitude bound depends on, as the scene writes it (the
@@ -1404,40 +1414,7 @@ pub(crate) enum Mechanism {
 /// The mechanism of [`deformation`] on `points`, `None` without an
 /// elastic body.
 pub(crate) fn mechanism(bodies: [&Body; 2], points: &PointSet) -> Option<Mechanism> {
-    let cell = points.cell();
-    let measure = cell.measure(points.dimension());
-    let side = match points.dimension() {
-        Dimension::Line => cell.dx,
-        Dimension::Surface => cell.dx.min(cell.dy),
-    };
-    let foundation = bodies.iter().find_map(|b| match *b.model() {
-        Model::Winkler { modulus } => Some(modulus),
-        _ => None,
-    });
-    let mut terms = Vec::new();
-    if bodies.iter().any(|b| b.material().is_some()) {
-        let e = combined_modulus_of(bodies[0].material(), bodies[1].material());
-        terms.push((Mechanism::HalfSpace, side / (measure * e)));
-    }
-    if let Some(k) = foundation {
-        terms.push((Mechanism::Foundation, 1.0 / (measure * k)));
-    }
-    for b in bodies {
-        if let (
-            None,
-            Model::Beam {
-                flexural_rigidity: ei,
-                loaded_point,
-            },
-        ) = (foundation, *b.model())
-        {
-            terms.push((
-                Mechanism::Beam,
-                beam_arm(points, loaded_point).powi(3) / (3.0 * ei),
-            ));
-        }
-    }
-    terms
+    compliances(bodies, points)
         .into_iter()
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(m, _)| m)
