@@ -41,6 +41,12 @@ fn refused(r: Result<Scene, SceneError>) -> (String, String) {
     }
 }
 
+/// The value a message names after the `nth` occurrence of `marker` (from
+/// 1), up to `end`: the bound it hands back ("at most 44640,").
+fn named<'a>(e: &'a str, marker: &str, nth: usize, end: char) -> &'a str {
+    e.split(marker).nth(nth).unwrap().split(end).next().unwrap()
+}
+
 /// Example 1's spheres on a rigid plane on an absolute disk of radius
 /// 0.02 in: the largest separation over it is 2e-4 in, and a load P
 /// deforms the bodies by at most 1.5e-5 P in (P on one cell of 0.002 in
@@ -136,13 +142,7 @@ fn a_resolvability_refusal_names_the_input_out_of_scale_with_its_range() {
     assert!(e.contains("give an approach of at least"), "{e}");
     // The least approach it names passes the solve's product bound too
     // (6.7e-139 m, the deformations' floor alone, did not).
-    let least = e
-        .split("at least ")
-        .nth(1)
-        .unwrap()
-        .split(',')
-        .next()
-        .unwrap();
+    let least = named(&e, "at least ", 1, ',');
     example_with(
         "flat-punch.toml",
         "approach = ",
@@ -215,13 +215,7 @@ fn a_load_whose_residuals_square_below_the_normal_numbers_is_refused() {
     assert!(e.contains("subnormal"), "{e}");
     assert!(!e.contains("EPSILON") && !e.contains("MIN_"), "{e}");
     // The load the message names is accepted.
-    let least = e
-        .split("at least ")
-        .nth(1)
-        .unwrap()
-        .split(',')
-        .next()
-        .unwrap();
+    let least = named(&e, "at least ", 1, ',');
     scene(&tiny.replace("load = 1e-250", &format!("load = {least}"))).unwrap();
 }
 
@@ -259,13 +253,7 @@ fn a_load_whose_hertz_approach_strains_the_zone_is_refused_by_check() {
     assert!(e.contains("Hertz's approach at this load"), "{e}");
     assert!(e.contains("beyond the small strain (at most 0.1)"), "{e}");
     // The load the message names passes check and runs.
-    let most = e
-        .split("at most ")
-        .nth(2)
-        .unwrap()
-        .split(',')
-        .next()
-        .unwrap();
+    let most = named(&e, "at most ", 2, ',');
     let s = scene(&heavy(most)).unwrap();
     run(&s).unwrap();
 }
@@ -288,15 +276,7 @@ fn a_tilt_that_moves_the_contact_off_the_zone_is_refused_by_check() {
     let (field, e) = refused(scene(&tilted("0.0024")));
     assert_eq!(field, "loading.tilt_x", "{e}");
     assert!(e.contains("by half a cell or more"), "{e}");
-    let most: f64 = e
-        .split("at most ")
-        .nth(1)
-        .unwrap()
-        .split(' ')
-        .next()
-        .unwrap()
-        .parse()
-        .unwrap();
+    let most: f64 = named(&e, "at most ", 1, ' ').parse().unwrap();
     assert!(most > 0.0022 && most < 0.0024, "{most}");
     // The tilt it names runs, clear of the edge.
     run(&scene(&tilted(&format!("{most}"))).unwrap()).unwrap();
@@ -518,13 +498,7 @@ fn hertz_s_approach_on_an_ellipse_grid_is_measured_across_the_ellipse_whatever_i
     }
     assert!(messages.iter().all(|m| *m == messages[0]), "{messages:?}");
     // The load the message names passes check at either turn.
-    let most = messages[0]
-        .split("at most ")
-        .nth(2)
-        .unwrap()
-        .split(',')
-        .next()
-        .unwrap();
+    let most = named(&messages[0], "at most ", 2, ',');
     assert_eq!(most, "44640");
     for angle in ["0.0", "20.0"] {
         scene(&ball_in_groove(angle, most)).unwrap();
