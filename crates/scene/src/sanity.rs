@@ -1182,7 +1182,8 @@ pub(crate) fn tilt_off_zone_ellipse(
         let (u, v) = (d.0 * c + d.1 * s, d.1 * c - d.0 * s);
         (u / a).powi(2) + (v / b).powi(2) < 1.0
     };
-    let most = OpenEdge::of(points).largest_shift(shift, inside);
+    let edge = OpenEdge::of(points);
+    let most = edge.largest_shift(shift, inside);
     if most >= 1.0 {
         return None;
     }
@@ -1202,7 +1203,7 @@ pub(crate) fn tilt_off_zone_ellipse(
             rounded(shift.1),
             rounded(a),
             rounded(b),
-            Zone::of(points).describe(),
+            edge.describe(),
             at_most(most * tx.hypot(ty))
         ),
     ))

@@ -184,6 +184,11 @@ impl OpenEdge {
         }
     }
 
+    /// The zone in words ([`Zone::describe`]).
+    pub(crate) fn describe(&self) -> String {
+        self.zone.describe()
+    }
+
     /// Whether a contact centred at `c` (`inside(d)`: the point at `d`
     /// from its centre lies in it) reaches past the open edge.
     pub(crate) fn reached(&self, c: (f64, f64), inside: &impl Fn((f64, f64)) -> bool) -> bool {
