@@ -2,10 +2,11 @@
 //! the direction `t`, the product `r = M t`) and the data (`q`, `B`), each
 //! a single pass, chunk by chunk ([`passes`](super::passes): the same
 //! bits on any number of threads). Inside a chunk (32 kB a vector, in
-//! cache) the border's shift `B λ` is formed column by column and each sum
-//! runs in a loop of its own, its lanes in registers (loops the compiler
-//! vectorizes); every lane still adds the same terms in the same order as
-//! one loop over the entries would:
+//! cache) the border's shift `B λ` is formed column by column, and each
+//! sum ([`Terms`]) and each loop that writes a vector or takes the
+//! measures ([`chunk`](super::chunk)) runs in vector registers; every lane
+//! still adds the same terms in the same order as one loop over the
+//! entries would:
 //!
 //! ```text
 //!     fit:        Σ_J B u,  Σ_J B q,  B_J^T B_J                     (after a true product)
@@ -26,7 +27,8 @@ use std::borrow::Cow;
 
 use faer::{ColRef, Mat, MatRef};
 
-use super::passes::{CHUNK, Compensated, LANES, Lanes, for_lanes, map_parts, total};
+use super::chunk::{Rule, Step, direction_chunk, measure_chunk, update_chunk};
+use super::passes::{CHUNK, Compensated, LANES, Lanes, Terms, map_parts, total};
 
 /// `q` and the border's columns as slices (copied where a column is not
 /// contiguous).
@@ -136,23 +138,6 @@ fn shift_of(
     (shift, magnitude)
 }
 
-/// Adds `f(i)` for `i` in `0..len` to a compensated sum, `i` to lane
-/// `i mod LANES` (a chunk's loop of its own: the sum in registers).
-#[inline(always)]
-fn add_compensated(sum: &mut Compensated, len: usize, f: impl Fn(usize) -> f64) {
-    let mut local = *sum;
-    local.add_all(len, f);
-    *sum = local;
-}
-
-/// Adds `f(i)` for `i` in `0..len` to a plain sum in lanes.
-#[inline(always)]
-fn add_lanes(sum: &mut Lanes, len: usize, f: impl Fn(usize) -> f64) {
-    let mut local = *sum;
-    local.add_all(len, f);
-    *sum = local;
-}
-
 /// The fit's sums over the contact set `J`: `Σ_J B_j u`, `Σ_J B_j q`
 /// (compensated) and the Gram matrix `B_J^T B_J`.
 #[derive(Debug, Clone)]
@@ -218,12 +203,11 @@ pub(super) fn fit_pass(data: &Data<'_>, z: &[f64], u: &[f64]) -> FitSums {
         let mut e = 0;
         for a in 0..k {
             let ba = columns[a].part(range.start, len);
-            let on = |i: usize| if z[i] > 0.0 { ba[i] } else { 0.0 };
-            add_compensated(&mut p.bu[a], len, |i| on(i) * u[i]);
-            add_compensated(&mut p.bq[a], len, |i| on(i) * q[i]);
+            p.bu[a] = Terms::Masked(z, ba, u).compensated();
+            p.bq[a] = Terms::Masked(z, ba, q).compensated();
             for b in 0..=a {
                 let bb = columns[b].part(range.start, len);
-                add_lanes(&mut p.gram[e], len, |i| on(i) * bb[i]);
+                p.gram[e] = Terms::Masked(z, ba, bb).plain();
                 e += 1;
             }
         }
@@ -327,38 +311,18 @@ pub(super) fn measure_pass(
             u.iter_mut().for_each(|v| *v *= scale);
         }
         let (s, s_terms) = shift_of(columns, lambda, base, len, true);
-        let (mut min_w, mut comp) = ([0.0f64; LANES], [0.0f64; LANES]);
-        let (mut w_scale, mut z_scale) = ([0.0f64; LANES], [0.0f64; LANES]);
-        let (mut g, mut chopped) = (Lanes::default(), Lanes::default());
-        let mut bad = [false; LANES];
-        for_lanes(len, |i, l| {
-            let w = (u[i] + q[i]) - s[i];
-            let zi = z[i];
-            bad[l] |= !w.is_finite();
-            let cw = (zi * w).abs();
-            let terms = u[i].abs() + q[i].abs() + s_terms[i];
-            min_w[l] = if w < min_w[l] { w } else { min_w[l] };
-            comp[l] = if cw > comp[l] { cw } else { comp[l] };
-            w_scale[l] = if terms > w_scale[l] {
-                terms
-            } else {
-                w_scale[l]
-            };
-            z_scale[l] = if zi > z_scale[l] { zi } else { z_scale[l] };
-            g.add(l, if zi > 0.0 { w * w } else { 0.0 });
-            chopped.add(l, if zi > 0.0 || w >= 0.0 { 0.0 } else { w * w });
-        });
+        let w = measure_chunk([&*z, &*u, q, &s, &s_terms]);
+        (p.min_w, p.comp, p.w_scale, p.z_scale) = (w.min_w, w.comp, w.w_scale, w.z_scale);
+        (p.g, p.chopped) = (Lanes(w.g), Lanes(w.chopped));
+        p.finite = w.nonfinite.iter().all(|&v| v == 0.0);
         if let Some(r) = r {
             residual_of(z, u, q, &s, r);
         }
-        (p.min_w, p.comp, p.w_scale, p.z_scale) = (min_w, comp, w_scale, z_scale);
-        (p.g, p.chopped) = (g, chopped);
         for j in 0..k {
             let b = columns[j].part(base, len);
-            add_compensated(&mut p.rows[j], len, |i| b[i] * z[i]);
-            add_lanes(&mut p.rows_terms[j], len, |i| (b[i] * z[i]).abs());
+            p.rows[j] = Terms::Product(b, z).compensated();
+            p.rows_terms[j] = Terms::AbsProduct(b, z).plain();
         }
-        p.finite = !bad.iter().any(|&b| b);
         p
     });
     let mut rows = vec![Compensated::default(); k];
@@ -391,8 +355,7 @@ pub(super) fn direction_pass(
     lambda: &[f64],
     beta: f64,
 ) -> f64 {
-    let rule = |w: f64, z: f64, t: f64| if z > 0.0 { w + beta * t } else { 0.0 };
-    direction_by(data, (z, u), t, lambda, rule)
+    direction_by(data, (z, u), t, lambda, Some(beta))
 }
 
 /// The proportioning direction: `t_i = w_i` where `z_i = 0` and `w_i < 0`
@@ -404,18 +367,18 @@ pub(super) fn chopped_pass(
     t: &mut [f64],
     lambda: &[f64],
 ) -> f64 {
-    let rule = |w: f64, z: f64, _: f64| if z > 0.0 || w >= 0.0 { 0.0 } else { w };
-    direction_by(data, (z, u), t, lambda, rule)
+    direction_by(data, (z, u), t, lambda, None)
 }
 
-/// A direction `t_i = rule(w_i, z_i, t_i)` from `w = u + q - B λ`, in one
-/// pass; returns `w · t`.
+/// A direction from `w = u + q - B λ`, in one pass: the conjugate one
+/// with `beta` ([`Rule::Conjugate`]), else the chopped gradient
+/// ([`Rule::Chopped`]); returns `w · t`.
 fn direction_by(
     data: &Data<'_>,
     (z, u): (&[f64], &[f64]),
     t: &mut [f64],
     lambda: &[f64],
-    rule: impl Fn(f64, f64, f64) -> f64 + Sync,
+    beta: Option<f64>,
 ) -> f64 {
     let (columns, q) = (data.columns(), &*data.q);
     let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
@@ -428,14 +391,12 @@ fn direction_by(
             &q[base..base + len],
         );
         let (s, _) = shift_of(columns, lambda, base, len, false);
-        let mut num = Lanes::default();
-        for_lanes(len, |i, l| {
-            let w = (u[i] + q[i]) - s[i];
-            let next = rule(w, z[i], t[i]);
-            t[i] = next;
-            num.add(l, w * next);
-        });
-        num.value()
+        let s = &s[..];
+        let rule = match beta {
+            Some(beta) => Rule::Conjugate { u, q, s, beta },
+            None => Rule::Chopped { u, q, s },
+        };
+        direction_chunk(rule, z, t).value()
     });
     total(parts.into_iter())
 }
@@ -443,10 +404,8 @@ fn direction_by(
 /// `r_J · t_J` (`t` is 0 off `J`).
 pub(super) fn curvature_pass(t: &[f64], r: &[f64]) -> f64 {
     let parts = map_parts(ranges(t.len()), |range| {
-        let mut den = Lanes::default();
         let (t, r) = (&t[range.clone()], &r[range]);
-        den.add_all(t.len(), |i| t[i] * r[i]);
-        den.value()
+        Terms::Product(t, r).plain().value()
     });
     total(parts.into_iter())
 }
@@ -516,38 +475,24 @@ pub(super) fn update_pass(
             bu: vec![Compensated::default(); k],
         };
         let (s, _) = shift_of(columns, lambda, base, len, false);
-        let (mut clipped, mut entered) = (0usize, 0usize);
-        for i in 0..len {
-            let old = z[i];
-            let next = if old > 0.0 {
-                let v = old - tau * t[i];
-                clipped += usize::from(!(v > 0.0));
-                v.max(0.0)
-            } else if enter {
-                let w = (u[i] + q[i]) - s[i];
-                if w < 0.0 {
-                    entered += 1;
-                    if tau > 0.0 { -tau * w } else { -w }
-                } else {
-                    old
-                }
-            } else {
-                old
-            };
-            z[i] = next;
-            u[i] -= tau * r[i];
-        }
-        (p.clipped, p.entered) = (clipped, entered);
-        if clipped + entered > 0 {
+        let step = Step {
+            t,
+            r,
+            q,
+            s: &s,
+            tau,
+            enter,
+        };
+        (p.clipped, p.entered) = update_chunk(step, z, u);
+        if p.clipped + p.entered > 0 {
             return p;
         }
         let (z, u) = (&*z, &*u);
         for j in 0..k {
             let b = columns[j].part(base, len);
-            add_compensated(&mut p.rows[j], len, |i| b[i] * z[i]);
-            add_lanes(&mut p.rows_terms[j], len, |i| (b[i] * z[i]).abs());
-            let on = |i: usize| if z[i] > 0.0 { b[i] } else { 0.0 };
-            add_compensated(&mut p.bu[j], len, |i| on(i) * u[i]);
+            p.rows[j] = Terms::Product(b, z).compensated();
+            p.rows_terms[j] = Terms::AbsProduct(b, z).plain();
+            p.bu[j] = Terms::Masked(z, b, u).compensated();
         }
         p
     });
@@ -631,12 +576,10 @@ pub(super) fn projection_pass(data: &Data<'_>, z: &[f64], r: &[f64], p: &[f64]) 
         let mut br = vec![Compensated::default(); k];
         for j in 0..k {
             let b = columns[j].part(range.start, len);
-            let on = |i: usize| if z[i] > 0.0 { b[i] } else { 0.0 };
-            add_compensated(&mut bp[j], len, |i| on(i) * p[i]);
-            add_compensated(&mut br[j], len, |i| on(i) * r[i]);
+            bp[j] = Terms::Masked(z, b, p).compensated();
+            br[j] = Terms::Masked(z, b, r).compensated();
         }
-        let mut rp = Lanes::default();
-        rp.add_all(len, |i| if z[i] > 0.0 { r[i] * p[i] } else { 0.0 });
+        let rp = Terms::MaskedProduct(z, r, p).plain();
         (bp, br, rp.value())
     });
     let (mut bp, mut br) = (
@@ -678,17 +621,8 @@ pub(super) fn preconditioned_direction_pass(
             &p[base..base + len],
         );
         let (s, _) = shift_of(columns, mu, base, len, false);
-        let mut num = Lanes::default();
-        for_lanes(len, |i, l| {
-            let next = if z[i] > 0.0 {
-                (p[i] - s[i]) + beta * t[i]
-            } else {
-                0.0
-            };
-            t[i] = next;
-            num.add(l, r[i] * next);
-        });
-        num.value()
+        let rule = Rule::Preconditioned { p, s: &s, r, beta };
+        direction_chunk(rule, z, t).value()
     });
     total(parts.into_iter())
 }

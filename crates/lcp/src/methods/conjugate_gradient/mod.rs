@@ -79,6 +79,7 @@
 //! with sums in a fixed order (the `passes` module): the iterates are the
 //! same to the bit on one thread or many.
 
+mod chunk;
 mod iteration;
 mod linear;
 mod passes;

@@ -8,8 +8,12 @@
 //!
 //! the vectors cut into chunks of [`CHUNK`] entries (a fixed length, not a
 //! share of the threads), each chunk's sum kept in [`LANES`] interleaved
-//! partial sums (which the compiler turns into vector instructions), the
-//! lanes then the chunks added in their order. Which thread adds a chunk
+//! partial sums, the lanes then the chunks added in their order. A chunk's
+//! sums ([`Terms`]) run in vector registers, the widest the processor has
+//! (`pulp`'s dispatch: AVX2 on x86-64 where present, else SSE2): a group
+//! of [`LANES`] terms fills `LANES / width` registers, so that each lane
+//! adds the same terms in the same order on any processor, and the sums
+//! are the same to the bit with or without vector instructions. Which thread adds a chunk
 //! changes nothing: every sum is the same to the bit on one thread or
 //! many. Maxima and minima are exact in any order. Sums that must be
 //! accurate whatever the number of terms (the border's fit from 10^5 to
@@ -41,26 +45,9 @@ pub(super) fn map_parts<P: Send, T: Send>(
     }
 }
 
-/// Calls `f(i, l)` for `i` in `0..len`, `l = i mod LANES` its lane, a
-/// group of [`LANES`] at a time (the form the compiler vectorizes).
-#[inline(always)]
-pub(super) fn for_lanes(len: usize, mut f: impl FnMut(usize, usize)) {
-    let full = len - len % LANES;
-    let mut i = 0;
-    while i < full {
-        for l in 0..LANES {
-            f(i + l, l);
-        }
-        i += LANES;
-    }
-    for l in 0..len - full {
-        f(full + l, l);
-    }
-}
-
 /// A plain sum in [`LANES`] interleaved partial sums.
 #[derive(Debug, Clone, Copy, Default)]
-pub(super) struct Lanes([f64; LANES]);
+pub(super) struct Lanes(pub(super) [f64; LANES]);
 
 impl Lanes {
     /// Adds `v` to lane `l`.
@@ -69,37 +56,9 @@ impl Lanes {
         self.0[l] += v;
     }
 
-    /// Adds `f(i)` for `i` in `0..len`, `i` to lane `i mod LANES`: a
-    /// group's terms formed first, then added in one straight run (the
-    /// form the compiler turns into vector additions).
-    #[inline(always)]
-    pub(super) fn add_all(&mut self, len: usize, f: impl Fn(usize) -> f64) {
-        in_groups(len, f, |l, v| self.add(l, v));
-    }
-
     /// The lanes' sum, in lane order.
     pub(super) fn value(&self) -> f64 {
         self.0.iter().fold(0.0, |a, &v| a + v)
-    }
-}
-
-/// Calls `add(i mod LANES, f(i))` for `i` in `0..len`, in order, a
-/// group of [`LANES`] terms formed first and then added in one straight
-/// run: the form the compiler turns into vector instructions, with the
-/// same operations in the same order as term by term.
-#[inline(always)]
-fn in_groups(len: usize, f: impl Fn(usize) -> f64, mut add: impl FnMut(usize, f64)) {
-    let full = len - len % LANES;
-    let mut i = 0;
-    while i < full {
-        let v: [f64; LANES] = std::array::from_fn(|l| f(i + l));
-        for (l, &v) in v.iter().enumerate() {
-            add(l, v);
-        }
-        i += LANES;
-    }
-    for l in 0..len - full {
-        add(l, f(full + l));
     }
 }
 
@@ -135,15 +94,6 @@ impl Compensated {
         self.carry[l] += e;
     }
 
-    /// Adds `f(i)` for `i` in `0..len`, `i` to lane `i mod LANES`: a
-    /// group's terms formed first, then added by two-sums in one straight
-    /// run (the form the compiler turns into vector instructions; the same
-    /// operations in the same order as [`add`](Self::add) term by term).
-    #[inline(always)]
-    pub(super) fn add_all(&mut self, len: usize, f: impl Fn(usize) -> f64) {
-        in_groups(len, f, |l, v| self.add(l, v));
-    }
-
     /// Adds another compensated sum (lane by lane).
     pub(super) fn merge(&mut self, other: &Compensated) {
         for l in 0..LANES {
@@ -165,57 +115,276 @@ impl Compensated {
     }
 }
 
+/// The terms of a sum over a chunk's entries `i` (slices of one length).
+#[derive(Clone, Copy)]
+pub(super) enum Terms<'a> {
+    /// `a_i b_i`.
+    Product(&'a [f64], &'a [f64]),
+    /// `|a_i b_i|`.
+    AbsProduct(&'a [f64], &'a [f64]),
+    /// `(a_i if z_i > 0 else 0) b_i`, as `Masked(z, a, b)`.
+    Masked(&'a [f64], &'a [f64], &'a [f64]),
+    /// `a_i b_i if z_i > 0 else 0`, as `MaskedProduct(z, a, b)`.
+    MaskedProduct(&'a [f64], &'a [f64], &'a [f64]),
+}
+
+impl Terms<'_> {
+    fn len(&self) -> usize {
+        match *self {
+            Terms::Product(a, _) | Terms::AbsProduct(a, _) => a.len(),
+            Terms::Masked(z, ..) | Terms::MaskedProduct(z, ..) => z.len(),
+        }
+    }
+
+    /// Term `i`, one entry at a time (the tail of a chunk).
+    #[inline(always)]
+    fn at(&self, i: usize) -> f64 {
+        match *self {
+            Terms::Product(a, b) => a[i] * b[i],
+            Terms::AbsProduct(a, b) => (a[i] * b[i]).abs(),
+            Terms::Masked(z, a, b) => (if z[i] > 0.0 { a[i] } else { 0.0 }) * b[i],
+            Terms::MaskedProduct(z, a, b) => {
+                if z[i] > 0.0 {
+                    a[i] * b[i]
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
+    /// The sum in [`LANES`] interleaved partial sums, the groups of
+    /// [`LANES`] terms in vector registers (the widest the processor has:
+    /// `pulp`'s dispatch), each lane the same additions in the same order
+    /// as [`Lanes::add`] term by term.
+    pub(super) fn plain(self) -> Lanes {
+        pulp::Arch::new()
+            .dispatch(Sum {
+                terms: self,
+                compensated: false,
+            })
+            .0
+    }
+
+    /// The sum compensated in [`LANES`] interleaved lanes, in vector
+    /// registers, each lane the same operations in the same order as
+    /// [`Compensated::add`] term by term.
+    pub(super) fn compensated(self) -> Compensated {
+        pulp::Arch::new()
+            .dispatch(Sum {
+                terms: self,
+                compensated: true,
+            })
+            .1
+    }
+}
+
+/// A sum of [`Terms`] in vector registers: plain, or compensated.
+struct Sum<'a> {
+    terms: Terms<'a>,
+    compensated: bool,
+}
+
+/// The full groups of `v` as vector registers (the tail left out).
+#[inline(always)]
+pub(super) fn registers<S: pulp::Simd>(v: &[f64]) -> &[S::f64s] {
+    S::as_simd_f64s(&v[..v.len() - v.len() % LANES]).0
+}
+
+/// Registers `r` of `[S::f64s; LANES]` (the first `LANES / S::F64_LANES`
+/// hold the lanes) as [`LANES`] doubles, lane order.
+#[inline(always)]
+pub(super) fn to_lanes<S: pulp::Simd>(v: &[S::f64s; LANES]) -> [f64; LANES] {
+    let mut out = [0.0; LANES];
+    let w = S::F64_LANES;
+    for r in 0..LANES / w {
+        let part: &[f64] = pulp::bytemuck::cast_slice(std::slice::from_ref(&v[r]));
+        out[r * w..(r + 1) * w].copy_from_slice(part);
+    }
+    out
+}
+
+impl pulp::WithSimd for Sum<'_> {
+    type Output = (Lanes, Compensated);
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, simd: S) -> (Lanes, Compensated) {
+        let zero = simd.splat_f64s(0.0);
+        let positive = |z: S::f64s| simd.greater_than_f64s(z, zero);
+        let (sum, carry) = match self.terms {
+            Terms::Product(a, b) => {
+                let (a, b) = (registers::<S>(a), registers::<S>(b));
+                self.registers(simd, a.len(), |k| simd.mul_f64s(a[k], b[k]))
+            }
+            Terms::AbsProduct(a, b) => {
+                let (a, b) = (registers::<S>(a), registers::<S>(b));
+                self.registers(simd, a.len(), |k| simd.abs_f64s(simd.mul_f64s(a[k], b[k])))
+            }
+            Terms::Masked(z, a, b) => {
+                let (z, a, b) = (registers::<S>(z), registers::<S>(a), registers::<S>(b));
+                self.registers(simd, z.len(), |k| {
+                    simd.mul_f64s(simd.select_f64s(positive(z[k]), a[k], zero), b[k])
+                })
+            }
+            Terms::MaskedProduct(z, a, b) => {
+                let (z, a, b) = (registers::<S>(z), registers::<S>(a), registers::<S>(b));
+                self.registers(simd, z.len(), |k| {
+                    simd.select_f64s(positive(z[k]), simd.mul_f64s(a[k], b[k]), zero)
+                })
+            }
+        };
+        let len = self.terms.len();
+        let full = len - len % LANES;
+        let mut plain = Lanes(to_lanes::<S>(&sum));
+        let mut comp = Compensated {
+            sum: plain.0,
+            carry: to_lanes::<S>(&carry),
+        };
+        for i in full..len {
+            let v = self.terms.at(i);
+            if self.compensated {
+                comp.add(i - full, v);
+            } else {
+                plain.add(i - full, v);
+            }
+        }
+        (plain, comp)
+    }
+}
+
+impl Sum<'_> {
+    /// The lanes' sums (and, compensated, carries) of the terms `term(k)`
+    /// of registers `k` in `0..count`, register `k` into lanes `(k mod
+    /// LANES / S::F64_LANES) S::F64_LANES ..`.
+    #[inline(always)]
+    fn registers<S: pulp::Simd>(
+        &self,
+        simd: S,
+        count: usize,
+        term: impl Fn(usize) -> S::f64s,
+    ) -> ([S::f64s; LANES], [S::f64s; LANES]) {
+        let regs = LANES / S::F64_LANES;
+        let zero = simd.splat_f64s(0.0);
+        let (mut sum, mut carry) = ([zero; LANES], [zero; LANES]);
+        let mut k = 0;
+        if self.compensated {
+            while k < count {
+                for r in 0..regs {
+                    let (a, b) = (sum[r], term(k + r));
+                    let s = simd.add_f64s(a, b);
+                    let bb = simd.sub_f64s(s, a);
+                    let e =
+                        simd.add_f64s(simd.sub_f64s(a, simd.sub_f64s(s, bb)), simd.sub_f64s(b, bb));
+                    sum[r] = s;
+                    carry[r] = simd.add_f64s(carry[r], e);
+                }
+                k += regs;
+            }
+        } else {
+            while k < count {
+                for r in 0..regs {
+                    sum[r] = simd.add_f64s(sum[r], term(k + r));
+                }
+                k += regs;
+            }
+        }
+        (sum, carry)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    /// Entry-by-entry sums of `terms`: the reference the vector sums keep.
+    fn by_entry(terms: Terms<'_>) -> (Lanes, Compensated) {
+        let (mut plain, mut comp) = (Lanes::default(), Compensated::default());
+        for i in 0..terms.len() {
+            plain.add(i % LANES, terms.at(i));
+            comp.add(i % LANES, terms.at(i));
+        }
+        (plain, comp)
+    }
+
+    /// The sums of `terms` on the scalar path (no vector instructions).
+    fn scalar(terms: Terms<'_>) -> (Lanes, Compensated) {
+        use pulp::WithSimd;
+        let plain = Sum {
+            terms,
+            compensated: false,
+        };
+        let comp = Sum {
+            terms,
+            compensated: true,
+        };
+        (
+            plain.with_simd(pulp::Scalar::new()).0,
+            comp.with_simd(pulp::Scalar::new()).1,
+        )
+    }
+
+    fn bits(l: &Lanes, c: &Compensated) -> Vec<u64> {
+        l.0.iter()
+            .chain(&c.sum)
+            .chain(&c.carry)
+            .map(|v| v.to_bits())
+            .collect()
+    }
+
     #[test]
     fn a_compensated_sum_keeps_what_a_plain_one_loses() {
-        // In one lane: 1, then 10^5 terms of 1e-17 (each below half an ulp
+        // In lane 0: 1, then 10^5 terms of 1e-17 (each below half an ulp
         // of 1), then -1: a plain sum gives 0, the compensated one 1e-12.
         let m = 100_002;
-        let term = |i: usize| match (i % LANES, i / LANES) {
-            (0, 0) => 1.0,
-            (0, j) if j == m - 1 => -1.0,
-            (0, _) => 1e-17,
-            _ => 0.0,
-        };
-        let (mut c, mut plain) = (Compensated::default(), Lanes::default());
-        for_lanes(LANES * m, |i, l| c.add(l, term(i)));
-        plain.add_all(LANES * m, term);
+        let a: Vec<f64> = (0..LANES * m)
+            .map(|i| match (i % LANES, i / LANES) {
+                (0, 0) => 1.0,
+                (0, j) if j == m - 1 => -1.0,
+                (0, _) => 1e-17,
+                _ => 0.0,
+            })
+            .collect();
+        let ones = vec![1.0; a.len()];
+        let c = Terms::Product(&a, &ones).compensated();
         assert!((c.value() / 1e-12 - 1.0).abs() < 1e-10, "{}", c.value());
-        assert_eq!(plain.value(), 0.0);
-        // Across lanes: 1e16 + 1 - 1e16.
-        let (mut c, mut plain) = (Compensated::default(), Lanes::default());
+        assert_eq!(Terms::Product(&a, &ones).plain().value(), 0.0);
+        // Across lanes (the tail): 1e16 + 1 - 1e16.
         let three = [1e16, 1.0, -1e16];
-        for_lanes(3, |i, l| c.add(l, three[i]));
-        plain.add_all(3, |i| three[i]);
-        assert_eq!((c.value(), plain.value()), (1.0, 0.0));
+        let c = Terms::Product(&three, &[1.0; 3]).compensated();
+        assert_eq!(
+            (c.value(), Terms::Product(&three, &[1.0; 3]).plain().value()),
+            (1.0, 0.0)
+        );
         // Merged chunks add up as one.
-        let mut a = Compensated::default();
-        for_lanes(3, |i, l| a.add(l, three[i]));
         let mut b = Compensated::default();
-        b.merge(&a);
-        b.merge(&a);
+        b.merge(&c);
+        b.merge(&c);
         assert_eq!(b.value(), 2.0);
     }
 
     #[test]
-    fn sums_by_groups_keep_the_bits_of_sums_term_by_term() {
-        let term = |i: usize| {
-            ((i as f64 * 0.618_033_988_749_895).fract() - 0.5) * 1e3f64.powi((i % 7) as i32)
+    fn vector_sums_keep_the_bits_of_sums_entry_by_entry() {
+        let h = |i: usize, k: usize| {
+            ((i as f64 * 0.618_033_988_749_895 + k as f64 * 0.3).fract() - 0.4)
+                * 1e3f64.powi((i % 7) as i32)
         };
-        for len in [0, 5, LANES, 8 * LANES + 3] {
-            let (mut grouped, mut single) = (Compensated::default(), Compensated::default());
-            grouped.add_all(len, term);
-            for_lanes(len, |i, l| single.add(l, term(i)));
-            assert_eq!(grouped.value().to_bits(), single.value().to_bits());
-            let mut plain = Lanes::default();
-            plain.add_all(len, term);
-            let mut by_lane = [0.0f64; LANES];
-            (0..len).for_each(|i| by_lane[i % LANES] += term(i));
-            let expected = by_lane.iter().fold(0.0, |a, &v| a + v);
-            assert_eq!(plain.value().to_bits(), expected.to_bits());
+        for len in [0, 5, LANES, 8 * LANES + 3, CHUNK + 7] {
+            let z: Vec<f64> = (0..len).map(|i| h(i, 0)).collect();
+            let a: Vec<f64> = (0..len).map(|i| h(i, 1)).collect();
+            let b: Vec<f64> = (0..len).map(|i| h(i, 2)).collect();
+            for terms in [
+                Terms::Product(&a, &b),
+                Terms::AbsProduct(&a, &b),
+                Terms::Masked(&z, &a, &b),
+                Terms::MaskedProduct(&z, &a, &b),
+            ] {
+                let reference = by_entry(terms);
+                let reference = bits(&reference.0, &reference.1);
+                let vector = bits(&terms.plain(), &terms.compensated());
+                assert_eq!(vector, reference, "{len} entries");
+                let (plain, comp) = scalar(terms);
+                assert_eq!(bits(&plain, &comp), reference, "{len} entries, scalar");
+            }
         }
     }
 

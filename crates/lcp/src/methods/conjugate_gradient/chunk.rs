@@ -1,0 +1,524 @@
+//! The per-chunk loops of the passes that write vectors or take many
+//! measures at once, in vector registers (`pulp`'s dispatch picks the
+//! widest the processor has, AVX2 on x86-64 where present): the measures
+//! of `w = u + q - B λ`, the direction `t` and the step `z_J -= τ t_J`.
+//! Entry `i` belongs to lane `i mod LANES`, and a group of [`LANES`]
+//! entries fills `LANES / width` registers, so every lane takes the same
+//! operations in the same order on any processor as the entry-by-entry
+//! form (each kernel's `add` or `at`, which also takes a chunk's tail):
+//! the iterates are the same to the bit with or without vector
+//! instructions. Comparisons are written as selections (`a < b ? a : b`),
+//! not as `min`/`max`, whose NaN rules differ between instruction sets.
+
+use pulp::{Simd, WithSimd};
+
+use super::passes::{LANES, Lanes, registers, to_lanes};
+
+/// A chunk's measures of `w`, lane by lane (lane `l` of the entries `i ≡
+/// l (mod LANES)`): the extrema and the sums of
+/// [`Measures`](super::iteration::Measures), and
+/// `Σ 0 w_i`, 0 where every `w_i` is finite and NaN otherwise.
+pub(super) struct WLanes {
+    pub min_w: [f64; LANES],
+    pub comp: [f64; LANES],
+    pub w_scale: [f64; LANES],
+    pub z_scale: [f64; LANES],
+    pub g: [f64; LANES],
+    pub chopped: [f64; LANES],
+    pub nonfinite: [f64; LANES],
+}
+
+impl WLanes {
+    /// Adds entry `(z, u, q, s, s_terms)` to lane `l`: no branch, so that
+    /// a group's eight entries become vector instructions.
+    #[inline(always)]
+    fn add(&mut self, l: usize, [z, u, q, s, s_terms]: [f64; 5]) {
+        let w = (u + q) - s;
+        let cw = (z * w).abs();
+        let terms = u.abs() + q.abs() + s_terms;
+        self.nonfinite[l] += w * 0.0;
+        self.min_w[l] = if w < self.min_w[l] { w } else { self.min_w[l] };
+        self.comp[l] = if cw > self.comp[l] { cw } else { self.comp[l] };
+        self.w_scale[l] = if terms > self.w_scale[l] {
+            terms
+        } else {
+            self.w_scale[l]
+        };
+        self.z_scale[l] = if z > self.z_scale[l] {
+            z
+        } else {
+            self.z_scale[l]
+        };
+        self.g[l] += if z > 0.0 { w * w } else { 0.0 };
+        self.chopped[l] += if (z > 0.0) | (w >= 0.0) { 0.0 } else { w * w };
+    }
+}
+
+/// The measures of a chunk's `w = u + q - s` from its slices `[z, u, q,
+/// s, s_terms]` (of one length): the groups of [`LANES`] entries in
+/// vector registers, lane `l` of the result the same operations in the
+/// same order as [`WLanes::add`] entry by entry, then the tail entry by
+/// entry.
+pub(super) fn measure_chunk(v: [&[f64]; 5]) -> WLanes {
+    pulp::Arch::new().dispatch(MeasureChunk(v))
+}
+
+struct MeasureChunk<'a>([&'a [f64]; 5]);
+
+impl pulp::WithSimd for MeasureChunk<'_> {
+    type Output = WLanes;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, simd: S) -> WLanes {
+        let [z, u, q, s, s_terms] = self.0;
+        let len = z.len();
+        let full = len - len % LANES;
+        let regs = LANES / S::F64_LANES;
+        let zero = simd.splat_f64s(0.0);
+        let mut min_w = [zero; LANES];
+        let mut comp = [zero; LANES];
+        let mut w_scale = [zero; LANES];
+        let mut z_scale = [zero; LANES];
+        let mut g = [zero; LANES];
+        let mut chopped = [zero; LANES];
+        let mut nonfinite = [zero; LANES];
+        let zs = registers::<S>(z);
+        let us = registers::<S>(u);
+        let qs = registers::<S>(q);
+        let ss = registers::<S>(s);
+        let ts = registers::<S>(s_terms);
+        let mut k = 0;
+        while k < zs.len() {
+            for r in 0..regs {
+                let (z, u, q) = (zs[k + r], us[k + r], qs[k + r]);
+                let w = simd.sub_f64s(simd.add_f64s(u, q), ss[k + r]);
+                let cw = simd.abs_f64s(simd.mul_f64s(z, w));
+                let terms =
+                    simd.add_f64s(simd.add_f64s(simd.abs_f64s(u), simd.abs_f64s(q)), ts[k + r]);
+                nonfinite[r] = simd.add_f64s(nonfinite[r], simd.mul_f64s(w, zero));
+                min_w[r] = simd.select_f64s(simd.less_than_f64s(w, min_w[r]), w, min_w[r]);
+                comp[r] = simd.select_f64s(simd.greater_than_f64s(cw, comp[r]), cw, comp[r]);
+                w_scale[r] =
+                    simd.select_f64s(simd.greater_than_f64s(terms, w_scale[r]), terms, w_scale[r]);
+                z_scale[r] = simd.select_f64s(simd.greater_than_f64s(z, z_scale[r]), z, z_scale[r]);
+                let on = simd.greater_than_f64s(z, zero);
+                let ww = simd.mul_f64s(w, w);
+                g[r] = simd.add_f64s(g[r], simd.select_f64s(on, ww, zero));
+                let quiet = simd.or_m64s(on, simd.greater_than_or_equal_f64s(w, zero));
+                chopped[r] = simd.add_f64s(chopped[r], simd.select_f64s(quiet, zero, ww));
+            }
+            k += regs;
+        }
+        let lanes = to_lanes::<S>;
+        let mut acc = WLanes {
+            min_w: lanes(&min_w),
+            comp: lanes(&comp),
+            w_scale: lanes(&w_scale),
+            z_scale: lanes(&z_scale),
+            g: lanes(&g),
+            chopped: lanes(&chopped),
+            nonfinite: lanes(&nonfinite),
+        };
+        for i in full..len {
+            acc.add(i - full, [z[i], u[i], q[i], s[i], s_terms[i]]);
+        }
+        acc
+    }
+}
+
+/// How a direction pass forms `t` from a chunk (slices of the chunk's
+/// length; `s` the border's shift `B λ`, or `B μ` preconditioned).
+#[derive(Clone, Copy)]
+pub(super) enum Rule<'a> {
+    /// `t_i = w_i + β t_i` on `J`, 0 off it, `w = (u + q) - s`; sums
+    /// `w_i t_i`.
+    Conjugate {
+        u: &'a [f64],
+        q: &'a [f64],
+        s: &'a [f64],
+        beta: f64,
+    },
+    /// `t_i = w_i` where `z_i = 0` and `w_i < 0`, else 0 (the chopped
+    /// gradient); sums `w_i t_i`.
+    Chopped {
+        u: &'a [f64],
+        q: &'a [f64],
+        s: &'a [f64],
+    },
+    /// `t_i = (p_i - s_i) + β t_i` on `J`, 0 off it; sums `r_i t_i`.
+    Preconditioned {
+        p: &'a [f64],
+        s: &'a [f64],
+        r: &'a [f64],
+        beta: f64,
+    },
+}
+
+impl Rule<'_> {
+    /// Entry `i`'s new `t_i` from `z_i` and `t_i`, and its term of the sum.
+    #[inline(always)]
+    fn at(&self, i: usize, z: f64, t: f64) -> (f64, f64) {
+        match *self {
+            Rule::Conjugate { u, q, s, beta } => {
+                let w = (u[i] + q[i]) - s[i];
+                let next = if z > 0.0 { w + beta * t } else { 0.0 };
+                (next, w * next)
+            }
+            Rule::Chopped { u, q, s } => {
+                let w = (u[i] + q[i]) - s[i];
+                let next = if z > 0.0 || w >= 0.0 { 0.0 } else { w };
+                (next, w * next)
+            }
+            Rule::Preconditioned { p, s, r, beta } => {
+                let next = if z > 0.0 {
+                    (p[i] - s[i]) + beta * t
+                } else {
+                    0.0
+                };
+                (next, r[i] * next)
+            }
+        }
+    }
+}
+
+/// Writes a chunk's direction `t` by `rule` from `z`; returns the sum of
+/// the rule's terms in lanes.
+pub(super) fn direction_chunk(rule: Rule<'_>, z: &[f64], t: &mut [f64]) -> Lanes {
+    pulp::Arch::new().dispatch(DirectionChunk { rule, z, t })
+}
+
+struct DirectionChunk<'a, 'b> {
+    rule: Rule<'a>,
+    z: &'a [f64],
+    t: &'b mut [f64],
+}
+
+impl WithSimd for DirectionChunk<'_, '_> {
+    type Output = Lanes;
+
+    #[inline(always)]
+    fn with_simd<S: Simd>(self, simd: S) -> Lanes {
+        let Self { rule, z, t } = self;
+        let len = z.len();
+        let full = len - len % LANES;
+        let zero = simd.splat_f64s(0.0);
+        let mut num = [zero; LANES];
+        let zs = registers::<S>(z);
+        let ts = S::as_mut_simd_f64s(&mut t[..full]).0;
+        let on = |z: S::f64s| simd.greater_than_f64s(z, zero);
+        match rule {
+            Rule::Conjugate { u, q, s, beta } => {
+                let (us, qs, ss) = (registers::<S>(u), registers::<S>(q), registers::<S>(s));
+                let beta = simd.splat_f64s(beta);
+                sweep(simd, zs, &mut *ts, &mut num, |k, z, t| {
+                    let w = simd.sub_f64s(simd.add_f64s(us[k], qs[k]), ss[k]);
+                    let next = simd.add_f64s(w, simd.mul_f64s(beta, t));
+                    let next = simd.select_f64s(on(z), next, zero);
+                    (next, simd.mul_f64s(w, next))
+                });
+            }
+            Rule::Chopped { u, q, s } => {
+                let (us, qs, ss) = (registers::<S>(u), registers::<S>(q), registers::<S>(s));
+                sweep(simd, zs, &mut *ts, &mut num, |k, z, _| {
+                    let w = simd.sub_f64s(simd.add_f64s(us[k], qs[k]), ss[k]);
+                    let quiet = simd.or_m64s(on(z), simd.greater_than_or_equal_f64s(w, zero));
+                    let next = simd.select_f64s(quiet, zero, w);
+                    (next, simd.mul_f64s(w, next))
+                });
+            }
+            Rule::Preconditioned { p, s, r, beta } => {
+                let (ps, ss, rs) = (registers::<S>(p), registers::<S>(s), registers::<S>(r));
+                let beta = simd.splat_f64s(beta);
+                sweep(simd, zs, &mut *ts, &mut num, |k, z, t| {
+                    let next = simd.add_f64s(simd.sub_f64s(ps[k], ss[k]), simd.mul_f64s(beta, t));
+                    let next = simd.select_f64s(on(z), next, zero);
+                    (next, simd.mul_f64s(rs[k], next))
+                });
+            }
+        }
+        let mut sum = Lanes(to_lanes::<S>(&num));
+        for i in full..len {
+            let (next, term) = rule.at(i, z[i], t[i]);
+            t[i] = next;
+            sum.add(i - full, term);
+        }
+        sum
+    }
+}
+
+/// A direction's sweep over the chunk's full groups: `t_k, term =
+/// form(k, z_k, t_k)` register by register, the terms added to `num`
+/// (one loop a rule, each a plain sweep of selections).
+#[inline(always)]
+fn sweep<S: Simd>(
+    simd: S,
+    zs: &[S::f64s],
+    ts: &mut [S::f64s],
+    num: &mut [S::f64s; LANES],
+    form: impl Fn(usize, S::f64s, S::f64s) -> (S::f64s, S::f64s),
+) {
+    let regs = LANES / S::F64_LANES;
+    let mut k = 0;
+    while k < zs.len() {
+        for r in 0..regs {
+            let (next, term) = form(k + r, zs[k + r], ts[k + r]);
+            ts[k + r] = next;
+            num[r] = simd.add_f64s(num[r], term);
+        }
+        k += regs;
+    }
+}
+
+/// A step's data over a chunk: `z_J -= τ t_J` (clipped at 0), the points
+/// off `J` with `w_i = (u_i + q_i) - s_i < 0` entering with `z_i = -τ w_i`
+/// (`-w_i` when `τ = 0`) where `enter` is set, and `u -= τ r`.
+#[derive(Clone, Copy)]
+pub(super) struct Step<'a> {
+    pub t: &'a [f64],
+    pub r: &'a [f64],
+    pub q: &'a [f64],
+    pub s: &'a [f64],
+    pub tau: f64,
+    pub enter: bool,
+}
+
+impl Step<'_> {
+    /// Entry `i`'s new `(z_i, u_i)` and whether it was clipped or entered.
+    #[inline(always)]
+    fn at(&self, i: usize, z: f64, u: f64) -> (f64, f64, bool, bool) {
+        let (mut clipped, mut entered) = (false, false);
+        let next = if z > 0.0 {
+            let v = z - self.tau * self.t[i];
+            clipped = !(v > 0.0);
+            if v > 0.0 { v } else { 0.0 }
+        } else if self.enter {
+            let w = (u + self.q[i]) - self.s[i];
+            if w < 0.0 {
+                entered = true;
+                self.entry() * w
+            } else {
+                z
+            }
+        } else {
+            z
+        };
+        (next, u - self.tau * self.r[i], clipped, entered)
+    }
+
+    /// The factor of `w_i` an entering point takes: `-τ`, or -1 when `τ = 0`
+    /// (`(-τ) w` and `-w` to the bit).
+    fn entry(&self) -> f64 {
+        if self.tau > 0.0 { -self.tau } else { -1.0 }
+    }
+}
+
+/// Takes a chunk's step (see [`Step`]) on `z` and `u`; returns how many
+/// points were clipped and how many entered.
+pub(super) fn update_chunk(step: Step<'_>, z: &mut [f64], u: &mut [f64]) -> (usize, usize) {
+    pulp::Arch::new().dispatch(UpdateChunk { step, z, u })
+}
+
+struct UpdateChunk<'a, 'b> {
+    step: Step<'a>,
+    z: &'b mut [f64],
+    u: &'b mut [f64],
+}
+
+impl WithSimd for UpdateChunk<'_, '_> {
+    type Output = (usize, usize);
+
+    #[inline(always)]
+    fn with_simd<S: Simd>(self, simd: S) -> (usize, usize) {
+        let Self { step, z, u } = self;
+        let len = z.len();
+        let full = len - len % LANES;
+        let regs = LANES / S::F64_LANES;
+        let (zero, one) = (simd.splat_f64s(0.0), simd.splat_f64s(1.0));
+        let (tau, entry) = (simd.splat_f64s(step.tau), simd.splat_f64s(step.entry()));
+        let (ts, rs) = (registers::<S>(step.t), registers::<S>(step.r));
+        let (qs, ss) = (registers::<S>(step.q), registers::<S>(step.s));
+        let zs = S::as_mut_simd_f64s(&mut z[..full]).0;
+        let us = S::as_mut_simd_f64s(&mut u[..full]).0;
+        let (mut clipped, mut entered) = ([zero; LANES], [zero; LANES]);
+        let mut k = 0;
+        while k < zs.len() {
+            for r in 0..regs {
+                let (old, ui) = (zs[k + r], us[k + r]);
+                let on = simd.greater_than_f64s(old, zero);
+                let v = simd.sub_f64s(old, simd.mul_f64s(tau, ts[k + r]));
+                let keep = simd.greater_than_f64s(v, zero);
+                let kept = simd.select_f64s(keep, v, zero);
+                let clip = simd.select_f64s(on, simd.select_f64s(keep, zero, one), zero);
+                clipped[r] = simd.add_f64s(clipped[r], clip);
+                let off = if step.enter {
+                    let w = simd.sub_f64s(simd.add_f64s(ui, qs[k + r]), ss[k + r]);
+                    let interferes = simd.less_than_f64s(w, zero);
+                    let enters = simd.select_f64s(interferes, one, zero);
+                    entered[r] = simd.add_f64s(entered[r], simd.select_f64s(on, zero, enters));
+                    simd.select_f64s(interferes, simd.mul_f64s(entry, w), old)
+                } else {
+                    old
+                };
+                zs[k + r] = simd.select_f64s(on, kept, off);
+                us[k + r] = simd.sub_f64s(ui, simd.mul_f64s(tau, rs[k + r]));
+            }
+            k += regs;
+        }
+        let count =
+            |v: &[S::f64s; LANES]| to_lanes::<S>(v).iter().map(|&c| c as usize).sum::<usize>();
+        let (mut clips, mut entries) = (count(&clipped), count(&entered));
+        for i in full..len {
+            let (next, ui, clip, enter) = step.at(i, z[i], u[i]);
+            (z[i], u[i]) = (next, ui);
+            clips += usize::from(clip);
+            entries += usize::from(enter);
+        }
+        (clips, entries)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Five vectors of `len` entries, `z` about half positive, with a
+    /// tail past the last full group.
+    fn vectors(len: usize) -> Vec<Vec<f64>> {
+        let h = |i: usize, k: usize| {
+            (i as f64 * 0.618_033_988_749_895 + k as f64 * 0.37).fract() - 0.45
+        };
+        (0..5)
+            .map(|k| (0..len).map(|i| h(i, k)).collect())
+            .collect()
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    fn measures_bits(m: &WLanes) -> Vec<u64> {
+        [
+            m.min_w,
+            m.comp,
+            m.w_scale,
+            m.z_scale,
+            m.g,
+            m.chopped,
+            m.nonfinite,
+        ]
+        .iter()
+        .flat_map(|l| bits(l))
+        .collect()
+    }
+
+    #[test]
+    fn the_measures_in_registers_are_the_measures_entry_by_entry() {
+        let len = 8 * LANES + 5;
+        let v = vectors(len);
+        let slices = [&v[0][..], &v[1], &v[2], &v[3], &v[4]];
+        let mut reference = WLanes {
+            min_w: [0.0; LANES],
+            comp: [0.0; LANES],
+            w_scale: [0.0; LANES],
+            z_scale: [0.0; LANES],
+            g: [0.0; LANES],
+            chopped: [0.0; LANES],
+            nonfinite: [0.0; LANES],
+        };
+        for i in 0..len {
+            reference.add(i % LANES, slices.map(|v| v[i]));
+        }
+        let expected = measures_bits(&reference);
+        assert_eq!(measures_bits(&measure_chunk(slices)), expected);
+        let scalar = MeasureChunk(slices).with_simd(pulp::Scalar::new());
+        assert_eq!(measures_bits(&scalar), expected);
+        // A non-finite `w` in a full group or in the tail is seen.
+        for at in [3, len - 1] {
+            let mut u = v[1].clone();
+            u[at] = f64::INFINITY;
+            let m = measure_chunk([&v[0], &u, &v[2], &v[3], &v[4]]);
+            assert!(m.nonfinite.iter().any(|x| x.is_nan()), "{at}");
+        }
+        assert!(measure_chunk(slices).nonfinite.iter().all(|&x| x == 0.0));
+    }
+
+    #[test]
+    fn directions_in_registers_are_directions_entry_by_entry() {
+        let len = 8 * LANES + 5;
+        let v = vectors(len);
+        let (z, a, b, c, t0) = (&v[0], &v[1], &v[2], &v[3], &v[4]);
+        let rules = [
+            Rule::Conjugate {
+                u: a,
+                q: b,
+                s: c,
+                beta: 0.7,
+            },
+            Rule::Chopped { u: a, q: b, s: c },
+            Rule::Preconditioned {
+                p: a,
+                s: c,
+                r: b,
+                beta: 0.3,
+            },
+        ];
+        for rule in rules {
+            let (mut t, mut sum) = (t0.clone(), Lanes::default());
+            for i in 0..len {
+                let (next, term) = rule.at(i, z[i], t[i]);
+                t[i] = next;
+                sum.add(i % LANES, term);
+            }
+            let mut vector = t0.clone();
+            let lanes = direction_chunk(rule, z, &mut vector);
+            assert_eq!((bits(&vector), bits(&lanes.0)), (bits(&t), bits(&sum.0)));
+            let mut scalar = t0.clone();
+            let lanes = DirectionChunk {
+                rule,
+                z,
+                t: &mut scalar,
+            }
+            .with_simd(pulp::Scalar::new());
+            assert_eq!((bits(&scalar), bits(&lanes.0)), (bits(&t), bits(&sum.0)));
+        }
+    }
+
+    #[test]
+    fn steps_in_registers_are_steps_entry_by_entry() {
+        let len = 8 * LANES + 5;
+        let v = vectors(len);
+        let (z0, u0) = (&v[0], &v[1]);
+        // A shift that makes about half the points off `J` interfere.
+        let shift = vec![0.3; len];
+        for (tau, enter) in [(5.0, true), (5.0, false), (0.0, true)] {
+            let step = Step {
+                t: &v[2],
+                r: &v[3],
+                q: &v[4],
+                s: &shift,
+                tau,
+                enter,
+            };
+            let (mut z, mut u, mut counts) = (z0.clone(), u0.clone(), (0, 0));
+            for i in 0..len {
+                let (next, ui, clip, entered) = step.at(i, z[i], u[i]);
+                (z[i], u[i]) = (next, ui);
+                counts.0 += usize::from(clip);
+                counts.1 += usize::from(entered);
+            }
+            assert!(counts.0 > 0 || tau == 0.0);
+            assert_eq!(counts.1 > 0, enter);
+            let (mut zv, mut uv) = (z0.clone(), u0.clone());
+            let got = update_chunk(step, &mut zv, &mut uv);
+            assert_eq!((bits(&zv), bits(&uv), got), (bits(&z), bits(&u), counts));
+            let (mut zs, mut us) = (z0.clone(), u0.clone());
+            let got = UpdateChunk {
+                step,
+                z: &mut zs,
+                u: &mut us,
+            }
+            .with_simd(pulp::Scalar::new());
+            assert_eq!((bits(&zs), bits(&us), got), (bits(&z), bits(&u), counts));
+        }
+    }
+}
