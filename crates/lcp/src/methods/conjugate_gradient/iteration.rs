@@ -97,6 +97,47 @@ fn ranges(n: usize) -> Vec<std::ops::Range<usize>> {
         .collect()
 }
 
+/// The border's shift `B λ` as a pass reads it, chunk by chunk: where
+/// every column is constant (the approach's column of ones, or no column
+/// at all) one chunk's worth is formed once and every chunk reads it (the
+/// same values to the bit: the same operations on the same numbers), else
+/// each chunk forms its own ([`shift_of`]).
+struct Shift<'c, 'a> {
+    columns: &'c [Column<'a>],
+    lambda: &'c [f64],
+    terms: bool,
+    shared: Option<(Vec<f64>, Vec<f64>)>,
+}
+
+impl<'c, 'a> Shift<'c, 'a> {
+    /// The shift by `lambda` over `n` entries, with its terms' magnitude
+    /// where `terms` is set.
+    fn new(columns: &'c [Column<'a>], lambda: &'c [f64], n: usize, terms: bool) -> Self {
+        let constant = columns.iter().all(|c| matches!(c, Column::Constant(_)));
+        Self {
+            columns,
+            lambda,
+            terms,
+            shared: constant.then(|| shift_of(columns, lambda, 0, n.min(CHUNK), terms)),
+        }
+    }
+
+    /// The shift over the chunk `base..base + len`, and its terms'
+    /// magnitude (empty where not asked for).
+    fn chunk(&self, base: usize, len: usize) -> (Cow<'_, [f64]>, Cow<'_, [f64]>) {
+        match &self.shared {
+            Some((s, t)) => (
+                Cow::Borrowed(&s[..len]),
+                Cow::Borrowed(&t[..if self.terms { len } else { 0 }]),
+            ),
+            None => {
+                let (s, t) = shift_of(self.columns, self.lambda, base, len, self.terms);
+                (Cow::Owned(s), Cow::Owned(t))
+            }
+        }
+    }
+}
+
 /// The border's shift `(B λ)_i` over a chunk's entries `base..base +
 /// len`, and the magnitude of its terms when asked (`terms`): column after
 /// column, each entry's terms added in the columns' order from 0 (as one
@@ -301,6 +342,7 @@ pub(super) fn measure_pass(
         .zip(residuals)
         .enumerate()
         .collect();
+    let shift = Shift::new(columns, lambda, q.len(), true);
     let parts = map_parts(parts, |(c, ((z, u), r))| {
         let base = c * CHUNK;
         let len = z.len();
@@ -310,7 +352,7 @@ pub(super) fn measure_pass(
             z.iter_mut().for_each(|v| *v *= scale);
             u.iter_mut().for_each(|v| *v *= scale);
         }
-        let (s, s_terms) = shift_of(columns, lambda, base, len, true);
+        let (s, s_terms) = shift.chunk(base, len);
         let w = measure_chunk([&*z, &*u, q, &s, &s_terms]);
         (p.min_w, p.comp, p.w_scale, p.z_scale) = (w.min_w, w.comp, w.w_scale, w.z_scale);
         (p.g, p.chopped) = (Lanes(w.g), Lanes(w.chopped));
@@ -382,6 +424,7 @@ fn direction_by(
 ) -> f64 {
     let (columns, q) = (data.columns(), &*data.q);
     let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
+    let shift = Shift::new(columns, lambda, q.len(), false);
     let parts = map_parts(parts, |(c, t)| {
         let base = c * CHUNK;
         let len = t.len();
@@ -390,7 +433,7 @@ fn direction_by(
             &u[base..base + len],
             &q[base..base + len],
         );
-        let (s, _) = shift_of(columns, lambda, base, len, false);
+        let (s, _) = shift.chunk(base, len);
         let s = &s[..];
         let rule = match beta {
             Some(beta) => Rule::Conjugate { u, q, s, beta },
@@ -414,16 +457,18 @@ pub(super) fn curvature_pass(t: &[f64], r: &[f64]) -> f64 {
 /// or entered, the sums the next iteration reads.
 pub(super) struct Update {
     pub entered: usize,
+    /// The rows' sums `B^T z` after the step (compensated), whatever it
+    /// changed.
+    pub rows: Vec<f64>,
     /// `None` where a point left or entered: the contact set changed and
     /// `u` is recomputed from a true product, with the fit's sums.
     pub sums: Option<UpdateSums>,
 }
 
-/// The rows' sums `B^T z` and `|B|^T z` after a step that kept the contact
+/// The rows' magnitudes `|B|^T z` after a step that kept the contact
 /// set, and the fit's `Σ_J B u` (its `Σ_J B q` and Gram matrix are the
 /// same, to the bit, as before the step: the same terms in the same order).
 pub(super) struct UpdateSums {
-    pub rows: Vec<f64>,
     pub rows_terms: Vec<f64>,
     pub bu: Vec<f64>,
 }
@@ -459,6 +504,7 @@ pub(super) fn update_pass(
         .zip(u.chunks_mut(CHUNK))
         .enumerate()
         .collect();
+    let shift = Shift::new(columns, lambda, q.len(), false);
     let parts = map_parts(parts, |(c, (z, u))| {
         let base = c * CHUNK;
         let len = z.len();
@@ -474,7 +520,7 @@ pub(super) fn update_pass(
             rows_terms: vec![Lanes::default(); k],
             bu: vec![Compensated::default(); k],
         };
-        let (s, _) = shift_of(columns, lambda, base, len, false);
+        let (s, _) = shift.chunk(base, len);
         let step = Step {
             t,
             r,
@@ -484,13 +530,15 @@ pub(super) fn update_pass(
             enter,
         };
         (p.clipped, p.entered) = update_chunk(step, z, u);
+        let (z, u) = (&*z, &*u);
+        for j in 0..k {
+            p.rows[j] = Terms::Product(columns[j].part(base, len), z).compensated();
+        }
         if p.clipped + p.entered > 0 {
             return p;
         }
-        let (z, u) = (&*z, &*u);
         for j in 0..k {
             let b = columns[j].part(base, len);
-            p.rows[j] = Terms::Product(b, z).compensated();
             p.rows_terms[j] = Terms::AbsProduct(b, z).plain();
             p.bu[j] = Terms::Masked(z, b, u).compensated();
         }
@@ -498,26 +546,31 @@ pub(super) fn update_pass(
     });
     let clipped: usize = parts.iter().map(|p| p.clipped).sum();
     let entered: usize = parts.iter().map(|p| p.entered).sum();
+    let mut rows = vec![Compensated::default(); k];
+    for p in &parts {
+        for j in 0..k {
+            rows[j].merge(&p.rows[j]);
+        }
+    }
     let sums = (clipped + entered == 0).then(|| {
-        let (mut rows, mut bu) = (
-            vec![Compensated::default(); k],
-            vec![Compensated::default(); k],
-        );
+        let mut bu = vec![Compensated::default(); k];
         for p in &parts {
             for j in 0..k {
-                rows[j].merge(&p.rows[j]);
                 bu[j].merge(&p.bu[j]);
             }
         }
         UpdateSums {
-            rows: rows.iter().map(Compensated::value).collect(),
             rows_terms: (0..k)
                 .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
                 .collect(),
             bu: bu.iter().map(Compensated::value).collect(),
         }
     });
-    Update { entered, sums }
+    Update {
+        entered,
+        rows: rows.iter().map(Compensated::value).collect(),
+        sums,
+    }
 }
 
 /// `z *= scale` (a pending scale applied before a true product).
@@ -544,6 +597,7 @@ fn residual_of(z: &[f64], u: &[f64], q: &[f64], s: &[f64], r: &mut [f64]) {
 pub(super) fn residual_pass(data: &Data<'_>, z: &[f64], u: &[f64], r: &mut [f64], lambda: &[f64]) {
     let (columns, q) = (data.columns(), &*data.q);
     let parts: Vec<_> = r.chunks_mut(CHUNK).enumerate().collect();
+    let shift = Shift::new(columns, lambda, z.len(), false);
     map_parts(parts, |(c, r)| {
         let base = c * CHUNK;
         let len = r.len();
@@ -552,7 +606,7 @@ pub(super) fn residual_pass(data: &Data<'_>, z: &[f64], u: &[f64], r: &mut [f64]
             &u[base..base + len],
             &q[base..base + len],
         );
-        let (s, _) = shift_of(columns, lambda, base, len, false);
+        let (s, _) = shift.chunk(base, len);
         residual_of(z, u, q, &s, r);
     });
 }
@@ -612,6 +666,7 @@ pub(super) fn preconditioned_direction_pass(
 ) -> f64 {
     let columns = data.columns();
     let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
+    let shift = Shift::new(columns, mu, z.len(), false);
     let parts = map_parts(parts, |(c, t)| {
         let base = c * CHUNK;
         let len = t.len();
@@ -620,7 +675,7 @@ pub(super) fn preconditioned_direction_pass(
             &r[base..base + len],
             &p[base..base + len],
         );
-        let (s, _) = shift_of(columns, mu, base, len, false);
+        let (s, _) = shift.chunk(base, len);
         let rule = Rule::Preconditioned { p, s: &s, r, beta };
         direction_chunk(rule, z, t).value()
     });
@@ -775,12 +830,13 @@ mod tests {
         let lambda = [-1e3, 0.0];
         let (mut z1, mut u1) = (z.clone(), u.clone());
         let update = update_pass(&data, &mut z1, &mut u1, &t, &r, &lambda, 0.5, true);
+        let rows = update.rows;
         let sums = update.sums.expect("no point left or entered");
         let after = fit_pass(&data, &z1, &u1);
         assert_eq!(bits(&sums.bu), bits(&after.bu));
         assert_eq!(bits(&before.bq), bits(&after.bq));
         let measured = measure_pass(&data, &mut z1.clone(), &mut u1.clone(), None, 1.0, &lambda);
-        assert_eq!(bits(&sums.rows), bits(&measured.rows));
+        assert_eq!(bits(&rows), bits(&measured.rows));
         assert_eq!(bits(&sums.rows_terms), bits(&measured.rows_terms));
         // A full step clips the points in contact: no sums.
         let t: Vec<f64> = z.iter().map(|&v| 2.0 * v).collect();

@@ -395,19 +395,21 @@ impl State {
     /// rows' size).
     fn rows_after(&mut self, form: &Form<'_>, update: Update) -> Result<(), Breakdown> {
         let k = form.border.ncols();
-        if let Some(update) = update.sums {
+        // One row is restored by scaling `z` (and `u`, where it is still
+        // `M z`): the scale waits for the next pass that reads them.
+        let one_row = (k == 1)
+            .then(|| form.resultant[0] / update.rows[0])
+            .filter(|ratio| ratio.is_finite() && *ratio > 0.0);
+        if let Some(sums) = update.sums {
             // The same contact set: its Gram matrix and `Σ_J B q` hold,
             // `Σ_J B u` is new.
-            self.fit.bu = update.bu;
-            if k == 1 {
-                let ratio = form.resultant[0] / update.rows[0];
-                if ratio.is_finite() && ratio > 0.0 {
-                    self.scale = ratio;
-                    return Ok(());
-                }
+            self.fit.bu = sums.bu;
+            if let Some(ratio) = one_row {
+                self.scale = ratio;
+                return Ok(());
             }
             let restored = (0..k).all(|j| {
-                let (sum, terms) = (update.rows[j] - form.resultant[j], update.rows_terms[j]);
+                let (sum, terms) = (update.rows[j] - form.resultant[j], sums.rows_terms[j]);
                 let terms = terms + form.resultant[j].abs();
                 terms == 0.0 || sum.abs() <= ROWS_RESTORED * terms
             });
@@ -416,6 +418,12 @@ impl State {
             }
         }
         self.stale = true;
+        if let Some(ratio) = one_row {
+            // `u` is recomputed from `M z` at the scale (the refresh applies
+            // it to `z` first).
+            self.scale = ratio;
+            return Ok(());
+        }
         if restore_on_support(form, &mut self.z) {
             return Ok(());
         }
