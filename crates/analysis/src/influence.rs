@@ -203,6 +203,10 @@ impl Operator for LatticeProducts<'_> {
         self.apply(x, y);
     }
 
+    fn entries_nonnegative(&self) -> bool {
+        true
+    }
+
     fn has_preconditioner(&self) -> bool {
         self.preconditioner.is_some()
     }

@@ -133,7 +133,7 @@ impl OperatorLcp<'_> {
     /// The certificate of `(z, λ)` from products of the original operator:
     /// `w = M z - B λ + q` and `|M| |z| + |B| |λ| + |q|`, `B^T z - b` and
     /// `|B|^T |z| + |b|`; also returns `w` and the number of products it
-    /// took.
+    /// took (one where `M`'s entries are non-negative and `z >= 0`).
     pub(crate) fn certify(
         &self,
         z: &Col<f64>,
@@ -154,8 +154,14 @@ impl OperatorLcp<'_> {
             .try_as_col_major_mut()
             .expect("contiguous")
             .as_slice_mut();
+        let mut products = 2;
         if z_slice.iter().all(|&v| v >= 0.0) {
-            self.m.apply_abs(z_slice, terms_out);
+            if self.m.entries_nonnegative() {
+                terms_out.copy_from_slice(w_out);
+                products = 1;
+            } else {
+                self.m.apply_abs(z_slice, terms_out);
+            }
         } else {
             let z_abs: Vec<f64> = z_slice.iter().map(|v| v.abs()).collect();
             self.m.apply_abs(&z_abs, terms_out);
@@ -183,7 +189,7 @@ impl OperatorLcp<'_> {
             },
             tolerance,
         );
-        (certificate, w, 2)
+        (certificate, w, products)
     }
 }
 

@@ -33,6 +33,14 @@ pub trait Operator {
     /// half-space influence kernel) returns `M x`.
     fn apply_abs(&self, x: &[f64], y: &mut [f64]);
 
+    /// Whether every entry of `M` is non-negative (every half-space
+    /// influence kernel, a Winkler diagonal), so that `|M| x = M x` for
+    /// `x >= 0`: the certificate then reads the magnitude of `M z`'s terms
+    /// from `M z` itself, one product instead of two. Default: no.
+    fn entries_nonnegative(&self) -> bool {
+        false
+    }
+
     /// Whether [`precondition`](Self::precondition) applies an
     /// approximation of `M^{-1}` (default: no preconditioner). The
     /// conjugate gradient then runs preconditioned (module
