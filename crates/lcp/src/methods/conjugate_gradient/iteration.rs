@@ -573,12 +573,6 @@ pub(super) fn update_pass(
     }
 }
 
-/// `z *= scale` (a pending scale applied before a true product).
-pub(super) fn scale_pass(z: &mut [f64], scale: f64) {
-    let parts: Vec<_> = z.chunks_mut(CHUNK).collect();
-    map_parts(parts, |z| z.iter_mut().for_each(|v| *v *= scale));
-}
-
 /// `r = w` on `J`, 0 off it, over a chunk whose shift `B λ` is `s`.
 #[inline(always)]
 fn residual_of(z: &[f64], u: &[f64], q: &[f64], s: &[f64], r: &mut [f64]) {

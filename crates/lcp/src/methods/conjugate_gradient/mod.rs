@@ -199,13 +199,10 @@ impl State {
         })
     }
 
-    /// `u = M z` from a true product (the pending scale applied to `z`
-    /// first) and the fit's sums.
+    /// `u = M z` from a true product and the fit's sums, at scale 1: a
+    /// pending scale stays pending (the measure pass applies it to both,
+    /// `M (c z) = c M z`), which saves a pass over `z`.
     fn refresh(&mut self, form: &Form<'_>, data: &Data<'_>, work: &mut Work) {
-        if self.scale != 1.0 {
-            iteration::scale_pass(&mut self.z, self.scale);
-            self.scale = 1.0;
-        }
         form.m.apply(&self.z, &mut self.u);
         work.products += 1;
         self.fit = iteration::fit_pass(data, &self.z, &self.u);
@@ -419,8 +416,7 @@ impl State {
         }
         self.stale = true;
         if let Some(ratio) = one_row {
-            // `u` is recomputed from `M z` at the scale (the refresh applies
-            // it to `z` first).
+            // `u` is recomputed from `M z`; the scale applies to both.
             self.scale = ratio;
             return Ok(());
         }
