@@ -12,7 +12,7 @@
 
 use pulp::{Simd, WithSimd};
 
-use super::passes::{LANES, Lanes, registers, to_lanes};
+use super::passes::{Compensated, LANES, Lanes, add_compensated, registers, to_lanes};
 
 /// A chunk's measures of `w`, lane by lane (lane `l` of the entries `i ≡
 /// l (mod LANES)`): the extrema and the sums of
@@ -26,6 +26,10 @@ pub(super) struct WLanes {
     pub g: [f64; LANES],
     pub chopped: [f64; LANES],
     pub nonfinite: [f64; LANES],
+    /// With one border column `b`: `Σ b_i z_i` (compensated) and
+    /// `Σ |b_i z_i|`, the row's sum and its terms' magnitude.
+    pub row: Compensated,
+    pub row_terms: Lanes,
 }
 
 impl WLanes {
@@ -52,25 +56,46 @@ impl WLanes {
         self.g[l] += if z > 0.0 { w * w } else { 0.0 };
         self.chopped[l] += if (z > 0.0) | (w >= 0.0) { 0.0 } else { w * w };
     }
+
+    /// Adds entry `(b, z)` of the border column to the row's sums, lane `l`.
+    #[inline(always)]
+    fn add_row(&mut self, l: usize, b: f64, z: f64) {
+        self.row.add(l, b * z);
+        self.row_terms.add(l, (b * z).abs());
+    }
 }
 
 /// The measures of a chunk's `w = u + q - s` from its slices `[z, u, q,
-/// s, s_terms]` (of one length): the groups of [`LANES`] entries in
-/// vector registers, lane `l` of the result the same operations in the
-/// same order as [`WLanes::add`] entry by entry, then the tail entry by
-/// entry.
-pub(super) fn measure_chunk(v: [&[f64]; 5]) -> WLanes {
-    pulp::Arch::new().dispatch(MeasureChunk(v))
+/// s, s_terms]` (of one length), and with the border's one column `row`
+/// its sums: the groups of [`LANES`] entries in vector registers, lane `l`
+/// of the result the same operations in the same order as [`WLanes::add`]
+/// and [`WLanes::add_row`] entry by entry, then the tail entry by entry.
+pub(super) fn measure_chunk(v: [&[f64]; 5], row: Option<&[f64]>) -> WLanes {
+    pulp::Arch::new().dispatch(MeasureChunk { v, row })
 }
 
-struct MeasureChunk<'a>([&'a [f64]; 5]);
+struct MeasureChunk<'a> {
+    v: [&'a [f64]; 5],
+    row: Option<&'a [f64]>,
+}
 
-impl pulp::WithSimd for MeasureChunk<'_> {
+impl WithSimd for MeasureChunk<'_> {
     type Output = WLanes;
 
     #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, simd: S) -> WLanes {
-        let [z, u, q, s, s_terms] = self.0;
+    fn with_simd<S: Simd>(self, simd: S) -> WLanes {
+        match self.row {
+            Some(b) => self.sweep::<S, true>(simd, b),
+            None => self.sweep::<S, false>(simd, &[]),
+        }
+    }
+}
+
+impl MeasureChunk<'_> {
+    /// The measures, with the row's sums of `b` where `ROW`.
+    #[inline(always)]
+    fn sweep<S: Simd, const ROW: bool>(&self, simd: S, b: &[f64]) -> WLanes {
+        let [z, u, q, s, s_terms] = self.v;
         let len = z.len();
         let full = len - len % LANES;
         let regs = LANES / S::F64_LANES;
@@ -82,11 +107,13 @@ impl pulp::WithSimd for MeasureChunk<'_> {
         let mut g = [zero; LANES];
         let mut chopped = [zero; LANES];
         let mut nonfinite = [zero; LANES];
+        let (mut row, mut carry, mut row_terms) = ([zero; LANES], [zero; LANES], [zero; LANES]);
         let zs = registers::<S>(z);
         let us = registers::<S>(u);
         let qs = registers::<S>(q);
         let ss = registers::<S>(s);
         let ts = registers::<S>(s_terms);
+        let bs = registers::<S>(b);
         let mut k = 0;
         while k < zs.len() {
             for r in 0..regs {
@@ -106,6 +133,11 @@ impl pulp::WithSimd for MeasureChunk<'_> {
                 g[r] = simd.add_f64s(g[r], simd.select_f64s(on, ww, zero));
                 let quiet = simd.or_m64s(on, simd.greater_than_or_equal_f64s(w, zero));
                 chopped[r] = simd.add_f64s(chopped[r], simd.select_f64s(quiet, zero, ww));
+                if ROW {
+                    let bz = simd.mul_f64s(bs[k + r], z);
+                    add_compensated(simd, (&mut row[r], &mut carry[r]), bz);
+                    row_terms[r] = simd.add_f64s(row_terms[r], simd.abs_f64s(bz));
+                }
             }
             k += regs;
         }
@@ -118,9 +150,14 @@ impl pulp::WithSimd for MeasureChunk<'_> {
             g: lanes(&g),
             chopped: lanes(&chopped),
             nonfinite: lanes(&nonfinite),
+            row: Compensated::from_lanes(lanes(&row), lanes(&carry)),
+            row_terms: Lanes(lanes(&row_terms)),
         };
         for i in full..len {
             acc.add(i - full, [z[i], u[i], q[i], s[i], s_terms[i]]);
+            if ROW {
+                acc.add_row(i - full, b[i], z[i]);
+            }
         }
         acc
     }
@@ -312,24 +349,52 @@ impl Step<'_> {
     }
 }
 
-/// Takes a chunk's step (see [`Step`]) on `z` and `u`; returns how many
-/// points were clipped and how many entered.
-pub(super) fn update_chunk(step: Step<'_>, z: &mut [f64], u: &mut [f64]) -> (usize, usize) {
-    pulp::Arch::new().dispatch(UpdateChunk { step, z, u })
+/// What a chunk's step did: how many points were clipped and how many
+/// entered, and with the border's one column `b`, the sums after the step
+/// `Σ b_i z_i` (compensated), `Σ |b_i z_i|` and `Σ_J b_i u_i` (compensated).
+pub(super) struct Stepped {
+    pub clipped: usize,
+    pub entered: usize,
+    pub row: Compensated,
+    pub row_terms: Lanes,
+    pub bu: Compensated,
+}
+
+/// Takes a chunk's step (see [`Step`]) on `z` and `u`, with the sums of
+/// the border's one column `row` after it ([`Stepped`]).
+pub(super) fn update_chunk(
+    step: Step<'_>,
+    z: &mut [f64],
+    u: &mut [f64],
+    row: Option<&[f64]>,
+) -> Stepped {
+    pulp::Arch::new().dispatch(UpdateChunk { step, z, u, row })
 }
 
 struct UpdateChunk<'a, 'b> {
     step: Step<'a>,
     z: &'b mut [f64],
     u: &'b mut [f64],
+    row: Option<&'a [f64]>,
 }
 
 impl WithSimd for UpdateChunk<'_, '_> {
-    type Output = (usize, usize);
+    type Output = Stepped;
 
     #[inline(always)]
-    fn with_simd<S: Simd>(self, simd: S) -> (usize, usize) {
-        let Self { step, z, u } = self;
+    fn with_simd<S: Simd>(self, simd: S) -> Stepped {
+        match self.row {
+            Some(b) => self.sweep::<S, true>(simd, b),
+            None => self.sweep::<S, false>(simd, &[]),
+        }
+    }
+}
+
+impl UpdateChunk<'_, '_> {
+    /// The step, with the row's sums of `b` where `ROW`.
+    #[inline(always)]
+    fn sweep<S: Simd, const ROW: bool>(self, simd: S, b: &[f64]) -> Stepped {
+        let Self { step, z, u, .. } = self;
         let len = z.len();
         let full = len - len % LANES;
         let regs = LANES / S::F64_LANES;
@@ -337,9 +402,12 @@ impl WithSimd for UpdateChunk<'_, '_> {
         let (tau, entry) = (simd.splat_f64s(step.tau), simd.splat_f64s(step.entry()));
         let (ts, rs) = (registers::<S>(step.t), registers::<S>(step.r));
         let (qs, ss) = (registers::<S>(step.q), registers::<S>(step.s));
+        let bs = registers::<S>(b);
         let zs = S::as_mut_simd_f64s(&mut z[..full]).0;
         let us = S::as_mut_simd_f64s(&mut u[..full]).0;
         let (mut clipped, mut entered) = ([zero; LANES], [zero; LANES]);
+        let (mut row, mut row_carry, mut row_terms) = ([zero; LANES], [zero; LANES], [zero; LANES]);
+        let (mut bu, mut bu_carry) = ([zero; LANES], [zero; LANES]);
         let mut k = 0;
         while k < zs.len() {
             for r in 0..regs {
@@ -359,21 +427,44 @@ impl WithSimd for UpdateChunk<'_, '_> {
                 } else {
                     old
                 };
-                zs[k + r] = simd.select_f64s(on, kept, off);
-                us[k + r] = simd.sub_f64s(ui, simd.mul_f64s(tau, rs[k + r]));
+                let (zn, un) = (
+                    simd.select_f64s(on, kept, off),
+                    simd.sub_f64s(ui, simd.mul_f64s(tau, rs[k + r])),
+                );
+                (zs[k + r], us[k + r]) = (zn, un);
+                if ROW {
+                    let bz = simd.mul_f64s(bs[k + r], zn);
+                    add_compensated(simd, (&mut row[r], &mut row_carry[r]), bz);
+                    row_terms[r] = simd.add_f64s(row_terms[r], simd.abs_f64s(bz));
+                    let on = simd.greater_than_f64s(zn, zero);
+                    let masked = simd.mul_f64s(simd.select_f64s(on, bs[k + r], zero), un);
+                    add_compensated(simd, (&mut bu[r], &mut bu_carry[r]), masked);
+                }
             }
             k += regs;
         }
-        let count =
-            |v: &[S::f64s; LANES]| to_lanes::<S>(v).iter().map(|&c| c as usize).sum::<usize>();
-        let (mut clips, mut entries) = (count(&clipped), count(&entered));
+        let lanes = to_lanes::<S>;
+        let count = |v: &[S::f64s; LANES]| lanes(v).iter().map(|&c| c as usize).sum::<usize>();
+        let mut out = Stepped {
+            clipped: count(&clipped),
+            entered: count(&entered),
+            row: Compensated::from_lanes(lanes(&row), lanes(&row_carry)),
+            row_terms: Lanes(lanes(&row_terms)),
+            bu: Compensated::from_lanes(lanes(&bu), lanes(&bu_carry)),
+        };
         for i in full..len {
             let (next, ui, clip, enter) = step.at(i, z[i], u[i]);
             (z[i], u[i]) = (next, ui);
-            clips += usize::from(clip);
-            entries += usize::from(enter);
+            out.clipped += usize::from(clip);
+            out.entered += usize::from(enter);
+            if ROW {
+                let l = i - full;
+                out.row.add(l, b[i] * next);
+                out.row_terms.add(l, (b[i] * next).abs());
+                out.bu.add(l, (if next > 0.0 { b[i] } else { 0.0 }) * ui);
+            }
         }
-        (clips, entries)
+        out
     }
 }
 
@@ -416,30 +507,39 @@ mod tests {
         let len = 8 * LANES + 5;
         let v = vectors(len);
         let slices = [&v[0][..], &v[1], &v[2], &v[3], &v[4]];
-        let mut reference = WLanes {
-            min_w: [0.0; LANES],
-            comp: [0.0; LANES],
-            w_scale: [0.0; LANES],
-            z_scale: [0.0; LANES],
-            g: [0.0; LANES],
-            chopped: [0.0; LANES],
-            nonfinite: [0.0; LANES],
-        };
-        for i in 0..len {
-            reference.add(i % LANES, slices.map(|v| v[i]));
+        let b: Vec<f64> = v[2].iter().map(|x| 1.0 + x).collect();
+        for row in [None, Some(&b[..])] {
+            let mut reference = WLanes {
+                min_w: [0.0; LANES],
+                comp: [0.0; LANES],
+                w_scale: [0.0; LANES],
+                z_scale: [0.0; LANES],
+                g: [0.0; LANES],
+                chopped: [0.0; LANES],
+                nonfinite: [0.0; LANES],
+                row: Compensated::default(),
+                row_terms: Lanes::default(),
+            };
+            for i in 0..len {
+                reference.add(i % LANES, slices.map(|v| v[i]));
+                if let Some(b) = row {
+                    reference.add_row(i % LANES, b[i], v[0][i]);
+                }
+            }
+            let expected = measures_bits(&reference);
+            assert_eq!(measures_bits(&measure_chunk(slices, row)), expected);
+            let scalar = MeasureChunk { v: slices, row }.with_simd(pulp::Scalar::new());
+            assert_eq!(measures_bits(&scalar), expected);
         }
-        let expected = measures_bits(&reference);
-        assert_eq!(measures_bits(&measure_chunk(slices)), expected);
-        let scalar = MeasureChunk(slices).with_simd(pulp::Scalar::new());
-        assert_eq!(measures_bits(&scalar), expected);
         // A non-finite `w` in a full group or in the tail is seen.
         for at in [3, len - 1] {
             let mut u = v[1].clone();
             u[at] = f64::INFINITY;
-            let m = measure_chunk([&v[0], &u, &v[2], &v[3], &v[4]]);
+            let m = measure_chunk([&v[0], &u, &v[2], &v[3], &v[4]], None);
             assert!(m.nonfinite.iter().any(|x| x.is_nan()), "{at}");
         }
-        assert!(measure_chunk(slices).nonfinite.iter().all(|&x| x == 0.0));
+        let m = measure_chunk(slices, None);
+        assert!(m.nonfinite.iter().all(|&x| x == 0.0));
     }
 
     #[test]
@@ -499,26 +599,51 @@ mod tests {
                 tau,
                 enter,
             };
+            let b: Vec<f64> = v[3].iter().map(|x| 1.0 + x).collect();
             let (mut z, mut u, mut counts) = (z0.clone(), u0.clone(), (0, 0));
+            let (mut row, mut row_terms, mut bu) = (
+                Compensated::default(),
+                Lanes::default(),
+                Compensated::default(),
+            );
             for i in 0..len {
                 let (next, ui, clip, entered) = step.at(i, z[i], u[i]);
                 (z[i], u[i]) = (next, ui);
                 counts.0 += usize::from(clip);
                 counts.1 += usize::from(entered);
+                row.add(i % LANES, b[i] * next);
+                row_terms.add(i % LANES, (b[i] * next).abs());
+                bu.add(i % LANES, (if next > 0.0 { b[i] } else { 0.0 }) * ui);
             }
             assert!(counts.0 > 0 || tau == 0.0);
             assert_eq!(counts.1 > 0, enter);
-            let (mut zv, mut uv) = (z0.clone(), u0.clone());
-            let got = update_chunk(step, &mut zv, &mut uv);
-            assert_eq!((bits(&zv), bits(&uv), got), (bits(&z), bits(&u), counts));
-            let (mut zs, mut us) = (z0.clone(), u0.clone());
-            let got = UpdateChunk {
-                step,
-                z: &mut zs,
-                u: &mut us,
+            let sums = bits(&[row.value(), row_terms.value(), bu.value()]);
+            let stepped = |s: &Stepped| {
+                let got = bits(&[s.row.value(), s.row_terms.value(), s.bu.value()]);
+                ((s.clipped, s.entered), got)
+            };
+            for row in [None, Some(&b[..])] {
+                let (mut zv, mut uv) = (z0.clone(), u0.clone());
+                let got = update_chunk(step, &mut zv, &mut uv, row);
+                assert_eq!((bits(&zv), bits(&uv)), (bits(&z), bits(&u)));
+                assert_eq!(stepped(&got).0, counts);
+                if row.is_some() {
+                    assert_eq!(stepped(&got).1, sums);
+                }
+                let (mut zs, mut us) = (z0.clone(), u0.clone());
+                let got = UpdateChunk {
+                    step,
+                    z: &mut zs,
+                    u: &mut us,
+                    row,
+                }
+                .with_simd(pulp::Scalar::new());
+                assert_eq!((bits(&zs), bits(&us)), (bits(&z), bits(&u)));
+                assert_eq!(stepped(&got).0, counts);
+                if row.is_some() {
+                    assert_eq!(stepped(&got).1, sums);
+                }
             }
-            .with_simd(pulp::Scalar::new());
-            assert_eq!((bits(&zs), bits(&us), got), (bits(&z), bits(&u), counts));
         }
     }
 }

@@ -353,17 +353,24 @@ pub(super) fn measure_pass(
             u.iter_mut().for_each(|v| *v *= scale);
         }
         let (s, s_terms) = shift.chunk(base, len);
-        let w = measure_chunk([&*z, &*u, q, &s, &s_terms]);
+        // One column's sums in the measures' own loop; several, a loop
+        // each.
+        let row = (k == 1).then(|| columns[0].part(base, len));
+        let w = measure_chunk([&*z, &*u, q, &s, &s_terms], row);
         (p.min_w, p.comp, p.w_scale, p.z_scale) = (w.min_w, w.comp, w.w_scale, w.z_scale);
         (p.g, p.chopped) = (Lanes(w.g), Lanes(w.chopped));
         p.finite = w.nonfinite.iter().all(|&v| v == 0.0);
         if let Some(r) = r {
             residual_of(z, u, q, &s, r);
         }
-        for j in 0..k {
-            let b = columns[j].part(base, len);
-            p.rows[j] = Terms::Product(b, z).compensated();
-            p.rows_terms[j] = Terms::AbsProduct(b, z).plain();
+        if k == 1 {
+            (p.rows[0], p.rows_terms[0]) = (w.row, w.row_terms);
+        } else {
+            for j in 0..k {
+                let b = columns[j].part(base, len);
+                p.rows[j] = Terms::Product(b, z).compensated();
+                p.rows_terms[j] = Terms::AbsProduct(b, z).plain();
+            }
         }
         p
     });
@@ -529,7 +536,14 @@ pub(super) fn update_pass(
             tau,
             enter,
         };
-        (p.clipped, p.entered) = update_chunk(step, z, u);
+        // One column's sums in the step's own loop; several, a loop each.
+        let row = (k == 1).then(|| columns[0].part(base, len));
+        let stepped = update_chunk(step, z, u, row);
+        (p.clipped, p.entered) = (stepped.clipped, stepped.entered);
+        if k == 1 {
+            (p.rows[0], p.rows_terms[0], p.bu[0]) = (stepped.row, stepped.row_terms, stepped.bu);
+            return p;
+        }
         let (z, u) = (&*z, &*u);
         for j in 0..k {
             p.rows[j] = Terms::Product(columns[j].part(base, len), z).compensated();
@@ -814,28 +828,32 @@ mod tests {
     #[test]
     fn a_step_that_keeps_the_contact_set_updates_the_fit_as_a_fresh_fit_pass() {
         let n = 3 * CHUNK + 13;
-        let Sample { q, z, u, r, .. } = sample(n);
-        let b = faer::Mat::from_fn(n, 2, |i, j| 1.0 + (i * (j + 1)) as f64 * 1e-4);
-        let data = Data::new(q.as_ref(), b.as_ref());
-        let before = fit_pass(&data, &z, &u);
-        // A direction that moves every point in contact by 1 % and enters
-        // none: the points off J have w >= 0 with λ = -1e3.
-        let t: Vec<f64> = z.iter().map(|&v| 0.01 * v).collect();
-        let lambda = [-1e3, 0.0];
-        let (mut z1, mut u1) = (z.clone(), u.clone());
-        let update = update_pass(&data, &mut z1, &mut u1, &t, &r, &lambda, 0.5, true);
-        let rows = update.rows;
-        let sums = update.sums.expect("no point left or entered");
-        let after = fit_pass(&data, &z1, &u1);
-        assert_eq!(bits(&sums.bu), bits(&after.bu));
-        assert_eq!(bits(&before.bq), bits(&after.bq));
-        let measured = measure_pass(&data, &mut z1.clone(), &mut u1.clone(), None, 1.0, &lambda);
-        assert_eq!(bits(&rows), bits(&measured.rows));
-        assert_eq!(bits(&sums.rows_terms), bits(&measured.rows_terms));
-        // A full step clips the points in contact: no sums.
-        let t: Vec<f64> = z.iter().map(|&v| 2.0 * v).collect();
-        let (mut z2, mut u2) = (z, u);
-        let update = update_pass(&data, &mut z2, &mut u2, &t, &r, &lambda, 1.0, true);
-        assert!(update.sums.is_none());
+        // One column (its sums in the step's and the measures' own loops)
+        // and two (a loop each).
+        for k in [1, 2] {
+            let Sample { q, z, u, r, .. } = sample(n);
+            let b = faer::Mat::from_fn(n, k, |i, j| 1.0 + (i * (j + 1)) as f64 * 1e-4);
+            let data = Data::new(q.as_ref(), b.as_ref());
+            let before = fit_pass(&data, &z, &u);
+            // A direction that moves every point in contact by 1 % and
+            // enters none: the points off J have w >= 0 with λ_0 = -1e3.
+            let t: Vec<f64> = z.iter().map(|&v| 0.01 * v).collect();
+            let lambda = &[-1e3, 0.0][..k];
+            let (mut z1, mut u1) = (z.clone(), u.clone());
+            let update = update_pass(&data, &mut z1, &mut u1, &t, &r, lambda, 0.5, true);
+            let rows = update.rows;
+            let sums = update.sums.expect("no point left or entered");
+            let after = fit_pass(&data, &z1, &u1);
+            assert_eq!(bits(&sums.bu), bits(&after.bu));
+            assert_eq!(bits(&before.bq), bits(&after.bq));
+            let measured = measure_pass(&data, &mut z1.clone(), &mut u1.clone(), None, 1.0, lambda);
+            assert_eq!(bits(&rows), bits(&measured.rows));
+            assert_eq!(bits(&sums.rows_terms), bits(&measured.rows_terms));
+            // A full step clips the points in contact: no sums.
+            let t: Vec<f64> = z.iter().map(|&v| 2.0 * v).collect();
+            let (mut z2, mut u2) = (z, u);
+            let update = update_pass(&data, &mut z2, &mut u2, &t, &r, lambda, 1.0, true);
+            assert!(update.sums.is_none());
+        }
     }
 }

@@ -86,6 +86,11 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 }
 
 impl Compensated {
+    /// The sum whose lanes hold `sum` and `carry`.
+    pub(super) fn from_lanes(sum: [f64; LANES], carry: [f64; LANES]) -> Self {
+        Self { sum, carry }
+    }
+
     /// Adds `v` to lane `l`.
     #[inline(always)]
     pub(super) fn add(&mut self, l: usize, v: f64) {
@@ -252,6 +257,22 @@ impl pulp::WithSimd for Sum<'_> {
     }
 }
 
+/// Adds `v` to a compensated sum's register `(sum, carry)`: Knuth's
+/// two-sum lane by lane, the operations of [`Compensated::add`].
+#[inline(always)]
+pub(super) fn add_compensated<S: pulp::Simd>(
+    simd: S,
+    (sum, carry): (&mut S::f64s, &mut S::f64s),
+    v: S::f64s,
+) {
+    let a = *sum;
+    let s = simd.add_f64s(a, v);
+    let bb = simd.sub_f64s(s, a);
+    let e = simd.add_f64s(simd.sub_f64s(a, simd.sub_f64s(s, bb)), simd.sub_f64s(v, bb));
+    *sum = s;
+    *carry = simd.add_f64s(*carry, e);
+}
+
 impl Sum<'_> {
     /// The lanes' sums (and, compensated, carries) of the terms `term(k)`
     /// of registers `k` in `0..count`, register `k` into lanes `(k mod
@@ -270,13 +291,7 @@ impl Sum<'_> {
         if self.compensated {
             while k < count {
                 for r in 0..regs {
-                    let (a, b) = (sum[r], term(k + r));
-                    let s = simd.add_f64s(a, b);
-                    let bb = simd.sub_f64s(s, a);
-                    let e =
-                        simd.add_f64s(simd.sub_f64s(a, simd.sub_f64s(s, bb)), simd.sub_f64s(b, bb));
-                    sum[r] = s;
-                    carry[r] = simd.add_f64s(carry[r], e);
+                    add_compensated(simd, (&mut sum[r], &mut carry[r]), term(k + r));
                 }
                 k += regs;
             }
