@@ -65,17 +65,20 @@ impl WLanes {
     }
 }
 
-/// The measures of a chunk's `w = u + q - s` from its slices `[z, u, q,
-/// s, s_terms]` (of one length), and with the border's one column `row`
-/// its sums: the groups of [`LANES`] entries in vector registers, lane `l`
-/// of the result the same operations in the same order as [`WLanes::add`]
-/// and [`WLanes::add_row`] entry by entry, then the tail entry by entry.
-pub(super) fn measure_chunk(v: [&[f64]; 5], row: Option<&[f64]>) -> WLanes {
-    pulp::Arch::new().dispatch(MeasureChunk { v, row })
+/// The measures of a chunk's `w = c u + q - s` from its slices `[z, u, q,
+/// s, s_terms]` (of one length) and the pending scale `c` of `z` and `u`
+/// (applied in registers, `c z` and `c u`, not stored), and with the
+/// border's one column `row` its sums: the groups of [`LANES`] entries in
+/// vector registers, lane `l` of the result the same operations in the
+/// same order as [`WLanes::add`] and [`WLanes::add_row`] entry by entry
+/// (of `c z`, `c u`), then the tail entry by entry.
+pub(super) fn measure_chunk(v: [&[f64]; 5], scale: f64, row: Option<&[f64]>) -> WLanes {
+    pulp::Arch::new().dispatch(MeasureChunk { v, scale, row })
 }
 
 struct MeasureChunk<'a> {
     v: [&'a [f64]; 5],
+    scale: f64,
     row: Option<&'a [f64]>,
 }
 
@@ -114,10 +117,15 @@ impl MeasureChunk<'_> {
         let ss = registers::<S>(s);
         let ts = registers::<S>(s_terms);
         let bs = registers::<S>(b);
+        let c = simd.splat_f64s(self.scale);
         let mut k = 0;
         while k < zs.len() {
             for r in 0..regs {
-                let (z, u, q) = (zs[k + r], us[k + r], qs[k + r]);
+                let (z, u, q) = (
+                    simd.mul_f64s(c, zs[k + r]),
+                    simd.mul_f64s(c, us[k + r]),
+                    qs[k + r],
+                );
                 let w = simd.sub_f64s(simd.add_f64s(u, q), ss[k + r]);
                 let cw = simd.abs_f64s(simd.mul_f64s(z, w));
                 let terms =
@@ -153,10 +161,11 @@ impl MeasureChunk<'_> {
             row: Compensated::from_lanes(lanes(&row), lanes(&carry)),
             row_terms: Lanes(lanes(&row_terms)),
         };
+        let c = self.scale;
         for i in full..len {
-            acc.add(i - full, [z[i], u[i], q[i], s[i], s_terms[i]]);
+            acc.add(i - full, [c * z[i], c * u[i], q[i], s[i], s_terms[i]]);
             if ROW {
-                acc.add_row(i - full, b[i], z[i]);
+                acc.add_row(i - full, b[i], c * z[i]);
             }
         }
         acc
@@ -167,10 +176,11 @@ impl MeasureChunk<'_> {
 /// length; `s` the border's shift `B λ`, or `B μ` preconditioned).
 #[derive(Clone, Copy)]
 pub(super) enum Rule<'a> {
-    /// `t_i = w_i + β t_i` on `J`, 0 off it, `w = (u + q) - s`; sums
-    /// `w_i t_i`.
+    /// `t_i = w_i + β t_i` on `J`, 0 off it, `w = (c u + q) - s` (`c`
+    /// the pending scale of `u`); sums `w_i t_i`.
     Conjugate {
         u: &'a [f64],
+        c: f64,
         q: &'a [f64],
         s: &'a [f64],
         beta: f64,
@@ -179,6 +189,7 @@ pub(super) enum Rule<'a> {
     /// gradient); sums `w_i t_i`.
     Chopped {
         u: &'a [f64],
+        c: f64,
         q: &'a [f64],
         s: &'a [f64],
     },
@@ -196,13 +207,13 @@ impl Rule<'_> {
     #[inline(always)]
     fn at(&self, i: usize, z: f64, t: f64) -> (f64, f64) {
         match *self {
-            Rule::Conjugate { u, q, s, beta } => {
-                let w = (u[i] + q[i]) - s[i];
+            Rule::Conjugate { u, c, q, s, beta } => {
+                let w = (c * u[i] + q[i]) - s[i];
                 let next = if z > 0.0 { w + beta * t } else { 0.0 };
                 (next, w * next)
             }
-            Rule::Chopped { u, q, s } => {
-                let w = (u[i] + q[i]) - s[i];
+            Rule::Chopped { u, c, q, s } => {
+                let w = (c * u[i] + q[i]) - s[i];
                 let next = if z > 0.0 || w >= 0.0 { 0.0 } else { w };
                 (next, w * next)
             }
@@ -244,20 +255,21 @@ impl WithSimd for DirectionChunk<'_, '_> {
         let ts = S::as_mut_simd_f64s(&mut t[..full]).0;
         let on = |z: S::f64s| simd.greater_than_f64s(z, zero);
         match rule {
-            Rule::Conjugate { u, q, s, beta } => {
+            Rule::Conjugate { u, c, q, s, beta } => {
                 let (us, qs, ss) = (registers::<S>(u), registers::<S>(q), registers::<S>(s));
-                let beta = simd.splat_f64s(beta);
+                let (beta, c) = (simd.splat_f64s(beta), simd.splat_f64s(c));
                 sweep(simd, zs, &mut *ts, &mut num, |k, z, t| {
-                    let w = simd.sub_f64s(simd.add_f64s(us[k], qs[k]), ss[k]);
+                    let w = simd.sub_f64s(simd.add_f64s(simd.mul_f64s(c, us[k]), qs[k]), ss[k]);
                     let next = simd.add_f64s(w, simd.mul_f64s(beta, t));
                     let next = simd.select_f64s(on(z), next, zero);
                     (next, simd.mul_f64s(w, next))
                 });
             }
-            Rule::Chopped { u, q, s } => {
+            Rule::Chopped { u, c, q, s } => {
                 let (us, qs, ss) = (registers::<S>(u), registers::<S>(q), registers::<S>(s));
+                let c = simd.splat_f64s(c);
                 sweep(simd, zs, &mut *ts, &mut num, |k, z, _| {
-                    let w = simd.sub_f64s(simd.add_f64s(us[k], qs[k]), ss[k]);
+                    let w = simd.sub_f64s(simd.add_f64s(simd.mul_f64s(c, us[k]), qs[k]), ss[k]);
                     let quiet = simd.or_m64s(on(z), simd.greater_than_or_equal_f64s(w, zero));
                     let next = simd.select_f64s(quiet, zero, w);
                     (next, simd.mul_f64s(w, next))
@@ -306,11 +318,14 @@ fn sweep<S: Simd>(
     }
 }
 
-/// A step's data over a chunk: `z_J -= τ t_J` (clipped at 0), the points
-/// off `J` with `w_i = (u_i + q_i) - s_i < 0` entering with `z_i = -τ w_i`
-/// (`-w_i` when `τ = 0`) where `enter` is set, and `u -= τ r`.
+/// A step's data over a chunk, from `z` and `u` at their pending scale
+/// `c` (`c z`, `c u`, stored so after the step): `z_J = c z_J - τ t_J`
+/// (clipped at 0), the points off `J` with `w_i = (c u_i + q_i) - s_i <
+/// 0` entering with `z_i = -τ w_i` (`-w_i` when `τ = 0`) where `enter` is
+/// set, and `u = c u - τ r`.
 #[derive(Clone, Copy)]
 pub(super) struct Step<'a> {
+    pub c: f64,
     pub t: &'a [f64],
     pub r: &'a [f64],
     pub q: &'a [f64],
@@ -323,6 +338,7 @@ impl Step<'_> {
     /// Entry `i`'s new `(z_i, u_i)` and whether it was clipped or entered.
     #[inline(always)]
     fn at(&self, i: usize, z: f64, u: f64) -> (f64, f64, bool, bool) {
+        let (z, u) = (self.c * z, self.c * u);
         let (mut clipped, mut entered) = (false, false);
         let next = if z > 0.0 {
             let v = z - self.tau * self.t[i];
@@ -400,6 +416,7 @@ impl UpdateChunk<'_, '_> {
         let regs = LANES / S::F64_LANES;
         let (zero, one) = (simd.splat_f64s(0.0), simd.splat_f64s(1.0));
         let (tau, entry) = (simd.splat_f64s(step.tau), simd.splat_f64s(step.entry()));
+        let c = simd.splat_f64s(step.c);
         let (ts, rs) = (registers::<S>(step.t), registers::<S>(step.r));
         let (qs, ss) = (registers::<S>(step.q), registers::<S>(step.s));
         let bs = registers::<S>(b);
@@ -411,7 +428,7 @@ impl UpdateChunk<'_, '_> {
         let mut k = 0;
         while k < zs.len() {
             for r in 0..regs {
-                let (old, ui) = (zs[k + r], us[k + r]);
+                let (old, ui) = (simd.mul_f64s(c, zs[k + r]), simd.mul_f64s(c, us[k + r]));
                 let on = simd.greater_than_f64s(old, zero);
                 let v = simd.sub_f64s(old, simd.mul_f64s(tau, ts[k + r]));
                 let keep = simd.greater_than_f64s(v, zero);
@@ -527,18 +544,33 @@ mod tests {
                 }
             }
             let expected = measures_bits(&reference);
-            assert_eq!(measures_bits(&measure_chunk(slices, row)), expected);
-            let scalar = MeasureChunk { v: slices, row }.with_simd(pulp::Scalar::new());
+            assert_eq!(measures_bits(&measure_chunk(slices, 1.0, row)), expected);
+            let scalar = MeasureChunk {
+                v: slices,
+                scale: 1.0,
+                row,
+            }
+            .with_simd(pulp::Scalar::new());
             assert_eq!(measures_bits(&scalar), expected);
+            // A pending scale multiplies `z` and `u` in registers.
+            let (z, u): (Vec<f64>, Vec<f64>) =
+                (0..len).map(|i| (v[0][i] / 1.5, v[1][i] / 1.5)).unzip();
+            let pending = measure_chunk([&z, &u, &v[2], &v[3], &v[4]], 1.5, row);
+            let stored: Vec<Vec<f64>> = [&z, &u]
+                .iter()
+                .map(|x| x.iter().map(|x| 1.5 * x).collect())
+                .collect();
+            let at_one = measure_chunk([&stored[0], &stored[1], &v[2], &v[3], &v[4]], 1.0, row);
+            assert_eq!(measures_bits(&pending), measures_bits(&at_one));
         }
         // A non-finite `w` in a full group or in the tail is seen.
         for at in [3, len - 1] {
             let mut u = v[1].clone();
             u[at] = f64::INFINITY;
-            let m = measure_chunk([&v[0], &u, &v[2], &v[3], &v[4]], None);
+            let m = measure_chunk([&v[0], &u, &v[2], &v[3], &v[4]], 1.0, None);
             assert!(m.nonfinite.iter().any(|x| x.is_nan()), "{at}");
         }
-        let m = measure_chunk(slices, None);
+        let m = measure_chunk(slices, 1.0, None);
         assert!(m.nonfinite.iter().all(|&x| x == 0.0));
     }
 
@@ -550,11 +582,17 @@ mod tests {
         let rules = [
             Rule::Conjugate {
                 u: a,
+                c: 1.25,
                 q: b,
                 s: c,
                 beta: 0.7,
             },
-            Rule::Chopped { u: a, q: b, s: c },
+            Rule::Chopped {
+                u: a,
+                c: 0.8,
+                q: b,
+                s: c,
+            },
             Rule::Preconditioned {
                 p: a,
                 s: c,
@@ -590,8 +628,9 @@ mod tests {
         let (z0, u0) = (&v[0], &v[1]);
         // A shift that makes about half the points off `J` interfere.
         let shift = vec![0.3; len];
-        for (tau, enter) in [(5.0, true), (5.0, false), (0.0, true)] {
+        for (tau, enter, c) in [(5.0, true, 1.0), (5.0, false, 1.25), (0.0, true, 0.8)] {
             let step = Step {
+                c,
                 t: &v[2],
                 r: &v[3],
                 q: &v[4],

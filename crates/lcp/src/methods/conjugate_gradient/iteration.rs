@@ -324,52 +324,53 @@ fn lanes_min(a: &[f64; LANES]) -> f64 {
 /// [`residual_pass`] after this pass, from the chunk while it is in cache.
 pub(super) fn measure_pass(
     data: &Data<'_>,
-    z: &mut [f64],
-    u: &mut [f64],
+    (z, u): (&[f64], &[f64]),
     residual: Option<&mut [f64]>,
     scale: f64,
     lambda: &[f64],
 ) -> Measures {
     let (columns, q) = (data.columns(), &*data.q);
     let k = columns.len();
-    let residuals: Vec<Option<&mut [f64]>> = match residual {
+    let parts: Vec<Option<&mut [f64]>> = match residual {
         Some(r) => r.chunks_mut(CHUNK).map(Some).collect(),
         None => (0..z.len().div_ceil(CHUNK)).map(|_| None).collect(),
     };
-    let parts: Vec<_> = z
-        .chunks_mut(CHUNK)
-        .zip(u.chunks_mut(CHUNK))
-        .zip(residuals)
-        .enumerate()
-        .collect();
+    let parts: Vec<_> = parts.into_iter().enumerate().collect();
     let shift = Shift::new(columns, lambda, q.len(), true);
-    let parts = map_parts(parts, |(c, ((z, u), r))| {
+    let parts = map_parts(parts, |(c, r)| {
         let base = c * CHUNK;
-        let len = z.len();
-        let q = &q[base..base + len];
+        let len = CHUNK.min(z.len() - base);
+        let (z, u, q) = (
+            &z[base..base + len],
+            &u[base..base + len],
+            &q[base..base + len],
+        );
         let mut p = MeasureParts::new(k);
-        if scale != 1.0 {
-            z.iter_mut().for_each(|v| *v *= scale);
-            u.iter_mut().for_each(|v| *v *= scale);
-        }
         let (s, s_terms) = shift.chunk(base, len);
         // One column's sums in the measures' own loop; several, a loop
         // each.
         let row = (k == 1).then(|| columns[0].part(base, len));
-        let w = measure_chunk([&*z, &*u, q, &s, &s_terms], row);
+        let w = measure_chunk([z, u, q, &s, &s_terms], scale, row);
         (p.min_w, p.comp, p.w_scale, p.z_scale) = (w.min_w, w.comp, w.w_scale, w.z_scale);
         (p.g, p.chopped) = (Lanes(w.g), Lanes(w.chopped));
         p.finite = w.nonfinite.iter().all(|&v| v == 0.0);
         if let Some(r) = r {
-            residual_of(z, u, q, &s, r);
+            residual_of((z, u, scale), q, &s, r);
         }
         if k == 1 {
             (p.rows[0], p.rows_terms[0]) = (w.row, w.row_terms);
         } else {
+            // Several rows keep the scale at 1 (only one row is restored by
+            // a scale); should one be pending, the sums read `c z`.
+            let z: Cow<'_, [f64]> = if scale == 1.0 {
+                Cow::Borrowed(z)
+            } else {
+                Cow::Owned(z.iter().map(|v| scale * v).collect())
+            };
             for j in 0..k {
                 let b = columns[j].part(base, len);
-                p.rows[j] = Terms::Product(b, z).compensated();
-                p.rows_terms[j] = Terms::AbsProduct(b, z).plain();
+                p.rows[j] = Terms::Product(b, &z).compensated();
+                p.rows_terms[j] = Terms::AbsProduct(b, &z).plain();
             }
         }
         p
@@ -395,36 +396,35 @@ pub(super) fn measure_pass(
     }
 }
 
-/// `t_J = w_J + β t_J`, `t = 0` off `J`; returns `w_J · t_J`.
+/// `t_J = w_J + β t_J`, `t = 0` off `J`, from `z` and `u` at their
+/// pending scale `c`; returns `w_J · t_J`.
 pub(super) fn direction_pass(
     data: &Data<'_>,
-    z: &[f64],
-    u: &[f64],
+    (z, u, c): (&[f64], &[f64], f64),
     t: &mut [f64],
     lambda: &[f64],
     beta: f64,
 ) -> f64 {
-    direction_by(data, (z, u), t, lambda, Some(beta))
+    direction_by(data, (z, u, c), t, lambda, Some(beta))
 }
 
 /// The proportioning direction: `t_i = w_i` where `z_i = 0` and `w_i < 0`
 /// (Dostál's chopped gradient `β`), 0 elsewhere; returns `w · t = t · t`.
 pub(super) fn chopped_pass(
     data: &Data<'_>,
-    z: &[f64],
-    u: &[f64],
+    (z, u, c): (&[f64], &[f64], f64),
     t: &mut [f64],
     lambda: &[f64],
 ) -> f64 {
-    direction_by(data, (z, u), t, lambda, None)
+    direction_by(data, (z, u, c), t, lambda, None)
 }
 
-/// A direction from `w = u + q - B λ`, in one pass: the conjugate one
+/// A direction from `w = c u + q - B λ`, in one pass: the conjugate one
 /// with `beta` ([`Rule::Conjugate`]), else the chopped gradient
 /// ([`Rule::Chopped`]); returns `w · t`.
 fn direction_by(
     data: &Data<'_>,
-    (z, u): (&[f64], &[f64]),
+    (z, u, scale): (&[f64], &[f64], f64),
     t: &mut [f64],
     lambda: &[f64],
     beta: Option<f64>,
@@ -443,8 +443,14 @@ fn direction_by(
         let (s, _) = shift.chunk(base, len);
         let s = &s[..];
         let rule = match beta {
-            Some(beta) => Rule::Conjugate { u, q, s, beta },
-            None => Rule::Chopped { u, q, s },
+            Some(beta) => Rule::Conjugate {
+                u,
+                c: scale,
+                q,
+                s,
+                beta,
+            },
+            None => Rule::Chopped { u, c: scale, q, s },
         };
         direction_chunk(rule, z, t).value()
     });
@@ -488,16 +494,16 @@ struct UpdateParts {
     bu: Vec<Compensated>,
 }
 
-/// The step `z_J -= τ t_J`, clipped at 0; a point off `J` with `w_i < 0`
-/// (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ = 0`) where
-/// `enter` is set, else stays at 0; the product by its recurrence, `u -=
-/// τ r`. A chunk where a point left or entered skips the sums (the step's
-/// are then not read).
+/// The step `z_J = c z_J - τ t_J` from `z` and `u` at their pending scale
+/// `c` (stored at scale 1 after it), clipped at 0; a point off `J` with
+/// `w_i < 0` (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ =
+/// 0`) where `enter` is set, else stays at 0; the product by its
+/// recurrence, `u = c u - τ r`. A chunk where a point left or entered
+/// skips the sums (the step's are then not read).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn update_pass(
     data: &Data<'_>,
-    z: &mut [f64],
-    u: &mut [f64],
+    (z, u, scale): (&mut [f64], &mut [f64], f64),
     t: &[f64],
     r: &[f64],
     lambda: &[f64],
@@ -529,6 +535,7 @@ pub(super) fn update_pass(
         };
         let (s, _) = shift.chunk(base, len);
         let step = Step {
+            c: scale,
             t,
             r,
             q,
@@ -587,12 +594,14 @@ pub(super) fn update_pass(
     }
 }
 
-/// `r = w` on `J`, 0 off it, over a chunk whose shift `B λ` is `s`.
+/// `r = w` on `J`, 0 off it, over a chunk whose shift `B λ` is `s`, from
+/// `z` and `u` at their pending scale `c` (`c > 0`: `c z` and `z` have one
+/// contact set).
 #[inline(always)]
-fn residual_of(z: &[f64], u: &[f64], q: &[f64], s: &[f64], r: &mut [f64]) {
+fn residual_of((z, u, c): (&[f64], &[f64], f64), q: &[f64], s: &[f64], r: &mut [f64]) {
     for i in 0..r.len() {
         r[i] = if z[i] > 0.0 {
-            (u[i] + q[i]) - s[i]
+            (c * u[i] + q[i]) - s[i]
         } else {
             0.0
         };
@@ -602,7 +611,12 @@ fn residual_of(z: &[f64], u: &[f64], q: &[f64], s: &[f64], r: &mut [f64]) {
 /// `r = w` on `J`, 0 off it: the residual the preconditioner is applied to
 /// (as a pass of its own: the reference of [`measure_pass`]'s).
 #[cfg(test)]
-pub(super) fn residual_pass(data: &Data<'_>, z: &[f64], u: &[f64], r: &mut [f64], lambda: &[f64]) {
+pub(super) fn residual_pass(
+    data: &Data<'_>,
+    (z, u, scale): (&[f64], &[f64], f64),
+    r: &mut [f64],
+    lambda: &[f64],
+) {
     let (columns, q) = (data.columns(), &*data.q);
     let parts: Vec<_> = r.chunks_mut(CHUNK).enumerate().collect();
     let shift = Shift::new(columns, lambda, z.len(), false);
@@ -615,7 +629,7 @@ pub(super) fn residual_pass(data: &Data<'_>, z: &[f64], u: &[f64], r: &mut [f64]
             &q[base..base + len],
         );
         let (s, _) = shift.chunk(base, len);
-        residual_of(z, u, q, &s, r);
+        residual_of((z, u, scale), q, &s, r);
     });
 }
 
@@ -775,16 +789,19 @@ mod tests {
         let b = faer::Mat::from_fn(n, 2, |i, j| 1.0 + (i * (j + 1)) as f64 * 1e-4);
         let data = Data::new(q.as_ref(), b.as_ref());
         let lambda = [0.01, -0.02];
-        let (mut z1, mut u1) = (z.clone(), u.clone());
-        let separate = measure_pass(&data, &mut z1, &mut u1, None, 1.5, &lambda);
+        let separate = measure_pass(&data, (&z, &u), None, 1.5, &lambda);
         let mut r1 = vec![0.0; n];
-        residual_pass(&data, &z1, &u1, &mut r1, &lambda);
-        let (mut z2, mut u2, mut r2) = (z, u, vec![9.0; n]);
-        let fused = measure_pass(&data, &mut z2, &mut u2, Some(&mut r2), 1.5, &lambda);
+        residual_pass(&data, (&z, &u, 1.5), &mut r1, &lambda);
+        let mut r2 = vec![9.0; n];
+        let fused = measure_pass(&data, (&z, &u), Some(&mut r2), 1.5, &lambda);
         assert_eq!(measures_bits(&separate), measures_bits(&fused));
-        assert_eq!((bits(&z1), bits(&u1)), (bits(&z2), bits(&u2)));
         assert_eq!(bits(&r1), bits(&r2));
-        assert!(r2.iter().zip(&z2).all(|(r, z)| *z > 0.0 || *r == 0.0));
+        assert!(r2.iter().zip(&z).all(|(r, z)| *z > 0.0 || *r == 0.0));
+        // A pending scale, applied in registers, measures what the scaled
+        // vectors measure.
+        let scaled = |v: &[f64]| v.iter().map(|x| 1.5 * x).collect::<Vec<f64>>();
+        let stored = measure_pass(&data, (&scaled(&z), &scaled(&u)), None, 1.0, &lambda);
+        assert_eq!(measures_bits(&separate), measures_bits(&stored));
     }
 
     #[test]
@@ -807,8 +824,8 @@ mod tests {
             fits[1].gram[(0, 0)].to_bits()
         );
         let measures = [&constant, &entries].map(|d| {
-            let (mut z, mut u, mut r) = (z.clone(), u.clone(), vec![0.0; n]);
-            let m = measure_pass(d, &mut z, &mut u, Some(&mut r), 0.75, &lambda);
+            let mut r = vec![0.0; n];
+            let m = measure_pass(d, (&z, &u), Some(&mut r), 0.75, &lambda);
             (measures_bits(&m), bits(&r))
         });
         assert_eq!(measures[0], measures[1]);
@@ -840,19 +857,19 @@ mod tests {
             let t: Vec<f64> = z.iter().map(|&v| 0.01 * v).collect();
             let lambda = &[-1e3, 0.0][..k];
             let (mut z1, mut u1) = (z.clone(), u.clone());
-            let update = update_pass(&data, &mut z1, &mut u1, &t, &r, lambda, 0.5, true);
+            let update = update_pass(&data, (&mut z1, &mut u1, 1.0), &t, &r, lambda, 0.5, true);
             let rows = update.rows;
             let sums = update.sums.expect("no point left or entered");
             let after = fit_pass(&data, &z1, &u1);
             assert_eq!(bits(&sums.bu), bits(&after.bu));
             assert_eq!(bits(&before.bq), bits(&after.bq));
-            let measured = measure_pass(&data, &mut z1.clone(), &mut u1.clone(), None, 1.0, lambda);
+            let measured = measure_pass(&data, (&z1, &u1), None, 1.0, lambda);
             assert_eq!(bits(&rows), bits(&measured.rows));
             assert_eq!(bits(&sums.rows_terms), bits(&measured.rows_terms));
             // A full step clips the points in contact: no sums.
             let t: Vec<f64> = z.iter().map(|&v| 2.0 * v).collect();
             let (mut z2, mut u2) = (z, u);
-            let update = update_pass(&data, &mut z2, &mut u2, &t, &r, lambda, 1.0, true);
+            let update = update_pass(&data, (&mut z2, &mut u2, 1.0), &t, &r, lambda, 1.0, true);
             assert!(update.sums.is_none());
         }
     }

@@ -145,7 +145,9 @@ struct State {
     p: Option<Vec<f64>>,
     lambda: Col<f64>,
     /// A factor of `z` and `u` not applied yet (the one-row restoration's):
-    /// the next pass that reads them applies it.
+    /// the iterate is `scale z`, with `M (scale z) = scale u`. The passes
+    /// that read them multiply in registers, the step stores its result at
+    /// scale 1, and the answer applies what is left.
     scale: f64,
     /// The fit's sums over the contact set, at `scale` 1.
     fit: FitSums,
@@ -200,8 +202,7 @@ impl State {
     }
 
     /// `u = M z` from a true product and the fit's sums, at scale 1: a
-    /// pending scale stays pending (the measure pass applies it to both,
-    /// `M (c z) = c M z`), which saves a pass over `z`.
+    /// pending scale stays pending (`M (c z) = c M z`).
     fn refresh(&mut self, form: &Form<'_>, data: &Data<'_>, work: &mut Work) {
         form.m.apply(&self.z, &mut self.u);
         work.products += 1;
@@ -222,15 +223,7 @@ impl State {
             Some(_) => Some(&mut self.r[..]),
             None => None,
         };
-        let m = iteration::measure_pass(
-            data,
-            &mut self.z,
-            &mut self.u,
-            residual,
-            self.scale,
-            &lambda,
-        );
-        self.scale = 1.0;
+        let m = iteration::measure_pass(data, (&self.z, &self.u), residual, self.scale, &lambda);
         if !m.finite {
             return Err(Breakdown::NonFinite);
         }
@@ -258,7 +251,8 @@ impl State {
         } else {
             let beta = self.beta(g_now);
             self.g_old = g_now;
-            iteration::direction_pass(data, &self.z, &self.u, &mut self.t, &lambda, beta)
+            let iterate = (&self.z[..], &self.u[..], self.scale);
+            iteration::direction_pass(data, iterate, &mut self.t, &lambda, beta)
         };
         let enter = !self.guarded;
         self.advance(form, data, (&lambda, num), enter, work)
@@ -283,14 +277,15 @@ impl State {
         self.keep_before_clipping(form.border.ncols(), tau)?;
         let update = iteration::update_pass(
             data,
-            &mut self.z,
-            &mut self.u,
+            (&mut self.z, &mut self.u, self.scale),
             &self.t,
             &self.r,
             lambda,
             tau,
             enter,
         );
+        // The step stored `z` and `u` at their scale.
+        self.scale = 1.0;
         self.restart = update.entered > 0;
         self.fresh = false;
         self.rows_after(form, update)
@@ -309,7 +304,8 @@ impl State {
         lambda: &[f64],
         work: &mut Work,
     ) -> Result<(), Breakdown> {
-        let num = iteration::chopped_pass(data, &self.z, &self.u, &mut self.t, lambda);
+        let iterate = (&self.z[..], &self.u[..], self.scale);
+        let num = iteration::chopped_pass(data, iterate, &mut self.t, lambda);
         // `t` is 0 on `J`: no point leaves, and every point along `β` enters.
         self.advance(form, data, (lambda, num), true, work)
     }
@@ -323,6 +319,8 @@ impl State {
         if k < 2 || !(tau > 0.0) {
             return Ok(());
         }
+        // Several rows: no pending scale (only one row is restored by it).
+        debug_assert!(self.scale == 1.0);
         let boundary = iteration::boundary_pass(&self.z, &self.t);
         if boundary > tau {
             return Ok(());
@@ -540,15 +538,19 @@ fn solve(form: &Form<'_>, options: &Options, mut guard: Guard) -> Attempted {
         if done {
             // The answer copies z: free the other vectors first.
             let State {
-                z,
+                mut z,
                 lambda,
                 u,
                 t,
                 r,
                 p,
+                scale,
                 ..
             } = state;
             drop((u, t, r, p));
+            if scale != 1.0 {
+                z.iter_mut().for_each(|v| *v *= scale);
+            }
             return Ok(answer(z, lambda, work));
         }
         if guard.stuck(c) {
