@@ -12,6 +12,7 @@
 //! cargo run --release --example large_grid -- --max 256   # N up to about 260,000
 //! cargo run --release --example large_grid -- --h-over-a 64   # one size, the peers' case
 //! cargo run --release --example large_grid -- --h-over-a 64 --threads 1   # on one thread
+//! cargo run --release --example large_grid -- --h-over-a 128 --threads 1 --repeat 9   # medians of 9
 //! cargo run --release --example large_grid -- --max 128 --plot docs/img/large-grid.svg
 //! ```
 //!
@@ -25,10 +26,14 @@
 //! application's> threads=<rayon threads> cpu_seconds=<the CPU
 //! time of assembly and solve, all threads> iterations=<CG iterations>
 //! preconditioner_applications=<its count>
-//! preconditioner_products=<one application's CPU time in products>`
-//! (`--no-preconditioner`: the conjugate gradient without its
+//! preconditioner_products=<one application's CPU time in products>
+//! repeat=<solves>` (`--repeat R`: the solve and the floor's measure
+//! take turns R times, and the times are their medians: on a machine
+//! whose speed drifts, both drift alike; `--no-preconditioner`: the
+//! conjugate gradient without its
 //! preconditioner, `Options::preconditioner`; peak_rss_mb the process's
-//! peak resident memory, VmHWM; products 0 for a dense solve; CPU times in
+//! peak resident memory after the first solve, VmHWM; products 0 for a
+//! dense solve; CPU times in
 //! steps of 10 ms, a measure that a machine busy with other work inflates
 //! less than the wall time; on one thread of an idle machine the CPU and
 //! the wall time agree, and `cpu_seconds / floor_seconds` is how far the
@@ -80,54 +85,82 @@ fn cpu_seconds() -> f64 {
 /// One size, the peers' case: h = a / `cells` on the disk of 1.3 a, the
 /// method `"auto"` picks for it. A matrix-free solve also reports its
 /// operator products and its floor, the products times one product's
-/// CPU seconds on the same threads (to compare with `cpu_seconds`).
-fn one_size(cells: f64) {
+/// CPU seconds on the same threads (to compare with `cpu_seconds`). With
+/// `repeat` above 1 the solve and the floor's measure take turns that
+/// many times and the times printed are their medians (a machine whose
+/// speed drifts from minute to minute moves both alike).
+fn one_size(cells: f64, repeat: usize) {
     let hertz = hertz::reference();
     let a = hertz.contact_radius();
-    let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
-    let n = points.len();
-    let dense = n <= elcon::scene::AUTO_DENSE_LIMIT;
-    let (start, cpu_start) = (Instant::now(), cpu_seconds());
-    let (build, method) = if dense {
-        (ContactProblem::new as hertz::Build, Method::BlockPivoting)
-    } else {
-        (
-            ContactProblem::lattice as hertz::Build,
-            Method::ConjugateGradient,
-        )
+    let mut runs: Vec<[f64; 4]> = Vec::new();
+    let mut peak = f64::NAN;
+    let mut last = None;
+    for _ in 0..repeat.max(1) {
+        let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
+        let dense = points.len() <= elcon::scene::AUTO_DENSE_LIMIT;
+        let (start, cpu_start) = (Instant::now(), cpu_seconds());
+        let (build, method) = if dense {
+            (ContactProblem::new as hertz::Build, Method::BlockPivoting)
+        } else {
+            (
+                ContactProblem::lattice as hertz::Build,
+                Method::ConjugateGradient,
+            )
+        };
+        let options = Options {
+            preconditioner: !std::env::args().any(|a| a == "--no-preconditioner"),
+            ..Options::default()
+        };
+        // The problem holds the points (a grid's, 2 bytes a point): no copy
+        // of them is kept beside it, which the peak would count.
+        let problem = hertz::held(build, points);
+        let sol = problem.solve(method, &options).expect("solve");
+        let seconds = start.elapsed().as_secs_f64();
+        let cpu = cpu_seconds() - cpu_start;
+        // The first solve's peak, before the floor's products take a
+        // workspace.
+        if runs.is_empty() {
+            peak = peak_rss_mb();
+        }
+        let (product, preconditioning) = (
+            product_seconds(&problem),
+            preconditioner_seconds(problem.points(), sol.statistics.preconditionings()),
+        );
+        let floor = sol.statistics.products() as f64 * product
+            + sol.statistics.preconditionings() as f64 * preconditioning;
+        let relative = if product > 0.0 {
+            preconditioning / product
+        } else {
+            0.0
+        };
+        runs.push([seconds, cpu, floor, relative]);
+        last = Some((sol, method));
+    }
+    let (sol, method) = last.expect("one run at least");
+    let median = |i: usize| {
+        let mut v: Vec<f64> = runs.iter().map(|r| r[i]).collect();
+        v.sort_by(f64::total_cmp);
+        let m = v.len() / 2;
+        if v.len() % 2 == 1 {
+            v[m]
+        } else {
+            0.5 * (v[m - 1] + v[m])
+        }
     };
-    let options = Options {
-        preconditioner: !std::env::args().any(|a| a == "--no-preconditioner"),
-        ..Options::default()
-    };
-    // The problem holds the points (a grid's, 2 bytes a point): no copy
-    // of them is kept beside it, which the peak would count.
-    let problem = hertz::held(build, points);
-    let sol = problem.solve(method, &options).expect("solve");
-    let seconds = start.elapsed().as_secs_f64();
-    let cpu = cpu_seconds() - cpu_start;
-    // The solve's peak, before the floor's products take a workspace.
-    let peak = peak_rss_mb();
+    let (seconds, cpu, floor, relative) = (median(0), median(1), median(2), median(3));
+    let n = sol.forces.len();
     let products = sol.statistics.products();
     let preconditionings = sol.statistics.preconditionings();
-    let (product, preconditioning) = (
-        product_seconds(&problem),
-        preconditioner_seconds(problem.points(), preconditionings),
-    );
-    let floor = products as f64 * product + preconditionings as f64 * preconditioning;
     println!(
-        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1} products={products} floor_seconds={floor:.4} threads={} cpu_seconds={cpu:.2} iterations={} preconditioner_applications={preconditionings} preconditioner_products={:.3}",
+        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1} products={products} floor_seconds={floor:.4} threads={} cpu_seconds={cpu:.2} iterations={} preconditioner_applications={preconditionings} preconditioner_products={:.3} repeat={}",
         method.name(),
         sol.approach / hertz.approach() - 1.0,
         sol.certificate.worst(),
         peak,
         rayon::current_num_threads(),
         sol.statistics.iterations(),
-        if product > 0.0 {
-            preconditioning / product
-        } else {
-            0.0
-        },
+        relative,
+        runs.len(),
     );
 }
 
@@ -194,7 +227,12 @@ fn main() {
         .nth(1)
         .and_then(|v| v.parse::<f64>().ok())
     {
-        one_size(k);
+        let repeat = std::env::args()
+            .skip_while(|a| a != "--repeat")
+            .nth(1)
+            .and_then(|v| v.parse::<usize>().ok())
+            .unwrap_or(1);
+        one_size(k, repeat);
         return;
     }
     let max: f64 = std::env::args()
