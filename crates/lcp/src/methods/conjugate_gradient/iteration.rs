@@ -28,7 +28,7 @@ use std::borrow::Cow;
 use faer::{ColRef, Mat, MatRef};
 
 use super::chunk::{Rule, Step, direction_chunk, measure_chunk, update_chunk};
-use super::passes::{CHUNK, Compensated, LANES, Lanes, Terms, map_parts, total};
+use super::passes::{CHUNK, Compensated, LANES, Lanes, Terms, map_parts, masked_pair_and, total};
 
 /// `q` and the border's columns as slices (copied where a column is not
 /// contiguous).
@@ -244,6 +244,12 @@ pub(super) fn fit_pass(data: &Data<'_>, z: &[f64], u: &[f64]) -> FitSums {
         let mut e = 0;
         for a in 0..k {
             let ba = columns[a].part(range.start, len);
+            if k == 1 {
+                // One column: its three sums in one sweep.
+                (p.bu[0], p.bq[0], p.gram[0]) =
+                    masked_pair_and((z, ba), (u, q), Terms::Masked(z, ba, ba));
+                break;
+            }
             p.bu[a] = Terms::Masked(z, ba, u).compensated();
             p.bq[a] = Terms::Masked(z, ba, q).compensated();
             for b in 0..=a {
@@ -650,13 +656,20 @@ pub(super) fn projection_pass(data: &Data<'_>, z: &[f64], r: &[f64], p: &[f64]) 
         let len = range.len();
         let mut bp = vec![Compensated::default(); k];
         let mut br = vec![Compensated::default(); k];
+        let rp = Terms::MaskedProduct(z, r, p);
+        if k == 1 {
+            // One column: the three sums in one sweep.
+            let b = columns[0].part(range.start, len);
+            let (sum_p, sum_r, dot) = masked_pair_and((z, b), (p, r), rp);
+            (bp[0], br[0]) = (sum_p, sum_r);
+            return (bp, br, dot.value());
+        }
         for j in 0..k {
             let b = columns[j].part(range.start, len);
             bp[j] = Terms::Masked(z, b, p).compensated();
             br[j] = Terms::Masked(z, b, r).compensated();
         }
-        let rp = Terms::MaskedProduct(z, r, p).plain();
-        (bp, br, rp.value())
+        (bp, br, rp.plain().value())
     });
     let (mut bp, mut br) = (
         vec![Compensated::default(); k],

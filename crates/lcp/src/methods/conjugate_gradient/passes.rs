@@ -257,6 +257,111 @@ impl pulp::WithSimd for Sum<'_> {
     }
 }
 
+/// Three sums over a chunk in one sweep: `Σ (b_i if z_i > 0 else 0) x_i`
+/// and the same of `y` (compensated: [`Terms::Masked`]), and `third`
+/// (plain), each lane the same operations in the same order as the sums
+/// one at a time.
+pub(super) fn masked_pair_and(
+    (z, b): (&[f64], &[f64]),
+    (x, y): (&[f64], &[f64]),
+    third: Terms<'_>,
+) -> (Compensated, Compensated, Lanes) {
+    pulp::Arch::new().dispatch(MaskedPair { z, b, x, y, third })
+}
+
+struct MaskedPair<'a> {
+    z: &'a [f64],
+    b: &'a [f64],
+    x: &'a [f64],
+    y: &'a [f64],
+    third: Terms<'a>,
+}
+
+impl pulp::WithSimd for MaskedPair<'_> {
+    type Output = (Compensated, Compensated, Lanes);
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, simd: S) -> Self::Output {
+        let zero = simd.splat_f64s(0.0);
+        let positive = |z: S::f64s| simd.greater_than_f64s(z, zero);
+        let ([xs, xc, ys, yc], sums) = match self.third {
+            Terms::Product(a, b) => {
+                let (a, b) = (registers::<S>(a), registers::<S>(b));
+                self.sweep(simd, |k| simd.mul_f64s(a[k], b[k]))
+            }
+            Terms::AbsProduct(a, b) => {
+                let (a, b) = (registers::<S>(a), registers::<S>(b));
+                self.sweep(simd, |k| simd.abs_f64s(simd.mul_f64s(a[k], b[k])))
+            }
+            Terms::Masked(z, a, b) => {
+                let (z, a, b) = (registers::<S>(z), registers::<S>(a), registers::<S>(b));
+                self.sweep(simd, |k| {
+                    simd.mul_f64s(simd.select_f64s(positive(z[k]), a[k], zero), b[k])
+                })
+            }
+            Terms::MaskedProduct(z, a, b) => {
+                let (z, a, b) = (registers::<S>(z), registers::<S>(a), registers::<S>(b));
+                self.sweep(simd, |k| {
+                    simd.select_f64s(positive(z[k]), simd.mul_f64s(a[k], b[k]), zero)
+                })
+            }
+        };
+        let lanes = to_lanes::<S>;
+        let mut first = Compensated::from_lanes(lanes(&xs), lanes(&xc));
+        let mut second = Compensated::from_lanes(lanes(&ys), lanes(&yc));
+        let mut third = Lanes(lanes(&sums));
+        let len = self.z.len();
+        let full = len - len % LANES;
+        let (z, b) = (self.z, self.b);
+        for i in full..len {
+            let l = i - full;
+            first.add(l, Terms::Masked(z, b, self.x).at(i));
+            second.add(l, Terms::Masked(z, b, self.y).at(i));
+            third.add(l, self.third.at(i));
+        }
+        (first, second, third)
+    }
+}
+
+impl MaskedPair<'_> {
+    /// The registers of the two compensated sums (sum and carry of each)
+    /// and of the plain one, whose term of register `k` is `third(k)`.
+    #[inline(always)]
+    fn sweep<S: pulp::Simd>(
+        &self,
+        simd: S,
+        third: impl Fn(usize) -> S::f64s,
+    ) -> ([[S::f64s; LANES]; 4], [S::f64s; LANES]) {
+        let regs = LANES / S::F64_LANES;
+        let zero = simd.splat_f64s(0.0);
+        let (zs, bs) = (registers::<S>(self.z), registers::<S>(self.b));
+        let (xs, ys) = (registers::<S>(self.x), registers::<S>(self.y));
+        let mut acc = [[zero; LANES]; 4];
+        let mut plain = [zero; LANES];
+        let mut k = 0;
+        while k < zs.len() {
+            for r in 0..regs {
+                let on = simd.greater_than_f64s(zs[k + r], zero);
+                let masked = simd.select_f64s(on, bs[k + r], zero);
+                let [xs_, xc, ys_, yc] = &mut acc;
+                add_compensated(
+                    simd,
+                    (&mut xs_[r], &mut xc[r]),
+                    simd.mul_f64s(masked, xs[k + r]),
+                );
+                add_compensated(
+                    simd,
+                    (&mut ys_[r], &mut yc[r]),
+                    simd.mul_f64s(masked, ys[k + r]),
+                );
+                plain[r] = simd.add_f64s(plain[r], third(k + r));
+            }
+            k += regs;
+        }
+        (acc, plain)
+    }
+}
+
 /// Adds `v` to a compensated sum's register `(sum, carry)`: Knuth's
 /// two-sum lane by lane, the operations of [`Compensated::add`].
 #[inline(always)]
@@ -399,6 +504,45 @@ mod tests {
                 assert_eq!(vector, reference, "{len} entries");
                 let (plain, comp) = scalar(terms);
                 assert_eq!(bits(&plain, &comp), reference, "{len} entries, scalar");
+            }
+        }
+    }
+
+    #[test]
+    fn three_sums_in_one_sweep_keep_the_bits_of_each_alone() {
+        use pulp::WithSimd;
+        let h =
+            |i: usize, k: usize| (i as f64 * 0.618_033_988_749_895 + k as f64 * 0.3).fract() - 0.4;
+        for len in [0, 5, LANES, 8 * LANES + 3, CHUNK + 7] {
+            let v: Vec<Vec<f64>> = (0..5)
+                .map(|k| (0..len).map(|i| h(i, k)).collect())
+                .collect();
+            let (z, b, x, y) = (&v[0][..], &v[1][..], &v[2][..], &v[3][..]);
+            for third in [
+                Terms::Masked(z, b, b),
+                Terms::MaskedProduct(z, x, y),
+                Terms::Product(x, y),
+                Terms::AbsProduct(x, y),
+            ] {
+                let alone = (
+                    Terms::Masked(z, b, x).compensated().value().to_bits(),
+                    Terms::Masked(z, b, y).compensated().value().to_bits(),
+                    third.plain().value().to_bits(),
+                );
+                let bits = |(p, q, r): (Compensated, Compensated, Lanes)| {
+                    (
+                        p.value().to_bits(),
+                        q.value().to_bits(),
+                        r.value().to_bits(),
+                    )
+                };
+                assert_eq!(bits(masked_pair_and((z, b), (x, y), third)), alone, "{len}");
+                let pair = MaskedPair { z, b, x, y, third };
+                assert_eq!(
+                    bits(pair.with_simd(pulp::Scalar::new())),
+                    alone,
+                    "{len}, scalar"
+                );
             }
         }
     }
