@@ -120,10 +120,7 @@ impl Lookup {
     fn new(points: &PointSet) -> Option<Self> {
         let cell = points.cell();
         if let (Some(lattice), Some(index)) = (points.lattice(), points.lattice_index()) {
-            let distinct = lattice
-                .iter()
-                .enumerate()
-                .all(|(k, ij)| index.get(ij) == Some(k));
+            let distinct = points.lattice_is_distinct(&index);
             return distinct.then(|| Self::Lattice {
                 index,
                 origin: (points.x(0), points.y(0)),

@@ -532,6 +532,20 @@ impl PointSet {
         self.lattice().expect("a grid has a lattice").get(k)
     }
 
+    /// Whether every point has lattice indices of its own (`index` is the
+    /// set's [`lattice_index`](Self::lattice_index)): a grid's runs, one a
+    /// lattice row, never share one; a listed set is checked point by point.
+    pub(crate) fn lattice_is_distinct(&self, index: &LatticeIndex) -> bool {
+        match (&self.layout, self.lattice()) {
+            (Layout::Grid { .. }, _) => true,
+            (_, Some(lattice)) => lattice
+                .iter()
+                .enumerate()
+                .all(|(k, ij)| index.get(ij) == Some(k)),
+            (_, None) => false,
+        }
+    }
+
     /// The point at each lattice coordinate, or `None` for a set without a
     /// lattice: built on each call (O(N) for a listed lattice, O(rows) for
     /// a grid), for a caller that walks the lattice's neighbours.
