@@ -29,7 +29,9 @@
 //! preconditioner_products=<one application's CPU time in products>
 //! repeat=<solves>` (`--repeat R`: the solve and the floor's measure
 //! take turns R times, and the times are their medians: on a machine
-//! whose speed drifts, both drift alike; `--no-preconditioner`: the
+//! whose speed drifts, both drift alike; `--no-floor`: the floor is not
+//! measured and prints as 0, so that a profiler sees the solves alone;
+//! `--no-preconditioner`: the
 //! conjugate gradient without its
 //! preconditioner, `Options::preconditioner`; peak_rss_mb the process's
 //! peak resident memory after the first solve, VmHWM; products 0 for a
@@ -122,10 +124,14 @@ fn one_size(cells: f64, repeat: usize) {
         if runs.is_empty() {
             peak = peak_rss_mb();
         }
-        let (product, preconditioning) = (
-            product_seconds(&problem),
-            preconditioner_seconds(problem.points(), sol.statistics.preconditionings()),
-        );
+        let (product, preconditioning) = if std::env::args().any(|a| a == "--no-floor") {
+            (0.0, 0.0)
+        } else {
+            (
+                product_seconds(&problem),
+                preconditioner_seconds(problem.points(), sol.statistics.preconditionings()),
+            )
+        };
         let floor = sol.statistics.products() as f64 * product
             + sol.statistics.preconditionings() as f64 * preconditioning;
         let relative = if product > 0.0 {

@@ -20,8 +20,10 @@
 //!     direction:  t_J = (p - B μ)_J + β t_J, t = 0 off J;  r_J · t_J
 //! ```
 //!
-//! with `J = {i : z_i > 0}`. The measure pass also applies a pending scale
-//! of `z` and `u` (the one-row restoration's, `M (c z) = c u`).
+//! with `J = {i : z_i > 0}`. `z` and `u` may carry a pending scale `c`
+//! (the one-row restoration's, `M (c z) = c u`): the measure and
+//! direction passes read `c z` and `c u` in registers, and the update
+//! stores its result at scale 1.
 
 use std::borrow::Cow;
 
@@ -324,10 +326,11 @@ fn lanes_min(a: &[f64; LANES]) -> f64 {
     a.iter().fold(0.0f64, |m, &v| if v < m { v } else { m })
 }
 
-/// Applies the pending `scale` to `z` and `u`, then measures `w = u + q -
-/// B λ` (see [`Measures`]); with a `residual` to write (a preconditioned
-/// step's), also `r = w` on `J`, 0 off it, the same bits as
-/// [`residual_pass`] after this pass, from the chunk while it is in cache.
+/// Measures `w = c u + q - B λ` (see [`Measures`]) of `c z` and `c u`,
+/// `c` the pending `scale` (applied in registers; `z` and `u` are only
+/// read); with a `residual` to write (a preconditioned step's), also `r =
+/// w` on `J`, 0 off it, the same bits as [`residual_pass`], from the chunk
+/// while it is in cache.
 pub(super) fn measure_pass(
     data: &Data<'_>,
     (z, u): (&[f64], &[f64]),
