@@ -4,42 +4,19 @@
 //! same problem, its operator not saying so, takes two products and gives
 //! the same certificate and answer to the bit.
 
+mod common;
+
+use common::Tridiagonal;
 use elcon_lcp::{LcpSolution, Method, Operator, OperatorLcp, Options};
 use faer::{Col, Mat};
-
-/// `M` tridiagonal `[c, d, c]` with `c, d > 0`; `says` whether it tells
-/// the certificate that its entries are non-negative.
-struct Tridiagonal {
-    n: usize,
-    says: bool,
-}
-
-impl Operator for Tridiagonal {
-    fn size(&self) -> usize {
-        self.n
-    }
-
-    fn apply(&self, x: &[f64], y: &mut [f64]) {
-        for i in 0..self.n {
-            let left = if i > 0 { x[i - 1] } else { 0.0 };
-            let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
-            y[i] = 2.0 * x[i] + 0.5 * (left + right);
-        }
-    }
-
-    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
-        self.apply(x, y);
-    }
-
-    fn entries_nonnegative(&self) -> bool {
-        self.says
-    }
-}
 
 /// A load of 20 on a curved gap over 400 points.
 fn solve(says: bool) -> LcpSolution {
     let n = 400;
-    let m = Tridiagonal { n, says };
+    let m = Tridiagonal {
+        says_nonnegative: says,
+        ..Tridiagonal::new(n, 2.0, 0.5)
+    };
     let x = |i: usize| 2.0 * i as f64 / (n - 1) as f64 - 1.0;
     let q = Col::from_fn(n, |i| x(i) * x(i));
     let border = Mat::from_fn(n, 1, |_, _| 1.0);

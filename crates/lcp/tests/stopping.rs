@@ -4,46 +4,20 @@
 //! tolerance stops it sooner (it is not held to a tighter residual of its
 //! own).
 
+mod common;
+
+use common::Tridiagonal;
 use elcon_lcp::{LcpSolution, Method, Operator, OperatorLcp, Options, Tolerances};
 use faer::{Col, Mat};
-
-/// `M` tridiagonal `[c, d, c]` with `d` barely above `2 c`: symmetric
-/// positive definite with a condition number near `4 c / (d - 2 c)`, the
-/// stiffness of a long elastic strip.
-struct Stiff {
-    n: usize,
-    d: f64,
-    c: f64,
-}
-
-impl Operator for Stiff {
-    fn size(&self) -> usize {
-        self.n
-    }
-
-    fn apply(&self, x: &[f64], y: &mut [f64]) {
-        for i in 0..self.n {
-            let left = if i > 0 { x[i - 1] } else { 0.0 };
-            let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
-            y[i] = self.d * x[i] + self.c * (left + right);
-        }
-    }
-
-    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
-        self.apply(x, y);
-    }
-}
 
 /// A punch on a curved, slightly asymmetric gap under a load (one row of
 /// ones), `n = 20,000`, condition number about 2000, certified to
 /// `tolerance`.
 fn solve(tolerance: f64) -> LcpSolution {
     let n = 20_000;
-    let m = Stiff {
-        n,
-        d: 1.001,
-        c: 0.5,
-    };
+    // `d` barely above `2 c`: a condition number near `4 c / (d - 2 c)`,
+    // the stiffness of a long elastic strip.
+    let m = Tridiagonal::new(n, 1.001, 0.5);
     let x = |i: usize| 2.0 * i as f64 / (n - 1) as f64 - 1.0;
     let q = Col::from_fn(n, |i| x(i) * x(i) + 0.1 * x(i).powi(3));
     let border = Mat::from_fn(n, 1, |_, _| 1.0);

@@ -5,65 +5,21 @@
 //! chunks) is solved in rayon pools of 1, 2 and 3 threads. It also counts
 //! the operator's products against the iterations.
 
+mod common;
+
+use common::Tridiagonal;
 use elcon_lcp::{LcpSolution, Method, Operator, OperatorLcp, Options};
 use faer::{Col, Mat};
-
-/// `M` tridiagonal, `[c, d, c]` (diagonally dominant: symmetric positive
-/// definite, with non-negative entries as an influence operator's); with
-/// `preconditioned`, the first two terms of its inverse's Neumann series,
-/// `P = (I - (c/d) T) / d` (`T` the neighbours' sum; positive definite for
-/// `2 c < d`).
-struct Banded {
-    n: usize,
-    d: f64,
-    c: f64,
-    preconditioned: bool,
-}
-
-impl Banded {
-    fn neighbours(&self, x: &[f64], i: usize) -> f64 {
-        let left = if i > 0 { x[i - 1] } else { 0.0 };
-        let right = if i + 1 < self.n { x[i + 1] } else { 0.0 };
-        left + right
-    }
-}
-
-impl Operator for Banded {
-    fn size(&self) -> usize {
-        self.n
-    }
-
-    fn apply(&self, x: &[f64], y: &mut [f64]) {
-        for i in 0..self.n {
-            y[i] = self.d * x[i] + self.c * self.neighbours(x, i);
-        }
-    }
-
-    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
-        self.apply(x, y);
-    }
-
-    fn has_preconditioner(&self) -> bool {
-        self.preconditioned
-    }
-
-    fn precondition(&self, r: &[f64], z: &mut [f64]) {
-        for i in 0..self.n {
-            z[i] = (r[i] - self.c / self.d * self.neighbours(r, i)) / self.d;
-        }
-    }
-}
 
 /// A punch on a curved gap: `q_i = gap_i - δ` (the approach `δ` inside `q`
 /// for `k = 0`), or `q_i = gap_i` with rows: ones (the load) and, for
 /// `k = 2`, the lever arm `x_i` (a moment of zero).
 fn solve(threads: usize, k: usize, preconditioned: bool) -> LcpSolution {
     let n = 30_000;
-    let m = Banded {
-        n,
-        d: 1.01,
-        c: 0.5,
+    // Diagonally dominant, with its Neumann preconditioner where asked.
+    let m = Tridiagonal {
         preconditioned,
+        ..Tridiagonal::new(n, 1.01, 0.5)
     };
     let x = |i: usize| 2.0 * i as f64 / (n - 1) as f64 - 1.0;
     let gap = |i: usize| x(i) * x(i) + 0.1 * x(i).powi(3);
