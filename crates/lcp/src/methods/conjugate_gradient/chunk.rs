@@ -14,10 +14,66 @@ use pulp::{Simd, WithSimd};
 
 use super::passes::{Compensated, LANES, Lanes, add_compensated, registers, to_lanes};
 
+/// A border column's sums over a chunk, lane by lane: `Σ b_i z_i`
+/// (compensated) and `Σ |b_i z_i|`, the row's sum and its terms'
+/// magnitude.
+#[derive(Default)]
+pub(super) struct RowSums {
+    pub sum: Compensated,
+    pub terms: Lanes,
+}
+
+impl RowSums {
+    /// Adds entry `(b, z)` to lane `l`.
+    #[inline(always)]
+    fn add(&mut self, l: usize, b: f64, z: f64) {
+        self.sum.add(l, b * z);
+        self.terms.add(l, (b * z).abs());
+    }
+}
+
+/// [`RowSums`] in registers: register `r` holds lanes `r S::F64_LANES ..`.
+struct RowRegisters<S: Simd> {
+    sum: [S::f64s; LANES],
+    carry: [S::f64s; LANES],
+    terms: [S::f64s; LANES],
+}
+
+impl<S: Simd> RowRegisters<S> {
+    #[inline(always)]
+    fn new(simd: S) -> Self {
+        let zero = simd.splat_f64s(0.0);
+        Self {
+            sum: [zero; LANES],
+            carry: [zero; LANES],
+            terms: [zero; LANES],
+        }
+    }
+
+    /// Adds register `r`'s entries `(b, z)`: the operations of
+    /// [`RowSums::add`] lane by lane.
+    #[inline(always)]
+    fn add(&mut self, simd: S, r: usize, b: S::f64s, z: S::f64s) {
+        let bz = simd.mul_f64s(b, z);
+        add_compensated(simd, (&mut self.sum[r], &mut self.carry[r]), bz);
+        self.terms[r] = simd.add_f64s(self.terms[r], simd.abs_f64s(bz));
+    }
+
+    /// The sums in lane order.
+    #[inline(always)]
+    fn lanes(&self) -> RowSums {
+        RowSums {
+            sum: Compensated::from_lanes(to_lanes::<S>(&self.sum), to_lanes::<S>(&self.carry)),
+            terms: Lanes(to_lanes::<S>(&self.terms)),
+        }
+    }
+}
+
 /// A chunk's measures of `w`, lane by lane (lane `l` of the entries `i ≡
 /// l (mod LANES)`): the extrema and the sums of
 /// [`Measures`](super::iteration::Measures), and
 /// `Σ 0 w_i`, 0 where every `w_i` is finite and NaN otherwise.
+#[derive(Default)]
 pub(super) struct WLanes {
     pub min_w: [f64; LANES],
     pub comp: [f64; LANES],
@@ -26,10 +82,8 @@ pub(super) struct WLanes {
     pub g: [f64; LANES],
     pub chopped: [f64; LANES],
     pub nonfinite: [f64; LANES],
-    /// With one border column `b`: `Σ b_i z_i` (compensated) and
-    /// `Σ |b_i z_i|`, the row's sum and its terms' magnitude.
-    pub row: Compensated,
-    pub row_terms: Lanes,
+    /// With one border column: its [`RowSums`].
+    pub row: RowSums,
 }
 
 impl WLanes {
@@ -56,13 +110,6 @@ impl WLanes {
         self.g[l] += if z > 0.0 { w * w } else { 0.0 };
         self.chopped[l] += if (z > 0.0) | (w >= 0.0) { 0.0 } else { w * w };
     }
-
-    /// Adds entry `(b, z)` of the border column to the row's sums, lane `l`.
-    #[inline(always)]
-    fn add_row(&mut self, l: usize, b: f64, z: f64) {
-        self.row.add(l, b * z);
-        self.row_terms.add(l, (b * z).abs());
-    }
 }
 
 /// The measures of a chunk's `w = c u + q - s` from its slices `[z, u, q,
@@ -70,7 +117,7 @@ impl WLanes {
 /// (applied in registers, `c z` and `c u`, not stored), and with the
 /// border's one column `row` its sums: the groups of [`LANES`] entries in
 /// vector registers, lane `l` of the result the same operations in the
-/// same order as [`WLanes::add`] and [`WLanes::add_row`] entry by entry
+/// same order as [`WLanes::add`] and [`RowSums::add`] entry by entry
 /// (of `c z`, `c u`), then the tail entry by entry.
 pub(super) fn measure_chunk(v: [&[f64]; 5], scale: f64, row: Option<&[f64]>) -> WLanes {
     pulp::Arch::new().dispatch(MeasureChunk { v, scale, row })
@@ -110,7 +157,7 @@ impl MeasureChunk<'_> {
         let mut g = [zero; LANES];
         let mut chopped = [zero; LANES];
         let mut nonfinite = [zero; LANES];
-        let (mut row, mut carry, mut row_terms) = ([zero; LANES], [zero; LANES], [zero; LANES]);
+        let mut row = RowRegisters::new(simd);
         let zs = registers::<S>(z);
         let us = registers::<S>(u);
         let qs = registers::<S>(q);
@@ -142,9 +189,7 @@ impl MeasureChunk<'_> {
                 let quiet = simd.or_m64s(on, simd.greater_than_or_equal_f64s(w, zero));
                 chopped[r] = simd.add_f64s(chopped[r], simd.select_f64s(quiet, zero, ww));
                 if ROW {
-                    let bz = simd.mul_f64s(bs[k + r], z);
-                    add_compensated(simd, (&mut row[r], &mut carry[r]), bz);
-                    row_terms[r] = simd.add_f64s(row_terms[r], simd.abs_f64s(bz));
+                    row.add(simd, r, bs[k + r], z);
                 }
             }
             k += regs;
@@ -158,14 +203,13 @@ impl MeasureChunk<'_> {
             g: lanes(&g),
             chopped: lanes(&chopped),
             nonfinite: lanes(&nonfinite),
-            row: Compensated::from_lanes(lanes(&row), lanes(&carry)),
-            row_terms: Lanes(lanes(&row_terms)),
+            row: row.lanes(),
         };
         let c = self.scale;
         for i in full..len {
             acc.add(i - full, [c * z[i], c * u[i], q[i], s[i], s_terms[i]]);
             if ROW {
-                acc.add_row(i - full, b[i], c * z[i]);
+                acc.row.add(i - full, b[i], c * z[i]);
             }
         }
         acc
@@ -366,13 +410,12 @@ impl Step<'_> {
 }
 
 /// What a chunk's step did: how many points were clipped and how many
-/// entered, and with the border's one column `b`, the sums after the step
-/// `Σ b_i z_i` (compensated), `Σ |b_i z_i|` and `Σ_J b_i u_i` (compensated).
+/// entered, and with the border's one column `b`, the sums after the step:
+/// its [`RowSums`] and `Σ_J b_i u_i` (compensated).
 pub(super) struct Stepped {
     pub clipped: usize,
     pub entered: usize,
-    pub row: Compensated,
-    pub row_terms: Lanes,
+    pub row: RowSums,
     pub bu: Compensated,
 }
 
@@ -423,7 +466,7 @@ impl UpdateChunk<'_, '_> {
         let zs = S::as_mut_simd_f64s(&mut z[..full]).0;
         let us = S::as_mut_simd_f64s(&mut u[..full]).0;
         let (mut clipped, mut entered) = ([zero; LANES], [zero; LANES]);
-        let (mut row, mut row_carry, mut row_terms) = ([zero; LANES], [zero; LANES], [zero; LANES]);
+        let mut row = RowRegisters::new(simd);
         let (mut bu, mut bu_carry) = ([zero; LANES], [zero; LANES]);
         let mut k = 0;
         while k < zs.len() {
@@ -450,9 +493,7 @@ impl UpdateChunk<'_, '_> {
                 );
                 (zs[k + r], us[k + r]) = (zn, un);
                 if ROW {
-                    let bz = simd.mul_f64s(bs[k + r], zn);
-                    add_compensated(simd, (&mut row[r], &mut row_carry[r]), bz);
-                    row_terms[r] = simd.add_f64s(row_terms[r], simd.abs_f64s(bz));
+                    row.add(simd, r, bs[k + r], zn);
                     let on = simd.greater_than_f64s(zn, zero);
                     let masked = simd.mul_f64s(simd.select_f64s(on, bs[k + r], zero), un);
                     add_compensated(simd, (&mut bu[r], &mut bu_carry[r]), masked);
@@ -465,8 +506,7 @@ impl UpdateChunk<'_, '_> {
         let mut out = Stepped {
             clipped: count(&clipped),
             entered: count(&entered),
-            row: Compensated::from_lanes(lanes(&row), lanes(&row_carry)),
-            row_terms: Lanes(lanes(&row_terms)),
+            row: row.lanes(),
             bu: Compensated::from_lanes(lanes(&bu), lanes(&bu_carry)),
         };
         for i in full..len {
@@ -476,8 +516,7 @@ impl UpdateChunk<'_, '_> {
             out.entered += usize::from(enter);
             if ROW {
                 let l = i - full;
-                out.row.add(l, b[i] * next);
-                out.row_terms.add(l, (b[i] * next).abs());
+                out.row.add(l, b[i], next);
                 out.bu.add(l, (if next > 0.0 { b[i] } else { 0.0 }) * ui);
             }
         }
@@ -516,6 +555,7 @@ mod tests {
         ]
         .iter()
         .flat_map(|l| bits(l))
+        .chain(bits(&[m.row.sum.value(), m.row.terms.value()]))
         .collect()
     }
 
@@ -526,21 +566,11 @@ mod tests {
         let slices = [&v[0][..], &v[1], &v[2], &v[3], &v[4]];
         let b: Vec<f64> = v[2].iter().map(|x| 1.0 + x).collect();
         for row in [None, Some(&b[..])] {
-            let mut reference = WLanes {
-                min_w: [0.0; LANES],
-                comp: [0.0; LANES],
-                w_scale: [0.0; LANES],
-                z_scale: [0.0; LANES],
-                g: [0.0; LANES],
-                chopped: [0.0; LANES],
-                nonfinite: [0.0; LANES],
-                row: Compensated::default(),
-                row_terms: Lanes::default(),
-            };
+            let mut reference = WLanes::default();
             for i in 0..len {
                 reference.add(i % LANES, slices.map(|v| v[i]));
                 if let Some(b) = row {
-                    reference.add_row(i % LANES, b[i], v[0][i]);
+                    reference.row.add(i % LANES, b[i], v[0][i]);
                 }
             }
             let expected = measures_bits(&reference);
@@ -658,7 +688,7 @@ mod tests {
             assert_eq!(counts.1 > 0, enter);
             let sums = bits(&[row.value(), row_terms.value(), bu.value()]);
             let stepped = |s: &Stepped| {
-                let got = bits(&[s.row.value(), s.row_terms.value(), s.bu.value()]);
+                let got = bits(&[s.row.sum.value(), s.row.terms.value(), s.bu.value()]);
                 ((s.clipped, s.entered), got)
             };
             for row in [None, Some(&b[..])] {

@@ -367,7 +367,7 @@ pub(super) fn measure_pass(
             residual_of((z, u, scale), q, &s, r);
         }
         if k == 1 {
-            (p.rows[0], p.rows_terms[0]) = (w.row, w.row_terms);
+            (p.rows[0], p.rows_terms[0]) = (w.row.sum, w.row.terms);
         } else {
             // Several rows keep the scale at 1 (only one row is restored by
             // a scale); should one be pending, the sums read `c z`.
@@ -557,7 +557,8 @@ pub(super) fn update_pass(
         let stepped = update_chunk(step, z, u, row);
         (p.clipped, p.entered) = (stepped.clipped, stepped.entered);
         if k == 1 {
-            (p.rows[0], p.rows_terms[0], p.bu[0]) = (stepped.row, stepped.row_terms, stepped.bu);
+            (p.rows[0], p.rows_terms[0], p.bu[0]) =
+                (stepped.row.sum, stepped.row.terms, stepped.bu);
             return p;
         }
         let (z, u) = (&*z, &*u);
