@@ -308,17 +308,23 @@ mod tests {
         }
     }
 
+    /// `h`'s semi-axes, approach and peak are `s`'s radius, approach and
+    /// peak to 1e-14.
+    fn assert_is_spheres(h: &HertzEllipse, s: &HertzSpheres) {
+        let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-14;
+        assert!(close(h.semi_major(), s.contact_radius()));
+        assert!(close(h.semi_minor(), s.contact_radius()));
+        assert!(close(h.approach(), s.approach()));
+        assert!(close(h.peak_pressure(), s.peak_pressure()));
+    }
+
     #[test]
     fn equal_curvatures_are_hertz_s_spheres_to_rounding() {
         let (e, r1, r2, p) = (32.967e6, 1.0, 10.0, 100.0);
         let k = 1.0 / r1 + 1.0 / r2;
         let h = HertzEllipse::new(e, Curvature::principal(k, k, 0.0), p).unwrap();
         let s = HertzSpheres::new(e, 1.0 / k, p).unwrap();
-        let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-14;
-        assert!(close(h.semi_major(), s.contact_radius()));
-        assert!(close(h.semi_minor(), s.contact_radius()));
-        assert!(close(h.approach(), s.approach()));
-        assert!(close(h.peak_pressure(), s.peak_pressure()));
+        assert_is_spheres(&h, &s);
         assert_eq!(h.eccentricity(), 0.0);
         // Nearly circular: the ellipse moves continuously from the circle
         // (a relative change of 1e-9 in the curvature moves a by about
@@ -339,11 +345,7 @@ mod tests {
         assert!(v.smaller > v.larger, "{v:?}");
         let h = HertzEllipse::new(e, form, p).unwrap();
         let s = HertzSpheres::new(e, 1.0 / k, p).unwrap();
-        let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-14;
-        assert!(close(h.semi_major(), s.contact_radius()));
-        assert!(close(h.semi_minor(), s.contact_radius()));
-        assert!(close(h.peak_pressure(), s.peak_pressure()));
-        assert!(close(h.approach(), s.approach()));
+        assert_is_spheres(&h, &s);
         let (smaller, larger) = h.principal_curvatures();
         assert!(smaller <= larger, "{smaller} {larger}");
         // A ratio a unit above 1: q = 1 - 1.1e-16, e = sqrt(1 - q) ~ 1e-8.

@@ -630,14 +630,18 @@ fn detect_lattice(xs: &[f64], ys: &[f64], cell: Cell) -> Option<Vec<(i64, i64)>>
 mod tests {
     use super::*;
 
-    #[test]
-    fn positions_walk_the_coordinates_of_each_point() {
-        let grids = [
+    /// A disk, a rectangle and a line.
+    fn grids() -> [PointSet; 3] {
+        [
             PointSet::grid_disk(0.1, 0.73).unwrap(),
             PointSet::grid_rectangle(1.0, 2.5, 4, 7).unwrap(),
             PointSet::line(-1.0, 2.0, 9).unwrap(),
-        ];
-        for grid in grids {
+        ]
+    }
+
+    #[test]
+    fn positions_walk_the_coordinates_of_each_point() {
+        for grid in grids() {
             let listed = PointSet::from_points(
                 grid.dimension(),
                 grid.xs().to_vec(),
@@ -646,6 +650,9 @@ mod tests {
             )
             .unwrap();
             for set in [&grid, &listed] {
+                // Every point has lattice indices of its own: a grid by
+                // construction, the listed set by its check.
+                assert!(set.lattice_is_distinct(&set.lattice_index().unwrap()));
                 let positions: Vec<(f64, f64)> = set.positions().collect();
                 let lookups: Vec<(f64, f64)> =
                     (0..set.len()).map(|k| (set.x(k), set.y(k))).collect();
@@ -660,12 +667,7 @@ mod tests {
 
     #[test]
     fn a_grid_stores_runs_and_equals_the_same_points_listed() {
-        let grids = [
-            PointSet::grid_disk(0.1, 0.73).unwrap(),
-            PointSet::grid_rectangle(1.0, 2.5, 4, 7).unwrap(),
-            PointSet::line(-1.0, 2.0, 9).unwrap(),
-        ];
-        for grid in grids {
+        for grid in grids() {
             let lattice = grid.lattice().unwrap();
             let (xs, ys) = (grid.xs(), grid.ys());
             assert!(matches!(xs, Cow::Owned(_)));
