@@ -246,19 +246,15 @@ pub(super) fn fit_pass(data: &Data<'_>, z: &[f64], u: &[f64]) -> FitSums {
         let mut e = 0;
         for a in 0..k {
             let ba = columns[a].part(range.start, len);
-            if k == 1 {
-                // One column: its three sums in one sweep.
-                (p.bu[0], p.bq[0], p.gram[0]) =
-                    masked_pair_and((z, ba), (u, q), Terms::Masked(z, ba, ba));
-                break;
-            }
-            p.bu[a] = Terms::Masked(z, ba, u).compensated();
-            p.bq[a] = Terms::Masked(z, ba, q).compensated();
-            for b in 0..=a {
+            for b in 0..a {
                 let bb = columns[b].part(range.start, len);
                 p.gram[e] = Terms::Masked(z, ba, bb).plain();
                 e += 1;
             }
+            // The column's two sums and its square, in one sweep.
+            (p.bu[a], p.bq[a], p.gram[e]) =
+                masked_pair_and((z, ba), (u, q), Terms::Masked(z, ba, ba));
+            e += 1;
         }
         p
     });
