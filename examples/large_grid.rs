@@ -84,6 +84,16 @@ fn cpu_seconds() -> f64 {
         .unwrap_or(f64::NAN)
 }
 
+/// One solve of [`one_size`] and its floor's measure: wall seconds,
+/// CPU seconds, the floor (CPU seconds), and one preconditioner
+/// application's CPU time in products.
+struct Run {
+    seconds: f64,
+    cpu: f64,
+    floor: f64,
+    relative: f64,
+}
+
 /// One size, the peers' case: h = a / `cells` on the disk of 1.3 a, the
 /// method `"auto"` picks for it. A matrix-free solve also reports its
 /// operator products and its floor, the products times one product's
@@ -94,7 +104,7 @@ fn cpu_seconds() -> f64 {
 fn one_size(cells: f64, repeat: usize) {
     let hertz = hertz::reference();
     let a = hertz.contact_radius();
-    let mut runs: Vec<[f64; 4]> = Vec::new();
+    let mut runs: Vec<Run> = Vec::new();
     let mut peak = f64::NAN;
     let mut last = None;
     for _ in 0..repeat.max(1) {
@@ -139,12 +149,17 @@ fn one_size(cells: f64, repeat: usize) {
         } else {
             0.0
         };
-        runs.push([seconds, cpu, floor, relative]);
+        runs.push(Run {
+            seconds,
+            cpu,
+            floor,
+            relative,
+        });
         last = Some((sol, method));
     }
     let (sol, method) = last.expect("one run at least");
-    let median = |i: usize| {
-        let mut v: Vec<f64> = runs.iter().map(|r| r[i]).collect();
+    let median = |of: fn(&Run) -> f64| {
+        let mut v: Vec<f64> = runs.iter().map(of).collect();
         v.sort_by(f64::total_cmp);
         let m = v.len() / 2;
         if v.len() % 2 == 1 {
@@ -153,7 +168,8 @@ fn one_size(cells: f64, repeat: usize) {
             0.5 * (v[m - 1] + v[m])
         }
     };
-    let (seconds, cpu, floor, relative) = (median(0), median(1), median(2), median(3));
+    let (seconds, cpu) = (median(|r| r.seconds), median(|r| r.cpu));
+    let (floor, relative) = (median(|r| r.floor), median(|r| r.relative));
     let n = sol.forces.len();
     let products = sol.statistics.products();
     let preconditionings = sol.statistics.preconditionings();
