@@ -118,102 +118,141 @@ impl WLanes {
 /// border's one column `row` its sums: the groups of [`LANES`] entries in
 /// vector registers, lane `l` of the result the same operations in the
 /// same order as [`WLanes::add`] and [`RowSums::add`] entry by entry
-/// (of `c z`, `c u`), then the tail entry by entry.
-pub(super) fn measure_chunk(v: [&[f64]; 5], scale: f64, row: Option<&[f64]>) -> WLanes {
-    pulp::Arch::new().dispatch(MeasureChunk { v, scale, row })
+/// (of `c z`, `c u`), then the tail entry by entry. With a `residual` to
+/// write (a preconditioned step's), also `r = w` on `J`, 0 off it, from
+/// the same `w`.
+pub(super) fn measure_chunk(
+    v: [&[f64]; 5],
+    scale: f64,
+    row: Option<&[f64]>,
+    residual: Option<&mut [f64]>,
+) -> WLanes {
+    pulp::Arch::new().dispatch(MeasureChunk {
+        v,
+        scale,
+        row,
+        residual,
+    })
 }
 
-struct MeasureChunk<'a> {
+struct MeasureChunk<'a, 'b> {
     v: [&'a [f64]; 5],
     scale: f64,
     row: Option<&'a [f64]>,
+    residual: Option<&'b mut [f64]>,
 }
 
-impl WithSimd for MeasureChunk<'_> {
+impl WithSimd for MeasureChunk<'_, '_> {
     type Output = WLanes;
 
     #[inline(always)]
     fn with_simd<S: Simd>(self, simd: S) -> WLanes {
-        match self.row {
-            Some(b) => self.sweep::<S, true>(simd, b),
-            None => self.sweep::<S, false>(simd, &[]),
+        let (v, scale) = (self.v, self.scale);
+        match (self.row, self.residual) {
+            (Some(b), Some(r)) => sweep_measures::<S, true, true>(simd, (v, scale), b, r),
+            (Some(b), None) => sweep_measures::<S, true, false>(simd, (v, scale), b, &mut []),
+            (None, Some(r)) => sweep_measures::<S, false, true>(simd, (v, scale), &[], r),
+            (None, None) => sweep_measures::<S, false, false>(simd, (v, scale), &[], &mut []),
         }
     }
 }
 
-impl MeasureChunk<'_> {
-    /// The measures, with the row's sums of `b` where `ROW`.
-    #[inline(always)]
-    fn sweep<S: Simd, const ROW: bool>(&self, simd: S, b: &[f64]) -> WLanes {
-        let [z, u, q, s, s_terms] = self.v;
-        let len = z.len();
-        let full = len - len % LANES;
-        let regs = LANES / S::F64_LANES;
-        let zero = simd.splat_f64s(0.0);
-        let mut min_w = [zero; LANES];
-        let mut comp = [zero; LANES];
-        let mut w_scale = [zero; LANES];
-        let mut z_scale = [zero; LANES];
-        let mut g = [zero; LANES];
-        let mut chopped = [zero; LANES];
-        let mut nonfinite = [zero; LANES];
-        let mut row = RowRegisters::new(simd);
-        let zs = registers::<S>(z);
-        let us = registers::<S>(u);
-        let qs = registers::<S>(q);
-        let ss = registers::<S>(s);
-        let ts = registers::<S>(s_terms);
-        let bs = registers::<S>(b);
-        let c = simd.splat_f64s(self.scale);
-        let mut k = 0;
-        while k < zs.len() {
-            for r in 0..regs {
-                let (z, u, q) = (
-                    simd.mul_f64s(c, zs[k + r]),
-                    simd.mul_f64s(c, us[k + r]),
-                    qs[k + r],
-                );
-                let w = simd.sub_f64s(simd.add_f64s(u, q), ss[k + r]);
-                let cw = simd.abs_f64s(simd.mul_f64s(z, w));
-                let terms =
-                    simd.add_f64s(simd.add_f64s(simd.abs_f64s(u), simd.abs_f64s(q)), ts[k + r]);
-                nonfinite[r] = simd.add_f64s(nonfinite[r], simd.mul_f64s(w, zero));
-                min_w[r] = simd.select_f64s(simd.less_than_f64s(w, min_w[r]), w, min_w[r]);
-                comp[r] = simd.select_f64s(simd.greater_than_f64s(cw, comp[r]), cw, comp[r]);
-                w_scale[r] =
-                    simd.select_f64s(simd.greater_than_f64s(terms, w_scale[r]), terms, w_scale[r]);
-                z_scale[r] = simd.select_f64s(simd.greater_than_f64s(z, z_scale[r]), z, z_scale[r]);
-                let on = simd.greater_than_f64s(z, zero);
-                let ww = simd.mul_f64s(w, w);
-                g[r] = simd.add_f64s(g[r], simd.select_f64s(on, ww, zero));
-                let quiet = simd.or_m64s(on, simd.greater_than_or_equal_f64s(w, zero));
-                chopped[r] = simd.add_f64s(chopped[r], simd.select_f64s(quiet, zero, ww));
-                if ROW {
-                    row.add(simd, r, bs[k + r], z);
-                }
+/// The measures of `v = [z, u, q, s, s_terms]` at the pending `scale`,
+/// with the row's sums of `b` where `ROW` and the residual written to
+/// `residual` where `RESIDUAL`.
+#[inline(always)]
+fn sweep_measures<S: Simd, const ROW: bool, const RESIDUAL: bool>(
+    simd: S,
+    (v, scale): ([&[f64]; 5], f64),
+    b: &[f64],
+    residual: &mut [f64],
+) -> WLanes {
+    let [z, u, q, s, s_terms] = v;
+    let len = z.len();
+    let full = len - len % LANES;
+    let regs = LANES / S::F64_LANES;
+    let zero = simd.splat_f64s(0.0);
+    let mut min_w = [zero; LANES];
+    let mut comp = [zero; LANES];
+    let mut w_scale = [zero; LANES];
+    let mut z_scale = [zero; LANES];
+    let mut g = [zero; LANES];
+    let mut chopped = [zero; LANES];
+    let mut nonfinite = [zero; LANES];
+    let mut row = RowRegisters::new(simd);
+    let zs = registers::<S>(z);
+    let us = registers::<S>(u);
+    let qs = registers::<S>(q);
+    let ss = registers::<S>(s);
+    let ts = registers::<S>(s_terms);
+    let bs = registers::<S>(b);
+    let rs = if RESIDUAL {
+        S::as_mut_simd_f64s(&mut residual[..full]).0
+    } else {
+        &mut []
+    };
+    let c = simd.splat_f64s(scale);
+    let mut k = 0;
+    while k < zs.len() {
+        for r in 0..regs {
+            let (z, u, q) = (
+                simd.mul_f64s(c, zs[k + r]),
+                simd.mul_f64s(c, us[k + r]),
+                qs[k + r],
+            );
+            let w = simd.sub_f64s(simd.add_f64s(u, q), ss[k + r]);
+            let cw = simd.abs_f64s(simd.mul_f64s(z, w));
+            let terms = simd.add_f64s(simd.add_f64s(simd.abs_f64s(u), simd.abs_f64s(q)), ts[k + r]);
+            nonfinite[r] = simd.add_f64s(nonfinite[r], simd.mul_f64s(w, zero));
+            min_w[r] = simd.select_f64s(simd.less_than_f64s(w, min_w[r]), w, min_w[r]);
+            comp[r] = simd.select_f64s(simd.greater_than_f64s(cw, comp[r]), cw, comp[r]);
+            w_scale[r] =
+                simd.select_f64s(simd.greater_than_f64s(terms, w_scale[r]), terms, w_scale[r]);
+            z_scale[r] = simd.select_f64s(simd.greater_than_f64s(z, z_scale[r]), z, z_scale[r]);
+            let on = simd.greater_than_f64s(z, zero);
+            if RESIDUAL {
+                rs[k + r] = simd.select_f64s(on, w, zero);
             }
-            k += regs;
-        }
-        let lanes = to_lanes::<S>;
-        let mut acc = WLanes {
-            min_w: lanes(&min_w),
-            comp: lanes(&comp),
-            w_scale: lanes(&w_scale),
-            z_scale: lanes(&z_scale),
-            g: lanes(&g),
-            chopped: lanes(&chopped),
-            nonfinite: lanes(&nonfinite),
-            row: row.lanes(),
-        };
-        let c = self.scale;
-        for i in full..len {
-            acc.add(i - full, [c * z[i], c * u[i], q[i], s[i], s_terms[i]]);
+            let ww = simd.mul_f64s(w, w);
+            g[r] = simd.add_f64s(g[r], simd.select_f64s(on, ww, zero));
+            let quiet = simd.or_m64s(on, simd.greater_than_or_equal_f64s(w, zero));
+            chopped[r] = simd.add_f64s(chopped[r], simd.select_f64s(quiet, zero, ww));
             if ROW {
-                acc.row.add(i - full, b[i], c * z[i]);
+                row.add(simd, r, bs[k + r], z);
             }
         }
-        acc
+        k += regs;
     }
+    let lanes = to_lanes::<S>;
+    let mut acc = WLanes {
+        min_w: lanes(&min_w),
+        comp: lanes(&comp),
+        w_scale: lanes(&w_scale),
+        z_scale: lanes(&z_scale),
+        g: lanes(&g),
+        chopped: lanes(&chopped),
+        nonfinite: lanes(&nonfinite),
+        row: row.lanes(),
+    };
+    let c = scale;
+    for i in full..len {
+        let entry = [c * z[i], c * u[i], q[i], s[i], s_terms[i]];
+        acc.add(i - full, entry);
+        if ROW {
+            acc.row.add(i - full, b[i], entry[0]);
+        }
+        if RESIDUAL {
+            residual[i] = residual_at(entry);
+        }
+    }
+    acc
+}
+
+/// `r_i = w_i` on `J`, 0 off it, from entry `[c z, c u, q, s, _]` (the
+/// operations of [`WLanes::add`]'s `w`).
+#[inline(always)]
+pub(super) fn residual_at([z, u, q, s, _]: [f64; 5]) -> f64 {
+    if z > 0.0 { (u + q) - s } else { 0.0 }
 }
 
 /// How a direction pass forms `t` from a chunk (slices of the chunk's
@@ -574,33 +613,61 @@ mod tests {
                 }
             }
             let expected = measures_bits(&reference);
-            assert_eq!(measures_bits(&measure_chunk(slices, 1.0, row)), expected);
+            assert_eq!(
+                measures_bits(&measure_chunk(slices, 1.0, row, None)),
+                expected
+            );
             let scalar = MeasureChunk {
                 v: slices,
                 scale: 1.0,
                 row,
+                residual: None,
             }
             .with_simd(pulp::Scalar::new());
             assert_eq!(measures_bits(&scalar), expected);
+            // The residual, written in the same sweep, vector and scalar.
+            let residual: Vec<f64> = (0..len)
+                .map(|i| residual_at(slices.map(|v| v[i])))
+                .collect();
+            let mut vector = vec![9.0; len];
+            let m = measure_chunk(slices, 1.0, row, Some(&mut vector));
+            assert_eq!(
+                (measures_bits(&m), bits(&vector)),
+                (expected.clone(), bits(&residual))
+            );
+            let mut scalar = vec![9.0; len];
+            MeasureChunk {
+                v: slices,
+                scale: 1.0,
+                row,
+                residual: Some(&mut scalar),
+            }
+            .with_simd(pulp::Scalar::new());
+            assert_eq!(bits(&scalar), bits(&residual));
             // A pending scale multiplies `z` and `u` in registers.
             let (z, u): (Vec<f64>, Vec<f64>) =
                 (0..len).map(|i| (v[0][i] / 1.5, v[1][i] / 1.5)).unzip();
-            let pending = measure_chunk([&z, &u, &v[2], &v[3], &v[4]], 1.5, row);
+            let pending = measure_chunk([&z, &u, &v[2], &v[3], &v[4]], 1.5, row, None);
             let stored: Vec<Vec<f64>> = [&z, &u]
                 .iter()
                 .map(|x| x.iter().map(|x| 1.5 * x).collect())
                 .collect();
-            let at_one = measure_chunk([&stored[0], &stored[1], &v[2], &v[3], &v[4]], 1.0, row);
+            let at_one = measure_chunk(
+                [&stored[0], &stored[1], &v[2], &v[3], &v[4]],
+                1.0,
+                row,
+                None,
+            );
             assert_eq!(measures_bits(&pending), measures_bits(&at_one));
         }
         // A non-finite `w` in a full group or in the tail is seen.
         for at in [3, len - 1] {
             let mut u = v[1].clone();
             u[at] = f64::INFINITY;
-            let m = measure_chunk([&v[0], &u, &v[2], &v[3], &v[4]], 1.0, None);
+            let m = measure_chunk([&v[0], &u, &v[2], &v[3], &v[4]], 1.0, None, None);
             assert!(m.nonfinite.iter().any(|x| x.is_nan()), "{at}");
         }
-        let m = measure_chunk(slices, 1.0, None);
+        let m = measure_chunk(slices, 1.0, None, None);
         assert!(m.nonfinite.iter().all(|&x| x == 0.0));
     }
 

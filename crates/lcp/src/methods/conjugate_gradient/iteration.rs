@@ -29,6 +29,8 @@ use std::borrow::Cow;
 
 use faer::{ColRef, Mat, MatRef};
 
+#[cfg(test)]
+use super::chunk::residual_at;
 use super::chunk::{Rule, Step, direction_chunk, measure_chunk, update_chunk};
 use super::passes::{CHUNK, Compensated, LANES, Lanes, Terms, map_parts, masked_pair_and, total};
 
@@ -355,13 +357,10 @@ pub(super) fn measure_pass(
         // One column's sums in the measures' own loop; several, a loop
         // each.
         let row = (k == 1).then(|| columns[0].part(base, len));
-        let w = measure_chunk([z, u, q, &s, &s_terms], scale, row);
+        let w = measure_chunk([z, u, q, &s, &s_terms], scale, row, r);
         (p.min_w, p.comp, p.w_scale, p.z_scale) = (w.min_w, w.comp, w.w_scale, w.z_scale);
         (p.g, p.chopped) = (Lanes(w.g), Lanes(w.chopped));
         p.finite = w.nonfinite.iter().all(|&v| v == 0.0);
-        if let Some(r) = r {
-            residual_of((z, u, scale), q, &s, r);
-        }
         if k == 1 {
             (p.rows[0], p.rows_terms[0]) = (w.row.sum, w.row.terms);
         } else {
@@ -600,20 +599,6 @@ pub(super) fn update_pass(
     }
 }
 
-/// `r = w` on `J`, 0 off it, over a chunk whose shift `B λ` is `s`, from
-/// `z` and `u` at their pending scale `c` (`c > 0`: `c z` and `z` have one
-/// contact set).
-#[inline(always)]
-fn residual_of((z, u, c): (&[f64], &[f64], f64), q: &[f64], s: &[f64], r: &mut [f64]) {
-    for i in 0..r.len() {
-        r[i] = if z[i] > 0.0 {
-            (c * u[i] + q[i]) - s[i]
-        } else {
-            0.0
-        };
-    }
-}
-
 /// `r = w` on `J`, 0 off it: the residual the preconditioner is applied to
 /// (as a pass of its own: the reference of [`measure_pass`]'s).
 #[cfg(test)]
@@ -635,7 +620,9 @@ pub(super) fn residual_pass(
             &q[base..base + len],
         );
         let (s, _) = shift.chunk(base, len);
-        residual_of((z, u, scale), q, &s, r);
+        for i in 0..len {
+            r[i] = residual_at([scale * z[i], scale * u[i], q[i], s[i], 0.0]);
+        }
     });
 }
 
