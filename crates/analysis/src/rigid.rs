@@ -155,10 +155,7 @@ impl Rigid {
         let mut rigid = self.clone();
         rigid.free.clear();
         for &(mode, resultant) in &self.free {
-            let levers: Vec<f64> = points
-                .positions()
-                .map(|at| mode.lever(at, self.load_point))
-                .collect();
+            let levers = points.map_positions(|at| mode.lever(at, self.load_point));
             let scale = levers.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             if folding.is_invariant(&levers, LEVER_SYMMETRY) {
                 rigid.free.push((mode, resultant));

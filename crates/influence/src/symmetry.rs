@@ -144,12 +144,8 @@ impl Lookup {
                 base,
                 cell,
             } => {
-                let i = base
-                    .0
-                    .checked_add(((x - origin.0) / cell.dx).round() as i64)?;
-                let j = base
-                    .1
-                    .checked_add(((y - origin.1) / cell.dy).round() as i64)?;
+                let i = base.0.checked_add(nearest((x - origin.0) / cell.dx))?;
+                let j = base.1.checked_add(nearest((y - origin.1) / cell.dy))?;
                 let k = index.get((i, j))?;
                 Some((k, points.position_at(k, (i, j))))
             }
@@ -158,6 +154,22 @@ impl Lookup {
                 Some((k, (points.x(k), points.y(k))))
             }
         }
+    }
+}
+
+/// `v.round() as i64` (halves away from zero; NaN to 0, beyond the
+/// integers' range to their ends), without the call to libm's `round` that
+/// the baseline x86-64 target makes of it: the truncation and the
+/// fraction it leaves (exact, `|v - trunc(v)| < 1`) decide.
+fn nearest(v: f64) -> i64 {
+    let t = v as i64;
+    let fraction = v - t as f64;
+    if fraction >= 0.5 {
+        t.saturating_add(1)
+    } else if fraction <= -0.5 {
+        t.saturating_sub(1)
+    } else {
+        t
     }
 }
 
@@ -317,13 +329,17 @@ fn orbits_of(
     let mut members = Vec::with_capacity(n);
     let mut starts = vec![0u32];
     let mut orbit = Vec::with_capacity(elements.len());
-    for (k, at) in positions.enumerate().take(n) {
-        if rep_of[k] != u32::MAX {
-            continue;
+    // One walk of the `n` points (`fold`: a grid's run by run); after a
+    // point without an image the rest are passed over.
+    let complete = positions.enumerate().fold(true, |complete, (k, at)| {
+        if !complete || rep_of[k] != u32::MAX {
+            return complete;
         }
         orbit.clear();
         for &g in elements {
-            let j = image(g, at)?;
+            let Some(j) = image(g, at) else {
+                return false;
+            };
             if !orbit.contains(&j) {
                 orbit.push(j);
             }
@@ -336,6 +352,10 @@ fn orbits_of(
             members.push(j as u32);
         }
         starts.push(members.len() as u32);
+        true
+    });
+    if !complete {
+        return None;
     }
     members.shrink_to_fit();
     starts.shrink_to_fit();
@@ -352,6 +372,40 @@ mod tests {
     use crate::Material;
     use crate::fixtures::{UNIT_BEAM, surface};
     use crate::models::Beam;
+
+    #[test]
+    fn nearest_rounds_as_round_does() {
+        let halves = [
+            0.5,
+            1.5,
+            2.5,
+            -0.5,
+            -1.5,
+            0.49999999999999994,
+            4503599627370495.5,
+        ];
+        let ends = [
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1e300,
+            -1e300,
+            9.3e18,
+        ];
+        let plain = [
+            0.0,
+            -0.0,
+            0.3,
+            -0.7,
+            12.999999999999998,
+            1e-320,
+            2.0f64.powi(60),
+        ];
+        for v in halves.into_iter().chain(ends).chain(plain) {
+            assert_eq!(nearest(v), v.round() as i64, "{v}");
+            assert_eq!(nearest(-v), (-v).round() as i64, "{}", -v);
+        }
+    }
 
     #[test]
     fn a_disk_has_the_square_group() {

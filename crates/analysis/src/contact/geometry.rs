@@ -343,10 +343,7 @@ pub fn separations(points: &PointSet, geometry: &Geometry) -> Result<Vec<f64>, A
         Geometry::Surfaces(s1, s2) => {
             s1.validate("surface1.radius", points.dimension())?;
             s2.validate("surface2.radius", points.dimension())?;
-            Ok(points
-                .positions()
-                .map(|(x, y)| s1.height(x, y) + s2.height(x, y))
-                .collect())
+            Ok(points.map_positions(|(x, y)| s1.height(x, y) + s2.height(x, y)))
         }
         Geometry::Tabulated {
             surfaces: (s1, s2),

@@ -6,6 +6,8 @@
 //! a free rotation odd under it is zero at the solution and no unknown,
 //! and a folded problem has one unknown per orbit.
 
+use std::borrow::Cow;
+
 use elcon_influence::{Body, Folding, Model, PointSet};
 
 use super::geometry::{Geometry, separations};
@@ -169,11 +171,16 @@ pub(crate) fn respected(
 }
 
 /// The separations shifted by the prescribed rigid motions (what the
-/// engine's `q` holds at every point).
-pub(crate) fn shifted(points: &PointSet, separation: &[f64], rigid: &Rigid) -> Vec<f64> {
-    points
-        .positions()
-        .zip(separation)
-        .map(|(at, &s)| s + rigid.shift(at))
-        .collect()
+/// engine's `q` holds at every point): borrowed when nothing is
+/// prescribed (a shift of zero everywhere).
+pub(crate) fn shifted<'s>(
+    points: &PointSet,
+    separation: &'s [f64],
+    rigid: &Rigid,
+) -> Cow<'s, [f64]> {
+    if rigid.prescribed.is_empty() {
+        return Cow::Borrowed(separation);
+    }
+    let shifts = points.map_positions(|at| rigid.shift(at));
+    Cow::Owned(separation.iter().zip(shifts).map(|(s, d)| s + d).collect())
 }

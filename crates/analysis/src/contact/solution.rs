@@ -253,8 +253,8 @@ impl ContactProblem {
         let first_moment = |lever: &dyn Fn((f64, f64)) -> f64| -> f64 {
             self.points
                 .positions()
-                .zip(&forces)
-                .map(|(at, &f)| f * lever(at))
+                .enumerate()
+                .map(|(k, at)| forces[k] * lever(at))
                 .sum()
         };
         let moment_x = first_moment(&|(_, y)| y - y0);

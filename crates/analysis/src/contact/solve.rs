@@ -15,7 +15,7 @@ use faer::{Col, ColRef, Mat};
 use super::problem::ContactProblem;
 use super::solution::{ContactSolution, Engine};
 use crate::AnalysisError;
-use crate::rigid::point;
+use crate::rigid::{RigidMode, point};
 
 impl ContactProblem {
     /// Solves starting from the contact set of `previous` (a solution of a
@@ -88,12 +88,7 @@ impl ContactProblem {
         let q = q
             .as_ref()
             .map_or(ColRef::from_slice(&self.separation), Col::as_ref);
-        let border = Mat::<f64>::from_fn(n, rigid.free.len(), |a, j| {
-            rigid.free[j]
-                .0
-                .lever(point(&self.points, rep(a)), rigid.load_point)
-                / scale(a)
-        });
+        let border = self.border();
         let resultant = Col::from_fn(rigid.free.len(), |j| rigid.free[j].1 / order);
         let sol = self.influence.solve_bordered(
             q,
@@ -137,6 +132,42 @@ impl ContactProblem {
             solve_seconds: start.elapsed().as_secs_f64(),
         };
         Ok(self.finish(engine))
+    }
+}
+
+impl ContactProblem {
+    /// The engine's border `B`: a column per free motion, its lever at
+    /// every unknown's point (1 for the approach, which needs no point),
+    /// row a divided by `s_a` when folded. Unfolded, the points are walked
+    /// in order ([`PointSet::positions`](elcon_influence::PointSet::positions))
+    /// instead of looked up one by one.
+    fn border(&self) -> Mat<f64> {
+        let (rigid, n) = (&self.rigid, self.influence.len());
+        let mut border = Mat::<f64>::zeros(n, rigid.free.len());
+        for (j, &(mode, _)) in rigid.free.iter().enumerate() {
+            let mut column = border.col_mut(j);
+            let column = column
+                .as_mut()
+                .try_as_col_major_mut()
+                .expect("a new matrix's columns are contiguous")
+                .as_slice_mut();
+            let lever = |at| mode.lever(at, rigid.load_point);
+            match &self.folding {
+                Some(f) => {
+                    for (a, v) in column.iter_mut().enumerate() {
+                        *v = lever(point(&self.points, f.rep(a))) / f.stabilizer(a);
+                    }
+                }
+                None if mode == RigidMode::Approach => column.fill(lever((0.0, 0.0))),
+                None => {
+                    let mut values = column.iter_mut();
+                    self.points.positions().for_each(|at| {
+                        *values.next().expect("a value per point") = lever(at);
+                    });
+                }
+            }
+        }
+        border
     }
 }
 

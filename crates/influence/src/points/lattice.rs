@@ -206,6 +206,32 @@ impl Iterator for LatticeIter<'_> {
         let left = self.lattice.len() - self.next;
         (left, Some(left))
     }
+
+    /// The same indices in the same order as [`next`](Self::next), a grid's
+    /// run by run: no search for the run at every point, and an inner loop
+    /// the caller's `f` can be compiled into (`collect`, `sum`,
+    /// `for_each`, `enumerate` and `map` all come here).
+    fn fold<B, F>(self, init: B, mut f: F) -> B
+    where
+        F: FnMut(B, (i64, i64)) -> B,
+    {
+        let len = self.lattice.len();
+        match self.lattice.0 {
+            LatticeRef::Listed(l) => l[self.next.min(len)..].iter().copied().fold(init, f),
+            LatticeRef::Runs { runs, .. } => {
+                let mut acc = init;
+                let mut k = self.next;
+                for (r, run) in runs.iter().enumerate().skip(self.run) {
+                    let end = runs.get(r + 1).map_or(len, |next| next.start);
+                    while k < end {
+                        acc = f(acc, run.at(k));
+                        k += 1;
+                    }
+                }
+                acc
+            }
+        }
+    }
 }
 
 impl ExactSizeIterator for LatticeIter<'_> {}

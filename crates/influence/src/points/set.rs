@@ -440,6 +440,15 @@ impl PointSet {
         }
     }
 
+    /// `value` at every point's coordinates, in order, as a new vector:
+    /// `positions().map(value).collect()`, filled by one walk of a grid's
+    /// runs (a `collect` would take the points one `next` at a time).
+    pub fn map_positions<T>(&self, mut value: impl FnMut((f64, f64)) -> T) -> Vec<T> {
+        let mut values = Vec::with_capacity(self.len());
+        self.positions().for_each(|at| values.push(value(at)));
+        values
+    }
+
     /// The coordinates of point `k`, whose lattice indices are `ij` (from
     /// the set's [`PointSet::lattice_index`]): [`PointSet::x`] and
     /// [`PointSet::y`] without looking the indices up again.
@@ -471,7 +480,9 @@ impl PointSet {
     /// `coordinate` of every point's lattice indices, as a new vector.
     fn along_grid(&self, coordinate: impl Fn((i64, i64)) -> f64) -> Cow<'_, [f64]> {
         let lattice = self.lattice().expect("a grid has a lattice");
-        Cow::Owned(lattice.iter().map(coordinate).collect())
+        let mut values = Vec::with_capacity(self.len());
+        lattice.iter().for_each(|ij| values.push(coordinate(ij)));
+        Cow::Owned(values)
     }
 
     /// Distance of point `k` from the origin (length). Panics if `k >= len()`.
@@ -604,6 +615,35 @@ impl Iterator for Positions<'_> {
             Self::Grid { x, y, lattice } => lattice.next().map(|(i, j)| (x.at(i), y.at(j))),
         }
     }
+
+    /// Exact: a `collect` allocates its vector once.
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = match self {
+            Self::Listed { xs, next, .. } => xs.len().saturating_sub(*next),
+            Self::Grid { lattice, .. } => lattice.len(),
+        };
+        (left, Some(left))
+    }
+
+    /// The same coordinates in the same order as [`next`](Self::next), a
+    /// grid's walked run by run ([`LatticeIter`]'s `fold`).
+    fn fold<B, F>(self, init: B, mut f: F) -> B
+    where
+        F: FnMut(B, (f64, f64)) -> B,
+    {
+        match self {
+            Self::Listed { xs, ys, next } => {
+                let from = next.min(xs.len());
+                xs[from..]
+                    .iter()
+                    .zip(&ys[from..])
+                    .fold(init, |acc, (&x, &y)| f(acc, (x, y)))
+            }
+            Self::Grid { x, y, lattice } => {
+                lattice.fold(init, |acc, (i, j)| f(acc, (x.at(i), y.at(j))))
+            }
+        }
+    }
 }
 
 /// Lattice indices relative to the first point, if every point lies on the
@@ -654,6 +694,26 @@ mod tests {
                 // construction, the listed set by its check.
                 assert!(set.lattice_is_distinct(&set.lattice_index().unwrap()));
                 let positions: Vec<(f64, f64)> = set.positions().collect();
+                assert_eq!(set.map_positions(|at| at), positions);
+                // The walk (`fold`) from a started iterator, within a run
+                // or runs later, gives the rest; so does the lattice's.
+                let indices = set.lattice().unwrap().to_vec();
+                for start in [0, 1, set.len() / 2, set.len()] {
+                    let mut walk = set.positions();
+                    walk.by_ref().take(start).for_each(drop);
+                    let rest = walk.fold(Vec::new(), |mut v, at| {
+                        v.push(at);
+                        v
+                    });
+                    assert_eq!(rest, positions[start..]);
+                    let mut walk = set.lattice().unwrap().iter();
+                    walk.by_ref().take(start).for_each(drop);
+                    let rest = walk.fold(Vec::new(), |mut v, ij| {
+                        v.push(ij);
+                        v
+                    });
+                    assert_eq!(rest, indices[start..]);
+                }
                 let lookups: Vec<(f64, f64)> =
                     (0..set.len()).map(|k| (set.x(k), set.y(k))).collect();
                 assert_eq!(positions, lookups);
