@@ -566,6 +566,7 @@ impl UpdateChunk<'_, '_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::methods::conjugate_gradient::passes::Isa;
 
     /// Five vectors of `len` entries, `z` about half positive, with a
     /// tail past the last full group.
@@ -617,14 +618,15 @@ mod tests {
                 measures_bits(&measure_chunk(slices, 1.0, row, None)),
                 expected
             );
-            let scalar = MeasureChunk {
-                v: slices,
-                scale: 1.0,
-                row,
-                residual: None,
+            for isa in Isa::all() {
+                let m = isa.run(MeasureChunk {
+                    v: slices,
+                    scale: 1.0,
+                    row,
+                    residual: None,
+                });
+                assert_eq!(measures_bits(&m), expected, "{isa:?}");
             }
-            .with_simd(pulp::Scalar::new());
-            assert_eq!(measures_bits(&scalar), expected);
             // The residual, written in the same sweep, vector and scalar.
             let residual: Vec<f64> = (0..len)
                 .map(|i| residual_at(slices.map(|v| v[i])))
@@ -635,15 +637,16 @@ mod tests {
                 (measures_bits(&m), bits(&vector)),
                 (expected.clone(), bits(&residual))
             );
-            let mut scalar = vec![9.0; len];
-            MeasureChunk {
-                v: slices,
-                scale: 1.0,
-                row,
-                residual: Some(&mut scalar),
+            for isa in Isa::all() {
+                let mut written = vec![9.0; len];
+                isa.run(MeasureChunk {
+                    v: slices,
+                    scale: 1.0,
+                    row,
+                    residual: Some(&mut written),
+                });
+                assert_eq!(bits(&written), bits(&residual), "{isa:?}");
             }
-            .with_simd(pulp::Scalar::new());
-            assert_eq!(bits(&scalar), bits(&residual));
             // A pending scale multiplies `z` and `u` in registers.
             let (z, u): (Vec<f64>, Vec<f64>) =
                 (0..len).map(|i| (v[0][i] / 1.5, v[1][i] / 1.5)).unzip();
@@ -707,14 +710,16 @@ mod tests {
             let mut vector = t0.clone();
             let lanes = direction_chunk(rule, z, &mut vector);
             assert_eq!((bits(&vector), bits(&lanes.0)), (bits(&t), bits(&sum.0)));
-            let mut scalar = t0.clone();
-            let lanes = DirectionChunk {
-                rule,
-                z,
-                t: &mut scalar,
+            for isa in Isa::all() {
+                let mut written = t0.clone();
+                let lanes = isa.run(DirectionChunk {
+                    rule,
+                    z,
+                    t: &mut written,
+                });
+                let got = (bits(&written), bits(&lanes.0));
+                assert_eq!(got, (bits(&t), bits(&sum.0)), "{isa:?}");
             }
-            .with_simd(pulp::Scalar::new());
-            assert_eq!((bits(&scalar), bits(&lanes.0)), (bits(&t), bits(&sum.0)));
         }
     }
 
@@ -766,18 +771,19 @@ mod tests {
                 if row.is_some() {
                     assert_eq!(stepped(&got).1, sums);
                 }
-                let (mut zs, mut us) = (z0.clone(), u0.clone());
-                let got = UpdateChunk {
-                    step,
-                    z: &mut zs,
-                    u: &mut us,
-                    row,
-                }
-                .with_simd(pulp::Scalar::new());
-                assert_eq!((bits(&zs), bits(&us)), (bits(&z), bits(&u)));
-                assert_eq!(stepped(&got).0, counts);
-                if row.is_some() {
-                    assert_eq!(stepped(&got).1, sums);
+                for isa in Isa::all() {
+                    let (mut zs, mut us) = (z0.clone(), u0.clone());
+                    let got = isa.run(UpdateChunk {
+                        step,
+                        z: &mut zs,
+                        u: &mut us,
+                        row,
+                    });
+                    assert_eq!((bits(&zs), bits(&us)), (bits(&z), bits(&u)), "{isa:?}");
+                    assert_eq!(stepped(&got).0, counts, "{isa:?}");
+                    if row.is_some() {
+                        assert_eq!(stepped(&got).1, sums, "{isa:?}");
+                    }
                 }
             }
         }

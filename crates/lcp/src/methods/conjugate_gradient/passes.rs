@@ -412,6 +412,46 @@ impl Sum<'_> {
     }
 }
 
+/// The instruction sets a test runs a kernel on: the scalar path, and
+/// AVX2 and AVX-512 where the processor has them. `pulp`'s dispatch picks
+/// the widest; every one must give the same bits.
+#[cfg(test)]
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Isa {
+    Scalar,
+    #[cfg(target_arch = "x86_64")]
+    Avx2(pulp::x86::V3),
+    #[cfg(target_arch = "x86_64")]
+    Avx512(pulp::x86::V4),
+}
+
+#[cfg(test)]
+impl Isa {
+    /// The scalar path, then those of the processor's vector sets `pulp`
+    /// dispatches to.
+    pub(super) fn all() -> Vec<Self> {
+        #[allow(unused_mut)]
+        let mut all = vec![Self::Scalar];
+        #[cfg(target_arch = "x86_64")]
+        {
+            all.extend(pulp::x86::V3::try_new().map(Self::Avx2));
+            all.extend(pulp::x86::V4::try_new().map(Self::Avx512));
+        }
+        all
+    }
+
+    /// `op` on this instruction set.
+    pub(super) fn run<Op: pulp::WithSimd>(self, op: Op) -> Op::Output {
+        match self {
+            Self::Scalar => op.with_simd(pulp::Scalar::new()),
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx2(simd) => pulp::Simd::vectorize(simd, op),
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx512(simd) => pulp::Simd::vectorize(simd, op),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -426,9 +466,8 @@ mod tests {
         (plain, comp)
     }
 
-    /// The sums of `terms` on the scalar path (no vector instructions).
-    fn scalar(terms: Terms<'_>) -> (Lanes, Compensated) {
-        use pulp::WithSimd;
+    /// The sums of `terms` on `isa`.
+    fn sums_on(isa: Isa, terms: Terms<'_>) -> (Lanes, Compensated) {
         let plain = Sum {
             terms,
             compensated: false,
@@ -437,10 +476,7 @@ mod tests {
             terms,
             compensated: true,
         };
-        (
-            plain.with_simd(pulp::Scalar::new()).0,
-            comp.with_simd(pulp::Scalar::new()).1,
-        )
+        (isa.run(plain).0, isa.run(comp).1)
     }
 
     fn bits(l: &Lanes, c: &Compensated) -> Vec<u64> {
@@ -502,15 +538,16 @@ mod tests {
                 let reference = bits(&reference.0, &reference.1);
                 let vector = bits(&terms.plain(), &terms.compensated());
                 assert_eq!(vector, reference, "{len} entries");
-                let (plain, comp) = scalar(terms);
-                assert_eq!(bits(&plain, &comp), reference, "{len} entries, scalar");
+                for isa in Isa::all() {
+                    let (plain, comp) = sums_on(isa, terms);
+                    assert_eq!(bits(&plain, &comp), reference, "{len} entries, {isa:?}");
+                }
             }
         }
     }
 
     #[test]
     fn three_sums_in_one_sweep_keep_the_bits_of_each_alone() {
-        use pulp::WithSimd;
         let h =
             |i: usize, k: usize| (i as f64 * 0.618_033_988_749_895 + k as f64 * 0.3).fract() - 0.4;
         for len in [0, 5, LANES, 8 * LANES + 3, CHUNK + 7] {
@@ -537,12 +574,10 @@ mod tests {
                     )
                 };
                 assert_eq!(bits(masked_pair_and((z, b), (x, y), third)), alone, "{len}");
-                let pair = MaskedPair { z, b, x, y, third };
-                assert_eq!(
-                    bits(pair.with_simd(pulp::Scalar::new())),
-                    alone,
-                    "{len}, scalar"
-                );
+                for isa in Isa::all() {
+                    let pair = MaskedPair { z, b, x, y, third };
+                    assert_eq!(bits(isa.run(pair)), alone, "{len}, {isa:?}");
+                }
             }
         }
     }
