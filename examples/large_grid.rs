@@ -27,10 +27,13 @@
 //! time of assembly and solve, all threads> iterations=<CG iterations>
 //! preconditioner_applications=<its count>
 //! preconditioner_products=<one application's CPU time in products>
-//! repeat=<solves>` (`--repeat R`: the solve and the floor's measure
-//! take turns R times, and the times are their medians: on a machine
-//! whose speed drifts, both drift alike; `--no-floor`: the floor is not
-//! measured and prints as 0, so that a profiler sees the solves alone;
+//! repeat=<solves> times_floor=<each repeat's seconds (one thread) or
+//! cpu_seconds (several) over its floor, the median>` (`--repeat R`: the
+//! solve and the floor's measure take turns R times, and the times are
+//! their medians: on a machine whose speed drifts, both drift alike, and
+//! a repeat's ratio to the floor measured right after it drifts least;
+//! `--no-floor`: the floor is not
+//! measured and prints as 0, as does times_floor, so that a profiler sees the solves alone;
 //! `--no-preconditioner`: the
 //! conjugate gradient without its
 //! preconditioner, `Options::preconditioner`; peak_rss_mb the process's
@@ -158,7 +161,7 @@ fn one_size(cells: f64, repeat: usize) {
         last = Some((sol, method));
     }
     let (sol, method) = last.expect("one run at least");
-    let median = |of: fn(&Run) -> f64| {
+    let median = |of: &dyn Fn(&Run) -> f64| {
         let mut v: Vec<f64> = runs.iter().map(of).collect();
         v.sort_by(f64::total_cmp);
         let m = v.len() / 2;
@@ -168,18 +171,26 @@ fn one_size(cells: f64, repeat: usize) {
             0.5 * (v[m - 1] + v[m])
         }
     };
-    let (seconds, cpu) = (median(|r| r.seconds), median(|r| r.cpu));
-    let (floor, relative) = (median(|r| r.floor), median(|r| r.relative));
+    let (seconds, cpu) = (median(&|r| r.seconds), median(&|r| r.cpu));
+    let (floor, relative) = (median(&|r| r.floor), median(&|r| r.relative));
+    // Each repeat's time over its own floor, measured right after it: the
+    // drift of the machine's speed between repeats cancels.
+    let threads = rayon::current_num_threads();
+    let times_floor = median(&|r| match (threads, r.floor > 0.0) {
+        (_, false) => 0.0,
+        (1, true) => r.seconds / r.floor,
+        (_, true) => r.cpu / r.floor,
+    });
     let n = sol.forces.len();
     let products = sol.statistics.products();
     let preconditionings = sol.statistics.preconditionings();
     println!(
-        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1} products={products} floor_seconds={floor:.4} threads={} cpu_seconds={cpu:.2} iterations={} preconditioner_applications={preconditionings} preconditioner_products={:.3} repeat={}",
+        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1} products={products} floor_seconds={floor:.4} threads={} cpu_seconds={cpu:.2} iterations={} preconditioner_applications={preconditionings} preconditioner_products={:.3} repeat={} times_floor={times_floor:.3}",
         method.name(),
         sol.approach / hertz.approach() - 1.0,
         sol.certificate.worst(),
         peak,
-        rayon::current_num_threads(),
+        threads,
         sol.statistics.iterations(),
         relative,
         runs.len(),
