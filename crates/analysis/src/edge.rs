@@ -237,36 +237,47 @@ impl<'a> Edge<'a> {
         let (points, pressures) = (self.points, self.pressures);
         let g = self.grid.as_ref()?;
         let cell = points.cell();
-        // Each pressed point's index, lattice indices and coordinates, the
-        // set walked in order (a grid's by its runs, not point by point).
-        let pressed_points = || {
-            points
-                .positions()
-                .zip(g.lattice.iter())
-                .enumerate()
-                .filter(|&(k, _)| pressures[k] > 0.0)
-        };
+        // The centre of pressure, the points walked in order (a grid's by
+        // its runs, not point by point).
         let total: f64 = pressures.iter().filter(|&&p| p > 0.0).sum();
-        let centre = pressed_points().fold((0.0, 0.0), |(x, y), (k, ((xk, yk), _))| {
-            (x + pressures[k] * xk, y + pressures[k] * yk)
-        });
+        let centre =
+            points.positions().enumerate().fold(
+                (0.0, 0.0),
+                |(x, y), (k, (xk, yk))| match pressures[k] > 0.0 {
+                    true => (x + pressures[k] * xk, y + pressures[k] * yk),
+                    false => (x, y),
+                },
+            );
         let (cx, cy) = (centre.0 / total, centre.1 / total);
+        // Whether the neighbour at `ij` is pressed: a mask of the pressed
+        // cells where it is small, else the index.
+        let mask = PressedCells::new(g.lattice, pressures);
+        let pressed = |ij| match &mask {
+            Some(m) => m.has(ij),
+            None => self.pressed(g, ij).is_some(),
+        };
         let mut edge: Vec<(f64, f64, f64)> = Vec::new();
-        for (k, ((xk, yk), (i, j))) in pressed_points() {
+        g.lattice.iter().enumerate().for_each(|(k, (i, j))| {
+            if !(pressures[k] > 0.0) {
+                return;
+            }
             for (di, dj, h) in [
                 (1, 0, cell.dx),
                 (-1, 0, cell.dx),
                 (0, 1, cell.dy),
                 (0, -1, cell.dy),
             ] {
-                if self.pressed(g, (i + di, j + dj)).is_some() {
+                if pressed((i + di, j + dj)) {
                     continue;
                 }
+                // A point on the contact's edge (a few in a thousand):
+                // its coordinates looked up.
+                let (xk, yk) = (points.x(k), points.y(k));
                 let t = self.reach(g, k, (di, dj), h);
                 let (x, y) = (xk + di as f64 * t, yk + dj as f64 * t);
                 edge.push(((y - cy).atan2(x - cx), x, y));
             }
-        }
+        });
         if edge.len() < 3 {
             return None;
         }
@@ -274,6 +285,69 @@ impl<'a> Edge<'a> {
         let edge: Vec<(f64, f64)> = edge.into_iter().map(|(_, x, y)| (x, y)).collect();
         let polygon = polygon_moments(&edge).area;
         (!((polygon - cells).abs() > edge.len() as f64 * cell.dx * cell.dy)).then_some(edge)
+    }
+}
+
+/// The lattice cells that hold a pressed point, a flag a cell over the
+/// pressed points' bounding box, for the outline's neighbour tests (four
+/// a pressed point): a byte read where the index would search its runs.
+struct PressedCells {
+    i0: i64,
+    j0: i64,
+    ni: i64,
+    nj: i64,
+    cells: Vec<bool>,
+}
+
+/// The mask is built where its box holds at most this many cells a
+/// pressed point (a contact on a grid: about 1.3; a sparse listed set
+/// asks the index instead).
+const MASK_CELLS_PER_POINT: usize = 16;
+
+impl PressedCells {
+    /// The mask of the points of `lattice` where `pressures > 0`; `None`
+    /// when none is pressed or the box is too large for them.
+    fn new(lattice: Lattice<'_>, pressures: &[f64]) -> Option<Self> {
+        let (mut lo, mut hi, mut count) = ((i64::MAX, i64::MAX), (i64::MIN, i64::MIN), 0usize);
+        lattice.iter().enumerate().for_each(|(k, (i, j))| {
+            if pressures[k] > 0.0 {
+                (lo, hi) = ((lo.0.min(i), lo.1.min(j)), (hi.0.max(i), hi.1.max(j)));
+                count += 1;
+            }
+        });
+        let side = |lo: i64, hi: i64| hi.checked_sub(lo)?.checked_add(1);
+        let (ni, nj) = (side(lo.0, hi.0)?, side(lo.1, hi.1)?);
+        let size = usize::try_from(ni)
+            .ok()?
+            .checked_mul(usize::try_from(nj).ok()?)?;
+        if count == 0 || size > MASK_CELLS_PER_POINT.saturating_mul(count) {
+            return None;
+        }
+        let mut mask = Self {
+            i0: lo.0,
+            j0: lo.1,
+            ni,
+            nj,
+            cells: vec![false; size],
+        };
+        lattice.iter().enumerate().for_each(|(k, ij)| {
+            if pressures[k] > 0.0 {
+                let at = mask.at(ij).expect("a pressed point is in its own box");
+                mask.cells[at] = true;
+            }
+        });
+        Some(mask)
+    }
+
+    /// The flag's position of cell `(i, j)`, if in the box.
+    fn at(&self, (i, j): (i64, i64)) -> Option<usize> {
+        let (r, c) = (i.checked_sub(self.i0)?, j.checked_sub(self.j0)?);
+        ((0..self.ni).contains(&r) && (0..self.nj).contains(&c)).then(|| (r * self.nj + c) as usize)
+    }
+
+    /// Whether cell `(i, j)` holds a pressed point.
+    fn has(&self, ij: (i64, i64)) -> bool {
+        self.at(ij).is_some_and(|at| self.cells[at])
     }
 }
 
@@ -330,6 +404,39 @@ fn polygon_moments(vertices: &[(f64, f64)]) -> Moments {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_pressed_cells_mask_answers_as_the_index() {
+        // A ring of pressure on a disk grid (a hole inside, cells outside):
+        // every point's four neighbours, pressed or not, read the same from
+        // the mask as from the index.
+        let points = PointSet::grid_disk(0.1, 1.0).unwrap();
+        let p: Vec<f64> = (0..points.len())
+            .map(|k| {
+                let r = points.radius(k);
+                if (0.3..0.8).contains(&r) {
+                    1.0 - r
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let edge = Edge::new(&points, &p, EdgeLaw::SquareRoot);
+        let g = edge.grid.as_ref().unwrap();
+        let mask = PressedCells::new(g.lattice, &p).expect("a compact contact");
+        for (i, j) in g.lattice.iter() {
+            for ij in [(i, j), (i + 1, j), (i - 1, j), (i, j + 1), (i, j - 1)] {
+                assert_eq!(mask.has(ij), edge.pressed(g, ij).is_some(), "{ij:?}");
+            }
+        }
+        // Nothing pressed, or two pressed points far apart on a fine
+        // lattice (a box of 10^6 cells for 2 points): no mask, the index.
+        assert!(PressedCells::new(g.lattice, &vec![0.0; p.len()]).is_none());
+        let cell = elcon_influence::Cell::square(1e-3);
+        let far = PointSet::from_points(Dimension::Surface, vec![0.0, 1.0], vec![0.0, 1.0], cell)
+            .unwrap();
+        assert!(PressedCells::new(far.lattice().unwrap(), &[1.0, 1.0]).is_none());
+    }
 
     #[test]
     fn an_exact_square_root_profile_gives_its_edge() {

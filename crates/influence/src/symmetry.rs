@@ -324,6 +324,12 @@ fn orbits_of(
     elements: &[Element],
     image: impl Fn(Element, (f64, f64)) -> Option<usize>,
 ) -> Option<Orbits> {
+    let identity = Element {
+        swap: false,
+        su: 1,
+        sv: 1,
+    };
+    assert_eq!(elements.first(), Some(&identity), "a group lists its identity first");
     // Indices fit in u32: a point set holds at most MAX_POINTS = 2^22.
     let mut rep_of = vec![u32::MAX; n];
     let mut members = Vec::with_capacity(n);
@@ -335,8 +341,10 @@ fn orbits_of(
         if !complete || rep_of[k] != u32::MAX {
             return complete;
         }
+        // The identity (first) maps k to itself: not looked up.
         orbit.clear();
-        for &g in elements {
+        orbit.push(k);
+        for &g in &elements[1..] {
             let Some(j) = image(g, at) else {
                 return false;
             };
