@@ -31,7 +31,8 @@
 //! cpu_seconds (several) over its floor, the median>` (`--repeat R`: the
 //! solve and the floor's measure take turns R times, and the times are
 //! their medians: on a machine whose speed drifts, both drift alike, and
-//! a repeat's ratio to the floor measured right after it drifts least;
+//! a repeat's ratio to the floor measured on either side of it (the mean
+//! of the unit costs before and after) drifts least;
 //! `--no-floor`: the floor is not
 //! measured and prints as 0, as does times_floor, so that a profiler sees the solves alone;
 //! `--no-preconditioner`: the
@@ -103,13 +104,15 @@ struct Run {
 /// CPU seconds on the same threads (to compare with `cpu_seconds`). With
 /// `repeat` above 1 the solve and the floor's measure take turns that
 /// many times and the times printed are their medians (a machine whose
-/// speed drifts from minute to minute moves both alike).
+/// speed drifts from minute to minute moves both alike); each solve's
+/// floor takes the unit costs measured on either side of it.
 fn one_size(cells: f64, repeat: usize) {
     let hertz = hertz::reference();
     let a = hertz.contact_radius();
     let mut runs: Vec<Run> = Vec::new();
     let mut peak = f64::NAN;
     let mut last = None;
+    let mut previous = None;
     for _ in 0..repeat.max(1) {
         let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
         let dense = points.len() <= elcon::scene::AUTO_DENSE_LIMIT;
@@ -137,7 +140,7 @@ fn one_size(cells: f64, repeat: usize) {
         if runs.is_empty() {
             peak = peak_rss_mb();
         }
-        let (product, preconditioning) = if std::env::args().any(|a| a == "--no-floor") {
+        let after = if std::env::args().any(|a| a == "--no-floor") {
             (0.0, 0.0)
         } else {
             (
@@ -145,6 +148,12 @@ fn one_size(cells: f64, repeat: usize) {
                 preconditioner_seconds(problem.points(), sol.statistics.preconditionings()),
             )
         };
+        // The unit costs measured just before this solve (after the last
+        // one) and just after it, averaged: a drift of the machine's speed
+        // across the solve cancels to first order. The first solve has
+        // only the measure after it.
+        let before = previous.replace(after).unwrap_or(after);
+        let (product, preconditioning) = (0.5 * (before.0 + after.0), 0.5 * (before.1 + after.1));
         let floor = sol.statistics.products() as f64 * product
             + sol.statistics.preconditionings() as f64 * preconditioning;
         let relative = if product > 0.0 {
@@ -173,8 +182,8 @@ fn one_size(cells: f64, repeat: usize) {
     };
     let (seconds, cpu) = (median(&|r| r.seconds), median(&|r| r.cpu));
     let (floor, relative) = (median(&|r| r.floor), median(&|r| r.relative));
-    // Each repeat's time over its own floor, measured right after it: the
-    // drift of the machine's speed between repeats cancels.
+    // Each repeat's time over its own floor, measured on either side of
+    // it: the drift of the machine's speed between repeats cancels.
     let threads = rayon::current_num_threads();
     let times_floor = median(&|r| match (threads, r.floor > 0.0) {
         (_, false) => 0.0,
