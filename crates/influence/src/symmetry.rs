@@ -329,7 +329,11 @@ fn orbits_of(
         su: 1,
         sv: 1,
     };
-    assert_eq!(elements.first(), Some(&identity), "a group lists its identity first");
+    assert_eq!(
+        elements.first(),
+        Some(&identity),
+        "a group lists its identity first"
+    );
     // Indices fit in u32: a point set holds at most MAX_POINTS = 2^22.
     let mut rep_of = vec![u32::MAX; n];
     let mut members = Vec::with_capacity(n);

@@ -1,6 +1,6 @@
 //! The per-chunk loops of the passes that write vectors or take many
 //! measures at once, in vector registers (`pulp`'s dispatch picks the
-//! widest the processor has, AVX2 on x86-64 where present): the measures
+//! widest the processor has: AVX-512, else AVX2, on x86-64): the measures
 //! of `w = u + q - B λ`, the direction `t` and the step `z_J -= τ t_J`.
 //! Entry `i` belongs to lane `i mod LANES`, and a group of [`LANES`]
 //! entries fills `LANES / width` registers, so every lane takes the same

@@ -10,7 +10,7 @@
 //! share of the threads), each chunk's sum kept in [`LANES`] interleaved
 //! partial sums, the lanes then the chunks added in their order. A chunk's
 //! sums ([`Terms`]) run in vector registers, the widest the processor has
-//! (`pulp`'s dispatch: AVX2 on x86-64 where present, else SSE2): a group
+//! (`pulp`'s dispatch: AVX-512, else AVX2, else SSE2 on x86-64): a group
 //! of [`LANES`] terms fills `LANES / width` registers, so that each lane
 //! adds the same terms in the same order on any processor, and the sums
 //! are the same to the bit with or without vector instructions. Which thread adds a chunk
