@@ -23,10 +23,10 @@
 //! what is wrong) stands. Every attempt is in [`Statistics::attempts`].
 //!
 //! Programs with complementarity constraints
-//! ([`ComplementaryProgram`](crate::ComplementaryProgram)) take the route of
+//! ([`ComplementaryProgram`]) take the route of
 //! the restricted simplex's general tableau, with the same retry.
 //!
-//! A linear system `M X = R` ([`LinearSystem`](crate::LinearSystem)) has a
+//! A linear system `M X = R` ([`LinearSystem`]) has a
 //! route of its own, with no retry:
 //!
 //! | `M` | route |

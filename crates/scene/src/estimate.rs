@@ -2,7 +2,7 @@
 //! allocated: its peak memory and a rough class of its run time.
 //!
 //! The contact solve's part is elcon-analysis's estimate of the scene's
-//! problem (`elcon_analysis::Estimate`, from its [`Plan`]: the storage, the
+//! problem (`elcon_analysis::Estimate`, from its [`Plan`](elcon_analysis::Plan): the storage, the
 //! method and the unknowns; dense, `m` matrices of n x n, 8 bytes an entry;
 //! matrix-free, the lattice operator and a few vectors of N). The design
 //! stage holds each design load's problem as elcon-analysis counts it for

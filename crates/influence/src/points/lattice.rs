@@ -313,7 +313,7 @@ enum Index {
         cells: Vec<u32>,
     },
     Map(HashMap<(i64, i64), usize>),
-    /// A grid's runs (see [`Layout::Grid`](super::set::Layout::Grid)), its
+    /// A grid's runs (see the point set's `Layout::Grid`), its
     /// number of points, and `i_0` when run r is lattice row `i_0 + r`
     /// (along j).
     Runs {

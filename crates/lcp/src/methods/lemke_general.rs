@@ -113,7 +113,7 @@ pub(crate) fn attempt(problem: &Problem<'_>, opts: &Options) -> Attempted {
     })
 }
 
-/// The answer of [`core`] on the split standard form.
+/// The answer of [`core()`] on the split standard form.
 struct Split {
     z: Col<f64>,
     basic: Vec<bool>,

@@ -327,7 +327,7 @@ fn lanes_min(a: &[f64; LANES]) -> f64 {
 /// Measures `w = c u + q - B λ` (see [`Measures`]) of `c z` and `c u`,
 /// `c` the pending `scale` (applied in registers; `z` and `u` are only
 /// read); with a `residual` to write (a preconditioned step's), also `r =
-/// w` on `J`, 0 off it, the same bits as [`residual_pass`], from the chunk
+/// w` on `J`, 0 off it, the same bits as `residual_pass` (its tests' reference), from the chunk
 /// while it is in cache.
 pub(super) fn measure_pass(
     data: &Data<'_>,

@@ -143,8 +143,8 @@ fn solve_column(
 
 /// The residual `r` of `M x = b` relative to its terms' scale,
 /// `‖r‖∞ / max_i (|(M x)_i| + |b_i|)`, with `M x` read as `b - r` (a
-/// stricter scale than the certificate's `|M| |x| + |b|`, as
-/// [`converged`]'s); 0 when both are 0.
+/// stricter scale than the certificate's `|M| |x| + |b|`); 0 when both
+/// are 0.
 fn relative(b: &[f64], r: &[f64]) -> f64 {
     let (mut worst, mut scale) = (0.0f64, 0.0f64);
     for (&b, &r) in b.iter().zip(r) {
