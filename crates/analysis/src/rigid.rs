@@ -155,6 +155,12 @@ impl Rigid {
         let mut rigid = self.clone();
         rigid.free.clear();
         for &(mode, resultant) in &self.free {
+            // The approach's lever is 1 at every point: invariant under any
+            // group, nothing to check.
+            if mode == RigidMode::Approach {
+                rigid.free.push((mode, resultant));
+                continue;
+            }
             let levers = points.map_positions(|at| mode.lever(at, self.load_point));
             let scale = levers.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             if folding.is_invariant(&levers, LEVER_SYMMETRY) {

@@ -459,14 +459,23 @@ pub(super) struct Stepped {
 }
 
 /// Takes a chunk's step (see [`Step`]) on `z` and `u`, with the sums of
-/// the border's one column `row` after it ([`Stepped`]).
+/// the border's one column `row` after it ([`Stepped`]). Without
+/// `recur` (the step has already changed the contact set elsewhere, so
+/// `u` will be recomputed from a true product) `u` is read for the
+/// entries but keeps its values, and `Σ_J b u` is not taken.
 pub(super) fn update_chunk(
     step: Step<'_>,
-    z: &mut [f64],
-    u: &mut [f64],
+    (z, u): (&mut [f64], &mut [f64]),
     row: Option<&[f64]>,
+    recur: bool,
 ) -> Stepped {
-    pulp::Arch::new().dispatch(UpdateChunk { step, z, u, row })
+    pulp::Arch::new().dispatch(UpdateChunk {
+        step,
+        z,
+        u,
+        row,
+        recur,
+    })
 }
 
 struct UpdateChunk<'a, 'b> {
@@ -474,6 +483,7 @@ struct UpdateChunk<'a, 'b> {
     z: &'b mut [f64],
     u: &'b mut [f64],
     row: Option<&'a [f64]>,
+    recur: bool,
 }
 
 impl WithSimd for UpdateChunk<'_, '_> {
@@ -481,17 +491,20 @@ impl WithSimd for UpdateChunk<'_, '_> {
 
     #[inline(always)]
     fn with_simd<S: Simd>(self, simd: S) -> Stepped {
-        match self.row {
-            Some(b) => self.sweep::<S, true>(simd, b),
-            None => self.sweep::<S, false>(simd, &[]),
+        match (self.row, self.recur) {
+            (Some(b), true) => self.sweep::<S, true, true>(simd, b),
+            (Some(b), false) => self.sweep::<S, true, false>(simd, b),
+            (None, true) => self.sweep::<S, false, true>(simd, &[]),
+            (None, false) => self.sweep::<S, false, false>(simd, &[]),
         }
     }
 }
 
 impl UpdateChunk<'_, '_> {
-    /// The step, with the row's sums of `b` where `ROW`.
+    /// The step, with the row's sums of `b` where `ROW`, and `u`'s
+    /// recurrence (with `Σ_J b u`) where `RECUR`.
     #[inline(always)]
-    fn sweep<S: Simd, const ROW: bool>(self, simd: S, b: &[f64]) -> Stepped {
+    fn sweep<S: Simd, const ROW: bool, const RECUR: bool>(self, simd: S, b: &[f64]) -> Stepped {
         let Self { step, z, u, .. } = self;
         let len = z.len();
         let full = len - len % LANES;
@@ -526,16 +539,19 @@ impl UpdateChunk<'_, '_> {
                 } else {
                     old
                 };
-                let (zn, un) = (
-                    simd.select_f64s(on, kept, off),
-                    simd.sub_f64s(ui, simd.mul_f64s(tau, rs[k + r])),
-                );
-                (zs[k + r], us[k + r]) = (zn, un);
+                let zn = simd.select_f64s(on, kept, off);
+                zs[k + r] = zn;
                 if ROW {
                     row.add(simd, r, bs[k + r], zn);
-                    let on = simd.greater_than_f64s(zn, zero);
-                    let masked = simd.mul_f64s(simd.select_f64s(on, bs[k + r], zero), un);
-                    add_compensated(simd, (&mut bu[r], &mut bu_carry[r]), masked);
+                }
+                if RECUR {
+                    let un = simd.sub_f64s(ui, simd.mul_f64s(tau, rs[k + r]));
+                    us[k + r] = un;
+                    if ROW {
+                        let on = simd.greater_than_f64s(zn, zero);
+                        let masked = simd.mul_f64s(simd.select_f64s(on, bs[k + r], zero), un);
+                        add_compensated(simd, (&mut bu[r], &mut bu_carry[r]), masked);
+                    }
                 }
             }
             k += regs;
@@ -550,13 +566,18 @@ impl UpdateChunk<'_, '_> {
         };
         for i in full..len {
             let (next, ui, clip, enter) = step.at(i, z[i], u[i]);
-            (z[i], u[i]) = (next, ui);
+            z[i] = next;
             out.clipped += usize::from(clip);
             out.entered += usize::from(enter);
+            let l = i - full;
             if ROW {
-                let l = i - full;
                 out.row.add(l, b[i], next);
-                out.bu.add(l, (if next > 0.0 { b[i] } else { 0.0 }) * ui);
+            }
+            if RECUR {
+                u[i] = ui;
+                if ROW {
+                    out.bu.add(l, (if next > 0.0 { b[i] } else { 0.0 }) * ui);
+                }
             }
         }
         out
@@ -765,24 +786,38 @@ mod tests {
             };
             for row in [None, Some(&b[..])] {
                 let (mut zv, mut uv) = (z0.clone(), u0.clone());
-                let got = update_chunk(step, &mut zv, &mut uv, row);
+                let got = update_chunk(step, (&mut zv, &mut uv), row, true);
                 assert_eq!((bits(&zv), bits(&uv)), (bits(&z), bits(&u)));
                 assert_eq!(stepped(&got).0, counts);
                 if row.is_some() {
                     assert_eq!(stepped(&got).1, sums);
                 }
-                for isa in Isa::all() {
+                // Without the recurrence: the same step and counts (and
+                // row sums), `u` as it was.
+                let (mut zv, mut uv) = (z0.clone(), u0.clone());
+                let got = update_chunk(step, (&mut zv, &mut uv), row, false);
+                assert_eq!((bits(&zv), bits(&uv)), (bits(&z), bits(u0)));
+                assert_eq!(stepped(&got).0, counts);
+                if row.is_some() {
+                    assert_eq!(stepped(&got).1[..2], sums[..2]);
+                }
+                for (isa, recur) in Isa::all().into_iter().flat_map(|i| [(i, true), (i, false)]) {
                     let (mut zs, mut us) = (z0.clone(), u0.clone());
                     let got = isa.run(UpdateChunk {
                         step,
                         z: &mut zs,
                         u: &mut us,
                         row,
+                        recur,
                     });
-                    assert_eq!((bits(&zs), bits(&us)), (bits(&z), bits(&u)), "{isa:?}");
-                    assert_eq!(stepped(&got).0, counts, "{isa:?}");
-                    if row.is_some() {
-                        assert_eq!(stepped(&got).1, sums, "{isa:?}");
+                    let u_after = if recur { &u } else { u0 };
+                    let what = format!("{isa:?}, recur {recur}");
+                    assert_eq!((bits(&zs), bits(&us)), (bits(&z), bits(u_after)), "{what}");
+                    assert_eq!(stepped(&got).0, counts, "{what}");
+                    match (row.is_some(), recur) {
+                        (true, true) => assert_eq!(stepped(&got).1, sums, "{what}"),
+                        (true, false) => assert_eq!(stepped(&got).1[..2], sums[..2], "{what}"),
+                        (false, _) => {}
                     }
                 }
             }

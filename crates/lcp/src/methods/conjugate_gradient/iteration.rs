@@ -26,6 +26,7 @@
 //! stores its result at scale 1.
 
 use std::borrow::Cow;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use faer::{ColRef, Mat, MatRef};
 
@@ -503,7 +504,9 @@ struct UpdateParts {
 /// `w_i < 0` (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ =
 /// 0`) where `enter` is set, else stays at 0; the product by its
 /// recurrence, `u = c u - τ r`. A chunk where a point left or entered
-/// skips the sums (the step's are then not read).
+/// skips the sums (the step's are then not read), and the chunks after it
+/// skip `u`'s recurrence too: where the contact set changed, `u` is
+/// recomputed from a true product before it is read again.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn update_pass(
     data: &Data<'_>,
@@ -522,6 +525,11 @@ pub(super) fn update_pass(
         .enumerate()
         .collect();
     let shift = Shift::new(columns, lambda, q.len(), false);
+    // Once a chunk has clipped or let in points the contact set has
+    // changed, and `u` will be recomputed from a true product: the chunks
+    // taken after it leave `u` and its sums alone. Which chunks those are
+    // depends on the threads' timing; the iterate does not.
+    let changed = AtomicBool::new(false);
     let parts = map_parts(parts, |(c, (z, u))| {
         let base = c * CHUNK;
         let len = z.len();
@@ -549,7 +557,11 @@ pub(super) fn update_pass(
         };
         // One column's sums in the step's own loop; several, a loop each.
         let row = (k == 1).then(|| columns[0].part(base, len));
-        let stepped = update_chunk(step, z, u, row);
+        let recur = !changed.load(Ordering::Relaxed);
+        let stepped = update_chunk(step, (z, u), row, recur);
+        if stepped.clipped + stepped.entered > 0 {
+            changed.store(true, Ordering::Relaxed);
+        }
         (p.clipped, p.entered) = (stepped.clipped, stepped.entered);
         if k == 1 {
             (p.rows[0], p.rows_terms[0], p.bu[0]) =
@@ -560,7 +572,7 @@ pub(super) fn update_pass(
         for j in 0..k {
             p.rows[j] = Terms::Product(columns[j].part(base, len), z).compensated();
         }
-        if p.clipped + p.entered > 0 {
+        if !recur || p.clipped + p.entered > 0 {
             return p;
         }
         for j in 0..k {
