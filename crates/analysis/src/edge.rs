@@ -153,7 +153,13 @@ impl<'a> Edge<'a> {
         if self.pressed(g, (i + di, j + dj)).is_some() {
             return 0.5 * h;
         }
-        self.beyond(g, k, (di, dj), h)
+        self.open_reach(g, k, (di, dj), h)
+    }
+
+    /// [`Edge::reach`] toward a neighbour known not to be in contact: the
+    /// extrapolated edge within `[0, h]` (h / 2 where it cannot be told).
+    fn open_reach(&self, g: &Grid<'_>, k: usize, toward: (i64, i64), h: f64) -> f64 {
+        self.beyond(g, k, toward, h)
             .map_or(0.5 * h, |t| t.clamp(0.0, h))
     }
 
@@ -273,7 +279,7 @@ impl<'a> Edge<'a> {
                 // A point on the contact's edge (a few in a thousand):
                 // its coordinates looked up.
                 let (xk, yk) = (points.x(k), points.y(k));
-                let t = self.reach(g, k, (di, dj), h);
+                let t = self.open_reach(g, k, (di, dj), h);
                 let (x, y) = (xk + di as f64 * t, yk + dj as f64 * t);
                 edge.push(((y - cy).atan2(x - cx), x, y));
             }
@@ -320,7 +326,8 @@ impl PressedCells {
         let size = usize::try_from(ni)
             .ok()?
             .checked_mul(usize::try_from(nj).ok()?)?;
-        if count == 0 || size > MASK_CELLS_PER_POINT.saturating_mul(count) {
+        // (Nothing pressed leaves an empty box: `side` gave `None` above.)
+        if size > MASK_CELLS_PER_POINT.saturating_mul(count) {
             return None;
         }
         let mut mask = Self {

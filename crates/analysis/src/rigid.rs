@@ -38,6 +38,12 @@ pub enum RigidMode {
 }
 
 impl RigidMode {
+    /// Whether the lever is the same at every point (the approach's 1):
+    /// its column needs no points and any group leaves it invariant.
+    pub fn is_uniform(self) -> bool {
+        self == RigidMode::Approach
+    }
+
     /// The lever of this motion at `(x, y)` about the load point `(x0, y0)`.
     pub fn lever(self, (x, y): (f64, f64), (x0, y0): (f64, f64)) -> f64 {
         match self {
@@ -145,7 +151,7 @@ impl Rigid {
     pub(crate) fn may_drop(&self) -> bool {
         self.free
             .iter()
-            .any(|&(mode, resultant)| mode != RigidMode::Approach && resultant == 0.0)
+            .any(|&(mode, resultant)| !mode.is_uniform() && resultant == 0.0)
     }
 
     /// The rigid unknowns of the problem folded by `folding`, or `None`
@@ -155,9 +161,7 @@ impl Rigid {
         let mut rigid = self.clone();
         rigid.free.clear();
         for &(mode, resultant) in &self.free {
-            // The approach's lever is 1 at every point: invariant under any
-            // group, nothing to check.
-            if mode == RigidMode::Approach {
+            if mode.is_uniform() {
                 rigid.free.push((mode, resultant));
                 continue;
             }

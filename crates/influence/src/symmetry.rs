@@ -44,6 +44,13 @@ struct Element {
     sv: i64,
 }
 
+/// The identity, every group's first element.
+const IDENTITY: Element = Element {
+    swap: false,
+    su: 1,
+    sv: 1,
+};
+
 impl Element {
     fn apply_xy(self, (x, y): (f64, f64)) -> (f64, f64) {
         let (a, b) = if self.swap { (y, x) } else { (x, y) };
@@ -54,14 +61,9 @@ impl Element {
 /// The symmetry groups tried, largest first.
 fn candidates(dimension: Dimension, square: bool) -> Vec<(&'static str, Vec<Element>)> {
     let e = |swap, su, sv| Element { swap, su, sv };
-    let klein = vec![
-        e(false, 1, 1),
-        e(false, -1, 1),
-        e(false, 1, -1),
-        e(false, -1, -1),
-    ];
+    let klein = vec![IDENTITY, e(false, -1, 1), e(false, 1, -1), e(false, -1, -1)];
     match dimension {
-        Dimension::Line => vec![("mirror x", vec![e(false, 1, 1), e(false, -1, 1)])],
+        Dimension::Line => vec![("mirror x", vec![IDENTITY, e(false, -1, 1)])],
         Dimension::Surface => {
             let mut groups = Vec::new();
             if square {
@@ -75,8 +77,8 @@ fn candidates(dimension: Dimension, square: bool) -> Vec<(&'static str, Vec<Elem
                 groups.push(("mirror x, mirror y, swap x-y", d4));
             }
             groups.push(("mirror x, mirror y", klein));
-            groups.push(("mirror x", vec![e(false, 1, 1), e(false, -1, 1)]));
-            groups.push(("mirror y", vec![e(false, 1, 1), e(false, 1, -1)]));
+            groups.push(("mirror x", vec![IDENTITY, e(false, -1, 1)]));
+            groups.push(("mirror y", vec![IDENTITY, e(false, 1, -1)]));
             groups
         }
     }
@@ -175,10 +177,7 @@ fn nearest(v: f64) -> i64 {
 
 /// The doubled lattice coordinates `(round(2x/dx), round(2y/dy))`.
 fn doubled_key((x, y): (f64, f64), cell: Cell) -> (i64, i64) {
-    (
-        (2.0 * x / cell.dx).round() as i64,
-        (2.0 * y / cell.dy).round() as i64,
-    )
+    (nearest(2.0 * x / cell.dx), nearest(2.0 * y / cell.dy))
 }
 
 impl Folding {
@@ -324,16 +323,7 @@ fn orbits_of(
     elements: &[Element],
     image: impl Fn(Element, (f64, f64)) -> Option<usize>,
 ) -> Option<Orbits> {
-    let identity = Element {
-        swap: false,
-        su: 1,
-        sv: 1,
-    };
-    assert_eq!(
-        elements.first(),
-        Some(&identity),
-        "a group lists its identity first"
-    );
+    debug_assert_eq!(elements.first(), Some(&IDENTITY), "the identity first");
     // Indices fit in u32: a point set holds at most MAX_POINTS = 2^22.
     let mut rep_of = vec![u32::MAX; n];
     let mut members = Vec::with_capacity(n);

@@ -181,6 +181,10 @@ pub(crate) fn shifted<'s>(
     if rigid.prescribed.is_empty() {
         return Cow::Borrowed(separation);
     }
-    let shifts = points.map_positions(|at| rigid.shift(at));
-    Cow::Owned(separation.iter().zip(shifts).map(|(s, d)| s + d).collect())
+    let mut q = separation.to_vec();
+    points
+        .positions()
+        .enumerate()
+        .for_each(|(k, at)| q[k] += rigid.shift(at));
+    Cow::Owned(q)
 }

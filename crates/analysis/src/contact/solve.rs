@@ -12,10 +12,11 @@ use std::time::Instant;
 use elcon_lcp::{Method, Options};
 use faer::{Col, ColRef, Mat};
 
+use super::layout::shifted;
 use super::problem::ContactProblem;
 use super::solution::{ContactSolution, Engine};
 use crate::AnalysisError;
-use crate::rigid::{RigidMode, point};
+use crate::rigid::point;
 
 impl ContactProblem {
     /// Solves starting from the contact set of `previous` (a solution of a
@@ -70,24 +71,18 @@ impl ContactProblem {
         let n = self.influence.len();
         let scale = |a: usize| self.folding.as_ref().map_or(1.0, |f| f.stabilizer(a));
         let order = self.folding.as_ref().map_or(1.0, |f| f.order() as f64);
-        let rep = |a: usize| self.folding.as_ref().map_or(a, |f| f.rep(a));
         // The bordered form: q the separations shifted by the prescribed
         // rigid motions, a column per free motion (its lever; 1 for the
         // approach), each scaled by 1 / s_a when folded, and the resultants
         // (load, moments) over |G|.
         let rigid = &self.rigid;
         // Unfolded with no prescribed motion, q is eps itself: borrowed.
-        let q = if self.folding.is_none() && rigid.prescribed.is_empty() {
-            None
-        } else {
-            Some(Col::from_fn(n, |a| {
-                let k = rep(a);
-                (self.separation[k] + rigid.shift(point(&self.points, k))) / scale(a)
-            }))
-        };
-        let q = q
+        let shifted = shifted(&self.points, &self.separation, rigid);
+        let q = self
+            .folding
             .as_ref()
-            .map_or(ColRef::from_slice(&self.separation), Col::as_ref);
+            .map(|f| Col::from_fn(n, |a| shifted[f.rep(a)] / f.stabilizer(a)));
+        let q = q.as_ref().map_or(ColRef::from_slice(&shifted), Col::as_ref);
         let border = self.border();
         let resultant = Col::from_fn(rigid.free.len(), |j| rigid.free[j].1 / order);
         let sol = self.influence.solve_bordered(
@@ -137,8 +132,8 @@ impl ContactProblem {
 
 impl ContactProblem {
     /// The engine's border `B`: a column per free motion, its lever at
-    /// every unknown's point (1 for the approach, which needs no point),
-    /// row a divided by `s_a` when folded. Unfolded, the points are walked
+    /// every unknown's point (a uniform lever, the approach's 1, needs no
+    /// point), row a divided by `s_a` when folded. Unfolded, the points are walked
     /// in order ([`PointSet::positions`](elcon_influence::PointSet::positions))
     /// instead of looked up one by one.
     fn border(&self) -> Mat<f64> {
@@ -152,14 +147,17 @@ impl ContactProblem {
                 .expect("a new matrix's columns are contiguous")
                 .as_slice_mut();
             let lever = |at| mode.lever(at, rigid.load_point);
-            match &self.folding {
-                Some(f) => {
+            // A uniform lever's value, the same at any point.
+            let uniform = mode.is_uniform().then(|| lever((0.0, 0.0)));
+            match (&self.folding, uniform) {
+                (Some(f), _) => {
                     for (a, v) in column.iter_mut().enumerate() {
-                        *v = lever(point(&self.points, f.rep(a))) / f.stabilizer(a);
+                        let at = || point(&self.points, f.rep(a));
+                        *v = uniform.unwrap_or_else(|| lever(at())) / f.stabilizer(a);
                     }
                 }
-                None if mode == RigidMode::Approach => column.fill(lever((0.0, 0.0))),
-                None => {
+                (None, Some(value)) => column.fill(value),
+                (None, None) => {
                     let mut values = column.iter_mut();
                     self.points.positions().for_each(|at| {
                         *values.next().expect("a value per point") = lever(at);

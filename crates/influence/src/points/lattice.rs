@@ -209,8 +209,9 @@ impl Iterator for LatticeIter<'_> {
 
     /// The same indices in the same order as [`next`](Self::next), a grid's
     /// run by run: no search for the run at every point, and an inner loop
-    /// the caller's `f` can be compiled into (`collect`, `sum`,
-    /// `for_each`, `enumerate` and `map` all come here).
+    /// the caller's `f` can be compiled into (`sum`, `for_each`, and
+    /// `enumerate` and `map` before them, come here; a `collect` into a
+    /// vector takes `next`: the iterator is not `TrustedLen`).
     fn fold<B, F>(self, init: B, mut f: F) -> B
     where
         F: FnMut(B, (i64, i64)) -> B,

@@ -464,7 +464,7 @@ impl PointSet {
     pub fn xs(&self) -> Cow<'_, [f64]> {
         match &self.layout {
             Layout::Listed { xs, .. } => Cow::Borrowed(xs),
-            Layout::Grid { x, .. } => self.along_grid(|(i, _)| x.at(i)),
+            Layout::Grid { .. } => Cow::Owned(self.map_positions(|(x, _)| x)),
         }
     }
 
@@ -473,16 +473,8 @@ impl PointSet {
     pub fn ys(&self) -> Cow<'_, [f64]> {
         match &self.layout {
             Layout::Listed { ys, .. } => Cow::Borrowed(ys),
-            Layout::Grid { y, .. } => self.along_grid(|(_, j)| y.at(j)),
+            Layout::Grid { .. } => Cow::Owned(self.map_positions(|(_, y)| y)),
         }
-    }
-
-    /// `coordinate` of every point's lattice indices, as a new vector.
-    fn along_grid(&self, coordinate: impl Fn((i64, i64)) -> f64) -> Cow<'_, [f64]> {
-        let lattice = self.lattice().expect("a grid has a lattice");
-        let mut values = Vec::with_capacity(self.len());
-        lattice.iter().for_each(|ij| values.push(coordinate(ij)));
-        Cow::Owned(values)
     }
 
     /// Distance of point `k` from the origin (length). Panics if `k >= len()`.
