@@ -1,6 +1,6 @@
 //! The per-chunk loops of the passes that write vectors or take many
 //! measures at once, in vector registers (`pulp`'s dispatch picks the
-//! widest the processor has: AVX-512, else AVX2, on x86-64): the measures
+//! widest the processor has: AVX-512, else AVX2, else its scalar path): the measures
 //! of `w = u + q - B λ`, the direction `t` and the step `z_J -= τ t_J`.
 //! Entry `i` belongs to lane `i mod LANES`, and a group of [`LANES`]
 //! entries fills `LANES / width` registers, so every lane takes the same
@@ -87,8 +87,8 @@ pub(super) struct WLanes {
 }
 
 impl WLanes {
-    /// Adds entry `(z, u, q, s, s_terms)` to lane `l`: no branch, so that
-    /// a group's eight entries become vector instructions.
+    /// Adds entry `(z, u, q, s, s_terms)` to lane `l`: a chunk's tail, and
+    /// the entry-by-entry reference the register loop keeps to the bit.
     #[inline(always)]
     fn add(&mut self, l: usize, [z, u, q, s, s_terms]: [f64; 5]) {
         let w = (u + q) - s;
@@ -450,7 +450,8 @@ impl Step<'_> {
 
 /// What a chunk's step did: how many points were clipped and how many
 /// entered, and with the border's one column `b`, the sums after the step:
-/// its [`RowSums`] and `Σ_J b_i u_i` (compensated).
+/// its [`RowSums`] and, where `u`'s recurrence was taken, `Σ_J b_i u_i`
+/// (compensated; 0 otherwise).
 pub(super) struct Stepped {
     pub clipped: usize,
     pub entered: usize,
@@ -587,7 +588,7 @@ impl UpdateChunk<'_, '_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::methods::conjugate_gradient::passes::Isa;
+    use crate::methods::conjugate_gradient::passes::arches;
 
     /// Five vectors of `len` entries, `z` about half positive, with a
     /// tail past the last full group.
@@ -639,14 +640,14 @@ mod tests {
                 measures_bits(&measure_chunk(slices, 1.0, row, None)),
                 expected
             );
-            for isa in Isa::all() {
-                let m = isa.run(MeasureChunk {
+            for arch in arches() {
+                let m = arch.dispatch(MeasureChunk {
                     v: slices,
                     scale: 1.0,
                     row,
                     residual: None,
                 });
-                assert_eq!(measures_bits(&m), expected, "{isa:?}");
+                assert_eq!(measures_bits(&m), expected, "{arch:?}");
             }
             // The residual, written in the same sweep, vector and scalar.
             let residual: Vec<f64> = (0..len)
@@ -658,15 +659,15 @@ mod tests {
                 (measures_bits(&m), bits(&vector)),
                 (expected.clone(), bits(&residual))
             );
-            for isa in Isa::all() {
+            for arch in arches() {
                 let mut written = vec![9.0; len];
-                isa.run(MeasureChunk {
+                arch.dispatch(MeasureChunk {
                     v: slices,
                     scale: 1.0,
                     row,
                     residual: Some(&mut written),
                 });
-                assert_eq!(bits(&written), bits(&residual), "{isa:?}");
+                assert_eq!(bits(&written), bits(&residual), "{arch:?}");
             }
             // A pending scale multiplies `z` and `u` in registers.
             let (z, u): (Vec<f64>, Vec<f64>) =
@@ -731,15 +732,15 @@ mod tests {
             let mut vector = t0.clone();
             let lanes = direction_chunk(rule, z, &mut vector);
             assert_eq!((bits(&vector), bits(&lanes.0)), (bits(&t), bits(&sum.0)));
-            for isa in Isa::all() {
+            for arch in arches() {
                 let mut written = t0.clone();
-                let lanes = isa.run(DirectionChunk {
+                let lanes = arch.dispatch(DirectionChunk {
                     rule,
                     z,
                     t: &mut written,
                 });
                 let got = (bits(&written), bits(&lanes.0));
-                assert_eq!(got, (bits(&t), bits(&sum.0)), "{isa:?}");
+                assert_eq!(got, (bits(&t), bits(&sum.0)), "{arch:?}");
             }
         }
     }
@@ -801,9 +802,9 @@ mod tests {
                 if row.is_some() {
                     assert_eq!(stepped(&got).1[..2], sums[..2]);
                 }
-                for (isa, recur) in Isa::all().into_iter().flat_map(|i| [(i, true), (i, false)]) {
+                for (arch, recur) in arches().into_iter().flat_map(|i| [(i, true), (i, false)]) {
                     let (mut zs, mut us) = (z0.clone(), u0.clone());
-                    let got = isa.run(UpdateChunk {
+                    let got = arch.dispatch(UpdateChunk {
                         step,
                         z: &mut zs,
                         u: &mut us,
@@ -811,7 +812,7 @@ mod tests {
                         recur,
                     });
                     let u_after = if recur { &u } else { u0 };
-                    let what = format!("{isa:?}, recur {recur}");
+                    let what = format!("{arch:?}, recur {recur}");
                     assert_eq!((bits(&zs), bits(&us)), (bits(&z), bits(u_after)), "{what}");
                     assert_eq!(stepped(&got).0, counts, "{what}");
                     match (row.is_some(), recur) {

@@ -10,10 +10,10 @@
 //!
 //! ```text
 //!     fit:        Σ_J B u,  Σ_J B q,  B_J^T B_J                     (after a true product)
-//!     measure:    w = u + q - B λ;  min w, max |z w|, the scales, ‖w_J‖², B^T z
+//!     measure:    w = c u + q - B λ;  min w, max |z w|, the scales, ‖w_J‖², B^T z, |B|^T z
 //!     direction:  t_J = w_J + β t_J, t = 0 off J;  w_J · t_J
 //!     curvature:  r_J · t_J
-//!     update:     z_J -= τ t_J (clipped at 0), entries off J;  u -= τ r;  Σ_J' B u, Σ_J' B q, B^T z
+//!     update:     z_J -= τ t_J (clipped at 0), entries off J;  B^T z;  while J keeps: u -= τ r, Σ_J B u, |B|^T z
 //!   preconditioned, in place of direction:
 //!     (measure)   also r = w on J, 0 off it                          (then p = P r)
 //!     projection: Σ_J B p,  Σ_J B r,  r_J · p_J
@@ -23,7 +23,9 @@
 //! with `J = {i : z_i > 0}`. `z` and `u` may carry a pending scale `c`
 //! (the one-row restoration's, `M (c z) = c u`): the measure and
 //! direction passes read `c z` and `c u` in registers, and the update
-//! stores its result at scale 1.
+//! stores its result at scale 1. Once a chunk of the update has changed
+//! `J`, the later chunks leave `u` as it was: a changed `J` recomputes `u`
+//! from a true product before it is read.
 
 use std::borrow::Cow;
 use std::sync::atomic::{AtomicBool, Ordering};

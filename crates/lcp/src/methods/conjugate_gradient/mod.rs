@@ -145,9 +145,11 @@ struct State {
     p: Option<Vec<f64>>,
     lambda: Col<f64>,
     /// A factor of `z` and `u` not applied yet (the one-row restoration's):
-    /// the iterate is `scale z`, with `M (scale z) = scale u`. The passes
-    /// that read them multiply in registers, the step stores its result at
-    /// scale 1, and the answer applies what is left.
+    /// the iterate is `scale z`, with `M (scale z) = scale u` (while `u`
+    /// is not stale: a step that changed the contact set leaves `u` to be
+    /// recomputed). The passes that read them multiply in registers, the
+    /// step stores its result at scale 1, and the answer applies what is
+    /// left.
     scale: f64,
     /// The fit's sums over the contact set, at `scale` 1.
     fit: FitSums,
@@ -284,7 +286,8 @@ impl State {
             tau,
             enter,
         );
-        // The step stored `z` and `u` at their scale.
+        // The step stored `z` (and `u`, where it kept the contact set) at
+        // scale 1.
         self.scale = 1.0;
         self.restart = update.entered > 0;
         self.fresh = false;
@@ -395,29 +398,26 @@ impl State {
         let one_row = (k == 1)
             .then(|| form.resultant[0] / update.rows[0])
             .filter(|ratio| ratio.is_finite() && *ratio > 0.0);
-        if let Some(sums) = update.sums {
-            // The same contact set: its Gram matrix and `Σ_J B q` hold,
-            // `Σ_J B u` is new.
+        // The same contact set: its Gram matrix and `Σ_J B q` hold, `Σ_J B
+        // u` is new. A changed one: `u` is recomputed from `M z` (it may
+        // hold the recurrence in part only), and the scale applies to both.
+        self.stale = update.sums.is_none();
+        let restored = update.sums.is_some_and(|sums| {
             self.fit.bu = sums.bu;
-            if let Some(ratio) = one_row {
-                self.scale = ratio;
-                return Ok(());
-            }
-            let restored = (0..k).all(|j| {
+            (0..k).all(|j| {
                 let (sum, terms) = (update.rows[j] - form.resultant[j], sums.rows_terms[j]);
                 let terms = terms + form.resultant[j].abs();
                 terms == 0.0 || sum.abs() <= ROWS_RESTORED * terms
-            });
-            if restored {
-                return Ok(());
-            }
-        }
-        self.stale = true;
+            })
+        });
         if let Some(ratio) = one_row {
-            // `u` is recomputed from `M z`; the scale applies to both.
             self.scale = ratio;
             return Ok(());
         }
+        if restored {
+            return Ok(());
+        }
+        self.stale = true;
         if restore_on_support(form, &mut self.z) {
             return Ok(());
         }

@@ -10,7 +10,7 @@
 //! share of the threads), each chunk's sum kept in [`LANES`] interleaved
 //! partial sums, the lanes then the chunks added in their order. A chunk's
 //! sums ([`Terms`]) run in vector registers, the widest the processor has
-//! (`pulp`'s dispatch: AVX-512, else AVX2, else SSE2 on x86-64): a group
+//! (`pulp`'s dispatch: AVX-512, else AVX2, else its scalar path): a group
 //! of [`LANES`] terms fills `LANES / width` registers, so that each lane
 //! adds the same terms in the same order on any processor, and the sums
 //! are the same to the bit with or without vector instructions. Which thread adds a chunk
@@ -412,44 +412,20 @@ impl Sum<'_> {
     }
 }
 
-/// The instruction sets a test runs a kernel on: the scalar path, and
-/// AVX2 and AVX-512 where the processor has them. `pulp`'s dispatch picks
-/// the widest; every one must give the same bits.
+/// The instruction sets a test runs a kernel on (`arch.dispatch(op)`):
+/// `pulp`'s scalar path, and AVX2 and AVX-512 where the processor has
+/// them. `pulp::Arch::new` picks the widest; every one must give the same
+/// bits.
 #[cfg(test)]
-#[derive(Debug, Clone, Copy)]
-pub(super) enum Isa {
-    Scalar,
+pub(super) fn arches() -> Vec<pulp::Arch> {
+    #[allow(unused_mut)]
+    let mut all = vec![pulp::Arch::Scalar];
     #[cfg(target_arch = "x86_64")]
-    Avx2(pulp::x86::V3),
-    #[cfg(target_arch = "x86_64")]
-    Avx512(pulp::x86::V4),
-}
-
-#[cfg(test)]
-impl Isa {
-    /// The scalar path, then those of the processor's vector sets `pulp`
-    /// dispatches to.
-    pub(super) fn all() -> Vec<Self> {
-        #[allow(unused_mut)]
-        let mut all = vec![Self::Scalar];
-        #[cfg(target_arch = "x86_64")]
-        {
-            all.extend(pulp::x86::V3::try_new().map(Self::Avx2));
-            all.extend(pulp::x86::V4::try_new().map(Self::Avx512));
-        }
-        all
+    {
+        all.extend(pulp::x86::V3::try_new().map(pulp::Arch::V3));
+        all.extend(pulp::x86::V4::try_new().map(pulp::Arch::V4));
     }
-
-    /// `op` on this instruction set.
-    pub(super) fn run<Op: pulp::WithSimd>(self, op: Op) -> Op::Output {
-        match self {
-            Self::Scalar => op.with_simd(pulp::Scalar::new()),
-            #[cfg(target_arch = "x86_64")]
-            Self::Avx2(simd) => pulp::Simd::vectorize(simd, op),
-            #[cfg(target_arch = "x86_64")]
-            Self::Avx512(simd) => pulp::Simd::vectorize(simd, op),
-        }
-    }
+    all
 }
 
 #[cfg(test)]
@@ -466,8 +442,8 @@ mod tests {
         (plain, comp)
     }
 
-    /// The sums of `terms` on `isa`.
-    fn sums_on(isa: Isa, terms: Terms<'_>) -> (Lanes, Compensated) {
+    /// The sums of `terms` on `arch`.
+    fn sums_on(arch: pulp::Arch, terms: Terms<'_>) -> (Lanes, Compensated) {
         let plain = Sum {
             terms,
             compensated: false,
@@ -476,7 +452,7 @@ mod tests {
             terms,
             compensated: true,
         };
-        (isa.run(plain).0, isa.run(comp).1)
+        (arch.dispatch(plain).0, arch.dispatch(comp).1)
     }
 
     fn bits(l: &Lanes, c: &Compensated) -> Vec<u64> {
@@ -538,9 +514,9 @@ mod tests {
                 let reference = bits(&reference.0, &reference.1);
                 let vector = bits(&terms.plain(), &terms.compensated());
                 assert_eq!(vector, reference, "{len} entries");
-                for isa in Isa::all() {
-                    let (plain, comp) = sums_on(isa, terms);
-                    assert_eq!(bits(&plain, &comp), reference, "{len} entries, {isa:?}");
+                for arch in arches() {
+                    let (plain, comp) = sums_on(arch, terms);
+                    assert_eq!(bits(&plain, &comp), reference, "{len} entries, {arch:?}");
                 }
             }
         }
@@ -574,9 +550,9 @@ mod tests {
                     )
                 };
                 assert_eq!(bits(masked_pair_and((z, b), (x, y), third)), alone, "{len}");
-                for isa in Isa::all() {
+                for arch in arches() {
                     let pair = MaskedPair { z, b, x, y, third };
-                    assert_eq!(bits(isa.run(pair)), alone, "{len}, {isa:?}");
+                    assert_eq!(bits(arch.dispatch(pair)), alone, "{len}, {arch:?}");
                 }
             }
         }
