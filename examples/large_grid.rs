@@ -71,23 +71,6 @@ fn peak_rss_mb() -> f64 {
         .map_or(f64::NAN, |kib| kib * 1024.0 / 1e6)
 }
 
-/// The CPU seconds the process has used, all its threads (utime + stime
-/// of /proc/self/stat, in clock ticks of 10 ms).
-fn cpu_seconds() -> f64 {
-    std::fs::read_to_string("/proc/self/stat")
-        .ok()
-        .and_then(|t| {
-            // The fields after the command's closing parenthesis: utime and
-            // stime are the 12th and 13th of them.
-            let rest = &t[t.rfind(')')? + 2..];
-            let mut f = rest.split_whitespace().skip(11);
-            let user: f64 = f.next()?.parse().ok()?;
-            let system: f64 = f.next()?.parse().ok()?;
-            Some((user + system) / 100.0)
-        })
-        .unwrap_or(f64::NAN)
-}
-
 /// One solve of [`one_size`] and its floor's measure: wall seconds,
 /// CPU seconds, the floor (CPU seconds), and one preconditioner
 /// application's CPU time in products.
@@ -113,10 +96,15 @@ fn one_size(cells: f64, repeat: usize) {
     let mut peak = f64::NAN;
     let mut last = None;
     let mut previous = None;
+    let options = Options {
+        preconditioner: !std::env::args().any(|a| a == "--no-preconditioner"),
+        ..Options::default()
+    };
+    let measure_floor = !std::env::args().any(|a| a == "--no-floor");
     for _ in 0..repeat.max(1) {
         let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
         let dense = points.len() <= elcon::scene::AUTO_DENSE_LIMIT;
-        let (start, cpu_start) = (Instant::now(), cpu_seconds());
+        let (start, cpu_start) = (Instant::now(), common::cpu_seconds());
         let (build, method) = if dense {
             (ContactProblem::new as hertz::Build, Method::BlockPivoting)
         } else {
@@ -125,28 +113,24 @@ fn one_size(cells: f64, repeat: usize) {
                 Method::ConjugateGradient,
             )
         };
-        let options = Options {
-            preconditioner: !std::env::args().any(|a| a == "--no-preconditioner"),
-            ..Options::default()
-        };
         // The problem holds the points (a grid's, 2 bytes a point): no copy
         // of them is kept beside it, which the peak would count.
         let problem = hertz::held(build, points);
         let sol = problem.solve(method, &options).expect("solve");
         let seconds = start.elapsed().as_secs_f64();
-        let cpu = cpu_seconds() - cpu_start;
+        let cpu = common::cpu_seconds() - cpu_start;
         // The first solve's peak, before the floor's products take a
         // workspace.
         if runs.is_empty() {
             peak = peak_rss_mb();
         }
-        let after = if std::env::args().any(|a| a == "--no-floor") {
-            (0.0, 0.0)
-        } else {
+        let after = if measure_floor {
             (
                 product_seconds(&problem),
                 preconditioner_seconds(problem.points(), sol.statistics.preconditionings()),
             )
+        } else {
+            (0.0, 0.0)
         };
         // The unit costs measured just before this solve (after the last
         // one) and just after it, averaged: a drift of the machine's speed
@@ -223,12 +207,12 @@ fn preconditioner_seconds(points: &PointSet, applications: usize) -> f64 {
     let n = points.len();
     let (r, mut z) = (vec![1.0; n], vec![0.0; n]);
     kernel.precondition_with(&r, &mut z, &preconditioner, &mut workspace);
-    let (start, mut count) = (cpu_seconds(), 0);
-    while cpu_seconds() - start < FLOOR_CPU {
+    let (start, mut count) = (common::cpu_seconds(), 0);
+    while common::cpu_seconds() - start < FLOOR_CPU {
         kernel.precondition_with(&r, &mut z, &preconditioner, &mut workspace);
         count += 1;
     }
-    (cpu_seconds() - start) / count as f64
+    (common::cpu_seconds() - start) / count as f64
 }
 
 /// CPU seconds of products the floor's measure takes at least.
@@ -245,12 +229,12 @@ fn product_seconds(problem: &ContactProblem) -> f64 {
     let n = products.size();
     let (x, mut y) = (vec![1.0; n], vec![0.0; n]);
     products.apply(&x, &mut y);
-    let (start, mut count) = (cpu_seconds(), 0);
-    while cpu_seconds() - start < FLOOR_CPU {
+    let (start, mut count) = (common::cpu_seconds(), 0);
+    while common::cpu_seconds() - start < FLOOR_CPU {
         products.apply(&x, &mut y);
         count += 1;
     }
-    (cpu_seconds() - start) / count as f64
+    (common::cpu_seconds() - start) / count as f64
 }
 
 fn main() {
@@ -299,21 +283,21 @@ fn main() {
         let n = points.len();
         let dense_bytes = 8.0 * (n as f64) * (n as f64);
         let dense = if dense_bytes <= DENSE_CEILING {
-            let start = cpu_seconds();
+            let start = common::cpu_seconds();
             let sol = hertz::held(ContactProblem::new, points.clone())
                 .solve(Method::BlockPivoting, &Options::default())
                 .expect("dense solve");
-            Some((cpu_seconds() - start, sol.approach))
+            Some((common::cpu_seconds() - start, sol.approach))
         } else {
             None
         };
         let operator_bytes =
             LatticeOperator::estimate_bytes(&points, &[&body, &body]).expect("lattice");
-        let start = cpu_seconds();
+        let start = common::cpu_seconds();
         let sol = hertz::held(ContactProblem::lattice, points)
             .solve(Method::ConjugateGradient, &Options::default())
             .expect("matrix-free solve");
-        let seconds = cpu_seconds() - start;
+        let seconds = common::cpu_seconds() - start;
         if let Some((_, approach)) = dense {
             assert!(
                 (approach / sol.approach - 1.0).abs() < 1e-8,

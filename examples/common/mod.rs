@@ -1,5 +1,5 @@
 //! What several examples share: the `--out DIR` option, writing a file
-//! whole, and the look of their line plots. An example takes it with
+//! whole, the process's CPU time, and the look of their line plots. An example takes it with
 //! `mod common;`; the directory has no main.rs, so it is no example itself.
 
 #![allow(dead_code)]
@@ -75,4 +75,21 @@ where
         .position(SeriesLabelPosition::UpperLeft)
         .draw()?;
     Ok(())
+}
+
+/// The CPU seconds the process has used, all its threads (utime + stime
+/// of /proc/self/stat, in clock ticks of 10 ms).
+pub fn cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|t| {
+            // The fields after the command's closing parenthesis: utime and
+            // stime are the 12th and 13th of them.
+            let rest = &t[t.rfind(')')? + 2..];
+            let mut f = rest.split_whitespace().skip(11);
+            let user: f64 = f.next()?.parse().ok()?;
+            let system: f64 = f.next()?.parse().ok()?;
+            Some((user + system) / 100.0)
+        })
+        .unwrap_or(f64::NAN)
 }
