@@ -91,12 +91,12 @@ fn main() -> Result<(), Box<dyn Error>> {
     ] {
         series.push((name.to_string(), peer(path, &error)?));
     }
-    let svg = elcon::scene::error_time(
+    let svg = elcon::report::error_time(
         "Hertz spheres: error against run time, elcon and the peers",
         &error,
         &series,
     )?;
-    elcon::scene::write_atomic(&out, svg.as_bytes())?;
+    elcon::process::write_atomic(&out, svg.as_bytes())?;
     for (name, pts) in &series {
         println!("{name}: {} points", pts.len());
     }

@@ -46,7 +46,7 @@
 //! solve is from its floor).
 //!
 //! The table is docs/performance.md's "Dense or matrix-free"; the
-//! crossover sets `elcon_scene::AUTO_DENSE_LIMIT`.
+//! crossover sets `elcon_analysis::AUTO_DENSE_LIMIT`.
 
 mod common;
 #[path = "../benches/hertz.rs"]
@@ -103,7 +103,7 @@ fn one_size(cells: f64, repeat: usize) {
     let measure_floor = !std::env::args().any(|a| a == "--no-floor");
     for _ in 0..repeat.max(1) {
         let points = PointSet::grid_disk(a / cells, 1.3 * a).expect("grid");
-        let dense = points.len() <= elcon::scene::AUTO_DENSE_LIMIT;
+        let dense = points.len() <= elcon::analysis::AUTO_DENSE_LIMIT;
         let (start, cpu_start) = (Instant::now(), common::cpu_seconds());
         let (build, method) = if dense {
             (ContactProblem::new as hertz::Build, Method::BlockPivoting)

@@ -11,13 +11,28 @@
 //!   (1971) and the closed-form references it is checked against;
 //! - [`design`] (`elcon-design`): profile corrections, min-max load
 //!   intensity designs and target-pressure separations;
-//! - `scene` (`elcon-scene`, with the default `cli` feature): TOML scenes,
-//!   batch sweeps and their reports, behind the `elcon` command line.
+//! - with the default `cli` feature, the application behind the `elcon`
+//!   command line: `scene` (`elcon-scene`: TOML scenes and batch files, read
+//!   and validated), `runner` (`elcon-runner`: runs, design stages, error
+//!   estimates, batches, shards and merge), `report` (`elcon-report`: the
+//!   result schema and its writers) and `process` (`elcon-process`: memory
+//!   ceiling, isolation, files written whole, thread and job policy).
 
 pub use elcon_analysis as analysis;
 pub use elcon_design as design;
 pub use elcon_influence as influence;
 pub use elcon_lcp as lcp;
-/// TOML scenes, batches and reports (with the default `cli` feature).
+/// Process plumbing: memory ceiling, isolation, files, threads (with the
+/// default `cli` feature).
+#[cfg(feature = "cli")]
+pub use elcon_process as process;
+/// The result schema and its writers (with the default `cli` feature).
+#[cfg(feature = "cli")]
+pub use elcon_report as report;
+/// Runs, design stages, estimates, batches (with the default `cli` feature).
+#[cfg(feature = "cli")]
+pub use elcon_runner as runner;
+/// TOML scenes and batch files, read and validated (with the default `cli`
+/// feature).
 #[cfg(feature = "cli")]
 pub use elcon_scene as scene;

@@ -1,4 +1,6 @@
-//! The `elcon` command line: a thin shell over elcon-scene.
+//! The `elcon` command line: a thin shell over elcon-runner (runs,
+//! batches, merge), elcon-scene (reading scenes) and elcon-process (the
+//! memory ceiling, isolation, interrupts, the thread and job policy).
 //!
 //! ```text
 //! elcon run SCENE.toml... [--out DIR] [--memory-limit SIZE]
@@ -14,7 +16,7 @@
 //! and were written), a file did not validate, a scene was too big for the
 //! memory, or merge was given inconsistent shards; 2 a usage error (unknown
 //! option, missing argument, a malformed size or shard, `--shard auto`
-//! outside a scheduler, `--jobs` 0 or above [`MAX_JOBS_PER_CORE`] per core);
+//! outside a scheduler, `--jobs` 0 or above `MAX_JOBS_PER_CORE` per core);
 //! 130 interrupted (SIGINT or SIGTERM: the solves in flight stop within a
 //! pivot or an iteration, what finished is written, a batch's tables list
 //! the finished runs and the same command finishes it; a second signal ends
@@ -26,11 +28,17 @@ use std::process::ExitCode;
 use std::sync::Mutex;
 
 use clap::{Parser, Subcommand};
-use elcon_scene::{
-    Batch, BatchOptions, BatchRun, Cancel, Ceiling, Progress, RunResult, Scene, SceneError, Shard,
-    Staging, check_batch, install_panic_hook, interruptible, isolated, merge, parse_size, prepare,
-    read_text, run, run_batch, thousands, write_run_files,
+use elcon_lcp::Cancel;
+use elcon_num::thousands;
+use elcon_process::threads::{admit_count, set_global_threads, solve_threads};
+use elcon_process::{
+    Ceiling, Counted, Staging, install_panic_hook, interruptible, isolated, parse_size,
 };
+use elcon_report::{RunResult, write_run_files};
+use elcon_runner::{
+    BatchOptions, Progress, RunError, Shard, batch_dir, check_batch, merge, prepare, run, run_batch,
+};
+use elcon_scene::{Batch, BatchRun, Scene, SceneError, is_batch_text, read_text};
 
 #[derive(Parser)]
 #[command(
@@ -63,34 +71,13 @@ fn shard_arg(s: &str) -> Result<ShardArg, String> {
     }
 }
 
-/// `--jobs` may ask for at most this many runs per core: runs solve on
-/// all cores already, so more only add memory and contention.
-const MAX_JOBS_PER_CORE: usize = 4;
-
-/// `--threads` (or `ELCON_THREADS`) may ask for at most this many threads
-/// per core: a solve's threads share the cores, and 100,000 of them took
-/// minutes to start.
-const MAX_THREADS_PER_CORE: usize = 4;
-
+/// `--jobs`: a count of runs in parallel the process policy admits.
 fn jobs_arg(s: &str) -> Result<usize, String> {
     let jobs: usize = s
         .trim()
         .parse()
         .map_err(|_| format!("`{s}`: a whole number of runs in parallel, e.g. 2"))?;
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let most = MAX_JOBS_PER_CORE * cores;
-    if jobs == 0 {
-        return Err(
-            "0: give at least 1 run in parallel (leave --jobs out for one per core)".into(),
-        );
-    }
-    if jobs > most {
-        return Err(format!(
-            "{jobs}: at most {MAX_JOBS_PER_CORE} runs per core, {most} on this machine's {cores} \
-             cores (more only add memory and contention)"
-        ));
-    }
-    Ok(jobs)
+    admit_count(Counted::Jobs, "--jobs", jobs).map_err(|e| e.to_string())
 }
 
 #[derive(Subcommand)]
@@ -163,37 +150,17 @@ impl From<bool> for Outcome {
 }
 
 fn ceiling(limit: Option<u64>) -> Result<Ceiling, Outcome> {
-    Ceiling::of_this_process(limit).map_err(Outcome::Usage)
+    Ceiling::of_this_process(limit).map_err(|e| Outcome::Usage(e.to_string()))
 }
 
 /// Bounds the threads of the global rayon pool by `--threads`, else by
-/// `ELCON_THREADS`; neither: rayon's default, the cores the process may
-/// use (`std::thread::available_parallelism`: its CPU affinity and cgroup
-/// quota). A solve's values do not depend on the count.
+/// `ELCON_THREADS` (elcon-process's policy: at least 1, a few per core);
+/// neither: rayon's default, the cores the process may use. A solve's
+/// values do not depend on the count.
 fn threads(arg: Option<usize>) -> Result<(), Outcome> {
-    let count = match (arg, std::env::var("ELCON_THREADS")) {
-        (Some(n), _) => n,
-        (None, Ok(v)) => v
-            .trim()
-            .parse()
-            .map_err(|_| Outcome::Usage(format!("ELCON_THREADS={v} is not a count of threads")))?,
-        (None, Err(_)) => return Ok(()),
-    };
-    if count == 0 {
-        return Err(Outcome::Usage("the threads must be at least 1".into()));
-    }
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let most = MAX_THREADS_PER_CORE * cores;
-    if count > most {
-        return Err(Outcome::Usage(format!(
-            "--threads / ELCON_THREADS = {count}: at most {MAX_THREADS_PER_CORE} threads per \
-             core, {most} on this machine's {cores} (more only switch between themselves)"
-        )));
-    }
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(count)
-        .build_global()
-        .map_err(|e| Outcome::Usage(format!("the thread pool: {e}")))
+    solve_threads(arg, |name| std::env::var(name).ok())
+        .and_then(set_global_threads)
+        .map_err(|e| Outcome::Usage(e.to_string()))
 }
 
 /// A token that SIGINT and SIGTERM cancel (the solves watching it stop);
@@ -387,7 +354,7 @@ fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling, cancel: &Cancel)
     let mut header_printed = false;
     for scene in scenes {
         let name = scene.name().to_string();
-        let outcome = interruptible(cancel, &name, || {
+        let outcome = interruptible::<_, RunError>(cancel, &name, || {
             isolated(&name, || {
                 let prepared = prepare(scene, ceiling)?;
                 let staging = Staging::begin(&out.join(&name), &|m| eprintln!("{m}"))?;
@@ -405,7 +372,7 @@ fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling, cancel: &Cancel)
                 row(&r);
                 println!("{:<28} wrote {}", "", dir.display());
             }
-            Err(e @ SceneError::Interrupted { .. }) => {
+            Err(e) if e.is_interrupted() => {
                 eprintln!("{e}; the scenes after it did not run");
                 return Outcome::Interrupted;
             }
@@ -420,18 +387,19 @@ fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling, cancel: &Cancel)
 
 /// A scene file, read once (as `check` reads it); a batch file is refused
 /// with the command that runs it.
-fn scene_file(path: &Path) -> Result<Scene, SceneError> {
+fn scene_file(path: &Path) -> Result<Scene, RunError> {
     let text = read_text(path)?;
-    if elcon_scene::is_batch_text(&text) {
+    if is_batch_text(&text) {
         return Err(SceneError::Io {
             path: path.to_path_buf(),
             reason: format!(
                 "is a batch file (it has a [batch] table): run it with `elcon batch {}`",
                 path.display()
             ),
-        });
+        }
+        .into());
     }
-    Scene::from_str(path, &text)
+    Ok(Scene::from_str(path, &text)?)
 }
 
 fn check_scene(path: &Path, scene: Scene, ceiling: &Ceiling) -> bool {
@@ -498,7 +466,7 @@ fn check_batch_file(path: &Path, text: &str, ceiling: &Ceiling, every_run: bool)
             "{}: largest run checked: {}; the runs checked: {} of solving in all",
             path.display(),
             l.summary(),
-            elcon_scene::TimeFigure::of(c.seconds)
+            elcon_runner::TimeFigure::of(c.seconds)
         );
     }
     c.failed == 0
@@ -516,8 +484,8 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
                 continue;
             }
         };
-        if elcon_scene::is_batch_text(&text) {
-            let checked = isolated(&path.display().to_string(), || {
+        if is_batch_text(&text) {
+            let checked = isolated::<_, RunError>(&path.display().to_string(), || {
                 Ok(check_batch_file(path, &text, ceiling, every_run))
             });
             ok &= checked.unwrap_or_else(|e| {
@@ -526,7 +494,8 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
             });
             continue;
         }
-        match isolated(&path.display().to_string(), || Scene::from_str(path, &text)) {
+        let read = || Scene::from_str(path, &text).map_err(RunError::from);
+        match isolated(&path.display().to_string(), read) {
             Ok(scene) => {
                 if let Some((_, other)) = names.iter().find(|(n, _)| *n == scene.name()) {
                     eprintln!(
@@ -540,8 +509,8 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
                 }
                 names.push((scene.name().to_string(), path));
                 let name = scene.name().to_string();
-                ok &=
-                    isolated(&name, || Ok(check_scene(path, scene, ceiling))).unwrap_or_else(|e| {
+                ok &= isolated::<_, RunError>(&name, || Ok(check_scene(path, scene, ceiling)))
+                    .unwrap_or_else(|e| {
                         eprintln!("error: {e}");
                         false
                     });
@@ -577,7 +546,7 @@ impl Progress for Report {
         }
     }
 
-    fn finished(&self, run: &BatchRun, outcome: Result<&RunResult, &SceneError>) {
+    fn finished(&self, run: &BatchRun, outcome: Result<&RunResult, &RunError>) {
         let mut done = self.done.lock().expect("progress lock");
         *done += 1;
         let total = *self.total.lock().expect("progress lock");
@@ -660,7 +629,7 @@ fn batch_command(
     match done {
         Ok(done) => {
             let o = &done.outcome;
-            let dir = batch.output_dir(out, shard);
+            let dir = batch_dir(&batch, out, shard);
             let kept = if done.kept > 0 {
                 format!(
                     " ({} kept from the last invocation)",

@@ -1,7 +1,8 @@
 //! How a number is shown in a message: its shortest round-trip form
 //! (Rust's `{}` of an f64), switched to scientific notation outside
 //! `1e-4 <= |x| < 1e16` so that `1e-300` is not printed as three hundred
-//! zeros. No equation: a crate of its own, below every other, so that
+//! zeros; a derived quantity rounded to four digits ([`rounded`]) and a
+//! count with its thousands separators ([`thousands`]). No equation: a crate of its own, below every other, so that
 //! elcon-lcp and elcon-influence (which do not depend on each other) and
 //! every crate above show a user's number the same way.
 
@@ -24,6 +25,26 @@ impl std::fmt::Display for Num {
     }
 }
 
+/// A derived quantity (a load centre, a distance) for a message: rounded
+/// to four significant digits and shown as [`Num`] shows it (`0.013`, not
+/// `0.013000000000000001`).
+pub fn rounded(v: f64) -> Num {
+    Num(format!("{v:.3e}").parse().unwrap_or(v))
+}
+
+/// A count with thousands separators: `1,000,000`.
+pub fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -44,5 +65,14 @@ mod tests {
             assert_eq!(Num(v).to_string().parse::<f64>().ok(), Some(v));
         }
         assert_eq!(Num(f64::NAN).to_string(), "NaN");
+    }
+
+    #[test]
+    fn derived_quantities_keep_four_digits_and_counts_their_separators() {
+        assert_eq!(rounded(0.013000000000000001).to_string(), "0.013");
+        assert_eq!(rounded(123456.0).to_string(), "123500");
+        assert_eq!(thousands(1_000_000), "1,000,000");
+        assert_eq!(thousands(999), "999");
+        assert_eq!(thousands(0), "0");
     }
 }

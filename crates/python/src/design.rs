@@ -7,9 +7,9 @@ use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, Method, Options};
 use elcon_design::{Analysis, Axis, Evaluation, Profile, Roller, axial_stations, evaluate};
-use elcon_scene::{
-    Ceiling, DesignCaseJson, DesignGridJson, DesignJson, DesignLayoutParts, DesignSpec, Scene,
-};
+use elcon_process::Ceiling;
+use elcon_report::{DesignCaseJson, DesignGridJson, DesignJson};
+use elcon_scene::{DesignLayoutParts, DesignSpec, Scene};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 

@@ -2,7 +2,9 @@
 //! crates' errors onto them (their messages the crates' own).
 
 use elcon_analysis::AnalysisError;
-use elcon_scene::{DesignKey, SceneError as RustSceneError, isolated, scene_design_key};
+use elcon_process::isolated;
+use elcon_runner::{DesignKey, RunError, scene_design_key};
+use elcon_scene::SceneError as RustSceneError;
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
@@ -46,7 +48,8 @@ pub(crate) fn add_classes(m: &Bound<'_, PyModule>) -> PyResult<()> {
 
 /// A scene error as its Python class: input errors (syntax, invalid values)
 /// are `SceneError`, run failures `SolveError`.
-pub(crate) fn scene_error(e: RustSceneError) -> PyErr {
+pub(crate) fn scene_error(e: impl Into<RunError>) -> PyErr {
+    let e = e.into();
     if e.is_input_error() {
         SceneError::new_err(e.to_string())
     } else {
@@ -107,13 +110,13 @@ pub(crate) fn analysis_error(e: AnalysisError) -> PyErr {
 }
 
 /// A design error over problems as its Python class, said as a scene's
-/// design stage says it ([`elcon_scene::design_reason`]): a parameter
+/// design stage says it ([`elcon_runner::design_reason`]): a parameter
 /// elcon-design names by its own name is named by the argument or the
 /// scene's key the user gave (`design.radius_range`); the roller's
 /// parameters by `roller.*` when `roller_given` (else, derived from the
 /// problems' bodies, geometry and points, by the scene's keys).
 pub(crate) fn design_error(e: elcon_design::DesignError, roller_given: bool) -> PyErr {
-    DesignError::new_err(elcon_scene::design_reason(&e, |field| {
+    DesignError::new_err(elcon_runner::design_reason(&e, |field| {
         python_design_key(field, roller_given)
     }))
 }
@@ -137,8 +140,9 @@ fn python_design_key(field: &str, roller_given: bool) -> Option<DesignKey> {
     }
 }
 
-/// Runs `f` inside `elcon_scene::isolated`: a panic becomes a `SolveError`
+/// Runs `f` inside `elcon_process::isolated`: a panic becomes a `SolveError`
 /// naming `what` ("internal error"), never a Python `PanicException`.
 pub(crate) fn guarded<T>(what: &str, f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
-    isolated(what, || Ok(f())).unwrap_or_else(|e| Err(SolveError::new_err(e.to_string())))
+    isolated::<_, RunError>(what, || Ok(f()))
+        .unwrap_or_else(|e| Err(SolveError::new_err(e.to_string())))
 }

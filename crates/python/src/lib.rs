@@ -17,7 +17,7 @@
 //! Every solve releases the GIL and is estimated against the memory
 //! ceiling the command line uses before anything of size N x N is
 //! allocated. Every call into the crates runs inside
-//! `elcon_scene::isolated`, so a Rust panic reaches Python as a
+//! `elcon_process::isolated`, so a Rust panic reaches Python as a
 //! `SolveError` ("internal error"), never as a `PanicException`. Errors are
 //! one exception class per kind, their messages the crates' own.
 //!
@@ -43,7 +43,7 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _elcon(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // Panics inside `isolated` are reported through the error, not printed.
-    elcon_scene::install_panic_hook();
+    elcon_process::install_panic_hook();
     errors::add_classes(m)?;
     m.add_class::<problem::PyContactProblem>()?;
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;

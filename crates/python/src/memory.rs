@@ -2,7 +2,8 @@
 //! estimate against it before anything of size N x N is allocated.
 
 use elcon_analysis::{Plan, Relief};
-use elcon_scene::{BASELINE, Ceiling, human};
+use elcon_process::{Ceiling, human};
+use elcon_runner::BASELINE;
 use pyo3::prelude::*;
 
 use crate::errors::{SceneError, SolveError};
@@ -10,7 +11,7 @@ use crate::errors::{SceneError, SolveError};
 /// The memory ceiling of this process, as the command line computes it
 /// (`ELCON_MEMORY_LIMIT` lowers it).
 pub(crate) fn ceiling() -> PyResult<Ceiling> {
-    Ceiling::of_this_process(None).map_err(SceneError::new_err)
+    Ceiling::of_this_process(None).map_err(|e| SceneError::new_err(e.to_string()))
 }
 
 /// Refuses a solve whose estimate (`plan`) does not fit under `ceiling`,

@@ -9,7 +9,9 @@ use elcon_analysis::{
     ProblemBuilder, Storage, Surface,
 };
 use elcon_influence::Cell;
-use elcon_scene::{BodySpec, Ceiling, PointsSpec, SolutionJson, SymmetryJson};
+use elcon_process::Ceiling;
+use elcon_report::{SolutionJson, SymmetryJson};
+use elcon_scene::{BodySpec, PointsSpec};
 use numpy::{PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;

@@ -3,7 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
-use elcon_scene::{Scene, isolated};
+use elcon_process::isolated;
+use elcon_runner::RunError;
+use elcon_scene::Scene;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -43,7 +45,7 @@ pub(crate) fn run_prepared(
     py: Python<'_>,
     scene: Scene,
     threads: Option<usize>,
-) -> PyResult<elcon_scene::Run> {
+) -> PyResult<elcon_report::Run> {
     let ceiling = ceiling()?;
     let name = scene.name().to_string();
     // The token is watched on the thread that runs the solve: inside the
@@ -51,9 +53,9 @@ pub(crate) fn run_prepared(
     detach(py, |cancel| {
         with_threads(threads, || {
             cancel.watch(|| {
-                isolated(&name, || {
-                    let prepared = elcon_scene::prepare(scene, &ceiling)?;
-                    elcon_scene::run(&prepared.scene)
+                isolated::<_, RunError>(&name, || {
+                    let prepared = elcon_runner::prepare(scene, &ceiling)?;
+                    elcon_runner::run(&prepared.scene)
                 })
                 .map_err(scene_error)
             })
@@ -115,14 +117,14 @@ pub(crate) fn run_batch(
     // written, and KeyboardInterrupt is raised; the same call again
     // finishes the batch.
     let done = detach(py, |cancel| {
-        let options = elcon_scene::BatchOptions {
+        let options = elcon_runner::BatchOptions {
             jobs,
             shard: None,
             ceiling,
             cancel: cancel.clone(),
         };
-        isolated("batch", || {
-            elcon_scene::run_batch(&batch, &out, &options, &())
+        isolated::<_, RunError>("batch", || {
+            elcon_runner::run_batch(&batch, &out, &options, &())
         })
     })?
     .map_err(scene_error)?;
@@ -146,7 +148,7 @@ pub(crate) fn check_scene<'py>(
     let ceiling = ceiling()?;
     let prepared = guarded("scene", || {
         let scene = Scene::from_str(&file, &text).map_err(scene_error)?;
-        elcon_scene::prepare(scene, &ceiling).map_err(scene_error)
+        elcon_runner::prepare(scene, &ceiling).map_err(scene_error)
     })?;
     let e = &prepared.estimate;
     let d = PyDict::new(py);

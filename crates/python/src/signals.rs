@@ -9,7 +9,7 @@
 use std::sync::{Condvar, Mutex};
 use std::time::Duration;
 
-use elcon_scene::Cancel;
+use elcon_lcp::Cancel;
 use pyo3::prelude::*;
 
 use crate::errors::SolveError;

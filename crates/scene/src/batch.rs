@@ -5,7 +5,7 @@
 //! ([`Batch::run`]: the groups in order, within a group the index in mixed
 //! radix, the last key the fastest digit), so a sweep of any size up to
 //! [`MAX_RUNS`] costs memory for the runs in flight only, and a shard picks
-//! its runs by index ([`crate::Shard`]).
+//! its runs by index (elcon-runner's shards).
 //!
 //! Running a batch is `run_batch` (the crate root); its tables and `elcon merge`
 //! are in the tables module.
@@ -18,7 +18,6 @@ use crate::ctx::{Ctx, parse, read_text};
 use crate::error::{Location, SceneError};
 use crate::scene::{MAX_SLUG, Scene};
 use crate::schema::{BatchFile, ErrorMetric};
-use crate::shard::Shard;
 
 /// The most runs a batch file's sweep may have. A batch's tables hold one
 /// row per run, in memory while they are written and on disk (about half a
@@ -300,22 +299,13 @@ impl Batch {
         Ok(doc.to_string())
     }
 
-    /// The directory a batch (or one shard of it) writes under `out`:
-    /// `out/<name>`, or `out/<name>-shard-K-of-N` for a shard.
-    pub fn output_dir(&self, out: &Path, shard: Option<Shard>) -> PathBuf {
-        match shard {
-            Some(s) => out.join(format!("{}-shard-{}-of-{}", self.name, s.index, s.count)),
-            None => out.join(&self.name),
-        }
-    }
-
     /// The validated scene of a run, named `<batch>/<run slug>`.
     ///
     /// # Errors
     /// As [`Scene::from_str`]; messages name the base scene, the run and its
     /// overrides.
     pub fn scene(&self, run: &BatchRun) -> Result<Scene, SceneError> {
-        let text = self.text(run).map_err(|reason| SceneError::Run {
+        let text = self.text(run).map_err(|reason| SceneError::Layout {
             scene: run.slug(),
             reason,
         })?;
@@ -423,22 +413,10 @@ fn groups(
 /// A run count for messages: exact with thousands separators below 1e15,
 /// else in scientific notation.
 pub(crate) fn count(n: f64) -> String {
+    use elcon_num::thousands;
     if n < 1e15 {
         thousands(n as u64)
     } else {
         format!("{n:.3e}")
     }
-}
-
-/// `n` with thousands separators: 1,000,000.
-pub fn thousands(n: u64) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }

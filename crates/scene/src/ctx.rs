@@ -326,12 +326,7 @@ impl<T: Printed + ?Sized> Printed for &T {
     }
 }
 
-/// A derived quantity (a load centre, a distance) for a message: rounded
-/// to four significant digits and shown as [`Num`] shows it (`0.013`, not
-/// `0.013000000000000001`).
-pub(crate) fn rounded(v: f64) -> Num {
-    Num(format!("{v:.3e}").parse().unwrap_or(v))
-}
+pub(crate) use elcon_num::rounded;
 
 /// `v >= 0` to four significant digits, never above it: a bound a message
 /// hands back ("at most ...") that passes when given back. Rounding to

@@ -29,7 +29,7 @@ impl Location {
     }
 }
 
-/// Everything that can stop a scene, a batch or an output.
+/// Everything that can be wrong with a scene or batch file as read.
 #[derive(Debug, Clone, thiserror::Error)]
 #[non_exhaustive]
 pub enum SceneError {
@@ -66,54 +66,13 @@ pub enum SceneError {
         /// Why it is rejected and what is admissible.
         reason: String,
     },
-    /// A scene whose estimated peak memory exceeds what this process may
-    /// use: refused before anything large is allocated.
-    #[error(
-        "scene `{scene}`: too big for the memory available: {needed}; the ceiling is {ceiling}. \
-         What helps: {hints}"
-    )]
-    TooBig {
-        /// The scene's name.
-        scene: String,
-        /// N, the estimate and what it is made of.
-        needed: String,
-        /// The ceiling and what set it.
-        ceiling: String,
-        /// What would make it fit.
-        hints: String,
-    },
-    /// A failure that is not an answer to the input: a panic caught at the
-    /// scene's boundary (the other scenes still run and are written).
-    #[error(
-        "scene `{scene}`: internal error (this is a bug; please report it with the scene): {message}"
-    )]
-    Bug {
-        /// The scene's name.
-        scene: String,
-        /// The panic's message and place.
-        message: String,
-    },
-    /// `elcon merge` was given directories that are not every shard of one
-    /// batch, each once, or rows that conflict.
-    #[error("merge: {reason}")]
-    Merge {
-        /// What is wrong, naming the directories.
-        reason: String,
-    },
-    /// A run stopped by an interrupt (Ctrl-C, SIGINT, SIGTERM, Python's
-    /// KeyboardInterrupt) before it finished: nothing of it was written.
-    #[error("scene `{scene}`: interrupted before it finished; nothing of it was written")]
-    Interrupted {
-        /// The scene's name.
-        scene: String,
-    },
-    /// A valid scene whose solve failed (no solution, pivot limit, a design
-    /// that could not be certified...).
+    /// A valid scene whose problem cannot be laid out or planned (the
+    /// points of a design load, the storage and method of its solve).
     #[error("scene `{scene}`: {reason}")]
-    Run {
+    Layout {
         /// The scene's name.
         scene: String,
-        /// The failure, from the solver crates.
+        /// Why, from the solver crates.
         reason: String,
     },
 }
@@ -130,7 +89,7 @@ fn shown(value: &str) -> String {
 
 impl SceneError {
     /// An [`SceneError::Io`] for `path`.
-    pub(crate) fn io(path: &Path, e: impl std::fmt::Display) -> Self {
+    pub fn io(path: &Path, e: impl std::fmt::Display) -> Self {
         Self::Io {
             path: path.to_path_buf(),
             reason: e.to_string(),

@@ -966,11 +966,11 @@ pub(crate) fn strain(
 
 /// The length an approach is measured against for the small strain, and
 /// its name in messages: the candidate zone's smaller extent
-/// ([`strain_length`]), or on an ellipse grid the zone across the Hertz
+/// (its shortest side), or on an ellipse grid the zone across the Hertz
 /// ellipse's minor axis in the ellipse's own frame, whatever its turn
 /// (`crate::scene` lays both out).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct StrainExtent {
+pub struct StrainExtent {
     /// The length (length unit).
     pub length: f64,
     /// What it is, for messages ("the candidate zone's smaller extent").
@@ -991,7 +991,7 @@ impl StrainExtent {
 /// [`MAX_STRAIN`], or not finite: `Some(strain)`. The bound `run` applies
 /// to a solved approach and `check` to Hertz's approach at the scene's
 /// load.
-pub(crate) fn approach_strain(approach: f64, extent: StrainExtent) -> Option<f64> {
+pub fn approach_strain(approach: f64, extent: StrainExtent) -> Option<f64> {
     let s = approach.abs() / extent.length;
     (!(s.is_finite() && s <= MAX_STRAIN)).then_some(s)
 }

@@ -19,7 +19,7 @@ use crate::ctx::rounded;
 /// The convex hull of the candidate points, counter-clockwise (two points
 /// for points on one line, one for a single point).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Zone {
+pub struct Zone {
     hull: Vec<(f64, f64)>,
     /// The points' extent along x and y: (lo, hi) each.
     span: [(f64, f64); 2],
@@ -44,7 +44,7 @@ fn to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
 
 impl Zone {
     /// The outline of `points`.
-    pub(crate) fn of(points: &PointSet) -> Self {
+    pub fn of(points: &PointSet) -> Self {
         let mut p: Vec<(f64, f64)> = (0..points.len())
             .map(|k| (points.x(k), points.y(k)))
             .collect();
@@ -87,7 +87,7 @@ impl Zone {
 
     /// How far `c` lies inside the outline (positive) or outside it
     /// (negative), as a distance.
-    pub(crate) fn depth(&self, c: (f64, f64)) -> f64 {
+    pub fn depth(&self, c: (f64, f64)) -> f64 {
         let h = &self.hull;
         match h.len() {
             0 => f64::NEG_INFINITY,
@@ -105,12 +105,12 @@ impl Zone {
 
     /// Whether `c` lies inside the outline or on it (to a billionth of the
     /// zone's size, for points on one line).
-    pub(crate) fn holds(&self, c: (f64, f64)) -> bool {
+    pub fn holds(&self, c: (f64, f64)) -> bool {
         self.depth(c) >= -1e-9 * self.size()
     }
 
     /// The zone in words: its points' extent along x and y.
-    pub(crate) fn describe(&self) -> String {
+    pub fn describe(&self) -> String {
         let [x, y] = self.span;
         if y.0 == y.1 {
             format!("x from {} to {}", rounded(x.0), rounded(x.1))
@@ -146,7 +146,7 @@ pub(crate) struct OpenEdge {
 impl OpenEdge {
     /// The open edge of `points` (sides told apart by the lattice's
     /// neighbours; without a lattice both sides of an open direction).
-    pub(crate) fn of(points: &PointSet) -> Self {
+    pub fn of(points: &PointSet) -> Self {
         let cell = points.cell();
         let lattice = points.lattice();
         let index = points.lattice_index();
@@ -185,7 +185,7 @@ impl OpenEdge {
     }
 
     /// The zone in words ([`Zone::describe`]).
-    pub(crate) fn describe(&self) -> String {
+    pub fn describe(&self) -> String {
         self.zone.describe()
     }
 

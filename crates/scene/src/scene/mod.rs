@@ -40,7 +40,7 @@ pub use hertz::Reference;
 pub use outputs::{Outputs, Plot};
 pub use parts::{DesignLayoutParts, ProblemParts, design_over, problem_parts, scene_with_design};
 pub(crate) use points::build_points;
-pub use points::{EllipseShape, HalfX, PointsSpec};
+pub use points::{HalfX, PointsSpec};
 pub use solver::MethodChoice;
 pub use units::Units;
 
@@ -259,7 +259,7 @@ impl Scene {
 
     /// The same scene under another name (a batch's run is named after
     /// its sweep values).
-    pub(crate) fn renamed(mut self, name: String) -> Self {
+    pub fn renamed(mut self, name: String) -> Self {
         self.name = name;
         self
     }
@@ -290,7 +290,7 @@ impl Scene {
     /// points unless they are laid out relative to the Hertz contact).
     pub fn points_for(&self, load: f64) -> Result<PointSet, SceneError> {
         let scale = self.hertz_scale(load);
-        build_points(&self.points_spec, scale).map_err(|reason| SceneError::Run {
+        build_points(&self.points_spec, scale).map_err(|reason| SceneError::Layout {
             scene: self.name.clone(),
             reason,
         })
@@ -304,9 +304,16 @@ impl Scene {
     /// The length the run's bound on the solved approach measures the
     /// candidate zone by (`hertz::approach_extent`: on an ellipse grid the
     /// zone across the Hertz ellipse's minor axis, whatever its turn).
-    pub(crate) fn approach_extent(&self) -> crate::sanity::StrainExtent {
+    pub fn approach_extent(&self) -> crate::sanity::StrainExtent {
         let contact = self.loading.load_value().and_then(|p| self.hertz(p));
         hertz::approach_extent(&self.points_spec, contact.as_ref(), &self.points)
+    }
+
+    /// The peak pressure of the Hertz contact at `load` (intensity unit),
+    /// where one applies (the layout, bodies and surfaces of a Hertz
+    /// contact): a design's reference intensity `relative_to = "hertz"`.
+    pub fn hertz_peak_pressure(&self, load: f64) -> Option<f64> {
+        self.hertz(load).map(|h| h.peak_pressure())
     }
 
     /// The Hertz contact at `load`, where one applies (the layout, bodies
@@ -373,7 +380,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let error_estimate = solver::error_estimate(raw.solver.as_ref());
     let plan = planner(points.clone(), &bodies, &geometry, loading, choice, fold)
         .plan()
-        .map_err(|e| SceneError::Run {
+        .map_err(|e| SceneError::Layout {
             scene: name.clone(),
             reason: e.to_string(),
         })?;
@@ -1260,20 +1267,4 @@ fn check_zone(
         _ => {}
     }
     Ok(())
-}
-
-/// A failure of the run of `scene` (its assembly, solve or design stage),
-/// named by the scene.
-pub(crate) fn run_error(scene: &Scene, e: impl std::fmt::Display) -> SceneError {
-    // A scene has no tableau key (elcon chooses it): the engine's advice
-    // about one becomes the scene's key that helps.
-    let reason = e.to_string().replace(
-        elcon_lcp::TABLEAU_ADVICE,
-        "use another method (`solver.method`: a pivoting method takes what the conjugate \
-         gradient cannot)",
-    );
-    SceneError::Run {
-        scene: scene.name().to_string(),
-        reason,
-    }
 }

@@ -1,0 +1,33 @@
+//! # elcon-report: the result schema and its writers
+//!
+//! One typed schema for what a run gives: result.json (the header, the
+//! solution's fields, the discretization error estimate, the stresses below
+//! the surface, the closed-form comparison and the design), and a batch's
+//! table; the same types serialize the files, build the Python package's
+//! dicts, and read results back (a resumed batch, `elcon merge`). Its
+//! writers put them on disk whole or not at all: result.json,
+//! pressure.csv, the subsurface sections, SVG plots, and a batch's
+//! results.json, results.csv, results.md and error-time.svg.
+//!
+//! docs/results.md documents every field.
+
+mod design;
+mod discretization;
+mod error;
+mod output;
+mod plot;
+mod plot_subsurface;
+mod reference;
+mod result;
+mod subsurface;
+mod tables;
+
+pub use design::{DesignCaseJson, DesignGridJson, DesignJson, DesignRun};
+pub use discretization::{DiscretizationJson, GridJson, QuantitiesJson, QuantityJson};
+pub use error::ReportError;
+pub use output::{write_run, write_run_files};
+pub use plot::error_time;
+pub use reference::{Errors, ReferenceJson, XY};
+pub use result::{Run, RunResult, Seconds, SolutionJson, SymmetryJson};
+pub use subsurface::{BodySubsurfaceJson, PeakJson, SubsurfaceJson};
+pub use tables::{BatchOutcome, Row, write_tables};

@@ -1,0 +1,202 @@
+//! A batch directory's journal: what makes a batch resumable.
+//!
+//! `journal.jsonl` in the batch's directory holds a header line (the
+//! batch's name, hash, shard and size) and then a line per finished run:
+//! its table row ([`Row`]), appended and fsynced as the run ends, after
+//! its directory was renamed into place whole. A batch killed at any point
+//! (SIGKILL, a SLURM time limit, a preempted pod) leaves finished runs
+//! that are each in the journal and on disk, or not finished at all; at
+//! worst the journal's last line is torn, and is ignored.
+//!
+//! When the same batch (same hash, same shard) is run again into the same
+//! directory, [`Journal::open`] keeps every run the journal lists as
+//! finished whose directory holds its result.json: its row is rebuilt from
+//! that result.json, so the tables of a resumed batch are those of an
+//! unbroken one to the last digit. Failed runs are run again (the cause
+//! may have been fixed: a memory limit, a full disk). A directory of
+//! another version of the batch, or without a journal, is replaced.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use serde::{Deserialize, Serialize};
+
+use elcon_process::{faults, sync_dir, write_atomic};
+use elcon_report::Row;
+use elcon_scene::Batch;
+
+use crate::error::RunError;
+use crate::shard::Shard;
+
+/// The journal's file name in a batch directory.
+pub const JOURNAL: &str = "journal.jsonl";
+
+/// The journal's first line: which batch, which version, which slice.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct Header {
+    /// The journal's format.
+    journal: u32,
+    batch: String,
+    batch_hash: String,
+    shard: Option<String>,
+    runs: usize,
+}
+
+/// The open journal of a batch directory.
+#[derive(Debug)]
+pub(crate) struct Journal {
+    file: Mutex<(fs::File, usize)>,
+    path: PathBuf,
+    /// The finished runs kept from an earlier invocation, by index.
+    kept: BTreeMap<usize, Row>,
+}
+
+impl Journal {
+    /// Opens `dir`'s journal for `batch` (or its `shard`): keeps the
+    /// finished runs of the same batch, replaces a directory of another
+    /// version or without a journal (`notice` is told), removes what
+    /// killed runs left, and rewrites the journal with the runs kept.
+    ///
+    /// # Errors
+    /// [`RunError`] when the directory or the journal cannot be
+    /// written.
+    pub(crate) fn open(
+        dir: &Path,
+        batch: &Batch,
+        shard: Option<Shard>,
+        notice: &dyn Fn(&str),
+    ) -> Result<Self, RunError> {
+        let header = Header {
+            journal: 1,
+            batch: batch.name.clone(),
+            batch_hash: batch.hash.clone(),
+            shard: shard.map(|s| s.to_string()),
+            runs: batch.len(),
+        };
+        let path = dir.join(JOURNAL);
+        let mut kept = BTreeMap::new();
+        if dir.exists() {
+            match fs::read_to_string(&path) {
+                Ok(text) if first_line_is(&text, &header) => {
+                    kept = finished_runs(&text, dir, batch, shard.unwrap_or(WHOLE));
+                }
+                read => {
+                    notice(&format!(
+                        "{} holds {}: replaced",
+                        dir.display(),
+                        if read.is_ok() {
+                            "another version of the batch (its files or elcon changed)"
+                        } else {
+                            "no journal (an older elcon's, or not a batch's)"
+                        }
+                    ));
+                    fs::remove_dir_all(dir).map_err(|e| RunError::io(dir, e))?;
+                }
+            }
+        }
+        fs::create_dir_all(dir).map_err(|e| RunError::io(dir, e))?;
+        remove_staging(dir);
+        let mut text = serde_json::to_string(&header).map_err(|e| RunError::io(&path, e))?;
+        text.push('\n');
+        for row in kept.values() {
+            text.push_str(&serde_json::to_string(row).map_err(|e| RunError::io(&path, e))?);
+            text.push('\n');
+        }
+        write_atomic(&path, text.as_bytes())?;
+        sync_dir(dir);
+        let file = fs::OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .map_err(|e| RunError::io(&path, e))?;
+        Ok(Self {
+            file: Mutex::new((file, 0)),
+            path,
+            kept,
+        })
+    }
+
+    /// The finished runs kept, by index.
+    pub(crate) fn kept(&self) -> &BTreeMap<usize, Row> {
+        &self.kept
+    }
+
+    /// Appends a finished run's row and makes it durable.
+    ///
+    /// # Errors
+    /// [`RunError`] when the journal cannot be written.
+    pub(crate) fn record(&self, row: &Row) -> Result<(), RunError> {
+        let mut line = serde_json::to_string(row).map_err(|e| RunError::io(&self.path, e))?;
+        line.push('\n');
+        let mut guard = self.file.lock().unwrap_or_else(|e| e.into_inner());
+        faults::before_record(guard.1 + 1);
+        let (file, count) = &mut *guard;
+        file.write_all(line.as_bytes())
+            .and_then(|()| file.sync_data())
+            .map_err(|e| RunError::io(&self.path, e))?;
+        *count += 1;
+        faults::after_record(*count);
+        Ok(())
+    }
+}
+
+/// The whole sweep, as a shard.
+const WHOLE: Shard = Shard { index: 1, count: 1 };
+
+/// Whether the journal's first line is `header`.
+fn first_line_is(text: &str, header: &Header) -> bool {
+    text.lines()
+        .next()
+        .and_then(|l| serde_json::from_str::<Header>(l).ok())
+        .is_some_and(|h| h == *header)
+}
+
+/// The runs the journal lists as finished (ok) whose directory holds a
+/// result.json that reads as a row, each rebuilt from that file; a torn
+/// or foreign line ends nothing but itself.
+fn finished_runs(text: &str, dir: &Path, batch: &Batch, shard: Shard) -> BTreeMap<usize, Row> {
+    let mut kept = BTreeMap::new();
+    for line in text.lines().skip(1) {
+        let Ok(row) = serde_json::from_str::<Row>(line) else {
+            continue;
+        };
+        if row.status != "ok" || !shard.contains(row.index) {
+            kept.remove(&row.index);
+            continue;
+        }
+        let Some(run) = batch.run(row.index) else {
+            continue;
+        };
+        let result = dir.join(run.slug()).join("result.json");
+        let rebuilt = fs::read_to_string(&result)
+            .ok()
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+            .and_then(|v| Row::from_result_json(run.index, run.label(), &v).ok());
+        match rebuilt {
+            Some(r) if r.scene == run.slug() => {
+                kept.insert(run.index, r);
+            }
+            _ => {
+                kept.remove(&row.index);
+            }
+        }
+    }
+    kept
+}
+
+/// Removes the staging directories (`.<run>.<pid>.tmp`) of runs killed
+/// while writing (the caller holds the batch's lock).
+fn remove_staging(dir: &Path) {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        if name.starts_with('.') && name.ends_with(".tmp") {
+            let p = e.path();
+            let _ = fs::remove_dir_all(&p).or_else(|_| fs::remove_file(&p));
+        }
+    }
+}

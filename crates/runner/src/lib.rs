@@ -1,0 +1,40 @@
+//! # elcon-runner: runs scenes and batches
+//!
+//! Takes the scenes elcon-scene reads to results elcon-report writes:
+//!
+//! - [`prepare`]: a scene's cost estimated ([`Estimate`]: peak memory and
+//!   a class of run time) and compared with the memory ceiling before
+//!   anything of size N x N is allocated; what `elcon check` prints;
+//! - [`run`]: assemble `S = A(1) + A(2)` and eps, solve
+//!   `Y = S F + eps - alpha e`, `e^T F = P`, `F, Y >= 0`, `F_k Y_k = 0` with
+//!   the scene's method, certified; estimate the discretization error on
+//!   coarser grids; compare with the closed form that applies; the stresses
+//!   below the surface; the design stage;
+//! - [`run_batch`]: a batch's runs in parallel, each isolated and admitted
+//!   against the memory ceiling, written whole and journaled so a killed
+//!   batch resumes; shards of a sweep ([`Shard`]) and [`merge`], which joins
+//!   their tables.
+//!
+//! The command line and the Python package both call it.
+
+mod batch_run;
+mod compare;
+mod design_stage;
+mod error;
+mod error_estimate;
+mod estimate;
+mod journal;
+mod merge;
+mod prepare;
+mod run;
+mod shard;
+mod subsurface;
+
+pub use batch_run::{BatchDone, BatchOptions, Progress, run_batch};
+pub use design_stage::{DesignKey, design_reason, scene_design_key};
+pub use error::RunError;
+pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass, TimeFigure};
+pub use merge::merge;
+pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
+pub use run::run;
+pub use shard::{SHARD_COUNT_VARIABLE, Shard, batch_dir};

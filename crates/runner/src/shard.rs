@@ -1,0 +1,458 @@
+//! Slices of a batch's sweep: `--shard K/N` runs the runs whose index i
+//! (from 0) has `i mod N = K - 1`, so N processes, on one machine or many,
+//! share a sweep without talking to each other and `elcon merge` joins
+//! their tables. `--shard auto` takes K and N from the scheduler that
+//! started the process: a SLURM job array (`SLURM_ARRAY_TASK_ID` with
+//! `SLURM_ARRAY_TASK_COUNT`, or `SLURM_ARRAY_TASK_MIN`/`_MAX`, and
+//! `SLURM_ARRAY_TASK_STEP`: task `id` of a regular range `--array=MIN-MAX:STEP`
+//! is shard `(id - MIN) / STEP + 1` of `(MAX - MIN) / STEP + 1`; an array of
+//! listed ids such as `--array=1,3,7` is refused), or a Kubernetes indexed Job
+//! (`JOB_COMPLETION_INDEX`, from 0, with the count in `ELCON_SHARD_COUNT`,
+//! the Job's `completions`); when both are set they must agree.
+//! docs/scenes.md has a script for each.
+
+use std::path::{Path, PathBuf};
+
+use elcon_scene::Batch;
+
+/// The K-th of N slices of a sweep (1-based K).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// K, from 1.
+    pub index: usize,
+    /// N.
+    pub count: usize,
+}
+
+/// The variable that gives N beside a Kubernetes indexed Job's
+/// `JOB_COMPLETION_INDEX` (set it to the Job's `completions`).
+pub const SHARD_COUNT_VARIABLE: &str = "ELCON_SHARD_COUNT";
+
+/// The largest task id, count or step a scheduler's variable may hold:
+/// SLURM's array task ids are 32-bit (and its arrays far smaller), and so
+/// are a Kubernetes Job's completions. Below it, no id, count or step of
+/// an array computed from them overflows.
+const MAX_SCHEDULER_NUMBER: usize = u32::MAX as usize;
+
+impl std::str::FromStr for Shard {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        let (k, n) = s
+            .split_once('/')
+            .ok_or_else(|| format!("`{s}`: a shard is K/N, e.g. 2/8, or auto"))?;
+        let index: usize = k
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{s}`: K must be a whole number"))?;
+        let count: usize = n
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{s}`: N must be a whole number"))?;
+        Self::new(index, count).map_err(|e| format!("`{s}`: {e}"))
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+impl Shard {
+    /// Shard K of N.
+    ///
+    /// # Errors
+    /// Unless 1 <= K <= N.
+    pub fn new(index: usize, count: usize) -> Result<Self, String> {
+        if count == 0 || index == 0 || index > count {
+            return Err(format!("need 1 <= K <= N, got K = {index}, N = {count}"));
+        }
+        Ok(Self { index, count })
+    }
+
+    /// Whether run `i` (from 0) belongs to this shard.
+    pub fn contains(&self, i: usize) -> bool {
+        i % self.count == self.index - 1
+    }
+
+    /// How many of `total` runs (indices 0..total) belong to this shard.
+    pub fn len_of(&self, total: usize) -> usize {
+        let first = self.index - 1;
+        if total <= first {
+            0
+        } else {
+            (total - first).div_ceil(self.count)
+        }
+    }
+
+    /// The index of this shard's j-th run.
+    pub fn nth(&self, j: usize) -> usize {
+        self.index - 1 + j * self.count
+    }
+
+    /// The shard of this process from its scheduler's variables, read
+    /// through `var` (`std::env::var` in the command line; tests pass a
+    /// table): a SLURM job array, or a Kubernetes indexed Job. When both
+    /// are set they must name the same shard.
+    ///
+    /// # Errors
+    /// A message naming the variables when none is set, they are
+    /// malformed, the SLURM array is not a regular range, or SLURM and
+    /// Kubernetes give different shards.
+    pub fn from_scheduler(var: impl Fn(&str) -> Option<String>) -> Result<Self, String> {
+        let number = |name: &str| -> Result<Option<usize>, String> {
+            let Some(v) = var(name) else {
+                return Ok(None);
+            };
+            let n: usize = v
+                .trim()
+                .parse()
+                .map_err(|_| format!("{name}={v}: not a whole number"))?;
+            if n > MAX_SCHEDULER_NUMBER {
+                return Err(format!(
+                    "{name}={v}: more than {MAX_SCHEDULER_NUMBER}, beyond any job array's task id \
+                     or count (a scheduler's are 32-bit)"
+                ));
+            }
+            Ok(Some(n))
+        };
+        let slurm = Self::from_slurm(&number)?;
+        let kubernetes = Self::from_indexed_job(&number)?;
+        match (slurm, kubernetes) {
+            (Some(s), Some(k)) if s != k => Err(format!(
+                "the SLURM job array says shard {s} (SLURM_ARRAY_TASK_ID) and the Kubernetes \
+                 indexed Job says shard {k} (JOB_COMPLETION_INDEX with {SHARD_COUNT_VARIABLE}): \
+                 unset the variables of the scheduler that did not start this process, or give \
+                 --shard K/N explicitly"
+            )),
+            (Some(s), _) | (None, Some(s)) => Ok(s),
+            (None, None) => Err(
+                "--shard auto needs a scheduler's variables: SLURM_ARRAY_TASK_ID with \
+                 SLURM_ARRAY_TASK_COUNT (a SLURM job array), or JOB_COMPLETION_INDEX with \
+                 ELCON_SHARD_COUNT (a Kubernetes indexed Job); none is set"
+                    .into(),
+            ),
+        }
+    }
+
+    /// The shard of a SLURM job array task, if `SLURM_ARRAY_TASK_ID` is
+    /// set. The array must be a regular range (`--array=MIN-MAX[:STEP]`):
+    /// task `id` is shard `(id - MIN) / STEP + 1` of `(MAX - MIN) / STEP + 1`.
+    /// A list of ids (`--array=1,3,7`) has no such map, and is refused.
+    fn from_slurm(
+        number: &dyn Fn(&str) -> Result<Option<usize>, String>,
+    ) -> Result<Option<Self>, String> {
+        let Some(id) = number("SLURM_ARRAY_TASK_ID")? else {
+            return Ok(None);
+        };
+        let count = number("SLURM_ARRAY_TASK_COUNT")?;
+        let max = number("SLURM_ARRAY_TASK_MAX")?;
+        let min = match (number("SLURM_ARRAY_TASK_MIN")?, count) {
+            (Some(min), _) => min,
+            // An old SLURM without MIN: a count alone means 0..count.
+            (None, Some(_)) => 0,
+            (None, None) => {
+                return Err(
+                    "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
+                     SLURM_ARRAY_TASK_MAX: is this a job array (sbatch --array)?"
+                        .into(),
+                );
+            }
+        };
+        if let Some(max) = max.filter(|&max| max < min) {
+            return Err(format!(
+                "SLURM_ARRAY_TASK_MIN={min} > SLURM_ARRAY_TASK_MAX={max}: not a job array's \
+                 range (its first task id is at most its last)"
+            ));
+        }
+        let step = match number("SLURM_ARRAY_TASK_STEP")? {
+            Some(0) => return Err("SLURM_ARRAY_TASK_STEP=0: not a job array's step".into()),
+            Some(s) => s,
+            None => 1,
+        };
+        let (count, max) = match (count, max) {
+            (Some(c), Some(max)) => (c, max),
+            (Some(c), None) => (c, min + c.saturating_sub(1) * step),
+            (None, Some(max)) if max >= min => ((max - min) / step + 1, max),
+            (None, _) => {
+                return Err(
+                    "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
+                     SLURM_ARRAY_TASK_MAX: is this a job array (sbatch --array)?"
+                        .into(),
+                );
+            }
+        };
+        let regular = max >= min && (max - min) % step == 0 && (max - min) / step + 1 == count;
+        if !regular {
+            return Err(format!(
+                "the SLURM job array is not a regular range: its {count} tasks \
+                 (SLURM_ARRAY_TASK_COUNT) are not the ids from {min} to {max} by {step} \
+                 (SLURM_ARRAY_TASK_MIN, _MAX, _STEP), which are {}, so a task's id does not say \
+                 which shard it is (an array of listed ids, e.g. --array=1,3,7?); submit a \
+                 range, --array=0-{} or --array=MIN-MAX:STEP, or give each task --shard K/N \
+                 explicitly",
+                if max >= min {
+                    ((max - min) / step + 1).to_string()
+                } else {
+                    "none".to_string()
+                },
+                count.saturating_sub(1)
+            ));
+        }
+        if id < min || id > max || (id - min) % step != 0 {
+            return Err(format!(
+                "SLURM_ARRAY_TASK_ID={id} is not in the array from {min} to {max} by {step}"
+            ));
+        }
+        Self::new((id - min) / step + 1, count)
+            .map(Some)
+            .map_err(|e| format!("SLURM_ARRAY_TASK_ID={id} of {count} tasks from {min}: {e}"))
+    }
+
+    /// The shard of a Kubernetes indexed Job's pod, if
+    /// `JOB_COMPLETION_INDEX` is set: index i (from 0) of
+    /// [`SHARD_COUNT_VARIABLE`] completions is shard i + 1.
+    fn from_indexed_job(
+        number: &dyn Fn(&str) -> Result<Option<usize>, String>,
+    ) -> Result<Option<Self>, String> {
+        let Some(index) = number("JOB_COMPLETION_INDEX")? else {
+            return Ok(None);
+        };
+        let count = number(SHARD_COUNT_VARIABLE)?.ok_or_else(|| {
+            format!(
+                "JOB_COMPLETION_INDEX is set but {SHARD_COUNT_VARIABLE} is not: set it to the \
+                 indexed Job's completions"
+            )
+        })?;
+        Self::new(index + 1, count).map(Some).map_err(|e| {
+            format!("JOB_COMPLETION_INDEX={index} with {SHARD_COUNT_VARIABLE}={count}: {e}")
+        })
+    }
+}
+
+/// The directory a batch (or one shard of it) writes under `out`:
+/// `out/<name>`, or `out/<name>-shard-K-of-N` for a shard.
+pub fn batch_dir(batch: &Batch, out: &Path, shard: Option<Shard>) -> PathBuf {
+    match shard {
+        Some(s) => out.join(format!("{}-shard-{}-of-{}", batch.name, s.index, s.count)),
+        None => out.join(&batch.name),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn env<'a>(pairs: &'a [(&'a str, &'a str)]) -> impl Fn(&str) -> Option<String> + 'a {
+        move |k| {
+            pairs
+                .iter()
+                .find(|(n, _)| *n == k)
+                .map(|(_, v)| v.to_string())
+        }
+    }
+
+    #[test]
+    fn shards_partition_the_indices() {
+        let total = 10;
+        let mut seen = vec![0; total];
+        for k in 1..=4 {
+            let s = Shard::new(k, 4).unwrap();
+            let n = s.len_of(total);
+            for j in 0..n {
+                let i = s.nth(j);
+                assert!(s.contains(i) && i < total);
+                seen[i] += 1;
+            }
+        }
+        assert!(seen.iter().all(|&c| c == 1));
+        assert_eq!(Shard::new(4, 4).unwrap().len_of(2), 0);
+        assert!(Shard::new(0, 3).is_err() && Shard::new(4, 3).is_err());
+        assert_eq!("2/8".parse::<Shard>().unwrap().to_string(), "2/8");
+        assert!("4/3".parse::<Shard>().unwrap_err().contains("1 <= K <= N"));
+    }
+
+    #[test]
+    fn slurm_arrays_give_k_and_n() {
+        let s = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "0"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ("SLURM_ARRAY_TASK_MIN", "0"),
+        ]));
+        assert_eq!(s, Ok(Shard { index: 1, count: 3 }));
+        // --array=1-8: MIN and MAX without COUNT.
+        let s = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "8"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "8"),
+        ]));
+        assert_eq!(s, Ok(Shard { index: 8, count: 8 }));
+        // --array=0-10:5 is tasks 0, 5, 10.
+        let s = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "5"),
+            ("SLURM_ARRAY_TASK_MIN", "0"),
+            ("SLURM_ARRAY_TASK_MAX", "10"),
+            ("SLURM_ARRAY_TASK_STEP", "5"),
+        ]));
+        assert_eq!(s, Ok(Shard { index: 2, count: 3 }));
+        let e = Shard::from_scheduler(env(&[("SLURM_ARRAY_TASK_ID", "2")])).unwrap_err();
+        assert!(e.contains("SLURM_ARRAY_TASK_COUNT"), "{e}");
+        let e = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "x"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+        ]))
+        .unwrap_err();
+        assert!(e.contains("not a whole number"), "{e}");
+    }
+
+    #[test]
+    fn sparse_slurm_arrays_are_refused_with_what_to_do() {
+        // --array=1,3,7: three tasks between 1 and 7, no uniform step.
+        for step in [None, Some("1"), Some("2")] {
+            let mut vars = vec![
+                ("SLURM_ARRAY_TASK_ID", "3"),
+                ("SLURM_ARRAY_TASK_COUNT", "3"),
+                ("SLURM_ARRAY_TASK_MIN", "1"),
+                ("SLURM_ARRAY_TASK_MAX", "7"),
+            ];
+            if let Some(s) = step {
+                vars.push(("SLURM_ARRAY_TASK_STEP", s));
+            }
+            let e = Shard::from_scheduler(env(&vars)).unwrap_err();
+            assert!(e.contains("not a regular range"), "{step:?}: {e}");
+            assert!(
+                e.contains("--shard K/N") && e.contains("--array=0-2"),
+                "{e}"
+            );
+        }
+        // --array=1-7:3 is tasks 1, 4, 7: task 7 is the third of three.
+        let s = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "7"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "7"),
+            ("SLURM_ARRAY_TASK_STEP", "3"),
+        ]));
+        assert_eq!(s, Ok(Shard { index: 3, count: 3 }));
+        // An id off the range's step, and a zero step.
+        let e = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "5"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "7"),
+            ("SLURM_ARRAY_TASK_STEP", "3"),
+        ]))
+        .unwrap_err();
+        assert!(e.contains("not in the array from 1 to 7 by 3"), "{e}");
+        let e = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "1"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "7"),
+            ("SLURM_ARRAY_TASK_STEP", "0"),
+        ]))
+        .unwrap_err();
+        assert!(e.contains("SLURM_ARRAY_TASK_STEP=0"), "{e}");
+    }
+
+    #[test]
+    fn a_slurm_value_beyond_any_array_is_refused_naming_its_variable() {
+        for var in [
+            "SLURM_ARRAY_TASK_ID",
+            "SLURM_ARRAY_TASK_COUNT",
+            "SLURM_ARRAY_TASK_MIN",
+            "SLURM_ARRAY_TASK_STEP",
+        ] {
+            let mut vars = vec![
+                ("SLURM_ARRAY_TASK_ID", "1"),
+                ("SLURM_ARRAY_TASK_COUNT", "3"),
+                ("SLURM_ARRAY_TASK_MIN", "1"),
+            ];
+            vars.retain(|(n, _)| *n != var);
+            vars.push((var, "18446744073709551615"));
+            let e = Shard::from_scheduler(env(&vars)).unwrap_err();
+            assert!(
+                e.starts_with(&format!("{var}=18446744073709551615: more than 4294967295")),
+                "{e}"
+            );
+        }
+        // The bound itself, in every variable at once: the last id,
+        // MIN + (COUNT - 1) STEP, is computed without overflow.
+        let bound = "4294967295";
+        let s = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", bound),
+            ("SLURM_ARRAY_TASK_COUNT", bound),
+            ("SLURM_ARRAY_TASK_MIN", bound),
+            ("SLURM_ARRAY_TASK_STEP", bound),
+        ]))
+        .unwrap();
+        assert_eq!(s, Shard::new(1, u32::MAX as usize).unwrap());
+        let e = Shard::from_scheduler(env(&[
+            ("JOB_COMPLETION_INDEX", "18446744073709551615"),
+            (SHARD_COUNT_VARIABLE, "3"),
+        ]))
+        .unwrap_err();
+        assert!(
+            e.starts_with("JOB_COMPLETION_INDEX=18446744073709551615: more"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_slurm_array_whose_min_exceeds_its_max_is_said_so() {
+        let e = Shard::from_scheduler(env(&[
+            ("SLURM_ARRAY_TASK_ID", "5"),
+            ("SLURM_ARRAY_TASK_MIN", "7"),
+            ("SLURM_ARRAY_TASK_MAX", "3"),
+        ]))
+        .unwrap_err();
+        assert!(
+            e.starts_with("SLURM_ARRAY_TASK_MIN=7 > SLURM_ARRAY_TASK_MAX=3"),
+            "{e}"
+        );
+        assert!(!e.contains("neither"), "{e}");
+    }
+
+    #[test]
+    fn slurm_and_kubernetes_must_agree() {
+        let both = |index: &str| {
+            Shard::from_scheduler(env(&[
+                ("SLURM_ARRAY_TASK_ID", "1"),
+                ("SLURM_ARRAY_TASK_COUNT", "3"),
+                ("SLURM_ARRAY_TASK_MIN", "0"),
+                ("SLURM_ARRAY_TASK_MAX", "2"),
+                ("JOB_COMPLETION_INDEX", index),
+                ("ELCON_SHARD_COUNT", "3"),
+            ]))
+        };
+        assert_eq!(both("1"), Ok(Shard { index: 2, count: 3 }));
+        let e = both("2").unwrap_err();
+        assert!(
+            e.contains("SLURM") && e.contains("shard 2/3") && e.contains("Kubernetes"),
+            "{e}"
+        );
+        assert!(
+            e.contains("shard 3/3") && e.contains("JOB_COMPLETION_INDEX"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn indexed_jobs_need_the_count() {
+        let s = Shard::from_scheduler(env(&[
+            ("JOB_COMPLETION_INDEX", "2"),
+            ("ELCON_SHARD_COUNT", "3"),
+        ]));
+        assert_eq!(s, Ok(Shard { index: 3, count: 3 }));
+        let e = Shard::from_scheduler(env(&[("JOB_COMPLETION_INDEX", "2")])).unwrap_err();
+        assert!(e.contains("ELCON_SHARD_COUNT"), "{e}");
+        let e = Shard::from_scheduler(env(&[
+            ("JOB_COMPLETION_INDEX", "3"),
+            ("ELCON_SHARD_COUNT", "3"),
+        ]))
+        .unwrap_err();
+        assert!(e.contains("1 <= K <= N"), "{e}");
+        let e = Shard::from_scheduler(env(&[])).unwrap_err();
+        assert!(e.contains("none is set"), "{e}");
+    }
+}

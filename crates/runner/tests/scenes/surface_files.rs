@@ -1,0 +1,348 @@
+//! Surfaces and separations from files: a separation file equal to the
+//! inline separations solves bit for bit the same problem, a profile file
+//! adds its drops, and bad files are refused naming the file and the row.
+
+use std::path::{Path, PathBuf};
+
+use crate::common::roller;
+use elcon_runner::run;
+use elcon_scene::{Scene, SceneError};
+
+/// A fresh directory for one test's files.
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("elcon-surface-files-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A roller on an absolute 11 x 8 grid (0.8 mm by 10 mm, 1000 N: 3 points
+/// across the Hertz width, the fewest the scene takes).
+fn base() -> String {
+    roller("half_x = 0.4\nhalf_y = 5.0\nnx = 11\nny = 8", "1000.0")
+}
+
+/// The scene `text` as the file `scene.toml` of `d`.
+fn scene_in(d: &Path, text: &str) -> Result<Scene, SceneError> {
+    Scene::from_str(&d.join("scene.toml"), text)
+}
+
+/// The reason of an invalid scene.
+fn reason(r: Result<Scene, SceneError>) -> (String, String) {
+    match r {
+        Err(SceneError::Invalid { field, reason, .. }) => (field, reason),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_separation_file_equal_to_the_inline_separations_is_bit_identical() {
+    let d = dir("separation");
+    let s = Scene::from_str(Path::new("test.toml"), &base()).unwrap();
+    let eps = elcon_analysis::separations(s.points(), s.geometry()).unwrap();
+    let points = s.points();
+    // Shuffled rows (reversed) with a header: matched by position.
+    let mut csv = String::from("x,y,separation\n");
+    for k in (0..points.len()).rev() {
+        csv += &format!("{:?},{:?},{:?}\n", points.x(k), points.y(k), eps[k]);
+    }
+    std::fs::write(d.join("eps.csv"), csv).unwrap();
+    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
+    assert!(base().contains(geometry));
+    let inline: Vec<String> = eps.iter().map(|e| format!("{e:?}")).collect();
+    let inline_text = base().replace(geometry, &format!("separation = [{}]", inline.join(", ")));
+    let file_text = base().replace(geometry, "separation_file = \"eps.csv\"");
+    let a = run(&scene_in(&d, &inline_text).unwrap()).unwrap();
+    let b = run(&scene_in(&d, &file_text).unwrap()).unwrap();
+    let (sa, sb) = (&a.result.solution, &b.result.solution);
+    assert_eq!(sa.approach.to_bits(), sb.approach.to_bits());
+    assert_eq!(a.solution.pressures, b.solution.pressures);
+    assert_eq!(a.solution.forces, b.solution.forces);
+    // A file that misses a point names it.
+    let short: String = std::fs::read_to_string(d.join("eps.csv"))
+        .unwrap()
+        .lines()
+        .take(10)
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(d.join("short.csv"), short).unwrap();
+    let (field, why) = reason(scene_in(
+        &d,
+        &base().replace(geometry, "separation_file = \"short.csv\""),
+    ));
+    assert_eq!(field, "geometry.separation_file");
+    assert!(
+        why.contains("short.csv") && why.contains("candidate point 0"),
+        "{why}"
+    );
+    // Two rows for one point: the same separation twice is harmless,
+    // another one is refused naming both lines and the point.
+    let full = std::fs::read_to_string(d.join("eps.csv")).unwrap();
+    let n = points.len();
+    let again = format!("{full}{:?},{:?},{:?}\n", points.x(0), points.y(0), eps[0]);
+    std::fs::write(d.join("again.csv"), again).unwrap();
+    scene_in(
+        &d,
+        &base().replace(geometry, "separation_file = \"again.csv\""),
+    )
+    .unwrap();
+    let twice = format!(
+        "{full}{:?},{:?},{:?}\n",
+        points.x(0),
+        points.y(0),
+        eps[0] + 1e-3
+    );
+    std::fs::write(d.join("twice.csv"), twice).unwrap();
+    let (field, why) = reason(scene_in(
+        &d,
+        &base().replace(geometry, "separation_file = \"twice.csv\""),
+    ));
+    assert_eq!(field, "geometry.separation_file");
+    assert!(
+        why.contains("twice.csv")
+            && why.contains(&format!(
+                "lines {} and {} both give candidate point 0",
+                n + 1,
+                n + 2
+            )),
+        "{why}"
+    );
+}
+
+#[test]
+fn a_profile_file_adds_its_drops_to_the_cylinder() {
+    let d = dir("profile");
+    // A uniform drop of 1 um changes no pressure; it adds to the approach.
+    std::fs::write(d.join("crown.csv"), "# y, drop\n-5.0, 0.001\n5.0, 0.001\n").unwrap();
+    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
+    let with = base().replace(
+        geometry,
+        &format!("{geometry}\nprofile = {{ file = \"crown.csv\", axis = \"y\" }}"),
+    );
+    let plain = run(&scene_in(&d, &base()).unwrap()).unwrap();
+    let dropped = run(&scene_in(&d, &with).unwrap()).unwrap();
+    let (p, q) = (&plain.result.solution, &dropped.result.solution);
+    assert!((q.approach - p.approach - 0.001).abs() < 1e-12 * p.approach.abs().max(1.0));
+    // A profile that stops short of the roller's ends is refused at check.
+    std::fs::write(d.join("short.csv"), "-4.0, 0.0\n4.0, 0.0\n").unwrap();
+    let (field, why) = reason(scene_in(&d, &with.replace("crown.csv", "short.csv")));
+    assert_eq!(field, "geometry.profile.file");
+    assert!(
+        why.contains("short.csv") && why.contains("does not cover"),
+        "{why}"
+    );
+}
+
+#[test]
+fn a_batch_sweeps_over_files_read_beside_its_base_scene() {
+    let d = dir("batch");
+    std::fs::create_dir_all(d.join("data")).unwrap();
+    std::fs::write(d.join("data/a.csv"), "-5.0, 0.0\n5.0, 0.0\n").unwrap();
+    std::fs::write(d.join("data/b.csv"), "-5.0, 0.002\n5.0, 0.002\n").unwrap();
+    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
+    let text = base().replace(
+        geometry,
+        &format!("{geometry}\nprofile = {{ file = \"data/a.csv\" }}"),
+    );
+    std::fs::write(d.join("roller.toml"), text).unwrap();
+    std::fs::write(
+        d.join("b.toml"),
+        "[batch]\nscene = \"roller.toml\"\n[[batch.group]]\n\
+         \"geometry.profile.file\" = [\"data/a.csv\", \"data/b.csv\"]\n",
+    )
+    .unwrap();
+    let batch = elcon_scene::Batch::from_file(&d.join("b.toml")).unwrap();
+    let approaches: Vec<f64> = batch
+        .runs()
+        .map(|r| {
+            run(&batch.scene(&r).unwrap())
+                .unwrap()
+                .result
+                .solution
+                .approach
+        })
+        .collect();
+    // The uniform drop of b.csv adds 0.002 to the approach.
+    assert!(
+        (approaches[1] - approaches[0] - 0.002).abs() < 1e-12,
+        "{approaches:?}"
+    );
+}
+
+#[test]
+fn bad_files_are_refused_naming_the_file_and_the_row() {
+    let d = dir("bad");
+    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
+    let map = |file: &str| {
+        base().replace(
+            geometry,
+            &format!("{geometry}\nheight_map = {{ file = \"{file}\", spacing = [0.5, 5.0] }}"),
+        )
+    };
+    // Missing.
+    let (field, why) = reason(scene_in(&d, &map("missing.csv")));
+    assert_eq!(field, "geometry.height_map.file");
+    assert!(
+        why.contains("missing.csv") && why.contains("cannot be read"),
+        "{why}"
+    );
+    // A device that never ends: read up to the data files' bound, refused.
+    let (field, why) = reason(scene_in(&d, &map("/dev/zero")));
+    assert_eq!(field, "geometry.height_map.file");
+    assert!(why.contains("larger than 256 MiB"), "{why}");
+    // A hole (NaN) at row 1, column 2.
+    std::fs::write(d.join("hole.csv"), "0,0,0\n0,0,nan\n0,0,0\n").unwrap();
+    let (field, why) = reason(scene_in(&d, &map("hole.csv")));
+    assert_eq!(field, "geometry.height_map.file");
+    assert!(
+        why.contains("hole.csv") && why.contains("row 1, column 2"),
+        "{why}"
+    );
+    // One row: the content is the file's fault.
+    std::fs::write(d.join("row.csv"), "0,0,0\n").unwrap();
+    let (field, why) = reason(scene_in(&d, &map("row.csv")));
+    assert_eq!(field, "geometry.height_map.file", "{why}");
+    // A zero spacing is the spacing's fault, quoted as written.
+    std::fs::write(d.join("ok.csv"), "0,0,0\n0,0,0\n0,0,0\n").unwrap();
+    let zero = map("ok.csv").replace("spacing = [0.5, 5.0]", "spacing = [0.0, 5.0]");
+    let e = scene_in(&d, &zero).unwrap_err().to_string();
+    assert!(
+        e.contains("`geometry.height_map.spacing` = [0.0, 5.0]: both spacings"),
+        "{e}"
+    );
+    // A profile whose positions do not increase names its file.
+    let profile = base().replace(
+        geometry,
+        &format!("{geometry}\nprofile = {{ file = \"down.csv\" }}"),
+    );
+    std::fs::write(d.join("down.csv"), "1,0\n0,0\n").unwrap();
+    let (field, why) = reason(scene_in(&d, &profile));
+    assert_eq!(field, "geometry.profile.file", "{why}");
+    assert!(why.contains("positions must increase"), "{why}");
+    // Ragged rows.
+    std::fs::write(d.join("ragged.csv"), "0,0,0\n0,0\n0,0,0\n").unwrap();
+    let (_, why) = reason(scene_in(&d, &map("ragged.csv")));
+    assert!(
+        why.contains("ragged.csv") && why.contains("line 2"),
+        "{why}"
+    );
+    // Text where numbers belong, after the header line.
+    std::fs::write(d.join("text.csv"), "a,b,c\n0,0,0\n0,x,0\n").unwrap();
+    let (_, why) = reason(scene_in(&d, &map("text.csv")));
+    assert!(why.contains("text.csv") && why.contains("line 3"), "{why}");
+    // A map that does not cover the grid: x in [-0.25, 0.25] against
+    // cell centres out to 0.32.
+    std::fs::write(d.join("small.csv"), "0,0,0\n0,0,0\n0,0,0\n").unwrap();
+    let small = map("small.csv").replace("spacing = [0.5, 5.0]", "spacing = [0.25, 5.0]");
+    let (_, why) = reason(scene_in(&d, &small));
+    assert!(
+        why.contains("small.csv") && why.contains("does not cover"),
+        "{why}"
+    );
+    // Not a .npy file, and a 1-D .npy array.
+    std::fs::write(d.join("fake.npy"), "0,0\n").unwrap();
+    let (_, why) = reason(scene_in(&d, &map("fake.npy")));
+    assert!(
+        why.contains("fake.npy") && why.contains("not a .npy"),
+        "{why}"
+    );
+    std::fs::write(d.join("line.npy"), npy(&[3], &[0.0, 0.0, 0.0])).unwrap();
+    let (_, why) = reason(scene_in(&d, &map("line.npy")));
+    assert!(why.contains("1-D array"), "{why}");
+}
+
+#[test]
+fn a_npy_height_map_is_read_as_numpy_writes_it() {
+    let d = dir("npy");
+    // A plane tilted along x, h = 0.001 x, on 3 x 3 nodes at spacing
+    // 0.5 x 5 (centred by default): bilinear interpolation is exact on it,
+    // so the separations are the cylinder's plus 0.001 x to rounding.
+    let values: Vec<f64> = (0..3)
+        .flat_map(|_| (0..3).map(|i| 0.001 * (i as f64 - 1.0) * 0.5))
+        .collect();
+    std::fs::write(d.join("tilt.npy"), npy(&[3, 3], &values)).unwrap();
+    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
+    let text = base().replace(
+        geometry,
+        &format!("{geometry}\nheight_map = {{ file = \"tilt.npy\", spacing = [0.5, 5.0] }}"),
+    );
+    let s = scene_in(&d, &text).unwrap();
+    let eps = elcon_analysis::separations(s.points(), s.geometry()).unwrap();
+    for (k, e) in eps.iter().enumerate() {
+        let x = s.points().x(k);
+        assert!((e - (x * x / 10.0 + 0.001 * x)).abs() < 1e-15, "{k}: {e}");
+    }
+}
+
+/// A version-1 `.npy` file of little-endian float64 values of `shape`.
+fn npy(shape: &[usize], values: &[f64]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(|d| d.to_string()).collect();
+    let shape = if dims.len() == 1 {
+        format!("({},)", dims[0])
+    } else {
+        format!("({})", dims.join(", "))
+    };
+    let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend((header.len() as u16).to_le_bytes());
+    out.extend(header.as_bytes());
+    for v in values {
+        out.extend(v.to_le_bytes());
+    }
+    out
+}
+
+#[test]
+fn a_flat_punch_s_reference_takes_a_uniform_separation_as_an_offset() {
+    let d = dir("punch");
+    let punch = "[units]\nlength = \"m\"\nforce = \"N\"\npressure = \"Pa\"\n\n[body1]\nmodel = \
+                 \"rigid\"\n\n[body2]\nmodel = \"uniform-patch\"\nyoungs_modulus = 70e9\n\
+                 poissons_ratio = 0.33\n\n[geometry]\nGEOMETRY\n\n[points]\ngrid = \"disk\"\n\
+                 spacing = 0.001\nradius = 0.01\n\n[loading]\napproach = 1e-5\n";
+    let flat = punch.replace(
+        "GEOMETRY",
+        "surface1 = { shape = \"plane\" }\nsurface2 = { shape = \"plane\" }",
+    );
+    let plain = run(&scene_in(&d, &flat).unwrap()).unwrap();
+    // The same punch 1e-5 into the other surface before any approach: it
+    // carries the load of an approach of 2e-5, and the reference says so.
+    let s = scene_in(&d, &flat).unwrap();
+    let mut csv = String::new();
+    for k in 0..s.points().len() {
+        csv += &format!("{:?},{:?},-1e-5\n", s.points().x(k), s.points().y(k));
+    }
+    std::fs::write(d.join("offset.csv"), csv).unwrap();
+    let offset = punch.replace("GEOMETRY", "separation_file = \"offset.csv\"");
+    let r = run(&scene_in(&d, &offset).unwrap()).unwrap();
+    let (a, b) = (
+        plain.result.reference.as_ref().unwrap(),
+        r.result.reference.as_ref().unwrap(),
+    );
+    assert_eq!(b.kind, "flat-punch");
+    let ratio = b.load.unwrap() / a.load.unwrap();
+    assert!((ratio - 2.0).abs() < 1e-12, "{ratio}");
+    // The same relative error: the punch's answer is linear in the
+    // indentation.
+    let (ea, eb) = (a.errors.load.unwrap(), b.errors.load.unwrap());
+    assert!((ea - eb).abs() < 1e-9 * (1.0 + ea.abs()), "{ea} {eb}");
+    assert!(
+        b.note.as_deref().unwrap().contains("uniform separation"),
+        "{:?}",
+        b.note
+    );
+    // At no approach the punch still presses 1e-5 in: its reference stays,
+    // half the load of the approach of 1e-5 (the indentation 2e-5 before).
+    let at_zero = offset.replace("approach = 1e-5", "approach = 0.0");
+    let z = run(&scene_in(&d, &at_zero).unwrap()).unwrap();
+    let c = z
+        .result
+        .reference
+        .as_ref()
+        .expect("a reference at no approach");
+    let ratio = c.load.unwrap() / a.load.unwrap();
+    assert!((ratio - 1.0).abs() < 1e-12, "{ratio}");
+}
