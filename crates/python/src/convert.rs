@@ -5,25 +5,26 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
+use crate::errors::InputError;
+
 /// A Python value as the TOML value a scene would hold: dicts as tables,
 /// lists, tuples and numpy arrays as arrays, numbers (numpy's too),
 /// strings and booleans as themselves. NaN and infinities pass (the
 /// scene's checks refuse them by field); `None` and other objects are
 /// refused naming the key (`path`).
-fn toml_value(v: &Bound<'_, PyAny>, path: &str) -> Result<toml::Value, String> {
+fn toml_value(v: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
     if v.is_none() {
-        return Err(format!(
+        return Err(InputError::new_err(format!(
             "`{path}` = None: a scene has no None; leave the key out"
-        ));
+        )));
     }
     if let Ok(b) = v.cast::<PyBool>() {
         return Ok(toml::Value::Boolean(b.is_true()));
     }
     if v.is_instance_of::<PyInt>() {
-        return v
-            .extract::<i64>()
-            .map(toml::Value::Integer)
-            .map_err(|_| format!("`{path}` = {v}: a whole number beyond 64 bits"));
+        return v.extract::<i64>().map(toml::Value::Integer).map_err(|_| {
+            InputError::new_err(format!("`{path}` = {v}: a whole number beyond 64 bits"))
+        });
     }
     if let Ok(f) = v.cast::<PyFloat>() {
         return Ok(toml::Value::Float(f.value()));
@@ -36,8 +37,8 @@ fn toml_value(v: &Bound<'_, PyAny>, path: &str) -> Result<toml::Value, String> {
     }
     if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
         let mut items = Vec::new();
-        for (i, item) in v.try_iter().map_err(|e| e.to_string())?.enumerate() {
-            let item = item.map_err(|e| e.to_string())?;
+        for (i, item) in v.try_iter()?.enumerate() {
+            let item = item?;
             items.push(toml_value(&item, &format!("{path}[{i}]"))?);
         }
         return Ok(toml::Value::Array(items));
@@ -58,17 +59,19 @@ fn toml_value(v: &Bound<'_, PyAny>, path: &str) -> Result<toml::Value, String> {
         .get_type()
         .name()
         .map_or_else(|_| "value".to_string(), |n| n.to_string());
-    Err(format!(
+    Err(InputError::new_err(format!(
         "`{path}`: a {kind} has no form in a scene (numbers, strings, booleans, lists and dicts)"
-    ))
+    )))
 }
 
 /// A dict as a TOML table; `path` prefixes its keys in messages.
-pub(crate) fn toml_table(d: &Bound<'_, PyDict>, path: &str) -> Result<toml::Table, String> {
+pub(crate) fn toml_table(d: &Bound<'_, PyDict>, path: &str) -> PyResult<toml::Table> {
     let mut table = toml::Table::new();
     for (k, v) in d.iter() {
         let key: String = k.extract().map_err(|_| {
-            format!("`{path}`: the key {k} is not a string (a scene's keys are names)")
+            InputError::new_err(format!(
+                "`{path}`: the key {k} is not a string (a scene's keys are names)"
+            ))
         })?;
         let full = if path.is_empty() {
             key.clone()
@@ -81,15 +84,14 @@ pub(crate) fn toml_table(d: &Bound<'_, PyDict>, path: &str) -> Result<toml::Tabl
 }
 
 /// TOML text of `table`.
-pub(crate) fn toml_text(table: &toml::Table) -> Result<String, String> {
-    toml::to_string(table).map_err(|e| format!("cannot be written as TOML: {e}"))
+pub(crate) fn toml_text(table: &toml::Table) -> PyResult<String> {
+    toml::to_string(table)
+        .map_err(|e| InputError::new_err(format!("cannot be written as TOML: {e}")))
 }
 
 /// TOML text of a scene's sections given as dicts (`[name]` for each
 /// section given; those that are `None` left out).
-pub(crate) fn sections_text(
-    sections: &[(&str, Option<&Bound<'_, PyDict>>)],
-) -> Result<String, String> {
+pub(crate) fn sections_text(sections: &[(&str, Option<&Bound<'_, PyDict>>)]) -> PyResult<String> {
     let mut table = toml::Table::new();
     for &(name, dict) in sections {
         if let Some(d) = dict {

@@ -48,7 +48,7 @@ fn roller(d: &Bound<'_, PyDict>) -> PyResult<Roller> {
 
 /// The `[design]` table of `keys` (the scene's design keys) as TOML text.
 fn design_text(keys: &Bound<'_, PyDict>) -> PyResult<String> {
-    sections_text(&[("design", Some(keys))]).map_err(InputError::new_err)
+    sections_text(&[("design", Some(keys))])
 }
 
 /// The design's load cases: the problems given, a folded one built again

@@ -97,39 +97,33 @@ pub(crate) struct PyContactProblem {
     pub(crate) built: Option<Built>,
 }
 
-/// The loading from the keyword arguments: `load` or `approach`, and
-/// about x and y each a prescribed `tilt` or a `moment`.
-fn loading(
+/// The `[loading]` section of the keyword arguments, for the scene's own
+/// parser and checks (the rotation bound among them): `load` or
+/// `approach`, and about x and y each a prescribed `tilt` or a `moment`
+/// (a moment of 0 beside a tilt is the default, left out).
+fn loading_section<'py>(
+    py: Python<'py>,
     load: Option<f64>,
     approach: Option<f64>,
     (tilt_x, tilt_y): (Option<f64>, Option<f64>),
     (moment_x, moment_y): (f64, f64),
-) -> PyResult<Loading> {
-    let loading = match (load, approach) {
-        (Some(p), None) => Loading::load(p),
-        (None, Some(a)) => Loading::approach(a),
-        _ => {
-            return Err(InputError::new_err(
-                "give `load` or `approach`, one of them",
-            ));
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    if let Some(p) = load {
+        d.set_item("load", p)?;
+    }
+    if let Some(a) = approach {
+        d.set_item("approach", a)?;
+    }
+    for (axis, tilt, moment) in [("x", tilt_x, moment_x), ("y", tilt_y, moment_y)] {
+        if let Some(angle) = tilt {
+            d.set_item(format!("tilt_{axis}"), angle)?;
         }
-    };
-    let both = |axis: &str| {
-        InputError::new_err(format!(
-            "`tilt_{axis}` and `moment_{axis}`: give one of them (a prescribed rotation has its \
-             moment as a result)"
-        ))
-    };
-    let loading = match (tilt_x, moment_x) {
-        (Some(angle), 0.0) => loading.with_tilt_x(angle),
-        (Some(_), _) => return Err(both("x")),
-        (None, m) => loading.with_moment_x(m),
-    };
-    Ok(match (tilt_y, moment_y) {
-        (Some(angle), 0.0) => loading.with_tilt_y(angle),
-        (Some(_), _) => return Err(both("y")),
-        (None, m) => loading.with_moment_y(m),
-    })
+        if tilt.is_none() || moment != 0.0 {
+            d.set_item(format!("moment_{axis}"), moment)?;
+        }
+    }
+    Ok(d)
 }
 
 /// The points given as coordinates (`x`, and `y` on a surface, with
@@ -282,21 +276,22 @@ impl PyContactProblem {
         height_map_origin: Option<(f64, f64)>,
     ) -> PyResult<Self> {
         let storage = storage(storage_name)?;
-        let loading = loading(load, approach, (tilt_x, tilt_y), (moment_x, moment_y))?;
+        let loading = loading_section(py, load, approach, (tilt_x, tilt_y), (moment_x, moment_y))?;
         let listed = listed_points(x.as_ref(), y.as_ref(), spacing, points.is_some())?;
-        // Bodies, surfaces and a layout: the scene's sections, checked by
-        // the scene's parsers.
+        // Bodies, surfaces, a layout and the loading: the scene's sections,
+        // checked by the scene's parsers.
         let text = sections_text(&[
             ("body1", body1.as_ref()),
             ("body2", body2.as_ref()),
             ("geometry", geometry.as_ref()),
             ("points", points.as_ref()),
-        ])
-        .map_err(InputError::new_err)?;
+            ("loading", Some(&loading)),
+        ])?;
         let parts = guarded("ContactProblem", || {
-            elcon_scene::problem_parts(Path::new("<ContactProblem>"), &text, listed, loading)
+            elcon_scene::problem_parts(Path::new("<ContactProblem>"), &text, listed)
                 .map_err(parts_error)
         })?;
+        let loading = parts.loading;
         let geometry = crate::bodies::with_height_map(
             geometry_of(separation, parts.geometry)?,
             height_map,

@@ -14,7 +14,7 @@ use crate::errors::{InputError, SceneError, SolveError, guarded, scene_error};
 use crate::memory::ceiling;
 use crate::signals::detach;
 use crate::subsurface::subsurface_arrays;
-use crate::threads::{count, with_threads};
+use crate::threads::with_threads;
 
 /// A scene's text: read from `path`, or a dict written as TOML.
 pub(crate) fn scene_text(
@@ -30,7 +30,7 @@ pub(crate) fn scene_text(
         (None, Some(d)) => {
             let text = toml_table(d, "")
                 .and_then(|t| toml_text(&t))
-                .map_err(|e| SceneError::new_err(format!("<dict>: {e}")))?;
+                .map_err(|e| SceneError::new_err(format!("<dict>: {}", e.value(d.py()))))?;
             Ok((PathBuf::from("<dict>"), text))
         }
         _ => Err(InputError::new_err(
@@ -107,7 +107,7 @@ pub(crate) fn run_batch(
     out: PathBuf,
     jobs: Option<Bound<'_, PyAny>>,
 ) -> PyResult<String> {
-    let jobs = count("jobs", jobs.as_ref(), 0, "one per core; 0 too")?;
+    let jobs = crate::threads::jobs(jobs.as_ref())?;
     let batch = guarded("batch", || {
         elcon_scene::Batch::from_file(&path).map_err(scene_error)
     })?;

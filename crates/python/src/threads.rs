@@ -3,8 +3,11 @@
 //! may use, or `ELCON_THREADS` / `RAYON_NUM_THREADS` when set before the
 //! first solve); a count: a pool of that many threads for this call. The
 //! values do not depend on the count. Also the reading of a count given
-//! from Python (`threads`, a batch's `jobs`).
+//! from Python (`threads`, a batch's `jobs`), admitted by the policy the
+//! command line applies (elcon-process: a few per core at most).
 
+use elcon_process::Counted;
+use elcon_process::threads::{admit_count, pool};
 use pyo3::prelude::*;
 use pyo3::types::PyBool;
 
@@ -41,7 +44,25 @@ pub(crate) fn count(
 
 /// The `threads` argument: a count of at least 1, or None.
 pub(crate) fn threads(value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<usize>> {
-    count("threads", value, 1, "the cores this process may use")
+    count("threads", value, 1, "the cores this process may use")?
+        .map(|n| admitted(Counted::Threads, "threads", n))
+        .transpose()
+}
+
+/// `jobs` (a batch's runs in parallel; 0 or None: one per core), admitted
+/// by the policy.
+pub(crate) fn jobs(value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<usize>> {
+    count("jobs", value, 0, "one per core; 0 too")?
+        .map(|n| match n {
+            0 => Ok(0),
+            n => admitted(Counted::Jobs, "jobs", n),
+        })
+        .transpose()
+}
+
+/// `n` as the process policy admits it for the argument `name`.
+fn admitted(what: Counted, name: &str, n: usize) -> PyResult<usize> {
+    admit_count(what, &format!("`{name}`"), n).map_err(|e| InputError::new_err(e.to_string()))
 }
 
 /// Runs `f` on `threads` threads (`None`: the global pool).
@@ -52,9 +73,6 @@ pub(crate) fn with_threads<T: Send>(
     let Some(count) = threads else {
         return f();
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(count)
-        .build()
-        .map_err(|e| InputError::new_err(format!("a pool of {count} threads: {e}")))?;
+    let pool = pool(count).map_err(|e| InputError::new_err(e.to_string()))?;
     pool.install(f)
 }

@@ -711,6 +711,27 @@ def test_a_contact_problem_under_a_moment_keeps_to_the_small_rotation_theory():
                              moment_y=-0.4).solve()
 
 
+def test_a_problem_s_loading_and_threads_pass_the_scene_s_and_the_command_line_s_checks():
+    # The loading goes through the scene's parser: a prescribed rotation is
+    # bounded as a scene's is, with the scene's message, and a tilt with a
+    # moment about the same axis is refused as a scene refuses it.
+    n, h = 8, 0.1
+    x = (np.arange(n) - 3.5) * h
+    s = np.eye(n)
+    with pytest.raises(elcon.InputError, match=r"`loading.tilt_x` = 0.5: at most 0.1 rad in size"):
+        elcon.ContactProblem(x, np.zeros(n), h, influence=s, load=1.0, tilt_x=0.5)
+    with pytest.raises(elcon.InputError, match=r"loading.moment_y.*loading.tilt_y.*not both"):
+        elcon.ContactProblem(x, np.zeros(n), h, influence=s, load=1.0, tilt_y=0.01, moment_y=2.0)
+    with pytest.raises(elcon.InputError, match=r"give exactly one of load"):
+        elcon.ContactProblem(x, np.zeros(n), h, influence=s)
+    # Threads and jobs are bounded per core as on the command line.
+    problem = elcon.ContactProblem(x, np.zeros(n), h, influence=s, load=1.0, tilt_y=0.01)
+    with pytest.raises(elcon.InputError, match=r"`threads` = 1000000: at most 4 threads per core"):
+        problem.solve("lemke", threads=10**6)
+    with pytest.raises(elcon.InputError, match=r"`jobs` = 1000000: at most 4 runs per core"):
+        elcon.batch(SCENES / "convergence.toml", jobs=10**6, out="unused")
+
+
 def test_every_argument_is_converted_or_refused_naming_it():
     # Numbers of any real type, arrays of any real dtype: the same problem.
     # Everything else (strings, shapes, bools, complex, counts out of range)

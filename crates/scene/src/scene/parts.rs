@@ -19,11 +19,11 @@ use super::body::{self, BodySpec};
 use super::design::{self, DesignContext, DesignLayout, DesignSpec};
 use super::geometry;
 use super::points::{self, PointsSpec, build_points};
-use super::{Scene, grid_fits_models, hertz, model_kinds};
+use super::{Scene, grid_fits_models, hertz, loading, model_kinds};
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
-use crate::schema::{BodyToml, DesignToml, FamilyName, GeometryToml, PointsToml};
+use crate::schema::{BodyToml, DesignToml, FamilyName, GeometryToml, LoadingToml, PointsToml};
 
 /// The sections of a contact problem given piece by piece.
 #[derive(Debug, Deserialize)]
@@ -33,6 +33,7 @@ struct ProblemFile {
     body2: Option<Spanned<BodyToml>>,
     geometry: Option<Spanned<GeometryToml>>,
     points: Option<Spanned<PointsToml>>,
+    loading: Option<Spanned<LoadingToml>>,
 }
 
 /// A `[design]` section alone.
@@ -54,81 +55,45 @@ pub struct ProblemParts {
     pub points_spec: Option<PointsSpec>,
     /// The candidate points: laid out from `[points]`, or those given.
     pub points: PointSet,
+    /// The load or approach and the rotations (`[loading]`), bounded as a
+    /// scene's are (a prescribed tilt at most `MAX_ROTATION`).
+    pub loading: Loading,
 }
 
+/// The two bodies with which of them is a line or a surface model, when
+/// both are given; one alone is refused.
+type Bodies = Option<((bool, bool), [BodySpec; 2])>;
+
 /// Parses and validates the sections of a contact problem given piece by
-/// piece: `text` is TOML holding any of `[body1]` with `[body2]`,
-/// `[geometry]` and `[points]` as a scene holds them (`file` names it in
-/// messages); `listed` are the candidate points when `[points]` is not
-/// given; `loading` sizes a layout relative to the Hertz contact. The
-/// checks are the scene's: each body's model and parameters, the two
-/// bodies together, the surfaces against the grid's dimension, the
-/// layout's keys, and the bodies against the grid (a plane-strain datum
-/// beyond it, a beam's loaded point on it).
+/// piece: `text` is TOML holding `[loading]` and any of `[body1]` with
+/// `[body2]`, `[geometry]` and `[points]` as a scene holds them (`file`
+/// names it in messages); `listed` are the candidate points when
+/// `[points]` is not given. The checks are the scene's: the loading and
+/// its rotation bound, each body's model and parameters, the two bodies
+/// together, the surfaces against the grid's dimension, the layout's keys,
+/// and the bodies against the grid (a plane-strain datum beyond it, a
+/// beam's loaded point on it).
 ///
 /// # Errors
 /// [`SceneError::Syntax`] for an unknown key or a value of the wrong type;
 /// [`SceneError::Invalid`] naming the field otherwise, also when neither or
-/// both of `[points]` and `listed` are given, or one body without the
-/// other.
+/// both of `[points]` and `listed` are given, one body without the other,
+/// or no `[loading]`.
 pub fn problem_parts(
     file: &Path,
     text: &str,
     listed: Option<PointSet>,
-    loading: Loading,
 ) -> Result<ProblemParts, SceneError> {
     let raw: ProblemFile = parse(file, text)?;
     let ctx = Ctx { file, text };
-    let no_points = || {
-        ctx.invalid(
-            0..0,
-            "points",
-            "(missing)",
-            "give the points as a layout or as coordinates",
-        )
+    let loading = match &raw.loading {
+        Some(l) => loading::loading(&ctx, l)?,
+        None => {
+            return Err(ctx.invalid(0..0, "loading", "(missing)", "give a load or an approach"));
+        }
     };
-    let bodies = match (&raw.body1, &raw.body2) {
-        (Some(b1), Some(b2)) => {
-            let bodies = [
-                body::body(&ctx, b1.get_ref(), "body1")?,
-                body::body(&ctx, b2.get_ref(), "body2")?,
-            ];
-            Some((model_kinds(&ctx, b2, &bodies)?, bodies))
-        }
-        (Some(b), None) | (None, Some(b)) => {
-            let missing = if raw.body1.is_none() {
-                "body1"
-            } else {
-                "body2"
-            };
-            return Err(ctx.invalid(
-                b.span(),
-                missing,
-                "(missing)",
-                "both bodies are needed to assemble S",
-            ));
-        }
-        (None, None) => None,
-    };
-    let (points_spec, dimension) = match (&raw.points, &listed) {
-        (Some(p), None) => {
-            let (spec, dimension) = points::points_spec(&ctx, p)?;
-            if let Some(((line, surface), _)) = &bodies {
-                grid_fits_models(&ctx, p, None, dimension, *line, *surface)?;
-            }
-            (Some(spec), dimension)
-        }
-        (None, Some(l)) => (None, l.dimension()),
-        (Some(p), Some(_)) => {
-            return Err(ctx.invalid(
-                p.span(),
-                "points",
-                "",
-                "give the points as a layout or as coordinates, not both",
-            ));
-        }
-        (None, None) => return Err(no_points()),
-    };
+    let bodies = problem_bodies(&ctx, &raw)?;
+    let (points_spec, dimension) = problem_layout(&ctx, &raw, listed.as_ref(), &bodies)?;
     let geometry = match &raw.geometry {
         Some(g) => {
             let geometry = geometry::geometry(&ctx, Some(g), dimension)?;
@@ -142,26 +107,17 @@ pub fn problem_parts(
         (Some(spec), Some((_, b)), Some(g)) => Some(hertz::shaped(spec, b, g)),
         (spec, _, _) => spec,
     };
-    let points = match (points_spec.as_ref().zip(raw.points.as_ref()), listed) {
+    let laid_out = points_spec.as_ref().zip(raw.points.as_ref());
+    let points = match (laid_out, listed) {
         (Some((spec, p)), _) => {
             let scale = match (&bodies, &geometry, loading.normal) {
                 (Some((_, b)), Some(g), Normal::Load(load)) => hertz::hertz_scale(b, g, spec, load),
                 _ => None,
             };
-            build_points(spec, scale).map_err(|reason| {
-                ctx.invalid(
-                    p.span(),
-                    "points",
-                    "",
-                    format!(
-                        "{reason} (a layout relative to the Hertz contact needs two bodies, \
-                         curved surfaces and a load)"
-                    ),
-                )
-            })?
+            laid_out_points(&ctx, spec, p, scale)?
         }
         (None, Some(l)) => l,
-        (None, None) => return Err(no_points()),
+        (None, None) => return Err(no_points(&ctx)),
     };
     if let (Some((_, b)), Some(b1), Some(b2)) = (&bodies, &raw.body1, &raw.body2) {
         sanity::bodies_on_grid(&ctx, [b1, b2], [b[0].body(), b[1].body()], &points, &[])?;
@@ -182,6 +138,91 @@ pub fn problem_parts(
         geometry,
         points_spec,
         points,
+        loading,
+    })
+}
+
+/// Neither a layout nor coordinates.
+fn no_points(ctx: &Ctx<'_>) -> SceneError {
+    ctx.invalid(
+        0..0,
+        "points",
+        "(missing)",
+        "give the points as a layout or as coordinates",
+    )
+}
+
+/// The two bodies of a problem given piece by piece (see [`Bodies`]).
+fn problem_bodies(ctx: &Ctx<'_>, raw: &ProblemFile) -> Result<Bodies, SceneError> {
+    Ok(match (&raw.body1, &raw.body2) {
+        (Some(b1), Some(b2)) => {
+            let bodies = [
+                body::body(ctx, b1.get_ref(), "body1")?,
+                body::body(ctx, b2.get_ref(), "body2")?,
+            ];
+            Some((model_kinds(ctx, b2, &bodies)?, bodies))
+        }
+        (Some(b), None) | (None, Some(b)) => {
+            let missing = if raw.body1.is_none() {
+                "body1"
+            } else {
+                "body2"
+            };
+            return Err(ctx.invalid(
+                b.span(),
+                missing,
+                "(missing)",
+                "both bodies are needed to assemble S",
+            ));
+        }
+        (None, None) => None,
+    })
+}
+
+/// The layout (`[points]`, checked against the bodies' models) or the
+/// points listed, one of them, and the grid's dimension.
+fn problem_layout(
+    ctx: &Ctx<'_>,
+    raw: &ProblemFile,
+    listed: Option<&PointSet>,
+    bodies: &Bodies,
+) -> Result<(Option<PointsSpec>, Dimension), SceneError> {
+    match (&raw.points, listed) {
+        (Some(p), None) => {
+            let (spec, dimension) = points::points_spec(ctx, p)?;
+            if let Some(((line, surface), _)) = bodies {
+                grid_fits_models(ctx, p, None, dimension, *line, *surface)?;
+            }
+            Ok((Some(spec), dimension))
+        }
+        (None, Some(l)) => Ok((None, l.dimension())),
+        (Some(p), Some(_)) => Err(ctx.invalid(
+            p.span(),
+            "points",
+            "",
+            "give the points as a layout or as coordinates, not both",
+        )),
+        (None, None) => Err(no_points(ctx)),
+    }
+}
+
+/// The points of a layout, `scale` the Hertz length a relative one needs.
+fn laid_out_points(
+    ctx: &Ctx<'_>,
+    spec: &PointsSpec,
+    p: &Spanned<PointsToml>,
+    scale: Option<f64>,
+) -> Result<PointSet, SceneError> {
+    build_points(spec, scale).map_err(|reason| {
+        ctx.invalid(
+            p.span(),
+            "points",
+            "",
+            format!(
+                "{reason} (a layout relative to the Hertz contact needs two bodies, curved \
+                 surfaces and a load)"
+            ),
+        )
     })
 }
 
@@ -345,11 +386,38 @@ mod tests {
         PointSet::line(-1.0, 1.0, 8).unwrap()
     }
 
+    /// `text` under a load of 1.
+    fn loaded(text: &str) -> String {
+        format!("{text}[loading]\nload = 1.0\n")
+    }
+
+    #[test]
+    fn the_loading_is_the_scenes_with_its_rotation_bound() {
+        let parts = problem_parts(file(), &loaded(""), Some(line_points())).unwrap();
+        assert_eq!(parts.loading, Loading::load(1.0));
+        let text = "[loading]\nload = 2.0\ntilt_x = 0.01\nmoment_y = 3.0\n";
+        let parts = problem_parts(file(), text, Some(line_points())).unwrap();
+        assert_eq!(
+            parts.loading,
+            Loading::load(2.0).with_tilt_x(0.01).with_moment_y(3.0)
+        );
+        let e = problem_parts(file(), "[loading]\nload = 1.0\ntilt_x = 0.5\n", None).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("`loading.tilt_x` = 0.5: at most 0.1 rad in size"),
+            "{e}"
+        );
+        let e = problem_parts(file(), "[loading]\nmoment_x = 0.0\n", None).unwrap_err();
+        assert!(e.to_string().contains("give exactly one of load"), "{e}");
+        let e = problem_parts(file(), "", Some(line_points())).unwrap_err();
+        assert!(e.to_string().contains("`loading` = (missing)"), "{e}");
+    }
+
     #[test]
     fn a_body_is_checked_by_the_scenes_body_parser_naming_the_field() {
         let text = "[body1]\nmodel = \"beam\"\nyoungs_modulus = -30e6\nsecond_moment = 1.0\n\
                     [body2]\nmodel = \"winkler\"\nmodulus = 1e7\n";
-        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        let e = problem_parts(file(), &loaded(text), Some(line_points())).unwrap_err();
         assert!(e.is_input_error());
         assert!(
             e.to_string()
@@ -358,10 +426,10 @@ mod tests {
         );
         let text = "[body1]\nmodel = \"winkler\"\nmodulus = 1e7\nloaded_pt = 3.0\n\
                     [body2]\nmodel = \"rigid\"\n";
-        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        let e = problem_parts(file(), &loaded(text), Some(line_points())).unwrap_err();
         assert!(e.to_string().contains("unknown field `loaded_pt`"), "{e}");
         let text = "[body1]\nmodel = \"winkler\"\nmodulus = 1e7\n";
-        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        let e = problem_parts(file(), &loaded(text), Some(line_points())).unwrap_err();
         assert!(e.to_string().contains("`body2` = (missing)"), "{e}");
     }
 
@@ -371,7 +439,7 @@ mod tests {
                     poissons_ratio = 0.3\n[body2]\nmodel = \"rigid\"\n\
                     [geometry]\nsurface1 = { shape = \"sphere\", radius = 1.0 }\n\
                     [points]\ngrid = \"disk\"\nspacing = 0.01\nradius = 0.05\n";
-        let parts = problem_parts(file(), text, None, Loading::load(1.0)).unwrap();
+        let parts = problem_parts(file(), &loaded(text), None).unwrap();
         assert_eq!(parts.points, PointSet::grid_disk(0.01, 0.05).unwrap());
         assert_eq!(
             parts.geometry,
@@ -383,7 +451,7 @@ mod tests {
         assert!(parts.bodies.is_some() && parts.points_spec.is_some());
         // A sphere on a line, as a scene refuses it.
         let text = "[geometry]\nsurface1 = { shape = \"sphere\", radius = 1.0 }\n";
-        let e = problem_parts(file(), text, Some(line_points()), Loading::load(1.0)).unwrap_err();
+        let e = problem_parts(file(), &loaded(text), Some(line_points())).unwrap_err();
         assert!(
             e.to_string()
                 .contains("`geometry.surface1.shape` = \"sphere\""),
