@@ -16,7 +16,7 @@
 
 use std::time::Instant;
 
-use elcon::analysis::{ContactProblem, Loading, Method, Options};
+use elcon::analysis::{ContactProblem, Method, Options};
 use elcon::influence::PointSet;
 use elcon_fixtures::benchmark;
 
@@ -26,7 +26,6 @@ fn run(
     fold: bool,
     repeat: usize,
 ) -> (f64, f64, f64, usize, f64) {
-    let (body, geometry) = benchmark::bodies();
     let reference = benchmark::reference();
     let mut best = f64::INFINITY;
     let mut last = None;
@@ -37,14 +36,7 @@ fn run(
         } else {
             ContactProblem::new
         };
-        let problem = build(
-            points.clone(),
-            &body,
-            &body,
-            &geometry,
-            Loading::load(100.0),
-        )
-        .expect("builds");
+        let problem = benchmark::held(build, points.clone());
         let sol = problem.solve(method, &Options::default()).expect("solves");
         best = best.min(t.elapsed().as_secs_f64());
         let unknowns = problem
