@@ -17,13 +17,8 @@
 //!
 //! docs/design.md §2 and §7 have the tables and the fitted growth.
 
-// The design tests' cases; the path is relative to this file's directory.
-#[path = "../crates/design/tests/common/mod.rs"]
-mod common;
-
 use std::time::Duration;
 
-use common::options;
 use criterion::measurement::WallTime;
 use criterion::{
     BenchmarkGroup, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main,
@@ -32,6 +27,7 @@ use elcon::analysis::{ContactProblem, Loading, Storage};
 use elcon::design::{
     Axis, DesignFamily, DesignMethod, DesignRequest, Family, GridSequence, design,
 };
+use elcon_fixtures::design_cases::{self, options};
 
 /// The misaligned roller's cases at 5 kN (steel, D = 10 mm, l = 10 mm, 40 x
 /// 9 Love patches): `count` misalignments spread evenly over 0 to 1 mrad,
@@ -43,12 +39,12 @@ fn roller(count: usize) -> (Vec<ContactProblem>, Vec<f64>) {
         0.0
     };
     let misalignments: Vec<f64> = (0..count).map(|i| i as f64 * step).collect();
-    common::misaligned_roller(&[5e3], &misalignments, (9, 40))
+    design_cases::misaligned_roller(&[5e3], &misalignments, (9, 40))
 }
 
 /// Example 2's beam with `per_half` points per half.
 fn beam(per_half: usize) -> ContactProblem {
-    common::example2(2 * per_half, 0.0, Loading::load(5e4))
+    design_cases::example2(2 * per_half, 0.0, Loading::load(5e4))
 }
 
 /// A benchmark group of `name`: 10 samples, 1 s of warm-up, 10 s measured.
@@ -101,7 +97,7 @@ fn roller_at(fineness: f64) -> (Vec<ContactProblem>, Vec<f64>) {
         (9.0 * fineness).round() as usize,
         (40.0 * fineness).round() as usize,
     );
-    common::roller_on(&[1e3, 5e3, 10e3], &misalignments, cells, Storage::Auto)
+    design_cases::roller_on(&[1e3, 5e3, 10e3], &misalignments, cells, Storage::Auto)
 }
 
 fn converged(c: &mut Criterion) {

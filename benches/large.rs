@@ -12,17 +12,15 @@
 //! docs/performance.md §6 has the table of examples/large_grid, which
 //! measures the same problems once each up to N = 321,657.
 
-#[path = "hertz.rs"]
-mod hertz;
-
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use elcon::analysis::{ContactProblem, Method, Options};
 use elcon::influence::PointSet;
+use elcon_fixtures::benchmark;
 
 fn large(c: &mut Criterion) {
-    let a = hertz::hertz_radius();
+    let a = benchmark::hertz_radius();
     let mut group = c.benchmark_group("large");
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(1));
@@ -36,7 +34,7 @@ fn large(c: &mut Criterion) {
             &points,
             |b, p| {
                 b.iter(|| {
-                    let problem = hertz::held(ContactProblem::lattice, p.clone());
+                    let problem = benchmark::held(ContactProblem::lattice, p.clone());
                     let sol = problem
                         .solve(Method::ConjugateGradient, &Options::default())
                         .expect("solves");
@@ -48,7 +46,7 @@ fn large(c: &mut Criterion) {
         if n <= 5_500 {
             group.bench_with_input(BenchmarkId::new("block-pivoting", n), &points, |b, p| {
                 b.iter(|| {
-                    hertz::held(ContactProblem::new, p.clone())
+                    benchmark::held(ContactProblem::new, p.clone())
                         .solve(Method::BlockPivoting, &Options::default())
                         .expect("solves")
                 })

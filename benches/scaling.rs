@@ -1,9 +1,9 @@
 //! How the cost of each method grows with the size of its problem.
 //!
-//! Hertz spheres on Love patches (benches/hertz.rs: sizes N from 64 to 4096,
-//! listed there once), solved in full by every method; in the same group a
-//! faer Cholesky of the same S (the floor an exact dense method pays) and
-//! the assembly of S. Throughput is in pivots (index exchanges for block
+//! Hertz spheres on Love patches (elcon-fixtures' `benchmark`: sizes N
+//! from 64 to 4096, listed there once), solved in full by every method; in
+//! the same group a faer Cholesky of the same S (the floor an exact dense
+//! method pays) and the assembly of S. Throughput is in pivots (index exchanges for block
 //! pivoting), so criterion reports pivots per second.
 //!
 //! ```sh
@@ -15,14 +15,12 @@
 //! Each size's pivots, iterations and contact sets are written to
 //! target/criterion/elcon-scaling-<N>.json for the report.
 
-#[path = "hertz.rs"]
-mod hertz;
-
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use elcon::analysis::{Method, Options};
 use elcon::influence::assemble;
+use elcon_fixtures::benchmark;
 use faer::Side;
 
 fn scaling(c: &mut Criterion) {
@@ -33,9 +31,9 @@ fn scaling(c: &mut Criterion) {
     let mut group = c.benchmark_group("scaling");
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/criterion");
     let _ = std::fs::create_dir_all(&dir);
-    for &n in hertz::SIZES.iter().filter(|&&n| n <= max) {
+    for &n in benchmark::SIZES.iter().filter(|&&n| n <= max) {
         let mut records = Vec::new();
-        let problem = hertz::problem(n);
+        let problem = benchmark::problem(n);
         let size = problem.points().len();
         // Large sizes: the minimum of ten samples, a few seconds each.
         group.sample_size(if size > 1024 { 10 } else { 20 });
@@ -70,7 +68,7 @@ fn scaling(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::new("cholesky", size), &s, |b, s| {
             b.iter(|| s.llt(Side::Lower).expect("S is positive definite"))
         });
-        let (body, _) = hertz::bodies();
+        let (body, _) = benchmark::bodies();
         let points = problem.points().clone();
         group.bench_with_input(BenchmarkId::new("assembly", size), &points, |b, pts| {
             b.iter(|| assemble(pts, &[&body, &body]).expect("assembles"))

@@ -11,19 +11,17 @@
 //!
 //! docs/performance.md §7 has the table.
 
-#[path = "hertz.rs"]
-mod hertz;
-
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use elcon::analysis::subsurface::{Subsurface, SubsurfaceOptions};
 use elcon::analysis::{ContactProblem, Method, Options};
 use elcon::influence::PointSet;
+use elcon_fixtures::benchmark;
 
 fn subsurface(c: &mut Criterion) {
-    let a = hertz::hertz_radius();
-    let (body, _) = hertz::bodies();
+    let a = benchmark::hertz_radius();
+    let (body, _) = benchmark::bodies();
     let mut group = c.benchmark_group("subsurface");
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(1));
@@ -32,7 +30,7 @@ fn subsurface(c: &mut Criterion) {
         let points = PointSet::grid_disk(a / cells, 1.25 * a).expect("grid");
         let n = points.len();
         group.throughput(Throughput::Elements(n as u64));
-        let problem = hertz::held(ContactProblem::lattice, points);
+        let problem = benchmark::held(ContactProblem::lattice, points);
         let solve = || {
             problem
                 .solve(Method::ConjugateGradient, &Options::default())

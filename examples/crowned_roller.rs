@@ -34,15 +34,14 @@ use std::error::Error;
 use std::fs;
 
 use elcon::analysis::references::HertzCylinders;
-use elcon::analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface};
+use elcon::analysis::{ContactProblem, Loading, Method, Options};
 use elcon::design::{
     Analysis, Axis, CrownSearch, Design, DesignOptions, Evaluation, Family, LogCrown, LogEnd,
     Profile, SearchOptions, crown_search, design, evaluate,
 };
-use elcon::influence::{Body, Material, PointSet, combined_modulus};
+use elcon::influence::{PointSet, combined_modulus};
+use elcon_fixtures::design_cases::{ROLLER_LENGTH, ROLLER_RADIUS, roller_bodies, roller_steel};
 
-const RADIUS: f64 = 5.0;
-const LENGTH: f64 = 10.0;
 const LOADS: [f64; 3] = [1e3, 5e3, 10e3];
 const AXIAL_CELLS: usize = 40;
 const WIDTH_CELLS: usize = 9;
@@ -65,14 +64,20 @@ fn axial_profile(case: &ContactProblem, e: &Evaluation, l: usize) -> Vec<(f64, f
 
 fn main() -> Result<(), Box<dyn Error>> {
     let out = common::out_dir("out/crowned_roller")?;
-    let steel = Material::new(210e3, 0.3)?;
+    let steel = roller_steel();
     let e_star = combined_modulus(&steel, &steel);
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(Surface::Cylinder { radius: RADIUS }, Surface::Plane);
-    let mut cases = Vec::new();
+    let (body, geometry) = roller_bodies();
+    // No body edges declared (the zone open at the ends), unlike the
+    // design cases' roller (design_cases::aligned_roller).
+    let (mut cases, mut hertz) = (Vec::new(), Vec::new());
     for &load in &LOADS {
-        let b = HertzCylinders::new(e_star, RADIUS, load / LENGTH)?.half_width();
-        let points = PointSet::grid_rectangle(1.6 * b, 0.5 * LENGTH, WIDTH_CELLS, AXIAL_CELLS)?;
+        let line = HertzCylinders::new(e_star, ROLLER_RADIUS, load / ROLLER_LENGTH)?;
+        let points = PointSet::grid_rectangle(
+            1.6 * line.half_width(),
+            0.5 * ROLLER_LENGTH,
+            WIDTH_CELLS,
+            AXIAL_CELLS,
+        )?;
         cases.push(ContactProblem::new(
             points,
             &body,
@@ -80,15 +85,12 @@ fn main() -> Result<(), Box<dyn Error>> {
             &geometry,
             Loading::load(load),
         )?);
+        hertz.push(line.peak_pressure());
     }
     println!(
-        "Crowned roller: steel, D = {} mm, l = {LENGTH} mm, on a flat steel raceway (mm, N, MPa)",
-        2.0 * RADIUS
+        "Crowned roller: steel, D = {} mm, l = {ROLLER_LENGTH} mm, on a flat steel raceway (mm, N, MPa)",
+        2.0 * ROLLER_RADIUS
     );
-    let hertz: Vec<f64> = LOADS
-        .iter()
-        .map(|load| Ok(HertzCylinders::new(e_star, RADIUS, load / LENGTH)?.peak_pressure()))
-        .collect::<Result<_, Box<dyn Error>>>()?;
     for ((case, load), peak) in cases.iter().zip(LOADS).zip(&hertz) {
         println!(
             "  load {load:>6} N: {} points; Hertz line-contact peak {peak:.0} MPa",
@@ -155,9 +157,9 @@ impl Crowns {
         )?;
         let log_crown = LogCrown {
             design_load: LOADS[2],
-            length: LENGTH,
+            length: ROLLER_LENGTH,
             combined_modulus: e_star,
-            radius: RADIUS,
+            radius: ROLLER_RADIUS,
             flat_length: 0.0,
             end: LogEnd::JohnsGohar,
         };
@@ -212,7 +214,7 @@ impl Crowns {
             "circular crown: radius {:.1} mm (searched, {} analyses), end drop {:.2} um",
             circular.parameter,
             circular.samples.len(),
-            1e3 * circular.profile.separation(0.5 * LENGTH)?
+            1e3 * circular.profile.separation(0.5 * ROLLER_LENGTH)?
         );
         println!(
             "logarithmic crown (Johns-Gohar, design load {} N): end drop {:.2} um",

@@ -11,21 +11,17 @@
 //!
 //! Run: `cargo run --release --example design_scaling -- [--study beam|roller|both] [--program-limit N]`
 
-// The design tests' cases (Example 2's beam, the misaligned roller); the
-// path is relative to this file's directory.
-#[path = "../crates/design/tests/common/mod.rs"]
-mod cases;
-
 use std::error::Error;
 use std::time::Instant;
 
 use elcon::analysis::{ContactProblem, Loading};
 use elcon::design::{Axis, Design, DesignMethod, Family, Solver, design};
+use elcon_fixtures::design_cases;
 
 /// Example 2's beam: steel, 8.9 in x 1 in x 4 in, on a Winkler foundation
 /// of 1e7 lb/in/in, 50,000 lb at the middle, `per_half` points per half.
 fn beam(per_half: usize) -> ContactProblem {
-    cases::example2(2 * per_half, 0.0, Loading::load(5e4))
+    design_cases::example2(2 * per_half, 0.0, Loading::load(5e4))
 }
 
 /// The roller of examples/misaligned_roller (steel, D = 10 mm, l = 10 mm,
@@ -33,7 +29,7 @@ fn beam(per_half: usize) -> ContactProblem {
 /// (N; rad, a prescribed rotation about x), with each case's aligned Hertz
 /// peak as its reference intensity.
 fn roller(loads: &[f64], misalignments: &[f64]) -> (Vec<ContactProblem>, Vec<f64>) {
-    cases::misaligned_roller(loads, misalignments, (9, 40))
+    design_cases::misaligned_roller(loads, misalignments, (9, 40))
 }
 
 /// One design, timed.
@@ -45,7 +41,12 @@ fn run(
     references: Option<Vec<f64>>,
 ) -> Result<(Design, f64), Box<dyn Error>> {
     let start = Instant::now();
-    let d = design(cases, axis, family, &cases::options(method, references))?;
+    let d = design(
+        cases,
+        axis,
+        family,
+        &design_cases::options(method, references),
+    )?;
     Ok((d, start.elapsed().as_secs_f64()))
 }
 

@@ -28,13 +28,12 @@
 use std::error::Error;
 
 use elcon::analysis::discretization::{Discretization, Quantity};
-use elcon::analysis::references::{
-    BeamOnFoundation, FlatPunch, HertzCylinders, HertzSpheres, HetenyiBeam,
-};
+use elcon::analysis::references::{BeamOnFoundation, FlatPunch, HertzCylinders, HetenyiBeam};
 use elcon::analysis::{
     ContactProblem, ContactSolution, Geometry, GridFamily, Loading, Method, Options, Surface, grid,
 };
 use elcon::influence::{Beam, Body, Material, combined_modulus};
+use elcon_fixtures::scenes;
 
 /// Solves the problem of `bodies` and `geometry` under `loading` on
 /// `family` (block pivoting, folded where symmetric) and estimates its
@@ -60,25 +59,50 @@ fn run(
     Ok((solution, d))
 }
 
-/// One row: the grid, the quantity's true relative error (signed), the
+/// The rows of one grid (`label`, N = `sol`'s points), one a quantity of
+/// `truths`: its true relative error (signed; `None`: no closed form), the
 /// estimate's relative error, their ratio, the observed order and the
 /// verdict.
-fn row(label: &str, n: usize, d: &Discretization, quantity: Quantity, truth: Option<f64>) {
-    let e = d.get(quantity).expect("every quantity is estimated");
-    let estimated = e.relative_error();
-    let show = |v: Option<f64>| v.map_or("-".into(), |v| format!("{v:.2e}"));
-    let ratio = match (estimated, truth) {
-        (Some(est), Some(t)) if t != 0.0 => format!("{:.2}", est / t.abs()),
-        _ => "-".into(),
-    };
-    println!(
-        "| {label} | {n} | {} | {} | {} | {ratio} | {} | {} |",
-        quantity.name(),
-        truth.map_or("-".into(), |t| format!("{t:+.2e}")),
-        show(estimated),
-        e.order.map_or("-".into(), |p| format!("{p:.2}")),
-        e.verdict.name()
-    );
+fn rows(
+    label: &str,
+    sol: &ContactSolution,
+    d: &Discretization,
+    truths: &[(Quantity, Option<f64>)],
+) {
+    let n = sol.forces.len();
+    for &(quantity, truth) in truths {
+        let e = d.get(quantity).expect("every quantity is estimated");
+        let estimated = e.relative_error();
+        let show = |v: Option<f64>| v.map_or("-".into(), |v| format!("{v:.2e}"));
+        let ratio = match (estimated, truth) {
+            (Some(est), Some(t)) if t != 0.0 => format!("{:.2}", est / t.abs()),
+            _ => "-".into(),
+        };
+        println!(
+            "| {label} | {n} | {} | {} | {} | {ratio} | {} | {} |",
+            quantity.name(),
+            truth.map_or("-".into(), |t| format!("{t:+.2e}")),
+            show(estimated),
+            e.order.map_or("-".into(), |p| format!("{p:.2}")),
+            e.verdict.name()
+        );
+    }
+}
+
+/// The true errors of a Hertz contact's approach, peak pressure and extent
+/// against the closed form's `approach`, `peak` and `extent`.
+fn against_hertz(
+    sol: &ContactSolution,
+    (approach, peak, extent): (f64, f64, f64),
+) -> [(Quantity, Option<f64>); 3] {
+    [
+        (Quantity::Approach, Some(sol.approach / approach - 1.0)),
+        (Quantity::MaxPressure, Some(sol.max_pressure / peak - 1.0)),
+        (
+            Quantity::ContactExtent,
+            Some(sol.contact_extent / extent - 1.0),
+        ),
+    ]
 }
 
 fn header(title: &str, grid: &str) {
@@ -88,14 +112,9 @@ fn header(title: &str, grid: &str) {
 }
 
 fn spheres() -> Result<(), Box<dyn Error>> {
-    let steel = Material::new(30e6, 0.3)?;
-    let hertz = HertzSpheres::new(combined_modulus(&steel, &steel), 1.0 / 1.1, 100.0)?;
+    let hertz = scenes::example1_hertz();
     let a = hertz.contact_radius();
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
+    let (body, geometry) = scenes::example1_bodies();
     header("Hertz spheres (Example 1, zone 1.15)", "across");
     for across in [17, 21, 41, 81, 161] {
         let family = grid::hertz_disk_family(a, across, 1.15)?;
@@ -106,29 +125,8 @@ fn spheres() -> Result<(), Box<dyn Error>> {
             Loading::load(100.0),
             (false, false),
         )?;
-        let n = sol.forces.len();
-        let label = across.to_string();
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::Approach,
-            Some(sol.approach / hertz.approach() - 1.0),
-        );
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::MaxPressure,
-            Some(sol.max_pressure / hertz.peak_pressure() - 1.0),
-        );
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::ContactExtent,
-            Some(sol.contact_extent / a - 1.0),
-        );
+        let truths = against_hertz(&sol, (hertz.approach(), hertz.peak_pressure(), a));
+        rows(&across.to_string(), &sol, &d, &truths);
     }
     Ok(())
 }
@@ -153,29 +151,8 @@ fn cylinders() -> Result<(), Box<dyn Error>> {
             Loading::load(500.0),
             (false, false),
         )?;
-        let n = sol.forces.len();
-        let label = across.to_string();
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::Approach,
-            Some(sol.approach / hertz.approach(d0)? - 1.0),
-        );
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::MaxPressure,
-            Some(sol.max_pressure / hertz.peak_pressure() - 1.0),
-        );
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::ContactExtent,
-            Some(sol.contact_extent / b - 1.0),
-        );
+        let truths = against_hertz(&sol, (hertz.approach(d0)?, hertz.peak_pressure(), b));
+        rows(&across.to_string(), &sol, &d, &truths);
     }
     Ok(())
 }
@@ -202,16 +179,11 @@ fn punch() -> Result<(), Box<dyn Error>> {
             Loading::approach(delta),
             (true, true),
         )?;
-        let n = sol.forces.len();
-        let label = cells.to_string();
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::Load,
-            Some(sol.load / closed.load(delta) - 1.0),
-        );
-        row(&label, n, &d, Quantity::MaxPressure, None);
+        let truths = [
+            (Quantity::Load, Some(sol.load / closed.load(delta) - 1.0)),
+            (Quantity::MaxPressure, None),
+        ];
+        rows(&cells.to_string(), &sol, &d, &truths);
     }
     Ok(())
 }
@@ -248,21 +220,17 @@ fn beam() -> Result<(), Box<dyn Error>> {
             Loading::load(load),
             (true, false),
         )?;
-        let label = n.to_string();
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::Approach,
-            Some(sol.approach / hetenyi.centre_deflection() - 1.0),
-        );
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::MaxPressure,
-            Some(sol.max_pressure / hetenyi.load_intensity(0.0) - 1.0),
-        );
+        let truths = [
+            (
+                Quantity::Approach,
+                Some(sol.approach / hetenyi.centre_deflection() - 1.0),
+            ),
+            (
+                Quantity::MaxPressure,
+                Some(sol.max_pressure / hetenyi.load_intensity(0.0) - 1.0),
+            ),
+        ];
+        rows(&n.to_string(), &sol, &d, &truths);
     }
     Ok(())
 }
@@ -291,23 +259,16 @@ fn roller() -> Result<(), Box<dyn Error>> {
             Loading::load(10_000.0),
             (false, true),
         )?;
-        let label = format!("{nx} x {ny}");
-        row(&label, sol.forces.len(), &d, Quantity::MaxPressure, None);
-        row(&label, sol.forces.len(), &d, Quantity::Approach, None);
+        let truths = [(Quantity::MaxPressure, None), (Quantity::Approach, None)];
+        rows(&format!("{nx} x {ny}"), &sol, &d, &truths);
     }
     Ok(())
 }
 
 fn eccentric() -> Result<(), Box<dyn Error>> {
-    let steel = Material::new(30e6, 0.3)?;
-    let r = 1.0 / 1.1;
-    let hertz = HertzSpheres::new(combined_modulus(&steel, &steel), r, 100.0)?;
-    let a = hertz.contact_radius();
-    let body = Body::uniform_patch(steel);
-    let geometry = Geometry::Surfaces(
-        Surface::Sphere { radius: 1.0 },
-        Surface::Sphere { radius: 10.0 },
-    );
+    let hertz = scenes::example1_hertz();
+    let (r, a) = (hertz.radius, hertz.contact_radius());
+    let (body, geometry) = scenes::example1_bodies();
     // The load 0.1 a off the apex along x: M_y = -P e; Hertz translated to
     // e, tilted by -e / R, its approach delta - e^2 / (2R).
     let e = 0.1 * a;
@@ -319,30 +280,16 @@ fn eccentric() -> Result<(), Box<dyn Error>> {
     for across in [41, 81] {
         let family = grid::hertz_disk_family(a, across, 1.4)?;
         let (sol, d) = run(&family, [&body, &body], &geometry, loading, (false, false))?;
-        let n = sol.forces.len();
-        let label = across.to_string();
         let approach = hertz.approach() - e * e / (2.0 * r);
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::Approach,
-            Some(sol.approach / approach - 1.0),
-        );
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::MaxPressure,
-            Some(sol.max_pressure / hertz.peak_pressure() - 1.0),
-        );
-        row(
-            &label,
-            n,
-            &d,
-            Quantity::TiltY,
-            Some(sol.tilt_y / (-e / r) - 1.0),
-        );
+        let truths = [
+            (Quantity::Approach, Some(sol.approach / approach - 1.0)),
+            (
+                Quantity::MaxPressure,
+                Some(sol.max_pressure / hertz.peak_pressure() - 1.0),
+            ),
+            (Quantity::TiltY, Some(sol.tilt_y / (-e / r) - 1.0)),
+        ];
+        rows(&across.to_string(), &sol, &d, &truths);
     }
     Ok(())
 }

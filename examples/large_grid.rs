@@ -49,13 +49,12 @@
 //! crossover sets `elcon_analysis::AUTO_DENSE_LIMIT`.
 
 mod common;
-#[path = "../benches/hertz.rs"]
-mod hertz;
 
 use std::time::Instant;
 
 use elcon::analysis::{ContactProblem, Method, Options};
 use elcon::influence::{LatticeOperator, PointSet};
+use elcon_fixtures::{benchmark, scenes};
 
 /// S above this many bytes is not built (the dense column is left empty).
 const DENSE_CEILING: f64 = 4e9;
@@ -90,7 +89,7 @@ struct Run {
 /// speed drifts from minute to minute moves both alike); each solve's
 /// floor takes the unit costs measured on either side of it.
 fn one_size(cells: f64, repeat: usize) {
-    let hertz = hertz::reference();
+    let hertz = benchmark::reference();
     let a = hertz.contact_radius();
     let mut runs: Vec<Run> = Vec::new();
     let mut peak = f64::NAN;
@@ -106,16 +105,16 @@ fn one_size(cells: f64, repeat: usize) {
         let dense = points.len() <= elcon::analysis::AUTO_DENSE_LIMIT;
         let (start, cpu_start) = (Instant::now(), common::cpu_seconds());
         let (build, method) = if dense {
-            (ContactProblem::new as hertz::Build, Method::BlockPivoting)
+            (ContactProblem::new as scenes::Build, Method::BlockPivoting)
         } else {
             (
-                ContactProblem::lattice as hertz::Build,
+                ContactProblem::lattice as scenes::Build,
                 Method::ConjugateGradient,
             )
         };
         // The problem holds the points (a grid's, 2 bytes a point): no copy
         // of them is kept beside it, which the peak would count.
-        let problem = hertz::held(build, points);
+        let problem = benchmark::held(build, points);
         let sol = problem.solve(method, &options).expect("solve");
         let seconds = start.elapsed().as_secs_f64();
         let cpu = common::cpu_seconds() - cpu_start;
@@ -197,7 +196,7 @@ fn preconditioner_seconds(points: &PointSet, applications: usize) -> f64 {
     if applications == 0 {
         return 0.0;
     }
-    let (body, _) = hertz::bodies();
+    let (body, _) = benchmark::bodies();
     let kernel = elcon::influence::LatticeKernel::new(points, &[&body, &body]).expect("lattice");
     let preconditioner = kernel
         .preconditioner()
@@ -266,7 +265,7 @@ fn main() {
         .nth(1)
         .and_then(|v| v.parse().ok())
         .unwrap_or(128.0);
-    let (hertz, (body, _)) = (hertz::reference(), hertz::bodies());
+    let (hertz, (body, _)) = (benchmark::reference(), benchmark::bodies());
     let a = hertz.contact_radius();
     println!(
         "| cells per radius | N | dense: assembly + block pivoting, CPU s | dense S, MB | matrix-free: operator + CG, CPU s | CG iterations | operator, MB | approach error | peak error | CG certificate |"
@@ -284,7 +283,7 @@ fn main() {
         let dense_bytes = 8.0 * (n as f64) * (n as f64);
         let dense = if dense_bytes <= DENSE_CEILING {
             let start = common::cpu_seconds();
-            let sol = hertz::held(ContactProblem::new, points.clone())
+            let sol = benchmark::held(ContactProblem::new, points.clone())
                 .solve(Method::BlockPivoting, &Options::default())
                 .expect("dense solve");
             Some((common::cpu_seconds() - start, sol.approach))
@@ -294,7 +293,7 @@ fn main() {
         let operator_bytes =
             LatticeOperator::estimate_bytes(&points, &[&body, &body]).expect("lattice");
         let start = common::cpu_seconds();
-        let sol = hertz::held(ContactProblem::lattice, points)
+        let sol = benchmark::held(ContactProblem::lattice, points)
             .solve(Method::ConjugateGradient, &Options::default())
             .expect("matrix-free solve");
         let seconds = common::cpu_seconds() - start;

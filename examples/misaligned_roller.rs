@@ -57,18 +57,16 @@ use std::fs;
 use std::path::Path;
 use std::time::Instant;
 
-use elcon::analysis::references::HertzCylinders;
 use elcon::analysis::subsurface::{Peak, Subsurface, SubsurfaceOptions};
-use elcon::analysis::{ContactProblem, Geometry, Loading, Options, Storage, Surface};
+use elcon::analysis::{ContactProblem, Loading, Options, Storage};
 use elcon::design::{
-    Analysis, Axis, Converged, DesignError, DesignFamily, DesignRequest, Family, GridSequence,
-    LogCrown, LogEnd, Objective, Profile, evaluate,
+    Analysis, Axis, Converged, DesignError, DesignFamily, DesignRequest, Evaluation, Family,
+    GridSequence, LogCrown, LogEnd, Objective, Profile, evaluate,
 };
-use elcon::influence::{Body, Material, PointSet, combined_modulus};
+use elcon::influence::combined_modulus;
+use elcon_fixtures::design_cases::{self, ROLLER_LENGTH, ROLLER_RADIUS};
 use plotters::prelude::*;
 
-const RADIUS: f64 = 5.0;
-const LENGTH: f64 = 10.0;
 /// The loads the crown is designed for (N); the table's load is the last.
 const LOADS: [f64; 3] = [1e3, 5e3, 10e3];
 const WIDTH_CELLS: f64 = 9.0;
@@ -102,25 +100,13 @@ impl Roller {
     /// The cases on the scene's grid refined `fineness` times, S held as
     /// elcon-analysis decides (matrix-free above 2000 points).
     fn new(fineness: f64) -> Result<Self, Box<dyn Error>> {
-        let steel = Material::new(210e3, 0.3)?;
-        let e_star = combined_modulus(&steel, &steel);
-        let body = Body::uniform_patch(steel);
-        let geometry = Geometry::Surfaces(Surface::Cylinder { radius: RADIUS }, Surface::Plane);
         let cells = (
             (WIDTH_CELLS * fineness).round() as usize,
             (AXIAL_CELLS * fineness).round() as usize,
         );
         let (mut bases, mut references) = (Vec::new(), Vec::new());
         for load in LOADS {
-            let hertz = HertzCylinders::new(e_star, RADIUS, load / LENGTH)?;
-            let points =
-                PointSet::grid_rectangle(1.6 * hertz.half_width(), 0.5 * LENGTH, cells.0, cells.1)?;
-            let base =
-                ContactProblem::builder(points, &body, &body, &geometry, Loading::load(load))
-                    .storage(Storage::Auto)
-                    .fold(false)
-                    .body_edges(false, true)
-                    .build()?;
+            let (base, hertz) = design_cases::aligned_roller(load, cells, Storage::Auto)?;
             bases.push(base);
             references.extend(std::iter::repeat_n(hertz.peak_pressure(), STEPS + 1));
         }
@@ -151,9 +137,13 @@ impl Roller {
         Ok(cases)
     }
 
-    /// The worst p_max / p0 of `profile` (with the line `slope y`) over
-    /// the cases, and each case's p_max.
-    fn worst(&self, profile: &Profile, slope: f64) -> Result<(f64, Vec<f64>), Box<dyn Error>> {
+    /// Every case of `profile` (with the line `slope y`), and its
+    /// certified analysis by the cases' default method.
+    fn evaluated(
+        &self,
+        profile: &Profile,
+        slope: f64,
+    ) -> Result<(Vec<ContactProblem>, Evaluation), Box<dyn Error>> {
         let cases = self.cases(slope)?;
         let method = cases[0].default_method();
         let e = evaluate(
@@ -162,6 +152,13 @@ impl Roller {
             profile,
             &Analysis::new(method, &Options::default()),
         )?;
+        Ok((cases, e))
+    }
+
+    /// The worst p_max / p0 of `profile` (with the line `slope y`) over
+    /// the cases, and each case's p_max.
+    fn worst(&self, profile: &Profile, slope: f64) -> Result<(f64, Vec<f64>), Box<dyn Error>> {
+        let (_, e) = self.evaluated(profile, slope)?;
         Ok((e.relative_worst(&self.references), e.max_intensities))
     }
 
@@ -169,15 +166,8 @@ impl Roller {
     /// `profile` (with the line `slope y`), where it is, and at which load
     /// and misalignment: roller and raceway alike (the same steel).
     fn von_mises(&self, profile: &Profile, slope: f64) -> Result<(Peak, f64, f64), Box<dyn Error>> {
-        let cases = self.cases(slope)?;
-        let method = cases[0].default_method();
-        let e = evaluate(
-            &cases,
-            Axis::Y,
-            profile,
-            &Analysis::new(method, &Options::default()),
-        )?;
-        let body = Body::uniform_patch(Material::new(210e3, 0.3)?);
+        let (cases, e) = self.evaluated(profile, slope)?;
+        let (body, _) = design_cases::roller_bodies();
         let mut worst = (
             Peak {
                 value: 0.0,
@@ -214,12 +204,12 @@ struct Crown {
 }
 
 fn log_crown(design_load: f64, flat_length: f64, end: LogEnd) -> Profile {
-    let steel = Material::new(210e3, 0.3).expect("steel");
+    let steel = design_cases::roller_steel();
     Profile::LogarithmicCrown(LogCrown {
         design_load,
-        length: LENGTH,
+        length: ROLLER_LENGTH,
         combined_modulus: combined_modulus(&steel, &steel),
-        radius: RADIUS,
+        radius: ROLLER_RADIUS,
         flat_length,
         end,
     })
@@ -249,7 +239,7 @@ fn crowns() -> Vec<Crown> {
                     k1: p[0],
                     end_drop: p[2],
                 };
-                log_crown(1e4, (1.0 - p[1]) * LENGTH, end)
+                log_crown(1e4, (1.0 - p[1]) * ROLLER_LENGTH, end)
             },
             bracket: vec![
                 (0.2, 5.0, true),
@@ -409,7 +399,7 @@ fn von_mises_crown(
         starts: vec![pressure.clone()],
         own_starts: false,
         objective: Objective::VonMises,
-        bodies: vec![Body::uniform_patch(Material::new(210e3, 0.3)?)],
+        bodies: vec![design_cases::roller_bodies().0],
         ..DesignRequest::new(DesignFamily::Linear(Family::Free), Axis::Y)
     };
     let started = Instant::now();
@@ -479,9 +469,9 @@ fn main() -> Result<(), Box<dyn Error>> {
     let out = common::out_dir("out/misaligned_roller")?;
     fs::create_dir_all(&out)?;
     println!(
-        "Misaligned roller: steel, D = {} mm, l = {LENGTH} mm, on a flat steel raceway (mm, N, MPa); \
+        "Misaligned roller: steel, D = {} mm, l = {ROLLER_LENGTH} mm, on a flat steel raceway (mm, N, MPa); \
          {} cases: {LOADS:?} N x 0 to {} mrad",
-        2.0 * RADIUS,
+        2.0 * ROLLER_RADIUS,
         LOADS.len() * (STEPS + 1),
         1e3 * LARGEST
     );

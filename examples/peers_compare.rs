@@ -14,13 +14,11 @@
 //!
 //! Run: `cargo run --release --example peers_compare`
 
-#[path = "../benches/hertz.rs"]
-mod hertz;
-
 use std::time::Instant;
 
-use elcon::analysis::{ContactProblem, Loading, Method, Options};
+use elcon::analysis::{ContactProblem, Method, Options};
 use elcon::influence::PointSet;
+use elcon_fixtures::benchmark;
 
 fn run(
     points: &PointSet,
@@ -28,8 +26,7 @@ fn run(
     fold: bool,
     repeat: usize,
 ) -> (f64, f64, f64, usize, f64) {
-    let (body, geometry) = hertz::bodies();
-    let reference = hertz::reference();
+    let reference = benchmark::reference();
     let mut best = f64::INFINITY;
     let mut last = None;
     for _ in 0..repeat {
@@ -39,14 +36,7 @@ fn run(
         } else {
             ContactProblem::new
         };
-        let problem = build(
-            points.clone(),
-            &body,
-            &body,
-            &geometry,
-            Loading::load(100.0),
-        )
-        .expect("builds");
+        let problem = benchmark::held(build, points.clone());
         let sol = problem.solve(method, &Options::default()).expect("solves");
         best = best.min(t.elapsed().as_secs_f64());
         let unknowns = problem
@@ -66,7 +56,7 @@ fn run(
 }
 
 fn main() {
-    let a = hertz::hertz_radius();
+    let a = benchmark::hertz_radius();
     println!("## BEM peers' case: Love patches, h = a/16 and a/32 (ours: disk r <= 1.3a)");
     println!(
         "| h/a | N | unknowns | method | assembly + solve s | err_delta | err_p0 | certificate |"

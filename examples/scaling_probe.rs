@@ -3,7 +3,7 @@
 //! the same process.
 //!
 //! The problem: Hertz spheres on Love patches, about `--n` candidate points
-//! (benches/hertz.rs), solved in full. For each method it prints the best of
+//! (elcon-fixtures' `benchmark`), solved in full. For each method it prints the best of
 //! `--repeat` solves (default 3; `--method NAME` for one method), pivots (index exchanges for block
 //! pivoting), block iterations, time per pivot and the certificate; then the
 //! Cholesky of S, best of the same number, with faer's default parallelism
@@ -13,12 +13,10 @@
 //!
 //! Run: `cargo run --release --example scaling_probe -- --n 2000`
 
-#[path = "../benches/hertz.rs"]
-mod hertz;
-
 use std::time::Instant;
 
 use elcon::analysis::{Method, Options};
+use elcon_fixtures::benchmark;
 use faer::Side;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{
@@ -41,7 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     let t = Instant::now();
-    let problem = hertz::problem(n);
+    let problem = benchmark::problem(n);
     let assembly = t.elapsed().as_secs_f64();
     let size = problem.points().len();
     println!(

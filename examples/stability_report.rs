@@ -1,10 +1,9 @@
 //! The stability table of docs/stability.md: every case of the stability
-//! suite (crates/analysis/tests/common/stability_cases.rs) at the report's
-//! sizes (41 points across the Hertz cases, N up to 4096), by every method:
-//! N, a 1-norm condition estimate of S (Hager-Higham), pivots,
-//! refactorizations, the route (each attempt's tableau, with its method
-//! where the strategy moved to another, and why: fallback, retry), the
-//! certificate's worst
+//! suite (elcon-fixtures' `stability_cases`) at the report's sizes (41
+//! points across the Hertz cases, N up to 4096), by every method: N, a
+//! 1-norm condition estimate of S (Hager-Higham), pivots, refactorizations,
+//! the route (each attempt's tableau, with its method where the strategy
+//! moved to another, and why: fallback, retry), the certificate's worst
 //! relative residual, the error against the closed form, and pass or the
 //! error returned. "pass" means the certificate holds at 1e-12 and the
 //! case's expectation (a truncation warning, a single point) is met.
@@ -12,12 +11,9 @@
 //! Run: `cargo run --release --example stability_report` (about 30 s on the
 //! 2-core test machine, after the build)
 
-#[path = "../crates/analysis/tests/common/stability_cases.rs"]
-mod stability_cases;
-
 use elcon::analysis::{Method, Options, Warning};
 use elcon::lcp::{Reason, Statistics};
-use stability_cases::{Expect, catalogue, error};
+use elcon_fixtures::stability_cases::{Expect, catalogue, error};
 
 fn main() {
     let cases = catalogue(41, &[256, 1024, 2048, 4096]);

@@ -5,14 +5,13 @@
 //! the library bit for bit.
 
 mod common;
-#[path = "../crates/analysis/tests/common/scenes.rs"]
-mod scenes;
 
 use std::path::{Path, PathBuf};
 
 use common::{edited, elcon, example_scene, json, scratch, text};
 use elcon::analysis::{ContactProblem, Loading, Method, Options};
 use elcon::influence::PointSet;
+use elcon_fixtures::scenes;
 
 /// The fields docs/results.md documents for every result.json.
 const FIELDS: [&str; 16] = [

@@ -3,14 +3,12 @@
 //! surface (spheres, Love patches) and on a line (cylinders in plane
 //! strain).
 
-mod common;
-
-use common::scenes;
 use elcon_analysis::references::{HertzCylinders, combined_radius};
 use elcon_analysis::{
     Body, ContactProblem, ContactSolution, Geometry, Loading, Material, Method, Options, Surface,
     combined_modulus, grid,
 };
+use elcon_fixtures::scenes;
 
 fn steel() -> Material {
     Material::new(30e6, 0.3).unwrap()

@@ -5,13 +5,11 @@
 //! misalignment; Hertz's closed form is met to the discretization's error;
 //! the pivoting methods and beams are refused with messages that say why.
 
-mod common;
-
-use common::scenes;
 use elcon_analysis::references::{HertzSpheres, combined_radius};
 use elcon_analysis::{
     AnalysisError, ContactProblem, Geometry, Loading, Method, Options, Storage, Surface,
 };
+use elcon_fixtures::scenes;
 use elcon_influence::{Body, Material, PointSet, combined_modulus};
 
 fn steel() -> Material {

@@ -9,13 +9,13 @@
 mod common;
 
 use common::checks::assert_solves;
-use common::scenes;
 use elcon_analysis::references::{
     BeamOnFoundation, HertzCylinders, HertzSpheres, HetenyiBeam, combined_radius,
 };
 use elcon_analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface, Warning,
 };
+use elcon_fixtures::scenes;
 use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 /// A material pair and a unit system: (E1, nu1), (E2, nu2), length and force factors from inch-pound.

@@ -1,18 +1,19 @@
-//! The stability suite: stiff and extreme cases (tests/common/stability_cases.rs)
-//! solved by every method. For every case the certificate (equilibrium,
-//! feasibility, complementarity, from the original data) holds at 1e-12,
-//! and the contact conditions hold when recomputed here from S and eps
-//! (tests/common/checks.rs). The engine refuses an answer that does not
-//! certify (an error, never a "solved" that does not hold), and a refusal
-//! fails these tests: on these ranges every method must certify.
-//! docs/stability.md tabulates the same cases at larger sizes.
+//! The stability suite: stiff and extreme cases (elcon-fixtures'
+//! `stability_cases`) solved by every method. For every case the
+//! certificate (equilibrium, feasibility, complementarity, from the
+//! original data) holds at 1e-12, and the contact conditions hold when
+//! recomputed here from S and eps (tests/common/checks.rs). The engine
+//! refuses an answer that does not certify (an error, never a "solved" that
+//! does not hold), and a refusal fails these tests: on these ranges every
+//! method must certify. docs/stability.md tabulates the same cases at
+//! larger sizes.
 
 mod common;
 
 use common::checks::{assert_solves, check};
-use common::scenes;
-use common::stability_cases::{Expect, Reference, catalogue, error};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface, Warning};
+use elcon_fixtures::scenes;
+use elcon_fixtures::stability_cases::{Case, Expect, Reference, catalogue, error};
 use elcon_influence::{Body, Material, PointSet};
 use proptest::prelude::*;
 
@@ -115,7 +116,7 @@ fn extreme_materials_and_radii_give_the_same_dimensionless_answer() {
             )
         })
         .collect();
-    let shape = |c: &common::stability_cases::Case| -> (Vec<f64>, f64) {
+    let shape = |c: &Case| -> (Vec<f64>, f64) {
         let sol = c
             .problem
             .solve(Method::BlockPivoting, &Options::default())

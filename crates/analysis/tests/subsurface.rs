@@ -5,13 +5,11 @@
 //! scenes use; each body its own field; the bodies that have none said so;
 //! the field independent of how the grid lies under the contact.
 
-mod common;
-
-use common::scenes::spheres;
 use elcon_analysis::references::HertzCylinders;
 use elcon_analysis::subsurface::reference::{hertz_line, hertz_point_axis};
 use elcon_analysis::subsurface::{Subsurface, SubsurfaceOptions};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, PointSet, Surface};
+use elcon_fixtures::scenes::spheres;
 use elcon_influence::{Body, Material, combined_modulus};
 
 fn stresses(s: Subsurface) -> elcon_analysis::subsurface::BodyStresses {

@@ -12,6 +12,7 @@ mod common;
 use elcon_analysis::references::HertzCylinders;
 use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};
 use elcon_design::{Axis, Design, DesignMethod, DesignOptions, Family, Solver, Stop, design};
+use elcon_fixtures::design_cases;
 use elcon_influence::{Beam, Body, Material, PointSet, combined_modulus};
 
 /// The agreement between the two methods' optima (see the module docs).
@@ -20,12 +21,12 @@ const SAME_OPTIMUM: f64 = 1e-9;
 /// Example 2's beam at `per_half` points per half under `load` at `x0`,
 /// its rotation held at the loaded point.
 fn beam(per_half: usize, load: f64, x0: f64) -> ContactProblem {
-    common::example2(2 * per_half, x0, Loading::load(load).with_tilt_y(0.0))
+    design_cases::example2(2 * per_half, x0, Loading::load(load).with_tilt_y(0.0))
 }
 
 /// The misaligned roller on a coarse 5 x 12 grid.
 fn roller(loads: &[f64], misalignments: &[f64]) -> (Vec<ContactProblem>, Vec<f64>) {
-    common::misaligned_roller(loads, misalignments, (5, 12))
+    design_cases::misaligned_roller(loads, misalignments, (5, 12))
 }
 
 /// Each of `cases` under `loading` of its own load.
@@ -46,8 +47,13 @@ fn solve(
     method: DesignMethod,
     references: Option<Vec<f64>>,
 ) -> Design {
-    design(cases, axis, family, &common::options(method, references))
-        .unwrap_or_else(|e| panic!("{method:?} {family:?}: {e}"))
+    design(
+        cases,
+        axis,
+        family,
+        &design_cases::options(method, references),
+    )
+    .unwrap_or_else(|e| panic!("{method:?} {family:?}: {e}"))
 }
 
 /// Both methods on `cases`; the descent's optimum equals the program's or

@@ -10,6 +10,7 @@ use elcon_design::{
     Analysis, Axis, DesignMethod, DesignOptions, Family, Profile, SearchOptions, Solver, Stop,
     crown_search, design, evaluate, uniform_target,
 };
+use elcon_fixtures::design_cases;
 use elcon_influence::{Beam, Body, PointSet};
 
 /// Example 2's beam: steel, 1 in x 4 in, on a foundation of 1e7 lb/in/in,
@@ -20,7 +21,7 @@ fn beam(per_half: usize, x0: f64, load: f64, length: f64, force: f64) -> Contact
     // rotation there): off centre, a free beam could not carry a uniform
     // pressure.
     let loading = Loading::load(load * force).with_tilt_y(0.0);
-    common::example2_in((length, force), 2 * per_half, x0, loading)
+    design_cases::example2_in((length, force), 2 * per_half, x0, loading)
 }
 
 /// Largest relative difference accepted between a design's p_max and an

@@ -1,18 +1,17 @@
 //! One test per `DesignError` variant: the error a user gets, and that its
 //! message names the field and the reason.
 
-mod common;
-
 use elcon_analysis::{AnalysisError, ContactProblem, ContactSolution, Loading, Method, Options};
 use elcon_design::{
     Analysis, Axis, DesignError, DesignOptions, Family, Profile, design, evaluate,
     target_separation,
 };
+use elcon_fixtures::design_cases;
 use elcon_lcp::LcpError;
 
 /// Example 2's beam on 12 points under `loading`.
 fn beam(loading: Loading) -> ContactProblem {
-    common::example2(12, 0.0, loading)
+    design_cases::example2(12, 0.0, loading)
 }
 
 #[test]
@@ -103,7 +102,7 @@ fn incompatible_inputs_say_what_to_give() {
         e.to_string(),
         "`known`: has 0 entries, expected 1 (one per load case)"
     );
-    let other = common::example2(8, 0.0, Loading::load(5e4))
+    let other = design_cases::example2(8, 0.0, Loading::load(5e4))
         .solve(Method::Lemke, &Options::default())
         .unwrap();
     let e = known_error(&case, &[Some(&other)]);

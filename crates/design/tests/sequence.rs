@@ -2,14 +2,12 @@
 //! (`DesignRequest::run_converged`), its free profile a spline on fixed
 //! knots, a roller's singular ends kept out of contact.
 
-mod common;
-
-use common::misaligned_roller;
 use elcon_analysis::ContactProblem;
 use elcon_design::{
     Axis, DesignError, DesignFamily, DesignRequest, EDGE_WEIGHT, Family, GridSequence, Level,
     Profile,
 };
+use elcon_fixtures::design_cases::misaligned_roller;
 
 /// The roller's cases on a grid `fineness` times the 5 x 12 cells.
 fn roller(fineness: f64) -> (Vec<ContactProblem>, Vec<f64>) {

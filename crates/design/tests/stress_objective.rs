@@ -5,14 +5,13 @@
 //! elcon-analysis's subsurface), every case certified; and each way a
 //! stress objective is refused.
 
-mod common;
-
 use elcon_analysis::ContactProblem;
 use elcon_analysis::subsurface::{Subsurface, SubsurfaceOptions};
 use elcon_design::{
     Axis, DesignError, DesignFamily, DesignMethod, DesignOptions, DesignRequest, Family, Objective,
     design,
 };
+use elcon_fixtures::design_cases;
 use elcon_influence::{Beam, Body, Material, Stress};
 
 fn steel() -> Body {
@@ -53,7 +52,7 @@ fn options(objective: Objective, references: &[f64]) -> DesignOptions {
 }
 
 fn stress_design_is_no_worse(objective: Objective) {
-    let (cases, references) = common::misaligned_roller(&[2e3, 6e3], &[0.0, 4e-4], (5, 12));
+    let (cases, references) = design_cases::misaligned_roller(&[2e3, 6e3], &[0.0, 4e-4], (5, 12));
     let pressure = design(
         &cases,
         Axis::Y,
@@ -119,7 +118,7 @@ fn refused(result: Result<impl std::fmt::Debug, DesignError>, says: &str) {
 
 #[test]
 fn a_stress_objective_without_a_field_or_on_the_program_is_refused() {
-    let (cases, references) = common::misaligned_roller(&[2e3], &[0.0], (5, 12));
+    let (cases, references) = design_cases::misaligned_roller(&[2e3], &[0.0], (5, 12));
     let von_mises = |bodies: Vec<Body>, method| DesignOptions {
         method,
         bodies,

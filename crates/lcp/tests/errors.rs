@@ -61,63 +61,59 @@ fn empty_problem() {
 #[test]
 fn invalid_options() {
     let lcp = Lcp::new(Mat::identity(1, 1), col![-1.0]).unwrap();
-    let opts = Options {
-        tolerances: Tolerances {
-            pivot: 2.0,
-            ..Tolerances::default()
-        },
-        ..Options::default()
-    };
-    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
+    // The message of the refusal of `opts`.
+    let refused = |opts: Options| message(lcp.solve(Method::Lemke, &opts).unwrap_err());
     assert_eq!(
-        message(e),
+        refused(Options {
+            tolerances: Tolerances {
+                pivot: 2.0,
+                ..Tolerances::default()
+            },
+            ..Options::default()
+        }),
         "option `tolerances.pivot` = 2: a relative tolerance must be finite and in [0, 1)"
     );
     // A tiny value in its shortest form, not as hundreds of zeros.
-    let opts = Options {
-        tolerances: Tolerances {
-            zero: -1e-300,
-            ..Tolerances::default()
-        },
-        ..Options::default()
-    };
-    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
     assert_eq!(
-        message(e),
+        refused(Options {
+            tolerances: Tolerances {
+                zero: -1e-300,
+                ..Tolerances::default()
+            },
+            ..Options::default()
+        }),
         "option `tolerances.zero` = -1e-300: a relative tolerance must be finite and in [0, 1)"
     );
-    let opts = Options {
-        max_pivots: Some(0),
-        ..Options::default()
-    };
-    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
-    assert_eq!(message(e), "option `max_pivots` = 0: must be at least 1");
-    let opts = Options {
-        tableau: Tableau::General,
-        covering_vector: Some(vec![-1.0]),
-        ..Options::default()
-    };
-    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
-    assert!(message(e).starts_with("option `covering_vector` = entry 0 = -1"));
-    let opts = Options {
-        tableau: Tableau::General,
-        covering_vector: Some(vec![-1e-300]),
-        ..Options::default()
-    };
-    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
     assert_eq!(
-        message(e),
+        refused(Options {
+            max_pivots: Some(0),
+            ..Options::default()
+        }),
+        "option `max_pivots` = 0: must be at least 1"
+    );
+    assert!(
+        refused(Options {
+            tableau: Tableau::General,
+            covering_vector: Some(vec![-1.0]),
+            ..Options::default()
+        })
+        .starts_with("option `covering_vector` = entry 0 = -1")
+    );
+    assert_eq!(
+        refused(Options {
+            tableau: Tableau::General,
+            covering_vector: Some(vec![-1e-300]),
+            ..Options::default()
+        }),
         "option `covering_vector` = entry 0 = -1e-300: every entry must be finite and > 0"
     );
     // A covering vector is the general tableau's: with another tableau it
     // is refused, not silently ignored or used to pick the tableau.
-    let opts = Options {
-        covering_vector: Some(vec![1.0]),
-        ..Options::default()
-    };
-    let e = lcp.solve(Method::Lemke, &opts).unwrap_err();
     assert_eq!(
-        message(e),
+        refused(Options {
+            covering_vector: Some(vec![1.0]),
+            ..Options::default()
+        }),
         "option `covering_vector` = given with tableau = auto: a covering vector applies to the \
          general tableau only: set `tableau` to General"
     );
@@ -453,13 +449,20 @@ fn data_at_the_edge_of_double_precision_is_an_error_or_an_answer_never_a_panic()
     }
 }
 
+/// A symmetric positive definite `n` x `n` matrix that the conjugate
+/// gradient needs several iterations for: `1 / (1 + |i - j|)`, plus 2 on
+/// the diagonal.
+fn decaying_spd(n: usize) -> Mat<f64> {
+    Mat::from_fn(n, n, |i, j| {
+        1.0 / (1.0 + i.abs_diff(j) as f64) + if i == j { 2.0 } else { 0.0 }
+    })
+}
+
 #[test]
 fn iteration_limit_of_a_linear_system() {
     // A linear system's conjugate gradient returns no unconverged answer.
     let n = 20;
-    let m = Mat::from_fn(n, n, |i, j| {
-        1.0 / (1.0 + i.abs_diff(j) as f64) + if i == j { 2.0 } else { 0.0 }
-    });
+    let m = decaying_spd(n);
     let r = Mat::from_fn(n, 1, |i, _| i as f64);
     let products = m.as_ref();
     let opts = Options {
@@ -498,9 +501,7 @@ fn iteration_limit_of_the_conjugate_gradient() {
     // its cap (`max_pivots`, counting iterations) it stops with its own
     // error, whatever the problem's form.
     let n = 20;
-    let m = Mat::from_fn(n, n, |i, j| {
-        1.0 / (1.0 + i.abs_diff(j) as f64) + if i == j { 2.0 } else { 0.0 }
-    });
+    let m = decaying_spd(n);
     let q = Col::from_fn(n, |i| if i % 3 == 0 { 1.0 } else { -1.0 - i as f64 });
     let lcp = Lcp::new(m.clone(), q.clone()).unwrap();
     let method = Method::ConjugateGradient;

@@ -1,8 +1,4 @@
-//! Shared cases and checks of the per-crate tests.
+//! The checks the per-crate tests share (the shared scenes are
+//! elcon-fixtures').
 
 pub mod checks;
-pub mod stability_cases;
-
-// Not every test uses the builders.
-#[allow(unused_imports)]
-pub use stability_cases::scenes;
