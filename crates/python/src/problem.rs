@@ -42,7 +42,8 @@ fn not_one_of(key: &str, name: &str, names: &[&str]) -> PyErr {
 
 /// The solve method by its scene name.
 fn method(name: &str) -> PyResult<Method> {
-    Method::from_name(name).ok_or_else(|| not_one_of("method", name, &methods()))
+    name.parse()
+        .map_err(|_| not_one_of("method", name, &methods()))
 }
 
 /// The storage by its name.
