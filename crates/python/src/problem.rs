@@ -48,7 +48,8 @@ fn method(name: &str) -> PyResult<Method> {
 
 /// The storage by its name.
 fn storage(name: &str) -> PyResult<Storage> {
-    Storage::of(name).ok_or_else(|| not_one_of("storage", name, &storages()))
+    name.parse()
+        .map_err(|_| not_one_of("storage", name, &storages()))
 }
 
 /// What a problem assembled from bodies was built from: enough to plan a
