@@ -33,7 +33,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--n" => n = value.parse()?,
             "--repeat" => repeat = value.parse::<usize>()?.max(1),
             "--method" => {
-                methods = vec![Method::from_name(&value).ok_or(format!("unknown method {value}"))?]
+                methods = vec![
+                    value
+                        .parse::<Method>()
+                        .map_err(|_| format!("unknown method {value}"))?,
+                ]
             }
             other => return Err(format!("unknown option {other} (--n, --repeat, --method)").into()),
         }

@@ -41,19 +41,15 @@ impl Storage {
         Storage::Lattice,
     ];
 
-    /// Its name: "auto", "dense", "folded", "lattice".
-    pub fn name(self) -> &'static str {
+    /// Its name: "auto", "dense", "folded", "lattice" (a scene's
+    /// `solver.storage`); [`FromStr`](std::str::FromStr) reads it back.
+    pub const fn name(self) -> &'static str {
         match self {
             Storage::Auto => "auto",
             Storage::Dense => "dense",
             Storage::Folded => "folded",
             Storage::Lattice => "lattice",
         }
-    }
-
-    /// The storage of a name, if it is one.
-    pub fn of(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|s| s.name() == name)
     }
 
     /// How S is held, in result.json's words: "dense" (every entry, or the
@@ -82,8 +78,39 @@ impl Storage {
     }
 }
 
-impl std::fmt::Display for Storage {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
+elcon_num::named!(Storage, "storage");
+#[cfg(feature = "serde")]
+elcon_num::named_serde!(Storage);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_storage_parses_its_name_and_an_unknown_one_lists_them() {
+        for storage in Storage::ALL {
+            assert_eq!(storage.to_string().parse::<Storage>(), Ok(storage));
+        }
+        let e = "sparse".parse::<Storage>().unwrap_err();
+        assert_eq!(e.allowed, Storage::NAMES);
+        assert_eq!(
+            e.to_string(),
+            "unknown storage `sparse`, expected one of `auto`, `dense`, `folded`, `lattice`"
+        );
+    }
+
+    #[cfg(feature = "serde")]
+    #[test]
+    fn a_storage_deserializes_from_its_name() {
+        use serde::Deserialize;
+        use serde::de::IntoDeserializer;
+        use serde::de::value::{Error, StrDeserializer};
+        let read = |name: &'static str| {
+            let d: StrDeserializer<'_, Error> = name.into_deserializer();
+            Storage::deserialize(d)
+        };
+        assert_eq!(read("lattice").unwrap(), Storage::Lattice);
+        let e = read("matrix-free").unwrap_err().to_string();
+        assert!(e.starts_with("unknown variant `matrix-free`"), "{e}");
     }
 }

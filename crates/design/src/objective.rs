@@ -30,18 +30,13 @@ impl Objective {
     ];
 
     /// Its name in a scene's `design.objective`: "pressure", "von-mises",
-    /// "max-shear".
-    pub fn name(self) -> &'static str {
+    /// "max-shear"; [`FromStr`](std::str::FromStr) reads it back.
+    pub const fn name(self) -> &'static str {
         match self {
             Objective::Pressure => "pressure",
             Objective::VonMises => "von-mises",
             Objective::MaxShear => "max-shear",
         }
-    }
-
-    /// The objective of a name, if it is one.
-    pub fn of(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|o| o.name() == name)
     }
 
     /// Whether it is a stress below the surface (needs a body with a
@@ -84,6 +79,10 @@ impl Objective {
         }
     }
 }
+
+elcon_num::named!(Objective, "objective");
+#[cfg(feature = "serde")]
+elcon_num::named_serde!(Objective);
 
 /// Tresca's gradient `(n1 n1^T - n3 n3^T) / 2` from the principal
 /// directions (faer's self-adjoint eigensolver; eigenvalues increasing).

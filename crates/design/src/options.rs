@@ -62,18 +62,14 @@ impl DesignMethod {
         DesignMethod::Descent,
     ];
 
-    /// Its name in a scene's `design.method`: "auto", "program", "descent".
-    pub fn name(self) -> &'static str {
+    /// Its name in a scene's `design.method`: "auto", "program",
+    /// "descent"; [`FromStr`](std::str::FromStr) reads it back.
+    pub const fn name(self) -> &'static str {
         match self {
             DesignMethod::Auto => "auto",
             DesignMethod::Program => "program",
             DesignMethod::Descent => "descent",
         }
-    }
-
-    /// The method of a name, if it is one.
-    pub fn of(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
     }
 
     /// The method that runs for `points` points over all cases: `Auto`
@@ -88,6 +84,10 @@ impl DesignMethod {
         }
     }
 }
+
+elcon_num::named!(DesignMethod, "design method");
+#[cfg(feature = "serde")]
+elcon_num::named_serde!(DesignMethod);
 
 /// All the cases' points together up to which [`DesignMethod::Auto`] uses
 /// the program (measured on Example 2 and the crowned roller:

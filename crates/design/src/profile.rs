@@ -35,6 +35,18 @@ pub enum Axis {
 }
 
 impl Axis {
+    /// Both axes, in the order messages list them.
+    pub const ALL: [Axis; 2] = [Axis::X, Axis::Y];
+
+    /// Its name in a scene's `design.axis`: "x", "y";
+    /// [`FromStr`](std::str::FromStr) reads it back.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Axis::X => "x",
+            Axis::Y => "y",
+        }
+    }
+
     /// The axial positions of the points of a set.
     pub fn positions(self, points: &elcon_influence::PointSet) -> Vec<f64> {
         match self {
@@ -43,6 +55,10 @@ impl Axis {
         }
     }
 }
+
+elcon_num::named!(Axis, "axis");
+#[cfg(feature = "serde")]
+elcon_num::named_serde!(Axis);
 
 /// The constant of Johns & Gohar's (1981) logarithmic crown: the end drop
 /// is that of Lundberg's profile at `1 - 0.3033 b / a` of the half-length.

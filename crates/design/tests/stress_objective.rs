@@ -167,9 +167,9 @@ fn a_stress_objective_without_a_field_or_on_the_program_is_refused() {
 #[test]
 fn objectives_have_names_and_gradients() {
     for o in Objective::ALL {
-        assert_eq!(Objective::of(o.name()), Some(o));
+        assert_eq!(o.name().parse::<Objective>(), Ok(o));
     }
-    assert_eq!(Objective::of("tresca"), None);
+    assert!("tresca".parse::<Objective>().is_err());
     // Each gradient against central differences of its measure.
     let s = Stress {
         xx: -310.0,

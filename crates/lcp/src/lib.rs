@@ -98,12 +98,12 @@ pub mod tolerance;
 
 pub use cancel::Cancel;
 pub use certificate::Certificate;
-pub use elcon_num::Num;
+pub use elcon_num::{Num, UnknownName};
 pub use error::{LcpError, TABLEAU_ADVICE};
 pub use linalg::condition_estimate;
 pub use linear::LinearSystem;
 pub use operator::{Operator, OperatorLcp};
-pub use options::{Method, Options, Tableau};
+pub use options::{AnyMethod, LinearMethod, Method, Options, Tableau};
 pub use problem::{Bordered, BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedLcp, MixedLcpParts};
 pub use program::{ComplementaryProgram, ProgramBuilder};
 pub use solution::{LcpSolution, LinearSolution, ProgramSolution};

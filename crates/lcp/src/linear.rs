@@ -50,7 +50,7 @@ impl Matrix<'_> {
 /// [`solve`](LinearSystem::solve). Nothing large is copied.
 ///
 /// ```
-/// use elcon_lcp::{LinearSystem, Method, Options};
+/// use elcon_lcp::{LinearMethod, LinearSystem, Options};
 /// use faer::mat;
 ///
 /// // M = [[4, 1], [1, 3]]: M^{-1} = [[3, -1], [-1, 4]] / 11.
@@ -62,7 +62,7 @@ impl Matrix<'_> {
 ///     .unwrap();
 /// assert!(sol.residual <= 1e-12);
 /// assert!((sol.x[(0, 0)] - 1.0 / 11.0).abs() < 1e-15 && (sol.x[(1, 1)] - 4.0 / 11.0).abs() < 1e-15);
-/// assert_eq!(sol.statistics.returned().unwrap().method, Method::Cholesky);
+/// assert_eq!(sol.statistics.returned().unwrap().method, LinearMethod::Cholesky);
 ///
 /// // The same system by its products: the conjugate gradient.
 /// let products = m.as_ref();
@@ -71,7 +71,7 @@ impl Matrix<'_> {
 ///     .solve(&Options::default())
 ///     .unwrap();
 /// assert!(sol.residual <= 1e-12);
-/// assert_eq!(sol.statistics.returned().unwrap().method, Method::ConjugateGradient);
+/// assert_eq!(sol.statistics.returned().unwrap().method, LinearMethod::ConjugateGradient);
 /// ```
 #[derive(Clone, Copy)]
 pub struct LinearSystem<'a> {

@@ -9,11 +9,9 @@ use crate::LcpError;
 use crate::tolerance::Tolerances;
 use elcon_num::Num;
 
-/// A method of the engine: the four that solve complementarity problems
-/// ([`Method::ALL`]), and the factorizations of a linear system
-/// ([`LinearSystem`](crate::LinearSystem), whose strategy chooses among
-/// [`Method::LINEAR`]; an LCP asked to be solved by one of those is
-/// [`LcpError::Unsupported`]).
+/// A method of complementarity problems, the engine's four
+/// ([`Method::ALL`]). A linear system's are [`LinearMethod`]s; the
+/// statistics' log records either ([`AnyMethod`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Method {
@@ -49,17 +47,8 @@ pub enum Method {
     /// grid). For a symmetric positive definite `M`; it stops when the
     /// certificate's residuals are below a fraction of its tolerance
     /// ([`ITERATIVE_STOP`](crate::tolerance::ITERATIVE_STOP)). No fallback:
-    /// an answer whose certificate does not hold is an error. Unconstrained,
-    /// the plain conjugate gradient of a [`LinearSystem`](crate::LinearSystem)
-    /// whose `M` is an operator.
+    /// an answer whose certificate does not hold is an error.
     ConjugateGradient,
-    /// The Cholesky factorization `M = L L^T` of a dense symmetric positive
-    /// definite `M`: a [`LinearSystem`](crate::LinearSystem)'s first attempt.
-    Cholesky,
-    /// The LU factorization with partial pivoting `M = P^T L U` of a dense
-    /// `M`: a [`LinearSystem`](crate::LinearSystem)'s fallback where `M` is
-    /// not numerically symmetric positive definite.
-    Lu,
 }
 
 impl Method {
@@ -82,36 +71,141 @@ impl Method {
     /// The dense-tableau methods (they work for any matrix of their class).
     pub const TABLEAU: [Method; 2] = [Method::RestrictedSimplex, Method::Lemke];
 
-    /// The methods of a linear system: the Cholesky factorization, the LU
-    /// fallback, and the conjugate gradient for an operator.
-    pub const LINEAR: [Method; 3] = [Method::Cholesky, Method::Lu, Method::ConjugateGradient];
-
-    /// A short lower-case name ("restricted-simplex", "lemke", "block-pivoting",
-    /// "conjugate-gradient", "cholesky", "lu").
-    pub fn name(self) -> &'static str {
+    /// A short lower-case name, a scene's `solver.method`
+    /// ("restricted-simplex", "lemke", "block-pivoting",
+    /// "conjugate-gradient"); [`FromStr`](std::str::FromStr) reads it back.
+    pub const fn name(self) -> &'static str {
         match self {
             Method::RestrictedSimplex => "restricted-simplex",
             Method::Lemke => "lemke",
             Method::BlockPivoting => "block-pivoting",
             Method::ConjugateGradient => "conjugate-gradient",
-            Method::Cholesky => "cholesky",
-            Method::Lu => "lu",
         }
     }
 
-    /// The method of a name given by [`Method::name`] (any method's: an
-    /// attempt's in a log may be a linear system's).
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL
-            .into_iter()
-            .chain(Self::LINEAR)
-            .find(|m| m.name() == name)
+    /// The method in an error message ("Lemke's method").
+    pub(crate) fn described(self) -> &'static str {
+        match self {
+            Method::Lemke => "Lemke's method",
+            Method::RestrictedSimplex => "the restricted-entry simplex",
+            Method::BlockPivoting => "block principal pivoting",
+            Method::ConjugateGradient => "the conjugate gradient",
+        }
     }
 }
 
-impl std::fmt::Display for Method {
+elcon_num::named!(Method, "method");
+#[cfg(feature = "serde")]
+elcon_num::named_serde!(Method);
+
+/// A method of a symmetric positive definite linear system
+/// ([`LinearSystem`](crate::LinearSystem), whose strategy chooses among
+/// them by how `M` is given: [`LinearMethod::ALL`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum LinearMethod {
+    /// The Cholesky factorization `M = L L^T` of a dense symmetric positive
+    /// definite `M`: a linear system's first attempt.
+    Cholesky,
+    /// The LU factorization with partial pivoting `M = P^T L U` of a dense
+    /// `M`: the fallback where `M` is not numerically symmetric positive
+    /// definite.
+    Lu,
+    /// The plain conjugate gradient of a system whose `M` is an operator
+    /// (its products only).
+    ConjugateGradient,
+}
+
+impl LinearMethod {
+    /// Every method of a linear system: the Cholesky factorization, the LU
+    /// fallback, and the conjugate gradient for an operator.
+    pub const ALL: [LinearMethod; 3] = [
+        LinearMethod::Cholesky,
+        LinearMethod::Lu,
+        LinearMethod::ConjugateGradient,
+    ];
+
+    /// A short lower-case name ("cholesky", "lu", "conjugate-gradient");
+    /// [`FromStr`](std::str::FromStr) reads it back.
+    pub const fn name(self) -> &'static str {
+        match self {
+            LinearMethod::Cholesky => "cholesky",
+            LinearMethod::Lu => "lu",
+            LinearMethod::ConjugateGradient => "conjugate-gradient",
+        }
+    }
+
+    /// The method in an error message ("the LU factorization").
+    pub(crate) fn described(self) -> &'static str {
+        match self {
+            LinearMethod::Cholesky => "the Cholesky factorization",
+            LinearMethod::Lu => "the LU factorization",
+            LinearMethod::ConjugateGradient => "the conjugate gradient",
+        }
+    }
+}
+
+elcon_num::named!(LinearMethod, "linear method");
+#[cfg(feature = "serde")]
+elcon_num::named_serde!(LinearMethod);
+
+/// The method of a solve or of one of its attempts, as the statistics' log
+/// records it ([`Statistics`](crate::Statistics)): a complementarity
+/// problem's or a linear system's. It compares equal to the [`Method`] or
+/// [`LinearMethod`] it holds, and its name is theirs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum AnyMethod {
+    /// A method of complementarity problems.
+    Complementarity(Method),
+    /// A method of linear systems.
+    Linear(LinearMethod),
+}
+
+impl AnyMethod {
+    /// Its method's name ([`Method::name`], [`LinearMethod::name`]).
+    pub const fn name(self) -> &'static str {
+        match self {
+            AnyMethod::Complementarity(m) => m.name(),
+            AnyMethod::Linear(m) => m.name(),
+        }
+    }
+
+    /// The method in an error message.
+    pub(crate) fn described(self) -> &'static str {
+        match self {
+            AnyMethod::Complementarity(m) => m.described(),
+            AnyMethod::Linear(m) => m.described(),
+        }
+    }
+}
+
+impl std::fmt::Display for AnyMethod {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+impl From<Method> for AnyMethod {
+    fn from(method: Method) -> Self {
+        AnyMethod::Complementarity(method)
+    }
+}
+
+impl From<LinearMethod> for AnyMethod {
+    fn from(method: LinearMethod) -> Self {
+        AnyMethod::Linear(method)
+    }
+}
+
+impl PartialEq<Method> for AnyMethod {
+    fn eq(&self, other: &Method) -> bool {
+        *self == AnyMethod::Complementarity(*other)
+    }
+}
+
+impl PartialEq<LinearMethod> for AnyMethod {
+    fn eq(&self, other: &LinearMethod) -> bool {
+        *self == AnyMethod::Linear(*other)
     }
 }
 
@@ -325,6 +419,65 @@ impl Options {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_method_parses_its_name_and_an_attempt_compares_to_it() {
+        for method in Method::ALL {
+            assert_eq!(method.to_string().parse::<Method>(), Ok(method));
+            assert_eq!(AnyMethod::from(method), method);
+            assert_eq!(AnyMethod::from(method).to_string(), method.name());
+        }
+        for method in LinearMethod::ALL {
+            assert_eq!(method.to_string().parse::<LinearMethod>(), Ok(method));
+            assert_eq!(AnyMethod::from(method), method);
+            assert_eq!(AnyMethod::from(method).name(), method.name());
+        }
+        assert_eq!(
+            Method::NAMES,
+            [
+                "restricted-simplex",
+                "lemke",
+                "block-pivoting",
+                "conjugate-gradient"
+            ]
+        );
+        assert_eq!(
+            LinearMethod::NAMES,
+            ["cholesky", "lu", "conjugate-gradient"]
+        );
+        // The two conjugate gradients share a name, not a kind.
+        assert_ne!(
+            AnyMethod::from(Method::ConjugateGradient),
+            AnyMethod::from(LinearMethod::ConjugateGradient)
+        );
+        let e = "fastest".parse::<Method>().unwrap_err();
+        assert_eq!((e.kind, e.given.as_str()), ("method", "fastest"));
+        assert_eq!(
+            e.to_string(),
+            "unknown method `fastest`, expected one of `restricted-simplex`, `lemke`, \
+             `block-pivoting`, `conjugate-gradient`"
+        );
+    }
+
+    #[cfg(feature = "serde")]
+    #[test]
+    fn a_method_deserializes_from_its_name() {
+        use serde::Deserialize;
+        use serde::de::IntoDeserializer;
+        use serde::de::value::{Error, StrDeserializer};
+        let read = |name: &'static str| {
+            let d: StrDeserializer<'_, Error> = name.into_deserializer();
+            Method::deserialize(d)
+        };
+        assert_eq!(read("block-pivoting").unwrap(), Method::BlockPivoting);
+        let e = read("cholesky").unwrap_err().to_string();
+        assert!(
+            e.starts_with("unknown variant `cholesky`, expected one of"),
+            "{e}"
+        );
+        let d: StrDeserializer<'_, Error> = "lu".into_deserializer();
+        assert_eq!(LinearMethod::deserialize(d).unwrap(), LinearMethod::Lu);
+    }
 
     #[test]
     fn the_retry_is_the_general_tableau_refactored_or_none() {

@@ -10,7 +10,7 @@
 use std::fmt;
 
 use crate::error::LcpError;
-use crate::options::{Method, Tableau};
+use crate::options::{AnyMethod, Tableau};
 
 /// Why an attempt was made.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -165,8 +165,9 @@ pub struct Work {
 /// One attempt of a solve.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Attempt {
-    /// The method that ran.
-    pub method: Method,
+    /// The method that ran (a complementarity problem's or a linear
+    /// system's).
+    pub method: AnyMethod,
     /// The tableau it ran on ([`Tableau::Symmetric`] or
     /// [`Tableau::General`]; `None` for the methods without one: block
     /// pivoting, the conjugate gradient, a linear system's factorizations).
@@ -184,8 +185,8 @@ pub struct Attempt {
 /// What a solve cost: the method asked for and the log of its attempts.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Statistics {
-    /// The method asked for.
-    pub method: Method,
+    /// The method asked for (a linear system's: the first of its route).
+    pub method: AnyMethod,
     /// Every attempt, in order.
     pub attempts: Vec<Attempt>,
     /// Wall-clock seconds of the whole solve (setup, attempts, certificates).
@@ -194,7 +195,7 @@ pub struct Statistics {
 
 impl Statistics {
     /// An empty log for `method`.
-    pub(crate) fn new(method: Method) -> Self {
+    pub(crate) fn new(method: AnyMethod) -> Self {
         Self {
             method,
             attempts: Vec::new(),
@@ -345,6 +346,7 @@ mod serialize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::options::Method;
 
     fn attempt(
         method: Method,
@@ -353,7 +355,7 @@ mod tests {
         outcome: Outcome,
     ) -> Attempt {
         Attempt {
-            method,
+            method: method.into(),
             tableau,
             reason: Reason::First,
             work: Work {
@@ -367,7 +369,7 @@ mod tests {
 
     #[test]
     fn totals_and_flags_derive_from_the_log() {
-        let mut s = Statistics::new(Method::BlockPivoting);
+        let mut s = Statistics::new(Method::BlockPivoting.into());
         s.attempts.push(attempt(
             Method::BlockPivoting,
             None,

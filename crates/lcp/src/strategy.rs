@@ -50,7 +50,7 @@ use crate::methods::{
     restricted_symmetric,
 };
 use crate::operator::OperatorLcp;
-use crate::options::{Method, Options, Tableau};
+use crate::options::{AnyMethod, LinearMethod, Method, Options, Tableau};
 use crate::problem::{BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedBorder, MixedLcp, Problem};
 use crate::program::ComplementaryProgram;
 use crate::solution::{LcpSolution, LinearSolution, ProgramSolution};
@@ -64,22 +64,24 @@ enum Kind {
     RestrictedSymmetric,
     RestrictedGeneral,
     BlockPivoting,
-    /// The constrained conjugate gradient of an LCP; a linear system's plain one.
+    /// The constrained conjugate gradient of an LCP.
     ConjugateGradient,
-    /// A linear system's factorizations.
+    /// A linear system's factorizations and its plain conjugate gradient.
     Cholesky,
     Lu,
+    LinearConjugateGradient,
 }
 
 impl Kind {
-    fn method(self) -> Method {
+    fn method(self) -> AnyMethod {
         match self {
-            Kind::LemkeSymmetric | Kind::LemkeGeneral => Method::Lemke,
-            Kind::RestrictedSymmetric | Kind::RestrictedGeneral => Method::RestrictedSimplex,
-            Kind::BlockPivoting => Method::BlockPivoting,
-            Kind::ConjugateGradient => Method::ConjugateGradient,
-            Kind::Cholesky => Method::Cholesky,
-            Kind::Lu => Method::Lu,
+            Kind::LemkeSymmetric | Kind::LemkeGeneral => Method::Lemke.into(),
+            Kind::RestrictedSymmetric | Kind::RestrictedGeneral => Method::RestrictedSimplex.into(),
+            Kind::BlockPivoting => Method::BlockPivoting.into(),
+            Kind::ConjugateGradient => Method::ConjugateGradient.into(),
+            Kind::Cholesky => LinearMethod::Cholesky.into(),
+            Kind::Lu => LinearMethod::Lu.into(),
+            Kind::LinearConjugateGradient => LinearMethod::ConjugateGradient.into(),
         }
     }
 
@@ -87,18 +89,24 @@ impl Kind {
         match self {
             Kind::LemkeSymmetric | Kind::RestrictedSymmetric => Some(Tableau::Symmetric),
             Kind::LemkeGeneral | Kind::RestrictedGeneral => Some(Tableau::General),
-            Kind::BlockPivoting | Kind::ConjugateGradient | Kind::Cholesky | Kind::Lu => None,
+            Kind::BlockPivoting
+            | Kind::ConjugateGradient
+            | Kind::Cholesky
+            | Kind::Lu
+            | Kind::LinearConjugateGradient => None,
         }
     }
 
     /// The general-tableau attempt of a method (the retry's); `None` for
-    /// the conjugate gradient and the factorizations, which have no tableau
-    /// and no retry.
-    fn general(method: Method) -> Option<Self> {
+    /// the conjugate gradient and a linear system's methods, which have no
+    /// tableau and no retry.
+    fn general(method: AnyMethod) -> Option<Self> {
         match method {
-            Method::RestrictedSimplex => Some(Kind::RestrictedGeneral),
-            Method::Lemke | Method::BlockPivoting => Some(Kind::LemkeGeneral),
-            Method::ConjugateGradient | Method::Cholesky | Method::Lu => None,
+            AnyMethod::Complementarity(Method::RestrictedSimplex) => Some(Kind::RestrictedGeneral),
+            AnyMethod::Complementarity(Method::Lemke | Method::BlockPivoting) => {
+                Some(Kind::LemkeGeneral)
+            }
+            AnyMethod::Complementarity(Method::ConjugateGradient) | AnyMethod::Linear(_) => None,
         }
     }
 
@@ -203,7 +211,9 @@ impl Routed for Problem<'_> {
                     Work::default(),
                 )),
             },
-            Kind::Cholesky | Kind::Lu => Err(foreign(kind, LINEAR_ONLY)),
+            Kind::Cholesky | Kind::Lu | Kind::LinearConjugateGradient => {
+                Err(foreign(kind, LINEAR_ONLY))
+            }
         };
         answer.map(Solved::from)
     }
@@ -284,7 +294,7 @@ impl Routed for LinearSystem<'_> {
         match (kind, self.matrix) {
             (Kind::Cholesky, Matrix::Dense(m)) => cholesky::attempt(m, self.rhs, par(m)),
             (Kind::Lu, Matrix::Dense(m)) => lu::attempt(m, self.rhs, par(m)),
-            (Kind::ConjugateGradient, matrix) => {
+            (Kind::LinearConjugateGradient, matrix) => {
                 conjugate_gradient::attempt_linear(matrix.operator(), self.rhs, options)
             }
             _ => Err(foreign(
@@ -325,28 +335,16 @@ const LINEAR_ONLY: &str = "it solves a linear system (`LinearSystem`), not a com
 /// route makes one; a guard).
 fn foreign(kind: Kind, reason: &str) -> Failure {
     let error = LcpError::Unsupported {
-        method: described(kind.method()),
+        method: kind.method().described(),
         reason: reason.into(),
     };
     Failure::error(error, Work::default())
 }
 
-/// A method's name in an error message.
-fn described(method: Method) -> &'static str {
-    match method {
-        Method::Lemke => "Lemke's method",
-        Method::RestrictedSimplex => "the restricted-entry simplex",
-        Method::BlockPivoting => "block principal pivoting",
-        Method::ConjugateGradient => "the conjugate gradient",
-        Method::Cholesky => "the Cholesky factorization",
-        Method::Lu => "the LU factorization",
-    }
-}
-
 /// The attempts of `method` on `problem` before any retry, in order.
 fn route(problem: &Problem<'_>, method: Method, options: &Options) -> Result<Vec<Kind>, LcpError> {
     let unsupported = |kind: Kind, e: NotApplicable| LcpError::Unsupported {
-        method: described(kind.method()),
+        method: kind.method().described(),
         reason: e.reason,
     };
     let tableau_route = |symmetric: Kind, general: Kind| -> Result<Vec<Kind>, LcpError> {
@@ -403,10 +401,6 @@ fn route(problem: &Problem<'_>, method: Method, options: &Options) -> Result<Vec
         Method::ConjugateGradient => conjugate_gradient::applies(problem)
             .map(|_| vec![Kind::ConjugateGradient])
             .map_err(|e| unsupported(Kind::ConjugateGradient, e)),
-        Method::Cholesky | Method::Lu => Err(LcpError::Unsupported {
-            method: described(method),
-            reason: LINEAR_ONLY.into(),
-        }),
     }
 }
 
@@ -525,7 +519,7 @@ impl<'r, R: Routed> Ladder<'r, R> {
     }
 
     /// The one retry after a numerical failure (see the module documentation).
-    fn retry(&mut self, method: Method) {
+    fn retry(&mut self, method: AnyMethod) {
         let drift = matches!(
             self.error,
             Some(
@@ -601,7 +595,7 @@ impl<'r, R: Routed> Ladder<'r, R> {
 /// Runs `route` for `method`, then the retry, on `problem`.
 fn solve_routed<R: Routed>(
     problem: &R,
-    method: Method,
+    method: AnyMethod,
     route: &[Kind],
     options: &Options,
 ) -> Result<(R::Answer, Certificate, Statistics), LcpError> {
@@ -627,7 +621,7 @@ fn solve_problem(
 ) -> Result<LcpSolution, LcpError> {
     options.validate(lemke_general::split_size(&problem.mixed))?;
     let route = route(problem, method, options)?;
-    let (solved, certificate, statistics) = solve_routed(problem, method, &route, options)?;
+    let (solved, certificate, statistics) = solve_routed(problem, method.into(), &route, options)?;
     Ok(solved.solution(certificate, statistics))
 }
 
@@ -675,12 +669,12 @@ impl OperatorLcp<'_> {
         options.validate(0)?;
         if method != Method::ConjugateGradient {
             return Err(LcpError::Unsupported {
-                method: described(method),
+                method: method.described(),
                 reason: "this problem's M is an operator (its products only): use the conjugate gradient".into(),
             });
         }
         let route = [Kind::ConjugateGradient];
-        let (solved, certificate, statistics) = solve_routed(self, method, &route, options)?;
+        let (solved, certificate, statistics) = solve_routed(self, method.into(), &route, options)?;
         Ok(solved.solution(certificate, statistics))
     }
 }
@@ -696,11 +690,12 @@ impl LinearSystem<'_> {
     /// certificate's tolerance is [`LcpError::Inaccurate`].
     pub fn solve(&self, options: &Options) -> Result<LinearSolution, LcpError> {
         options.validate(0)?;
-        let (method, route): (Method, &[Kind]) = match self.matrix {
-            Matrix::Dense(_) => (Method::Cholesky, &[Kind::Cholesky, Kind::Lu]),
-            Matrix::Operator(_) => (Method::ConjugateGradient, &[Kind::ConjugateGradient]),
+        let route: &[Kind] = match self.matrix {
+            Matrix::Dense(_) => &[Kind::Cholesky, Kind::Lu],
+            Matrix::Operator(_) => &[Kind::LinearConjugateGradient],
         };
-        let (answer, certificate, statistics) = solve_routed(self, method, route, options)?;
+        let (answer, certificate, statistics) =
+            solve_routed(self, route[0].method(), route, options)?;
         Ok(LinearSolution {
             x: answer.x,
             residual: certificate.equality,
@@ -730,7 +725,7 @@ impl ComplementaryProgram {
             ..options.clone()
         };
         let (answer, certificate, statistics) =
-            solve_routed(self, Method::RestrictedSimplex, &route, &options)?;
+            solve_routed(self, Method::RestrictedSimplex.into(), &route, &options)?;
         let x = Col::from_fn(self.unknowns(), |j| answer.x[j]);
         let objective = self.objective(x.as_ref());
         Ok(ProgramSolution {
@@ -827,6 +822,28 @@ mod tests {
             route_of(&zero_diagonal, Method::BlockPivoting, Tableau::Symmetric).unwrap(),
             [BlockPivoting]
         );
+    }
+
+    #[test]
+    fn a_linear_method_routed_to_an_lcp_is_unsupported() {
+        let p = contact(1);
+        let view = p.as_ref();
+        let parts = MixedBorder::of(&view);
+        let problem = Problem::bordered(&view, &parts);
+        for kind in [Kind::Cholesky, Kind::Lu, Kind::LinearConjugateGradient] {
+            let Err(Failure {
+                breakdown: Breakdown::Error(e),
+                ..
+            }) = problem.attempt(kind, &Options::default(), false)
+            else {
+                panic!("{kind:?} answered an LCP");
+            };
+            assert!(matches!(*e, LcpError::Unsupported { .. }), "{e}");
+            assert!(
+                e.to_string().contains("not a complementarity problem"),
+                "{e}"
+            );
+        }
     }
 
     #[test]

@@ -6,11 +6,11 @@
 //! inputs and limits that are errors.
 
 use elcon_lcp::{
-    Breakdown, Lcp, LcpError, LinearSolution, LinearSystem, Method, Options, Outcome, Reason,
-    Tolerances,
+    Breakdown, LcpError, LinearMethod, LinearSolution, LinearSystem, Method, Options, Outcome,
+    Reason, Tolerances,
 };
 use faer::linalg::solvers::Solve;
-use faer::{Mat, Side, col, mat};
+use faer::{Mat, Side, mat};
 
 mod common;
 use common::rel_diff;
@@ -73,7 +73,12 @@ fn a_dense_system_is_solved_by_cholesky_as_faer_solves_it() {
             log[0].reason,
             &log[0].outcome
         ),
-        (Method::Cholesky, None, Reason::First, &Outcome::Returned)
+        (
+            LinearMethod::Cholesky.into(),
+            None,
+            Reason::First,
+            &Outcome::Returned
+        )
     );
     assert_eq!(sol.statistics.factorizations(), 1);
     assert!(!sol.statistics.fell_back());
@@ -88,7 +93,7 @@ fn the_same_system_by_its_products_agrees_to_the_tolerance() {
     assert!(rel_diff_mat(&sol.x, &dense.x) < 1e-10);
     assert!(sol.residual <= Tolerances::default().certificate);
     let returned = sol.statistics.returned().unwrap();
-    assert_eq!(returned.method, Method::ConjugateGradient);
+    assert_eq!(returned.method, LinearMethod::ConjugateGradient);
     // Every column but the zero one took iterations, at most n each in
     // exact arithmetic (a few more in floating point).
     assert!(sol.statistics.iterations() >= 2 && sol.statistics.iterations() <= 3 * 40);
@@ -107,7 +112,7 @@ fn an_indefinite_dense_matrix_falls_back_to_lu_in_the_log() {
     assert_eq!(log.len(), 2, "{log:?}");
     assert_eq!(
         (log[0].method, log[0].reason),
-        (Method::Cholesky, Reason::First)
+        (LinearMethod::Cholesky.into(), Reason::First)
     );
     assert_eq!(
         log[0].outcome,
@@ -115,14 +120,18 @@ fn an_indefinite_dense_matrix_falls_back_to_lu_in_the_log() {
     );
     assert_eq!(
         (log[1].method, log[1].reason, &log[1].outcome),
-        (Method::Lu, Reason::Fallback, &Outcome::Returned)
+        (
+            LinearMethod::Lu.into(),
+            Reason::Fallback,
+            &Outcome::Returned
+        )
     );
     assert!(sol.statistics.fell_back());
     // A matrix that is not symmetric is not symmetric positive definite
     // either: the LU solves it too.
     let m = mat![[2.0, 1.0], [0.0, 2.0]];
     let sol = dense(&m, &r, &Options::default()).unwrap();
-    assert_eq!(sol.statistics.returned().unwrap().method, Method::Lu);
+    assert_eq!(sol.statistics.returned().unwrap().method, LinearMethod::Lu);
     assert!(rel_diff_mat(&(&m * &sol.x), &r) < 1e-15);
 }
 
@@ -244,15 +253,25 @@ fn a_residual_above_the_tolerance_is_refused() {
 }
 
 #[test]
-fn a_factorization_does_not_solve_an_lcp() {
-    let lcp = Lcp::new(spd(2), col![-1.0, 1.0]).unwrap();
-    for method in [Method::Cholesky, Method::Lu] {
-        let e = lcp.solve(method, &Options::default()).unwrap_err();
-        assert!(matches!(e, LcpError::Unsupported { .. }), "{e}");
+fn a_factorization_is_no_method_of_an_lcp() {
+    // The factorizations are a linear system's methods: an LCP cannot be
+    // asked to use one (the strategy's guard says why, should one be
+    // routed), and their names are no LCP method's.
+    for method in LinearMethod::ALL {
+        assert_eq!(method.name().parse::<LinearMethod>(), Ok(method));
+    }
+    for name in ["cholesky", "lu"] {
+        let e = name.parse::<Method>().unwrap_err();
+        assert_eq!(e.allowed, Method::NAMES);
         assert!(
-            e.to_string().contains("not a complementarity problem"),
+            e.to_string()
+                .contains("expected one of `restricted-simplex`"),
             "{e}"
         );
-        assert_eq!(Method::from_name(method.name()), Some(method));
     }
+    let e = "lemke".parse::<LinearMethod>().unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "unknown linear method `lemke`, expected one of `cholesky`, `lu`, `conjugate-gradient`"
+    );
 }

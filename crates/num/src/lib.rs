@@ -5,6 +5,14 @@
 //! count with its thousands separators ([`thousands`]). No equation: a crate of its own, below every other, so that
 //! elcon-lcp and elcon-influence (which do not depend on each other) and
 //! every crate above show a user's number the same way.
+//!
+//! Also how a name is read back from a message's words ([`UnknownName`],
+//! [`named!`], [`named_serde!`]): the enums of named choices of every crate above parse,
+//! show and serialize their names through it.
+
+mod name;
+
+pub use name::UnknownName;
 
 /// A number as a message shows it, in its shortest round-trip form: as
 /// written for everyday magnitudes (`-30000000`, `0.5`), in scientific

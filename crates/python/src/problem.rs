@@ -44,12 +44,14 @@ fn not_one_of(key: &str, name: &str, names: &[&str]) -> PyErr {
 
 /// The solve method by its scene name.
 fn method(name: &str) -> PyResult<Method> {
-    Method::from_name(name).ok_or_else(|| not_one_of("method", name, &methods()))
+    name.parse()
+        .map_err(|_| not_one_of("method", name, &methods()))
 }
 
 /// The storage by its name.
 fn storage(name: &str) -> PyResult<Storage> {
-    Storage::of(name).ok_or_else(|| not_one_of("storage", name, &storages()))
+    name.parse()
+        .map_err(|_| not_one_of("storage", name, &storages()))
 }
 
 /// What a problem assembled from bodies was built from: enough to plan a

@@ -100,7 +100,7 @@ mod tests {
         ] {
             assert_eq!(
                 choice(m),
-                MethodChoice::Given(Method::from_name(m.name()).unwrap())
+                MethodChoice::Given(m.name().parse::<Method>().unwrap())
             );
         }
         assert_eq!(choice(SolverMethod::Auto), MethodChoice::Auto);

@@ -1,0 +1,57 @@
+//! The design's choices by the names scenes write: each parses its own
+//! name back, an unknown name is an error that lists the names there are,
+//! and (the `serde` feature) each serializes as its name.
+
+use elcon_design::{Axis, DesignMethod, Objective};
+
+#[test]
+fn each_choice_parses_its_name() {
+    assert_eq!(Axis::NAMES, ["x", "y"]);
+    assert_eq!(DesignMethod::NAMES, ["auto", "program", "descent"]);
+    assert_eq!(Objective::NAMES, ["pressure", "von-mises", "max-shear"]);
+    for axis in Axis::ALL {
+        assert_eq!(axis.to_string().parse::<Axis>(), Ok(axis));
+    }
+    for method in DesignMethod::ALL {
+        assert_eq!(method.to_string().parse::<DesignMethod>(), Ok(method));
+    }
+    for objective in Objective::ALL {
+        assert_eq!(objective.to_string().parse::<Objective>(), Ok(objective));
+    }
+}
+
+#[test]
+fn an_unknown_name_lists_the_names_there_are() {
+    let e = "z".parse::<Axis>().unwrap_err();
+    assert_eq!(e.to_string(), "unknown axis `z`, expected one of `x`, `y`");
+    let e = "newton".parse::<DesignMethod>().unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "unknown design method `newton`, expected one of `auto`, `program`, `descent`"
+    );
+    let e = "tresca".parse::<Objective>().unwrap_err();
+    assert_eq!((e.kind, e.allowed), ("objective", &Objective::NAMES[..]));
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn each_choice_deserializes_from_its_name() {
+    use serde::Deserialize;
+    use serde::de::IntoDeserializer;
+    use serde::de::value::{Error, StrDeserializer};
+    fn read<'a, T: Deserialize<'a>>(name: &'a str) -> Result<T, Error> {
+        let d: StrDeserializer<'_, Error> = name.into_deserializer();
+        T::deserialize(d)
+    }
+    assert_eq!(read::<Axis>("y").unwrap(), Axis::Y);
+    assert_eq!(
+        read::<DesignMethod>("descent").unwrap(),
+        DesignMethod::Descent
+    );
+    assert_eq!(read::<Objective>("von-mises").unwrap(), Objective::VonMises);
+    let e = read::<DesignMethod>("newton").unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "unknown variant `newton`, expected one of `auto`, `program`, `descent`"
+    );
+}
