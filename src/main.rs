@@ -270,13 +270,13 @@ fn row(r: &RunResult) {
     println!(
         "{:<28} {:<18} {:>7} {:>7} {:>9.4} {:>12.5e} {:>12.5e} {:>9.1e} {:>11} {:>10}",
         r.scene,
-        r.method,
-        r.points,
-        r.statistics.pivots(),
+        r.header.method,
+        r.header.points,
+        r.header.statistics.pivots,
         r.seconds.total,
         r.approach,
         r.max_pressure,
-        r.certificate.worst(),
+        r.certificate.worst,
         err,
         estimated
     );
@@ -555,7 +555,7 @@ impl Progress for Report {
                 "[{}/{total}] {}: ok, {} points, {:.3} s",
                 *done,
                 run.slug(),
-                r.points,
+                r.header.points,
                 r.seconds.total
             ),
             Err(e) => format!("[{}/{total}] {}: failed: {e}", *done, run.slug()),

@@ -6,9 +6,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, Method, Options};
-use elcon_design::{Analysis, Axis, Evaluation, Profile, Roller, axial_stations, evaluate};
+use elcon_design::{Analysis, Profile, Roller, evaluate};
 use elcon_process::Ceiling;
-use elcon_report::{DesignCaseJson, DesignGridJson, DesignJson};
+use elcon_report::{DesignGridJson, DesignJson, DesignOf, RelativeTo};
 use elcon_scene::{DesignLayoutParts, DesignSpec, Scene};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -80,7 +80,10 @@ fn unfolded_cases(
 /// each case's p_max before and after, relative to `reference_intensities`
 /// (1 each when not given); `roller_given` says whether the call gave the
 /// logarithmic crown's roller (its failures name `roller.*`); `start` is
-/// when the design began.
+/// when the design began. Problems from arrays have no grid family to
+/// refine: the design is made on their points, not verified on a finer
+/// grid, and their stresses below the surface are a scene's (no Poisson's
+/// ratios here).
 fn design_json(
     spec: &DesignSpec,
     cases: &[ContactProblem],
@@ -93,14 +96,13 @@ fn design_json(
         .first()
         .map_or(Method::BlockPivoting, ContactProblem::default_method);
     let options = Options::default();
-    let axis = spec.axis();
     let outcome = spec
         .request(reference_intensities.clone(), Some(method), &options)
         .run(cases)
         .map_err(design_error)?;
     let before = evaluate(
         cases,
-        axis,
+        spec.axis(),
         &Profile::none(),
         &Analysis::new(method, &options),
     )
@@ -108,66 +110,36 @@ fn design_json(
     let references = reference_intensities
         .clone()
         .unwrap_or_else(|| vec![1.0; cases.len()]);
-    let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), axis);
-    let after = &outcome.evaluation;
-    let table = outcome.profile.table(&positions).map_err(design_error)?;
-    Ok(DesignJson {
-        family: spec.family().describe(),
-        axis: match axis {
-            Axis::X => "x".into(),
-            Axis::Y => "y".into(),
+    let points = cases.iter().map(|c| c.points().len()).max().unwrap_or(0);
+    let grid = DesignGridJson {
+        grid: format!("{points} points"),
+        fineness: 1.0,
+        points,
+        objective: outcome.evaluation.relative_worst(&references),
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    let of = DesignOf {
+        family: spec.family(),
+        axis: spec.axis(),
+        relative_to: match reference_intensities {
+            Some(_) => RelativeTo::Given,
+            None => RelativeTo::Absolute,
         },
-        relative_to: if reference_intensities.is_some() {
-            "given".into()
-        } else {
-            "absolute".into()
-        },
-        parameters: outcome.profile.parameters(),
-        objective: after.relative_worst(&references),
-        objective_before: before.relative_worst(&references),
-        cases: case_rows(cases, &references, &before, after),
-        table,
-        method: outcome.found.method().into(),
-        minimized: outcome.found.minimized().name().into(),
-        worst_stress: outcome.found.worst_stress(),
-        starts: outcome.found.starts(),
-        interpolation: outcome.profile.interpolation(),
-        // Problems from arrays have no grid family to refine: the design is
-        // made on their points and not verified on a finer grid.
-        grids: vec![DesignGridJson {
-            grid: format!(
-                "{} points",
-                cases.iter().map(|c| c.points().len()).max().unwrap_or(0)
-            ),
-            fineness: 1.0,
-            points: cases.iter().map(|c| c.points().len()).max().unwrap_or(0),
-            objective: after.relative_worst(&references),
-            seconds: start.elapsed().as_secs_f64(),
-        }],
+        references: &references,
+        cases,
+        before: &before,
+        outcome: &outcome,
+        grids: std::slice::from_ref(&grid),
         verification: None,
         grid_tolerance: None,
         seconds: start.elapsed().as_secs_f64(),
-    })
-}
-
-/// Each case's row of the design block: its load, reference, p_max
-/// `before` and `after` the correction, and the certificate after.
-fn case_rows(
-    cases: &[ContactProblem],
-    references: &[f64],
-    before: &Evaluation,
-    after: &Evaluation,
-) -> Vec<DesignCaseJson> {
-    cases
+    };
+    let loads: Vec<f64> = cases
         .iter()
-        .enumerate()
-        // Problems from arrays carry no bodies' Poisson's ratios for a
-        // field: the stresses below the surface are a scene's.
-        .map(|(l, c)| {
-            let load = c.loading().load_value().unwrap_or(f64::NAN);
-            DesignCaseJson::of(l, load, references[l], before, after)
-        })
-        .collect()
+        .map(|c| c.loading().load_value().unwrap_or(f64::NAN))
+        .collect();
+    let rows = DesignJson::rows(&of, &loads);
+    DesignJson::of(of, rows).map_err(design_error)
 }
 
 /// Designs a correction over the problems (each a load case under a load)

@@ -5,17 +5,16 @@
 use std::path::Path;
 
 use elcon_analysis::{
-    ContactProblem, ContactSolution, Dimension, Geometry, Loading, Method, Options, PointSet,
-    ProblemBuilder, Storage, Surface,
+    ContactProblem, Dimension, Geometry, Loading, Method, Options, PointSet, ProblemBuilder,
+    Storage, Surface,
 };
 use elcon_influence::Cell;
 use elcon_process::Ceiling;
-use elcon_report::{SolutionJson, SymmetryJson};
+use elcon_report::ProblemResult;
 use elcon_scene::{BodySpec, PointsSpec};
 use numpy::{PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use serde::Serialize;
 
 use crate::convert::{arrays, sections_text};
 use crate::errors::{
@@ -388,73 +387,11 @@ impl PyContactProblem {
         {
             return Err(SolveError::new_err(format!("ContactProblem.solve: {why}")));
         }
-        let json = ProblemJson::of(problem, &solution, m);
+        let json = ProblemResult::of(problem, &solution, m);
         let text = serde_json::to_string(&json)
             .map_err(|e| SolveError::new_err(format!("the solution's fields: {e}")))?;
         let d = arrays(py, problem.points(), &solution, problem.separation())?;
         d.set_item("json", text)?;
         Ok(d)
-    }
-}
-
-/// A problem's solution as `ContactProblem.solve` returns it: how it was
-/// held and solved, then result.json's solution fields (the scene crate's
-/// `SolutionJson`, the same serialization as a scene's run).
-#[derive(Debug, Serialize)]
-struct ProblemJson {
-    /// The engine's method.
-    method: &'static str,
-    /// How S was held: "dense" or "matrix-free" (result.json's word).
-    influence: &'static str,
-    /// The storage: "dense", "folded" or "lattice".
-    storage: &'static str,
-    /// "surface" or "line".
-    dimension: &'static str,
-    /// Candidate points N.
-    points: usize,
-    /// The mirror symmetry the problem was folded with, if it was.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    symmetry: Option<SymmetryJson>,
-    /// The engine's statistics.
-    statistics: elcon_lcp::Statistics,
-    /// Seconds of the assembly and of the solve.
-    seconds: ProblemSeconds,
-    /// result.json's solution fields.
-    #[serde(flatten)]
-    solution: SolutionJson,
-}
-
-/// Wall-clock seconds of a problem's assembly and solve.
-#[derive(Debug, Serialize)]
-struct ProblemSeconds {
-    /// Assembling S and eps.
-    assembly: f64,
-    /// The engine's solve, certificate included.
-    solve: f64,
-}
-
-impl ProblemJson {
-    fn of(problem: &ContactProblem, solution: &ContactSolution, method: Method) -> Self {
-        Self {
-            method: method.name(),
-            influence: problem.storage().held_as(),
-            storage: problem.storage().name(),
-            dimension: match problem.points().dimension() {
-                Dimension::Surface => "surface",
-                Dimension::Line => "line",
-            },
-            points: problem.points().len(),
-            symmetry: problem.folding().map(|f| SymmetryJson {
-                group: f.group().to_string(),
-                order: f.order(),
-                unknowns: f.len(),
-            }),
-            statistics: solution.statistics.clone(),
-            seconds: ProblemSeconds {
-                assembly: problem.assembly_seconds(),
-                solve: solution.solve_seconds,
-            },
-            solution: SolutionJson::of(solution, &[]),
-        }
     }
 }

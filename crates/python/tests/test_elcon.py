@@ -344,6 +344,13 @@ def test_a_problems_dict_is_result_jsons_serialization():
     assert [k for k in solved if k in fields] == fields
     assert [k for k in scene if k in fields] == fields
     assert set(solved["certificate"]) == set(scene["certificate"])
+    # The same header, seconds and solution, by the same types: a problem's
+    # keys are result.json's but for the scene's own blocks.
+    scene_only = {"scene", "file", "description", "units", "discretization", "subsurface",
+                  "reference", "design"}
+    assert set(solved) == set(scene) - scene_only
+    assert set(solved["seconds"]) == set(scene["seconds"])
+    assert set(solved["statistics"]) == set(scene["statistics"])
     assert solved["points"] == scene["points"] and solved["dimension"] == "surface"
     assert solved["storage"] == "folded" and solved["symmetry"] == scene["symmetry"]
     assert solved["max_pressure"] == pytest.approx(scene["max_pressure"], rel=1e-12)

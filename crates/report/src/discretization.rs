@@ -3,10 +3,69 @@
 //! generalized Richardson extrapolation (`elcon_analysis::discretization`).
 
 use elcon_analysis::discretization::{Discretization, ErrorEstimate, GridRun, Quantity, Verdict};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+
+/// An estimate's verdict, by name (why one is not estimated is the
+/// quantity's `reason`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VerdictJson {
+    /// The changes shrink with the grid at the observed order.
+    Converging,
+    /// The changes do not shrink: no error is estimated.
+    NotConverging,
+    /// Every grid gives the same value.
+    Exact,
+    /// Not enough grids were solved.
+    NotEstimated,
+}
+
+impl VerdictJson {
+    /// Every verdict, in the order messages list them.
+    pub const ALL: [VerdictJson; 4] = [
+        VerdictJson::Converging,
+        VerdictJson::NotConverging,
+        VerdictJson::Exact,
+        VerdictJson::NotEstimated,
+    ];
+
+    /// Its name: "converging", "not converging", "exact", "not estimated".
+    pub const fn name(self) -> &'static str {
+        match self {
+            VerdictJson::Converging => "converging",
+            VerdictJson::NotConverging => "not converging",
+            VerdictJson::Exact => "exact",
+            VerdictJson::NotEstimated => "not estimated",
+        }
+    }
+
+    /// The verdict of an estimate.
+    pub fn of(v: &Verdict) -> Self {
+        match v {
+            Verdict::Converging => VerdictJson::Converging,
+            Verdict::NotConverging => VerdictJson::NotConverging,
+            Verdict::Exact => VerdictJson::Exact,
+            // `Verdict::NotEstimated`; a new verdict gets its own name here.
+            _ => VerdictJson::NotEstimated,
+        }
+    }
+
+    /// An estimated relative error as a table shows it: `1.2e-3`, `exact`,
+    /// `n.c.` (not converging) or `-` (not estimated).
+    pub fn short(self, relative_error: Option<f64>) -> String {
+        match self {
+            VerdictJson::Converging => relative_error.map_or("-".into(), |e| format!("{e:.1e}")),
+            VerdictJson::Exact => "exact".into(),
+            VerdictJson::NotConverging => "n.c.".into(),
+            VerdictJson::NotEstimated => "-".into(),
+        }
+    }
+}
+
+elcon_num::named!(VerdictJson, "verdict");
+elcon_num::named_serde!(VerdictJson);
 
 /// One grid of the estimate.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct GridJson {
     /// Points N.
     pub points: usize,
@@ -16,12 +75,12 @@ pub struct GridJson {
     /// Seconds to build and solve it (the fine grid: assembly and solve).
     pub seconds: f64,
     /// Why its solve failed, if it did.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub failure: Option<String>,
 }
 
 /// One quantity's estimate.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct QuantityJson {
     /// The fine grid's value (the run's).
     pub value: f64,
@@ -36,9 +95,9 @@ pub struct QuantityJson {
     /// The observed order p (three grids).
     pub order: Option<f64>,
     /// `converging`, `not converging`, `exact` or `not estimated`.
-    pub verdict: String,
+    pub verdict: VerdictJson,
     /// Why it is not estimated.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
 }
 
@@ -51,7 +110,7 @@ impl QuantityJson {
             error: e.error,
             relative_error: e.relative_error(),
             order: e.order,
-            verdict: e.verdict.name().to_string(),
+            verdict: VerdictJson::of(&e.verdict),
             reason: e.verdict.reason().map(String::from),
         }
     }
@@ -59,19 +118,12 @@ impl QuantityJson {
     /// The relative error as a table shows it: `1.2e-3`, `exact`, `n.c.`
     /// (not converging) or `-` (not estimated).
     pub fn short(&self) -> String {
-        match self.verdict.as_str() {
-            "converging" => self
-                .relative_error
-                .map_or("-".into(), |e| format!("{e:.1e}")),
-            "exact" => "exact".into(),
-            "not converging" => "n.c.".into(),
-            _ => "-".into(),
-        }
+        self.verdict.short(self.relative_error)
     }
 }
 
 /// Each quantity's estimate, by name.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct QuantitiesJson {
     /// The approach.
     pub approach: QuantityJson,
@@ -95,7 +147,7 @@ pub struct QuantitiesJson {
 
 /// result.json's `discretization`: the grids solved (the run's first) and
 /// each quantity's estimate, with what limited it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DiscretizationJson {
     /// The grids, the run's first.
     pub grids: Vec<GridJson>,
@@ -103,7 +155,7 @@ pub struct DiscretizationJson {
     pub quantities: QuantitiesJson,
     /// What limited the estimate (too few points for a coarser grid, a
     /// coarse solve that failed, separations given per point).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
 }
 
@@ -153,5 +205,25 @@ fn unknown() -> ErrorEstimate {
         error: None,
         order: None,
         verdict: Verdict::NotEstimated("not computed".into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_verdict_keeps_elcon_analysis_s_name() {
+        for v in [
+            Verdict::Converging,
+            Verdict::NotConverging,
+            Verdict::Exact,
+            Verdict::NotEstimated("one grid".into()),
+        ] {
+            assert_eq!(VerdictJson::of(&v).name(), v.name());
+        }
+        assert_eq!(VerdictJson::Converging.short(Some(1.23e-3)), "1.2e-3");
+        assert_eq!(VerdictJson::NotConverging.short(Some(1.0)), "n.c.");
+        assert_eq!(VerdictJson::NotEstimated.short(None), "-");
     }
 }

@@ -1,7 +1,7 @@
 //! What can stop a report: a file that cannot be written or read back, a
 //! plot that cannot be drawn.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use elcon_process::ProcessError;
 
@@ -34,4 +34,14 @@ pub enum ReportError {
         /// serde_json's reason.
         reason: String,
     },
+}
+
+impl ReportError {
+    /// A [`ReportError::Json`] for `path`.
+    pub(crate) fn json(path: &Path, e: impl std::fmt::Display) -> Self {
+        Self::Json {
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        }
+    }
 }

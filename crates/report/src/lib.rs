@@ -19,15 +19,19 @@ mod plot;
 mod plot_subsurface;
 mod reference;
 mod result;
+mod solve;
 mod subsurface;
 mod tables;
 
-pub use design::{DesignCaseJson, DesignGridJson, DesignJson, DesignRun};
-pub use discretization::{DiscretizationJson, GridJson, QuantitiesJson, QuantityJson};
+pub use design::{
+    DesignCaseJson, DesignGridJson, DesignJson, DesignOf, DesignRun, FoundBy, RelativeTo,
+};
+pub use discretization::{DiscretizationJson, GridJson, QuantitiesJson, QuantityJson, VerdictJson};
 pub use error::ReportError;
 pub use output::{write_run, write_run_files};
 pub use plot::error_time;
 pub use reference::{Errors, ReferenceJson, XY};
-pub use result::{Run, RunResult, Seconds, SolutionJson, SymmetryJson};
+pub use result::{Header, ProblemResult, Run, RunResult, Seconds, SolutionJson, SymmetryJson};
+pub use solve::{AttemptJson, CertificateJson, Holding, StatisticsJson};
 pub use subsurface::{BodySubsurfaceJson, PeakJson, SubsurfaceJson};
 pub use tables::{BatchOutcome, Row, write_tables};

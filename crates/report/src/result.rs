@@ -1,23 +1,32 @@
-//! result.json: a run's header (scene, units, method, storage, points,
-//! statistics, seconds), its solution's fields, and the blocks of the
-//! discretization error estimate, the stresses below the surface, the
-//! closed-form comparison and the design (docs/results.md documents every
-//! field); and [`Run`], what the writers need beyond result.json.
+//! result.json: a run's header (how the problem was held and solved, with
+//! the engine's statistics), its seconds, its solution's fields, and the
+//! blocks of the discretization error estimate, the stresses below the
+//! surface, the closed-form comparison and the design (docs/results.md
+//! documents every field); and [`Run`], what the writers need beyond
+//! result.json.
+//!
+//! Every block is built by one constructor (`Header::of`, `SolutionJson::of`,
+//! ...) that the command line and the Python package both call, and every
+//! type serializes and deserializes: a resumed batch and `elcon merge` read
+//! result.json back into these types, never by paths into untyped JSON.
 
-use elcon_analysis::{ContactProblem, ContactSolution};
+use std::path::Path;
+
+use elcon_analysis::{ContactProblem, ContactSolution, Method, Storage};
+use elcon_influence::Dimension;
 use elcon_scene::{Scene, Units};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::design::{DesignJson, DesignRun};
 use crate::discretization::DiscretizationJson;
+use crate::error::ReportError;
 use crate::reference::{ReferenceJson, XY};
+use crate::solve::{CertificateJson, Holding, StatisticsJson};
 use crate::subsurface::SubsurfaceJson;
 
-/// A folded problem's symmetry, as written. A mirror of
-/// `elcon_influence::Folding` rather than a `Serialize` on it: result.json
-/// writes the group by name and the folding's size, which the folding
-/// computes, not stores.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// A folded problem's symmetry, as written: the group by name and the
+/// folding's size, which `elcon_influence::Folding` computes, not stores.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SymmetryJson {
     /// The reflections ("mirror x, mirror y", ...).
     pub group: String,
@@ -27,8 +36,75 @@ pub struct SymmetryJson {
     pub unknowns: usize,
 }
 
+/// How a problem was held and solved: the first fields of result.json after
+/// the scene's, and of a problem solved from Python.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Header {
+    /// The engine's method.
+    pub method: Method,
+    /// How S was held: "dense" (every entry) or "matrix-free".
+    pub influence: Holding,
+    /// The storage: "dense", "folded" or "lattice".
+    pub storage: Storage,
+    /// "surface" or "line".
+    #[serde(with = "dimension")]
+    pub dimension: Dimension,
+    /// Number of candidate points N.
+    pub points: usize,
+    /// The mirror symmetry the problem was folded with, if it was.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub symmetry: Option<SymmetryJson>,
+    /// The engine's statistics.
+    pub statistics: StatisticsJson,
+}
+
+impl Header {
+    /// The header of `problem` solved into `solution` by `method`.
+    pub fn of(problem: &ContactProblem, solution: &ContactSolution, method: Method) -> Self {
+        let storage = problem.storage();
+        Self {
+            method,
+            influence: Holding::of(storage),
+            storage,
+            dimension: problem.points().dimension(),
+            points: problem.points().len(),
+            symmetry: problem.folding().map(|f| SymmetryJson {
+                group: f.group().to_string(),
+                order: f.order(),
+                unknowns: f.len(),
+            }),
+            statistics: StatisticsJson::of(&solution.statistics),
+        }
+    }
+}
+
+/// A [`Dimension`] by its name in result.json: "surface" or "line".
+mod dimension {
+    use elcon_influence::Dimension;
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    /// The names, in the order of `Dimension`'s variants.
+    const NAMES: [&str; 2] = ["line", "surface"];
+
+    pub(super) fn serialize<S: Serializer>(d: &Dimension, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(match d {
+            Dimension::Line => NAMES[0],
+            Dimension::Surface => NAMES[1],
+        })
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Dimension, D::Error> {
+        let name = String::deserialize(d)?;
+        match name.as_str() {
+            "line" => Ok(Dimension::Line),
+            "surface" => Ok(Dimension::Surface),
+            _ => Err(serde::de::Error::unknown_variant(&name, &NAMES)),
+        }
+    }
+}
+
 /// Wall-clock seconds.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Seconds {
     /// Assembling S and eps.
     pub assembly: f64,
@@ -44,10 +120,25 @@ pub struct Seconds {
     pub total: f64,
 }
 
+impl Seconds {
+    /// The seconds of a solve alone (assembly and solve; no estimate, no
+    /// stresses): a problem solved from Python.
+    pub fn of_solve(problem: &ContactProblem, solution: &ContactSolution) -> Self {
+        let (assembly, solve) = (problem.assembly_seconds(), solution.solve_seconds);
+        Self {
+            assembly,
+            solve,
+            error_estimate: 0.0,
+            subsurface: 0.0,
+            total: assembly + solve,
+        }
+    }
+}
+
 /// A solution's fields as result.json writes them, from the approach to
 /// the warnings: what a scene's run and a problem solved from Python
 /// (`elcon.ContactProblem.solve`) both write, by one serialization.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SolutionJson {
     /// The approach alpha (length).
     pub approach: f64,
@@ -69,7 +160,7 @@ pub struct SolutionJson {
     /// the outermost cells (`ContactSolution::contact_extent`; length).
     pub contact_extent: f64,
     /// Residuals from the original data.
-    pub certificate: elcon_analysis::ContactCertificate,
+    pub certificate: CertificateJson,
     /// Warnings (truncated zone, uncertain contact).
     pub warnings: Vec<String>,
 }
@@ -96,7 +187,7 @@ impl SolutionJson {
             max_pressure: solution.max_pressure,
             contact_points: solution.contact.len(),
             contact_extent: solution.contact_extent,
-            certificate: solution.certificate,
+            certificate: CertificateJson::of(&solution.certificate),
             warnings: warnings
                 .iter()
                 .cloned()
@@ -106,31 +197,46 @@ impl SolutionJson {
     }
 }
 
+/// A problem solved outside a scene (from Python's `ContactProblem`): the
+/// header, the seconds and the solution's fields, each result.json's own.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ProblemResult {
+    /// How it was held and solved.
+    #[serde(flatten)]
+    pub header: Header,
+    /// Seconds of the assembly and of the solve.
+    pub seconds: Seconds,
+    /// The solution's fields.
+    #[serde(flatten)]
+    pub solution: SolutionJson,
+}
+
+impl ProblemResult {
+    /// `problem` solved into `solution` by `method`.
+    pub fn of(problem: &ContactProblem, solution: &ContactSolution, method: Method) -> Self {
+        Self {
+            header: Header::of(problem, solution, method),
+            seconds: Seconds::of_solve(problem, solution),
+            solution: SolutionJson::of(solution, &[]),
+        }
+    }
+}
+
 /// What result.json holds (docs/results.md documents every field).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunResult {
     /// The scene's name.
     pub scene: String,
     /// The scene file.
     pub file: String,
     /// Its description.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
     /// Unit labels.
     pub units: Units,
-    /// The engine's method.
-    pub method: String,
-    /// How S was held: "dense" or "matrix-free" (`solver.method`).
-    pub influence: String,
-    /// "surface" or "line".
-    pub dimension: String,
-    /// Number of candidate points N.
-    pub points: usize,
-    /// The mirror symmetry the problem was folded with, if it was.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub symmetry: Option<SymmetryJson>,
-    /// The engine's statistics (serialized by elcon-lcp's `serde` feature).
-    pub statistics: elcon_lcp::Statistics,
+    /// How the problem was held and solved.
+    #[serde(flatten)]
+    pub header: Header,
     /// Seconds.
     pub seconds: Seconds,
     /// The solution's fields (approach through warnings), written in
@@ -140,16 +246,16 @@ pub struct RunResult {
     pub solution: SolutionJson,
     /// The discretization error estimate (`solver.error_estimate`, on by
     /// default).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub discretization: Option<DiscretizationJson>,
     /// The stresses below the surface (`outputs.subsurface = true`).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub subsurface: Option<SubsurfaceJson>,
     /// The closed-form comparison, where one applies.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceJson>,
     /// The design stage, if the scene has one.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub design: Option<DesignJson>,
 }
 
@@ -159,6 +265,27 @@ impl std::ops::Deref for RunResult {
     /// The solution's fields, read in place (`result.max_pressure`).
     fn deref(&self) -> &SolutionJson {
         &self.solution
+    }
+}
+
+impl RunResult {
+    /// result.json's text, as written.
+    ///
+    /// # Errors
+    /// [`ReportError::Json`] naming `path` (the file it is for) when it
+    /// cannot be serialized.
+    pub fn to_json(&self, path: &Path) -> Result<String, ReportError> {
+        serde_json::to_string_pretty(self).map_err(|e| ReportError::json(path, e))
+    }
+
+    /// Reads a result.json back.
+    ///
+    /// # Errors
+    /// [`ReportError::Json`] naming the file when it cannot be read or is
+    /// not a result.json.
+    pub fn read(path: &Path) -> Result<Self, ReportError> {
+        let text = std::fs::read_to_string(path).map_err(|e| ReportError::json(path, e))?;
+        serde_json::from_str(&text).map_err(|e| ReportError::json(path, e))
     }
 }
 

@@ -7,10 +7,10 @@ use std::io;
 
 use elcon_analysis::subsurface::{Peak, Section, Subsurface};
 use elcon_scene::ModelKind;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Where a stress is largest, as written.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct PeakJson {
     /// The value (the pressure unit; signed for an orthogonal shear).
     pub value: f64,
@@ -34,31 +34,31 @@ impl From<Peak> for PeakJson {
 }
 
 /// One body's maxima below the surface, or why it has none.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BodySubsurfaceJson {
     /// Whether the body is an elastic half-space with a field.
     pub applicable: bool,
     /// Why not (a rigid body, a beam, a foundation, no contact).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
     /// The range of validity, where the model limits it (the point-force
     /// model: a cell or more below the surface).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
     /// The body's Poisson's ratio.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub poissons_ratio: Option<f64>,
     /// The largest von Mises stress.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub von_mises: Option<PeakJson>,
     /// The largest shear stress (Tresca).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tresca: Option<PeakJson>,
     /// The orthogonal shear tau_xz of largest magnitude.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orthogonal_xz: Option<PeakJson>,
     /// The orthogonal shear tau_yz of largest magnitude (0 on a line).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orthogonal_yz: Option<PeakJson>,
 }
 
@@ -93,7 +93,7 @@ impl BodySubsurfaceJson {
 }
 
 /// result.json's `subsurface` block.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SubsurfaceJson {
     /// The stresses' unit (the scene's pressure unit), tension positive.
     pub stress_unit: String,

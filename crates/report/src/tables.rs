@@ -14,8 +14,14 @@ use serde::{Deserialize, Serialize};
 use elcon_process::write_atomic;
 use elcon_scene::ErrorMetric;
 
+use elcon_analysis::Method;
+
+use crate::discretization::VerdictJson;
 use crate::error::ReportError;
 use crate::result::RunResult;
+
+/// A finished run's status.
+const OK: &str = "ok";
 
 /// One row of a batch's results table (the default: every value absent).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -29,7 +35,7 @@ pub struct Row {
     /// "ok" or "failed: reason".
     pub status: String,
     /// The method.
-    pub method: Option<String>,
+    pub method: Option<Method>,
     /// Candidate points N.
     pub points: Option<usize>,
     /// Pivots (index exchanges for block pivoting).
@@ -60,13 +66,13 @@ pub struct Row {
     pub estimated_error_approach: Option<f64>,
     /// The estimate's verdict for the approach.
     #[serde(default)]
-    pub verdict_approach: Option<String>,
+    pub verdict_approach: Option<VerdictJson>,
     /// The peak pressure's estimated discretization error, relative.
     #[serde(default)]
     pub estimated_error_max_pressure: Option<f64>,
     /// The estimate's verdict for the peak pressure.
     #[serde(default)]
-    pub verdict_max_pressure: Option<String>,
+    pub verdict_max_pressure: Option<VerdictJson>,
     /// Iterations (block pivoting's blocks, the conjugate gradient's
     /// steps: the work of a method that spends no pivots).
     #[serde(default)]
@@ -74,65 +80,42 @@ pub struct Row {
 }
 
 impl Row {
-    /// The row of a run that finished: read from its result.json as
-    /// written ([`Row::from_result_json`]), so a row made as the run ends,
-    /// one rebuilt from its directory on a resume and one merge checks are
-    /// the same to the last digit.
+    /// The row of a run that finished, from its result: the same whether
+    /// the result was just made or read back from its result.json (floats
+    /// round-trip), so a row made as the run ends, one rebuilt from its
+    /// directory on a resume and one merge checks agree to the last digit.
     pub fn ok(index: usize, overrides: String, r: &RunResult) -> Self {
-        let value = serde_json::to_value(r).unwrap_or_default();
-        Self::from_result_json(index, overrides, &value).unwrap_or_else(|e| Self {
-            index,
-            scene: r.scene.clone(),
-            status: format!("failed: result.json: {e}"),
-            ..Self::default()
-        })
-    }
-
-    /// The row of run `index` from its result.json (parsed).
-    ///
-    /// # Errors
-    /// The first field result.json lacks or holds with the wrong type.
-    pub fn from_result_json(
-        index: usize,
-        overrides: String,
-        v: &serde_json::Value,
-    ) -> Result<Self, String> {
-        let at = |path: &str| path.split('.').try_fold(v, |v, k| v.get(k));
-        let num = |path: &str| at(path).and_then(serde_json::Value::as_f64);
-        let need = |path: &str| num(path).ok_or_else(|| format!("no number `{path}`"));
-        let count = |path: &str| {
-            at(path)
-                .and_then(serde_json::Value::as_u64)
-                .map(|n| n as usize)
-                .ok_or_else(|| format!("no count `{path}`"))
-        };
-        let text = |path: &str| at(path).and_then(|s| s.as_str().map(str::to_string));
-        Ok(Self {
+        let errors = r.reference.as_ref().map(|x| &x.errors);
+        let quantities = r.discretization.as_ref().map(|d| &d.quantities);
+        Self {
             index,
             overrides,
-            scene: text("scene").ok_or("no `scene`")?,
-            status: "ok".into(),
-            method: Some(text("method").ok_or("no `method`")?),
-            points: Some(count("points")?),
-            pivots: Some(count("statistics.pivots")?),
-            iterations: Some(count("statistics.iterations")?),
-            seconds_total: Some(need("seconds.total")?),
-            seconds_solve: Some(need("seconds.solve")?),
-            approach: Some(need("approach")?),
-            max_pressure: Some(need("max_pressure")?),
-            certificate_worst: Some(need("certificate.worst")?),
-            error_approach: num("reference.errors.approach"),
-            error_max_pressure: num("reference.errors.max_pressure"),
-            error_contact_extent: num("reference.errors.contact_extent"),
-            error_pressure_l2: num("reference.errors.pressure_l2"),
-            error_load: num("reference.errors.load"),
-            estimated_error_approach: num("discretization.quantities.approach.relative_error"),
-            verdict_approach: text("discretization.quantities.approach.verdict"),
-            estimated_error_max_pressure: num(
-                "discretization.quantities.max_pressure.relative_error",
-            ),
-            verdict_max_pressure: text("discretization.quantities.max_pressure.verdict"),
-        })
+            scene: r.scene.clone(),
+            status: OK.into(),
+            method: Some(r.header.method),
+            points: Some(r.header.points),
+            pivots: Some(r.header.statistics.pivots),
+            iterations: Some(r.header.statistics.iterations),
+            seconds_total: Some(r.seconds.total),
+            seconds_solve: Some(r.seconds.solve),
+            approach: Some(r.approach),
+            max_pressure: Some(r.max_pressure),
+            certificate_worst: Some(r.certificate.worst),
+            error_approach: errors.and_then(|e| e.approach),
+            error_max_pressure: errors.and_then(|e| e.max_pressure),
+            error_contact_extent: errors.and_then(|e| e.contact_extent),
+            error_pressure_l2: errors.and_then(|e| e.pressure_l2),
+            error_load: errors.and_then(|e| e.load),
+            estimated_error_approach: quantities.and_then(|q| q.approach.relative_error),
+            verdict_approach: quantities.map(|q| q.approach.verdict),
+            estimated_error_max_pressure: quantities.and_then(|q| q.max_pressure.relative_error),
+            verdict_max_pressure: quantities.map(|q| q.max_pressure.verdict),
+        }
+    }
+
+    /// Whether its run finished (`status` is "ok").
+    pub fn is_ok(&self) -> bool {
+        self.status == OK
     }
 
     /// The row of run `index` that failed with `e`.
@@ -173,12 +156,12 @@ impl Row {
 
     /// The estimated error as the Markdown table shows it: `1.2e-3`,
     /// `exact`, `n.c.` (not converging), or empty.
-    fn estimated_cell(error: Option<f64>, verdict: Option<&String>) -> String {
-        match verdict.map(String::as_str) {
-            Some("exact") => "exact".into(),
-            Some("not converging") => "n.c.".into(),
-            Some("converging") => error.map_or(String::new(), |e| format!("{e:.1e}")),
-            _ => String::new(),
+    fn estimated_cell(error: Option<f64>, verdict: Option<VerdictJson>) -> String {
+        match (verdict, error) {
+            (Some(VerdictJson::Converging), None) | (Some(VerdictJson::NotEstimated) | None, _) => {
+                String::new()
+            }
+            (Some(v), error) => v.short(error),
         }
     }
 }
@@ -209,7 +192,7 @@ pub struct BatchOutcome {
 impl BatchOutcome {
     /// The number of failed runs.
     pub fn failures(&self) -> usize {
-        self.rows.iter().filter(|r| r.status != "ok").count()
+        self.rows.iter().filter(|r| !r.is_ok()).count()
     }
 }
 
@@ -253,7 +236,7 @@ pub fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), ReportError> {
             csv_field(&r.overrides),
             csv_field(&r.scene),
             csv_field(&r.status),
-            r.method.clone().unwrap_or_default(),
+            r.method.map(Method::name).unwrap_or_default(),
             r.points.map_or(String::new(), |n| n.to_string()),
             r.pivots.map_or(String::new(), |n| n.to_string()),
             opt(r.seconds_total),
@@ -267,9 +250,17 @@ pub fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), ReportError> {
             opt(r.error_pressure_l2),
             opt(r.error_load),
             opt(r.estimated_error_approach),
-            csv_field(r.verdict_approach.as_deref().unwrap_or_default()),
+            csv_field(
+                r.verdict_approach
+                    .map(VerdictJson::name)
+                    .unwrap_or_default()
+            ),
             opt(r.estimated_error_max_pressure),
-            csv_field(r.verdict_max_pressure.as_deref().unwrap_or_default()),
+            csv_field(
+                r.verdict_max_pressure
+                    .map(VerdictJson::name)
+                    .unwrap_or_default()
+            ),
             r.iterations.map_or(String::new(), |n| n.to_string()),
         );
         let _ = writeln!(
@@ -277,7 +268,7 @@ pub fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), ReportError> {
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.index,
             r.overrides,
-            r.method.clone().unwrap_or_default(),
+            r.method.map(Method::name).unwrap_or_default(),
             r.points.map_or(String::new(), |n| n.to_string()),
             r.pivots.map_or(String::new(), |n| n.to_string()),
             r.iterations.map_or(String::new(), |n| n.to_string()),
@@ -286,11 +277,8 @@ pub fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), ReportError> {
                 .map_or(String::new(), |c| format!("{c:.1e}")),
             r.error(o.error)
                 .map_or(String::new(), |e| format!("{e:+.3e}")),
-            Row::estimated_cell(
-                r.estimated_error_max_pressure,
-                r.verdict_max_pressure.as_ref()
-            ),
-            Row::estimated_cell(r.estimated_error_approach, r.verdict_approach.as_ref()),
+            Row::estimated_cell(r.estimated_error_max_pressure, r.verdict_max_pressure),
+            Row::estimated_cell(r.estimated_error_approach, r.verdict_approach),
             r.status.replace('|', "/").replace('\n', " "),
         );
     }
@@ -299,9 +287,9 @@ pub fn write_tables(o: &BatchOutcome, dir: &Path) -> Result<(), ReportError> {
     let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     for r in &o.rows {
         if let (Some(m), Some(t), Some(e)) = (&r.method, r.seconds_total, r.error(o.error)) {
-            match series.iter_mut().find(|(name, _)| name == m) {
+            match series.iter_mut().find(|(name, _)| name == m.name()) {
                 Some((_, pts)) => pts.push((t, e.abs())),
-                None => series.push((m.clone(), vec![(t, e.abs())])),
+                None => series.push((m.to_string(), vec![(t, e.abs())])),
             }
         }
     }

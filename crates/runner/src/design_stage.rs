@@ -7,9 +7,11 @@
 use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal, Storage};
-use elcon_design::{Analysis, DesignError, Profile, axial_stations, evaluate};
+use elcon_design::{Analysis, DesignError, Profile, evaluate};
 use elcon_num::Num;
-use elcon_report::{BodySubsurfaceJson, DesignCaseJson, DesignGridJson, DesignJson, DesignRun};
+use elcon_report::{
+    BodySubsurfaceJson, DesignCaseJson, DesignGridJson, DesignJson, DesignOf, DesignRun,
+};
 use elcon_scene::{DesignFamily, DesignSpec, MethodChoice, RelativeTo, Scene};
 
 use crate::error::{RunError, run_error};
@@ -100,10 +102,6 @@ pub(crate) fn design_stage(
         &Analysis::new(method, scene.options()).with_known(&known),
     )
     .map_err(fail)?;
-    let outcome = converged.outcome;
-    let (profile, after) = (outcome.profile, outcome.evaluation);
-    let (positions, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis());
-    let table = profile.table(&positions).map_err(fail)?;
     let grid = |level: &elcon_design::Level| DesignGridJson {
         grid: grid_name(scene, spec, level.fineness),
         fineness: level.fineness,
@@ -111,48 +109,41 @@ pub(crate) fn design_stage(
         objective: level.objective,
         seconds: level.seconds,
     };
-    let json = DesignJson {
-        family: spec.family().describe(),
-        axis: match spec.axis() {
-            elcon_design::Axis::X => "x".into(),
-            elcon_design::Axis::Y => "y".into(),
-        },
-        relative_to: match spec.relative_to() {
-            RelativeTo::Absolute => "absolute".into(),
-            RelativeTo::Mean => "mean".into(),
-            RelativeTo::Hertz => "hertz".into(),
-        },
-        parameters: profile.parameters(),
-        objective: after.relative_worst(&references),
-        objective_before: before.relative_worst(&references),
-        cases: spec
-            .case_loadings()
-            .into_iter()
-            .enumerate()
-            .map(|(l, (load, misalignment))| DesignCaseJson {
-                misalignment,
-                subsurface_before: case_subsurface(scene, &cases[l], &before.solutions[l]),
-                subsurface_after: case_subsurface(scene, &cases[l], &after.solutions[l]),
-                ..DesignCaseJson::of(l, load, references[l], &before, &after)
-            })
-            .collect(),
-        table,
-        method: outcome.found.method().into(),
-        minimized: outcome.found.minimized().name().into(),
-        worst_stress: outcome.found.worst_stress(),
-        starts: outcome.found.starts(),
-        interpolation: profile.interpolation(),
-        grids: converged.levels.iter().map(grid).collect(),
-        verification: converged.verification.as_ref().map(grid),
+    let grids: Vec<DesignGridJson> = converged.levels.iter().map(grid).collect();
+    let verification = converged.verification.as_ref().map(grid);
+    let outcome = converged.outcome;
+    let of = DesignOf {
+        family: spec.family(),
+        axis: spec.axis(),
+        relative_to: spec.relative_to().into(),
+        references: &references,
+        cases: &cases,
+        before: &before,
+        outcome: &outcome,
+        grids: &grids,
+        verification: verification.as_ref(),
         grid_tolerance: spec.sequence().map(|s| s.tolerance),
         seconds: start.elapsed().as_secs_f64(),
     };
+    let after = &outcome.evaluation;
+    let rows = spec
+        .case_loadings()
+        .into_iter()
+        .enumerate()
+        .map(|(l, (load, misalignment))| DesignCaseJson {
+            misalignment,
+            subsurface_before: case_subsurface(scene, &cases[l], &before.solutions[l]),
+            subsurface_after: case_subsurface(scene, &cases[l], &after.solutions[l]),
+            ..DesignCaseJson::of(l, load, references[l], &before, after)
+        })
+        .collect();
+    let json = DesignJson::of(of, rows).map_err(fail)?;
     Ok((
         json,
         DesignRun {
-            profile,
+            profile: outcome.profile,
             before,
-            after,
+            after: outcome.evaluation,
             cases,
         },
     ))

@@ -25,7 +25,7 @@ use std::sync::Mutex;
 use serde::{Deserialize, Serialize};
 
 use elcon_process::{faults, sync_dir, write_atomic};
-use elcon_report::Row;
+use elcon_report::{Row, RunResult};
 use elcon_scene::Batch;
 
 use crate::error::RunError;
@@ -162,7 +162,7 @@ fn finished_runs(text: &str, dir: &Path, batch: &Batch, shard: Shard) -> BTreeMa
         let Ok(row) = serde_json::from_str::<Row>(line) else {
             continue;
         };
-        if row.status != "ok" || !shard.contains(row.index) {
+        if !row.is_ok() || !shard.contains(row.index) {
             kept.remove(&row.index);
             continue;
         }
@@ -170,10 +170,9 @@ fn finished_runs(text: &str, dir: &Path, batch: &Batch, shard: Shard) -> BTreeMa
             continue;
         };
         let result = dir.join(run.slug()).join("result.json");
-        let rebuilt = fs::read_to_string(&result)
+        let rebuilt = RunResult::read(&result)
             .ok()
-            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-            .and_then(|v| Row::from_result_json(run.index, run.label(), &v).ok());
+            .map(|r| Row::ok(run.index, run.label(), &r));
         match rebuilt {
             Some(r) if r.scene == run.slug() => {
                 kept.insert(run.index, r);

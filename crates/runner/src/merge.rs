@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use elcon_process::Staging;
-use elcon_report::{BatchOutcome, Row, write_tables};
+use elcon_report::{BatchOutcome, Row, RunResult, write_tables};
 
 use crate::error::RunError;
 use crate::shard::Shard;
@@ -156,16 +156,15 @@ fn check_rows(parts: &[Part], runs: usize, count: usize) -> Result<(), RunError>
 /// by hand, or of a run whose directory was replaced, is refused.
 fn check_values(parts: &[Part]) -> Result<(), RunError> {
     for p in parts {
-        for r in p.table.rows.iter().filter(|r| r.status == "ok") {
+        for r in p.table.rows.iter().filter(|r| r.is_ok()) {
             let plain =
                 !r.scene.is_empty() && !r.scene.starts_with('.') && !r.scene.contains(['/', '\\']);
             let path = p.dir.join(&r.scene).join("result.json");
-            let rebuilt = plain
-                .then(|| std::fs::read_to_string(&path).ok())
-                .flatten()
-                .ok_or_else(|| format!("its run's {} cannot be read", path.display()))
-                .and_then(|t| serde_json::from_str(&t).map_err(|e| e.to_string()))
-                .and_then(|v| Row::from_result_json(r.index, r.overrides.clone(), &v));
+            let rebuilt = match plain {
+                true => RunResult::read(&path).map_err(|e| format!("its run's {e}")),
+                false => Err(format!("its run's {} cannot be read", path.display())),
+            }
+            .map(|result| Row::ok(r.index, r.overrides.clone(), &result));
             let differs = match rebuilt {
                 Ok(own) if own == *r => continue,
                 Ok(own) => differing(r, &own),

@@ -10,11 +10,10 @@
 use std::time::Instant;
 
 use elcon_analysis::{AnalysisError, ContactSolution, Normal, Tilt};
-use elcon_influence::Dimension;
 use elcon_lcp::LcpError;
 use elcon_num::{Num, rounded};
 use elcon_process::faults;
-use elcon_report::{DiscretizationJson, Run, RunResult, Seconds, SolutionJson, SymmetryJson};
+use elcon_report::{DiscretizationJson, Header, Run, RunResult, Seconds, SolutionJson};
 use elcon_scene::{MAX_STRAIN, Scene, Zone, approach_strain};
 
 use crate::compare::compare;
@@ -197,19 +196,7 @@ pub fn run(scene: &Scene) -> Result<Run, RunError> {
         file: scene.file().display().to_string(),
         description: scene.description().map(String::from),
         units: scene.units().clone(),
-        method: scene.method().name().to_string(),
-        influence: problem.storage().held_as().to_string(),
-        dimension: match scene.points().dimension() {
-            Dimension::Surface => "surface".into(),
-            Dimension::Line => "line".into(),
-        },
-        points: scene.points().len(),
-        symmetry: problem.folding().map(|f| SymmetryJson {
-            group: f.group().to_string(),
-            order: f.order(),
-            unknowns: f.len(),
-        }),
-        statistics: solution.statistics.clone(),
+        header: Header::of(&problem, &solution, scene.method()),
         seconds: Seconds {
             assembly: problem.assembly_seconds(),
             solve: solution.solve_seconds,

@@ -24,7 +24,7 @@ fn an_odd_polynomial_over_spheres_designed_by_the_program_is_certified() {
     );
     let r = run(&scene(&text).unwrap()).unwrap();
     let d = r.result.design.unwrap();
-    assert_eq!(d.method, "program");
+    assert_eq!(d.method.name(), "program");
     assert!(d.cases.iter().all(|c| c.certificate_holds));
     assert!(
         d.objective < d.objective_before,

@@ -23,7 +23,7 @@ fn beam(method: &str) -> Scene {
 #[test]
 fn a_stalled_block_exchange_hands_over_to_lemke_s_method() {
     let block = run(&beam("block-pivoting")).unwrap().result;
-    let stats = serde_json::to_value(&block.statistics).unwrap();
+    let stats = serde_json::to_value(&block.header.statistics).unwrap();
     let attempts = stats["attempts"].as_array().unwrap();
     assert_eq!(attempts.len(), 2, "{stats}");
     assert_eq!(attempts[0]["method"], "block-pivoting");

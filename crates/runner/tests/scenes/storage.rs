@@ -56,8 +56,8 @@ fn auto_goes_matrix_free_above_the_limit_and_meets_hertz() {
     assert_eq!(run.problem.storage(), Storage::Lattice);
     assert!(run.solution.certificate.holds());
     let result = &run.result;
-    assert_eq!(result.influence, "matrix-free");
-    assert_eq!(result.method, "conjugate-gradient");
+    assert_eq!(result.header.influence.name(), "matrix-free");
+    assert_eq!(result.header.method.name(), "conjugate-gradient");
     let reference = result.reference.as_ref().expect("Hertz applies");
     let error = reference.errors.approach.expect("approach error");
     assert!(error.abs() < 2e-3, "approach against Hertz {error:e}");
@@ -145,7 +145,7 @@ fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
     let cases = &r.design.as_ref().unwrap().cases;
     assert!(cases.iter().all(|c| c.storage() == Storage::Lattice));
     let json = r.result.design.as_ref().unwrap();
-    assert_eq!(json.method, "descent");
+    assert_eq!(json.method.name(), "descent");
     assert!(json.cases.iter().all(|c| c.certificate_holds));
     assert!(json.objective <= json.objective_before * (1.0 + 1e-12));
     // The program is refused for such a scene, naming the key.
@@ -163,7 +163,7 @@ fn result_json_writes_the_statistics_totals_then_each_attempt() {
     // the totals in this order, then the attempts; a block-pivoting
     // attempt has no tableau.
     let r = run(&spheres(11, r#"method = "block-pivoting""#)).unwrap();
-    let text = serde_json::to_string(&r.result.statistics).unwrap();
+    let text = serde_json::to_string(&r.result.header.statistics).unwrap();
     let order = |keys: &[&str], within: &str| {
         let at: Vec<usize> = keys
             .iter()

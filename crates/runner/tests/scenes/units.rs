@@ -35,7 +35,7 @@ fn a_rubber_ball_in_a_turned_groove_gives_one_answer_in_mm_and_in_m() {
     for load in [1e-3, 1e-2] {
         let mm = run(&rubber("mm", "MPa", 1e-3, load)).unwrap().result;
         let m = run(&rubber("m", "Pa", 1.0, load)).unwrap().result;
-        assert_eq!(mm.points, 20915);
+        assert_eq!(mm.header.points, 20915);
         // Both certified to about 1e-13: the answers agree to far better
         // than the 1e-9 asked here.
         let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();

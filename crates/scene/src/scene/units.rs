@@ -7,7 +7,7 @@ use crate::schema::UnitsToml;
 
 /// The unit labels of a scene (any consistent system; the labels are
 /// repeated in every output, never used in arithmetic).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Units {
     /// Length, e.g. "in", "m", "mm".
     length: String,
