@@ -3,7 +3,7 @@
 
 use elcon_analysis::AnalysisError;
 use elcon_process::isolated;
-use elcon_runner::{DesignKey, RunError, scene_design_key};
+use elcon_runner::{DesignCaller, RunError, design_reason};
 use elcon_scene::SceneError as RustSceneError;
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
@@ -110,34 +110,13 @@ pub(crate) fn analysis_error(e: AnalysisError) -> PyErr {
 }
 
 /// A design error over problems as its Python class, said as a scene's
-/// design stage says it ([`elcon_runner::design_reason`]): a parameter
+/// design stage says it ([`design_reason`]): a parameter
 /// elcon-design names by its own name is named by the argument or the
 /// scene's key the user gave (`design.radius_range`); the roller's
 /// parameters by `roller.*` when `roller_given` (else, derived from the
 /// problems' bodies, geometry and points, by the scene's keys).
 pub(crate) fn design_error(e: elcon_design::DesignError, roller_given: bool) -> PyErr {
-    DesignError::new_err(elcon_runner::design_reason(&e, |field| {
-        python_design_key(field, roller_given)
-    }))
-}
-
-/// The argument of `elcon.design` over problems that holds what
-/// elcon-design names `field`; the scene's key ([`scene_design_key`]) for
-/// the `[design]` keys the call takes by the scene's names.
-fn python_design_key(field: &str, roller_given: bool) -> Option<DesignKey> {
-    let key = |key, what| Some(DesignKey { key, what });
-    match field {
-        "cases" => key("problems", Some("the load cases, one per problem")),
-        "reference_intensities" => key("reference_intensities", None),
-        "reanalysis" => key(
-            "problems",
-            Some("the method of the analyses, the first problem's default"),
-        ),
-        "log_crown.length" if roller_given => key("roller.length", None),
-        "log_crown.radius" if roller_given => key("roller.radius", None),
-        "log_crown.combined_modulus" if roller_given => key("roller.combined_modulus", None),
-        _ => scene_design_key(field),
-    }
+    DesignError::new_err(design_reason(&e, DesignCaller::Problems { roller_given }))
 }
 
 /// Runs `f` inside `elcon_process::isolated`: a panic becomes a `SolveError`

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use elcon_process::isolated;
 use elcon_runner::RunError;
-use elcon_scene::Scene;
+use elcon_scene::{Scene, read_text};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -16,15 +16,15 @@ use crate::signals::detach;
 use crate::subsurface::subsurface_arrays;
 use crate::threads::with_threads;
 
-/// A scene's text: read from `path`, or a dict written as TOML.
+/// A scene's text: read from `path` as the command line reads it (once,
+/// at most `elcon_scene::MAX_INPUT_BYTES`, UTF-8), or a dict written as TOML.
 pub(crate) fn scene_text(
     path: Option<PathBuf>,
     scene: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<(PathBuf, String)> {
     match (path, scene) {
         (Some(p), None) => {
-            let text = std::fs::read_to_string(&p)
-                .map_err(|e| SceneError::new_err(format!("{}: {e}", p.display())))?;
+            let text = read_text(&p).map_err(|e| SceneError::new_err(e.to_string()))?;
             Ok((p, text))
         }
         (None, Some(d)) => {

@@ -14,6 +14,7 @@ use elcon_report::{
 };
 use elcon_scene::{DesignFamily, DesignSpec, MethodChoice, RelativeTo, Scene};
 
+use crate::design_keys::{DesignCaller, design_reason};
 use crate::error::{RunError, run_error};
 use crate::subsurface::subsurface_of;
 
@@ -149,88 +150,10 @@ pub(crate) fn design_stage(
     ))
 }
 
-/// The key a user wrote for a parameter elcon-design names by its own
-/// name (`circular_crown.radius`), as a failure's message shows it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct DesignKey {
-    /// The key (`design.radius_range`).
-    pub key: &'static str,
-    /// What the value is, when it is not the key's own but one derived from
-    /// it (`a crown radius searched in it`).
-    pub what: Option<&'static str>,
-}
-
-impl DesignKey {
-    /// The key `key`, whose value is `what` when given.
-    const fn new(key: &'static str, what: Option<&'static str>) -> Self {
-        Self { key, what }
-    }
-}
-
-/// What a scene's user wrote for a parameter elcon-design names by its
-/// own name: the scene's key, and, when the value is not that key's own
-/// but one derived from it, what the value is. `None` for a name the
-/// scene has no key for.
-pub fn scene_design_key(field: &str) -> Option<DesignKey> {
-    let key = DesignKey::new;
-    Some(match field {
-        "circular_crown.radius" => {
-            key("design.radius_range", Some("a crown radius searched in it"))
-        }
-        "circular_crown.flat_length" | "log_crown.flat_length" => key("design.flat_length", None),
-        "log_crown.design_load" => key(
-            "design.design_load",
-            Some("the design load, by default the largest of design.loads"),
-        ),
-        "log_crown.length" => key("points.half_y", Some("the roller's length, twice it")),
-        "log_crown.radius" => key("geometry", Some("the roller's radius, from its surfaces")),
-        "log_crown.combined_modulus" => key(
-            "body1, body2",
-            Some("the roller's combined modulus, from the bodies' materials"),
-        ),
-        "family.degree" => key("design.degree", None),
-        "max_constant" => key("design.max_constant", None),
-        "grid_tolerance" => key("design.grid_tolerance", None),
-        "cases" => key(
-            "design.loads",
-            Some("the load cases, each load at each misalignment"),
-        ),
-        "reference_intensities" => key("design.relative_to", Some("the reference intensities")),
-        "reanalysis" => key("solver.method", Some("the method of the analyses")),
-        _ => return None,
-    })
-}
-
-/// A design's failure as its user reads it: a parameter elcon-design
-/// names by its own name (`circular_crown.radius`) is named by the key
-/// `key_of` gives for it (a scene's: [`scene_design_key`]), its value in
-/// the shortest form ([`Num`]); the other failures as elcon-design says
-/// them. The scene's design stage and the Python package both say a
-/// design's failure through it.
-pub fn design_reason(e: &DesignError, key_of: impl Fn(&str) -> Option<DesignKey>) -> String {
-    let named = |field: &str, rest: String| match key_of(field) {
-        Some(DesignKey { key, what: None }) => format!("`{key}`{rest}"),
-        Some(DesignKey {
-            key,
-            what: Some(what),
-        }) => format!("`{key}` ({what}){rest}"),
-        None => format!("`{field}`{rest}"),
-    };
-    match e {
-        DesignError::InvalidInput {
-            field,
-            value,
-            reason,
-        } => named(field, format!(" = {}: {reason}", Num(*value))),
-        DesignError::Incompatible { field, reason } => named(field, format!(": {reason}")),
-        _ => e.to_string(),
-    }
-}
-
 /// A design's failure as the scene's error: [`design_reason`] with the
 /// scene's keys.
 fn design_failure(scene: &Scene, e: DesignError) -> RunError {
-    let mut reason = design_reason(&e, scene_design_key);
+    let mut reason = design_reason(&e, DesignCaller::Scene);
     if let DesignError::NotConverged { objectives, .. } = &e {
         reason.push_str(&growing_hint(scene, objectives));
     }

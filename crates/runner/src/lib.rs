@@ -19,6 +19,7 @@
 
 mod batch_run;
 mod compare;
+mod design_keys;
 mod design_stage;
 mod error;
 mod error_estimate;
@@ -31,7 +32,7 @@ mod shard;
 mod subsurface;
 
 pub use batch_run::{BatchDone, BatchOptions, Progress, run_batch};
-pub use design_stage::{DesignKey, design_reason, scene_design_key};
+pub use design_keys::{DesignCaller, design_reason};
 pub use error::RunError;
 pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass, TimeFigure};
 pub use merge::merge;
