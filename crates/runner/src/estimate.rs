@@ -41,7 +41,7 @@ pub use elcon_design::DesignEstimate;
 use elcon_influence::PointSet;
 
 use elcon_process::{Ceiling, Limit, gemm_reserve, human};
-use elcon_scene::{DesignSpec, Plot, Scene};
+use elcon_scene::{DesignSpec, Plot, Scene, SceneError};
 
 use crate::error::RunError;
 
@@ -439,8 +439,8 @@ fn design_loads(
             } else {
                 scene
                     .grid_for(load, fineness)
-                    .and_then(|g| g.points().map_err(|e| e.to_string()))
-                    .map_err(failed)?
+                    .and_then(|g| g.points().map_err(SceneError::points))
+                    .map_err(|e| failed(e.to_string()))?
             };
             // The scene's grid holds S as the scene does; a finer grid as
             // elcon-analysis decides for its size (the design stage's

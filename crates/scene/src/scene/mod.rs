@@ -205,9 +205,9 @@ impl Scene {
     /// points are.
     ///
     /// # Errors
-    /// Why the layout has no family (relative to a Hertz contact that does
-    /// not apply).
-    pub fn grid_family(&self) -> Result<GridFamily, String> {
+    /// [`SceneError::Points`]: why the layout has no family (relative to a
+    /// Hertz contact that does not apply).
+    pub fn grid_family(&self) -> Result<GridFamily, SceneError> {
         let scale = self.loading.load_value().and_then(|p| self.hertz_scale(p));
         self.points_spec.family(scale)
     }
@@ -217,12 +217,13 @@ impl Scene {
     /// [`Scene::points_for`]).
     ///
     /// # Errors
-    /// Why the layout has no family, or the refined grid is invalid.
-    pub fn grid_for(&self, load: f64, fineness: f64) -> Result<GridFamily, String> {
+    /// [`SceneError::Points`]: why the layout has no family, or the refined
+    /// grid is invalid.
+    pub fn grid_for(&self, load: f64, fineness: f64) -> Result<GridFamily, SceneError> {
         self.points_spec
             .family(self.hertz_scale(load))?
             .refined(fineness)
-            .map_err(|e| e.to_string())
+            .map_err(SceneError::points)
     }
 
     /// `solver.method` as given: "auto", or a method.
@@ -290,9 +291,9 @@ impl Scene {
     /// points unless they are laid out relative to the Hertz contact).
     pub fn points_for(&self, load: f64) -> Result<PointSet, SceneError> {
         let scale = self.hertz_scale(load);
-        build_points(&self.points_spec, scale).map_err(|reason| SceneError::Layout {
+        build_points(&self.points_spec, scale).map_err(|e| SceneError::Layout {
             scene: self.name.clone(),
-            reason,
+            reason: e.to_string(),
         })
     }
 
@@ -894,7 +895,7 @@ fn lay_out(
         ));
     }
     let points = build_points(points_spec, scale)
-        .map_err(|reason| ctx.invalid(raw.points.span(), "points", "", reason))?;
+        .map_err(|e| ctx.invalid(raw.points.span(), "points", "", e.to_string()))?;
     if let Geometry::Separation(eps) = geometry
         && eps.len() != points.len()
     {
@@ -927,12 +928,12 @@ fn whole_scene(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<Vec<Stri
         for &load in spec.loads() {
             let scale =
                 hertz::hertz_scale(&scene.bodies, &scene.geometry, &scene.points_spec, load);
-            sets.push(build_points(&scene.points_spec, scale).map_err(|reason| {
+            sets.push(build_points(&scene.points_spec, scale).map_err(|e| {
                 ctx.invalid(
                     raw_design.span(),
                     "design.loads",
                     load,
-                    format!("the grid of this load case: {reason}"),
+                    format!("the grid of this load case: {e}"),
                 )
             })?);
         }

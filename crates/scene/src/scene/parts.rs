@@ -213,13 +213,13 @@ fn laid_out_points(
     p: &Spanned<PointsToml>,
     scale: Option<f64>,
 ) -> Result<PointSet, SceneError> {
-    build_points(spec, scale).map_err(|reason| {
+    build_points(spec, scale).map_err(|e| {
         ctx.invalid(
             p.span(),
             "points",
             "",
             format!(
-                "{reason} (a layout relative to the Hertz contact needs two bodies, curved \
+                "{e} (a layout relative to the Hertz contact needs two bodies, curved \
                  surfaces and a load)"
             ),
         )

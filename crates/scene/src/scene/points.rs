@@ -315,25 +315,26 @@ impl PointsSpec {
     /// for the relative layouts.
     ///
     /// # Errors
-    /// Why the layout cannot be made: relative to a Hertz contact that does
-    /// not apply, or bad sizes.
-    pub fn family(&self, scale: Option<f64>) -> Result<GridFamily, String> {
+    /// [`SceneError::Points`]: why the layout cannot be made (relative to a
+    /// Hertz contact that does not apply, or bad sizes).
+    pub fn family(&self, scale: Option<f64>) -> Result<GridFamily, SceneError> {
         let need = || {
             scale.ok_or_else(|| {
-                "the layout is relative to a Hertz contact that does not apply".to_string()
+                SceneError::points("the layout is relative to a Hertz contact that does not apply")
             })
         };
-        let r = match *self {
-            PointsSpec::Disk { spacing, radius } => Ok(GridFamily::Disk { spacing, radius }),
+        let family = match *self {
+            PointsSpec::Disk { spacing, radius } => GridFamily::Disk { spacing, radius },
             PointsSpec::DiskHertz { across, zone } => {
                 elcon_analysis::grid::hertz_disk_family(need()?, across, zone)
+                    .map_err(SceneError::points)?
             }
             PointsSpec::Rectangle {
                 half_x,
                 half_y,
                 nx,
                 ny,
-            } => Ok(GridFamily::Rectangle {
+            } => GridFamily::Rectangle {
                 half_x: match half_x {
                     HalfX::Length(h) => h,
                     HalfX::Zone(z) => z * need()?,
@@ -341,10 +342,11 @@ impl PointsSpec {
                 half_y,
                 nx,
                 ny,
-            }),
-            PointsSpec::Line { start, end, n } => Ok(GridFamily::Line { start, end, n }),
+            },
+            PointsSpec::Line { start, end, n } => GridFamily::Line { start, end, n },
             PointsSpec::LineHertz { across, zone } => {
                 elcon_analysis::grid::hertz_line_family(need()?, across, zone)
+                    .map_err(SceneError::points)?
             }
             PointsSpec::EllipseHertz {
                 across,
@@ -353,11 +355,11 @@ impl PointsSpec {
             } => {
                 let family =
                     elcon_analysis::grid::hertz_ellipse_family(shape.extent(need()?), across, zone)
-                        .map_err(|e| e.to_string())?;
+                        .map_err(SceneError::points)?;
                 return turned_too_many(&shape, across, zone, family);
             }
         };
-        r.map_err(|e| e.to_string())
+        Ok(family)
     }
 }
 
@@ -370,7 +372,7 @@ fn turned_too_many(
     across: usize,
     zone: f64,
     family: GridFamily,
-) -> Result<GridFamily, String> {
+) -> Result<GridFamily, SceneError> {
     let GridFamily::Rectangle { nx, ny, .. } = family else {
         return Ok(family);
     };
@@ -378,12 +380,12 @@ fn turned_too_many(
     if !shape.extent(1.0).is_turned() || count <= MAX_POINTS as f64 {
         return Ok(family);
     }
-    Err(format!(
+    Err(SceneError::points(format!(
         "{} = {} points, more than {MAX_POINTS}, the most elcon lays out. {}",
         turned_cells(shape, across, (nx, ny)),
         Num(count),
         align_hint(shape, across, zone)
-    ))
+    )))
 }
 
 /// "the Hertz ellipse is turned by 30.00 degrees from x ...: a grid with
@@ -466,14 +468,14 @@ pub const TURNED_NOTE_RATIO: f64 = 4.0;
 
 /// Builds the point set of the layout's family ([`PointsSpec::family`]);
 /// `scale` is the Hertz radius or half-width for the relative layouts.
-pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, String> {
+pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, SceneError> {
     // elcon-influence names its bound by its constant; a user reads the
     // number and what it is.
     spec.family(scale)?.points().map_err(|e| {
-        e.to_string().replace(
+        SceneError::points(e.to_string().replace(
             &format!("MAX_POINTS = {MAX_POINTS} points"),
             &format!("{MAX_POINTS} points, the most elcon lays out"),
-        )
+        ))
     })
 }
 
