@@ -3,7 +3,7 @@
 //! linear family's problem is solved, checked against the scene's bodies,
 //! grid and surfaces (elcon-design).
 
-use elcon_analysis::{Geometry, Loading, Method, Normal, Options};
+use elcon_analysis::{Loading, Method, Normal, Options};
 pub use elcon_design::DesignFamily;
 use elcon_design::{
     Axis, DesignError, DesignMethod, DesignRequest, Family, GridSequence, LogCrown, LogEnd,
@@ -12,11 +12,11 @@ use elcon_design::{
 use elcon_influence::{Body, Dimension};
 use toml::Spanned;
 
-use super::body::BodySpec;
-use super::hertz::{Hertz, hertz};
+use super::hertz::{Hertz, Layout};
 use super::points::PointsSpec;
 use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
+use crate::sanity::DesignView;
 pub use crate::schema::RelativeTo;
 use crate::schema::{AxisName, DesignMethodName, DesignToml, EndName, FamilyName, ObjectiveName};
 
@@ -118,6 +118,21 @@ impl DesignSpec {
         }
     }
 
+    /// The section as the checks against its grids read it.
+    pub(crate) fn view(&self) -> DesignView {
+        DesignView {
+            family: match &self.family {
+                DesignFamily::Linear(f) => Some(*f),
+                _ => None,
+            },
+            axis: self.axis,
+            max_constant: self.max_constant,
+            loads: self.loads.clone(),
+            relative: self.relative_to != RelativeTo::Absolute,
+            sequence: self.sequence.clone(),
+        }
+    }
+
     /// The design's load cases: each load at each misalignment (or alone).
     pub fn case_loadings(&self) -> Vec<(f64, Option<f64>)> {
         let angles: Vec<Option<f64>> = if self.misalignments.is_empty() {
@@ -148,28 +163,10 @@ pub(super) struct DesignContext<'a> {
     /// logarithmic crown's roller, `relative_to = "hertz"`) comes from;
     /// `None` for problems given whole (from Python's arrays), which have
     /// no layout.
-    pub(super) layout: Option<DesignLayout<'a>>,
+    pub(super) layout: Option<Layout<'a>>,
     /// The roller a logarithmic crown is set for when it is given rather
     /// than derived from `layout` (Python's `roller=`).
     pub(super) roller: Option<Roller>,
-}
-
-/// The parts of a scene its Hertz contact comes from.
-#[derive(Clone, Copy)]
-pub(super) struct DesignLayout<'a> {
-    /// The two bodies.
-    pub(super) bodies: &'a [BodySpec; 2],
-    /// The surfaces or the separation.
-    pub(super) geometry: &'a Geometry,
-    /// The point layout.
-    pub(super) points_spec: &'a PointsSpec,
-}
-
-impl DesignLayout<'_> {
-    /// The Hertz contact at `load`, where one applies.
-    fn hertz(&self, load: f64) -> Option<Hertz> {
-        hertz(self.bodies, self.geometry, self.points_spec, load)
-    }
 }
 
 pub(super) fn design(

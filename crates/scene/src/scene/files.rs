@@ -306,21 +306,35 @@ pub(super) fn on_points(
         return Ok(Geometry::Separation(separations(ctx, file, points)?));
     }
     if let Geometry::Tabulated { .. } = &geometry {
-        elcon_analysis::separations(points, &geometry).map_err(|e| {
-            let (field, span, value) = data_file(g);
-            ctx.invalid(span, field, value, e.to_string())
-        })?;
+        separations_on(ctx, raw, &geometry, points)?;
     }
     Ok(geometry)
+}
+
+/// The separations of `geometry` at `points`
+/// (`elcon_analysis::separations`); a failure (a table that does not cover
+/// them) refused at the data file they are read from ([`data_file`]), or
+/// at `[geometry]`.
+pub(super) fn separations_on(
+    ctx: &Ctx<'_>,
+    raw: Option<&Spanned<GeometryToml>>,
+    geometry: &Geometry,
+    points: &PointSet,
+) -> Result<Vec<f64>, SceneError> {
+    elcon_analysis::separations(points, geometry).map_err(|e| match raw {
+        Some(g) => {
+            let (field, span, value) = data_file(g);
+            ctx.invalid(span, field, value, e.to_string())
+        }
+        None => ctx.invalid(0..0, "geometry", "", e.to_string()),
+    })
 }
 
 /// The data file a geometry's separations are read from, as a refusal
 /// names it: its key (`geometry.height_map.file`, `geometry.profile.file`,
 /// `geometry.separation_file`), where it is written and its name; the
 /// `geometry` table when it reads none.
-pub(super) fn data_file(
-    g: &Spanned<GeometryToml>,
-) -> (&'static str, std::ops::Range<usize>, String) {
+fn data_file(g: &Spanned<GeometryToml>) -> (&'static str, std::ops::Range<usize>, String) {
     let t = g.get_ref();
     let named = |f: &Spanned<String>| (f.span(), format!("{:?}", f.get_ref()));
     let (field, (span, value)) = if let Some(m) = &t.height_map {

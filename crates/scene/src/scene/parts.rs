@@ -16,10 +16,11 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::body::{self, BodySpec};
-use super::design::{self, DesignContext, DesignLayout, DesignSpec};
+use super::design::{self, DesignContext, DesignSpec};
 use super::geometry;
+use super::hertz::{self, DesignLayoutParts, Layout};
 use super::points::{self, PointsSpec, build_points};
-use super::{Scene, grid_fits_models, hertz, loading, model_kinds};
+use super::{Scene, grid_fits_models, loading, model_kinds};
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
@@ -111,7 +112,12 @@ pub fn problem_parts(
     let points = match (laid_out, listed) {
         (Some((spec, p)), _) => {
             let scale = match (&bodies, &geometry, loading.normal) {
-                (Some((_, b)), Some(g), Normal::Load(load)) => hertz::hertz_scale(b, g, spec, load),
+                (Some((_, bodies)), Some(geometry), Normal::Load(load)) => Layout {
+                    bodies,
+                    geometry,
+                    points_spec: spec,
+                }
+                .scale(load),
                 _ => None,
             };
             laid_out_points(&ctx, spec, p, scale)?
@@ -191,7 +197,7 @@ fn problem_layout(
         (Some(p), None) => {
             let (spec, dimension) = points::points_spec(ctx, p)?;
             if let Some(((line, surface), _)) = bodies {
-                grid_fits_models(ctx, p, None, dimension, *line, *surface)?;
+                grid_fits_models(ctx, p, None, dimension, (*line, *surface))?;
             }
             Ok((Some(spec), dimension))
         }
@@ -224,18 +230,6 @@ fn laid_out_points(
             ),
         )
     })
-}
-
-/// The scene parts a design over problems given piece by piece may know:
-/// what its logarithmic crown's roller is derived from.
-#[derive(Debug, Clone, Copy)]
-pub struct DesignLayoutParts<'a> {
-    /// The two bodies.
-    pub bodies: &'a [BodySpec; 2],
-    /// The surfaces.
-    pub geometry: &'a Geometry,
-    /// The layout of the points.
-    pub points_spec: &'a PointsSpec,
 }
 
 /// Parses and validates a `[design]` section (`text`, TOML, `file` naming
@@ -328,27 +322,12 @@ pub fn design_over(
         &DesignContext {
             loading: Loading::load(if largest > 0.0 { largest } else { 1.0 }),
             dimension,
-            layout: layout.map(|l| DesignLayout {
-                bodies: l.bodies,
-                geometry: l.geometry,
-                points_spec: l.points_spec,
-            }),
+            layout,
             roller,
         },
     )?;
     let sets: Vec<PointSet> = cases.iter().map(|c| c.points().clone()).collect();
-    let view = sanity::DesignView {
-        family: match spec.family() {
-            design::DesignFamily::Linear(f) => Some(*f),
-            _ => None,
-        },
-        axis: spec.axis(),
-        max_constant: spec.max_constant(),
-        loads: spec.loads().to_vec(),
-        relative: spec.relative_to() != crate::RelativeTo::Absolute,
-        sequence: spec.sequence().cloned(),
-    };
-    sanity::design(&ctx, d, &view, &sets)?;
+    sanity::design(&ctx, d, &spec.view(), &sets)?;
     Ok(spec)
 }
 
