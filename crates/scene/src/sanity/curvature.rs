@@ -155,7 +155,7 @@ fn quadric_curvatures(
     // curvature: of opposite signs and summing to rounding, they cancel
     // (as along x or y, `curvatures`), whatever the angle.
     let (c, s) = (p.angle.cos(), p.angle.sin());
-    let along = |k: Curvature| k.xx * c * c + 2.0 * k.xy * c * s + k.yy * s * s;
+    let along = |k: Curvature| 2.0 * k.height(c, s);
     let (k1, k2) = (along(Curvature::of(&a)), along(Curvature::of(&b)));
     if k1 * k2 < 0.0 && p.smaller.abs() < CANCELLING_CURVATURE * k1.abs().max(k2.abs()) {
         let (field, raw_surface) = concave(raw, k1 < 0.0);

@@ -1,10 +1,17 @@
-//! The grid's resolution of the contact: a grid with too few points across
-//! the Hertz contact (or an absolute candidate disk) is refused below
-//! [`MIN_POINTS_RESOLVED`] and warned of below [`MIN_POINTS_ACROSS`]; and
-//! why points relative to the Hertz contact cannot be laid out.
+//! The grids against the contact and the bodies: a grid with too few
+//! points across the Hertz contact (or an absolute candidate disk) is
+//! refused below [`MIN_POINTS_RESOLVED`] and warned of below
+//! [`MIN_POINTS_ACROSS`]; why points relative to the Hertz contact cannot
+//! be laid out; and the bodies against every grid they are solved on (a
+//! plane-strain datum beyond them, a beam's loaded point on them).
 
 use elcon_analysis::{Geometry, Loading, Normal};
-use elcon_influence::{Dimension, PointSet};
+use elcon_influence::{Body, Dimension, Model, PointSet};
+use toml::Spanned;
+
+use crate::ctx::{Ctx, Num};
+use crate::error::SceneError;
+use crate::schema::BodyToml;
 
 /// A grid with fewer points than this across the Hertz contact (or the
 /// candidate disk) gets a warning.
@@ -160,4 +167,70 @@ pub(crate) fn no_hertz_reason(
 /// moduli and radii are outside floating-point range together.
 pub(crate) fn scale_out_of_range(scale: Option<f64>) -> bool {
     scale.is_some_and(|a| !(a.is_finite() && a > 0.0))
+}
+
+/// The plane-strain datum must lie beyond every grid the scene solves on
+/// (its own and each design load's), and a beam's loaded point on the beam.
+pub(crate) fn bodies_on_grid(
+    ctx: &Ctx<'_>,
+    raw: [&Spanned<BodyToml>; 2],
+    bodies: [&Body; 2],
+    own: &PointSet,
+    design_sets: &[PointSet],
+) -> Result<(), SceneError> {
+    for (section, (raw, body)) in ["body1", "body2"].iter().zip(raw.iter().zip(bodies)) {
+        let t = raw.get_ref();
+        match *body.model() {
+            Model::PlaneStrainStrip {
+                reference_distance, ..
+            } => {
+                let widest = std::iter::once(own)
+                    .chain(design_sets)
+                    .map(|p| p.extent().0)
+                    .fold(0.0f64, f64::max);
+                if reference_distance < widest {
+                    let span = t
+                        .reference_distance
+                        .as_ref()
+                        .map_or(t.model.span(), |v| v.span());
+                    return Err(ctx.invalid(
+                        span,
+                        format!("{section}.reference_distance"),
+                        Num(reference_distance),
+                        format!(
+                            "must be at least the extent of the grid, {widest:.4e} (the strips' \
+                             displacements are measured from a datum beyond the candidate zone{})",
+                            if widest > own.extent().0 {
+                                "; the widest grid is a design load's"
+                            } else {
+                                ""
+                            }
+                        ),
+                    ));
+                }
+            }
+            Model::Beam { loaded_point, .. } => {
+                // The contact forces act at the points: a load beyond the
+                // last of them is balanced by none (the solve ends in a ray).
+                let (lo, hi) = (own.x(0), own.x(own.len() - 1));
+                if !(lo..=hi).contains(&loaded_point) {
+                    let span = t.loaded_point.as_ref().map_or(t.model.span(), |v| v.span());
+                    return Err(ctx.invalid(
+                        span,
+                        format!("{section}.loaded_point"),
+                        Num(loaded_point),
+                        format!(
+                            "is outside the beam's points, not between its first and last, {} \
+                             and {}: the contact forces act at the points, and no forces there \
+                             balance a load beyond them; give a point between them (default 0)",
+                            Num(lo),
+                            Num(hi)
+                        ),
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }

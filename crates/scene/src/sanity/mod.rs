@@ -10,38 +10,35 @@
 //! - `strain`: the small strain of the linear models (a load, an approach,
 //!   separations, a beam's slope, a plane-strain datum);
 //! - `deformation`: a load's deformation resolved against the separations
-//!   and within the doubles' range, and `scale`, the input out of scale a
-//!   refusal names;
-//! - `grid`: the grid's resolution of the contact;
+//!   and within the doubles' range, and the input out of scale a refusal
+//!   names;
+//! - `grid`: the grid's resolution of the contact, and the bodies against
+//!   the grids;
 //! - `loading`: a moment's load centre and prescribed tilts against the
 //!   candidate zone;
 //! - `design`: a design's cases, degree, constant and loads against its
-//!   grids;
-//! - `solver`: the solver's knobs, and the bodies against the grid.
+//!   grids.
 
 mod curvature;
 mod deformation;
 mod design;
 mod grid;
 mod loading;
-mod scale;
-mod solver;
 mod strain;
 
 pub(crate) use curvature::curvatures;
 pub(crate) use deformation::{
-    Mechanism, compliance_in_range, deformation, deformation_out_of_scale, mechanism, unresolved,
+    Factor, Mechanism, compliance_in_range, deformation, deformation_out_of_scale, mechanism,
+    unresolved,
 };
 pub(crate) use design::{DesignView, MAX_DESIGN_CELL_ASPECT, design, design_cases};
 pub use grid::MIN_POINTS_RESOLVED;
 pub(crate) use grid::{
-    MIN_POINTS_ACROSS, Unresolved, coarse_grid, no_hertz_reason, scale_out_of_range,
-    unresolved_grid,
+    MIN_POINTS_ACROSS, Unresolved, bodies_on_grid, coarse_grid, no_hertz_reason,
+    scale_out_of_range, unresolved_grid,
 };
 pub use loading::MAX_ROTATION;
 pub(crate) use loading::{load_centre, tilt_off_zone, tilt_off_zone_ellipse};
-pub(crate) use scale::Factor;
-pub(crate) use solver::{bodies_on_grid, solver_bounds};
 pub(crate) use strain::{
     Labels, datum_strain, hertz_approach_strain, refuse_normal, small_separations, small_strain,
     strain, zone_size,

@@ -51,54 +51,28 @@ use crate::error::SceneError;
 use crate::sanity;
 use crate::schema::{BodyToml, LoadingToml, PointsToml, SceneFile};
 
-/// A validated scene.
+/// A validated scene. Each field is read through its accessor, which says
+/// what it is.
 #[derive(Debug, Clone)]
 pub struct Scene {
-    /// The scene's name (default: the file's stem).
     name: String,
-    /// The file it came from.
     file: PathBuf,
-    /// Its description.
     description: Option<String>,
-    /// Unit labels.
     units: Units,
-    /// The two bodies.
     bodies: [BodySpec; 2],
-    /// The initial separations' source.
     geometry: Geometry,
-    /// The point layout.
     points_spec: PointsSpec,
-    /// The candidate points for the scene's loading.
     points: PointSet,
-    /// Load or approach.
     loading: Loading,
-    /// `solver.method` as given ("auto" or a method).
     choice: MethodChoice,
-    /// The contact problem's storage, method and cost, decided by
-    /// elcon-analysis from `solver.method` and `solver.symmetry`.
     plan: Plan,
-    /// The engine's options.
     options: Options,
-    /// Whether to fold a mirror-symmetric problem (`solver.symmetry`,
-    /// "auto" (default) or "none").
     fold: bool,
-    /// Whether the run estimates its discretization error on coarser
-    /// grids (`solver.error_estimate`, default true).
     error_estimate: bool,
-    /// The design stage, if asked for.
     design: Option<DesignSpec>,
-    /// The outputs.
     outputs: Outputs,
-    /// The closed form that applies, if any.
     reference: Option<Reference>,
-    /// The zone's edges that are the bodies' own (along x, along y):
-    /// contact reaching them raises no truncation warning. Inferred: a
-    /// beam's ends (x), a roller's ends on a rectangle grid (y), a flat
-    /// punch's rim (both).
     body_edges: (bool, bool),
-    /// What validation found doubtful but not wrong (a grid coarser than
-    /// the contact): printed by `elcon check` and `elcon run`, and written
-    /// to result.json's warnings.
     warnings: Vec<String>,
 }
 
@@ -191,7 +165,8 @@ impl Scene {
         &self.options
     }
 
-    /// Whether a mirror-symmetric problem is folded (`solver.symmetry`).
+    /// Whether a mirror-symmetric problem is folded (`solver.symmetry`,
+    /// "auto" (default) or "none").
     pub fn fold(&self) -> bool {
         self.fold
     }
@@ -252,13 +227,16 @@ impl Scene {
     }
 
     /// The zone's edges that are the bodies' own (along x, along y):
-    /// contact reaching them raises no truncation warning.
+    /// contact reaching them raises no truncation warning. Inferred: a
+    /// beam's ends (x), a roller's ends on a rectangle grid (y), a flat
+    /// punch's rim (both).
     pub fn body_edges(&self) -> (bool, bool) {
         self.body_edges
     }
 
     /// What validation found doubtful but not wrong (a grid coarser than
-    /// the contact).
+    /// the contact): printed by `elcon check` and `elcon run`, and written
+    /// to result.json's warnings.
     pub fn warnings(&self) -> &[String] {
         &self.warnings
     }
@@ -376,7 +354,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
     let body_edges = body_edges(&bodies, reference.as_ref(), &points_spec);
     let (reference, note) = hertz::pressing(reference, loading, &geometry);
     let (choice, options) = solver::solver(ctx, raw.solver.as_ref())?;
-    sanity::solver_bounds(ctx, raw.solver.as_ref(), points.len())?;
+    solver::bounds(ctx, raw.solver.as_ref(), points.len())?;
     let fold = solver::symmetry(raw.solver.as_ref());
     let plan = planner(points.clone(), &bodies, &geometry, loading, choice, fold)
         .plan()

@@ -17,10 +17,10 @@ use toml::Spanned;
 
 use super::body::{self, BodySpec};
 use super::design::{self, DesignContext, DesignSpec};
-use super::geometry;
 use super::hertz::{self, DesignLayoutParts, Layout};
 use super::points::{self, PointsSpec, build_points};
 use super::{Scene, grid_fits_models, loading, model_kinds};
+use super::{files, geometry};
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
@@ -95,14 +95,12 @@ pub fn problem_parts(
     };
     let bodies = problem_bodies(&ctx, &raw)?;
     let (points_spec, dimension) = problem_layout(&ctx, &raw, listed.as_ref(), &bodies)?;
-    let geometry = match &raw.geometry {
-        Some(g) => {
+    let geometry = (raw.geometry.as_ref())
+        .map(|g| {
             let geometry = geometry::geometry(&ctx, Some(g), dimension)?;
-            sanity::curvatures(&ctx, Some(g), &geometry)?;
-            Some(geometry)
-        }
-        None => None,
-    };
+            sanity::curvatures(&ctx, Some(g), &geometry).map(|()| geometry)
+        })
+        .transpose()?;
     // An ellipse grid's shape, from the surfaces (as a scene sets it).
     let points_spec = match (points_spec, &bodies, &geometry) {
         (Some(spec), Some((_, b)), Some(g)) => Some(hertz::shaped(spec, b, g)),
@@ -120,7 +118,11 @@ pub fn problem_parts(
                 .scale(load),
                 _ => None,
             };
-            laid_out_points(&ctx, spec, p, scale)?
+            build_points(spec, scale).map_err(|e| {
+                let why = "a layout relative to the Hertz contact needs two bodies, curved \
+                           surfaces and a load";
+                ctx.invalid(p.span(), "points", "", format!("{e} ({why})"))
+            })?
         }
         (None, Some(l)) => l,
         (None, None) => return Err(no_points(&ctx)),
@@ -130,15 +132,9 @@ pub fn problem_parts(
     }
     // A separation file matched to the points, tables checked to cover
     // them, as a scene does.
-    let geometry = match geometry {
-        Some(g) => Some(super::files::on_points(
-            &ctx,
-            raw.geometry.as_ref(),
-            g,
-            &points,
-        )?),
-        None => None,
-    };
+    let geometry = geometry
+        .map(|g| files::on_points(&ctx, raw.geometry.as_ref(), g, &points))
+        .transpose()?;
     Ok(ProblemParts {
         bodies: bodies.map(|(_, b)| b),
         geometry,
@@ -210,26 +206,6 @@ fn problem_layout(
         )),
         (None, None) => Err(no_points(ctx)),
     }
-}
-
-/// The points of a layout, `scale` the Hertz length a relative one needs.
-fn laid_out_points(
-    ctx: &Ctx<'_>,
-    spec: &PointsSpec,
-    p: &Spanned<PointsToml>,
-    scale: Option<f64>,
-) -> Result<PointSet, SceneError> {
-    build_points(spec, scale).map_err(|e| {
-        ctx.invalid(
-            p.span(),
-            "points",
-            "",
-            format!(
-                "{e} (a layout relative to the Hertz contact needs two bodies, curved \
-                 surfaces and a load)"
-            ),
-        )
-    })
 }
 
 /// Parses and validates a `[design]` section (`text`, TOML, `file` naming

@@ -152,28 +152,24 @@ fn grid_keys(
     grid: &str,
     allowed: &[&str],
 ) -> Result<(), SceneError> {
-    let floats: [(&str, Option<&Spanned<f64>>); 7] = [
-        ("spacing", t.spacing.as_ref()),
-        ("radius", t.radius.as_ref()),
-        ("zone", t.zone.as_ref()),
-        ("half_x", t.half_x.as_ref()),
-        ("half_y", t.half_y.as_ref()),
-        ("start", t.start.as_ref()),
-        ("end", t.end.as_ref()),
+    let span = |v: Option<&Spanned<f64>>| v.map(Spanned::span);
+    let count = |v: Option<&Spanned<i64>>| v.map(Spanned::span);
+    let given = [
+        ("spacing", span(t.spacing.as_ref())),
+        ("radius", span(t.radius.as_ref())),
+        ("zone", span(t.zone.as_ref())),
+        ("half_x", span(t.half_x.as_ref())),
+        ("half_y", span(t.half_y.as_ref())),
+        ("start", span(t.start.as_ref())),
+        ("end", span(t.end.as_ref())),
+        ("across", count(t.across.as_ref())),
+        ("nx", count(t.nx.as_ref())),
+        ("ny", count(t.ny.as_ref())),
+        ("n", count(t.n.as_ref())),
     ];
-    let ints: [(&str, Option<&Spanned<i64>>); 4] = [
-        ("across", t.across.as_ref()),
-        ("nx", t.nx.as_ref()),
-        ("ny", t.ny.as_ref()),
-        ("n", t.n.as_ref()),
-    ];
-    let given = floats
-        .iter()
-        .filter_map(|(k, v)| v.map(|v| (*k, v.span(), String::new())))
-        .chain(
-            ints.iter()
-                .filter_map(|(k, v)| v.map(|v| (*k, v.span(), String::new()))),
-        );
+    let given = given
+        .into_iter()
+        .filter_map(|(key, span)| Some((key, span?, String::new())));
     ctx.allowed_keys("points", &format!("grid = \"{grid}\""), allowed, given)
 }
 
@@ -251,28 +247,26 @@ fn disk_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, Scene
 /// A rectangle: `half_x` or `zone`, and `half_y`, `nx`, `ny`.
 fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
     let (t, s) = (p.get_ref(), p.span());
-    Ok({
-        let half_x = match (&t.half_x, &t.zone) {
-            (Some(h), None) => HalfX::Length(ctx.positive(h, "points.half_x")?),
-            (None, Some(_)) => HalfX::Zone(hertz_zone(ctx, p)?),
-            _ => {
-                return Err(ctx.invalid(
-                    s,
-                    "points.half_x",
-                    "",
-                    "give either half_x (length) or zone (Hertz half-widths of the load)",
-                ));
-            }
-        };
-        let hy = ctx.required(&t.half_y, s.clone(), "points.half_y", "for a rectangle")?;
-        let nx = ctx.required(&t.nx, s.clone(), "points.nx", "for a rectangle")?;
-        let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
-        PointsSpec::Rectangle {
-            half_x,
-            half_y: ctx.positive(hy, "points.half_y")?,
-            nx: ctx.count(nx, "points.nx", 1)?,
-            ny: ctx.count(ny, "points.ny", 1)?,
+    let half_x = match (&t.half_x, &t.zone) {
+        (Some(h), None) => HalfX::Length(ctx.positive(h, "points.half_x")?),
+        (None, Some(_)) => HalfX::Zone(hertz_zone(ctx, p)?),
+        _ => {
+            return Err(ctx.invalid(
+                s,
+                "points.half_x",
+                "",
+                "give either half_x (length) or zone (Hertz half-widths of the load)",
+            ));
         }
+    };
+    let hy = ctx.required(&t.half_y, s.clone(), "points.half_y", "for a rectangle")?;
+    let nx = ctx.required(&t.nx, s.clone(), "points.nx", "for a rectangle")?;
+    let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
+    Ok(PointsSpec::Rectangle {
+        half_x,
+        half_y: ctx.positive(hy, "points.half_y")?,
+        nx: ctx.count(nx, "points.nx", 1)?,
+        ny: ctx.count(ny, "points.ny", 1)?,
     })
 }
 
