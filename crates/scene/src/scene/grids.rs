@@ -186,29 +186,24 @@ fn unresolved_grid(
     // The count that brings the spacing below `u.spacing` (strictly: at
     // exactly it, rounding may leave one point fewer across).
     let count = |n: i64| ((n as f64) * h / u.spacing * (1.0 + 1e-6)).ceil() as i64;
-    let (field, span, value, needed) = match (&t.spacing, &t.nx, &t.n) {
-        (Some(s), _, _) => (
-            "points.spacing",
-            s.span(),
-            Num(*s.get_ref()).to_string(),
-            format!("a spacing of at most {}", rounded(u.spacing)),
-        ),
-        (None, Some(nx), _) => (
-            "points.nx",
-            nx.span(),
-            nx.get_ref().to_string(),
-            format!("at least {} cells", count(*nx.get_ref())),
-        ),
-        (None, None, Some(n)) => (
-            "points.n",
+    let cells = (t.nx.as_ref().map(|n| ("points.nx", n))).or(t.n.as_ref().map(|n| ("points.n", n)));
+    let (field, span, value, needed) = match (&t.spacing, cells) {
+        (None, Some((field, n))) => (
+            field,
             n.span(),
             n.get_ref().to_string(),
             format!("at least {} cells", count(*n.get_ref())),
         ),
-        _ => (
-            "points",
-            raw.span(),
-            String::new(),
+        (spacing, _) => (
+            if spacing.is_some() {
+                "points.spacing"
+            } else {
+                "points"
+            },
+            spacing.as_ref().map_or(raw.span(), |s| s.span()),
+            spacing
+                .as_ref()
+                .map_or(String::new(), |s| Num(*s.get_ref()).to_string()),
             format!("a spacing of at most {}", rounded(u.spacing)),
         ),
     };

@@ -465,7 +465,8 @@ pub const MAX_SLUG: usize = 120;
 
 /// `scene.name` (default: the file's stem): it names an output directory.
 fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
-    let name = match raw.scene.as_ref().and_then(|m| m.name.as_ref()) {
+    let given = raw.scene.as_ref().and_then(|m| m.name.as_ref());
+    let name = match given {
         Some(n) if n.get_ref().trim().is_empty() => {
             return Err(ctx.invalid(n.span(), "scene.name", "\"\"", "must not be empty"));
         }
@@ -477,29 +478,16 @@ fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
     };
     // A directory's name is at most 255 bytes, and the lock beside it adds a
     // '.' and ".lock"; control characters make names no terminal shows.
-    if name.contains(['/', '\\'])
+    let fits = !(name.contains(['/', '\\'])
         || name.starts_with('.')
         || name.len() > MAX_SLUG
-        || name.chars().any(char::is_control)
-    {
-        let span = raw
-            .scene
-            .as_ref()
-            .and_then(|m| m.name.as_ref())
-            .map_or(0..0, |n| n.span());
-        return Err(ctx.invalid(
-            span,
-            "scene.name",
-            &name,
-            format!(
-                "names an output directory: at most {} bytes, no control characters, no path \
-                 separators, and no leading '.' (elcon's temporary siblings and locks start \
-                 with one)",
-                MAX_SLUG
-            ),
-        ));
-    }
-    Ok(name)
+        || name.chars().any(char::is_control));
+    let why = format!(
+        "names an output directory: at most {MAX_SLUG} bytes, no control characters, no path \
+         separators, and no leading '.' (elcon's temporary siblings and locks start with one)"
+    );
+    let span = given.map_or(0..0, |n| n.span());
+    ctx.ensure(name, fits, span, "scene.name", why)
 }
 
 /// The bodies' models: not both rigid, and all of one kind (line models:
