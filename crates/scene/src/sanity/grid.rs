@@ -39,13 +39,12 @@ pub(crate) fn coarse_grid(
     disk: Option<(f64, f64)>,
 ) -> Vec<String> {
     let h = points.cell().dx;
-    let scale = hertz;
     let mut warnings = Vec::new();
     // Points on a size laid out at `size / (n - 1)` count n, not n - 1
     // when the quotient rounds just below n - 1.
     let count =
         |size: f64, spacing: f64| (size / spacing * (1.0 + 8.0 * f64::EPSILON)).floor() + 1.0;
-    if let Some((what, a)) = scale {
+    if let Some((what, a)) = hertz {
         let across = count(2.0 * a, h);
         if across < MIN_POINTS_ACROSS as f64 {
             warnings.push(format!(

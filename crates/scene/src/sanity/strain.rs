@@ -379,19 +379,12 @@ pub(crate) fn small_separations(eps: &[f64], points: &PointSet, length: &str) ->
     let cell = points.cell();
     let surface = points.dimension() == Dimension::Surface;
     // Rows along x (one key per y) and, on a surface, columns along y.
-    let mut axes = vec![(
-        "x",
-        ex,
-        Box::new(|k: usize| (points.y(k) / cell.dy).round() as i64) as Box<dyn Fn(usize) -> i64>,
-    )];
-    if surface {
-        axes.push((
-            "y",
-            ey,
-            Box::new(|k: usize| (points.x(k) / cell.dx).round() as i64),
-        ));
-    }
-    for (axis, extent, key) in axes {
+    let axes = [("x", ex), ("y", ey)];
+    for (axis, extent) in axes.into_iter().take(if surface { 2 } else { 1 }) {
+        let key = |k: usize| match axis {
+            "x" => (points.y(k) / cell.dy).round() as i64,
+            _ => (points.x(k) / cell.dx).round() as i64,
+        };
         // Each row's lowest and highest separation, with their points.
         let mut rows: std::collections::HashMap<i64, (usize, usize)> =
             std::collections::HashMap::new();
