@@ -67,7 +67,7 @@ fn shard_arg(s: &str) -> Result<ShardArg, String> {
     if s.trim() == "auto" {
         Ok(ShardArg::Auto)
     } else {
-        s.parse().map(ShardArg::Fixed)
+        s.parse().map(ShardArg::Fixed).map_err(|e| e.to_string())
     }
 }
 
@@ -584,7 +584,8 @@ fn batch_command(
         None => None,
         Some(ShardArg::Fixed(s)) => Some(s),
         Some(ShardArg::Auto) => {
-            Some(Shard::from_scheduler(|k| std::env::var(k).ok()).map_err(Outcome::Usage)?)
+            let shard = Shard::from_scheduler(|k| std::env::var(k).ok());
+            Some(shard.map_err(|e| Outcome::Usage(e.to_string()))?)
         }
     };
     let batch = match Batch::from_file(path) {

@@ -644,43 +644,56 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, ReportError> {
         .legend(line_key(BLACK));
         labels(&mut map)?;
         colour_bar(&bar_area, top, u.intensity())?;
-        let [along_x, along_y] = principal_axes(points, p, run.solution.load_centre);
-        let (left, right) = lower.split_horizontally(SIZE.0 / 2);
-        for (i, (area, label, range, series)) in [
-            (
-                &left,
-                format!("along x, at y = {:.4e}", along_x.at),
-                xs,
-                along_x.values,
-            ),
-            (
-                &right,
-                format!("along y, at x = {:.4e}", along_y.at),
-                ys,
-                along_y.values,
-            ),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            let colour = COLORS[i];
-            let mut axes = titled(area, &label, 16, (40, 80))
-                .build_cartesian_2d(range.0..range.1, 0.0..top * 1.08)
-                .map_err(err)?;
-            axes.configure_mesh()
-                .x_desc(format!(
-                    "{} ({})",
-                    if i == 0 { "x" } else { "y" },
-                    u.length()
-                ))
-                .y_desc(format!("pressure ({})", u.intensity()))
-                .draw()
-                .map_err(err)?;
-            axes.draw_series(LineSeries::new(series, colour.stroke_width(2)))
-                .map_err(err)?;
-        }
-        Ok(())
+        let axes = principal_axes(points, p, run.solution.load_centre);
+        sections(&lower, axes, (xs, ys), top, (u.length(), u.intensity()))
     })
+}
+
+/// The pressure along the row and the column through the centre of
+/// pressure (`axes`, [`principal_axes`]), side by side on `area` over the
+/// map's ranges along x and y, up to `top`; `units` of length and
+/// intensity.
+fn sections<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    [along_x, along_y]: [Section; 2],
+    (xs, ys): ((f64, f64), (f64, f64)),
+    top: f64,
+    (length, intensity): (&str, &str),
+) -> Result<(), ReportError>
+where
+    DB::ErrorType: 'static,
+{
+    let (left, right) = area.split_horizontally(SIZE.0 / 2);
+    for (i, (area, label, range, series)) in [
+        (
+            &left,
+            format!("along x, at y = {:.4e}", along_x.at),
+            xs,
+            along_x.values,
+        ),
+        (
+            &right,
+            format!("along y, at x = {:.4e}", along_y.at),
+            ys,
+            along_y.values,
+        ),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let colour = COLORS[i];
+        let mut axes = titled(area, &label, 16, (40, 80))
+            .build_cartesian_2d(range.0..range.1, 0.0..top * 1.08)
+            .map_err(err)?;
+        axes.configure_mesh()
+            .x_desc(format!("{} ({length})", if i == 0 { "x" } else { "y" }))
+            .y_desc(format!("pressure ({intensity})"))
+            .draw()
+            .map_err(err)?;
+        axes.draw_series(LineSeries::new(series, colour.stroke_width(2)))
+            .map_err(err)?;
+    }
+    Ok(())
 }
 
 /// A vertical colour bar of `[0, top]` labelled with the pressure's unit.

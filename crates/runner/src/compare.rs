@@ -29,7 +29,9 @@
 //! `ContactSolution::contact_ellipse`).
 
 use elcon_analysis::loading::Tilt;
-use elcon_analysis::references::{HertzCylinders, HertzEllipse, HertzSpheres};
+use elcon_analysis::references::{
+    FlatPunch, HertzCylinders, HertzEllipse, HertzSpheres, HetenyiBeam,
+};
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
 
 use elcon_num::Num;
@@ -82,82 +84,99 @@ pub(crate) fn compare(
         Reference::HertzCylinders { hertz, datum } => {
             cylinders(hertz, datum, problem, sol, loading, &mut json)
         }
-        Reference::FlatPunch(punch) => {
-            json.contact_extent = Some(punch.radius);
-            // A uniform separation e0 (the punch's face e0 from the other
-            // surface) offsets the approach: Boussinesq's indentation is
-            // delta - e0.
-            let e0 = problem.separation().first().copied().unwrap_or(0.0);
-            let mut notes = Vec::new();
-            if e0 != 0.0 {
-                notes.push(format!(
-                    "the uniform separation {} offsets the approach: Boussinesq's indentation \
-                     is the approach minus it",
-                    Num(e0)
-                ));
-            }
-            match loading.normal {
-                Normal::Approach(d) if d - e0 > 0.0 => {
-                    let p = punch.load(d - e0);
-                    json.load = Some(p);
-                    json.errors.load = Some(rel(sol.load, p));
-                }
-                Normal::Approach(_) => notes.push(
-                    "the approach does not press the punch past the separation: no load to \
-                     compare"
-                        .into(),
-                ),
-                Normal::Load(p) => {
-                    let d = punch.approach(p) + e0;
-                    json.approach = Some(d);
-                    json.errors.approach = Some(rel(sol.approach, d));
-                }
-            }
-            if !aligned(loading) {
-                // Superposed on the central load, a moment or a tilt turns
-                // the punch about its centre and leaves the approach and the
-                // load there as they are; their closed forms stand.
-                notes.push(
-                    "a moment or a tilt turns the punch about its centre: the load and the \
-                     approach at the centre are compared (they do not change), the tilt is not"
-                        .into(),
-                );
-            }
-            json.note = (!notes.is_empty()).then(|| notes.join("; "));
-            // The pressure is singular at the edge: no peak or L2 comparison.
-            None
-        }
-        Reference::Hetenyi(beam) => {
-            if !aligned(loading) {
-                json.note = Some(
-                    "Hetenyi's solution is that of a central load alone: with a moment or a \
-                     tilt the beam's errors are not computed"
-                        .into(),
-                );
-                return (json, None);
-            }
-            let points = problem.points();
-            let p: Vec<f64> = (0..points.len())
-                .map(|k| beam.load_intensity(points.x(k)))
-                .collect();
-            json.approach = Some(beam.centre_deflection());
-            json.max_pressure = Some(beam.load_intensity(0.0));
-            json.errors.approach = Some(rel(sol.approach, beam.centre_deflection()));
-            json.errors.max_pressure = Some(rel(sol.max_pressure, beam.load_intensity(0.0)));
-            json.errors.pressure_l2 = Some(l2(&sol.pressures, &p));
-            if sol.contact.len() < points.len() {
-                json.note = Some(format!(
-                    "Hetenyi's solution is that of a bonded foundation; this tensionless one \
-                     lifted off at {} of {} points, so the errors measure the lift-off as well \
-                     as the discretization",
-                    points.len() - sol.contact.len(),
-                    points.len()
-                ));
-            }
-            Some(p)
-        }
+        Reference::FlatPunch(punch) => flat_punch(punch, problem, sol, loading, &mut json),
+        Reference::Hetenyi(beam) => hetenyi(beam, problem, sol, loading, &mut json),
     };
     (json, pressures)
+}
+
+/// A rigid flat punch: the load of the approach or the approach of the
+/// load. The pressure is singular at the edge: no peak or L2 comparison.
+fn flat_punch(
+    punch: FlatPunch,
+    problem: &ContactProblem,
+    sol: &ContactSolution,
+    loading: Loading,
+    json: &mut ReferenceJson,
+) -> Option<Vec<f64>> {
+    json.contact_extent = Some(punch.radius);
+    // A uniform separation e0 (the punch's face e0 from the other
+    // surface) offsets the approach: Boussinesq's indentation is
+    // delta - e0.
+    let e0 = problem.separation().first().copied().unwrap_or(0.0);
+    let mut notes = Vec::new();
+    if e0 != 0.0 {
+        notes.push(format!(
+            "the uniform separation {} offsets the approach: Boussinesq's indentation is the \
+             approach minus it",
+            Num(e0)
+        ));
+    }
+    match loading.normal {
+        Normal::Approach(d) if d - e0 > 0.0 => {
+            let p = punch.load(d - e0);
+            json.load = Some(p);
+            json.errors.load = Some(rel(sol.load, p));
+        }
+        Normal::Approach(_) => notes.push(
+            "the approach does not press the punch past the separation: no load to compare".into(),
+        ),
+        Normal::Load(p) => {
+            let d = punch.approach(p) + e0;
+            json.approach = Some(d);
+            json.errors.approach = Some(rel(sol.approach, d));
+        }
+    }
+    if !aligned(loading) {
+        // Superposed on the central load, a moment or a tilt turns the
+        // punch about its centre and leaves the approach and the load there
+        // as they are; their closed forms stand.
+        notes.push(
+            "a moment or a tilt turns the punch about its centre: the load and the approach at \
+             the centre are compared (they do not change), the tilt is not"
+                .into(),
+        );
+    }
+    json.note = (!notes.is_empty()).then(|| notes.join("; "));
+    None
+}
+
+/// Hetenyi's beam on a Winkler foundation under a central load alone: its
+/// centre deflection, peak intensity and intensities at the points.
+fn hetenyi(
+    beam: HetenyiBeam,
+    problem: &ContactProblem,
+    sol: &ContactSolution,
+    loading: Loading,
+    json: &mut ReferenceJson,
+) -> Option<Vec<f64>> {
+    if !aligned(loading) {
+        json.note = Some(
+            "Hetenyi's solution is that of a central load alone: with a moment or a tilt the \
+             beam's errors are not computed"
+                .into(),
+        );
+        return None;
+    }
+    let points = problem.points();
+    let p: Vec<f64> = (0..points.len())
+        .map(|k| beam.load_intensity(points.x(k)))
+        .collect();
+    json.approach = Some(beam.centre_deflection());
+    json.max_pressure = Some(beam.load_intensity(0.0));
+    json.errors.approach = Some(rel(sol.approach, beam.centre_deflection()));
+    json.errors.max_pressure = Some(rel(sol.max_pressure, beam.load_intensity(0.0)));
+    json.errors.pressure_l2 = Some(l2(&sol.pressures, &p));
+    if sol.contact.len() < points.len() {
+        json.note = Some(format!(
+            "Hetenyi's solution is that of a bonded foundation; this tensionless one lifted off \
+             at {} of {} points, so the errors measure the lift-off as well as the \
+             discretization",
+            points.len() - sol.contact.len(),
+            points.len()
+        ));
+    }
+    Some(p)
 }
 
 /// Whether the loading has neither a moment nor a non-zero prescribed tilt.

@@ -242,6 +242,7 @@ fn refined_cases(
             None => {
                 let points = scene
                     .grid_for(load, fineness)
+                    .map_err(|e| e.to_string())
                     .and_then(|g| g.points().map_err(|e| e.to_string()))
                     .map_err(layout)?;
                 if spec.sequence().is_some_and(|s| points.len() > s.max_points) {

@@ -24,7 +24,8 @@ pub(crate) fn discretization(
         seconds: solution.assembly_seconds + solution.solve_seconds,
         failure: None,
     };
-    let result = scene.grid_family().and_then(|family| {
+    let family = scene.grid_family().map_err(|e| e.to_string());
+    let result = family.and_then(|family| {
         builder
             .discretization(&family, solution, scene.method(), scene.options())
             .map_err(|e| e.to_string())

@@ -38,4 +38,4 @@ pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass, TimeFigure};
 pub use merge::merge;
 pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
 pub use run::run;
-pub use shard::{SHARD_COUNT_VARIABLE, Shard, batch_dir};
+pub use shard::{SHARD_COUNT_VARIABLE, Shard, ShardError, batch_dir};

@@ -34,22 +34,172 @@ pub const SHARD_COUNT_VARIABLE: &str = "ELCON_SHARD_COUNT";
 /// an array computed from them overflows.
 const MAX_SCHEDULER_NUMBER: usize = u32::MAX as usize;
 
-impl std::str::FromStr for Shard {
-    type Err = String;
+/// Why `--shard` or a scheduler's variables name no shard; each message
+/// names the text or the variables at fault.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ShardError {
+    /// `--shard` text that is not `K/N`.
+    #[error("a shard is K/N, e.g. 2/8, or auto")]
+    NotKOfN,
+    /// K or N (the letter) of `--shard K/N` is not a whole number.
+    #[error("{0} must be a whole number")]
+    NotWhole(char),
+    /// K outside `1..=N`.
+    #[error("need 1 <= K <= N, got K = {index}, N = {count}")]
+    OutOfRange {
+        /// K.
+        index: usize,
+        /// N.
+        count: usize,
+    },
+    /// What was given (the quoted `--shard` text, a scheduler's task), and
+    /// why it names no shard.
+    #[error("{given}: {reason}")]
+    Given {
+        /// The text or the task, as the message shows it.
+        given: String,
+        /// Why.
+        reason: Box<ShardError>,
+    },
+    /// A scheduler's variable that is not a whole number.
+    #[error("{name}={value}: not a whole number")]
+    NotANumber {
+        /// The variable.
+        name: String,
+        /// Its value.
+        value: String,
+    },
+    /// A scheduler's variable beyond any task id or count (`u32::MAX`).
+    #[error(
+        "{name}={value}: more than {MAX_SCHEDULER_NUMBER}, beyond any job array's task id or \
+         count (a scheduler's are 32-bit)"
+    )]
+    TooLarge {
+        /// The variable.
+        name: String,
+        /// Its value.
+        value: String,
+    },
+    /// SLURM and Kubernetes name different shards.
+    #[error(
+        "the SLURM job array says shard {slurm} (SLURM_ARRAY_TASK_ID) and the Kubernetes \
+         indexed Job says shard {kubernetes} (JOB_COMPLETION_INDEX with {SHARD_COUNT_VARIABLE}): \
+         unset the variables of the scheduler that did not start this process, or give \
+         --shard K/N explicitly"
+    )]
+    Disagree {
+        /// SLURM's.
+        slurm: Shard,
+        /// Kubernetes'.
+        kubernetes: Shard,
+    },
+    /// `--shard auto` without a scheduler's variables.
+    #[error(
+        "--shard auto needs a scheduler's variables: SLURM_ARRAY_TASK_ID with \
+         SLURM_ARRAY_TASK_COUNT (a SLURM job array), or JOB_COMPLETION_INDEX with \
+         ELCON_SHARD_COUNT (a Kubernetes indexed Job); none is set"
+    )]
+    NoScheduler,
+    /// A SLURM task id without the array's count or last id.
+    #[error(
+        "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
+         SLURM_ARRAY_TASK_MAX: is this a job array (sbatch --array)?"
+    )]
+    NotAnArray,
+    /// A SLURM array whose first id is above its last.
+    #[error(
+        "SLURM_ARRAY_TASK_MIN={min} > SLURM_ARRAY_TASK_MAX={max}: not a job array's range \
+         (its first task id is at most its last)"
+    )]
+    MinAboveMax {
+        /// SLURM_ARRAY_TASK_MIN.
+        min: usize,
+        /// SLURM_ARRAY_TASK_MAX.
+        max: usize,
+    },
+    /// A SLURM array's step of 0.
+    #[error("SLURM_ARRAY_TASK_STEP=0: not a job array's step")]
+    ZeroStep,
+    /// A SLURM array that is not the regular range `MIN-MAX:STEP` (listed
+    /// ids), so a task's id does not say which shard it is.
+    #[error(
+        "the SLURM job array is not a regular range: its {count} tasks \
+         (SLURM_ARRAY_TASK_COUNT) are not the ids from {min} to {max} by {step} \
+         (SLURM_ARRAY_TASK_MIN, _MAX, _STEP), which are {}, so a task's id does not say \
+         which shard it is (an array of listed ids, e.g. --array=1,3,7?); submit a \
+         range, --array=0-{} or --array=MIN-MAX:STEP, or give each task --shard K/N \
+         explicitly",
+        range_ids(.min, .max, .step),
+        .count.saturating_sub(1)
+    )]
+    Irregular {
+        /// SLURM_ARRAY_TASK_COUNT.
+        count: usize,
+        /// SLURM_ARRAY_TASK_MIN.
+        min: usize,
+        /// SLURM_ARRAY_TASK_MAX.
+        max: usize,
+        /// SLURM_ARRAY_TASK_STEP.
+        step: usize,
+    },
+    /// A SLURM task id off its array's range.
+    #[error("SLURM_ARRAY_TASK_ID={id} is not in the array from {min} to {max} by {step}")]
+    NotInArray {
+        /// SLURM_ARRAY_TASK_ID.
+        id: usize,
+        /// SLURM_ARRAY_TASK_MIN.
+        min: usize,
+        /// SLURM_ARRAY_TASK_MAX.
+        max: usize,
+        /// SLURM_ARRAY_TASK_STEP.
+        step: usize,
+    },
+    /// A Kubernetes index without the Job's completions.
+    #[error(
+        "JOB_COMPLETION_INDEX is set but {SHARD_COUNT_VARIABLE} is not: set it to the \
+         indexed Job's completions"
+    )]
+    NoCount,
+}
 
-    fn from_str(s: &str) -> Result<Self, String> {
+impl ShardError {
+    /// `reason`, about `given`.
+    fn given(given: String, reason: ShardError) -> Self {
+        Self::Given {
+            given,
+            reason: Box::new(reason),
+        }
+    }
+}
+
+/// How many ids the range from `min` to `max` by `step` holds ("none" when
+/// `max < min`).
+fn range_ids(&min: &usize, &max: &usize, &step: &usize) -> String {
+    if max >= min {
+        ((max - min) / step + 1).to_string()
+    } else {
+        "none".to_string()
+    }
+}
+
+impl std::str::FromStr for Shard {
+    type Err = ShardError;
+
+    fn from_str(s: &str) -> Result<Self, ShardError> {
+        let given = |reason| ShardError::given(format!("`{s}`"), reason);
         let (k, n) = s
             .split_once('/')
-            .ok_or_else(|| format!("`{s}`: a shard is K/N, e.g. 2/8, or auto"))?;
+            .ok_or_else(|| given(ShardError::NotKOfN))?;
         let index: usize = k
             .trim()
             .parse()
-            .map_err(|_| format!("`{s}`: K must be a whole number"))?;
+            .map_err(|_| given(ShardError::NotWhole('K')))?;
         let count: usize = n
             .trim()
             .parse()
-            .map_err(|_| format!("`{s}`: N must be a whole number"))?;
-        Self::new(index, count).map_err(|e| format!("`{s}`: {e}"))
+            .map_err(|_| given(ShardError::NotWhole('N')))?;
+        Self::new(index, count).map_err(given)
     }
 }
 
@@ -59,14 +209,17 @@ impl std::fmt::Display for Shard {
     }
 }
 
+/// A scheduler's variable read as a count: `None` when unset.
+type Number<'a> = &'a dyn Fn(&str) -> Result<Option<usize>, ShardError>;
+
 impl Shard {
     /// Shard K of N.
     ///
     /// # Errors
-    /// Unless 1 <= K <= N.
-    pub fn new(index: usize, count: usize) -> Result<Self, String> {
+    /// `ShardError::OutOfRange` unless 1 <= K <= N.
+    pub fn new(index: usize, count: usize) -> Result<Self, ShardError> {
         if count == 0 || index == 0 || index > count {
-            return Err(format!("need 1 <= K <= N, got K = {index}, N = {count}"));
+            return Err(ShardError::OutOfRange { index, count });
         }
         Ok(Self { index, count })
     }
@@ -97,42 +250,29 @@ impl Shard {
     /// are set they must name the same shard.
     ///
     /// # Errors
-    /// A message naming the variables when none is set, they are
+    /// A `ShardError` naming the variables when none is set, they are
     /// malformed, the SLURM array is not a regular range, or SLURM and
     /// Kubernetes give different shards.
-    pub fn from_scheduler(var: impl Fn(&str) -> Option<String>) -> Result<Self, String> {
-        let number = |name: &str| -> Result<Option<usize>, String> {
-            let Some(v) = var(name) else {
+    pub fn from_scheduler(var: impl Fn(&str) -> Option<String>) -> Result<Self, ShardError> {
+        let number = |name: &str| -> Result<Option<usize>, ShardError> {
+            let Some(value) = var(name) else {
                 return Ok(None);
             };
-            let n: usize = v
-                .trim()
-                .parse()
-                .map_err(|_| format!("{name}={v}: not a whole number"))?;
-            if n > MAX_SCHEDULER_NUMBER {
-                return Err(format!(
-                    "{name}={v}: more than {MAX_SCHEDULER_NUMBER}, beyond any job array's task id \
-                     or count (a scheduler's are 32-bit)"
-                ));
+            let (name, n) = (name.to_string(), value.trim().parse::<usize>());
+            match n {
+                Ok(n) if n <= MAX_SCHEDULER_NUMBER => Ok(Some(n)),
+                Ok(_) => Err(ShardError::TooLarge { name, value }),
+                Err(_) => Err(ShardError::NotANumber { name, value }),
             }
-            Ok(Some(n))
         };
         let slurm = Self::from_slurm(&number)?;
         let kubernetes = Self::from_indexed_job(&number)?;
         match (slurm, kubernetes) {
-            (Some(s), Some(k)) if s != k => Err(format!(
-                "the SLURM job array says shard {s} (SLURM_ARRAY_TASK_ID) and the Kubernetes \
-                 indexed Job says shard {k} (JOB_COMPLETION_INDEX with {SHARD_COUNT_VARIABLE}): \
-                 unset the variables of the scheduler that did not start this process, or give \
-                 --shard K/N explicitly"
-            )),
+            (Some(slurm), Some(kubernetes)) if slurm != kubernetes => {
+                Err(ShardError::Disagree { slurm, kubernetes })
+            }
             (Some(s), _) | (None, Some(s)) => Ok(s),
-            (None, None) => Err(
-                "--shard auto needs a scheduler's variables: SLURM_ARRAY_TASK_ID with \
-                 SLURM_ARRAY_TASK_COUNT (a SLURM job array), or JOB_COMPLETION_INDEX with \
-                 ELCON_SHARD_COUNT (a Kubernetes indexed Job); none is set"
-                    .into(),
-            ),
+            (None, None) => Err(ShardError::NoScheduler),
         }
     }
 
@@ -140,9 +280,7 @@ impl Shard {
     /// set. The array must be a regular range (`--array=MIN-MAX[:STEP]`):
     /// task `id` is shard `(id - MIN) / STEP + 1` of `(MAX - MIN) / STEP + 1`.
     /// A list of ids (`--array=1,3,7`) has no such map, and is refused.
-    fn from_slurm(
-        number: &dyn Fn(&str) -> Result<Option<usize>, String>,
-    ) -> Result<Option<Self>, String> {
+    fn from_slurm(number: Number<'_>) -> Result<Option<Self>, ShardError> {
         let Some(id) = number("SLURM_ARRAY_TASK_ID")? else {
             return Ok(None);
         };
@@ -152,22 +290,13 @@ impl Shard {
             (Some(min), _) => min,
             // An old SLURM without MIN: a count alone means 0..count.
             (None, Some(_)) => 0,
-            (None, None) => {
-                return Err(
-                    "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
-                     SLURM_ARRAY_TASK_MAX: is this a job array (sbatch --array)?"
-                        .into(),
-                );
-            }
+            (None, None) => return Err(ShardError::NotAnArray),
         };
         if let Some(max) = max.filter(|&max| max < min) {
-            return Err(format!(
-                "SLURM_ARRAY_TASK_MIN={min} > SLURM_ARRAY_TASK_MAX={max}: not a job array's \
-                 range (its first task id is at most its last)"
-            ));
+            return Err(ShardError::MinAboveMax { min, max });
         }
         let step = match number("SLURM_ARRAY_TASK_STEP")? {
-            Some(0) => return Err("SLURM_ARRAY_TASK_STEP=0: not a job array's step".into()),
+            Some(0) => return Err(ShardError::ZeroStep),
             Some(s) => s,
             None => 1,
         };
@@ -175,59 +304,38 @@ impl Shard {
             (Some(c), Some(max)) => (c, max),
             (Some(c), None) => (c, min + c.saturating_sub(1) * step),
             (None, Some(max)) if max >= min => ((max - min) / step + 1, max),
-            (None, _) => {
-                return Err(
-                    "SLURM_ARRAY_TASK_ID is set but neither SLURM_ARRAY_TASK_COUNT nor \
-                     SLURM_ARRAY_TASK_MAX: is this a job array (sbatch --array)?"
-                        .into(),
-                );
-            }
+            (None, _) => return Err(ShardError::NotAnArray),
         };
         let regular = max >= min && (max - min) % step == 0 && (max - min) / step + 1 == count;
         if !regular {
-            return Err(format!(
-                "the SLURM job array is not a regular range: its {count} tasks \
-                 (SLURM_ARRAY_TASK_COUNT) are not the ids from {min} to {max} by {step} \
-                 (SLURM_ARRAY_TASK_MIN, _MAX, _STEP), which are {}, so a task's id does not say \
-                 which shard it is (an array of listed ids, e.g. --array=1,3,7?); submit a \
-                 range, --array=0-{} or --array=MIN-MAX:STEP, or give each task --shard K/N \
-                 explicitly",
-                if max >= min {
-                    ((max - min) / step + 1).to_string()
-                } else {
-                    "none".to_string()
-                },
-                count.saturating_sub(1)
-            ));
+            return Err(ShardError::Irregular {
+                count,
+                min,
+                max,
+                step,
+            });
         }
         if id < min || id > max || (id - min) % step != 0 {
-            return Err(format!(
-                "SLURM_ARRAY_TASK_ID={id} is not in the array from {min} to {max} by {step}"
-            ));
+            return Err(ShardError::NotInArray { id, min, max, step });
         }
+        let task = format!("SLURM_ARRAY_TASK_ID={id} of {count} tasks from {min}");
         Self::new((id - min) / step + 1, count)
             .map(Some)
-            .map_err(|e| format!("SLURM_ARRAY_TASK_ID={id} of {count} tasks from {min}: {e}"))
+            .map_err(|e| ShardError::given(task, e))
     }
 
     /// The shard of a Kubernetes indexed Job's pod, if
     /// `JOB_COMPLETION_INDEX` is set: index i (from 0) of
     /// [`SHARD_COUNT_VARIABLE`] completions is shard i + 1.
-    fn from_indexed_job(
-        number: &dyn Fn(&str) -> Result<Option<usize>, String>,
-    ) -> Result<Option<Self>, String> {
+    fn from_indexed_job(number: Number<'_>) -> Result<Option<Self>, ShardError> {
         let Some(index) = number("JOB_COMPLETION_INDEX")? else {
             return Ok(None);
         };
-        let count = number(SHARD_COUNT_VARIABLE)?.ok_or_else(|| {
-            format!(
-                "JOB_COMPLETION_INDEX is set but {SHARD_COUNT_VARIABLE} is not: set it to the \
-                 indexed Job's completions"
-            )
-        })?;
-        Self::new(index + 1, count).map(Some).map_err(|e| {
-            format!("JOB_COMPLETION_INDEX={index} with {SHARD_COUNT_VARIABLE}={count}: {e}")
-        })
+        let count = number(SHARD_COUNT_VARIABLE)?.ok_or(ShardError::NoCount)?;
+        let task = format!("JOB_COMPLETION_INDEX={index} with {SHARD_COUNT_VARIABLE}={count}");
+        Self::new(index + 1, count)
+            .map(Some)
+            .map_err(|e| ShardError::given(task, e))
     }
 }
 
@@ -270,7 +378,13 @@ mod tests {
         assert_eq!(Shard::new(4, 4).unwrap().len_of(2), 0);
         assert!(Shard::new(0, 3).is_err() && Shard::new(4, 3).is_err());
         assert_eq!("2/8".parse::<Shard>().unwrap().to_string(), "2/8");
-        assert!("4/3".parse::<Shard>().unwrap_err().contains("1 <= K <= N"));
+        assert!(
+            "4/3"
+                .parse::<Shard>()
+                .unwrap_err()
+                .to_string()
+                .contains("1 <= K <= N")
+        );
     }
 
     #[test]
@@ -296,13 +410,16 @@ mod tests {
             ("SLURM_ARRAY_TASK_STEP", "5"),
         ]));
         assert_eq!(s, Ok(Shard { index: 2, count: 3 }));
-        let e = Shard::from_scheduler(env(&[("SLURM_ARRAY_TASK_ID", "2")])).unwrap_err();
+        let e = Shard::from_scheduler(env(&[("SLURM_ARRAY_TASK_ID", "2")]))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("SLURM_ARRAY_TASK_COUNT"), "{e}");
         let e = Shard::from_scheduler(env(&[
             ("SLURM_ARRAY_TASK_ID", "x"),
             ("SLURM_ARRAY_TASK_COUNT", "3"),
         ]))
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("not a whole number"), "{e}");
     }
 
@@ -319,7 +436,7 @@ mod tests {
             if let Some(s) = step {
                 vars.push(("SLURM_ARRAY_TASK_STEP", s));
             }
-            let e = Shard::from_scheduler(env(&vars)).unwrap_err();
+            let e = Shard::from_scheduler(env(&vars)).unwrap_err().to_string();
             assert!(e.contains("not a regular range"), "{step:?}: {e}");
             assert!(
                 e.contains("--shard K/N") && e.contains("--array=0-2"),
@@ -343,7 +460,8 @@ mod tests {
             ("SLURM_ARRAY_TASK_MAX", "7"),
             ("SLURM_ARRAY_TASK_STEP", "3"),
         ]))
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("not in the array from 1 to 7 by 3"), "{e}");
         let e = Shard::from_scheduler(env(&[
             ("SLURM_ARRAY_TASK_ID", "1"),
@@ -351,7 +469,8 @@ mod tests {
             ("SLURM_ARRAY_TASK_MAX", "7"),
             ("SLURM_ARRAY_TASK_STEP", "0"),
         ]))
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("SLURM_ARRAY_TASK_STEP=0"), "{e}");
     }
 
@@ -370,7 +489,7 @@ mod tests {
             ];
             vars.retain(|(n, _)| *n != var);
             vars.push((var, "18446744073709551615"));
-            let e = Shard::from_scheduler(env(&vars)).unwrap_err();
+            let e = Shard::from_scheduler(env(&vars)).unwrap_err().to_string();
             assert!(
                 e.starts_with(&format!("{var}=18446744073709551615: more than 4294967295")),
                 "{e}"
@@ -391,7 +510,8 @@ mod tests {
             ("JOB_COMPLETION_INDEX", "18446744073709551615"),
             (SHARD_COUNT_VARIABLE, "3"),
         ]))
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
         assert!(
             e.starts_with("JOB_COMPLETION_INDEX=18446744073709551615: more"),
             "{e}"
@@ -405,7 +525,8 @@ mod tests {
             ("SLURM_ARRAY_TASK_MIN", "7"),
             ("SLURM_ARRAY_TASK_MAX", "3"),
         ]))
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
         assert!(
             e.starts_with("SLURM_ARRAY_TASK_MIN=7 > SLURM_ARRAY_TASK_MAX=3"),
             "{e}"
@@ -426,7 +547,7 @@ mod tests {
             ]))
         };
         assert_eq!(both("1"), Ok(Shard { index: 2, count: 3 }));
-        let e = both("2").unwrap_err();
+        let e = both("2").unwrap_err().to_string();
         assert!(
             e.contains("SLURM") && e.contains("shard 2/3") && e.contains("Kubernetes"),
             "{e}"
@@ -444,15 +565,18 @@ mod tests {
             ("ELCON_SHARD_COUNT", "3"),
         ]));
         assert_eq!(s, Ok(Shard { index: 3, count: 3 }));
-        let e = Shard::from_scheduler(env(&[("JOB_COMPLETION_INDEX", "2")])).unwrap_err();
+        let e = Shard::from_scheduler(env(&[("JOB_COMPLETION_INDEX", "2")]))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("ELCON_SHARD_COUNT"), "{e}");
         let e = Shard::from_scheduler(env(&[
             ("JOB_COMPLETION_INDEX", "3"),
             ("ELCON_SHARD_COUNT", "3"),
         ]))
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("1 <= K <= N"), "{e}");
-        let e = Shard::from_scheduler(env(&[])).unwrap_err();
+        let e = Shard::from_scheduler(env(&[])).unwrap_err().to_string();
         assert!(e.contains("none is set"), "{e}");
     }
 }

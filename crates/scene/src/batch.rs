@@ -214,7 +214,7 @@ impl Batch {
                     index: group.first,
                     overrides: vec![(key.clone(), values[0].clone())],
                 };
-                self.text(&probe).map_err(|reason| SceneError::Invalid {
+                self.text(&probe, |reason| SceneError::Invalid {
                     file: self.file.clone(),
                     at: Location { line: 1, column: 1 },
                     field: "batch.group".into(),
@@ -278,22 +278,29 @@ impl Batch {
     }
 
     /// The base scene's text with the run's overrides applied (formatting
-    /// and the line of every other key kept).
-    fn text(&self, run: &BatchRun) -> Result<String, String> {
+    /// and the line of every other key kept); an override that does not
+    /// apply is refused as `refuse` says it.
+    fn text(
+        &self,
+        run: &BatchRun,
+        refuse: impl Fn(String) -> SceneError,
+    ) -> Result<String, SceneError> {
         let mut doc = self.base.clone();
         for (key, value) in &run.overrides {
             let parts: Vec<&str> = key.split('.').collect();
             let mut table = doc.as_table_mut() as &mut dyn toml_edit::TableLike;
             for part in &parts[..parts.len() - 1] {
                 let item = table.entry(part).or_insert(toml_edit::table());
-                table = item
-                    .as_table_like_mut()
-                    .ok_or_else(|| format!("`{key}`: `{part}` is not a table in the base scene"))?;
+                table = item.as_table_like_mut().ok_or_else(|| {
+                    refuse(format!(
+                        "`{key}`: `{part}` is not a table in the base scene"
+                    ))
+                })?;
             }
             let v: toml_edit::Value = value
                 .to_string()
                 .parse()
-                .map_err(|e| format!("`{key}`: {e}"))?;
+                .map_err(|e| refuse(format!("`{key}`: {e}")))?;
             table.insert(parts[parts.len() - 1], toml_edit::Item::Value(v));
         }
         Ok(doc.to_string())
@@ -305,7 +312,7 @@ impl Batch {
     /// As [`Scene::from_str`]; messages name the base scene, the run and its
     /// overrides.
     pub fn scene(&self, run: &BatchRun) -> Result<Scene, SceneError> {
-        let text = self.text(run).map_err(|reason| SceneError::Layout {
+        let text = self.text(run, |reason| SceneError::Layout {
             scene: run.slug(),
             reason,
         })?;

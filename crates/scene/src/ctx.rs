@@ -58,9 +58,7 @@ impl<'a> Ctx<'a> {
             None => file.parent().unwrap_or(Path::new("")),
         }
     }
-}
 
-impl Ctx<'_> {
     pub(crate) fn at(&self, span: Range<usize>) -> Location {
         Location::of(self.text, span.start)
     }

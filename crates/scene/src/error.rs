@@ -75,6 +75,15 @@ pub enum SceneError {
         /// Why, from the solver crates.
         reason: String,
     },
+    /// Candidate points that cannot be laid out: a layout relative to a
+    /// Hertz contact that does not apply, sizes the grids refuse, more
+    /// points than elcon lays out. The reason alone: where it is met names
+    /// the scene or the field.
+    #[error("{reason}")]
+    Points {
+        /// Why, from the layout or the solver crates.
+        reason: String,
+    },
 }
 
 /// ` = value` for a message, or nothing for an empty value (a field that
@@ -93,6 +102,13 @@ impl SceneError {
         Self::Io {
             path: path.to_path_buf(),
             reason: e.to_string(),
+        }
+    }
+
+    /// A [`SceneError::Points`] saying `reason`.
+    pub fn points(reason: impl std::fmt::Display) -> Self {
+        Self::Points {
+            reason: reason.to_string(),
         }
     }
 

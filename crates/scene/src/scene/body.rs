@@ -12,16 +12,13 @@ use crate::error::SceneError;
 use crate::schema::BodyToml;
 pub use crate::schema::ModelKind;
 
-/// One body of a scene: the influence model and, for the half-space
-/// models, the material (the references need it).
+/// One body of a scene: the model it names and the body for
+/// elcon-influence (whose half-space models hold the material the
+/// references need).
 #[derive(Debug, Clone)]
 pub struct BodySpec {
-    /// The model (`body.model`).
     model: ModelKind,
-    /// The body for elcon-influence.
     body: Body,
-    /// The material of a half-space model.
-    material: Option<Material>,
 }
 
 impl BodySpec {
@@ -38,7 +35,7 @@ impl BodySpec {
     /// The material of a half-space model (none for a rigid body, a
     /// Winkler foundation or a beam).
     pub fn material(&self) -> Option<&Material> {
-        self.material.as_ref()
+        self.body.material()
     }
 }
 
@@ -86,16 +83,10 @@ pub(super) fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpe
         name: section,
         span: b.model.span(),
     };
-    let (body, material) = match kind {
-        ModelKind::Rigid => (Body::rigid(), None),
-        ModelKind::PointForce => {
-            let m = s.material()?;
-            (Body::point_force(m), Some(m))
-        }
-        ModelKind::UniformPatch => {
-            let m = s.material()?;
-            (Body::uniform_patch(m), Some(m))
-        }
+    let body = match kind {
+        ModelKind::Rigid => Body::rigid(),
+        ModelKind::PointForce => Body::point_force(s.material()?),
+        ModelKind::UniformPatch => Body::uniform_patch(s.material()?),
         ModelKind::PlaneStrain => {
             let m = s.material()?;
             let d0 = s.positive(
@@ -103,19 +94,14 @@ pub(super) fn body(ctx: &Ctx<'_>, b: &BodyToml, section: &str) -> Result<BodySpe
                 "reference_distance",
                 "by the plane-strain model (the datum distance d0 of the 2D displacements)",
             )?;
-            (Body::plane_strain(m, d0), Some(m))
+            Body::plane_strain(m, d0)
         }
         ModelKind::Winkler => {
-            let k = s.positive(&b.modulus, "modulus", "by the Winkler model")?;
-            (Body::winkler(k), None)
+            Body::winkler(s.positive(&b.modulus, "modulus", "by the Winkler model")?)
         }
-        ModelKind::Beam => (s.beam()?, None),
+        ModelKind::Beam => s.beam()?,
     };
-    Ok(BodySpec {
-        model: kind,
-        body,
-        material,
-    })
+    Ok(BodySpec { model: kind, body })
 }
 
 /// A body's section being read: its keys, its name (`body1`, `body2`) and

@@ -3,7 +3,7 @@
 //! linear family's problem is solved, checked against the scene's bodies,
 //! grid and surfaces (elcon-design).
 
-use elcon_analysis::{Geometry, Loading, Method, Normal, Options};
+use elcon_analysis::{Loading, Method, Normal, Options};
 pub use elcon_design::DesignFamily;
 use elcon_design::{
     Axis, DesignError, DesignMethod, DesignRequest, Family, GridSequence, LogCrown, LogEnd,
@@ -12,41 +12,30 @@ use elcon_design::{
 use elcon_influence::{Body, Dimension};
 use toml::Spanned;
 
-use super::body::BodySpec;
-use super::hertz::{Hertz, hertz};
+use super::hertz::{Hertz, Layout};
 use super::points::PointsSpec;
 use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
+use crate::sanity::DesignView;
 pub use crate::schema::RelativeTo;
 use crate::schema::{AxisName, DesignMethodName, DesignToml, EndName, FamilyName, ObjectiveName};
 
-/// A validated `[design]` section.
+/// A validated `[design]` section; its fields are read through their
+/// accessors, and the objective and the bodies it measures through
+/// [`DesignSpec::request`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct DesignSpec {
-    /// The family.
     family: DesignFamily,
-    /// The axial coordinate.
     axis: Axis,
-    /// The load cases (force).
     loads: Vec<f64>,
-    /// The reference intensities.
     relative_to: RelativeTo,
-    /// The bound c_max (length), if given.
     max_constant: Option<f64>,
-    /// How a linear family's problem is solved (`design.method`).
     method: DesignMethod,
     /// What the design minimizes (`design.objective`).
     objective: Objective,
     /// The bodies a stress objective measures (those with a field).
     bodies: Vec<Body>,
-    /// Misalignments (rad): every load is a case at each, a prescribed
-    /// rotation about the axis across the profile (`tilt_x` when the
-    /// profile runs along y, `tilt_y` along x); empty: the loads alone,
-    /// their rotations free without a moment.
     misalignments: Vec<f64>,
-    /// How the design is carried over finer grids until it holds on one
-    /// (`design.grid_tolerance`, `design.max_points`); `None` when
-    /// `design.refine = false` (the scene's grid alone, not verified).
     sequence: Option<GridSequence>,
 }
 
@@ -82,7 +71,10 @@ impl DesignSpec {
         self.method
     }
 
-    /// Misalignments (rad); empty: the loads alone.
+    /// Misalignments (rad): every load is a case at each, a prescribed
+    /// rotation about the axis across the profile (`tilt_x` when the
+    /// profile runs along y, `tilt_y` along x); empty: the loads alone,
+    /// their rotations free without a moment.
     pub fn misalignments(&self) -> &[f64] {
         &self.misalignments
     }
@@ -118,6 +110,21 @@ impl DesignSpec {
         }
     }
 
+    /// The section as the checks against its grids read it.
+    pub(crate) fn view(&self) -> DesignView {
+        DesignView {
+            family: match &self.family {
+                DesignFamily::Linear(f) => Some(*f),
+                _ => None,
+            },
+            axis: self.axis,
+            max_constant: self.max_constant,
+            loads: self.loads.clone(),
+            relative: self.relative_to != RelativeTo::Absolute,
+            sequence: self.sequence.clone(),
+        }
+    }
+
     /// The design's load cases: each load at each misalignment (or alone).
     pub fn case_loadings(&self) -> Vec<(f64, Option<f64>)> {
         let angles: Vec<Option<f64>> = if self.misalignments.is_empty() {
@@ -148,28 +155,10 @@ pub(super) struct DesignContext<'a> {
     /// logarithmic crown's roller, `relative_to = "hertz"`) comes from;
     /// `None` for problems given whole (from Python's arrays), which have
     /// no layout.
-    pub(super) layout: Option<DesignLayout<'a>>,
+    pub(super) layout: Option<Layout<'a>>,
     /// The roller a logarithmic crown is set for when it is given rather
     /// than derived from `layout` (Python's `roller=`).
     pub(super) roller: Option<Roller>,
-}
-
-/// The parts of a scene its Hertz contact comes from.
-#[derive(Clone, Copy)]
-pub(super) struct DesignLayout<'a> {
-    /// The two bodies.
-    pub(super) bodies: &'a [BodySpec; 2],
-    /// The surfaces or the separation.
-    pub(super) geometry: &'a Geometry,
-    /// The point layout.
-    pub(super) points_spec: &'a PointsSpec,
-}
-
-impl DesignLayout<'_> {
-    /// The Hertz contact at `load`, where one applies.
-    fn hertz(&self, load: f64) -> Option<Hertz> {
-        hertz(self.bodies, self.geometry, self.points_spec, load)
-    }
 }
 
 pub(super) fn design(
@@ -194,10 +183,7 @@ pub(super) fn design(
     let flat = match &t.flat_length {
         Some(f) => {
             let v = ctx.finite(f, "design.flat_length")?;
-            if v < 0.0 {
-                return Err(ctx.invalid(f.span(), "design.flat_length", v, "must be >= 0"));
-            }
-            v
+            ctx.ensure(v, v >= 0.0, f.span(), "design.flat_length", "must be >= 0")?
         }
         None => 0.0,
     };
@@ -217,10 +203,9 @@ pub(super) fn design(
     let family = design_family(ctx, t, family_name, flat, &loads, scene)?;
     let axis = design_axis(ctx, d, dimension)?;
     let relative_to = design_relative_to(ctx, d, &loads, scene)?;
-    let max_constant = match &t.max_constant {
-        Some(c) => Some(ctx.positive(c, "design.max_constant")?),
-        None => None,
-    };
+    let max_constant = (t.max_constant.as_ref())
+        .map(|c| ctx.positive(c, "design.max_constant"))
+        .transpose()?;
     let method = design_method(ctx, t, &family)?;
     let (objective, bodies) = design_objective(ctx, t, (&family, method), scene)?;
     let misalignments = misalignments(ctx, t)?;
@@ -296,33 +281,24 @@ fn design_objective(
 /// The keys of `[design]` that belong to other families than `family_name`
 /// are refused, naming the key and the family it belongs to.
 fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: FamilyName) -> Result<(), SceneError> {
-    let only = |v: &Option<Spanned<f64>>, field: &str, fam: &str| {
-        ctx.forbid(v, field, &format!("only for family = \"{fam}\""))
-    };
+    let only = |family: &str| format!("only for family = \"{family}\"");
     if family_name != FamilyName::Polynomial {
-        ctx.forbid(
-            &t.degree,
-            "design.degree",
-            "only for family = \"polynomial\"",
-        )?;
+        ctx.forbid(&t.degree, "design.degree", &only("polynomial"))?;
     }
-    if family_name != FamilyName::CircularCrown
-        && let Some(r) = &t.radius_range
-    {
-        return Err(ctx.invalid(
-            r.span(),
+    if family_name != FamilyName::CircularCrown {
+        ctx.forbid(
+            &t.radius_range,
             "design.radius_range",
-            "",
-            "only for family = \"circular-crown\"",
-        ));
+            &only("circular-crown"),
+        )?;
     }
     if family_name != FamilyName::LogarithmicCrown {
-        only(&t.design_load, "design.design_load", "logarithmic-crown")?;
         ctx.forbid(
-            &t.end,
-            "design.end",
-            "only for family = \"logarithmic-crown\"",
+            &t.design_load,
+            "design.design_load",
+            &only("logarithmic-crown"),
         )?;
+        ctx.forbid(&t.end, "design.end", &only("logarithmic-crown"))?;
     }
     if !matches!(
         family_name,
@@ -330,11 +306,8 @@ fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: FamilyName) -> Result
     ) {
         ctx.forbid(&t.flat_length, "design.flat_length", "only for the crowns")?;
     } else {
-        ctx.forbid(
-            &t.max_constant,
-            "design.max_constant",
-            "only for the polynomial families",
-        )?;
+        let why = "only for the polynomial families";
+        ctx.forbid(&t.max_constant, "design.max_constant", why)?;
     }
     Ok(())
 }
@@ -352,94 +325,81 @@ fn design_family(
         FamilyName::Quadratic => DesignFamily::Linear(Family::Quadratic),
         FamilyName::Free => DesignFamily::Linear(Family::Free),
         FamilyName::Polynomial => {
-            let deg = ctx.required(
-                &t.degree,
-                t.family.span(),
-                "design.degree",
-                "for family = \"polynomial\"",
-            )?;
+            let why = "for family = \"polynomial\"";
+            let deg = ctx.required(&t.degree, t.family.span(), "design.degree", why)?;
             DesignFamily::Linear(Family::Polynomial {
                 degree: ctx.count(deg, "design.degree", 0)?,
             })
         }
-        FamilyName::CircularCrown => {
-            let (lo, hi) = match &t.radius_range {
-                Some(r) => {
-                    let v = r.get_ref();
-                    if v.len() != 2 {
-                        return Err(ctx.invalid(
-                            r.span(),
-                            "design.radius_range",
-                            format!("{} values", v.len()),
-                            "give [smallest, largest] radius",
-                        ));
-                    }
-                    let lo = ctx.positive(&v[0], "design.radius_range[0]")?;
-                    let hi = ctx.positive(&v[1], "design.radius_range[1]")?;
-                    if hi <= lo {
-                        return Err(ctx.invalid(
-                            v[1].span(),
-                            "design.radius_range[1]",
-                            hi,
-                            "must exceed the smallest radius",
-                        ));
-                    }
-                    (lo, hi)
-                }
-                None => {
-                    return Err(ctx.invalid(
-                        t.family.span(),
-                        "design.radius_range",
-                        "(missing)",
-                        "is required for family = \"circular-crown\" (the search bracket)",
-                    ));
-                }
-            };
-            DesignFamily::CircularCrown {
-                radius_range: (lo, hi),
-                flat_length: flat,
-            }
-        }
-        FamilyName::LogarithmicCrown => {
-            let q = match &t.design_load {
-                Some(q) => ctx.positive(q, "design.design_load")?,
-                None => loads.iter().cloned().fold(0.0, f64::max),
-            };
-            // Its radius, modulus and length are those of the roller's
-            // Hertz line contact (or given).
-            let derived =
-                scene
-                    .layout
-                    .and_then(|layout| match (layout.hertz(q), layout.points_spec) {
-                        (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => {
-                            Some(Roller {
-                                combined_modulus: h.combined_modulus,
-                                radius: h.radius,
-                                length: 2.0 * half_y,
-                            })
-                        }
-                        _ => None,
-                    });
-            let roller = scene.roller.or(derived);
-            let Some(roller) = roller else {
-                return Err(ctx.invalid(
-                    t.family.span(),
-                    "design.family",
-                    "\"logarithmic-crown\"",
-                    "a logarithmic crown is for a roller: half-space bodies on a rectangle grid, \
-                     a cylinder (axis along y) on a plane or a cylinder",
-                ));
-            };
-            let end = log_end(t);
-            let given = scene.roller.is_some();
-            log_crown_valid(ctx, t, q, flat, end, (&roller, given))?;
-            DesignFamily::LogarithmicCrown {
-                design_load: q,
-                flat_length: flat,
-                end,
-                roller,
-            }
-        }
+        FamilyName::CircularCrown => DesignFamily::CircularCrown {
+            radius_range: radius_range(ctx, t)?,
+            flat_length: flat,
+        },
+        FamilyName::LogarithmicCrown => log_crown(ctx, t, flat, loads, scene)?,
+    })
+}
+
+/// A circular crown's `design.radius_range`, the bracket of its search:
+/// `[smallest, largest]`, both > 0.
+fn radius_range(ctx: &Ctx<'_>, t: &DesignToml) -> Result<(f64, f64), SceneError> {
+    let why = "for family = \"circular-crown\" (the search bracket)";
+    let r = ctx.required(&t.radius_range, t.family.span(), "design.radius_range", why)?;
+    let v = r.get_ref();
+    if v.len() != 2 {
+        return Err(ctx.invalid(
+            r.span(),
+            "design.radius_range",
+            format!("{} values", v.len()),
+            "give [smallest, largest] radius",
+        ));
+    }
+    let lo = ctx.positive(&v[0], "design.radius_range[0]")?;
+    let hi = ctx.positive(&v[1], "design.radius_range[1]")?;
+    let why = "must exceed the smallest radius";
+    let hi = ctx.ensure(hi, hi > lo, v[1].span(), "design.radius_range[1]", why)?;
+    Ok((lo, hi))
+}
+
+/// A logarithmic crown: its design load (default the heaviest), and the
+/// roller it is set for, given or derived from the roller's Hertz line
+/// contact (its radius and modulus; its length twice `points.half_y`).
+fn log_crown(
+    ctx: &Ctx<'_>,
+    t: &DesignToml,
+    flat: f64,
+    loads: &[f64],
+    scene: &DesignContext<'_>,
+) -> Result<DesignFamily, SceneError> {
+    let q = match &t.design_load {
+        Some(q) => ctx.positive(q, "design.design_load")?,
+        None => loads.iter().cloned().fold(0.0, f64::max),
+    };
+    let derived = scene
+        .layout
+        .and_then(|layout| match (layout.hertz(q), layout.points_spec) {
+            (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => Some(Roller {
+                combined_modulus: h.combined_modulus,
+                radius: h.radius,
+                length: 2.0 * half_y,
+            }),
+            _ => None,
+        });
+    let Some(roller) = scene.roller.or(derived) else {
+        return Err(ctx.invalid(
+            t.family.span(),
+            "design.family",
+            "\"logarithmic-crown\"",
+            "a logarithmic crown is for a roller: half-space bodies on a rectangle grid, a \
+             cylinder (axis along y) on a plane or a cylinder",
+        ));
+    };
+    let end = log_end(t);
+    log_crown_valid(ctx, t, q, flat, end, (&roller, scene.roller.is_some()))?;
+    Ok(DesignFamily::LogarithmicCrown {
+        design_load: q,
+        flat_length: flat,
+        end,
+        roller,
     })
 }
 
@@ -608,15 +568,10 @@ fn grid_sequence(ctx: &Ctx<'_>, t: &DesignToml) -> Result<Option<GridSequence>, 
     let mut sequence = GridSequence::default();
     if let Some(v) = &t.grid_tolerance {
         let tolerance = ctx.positive(v, "design.grid_tolerance")?;
-        if tolerance > MAX_GRID_TOLERANCE {
-            return Err(ctx.invalid(
-                v.span(),
-                "design.grid_tolerance",
-                tolerance,
-                format!("at most {MAX_GRID_TOLERANCE} (a relative agreement between two grids)"),
-            ));
-        }
-        sequence.tolerance = tolerance;
+        let why = format!("at most {MAX_GRID_TOLERANCE} (a relative agreement between two grids)");
+        let within = tolerance <= MAX_GRID_TOLERANCE;
+        sequence.tolerance =
+            ctx.ensure(tolerance, within, v.span(), "design.grid_tolerance", why)?;
     }
     if let Some(v) = &t.max_points {
         sequence.max_points = ctx.count(v, "design.max_points", 4)?;
@@ -648,17 +603,16 @@ fn misalignments(ctx: &Ctx<'_>, t: &DesignToml) -> Result<Vec<f64>, SceneError> 
         .map(|(i, v)| {
             let field = format!("design.misalignments[{i}]");
             let angle = ctx.finite(v, &field)?;
-            if angle.abs() > MAX_MISALIGNMENT {
-                return Err(ctx.invalid(
-                    v.span(),
-                    &field,
-                    angle,
-                    format!(
-                        "at most {MAX_MISALIGNMENT} rad in size (the rigid rotation is linearized)"
-                    ),
-                ));
-            }
-            Ok(angle)
+            let why = format!(
+                "at most {MAX_MISALIGNMENT} rad in size (the rigid rotation is linearized)"
+            );
+            ctx.ensure(
+                angle,
+                angle.abs() <= MAX_MISALIGNMENT,
+                v.span(),
+                &field,
+                why,
+            )
         })
         .collect()
 }

@@ -21,7 +21,7 @@
 //! that does not cover the points) are elcon-analysis's, their messages
 //! naming the file and the row.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use elcon_analysis::{AxialProfile, Departure, Geometry, HeightMap, ProfileAxis};
@@ -37,59 +37,164 @@ use crate::schema::{GeometryToml, HeightMapToml, ProfileToml};
 /// to a file and read back).
 const MATCH_TOLERANCE: f64 = 1e-6;
 
-/// The path of `name` relative to the scene file's directory.
-fn path_of(ctx: &Ctx<'_>, name: &str) -> PathBuf {
-    ctx.dir().join(name)
-}
-
 /// The most bytes a data file (height map, profile, separations) may hold:
 /// a height map of 5792 x 5792 doubles. Read once, no further: a device
 /// or a runaway file is refused instead of filling the memory.
 pub const MAX_DATA_BYTES: u64 = 256 << 20;
 
-/// The bytes of a data file, at most [`MAX_DATA_BYTES`].
-fn read_data(path: &Path) -> Result<Vec<u8>, String> {
-    use std::io::Read;
-    let file = std::fs::File::open(path).map_err(|e| format!("cannot be read: {e}"))?;
-    let mut bytes = Vec::new();
-    file.take(MAX_DATA_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| format!("cannot be read: {e}"))?;
-    if bytes.len() as u64 > MAX_DATA_BYTES {
-        return Err(format!(
-            "is larger than {} MiB, the largest data file elcon reads",
-            MAX_DATA_BYTES >> 20
-        ));
-    }
-    Ok(bytes)
+/// A data file named in `[geometry]`, as its refusals name it: its key
+/// (`geometry.height_map.file`), where and how the scene names it, and its
+/// path, relative to the scene file's directory.
+struct DataFile<'c, 'a> {
+    ctx: &'c Ctx<'a>,
+    field: &'static str,
+    name: &'c Spanned<String>,
+    path: PathBuf,
 }
 
-/// The numbers of a CSV file, a row per line (see the module
-/// documentation), each with its line number (from 1).
-fn csv_rows(path: &Path) -> Result<Vec<(usize, Vec<f64>)>, String> {
-    let text = String::from_utf8(read_data(path)?)
-        .map_err(|_| "cannot be read: it is not text (UTF-8)".to_string())?;
-    let mut rows = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
+impl<'c, 'a> DataFile<'c, 'a> {
+    /// The file `name` under `field`.
+    fn new(ctx: &'c Ctx<'a>, field: &'static str, name: &'c Spanned<String>) -> Self {
+        let path = ctx.dir().join(name.get_ref());
+        Self {
+            ctx,
+            field,
+            name,
+            path,
         }
-        let values: Result<Vec<f64>, _> = line
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|f| !f.is_empty())
-            .map(str::parse::<f64>)
+    }
+
+    /// The file refused for `reason`, as it is (the tables of
+    /// elcon-analysis name the file themselves).
+    fn invalid(&self, reason: impl Into<String>) -> SceneError {
+        let name = format!("{:?}", self.name.get_ref());
+        self.ctx.invalid(self.name.span(), self.field, name, reason)
+    }
+
+    /// The file refused for `reason`, after its path.
+    fn refuse(&self, reason: impl std::fmt::Display) -> SceneError {
+        self.invalid(format!("{}: {reason}", self.path.display()))
+    }
+
+    /// Its path, as the tables it becomes name it.
+    fn label(&self) -> String {
+        self.path.display().to_string()
+    }
+
+    /// Its bytes, at most [`MAX_DATA_BYTES`].
+    fn bytes(&self) -> Result<Vec<u8>, SceneError> {
+        use std::io::Read;
+        let unreadable = |e: std::io::Error| self.refuse(format!("cannot be read: {e}"));
+        let file = std::fs::File::open(&self.path).map_err(unreadable)?;
+        let mut bytes = Vec::new();
+        file.take(MAX_DATA_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(unreadable)?;
+        if bytes.len() as u64 > MAX_DATA_BYTES {
+            return Err(self.refuse(format!(
+                "is larger than {} MiB, the largest data file elcon reads",
+                MAX_DATA_BYTES >> 20
+            )));
+        }
+        Ok(bytes)
+    }
+
+    /// Its numbers as CSV, a row per line (see the module documentation),
+    /// each with its line number (from 1).
+    fn csv_rows(&self) -> Result<Vec<(usize, Vec<f64>)>, SceneError> {
+        let text = String::from_utf8(self.bytes()?)
+            .map_err(|_| self.refuse("cannot be read: it is not text (UTF-8)"))?;
+        let mut rows = Vec::new();
+        for (i, line) in text.lines().enumerate() {
+            let line = line.trim();
+            if line.is_empty() || line.starts_with('#') {
+                continue;
+            }
+            let values: Result<Vec<f64>, _> = line
+                .split(|c: char| c == ',' || c.is_whitespace())
+                .filter(|f| !f.is_empty())
+                .map(str::parse::<f64>)
+                .collect();
+            match values {
+                Ok(v) => rows.push((i + 1, v)),
+                Err(_) if rows.is_empty() && i == first_content_line(&text) => {}
+                Err(_) => {
+                    return Err(self.refuse(format!("line {}: {line:?} is not numbers", i + 1)));
+                }
+            }
+        }
+        if rows.is_empty() {
+            return Err(self.refuse("has no rows of numbers"));
+        }
+        Ok(rows)
+    }
+
+    /// Its 2-D `.npy` array of float64 or float32 in C order: its values
+    /// row by row and its shape `(rows, columns)`.
+    fn npy(&self) -> Result<(Vec<f64>, usize, usize), SceneError> {
+        let bytes = self.bytes()?;
+        if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
+            return Err(self.refuse("is not a .npy file (no \\x93NUMPY magic)"));
+        }
+        let (header_len, start) = match bytes[6] {
+            1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
+            2 | 3 if bytes.len() >= 12 => (
+                u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
+                12,
+            ),
+            v => return Err(self.refuse(format!("has .npy format version {v}, not 1, 2 or 3"))),
+        };
+        let header = bytes
+            .get(start..start + header_len)
+            .and_then(|h| std::str::from_utf8(h).ok())
+            .ok_or_else(|| self.refuse("has a truncated .npy header"))?;
+        if header.contains("'fortran_order': True") {
+            return Err(
+                self.refuse("is in Fortran order; save it in C order (np.ascontiguousarray)")
+            );
+        }
+        let width = if header.contains("'<f8'") {
+            8
+        } else if header.contains("'<f4'") {
+            4
+        } else {
+            return Err(self.refuse("holds no little-endian float64 or float32 ('<f8', '<f4')"));
+        };
+        let shape = header
+            .split("'shape':")
+            .nth(1)
+            .and_then(|s| s.split(')').next())
+            .map(|s| s.trim().trim_start_matches('('))
+            .ok_or_else(|| self.refuse("has no shape in its header"))?;
+        let dims: Vec<usize> = shape
+            .split(',')
+            .map(str::trim)
+            .filter(|d| !d.is_empty())
+            .map(|d| d.parse::<usize>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| self.refuse(format!("has a shape ({shape}) that is not counts")))?;
+        let [ny, nx] = dims[..] else {
+            return Err(self.refuse(format!("holds a {}-D array, not a 2-D one", dims.len())));
+        };
+        let data = &bytes[start + header_len..];
+        let n = nx
+            .checked_mul(ny)
+            .ok_or_else(|| self.refuse("has a shape too large"))?;
+        if data.len() != n * width {
+            return Err(self.refuse(format!(
+                "holds {} bytes for {ny} x {nx} values of {width} bytes",
+                data.len()
+            )));
+        }
+        let values = data
+            .chunks_exact(width)
+            .map(|c| match width {
+                8 => f64::from_le_bytes(c.try_into().unwrap_or([0; 8])),
+                _ => f32::from_le_bytes(c.try_into().unwrap_or([0; 4])) as f64,
+            })
             .collect();
-        match values {
-            Ok(v) => rows.push((i + 1, v)),
-            Err(_) if rows.is_empty() && i == first_content_line(&text) => {}
-            Err(_) => return Err(format!("line {}: {line:?} is not numbers", i + 1)),
-        }
+        Ok((values, ny, nx))
     }
-    if rows.is_empty() {
-        return Err("has no rows of numbers".into());
-    }
-    Ok(rows)
 }
 
 /// The index of the first line that is neither blank nor a comment.
@@ -97,69 +202,6 @@ fn first_content_line(text: &str) -> usize {
     text.lines()
         .position(|l| !(l.trim().is_empty() || l.trim().starts_with('#')))
         .unwrap_or(0)
-}
-
-/// A 2-D `.npy` array of float64 or float32 in C order: its values row by
-/// row and its shape `(rows, columns)`.
-fn npy(path: &Path) -> Result<(Vec<f64>, usize, usize), String> {
-    let bytes = read_data(path)?;
-    if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
-        return Err("is not a .npy file (no \\x93NUMPY magic)".into());
-    }
-    let (header_len, start) = match bytes[6] {
-        1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
-        2 | 3 if bytes.len() >= 12 => (
-            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
-            12,
-        ),
-        v => return Err(format!("has .npy format version {v}, not 1, 2 or 3")),
-    };
-    let header = bytes
-        .get(start..start + header_len)
-        .and_then(|h| std::str::from_utf8(h).ok())
-        .ok_or("has a truncated .npy header")?;
-    if header.contains("'fortran_order': True") {
-        return Err("is in Fortran order; save it in C order (np.ascontiguousarray)".into());
-    }
-    let width = if header.contains("'<f8'") {
-        8
-    } else if header.contains("'<f4'") {
-        4
-    } else {
-        return Err("holds no little-endian float64 or float32 ('<f8', '<f4')".into());
-    };
-    let shape = header
-        .split("'shape':")
-        .nth(1)
-        .and_then(|s| s.split(')').next())
-        .map(|s| s.trim().trim_start_matches('('))
-        .ok_or("has no shape in its header")?;
-    let dims: Vec<usize> = shape
-        .split(',')
-        .map(str::trim)
-        .filter(|d| !d.is_empty())
-        .map(|d| d.parse::<usize>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| format!("has a shape ({shape}) that is not counts"))?;
-    let [ny, nx] = dims[..] else {
-        return Err(format!("holds a {}-D array, not a 2-D one", dims.len()));
-    };
-    let data = &bytes[start + header_len..];
-    let n = nx.checked_mul(ny).ok_or("has a shape too large")?;
-    if data.len() != n * width {
-        return Err(format!(
-            "holds {} bytes for {ny} x {nx} values of {width} bytes",
-            data.len()
-        ));
-    }
-    let values = data
-        .chunks_exact(width)
-        .map(|c| match width {
-            8 => f64::from_le_bytes(c.try_into().unwrap_or([0; 8])),
-            _ => f32::from_le_bytes(c.try_into().unwrap_or([0; 4])) as f64,
-        })
-        .collect();
-    Ok((values, ny, nx))
 }
 
 /// Two finite numbers under `key` (`spacing`, `origin`).
@@ -181,23 +223,14 @@ pub(super) fn height_map(
     t: &Spanned<HeightMapToml>,
 ) -> Result<Departure, SceneError> {
     let t = t.get_ref();
-    let name = t.file.get_ref();
-    let path = path_of(ctx, name);
-    let refuse = |reason: String| {
-        ctx.invalid(
-            t.file.span(),
-            "geometry.height_map.file",
-            format!("{name:?}"),
-            format!("{}: {reason}", path.display()),
-        )
-    };
-    let (values, ny, nx) = if name.ends_with(".npy") {
-        npy(&path).map_err(refuse)?
+    let file = DataFile::new(ctx, "geometry.height_map.file", &t.file);
+    let (values, ny, nx) = if t.file.get_ref().ends_with(".npy") {
+        file.npy()?
     } else {
-        let rows = csv_rows(&path).map_err(refuse)?;
+        let rows = file.csv_rows()?;
         let nx = rows[0].1.len();
         if let Some((line, r)) = rows.iter().find(|(_, r)| r.len() != nx) {
-            return Err(refuse(format!(
+            return Err(file.refuse(format!(
                 "line {line} has {} values, the first row {nx}: a height map's rows are all \
                  as long",
                 r.len()
@@ -223,23 +256,14 @@ pub(super) fn height_map(
             -0.5 * ny.saturating_sub(1) as f64 * spacing.1,
         ),
     };
-    let label = path.display().to_string();
-    let map = HeightMap::new(label, values, nx, ny, spacing, origin).map_err(|e| {
-        ctx.invalid(
-            t.file.span(),
-            "geometry.height_map.file",
-            format!("{name:?}"),
-            e.to_string(),
-        )
-    })?;
+    let map = HeightMap::new(file.label(), values, nx, ny, spacing, origin)
+        .map_err(|e| file.invalid(e.to_string()))?;
     Ok(Departure::HeightMap(Arc::new(map)))
 }
 
 /// `geometry.profile`: the profile read and checked.
 pub(super) fn profile(ctx: &Ctx<'_>, t: &Spanned<ProfileToml>) -> Result<Departure, SceneError> {
     let t = t.get_ref();
-    let name = t.file.get_ref();
-    let path = path_of(ctx, name);
     let axis = match t.axis.as_ref().map(|a| (a, a.get_ref().as_str())) {
         None | Some((_, "y")) => ProfileAxis::Y,
         Some((_, "x")) => ProfileAxis::X,
@@ -252,31 +276,17 @@ pub(super) fn profile(ctx: &Ctx<'_>, t: &Spanned<ProfileToml>) -> Result<Departu
             ));
         }
     };
-    let refuse = |reason: String| {
-        ctx.invalid(
-            t.file.span(),
-            "geometry.profile.file",
-            format!("{name:?}"),
-            format!("{}: {reason}", path.display()),
-        )
-    };
-    let rows = csv_rows(&path).map_err(refuse)?;
+    let file = DataFile::new(ctx, "geometry.profile.file", &t.file);
+    let rows = file.csv_rows()?;
     if let Some((line, r)) = rows.iter().find(|(_, r)| r.len() != 2) {
-        return Err(refuse(format!(
+        return Err(file.refuse(format!(
             "line {line} has {} values: a profile's rows are (position, drop)",
             r.len()
         )));
     }
     let (positions, drops) = rows.iter().map(|(_, r)| (r[0], r[1])).unzip();
-    let label = path.display().to_string();
-    let p = AxialProfile::new(label, axis, positions, drops).map_err(|e| {
-        ctx.invalid(
-            t.file.span(),
-            "geometry.profile.file",
-            format!("{name:?}"),
-            e.to_string(),
-        )
-    })?;
+    let p = AxialProfile::new(file.label(), axis, positions, drops)
+        .map_err(|e| file.invalid(e.to_string()))?;
     Ok(Departure::Profile(Arc::new(p)))
 }
 
@@ -296,21 +306,35 @@ pub(super) fn on_points(
         return Ok(Geometry::Separation(separations(ctx, file, points)?));
     }
     if let Geometry::Tabulated { .. } = &geometry {
-        elcon_analysis::separations(points, &geometry).map_err(|e| {
-            let (field, span, value) = data_file(g);
-            ctx.invalid(span, field, value, e.to_string())
-        })?;
+        separations_on(ctx, raw, &geometry, points)?;
     }
     Ok(geometry)
+}
+
+/// The separations of `geometry` at `points`
+/// (`elcon_analysis::separations`); a failure (a table that does not cover
+/// them) refused at the data file they are read from ([`data_file`]), or
+/// at `[geometry]`.
+pub(super) fn separations_on(
+    ctx: &Ctx<'_>,
+    raw: Option<&Spanned<GeometryToml>>,
+    geometry: &Geometry,
+    points: &PointSet,
+) -> Result<Vec<f64>, SceneError> {
+    elcon_analysis::separations(points, geometry).map_err(|e| match raw {
+        Some(g) => {
+            let (field, span, value) = data_file(g);
+            ctx.invalid(span, field, value, e.to_string())
+        }
+        None => ctx.invalid(0..0, "geometry", "", e.to_string()),
+    })
 }
 
 /// The data file a geometry's separations are read from, as a refusal
 /// names it: its key (`geometry.height_map.file`, `geometry.profile.file`,
 /// `geometry.separation_file`), where it is written and its name; the
 /// `geometry` table when it reads none.
-pub(super) fn data_file(
-    g: &Spanned<GeometryToml>,
-) -> (&'static str, std::ops::Range<usize>, String) {
+fn data_file(g: &Spanned<GeometryToml>) -> (&'static str, std::ops::Range<usize>, String) {
     let t = g.get_ref();
     let named = |f: &Spanned<String>| (f.span(), format!("{:?}", f.get_ref()));
     let (field, (span, value)) = if let Some(m) = &t.height_map {
@@ -332,23 +356,14 @@ fn separations(
     file: &Spanned<String>,
     points: &PointSet,
 ) -> Result<Vec<f64>, SceneError> {
-    let name = file.get_ref();
-    let path = path_of(ctx, name);
-    let refuse = |reason: String| {
-        ctx.invalid(
-            file.span(),
-            "geometry.separation_file",
-            format!("{name:?}"),
-            format!("{}: {reason}", path.display()),
-        )
-    };
-    let rows = csv_rows(&path).map_err(refuse)?;
+    let file = DataFile::new(ctx, "geometry.separation_file", file);
+    let rows = file.csv_rows()?;
     let line = points.dimension() == elcon_influence::Dimension::Line;
     let width = if line { 2 } else { 3 };
     let mut table = Vec::with_capacity(rows.len());
     for (n, r) in &rows {
         if r.len() != width || r.iter().any(|v| !v.is_finite()) {
-            return Err(refuse(format!(
+            return Err(file.refuse(format!(
                 "line {n}: {r:?} is not {} finite numbers ({})",
                 width,
                 if line {
@@ -385,7 +400,7 @@ fn separations(
             let (x, y) = (points.x(k), points.y(k));
             let found = index.get(&key(x, if line { 0.0 } else { y }));
             if let Some(&(first, Some(other))) = found {
-                return Err(refuse(format!(
+                return Err(file.refuse(format!(
                     "lines {} and {} both give candidate point {k} ({}, {}), with separations \
                      {} and {}; give one row for each point",
                     rows[first].0,
@@ -401,7 +416,7 @@ fn separations(
                 .filter(|(a, b, _)| (a - x).abs() <= tx && (line || (b - y).abs() <= ty))
                 .map(|r| r.2)
                 .ok_or_else(|| {
-                    refuse(format!(
+                    file.refuse(format!(
                         "has no row at candidate point {k} ({}, {}); give a row at every \
                          candidate point",
                         Num(x),

@@ -23,7 +23,11 @@ fn surface(
     dimension: Dimension,
 ) -> Result<Surface, SceneError> {
     let t = s.get_ref();
-    if *t.shape.get_ref() != Shape::Quadric {
+    let shape = *t.shape.get_ref();
+    if shape == Shape::Quadric {
+        let why = "a quadric has radius_x and radius_y";
+        ctx.forbid(&t.radius, &format!("{field}.radius"), why)?;
+    } else {
         for (v, key) in [
             (&t.radius_x, "radius_x"),
             (&t.radius_y, "radius_y"),
@@ -32,25 +36,22 @@ fn surface(
             ctx.forbid(v, &format!("{field}.{key}"), "only a quadric has it")?;
         }
     }
+    if dimension == Dimension::Line && matches!(shape, Shape::Sphere | Shape::Quadric) {
+        return Err(ctx.invalid(
+            t.shape.span(),
+            format!("{field}.shape"),
+            format!("\"{shape}\""),
+            format!("a {shape} needs a surface grid; on a line use a cylinder"),
+        ));
+    }
     let radius = |ctx: &Ctx<'_>| -> Result<f64, SceneError> {
-        let r = ctx.required(
-            &t.radius,
-            s.span(),
-            &format!("{field}.radius"),
-            "for a curved surface",
-        )?;
-        let v = ctx.finite(r, &format!("{field}.radius"))?;
-        if v == 0.0 {
-            return Err(ctx.invalid(
-                r.span(),
-                format!("{field}.radius"),
-                v,
-                "must be non-zero (negative for a concave surface)",
-            ));
-        }
-        Ok(v)
+        let key = format!("{field}.radius");
+        let r = ctx.required(&t.radius, s.span(), &key, "for a curved surface")?;
+        let v = ctx.finite(r, &key)?;
+        let why = "must be non-zero (negative for a concave surface)";
+        ctx.ensure(v, v != 0.0, r.span(), &key, why)
     };
-    match *t.shape.get_ref() {
+    match shape {
         Shape::Plane => {
             ctx.forbid(
                 &t.radius,
@@ -59,48 +60,20 @@ fn surface(
             )?;
             Ok(Surface::Plane)
         }
-        Shape::Sphere => {
-            if dimension == Dimension::Line {
-                return Err(ctx.invalid(
-                    t.shape.span(),
-                    format!("{field}.shape"),
-                    "\"sphere\"",
-                    "a sphere needs a surface grid; on a line use a cylinder",
-                ));
-            }
-            Ok(Surface::Sphere {
-                radius: radius(ctx)?,
-            })
-        }
+        Shape::Sphere => Ok(Surface::Sphere {
+            radius: radius(ctx)?,
+        }),
         Shape::Cylinder => Ok(Surface::Cylinder {
             radius: radius(ctx)?,
         }),
-        Shape::Quadric => quadric(ctx, s, field, dimension),
+        Shape::Quadric => quadric(ctx, s, field),
     }
 }
 
 /// A quadric: `radius_x`, `radius_y` (at least one; an omitted one is
 /// straight), `angle` in degrees (default 0), on a surface grid.
-fn quadric(
-    ctx: &Ctx<'_>,
-    s: &Spanned<SurfaceToml>,
-    field: &str,
-    dimension: Dimension,
-) -> Result<Surface, SceneError> {
+fn quadric(ctx: &Ctx<'_>, s: &Spanned<SurfaceToml>, field: &str) -> Result<Surface, SceneError> {
     let t = s.get_ref();
-    ctx.forbid(
-        &t.radius,
-        &format!("{field}.radius"),
-        "a quadric has radius_x and radius_y",
-    )?;
-    if dimension == Dimension::Line {
-        return Err(ctx.invalid(
-            t.shape.span(),
-            format!("{field}.shape"),
-            "\"quadric\"",
-            "a quadric needs a surface grid; on a line use a cylinder",
-        ));
-    }
     if t.radius_x.is_none() && t.radius_y.is_none() {
         return Err(ctx.invalid(
             s.span(),

@@ -13,6 +13,23 @@ use super::geometry::combined;
 use super::points::{EllipseShape, PointsSpec};
 use crate::sanity::StrainExtent;
 
+/// The parts of a scene its Hertz contact and its closed forms come from:
+/// the bodies, the surfaces (or separations) and the layout of the points.
+/// A design over problems given piece by piece may know them: what its
+/// logarithmic crown's roller is derived from.
+#[derive(Debug, Clone, Copy)]
+pub struct DesignLayoutParts<'a> {
+    /// The two bodies.
+    pub bodies: &'a [BodySpec; 2],
+    /// The surfaces.
+    pub geometry: &'a Geometry,
+    /// The layout of the points.
+    pub points_spec: &'a PointsSpec,
+}
+
+/// A scene's layout, as the closed forms read it ([`DesignLayoutParts`]).
+pub(crate) type Layout<'a> = DesignLayoutParts<'a>;
+
 /// The closed form a scene is compared with, when one applies.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Reference {
@@ -49,11 +66,16 @@ impl Reference {
     }
 }
 
-/// E* of the bodies if they are half-space models (or rigid) of `models`.
-fn half_space_modulus(bodies: &[BodySpec; 2], models: &[&str]) -> Option<f64> {
+/// E* of the bodies if they are half-space models of a `line` (plane
+/// strain) or of a surface (point forces, uniform patches), or rigid.
+fn half_space_modulus(bodies: &[BodySpec; 2], line: bool) -> Option<f64> {
+    let half_space = |m: ModelKind| match line {
+        true => m == ModelKind::PlaneStrain,
+        false => m.is_surface(),
+    };
     if !bodies
         .iter()
-        .all(|b| b.model() == ModelKind::Rigid || models.contains(&b.model().name()))
+        .all(|b| b.model() == ModelKind::Rigid || half_space(b.model()))
     {
         return None;
     }
@@ -104,38 +126,123 @@ impl Hertz {
     }
 }
 
-/// The Hertz contact at `load`, if one applies: spheres/planes and
-/// half-space surface bodies on a disk; cylinders/planes and plane-strain
-/// bodies on a line; cylinders/planes and half-space surface bodies on a
-/// rectangle (a roller along y, per unit length `2 half_y`). Rigid bodies
-/// count as half-spaces; the surfaces must not both be planes.
-pub(super) fn hertz(
-    bodies: &[BodySpec; 2],
-    geometry: &Geometry,
-    spec: &PointsSpec,
-    load: f64,
-) -> Option<Hertz> {
-    match spec {
-        PointsSpec::Disk { .. } if combined(geometry, true).is_none() => {
-            ellipse(bodies, geometry, load).map(Hertz::Ellipse)
+impl Layout<'_> {
+    /// The Hertz contact at `load`, if one applies: spheres/planes and
+    /// half-space surface bodies on a disk; cylinders/planes and
+    /// plane-strain bodies on a line; cylinders/planes and half-space
+    /// surface bodies on a rectangle (a roller along y, per unit length
+    /// `2 half_y`); quadrics on a disk or an ellipse grid. Rigid bodies
+    /// count as half-spaces; the surfaces must not both be planes.
+    pub(crate) fn hertz(&self, load: f64) -> Option<Hertz> {
+        let (bodies, geometry) = (self.bodies, self.geometry);
+        match self.points_spec {
+            PointsSpec::Disk { .. } if combined(geometry, true).is_none() => {
+                ellipse(bodies, geometry, load).map(Hertz::Ellipse)
+            }
+            PointsSpec::EllipseHertz { .. } => ellipse(bodies, geometry, load).map(Hertz::Ellipse),
+            PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
+                let e = half_space_modulus(bodies, false)?;
+                let r = combined(geometry, true)?;
+                HertzSpheres::new(e, r, load).ok().map(Hertz::Spheres)
+            }
+            PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+                let e = half_space_modulus(bodies, true)?;
+                let r = combined(geometry, false)?;
+                HertzCylinders::new(e, r, load).ok().map(Hertz::Cylinders)
+            }
+            PointsSpec::Rectangle { half_y, .. } => {
+                let e = half_space_modulus(bodies, false)?;
+                let r = combined(geometry, false)?;
+                HertzCylinders::new(e, r, load / (2.0 * half_y))
+                    .ok()
+                    .map(Hertz::Cylinders)
+            }
         }
-        PointsSpec::EllipseHertz { .. } => ellipse(bodies, geometry, load).map(Hertz::Ellipse),
-        PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
-            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
-            let r = combined(geometry, true)?;
-            HertzSpheres::new(e, r, load).ok().map(Hertz::Spheres)
+    }
+
+    /// The Hertz length scale at `load`: the contact radius (disk) or the
+    /// half-width (line; rectangle of a roller, per unit length `2 half_y`).
+    pub(crate) fn scale(&self, load: f64) -> Option<f64> {
+        self.hertz(load).map(|h| h.scale())
+    }
+
+    /// The combined radius `R` of spheres (or a sphere on a plane) and the
+    /// Hertz radius `a` at `load`, on a disk grid: what a prescribed tilt's
+    /// shift of the gap's minimum, `R tilt`, is measured against.
+    pub(crate) fn spheres_at(&self, load: f64) -> Option<(f64, f64)> {
+        match self.hertz(load)? {
+            Hertz::Spheres(h) => Some((combined(self.geometry, true)?, h.contact_radius())),
+            _ => None,
         }
-        PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
-            let e = half_space_modulus(bodies, &["plane-strain"])?;
-            let r = combined(geometry, false)?;
-            HertzCylinders::new(e, r, load).ok().map(Hertz::Cylinders)
+    }
+
+    /// The length the small strain measures an approach against on
+    /// `points` laid out around the Hertz contact `hertz`: on an ellipse
+    /// grid the zone across the Hertz ellipse's minor axis in the
+    /// ellipse's own frame (`elcon_analysis::grid::ellipse_minor_zone`: the
+    /// same at any turn, where the grid's extents along x and y grow with
+    /// the turn), else the zone's smaller extent.
+    pub(crate) fn approach_extent(&self, hertz: Option<&Hertz>, points: &PointSet) -> StrainExtent {
+        if let (PointsSpec::EllipseHertz { across, zone, .. }, Some(Hertz::Ellipse(h))) =
+            (self.points_spec, hertz)
+            && let Ok(length) =
+                elcon_analysis::grid::ellipse_minor_zone(h.semi_minor(), *across, *zone)
+        {
+            return StrainExtent {
+                length,
+                what: "the candidate zone's extent across the Hertz ellipse's minor axis",
+            };
         }
-        PointsSpec::Rectangle { half_y, .. } => {
-            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
-            let r = combined(geometry, false)?;
-            HertzCylinders::new(e, r, load / (2.0 * half_y))
-                .ok()
-                .map(Hertz::Cylinders)
+        StrainExtent::of(points)
+    }
+
+    /// The closed form that applies to the scene on `points` under
+    /// `loading`, if one does.
+    pub(crate) fn reference(&self, points: &PointSet, loading: Loading) -> Option<Reference> {
+        let (bodies, geometry) = (self.bodies, self.geometry);
+        let flat = match geometry {
+            // Departures from the quadrics have no closed form.
+            Geometry::Tabulated { .. } => return None,
+            Geometry::Surfaces(Surface::Plane, Surface::Plane) => true,
+            Geometry::Separation(eps) => eps.iter().all(|&e| e == eps[0]),
+            _ => false,
+        };
+        match self.points_spec {
+            PointsSpec::EllipseHertz { .. } => ellipse_reference(bodies, geometry, loading),
+            PointsSpec::Disk { .. } if !flat && combined(geometry, true).is_none() => {
+                ellipse_reference(bodies, geometry, loading)
+            }
+            PointsSpec::Disk { radius, .. } if flat => {
+                // A rigid flat punch: one rigid body, the candidate disk its face.
+                let rigid = bodies.iter().filter(|b| b.body().is_rigid()).count() == 1;
+                let e = half_space_modulus(bodies, false)?;
+                rigid.then(|| FlatPunch::new(e, *radius).ok().map(Reference::FlatPunch))?
+            }
+            PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
+                let e = half_space_modulus(bodies, false)?;
+                let r = combined(geometry, true)?;
+                let load = match loading.normal {
+                    Normal::Load(p) => p,
+                    // The Hertz load of the approach: P = 4 E* a^3 / (3 R), a = sqrt(R delta).
+                    Normal::Approach(d) if d > 0.0 => 4.0 * e * (r * d).powf(1.5) / (3.0 * r),
+                    Normal::Approach(_) => return None,
+                };
+                HertzSpheres::new(e, r, load)
+                    .ok()
+                    .map(Reference::HertzSpheres)
+            }
+            PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+                let Normal::Load(p) = loading.normal else {
+                    return None;
+                };
+                match combined(geometry, false) {
+                    Some(r) => cylinders_reference(bodies, r, p),
+                    // A beam on a Winkler foundation, central load, no separation.
+                    None if flat => hetenyi_reference(bodies, points, p),
+                    None => None,
+                }
+            }
+            PointsSpec::Rectangle { .. } => None,
         }
     }
 }
@@ -143,7 +250,7 @@ pub(super) fn hertz(
 /// The elliptical Hertz contact of half-space (or rigid) surface bodies
 /// whose gap's curvature is the surfaces' (`Geometry::curvature`).
 fn ellipse(bodies: &[BodySpec; 2], geometry: &Geometry, load: f64) -> Option<HertzEllipse> {
-    let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
+    let e = half_space_modulus(bodies, false)?;
     HertzEllipse::new(e, geometry.curvature()?, load).ok()
 }
 
@@ -170,155 +277,56 @@ pub(super) fn shaped(spec: PointsSpec, bodies: &[BodySpec; 2], geometry: &Geomet
     }
 }
 
-/// The Hertz length scale at `load`: the contact radius (disk) or the
-/// half-width (line; rectangle of a roller, per unit length `2 half_y`).
-pub(super) fn hertz_scale(
-    bodies: &[BodySpec; 2],
-    geometry: &Geometry,
-    spec: &PointsSpec,
-    load: f64,
-) -> Option<f64> {
-    hertz(bodies, geometry, spec, load).map(|h| h.scale())
+/// Hertz's line contact of plane-strain (or rigid) bodies of combined
+/// radius `r` under the load per length `p`; its approach is compared when
+/// the elastic bodies share their datum distance d0.
+fn cylinders_reference(bodies: &[BodySpec; 2], r: f64, p: f64) -> Option<Reference> {
+    let e = half_space_modulus(bodies, true)?;
+    let datums: Vec<f64> = bodies
+        .iter()
+        .filter_map(|b| match b.body().model() {
+            elcon_influence::Model::PlaneStrainStrip {
+                reference_distance, ..
+            } => Some(*reference_distance),
+            _ => None,
+        })
+        .collect();
+    let datum = datums.iter().all(|&d| d == datums[0]).then(|| datums[0]);
+    HertzCylinders::new(e, r, p)
+        .ok()
+        .map(|hertz| Reference::HertzCylinders { hertz, datum })
 }
 
-/// The combined radius `R` of spheres (or a sphere on a plane) and the
-/// Hertz radius `a` at `load`, on a disk grid: what a prescribed tilt's
-/// shift of the gap's minimum, `R tilt`, is measured against.
-pub(super) fn spheres_at(
-    bodies: &[BodySpec; 2],
-    geometry: &Geometry,
-    spec: &PointsSpec,
-    load: f64,
-) -> Option<(f64, f64)> {
-    match hertz(bodies, geometry, spec, load)? {
-        Hertz::Spheres(h) => Some((combined(geometry, true)?, h.contact_radius())),
-        _ => None,
+/// Hetenyi's free beam on a Winkler foundation under the central load `p`:
+/// a beam and a foundation whose zone, the beam's cells end to end, is
+/// centred on the loaded point.
+fn hetenyi_reference(bodies: &[BodySpec; 2], points: &PointSet, p: f64) -> Option<Reference> {
+    let (mut ei, mut k, mut x0) = (None, None, None);
+    for b in bodies {
+        match *b.body().model() {
+            elcon_influence::Model::Beam {
+                flexural_rigidity,
+                loaded_point,
+            } => {
+                ei = Some(flexural_rigidity);
+                x0 = Some(loaded_point);
+            }
+            elcon_influence::Model::Winkler { modulus } => k = Some(modulus),
+            _ => return None,
+        }
     }
-}
-
-/// The length the small strain measures an approach against on `points`
-/// laid out by `spec` around the Hertz contact `hertz`: on an ellipse grid
-/// the zone across the Hertz ellipse's minor axis in the ellipse's own
-/// frame (`elcon_analysis::grid::ellipse_minor_zone`: the same at any
-/// turn, where the grid's extents along x and y grow with the turn), else
-/// the zone's smaller extent.
-pub(crate) fn approach_extent(
-    spec: &PointsSpec,
-    hertz: Option<&Hertz>,
-    points: &PointSet,
-) -> StrainExtent {
-    if let (PointsSpec::EllipseHertz { across, zone, .. }, Some(Hertz::Ellipse(h))) = (spec, hertz)
-        && let Ok(length) = elcon_analysis::grid::ellipse_minor_zone(h.semi_minor(), *across, *zone)
-    {
-        return StrainExtent {
-            length,
-            what: "the candidate zone's extent across the Hertz ellipse's minor axis",
-        };
-    }
-    StrainExtent::of(points)
-}
-
-/// The closed form that applies to the scene, if one does.
-pub(super) fn reference(
-    bodies: &[BodySpec; 2],
-    geometry: &Geometry,
-    spec: &PointsSpec,
-    points: &PointSet,
-    loading: Loading,
-) -> Option<Reference> {
-    if matches!(geometry, Geometry::Tabulated { .. }) {
-        // Departures from the quadrics have no closed form.
+    let (lo, hi) = (points.x(0), points.x(points.len() - 1));
+    let length = points.extent().0;
+    if (x0? - 0.5 * (lo + hi)).abs() > 1e-9 * length {
         return None;
     }
-    let flat = match geometry {
-        Geometry::Surfaces(Surface::Plane, Surface::Plane) => true,
-        Geometry::Separation(eps) => eps.iter().all(|&e| e == eps[0]),
-        _ => false,
+    let beam = BeamOnFoundation {
+        flexural_rigidity: ei?,
+        foundation_modulus: k?,
+        length,
+        load: p,
     };
-    match spec {
-        PointsSpec::EllipseHertz { .. } => ellipse_reference(bodies, geometry, loading),
-        PointsSpec::Disk { .. } if !flat && combined(geometry, true).is_none() => {
-            ellipse_reference(bodies, geometry, loading)
-        }
-        PointsSpec::Disk { radius, .. } if flat => {
-            // A rigid flat punch: one rigid body, the candidate disk its face.
-            let rigid = bodies.iter().filter(|b| b.body().is_rigid()).count() == 1;
-            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
-            rigid.then(|| FlatPunch::new(e, *radius).ok().map(Reference::FlatPunch))?
-        }
-        PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
-            let e = half_space_modulus(bodies, &["point-force", "uniform-patch"])?;
-            let r = combined(geometry, true)?;
-            let load = match loading.normal {
-                Normal::Load(p) => p,
-                // The Hertz load of the approach: P = 4 E* a^3 / (3 R), a = sqrt(R delta).
-                Normal::Approach(d) if d > 0.0 => 4.0 * e * (r * d).powf(1.5) / (3.0 * r),
-                Normal::Approach(_) => return None,
-            };
-            HertzSpheres::new(e, r, load)
-                .ok()
-                .map(Reference::HertzSpheres)
-        }
-        PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
-            if let Some(r) = combined(geometry, false) {
-                let e = half_space_modulus(bodies, &["plane-strain"])?;
-                let Normal::Load(p) = loading.normal else {
-                    return None;
-                };
-                let datums: Vec<f64> = bodies
-                    .iter()
-                    .filter_map(|b| match b.body().model() {
-                        elcon_influence::Model::PlaneStrainStrip {
-                            reference_distance, ..
-                        } => Some(*reference_distance),
-                        _ => None,
-                    })
-                    .collect();
-                let datum = datums.iter().all(|&d| d == datums[0]).then(|| datums[0]);
-                return HertzCylinders::new(e, r, p)
-                    .ok()
-                    .map(|hertz| Reference::HertzCylinders { hertz, datum });
-            }
-            // A beam on a Winkler foundation, central load, no separation.
-            if !flat {
-                return None;
-            }
-            let Normal::Load(p) = loading.normal else {
-                return None;
-            };
-            let (mut ei, mut k, mut x0) = (None, None, None);
-            for b in bodies {
-                match *b.body().model() {
-                    elcon_influence::Model::Beam {
-                        flexural_rigidity,
-                        loaded_point,
-                    } => {
-                        ei = Some(flexural_rigidity);
-                        x0 = Some(loaded_point);
-                    }
-                    elcon_influence::Model::Winkler { modulus } => k = Some(modulus),
-                    _ => return None,
-                }
-            }
-            // The beam is the zone: its cells end to end.
-            let (lo, hi) = (points.x(0), points.x(points.len() - 1));
-            let length = points.extent().0;
-            let centred = (x0? - 0.5 * (lo + hi)).abs() <= 1e-9 * length;
-            centred
-                .then(|| {
-                    HetenyiBeam::new(BeamOnFoundation {
-                        flexural_rigidity: ei?,
-                        foundation_modulus: k?,
-                        length,
-                        load: p,
-                    })
-                    .ok()
-                    .map(Reference::Hetenyi)
-                })
-                .flatten()
-        }
-        PointsSpec::Rectangle { .. } => None,
-    }
+    HetenyiBeam::new(beam).ok().map(Reference::Hetenyi)
 }
 
 /// The elliptical Hertz contact at the scene's load, or at the load of its

@@ -4,7 +4,7 @@
 use elcon_analysis::Loading;
 use toml::Spanned;
 
-use crate::ctx::{Ctx, Num};
+use crate::ctx::Ctx;
 use crate::error::SceneError;
 use crate::sanity::MAX_ROTATION;
 use crate::schema::LoadingToml;
@@ -24,11 +24,26 @@ pub(super) fn loading(ctx: &Ctx<'_>, l: &Spanned<LoadingToml>) -> Result<Loading
         }
     };
     // Each rotation: free with its moment (default 0) or prescribed.
-    for (moment, tilt, moment_field, tilt_field) in [
-        (&t.moment_x, &t.tilt_x, "loading.moment_x", "loading.tilt_x"),
-        (&t.moment_y, &t.tilt_y, "loading.moment_y", "loading.tilt_y"),
-    ] {
-        let x_axis = moment_field.ends_with('x');
+    type With = fn(Loading, f64) -> Loading;
+    let axes: [(_, _, _, _, With, With); 2] = [
+        (
+            &t.moment_x,
+            &t.tilt_x,
+            "loading.moment_x",
+            "loading.tilt_x",
+            Loading::with_moment_x,
+            Loading::with_tilt_x,
+        ),
+        (
+            &t.moment_y,
+            &t.tilt_y,
+            "loading.moment_y",
+            "loading.tilt_y",
+            Loading::with_moment_y,
+            Loading::with_tilt_y,
+        ),
+    ];
+    for (moment, tilt, moment_field, tilt_field, with_moment, with_tilt) in axes {
         loading = match (moment, tilt) {
             (Some(_), Some(angle)) => {
                 return Err(ctx.invalid(
@@ -41,33 +56,16 @@ pub(super) fn loading(ctx: &Ctx<'_>, l: &Spanned<LoadingToml>) -> Result<Loading
                     ),
                 ));
             }
-            (Some(m), None) => {
-                let m = ctx.finite(m, moment_field)?;
-                if x_axis {
-                    loading.with_moment_x(m)
-                } else {
-                    loading.with_moment_y(m)
-                }
-            }
+            (Some(m), None) => with_moment(loading, ctx.finite(m, moment_field)?),
             (None, Some(angle)) => {
                 let a = ctx.finite(angle, tilt_field)?;
-                if a.abs() > MAX_ROTATION {
-                    return Err(ctx.invalid(
-                        angle.span(),
-                        tilt_field,
-                        Num(a),
-                        format!(
-                            "at most {MAX_ROTATION} rad in size, as a design's misalignments: \
-                             the rigid rotation is linearized (theta x), which holds to 0.5 % of \
-                             the angle up to {MAX_ROTATION} rad"
-                        ),
-                    ));
-                }
-                if x_axis {
-                    loading.with_tilt_x(a)
-                } else {
-                    loading.with_tilt_y(a)
-                }
+                let why = format!(
+                    "at most {MAX_ROTATION} rad in size, as a design's misalignments: the rigid \
+                     rotation is linearized (theta x), which holds to 0.5 % of the angle up to \
+                     {MAX_ROTATION} rad"
+                );
+                let a = ctx.ensure(a, a.abs() <= MAX_ROTATION, angle.span(), tilt_field, why)?;
+                with_tilt(loading, a)
             }
             (None, None) => loading,
         };

@@ -20,14 +20,11 @@ pub const MAX_SUBSURFACE_DEPTHS: usize = 400;
 /// with its depth.
 pub const MAX_DEPTH_IN_ZONES: f64 = 10.0;
 
-/// What to write.
+/// What to write (each read through its accessor).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outputs {
-    /// The plots asked for (default none).
     plots: Vec<Plot>,
-    /// Whether to write pressure.csv (default true).
     pressure_csv: bool,
-    /// The stresses below the surface, when asked for (default off).
     subsurface: Option<SubsurfaceOptions>,
 }
 

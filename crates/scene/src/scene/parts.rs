@@ -16,10 +16,11 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::body::{self, BodySpec};
-use super::design::{self, DesignContext, DesignLayout, DesignSpec};
-use super::geometry;
+use super::design::{self, DesignContext, DesignSpec};
+use super::hertz::{self, DesignLayoutParts, Layout};
 use super::points::{self, PointsSpec, build_points};
-use super::{Scene, grid_fits_models, hertz, loading, model_kinds};
+use super::{Scene, grid_fits_models, loading, model_kinds};
+use super::{files, geometry};
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
@@ -94,14 +95,12 @@ pub fn problem_parts(
     };
     let bodies = problem_bodies(&ctx, &raw)?;
     let (points_spec, dimension) = problem_layout(&ctx, &raw, listed.as_ref(), &bodies)?;
-    let geometry = match &raw.geometry {
-        Some(g) => {
+    let geometry = (raw.geometry.as_ref())
+        .map(|g| {
             let geometry = geometry::geometry(&ctx, Some(g), dimension)?;
-            sanity::curvatures(&ctx, Some(g), &geometry)?;
-            Some(geometry)
-        }
-        None => None,
-    };
+            sanity::curvatures(&ctx, Some(g), &geometry).map(|()| geometry)
+        })
+        .transpose()?;
     // An ellipse grid's shape, from the surfaces (as a scene sets it).
     let points_spec = match (points_spec, &bodies, &geometry) {
         (Some(spec), Some((_, b)), Some(g)) => Some(hertz::shaped(spec, b, g)),
@@ -111,10 +110,19 @@ pub fn problem_parts(
     let points = match (laid_out, listed) {
         (Some((spec, p)), _) => {
             let scale = match (&bodies, &geometry, loading.normal) {
-                (Some((_, b)), Some(g), Normal::Load(load)) => hertz::hertz_scale(b, g, spec, load),
+                (Some((_, bodies)), Some(geometry), Normal::Load(load)) => Layout {
+                    bodies,
+                    geometry,
+                    points_spec: spec,
+                }
+                .scale(load),
                 _ => None,
             };
-            laid_out_points(&ctx, spec, p, scale)?
+            build_points(spec, scale).map_err(|e| {
+                let why = "a layout relative to the Hertz contact needs two bodies, curved \
+                           surfaces and a load";
+                ctx.invalid(p.span(), "points", "", format!("{e} ({why})"))
+            })?
         }
         (None, Some(l)) => l,
         (None, None) => return Err(no_points(&ctx)),
@@ -124,15 +132,9 @@ pub fn problem_parts(
     }
     // A separation file matched to the points, tables checked to cover
     // them, as a scene does.
-    let geometry = match geometry {
-        Some(g) => Some(super::files::on_points(
-            &ctx,
-            raw.geometry.as_ref(),
-            g,
-            &points,
-        )?),
-        None => None,
-    };
+    let geometry = geometry
+        .map(|g| files::on_points(&ctx, raw.geometry.as_ref(), g, &points))
+        .transpose()?;
     Ok(ProblemParts {
         bodies: bodies.map(|(_, b)| b),
         geometry,
@@ -191,7 +193,7 @@ fn problem_layout(
         (Some(p), None) => {
             let (spec, dimension) = points::points_spec(ctx, p)?;
             if let Some(((line, surface), _)) = bodies {
-                grid_fits_models(ctx, p, None, dimension, *line, *surface)?;
+                grid_fits_models(ctx, p, None, dimension, (*line, *surface))?;
             }
             Ok((Some(spec), dimension))
         }
@@ -204,38 +206,6 @@ fn problem_layout(
         )),
         (None, None) => Err(no_points(ctx)),
     }
-}
-
-/// The points of a layout, `scale` the Hertz length a relative one needs.
-fn laid_out_points(
-    ctx: &Ctx<'_>,
-    spec: &PointsSpec,
-    p: &Spanned<PointsToml>,
-    scale: Option<f64>,
-) -> Result<PointSet, SceneError> {
-    build_points(spec, scale).map_err(|reason| {
-        ctx.invalid(
-            p.span(),
-            "points",
-            "",
-            format!(
-                "{reason} (a layout relative to the Hertz contact needs two bodies, curved \
-                 surfaces and a load)"
-            ),
-        )
-    })
-}
-
-/// The scene parts a design over problems given piece by piece may know:
-/// what its logarithmic crown's roller is derived from.
-#[derive(Debug, Clone, Copy)]
-pub struct DesignLayoutParts<'a> {
-    /// The two bodies.
-    pub bodies: &'a [BodySpec; 2],
-    /// The surfaces.
-    pub geometry: &'a Geometry,
-    /// The layout of the points.
-    pub points_spec: &'a PointsSpec,
 }
 
 /// Parses and validates a `[design]` section (`text`, TOML, `file` naming
@@ -328,27 +298,12 @@ pub fn design_over(
         &DesignContext {
             loading: Loading::load(if largest > 0.0 { largest } else { 1.0 }),
             dimension,
-            layout: layout.map(|l| DesignLayout {
-                bodies: l.bodies,
-                geometry: l.geometry,
-                points_spec: l.points_spec,
-            }),
+            layout,
             roller,
         },
     )?;
     let sets: Vec<PointSet> = cases.iter().map(|c| c.points().clone()).collect();
-    let view = sanity::DesignView {
-        family: match spec.family() {
-            design::DesignFamily::Linear(f) => Some(*f),
-            _ => None,
-        },
-        axis: spec.axis(),
-        max_constant: spec.max_constant(),
-        loads: spec.loads().to_vec(),
-        relative: spec.relative_to() != crate::RelativeTo::Absolute,
-        sequence: spec.sequence().cloned(),
-    };
-    sanity::design(&ctx, d, &view, &sets)?;
+    sanity::design(&ctx, d, &spec.view(), &sets)?;
     Ok(spec)
 }
 

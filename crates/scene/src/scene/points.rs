@@ -152,28 +152,24 @@ fn grid_keys(
     grid: &str,
     allowed: &[&str],
 ) -> Result<(), SceneError> {
-    let floats: [(&str, Option<&Spanned<f64>>); 7] = [
-        ("spacing", t.spacing.as_ref()),
-        ("radius", t.radius.as_ref()),
-        ("zone", t.zone.as_ref()),
-        ("half_x", t.half_x.as_ref()),
-        ("half_y", t.half_y.as_ref()),
-        ("start", t.start.as_ref()),
-        ("end", t.end.as_ref()),
+    let span = |v: Option<&Spanned<f64>>| v.map(Spanned::span);
+    let count = |v: Option<&Spanned<i64>>| v.map(Spanned::span);
+    let given = [
+        ("spacing", span(t.spacing.as_ref())),
+        ("radius", span(t.radius.as_ref())),
+        ("zone", span(t.zone.as_ref())),
+        ("half_x", span(t.half_x.as_ref())),
+        ("half_y", span(t.half_y.as_ref())),
+        ("start", span(t.start.as_ref())),
+        ("end", span(t.end.as_ref())),
+        ("across", count(t.across.as_ref())),
+        ("nx", count(t.nx.as_ref())),
+        ("ny", count(t.ny.as_ref())),
+        ("n", count(t.n.as_ref())),
     ];
-    let ints: [(&str, Option<&Spanned<i64>>); 4] = [
-        ("across", t.across.as_ref()),
-        ("nx", t.nx.as_ref()),
-        ("ny", t.ny.as_ref()),
-        ("n", t.n.as_ref()),
-    ];
-    let given = floats
-        .iter()
-        .filter_map(|(k, v)| v.map(|v| (*k, v.span(), String::new())))
-        .chain(
-            ints.iter()
-                .filter_map(|(k, v)| v.map(|v| (*k, v.span(), String::new()))),
-        );
+    let given = given
+        .into_iter()
+        .filter_map(|(key, span)| Some((key, span?, String::new())));
     ctx.allowed_keys("points", &format!("grid = \"{grid}\""), allowed, given)
 }
 
@@ -251,28 +247,26 @@ fn disk_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, Scene
 /// A rectangle: `half_x` or `zone`, and `half_y`, `nx`, `ny`.
 fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
     let (t, s) = (p.get_ref(), p.span());
-    Ok({
-        let half_x = match (&t.half_x, &t.zone) {
-            (Some(h), None) => HalfX::Length(ctx.positive(h, "points.half_x")?),
-            (None, Some(_)) => HalfX::Zone(hertz_zone(ctx, p)?),
-            _ => {
-                return Err(ctx.invalid(
-                    s,
-                    "points.half_x",
-                    "",
-                    "give either half_x (length) or zone (Hertz half-widths of the load)",
-                ));
-            }
-        };
-        let hy = ctx.required(&t.half_y, s.clone(), "points.half_y", "for a rectangle")?;
-        let nx = ctx.required(&t.nx, s.clone(), "points.nx", "for a rectangle")?;
-        let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
-        PointsSpec::Rectangle {
-            half_x,
-            half_y: ctx.positive(hy, "points.half_y")?,
-            nx: ctx.count(nx, "points.nx", 1)?,
-            ny: ctx.count(ny, "points.ny", 1)?,
+    let half_x = match (&t.half_x, &t.zone) {
+        (Some(h), None) => HalfX::Length(ctx.positive(h, "points.half_x")?),
+        (None, Some(_)) => HalfX::Zone(hertz_zone(ctx, p)?),
+        _ => {
+            return Err(ctx.invalid(
+                s,
+                "points.half_x",
+                "",
+                "give either half_x (length) or zone (Hertz half-widths of the load)",
+            ));
         }
+    };
+    let hy = ctx.required(&t.half_y, s.clone(), "points.half_y", "for a rectangle")?;
+    let nx = ctx.required(&t.nx, s.clone(), "points.nx", "for a rectangle")?;
+    let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
+    Ok(PointsSpec::Rectangle {
+        half_x,
+        half_y: ctx.positive(hy, "points.half_y")?,
+        nx: ctx.count(nx, "points.nx", 1)?,
+        ny: ctx.count(ny, "points.ny", 1)?,
     })
 }
 
@@ -315,25 +309,26 @@ impl PointsSpec {
     /// for the relative layouts.
     ///
     /// # Errors
-    /// Why the layout cannot be made: relative to a Hertz contact that does
-    /// not apply, or bad sizes.
-    pub fn family(&self, scale: Option<f64>) -> Result<GridFamily, String> {
+    /// [`SceneError::Points`]: why the layout cannot be made (relative to a
+    /// Hertz contact that does not apply, or bad sizes).
+    pub fn family(&self, scale: Option<f64>) -> Result<GridFamily, SceneError> {
         let need = || {
             scale.ok_or_else(|| {
-                "the layout is relative to a Hertz contact that does not apply".to_string()
+                SceneError::points("the layout is relative to a Hertz contact that does not apply")
             })
         };
-        let r = match *self {
-            PointsSpec::Disk { spacing, radius } => Ok(GridFamily::Disk { spacing, radius }),
+        let family = match *self {
+            PointsSpec::Disk { spacing, radius } => GridFamily::Disk { spacing, radius },
             PointsSpec::DiskHertz { across, zone } => {
                 elcon_analysis::grid::hertz_disk_family(need()?, across, zone)
+                    .map_err(SceneError::points)?
             }
             PointsSpec::Rectangle {
                 half_x,
                 half_y,
                 nx,
                 ny,
-            } => Ok(GridFamily::Rectangle {
+            } => GridFamily::Rectangle {
                 half_x: match half_x {
                     HalfX::Length(h) => h,
                     HalfX::Zone(z) => z * need()?,
@@ -341,10 +336,11 @@ impl PointsSpec {
                 half_y,
                 nx,
                 ny,
-            }),
-            PointsSpec::Line { start, end, n } => Ok(GridFamily::Line { start, end, n }),
+            },
+            PointsSpec::Line { start, end, n } => GridFamily::Line { start, end, n },
             PointsSpec::LineHertz { across, zone } => {
                 elcon_analysis::grid::hertz_line_family(need()?, across, zone)
+                    .map_err(SceneError::points)?
             }
             PointsSpec::EllipseHertz {
                 across,
@@ -353,11 +349,11 @@ impl PointsSpec {
             } => {
                 let family =
                     elcon_analysis::grid::hertz_ellipse_family(shape.extent(need()?), across, zone)
-                        .map_err(|e| e.to_string())?;
+                        .map_err(SceneError::points)?;
                 return turned_too_many(&shape, across, zone, family);
             }
         };
-        r.map_err(|e| e.to_string())
+        Ok(family)
     }
 }
 
@@ -370,7 +366,7 @@ fn turned_too_many(
     across: usize,
     zone: f64,
     family: GridFamily,
-) -> Result<GridFamily, String> {
+) -> Result<GridFamily, SceneError> {
     let GridFamily::Rectangle { nx, ny, .. } = family else {
         return Ok(family);
     };
@@ -378,12 +374,12 @@ fn turned_too_many(
     if !shape.extent(1.0).is_turned() || count <= MAX_POINTS as f64 {
         return Ok(family);
     }
-    Err(format!(
+    Err(SceneError::points(format!(
         "{} = {} points, more than {MAX_POINTS}, the most elcon lays out. {}",
         turned_cells(shape, across, (nx, ny)),
         Num(count),
         align_hint(shape, across, zone)
-    ))
+    )))
 }
 
 /// "the Hertz ellipse is turned by 30.00 degrees from x ...: a grid with
@@ -466,14 +462,14 @@ pub const TURNED_NOTE_RATIO: f64 = 4.0;
 
 /// Builds the point set of the layout's family ([`PointsSpec::family`]);
 /// `scale` is the Hertz radius or half-width for the relative layouts.
-pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, String> {
+pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, SceneError> {
     // elcon-influence names its bound by its constant; a user reads the
     // number and what it is.
     spec.family(scale)?.points().map_err(|e| {
-        e.to_string().replace(
+        SceneError::points(e.to_string().replace(
             &format!("MAX_POINTS = {MAX_POINTS} points"),
             &format!("{MAX_POINTS} points, the most elcon lays out"),
-        )
+        ))
     })
 }
 

@@ -6,17 +6,13 @@ use crate::error::SceneError;
 use crate::schema::UnitsToml;
 
 /// The unit labels of a scene (any consistent system; the labels are
-/// repeated in every output, never used in arithmetic).
+/// repeated in every output, never used in arithmetic), each read through
+/// its accessor.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Units {
-    /// Length, e.g. "in", "m", "mm".
     length: String,
-    /// Force, e.g. "lbf", "N".
     force: String,
-    /// Stress and pressure (default `force/length^2`), e.g. "psi", "Pa", "MPa".
     pressure: String,
-    /// The unit of the load intensity F_k / A_k of this scene: the pressure
-    /// unit, or `force/length` on a beam.
     intensity: String,
 }
 
