@@ -83,6 +83,6 @@ pub use optimize::{Design, StartOutcome, design};
 pub use options::{DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, PROGRAM_LIMIT};
 pub use prepared::{EDGE_WEIGHT, Solver, Stop, axial_stations};
 pub use profile::{Axis, JOHNS_GOHAR, LogCrown, LogEnd, Profile};
-pub use request::{DesignFamily, DesignRequest, Found, Outcome, Roller};
+pub use request::{DesignFamily, DesignRequest, FamilyKind, Found, Outcome, Roller};
 pub use sequence::{Converged, GridSequence, Level};
 pub use target::{TargetSeparation, target_separation, uniform_target};

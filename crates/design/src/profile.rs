@@ -95,6 +95,46 @@ pub enum LogEnd {
     },
 }
 
+impl LogEnd {
+    /// The ends a name alone selects (Fujiwara & Kawase's needs its
+    /// parameters), in the order messages list them.
+    pub const NAMED: [LogEnd; 2] = [LogEnd::JohnsGohar, LogEnd::Lundberg];
+
+    /// The names of [`NAMED`](Self::NAMED): a scene's `design.end`.
+    pub const NAMES: [&'static str; 2] = ["johns-gohar", "lundberg"];
+
+    /// Its name: "johns-gohar", "lundberg", "fujiwara-kawase".
+    pub fn name(&self) -> &'static str {
+        match self {
+            LogEnd::JohnsGohar => Self::NAMES[0],
+            LogEnd::Lundberg => Self::NAMES[1],
+            LogEnd::FujiwaraKawase { .. } => "fujiwara-kawase",
+        }
+    }
+}
+
+impl std::str::FromStr for LogEnd {
+    type Err = elcon_num::UnknownName;
+
+    /// One of the [`NAMED`](Self::NAMED) ends by its name.
+    fn from_str(name: &str) -> Result<Self, Self::Err> {
+        Self::NAMED
+            .into_iter()
+            .find(|e| e.name() == name)
+            .ok_or_else(|| elcon_num::UnknownName::new("end", name, &Self::NAMES))
+    }
+}
+
+/// A named end ([`LogEnd::NAMED`]) by its name.
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for LogEnd {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse()
+            .map_err(|_| serde::de::Error::unknown_variant(&name, &Self::NAMES))
+    }
+}
+
 /// A logarithmic crown (Lundberg 1939, Johns & Gohar 1981); see the
 /// [module documentation](self).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -61,7 +61,71 @@ pub enum DesignFamily {
     },
 }
 
+/// A family by name, without its parameters: what a scene's
+/// `design.family` says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FamilyKind {
+    /// The paper's quadratic.
+    Quadratic,
+    /// A polynomial of a given degree.
+    Polynomial,
+    /// One drop per axial station.
+    Free,
+    /// A circular crown, its radius searched.
+    CircularCrown,
+    /// A logarithmic crown, set in closed form.
+    LogarithmicCrown,
+}
+
+impl FamilyKind {
+    /// Every family, in the order messages list them.
+    pub const ALL: [FamilyKind; 5] = [
+        FamilyKind::Quadratic,
+        FamilyKind::Polynomial,
+        FamilyKind::Free,
+        FamilyKind::CircularCrown,
+        FamilyKind::LogarithmicCrown,
+    ];
+
+    /// Its name in a scene's `design.family`: "quadratic", "polynomial",
+    /// "free", "circular-crown", "logarithmic-crown".
+    pub const fn name(self) -> &'static str {
+        match self {
+            FamilyKind::Quadratic => "quadratic",
+            FamilyKind::Polynomial => "polynomial",
+            FamilyKind::Free => "free",
+            FamilyKind::CircularCrown => "circular-crown",
+            FamilyKind::LogarithmicCrown => "logarithmic-crown",
+        }
+    }
+
+    /// Whether the family is linear in its parameters (designed by the
+    /// program or the descent), not a crown searched or set.
+    pub const fn is_linear(self) -> bool {
+        matches!(
+            self,
+            FamilyKind::Quadratic | FamilyKind::Polynomial | FamilyKind::Free
+        )
+    }
+}
+
+elcon_num::named!(FamilyKind, "family");
+
+#[cfg(feature = "serde")]
+elcon_num::named_serde!(FamilyKind);
+
 impl DesignFamily {
+    /// Its family by name.
+    pub fn kind(&self) -> FamilyKind {
+        match self {
+            DesignFamily::Linear(Family::Quadratic) => FamilyKind::Quadratic,
+            DesignFamily::Linear(Family::Polynomial { .. }) => FamilyKind::Polynomial,
+            DesignFamily::Linear(Family::Free) => FamilyKind::Free,
+            DesignFamily::CircularCrown { .. } => FamilyKind::CircularCrown,
+            DesignFamily::LogarithmicCrown { .. } => FamilyKind::LogarithmicCrown,
+        }
+    }
+
     /// Its name as a scene writes it: "quadratic", "polynomial (degree d)",
     /// "free", "circular-crown", "logarithmic-crown".
     pub fn describe(&self) -> String {
@@ -70,9 +134,7 @@ impl DesignFamily {
             DesignFamily::Linear(Family::Polynomial { degree }) => {
                 format!("polynomial (degree {degree})")
             }
-            DesignFamily::Linear(Family::Free) => "free".into(),
-            DesignFamily::CircularCrown { .. } => "circular-crown".into(),
-            DesignFamily::LogarithmicCrown { .. } => "logarithmic-crown".into(),
+            other => other.kind().name().into(),
         }
     }
 }

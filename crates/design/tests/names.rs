@@ -2,7 +2,7 @@
 //! name back, an unknown name is an error that lists the names there are,
 //! and (the `serde` feature) each serializes as its name.
 
-use elcon_design::{Axis, DesignMethod, Objective};
+use elcon_design::{Axis, DesignMethod, FamilyKind, LogEnd, Objective};
 
 #[test]
 fn each_choice_parses_its_name() {
@@ -18,6 +18,28 @@ fn each_choice_parses_its_name() {
     for objective in Objective::ALL {
         assert_eq!(objective.to_string().parse::<Objective>(), Ok(objective));
     }
+    assert_eq!(
+        FamilyKind::NAMES,
+        [
+            "quadratic",
+            "polynomial",
+            "free",
+            "circular-crown",
+            "logarithmic-crown"
+        ]
+    );
+    for family in FamilyKind::ALL {
+        assert_eq!(family.to_string().parse::<FamilyKind>(), Ok(family));
+    }
+    for end in LogEnd::NAMED {
+        assert_eq!(end.name().parse::<LogEnd>(), Ok(end));
+    }
+    // Fujiwara & Kawase's end needs its parameters: no name alone gives it.
+    let e = "fujiwara-kawase".parse::<LogEnd>().unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "unknown end `fujiwara-kawase`, expected one of `johns-gohar`, `lundberg`"
+    );
 }
 
 #[test]

@@ -12,7 +12,7 @@ use elcon_num::Num;
 use elcon_report::{
     BodySubsurfaceJson, DesignCaseJson, DesignGridJson, DesignJson, DesignOf, DesignRun,
 };
-use elcon_scene::{DesignFamily, DesignSpec, MethodChoice, RelativeTo, Scene};
+use elcon_scene::{DesignFamily, DesignSpec, RelativeTo, Scene};
 
 use crate::design_keys::{DesignCaller, design_reason};
 use crate::error::{RunError, run_error};
@@ -71,10 +71,7 @@ pub(crate) fn design_stage(
     let start = Instant::now();
     let (first, known, references) = design_cases(scene, spec, problem, solution)?;
     let fail = |e: DesignError| design_failure(scene, e);
-    let reanalysis = match scene.method_choice() {
-        MethodChoice::Auto => None,
-        MethodChoice::Given(m) => Some(m),
-    };
+    let reanalysis = scene.method_choice().given();
     let request = spec.request(Some(references.clone()), reanalysis, scene.options());
     let converged = match spec.sequence() {
         Some(sequence) => {

@@ -207,6 +207,12 @@ pub(crate) trait Shown {
     fn shown(&self) -> String;
 }
 
+impl Shown for elcon_design::LogEnd {
+    fn shown(&self) -> String {
+        format!("\"{}\"", self.name())
+    }
+}
+
 impl Shown for f64 {
     fn shown(&self) -> String {
         format!("{self:?}")

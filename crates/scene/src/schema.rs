@@ -5,6 +5,9 @@
 use serde::Deserialize;
 use toml::Spanned;
 
+use elcon_analysis::Method;
+use elcon_design::{Axis, DesignMethod, FamilyKind, LogEnd, Objective};
+
 use crate::ctx::{Shown, keywords};
 
 keywords! {
@@ -101,19 +104,50 @@ keywords! {
     }
 }
 
-keywords! {
-    /// `solver.method`: "auto" or one of the engine's methods.
-    pub(crate) enum SolverMethod {
-        /// `"auto"`: chosen by the problem's size (see `storage`).
-        Auto = "auto",
-        /// `"restricted-simplex"`.
-        RestrictedSimplex = "restricted-simplex",
-        /// `"lemke"`.
-        Lemke = "lemke",
-        /// `"block-pivoting"`.
-        BlockPivoting = "block-pivoting",
-        /// `"conjugate-gradient"`.
-        ConjugateGradient = "conjugate-gradient",
+/// The method asked for in `solver.method`: "auto" or one of the engine's
+/// methods by its name ([`Method`]'s names).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MethodChoice {
+    /// `"auto"`: the method of the storage elcon-analysis picks
+    /// (`elcon_analysis::Storage`): block pivoting on a dense or folded S,
+    /// the conjugate gradient matrix-free above
+    /// `elcon_analysis::AUTO_DENSE_LIMIT` unknowns on a lattice.
+    Auto,
+    /// A method by name.
+    Given(Method),
+}
+
+impl MethodChoice {
+    /// The names a scene may write: "auto", then the engine's methods.
+    const NAMES: [&'static str; 1 + Method::NAMES.len()] = {
+        let mut names = ["auto"; 1 + Method::NAMES.len()];
+        let mut i = 0;
+        while i < Method::NAMES.len() {
+            names[i + 1] = Method::NAMES[i];
+            i += 1;
+        }
+        names
+    };
+
+    /// The method given, `None` for "auto".
+    pub fn given(self) -> Option<Method> {
+        match self {
+            MethodChoice::Auto => None,
+            MethodChoice::Given(m) => Some(m),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for MethodChoice {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        match name.as_str() {
+            "auto" => Ok(MethodChoice::Auto),
+            other => other
+                .parse()
+                .map(MethodChoice::Given)
+                .map_err(|_| serde::de::Error::unknown_variant(&name, &Self::NAMES)),
+        }
     }
 }
 
@@ -128,32 +162,6 @@ keywords! {
 }
 
 keywords! {
-    /// `design.family`.
-    pub(crate) enum FamilyName {
-        /// `"quadratic"`.
-        Quadratic = "quadratic",
-        /// `"polynomial"` (with `degree`).
-        Polynomial = "polynomial",
-        /// `"free"`.
-        Free = "free",
-        /// `"circular-crown"` (with `radius_range`).
-        CircularCrown = "circular-crown",
-        /// `"logarithmic-crown"`.
-        LogarithmicCrown = "logarithmic-crown",
-    }
-}
-
-keywords! {
-    /// `design.axis`.
-    pub(crate) enum AxisName {
-        /// `"x"`.
-        X = "x",
-        /// `"y"`.
-        Y = "y",
-    }
-}
-
-keywords! {
     /// What the design is relative to, per load case.
     pub enum RelativeTo {
         /// `"absolute"`: the worst p_max itself.
@@ -162,40 +170,6 @@ keywords! {
         Mean = "mean",
         /// `"hertz"`: p_max over each load's Hertz peak (line contact for a roller).
         Hertz = "hertz",
-    }
-}
-
-keywords! {
-    /// `design.method`.
-    pub(crate) enum DesignMethodName {
-        /// `"auto"`.
-        Auto = "auto",
-        /// `"program"`.
-        Program = "program",
-        /// `"descent"`.
-        Descent = "descent",
-    }
-}
-
-keywords! {
-    /// `design.objective`.
-    pub(crate) enum ObjectiveName {
-        /// `"pressure"`: the worst intensity.
-        Pressure = "pressure",
-        /// `"von-mises"`: the worst von Mises stress below the surface.
-        VonMises = "von-mises",
-        /// `"max-shear"`: the worst largest shear stress below the surface.
-        MaxShear = "max-shear",
-    }
-}
-
-keywords! {
-    /// `design.end` of a logarithmic crown.
-    pub(crate) enum EndName {
-        /// `"johns-gohar"`: Johns & Gohar's finite end drop.
-        JohnsGohar = "johns-gohar",
-        /// `"lundberg"`: Lundberg's end.
-        Lundberg = "lundberg",
     }
 }
 
@@ -355,7 +329,7 @@ pub(crate) struct LoadingToml {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct SolverToml {
-    pub method: Option<Spanned<SolverMethod>>,
+    pub method: Option<Spanned<MethodChoice>>,
     pub max_pivots: Option<Spanned<i64>>,
     pub certificate_tolerance: Option<Spanned<f64>>,
     pub refinement_steps: Option<Spanned<i64>>,
@@ -367,18 +341,18 @@ pub(crate) struct SolverToml {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct DesignToml {
-    pub family: Spanned<FamilyName>,
+    pub family: Spanned<FamilyKind>,
     pub degree: Option<Spanned<i64>>,
-    pub axis: Option<Spanned<AxisName>>,
+    pub axis: Option<Spanned<Axis>>,
     pub loads: Option<Spanned<Vec<Spanned<f64>>>>,
     pub relative_to: Option<Spanned<RelativeTo>>,
     pub max_constant: Option<Spanned<f64>>,
     pub radius_range: Option<Spanned<Vec<Spanned<f64>>>>,
     pub flat_length: Option<Spanned<f64>>,
     pub design_load: Option<Spanned<f64>>,
-    pub method: Option<Spanned<DesignMethodName>>,
-    pub objective: Option<Spanned<ObjectiveName>>,
-    pub end: Option<Spanned<EndName>>,
+    pub method: Option<Spanned<DesignMethod>>,
+    pub objective: Option<Spanned<Objective>>,
+    pub end: Option<Spanned<LogEnd>>,
     pub misalignments: Option<Spanned<Vec<Spanned<f64>>>>,
     pub grid_tolerance: Option<Spanned<f64>>,
     pub max_points: Option<Spanned<i64>>,
@@ -410,4 +384,29 @@ pub(crate) struct BatchToml {
     pub scene: Spanned<String>,
     pub error: Option<Spanned<ErrorMetric>>,
     pub group: Spanned<Vec<Spanned<toml::Table>>>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_method_choice_is_auto_or_the_engine_s_name() {
+        let read = |text: &str| {
+            toml::from_str::<SolverToml>(text).map(|s| s.method.map(|m| m.into_inner()))
+        };
+        assert_eq!(read("method = \"auto\"").unwrap(), Some(MethodChoice::Auto));
+        for m in Method::ALL {
+            let text = format!("method = \"{m}\"");
+            assert_eq!(read(&text).unwrap(), Some(MethodChoice::Given(m)));
+        }
+        let e = read("method = \"fastest\"").unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "unknown variant `fastest`, expected one of `auto`, `restricted-simplex`, \
+                 `lemke`, `block-pivoting`, `conjugate-gradient`"
+            ),
+            "{e}"
+        );
+    }
 }

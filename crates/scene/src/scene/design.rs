@@ -6,8 +6,8 @@
 use elcon_analysis::{Loading, Method, Normal, Options};
 pub use elcon_design::DesignFamily;
 use elcon_design::{
-    Axis, DesignError, DesignMethod, DesignRequest, Family, GridSequence, LogCrown, LogEnd,
-    Objective, Profile, Roller,
+    Axis, DesignError, DesignMethod, DesignRequest, Family, FamilyKind, GridSequence, LogCrown,
+    LogEnd, Objective, Profile, Roller,
 };
 use elcon_influence::{Body, Dimension};
 use toml::Spanned;
@@ -17,8 +17,8 @@ use super::points::PointsSpec;
 use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
 use crate::sanity::DesignView;
+use crate::schema::DesignToml;
 pub use crate::schema::RelativeTo;
-use crate::schema::{AxisName, DesignMethodName, DesignToml, EndName, FamilyName, ObjectiveName};
 
 /// A validated `[design]` section; its fields are read through their
 /// accessors, and the objective and the bodies it measures through
@@ -236,11 +236,10 @@ fn design_objective(
     let Some(o) = &t.objective else {
         return Ok((Objective::Pressure, Vec::new()));
     };
-    let objective = match o.get_ref() {
-        ObjectiveName::Pressure => return Ok((Objective::Pressure, Vec::new())),
-        ObjectiveName::VonMises => Objective::VonMises,
-        ObjectiveName::MaxShear => Objective::MaxShear,
-    };
+    let objective = *o.get_ref();
+    if objective == Objective::Pressure {
+        return Ok((objective, Vec::new()));
+    }
     let refuse = |why: &str| {
         ctx.invalid(
             o.span(),
@@ -280,19 +279,19 @@ fn design_objective(
 
 /// The keys of `[design]` that belong to other families than `family_name`
 /// are refused, naming the key and the family it belongs to.
-fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: FamilyName) -> Result<(), SceneError> {
+fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: FamilyKind) -> Result<(), SceneError> {
     let only = |family: &str| format!("only for family = \"{family}\"");
-    if family_name != FamilyName::Polynomial {
+    if family_name != FamilyKind::Polynomial {
         ctx.forbid(&t.degree, "design.degree", &only("polynomial"))?;
     }
-    if family_name != FamilyName::CircularCrown {
+    if family_name != FamilyKind::CircularCrown {
         ctx.forbid(
             &t.radius_range,
             "design.radius_range",
             &only("circular-crown"),
         )?;
     }
-    if family_name != FamilyName::LogarithmicCrown {
+    if family_name != FamilyKind::LogarithmicCrown {
         ctx.forbid(
             &t.design_load,
             "design.design_load",
@@ -300,10 +299,7 @@ fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: FamilyName) -> Result
         )?;
         ctx.forbid(&t.end, "design.end", &only("logarithmic-crown"))?;
     }
-    if !matches!(
-        family_name,
-        FamilyName::CircularCrown | FamilyName::LogarithmicCrown
-    ) {
+    if family_name.is_linear() {
         ctx.forbid(&t.flat_length, "design.flat_length", "only for the crowns")?;
     } else {
         let why = "only for the polynomial families";
@@ -316,26 +312,26 @@ fn design_keys(ctx: &Ctx<'_>, t: &DesignToml, family_name: FamilyName) -> Result
 fn design_family(
     ctx: &Ctx<'_>,
     t: &DesignToml,
-    family_name: FamilyName,
+    family_name: FamilyKind,
     flat: f64,
     loads: &[f64],
     scene: &DesignContext<'_>,
 ) -> Result<DesignFamily, SceneError> {
     Ok(match family_name {
-        FamilyName::Quadratic => DesignFamily::Linear(Family::Quadratic),
-        FamilyName::Free => DesignFamily::Linear(Family::Free),
-        FamilyName::Polynomial => {
+        FamilyKind::Quadratic => DesignFamily::Linear(Family::Quadratic),
+        FamilyKind::Free => DesignFamily::Linear(Family::Free),
+        FamilyKind::Polynomial => {
             let why = "for family = \"polynomial\"";
             let deg = ctx.required(&t.degree, t.family.span(), "design.degree", why)?;
             DesignFamily::Linear(Family::Polynomial {
                 degree: ctx.count(deg, "design.degree", 0)?,
             })
         }
-        FamilyName::CircularCrown => DesignFamily::CircularCrown {
+        FamilyKind::CircularCrown => DesignFamily::CircularCrown {
             radius_range: radius_range(ctx, t)?,
             flat_length: flat,
         },
-        FamilyName::LogarithmicCrown => log_crown(ctx, t, flat, loads, scene)?,
+        FamilyKind::LogarithmicCrown => log_crown(ctx, t, flat, loads, scene)?,
     })
 }
 
@@ -411,10 +407,7 @@ fn design_axis(
 ) -> Result<Axis, SceneError> {
     let t = d.get_ref();
     let axis = match &t.axis {
-        Some(a) => match a.get_ref() {
-            AxisName::X => Axis::X,
-            AxisName::Y => Axis::Y,
-        },
+        Some(a) => *a.get_ref(),
         None if dimension == Dimension::Line => Axis::X,
         None => Axis::Y,
     };
@@ -520,10 +513,7 @@ fn log_crown_valid(
 }
 
 fn log_end(t: &DesignToml) -> LogEnd {
-    match t.end.as_ref().map(|e| *e.get_ref()) {
-        None | Some(EndName::JohnsGohar) => LogEnd::JohnsGohar,
-        Some(EndName::Lundberg) => LogEnd::Lundberg,
-    }
+    t.end.as_ref().map_or(LogEnd::JohnsGohar, |e| *e.get_ref())
 }
 
 /// `design.method`: for the linear families only.
@@ -543,16 +533,7 @@ fn design_method(
             "only for the families quadratic, polynomial and free (a crown is searched or set)",
         ));
     }
-    Ok(design_method_of(*m.get_ref()))
-}
-
-/// The method a `design.method` name stands for.
-fn design_method_of(name: DesignMethodName) -> DesignMethod {
-    match name {
-        DesignMethodName::Auto => DesignMethod::Auto,
-        DesignMethodName::Program => DesignMethod::Program,
-        DesignMethodName::Descent => DesignMethod::Descent,
-    }
+    Ok(*m.get_ref())
 }
 
 /// `design.grid_tolerance` (in (0, 0.5], default 0.01) and
@@ -615,20 +596,4 @@ fn misalignments(ctx: &Ctx<'_>, t: &DesignToml) -> Result<Vec<f64>, SceneError> 
             )
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn each_design_method_name_is_elcon_designs_name_for_it() {
-        for m in [
-            DesignMethodName::Auto,
-            DesignMethodName::Program,
-            DesignMethodName::Descent,
-        ] {
-            assert_eq!(design_method_of(m).name(), m.name());
-        }
-    }
 }

@@ -34,6 +34,7 @@ use elcon_design::DesignMethod;
 use elcon_influence::{Dimension, PointSet};
 use toml::Spanned;
 
+pub use crate::schema::MethodChoice;
 pub use body::{BodySpec, ModelKind};
 use design::DesignContext;
 pub use design::{DesignFamily, DesignSpec, RelativeTo};
@@ -43,7 +44,6 @@ pub use outputs::{Outputs, Plot};
 pub use parts::{ProblemParts, design_over, problem_parts, scene_with_design};
 pub use points::PointsSpec;
 use points::build_points;
-pub use solver::MethodChoice;
 pub use units::Units;
 
 use crate::ctx::{Ctx, parse};

@@ -10,7 +10,7 @@
 use std::path::Path;
 
 use elcon_analysis::{ContactProblem, Geometry, Loading, Normal};
-use elcon_design::Roller;
+use elcon_design::{FamilyKind, Roller};
 use elcon_influence::{Dimension, PointSet};
 use serde::Deserialize;
 use toml::Spanned;
@@ -24,7 +24,7 @@ use super::{files, geometry};
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
-use crate::schema::{BodyToml, DesignToml, FamilyName, GeometryToml, LoadingToml, PointsToml};
+use crate::schema::{BodyToml, DesignToml, GeometryToml, LoadingToml, PointsToml};
 
 /// The sections of a contact problem given piece by piece.
 #[derive(Debug, Deserialize)]
@@ -272,7 +272,7 @@ pub fn design_over(
             ),
         ));
     }
-    if *t.family.get_ref() == FamilyName::LogarithmicCrown && layout.is_none() && roller.is_none() {
+    if *t.family.get_ref() == FamilyKind::LogarithmicCrown && layout.is_none() && roller.is_none() {
         return Err(ctx.invalid(
             t.family.span(),
             "design.family",

@@ -2,11 +2,11 @@
 //! on the scene's points), whether a mirror-symmetric problem is folded,
 //! and whether the run estimates its discretization error.
 
-use elcon_analysis::{Method, Options};
+use elcon_analysis::Options;
 
 use crate::ctx::Ctx;
 use crate::error::SceneError;
-use crate::schema::{SolverMethod, SolverToml, Symmetry};
+use crate::schema::{MethodChoice, SolverToml, Symmetry};
 
 /// The most iterative-refinement steps (each an N x N product;
 /// refinement settles in one to three).
@@ -17,18 +17,6 @@ pub const MAX_REFINEMENT_STEPS: usize = 20;
 /// pivoting path that has not ended by then is cycling.
 pub fn max_pivots_bound(points: usize) -> usize {
     points.saturating_mul(100).saturating_add(10_000)
-}
-
-/// The method asked for in `solver.method`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MethodChoice {
-    /// `"auto"`: the method of the storage elcon-analysis picks
-    /// (`elcon_analysis::Storage`): block pivoting on a dense or folded S,
-    /// the conjugate gradient matrix-free above
-    /// `elcon_analysis::AUTO_DENSE_LIMIT` unknowns on a lattice.
-    Auto,
-    /// A method by name.
-    Given(Method),
 }
 
 /// `solver.symmetry`: "auto" (fold when symmetric, the default) or "none".
@@ -55,7 +43,7 @@ pub(super) fn solver(
     let method = s
         .method
         .as_ref()
-        .map_or(MethodChoice::Auto, |m| choice(*m.get_ref()));
+        .map_or(MethodChoice::Auto, |m| *m.get_ref());
     if let Some(p) = &s.max_pivots {
         options.max_pivots = Some(ctx.count(p, "solver.max_pivots", 1)?);
     }
@@ -110,36 +98,4 @@ pub(super) fn bounds(
         ctx.ensure(p.get_ref(), within, p.span(), "solver.max_pivots", why)?;
     }
     Ok(())
-}
-
-/// The engine's method a `solver.method` name stands for.
-fn choice(method: SolverMethod) -> MethodChoice {
-    match method {
-        SolverMethod::Auto => MethodChoice::Auto,
-        SolverMethod::RestrictedSimplex => MethodChoice::Given(Method::RestrictedSimplex),
-        SolverMethod::Lemke => MethodChoice::Given(Method::Lemke),
-        SolverMethod::BlockPivoting => MethodChoice::Given(Method::BlockPivoting),
-        SolverMethod::ConjugateGradient => MethodChoice::Given(Method::ConjugateGradient),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn each_method_name_is_the_engines_name_for_it() {
-        for m in [
-            SolverMethod::RestrictedSimplex,
-            SolverMethod::Lemke,
-            SolverMethod::BlockPivoting,
-            SolverMethod::ConjugateGradient,
-        ] {
-            assert_eq!(
-                choice(m),
-                MethodChoice::Given(m.name().parse::<Method>().unwrap())
-            );
-        }
-        assert_eq!(choice(SolverMethod::Auto), MethodChoice::Auto);
-    }
 }
