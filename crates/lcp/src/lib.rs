@@ -102,7 +102,7 @@ pub use elcon_num::{Num, UnknownName};
 pub use error::{LcpError, TABLEAU_ADVICE};
 pub use linalg::condition_estimate;
 pub use linear::LinearSystem;
-pub use operator::{Operator, OperatorLcp};
+pub use operator::{MatrixFree, Operator, OperatorLcp, Preconditioner};
 pub use options::{AnyMethod, LinearMethod, Method, Options, Tableau};
 pub use problem::{Bordered, BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedLcp, MixedLcpParts};
 pub use program::{ComplementaryProgram, ProgramBuilder};
@@ -112,3 +112,7 @@ pub use tolerance::Tolerances;
 
 /// faer's parallelism setting, re-exported for [`Options::parallelism`].
 pub use faer::Par;
+/// faer's scratch memory (dyn-stack), re-exported for [`Operator`] and
+/// [`Preconditioner`]: a request, the buffer that meets it, the stack an
+/// application works in.
+pub use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
