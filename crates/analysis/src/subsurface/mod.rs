@@ -28,4 +28,5 @@ pub mod reference;
 
 pub use field::{
     BodyStresses, DEPTH_SPAN, Peak, Section, StressField, Subsurface, SubsurfaceOptions,
+    contact_half_width, depth_grid,
 };
