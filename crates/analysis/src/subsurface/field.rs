@@ -73,7 +73,7 @@ pub fn depth_grid(points: &PointSet, extent: f64, point_force: bool, count: usiz
 /// The extent of the points `contact` (indices into `points`) along x
 /// and, on a surface, along y: point to point plus a cell,
 /// `max x - min x + dx` (and the same in y). `None` for an empty contact.
-fn contact_spans(
+pub(crate) fn contact_spans(
     points: &PointSet,
     contact: impl Iterator<Item = usize> + Clone,
 ) -> Option<(f64, Option<f64>)> {
