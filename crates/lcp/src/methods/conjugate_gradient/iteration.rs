@@ -501,45 +501,62 @@ struct UpdateParts {
     bu: Vec<Compensated>,
 }
 
-/// The step `z_J = c z_J - τ t_J` from `z` and `u` at their pending scale
-/// `c` (stored at scale 1 after it), clipped at 0; a point off `J` with
-/// `w_i < 0` (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ =
-/// 0`) where `enter` is set, else stays at 0; the product by its
-/// recurrence, `u = c u - τ r`. A chunk where a point left or entered
-/// skips the sums (the step's are then not read), and the chunks after it
-/// skip `u`'s recurrence too: where the contact set changed, `u` is
-/// recomputed from a true product before it is read again.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn update_pass(
-    data: &Data<'_>,
-    (z, u, scale): (&mut [f64], &mut [f64], f64),
-    t: &[f64],
-    r: &[f64],
-    lambda: &[f64],
+impl UpdateParts {
+    /// The chunks' parts merged into the step's [`Update`] (the sums in
+    /// the chunks' order), over `k` rows.
+    fn merge(parts: &[UpdateParts], k: usize) -> Update {
+        let clipped: usize = parts.iter().map(|p| p.clipped).sum();
+        let entered: usize = parts.iter().map(|p| p.entered).sum();
+        let mut rows = vec![Compensated::default(); k];
+        for p in parts {
+            for j in 0..k {
+                rows[j].merge(&p.rows[j]);
+            }
+        }
+        let sums = (clipped + entered == 0).then(|| {
+            let mut bu = vec![Compensated::default(); k];
+            for p in parts {
+                for j in 0..k {
+                    bu[j].merge(&p.bu[j]);
+                }
+            }
+            UpdateSums {
+                rows_terms: (0..k)
+                    .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
+                    .collect(),
+                bu: bu.iter().map(Compensated::value).collect(),
+            }
+        });
+        Update {
+            entered,
+            rows: rows.iter().map(Compensated::value).collect(),
+            sums,
+        }
+    }
+}
+
+/// What every chunk of a step reads: the data, the border's shift `B λ`,
+/// the direction `t` and its product `r`, the pending scale, the step
+/// length and whether points may enter; and whether a chunk taken before
+/// has changed the contact set.
+struct Stepping<'a, 'c> {
+    data: &'a Data<'a>,
+    shift: &'a Shift<'c, 'a>,
+    t: &'a [f64],
+    r: &'a [f64],
+    scale: f64,
     tau: f64,
     enter: bool,
-) -> Update {
-    let (columns, q) = (data.columns(), &*data.q);
-    let k = columns.len();
-    let parts: Vec<_> = z
-        .chunks_mut(CHUNK)
-        .zip(u.chunks_mut(CHUNK))
-        .enumerate()
-        .collect();
-    let shift = Shift::new(columns, lambda, q.len(), false);
-    // Once a chunk has clipped or let in points the contact set has
-    // changed, and `u` will be recomputed from a true product: the chunks
-    // taken after it leave `u` and its sums alone. Which chunks those are
-    // depends on the threads' timing; the iterate does not.
-    let changed = AtomicBool::new(false);
-    let parts = map_parts(parts, |(c, (z, u))| {
-        let base = c * CHUNK;
+    changed: &'a AtomicBool,
+}
+
+impl Stepping<'_, '_> {
+    /// The step on the chunk `z`, `u` that starts at entry `base`, and its
+    /// sums (see [`update_pass`]).
+    fn chunk(&self, base: usize, z: &mut [f64], u: &mut [f64]) -> UpdateParts {
+        let columns = self.data.columns();
+        let k = columns.len();
         let len = z.len();
-        let (t, r, q) = (
-            &t[base..base + len],
-            &r[base..base + len],
-            &q[base..base + len],
-        );
         let mut p = UpdateParts {
             clipped: 0,
             entered: 0,
@@ -547,22 +564,22 @@ pub(super) fn update_pass(
             rows_terms: vec![Lanes::default(); k],
             bu: vec![Compensated::default(); k],
         };
-        let (s, _) = shift.chunk(base, len);
+        let (s, _) = self.shift.chunk(base, len);
         let step = Step {
-            c: scale,
-            t,
-            r,
-            q,
+            c: self.scale,
+            t: &self.t[base..base + len],
+            r: &self.r[base..base + len],
+            q: &self.data.q[base..base + len],
             s: &s,
-            tau,
-            enter,
+            tau: self.tau,
+            enter: self.enter,
         };
         // One column's sums in the step's own loop; several, a loop each.
         let row = (k == 1).then(|| columns[0].part(base, len));
-        let recur = !changed.load(Ordering::Relaxed);
+        let recur = !self.changed.load(Ordering::Relaxed);
         let stepped = update_chunk(step, (z, u), row, recur);
         if stepped.clipped + stepped.entered > 0 {
-            changed.store(true, Ordering::Relaxed);
+            self.changed.store(true, Ordering::Relaxed);
         }
         (p.clipped, p.entered) = (stepped.clipped, stepped.entered);
         if k == 1 {
@@ -583,34 +600,51 @@ pub(super) fn update_pass(
             p.bu[j] = Terms::Masked(z, b, u).compensated();
         }
         p
-    });
-    let clipped: usize = parts.iter().map(|p| p.clipped).sum();
-    let entered: usize = parts.iter().map(|p| p.entered).sum();
-    let mut rows = vec![Compensated::default(); k];
-    for p in &parts {
-        for j in 0..k {
-            rows[j].merge(&p.rows[j]);
-        }
     }
-    let sums = (clipped + entered == 0).then(|| {
-        let mut bu = vec![Compensated::default(); k];
-        for p in &parts {
-            for j in 0..k {
-                bu[j].merge(&p.bu[j]);
-            }
-        }
-        UpdateSums {
-            rows_terms: (0..k)
-                .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
-                .collect(),
-            bu: bu.iter().map(Compensated::value).collect(),
-        }
-    });
-    Update {
-        entered,
-        rows: rows.iter().map(Compensated::value).collect(),
-        sums,
-    }
+}
+
+/// The step `z_J = c z_J - τ t_J` from `z` and `u` at their pending scale
+/// `c` (stored at scale 1 after it), clipped at 0; a point off `J` with
+/// `w_i < 0` (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ =
+/// 0`) where `enter` is set, else stays at 0; the product by its
+/// recurrence, `u = c u - τ r`. A chunk where a point left or entered
+/// skips the sums (the step's are then not read), and the chunks after it
+/// skip `u`'s recurrence too: where the contact set changed, `u` is
+/// recomputed from a true product before it is read again.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn update_pass(
+    data: &Data<'_>,
+    (z, u, scale): (&mut [f64], &mut [f64], f64),
+    t: &[f64],
+    r: &[f64],
+    lambda: &[f64],
+    tau: f64,
+    enter: bool,
+) -> Update {
+    let k = data.columns().len();
+    let parts: Vec<_> = z
+        .chunks_mut(CHUNK)
+        .zip(u.chunks_mut(CHUNK))
+        .enumerate()
+        .collect();
+    let shift = Shift::new(data.columns(), lambda, data.q.len(), false);
+    // Once a chunk has clipped or let in points the contact set has
+    // changed, and `u` will be recomputed from a true product: the chunks
+    // taken after it leave `u` and its sums alone. Which chunks those are
+    // depends on the threads' timing; the iterate does not.
+    let changed = AtomicBool::new(false);
+    let stepping = Stepping {
+        data,
+        shift: &shift,
+        t,
+        r,
+        scale,
+        tau,
+        enter,
+        changed: &changed,
+    };
+    let parts = map_parts(parts, |(c, (z, u))| stepping.chunk(c * CHUNK, z, u));
+    UpdateParts::merge(&parts, k)
 }
 
 /// `r = w` on `J`, 0 off it: the residual the preconditioner is applied to
