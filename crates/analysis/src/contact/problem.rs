@@ -152,9 +152,9 @@ impl ContactProblem {
     /// # Errors
     /// [`AnalysisError::Incompatible`] for a folded problem (its unknowns
     /// are orbits, not points), an index out of range or `rhs` of another
-    /// height; [`AnalysisError::Influence`] when a matrix-free problem's
-    /// workspace cannot be allocated; [`AnalysisError::Engine`] when the
-    /// solve breaks down, reaches its iteration limit or is not certified.
+    /// height; [`AnalysisError::Engine`] when the solve breaks down,
+    /// reaches its iteration limit or is not certified, or its memory (a
+    /// matrix-free problem's FFT scratch) cannot be allocated.
     pub fn restricted_solve(
         &self,
         contact: &[usize],

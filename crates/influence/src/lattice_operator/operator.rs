@@ -297,17 +297,7 @@ impl LatticeKernel {
         preconditioner: &LatticePreconditioner,
         workspace: &mut LatticeWorkspace,
     ) {
-        assert!(
-            r.len() == self.len && z.len() == self.len,
-            "r and z have {} and {} entries for {} points",
-            r.len(),
-            z.len(),
-            self.len
-        );
-        let c = self
-            .convolution
-            .as_ref()
-            .expect("a preconditioner is made for a kernel with a convolution");
+        let c = self.preconditioned(r, z);
         assert_eq!(
             workspace.grid(),
             Some(c.grid),
@@ -358,17 +348,7 @@ impl LatticeKernel {
         preconditioner: &LatticePreconditioner,
         stack: &mut MemStack,
     ) {
-        assert!(
-            r.len() == self.len && z.len() == self.len,
-            "r and z have {} and {} entries for {} points",
-            r.len(),
-            z.len(),
-            self.len
-        );
-        let c = self
-            .convolution
-            .as_ref()
-            .expect("a preconditioner is made for a kernel with a convolution");
+        let c = self.preconditioned(r, z);
         Buffers::in_stack(&c.grid, stack, |buffers| {
             preconditioner.apply(c, r, z, buffers);
         });
@@ -393,6 +373,21 @@ impl LatticeKernel {
             None => y.fill(0.0),
         }
         self.add_winkler(x, y);
+    }
+
+    /// The convolution a preconditioner applies on; panics unless `r` and
+    /// `z` have [`len`](Self::len) entries and there is one.
+    fn preconditioned(&self, r: &[f64], z: &[f64]) -> &Convolution {
+        assert!(
+            r.len() == self.len && z.len() == self.len,
+            "r and z have {} and {} entries for {} points",
+            r.len(),
+            z.len(),
+            self.len
+        );
+        self.convolution
+            .as_ref()
+            .expect("a preconditioner is made for a kernel with a convolution")
     }
 
     /// Panics unless `x` and `y` have [`len`](Self::len) entries.
