@@ -168,7 +168,7 @@ impl Operator for Restricted<'_> {
 /// engine's scratch (`elcon_influence::LatticeKernel::apply_in`: the
 /// buffers of one product, lent by the caller for every product of a
 /// solve).
-pub(crate) struct LatticeProducts<'a>(&'a LatticeKernel);
+struct LatticeProducts<'a>(&'a LatticeKernel);
 
 impl Operator for LatticeProducts<'_> {
     fn size(&self) -> usize {
