@@ -11,8 +11,8 @@ use std::sync::Arc;
 
 use elcon_influence::{LatticeKernel, LatticePreconditioner};
 use elcon_lcp::{
-    BorderedLcpRef, LcpSolution, LinearSolution, LinearSystem, MemStack, Method, Operator,
-    OperatorLcp, Options, Preconditioner, StackReq,
+    BorderedLcpRef, LcpSolution, LinearSolution, LinearSystem, Method, Operator, OperatorLcp,
+    Options, PodStack, Preconditioner, StackReq,
 };
 use faer::{ColRef, Mat, MatRef};
 
@@ -129,14 +129,15 @@ struct Restricted<'a> {
 }
 
 impl Restricted<'_> {
-    fn restricted(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack) {
+    fn restricted(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
         let n = self.products.size();
-        let (mut full, stack) = stack.make_with(n, |_| 0.0);
-        let (mut product, stack) = stack.make_with(n, |_| 0.0);
+        // `full` is 0 off J; `product` is written whole.
+        let (full, stack) = stack.make_with(n, |_| 0.0);
+        let (product, stack) = stack.make_raw::<f64>(n);
         for (&k, &v) in self.contact.iter().zip(x) {
             full[k] = v;
         }
-        self.products.apply(&full, &mut product, stack);
+        self.products.apply(full, product, stack);
         for (y, &k) in y.iter_mut().zip(self.contact) {
             *y = product[k];
         }
@@ -153,13 +154,13 @@ impl Operator for Restricted<'_> {
         StackReq::all_of(&[vector, vector, self.products.apply_scratch()])
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack) {
+    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
         self.restricted(x, y, stack);
     }
 
     /// S's entries are non-negative ([`LatticeProducts::apply_abs`]), and
     /// so are `S_JJ`'s.
-    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack) {
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
         self.restricted(x, y, stack);
     }
 }
@@ -179,13 +180,13 @@ impl Operator for LatticeProducts<'_> {
         self.0.apply_scratch()
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack) {
+    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
         self.0.apply_in(x, y, stack);
     }
 
     /// Every half-space kernel and the Winkler diagonal are positive, so
     /// `|S| x = S x` for `x >= 0`.
-    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack) {
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
         self.apply(x, y, stack);
     }
 
@@ -213,7 +214,7 @@ impl Preconditioner for LatticeInverse<'_> {
         self.kernel.apply_scratch()
     }
 
-    fn precondition(&self, r: &[f64], z: &mut [f64], stack: &mut MemStack) {
+    fn precondition(&self, r: &[f64], z: &mut [f64], stack: &mut PodStack) {
         self.kernel
             .precondition_in(r, z, &self.preconditioner, stack);
     }
@@ -257,11 +258,11 @@ impl Operator for Products<'_> {
         self.operator().apply_scratch()
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack) {
+    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
         self.operator().apply(x, y, stack);
     }
 
-    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack) {
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
         self.operator().apply_abs(x, y, stack);
     }
 

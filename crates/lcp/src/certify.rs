@@ -21,7 +21,7 @@
 //! is certified when `-min_z`, `-min_w`, `-min_u`, `complementarity` and
 //! `equality` are all at most the tolerance.
 
-use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::dyn_stack::{PodBuffer, PodStack};
 use faer::{Col, ColRef, MatRef};
 
 use crate::certificate::Certificate;
@@ -151,8 +151,8 @@ impl OperatorLcp<'_> {
         let mut w_terms = Col::<f64>::zeros(n);
         let w_out = w.try_as_col_major_mut().expect("contiguous").as_slice_mut();
         let operator = self.m.operator;
-        let mut scratch = MemBuffer::new(operator.apply_scratch());
-        let stack = MemStack::new(&mut scratch);
+        let mut scratch = PodBuffer::new(operator.apply_scratch());
+        let stack = PodStack::new(&mut scratch);
         operator.apply(z_slice, w_out, stack);
         let terms_out = w_terms
             .try_as_col_major_mut()
@@ -208,8 +208,8 @@ impl LinearSystem<'_> {
         let (mut x_c, mut magnitude) = (vec![0.0; n], vec![0.0; n]);
         let (mut product, mut terms) = (vec![0.0; n], vec![0.0; n]);
         let (mut worst, mut finite) = (0.0f64, true);
-        let mut scratch = MemBuffer::new(operator.apply_scratch());
-        let stack = MemStack::new(&mut scratch);
+        let mut scratch = PodBuffer::new(operator.apply_scratch());
+        let stack = PodStack::new(&mut scratch);
         for c in 0..self.columns() {
             for (i, v) in x.col(c).iter().enumerate() {
                 x_c[i] = *v;

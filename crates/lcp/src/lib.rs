@@ -32,7 +32,8 @@
 //!   ([`OperatorLcp`]: an FFT convolution on a grid too large to store),
 //!   preconditioned where the problem has a [`Preconditioner`]. An
 //!   operator declares the scratch memory its products need and the
-//!   caller lends it (faer's `LinOp` idiom: [`StackReq`], [`MemStack`]).
+//!   caller lends it (faer's `LinOp` idiom, [`StackReq`], with a
+//!   [`PodStack`] of initialized bytes).
 //!
 //! It also solves, certified, a symmetric positive definite linear system
 //! `M X = R` with several right-hand sides ([`LinearSystem`]: a Cholesky
@@ -120,6 +121,6 @@ pub use tolerance::Tolerances;
 /// faer's parallelism setting, re-exported for [`Options::parallelism`].
 pub use faer::Par;
 /// faer's scratch memory (dyn-stack), re-exported for [`Operator`] and
-/// [`Preconditioner`]: a request, the buffer that meets it, the stack an
-/// application works in.
-pub use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+/// [`Preconditioner`]: a request, the buffer of initialized bytes that
+/// meets it, the stack an application carves its buffers from.
+pub use faer::dyn_stack::{PodBuffer, PodStack, StackReq};

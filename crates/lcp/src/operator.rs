@@ -14,7 +14,7 @@
 //! needs only products, and its certificate is computed from products of
 //! the original operator and the original data.
 
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::dyn_stack::{PodBuffer, PodStack, StackReq};
 use faer::{ColRef, MatRef};
 
 use crate::LcpError;
@@ -24,9 +24,15 @@ use crate::problem::{Bordered, check_finite_col};
 /// A symmetric linear map `M` (n x n) applied without storing it, after
 /// faer's `LinOp`: the operator declares the scratch memory an
 /// application needs ([`apply_scratch`](Self::apply_scratch)), and the
-/// caller lends it to every application in a [`MemStack`] (one
-/// [`MemBuffer`] made once, for as many products as a solve takes). The
+/// caller lends it to every application in a [`PodStack`] (one
+/// [`PodBuffer`] made once, for as many products as a solve takes). The
 /// operator itself keeps no mutable state: `&self` applies it.
+///
+/// Where faer lends a `MemStack` (uninitialized bytes, which safe code can
+/// only use by writing them first), the engine lends a `PodStack` of
+/// initialized bytes: an operator carves its buffers from it
+/// (`PodStack::make_raw`) without clearing them on every product, in safe
+/// code. Their contents on entry are whatever the last application left.
 pub trait Operator {
     /// The size `n`.
     fn size(&self) -> usize;
@@ -38,13 +44,13 @@ pub trait Operator {
     /// `y = M x` (`x` and `y` of length `n`), in `stack`'s memory (at
     /// least [`apply_scratch`](Self::apply_scratch); its contents between
     /// calls mean nothing).
-    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack);
+    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack);
 
     /// `y = |M| x` for `x >= 0`, `|M|` entry-wise absolute values: the
     /// magnitude of the terms that sum to `M x`, the scale a residual is
     /// judged against. An operator with non-negative entries (every
     /// half-space influence kernel) returns `M x`.
-    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack);
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack);
 
     /// Whether every entry of `M` is non-negative (every half-space
     /// influence kernel, a Winkler diagonal), so that `|M| x = M x` for
@@ -73,7 +79,7 @@ pub trait Preconditioner {
 
     /// `z = P r` (`r` and `z` of length `n`), in `stack`'s memory. The
     /// values must not depend on the number of threads.
-    fn precondition(&self, r: &[f64], z: &mut [f64], stack: &mut MemStack);
+    fn precondition(&self, r: &[f64], z: &mut [f64], stack: &mut PodStack);
 }
 
 impl Operator for MatRef<'_, f64> {
@@ -85,7 +91,7 @@ impl Operator for MatRef<'_, f64> {
         StackReq::EMPTY
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64], _: &mut MemStack) {
+    fn apply(&self, x: &[f64], y: &mut [f64], _: &mut PodStack) {
         let x = ColRef::from_slice(x);
         let product = crate::linalg::matvec(*self, x);
         for (yi, pi) in y.iter_mut().zip(product.iter()) {
@@ -93,7 +99,7 @@ impl Operator for MatRef<'_, f64> {
         }
     }
 
-    fn apply_abs(&self, x: &[f64], y: &mut [f64], _: &mut MemStack) {
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], _: &mut PodStack) {
         let x = ColRef::from_slice(x);
         let product = crate::linalg::abs_matvec(*self, x);
         for (yi, pi) in y.iter_mut().zip(product.iter()) {
@@ -107,8 +113,8 @@ impl Operator for MatRef<'_, f64> {
 pub(crate) fn scratch(
     request: StackReq,
     what: &'static str,
-) -> Result<MemBuffer, AllocationFailed> {
-    MemBuffer::try_new(request).map_err(|_| AllocationFailed {
+) -> Result<PodBuffer, AllocationFailed> {
+    PodBuffer::try_new(request).map_err(|_| AllocationFailed {
         what,
         bytes: request.unaligned_bytes_required(),
     })

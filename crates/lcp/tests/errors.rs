@@ -1,8 +1,8 @@
 //! One test per error variant of the engine, checking the message a caller sees.
 
 use elcon_lcp::{
-    BorderedLcp, Bound, Lcp, LcpError, LinearSystem, MemStack, Method, MixedLcp, MixedLcpParts,
-    OperatorLcp, Options, Preconditioner, ProgramBuilder, StackReq, Tableau, Tolerances,
+    BorderedLcp, Bound, Lcp, LcpError, LinearSystem, Method, MixedLcp, MixedLcpParts, OperatorLcp,
+    Options, PodStack, Preconditioner, ProgramBuilder, StackReq, Tableau, Tolerances,
 };
 use faer::{Col, Mat, col, mat};
 
@@ -63,7 +63,7 @@ impl Preconditioner for Diagonal<'_> {
         StackReq::EMPTY
     }
 
-    fn precondition(&self, r: &[f64], z: &mut [f64], _: &mut MemStack) {
+    fn precondition(&self, r: &[f64], z: &mut [f64], _: &mut PodStack) {
         for (i, (z, r)) in z.iter_mut().zip(r).enumerate() {
             *z = r / self.0[(i, i)];
         }

@@ -11,7 +11,7 @@
 use std::sync::Arc;
 
 use elcon_influence::{Folding, PointSet};
-use elcon_lcp::{LinearSolution, MemBuffer, MemStack, Method, Operator, Options};
+use elcon_lcp::{LinearSolution, Method, Operator, Options, PodBuffer, PodStack};
 use faer::MatRef;
 
 use super::layout::{check, symmetric_rigid, unfolded_rigid};
@@ -120,14 +120,14 @@ impl ContactProblem {
         }
         let products = self.products();
         let request = products.apply_scratch();
-        let mut scratch = MemBuffer::try_new(request).map_err(|_| {
+        let mut scratch = PodBuffer::try_new(request).map_err(|_| {
             AnalysisError::Influence(elcon_influence::InfluenceError::AllocationFailed {
                 what: "the product's scratch (an FFT workspace)",
                 bytes: request.unaligned_bytes_required(),
             })
         })?;
         let mut y = vec![0.0; n];
-        products.apply(forces, &mut y, MemStack::new(&mut scratch));
+        products.apply(forces, &mut y, PodStack::new(&mut scratch));
         Ok(y)
     }
 

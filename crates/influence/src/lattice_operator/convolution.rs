@@ -11,7 +11,7 @@
 
 use std::ops::Range;
 
-use faer::dyn_stack::{MemStack, StackReq};
+use faer::dyn_stack::{PodStack, StackReq};
 use rayon::prelude::*;
 use realfft::RealFftPlanner;
 
@@ -184,30 +184,27 @@ impl Buffers<'_> {
     }
 
     /// The scratch stack request of the buffers on `grid` (faer's idiom:
-    /// a caller's `MemBuffer` of at least this many bytes).
+    /// a caller's `PodBuffer` of at least this many bytes).
     pub(super) fn scratch(grid: &Grid) -> StackReq {
         let (spectra, columns) = Self::lens(grid);
         StackReq::new::<C64>(spectra).and(StackReq::new::<C64>(columns))
     }
 
-    /// Calls `body` with the buffers of `grid` made in `stack` (zeroed:
-    /// safe code reads no uninitialized memory).
+    /// Calls `body` with the buffers of `grid` made in `stack`, as they
+    /// are (a `PodStack` holds initialized bytes: nothing is cleared, and
+    /// a product overwrites what it reads).
     ///
     /// # Panics
     /// If `stack` holds less than [`Buffers::scratch`].
     pub(super) fn in_stack<R>(
         grid: &Grid,
-        stack: &mut MemStack,
+        stack: &mut PodStack,
         body: impl FnOnce(Buffers<'_>) -> R,
     ) -> R {
-        let zero = C64::new(0.0, 0.0);
         let (spectra, columns) = Self::lens(grid);
-        let (mut spectra, stack) = stack.make_with(spectra, |_| zero);
-        let (mut columns, _) = stack.make_with(columns, |_| zero);
-        body(Buffers {
-            spectra: &mut spectra,
-            columns: &mut columns,
-        })
+        let (spectra, stack) = stack.make_raw::<C64>(spectra);
+        let (columns, _) = stack.make_raw::<C64>(columns);
+        body(Buffers { spectra, columns })
     }
 }
 

@@ -4,7 +4,7 @@
 //! workspace of its own ([`LatticeOperator`]) or a caller's
 //! ([`LatticeKernel`]), and its memory, counted before it is built.
 
-use faer::dyn_stack::{MemStack, StackReq};
+use faer::dyn_stack::{PodStack, StackReq};
 
 use super::convolution::{Buffers, Convolution, LatticeWorkspace};
 use super::gather::{GatherOrder, segments};
@@ -308,8 +308,9 @@ impl LatticeKernel {
 
     /// The scratch of one product ([`apply_in`](Self::apply_in)) or one
     /// application of the preconditioner
-    /// ([`precondition_in`](Self::precondition_in)) in a caller's stack,
-    /// faer's idiom (`faer::dyn_stack`): the buffers of a
+    /// ([`precondition_in`](Self::precondition_in)) in a caller's stack
+    /// (`faer::dyn_stack`'s `PodStack`, made from a `PodBuffer` of this
+    /// request once for many products): the buffers of a
     /// [`workspace`](Self::workspace), for the current rayon pool's
     /// threads; empty without a convolution.
     pub fn apply_scratch(&self) -> StackReq {
@@ -320,13 +321,13 @@ impl LatticeKernel {
 
     /// `y = S x` as [`apply_with`](Self::apply_with), its buffers made in
     /// `stack` (at least [`apply_scratch`](Self::apply_scratch) of this
-    /// kernel; they are zeroed first, a pass over them that a
-    /// [`LatticeWorkspace`] reused across calls does not need).
+    /// kernel; their contents between calls mean nothing, as a
+    /// [`LatticeWorkspace`]'s).
     ///
     /// # Panics
     /// If `x` or `y` does not have [`len`](Self::len) entries, or `stack`
     /// is smaller than [`apply_scratch`](Self::apply_scratch).
-    pub fn apply_in(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack) {
+    pub fn apply_in(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
         self.check_lens(x, y);
         match &self.convolution {
             Some(c) => Buffers::in_stack(&c.grid, stack, |buffers| c.apply(x, y, buffers)),
@@ -346,7 +347,7 @@ impl LatticeKernel {
         r: &[f64],
         z: &mut [f64],
         preconditioner: &LatticePreconditioner,
-        stack: &mut MemStack,
+        stack: &mut PodStack,
     ) {
         let c = self.preconditioned(r, z);
         Buffers::in_stack(&c.grid, stack, |buffers| {

@@ -3,7 +3,7 @@
 
 #![allow(dead_code)]
 
-use elcon_lcp::{MemStack, Operator, Preconditioner, StackReq};
+use elcon_lcp::{Operator, PodStack, Preconditioner, StackReq};
 use faer::Col;
 
 /// The largest difference of `a` and `b`, relative to their largest entry.
@@ -61,13 +61,13 @@ impl Operator for Tridiagonal {
         StackReq::EMPTY
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64], _: &mut MemStack) {
+    fn apply(&self, x: &[f64], y: &mut [f64], _: &mut PodStack) {
         for i in 0..self.n {
             y[i] = self.d * x[i] + self.c * self.neighbours(x, i);
         }
     }
 
-    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut MemStack) {
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
         self.apply(x, y, stack);
     }
 
@@ -85,7 +85,7 @@ impl Preconditioner for Tridiagonal {
         StackReq::EMPTY
     }
 
-    fn precondition(&self, r: &[f64], z: &mut [f64], _: &mut MemStack) {
+    fn precondition(&self, r: &[f64], z: &mut [f64], _: &mut PodStack) {
         for i in 0..self.n {
             z[i] = (r[i] - self.c / self.d * self.neighbours(r, i)) / self.d;
         }

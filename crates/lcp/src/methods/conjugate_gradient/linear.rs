@@ -10,7 +10,7 @@
 //! `b - M x` before a column is accepted.
 
 use faer::MatRef;
-use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::dyn_stack::{PodBuffer, PodStack};
 
 use super::progress::{Progress, dot_on, step_length};
 use crate::LcpError;
@@ -74,7 +74,7 @@ struct Vectors {
     r: Vec<f64>,
     p: Vec<f64>,
     q: Vec<f64>,
-    scratch: MemBuffer,
+    scratch: PodBuffer,
 }
 
 /// Solves `M x = b` for the right-hand side `column` (`x` zero at the
@@ -106,7 +106,7 @@ fn solve_column(
         let mut c = relative(b, r);
         if progress.done(iterations, c) {
             // The true residual r = b - M x decides.
-            operator.apply(x, q, MemStack::new(scratch));
+            operator.apply(x, q, PodStack::new(scratch));
             work.products += 1;
             r.iter_mut()
                 .zip(b.iter().zip(q.iter()))
@@ -133,7 +133,7 @@ fn solve_column(
         }
         iterations += 1;
         work.iterations += 1;
-        operator.apply(p, q, MemStack::new(scratch));
+        operator.apply(p, q, PodStack::new(scratch));
         work.products += 1;
         let alpha = step_length(rr, dot_on(every, p, q))?;
         for i in 0..n {

@@ -86,7 +86,7 @@ mod passes;
 mod progress;
 mod rows;
 
-use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::dyn_stack::{PodBuffer, PodStack};
 use faer::linalg::solvers::Solve;
 use faer::{Col, Side};
 
@@ -178,7 +178,7 @@ struct State {
     guarded: bool,
     /// The scratch of the operator's products and the preconditioner's
     /// applications, which take turns in it.
-    scratch: MemBuffer,
+    scratch: PodBuffer,
 }
 
 impl State {
@@ -186,7 +186,7 @@ impl State {
         z: Vec<f64>,
         k: usize,
         preconditioned: bool,
-        scratch: MemBuffer,
+        scratch: PodBuffer,
     ) -> Result<Self, LcpError> {
         let n = z.len();
         let vector = |what| linalg::try_zeros(n, what).map_err(LcpError::from);
@@ -220,7 +220,7 @@ impl State {
     /// `u = M z` from a true product and the fit's sums, at scale 1: a
     /// pending scale stays pending (`M (c z) = c M z`).
     fn refresh(&mut self, form: &Form<'_>, data: &Data<'_>, work: &mut Work) {
-        let stack = MemStack::new(&mut self.scratch);
+        let stack = PodStack::new(&mut self.scratch);
         form.m.operator.apply(&self.z, &mut self.u, stack);
         work.products += 1;
         self.fit = iteration::fit_pass(data, &self.z, &self.u);
@@ -287,7 +287,7 @@ impl State {
         enter: bool,
         work: &mut Work,
     ) -> Result<(), Breakdown> {
-        let stack = MemStack::new(&mut self.scratch);
+        let stack = PodStack::new(&mut self.scratch);
         form.m.operator.apply(&self.t, &mut self.r, stack);
         work.products += 1;
         let den = iteration::curvature_pass(&self.t, &self.r);
@@ -376,7 +376,7 @@ impl State {
     ) -> Result<f64, Breakdown> {
         let p = self.p.as_mut().expect("a preconditioned state");
         let preconditioner = form.m.preconditioner.expect("a preconditioned state");
-        preconditioner.precondition(&self.r, p, MemStack::new(&mut self.scratch));
+        preconditioner.precondition(&self.r, p, PodStack::new(&mut self.scratch));
         work.preconditionings += 1;
         let sums = iteration::projection_pass(data, &self.z, &self.r, p);
         let k = sums.bp.len();
@@ -640,7 +640,7 @@ fn start(
     form: &Form<'_>,
     options: &Options,
     work: &mut Work,
-    scratch: &mut MemBuffer,
+    scratch: &mut PodBuffer,
 ) -> Result<Option<Vec<f64>>, Breakdown> {
     let n = form.q.nrows();
     let k = form.border.ncols();
@@ -666,7 +666,7 @@ fn start(
             e[j] = 1.0;
             form.m
                 .operator
-                .apply(&e, &mut column, MemStack::new(scratch));
+                .apply(&e, &mut column, PodStack::new(scratch));
             work.products += 1;
             let d = column[j];
             if !(d > 0.0 && d.is_finite()) {
