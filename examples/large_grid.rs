@@ -221,16 +221,15 @@ const FLOOR_CPU: f64 = 0.3;
 /// operator, the mean over products that take at least [`FLOOR_CPU`] (0
 /// for a dense problem, whose solve reads S's entries).
 fn product_seconds(problem: &ContactProblem) -> f64 {
-    use elcon::lcp::Operator;
-    let Ok(products) = problem.products() else {
-        return 0.0;
-    };
+    use elcon::lcp::{Operator, PodBuffer, PodStack};
+    let products = problem.products();
     let n = products.size();
     let (x, mut y) = (vec![1.0; n], vec![0.0; n]);
-    products.apply(&x, &mut y);
+    let mut scratch = PodBuffer::new(products.apply_scratch());
+    products.apply(&x, &mut y, PodStack::new(&mut scratch));
     let (start, mut count) = (common::cpu_seconds(), 0);
     while common::cpu_seconds() - start < FLOOR_CPU {
-        products.apply(&x, &mut y);
+        products.apply(&x, &mut y, PodStack::new(&mut scratch));
         count += 1;
     }
     (common::cpu_seconds() - start) / count as f64

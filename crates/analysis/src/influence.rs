@@ -7,13 +7,12 @@
 //! `w = S z - B λ + q`, `B^T z = b` on it, and the entries where held.
 //! The one place in the workspace that branches on how S is held.
 
-use std::cell::RefCell;
 use std::sync::Arc;
 
-use elcon_influence::{LatticeKernel, LatticePreconditioner, LatticeWorkspace};
+use elcon_influence::{LatticeKernel, LatticePreconditioner};
 use elcon_lcp::{
     BorderedLcpRef, LcpSolution, LinearSolution, LinearSystem, Method, Operator, OperatorLcp,
-    Options,
+    Options, PodStack, Preconditioner, StackReq,
 };
 use faer::{ColRef, Mat, MatRef};
 
@@ -70,13 +69,23 @@ impl Influence {
                 .with_border(border, resultant)?
                 .solve(method, options)?,
             Influence::Lattice(kernel) => {
-                let mut products = LatticeProducts::new(kernel)?;
-                if options.preconditioner {
-                    products = products.with_preconditioner()?;
+                let products = LatticeProducts(kernel);
+                // None where S has no half-space kernel: a foundation's S
+                // is a multiple of the identity.
+                let inverse = match options.preconditioner {
+                    true => kernel.preconditioner()?,
+                    false => None,
+                };
+                let inverse = inverse.map(|preconditioner| LatticeInverse {
+                    kernel,
+                    preconditioner,
+                });
+                let lcp = OperatorLcp::new(&products, q)?.with_border(border, resultant)?;
+                match &inverse {
+                    Some(inverse) => lcp.with_preconditioner(inverse)?,
+                    None => lcp,
                 }
-                OperatorLcp::new(&products, q)?
-                    .with_border(border, resultant)?
-                    .solve(method, options)?
+                .solve(method, options)?
             }
         })
     }
@@ -102,10 +111,8 @@ impl Influence {
             }
             Influence::Lattice(kernel) => {
                 let restricted = Restricted {
-                    products: LatticeProducts::new(kernel)?,
+                    products: LatticeProducts(kernel),
                     contact,
-                    full: RefCell::new(vec![0.0; kernel.len()]),
-                    product: RefCell::new(vec![0.0; kernel.len()]),
                 };
                 LinearSystem::operator(&restricted, rhs)?.solve(options)?
             }
@@ -114,25 +121,23 @@ impl Influence {
 }
 
 /// An operator's products restricted to the unknowns `contact`:
-/// `(S_JJ x) = (S [x on J, 0 elsewhere])_J`, through two buffers of n.
+/// `(S_JJ x) = (S [x on J, 0 elsewhere])_J`, through two vectors of n in
+/// the caller's scratch.
 struct Restricted<'a> {
     products: LatticeProducts<'a>,
     contact: &'a [usize],
-    full: RefCell<Vec<f64>>,
-    product: RefCell<Vec<f64>>,
 }
 
 impl Restricted<'_> {
-    fn restricted(&self, x: &[f64], y: &mut [f64], abs: bool) {
-        let (mut full, mut product) = (self.full.borrow_mut(), self.product.borrow_mut());
+    fn restricted(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
+        let n = self.products.size();
+        // `full` is 0 off J; `product` is written whole.
+        let (full, stack) = stack.make_with(n, |_| 0.0);
+        let (product, stack) = stack.make_raw::<f64>(n);
         for (&k, &v) in self.contact.iter().zip(x) {
             full[k] = v;
         }
-        if abs {
-            self.products.apply_abs(&full, &mut product);
-        } else {
-            self.products.apply(&full, &mut product);
-        }
+        self.products.apply(full, product, stack);
         for (y, &k) in y.iter_mut().zip(self.contact) {
             *y = product[k];
         }
@@ -144,86 +149,82 @@ impl Operator for Restricted<'_> {
         self.contact.len()
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64]) {
-        self.restricted(x, y, false);
+    fn apply_scratch(&self) -> StackReq {
+        let vector = StackReq::new::<f64>(self.products.size());
+        StackReq::all_of(&[vector, vector, self.products.apply_scratch()])
     }
 
-    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
-        self.restricted(x, y, true);
-    }
-}
-
-/// The lattice operator with a workspace of its own, as the engine applies
-/// it (one solve, one thread), and for the conjugate gradient its
-/// preconditioner (`elcon_influence::LatticePreconditioner`: the inverse of
-/// the kernel's symbol by a periodic FFT on the half-size grid), applied
-/// in the same workspace (products and applications take turns: one
-/// buffer of the box's spectra serves both).
-pub(crate) struct LatticeProducts<'a> {
-    operator: &'a LatticeKernel,
-    workspace: RefCell<LatticeWorkspace>,
-    /// Boxed: its plans would make every `LatticeProducts` large.
-    preconditioner: Option<Box<LatticePreconditioner>>,
-}
-
-impl<'a> LatticeProducts<'a> {
-    /// The products of `operator`, with a new workspace.
-    pub fn new(operator: &'a LatticeKernel) -> Result<Self, elcon_influence::InfluenceError> {
-        Ok(Self {
-            operator,
-            workspace: RefCell::new(operator.workspace()?),
-            preconditioner: None,
-        })
+    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
+        self.restricted(x, y, stack);
     }
 
-    /// The same with the operator's preconditioner (none where S has no
-    /// half-space kernel: a foundation's S is a multiple of the identity).
-    pub fn with_preconditioner(self) -> Result<Self, elcon_influence::InfluenceError> {
-        let preconditioner = self.operator.preconditioner()?.map(Box::new);
-        Ok(Self {
-            preconditioner,
-            ..self
-        })
+    /// S's entries are non-negative ([`LatticeProducts::apply_abs`]), and
+    /// so are `S_JJ`'s.
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
+        self.restricted(x, y, stack);
     }
 }
+
+/// The lattice operator's products as the engine applies them, in the
+/// engine's scratch (`elcon_influence::LatticeKernel::apply_in`: the
+/// buffers of one product, lent by the caller for every product of a
+/// solve).
+struct LatticeProducts<'a>(&'a LatticeKernel);
 
 impl Operator for LatticeProducts<'_> {
     fn size(&self) -> usize {
-        self.operator.len()
+        self.0.len()
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64]) {
-        self.operator
-            .apply_with(x, y, &mut self.workspace.borrow_mut());
+    fn apply_scratch(&self) -> StackReq {
+        self.0.apply_scratch()
+    }
+
+    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
+        self.0.apply_in(x, y, stack);
     }
 
     /// Every half-space kernel and the Winkler diagonal are positive, so
     /// `|S| x = S x` for `x >= 0`.
-    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
-        self.apply(x, y);
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
+        self.apply(x, y, stack);
     }
 
     fn entries_nonnegative(&self) -> bool {
         true
     }
+}
 
-    fn has_preconditioner(&self) -> bool {
-        self.preconditioner.is_some()
+/// The lattice operator's preconditioner for the conjugate gradient
+/// (`elcon_influence::LatticePreconditioner`: the inverse of the kernel's
+/// symbol by a periodic FFT on the half-size grid), applied in the same
+/// scratch as the products (they take turns: one buffer of the box's
+/// spectra serves both).
+struct LatticeInverse<'a> {
+    kernel: &'a LatticeKernel,
+    preconditioner: LatticePreconditioner,
+}
+
+impl Preconditioner for LatticeInverse<'_> {
+    fn size(&self) -> usize {
+        self.kernel.len()
     }
 
-    fn precondition(&self, r: &[f64], z: &mut [f64]) {
-        match &self.preconditioner {
-            Some(p) => self
-                .operator
-                .precondition_with(r, z, p, &mut self.workspace.borrow_mut()),
-            None => z.copy_from_slice(r),
-        }
+    fn precondition_scratch(&self) -> StackReq {
+        self.kernel.apply_scratch()
+    }
+
+    fn precondition(&self, r: &[f64], z: &mut [f64], stack: &mut PodStack) {
+        self.kernel
+            .precondition_in(r, z, &self.preconditioner, stack);
     }
 }
 
 /// The products `y = S F` of a problem's influence matrix, for a caller that
 /// applies them many times (an iterative solve of its own): made once by
-/// `ContactProblem::products`, with the workspace a matrix-free S needs.
+/// `ContactProblem::products`; the caller lends each product the scratch
+/// it declares ([`Operator::apply_scratch`]: the buffers of a matrix-free
+/// S's product, none for a dense S).
 pub struct Products<'a>(ProductsOf<'a>);
 
 enum ProductsOf<'a> {
@@ -233,11 +234,11 @@ enum ProductsOf<'a> {
 
 impl<'a> Products<'a> {
     /// The products of `influence`.
-    pub(crate) fn of(influence: &'a Influence) -> Result<Self, elcon_influence::InfluenceError> {
-        Ok(Self(match influence {
+    pub(crate) fn of(influence: &'a Influence) -> Self {
+        Self(match influence {
             Influence::Dense(s) => ProductsOf::Dense(Mat::as_ref(s)),
-            Influence::Lattice(kernel) => ProductsOf::Lattice(LatticeProducts::new(kernel)?),
-        }))
+            Influence::Lattice(kernel) => ProductsOf::Lattice(LatticeProducts(kernel)),
+        })
     }
 
     fn operator(&self) -> &dyn Operator {
@@ -253,11 +254,19 @@ impl Operator for Products<'_> {
         self.operator().size()
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64]) {
-        self.operator().apply(x, y);
+    fn apply_scratch(&self) -> StackReq {
+        self.operator().apply_scratch()
     }
 
-    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
-        self.operator().apply_abs(x, y);
+    fn apply(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
+        self.operator().apply(x, y, stack);
+    }
+
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
+        self.operator().apply_abs(x, y, stack);
+    }
+
+    fn entries_nonnegative(&self) -> bool {
+        self.operator().entries_nonnegative()
     }
 }

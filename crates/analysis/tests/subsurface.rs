@@ -7,7 +7,9 @@
 
 use elcon_analysis::references::HertzCylinders;
 use elcon_analysis::subsurface::reference::{hertz_line, hertz_point_axis};
-use elcon_analysis::subsurface::{Subsurface, SubsurfaceOptions};
+use elcon_analysis::subsurface::{
+    DEPTH_SPAN, Subsurface, SubsurfaceOptions, contact_half_width, depth_grid,
+};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, PointSet, Surface};
 use elcon_fixtures::scenes::spheres;
 use elcon_influence::{Body, Material, combined_modulus};
@@ -156,6 +158,33 @@ fn each_body_has_its_own_field_and_those_without_one_say_so() {
             Subsurface::NotApplicable(_)
         ));
     }
+}
+
+#[test]
+fn a_contact_has_a_half_width_and_no_contact_has_none() {
+    // Cells of 1 x 0.5 on [-4, 4] x [-2, 2], points ordered by x then y.
+    let grid = PointSet::grid_rectangle(4.0, 2.0, 8, 8).unwrap();
+    assert_eq!(contact_half_width(&grid, std::iter::empty()), None);
+    // One point: half its cell's narrower side.
+    assert_eq!(contact_half_width(&grid, [9].into_iter()), Some(0.25));
+    // Columns x = -3.5 .. -1.5 (3 cells), rows y = -1.75 .. 1.75 (8):
+    // 1.5 across x, 2 across y.
+    let block: Vec<usize> = (8..32).collect();
+    assert_eq!(contact_half_width(&grid, block.iter().copied()), Some(1.5));
+    // On a line, across x whatever y.
+    let line = PointSet::line(-1.0, 1.0, 10).unwrap();
+    let across = contact_half_width(&line, [2, 3, 4].into_iter()).unwrap();
+    assert!((across - 0.3).abs() < 1e-15, "{across}");
+    assert_eq!(contact_half_width(&line, std::iter::empty()), None);
+    // No contact, so no width: the depth grid reaches down a cell's worth
+    // of span; the point force's grid starts a cell deep.
+    let depths = depth_grid(&grid, 0.0, false, 4);
+    assert_eq!(depths, [0.25, 0.5, 0.75, 1.0].map(|f| f * DEPTH_SPAN));
+    let depths = depth_grid(&grid, 1.5, true, 2);
+    assert_eq!(
+        depths,
+        [1.0 + (1.5 * DEPTH_SPAN - 1.0) / 2.0, 1.5 * DEPTH_SPAN]
+    );
 }
 
 /// The maxima of an elliptical contact (gap x^2/2Rx + y^2/2Ry) on a disk

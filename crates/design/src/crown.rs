@@ -80,27 +80,7 @@ pub fn crown_search(
 ) -> Result<CrownSearch, DesignError> {
     let (samples, method, options) = (search.samples, search.method, &search.options);
     let references = reference_intensities(search.reference_intensities.as_deref(), cases.len())?;
-    if !(low.is_finite() && low > 0.0) {
-        return Err(DesignError::InvalidInput {
-            field: "low",
-            value: low,
-            reason: "must be finite and > 0",
-        });
-    }
-    if !(high.is_finite() && high > low) {
-        return Err(DesignError::InvalidInput {
-            field: "high",
-            value: high,
-            reason: "must be finite and > low",
-        });
-    }
-    if samples < 3 {
-        return Err(DesignError::InvalidInput {
-            field: "samples",
-            value: samples as f64,
-            reason: "at least 3 samples",
-        });
-    }
+    check_bracket(low, high, samples)?;
     let mut tried = Vec::new();
     // The best so far (the first of equal objectives): parameter, objective,
     // profile, and its evaluation, kept rather than recomputed.
@@ -140,30 +120,11 @@ pub fn crown_search(
     let best = (0..samples)
         .min_by(|&i, &j| values[i].total_cmp(&values[j]))
         .unwrap_or(0);
-    let (mut lo, mut hi) = (
+    let bracket = (
         grid[best.saturating_sub(1)],
         grid[(best + 1).min(samples - 1)],
     );
-    let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    let mut x1 = hi - ratio * (hi - lo);
-    let mut x2 = lo + ratio * (hi - lo);
-    let mut f1 = worst_at(x1)?;
-    let mut f2 = worst_at(x2)?;
-    for _ in 0..GOLDEN_STEPS {
-        if f1 <= f2 {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - ratio * (hi - lo);
-            f1 = worst_at(x1)?;
-        } else {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + ratio * (hi - lo);
-            f2 = worst_at(x2)?;
-        }
-    }
+    golden_section(bracket, &mut worst_at)?;
     let (parameter, _, profile, evaluation) = found.expect("samples were tried");
     Ok(CrownSearch {
         parameter,
@@ -171,4 +132,60 @@ pub fn crown_search(
         evaluation,
         samples: tried,
     })
+}
+
+/// Checks the bracket `[low, high]` (finite, `0 < low < high`) and the
+/// samples (at least 3).
+fn check_bracket(low: f64, high: f64, samples: usize) -> Result<(), DesignError> {
+    if !(low.is_finite() && low > 0.0) {
+        return Err(DesignError::InvalidInput {
+            field: "low",
+            value: low,
+            reason: "must be finite and > 0",
+        });
+    }
+    if !(high.is_finite() && high > low) {
+        return Err(DesignError::InvalidInput {
+            field: "high",
+            value: high,
+            reason: "must be finite and > low",
+        });
+    }
+    if samples < 3 {
+        return Err(DesignError::InvalidInput {
+            field: "samples",
+            value: samples as f64,
+            reason: "at least 3 samples",
+        });
+    }
+    Ok(())
+}
+
+/// The golden-section refinement of `f`'s minimum in `(lo, hi)`,
+/// [`GOLDEN_STEPS`] steps (`f` keeps what it finds).
+fn golden_section(
+    (mut lo, mut hi): (f64, f64),
+    f: &mut impl FnMut(f64) -> Result<f64, DesignError>,
+) -> Result<(), DesignError> {
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let mut x1 = hi - ratio * (hi - lo);
+    let mut x2 = lo + ratio * (hi - lo);
+    let mut f1 = f(x1)?;
+    let mut f2 = f(x2)?;
+    for _ in 0..GOLDEN_STEPS {
+        if f1 <= f2 {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - ratio * (hi - lo);
+            f1 = f(x1)?;
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + ratio * (hi - lo);
+            f2 = f(x2)?;
+        }
+    }
+    Ok(())
 }

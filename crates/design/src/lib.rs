@@ -24,6 +24,10 @@
 //!   family, linear or a crown), routed to the one of the above that finds
 //!   it.
 //!
+//! The request's choices ([`Axis`], [`DesignMethod`], [`Objective`]) parse
+//! the names scenes write (`FromStr`), and with the `serde` feature
+//! serialize and deserialize as them.
+//!
 //! ```
 //! use elcon_analysis::{ContactProblem, Geometry, Loading};
 //! use elcon_design::{Axis, DesignOptions, Family, design, uniform_target};

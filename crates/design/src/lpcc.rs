@@ -39,6 +39,41 @@ struct Layout {
     t: usize,
 }
 
+/// The program's rows: each case's block (compatibility, intensity and
+/// resultant rows) from `starts[l]`, then one row per axial station from
+/// `profile`, then the constant's bound row where the family has one.
+struct Rows {
+    starts: Vec<usize>,
+    profile: usize,
+    stations: usize,
+    bound: Option<usize>,
+    count: usize,
+}
+
+impl Rows {
+    fn of(cases: &[Case<'_>], basis: &Basis) -> Self {
+        let mut count = 0;
+        let mut starts = Vec::new();
+        for c in cases {
+            starts.push(count);
+            count += 2 * c.station.len() + c.resultants.len();
+        }
+        let (profile, stations) = (count, basis.phi.nrows());
+        count += stations;
+        let bound = basis.constant.map(|_| count);
+        if bound.is_some() {
+            count += 1;
+        }
+        Self {
+            starts,
+            profile,
+            stations,
+            bound,
+            count,
+        }
+    }
+}
+
 /// Builds the design program around the start `theta0` (the program's
 /// parameters are `delta = theta - theta0`).
 fn program(
@@ -47,34 +82,60 @@ fn program(
     c_max: Option<f64>,
     theta0: &[f64],
 ) -> Result<(elcon_lcp::ComplementaryProgram, Layout), DesignError> {
-    let n_st = basis.phi.nrows();
-    let m = basis.params();
-    let mut rows = 0;
-    let mut starts = Vec::new();
-    for c in cases {
-        starts.push(rows);
-        rows += 2 * c.station.len() + c.resultants.len();
-    }
-    let profile_rows = rows;
-    rows += n_st;
-    let bound_row = basis.constant.map(|_| rows);
-    if bound_row.is_some() {
-        rows += 1;
-    }
+    let rows = Rows::of(cases, basis);
     let drops0 = basis.drops(theta0);
-    let mut b = ProgramBuilder::new(rows);
-    let mut rhs = Col::<f64>::zeros(rows);
+    let mut b = ProgramBuilder::new(rows.count);
+    let mut rhs = Col::<f64>::zeros(rows.count);
+    let forces = contact_columns(&mut b, &mut rhs, cases, &rows, &drops0)?;
+    motion_columns(&mut b, cases, &rows)?;
+    // theta: -Phi in the compatibility rows and the station rows, +1 in the bound row.
+    let (n_st, m) = (rows.stations, basis.params());
+    let mut theta_block = Mat::<f64>::zeros(rows.count, m);
+    for (l, c) in cases.iter().enumerate() {
+        for (k, &st) in c.station.iter().enumerate() {
+            for i in 0..m {
+                theta_block[(rows.starts[l] + k, i)] = -basis.phi[(st, i)];
+            }
+        }
+    }
+    for st in 0..n_st {
+        for i in 0..m {
+            theta_block[(rows.profile + st, i)] = -basis.phi[(st, i)];
+        }
+        rhs[rows.profile + st] = drops0[st];
+    }
+    if let (Some(row), Some(ci), Some(c_max)) = (rows.bound, basis.constant, c_max) {
+        theta_block[(row, ci)] = 1.0;
+        rhs[row] = c_max - theta0[ci];
+    }
+    let theta = b.dense_columns("theta", theta_block.as_ref(), Bound::Free)?;
+    b.defer(theta.clone())?;
+    let t = objective_and_slacks(&mut b, cases, &rows)?;
+    b.rhs(rhs.as_ref())?;
+    Ok((b.build()?, Layout { forces, theta, t }))
+}
+
+/// Each case's forces F and gaps Y, complementary, with their rows'
+/// right-hand sides in `rhs`: compatibility rows `-S F + Y (+ sum
+/// lambda_j m_j) = eps + drops`, intensity rows `F / A`, resultant rows
+/// `sum m_j F = b_j`. Returns the forces' columns.
+fn contact_columns(
+    b: &mut ProgramBuilder,
+    rhs: &mut Col<f64>,
+    cases: &[Case<'_>],
+    rows: &Rows,
+    drops0: &[f64],
+) -> Result<Vec<std::ops::Range<usize>>, DesignError> {
     let mut forces = Vec::new();
     for (l, c) in cases.iter().enumerate() {
         let n = c.station.len();
-        let (rc, ri, re) = (starts[l], starts[l] + n, starts[l] + 2 * n);
+        let start = rows.starts[l];
+        let (rc, ri, re) = (start, start + n, start + 2 * n);
         let s = c
             .problem
             .entries("the design program (use the descent: DesignMethod::Descent or Auto)")
             .map_err(DesignError::analysis(format!("load case {l}")))?;
-        // Compatibility rows -S F + Y + sum lambda_j m_j = eps (+ drops),
-        // intensity rows F / A, resultant rows sum m_j F = b_j.
-        let block = Mat::from_fn(rows, n, |r, j| {
+        let block = Mat::from_fn(rows.count, n, |r, j| {
             if (rc..rc + n).contains(&r) {
                 -s[(r - rc, j)]
             } else if r == ri + j {
@@ -98,16 +159,24 @@ fn program(
             rhs[re + j] = resultant;
         }
     }
-    // The free rigid motions: every case's approach, then every case's free
-    // rotations (levers in the compatibility rows).
+    Ok(forces)
+}
+
+/// The free rigid motions: every case's approach, then every case's free
+/// rotations (levers in the compatibility rows).
+fn motion_columns(
+    b: &mut ProgramBuilder,
+    cases: &[Case<'_>],
+    rows: &Rows,
+) -> Result<(), DesignError> {
     let motions = cases.iter().map(|c| c.resultants.len()).max().unwrap_or(0);
     for j in 0..motions {
         let with: Vec<usize> = (0..cases.len())
             .filter(|&l| j < cases[l].resultants.len())
             .collect();
-        let block = Mat::from_fn(rows, with.len(), |r, col| {
+        let block = Mat::from_fn(rows.count, with.len(), |r, col| {
             let l = with[col];
-            let start = starts[l];
+            let start = rows.starts[l];
             if (start..start + cases[l].station.len()).contains(&r) {
                 cases[l].levers[(r - start, j)]
             } else {
@@ -121,31 +190,21 @@ fn program(
         };
         b.dense_columns(&name, block.as_ref(), Bound::Free)?;
     }
-    // theta: -Phi in the compatibility rows and the station rows, +1 in the bound row.
-    let mut theta_block = Mat::<f64>::zeros(rows, m);
-    for (l, c) in cases.iter().enumerate() {
-        for (k, &st) in c.station.iter().enumerate() {
-            for i in 0..m {
-                theta_block[(starts[l] + k, i)] = -basis.phi[(st, i)];
-            }
-        }
-    }
-    for st in 0..n_st {
-        for i in 0..m {
-            theta_block[(profile_rows + st, i)] = -basis.phi[(st, i)];
-        }
-        rhs[profile_rows + st] = drops0[st];
-    }
-    if let (Some(row), Some(ci), Some(c_max)) = (bound_row, basis.constant, c_max) {
-        theta_block[(row, ci)] = 1.0;
-        rhs[row] = c_max - theta0[ci];
-    }
-    let theta = b.dense_columns("theta", theta_block.as_ref(), Bound::Free)?;
-    b.defer(theta.clone())?;
-    let t_col = Mat::from_fn(rows, 1, |r, _| {
+    Ok(())
+}
+
+/// The worst intensity `t` (the cost), `-r_l A_k / w_k` in each case's
+/// intensity rows, and the slacks: of the intensity rows, of the station
+/// rows and of the bound row. Returns `t`'s column.
+fn objective_and_slacks(
+    b: &mut ProgramBuilder,
+    cases: &[Case<'_>],
+    rows: &Rows,
+) -> Result<usize, DesignError> {
+    let t_col = Mat::from_fn(rows.count, 1, |r, _| {
         for (l, c) in cases.iter().enumerate() {
             let n = c.station.len();
-            let ri = starts[l] + n;
+            let ri = rows.starts[l] + n;
             if (ri..ri + n).contains(&r) {
                 return -c.reference * c.measures[r - ri] / c.weights[r - ri];
             }
@@ -156,20 +215,15 @@ fn program(
     b.cost(t, 1.0)?;
     for (l, c) in cases.iter().enumerate() {
         let n = c.station.len();
-        let ri = starts[l] + n;
+        let ri = rows.starts[l] + n;
         b.unit_columns(&format!("s{l}"), ri..ri + n, 1.0, Bound::NonNegative)?;
     }
-    b.unit_columns(
-        "u",
-        profile_rows..profile_rows + n_st,
-        1.0,
-        Bound::NonNegative,
-    )?;
-    if let Some(row) = bound_row {
+    let stations = rows.profile..rows.profile + rows.stations;
+    b.unit_columns("u", stations, 1.0, Bound::NonNegative)?;
+    if let Some(row) = rows.bound {
         b.unit_columns("v", row..row + 1, 1.0, Bound::NonNegative)?;
     }
-    b.rhs(rhs.as_ref())?;
-    Ok((b.build()?, Layout { forces, theta, t }))
+    Ok(t)
 }
 
 /// Part 1 and part 2 from the start `theta0`.

@@ -32,7 +32,8 @@
 //! stress rows, so the contact stays off them as in a pressure design.
 
 use elcon_analysis::ContactSolution;
-use elcon_influence::{Body, Dimension, PointSet, Stress, StressKernel, StressLayers};
+use elcon_analysis::subsurface::{StressField, contact_half_width, depth_grid};
+use elcon_influence::{Body, Stress, StressKernel};
 use faer::{Mat, MatRef};
 
 use crate::DesignError;
@@ -42,8 +43,9 @@ use crate::prepared::Case;
 
 /// Depths of each case's fixed grid of depths.
 pub const DEPTHS: usize = 32;
-/// How deep the depth grid reaches, in the start's contact half-widths.
-pub const DEPTH_SPAN: f64 = 2.0;
+/// How deep the depth grid reaches, in the start's contact half-widths
+/// (elcon-analysis's, whose [`depth_grid`] the cases' depths are).
+pub use elcon_analysis::subsurface::DEPTH_SPAN;
 /// A candidate point becomes a model row when its stress is at least this
 /// share of its case's largest: lower ones cannot bind within a trust
 /// region the model is good in.
@@ -109,19 +111,11 @@ impl StressObjective {
             .zip(solutions)
             .map(|(case, solution)| {
                 let points = case.problem.points();
-                let cell = points.cell();
-                let size = match points.dimension() {
-                    Dimension::Line => cell.dx,
-                    Dimension::Surface => cell.dx.max(cell.dy),
-                };
-                let half = half_width(points, solution).max(size);
+                // No point in contact: a grid a cell deep.
+                let contact = solution.contact.iter().copied();
+                let half = contact_half_width(points, contact).unwrap_or(0.0);
                 let point = self.fields.iter().any(|f| f.0 == StressKernel::PointForce);
-                let shallowest = if point { size } else { 0.0 };
-                (1..=DEPTHS)
-                    .map(|j| {
-                        shallowest + (DEPTH_SPAN * half - shallowest) * j as f64 / DEPTHS as f64
-                    })
-                    .collect()
+                depth_grid(points, half, point, DEPTHS)
             })
             .collect();
         StressCriterion {
@@ -228,10 +222,13 @@ impl StressCriterion {
         let mut largest = 0.0f64;
         for (f, &(kernel, nu)) in self.fields.iter().enumerate() {
             let mut station_best = vec![(f64::NEG_INFINITY, 0usize, 0usize); stations];
-            for (j, layer) in layers(points, solution, (kernel, nu), depths, self.objective)?
-                .into_iter()
-                .enumerate()
-            {
+            let layers = StressField::of_kernel(points, solution, kernel, nu)
+                .layers_at(depths)
+                .map_err(|e| DesignError::Objective {
+                    objective: self.objective.name(),
+                    reason: format!("the stress layers failed: {e}"),
+                })?;
+            for (j, layer) in layers.into_iter().enumerate() {
                 for (k, s) in layer.iter().enumerate() {
                     let v = self.objective.measure(s);
                     largest = largest.max(v);
@@ -365,71 +362,6 @@ fn edge_merit(case: &Case<'_>, solution: &ContactSolution) -> f64 {
         .map(|((f, a), w)| w * f / a)
         .fold(0.0f64, f64::max)
         / case.reference
-}
-
-/// The field's stresses at every point of the grid at each depth: by FFT
-/// on a lattice, by direct sums over the points in contact elsewhere.
-fn layers(
-    points: &PointSet,
-    solution: &ContactSolution,
-    (kernel, nu): (StressKernel, f64),
-    depths: &[f64],
-    objective: Objective,
-) -> Result<Vec<Vec<Stress>>, DesignError> {
-    let layer_error = |e: elcon_influence::InfluenceError| DesignError::Objective {
-        objective: objective.name(),
-        reason: format!("the stress layers failed: {e}"),
-    };
-    if points.lattice().is_some() {
-        let layers =
-            StressLayers::new(points, &solution.pressures, kernel, nu).map_err(layer_error)?;
-        return depths
-            .iter()
-            .map(|&z| layers.layer(z).map_err(layer_error))
-            .collect();
-    }
-    let cell = points.cell();
-    Ok(depths
-        .iter()
-        .map(|&z| {
-            (0..points.len())
-                .map(|q| {
-                    let mut s = Stress::default();
-                    for &k in &solution.contact {
-                        let offset = (points.x(q) - points.x(k), points.y(q) - points.y(k), z);
-                        let unit = kernel.unit(offset, (cell.dx, cell.dy), nu);
-                        s.add_scaled(solution.pressures[k], &unit);
-                    }
-                    s
-                })
-                .collect()
-        })
-        .collect())
-}
-
-/// The contact's half-width across its narrower direction: half the span
-/// of the points in contact along x or y (the smaller; x on a line), their
-/// cells included (as `elcon_analysis::subsurface::StressField::half_width`).
-fn half_width(points: &PointSet, solution: &ContactSolution) -> f64 {
-    let cell = points.cell();
-    let span = |of: &dyn Fn(usize) -> f64, size: f64| {
-        let (lo, hi) = solution
-            .contact
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &k| {
-                (lo.min(of(k)), hi.max(of(k)))
-            });
-        if lo <= hi {
-            0.5 * (hi - lo + size)
-        } else {
-            0.0
-        }
-    };
-    let along_x = span(&|k| points.x(k), cell.dx);
-    match points.dimension() {
-        Dimension::Line => along_x,
-        Dimension::Surface => along_x.min(span(&|k| points.y(k), cell.dy)),
-    }
 }
 
 #[cfg(test)]

@@ -21,6 +21,7 @@
 //! is certified when `-min_z`, `-min_w`, `-min_u`, `complementarity` and
 //! `equality` are all at most the tolerance.
 
+use faer::dyn_stack::{PodBuffer, PodStack};
 use faer::{Col, ColRef, MatRef};
 
 use crate::certificate::Certificate;
@@ -149,22 +150,25 @@ impl OperatorLcp<'_> {
         let mut w = Col::<f64>::zeros(n);
         let mut w_terms = Col::<f64>::zeros(n);
         let w_out = w.try_as_col_major_mut().expect("contiguous").as_slice_mut();
-        self.m.apply(z_slice, w_out);
+        let operator = self.m.operator;
+        let mut scratch = PodBuffer::new(operator.apply_scratch());
+        let stack = PodStack::new(&mut scratch);
+        operator.apply(z_slice, w_out, stack);
         let terms_out = w_terms
             .try_as_col_major_mut()
             .expect("contiguous")
             .as_slice_mut();
         let mut products = 2;
         if z_slice.iter().all(|&v| v >= 0.0) {
-            if self.m.entries_nonnegative() {
+            if operator.entries_nonnegative() {
                 terms_out.copy_from_slice(w_out);
                 products = 1;
             } else {
-                self.m.apply_abs(z_slice, terms_out);
+                operator.apply_abs(z_slice, terms_out, stack);
             }
         } else {
             let z_abs: Vec<f64> = z_slice.iter().map(|v| v.abs()).collect();
-            self.m.apply_abs(&z_abs, terms_out);
+            operator.apply_abs(&z_abs, terms_out, stack);
         }
         // w = M z - B λ + q and its terms |M| |z| + |B| |λ| + |q|.
         linalg::sub_matvec(w.as_mut(), self.border, lambda.as_ref());
@@ -204,13 +208,15 @@ impl LinearSystem<'_> {
         let (mut x_c, mut magnitude) = (vec![0.0; n], vec![0.0; n]);
         let (mut product, mut terms) = (vec![0.0; n], vec![0.0; n]);
         let (mut worst, mut finite) = (0.0f64, true);
+        let mut scratch = PodBuffer::new(operator.apply_scratch());
+        let stack = PodStack::new(&mut scratch);
         for c in 0..self.columns() {
             for (i, v) in x.col(c).iter().enumerate() {
                 x_c[i] = *v;
                 magnitude[i] = v.abs();
             }
-            operator.apply(&x_c, &mut product);
-            operator.apply_abs(&magnitude, &mut terms);
+            operator.apply(&x_c, &mut product, stack);
+            operator.apply_abs(&magnitude, &mut terms, stack);
             let r = self.rhs.col(c);
             let (mut residual, mut scale) = (0.0f64, 0.0f64);
             for i in 0..n {

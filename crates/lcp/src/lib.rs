@@ -29,12 +29,17 @@
 //! - the constrained conjugate gradient of Polonsky & Keer (1999) for a
 //!   symmetric positive definite `M`: iterative, it needs only products
 //!   `M x`, and so also solves problems whose `M` is an [`Operator`]
-//!   ([`OperatorLcp`]: an FFT convolution on a grid too large to store).
+//!   ([`OperatorLcp`]: an FFT convolution on a grid too large to store),
+//!   preconditioned where the problem has a [`Preconditioner`]. An
+//!   operator declares the scratch memory its products need and the
+//!   caller lends it (faer's `LinOp` idiom, [`StackReq`], with a
+//!   [`PodStack`] of initialized bytes).
 //!
 //! It also solves, certified, a symmetric positive definite linear system
 //! `M X = R` with several right-hand sides ([`LinearSystem`]: a Cholesky
 //! factorization of a dense `M`, an LU where `M` is not numerically
-//! positive definite, the conjugate gradient for an [`Operator`]), the
+//! positive definite, the conjugate gradient for an [`Operator`]: its
+//! [`LinearMethod`]s), the
 //! contact solution's sensitivities `S_JJ X = R` on its contact set.
 //!
 //! One strategy routes every solve (the module `strategy`, drawn in
@@ -44,13 +49,16 @@
 //! Every solution carries a [`Certificate`] computed from the ORIGINAL data
 //! (smallest `z`, smallest `w`, largest `|z_i w_i|`, equality residual, each
 //! relative to the data's scale) and [`Statistics`] (the log of its
-//! attempts: method, tableau, pivots, outcome). A solution whose
+//! attempts: method, an [`AnyMethod`] of either kind, tableau, pivots,
+//! outcome). A solution whose
 //! certificate does not hold is not returned: the solve ends with
 //! [`LcpError::Inaccurate`].
 //!
 //! With the `serde` feature, [`Statistics`] and its [`Attempt`]s are
 //! `Serialize`: the totals, then each attempt by name (the shape of
-//! elcon-scene's result.json).
+//! elcon-scene's result.json); [`Method`] and [`LinearMethod`] serialize
+//! and deserialize as their names (`"lemke"`), which they also parse
+//! (`FromStr`, an [`UnknownName`] listing the names there are).
 //!
 //! ```
 //! use elcon_lcp::{BorderedLcp, Lcp, Method, Options};
@@ -102,7 +110,7 @@ pub use elcon_num::{Num, UnknownName};
 pub use error::{LcpError, TABLEAU_ADVICE};
 pub use linalg::condition_estimate;
 pub use linear::LinearSystem;
-pub use operator::{Operator, OperatorLcp};
+pub use operator::{MatrixFree, Operator, OperatorLcp, Preconditioner};
 pub use options::{AnyMethod, LinearMethod, Method, Options, Tableau};
 pub use problem::{Bordered, BorderedLcp, BorderedLcpRef, Bound, Lcp, MixedLcp, MixedLcpParts};
 pub use program::{ComplementaryProgram, ProgramBuilder};
@@ -112,3 +120,7 @@ pub use tolerance::Tolerances;
 
 /// faer's parallelism setting, re-exported for [`Options::parallelism`].
 pub use faer::Par;
+/// faer's scratch memory (dyn-stack), re-exported for [`Operator`] and
+/// [`Preconditioner`]: a request, the buffer of initialized bytes that
+/// meets it, the stack an application carves its buffers from.
+pub use faer::dyn_stack::{PodBuffer, PodStack, StackReq};

@@ -289,8 +289,8 @@ pub struct Options {
     /// (clipped to `z >= 0` and restored to the border's rows), e.g. the
     /// `z` of a previous, similar solve. Length `n`.
     pub initial_z: Option<Vec<f64>>,
-    /// The conjugate gradient applies its operator's preconditioner where
-    /// it has one ([`Operator::has_preconditioner`](crate::Operator::has_preconditioner);
+    /// The conjugate gradient applies its problem's preconditioner where
+    /// it has one ([`OperatorLcp::with_preconditioner`](crate::OperatorLcp::with_preconditioner);
     /// default true).
     pub preconditioner: bool,
 }

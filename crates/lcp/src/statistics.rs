@@ -158,7 +158,7 @@ pub struct Work {
     pub products: usize,
     /// Applications of the operator's preconditioner (the preconditioned
     /// conjugate gradient's, one an iteration; each cheaper than a
-    /// product: [`Operator::precondition`](crate::Operator::precondition)).
+    /// product: [`Preconditioner::precondition`](crate::Preconditioner::precondition)).
     pub preconditionings: usize,
 }
 

@@ -2,7 +2,7 @@
 
 use elcon_lcp::{
     BorderedLcp, Bound, Lcp, LcpError, LinearSystem, Method, MixedLcp, MixedLcpParts, OperatorLcp,
-    Options, ProgramBuilder, Tableau, Tolerances,
+    Options, PodStack, Preconditioner, ProgramBuilder, StackReq, Tableau, Tolerances,
 };
 use faer::{Col, Mat, col, mat};
 
@@ -40,6 +40,34 @@ fn dimension_mismatch_names_the_field() {
     })
     .unwrap_err();
     assert_eq!(message(e), "`b` has 1 columns, expected 2");
+    // A preconditioner of another size than the operator's.
+    let (m, other) = (Mat::<f64>::identity(2, 2), Mat::<f64>::identity(3, 3));
+    let (m, other) = (m.as_ref(), Diagonal(other.as_ref()));
+    let q = col![1.0, -1.0];
+    let e = OperatorLcp::new(&m, q.as_ref())
+        .unwrap()
+        .with_preconditioner(&other)
+        .unwrap_err();
+    assert_eq!(message(e), "`preconditioner` has 3 rows, expected 2");
+}
+
+/// The inverse of a diagonal matrix's diagonal, as a preconditioner.
+struct Diagonal<'a>(faer::MatRef<'a, f64>);
+
+impl Preconditioner for Diagonal<'_> {
+    fn size(&self) -> usize {
+        self.0.nrows()
+    }
+
+    fn precondition_scratch(&self) -> StackReq {
+        StackReq::EMPTY
+    }
+
+    fn precondition(&self, r: &[f64], z: &mut [f64], _: &mut PodStack) {
+        for (i, (z, r)) in z.iter_mut().zip(r).enumerate() {
+            *z = r / self.0[(i, i)];
+        }
+    }
 }
 
 #[test]

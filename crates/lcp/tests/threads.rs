@@ -34,6 +34,10 @@ fn solve(threads: usize, k: usize, preconditioned: bool) -> LcpSolution {
     pool.install(|| {
         let operator: &dyn Operator = &m;
         let lcp = OperatorLcp::new(operator, q.as_ref()).unwrap();
+        let lcp = match preconditioned {
+            true => lcp.with_preconditioner(&m).unwrap(),
+            false => lcp,
+        };
         let lcp = if k == 0 {
             lcp
         } else {

@@ -102,6 +102,20 @@ impl ContactProblem {
         }
     }
 
+    /// `ContactProblem::builder(..).storage(storage).build()`: the
+    /// storage's shorthands below.
+    fn stored(
+        storage: Storage,
+        points: PointSet,
+        [body1, body2]: [&Body; 2],
+        geometry: &Geometry,
+        loading: Loading,
+    ) -> Result<Self, AnalysisError> {
+        Self::builder(points, body1, body2, geometry, loading)
+            .storage(storage)
+            .build()
+    }
+
     /// The problem with S dense and unfolded:
     /// `ContactProblem::builder(..).storage(Storage::Dense).build()`.
     pub fn new(
@@ -111,9 +125,7 @@ impl ContactProblem {
         geometry: &Geometry,
         loading: Loading,
     ) -> Result<Self, AnalysisError> {
-        Self::builder(points, body1, body2, geometry, loading)
-            .storage(Storage::Dense)
-            .build()
+        Self::stored(Storage::Dense, points, [body1, body2], geometry, loading)
     }
 
     /// The problem folded when it is mirror symmetric, dense otherwise:
@@ -125,9 +137,7 @@ impl ContactProblem {
         geometry: &Geometry,
         loading: Loading,
     ) -> Result<Self, AnalysisError> {
-        Self::builder(points, body1, body2, geometry, loading)
-            .storage(Storage::Folded)
-            .build()
+        Self::stored(Storage::Folded, points, [body1, body2], geometry, loading)
     }
 
     /// The problem with S matrix-free:
@@ -139,9 +149,7 @@ impl ContactProblem {
         geometry: &Geometry,
         loading: Loading,
     ) -> Result<Self, AnalysisError> {
-        Self::builder(points, body1, body2, geometry, loading)
-            .storage(Storage::Lattice)
-            .build()
+        Self::stored(Storage::Lattice, points, [body1, body2], geometry, loading)
     }
 
     /// A problem from an influence matrix (N x N, length per force) and

@@ -16,7 +16,7 @@
 
 use std::time::Instant;
 
-use elcon_influence::{Dimension, PointSet};
+use elcon_influence::PointSet;
 use elcon_lcp::{Method, Options};
 
 use super::builder::ProblemBuilder;
@@ -25,6 +25,7 @@ use super::solution::ContactSolution;
 use crate::AnalysisError;
 use crate::discretization::{Discretization, GridRun, MIN_CELLS_ACROSS, Quantity, estimate};
 use crate::grid::GridFamily;
+use crate::subsurface::contact_spans;
 
 /// The coarser grids solved beyond the fine one (2h and 4h).
 const COARSER_GRIDS: usize = 2;
@@ -78,47 +79,8 @@ impl ProblemBuilder<'_> {
                 reason,
             ));
         }
-        let mut solutions = vec![fine.clone()];
-        let mut note = None;
-        let mut current = *family;
-        for level in 1..=COARSER_GRIDS {
-            match self.coarse(&current, fine, level) {
-                Err(why) => {
-                    note = Some(why);
-                    break;
-                }
-                Ok((coarse, points)) => {
-                    let start = Instant::now();
-                    let solved = self
-                        .on(points)
-                        .build()
-                        .and_then(|p| p.solve(method, options));
-                    let seconds = start.elapsed().as_secs_f64();
-                    let spacing = coarse.spacing();
-                    let points = solved.as_ref().map_or(0, |s| s.forces.len());
-                    let failure = match &solved {
-                        Ok(s) if s.certificate.holds() => None,
-                        Ok(s) => Some(format!("not certified ({})", s.certificate)),
-                        Err(e) => Some(e.to_string()),
-                    };
-                    grids.push(GridRun {
-                        points,
-                        spacing,
-                        seconds,
-                        failure: failure.clone(),
-                    });
-                    if let Some(f) = failure {
-                        note = Some(format!(
-                            "the grid at {} times the spacing failed: {f}",
-                            1 << level
-                        ));
-                        break;
-                    }
-                    solutions.extend(solved.ok());
-                    current = coarse;
-                }
-            }
-        }
+        let (solutions, stop) = self.coarser_solutions(family, fine, method, options, &mut grids);
+        let note = stop.map(|stop| stop.to_string());
         let spacings: Vec<f64> = grids
             .iter()
             .filter(|g| g.failure.is_none())
@@ -145,6 +107,51 @@ impl ProblemBuilder<'_> {
         })
     }
 
+    /// `fine` and its problem solved on the coarser grids of `family`, each
+    /// logged in `grids`, until one is not made, does not resolve the
+    /// contact or fails ([`Stop`], why the sequence ended early).
+    fn coarser_solutions(
+        &self,
+        family: &GridFamily,
+        fine: &ContactSolution,
+        method: Method,
+        options: &Options,
+        grids: &mut Vec<GridRun>,
+    ) -> (Vec<ContactSolution>, Option<Stop>) {
+        let mut solutions = vec![fine.clone()];
+        let mut current = *family;
+        for level in 1..=COARSER_GRIDS {
+            let (coarse, points) = match self.coarse(&current, fine, level) {
+                Ok(grid) => grid,
+                Err(stop) => return (solutions, Some(stop)),
+            };
+            let start = Instant::now();
+            let solved = self
+                .on(points)
+                .build()
+                .and_then(|p| p.solve(method, options));
+            let seconds = start.elapsed().as_secs_f64();
+            let failure = match &solved {
+                Ok(s) if s.certificate.holds() => None,
+                Ok(s) => Some(format!("not certified ({})", s.certificate)),
+                Err(e) => Some(e.to_string()),
+            };
+            grids.push(GridRun {
+                points: solved.as_ref().map_or(0, |s| s.forces.len()),
+                spacing: coarse.spacing(),
+                seconds,
+                failure: failure.clone(),
+            });
+            if let Some(failure) = failure {
+                let times = 1 << level;
+                return (solutions, Some(Stop::Failed { times, failure }));
+            }
+            solutions.extend(solved.ok());
+            current = coarse;
+        }
+        (solutions, None)
+    }
+
     /// The grid coarser than `current` and its points, if it is made and
     /// resolves `fine`'s contact; else why not. `level` 1 is 2h, 2 is 4h.
     fn coarse(
@@ -152,51 +159,71 @@ impl ProblemBuilder<'_> {
         current: &GridFamily,
         fine: &ContactSolution,
         level: usize,
-    ) -> Result<(GridFamily, PointSet), String> {
+    ) -> Result<(GridFamily, PointSet), Stop> {
         let times = 1 << level;
-        let coarse = current.coarser().ok_or_else(|| {
-            format!(
-                "the grid at {times} times the spacing would have fewer than {} points along an \
-                 axis",
-                crate::grid::MIN_COARSE_COUNT
-            )
-        })?;
+        let coarse = current.coarser().ok_or(Stop::TooFewPoints { times })?;
         let points = coarse
             .points()
-            .map_err(|e| format!("the grid at {times} times the spacing: {e}"))?;
-        let cells = cells_across(self.points(), fine, &points);
+            .map_err(|error| Stop::NoPoints { times, error })?;
+        let cells = cells_across(self.points(), &fine.contact, &points);
         if !(cells >= MIN_CELLS_ACROSS) {
-            return Err(format!(
-                "the contact spans {cells:.1} cells of the grid at {times} times the spacing, \
-                 fewer than {MIN_CELLS_ACROSS}: too few points to resolve it"
-            ));
+            return Err(Stop::Unresolved { times, cells });
         }
         Ok((coarse, points))
     }
 }
 
-/// The fewest cells of `coarse` the contact of `fine` (on `points`) spans
-/// along an axis: its extent along x (and y on a surface), point to point
-/// plus a cell of the fine grid, over the coarse cell. 0 without contact.
-fn cells_across(points: &PointSet, fine: &ContactSolution, coarse: &PointSet) -> f64 {
-    if fine.contact.is_empty() {
-        return 0.0;
+/// Why the sequence of coarser grids ended before [`COARSER_GRIDS`]: the
+/// discretization's note, each grid named by its spacing's multiple
+/// `times` of the fine one (2 or 4).
+#[derive(Debug)]
+enum Stop {
+    /// The coarser grid would have fewer than
+    /// [`MIN_COARSE_COUNT`](crate::grid::MIN_COARSE_COUNT) points along an
+    /// axis.
+    TooFewPoints { times: usize },
+    /// Its points could not be laid out.
+    NoPoints { times: usize, error: AnalysisError },
+    /// The contact spans fewer than [`MIN_CELLS_ACROSS`] of its cells.
+    Unresolved { times: usize, cells: f64 },
+    /// Its solve failed or was not certified.
+    Failed { times: usize, failure: String },
+}
+
+impl std::fmt::Display for Stop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Stop::TooFewPoints { times } => write!(
+                f,
+                "the grid at {times} times the spacing would have fewer than {} points along an \
+                 axis",
+                crate::grid::MIN_COARSE_COUNT
+            ),
+            Stop::NoPoints { times, error } => {
+                write!(f, "the grid at {times} times the spacing: {error}")
+            }
+            Stop::Unresolved { times, cells } => write!(
+                f,
+                "the contact spans {cells:.1} cells of the grid at {times} times the spacing, \
+                 fewer than {MIN_CELLS_ACROSS}: too few points to resolve it"
+            ),
+            Stop::Failed { times, failure } => {
+                write!(f, "the grid at {times} times the spacing failed: {failure}")
+            }
+        }
     }
-    let span = |coordinate: &dyn Fn(usize) -> f64, cell: f64| {
-        let (lo, hi) = fine
-            .contact
-            .iter()
-            .map(|&k| coordinate(k))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(v), hi.max(v))
-            });
-        hi - lo + cell
-    };
-    let (fine_cell, coarse_cell) = (points.cell(), coarse.cell());
-    let along_x = span(&|k| points.x(k), fine_cell.dx) / coarse_cell.dx;
-    match points.dimension() {
-        Dimension::Line => along_x,
-        Dimension::Surface => along_x.min(span(&|k| points.y(k), fine_cell.dy) / coarse_cell.dy),
+}
+
+/// The fewest cells of `coarse` the contact `contact` (indices into
+/// `points`, the fine grid's) spans along an axis: its extent along x (and
+/// y on a surface), point to point plus a cell of the fine grid
+/// ([`contact_spans`]), over the coarse cell. 0 without contact.
+fn cells_across(points: &PointSet, contact: &[usize], coarse: &PointSet) -> f64 {
+    let cell = coarse.cell();
+    match contact_spans(points, contact.iter().copied()) {
+        None => 0.0,
+        Some((x, None)) => x / cell.dx,
+        Some((x, Some(y))) => (x / cell.dx).min(y / cell.dy),
     }
 }
 
@@ -235,5 +262,62 @@ fn scale(solutions: &[ContactSolution], quantity: Quantity) -> f64 {
             largest(&|s| s.approach) / largest(&|s| s.contact_extent).max(f64::MIN_POSITIVE)
         }
         q => largest(&|s| value(s, q)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_stop_says_which_grid_and_why() {
+        let stops = [
+            (
+                Stop::TooFewPoints { times: 2 },
+                "the grid at 2 times the spacing would have fewer than",
+            ),
+            (
+                Stop::NoPoints {
+                    times: 4,
+                    error: AnalysisError::Incompatible {
+                        field: "family",
+                        reason: "no points".into(),
+                    },
+                },
+                "the grid at 4 times the spacing: ",
+            ),
+            (
+                Stop::Unresolved {
+                    times: 2,
+                    cells: 3.04,
+                },
+                "the contact spans 3.0 cells of the grid at 2 times the spacing, fewer than",
+            ),
+            (
+                Stop::Failed {
+                    times: 4,
+                    failure: "not certified".into(),
+                },
+                "the grid at 4 times the spacing failed: not certified",
+            ),
+        ];
+        for (stop, begins) in stops {
+            let text = stop.to_string();
+            assert!(text.starts_with(begins), "{text}");
+        }
+    }
+
+    #[test]
+    fn the_cells_across_a_contact_are_the_fewest_along_an_axis() {
+        // Fine cells 1 x 0.5, coarse 2 x 1: a block of 3 x 8 fine cells.
+        let fine = PointSet::grid_rectangle(4.0, 2.0, 8, 8).unwrap();
+        let coarse = PointSet::grid_rectangle(4.0, 2.0, 4, 4).unwrap();
+        assert_eq!(cells_across(&fine, &[], &coarse), 0.0);
+        let block: Vec<usize> = (8..32).collect();
+        assert_eq!(cells_across(&fine, &block, &coarse), 1.5);
+        let line = PointSet::line(-1.0, 1.0, 10).unwrap();
+        let coarse = PointSet::line(-1.0, 1.0, 5).unwrap();
+        let across = cells_across(&line, &[2, 3, 4], &coarse);
+        assert!((across - 1.5).abs() < 1e-15, "{across}");
     }
 }

@@ -11,7 +11,7 @@
 use std::sync::Arc;
 
 use elcon_influence::{Folding, PointSet};
-use elcon_lcp::{LinearSolution, Method, Operator, Options};
+use elcon_lcp::{LinearSolution, Method, Operator, Options, PodBuffer, PodStack};
 use faer::MatRef;
 
 use super::layout::{check, symmetric_rigid, unfolded_rigid};
@@ -118,21 +118,26 @@ impl ContactProblem {
                 found: forces.len(),
             });
         }
+        let products = self.products();
+        let request = products.apply_scratch();
+        let mut scratch = PodBuffer::try_new(request).map_err(|_| {
+            AnalysisError::Influence(elcon_influence::InfluenceError::AllocationFailed {
+                what: "the product's scratch (an FFT workspace)",
+                bytes: request.unaligned_bytes_required(),
+            })
+        })?;
         let mut y = vec![0.0; n];
-        self.products()?.apply(forces, &mut y);
+        products.apply(forces, &mut y, PodStack::new(&mut scratch));
         Ok(y)
     }
 
     /// The products `S F` as an [`elcon_lcp::Operator`] (length per force;
-    /// one entry per unknown), made once for many applications: a
-    /// matrix-free problem's FFT workspace is allocated here, not per
-    /// product as [`ContactProblem::deflection`] does.
-    ///
-    /// # Errors
-    /// [`AnalysisError::Influence`] when a matrix-free problem's workspace
-    /// cannot be allocated.
-    pub fn products(&self) -> Result<Products<'_>, AnalysisError> {
-        Ok(Products::of(&self.influence)?)
+    /// one entry per unknown), for many applications: the caller allocates
+    /// the scratch they declare ([`Operator::apply_scratch`], a matrix-free
+    /// problem's FFT workspace) once and lends it to each, where
+    /// [`ContactProblem::deflection`] allocates it per product.
+    pub fn products(&self) -> Products<'_> {
+        Products::of(&self.influence)
     }
 
     /// The restricted solve `S_JJ X = R` on the contact set J (`contact`,
@@ -147,9 +152,9 @@ impl ContactProblem {
     /// # Errors
     /// [`AnalysisError::Incompatible`] for a folded problem (its unknowns
     /// are orbits, not points), an index out of range or `rhs` of another
-    /// height; [`AnalysisError::Influence`] when a matrix-free problem's
-    /// workspace cannot be allocated; [`AnalysisError::Engine`] when the
-    /// solve breaks down, reaches its iteration limit or is not certified.
+    /// height; [`AnalysisError::Engine`] when the solve breaks down,
+    /// reaches its iteration limit or is not certified, or its memory (a
+    /// matrix-free problem's FFT scratch) cannot be allocated.
     pub fn restricted_solve(
         &self,
         contact: &[usize],

@@ -40,6 +40,75 @@ const REFINE_EVALUATIONS: usize = 300;
 /// stands alone.
 const DIRECT_BUDGET: usize = 400_000;
 
+/// The size of a cell of `points`: its width on a line, its larger side
+/// on a surface.
+fn cell_size(points: &PointSet) -> f64 {
+    let cell = points.cell();
+    match points.dimension() {
+        Dimension::Line => cell.dx,
+        Dimension::Surface => cell.dx.max(cell.dy),
+    }
+}
+
+/// `count` depths evenly spaced down to [`DEPTH_SPAN`] times `extent` (a
+/// contact's half-width, [`StressField::half_width`]; at least a cell,
+/// `cell_size`) below the surface of `points`: the grid the stresses'
+/// maxima are first looked for on,
+///
+/// ```text
+///     z_j = z_0 + (DEPTH_SPAN max(extent, cell) - z_0) j / count,   j = 1..count
+/// ```
+///
+/// with `z_0` a cell for the point-force kernel (`point_force`: its
+/// stresses are singular at the surface), 0 otherwise.
+pub fn depth_grid(points: &PointSet, extent: f64, point_force: bool, count: usize) -> Vec<f64> {
+    let size = cell_size(points);
+    let scale = extent.max(size);
+    let shallowest = if point_force { size } else { 0.0 };
+    (1..=count)
+        .map(|j| shallowest + (DEPTH_SPAN * scale - shallowest) * j as f64 / count as f64)
+        .collect()
+}
+
+/// The extent of the points `contact` (indices into `points`) along x
+/// and, on a surface, along y: point to point plus a cell,
+/// `max x - min x + dx` (and the same in y). `None` for an empty contact.
+pub(crate) fn contact_spans(
+    points: &PointSet,
+    contact: impl Iterator<Item = usize> + Clone,
+) -> Option<(f64, Option<f64>)> {
+    let cell = points.cell();
+    let span = |of: &dyn Fn(usize) -> f64, size: f64| {
+        let (lo, hi) = contact
+            .clone()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), k| {
+                (lo.min(of(k)), hi.max(of(k)))
+            });
+        (lo <= hi).then_some(hi - lo + size)
+    };
+    let along_x = span(&|k| points.x(k), cell.dx)?;
+    Some(match points.dimension() {
+        Dimension::Line => (along_x, None),
+        Dimension::Surface => (along_x, span(&|k| points.y(k), cell.dy)),
+    })
+}
+
+/// The half-width of a contact across its narrower direction: half the
+/// span of the points `contact` (indices into `points`) along x or along
+/// y, the smaller (x on a line), their cells included,
+///
+/// ```text
+///     b = min( (max x - min x + dx) / 2, (max y - min y + dy) / 2 )
+/// ```
+///
+/// `None` for an empty contact: no point, no width.
+pub fn contact_half_width(
+    points: &PointSet,
+    contact: impl Iterator<Item = usize> + Clone,
+) -> Option<f64> {
+    contact_spans(points, contact).map(|(x, y)| 0.5 * y.map_or(x, |y| x.min(y)))
+}
+
 /// A peak below every value.
 const LOWEST: Peak = Peak {
     value: f64::NEG_INFINITY,
@@ -134,6 +203,17 @@ impl<'a> StressField<'a> {
         body: &Body,
     ) -> Result<Self, &'static str> {
         let (kind, nu) = StressKernel::of(body)?;
+        Ok(Self::of_kernel(points, solution, kind, nu))
+    }
+
+    /// The field of the stress kernel `kind` with Poisson's ratio `nu` (a
+    /// body's, [`StressKernel::of`]) under `solution` on `points`.
+    pub fn of_kernel(
+        points: &'a PointSet,
+        solution: &ContactSolution,
+        kind: StressKernel,
+        nu: f64,
+    ) -> Self {
         let loaded = solution
             .pressures
             .iter()
@@ -141,34 +221,44 @@ impl<'a> StressField<'a> {
             .filter(|(_, p)| **p > 0.0)
             .map(|(k, p)| (k, *p))
             .collect();
-        Ok(Self {
+        Self {
             points,
             loaded,
             kind,
             nu,
-        })
+        }
     }
 
-    /// The contact's half-width across its narrower direction: half the
-    /// span of the points in contact along x or along y (the smaller; x on
-    /// a line), their cells included. It scales the depths: a long
-    /// contact's stresses lie within a few of its narrow half-widths.
-    pub fn half_width(&self) -> f64 {
-        let cell = self.points.cell();
-        let span = |of: &dyn Fn(usize) -> f64, size: f64| {
-            let (lo, hi) = self
-                .loaded
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(k, _)| {
-                    (lo.min(of(k)), hi.max(of(k)))
-                });
-            0.5 * (hi - lo + size)
-        };
-        let along_x = span(&|k| self.points.x(k), cell.dx);
-        match self.points.dimension() {
-            Dimension::Line => along_x,
-            Dimension::Surface => along_x.min(span(&|k| self.points.y(k), cell.dy)),
+    /// The contact's half-width across its narrower direction
+    /// ([`contact_half_width`] of the points in contact). It scales the
+    /// depths: a long contact's stresses lie within a few of its narrow
+    /// half-widths. `None` when no point is in contact: there is no field
+    /// to scale ([`Subsurface::of`] says so).
+    pub fn half_width(&self) -> Option<f64> {
+        contact_half_width(self.points, self.loaded.iter().map(|&(k, _)| k))
+    }
+
+    /// The stresses at every point of the set at each of `depths` (one
+    /// layer a depth, in the points' order): by FFT on a lattice
+    /// (`StressLayers`), by direct sums over the points in contact
+    /// elsewhere.
+    ///
+    /// # Errors
+    /// [`InfluenceError::AllocationFailed`] when a layer's buffers cannot
+    /// be allocated.
+    pub fn layers_at(&self, depths: &[f64]) -> Result<Vec<Vec<Stress>>, InfluenceError> {
+        if let Some(layers) = self.layers()? {
+            return depths.iter().map(|&z| layers.layer(z)).collect();
         }
+        let points = self.points;
+        Ok(depths
+            .iter()
+            .map(|&z| {
+                (0..points.len())
+                    .map(|q| self.at(points.x(q), points.y(q), z))
+                    .collect()
+            })
+            .collect())
     }
 
     /// The stress at `(x, y, z)`, z > 0.
@@ -198,21 +288,10 @@ impl<'a> StressField<'a> {
         extent: f64,
         options: &SubsurfaceOptions,
     ) -> Result<BodyStresses, InfluenceError> {
-        let cell = self.points.cell();
-        let size = match self.points.dimension() {
-            Dimension::Line => cell.dx,
-            Dimension::Surface => cell.dx.max(cell.dy),
-        };
-        let scale = extent.max(size);
+        let scale = extent.max(cell_size(self.points));
         let depths = options.depths.clone().unwrap_or_else(|| {
-            let shallowest = if self.kind == StressKernel::PointForce {
-                size
-            } else {
-                0.0
-            };
-            (1..=DEPTHS)
-                .map(|j| shallowest + (DEPTH_SPAN * scale - shallowest) * j as f64 / DEPTHS as f64)
-                .collect()
+            let point_force = self.kind == StressKernel::PointForce;
+            depth_grid(self.points, extent, point_force, DEPTHS)
         });
         let peak = self.peak_pressure_point();
         let (peaks, section, profile) = match self.layers()? {
@@ -523,17 +602,18 @@ impl Subsurface {
         body: &Body,
         options: &SubsurfaceOptions,
     ) -> Self {
-        match StressField::new(points, solution, body) {
-            Ok(field) if !field.loaded.is_empty() => {
-                match field.stresses(field.half_width(), options) {
-                    Ok(stresses) => Subsurface::Stresses(Box::new(stresses)),
-                    Err(_) => Subsurface::NotApplicable(
-                        "the stress layers' buffers could not be allocated: not enough memory",
-                    ),
-                }
-            }
-            Ok(_) => Subsurface::NotApplicable("no point is in contact"),
-            Err(why) => Subsurface::NotApplicable(why),
+        let field = match StressField::new(points, solution, body) {
+            Ok(field) => field,
+            Err(why) => return Subsurface::NotApplicable(why),
+        };
+        let Some(half_width) = field.half_width() else {
+            return Subsurface::NotApplicable("no point is in contact");
+        };
+        match field.stresses(half_width, options) {
+            Ok(stresses) => Subsurface::Stresses(Box::new(stresses)),
+            Err(_) => Subsurface::NotApplicable(
+                "the stress layers' buffers could not be allocated: not enough memory",
+            ),
         }
     }
 }

@@ -26,6 +26,8 @@
 mod field;
 pub mod reference;
 
+pub(crate) use field::contact_spans;
 pub use field::{
     BodyStresses, DEPTH_SPAN, Peak, Section, StressField, Subsurface, SubsurfaceOptions,
+    contact_half_width, depth_grid,
 };

@@ -11,6 +11,7 @@
 
 use std::ops::Range;
 
+use faer::dyn_stack::{PodStack, StackReq};
 use rayon::prelude::*;
 use realfft::RealFftPlanner;
 
@@ -136,11 +137,11 @@ impl LatticeWorkspace {
         };
         let g = c.grid;
         let zero = C64::new(0.0, 0.0);
-        let wave = wave_len(&g);
+        let (spectra, columns) = Buffers::lens(&g);
         Ok(Self {
             grid: Some(g),
-            spectra: try_vec(g.rows * g.spectra_width(), zero, "lattice row spectra")?,
-            columns: try_vec(wave * g.padded_rows, zero, "lattice column wave")?,
+            spectra: try_vec(spectra, zero, "lattice row spectra")?,
+            columns: try_vec(columns, zero, "lattice column wave")?,
         })
     }
 
@@ -149,15 +150,61 @@ impl LatticeWorkspace {
         self.grid
     }
 
-    /// The row spectra (`n1` rows of [`Grid::spectra_width`] values) and
-    /// the wave of columns, for the preconditioner's application.
-    pub(super) fn buffers(&mut self) -> (&mut [C64], &mut [C64]) {
-        (&mut self.spectra, &mut self.columns)
+    /// Its buffers, for a product or the preconditioner's application.
+    pub(super) fn buffers(&mut self) -> Buffers<'_> {
+        Buffers {
+            spectra: &mut self.spectra,
+            columns: &mut self.columns,
+        }
     }
 
     /// Bytes held by the workspace.
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Self>() + 16 * (self.spectra.capacity() + self.columns.capacity())
+    }
+}
+
+/// The buffers a product works in, borrowed from a [`LatticeWorkspace`]
+/// or from a caller's scratch stack ([`Buffers::in_stack`]): the row
+/// spectra (`n1` rows of [`Grid::spectra_width`] values) and the wave of
+/// columns. Their contents on entry mean nothing.
+pub(super) struct Buffers<'a> {
+    pub(super) spectra: &'a mut [C64],
+    pub(super) columns: &'a mut [C64],
+}
+
+impl Buffers<'_> {
+    /// The lengths of the row spectra and of the wave of columns on
+    /// `grid`, the wave for the current rayon pool's threads.
+    pub(super) fn lens(grid: &Grid) -> (usize, usize) {
+        (
+            grid.rows * grid.spectra_width(),
+            wave_len(grid) * grid.padded_rows,
+        )
+    }
+
+    /// The scratch stack request of the buffers on `grid` (faer's idiom:
+    /// a caller's `PodBuffer` of at least this many bytes).
+    pub(super) fn scratch(grid: &Grid) -> StackReq {
+        let (spectra, columns) = Self::lens(grid);
+        StackReq::new::<C64>(spectra).and(StackReq::new::<C64>(columns))
+    }
+
+    /// Calls `body` with the buffers of `grid` made in `stack`, as they
+    /// are (a `PodStack` holds initialized bytes: nothing is cleared, and
+    /// a product overwrites what it reads).
+    ///
+    /// # Panics
+    /// If `stack` holds less than [`Buffers::scratch`].
+    pub(super) fn in_stack<R>(
+        grid: &Grid,
+        stack: &mut PodStack,
+        body: impl FnOnce(Buffers<'_>) -> R,
+    ) -> R {
+        let (spectra, columns) = Self::lens(grid);
+        let (spectra, stack) = stack.make_raw::<C64>(spectra);
+        let (columns, _) = stack.make_raw::<C64>(columns);
+        body(Buffers { spectra, columns })
     }
 }
 
@@ -193,21 +240,21 @@ impl Convolution {
     /// add up to the whole. Each row's and each column's transform is
     /// done by one thread, with nothing summed across them: the values do
     /// not depend on the threads.
-    pub(super) fn apply(&self, x: &[f64], y: &mut [f64], ws: &mut LatticeWorkspace) {
+    pub(super) fn apply(&self, x: &[f64], y: &mut [f64], mut ws: Buffers<'_>) {
         let g = self.grid;
         let (half, width) = (g.half_columns(), g.band_width());
         for first in (0..half).step_by(width) {
             let band = first..(first + width).min(half);
-            self.rows_forward(x, band.clone(), ws);
-            self.columns_times_kernel(band.clone(), ws);
-            self.rows_inverse(y, band, ws);
+            self.rows_forward(x, band.clone(), &mut ws);
+            self.columns_times_kernel(band.clone(), &mut ws);
+            self.rows_inverse(y, band, &ws);
         }
     }
 
     /// The forces of each lattice row, zero-padded to P2, to their half
     /// spectrum, of which the frequencies `band` are kept (the rows shared
     /// among the threads).
-    fn rows_forward(&self, x: &[f64], band: Range<usize>, ws: &mut LatticeWorkspace) {
+    fn rows_forward(&self, x: &[f64], band: Range<usize>, ws: &mut Buffers<'_>) {
         let rows = self.grid.rows * band.len();
         let spectra: Vec<&mut [C64]> = ws.spectra[..rows].chunks_mut(band.len()).collect();
         share(
@@ -230,7 +277,7 @@ impl Convolution {
     /// first band and added for the others. The rows are shared among the
     /// threads when the points are in lattice-row order (each row writes
     /// its own slice of `y`), else done on the caller's thread.
-    fn rows_inverse(&self, y: &mut [f64], band: Range<usize>, ws: &mut LatticeWorkspace) {
+    fn rows_inverse(&self, y: &mut [f64], band: Range<usize>, ws: &Buffers<'_>) {
         let stride = band.len();
         let spectra = &ws.spectra[..self.grid.rows * stride];
         let first = band.start == 0;
@@ -311,7 +358,7 @@ impl Convolution {
     /// threads: zero-pad each column from n1 to P1, transform, multiply by
     /// the kernel's spectrum, transform back; then the first n1 values of
     /// each back into the band (the rows shared among the threads).
-    fn columns_times_kernel(&self, band: Range<usize>, ws: &mut LatticeWorkspace) {
+    fn columns_times_kernel(&self, band: Range<usize>, ws: &mut Buffers<'_>) {
         let (n1, p1) = (self.grid.rows, self.grid.padded_rows);
         let stride = band.len();
         let rows = n1 * stride;

@@ -104,8 +104,8 @@ impl Grid {
     /// row spectra and the wave of columns
     /// ([`wave_len`] of them).
     fn workspace_bytes(&self) -> usize {
-        let wave = wave_len(self);
-        16 * (self.rows * self.spectra_width() + wave * self.padded_rows)
+        let (spectra, columns) = super::convolution::Buffers::lens(self);
+        16 * (spectra + columns)
     }
 
     /// Bytes held by an operator on this grid whose gather order takes

@@ -4,7 +4,9 @@
 //! workspace of its own ([`LatticeOperator`]) or a caller's
 //! ([`LatticeKernel`]), and its memory, counted before it is built.
 
-use super::convolution::{Convolution, LatticeWorkspace};
+use faer::dyn_stack::{PodStack, StackReq};
+
+use super::convolution::{Buffers, Convolution, LatticeWorkspace};
 use super::gather::{GatherOrder, segments};
 use super::grid::Grid;
 use super::preconditioner::LatticePreconditioner;
@@ -295,23 +297,62 @@ impl LatticeKernel {
         preconditioner: &LatticePreconditioner,
         workspace: &mut LatticeWorkspace,
     ) {
-        assert!(
-            r.len() == self.len && z.len() == self.len,
-            "r and z have {} and {} entries for {} points",
-            r.len(),
-            z.len(),
-            self.len
-        );
-        let c = self
-            .convolution
-            .as_ref()
-            .expect("a preconditioner is made for a kernel with a convolution");
+        let c = self.preconditioned(r, z);
         assert_eq!(
             workspace.grid(),
             Some(c.grid),
             "the workspace was made for an operator of another grid"
         );
-        preconditioner.apply(c, r, z, workspace);
+        preconditioner.apply(c, r, z, workspace.buffers());
+    }
+
+    /// The scratch of one product ([`apply_in`](Self::apply_in)) or one
+    /// application of the preconditioner
+    /// ([`precondition_in`](Self::precondition_in)) in a caller's stack
+    /// (`faer::dyn_stack`'s `PodStack`, made from a `PodBuffer` of this
+    /// request once for many products): the buffers of a
+    /// [`workspace`](Self::workspace), for the current rayon pool's
+    /// threads; empty without a convolution.
+    pub fn apply_scratch(&self) -> StackReq {
+        self.convolution
+            .as_ref()
+            .map_or(StackReq::EMPTY, |c| Buffers::scratch(&c.grid))
+    }
+
+    /// `y = S x` as [`apply_with`](Self::apply_with), its buffers made in
+    /// `stack` (at least [`apply_scratch`](Self::apply_scratch) of this
+    /// kernel; their contents between calls mean nothing, as a
+    /// [`LatticeWorkspace`]'s).
+    ///
+    /// # Panics
+    /// If `x` or `y` does not have [`len`](Self::len) entries, or `stack`
+    /// is smaller than [`apply_scratch`](Self::apply_scratch).
+    pub fn apply_in(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
+        self.check_lens(x, y);
+        match &self.convolution {
+            Some(c) => Buffers::in_stack(&c.grid, stack, |buffers| c.apply(x, y, buffers)),
+            None => y.fill(0.0),
+        }
+        self.add_winkler(x, y);
+    }
+
+    /// `z ≈ S^{-1} r` as [`precondition_with`](Self::precondition_with),
+    /// its buffers made in `stack` (see [`apply_in`](Self::apply_in)).
+    ///
+    /// # Panics
+    /// As [`precondition_with`](Self::precondition_with), or if `stack`
+    /// is smaller than [`apply_scratch`](Self::apply_scratch).
+    pub fn precondition_in(
+        &self,
+        r: &[f64],
+        z: &mut [f64],
+        preconditioner: &LatticePreconditioner,
+        stack: &mut PodStack,
+    ) {
+        let c = self.preconditioned(r, z);
+        Buffers::in_stack(&c.grid, stack, |buffers| {
+            preconditioner.apply(c, r, z, buffers);
+        });
     }
 
     /// `y = S x` as [`LatticeOperator::apply`], with a caller's workspace:
@@ -322,6 +363,36 @@ impl LatticeKernel {
     /// If `x` or `y` does not have [`len`](Self::len) entries, or the
     /// workspace was made for an operator of another grid.
     pub fn apply_with(&self, x: &[f64], y: &mut [f64], workspace: &mut LatticeWorkspace) {
+        self.check_lens(x, y);
+        assert_eq!(
+            workspace.grid(),
+            self.convolution.as_ref().map(|c| c.grid),
+            "the workspace was made for an operator of another grid"
+        );
+        match &self.convolution {
+            Some(c) => c.apply(x, y, workspace.buffers()),
+            None => y.fill(0.0),
+        }
+        self.add_winkler(x, y);
+    }
+
+    /// The convolution a preconditioner applies on; panics unless `r` and
+    /// `z` have [`len`](Self::len) entries and there is one.
+    fn preconditioned(&self, r: &[f64], z: &[f64]) -> &Convolution {
+        assert!(
+            r.len() == self.len && z.len() == self.len,
+            "r and z have {} and {} entries for {} points",
+            r.len(),
+            z.len(),
+            self.len
+        );
+        self.convolution
+            .as_ref()
+            .expect("a preconditioner is made for a kernel with a convolution")
+    }
+
+    /// Panics unless `x` and `y` have [`len`](Self::len) entries.
+    fn check_lens(&self, x: &[f64], y: &[f64]) {
         assert_eq!(
             x.len(),
             self.len,
@@ -336,15 +407,11 @@ impl LatticeKernel {
             y.len(),
             self.len
         );
-        assert_eq!(
-            workspace.grid(),
-            self.convolution.as_ref().map(|c| c.grid),
-            "the workspace was made for an operator of another grid"
-        );
-        match &self.convolution {
-            Some(c) => c.apply(x, y, workspace),
-            None => y.fill(0.0),
-        }
+    }
+
+    /// `y += x / (k A)`, the Winkler diagonal (nothing without a
+    /// foundation).
+    fn add_winkler(&self, x: &[f64], y: &mut [f64]) {
         if self.winkler != 0.0 {
             for (y, x) in y.iter_mut().zip(x) {
                 *y += self.winkler * x;

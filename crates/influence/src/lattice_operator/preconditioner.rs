@@ -25,7 +25,8 @@
 //! the product's transforms on the `P1 x P2` grid (half the rows, half the
 //! columns, no second band). Memory: the symbol, `8 (Q1/2 + 1)(Q2/2 + 1)`
 //! bytes (about 2 bytes a cell of the box), and the plans; an application
-//! borrows a product's [`LatticeWorkspace`]: the box's row spectra,
+//! borrows a product's buffers (a [`LatticeWorkspace`](super::LatticeWorkspace)
+//! or a caller's scratch stack): the box's row spectra,
 //! `n1 x (Q2/2 + 1)` complex values, are exactly a band of the product's,
 //! and the column stage works in place on them a wave of columns at a time
 //! (gathered into the workspace's wave, transformed, written back), as the
@@ -35,7 +36,7 @@
 
 use realfft::RealFftPlanner;
 
-use super::convolution::{Convolution, LatticeWorkspace, columns_back, share};
+use super::convolution::{Buffers, Convolution, columns_back, share};
 use super::grid::{C64, COLUMN_BATCH, Plans, RowBuffers, try_vec};
 use crate::error::InfluenceError;
 
@@ -156,9 +157,12 @@ impl LatticePreconditioner {
         convolution: &Convolution,
         r: &[f64],
         z: &mut [f64],
-        ws: &mut LatticeWorkspace,
+        ws: Buffers<'_>,
     ) {
-        let (spectra, wave) = ws.buffers();
+        let Buffers {
+            spectra,
+            columns: wave,
+        } = ws;
         let spectra = &mut spectra[..self.rows * (self.q2 / 2 + 1)];
         self.rows_forward(convolution, r, spectra);
         self.columns_times_symbol(spectra, wave);

@@ -207,6 +207,42 @@ fn a_shared_workspace_gives_the_same_product() {
 }
 
 #[test]
+fn a_scratch_stack_gives_the_workspaces_bits() {
+    use faer::dyn_stack::{PodBuffer, PodStack};
+    let points = PointSet::grid_disk(0.1, 0.55).unwrap();
+    let bodies = [&Body::uniform_patch(steel()), &Body::winkler(3e10)];
+    let kernel = LatticeKernel::new(&points, &bodies).unwrap();
+    let x = random_vector(points.len(), 3, -1.0);
+    let mut ws = kernel.workspace().unwrap();
+    // The stack's bytes are the workspace's, aligned.
+    let request = kernel.apply_scratch();
+    assert!(request.size_bytes() >= ws.memory_bytes() - std::mem::size_of_val(&ws));
+    let mut buffer = PodBuffer::new(request);
+    let (mut a, mut b) = (vec![0.0; x.len()], vec![0.0; x.len()]);
+    kernel.apply_with(&x, &mut a, &mut ws);
+    // Twice in the same memory: what a product leaves there means nothing.
+    for _ in 0..2 {
+        kernel.apply_in(&x, &mut b, PodStack::new(&mut buffer));
+        assert_eq!(a, b);
+    }
+    let pc = kernel.preconditioner().unwrap().unwrap();
+    kernel.precondition_with(&x, &mut a, &pc, &mut ws);
+    kernel.precondition_in(&x, &mut b, &pc, PodStack::new(&mut buffer));
+    assert_eq!(a, b);
+    // Foundations alone: no convolution, no scratch.
+    let winkler = LatticeKernel::new(&points, &[&Body::winkler(3e10), &Body::rigid()]).unwrap();
+    assert_eq!(winkler.apply_scratch().size_bytes(), 0);
+    winkler.apply_in(
+        &x,
+        &mut b,
+        PodStack::new(&mut PodBuffer::new(winkler.apply_scratch())),
+    );
+    let mut ws = winkler.workspace().unwrap();
+    winkler.apply_with(&x, &mut a, &mut ws);
+    assert_eq!(a, b);
+}
+
+#[test]
 fn memory_is_linear_in_the_points_and_estimated_before() {
     // Held bytes, made on one thread: 16 per cell of the padded box's
     // quarter (the spectrum 8, one band of the row spectra 8), 12 per

@@ -3,7 +3,7 @@
 
 #![allow(dead_code)]
 
-use elcon_lcp::Operator;
+use elcon_lcp::{Operator, PodStack, Preconditioner, StackReq};
 use faer::Col;
 
 /// The largest difference of `a` and `b`, relative to their largest entry.
@@ -18,9 +18,10 @@ pub fn rel_diff(a: &Col<f64>, b: &Col<f64>) -> f64 {
 
 /// `M` tridiagonal, `[c, d, c]` with `c, d > 0` (non-negative entries, as
 /// an influence operator's; symmetric positive definite for `d > 2 c`),
-/// applied by its products. With `preconditioned`, the first two terms
-/// of its inverse's Neumann series, `P = (I - (c/d) T) / d` (`T` the
-/// neighbours' sum; positive definite for `2 c < d`); with
+/// applied by its products. Its [`Preconditioner`] is the first two
+/// terms of its inverse's Neumann series, `P = (I - (c/d) T) / d` (`T` the
+/// neighbours' sum; positive definite for `2 c < d`), which the tests give
+/// their problem where `preconditioned` is set; with
 /// `says_nonnegative`, it tells the certificate that its entries are
 /// non-negative (`Operator::entries_nonnegative`).
 pub struct Tridiagonal {
@@ -56,25 +57,35 @@ impl Operator for Tridiagonal {
         self.n
     }
 
-    fn apply(&self, x: &[f64], y: &mut [f64]) {
+    fn apply_scratch(&self) -> StackReq {
+        StackReq::EMPTY
+    }
+
+    fn apply(&self, x: &[f64], y: &mut [f64], _: &mut PodStack) {
         for i in 0..self.n {
             y[i] = self.d * x[i] + self.c * self.neighbours(x, i);
         }
     }
 
-    fn apply_abs(&self, x: &[f64], y: &mut [f64]) {
-        self.apply(x, y);
+    fn apply_abs(&self, x: &[f64], y: &mut [f64], stack: &mut PodStack) {
+        self.apply(x, y, stack);
     }
 
     fn entries_nonnegative(&self) -> bool {
         self.says_nonnegative
     }
+}
 
-    fn has_preconditioner(&self) -> bool {
-        self.preconditioned
+impl Preconditioner for Tridiagonal {
+    fn size(&self) -> usize {
+        self.n
     }
 
-    fn precondition(&self, r: &[f64], z: &mut [f64]) {
+    fn precondition_scratch(&self) -> StackReq {
+        StackReq::EMPTY
+    }
+
+    fn precondition(&self, r: &[f64], z: &mut [f64], _: &mut PodStack) {
         for i in 0..self.n {
             z[i] = (r[i] - self.c / self.d * self.neighbours(r, i)) / self.d;
         }

@@ -501,45 +501,62 @@ struct UpdateParts {
     bu: Vec<Compensated>,
 }
 
-/// The step `z_J = c z_J - τ t_J` from `z` and `u` at their pending scale
-/// `c` (stored at scale 1 after it), clipped at 0; a point off `J` with
-/// `w_i < 0` (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ =
-/// 0`) where `enter` is set, else stays at 0; the product by its
-/// recurrence, `u = c u - τ r`. A chunk where a point left or entered
-/// skips the sums (the step's are then not read), and the chunks after it
-/// skip `u`'s recurrence too: where the contact set changed, `u` is
-/// recomputed from a true product before it is read again.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn update_pass(
-    data: &Data<'_>,
-    (z, u, scale): (&mut [f64], &mut [f64], f64),
-    t: &[f64],
-    r: &[f64],
-    lambda: &[f64],
+impl UpdateParts {
+    /// The chunks' parts merged into the step's [`Update`] (the sums in
+    /// the chunks' order), over `k` rows.
+    fn merge(parts: &[UpdateParts], k: usize) -> Update {
+        let clipped: usize = parts.iter().map(|p| p.clipped).sum();
+        let entered: usize = parts.iter().map(|p| p.entered).sum();
+        let mut rows = vec![Compensated::default(); k];
+        for p in parts {
+            for j in 0..k {
+                rows[j].merge(&p.rows[j]);
+            }
+        }
+        let sums = (clipped + entered == 0).then(|| {
+            let mut bu = vec![Compensated::default(); k];
+            for p in parts {
+                for j in 0..k {
+                    bu[j].merge(&p.bu[j]);
+                }
+            }
+            UpdateSums {
+                rows_terms: (0..k)
+                    .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
+                    .collect(),
+                bu: bu.iter().map(Compensated::value).collect(),
+            }
+        });
+        Update {
+            entered,
+            rows: rows.iter().map(Compensated::value).collect(),
+            sums,
+        }
+    }
+}
+
+/// What every chunk of a step reads: the data, the border's shift `B λ`,
+/// the direction `t` and its product `r`, the pending scale, the step
+/// length and whether points may enter; and whether a chunk taken before
+/// has changed the contact set.
+struct Stepping<'a, 'c> {
+    data: &'a Data<'a>,
+    shift: &'a Shift<'c, 'a>,
+    t: &'a [f64],
+    r: &'a [f64],
+    scale: f64,
     tau: f64,
     enter: bool,
-) -> Update {
-    let (columns, q) = (data.columns(), &*data.q);
-    let k = columns.len();
-    let parts: Vec<_> = z
-        .chunks_mut(CHUNK)
-        .zip(u.chunks_mut(CHUNK))
-        .enumerate()
-        .collect();
-    let shift = Shift::new(columns, lambda, q.len(), false);
-    // Once a chunk has clipped or let in points the contact set has
-    // changed, and `u` will be recomputed from a true product: the chunks
-    // taken after it leave `u` and its sums alone. Which chunks those are
-    // depends on the threads' timing; the iterate does not.
-    let changed = AtomicBool::new(false);
-    let parts = map_parts(parts, |(c, (z, u))| {
-        let base = c * CHUNK;
+    changed: &'a AtomicBool,
+}
+
+impl Stepping<'_, '_> {
+    /// The step on the chunk `z`, `u` that starts at entry `base`, and its
+    /// sums (see [`update_pass`]).
+    fn chunk(&self, base: usize, z: &mut [f64], u: &mut [f64]) -> UpdateParts {
+        let columns = self.data.columns();
+        let k = columns.len();
         let len = z.len();
-        let (t, r, q) = (
-            &t[base..base + len],
-            &r[base..base + len],
-            &q[base..base + len],
-        );
         let mut p = UpdateParts {
             clipped: 0,
             entered: 0,
@@ -547,22 +564,22 @@ pub(super) fn update_pass(
             rows_terms: vec![Lanes::default(); k],
             bu: vec![Compensated::default(); k],
         };
-        let (s, _) = shift.chunk(base, len);
+        let (s, _) = self.shift.chunk(base, len);
         let step = Step {
-            c: scale,
-            t,
-            r,
-            q,
+            c: self.scale,
+            t: &self.t[base..base + len],
+            r: &self.r[base..base + len],
+            q: &self.data.q[base..base + len],
             s: &s,
-            tau,
-            enter,
+            tau: self.tau,
+            enter: self.enter,
         };
         // One column's sums in the step's own loop; several, a loop each.
         let row = (k == 1).then(|| columns[0].part(base, len));
-        let recur = !changed.load(Ordering::Relaxed);
+        let recur = !self.changed.load(Ordering::Relaxed);
         let stepped = update_chunk(step, (z, u), row, recur);
         if stepped.clipped + stepped.entered > 0 {
-            changed.store(true, Ordering::Relaxed);
+            self.changed.store(true, Ordering::Relaxed);
         }
         (p.clipped, p.entered) = (stepped.clipped, stepped.entered);
         if k == 1 {
@@ -583,34 +600,51 @@ pub(super) fn update_pass(
             p.bu[j] = Terms::Masked(z, b, u).compensated();
         }
         p
-    });
-    let clipped: usize = parts.iter().map(|p| p.clipped).sum();
-    let entered: usize = parts.iter().map(|p| p.entered).sum();
-    let mut rows = vec![Compensated::default(); k];
-    for p in &parts {
-        for j in 0..k {
-            rows[j].merge(&p.rows[j]);
-        }
     }
-    let sums = (clipped + entered == 0).then(|| {
-        let mut bu = vec![Compensated::default(); k];
-        for p in &parts {
-            for j in 0..k {
-                bu[j].merge(&p.bu[j]);
-            }
-        }
-        UpdateSums {
-            rows_terms: (0..k)
-                .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
-                .collect(),
-            bu: bu.iter().map(Compensated::value).collect(),
-        }
-    });
-    Update {
-        entered,
-        rows: rows.iter().map(Compensated::value).collect(),
-        sums,
-    }
+}
+
+/// The step `z_J = c z_J - τ t_J` from `z` and `u` at their pending scale
+/// `c` (stored at scale 1 after it), clipped at 0; a point off `J` with
+/// `w_i < 0` (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ =
+/// 0`) where `enter` is set, else stays at 0; the product by its
+/// recurrence, `u = c u - τ r`. A chunk where a point left or entered
+/// skips the sums (the step's are then not read), and the chunks after it
+/// skip `u`'s recurrence too: where the contact set changed, `u` is
+/// recomputed from a true product before it is read again.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn update_pass(
+    data: &Data<'_>,
+    (z, u, scale): (&mut [f64], &mut [f64], f64),
+    t: &[f64],
+    r: &[f64],
+    lambda: &[f64],
+    tau: f64,
+    enter: bool,
+) -> Update {
+    let k = data.columns().len();
+    let parts: Vec<_> = z
+        .chunks_mut(CHUNK)
+        .zip(u.chunks_mut(CHUNK))
+        .enumerate()
+        .collect();
+    let shift = Shift::new(data.columns(), lambda, data.q.len(), false);
+    // Once a chunk has clipped or let in points the contact set has
+    // changed, and `u` will be recomputed from a true product: the chunks
+    // taken after it leave `u` and its sums alone. Which chunks those are
+    // depends on the threads' timing; the iterate does not.
+    let changed = AtomicBool::new(false);
+    let stepping = Stepping {
+        data,
+        shift: &shift,
+        t,
+        r,
+        scale,
+        tau,
+        enter,
+        changed: &changed,
+    };
+    let parts = map_parts(parts, |(c, (z, u))| stepping.chunk(c * CHUNK, z, u));
+    UpdateParts::merge(&parts, k)
 }
 
 /// `r = w` on `J`, 0 off it: the residual the preconditioner is applied to
@@ -746,145 +780,4 @@ pub(super) fn boundary_step(z: &mut [f64], before: &[f64], t: &[f64], boundary: 
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_step_cut_at_the_boundary_lets_the_first_point_leave() {
-        let z = [0.3, 0.2, 0.0, 0.4];
-        let t = [0.1, 0.4, 0.0, -0.2];
-        // z_1 / t_1 = 0.5 is the first ratio; z_3 grows, z_2 is off J.
-        let boundary = boundary_pass(&z, &t);
-        assert_eq!(boundary, 0.2 / 0.4);
-        let mut cut = [9.0; 4];
-        boundary_step(&mut cut, &z, &t, boundary);
-        assert_eq!(cut, [0.3 - 0.5 * 0.1, 0.0, 0.0, 0.4 + 0.5 * 0.2]);
-        // Nothing decreases: no boundary.
-        assert_eq!(boundary_pass(&z, &[0.0, -1.0, 1.0, 0.0]), f64::INFINITY);
-    }
-
-    /// The vectors of an iteration, from a fixed sequence.
-    struct Sample {
-        q: faer::Col<f64>,
-        z: Vec<f64>,
-        u: Vec<f64>,
-        t: Vec<f64>,
-        r: Vec<f64>,
-    }
-
-    /// `n` entries (three chunks and a tail for the tests): `z` about half
-    /// in contact.
-    fn sample(n: usize) -> Sample {
-        let h = |i: usize| (i as f64 * 0.618_033_988_749_895).fract() - 0.4;
-        Sample {
-            q: faer::Col::from_fn(n, |i| h(i + 7)),
-            z: (0..n).map(|i| h(i).max(0.0)).collect(),
-            u: (0..n).map(|i| h(i + 3)).collect(),
-            t: (0..n).map(|i| h(i + 5) * 1e-3).collect(),
-            r: (0..n).map(|i| h(i + 11) * 1e-3).collect(),
-        }
-    }
-
-    fn bits(v: &[f64]) -> Vec<u64> {
-        v.iter().map(|x| x.to_bits()).collect()
-    }
-
-    fn measures_bits(m: &Measures) -> Vec<u64> {
-        let mut v = vec![m.min_w, m.complementarity, m.w_scale, m.z_scale, m.g];
-        v.extend(&m.rows);
-        v.extend(&m.rows_terms);
-        bits(&v)
-    }
-
-    #[test]
-    fn the_measure_pass_writes_the_residual_pass_bits() {
-        let n = 3 * CHUNK + 13;
-        let Sample { q, z, u, .. } = sample(n);
-        let b = faer::Mat::from_fn(n, 2, |i, j| 1.0 + (i * (j + 1)) as f64 * 1e-4);
-        let data = Data::new(q.as_ref(), b.as_ref());
-        let lambda = [0.01, -0.02];
-        let separate = measure_pass(&data, (&z, &u), None, 1.5, &lambda);
-        let mut r1 = vec![0.0; n];
-        residual_pass(&data, (&z, &u, 1.5), &mut r1, &lambda);
-        let mut r2 = vec![9.0; n];
-        let fused = measure_pass(&data, (&z, &u), Some(&mut r2), 1.5, &lambda);
-        assert_eq!(measures_bits(&separate), measures_bits(&fused));
-        assert_eq!(bits(&r1), bits(&r2));
-        assert!(r2.iter().zip(&z).all(|(r, z)| *z > 0.0 || *r == 0.0));
-        // A pending scale, applied in registers, measures what the scaled
-        // vectors measure.
-        let scaled = |v: &[f64]| v.iter().map(|x| 1.5 * x).collect::<Vec<f64>>();
-        let stored = measure_pass(&data, (&scaled(&z), &scaled(&u)), None, 1.0, &lambda);
-        assert_eq!(measures_bits(&separate), measures_bits(&stored));
-    }
-
-    #[test]
-    fn a_constant_column_is_read_from_a_chunk_with_the_same_bits() {
-        let n = 3 * CHUNK + 13;
-        let Sample { q, z, u, t, r } = sample(n);
-        let ones = faer::Mat::from_fn(n, 1, |_, _| 1.0);
-        let constant = Data::new(q.as_ref(), ones.as_ref());
-        assert!(matches!(constant.border[0], Column::Constant(ref c) if c.len() == CHUNK));
-        let entries = Data {
-            q: constant.q.clone(),
-            border: vec![Column::Entries(Cow::Owned(vec![1.0; n]))],
-        };
-        let lambda = [0.03];
-        let fits = [&constant, &entries].map(|d| fit_pass(d, &z, &u));
-        assert_eq!(bits(&fits[0].bu), bits(&fits[1].bu));
-        assert_eq!(bits(&fits[0].bq), bits(&fits[1].bq));
-        assert_eq!(
-            fits[0].gram[(0, 0)].to_bits(),
-            fits[1].gram[(0, 0)].to_bits()
-        );
-        let measures = [&constant, &entries].map(|d| {
-            let mut r = vec![0.0; n];
-            let m = measure_pass(d, (&z, &u), Some(&mut r), 0.75, &lambda);
-            (measures_bits(&m), bits(&r))
-        });
-        assert_eq!(measures[0], measures[1]);
-        let projections = [&constant, &entries].map(|d| {
-            let p = projection_pass(d, &z, &r, &t);
-            bits(&[p.bp, p.br, vec![p.rp]].concat())
-        });
-        assert_eq!(projections[0], projections[1]);
-        let directions = [&constant, &entries].map(|d| {
-            let mut tt = t.clone();
-            let num = preconditioned_direction_pass(d, &z, &r, &u, &mut tt, &lambda, 0.5);
-            (num.to_bits(), bits(&tt))
-        });
-        assert_eq!(directions[0], directions[1]);
-    }
-
-    #[test]
-    fn a_step_that_keeps_the_contact_set_updates_the_fit_as_a_fresh_fit_pass() {
-        let n = 3 * CHUNK + 13;
-        // One column (its sums in the step's and the measures' own loops)
-        // and two (a loop each).
-        for k in [1, 2] {
-            let Sample { q, z, u, r, .. } = sample(n);
-            let b = faer::Mat::from_fn(n, k, |i, j| 1.0 + (i * (j + 1)) as f64 * 1e-4);
-            let data = Data::new(q.as_ref(), b.as_ref());
-            let before = fit_pass(&data, &z, &u);
-            // A direction that moves every point in contact by 1 % and
-            // enters none: the points off J have w >= 0 with λ_0 = -1e3.
-            let t: Vec<f64> = z.iter().map(|&v| 0.01 * v).collect();
-            let lambda = &[-1e3, 0.0][..k];
-            let (mut z1, mut u1) = (z.clone(), u.clone());
-            let update = update_pass(&data, (&mut z1, &mut u1, 1.0), &t, &r, lambda, 0.5, true);
-            let rows = update.rows;
-            let sums = update.sums.expect("no point left or entered");
-            let after = fit_pass(&data, &z1, &u1);
-            assert_eq!(bits(&sums.bu), bits(&after.bu));
-            assert_eq!(bits(&before.bq), bits(&after.bq));
-            let measured = measure_pass(&data, (&z1, &u1), None, 1.0, lambda);
-            assert_eq!(bits(&rows), bits(&measured.rows));
-            assert_eq!(bits(&sums.rows_terms), bits(&measured.rows_terms));
-            // A full step clips the points in contact: no sums.
-            let t: Vec<f64> = z.iter().map(|&v| 2.0 * v).collect();
-            let (mut z2, mut u2) = (z, u);
-            let update = update_pass(&data, (&mut z2, &mut u2, 1.0), &t, &r, lambda, 1.0, true);
-            assert!(update.sums.is_none());
-        }
-    }
-}
+mod tests;

@@ -10,12 +10,13 @@
 //! `b - M x` before a column is accepted.
 
 use faer::MatRef;
+use faer::dyn_stack::{PodBuffer, PodStack};
 
 use super::progress::{Progress, dot_on, step_length};
 use crate::LcpError;
 use crate::linalg;
 use crate::methods::{Failure, LinearAnswer, LinearAttempted};
-use crate::operator::Operator;
+use crate::operator::{Operator, scratch};
 use crate::options::Options;
 use crate::statistics::{Breakdown, Work};
 
@@ -42,6 +43,8 @@ pub(crate) fn attempt_linear(
         r: allocated("the conjugate gradient's residual")?,
         p: allocated("the conjugate gradient's direction")?,
         q: allocated("the conjugate gradient's product")?,
+        scratch: scratch(operator.apply_scratch(), "the conjugate gradient's scratch")
+            .map_err(|e| Failure::error(e.into(), Work::default()))?,
     };
     let mut x = linalg::try_mat(n, columns, "the solution", |_, _| 0.0)
         .map_err(|e| Failure::error(e.into(), work))?;
@@ -64,12 +67,14 @@ pub(crate) fn attempt_linear(
 
 /// The vectors of a linear system's conjugate gradient (four of n, used
 /// again for every right-hand side): the right-hand side `b`, the residual
-/// `r`, the direction `p` and the product `q = M p`.
+/// `r`, the direction `p` and the product `q = M p`; and the scratch of
+/// the products.
 struct Vectors {
     b: Vec<f64>,
     r: Vec<f64>,
     p: Vec<f64>,
     q: Vec<f64>,
+    scratch: PodBuffer,
 }
 
 /// Solves `M x = b` for the right-hand side `column` (`x` zero at the
@@ -82,7 +87,13 @@ fn solve_column(
     options: &Options,
     work: &mut Work,
 ) -> Result<(), Breakdown> {
-    let Vectors { b, r, p, q } = v;
+    let Vectors {
+        b,
+        r,
+        p,
+        q,
+        scratch,
+    } = v;
     let n = x.len();
     let every = |_: usize| true;
     r.copy_from_slice(b);
@@ -95,7 +106,7 @@ fn solve_column(
         let mut c = relative(b, r);
         if progress.done(iterations, c) {
             // The true residual r = b - M x decides.
-            operator.apply(x, q);
+            operator.apply(x, q, PodStack::new(scratch));
             work.products += 1;
             r.iter_mut()
                 .zip(b.iter().zip(q.iter()))
@@ -122,7 +133,7 @@ fn solve_column(
         }
         iterations += 1;
         work.iterations += 1;
-        operator.apply(p, q);
+        operator.apply(p, q, PodStack::new(scratch));
         work.products += 1;
         let alpha = step_length(rr, dot_on(every, p, q))?;
         for i in 0..n {

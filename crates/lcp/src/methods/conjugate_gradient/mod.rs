@@ -30,8 +30,8 @@
 //!    clipping the step keeps several rows to rounding (`B_J^T t_J = 0`),
 //!    and they are left as they are.
 //!
-//! Preconditioned (where the operator has a preconditioner `P ≈ M^{-1}`,
-//! [`Operator::precondition`](crate::Operator::precondition), and
+//! Preconditioned (where the problem has a preconditioner `P ≈ M^{-1}`,
+//! a [`Preconditioner`](crate::Preconditioner), and
 //! `Options::preconditioner` is set; after Vollebregt 2014), step 2 is
 //!
 //! ```text
@@ -86,6 +86,7 @@ mod passes;
 mod progress;
 mod rows;
 
+use faer::dyn_stack::{PodBuffer, PodStack};
 use faer::linalg::solvers::Solve;
 use faer::{Col, Side};
 
@@ -98,7 +99,7 @@ pub(crate) use linear::attempt_linear;
 use crate::LcpError;
 use crate::linalg;
 use crate::methods::{Answer, Attempted, Failure, NotApplicable};
-use crate::operator::OperatorLcp;
+use crate::operator::{MatrixFree, OperatorLcp, scratch};
 use crate::options::Options;
 use crate::problem::{Bordered, Problem};
 use crate::statistics::{Breakdown, Work};
@@ -122,7 +123,10 @@ pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotAppli
         ));
     }
     Ok(Bordered {
-        m: &problem.mixed.m,
+        m: MatrixFree {
+            operator: &problem.mixed.m,
+            preconditioner: None,
+        },
         q: problem.mixed.q,
         border: border.columns,
         resultant: border.resultant,
@@ -131,7 +135,8 @@ pub(crate) fn applies<'a>(problem: &'a Problem<'a>) -> Result<Form<'a>, NotAppli
 
 /// The method's state: the iterate and what it has computed of it (four
 /// vectors of n, five preconditioned, one more with several rows once a
-/// step clipped: the memory of a large solve).
+/// step clipped: the memory of a large solve), and the scratch its
+/// operator and preconditioner work in.
 struct State {
     z: Vec<f64>,
     /// `u = M z`, from a true product or kept by the recurrence.
@@ -171,10 +176,18 @@ struct State {
     /// Points enter only by proportioning steps (after the iteration made
     /// no progress: see [`Guard`]).
     guarded: bool,
+    /// The scratch of the operator's products and the preconditioner's
+    /// applications, which take turns in it.
+    scratch: PodBuffer,
 }
 
 impl State {
-    fn new(z: Vec<f64>, k: usize, preconditioned: bool) -> Result<Self, LcpError> {
+    fn new(
+        z: Vec<f64>,
+        k: usize,
+        preconditioned: bool,
+        scratch: PodBuffer,
+    ) -> Result<Self, LcpError> {
         let n = z.len();
         let vector = |what| linalg::try_zeros(n, what).map_err(LcpError::from);
         Ok(Self {
@@ -200,13 +213,15 @@ impl State {
             before: None,
             boundary: None,
             guarded: false,
+            scratch,
         })
     }
 
     /// `u = M z` from a true product and the fit's sums, at scale 1: a
     /// pending scale stays pending (`M (c z) = c M z`).
     fn refresh(&mut self, form: &Form<'_>, data: &Data<'_>, work: &mut Work) {
-        form.m.apply(&self.z, &mut self.u);
+        let stack = PodStack::new(&mut self.scratch);
+        form.m.operator.apply(&self.z, &mut self.u, stack);
         work.products += 1;
         self.fit = iteration::fit_pass(data, &self.z, &self.u);
         self.stale = false;
@@ -272,7 +287,8 @@ impl State {
         enter: bool,
         work: &mut Work,
     ) -> Result<(), Breakdown> {
-        form.m.apply(&self.t, &mut self.r);
+        let stack = PodStack::new(&mut self.scratch);
+        form.m.operator.apply(&self.t, &mut self.r, stack);
         work.products += 1;
         let den = iteration::curvature_pass(&self.t, &self.r);
         let tau = step_length(num, den)?;
@@ -359,7 +375,8 @@ impl State {
         work: &mut Work,
     ) -> Result<f64, Breakdown> {
         let p = self.p.as_mut().expect("a preconditioned state");
-        form.m.precondition(&self.r, p);
+        let preconditioner = form.m.preconditioner.expect("a preconditioned state");
+        preconditioner.precondition(&self.r, p, PodStack::new(&mut self.scratch));
         work.preconditionings += 1;
         let sums = iteration::projection_pass(data, &self.z, &self.r, p);
         let k = sums.bp.len();
@@ -487,14 +504,18 @@ pub(crate) fn attempt(form: &Form<'_>, options: &Options) -> Attempted {
 fn solve(form: &Form<'_>, options: &Options, mut guard: Guard) -> Attempted {
     let n = form.q.nrows();
     let mut work = Work::default();
-    let z = match start(form, options, &mut work) {
+    let preconditioned = options.preconditioner && form.m.preconditioner.is_some();
+    let what = "the conjugate gradient's scratch (of its products)";
+    let mut scratch = scratch(form.m.scratch(preconditioned), what)
+        .map_err(|e| Failure::error(e.into(), work))?;
+    let z = match start(form, options, &mut work, &mut scratch) {
         Ok(Some(z)) => z,
         Ok(None) => return Ok(answer(vec![0.0; n], Col::zeros(form.border.ncols()), work)),
         Err(breakdown) => return Err(Failure::new(breakdown, work)),
     };
-    let preconditioned = options.preconditioner && form.m.has_preconditioner();
+    let k = form.border.ncols();
     let mut state =
-        State::new(z, form.border.ncols(), preconditioned).map_err(|e| Failure::error(e, work))?;
+        State::new(z, k, preconditioned, scratch).map_err(|e| Failure::error(e, work))?;
     state.guarded = guard.tripped;
     let data = Data::new(form.q, form.border);
     let cap = options.iteration_cap();
@@ -545,9 +566,10 @@ fn solve(form: &Form<'_>, options: &Options, mut guard: Guard) -> Attempted {
                 r,
                 p,
                 scale,
+                scratch,
                 ..
             } = state;
-            drop((u, t, r, p));
+            drop((u, t, r, p, scratch));
             if scale != 1.0 {
                 z.iter_mut().for_each(|v| *v *= scale);
             }
@@ -618,6 +640,7 @@ fn start(
     form: &Form<'_>,
     options: &Options,
     work: &mut Work,
+    scratch: &mut PodBuffer,
 ) -> Result<Option<Vec<f64>>, Breakdown> {
     let n = form.q.nrows();
     let k = form.border.ncols();
@@ -641,7 +664,9 @@ fn start(
             let mut e = vec![0.0; n];
             let mut column = vec![0.0; n];
             e[j] = 1.0;
-            form.m.apply(&e, &mut column);
+            form.m
+                .operator
+                .apply(&e, &mut column, PodStack::new(scratch));
             work.products += 1;
             let d = column[j];
             if !(d > 0.0 && d.is_finite()) {
@@ -665,7 +690,6 @@ fn start(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::operator::Operator;
     use faer::Mat;
     use proptest::prelude::*;
 
@@ -706,7 +730,10 @@ mod tests {
     fn solved(p: &Known, guard: Guard) -> Col<f64> {
         let m = p.m.as_ref();
         let form: Form<'_> = Bordered {
-            m: &m as &dyn Operator,
+            m: MatrixFree {
+                operator: &m,
+                preconditioner: None,
+            },
             q: p.q.as_ref(),
             border: p.border.as_ref(),
             resultant: p.resultant.as_ref(),
