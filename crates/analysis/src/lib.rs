@@ -65,6 +65,7 @@ pub mod rigid;
 pub mod rotation;
 mod storage;
 pub mod subsurface;
+pub mod zone;
 
 pub use contact::{
     AxialProfile, ContactCertificate, ContactProblem, ContactSolution, Curvature, Departure,

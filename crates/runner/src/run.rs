@@ -9,12 +9,13 @@
 
 use std::time::Instant;
 
+use elcon_analysis::zone::Zone;
 use elcon_analysis::{AnalysisError, ContactSolution, Normal, Tilt};
 use elcon_lcp::LcpError;
 use elcon_num::{Num, rounded};
 use elcon_process::faults;
 use elcon_report::{DiscretizationJson, Header, Run, RunResult, Seconds, SolutionJson};
-use elcon_scene::{MAX_STRAIN, Scene, Zone, approach_strain};
+use elcon_scene::{MAX_STRAIN, Scene, approach_strain};
 
 use crate::compare::compare;
 use crate::design_stage::design_stage;

@@ -19,7 +19,6 @@ mod error;
 mod sanity;
 mod scene;
 mod schema;
-mod zone;
 
 pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text};
 pub use ctx::{MAX_INPUT_BYTES, read_text};
@@ -31,4 +30,3 @@ pub use scene::{
     problem_parts, scene_with_design,
 };
 pub use schema::ErrorMetric;
-pub use zone::Zone;

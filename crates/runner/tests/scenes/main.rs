@@ -11,6 +11,7 @@ mod design_stage;
 mod error_estimate;
 mod errors;
 mod fuzz;
+mod parts;
 mod plots;
 mod stiff_foundation;
 mod storage;

@@ -10,7 +10,7 @@ use toml::Spanned;
 use crate::ctx::{Ctx, Num, at_most, rounded};
 use crate::error::SceneError;
 use crate::schema::LoadingToml;
-use crate::zone::{OpenEdge, Zone};
+use elcon_analysis::zone::{OpenEdge, Zone};
 
 /// The largest rotation of a body (rad), prescribed (`loading.tilt_x`,
 /// `tilt_y`) or solved under a moment: the rigid rotation is linearized

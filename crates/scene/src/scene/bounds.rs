@@ -14,7 +14,7 @@ use toml::Spanned;
 use super::factors::{self, Quantity};
 use super::files;
 use super::hertz::{Hertz, Layout};
-use super::points::PointsSpec;
+use super::points::{HertzLayout, PointsSpec};
 use super::units::Units;
 use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
@@ -61,7 +61,7 @@ fn hertz_bounds(
     let extent = layout.approach_extent(contact.as_ref(), points);
     let sized_by_hertz = matches!(
         layout.points_spec,
-        PointsSpec::DiskHertz { .. } | PointsSpec::EllipseHertz { .. }
+        PointsSpec::Hertz(HertzLayout::Disk { .. } | HertzLayout::Ellipse { .. })
     );
     if let Some(reason) = contact
         .and_then(|h| h.approach())

@@ -13,7 +13,6 @@ use elcon_influence::{Body, Dimension};
 use toml::Spanned;
 
 use super::hertz::{Hertz, Layout};
-use super::points::PointsSpec;
 use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
 use crate::sanity::DesignView;
@@ -370,16 +369,17 @@ fn log_crown(
         Some(q) => ctx.positive(q, "design.design_load")?,
         None => loads.iter().cloned().fold(0.0, f64::max),
     };
-    let derived = scene
-        .layout
-        .and_then(|layout| match (layout.hertz(q), layout.points_spec) {
-            (Some(Hertz::Cylinders(h)), PointsSpec::Rectangle { half_y, .. }) => Some(Roller {
-                combined_modulus: h.combined_modulus,
-                radius: h.radius,
-                length: 2.0 * half_y,
-            }),
-            _ => None,
-        });
+    let derived =
+        scene.layout.and_then(
+            |layout| match (layout.hertz(q), layout.points_spec.half_y()) {
+                (Some(Hertz::Cylinders(h)), Some(half_y)) => Some(Roller {
+                    combined_modulus: h.combined_modulus,
+                    radius: h.radius,
+                    length: 2.0 * half_y,
+                }),
+                _ => None,
+            },
+        );
     let Some(roller) = scene.roller.or(derived) else {
         return Err(ctx.invalid(
             t.family.span(),

@@ -22,7 +22,7 @@
 use elcon_analysis::Normal;
 use elcon_influence::{Body, Model, PointSet};
 
-use super::points::{HalfX, PointsSpec};
+use super::points::{HertzLayout, PointsSpec};
 use crate::sanity::{Factor, Mechanism, mechanism};
 use crate::schema::SceneFile;
 use toml::Spanned;
@@ -64,12 +64,12 @@ pub(super) fn factors(
         return Vec::new();
     };
     let sizing = match spec {
-        PointsSpec::DiskHertz { .. } | PointsSpec::EllipseHertz { .. } => Sizing::HertzSurface,
-        PointsSpec::LineHertz { .. }
-        | PointsSpec::Rectangle {
-            half_x: HalfX::Zone(_),
-            ..
-        } => Sizing::HertzLine,
+        PointsSpec::Hertz(HertzLayout::Disk { .. } | HertzLayout::Ellipse { .. }) => {
+            Sizing::HertzSurface
+        }
+        PointsSpec::Hertz(HertzLayout::Line { .. } | HertzLayout::Rectangle { .. }) => {
+            Sizing::HertzLine
+        }
         _ => Sizing::Absolute,
     };
     // The powers of the load, the stiffness and the radius.

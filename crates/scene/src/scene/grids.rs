@@ -5,18 +5,18 @@
 //! grid, the contact resolved), and the warnings for a grid too coarse for
 //! the contact.
 
-use elcon_analysis::{Geometry, Loading, Normal};
+use elcon_analysis::{Geometry, GridFamily, Loading, Normal};
 use elcon_influence::{Dimension, PointSet};
 use toml::Spanned;
 
 use super::design::{DesignFamily, DesignSpec};
 use super::hertz::{Hertz, Layout, Reference};
-use super::points::{self, HalfX, PointsSpec, build_points};
+use super::points::{self, PointsSpec, build_points};
 use super::{Scene, bounds};
 use crate::ctx::{Ctx, Num, rounded};
 use crate::error::SceneError;
 use crate::sanity;
-use crate::schema::{DesignToml, PointsToml, SceneFile};
+use crate::schema::{DesignToml, Grid, PointsToml, SceneFile};
 
 /// The candidate points: absolute, or relative to the Hertz contact at the
 /// scene's load (which must then exist, at a size in floating-point range).
@@ -34,19 +34,10 @@ pub(super) fn lay_out(
     // The load that sizes Hertz-relative grids (under displacement control
     // there is none: the contact's size is not known before the solve).
     let scale = loading.load_value().and_then(|p| layout.scale(p));
-    let relative = matches!(
-        points_spec,
-        PointsSpec::DiskHertz { .. }
-            | PointsSpec::LineHertz { .. }
-            | PointsSpec::EllipseHertz { .. }
-            | PointsSpec::Rectangle {
-                half_x: HalfX::Zone(_),
-                ..
-            }
-    );
+    let relative = matches!(points_spec, PointsSpec::Hertz(_));
     if relative && scale.is_none() {
-        let dimension = match points_spec {
-            PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => Dimension::Line,
+        let dimension = match points_spec.grid() {
+            Grid::Line => Dimension::Line,
             _ => Dimension::Surface,
         };
         return Err(ctx.invalid(
@@ -120,14 +111,14 @@ pub(super) fn whole_scene(
         Some(Reference::HertzSpheres(h)) => Some(("diameter", h.contact_radius())),
         Some(Reference::HertzCylinders { hertz, .. }) => Some(("width", hertz.half_width())),
         _ => match (scene.loading.normal, &scene.points_spec) {
-            (Normal::Load(p), PointsSpec::Rectangle { .. }) => {
+            (Normal::Load(p), spec) if spec.grid() == Grid::Rectangle => {
                 scene.hertz(p).map(|h| ("width", h.scale()))
             }
             _ => None,
         },
     };
     let disk = match scene.points_spec {
-        PointsSpec::Disk { spacing, radius } => Some((spacing, radius)),
+        PointsSpec::Fixed(GridFamily::Disk { spacing, radius }) => Some((spacing, radius)),
         _ => None,
     };
     if let Some(u) = sanity::unresolved_grid(&scene.points, hertz, disk) {
@@ -376,12 +367,10 @@ fn design_grids_resolve(
         if across >= sanity::MIN_POINTS_ACROSS as f64 {
             continue;
         }
-        let keys = match scene.points_spec {
-            PointsSpec::Rectangle { .. } => {
-                "more points.nx, or a smaller points.zone or points.half_x"
-            }
-            PointsSpec::Disk { .. } => "a smaller points.spacing",
-            PointsSpec::Line { .. } => "more points.n, or a shorter line",
+        let keys = match (&scene.points_spec, scene.points_spec.grid()) {
+            (_, Grid::Rectangle) => "more points.nx, or a smaller points.zone or points.half_x",
+            (PointsSpec::Fixed(_), Grid::Disk) => "a smaller points.spacing",
+            (PointsSpec::Fixed(_), Grid::Line) => "more points.n, or a shorter line",
             _ => "more points.across, or a smaller points.zone",
         };
         return Err(ctx.invalid(

@@ -5,13 +5,14 @@
 use elcon_analysis::references::{
     BeamOnFoundation, FlatPunch, HertzCylinders, HertzEllipse, HertzSpheres, HetenyiBeam,
 };
-use elcon_analysis::{Geometry, Loading, Normal, Surface};
+use elcon_analysis::{Geometry, GridFamily, Loading, Normal, Surface};
 use elcon_influence::{PointSet, combined_modulus_of};
 
 use super::body::{BodySpec, ModelKind};
 use super::geometry::combined;
-use super::points::{EllipseShape, PointsSpec};
+use super::points::{EllipseShape, HertzLayout, PointsSpec};
 use crate::sanity::StrainExtent;
+use crate::schema::Grid;
 
 /// The parts of a scene its Hertz contact and its closed forms come from:
 /// the bodies, the surfaces (or separations) and the layout of the points.
@@ -135,24 +136,28 @@ impl Layout<'_> {
     /// count as half-spaces; the surfaces must not both be planes.
     pub(crate) fn hertz(&self, load: f64) -> Option<Hertz> {
         let (bodies, geometry) = (self.bodies, self.geometry);
-        match self.points_spec {
-            PointsSpec::Disk { .. } if combined(geometry, true).is_none() => {
+        // Quadrics on a disk of lengths are an ellipse's; a disk relative
+        // to the Hertz contact is laid out around a circle.
+        let fixed = matches!(self.points_spec, PointsSpec::Fixed(_));
+        match self.points_spec.grid() {
+            Grid::Disk if fixed && combined(geometry, true).is_none() => {
                 ellipse(bodies, geometry, load).map(Hertz::Ellipse)
             }
-            PointsSpec::EllipseHertz { .. } => ellipse(bodies, geometry, load).map(Hertz::Ellipse),
-            PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
+            Grid::Ellipse => ellipse(bodies, geometry, load).map(Hertz::Ellipse),
+            Grid::Disk => {
                 let e = half_space_modulus(bodies, false)?;
                 let r = combined(geometry, true)?;
                 HertzSpheres::new(e, r, load).ok().map(Hertz::Spheres)
             }
-            PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+            Grid::Line => {
                 let e = half_space_modulus(bodies, true)?;
                 let r = combined(geometry, false)?;
                 HertzCylinders::new(e, r, load).ok().map(Hertz::Cylinders)
             }
-            PointsSpec::Rectangle { half_y, .. } => {
+            Grid::Rectangle => {
                 let e = half_space_modulus(bodies, false)?;
                 let r = combined(geometry, false)?;
+                let half_y = self.points_spec.half_y()?;
                 HertzCylinders::new(e, r, load / (2.0 * half_y))
                     .ok()
                     .map(Hertz::Cylinders)
@@ -183,8 +188,10 @@ impl Layout<'_> {
     /// same at any turn, where the grid's extents along x and y grow with
     /// the turn), else the zone's smaller extent.
     pub(crate) fn approach_extent(&self, hertz: Option<&Hertz>, points: &PointSet) -> StrainExtent {
-        if let (PointsSpec::EllipseHertz { across, zone, .. }, Some(Hertz::Ellipse(h))) =
-            (self.points_spec, hertz)
+        if let (
+            PointsSpec::Hertz(HertzLayout::Ellipse { across, zone, .. }),
+            Some(Hertz::Ellipse(h)),
+        ) = (self.points_spec, hertz)
             && let Ok(length) =
                 elcon_analysis::grid::ellipse_minor_zone(h.semi_minor(), *across, *zone)
         {
@@ -207,18 +214,23 @@ impl Layout<'_> {
             Geometry::Separation(eps) => eps.iter().all(|&e| e == eps[0]),
             _ => false,
         };
-        match self.points_spec {
-            PointsSpec::EllipseHertz { .. } => ellipse_reference(bodies, geometry, loading),
-            PointsSpec::Disk { .. } if !flat && combined(geometry, true).is_none() => {
+        let fixed_disk = match self.points_spec {
+            PointsSpec::Fixed(GridFamily::Disk { radius, .. }) => Some(*radius),
+            _ => None,
+        };
+        match self.points_spec.grid() {
+            Grid::Ellipse => ellipse_reference(bodies, geometry, loading),
+            Grid::Disk if fixed_disk.is_some() && !flat && combined(geometry, true).is_none() => {
                 ellipse_reference(bodies, geometry, loading)
             }
-            PointsSpec::Disk { radius, .. } if flat => {
+            Grid::Disk if flat && fixed_disk.is_some() => {
+                let radius = fixed_disk?;
                 // A rigid flat punch: one rigid body, the candidate disk its face.
                 let rigid = bodies.iter().filter(|b| b.body().is_rigid()).count() == 1;
                 let e = half_space_modulus(bodies, false)?;
-                rigid.then(|| FlatPunch::new(e, *radius).ok().map(Reference::FlatPunch))?
+                rigid.then(|| FlatPunch::new(e, radius).ok().map(Reference::FlatPunch))?
             }
-            PointsSpec::Disk { .. } | PointsSpec::DiskHertz { .. } => {
+            Grid::Disk => {
                 let e = half_space_modulus(bodies, false)?;
                 let r = combined(geometry, true)?;
                 let load = match loading.normal {
@@ -231,7 +243,7 @@ impl Layout<'_> {
                     .ok()
                     .map(Reference::HertzSpheres)
             }
-            PointsSpec::Line { .. } | PointsSpec::LineHertz { .. } => {
+            Grid::Line => {
                 let Normal::Load(p) = loading.normal else {
                     return None;
                 };
@@ -242,7 +254,7 @@ impl Layout<'_> {
                     None => None,
                 }
             }
-            PointsSpec::Rectangle { .. } => None,
+            Grid::Rectangle => None,
         }
     }
 }
@@ -259,10 +271,10 @@ fn ellipse(bodies: &[BodySpec; 2], geometry: &Geometry, load: f64) -> Option<Her
 /// and an ellipse grid with no elliptical Hertz contact, as they are.
 pub(super) fn shaped(spec: PointsSpec, bodies: &[BodySpec; 2], geometry: &Geometry) -> PointsSpec {
     match (spec, ellipse(bodies, geometry, 1.0)) {
-        (PointsSpec::EllipseHertz { across, zone, .. }, Some(h)) => {
+        (PointsSpec::Hertz(HertzLayout::Ellipse { across, zone, .. }), Some(h)) => {
             let (ex, ey) = h.half_extents();
             let r = h.equivalent_radius();
-            PointsSpec::EllipseHertz {
+            PointsSpec::Hertz(HertzLayout::Ellipse {
                 across,
                 zone,
                 shape: EllipseShape {
@@ -271,7 +283,7 @@ pub(super) fn shaped(spec: PointsSpec, bodies: &[BodySpec; 2], geometry: &Geomet
                     semi_minor: h.semi_minor() / r,
                     angle: h.angle(),
                 },
-            }
+            })
         }
         (spec, _) => spec,
     }

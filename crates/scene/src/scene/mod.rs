@@ -49,7 +49,7 @@ pub use units::Units;
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::sanity;
-use crate::schema::{BodyToml, LoadingToml, PointsToml, SceneFile};
+use crate::schema::{BodyToml, Grid, LoadingToml, PointsToml, SceneFile};
 
 /// A validated scene. Each field is read through its accessor, which says
 /// what it is.
@@ -580,7 +580,7 @@ fn body_edges(
         (true, true)
     } else if bodies.iter().any(|b| b.model() == ModelKind::Beam) {
         (true, false)
-    } else if matches!(points_spec, PointsSpec::Rectangle { .. }) {
+    } else if points_spec.grid() == Grid::Rectangle {
         (false, true)
     } else {
         (false, false)

@@ -11,30 +11,38 @@ use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
 use crate::schema::{Grid, PointsToml};
 
-/// How the candidate points are laid out.
+/// How the candidate points are laid out: in lengths, as the grid family
+/// elcon-analysis lays out (the same at any load), or relative to the
+/// Hertz contact of the case's load.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum PointsSpec {
-    /// Square grid of `spacing`, clipped to a disk of `radius`.
-    Disk {
-        /// Spacing (length).
-        spacing: f64,
-        /// Radius of the candidate zone (length).
-        radius: f64,
-    },
+    /// A square grid of `spacing` clipped to a disk of `radius`, `nx x ny`
+    /// cells on a rectangle, or `n` cells of a line: lengths given.
+    Fixed(GridFamily),
+    /// Relative to the Hertz contact of the case's load.
+    Hertz(HertzLayout),
+}
+
+/// A layout relative to the Hertz contact of the case's load: its size
+/// follows the contact's radius, half-width or ellipse.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum HertzLayout {
     /// Square grid with `across` points across the Hertz contact diameter,
     /// clipped to `zone` Hertz radii.
-    DiskHertz {
+    Disk {
         /// Points across the Hertz diameter (odd: the centre is a point).
         across: usize,
         /// Candidate zone over the Hertz radius (> 1).
         zone: f64,
     },
-    /// `nx x ny` cells on `[-half_x, half_x] x [-half_y, half_y]`;
-    /// `half_x` absolute, or `zone` Hertz half-widths of the case's load.
+    /// `nx x ny` cells on `[-half_x, half_x] x [-half_y, half_y]`,
+    /// `half_x` being `zone` Hertz half-widths of the case's load (a
+    /// roller along y).
     Rectangle {
-        /// Half-size along x: a length, or relative to the Hertz contact.
-        half_x: HalfX,
+        /// Half-size along x over the Hertz half-width (> 1).
+        zone: f64,
         /// Half-size along y (length).
         half_y: f64,
         /// Cells along x.
@@ -42,18 +50,9 @@ pub enum PointsSpec {
         /// Cells along y.
         ny: usize,
     },
-    /// `n` cells on `[start, end]` of the x axis.
-    Line {
-        /// Start (length).
-        start: f64,
-        /// End (length).
-        end: f64,
-        /// Number of cells.
-        n: usize,
-    },
     /// Cells with `across` points across the Hertz contact width, out to
     /// `zone` Hertz half-widths.
-    LineHertz {
+    Line {
         /// Points across the Hertz width.
         across: usize,
         /// Candidate zone over the Hertz half-width (> 1).
@@ -64,7 +63,7 @@ pub enum PointsSpec {
     /// its half-extents along x and y: `across` points over each axis of
     /// an ellipse aligned with x and y; square cells with `across` points
     /// over the minor axis of a turned one.
-    EllipseHertz {
+    Ellipse {
         /// Points across each extent (odd: the centre is a point).
         across: usize,
         /// Candidate zone over the ellipse (> 1).
@@ -129,12 +128,12 @@ pub(super) fn points_spec(
         Grid::Line => line_spec(ctx, p)?,
         Grid::Ellipse => {
             let a = ctx.required(&t.across, p.span(), "points.across", "for an ellipse")?;
-            PointsSpec::EllipseHertz {
+            PointsSpec::Hertz(HertzLayout::Ellipse {
                 across: hertz_across(ctx, a)?,
                 zone: hertz_zone(ctx, p)?,
                 // Set from the surfaces once they are read (super::hertz::shaped).
                 shape: EllipseShape::CIRCLE,
-            }
+            })
         }
     };
     let dimension = if grid == Grid::Line {
@@ -231,15 +230,15 @@ fn disk_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, Scene
         ctx.forbid(&t.radius, "points.radius", why)?;
     }
     Ok(match hertz_layout(ctx, p, "diameter")? {
-        Some((across, zone)) => PointsSpec::DiskHertz { across, zone },
+        Some((across, zone)) => PointsSpec::Hertz(HertzLayout::Disk { across, zone }),
         None => {
             let why = "for a disk (or across and zone)";
             let h = ctx.required(&t.spacing, s.clone(), "points.spacing", why)?;
             let r = ctx.required(&t.radius, s.clone(), "points.radius", why)?;
-            PointsSpec::Disk {
+            PointsSpec::Fixed(GridFamily::Disk {
                 spacing: ctx.positive(h, "points.spacing")?,
                 radius: ctx.positive(r, "points.radius")?,
-            }
+            })
         }
     })
 }
@@ -248,8 +247,8 @@ fn disk_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, Scene
 fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
     let (t, s) = (p.get_ref(), p.span());
     let half_x = match (&t.half_x, &t.zone) {
-        (Some(h), None) => HalfX::Length(ctx.positive(h, "points.half_x")?),
-        (None, Some(_)) => HalfX::Zone(hertz_zone(ctx, p)?),
+        (Some(h), None) => Ok(ctx.positive(h, "points.half_x")?),
+        (None, Some(_)) => Err(hertz_zone(ctx, p)?),
         _ => {
             return Err(ctx.invalid(
                 s,
@@ -262,11 +261,25 @@ fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, 
     let hy = ctx.required(&t.half_y, s.clone(), "points.half_y", "for a rectangle")?;
     let nx = ctx.required(&t.nx, s.clone(), "points.nx", "for a rectangle")?;
     let ny = ctx.required(&t.ny, s.clone(), "points.ny", "for a rectangle")?;
-    Ok(PointsSpec::Rectangle {
-        half_x,
-        half_y: ctx.positive(hy, "points.half_y")?,
-        nx: ctx.count(nx, "points.nx", 1)?,
-        ny: ctx.count(ny, "points.ny", 1)?,
+    let (half_y, nx, ny) = (
+        ctx.positive(hy, "points.half_y")?,
+        ctx.count(nx, "points.nx", 1)?,
+        ctx.count(ny, "points.ny", 1)?,
+    );
+    // A length, or (the error side) a zone of Hertz half-widths.
+    Ok(match half_x {
+        Ok(half_x) => PointsSpec::Fixed(GridFamily::Rectangle {
+            half_x,
+            half_y,
+            nx,
+            ny,
+        }),
+        Err(zone) => PointsSpec::Hertz(HertzLayout::Rectangle {
+            zone,
+            half_y,
+            nx,
+            ny,
+        }),
     })
 }
 
@@ -274,7 +287,7 @@ fn rectangle_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, 
 fn line_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, SceneError> {
     let (t, s) = (p.get_ref(), p.span());
     Ok(match hertz_layout(ctx, p, "width")? {
-        Some((across, zone)) => PointsSpec::LineHertz { across, zone },
+        Some((across, zone)) => PointsSpec::Hertz(HertzLayout::Line { across, zone }),
         None => {
             let why = "for a line (or across and zone)";
             let a = ctx.required(&t.start, s.clone(), "points.start", why)?;
@@ -285,22 +298,13 @@ fn line_spec(ctx: &Ctx<'_>, p: &Spanned<PointsToml>) -> Result<PointsSpec, Scene
             let above = end > start;
             let why = format!("must exceed points.start = {}", Num(start));
             let end = ctx.ensure(end, above, b.span(), "points.end", why)?;
-            PointsSpec::Line {
+            PointsSpec::Fixed(GridFamily::Line {
                 start,
                 end,
                 n: ctx.count(n, "points.n", 1)?,
-            }
+            })
         }
     })
-}
-
-/// A rectangle grid's half-size along x (`points.half_x` or `points.zone`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum HalfX {
-    /// `half_x`: a length.
-    Length(f64),
-    /// `zone`: Hertz half-widths of the case's load (> 1).
-    Zone(f64),
 }
 
 impl PointsSpec {
@@ -312,48 +316,67 @@ impl PointsSpec {
     /// [`SceneError::Points`]: why the layout cannot be made (relative to a
     /// Hertz contact that does not apply, or bad sizes).
     pub fn family(&self, scale: Option<f64>) -> Result<GridFamily, SceneError> {
-        let need = || {
-            scale.ok_or_else(|| {
-                SceneError::points("the layout is relative to a Hertz contact that does not apply")
-            })
+        let layout = match self {
+            PointsSpec::Fixed(family) => return Ok(*family),
+            PointsSpec::Hertz(layout) => layout,
         };
-        let family = match *self {
-            PointsSpec::Disk { spacing, radius } => GridFamily::Disk { spacing, radius },
-            PointsSpec::DiskHertz { across, zone } => {
-                elcon_analysis::grid::hertz_disk_family(need()?, across, zone)
+        let scale = scale.ok_or_else(|| {
+            SceneError::points("the layout is relative to a Hertz contact that does not apply")
+        })?;
+        let family = match *layout {
+            HertzLayout::Disk { across, zone } => {
+                elcon_analysis::grid::hertz_disk_family(scale, across, zone)
                     .map_err(SceneError::points)?
             }
-            PointsSpec::Rectangle {
-                half_x,
+            HertzLayout::Rectangle {
+                zone,
                 half_y,
                 nx,
                 ny,
             } => GridFamily::Rectangle {
-                half_x: match half_x {
-                    HalfX::Length(h) => h,
-                    HalfX::Zone(z) => z * need()?,
-                },
+                half_x: zone * scale,
                 half_y,
                 nx,
                 ny,
             },
-            PointsSpec::Line { start, end, n } => GridFamily::Line { start, end, n },
-            PointsSpec::LineHertz { across, zone } => {
-                elcon_analysis::grid::hertz_line_family(need()?, across, zone)
+            HertzLayout::Line { across, zone } => {
+                elcon_analysis::grid::hertz_line_family(scale, across, zone)
                     .map_err(SceneError::points)?
             }
-            PointsSpec::EllipseHertz {
+            HertzLayout::Ellipse {
                 across,
                 zone,
                 shape,
             } => {
                 let family =
-                    elcon_analysis::grid::hertz_ellipse_family(shape.extent(need()?), across, zone)
+                    elcon_analysis::grid::hertz_ellipse_family(shape.extent(scale), across, zone)
                         .map_err(SceneError::points)?;
                 return turned_too_many(&shape, across, zone, family);
             }
         };
         Ok(family)
+    }
+
+    /// The grid it lays out: a disk, a rectangle, a line or an ellipse's.
+    pub(crate) fn grid(&self) -> Grid {
+        match self {
+            PointsSpec::Fixed(GridFamily::Disk { .. })
+            | PointsSpec::Hertz(HertzLayout::Disk { .. }) => Grid::Disk,
+            PointsSpec::Fixed(GridFamily::Rectangle { .. })
+            | PointsSpec::Hertz(HertzLayout::Rectangle { .. }) => Grid::Rectangle,
+            PointsSpec::Hertz(HertzLayout::Ellipse { .. }) => Grid::Ellipse,
+            // A layout in lengths is a disk, a rectangle or a line.
+            PointsSpec::Hertz(HertzLayout::Line { .. }) | PointsSpec::Fixed(_) => Grid::Line,
+        }
+    }
+
+    /// The rectangle's half-size along y (length), on a rectangle.
+    pub(crate) fn half_y(&self) -> Option<f64> {
+        match *self {
+            PointsSpec::Fixed(GridFamily::Rectangle { half_y, .. })
+            | PointsSpec::Hertz(HertzLayout::Rectangle { half_y, .. }) => Some(half_y),
+            _ => None,
+        }
     }
 }
 
@@ -431,11 +454,11 @@ fn align_hint(shape: &EllipseShape, across: usize, zone: f64) -> String {
 /// [`TURNED_NOTE_RATIO`] times the points the aligned ellipse's grid
 /// would: the smallest turn that lays it along x or y.
 pub(crate) fn turned_note(spec: &PointsSpec, points: &PointSet) -> Option<String> {
-    let PointsSpec::EllipseHertz {
+    let PointsSpec::Hertz(HertzLayout::Ellipse {
         across,
         zone,
         shape,
-    } = *spec
+    }) = *spec
     else {
         return None;
     };

@@ -4,7 +4,7 @@
 //! points, so a load centre `(-M_y / P, M_x / P)` can be balanced only
 //! inside the points' convex hull. The hull (Andrew's monotone chain) says
 //! whether a load centre lies inside and how far from the outline, for
-//! `check`'s refusal and for the message of a moment-loaded solve that
+//! a scene's check (elcon-scene) and for the message of a moment-loaded solve that
 //! failed.
 //!
 //! The zone's open edge ([`OpenEdge`]) is where the run finds a contact
@@ -14,7 +14,7 @@
 
 use elcon_influence::PointSet;
 
-use crate::ctx::rounded;
+use elcon_num::rounded;
 
 /// The convex hull of the candidate points, counter-clockwise (two points
 /// for points on one line, one for a single point).
@@ -133,7 +133,7 @@ impl Zone {
 /// the bodies, ends it (the run's truncation test extrapolates the
 /// pressure's edge there and refuses an edge half a cell out or more).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct OpenEdge {
+pub struct OpenEdge {
     /// (boundary point, half a cell beyond it on an open side).
     probes: Vec<((f64, f64), (f64, f64))>,
     /// The zone's outline: a contact whose centre leaves it has crossed
@@ -191,7 +191,7 @@ impl OpenEdge {
 
     /// Whether a contact centred at `c` (`inside(d)`: the point at `d`
     /// from its centre lies in it) reaches past the open edge.
-    pub(crate) fn reached(&self, c: (f64, f64), inside: &impl Fn((f64, f64)) -> bool) -> bool {
+    pub fn reached(&self, c: (f64, f64), inside: &impl Fn((f64, f64)) -> bool) -> bool {
         let at = |p: (f64, f64)| inside((p.0 - c.0, p.1 - c.1));
         self.probes.iter().any(|&(p, out)| at(p) && at(out))
     }
@@ -201,11 +201,7 @@ impl OpenEdge {
     /// the whole shift does; a contact that crossed the edge and left the
     /// zone is not clear again): stepped by a quarter of a cell, then
     /// bisected to a millionth of the shift.
-    pub(crate) fn largest_shift(
-        &self,
-        shift: (f64, f64),
-        inside: impl Fn((f64, f64)) -> bool,
-    ) -> f64 {
+    pub fn largest_shift(&self, shift: (f64, f64), inside: impl Fn((f64, f64)) -> bool) -> f64 {
         let at = |t: f64| (t * shift.0, t * shift.1);
         let clear = |t: f64| self.zone.holds(at(t)) && !self.reached(at(t), &inside);
         let length = shift.0.hypot(shift.1);
