@@ -5,6 +5,8 @@
 
 use elcon_lcp::Method;
 
+use crate::AnalysisError;
+
 /// Above this many unknowns [`Storage::Auto`] holds S matrix-free where
 /// the lattice operator applies (docs/performance.md, "Dense or
 /// matrix-free": where the conjugate gradient on the lattice operator
@@ -49,6 +51,25 @@ impl Storage {
             Storage::Dense => "dense",
             Storage::Folded => "folded",
             Storage::Lattice => "lattice",
+        }
+    }
+
+    /// The storage of an S given as a matrix (`ContactProblem::from_parts`):
+    /// it is held as given, dense. `Auto` and `Dense` take it; the other
+    /// storages make their own S from the bodies' models.
+    ///
+    /// # Errors
+    /// [`AnalysisError::Incompatible`] naming `storage`.
+    pub fn of_given_matrix(self) -> Result<Storage, AnalysisError> {
+        match self {
+            Storage::Auto | Storage::Dense => Ok(Storage::Dense),
+            other => Err(AnalysisError::Incompatible {
+                field: "storage",
+                reason: format!(
+                    "\"{other}\" cannot hold an S given as a matrix, which is held dense: give \
+                     \"auto\" or \"dense\", or the bodies' models for the other storages"
+                ),
+            }),
         }
     }
 
@@ -112,5 +133,23 @@ mod tests {
         assert_eq!(read("lattice").unwrap(), Storage::Lattice);
         let e = read("matrix-free").unwrap_err().to_string();
         assert!(e.starts_with("unknown variant `matrix-free`"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod given {
+    use super::*;
+
+    #[test]
+    fn a_given_matrix_is_held_dense() {
+        assert_eq!(Storage::Auto.of_given_matrix().unwrap(), Storage::Dense);
+        assert_eq!(Storage::Dense.of_given_matrix().unwrap(), Storage::Dense);
+        for other in [Storage::Folded, Storage::Lattice] {
+            let e = other.of_given_matrix().unwrap_err().to_string();
+            assert!(
+                e.starts_with(&format!("`storage`: \"{other}\" cannot hold")),
+                "{e}"
+            );
+        }
     }
 }

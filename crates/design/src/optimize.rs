@@ -257,7 +257,7 @@ fn setup<'a>(
         .all(|c| c.rigid().prescribed.iter().all(|&(mode, _)| mode != across));
     let stress = StressObjective::new(options.objective, &options.bodies)?;
     let method = match (stress.is_some(), options.method) {
-        (false, method) => method.resolve(points, entries),
+        (false, method) => method.admits(entries)?.resolve(points, entries),
         (true, DesignMethod::Program) => {
             return Err(DesignError::Objective {
                 objective: options.objective.name(),

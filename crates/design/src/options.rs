@@ -6,7 +6,7 @@ use elcon_analysis::{Method, Options};
 
 use elcon_influence::Body;
 
-use crate::{Objective, Profile};
+use crate::{DesignError, Objective, Profile};
 
 /// A profile family linear in its parameters, for the design program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -70,6 +70,25 @@ impl DesignMethod {
             DesignMethod::Program => "program",
             DesignMethod::Descent => "descent",
         }
+    }
+
+    /// Whether the method can design cases that hold S's entries or not
+    /// (`entries`): the program reads them, so a case held matrix-free is
+    /// the descent's (or `Auto`'s, which resolves to it).
+    ///
+    /// # Errors
+    /// [`DesignError::Incompatible`] naming `method` for the program on
+    /// cases without entries.
+    pub fn admits(self, entries: bool) -> Result<Self, DesignError> {
+        if self == DesignMethod::Program && !entries {
+            return Err(DesignError::Incompatible {
+                field: "method",
+                reason: "the program reads S's entries and these cases hold S matrix-free; \
+                         use \"descent\" or \"auto\""
+                    .into(),
+            });
+        }
+        Ok(self)
     }
 
     /// The method that runs for `points` points over all cases: `Auto`

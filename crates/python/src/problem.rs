@@ -190,12 +190,7 @@ impl PyContactProblem {
         geometry: Geometry,
         loading: Loading,
     ) -> PyResult<Self> {
-        if !matches!(storage, Storage::Auto | Storage::Dense) {
-            return Err(InputError::new_err(format!(
-                "`storage` = \"{storage}\": an S given as an array is held dense; \
-                 give \"auto\" or \"dense\", or the bodies for the other storages"
-            )));
-        }
+        storage.of_given_matrix().map_err(analysis_error)?;
         let s = s.as_array();
         let eps = match geometry {
             Geometry::Separation(eps) => eps,

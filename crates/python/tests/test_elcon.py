@@ -323,7 +323,7 @@ def test_storage_auto_runs_a_large_grid_from_arrays_matrix_free():
         elcon.ContactProblem(x[:9], None, h, y=y[:9], body1=steel, body2=steel, load=1.0,
                              storage="sparse")
     assert elcon.storages() == ["auto", "dense", "folded", "lattice"]
-    with pytest.raises(elcon.InputError, match=r"`storage` = \"lattice\": an S given as an array"):
+    with pytest.raises(elcon.InputError, match=r"`storage`: \"lattice\" cannot hold an S given as a matrix"):
         elcon.ContactProblem(x[:4], np.zeros(4), h, y=y[:4], influence=np.eye(4), load=1.0,
                              storage="lattice")
 

@@ -30,7 +30,6 @@ use std::path::{Path, PathBuf};
 use elcon_analysis::{
     ContactProblem, Geometry, GridFamily, Loading, Method, Options, Plan, ProblemBuilder, Storage,
 };
-use elcon_design::DesignMethod;
 use elcon_influence::{Dimension, PointSet};
 use toml::Spanned;
 
@@ -412,24 +411,29 @@ fn program_reads_entries(
     design: Option<&DesignSpec>,
     plan: &Plan,
 ) -> Result<(), SceneError> {
-    if let (Some(d), Some(raw_design)) = (design, &raw.design)
-        && d.method() == DesignMethod::Program
-        && !plan.storage.holds_entries()
-    {
-        let span = raw_design
-            .get_ref()
-            .method
-            .as_ref()
-            .map_or(raw_design.span(), |m| m.span());
-        return Err(ctx.invalid(
-            span,
-            "design.method",
-            "\"program\"",
-            "the program reads S's entries and this scene holds S matrix-free (solver.method); \
-             use \"descent\" or \"auto\"",
-        ));
-    }
-    Ok(())
+    let (Some(d), Some(raw_design)) = (design, &raw.design) else {
+        return Ok(());
+    };
+    d.method()
+        .admits(plan.storage.holds_entries())
+        .map_err(|e| {
+            let span = raw_design
+                .get_ref()
+                .method
+                .as_ref()
+                .map_or(raw_design.span(), |m| m.span());
+            let why = match e {
+                elcon_design::DesignError::Incompatible { reason, .. } => reason,
+                other => other.to_string(),
+            };
+            ctx.invalid(
+                span,
+                "design.method",
+                "\"program\"",
+                format!("{why} (solver.method)"),
+            )
+        })
+        .map(|_| ())
 }
 
 /// The builder of a scene's problem before its storage is decided: the
