@@ -83,8 +83,17 @@ fn the_program_reads_entries_and_the_others_take_any_case() {
     for method in DesignMethod::ALL {
         assert_eq!(method.admits(true).unwrap(), method);
     }
-    assert_eq!(DesignMethod::Auto.admits(false).unwrap(), DesignMethod::Auto);
-    assert_eq!(DesignMethod::Descent.admits(false).unwrap(), DesignMethod::Descent);
+    assert_eq!(
+        DesignMethod::Auto.admits(false).unwrap(),
+        DesignMethod::Auto
+    );
+    assert_eq!(
+        DesignMethod::Descent.admits(false).unwrap(),
+        DesignMethod::Descent
+    );
     let e = DesignMethod::Program.admits(false).unwrap_err().to_string();
-    assert!(e.starts_with("`method`: the program reads S's entries"), "{e}");
+    assert!(
+        e.starts_with("`method`: the program reads S's entries"),
+        "{e}"
+    );
 }

@@ -6,7 +6,7 @@
 
 use std::time::Instant;
 
-use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal, Storage};
+use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
 use elcon_design::{Analysis, DesignError, Profile, evaluate};
 use elcon_num::Num;
 use elcon_report::{
@@ -15,6 +15,7 @@ use elcon_report::{
 use elcon_scene::{DesignFamily, DesignSpec, RelativeTo, Scene};
 
 use crate::design_keys::{DesignCaller, design_reason};
+use crate::design_load::design_load;
 use crate::error::{RunError, run_error};
 use crate::subsurface::subsurface_of;
 
@@ -237,27 +238,25 @@ fn refined_cases(
         let base = match bases.iter().position(|(l, _)| *l == load) {
             Some(i) => &bases[i].1,
             None => {
-                let points = scene
-                    .grid_for(load, fineness)
-                    .map_err(|e| e.to_string())
-                    .and_then(|g| g.points().map_err(|e| e.to_string()))
-                    .map_err(layout)?;
-                if spec.sequence().is_some_and(|s| points.len() > s.max_points) {
+                let builder =
+                    design_load(scene, load, fineness).map_err(|e| layout(e.to_string()))?;
+                if spec
+                    .sequence()
+                    .is_some_and(|s| builder.points().len() > s.max_points)
+                {
                     return Ok(None);
                 }
-                let base = scene
-                    .builder(points, Loading::load(load))
-                    .storage(Storage::Auto)
-                    .fold(false)
-                    .build()
-                    .map_err(|source| elcon_design::DesignError::Analysis {
-                        stage: format!(
-                            "load {} on the grid of fineness {}",
-                            Num(load),
-                            Num(fineness)
-                        ),
-                        source,
-                    })?;
+                let base =
+                    builder
+                        .build()
+                        .map_err(|source| elcon_design::DesignError::Analysis {
+                            stage: format!(
+                                "load {} on the grid of fineness {}",
+                                Num(load),
+                                Num(fineness)
+                            ),
+                            source,
+                        })?;
                 bases.push((load, base));
                 &bases[bases.len() - 1].1
             }
@@ -310,9 +309,9 @@ fn design_cases<'a>(
             .or(own.then_some(problem));
         let case = match shared {
             Some(c) => c.with_loading(loading),
-            // Held as the scene's problem is, unfolded: the design reads
-            // every point.
-            None => scene.builder(points, loading).fold(false).build(),
+            None => design_load(scene, load, 1.0)?
+                .build()
+                .and_then(|base| base.with_loading(loading)),
         }
         .map_err(|e| run_error(scene, e))?;
         let solved = misalignment.is_none()

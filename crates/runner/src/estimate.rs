@@ -36,13 +36,14 @@
 //! digits in seconds, minutes or hours, with its class ([`TimeFigure`],
 //! [`TimeClass`]).
 
-use elcon_analysis::{Loading, Relief};
+use elcon_analysis::Relief;
 pub use elcon_design::DesignEstimate;
 use elcon_influence::PointSet;
 
 use elcon_process::{Ceiling, Limit, gemm_reserve, human};
-use elcon_scene::{DesignSpec, Plot, Scene, SceneError};
+use elcon_scene::{DesignSpec, Plot, Scene};
 
+use crate::design_load::design_load;
 use crate::error::RunError;
 
 mod time;
@@ -293,27 +294,16 @@ fn design_loads(
     spec.loads()
         .iter()
         .map(|&load| {
-            let points = if fineness == 1.0 {
-                scene.points_for(load)?
-            } else {
-                scene
-                    .grid_for(load, fineness)
-                    .and_then(|g| g.points().map_err(SceneError::points))
-                    .map_err(|e| failed(e.to_string()))?
-            };
-            // The scene's grid holds S as the scene does; a finer grid as
-            // elcon-analysis decides for its size (the design stage's
-            // refined cases: matrix-free on a large lattice).
-            let builder = scene
-                .builder(points.clone(), Loading::load(load))
-                .fold(false);
-            let builder = if fineness == 1.0 {
-                builder
-            } else {
-                builder.storage(elcon_analysis::Storage::Auto)
-            };
+            // The scene's own grid fails as the scene; a finer one as the run.
+            let builder = design_load(scene, load, fineness).map_err(|e| {
+                if fineness == 1.0 {
+                    RunError::from(e)
+                } else {
+                    failed(e.to_string())
+                }
+            })?;
             let plan = builder.plan().map_err(|e| failed(e.to_string()))?;
-            Ok((points, plan.estimate))
+            Ok((builder.points().clone(), plan.estimate))
         })
         .collect()
 }

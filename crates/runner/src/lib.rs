@@ -20,6 +20,7 @@
 mod batch_run;
 mod compare;
 mod design_keys;
+mod design_load;
 mod design_stage;
 mod error;
 mod error_estimate;

@@ -155,7 +155,10 @@ fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
     );
     let e = Scene::from_str(Path::new("storage.toml"), &spheres_text(15, &text)).unwrap_err();
     assert!(e.to_string().contains("`design.method`"), "{e}");
-    assert!(e.to_string().contains("the program reads S's entries"), "{e}");
+    assert!(
+        e.to_string().contains("the program reads S's entries"),
+        "{e}"
+    );
 }
 
 #[test]
