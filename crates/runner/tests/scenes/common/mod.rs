@@ -50,6 +50,18 @@ pub fn sphere_on_rigid_plane(grid: &str) -> String {
 /// 1000 lbf at x = 0.
 pub const BEAM: &str = include_str!("beam.toml");
 
+/// The paper's Example 2 (examples/scenes/example2-beam-design.toml):
+/// [`BEAM`] as a section 1 in wide and 4 in deep, 8.9 in long on a line of
+/// `n` points, under 50,000 lbf.
+pub fn example2_beam(n: usize) -> String {
+    BEAM.replace("second_moment = 5.0", "width = 1.0\ndepth = 4.0")
+        .replace(
+            "start = -4.0\nend = 4.0\nn = 16",
+            &format!("start = -4.45\nend = 4.45\nn = {n}"),
+        )
+        .replace("load = 1000.0", "load = 50000.0")
+}
+
 /// A steel roller (R = 5 mm, its axis along y) on a steel plane, both on
 /// Love patches, on the rectangle grid `grid` (its lines after `grid =
 /// "rectangle"`) under `load` N; units mm, N, MPa.
@@ -88,3 +100,4 @@ load = {load}
 pub fn with_table(scene: &str, name: &str, lines: &str) -> String {
     format!("{scene}\n[{name}]\n{lines}\n")
 }
+
