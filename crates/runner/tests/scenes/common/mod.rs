@@ -12,6 +12,7 @@
 
 use std::path::Path;
 
+use elcon_report::Errors;
 use elcon_scene::{Scene, SceneError};
 
 /// `text` read as the scene file `test.toml`.
@@ -101,3 +102,27 @@ pub fn with_table(scene: &str, name: &str, lines: &str) -> String {
     format!("{scene}\n[{name}]\n{lines}\n")
 }
 
+/// Asserts that one of `scene`'s warnings says each of `parts`.
+#[track_caller]
+pub fn assert_warns(scene: &Scene, parts: &[&str]) {
+    assert!(
+        scene
+            .warnings()
+            .iter()
+            .any(|w| parts.iter().all(|p| w.contains(p))),
+        "{parts:?}: {:?}",
+        scene.warnings()
+    );
+}
+
+/// Asserts that each relative error of an elliptical reference, the
+/// approach's, the peak's and the semi-axes' (major, then minor), is
+/// within its bound of `bounds` in size.
+#[track_caller]
+pub fn assert_ellipse_errors(e: &Errors, bounds: [f64; 4]) {
+    let errors = [e.approach, e.max_pressure, e.semi_major, e.semi_minor];
+    let names = ["approach", "max_pressure", "semi_major", "semi_minor"];
+    for ((name, error), bound) in names.iter().zip(errors).zip(bounds) {
+        assert!(error.unwrap().abs() < bound, "{name}: {e:?}");
+    }
+}
