@@ -27,6 +27,7 @@ use elcon::analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface,
 };
 use elcon::influence::{Beam, Body, Material, PointSet, combined_modulus};
+use elcon_fixtures::scenes;
 
 fn solved(problem: &ContactProblem) -> Result<ContactSolution, Box<dyn Error>> {
     let sol = problem.solve(Method::BlockPivoting, &Options::default())?;
@@ -46,15 +47,11 @@ fn punch() -> Result<(), Box<dyn Error>> {
     println!("|---|---|---|---|---|---|");
     for cells in [10.0, 20.0, 40.0] {
         let t = Instant::now();
-        let points = PointSet::grid_disk(a / cells, a)?;
-        let n = points.len();
-        let problem = ContactProblem::new(
-            points,
-            &Body::uniform_patch(steel),
-            &Body::rigid(),
-            &Geometry::Separation(vec![0.0; n]),
-            Loading::load(load).with_moment_y(-m),
-        )?;
+        // The shared punch (pressed by the approach the load gives), under
+        // the load and the moment instead.
+        let (pressed, _) = scenes::flat_punch(steel, a, cells, closed.approach(load));
+        let problem = pressed.with_loading(Loading::load(load).with_moment_y(-m))?;
+        let n = problem.points().len();
         let sol = solved(&problem)?;
         let seconds = t.elapsed().as_secs_f64();
         println!(

@@ -8,7 +8,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{edited, elcon, example_scene, json, scratch, text};
+use common::{edited, elcon, example_scene, exited, json, scratch, text};
 use elcon::analysis::{ContactProblem, Loading, Method, Options};
 use elcon::influence::PointSet;
 use elcon_fixtures::scenes;
@@ -134,7 +134,7 @@ fn every_example_scene_runs_and_writes_the_documented_fields() {
     );
     args.extend(["--out".into(), out.display().to_string()]);
     let o = elcon(&args.iter().map(String::as_str).collect::<Vec<_>>());
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    exited(&o, 0, &[]);
     for (scene, reference, plots) in scenes {
         check_result(&out, scene, reference, plots);
     }
@@ -317,10 +317,11 @@ fn a_batch_with_a_broken_run_still_writes_the_others() {
         elcon(&args)
     };
     let o = batch(&["--jobs", "2"]);
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(1), "{t}");
-    assert!(t.contains("6 runs, 2 failed"), "{t}");
-    assert!(t.contains("`points.across` = 12: must be odd"), "{t}");
+    exited(
+        &o,
+        1,
+        &["6 runs, 2 failed", "`points.across` = 12: must be odd"],
+    );
     let results = json(&out.join("sweep/results.json"));
     let rows = results["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 6);
@@ -361,7 +362,7 @@ fn a_batch_with_a_broken_run_still_writes_the_others() {
     // Shards: two halves, merged, give the same rows.
     for k in ["1/2", "2/2"] {
         let o = batch(&["--shard", k]);
-        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+        exited(&o, 1, &[]);
     }
     let merged = dir.join("merged");
     let o = elcon(&[
@@ -395,8 +396,7 @@ fn a_batch_with_a_broken_run_still_writes_the_others() {
 fn the_convergence_batch_checks_and_a_shard_of_it_runs() {
     let out = scratch("convergence");
     let o = elcon(&["check", "examples/scenes/convergence.toml"]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert!(text(&o).contains("15 runs, all valid"));
+    exited(&o, 0, &["15 runs, all valid"]);
     // Shard 1 of 5 holds runs 0, 5 and 10: every method at 11 across.
     let o = elcon(&[
         "batch",
@@ -406,7 +406,7 @@ fn the_convergence_batch_checks_and_a_shard_of_it_runs() {
         "--shard",
         "1/5",
     ]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    exited(&o, 0, &[]);
     let r = json(&out.join("convergence-shard-1-of-5/results.json"));
     assert_eq!(r["rows"].as_array().unwrap().len(), 3);
 }
@@ -420,7 +420,7 @@ fn the_command_line_and_the_library_agree_bit_for_bit() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    exited(&o, 0, &[]);
     let r = json(&out.join("example1-spheres/result.json"));
     // The same scene through the library: Love patches, 41 across, zone 1.15.
     let a = scenes::example1_hertz().contact_radius();
@@ -519,14 +519,9 @@ fn check_and_run_treat_a_piped_scene_alike() {
         &[("name = \"example1-paper-model\"", "")],
     );
     let o = piped(&["check", "/dev/stdin"], &unnamed);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert!(
-        text(&o).contains("/dev/stdin: scene `stdin`: valid"),
-        "{}",
-        text(&o)
-    );
+    exited(&o, 0, &["/dev/stdin: scene `stdin`: valid"]);
     let o = piped(&["run", "/dev/stdin", "--out", out], &unnamed);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    exited(&o, 0, &[]);
     assert!(dir.join("out/stdin/result.json").exists(), "{}", text(&o));
     // An invalid scene: one message, the same from both.
     let invalid = edited(&unnamed, &[("load = 100.0", "load = -1.0")]);
@@ -545,12 +540,7 @@ fn check_and_run_treat_a_piped_scene_alike() {
     let batch =
         "[batch]\nname = \"b\"\nscene = \"x.toml\"\n[[batch.group]]\n\"loading.load\" = [1.0]\n";
     let o = piped(&["run", "/dev/stdin", "--out", out], batch);
-    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(
-        text(&o).contains("run it with `elcon batch /dev/stdin`"),
-        "{}",
-        text(&o)
-    );
+    exited(&o, 1, &["run it with `elcon batch /dev/stdin`"]);
 }
 
 #[test]
@@ -561,11 +551,10 @@ fn a_negative_memory_limit_is_refused_as_a_size() {
         "--memory-limit",
         "-1",
     ]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("`-1`: a memory limit must be a positive size, like 8GiB"),
-        "{}",
-        text(&o)
+    let t = exited(
+        &o,
+        2,
+        &["`-1`: a memory limit must be a positive size, like 8GiB"],
     );
-    assert!(!text(&o).contains("unexpected argument"), "{}", text(&o));
+    assert!(!t.contains("unexpected argument"), "{t}");
 }

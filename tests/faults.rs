@@ -13,10 +13,12 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Child, Stdio};
+use std::process::{Child, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{FAULTS, command, edited, elcon, elcon_with, example_scene, json, scratch, text};
+use common::{
+    FAULTS, command, edited, elcon, elcon_with, example_scene, exited, json, scratch, text,
+};
 
 /// `elcon` started in the background, its output captured.
 fn spawn(args: &[&str], env: &[(&str, &str)]) -> Child {
@@ -31,6 +33,13 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// `elcon batch file --out out` with the further `options`, and `env` set.
+fn batch(file: &Path, out: &Path, options: &[&str], env: &[(&str, &str)]) -> Output {
+    let mut args = vec!["batch", s(file), "--out", s(out)];
+    args.extend_from_slice(options);
+    elcon_with(&args, env)
+}
+
 /// The paper's Example 1 (149 points, fast), with `edits` applied, as
 /// `dir/<file>.toml` named `name`.
 fn small_scene(dir: &Path, file: &str, name: &str, edits: &[(&str, &str)]) -> PathBuf {
@@ -41,6 +50,27 @@ fn small_scene(dir: &Path, file: &str, name: &str, edits: &[(&str, &str)]) -> Pa
     let path = dir.join(format!("{file}.toml"));
     std::fs::write(&path, edited(&named, edits)).unwrap();
     path
+}
+
+/// Asserts that the rows of the batch table `results` (a results.json)
+/// have the statuses `expected`, in order: `ok`, or a failure's status
+/// that says the words given.
+#[track_caller]
+fn assert_statuses(results: &Path, expected: &[&str]) {
+    let table = json(results);
+    let status: Vec<&str> = table["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["status"].as_str().unwrap())
+        .collect();
+    assert_eq!(status.len(), expected.len(), "{status:?}");
+    for (status, expected) in status.iter().zip(expected) {
+        match *expected {
+            "ok" => assert_eq!(*status, "ok"),
+            failure => assert!(status.contains(failure), "{failure}: {status}"),
+        }
+    }
 }
 
 /// Entries of `dir` whose names say they are temporary.
@@ -98,16 +128,16 @@ fn a_scene_over_the_memory_ceiling_is_refused_and_the_others_run() {
         let mut run = vec!["run", s(&big), s(&good), "--out", s(&out)];
         run.extend(args.iter().copied());
         let o = elcon_with(&run, &env);
-        let t = text(&o);
-        assert_eq!(o.status.code(), Some(1), "{t}");
-        for part in [
-            "scene `example1-spheres`: too big for the memory available: N = 1653 points needs about",
-            "block-pivoting keeps about 3.25 matrices of 1653 x 1653",
-            "the ceiling is 57.6 MiB",
-            "What helps: folding by symmetry",
-        ] {
-            assert!(t.contains(part), "{part}: {t}");
-        }
+        let t = exited(
+            &o,
+            1,
+            &[
+                "scene `example1-spheres`: too big for the memory available: N = 1653 points needs about",
+                "block-pivoting keeps about 3.25 matrices of 1653 x 1653",
+                "the ceiling is 57.6 MiB",
+                "What helps: folding by symmetry",
+            ],
+        );
         assert!(!t.contains("panicked"), "{t}");
         assert!(!out.join("example1-spheres").exists());
         assert!(out.join("good/result.json").exists(), "{t}");
@@ -115,8 +145,7 @@ fn a_scene_over_the_memory_ceiling_is_refused_and_the_others_run() {
         let mut check = vec!["check", s(&big)];
         check.extend(args.iter().copied());
         let o = elcon_with(&check, &env);
-        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-        assert!(text(&o).contains("too big for the memory available"));
+        exited(&o, 1, &["too big for the memory available"]);
     }
     // In a batch, the run over the ceiling is a failed row; the other runs.
     let spheres_dir = dir.join("sweep");
@@ -127,40 +156,21 @@ fn a_scene_over_the_memory_ceiling_is_refused_and_the_others_run() {
         "[batch]\nscene = \"spheres.toml\"\n[[batch.group]]\n\"solver.symmetry\" = [\"auto\", \"none\"]\n",
     )
     .unwrap();
-    let o = elcon(&[
-        "batch",
-        s(&spheres_dir.join("folding.toml")),
-        "--out",
-        s(&out),
-        "--memory-limit",
-        "64M",
-    ]);
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(1), "{t}");
-    assert!(t.contains("2 runs, 1 failed"), "{t}");
-    let rows = json(&out.join("folding/results.json"))["rows"].clone();
-    assert_eq!(rows[0]["status"], "ok");
-    assert!(
-        rows[1]["status"]
-            .as_str()
-            .unwrap()
-            .contains("too big for the memory available: N = 1653 points"),
-        "{rows}"
+    let folding = spheres_dir.join("folding.toml");
+    let o = batch(&folding, &out, &["--memory-limit", "64M"], &[]);
+    exited(&o, 1, &["2 runs, 1 failed"]);
+    assert_statuses(
+        &out.join("folding/results.json"),
+        &["ok", "too big for the memory available: N = 1653 points"],
     );
     // Without a limit it fits, and check prints the estimate.
     let o = elcon(&["check", s(&big)]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert!(
-        text(&o).contains("1653 points; peak memory about"),
-        "{}",
-        text(&o)
-    );
+    exited(&o, 0, &["1653 points; peak memory about"]);
     // A size that is not one is a usage error.
     let o = elcon(&["run", s(&good), "--memory-limit", "4X"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    exited(&o, 2, &[]);
     let o = elcon_with(&["check", s(&good)], &[("ELCON_MEMORY_LIMIT", "lots")]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("ELCON_MEMORY_LIMIT=lots"), "{}", text(&o));
+    exited(&o, 2, &["ELCON_MEMORY_LIMIT=lots"]);
 }
 
 #[test]
@@ -173,11 +183,12 @@ fn a_panicking_scene_is_reported_and_the_good_one_written() {
         &["run", s(&bad), s(&good), "--out", s(&out)],
         &[(FAULTS, "panic=bad")],
     );
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(1), "{t}");
-    assert!(
-        t.contains("error: scene `bad`: internal error (this is a bug; please report it with the scene): fault injected"),
-        "{t}"
+    let t = exited(
+        &o,
+        1,
+        &[
+            "error: scene `bad`: internal error (this is a bug; please report it with the scene): fault injected",
+        ],
     );
     // The panic's place is in the report; the default hook printed nothing.
     assert!(t.contains("faults.rs:"), "{t}");
@@ -209,17 +220,15 @@ fn two_scenes_of_one_name_are_refused_before_any_solve() {
     let b = small_scene(&dir, "b", "same", &[("load = 100.0", "load = 200.0")]);
     let c = small_scene(&dir, "c", "other", &[]);
     let o = elcon(&["run", s(&a), s(&b), s(&c), "--out", s(&out)]);
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(1), "{t}");
-    assert!(
-        t.contains("both name scene `same`, so they would write one directory"),
-        "{t}"
+    exited(
+        &o,
+        1,
+        &["both name scene `same`, so they would write one directory"],
     );
     assert!(!out.join("same").exists());
     assert!(out.join("other/result.json").exists());
     let o = elcon(&["check", s(&a), s(&b)]);
-    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("both name scene `same`"), "{}", text(&o));
+    exited(&o, 1, &["both name scene `same`"]);
 }
 
 #[test]
@@ -234,38 +243,19 @@ fn a_batch_with_failing_runs_writes_its_tables() {
     .unwrap();
     let out = dir.join("out");
     // Run 2 (across 7) panics; run 1 (across 6) is invalid.
-    let o = elcon_with(
-        &[
-            "batch",
-            s(&dir.join("sweep.toml")),
-            "--out",
-            s(&out),
-            "--jobs",
-            "2",
-        ],
-        &[(FAULTS, "panic=002-points.across-7")],
-    );
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(1), "{t}");
-    assert!(t.contains("4 runs, 2 failed"), "{t}");
+    let panics = [(FAULTS, "panic=002-points.across-7")];
+    let o = batch(&dir.join("sweep.toml"), &out, &["--jobs", "2"], &panics);
+    let t = exited(&o, 1, &["4 runs, 2 failed"]);
     assert!(!t.contains("panicked at"), "{t}");
-    let rows = json(&out.join("sweep/results.json"))["rows"].clone();
-    let status: Vec<&str> = rows
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|r| r["status"].as_str().unwrap())
-        .collect();
-    assert_eq!(status[0], "ok");
-    assert!(
-        status[1].contains("`points.across` = 6: must be odd"),
-        "{status:?}"
+    assert_statuses(
+        &out.join("sweep/results.json"),
+        &[
+            "ok",
+            "`points.across` = 6: must be odd",
+            "internal error (this is a bug",
+            "ok",
+        ],
     );
-    assert!(
-        status[2].contains("internal error (this is a bug"),
-        "{status:?}"
-    );
-    assert_eq!(status[3], "ok");
     for file in ["results.csv", "results.md"] {
         let table = std::fs::read_to_string(out.join("sweep").join(file)).unwrap();
         assert!(table.contains("this is a bug"), "{file}");
@@ -333,7 +323,7 @@ fn a_run_killed_mid_write_leaves_the_old_directory_and_the_rerun_cleans_up() {
     );
     let old = small_scene(&dir, "old", "x", &[plots]);
     let o = elcon(&["run", s(&old), "--out", s(&out)]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    exited(&o, 0, &[]);
     // A second run, killed (SIGKILL) after its first file.
     let new = small_scene(&dir, "new", "x", &[plots, ("load = 100.0", "load = 300.0")]);
     let mut child = spawn(
@@ -360,7 +350,7 @@ fn a_run_killed_mid_write_leaves_the_old_directory_and_the_rerun_cleans_up() {
         )],
     );
     let o = elcon(&["run", s(&lean), "--out", s(&out)]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    exited(&o, 0, &[]);
     assert!(litter(&out).is_empty(), "{:?}", litter(&out));
     let files: Vec<String> = std::fs::read_dir(out.join("x"))
         .unwrap()
@@ -402,22 +392,56 @@ fn rows_without_times(table: &serde_json::Value) -> Vec<serde_json::Value> {
         .collect()
 }
 
+/// [`six_runs`] at the loads 50 and 150 (eight runs) as `dir/sweep.toml`,
+/// run whole into `out`: the batch file and its results.json.
+fn whole_sweep(dir: &Path, out: &Path) -> (PathBuf, serde_json::Value) {
+    let file = six_runs(dir, "sweep", "50.0, 150.0");
+    exited(&batch(&file, out, &[], &[]), 0, &[]);
+    (file, json(&out.join("sweep/results.json")))
+}
+
+/// Shard `k` of `n` of the batch `sweep` under `out`.
+fn shard(out: &Path, k: u32, n: u32) -> PathBuf {
+    out.join(format!("sweep-shard-{k}-of-{n}"))
+}
+
+/// `elcon merge` of the directories `dirs` into `out`.
+fn merge(dirs: &[&Path], out: &Path) -> Output {
+    let mut args = vec!["merge"];
+    args.extend(dirs.iter().map(|p| s(p)));
+    args.extend(["--out", s(out)]);
+    elcon(&args)
+}
+
+/// Merges `dirs` into `out`, asserting it succeeds saying each of `parts`
+/// and writes `whole`'s rows (the run times aside): the merged table.
+#[track_caller]
+fn merged_as(
+    whole: &serde_json::Value,
+    dirs: &[&Path],
+    out: &Path,
+    parts: &[&str],
+) -> serde_json::Value {
+    exited(&merge(dirs, out), 0, parts);
+    let m = json(&out.join("results.json"));
+    assert_eq!(rows_without_times(&m), rows_without_times(whole));
+    m
+}
+
 #[test]
 fn a_sweep_run_as_scheduler_tasks_merges_to_exactly_the_unsharded_tables() {
     let dir = scratch("shards");
-    let batch = six_runs(&dir, "sweep", "50.0, 150.0");
     let out = dir.join("out");
-    let o = elcon(&["batch", s(&batch), "--out", s(&out)]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let whole = json(&out.join("sweep/results.json"));
+    let (sweep, whole) = whole_sweep(&dir, &out);
     assert_eq!(whole["runs"], 8);
+    let auto = ["batch", s(&sweep), "--out", s(&out), "--shard", "auto"];
     // A SLURM job array of three tasks (--array=0-2), all at once, each
     // its own process.
     let tasks: Vec<Child> = (0..3)
         .map(|id| {
             let id = id.to_string();
             spawn(
-                &["batch", s(&batch), "--out", s(&out), "--shard", "auto"],
+                &auto,
                 &[
                     ("SLURM_ARRAY_TASK_ID", id.as_str()),
                     ("SLURM_ARRAY_TASK_COUNT", "3"),
@@ -427,47 +451,24 @@ fn a_sweep_run_as_scheduler_tasks_merges_to_exactly_the_unsharded_tables() {
         })
         .collect();
     for t in tasks {
-        let o = t.wait_with_output().unwrap();
-        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+        exited(&t.wait_with_output().unwrap(), 0, &[]);
     }
-    let shards: Vec<PathBuf> = (1..=3)
-        .map(|k| out.join(format!("sweep-shard-{k}-of-3")))
-        .collect();
-    let merged = dir.join("merged");
-    let mut args = vec!["merge"];
-    args.extend(shards.iter().map(|p| s(p)));
-    args.extend(["--out", s(&merged)]);
-    let o = elcon(&args);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert!(
-        text(&o).contains("merged 8 runs of `sweep`"),
-        "{}",
-        text(&o)
+    let shards: Vec<PathBuf> = (1..=3).map(|k| shard(&out, k, 3)).collect();
+    let shards: Vec<&Path> = shards.iter().map(PathBuf::as_path).collect();
+    let m = merged_as(
+        &whole,
+        &shards,
+        &dir.join("merged"),
+        &["merged 8 runs of `sweep`"],
     );
-    let m = json(&merged.join("results.json"));
-    assert_eq!(rows_without_times(&m), rows_without_times(&whole));
     assert_eq!(m["batch_hash"], whole["batch_hash"]);
     // A Kubernetes indexed Job of two completions.
     for index in ["0", "1"] {
-        let o = elcon_with(
-            &["batch", s(&batch), "--out", s(&out), "--shard", "auto"],
-            &[("JOB_COMPLETION_INDEX", index), ("ELCON_SHARD_COUNT", "2")],
-        );
-        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+        let env = [("JOB_COMPLETION_INDEX", index), ("ELCON_SHARD_COUNT", "2")];
+        exited(&elcon_with(&auto, &env), 0, &[]);
     }
-    let merged2 = dir.join("merged2");
-    let o = elcon(&[
-        "merge",
-        s(&out.join("sweep-shard-2-of-2")),
-        s(&out.join("sweep-shard-1-of-2")),
-        "--out",
-        s(&merged2),
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert_eq!(
-        rows_without_times(&json(&merged2.join("results.json"))),
-        rows_without_times(&whole)
-    );
+    let (one, two) = (shard(&out, 1, 2), shard(&out, 2, 2));
+    merged_as(&whole, &[&two, &one], &dir.join("merged2"), &[]);
     // A SLURM array of listed ids (--array=1,3,7) says no shard by its
     // ids, and SLURM and Kubernetes naming different shards are refused:
     // usage errors, nothing run.
@@ -478,52 +479,41 @@ fn a_sweep_run_as_scheduler_tasks_merges_to_exactly_the_unsharded_tables() {
         ("SLURM_ARRAY_TASK_MAX", "7"),
     ];
     let refused = dir.join("refused");
-    let o = elcon_with(
-        &["batch", s(&batch), "--out", s(&refused), "--shard", "auto"],
-        &sparse,
-    );
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("not a regular range"), "{}", text(&o));
-    let o = elcon_with(
-        &["batch", s(&batch), "--out", s(&refused), "--shard", "auto"],
+    let o = batch(&sweep, &refused, &["--shard", "auto"], &sparse);
+    exited(&o, 2, &["not a regular range"]);
+    let both = [
+        ("SLURM_ARRAY_TASK_ID", "0"),
+        ("SLURM_ARRAY_TASK_COUNT", "2"),
+        ("SLURM_ARRAY_TASK_MIN", "0"),
+        ("JOB_COMPLETION_INDEX", "1"),
+        ("ELCON_SHARD_COUNT", "2"),
+    ];
+    let o = batch(&sweep, &refused, &["--shard", "auto"], &both);
+    exited(
+        &o,
+        2,
         &[
-            ("SLURM_ARRAY_TASK_ID", "0"),
-            ("SLURM_ARRAY_TASK_COUNT", "2"),
-            ("SLURM_ARRAY_TASK_MIN", "0"),
-            ("JOB_COMPLETION_INDEX", "1"),
-            ("ELCON_SHARD_COUNT", "2"),
+            "shard 1/2 (SLURM_ARRAY_TASK_ID)",
+            "shard 2/2 (JOB_COMPLETION_INDEX",
         ],
-    );
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("shard 1/2 (SLURM_ARRAY_TASK_ID)")
-            && text(&o).contains("shard 2/2 (JOB_COMPLETION_INDEX"),
-        "{}",
-        text(&o)
     );
     assert!(!refused.exists());
     // Outside a scheduler, --shard auto is a usage error.
-    let o = elcon(&["batch", s(&batch), "--out", s(&out), "--shard", "auto"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("SLURM_ARRAY_TASK_ID"), "{}", text(&o));
+    exited(&elcon(&auto), 2, &["SLURM_ARRAY_TASK_ID"]);
 }
 
 #[test]
 fn merge_refuses_shards_that_are_not_one_batch_each_once() {
     let dir = scratch("merge");
-    let batch = six_runs(&dir, "sweep", "50.0");
+    let sweep = six_runs(&dir, "sweep", "50.0");
     let out = dir.join("out");
     for k in ["1/2", "2/2", "1/3"] {
-        let o = elcon(&["batch", s(&batch), "--out", s(&out), "--shard", k]);
-        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+        exited(&batch(&sweep, &out, &["--shard", k], &[]), 0, &[]);
     }
-    let shard = |k: u32, n: u32| out.join(format!("sweep-shard-{k}-of-{n}"));
+    let shard = |k: u32, n: u32| shard(&out, k, n);
     let merged = dir.join("merged");
     let refused = |dirs: &[&Path], message: &str| {
-        let mut args = vec!["merge"];
-        args.extend(dirs.iter().map(|p| s(p)));
-        args.extend(["--out", s(&merged)]);
-        let o = elcon(&args);
+        let o = merge(dirs, &merged);
         let t = text(&o);
         assert_eq!(o.status.code(), Some(1), "{message}: {t}");
         assert!(t.contains(message), "{message}: {t}");
@@ -536,16 +526,14 @@ fn merge_refuses_shards_that_are_not_one_batch_each_once() {
     let other = dir.join("other");
     std::fs::create_dir_all(&other).unwrap();
     let edited = six_runs(&other, "sweep", "60.0");
-    let o = elcon(&["batch", s(&edited), "--out", s(&other), "--shard", "2/2"]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    exited(&batch(&edited, &other, &["--shard", "2/2"], &[]), 0, &[]);
     refused(
         &[&shard(1, 2), &other.join("sweep-shard-2-of-2")],
         "are from different versions of batch `sweep`",
     );
     // Another batch.
     let renamed = six_runs(&other, "another", "50.0");
-    let o = elcon(&["batch", s(&renamed), "--out", s(&other), "--shard", "2/2"]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    exited(&batch(&renamed, &other, &["--shard", "2/2"], &[]), 0, &[]);
     refused(
         &[&shard(1, 2), &other.join("another-shard-2-of-2")],
         "is from batch `another`",
@@ -567,17 +555,9 @@ fn merge_refuses_shards_that_are_not_one_batch_each_once() {
     std::fs::write(tampered.join("results.json"), t.to_string()).unwrap();
     refused(&[&shard(1, 2), &tampered], "two rows with index 1");
     // The good pair merges; merge will not replace a directory it did not write.
-    let o = elcon(&["merge", s(&shard(1, 2)), s(&shard(2, 2)), "--out", s(&out)]);
-    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("holds the shard"), "{}", text(&o));
-    let o = elcon(&[
-        "merge",
-        s(&shard(1, 2)),
-        s(&shard(2, 2)),
-        "--out",
-        s(&merged),
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let (one, two) = (shard(1, 2), shard(2, 2));
+    exited(&merge(&[&one, &two], &out), 1, &["holds the shard"]);
+    exited(&merge(&[&one, &two], &merged), 0, &[]);
 }
 
 #[test]
@@ -611,14 +591,15 @@ fn a_huge_sweep_is_checked_by_size_and_a_too_large_one_refused() {
         &[("loading.load", values(1000, 1.0)), ("points.zone", zones)],
     );
     let o = elcon(&["check", s(&million)]);
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(1), "{t}");
-    assert!(
-        t.contains("batch `million`: 1,000,000 runs, 1 failed"),
-        "{t}"
+    exited(
+        &o,
+        1,
+        &[
+            "batch `million`: 1,000,000 runs, 1 failed",
+            "covering every value of every key",
+            "`points.zone` = 0.9",
+        ],
     );
-    assert!(t.contains("covering every value of every key"), "{t}");
-    assert!(t.contains("`points.zone` = 0.9"), "{t}");
     // A billion runs: refused with its size, even for one shard.
     let billion = write(
         "billion",
@@ -633,11 +614,10 @@ fn a_huge_sweep_is_checked_by_size_and_a_too_large_one_refused() {
         vec!["batch", s(&billion), "--shard", "1/1000"],
     ] {
         let o = elcon(&args);
-        let t = text(&o);
-        assert_eq!(o.status.code(), Some(1), "{t}");
-        assert!(
-            t.contains("1,000,000,000 runs: a sweep has at most 1,000,000 runs"),
-            "{t}"
+        exited(
+            &o,
+            1,
+            &["1,000,000,000 runs: a sweep has at most 1,000,000 runs"],
         );
     }
 }
@@ -660,11 +640,7 @@ fn run_results(dir: &Path) -> std::collections::BTreeMap<String, String> {
 #[test]
 fn a_batch_killed_at_any_point_resumes_without_redoing_finished_runs() {
     let dir = scratch("resume");
-    let batch = six_runs(&dir, "sweep", "50.0, 150.0");
-    let whole_out = dir.join("whole");
-    let o = elcon(&["batch", s(&batch), "--out", s(&whole_out)]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let whole = json(&whole_out.join("sweep/results.json"));
+    let (sweep, whole) = whole_sweep(&dir, &dir.join("whole"));
     // Killed (SIGKILL) before the first run is journaled (its directory
     // in place), after the second and after the sixth; stopped by SIGTERM
     // after the third. One run at a time, so the journal's order is the
@@ -676,10 +652,7 @@ fn a_batch_killed_at_any_point_resumes_without_redoing_finished_runs() {
         ("term_after_record=3", "TERM"),
     ] {
         let out = dir.join(fault.replace('=', "-"));
-        let o = elcon_with(
-            &["batch", s(&batch), "--out", s(&out), "--jobs", "1"],
-            &[(FAULTS, fault)],
-        );
+        let o = batch(&sweep, &out, &["--jobs", "1"], &[(FAULTS, fault)]);
         let t = text(&o);
         let target = out.join("sweep");
         let journaled = std::fs::read_to_string(target.join("journal.jsonl"))
@@ -700,13 +673,13 @@ fn a_batch_killed_at_any_point_resumes_without_redoing_finished_runs() {
             assert!(rows >= 3, "{fault}: {partial}");
             assert_eq!(partial["pending"].as_u64().unwrap() as usize, 8 - rows);
             // An unfinished table does not merge.
-            let o = elcon(&["merge", s(&target), "--out", s(&dir.join("m"))]);
+            let o = merge(&[&target], &dir.join("m"));
             assert!(text(&o).contains("unfinished"), "{}", text(&o));
         }
         let before = run_results(&target);
         let finished = journaled.min(before.len());
         // The same command again keeps what finished and runs the rest.
-        let o = elcon(&["batch", s(&batch), "--out", s(&out), "--jobs", "1"]);
+        let o = batch(&sweep, &out, &["--jobs", "1"], &[]);
         let t = text(&o);
         assert_eq!(o.status.code(), Some(0), "{fault}: {t}");
         if finished > 0 {
@@ -740,42 +713,18 @@ fn a_batch_killed_at_any_point_resumes_without_redoing_finished_runs() {
 #[test]
 fn resumed_shards_merge_to_exactly_an_unbroken_run() {
     let dir = scratch("resume-shards");
-    let batch = six_runs(&dir, "sweep", "50.0, 150.0");
     let out = dir.join("out");
-    let o = elcon(&["batch", s(&batch), "--out", s(&out)]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let whole = json(&out.join("sweep/results.json"));
+    let (sweep, whole) = whole_sweep(&dir, &out);
     for k in ["1/2", "2/2"] {
         // Each shard killed after its first run, then run again.
-        let o = elcon_with(
-            &[
-                "batch",
-                s(&batch),
-                "--out",
-                s(&out),
-                "--shard",
-                k,
-                "--jobs",
-                "1",
-            ],
-            &[(FAULTS, "kill_after_record=1")],
-        );
+        let killed = [(FAULTS, "kill_after_record=1")];
+        let o = batch(&sweep, &out, &["--shard", k, "--jobs", "1"], &killed);
         assert_eq!(o.status.code(), None, "{}", text(&o));
-        let o = elcon(&["batch", s(&batch), "--out", s(&out), "--shard", k]);
-        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-        assert!(text(&o).contains("1 finished runs kept"), "{}", text(&o));
+        let o = batch(&sweep, &out, &["--shard", k], &[]);
+        exited(&o, 0, &["1 finished runs kept"]);
     }
-    let merged = dir.join("merged");
-    let o = elcon(&[
-        "merge",
-        s(&out.join("sweep-shard-1-of-2")),
-        s(&out.join("sweep-shard-2-of-2")),
-        "--out",
-        s(&merged),
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let m = json(&merged.join("results.json"));
-    assert_eq!(rows_without_times(&m), rows_without_times(&whole));
+    let (one, two) = (shard(&out, 1, 2), shard(&out, 2, 2));
+    let m = merged_as(&whole, &[&one, &two], &dir.join("merged"), &[]);
     // Every value of every row to the last digit: the rows are their runs'
     // result.json, read back exactly.
     for (r, w) in m["rows"]
@@ -788,33 +737,22 @@ fn resumed_shards_merge_to_exactly_an_unbroken_run() {
         assert_eq!(r["max_pressure"].as_f64(), w["max_pressure"].as_f64());
     }
     // A hand-edited value is refused, naming the field.
-    let shard2 = out.join("sweep-shard-2-of-2");
-    let mut t = json(&shard2.join("results.json"));
+    let mut t = json(&two.join("results.json"));
     t["rows"][0]["approach"] = serde_json::json!(1.0);
-    std::fs::write(shard2.join("results.json"), t.to_string()).unwrap();
-    let o = elcon(&[
-        "merge",
-        s(&out.join("sweep-shard-1-of-2")),
-        s(&shard2),
-        "--out",
-        s(&dir.join("merged2")),
-    ]);
-    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(
-        text(&o).contains("does not hold its run's values: `approach` is 1.0 in the table"),
-        "{}",
-        text(&o)
+    std::fs::write(two.join("results.json"), t.to_string()).unwrap();
+    exited(
+        &merge(&[&one, &two], &dir.join("merged2")),
+        1,
+        &["does not hold its run's values: `approach` is 1.0 in the table"],
     );
     // Another version of the batch into the same directory starts afresh.
     let edited = six_runs(&dir, "sweep", "60.0, 150.0");
-    let o = elcon(&["batch", s(&edited), "--out", s(&out)]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert!(
-        text(&o).contains("another version of the batch"),
-        "{}",
-        text(&o)
+    let t = exited(
+        &batch(&edited, &out, &[], &[]),
+        0,
+        &["another version of the batch"],
     );
-    assert!(!text(&o).contains("kept"), "{}", text(&o));
+    assert!(!t.contains("kept"), "{t}");
 }
 
 #[test]
@@ -834,7 +772,7 @@ fn long_and_huge_override_values_name_short_directories() {
     )
     .unwrap();
     let out = dir.join("out");
-    let o = elcon(&["batch", s(&dir.join("names.toml")), "--out", s(&out)]);
+    let o = batch(&dir.join("names.toml"), &out, &[], &[]);
     let t = text(&o);
     assert!(!t.contains("File name too long"), "{t}");
     assert!(t.contains("loading.load=1e300"), "{t}");
@@ -902,10 +840,9 @@ fn a_thread_count_beyond_the_cores_is_refused() {
     let dir = scratch("threads");
     let batch = six_runs(&dir, "sweep", "50.0, 150.0");
     let o = elcon(&["check", s(&batch), "--threads", "100000"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("threads per core"), "{}", text(&o));
+    exited(&o, 2, &["threads per core"]);
     let o = elcon_with(&["check", s(&batch)], &[("ELCON_THREADS", "100000")]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    exited(&o, 2, &[]);
     let o = elcon(&["check", s(&batch), "--threads", "2"]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    exited(&o, 0, &[]);
 }

@@ -60,6 +60,18 @@ pub fn text(o: &Output) -> String {
     )
 }
 
+/// The text of the run `o` ([`text`]), asserted to have exited with
+/// `code` and to say each of `parts`.
+#[track_caller]
+pub fn exited(o: &Output, code: i32, parts: &[&str]) -> String {
+    let t = text(o);
+    assert_eq!(o.status.code(), Some(code), "{t}");
+    for part in parts {
+        assert!(t.contains(part), "{part}: {t}");
+    }
+    t
+}
+
 /// The JSON file at `path`.
 pub fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()

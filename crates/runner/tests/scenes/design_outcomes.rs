@@ -2,12 +2,33 @@
 //! `check` (the scene's validation) refuses it, naming the key to change
 //! and why. Coarse grids, so that each runs in seconds.
 
-use crate::common::{BEAM, roller, scene, spheres, with_table};
+use crate::common::{example2_beam, roller, scene, spheres, with_table};
+use elcon_report::DesignJson;
 use elcon_runner::run;
 
-/// Example 1's spheres on a coarse disk with the design `lines`.
-fn spheres_designed(grid: &str, lines: &str) -> String {
-    with_table(&spheres(grid), "design", lines)
+/// The design of the scene `text`, run, each of its cases certified.
+#[track_caller]
+fn certified_design(text: &str) -> DesignJson {
+    let d = run(&scene(text).unwrap()).unwrap().result.design.unwrap();
+    assert!(d.cases.iter().all(|c| c.certificate_holds), "{:?}", d.cases);
+    d
+}
+
+/// Asserts that the scene `text` is refused with a message saying each of
+/// `parts`.
+#[track_caller]
+fn refused_saying(text: &str, parts: &[&str]) {
+    let e = scene(text).unwrap_err().to_string();
+    for part in parts {
+        assert!(e.contains(part), "{part}: {e}");
+    }
+}
+
+/// The design of Example 1's spheres on the coarse disk `grid` with the
+/// design `lines`, each of its cases certified.
+#[track_caller]
+fn certified_spheres(grid: &str, lines: &str) -> DesignJson {
+    certified_design(&with_table(&spheres(grid), "design", lines))
 }
 
 #[test]
@@ -18,14 +39,11 @@ fn an_odd_polynomial_over_spheres_designed_by_the_program_is_certified() {
     // (A zone of 1.5 Hertz radii: on this coarse grid the uncorrected
     // contact reaches the outermost points of a 1.15 zone, which a design
     // keeps clear.)
-    let text = spheres_designed(
+    let d = certified_spheres(
         "across = 11\nzone = 1.5",
         "family = \"polynomial\"\ndegree = 3\nmethod = \"program\"\nrefine = false",
     );
-    let r = run(&scene(&text).unwrap()).unwrap();
-    let d = r.result.design.unwrap();
     assert_eq!(d.method.name(), "program");
-    assert!(d.cases.iter().all(|c| c.certificate_holds));
     assert!(
         d.objective < d.objective_before,
         "{} vs {}",
@@ -36,13 +54,10 @@ fn an_odd_polynomial_over_spheres_designed_by_the_program_is_certified() {
 
 #[test]
 fn a_quartic_over_spheres_keeps_its_contact_inside_the_zone_and_holds_on_a_finer_grid() {
-    let text = spheres_designed(
+    let d = certified_spheres(
         "across = 11\nzone = 1.15",
         "family = \"polynomial\"\ndegree = 4\nmax_points = 2000",
     );
-    let r = run(&scene(&text).unwrap()).unwrap();
-    let d = r.result.design.unwrap();
-    assert!(d.cases.iter().all(|c| c.certificate_holds));
     // Pressed against the zone's edge, the contact would be cut off there.
     assert!(
         d.cases.iter().all(|c| c
@@ -74,16 +89,23 @@ fn crowned_roller(grid: &str, loads: &str) -> String {
 
 const ROLLER_GRID: &str = "zone = 1.6\nhalf_y = 5.0\nnx = 9\nny = 40";
 
+/// Asserts that the crowned roller designed at 1, 5 and 10 kN on the
+/// rectangle `grid` is refused naming `points`, saying each of `parts`.
+#[track_caller]
+fn grid_refused_for_the_design(grid: &str, parts: &[&str]) {
+    let roller = crowned_roller(grid, "[1000.0, 5000.0, 10000.0]");
+    refused_saying(&roller, &[&["`points`"], parts].concat());
+}
+
 #[test]
 fn a_design_load_too_light_for_the_axial_grid_is_refused_naming_the_loads() {
-    let e = scene(&crowned_roller(ROLLER_GRID, "[2.0, 5000.0, 10000.0]"))
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("design.loads"), "{e}");
     // The smallest load the 160 stations of the finest design grid
     // resolve (the scene's 40 at fineness 4; fineness 6, the last within
     // 20,000 points a case, only verifies): (5 / 160)^2 of 10 kN.
-    assert!(e.contains("down to 9.77 "), "{e}");
+    refused_saying(
+        &crowned_roller(ROLLER_GRID, "[2.0, 5000.0, 10000.0]"),
+        &["design.loads", "down to 9.77 "],
+    );
     // A range the grids resolve is accepted (20 N designs and holds), and
     // so is an absolute design (the lightest load never sets its
     // objective).
@@ -98,20 +120,19 @@ fn a_design_on_a_grid_that_does_not_resolve_the_contact_is_refused() {
     // 9 cells over 32 Hertz half-widths: about 1 point across each load's
     // contact.
     let grid = "zone = 16.0\nhalf_y = 5.0\nnx = 9\nny = 40";
-    let e = scene(&crowned_roller(grid, "[1000.0, 5000.0, 10000.0]"))
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("`points`"), "{e}");
-    assert!(e.contains("smaller points.zone"), "{e}");
-    assert!(
-        e.contains("the design load 1000 has about 1 points across"),
-        "{e}"
+    grid_refused_for_the_design(
+        grid,
+        &[
+            "smaller points.zone",
+            "the design load 1000 has about 1 points across",
+        ],
     );
     // The same grid without a design is refused too: one point across the
     // contact (MIN_POINTS_RESOLVED), naming the cells across it.
-    let e = scene(&roller(grid, "10000.0")).unwrap_err().to_string();
-    assert!(e.contains("`points.nx` = 9"), "{e}");
-    assert!(e.contains("at least 33 cells"), "{e}");
+    refused_saying(
+        &roller(grid, "10000.0"),
+        &["`points.nx` = 9", "at least 33 cells"],
+    );
     assert!(scene(&roller(&grid.replace("nx = 9", "nx = 33"), "10000.0")).is_ok());
 }
 
@@ -122,21 +143,16 @@ fn a_beam_sunk_beyond_its_length_is_refused_and_a_stiff_one_designed() {
     // times its length: no linear foundation describes it, so check
     // refuses it (the program's certificate had fallen short in these
     // mixed scales).
-    let example2 = BEAM
-        .replace("second_moment = 5.0", "width = 1.0\ndepth = 4.0")
-        .replace(
-            "start = -4.0\nend = 4.0\nn = 16",
-            "start = -4.45\nend = 4.45\nn = 80",
-        )
-        .replace("load = 1000.0", "load = 50000.0");
+    let example2 = example2_beam(80);
     let soft = with_table(
         &example2.replace("modulus = 1e7", "modulus = 0.5"),
         "design",
         "family = \"quadratic\"",
     );
-    let e = scene(&soft).unwrap_err().to_string();
-    assert!(e.contains("`loading.load`"), "{e}");
-    assert!(e.contains("the foundation's mean compression"), "{e}");
+    refused_saying(
+        &soft,
+        &["`loading.load`", "the foundation's mean compression"],
+    );
     // At 7000 lbf/in^2 it sinks 0.80 in (0.09 of its length), and a beam
     // 60 in deep is nearly rigid on it: the pressure is nearly uniform,
     // P / L = 5617.98 lbf/in, before and after.
@@ -147,9 +163,7 @@ fn a_beam_sunk_beyond_its_length_is_refused_and_a_stiff_one_designed() {
         "design",
         "family = \"quadratic\"",
     );
-    let r = run(&scene(&stiff).unwrap()).unwrap();
-    let d = r.result.design.unwrap();
-    assert!(d.cases.iter().all(|c| c.certificate_holds));
+    let d = certified_design(&stiff);
     assert!(
         (d.objective / (5e4 / 8.9) - 1.0).abs() < 1e-3,
         "{}",
@@ -162,10 +176,8 @@ fn a_design_on_cells_far_longer_than_wide_is_refused() {
     // A roller 131 km long on 40 cells: each cell thousands of metres
     // long and a micrometre wide.
     let grid = "zone = 1.6\nhalf_y = 65536.0\nnx = 9\nny = 40";
-    let e = scene(&crowned_roller(grid, "[1000.0, 5000.0, 10000.0]"))
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("`points`"), "{e}");
-    assert!(e.contains("times longer than wide"), "{e}");
-    assert!(e.contains("points.half_y and points.ny"), "{e}");
+    grid_refused_for_the_design(
+        grid,
+        &["times longer than wide", "points.half_y and points.ny"],
+    );
 }

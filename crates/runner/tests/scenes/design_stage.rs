@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use crate::common;
-use crate::common::{BEAM, with_table};
+use crate::common::{example2_beam, with_table};
 use elcon_design::{Analysis, Profile, evaluate};
 use elcon_runner::run;
 use elcon_scene::Scene;
@@ -14,14 +14,7 @@ use elcon_scene::Scene;
 /// loads, the second the scene's own, on the scene's grid alone (what is
 /// shared is the scene's own S and solution).
 fn beam() -> String {
-    let example2 = BEAM
-        .replace("second_moment = 5.0", "width = 1.0\ndepth = 4.0")
-        .replace(
-            "start = -4.0\nend = 4.0\nn = 16",
-            "start = -4.45\nend = 4.45\nn = 40",
-        )
-        .replace("load = 1000.0", "load = 50000.0");
-    let unfolded = with_table(&example2, "solver", "symmetry = \"none\"");
+    let unfolded = with_table(&example2_beam(40), "solver", "symmetry = \"none\"");
     with_table(
         &unfolded,
         "design",

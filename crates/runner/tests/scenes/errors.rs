@@ -38,14 +38,27 @@ fn io_names_the_file() {
     assert!(!e.is_input_error());
 }
 
+/// The message refusing the scene `text`.
+#[track_caller]
+fn refusal(text: &str) -> String {
+    scene(text).unwrap_err().to_string()
+}
+
+/// The message refusing the scene `text` as a syntax error.
+#[track_caller]
+fn syntax_error(text: &str) -> String {
+    let e = scene(text).unwrap_err();
+    assert!(matches!(e, SceneError::Syntax { .. }), "{e}");
+    assert!(e.is_input_error());
+    e.to_string()
+}
+
 #[test]
 fn syntax_names_line_column_and_key() {
     let base = base();
-    let e = scene(&base.replace("[body2]", "[body2]\ncolour = 1")).unwrap_err();
-    assert!(matches!(e, SceneError::Syntax { .. }));
+    let e = syntax_error(&base.replace("[body2]", "[body2]\ncolour = 1"));
     assert!(
-        e.to_string()
-            .starts_with("test.toml:12:1: `body2.colour`: unknown field `colour`"),
+        e.starts_with("test.toml:12:1: `body2.colour`: unknown field `colour`"),
         "{e}"
     );
     let e = scene(&base.replace("[loading]\nload = 100.0", "[loading]")).unwrap_err();
@@ -55,18 +68,16 @@ fn syntax_names_line_column_and_key() {
     assert!(e.is_input_error());
     // A number written as a string names its field, in a section and in an
     // inline table.
-    let e = scene(&base.replace("load = 100.0", "load = \"100\"")).unwrap_err();
-    assert!(matches!(e, SceneError::Syntax { .. }));
+    let e = syntax_error(&base.replace("load = 100.0", "load = \"100\""));
     assert!(
-        e.to_string()
-            .ends_with("`loading.load`: invalid type: string \"100\", expected a number"),
+        e.ends_with("`loading.load`: invalid type: string \"100\", expected a number"),
         "{e}"
     );
-    let e = scene(&base.replace("across = 11", "across = \"11\"")).unwrap_err();
-    assert!(e.to_string().contains("`points.across`"), "{e}");
-    assert!(e.to_string().contains("expected a whole number"), "{e}");
-    let e = scene(&base.replace("radius = 1.0 }", "radius = \"1.0\" }")).unwrap_err();
-    assert!(e.to_string().contains("`geometry.surface1.radius`"), "{e}");
+    let e = refusal(&base.replace("across = 11", "across = \"11\""));
+    assert!(e.contains("`points.across`"), "{e}");
+    assert!(e.contains("expected a whole number"), "{e}");
+    let e = refusal(&base.replace("radius = 1.0 }", "radius = \"1.0\" }"));
+    assert!(e.contains("`geometry.surface1.radius`"), "{e}");
 }
 
 #[test]
@@ -77,27 +88,27 @@ fn invalid_names_the_field_and_the_reason() {
         e.to_string(),
         "test.toml:9:18: `body1.poissons_ratio` = -1: must be in (-1, 0.5): outside it the elastic energy is not positive definite"
     );
-    let e =
-        scene(&base.replace("model = \"rigid\"", "model = \"rigid\"\nmodulus = 3.0")).unwrap_err();
-    assert!(
-        e.to_string()
-            .contains("`body2.modulus` = 3: is not a parameter of the rigid model"),
-        "{e}"
-    );
-    let e = scene(&base.replace("across = 11", "across = 11\nnx = 4")).unwrap_err();
-    assert!(
-        e.to_string()
-            .contains("`points.nx`: is not a parameter of grid = \"disk\""),
-        "{e}"
-    );
-    let e =
-        scene(&base.replace("shape = \"sphere\", radius = 1.0", "shape = \"plane\"")).unwrap_err();
-    assert!(
-        e.to_string()
-            .contains("need curved surfaces (a sphere or a cylinder)"),
-        "{e}"
-    );
-    assert!(e.is_input_error());
+    for (from, to, says) in [
+        (
+            "model = \"rigid\"",
+            "model = \"rigid\"\nmodulus = 3.0",
+            "`body2.modulus` = 3: is not a parameter of the rigid model",
+        ),
+        (
+            "across = 11",
+            "across = 11\nnx = 4",
+            "`points.nx`: is not a parameter of grid = \"disk\"",
+        ),
+        (
+            "shape = \"sphere\", radius = 1.0",
+            "shape = \"plane\"",
+            "need curved surfaces (a sphere or a cylinder)",
+        ),
+    ] {
+        let e = scene(&base.replace(from, to)).unwrap_err();
+        assert!(e.to_string().contains(says), "{e}");
+        assert!(e.is_input_error());
+    }
 }
 
 #[test]
@@ -154,14 +165,14 @@ fn a_batch_name_cannot_leave_the_output_directory() {
     }
     // A scene's name likewise: a leading '.' is what elcon's own temporary
     // siblings look like.
-    let e = scene(&format!("[scene]\nname = \".a.1234.tmp\"\n{}", base())).unwrap_err();
-    assert!(e.to_string().contains("`scene.name`"), "{e}");
-    assert!(e.to_string().contains("no leading '.'"), "{e}");
+    let e = refusal(&format!("[scene]\nname = \".a.1234.tmp\"\n{}", base()));
+    assert!(e.contains("`scene.name`"), "{e}");
+    assert!(e.contains("no leading '.'"), "{e}");
     // Too long for a directory with its lock, or with a control character.
     for bad in ["x".repeat(300), "a\\u0001b".to_string()] {
-        let e = scene(&format!("[scene]\nname = \"{bad}\"\n{}", base())).unwrap_err();
-        assert!(e.to_string().contains("`scene.name`"), "{e}");
-        assert!(e.to_string().contains("at most 120 bytes"), "{e}");
+        let e = refusal(&format!("[scene]\nname = \"{bad}\"\n{}", base()));
+        assert!(e.contains("`scene.name`"), "{e}");
+        assert!(e.contains("at most 120 bytes"), "{e}");
     }
 }
 
@@ -261,8 +272,8 @@ fn relative_to_hertz_without_a_hertz_contact_is_refused_by_validation() {
         "design",
         "family = \"quadratic\"\nrelative_to = \"hertz\"",
     );
-    let e = scene(&beam).unwrap_err();
-    assert!(e.to_string().contains("`design.relative_to`"), "{e}");
+    let e = refusal(&beam);
+    assert!(e.contains("`design.relative_to`"), "{e}");
 }
 
 #[test]
@@ -287,18 +298,17 @@ fn a_logarithmic_crown_off_a_roller_is_refused_by_validation() {
             ..
         }
     ));
-    let e = scene(&format!("{roller}{crown}end = \"hyperbolic\"\n")).unwrap_err();
+    let e = refusal(&format!("{roller}{crown}end = \"hyperbolic\"\n"));
     assert!(
-        e.to_string().contains(
+        e.contains(
             "`design.end`: unknown variant `hyperbolic`, expected `johns-gohar` or `lundberg`"
         ),
         "{e}"
     );
-    let e = scene(&format!(
+    let e = refusal(&format!(
         "{roller}\n[design]\nfamily = \"free\"\nend = \"lundberg\"\n"
-    ))
-    .unwrap_err();
-    assert!(e.to_string().contains("`design.end`"), "{e}");
+    ));
+    assert!(e.contains("`design.end`"), "{e}");
     let refused = |text: String| {
         let e = scene(&text).unwrap_err();
         assert!(matches!(e, SceneError::Invalid { .. }), "{e}");
@@ -372,11 +382,9 @@ fn a_name_a_key_does_not_take_is_refused_with_the_names_it_takes() {
         ),
     ];
     for (text, message) in cases {
-        let e = scene(&text).unwrap_err();
-        assert!(matches!(e, SceneError::Syntax { .. }), "{e}");
-        assert!(e.is_input_error());
+        let e = syntax_error(&text);
         assert!(
-            e.to_string().starts_with(&format!("test.toml:{message}")),
+            e.starts_with(&format!("test.toml:{message}")),
             "{message}: {e}"
         );
     }
@@ -401,16 +409,16 @@ fn rotations_outside_the_small_rotation_theory_are_refused() {
     assert!(scene(&loaded("tilt_y = -0.1")).is_err());
     assert!(scene(&loaded("tilt_y = -0.001")).is_ok());
     // A load centre (M / P) outside the zone: no contact inside balances it.
-    let e = scene(&loaded("moment_x = 2.0")).unwrap_err();
+    let e = refusal(&loaded("moment_x = 2.0"));
     assert!(
-        e.to_string().contains(
+        e.contains(
             "`loading.moment_x` = 2: puts the load centre (the moment over the load) at (x, y) = \
              (0, 0.02), "
-        ) && e.to_string().contains("outside the candidate zone (x from"),
+        ) && e.contains("outside the candidate zone (x from"),
         "{e}"
     );
-    let e = scene(&loaded("moment_y = 2.0")).unwrap_err();
-    assert!(e.to_string().contains("at (x, y) = (-0.02, 0)"), "{e}");
+    let e = refusal(&loaded("moment_y = 2.0"));
+    assert!(e.contains("at (x, y) = (-0.02, 0)"), "{e}");
     // Inside the zone's extent along x and along y, outside the disk: the
     // zone is its points' convex hull (the engine had answered "ray
     // termination ... unbounded" or a failed certificate).
@@ -496,30 +504,35 @@ fn a_huge_value_is_shown_in_its_shortest_form() {
 #[test]
 fn a_design_failure_names_the_scenes_key() {
     let roller = roller();
+    let design = |lines: &str| format!("{roller}\n[design]\n{lines}\n");
     // A design load whose Hertz half-width exceeds the crowned half-length
     // over 0.3033: the logarithmic profile is undefined, which check says
     // at the key, as the design stage would.
-    let e = scene(&format!(
-        "{roller}\n[design]\nfamily = \"logarithmic-crown\"\ndesign_load = 1e9\n"
-    ))
-    .unwrap_err()
-    .to_string();
-    assert!(
-        e.starts_with("test.toml:32:15: `design.design_load` = 1000000000: the Hertz half-width"),
-        "{e}"
-    );
-    assert!(!e.contains("log_crown"), "{e}");
-    // A crown radius below the crowned half-length (5 mm).
-    let s = scene(&format!(
-        "{roller}\n[design]\nfamily = \"circular-crown\"\nradius_range = [1.0, 2.0]\n"
+    let checked = refusal(&design("family = \"logarithmic-crown\"\ndesign_load = 1e9"));
+    // A crown radius below the crowned half-length (5 mm): the design
+    // stage's failure.
+    let s = scene(&design(
+        "family = \"circular-crown\"\nradius_range = [1.0, 2.0]",
     ))
     .unwrap();
-    let e = run(&s).unwrap_err().to_string();
-    assert!(
-        e.contains("`design.radius_range` (a crown radius searched in it) = "),
-        "{e}"
-    );
-    assert!(!e.contains("circular_crown"), "{e}");
+    let ran = run(&s).unwrap_err().to_string();
+    // Each starts with the scene's key, and never says elcon-design's own
+    // name for the parameter.
+    for (e, start, own_name) in [
+        (
+            checked,
+            "test.toml:32:15: `design.design_load` = 1000000000: the Hertz half-width",
+            "log_crown",
+        ),
+        (
+            ran,
+            "scene `test`: `design.radius_range` (a crown radius searched in it) = ",
+            "circular_crown",
+        ),
+    ] {
+        assert!(e.starts_with(start), "{e}");
+        assert!(!e.contains(own_name), "{e}");
+    }
 }
 
 #[test]

@@ -35,77 +35,81 @@ fn reason(r: Result<Scene, SceneError>) -> (String, String) {
     }
 }
 
+/// Asserts that `r` is refused as invalid naming `field`, its reason
+/// saying each of `parts`.
+#[track_caller]
+fn refused(r: Result<Scene, SceneError>, field: &str, parts: &[&str]) {
+    let (named, why) = reason(r);
+    assert_eq!(named, field, "{why}");
+    for part in parts {
+        assert!(why.contains(part), "{part}: {why}");
+    }
+}
+
+/// The scene `text` in `d`, the file `name` written beside it first with
+/// `contents`.
+fn beside(
+    d: &Path,
+    name: &str,
+    contents: impl AsRef<[u8]>,
+    text: &str,
+) -> Result<Scene, SceneError> {
+    std::fs::write(d.join(name), contents).unwrap();
+    scene_in(d, text)
+}
+
+/// [`base`]'s first surface, the cylinder.
+const CYLINDER: &str = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
+
+/// [`base`] with the separations of the file `name` (beside the scene) in
+/// place of its cylinder.
+fn separated_by(name: &str) -> String {
+    base().replace(CYLINDER, &format!("separation_file = \"{name}\""))
+}
+
 #[test]
 fn a_separation_file_equal_to_the_inline_separations_is_bit_identical() {
     let d = dir("separation");
     let s = Scene::from_str(Path::new("test.toml"), &base()).unwrap();
     let eps = elcon_analysis::separations(s.points(), s.geometry()).unwrap();
     let points = s.points();
+    let row = |k: usize, separation: f64| {
+        format!("{:?},{:?},{:?}\n", points.x(k), points.y(k), separation)
+    };
     // Shuffled rows (reversed) with a header: matched by position.
     let mut csv = String::from("x,y,separation\n");
     for k in (0..points.len()).rev() {
-        csv += &format!("{:?},{:?},{:?}\n", points.x(k), points.y(k), eps[k]);
+        csv += &row(k, eps[k]);
     }
-    std::fs::write(d.join("eps.csv"), csv).unwrap();
-    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
-    assert!(base().contains(geometry));
+    assert!(base().contains(CYLINDER));
     let inline: Vec<String> = eps.iter().map(|e| format!("{e:?}")).collect();
-    let inline_text = base().replace(geometry, &format!("separation = [{}]", inline.join(", ")));
-    let file_text = base().replace(geometry, "separation_file = \"eps.csv\"");
+    let inline_text = base().replace(CYLINDER, &format!("separation = [{}]", inline.join(", ")));
     let a = run(&scene_in(&d, &inline_text).unwrap()).unwrap();
-    let b = run(&scene_in(&d, &file_text).unwrap()).unwrap();
+    let b = run(&beside(&d, "eps.csv", &csv, &separated_by("eps.csv")).unwrap()).unwrap();
     let (sa, sb) = (&a.result.solution, &b.result.solution);
     assert_eq!(sa.approach.to_bits(), sb.approach.to_bits());
     assert_eq!(a.solution.pressures, b.solution.pressures);
     assert_eq!(a.solution.forces, b.solution.forces);
     // A file that misses a point names it.
-    let short: String = std::fs::read_to_string(d.join("eps.csv"))
-        .unwrap()
-        .lines()
-        .take(10)
-        .map(|l| format!("{l}\n"))
-        .collect();
-    std::fs::write(d.join("short.csv"), short).unwrap();
-    let (field, why) = reason(scene_in(
-        &d,
-        &base().replace(geometry, "separation_file = \"short.csv\""),
-    ));
-    assert_eq!(field, "geometry.separation_file");
-    assert!(
-        why.contains("short.csv") && why.contains("candidate point 0"),
-        "{why}"
+    let short: String = csv.lines().take(10).map(|l| format!("{l}\n")).collect();
+    refused(
+        beside(&d, "short.csv", short, &separated_by("short.csv")),
+        "geometry.separation_file",
+        &["short.csv", "candidate point 0"],
     );
     // Two rows for one point: the same separation twice is harmless,
     // another one is refused naming both lines and the point.
-    let full = std::fs::read_to_string(d.join("eps.csv")).unwrap();
     let n = points.len();
-    let again = format!("{full}{:?},{:?},{:?}\n", points.x(0), points.y(0), eps[0]);
-    std::fs::write(d.join("again.csv"), again).unwrap();
-    scene_in(
-        &d,
-        &base().replace(geometry, "separation_file = \"again.csv\""),
-    )
-    .unwrap();
-    let twice = format!(
-        "{full}{:?},{:?},{:?}\n",
-        points.x(0),
-        points.y(0),
-        eps[0] + 1e-3
-    );
-    std::fs::write(d.join("twice.csv"), twice).unwrap();
-    let (field, why) = reason(scene_in(
-        &d,
-        &base().replace(geometry, "separation_file = \"twice.csv\""),
-    ));
-    assert_eq!(field, "geometry.separation_file");
-    assert!(
-        why.contains("twice.csv")
-            && why.contains(&format!(
-                "lines {} and {} both give candidate point 0",
-                n + 1,
-                n + 2
-            )),
-        "{why}"
+    let again = format!("{csv}{}", row(0, eps[0]));
+    beside(&d, "again.csv", again, &separated_by("again.csv")).unwrap();
+    let twice = format!("{csv}{}", row(0, eps[0] + 1e-3));
+    refused(
+        beside(&d, "twice.csv", twice, &separated_by("twice.csv")),
+        "geometry.separation_file",
+        &[
+            "twice.csv",
+            &format!("lines {} and {} both give candidate point 0", n + 1, n + 2),
+        ],
     );
 }
 
@@ -113,23 +117,21 @@ fn a_separation_file_equal_to_the_inline_separations_is_bit_identical() {
 fn a_profile_file_adds_its_drops_to_the_cylinder() {
     let d = dir("profile");
     // A uniform drop of 1 um changes no pressure; it adds to the approach.
-    std::fs::write(d.join("crown.csv"), "# y, drop\n-5.0, 0.001\n5.0, 0.001\n").unwrap();
-    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
     let with = base().replace(
-        geometry,
-        &format!("{geometry}\nprofile = {{ file = \"crown.csv\", axis = \"y\" }}"),
+        CYLINDER,
+        &format!("{CYLINDER}\nprofile = {{ file = \"crown.csv\", axis = \"y\" }}"),
     );
     let plain = run(&scene_in(&d, &base()).unwrap()).unwrap();
-    let dropped = run(&scene_in(&d, &with).unwrap()).unwrap();
+    let crown = "# y, drop\n-5.0, 0.001\n5.0, 0.001\n";
+    let dropped = run(&beside(&d, "crown.csv", crown, &with).unwrap()).unwrap();
     let (p, q) = (&plain.result.solution, &dropped.result.solution);
     assert!((q.approach - p.approach - 0.001).abs() < 1e-12 * p.approach.abs().max(1.0));
     // A profile that stops short of the roller's ends is refused at check.
-    std::fs::write(d.join("short.csv"), "-4.0, 0.0\n4.0, 0.0\n").unwrap();
-    let (field, why) = reason(scene_in(&d, &with.replace("crown.csv", "short.csv")));
-    assert_eq!(field, "geometry.profile.file");
-    assert!(
-        why.contains("short.csv") && why.contains("does not cover"),
-        "{why}"
+    let short = with.replace("crown.csv", "short.csv");
+    refused(
+        beside(&d, "short.csv", "-4.0, 0.0\n4.0, 0.0\n", &short),
+        "geometry.profile.file",
+        &["short.csv", "does not cover"],
     );
 }
 
@@ -139,10 +141,9 @@ fn a_batch_sweeps_over_files_read_beside_its_base_scene() {
     std::fs::create_dir_all(d.join("data")).unwrap();
     std::fs::write(d.join("data/a.csv"), "-5.0, 0.0\n5.0, 0.0\n").unwrap();
     std::fs::write(d.join("data/b.csv"), "-5.0, 0.002\n5.0, 0.002\n").unwrap();
-    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
     let text = base().replace(
-        geometry,
-        &format!("{geometry}\nprofile = {{ file = \"data/a.csv\" }}"),
+        CYLINDER,
+        &format!("{CYLINDER}\nprofile = {{ file = \"data/a.csv\" }}"),
     );
     std::fs::write(d.join("roller.toml"), text).unwrap();
     std::fs::write(
@@ -172,36 +173,35 @@ fn a_batch_sweeps_over_files_read_beside_its_base_scene() {
 #[test]
 fn bad_files_are_refused_naming_the_file_and_the_row() {
     let d = dir("bad");
-    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
     let map = |file: &str| {
         base().replace(
-            geometry,
-            &format!("{geometry}\nheight_map = {{ file = \"{file}\", spacing = [0.5, 5.0] }}"),
+            CYLINDER,
+            &format!("{CYLINDER}\nheight_map = {{ file = \"{file}\", spacing = [0.5, 5.0] }}"),
         )
     };
+    // The height map of the file `name`, written with `contents`.
+    let mapped = |name: &str, contents: &str| beside(&d, name, contents, &map(name));
+    let file = "geometry.height_map.file";
     // Missing.
-    let (field, why) = reason(scene_in(&d, &map("missing.csv")));
-    assert_eq!(field, "geometry.height_map.file");
-    assert!(
-        why.contains("missing.csv") && why.contains("cannot be read"),
-        "{why}"
+    refused(
+        scene_in(&d, &map("missing.csv")),
+        file,
+        &["missing.csv", "cannot be read"],
     );
     // A device that never ends: read up to the data files' bound, refused.
-    let (field, why) = reason(scene_in(&d, &map("/dev/zero")));
-    assert_eq!(field, "geometry.height_map.file");
-    assert!(why.contains("larger than 256 MiB"), "{why}");
+    refused(
+        scene_in(&d, &map("/dev/zero")),
+        file,
+        &["larger than 256 MiB"],
+    );
     // A hole (NaN) at row 1, column 2.
-    std::fs::write(d.join("hole.csv"), "0,0,0\n0,0,nan\n0,0,0\n").unwrap();
-    let (field, why) = reason(scene_in(&d, &map("hole.csv")));
-    assert_eq!(field, "geometry.height_map.file");
-    assert!(
-        why.contains("hole.csv") && why.contains("row 1, column 2"),
-        "{why}"
+    refused(
+        mapped("hole.csv", "0,0,0\n0,0,nan\n0,0,0\n"),
+        file,
+        &["hole.csv", "row 1, column 2"],
     );
     // One row: the content is the file's fault.
-    std::fs::write(d.join("row.csv"), "0,0,0\n").unwrap();
-    let (field, why) = reason(scene_in(&d, &map("row.csv")));
-    assert_eq!(field, "geometry.height_map.file", "{why}");
+    refused(mapped("row.csv", "0,0,0\n"), file, &[]);
     // A zero spacing is the spacing's fault, quoted as written.
     std::fs::write(d.join("ok.csv"), "0,0,0\n0,0,0\n0,0,0\n").unwrap();
     let zero = map("ok.csv").replace("spacing = [0.5, 5.0]", "spacing = [0.0, 5.0]");
@@ -212,43 +212,46 @@ fn bad_files_are_refused_naming_the_file_and_the_row() {
     );
     // A profile whose positions do not increase names its file.
     let profile = base().replace(
-        geometry,
-        &format!("{geometry}\nprofile = {{ file = \"down.csv\" }}"),
+        CYLINDER,
+        &format!("{CYLINDER}\nprofile = {{ file = \"down.csv\" }}"),
     );
-    std::fs::write(d.join("down.csv"), "1,0\n0,0\n").unwrap();
-    let (field, why) = reason(scene_in(&d, &profile));
-    assert_eq!(field, "geometry.profile.file", "{why}");
-    assert!(why.contains("positions must increase"), "{why}");
+    refused(
+        beside(&d, "down.csv", "1,0\n0,0\n", &profile),
+        "geometry.profile.file",
+        &["positions must increase"],
+    );
     // Ragged rows.
-    std::fs::write(d.join("ragged.csv"), "0,0,0\n0,0\n0,0,0\n").unwrap();
-    let (_, why) = reason(scene_in(&d, &map("ragged.csv")));
-    assert!(
-        why.contains("ragged.csv") && why.contains("line 2"),
-        "{why}"
+    refused(
+        mapped("ragged.csv", "0,0,0\n0,0\n0,0,0\n"),
+        file,
+        &["ragged.csv", "line 2"],
     );
     // Text where numbers belong, after the header line.
-    std::fs::write(d.join("text.csv"), "a,b,c\n0,0,0\n0,x,0\n").unwrap();
-    let (_, why) = reason(scene_in(&d, &map("text.csv")));
-    assert!(why.contains("text.csv") && why.contains("line 3"), "{why}");
+    refused(
+        mapped("text.csv", "a,b,c\n0,0,0\n0,x,0\n"),
+        file,
+        &["text.csv", "line 3"],
+    );
     // A map that does not cover the grid: x in [-0.25, 0.25] against
     // cell centres out to 0.32.
-    std::fs::write(d.join("small.csv"), "0,0,0\n0,0,0\n0,0,0\n").unwrap();
     let small = map("small.csv").replace("spacing = [0.5, 5.0]", "spacing = [0.25, 5.0]");
-    let (_, why) = reason(scene_in(&d, &small));
-    assert!(
-        why.contains("small.csv") && why.contains("does not cover"),
-        "{why}"
+    refused(
+        beside(&d, "small.csv", "0,0,0\n0,0,0\n0,0,0\n", &small),
+        file,
+        &["small.csv", "does not cover"],
     );
     // Not a .npy file, and a 1-D .npy array.
-    std::fs::write(d.join("fake.npy"), "0,0\n").unwrap();
-    let (_, why) = reason(scene_in(&d, &map("fake.npy")));
-    assert!(
-        why.contains("fake.npy") && why.contains("not a .npy"),
-        "{why}"
+    refused(
+        mapped("fake.npy", "0,0\n"),
+        file,
+        &["fake.npy", "not a .npy"],
     );
-    std::fs::write(d.join("line.npy"), npy(&[3], &[0.0, 0.0, 0.0])).unwrap();
-    let (_, why) = reason(scene_in(&d, &map("line.npy")));
-    assert!(why.contains("1-D array"), "{why}");
+    let line = npy(&[3], &[0.0, 0.0, 0.0]);
+    refused(
+        beside(&d, "line.npy", line, &map("line.npy")),
+        file,
+        &["1-D array"],
+    );
 }
 
 #[test]
@@ -261,10 +264,9 @@ fn a_npy_height_map_is_read_as_numpy_writes_it() {
         .flat_map(|_| (0..3).map(|i| 0.001 * (i as f64 - 1.0) * 0.5))
         .collect();
     std::fs::write(d.join("tilt.npy"), npy(&[3, 3], &values)).unwrap();
-    let geometry = "surface1 = { shape = \"cylinder\", radius = 5.0 }";
     let text = base().replace(
-        geometry,
-        &format!("{geometry}\nheight_map = {{ file = \"tilt.npy\", spacing = [0.5, 5.0] }}"),
+        CYLINDER,
+        &format!("{CYLINDER}\nheight_map = {{ file = \"tilt.npy\", spacing = [0.5, 5.0] }}"),
     );
     let s = scene_in(&d, &text).unwrap();
     let eps = elcon_analysis::separations(s.points(), s.geometry()).unwrap();

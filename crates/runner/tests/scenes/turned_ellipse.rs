@@ -5,6 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::common::{assert_ellipse_errors, assert_warns};
 use elcon_runner::run;
 use elcon_scene::{Scene, SceneError};
 
@@ -26,14 +27,13 @@ fn the_ball_bearing_turned_by_30_degrees_meets_hertz_s_ellipse() {
     let s = turned("angle = 30.0").unwrap();
     // 50689 points where the aligned ellipse takes 1369: check notes the
     // smallest turn that aligns it, -30 degrees (along y), not 60 (along x).
-    assert!(
-        s.warnings()
-            .iter()
-            .any(|w| w.contains("turned by -60.00 degrees")
-                && w.contains("by -30.00 degrees")
-                && w.contains("lays the ellipse along y")),
-        "{:?}",
-        s.warnings()
+    assert_warns(
+        &s,
+        &[
+            "turned by -60.00 degrees",
+            "by -30.00 degrees",
+            "lays the ellipse along y",
+        ],
     );
     let r = run(&s).unwrap();
     let reference = r.result.reference.as_ref().unwrap();
@@ -45,11 +45,7 @@ fn the_ball_bearing_turned_by_30_degrees_meets_hertz_s_ellipse() {
     // Square cells with 31 points across it: measured approach -5.2e-5,
     // peak +1.0e-4, semi-axes -2.4e-4 and -1.9e-3; bounds about three
     // times those.
-    let e = &reference.errors;
-    assert!(e.approach.unwrap().abs() < 2e-4, "{e:?}");
-    assert!(e.max_pressure.unwrap().abs() < 5e-4, "{e:?}");
-    assert!(e.semi_major.unwrap().abs() < 1e-3, "{e:?}");
-    assert!(e.semi_minor.unwrap().abs() < 6e-3, "{e:?}");
+    assert_ellipse_errors(&reference.errors, [2e-4, 5e-4, 1e-3, 6e-3]);
 }
 
 #[test]

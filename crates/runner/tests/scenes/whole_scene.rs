@@ -5,7 +5,7 @@
 //! warns. Each message names the field.
 
 use crate::common;
-use crate::common::{BEAM, scene, with_table};
+use crate::common::{BEAM, assert_warns, scene, with_table};
 use elcon_scene::SceneError;
 
 /// Refused, naming `field`, with `reason` in the message.
@@ -333,13 +333,7 @@ fn a_grid_coarser_than_the_contact_warns() {
     let line = include_str!("../../../../examples/scenes/hertz-cylinders.toml");
     let across = line.lines().find(|l| l.starts_with("across")).unwrap();
     let s = scene(&line.replace(across, "across = 3")).unwrap();
-    assert!(
-        s.warnings()
-            .iter()
-            .any(|w| w.contains("about 3 points across the Hertz contact width")),
-        "{:?}",
-        s.warnings()
-    );
+    assert_warns(&s, &["about 3 points across the Hertz contact width"]);
     // Spacing equal to the disk radius: two points across, refused.
     refused(
         &spheres().replace("spacing = 0.002", "spacing = 0.02"),
@@ -352,13 +346,7 @@ fn a_grid_coarser_than_the_contact_warns() {
         .replace("surface2 = { shape = \"sphere\", radius = 10.0 }\n", "")
         .replace("spacing = 0.002", "spacing = 0.02");
     let s = scene(&flat).unwrap();
-    assert!(
-        s.warnings()
-            .iter()
-            .any(|w| w.contains("the candidate disk has about 3 points across")),
-        "{:?}",
-        s.warnings()
-    );
+    assert_warns(&s, &["the candidate disk has about 3 points across"]);
 }
 
 #[test]

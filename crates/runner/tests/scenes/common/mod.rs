@@ -12,6 +12,7 @@
 
 use std::path::Path;
 
+use elcon_report::Errors;
 use elcon_scene::{Scene, SceneError};
 
 /// `text` read as the scene file `test.toml`.
@@ -50,6 +51,18 @@ pub fn sphere_on_rigid_plane(grid: &str) -> String {
 /// 1000 lbf at x = 0.
 pub const BEAM: &str = include_str!("beam.toml");
 
+/// The paper's Example 2 (examples/scenes/example2-beam-design.toml):
+/// [`BEAM`] as a section 1 in wide and 4 in deep, 8.9 in long on a line of
+/// `n` points, under 50,000 lbf.
+pub fn example2_beam(n: usize) -> String {
+    BEAM.replace("second_moment = 5.0", "width = 1.0\ndepth = 4.0")
+        .replace(
+            "start = -4.0\nend = 4.0\nn = 16",
+            &format!("start = -4.45\nend = 4.45\nn = {n}"),
+        )
+        .replace("load = 1000.0", "load = 50000.0")
+}
+
 /// A steel roller (R = 5 mm, its axis along y) on a steel plane, both on
 /// Love patches, on the rectangle grid `grid` (its lines after `grid =
 /// "rectangle"`) under `load` N; units mm, N, MPa.
@@ -87,4 +100,29 @@ load = {load}
 /// `scene` with the table `[name]` of `lines` appended.
 pub fn with_table(scene: &str, name: &str, lines: &str) -> String {
     format!("{scene}\n[{name}]\n{lines}\n")
+}
+
+/// Asserts that one of `scene`'s warnings says each of `parts`.
+#[track_caller]
+pub fn assert_warns(scene: &Scene, parts: &[&str]) {
+    assert!(
+        scene
+            .warnings()
+            .iter()
+            .any(|w| parts.iter().all(|p| w.contains(p))),
+        "{parts:?}: {:?}",
+        scene.warnings()
+    );
+}
+
+/// Asserts that each relative error of an elliptical reference, the
+/// approach's, the peak's and the semi-axes' (major, then minor), is
+/// within its bound of `bounds` in size.
+#[track_caller]
+pub fn assert_ellipse_errors(e: &Errors, bounds: [f64; 4]) {
+    let errors = [e.approach, e.max_pressure, e.semi_major, e.semi_minor];
+    let names = ["approach", "max_pressure", "semi_major", "semi_minor"];
+    for ((name, error), bound) in names.iter().zip(errors).zip(bounds) {
+        assert!(error.unwrap().abs() < bound, "{name}: {e:?}");
+    }
 }
