@@ -112,13 +112,13 @@ elcon_num::named_serde!(FoundBy);
 
 /// One load case of a design, before and after: gathered from the
 /// evaluations before and after the design, not the copy of one type.
+#[serde_with::skip_serializing_none]
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DesignCaseJson {
     /// The load (force).
     pub load: f64,
     /// The prescribed misalignment (rad), when the design has
     /// `misalignments`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub misalignment: Option<f64>,
     /// The reference intensity r_l the objective divides by.
     pub reference_intensity: f64,
@@ -135,10 +135,8 @@ pub struct DesignCaseJson {
     pub warnings: Vec<String>,
     /// Each body's stresses below the surface without the correction, when
     /// the scene asks for them (`outputs.subsurface`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub subsurface_before: Option<[BodySubsurfaceJson; 2]>,
     /// The same with the correction.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub subsurface_after: Option<[BodySubsurfaceJson; 2]>,
 }
 

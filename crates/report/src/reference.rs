@@ -6,79 +6,63 @@ use serde::{Deserialize, Serialize};
 
 /// Relative errors against the closed form, signed (computed / reference - 1),
 /// except `pressure_l2` (a norm ratio). Absent where not meaningful.
+#[serde_with::skip_serializing_none]
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Errors {
     /// Approach.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub approach: Option<f64>,
     /// Largest pressure (intensity).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_pressure: Option<f64>,
     /// Contact radius or half-width.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact_extent: Option<f64>,
     /// Load (under displacement control).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub load: Option<f64>,
     /// `||p - p_ref||_2 / ||p_ref||_2` over the points.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pressure_l2: Option<f64>,
     /// The rotation about x (where the reference's is not zero).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilt_x: Option<f64>,
     /// The rotation about y (where the reference's is not zero).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilt_y: Option<f64>,
     /// The major semi-axis of the contact's ellipse (an elliptical
     /// reference; `ContactSolution::contact_ellipse`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub semi_major: Option<f64>,
     /// The minor semi-axis of the contact's ellipse.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub semi_minor: Option<f64>,
 }
 
 /// The closed form's values and the errors against it: gathered from the
 /// closed form and the solution, not the copy of one type.
+#[serde_with::skip_serializing_none]
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ReferenceJson {
     /// "hertz-spheres", "hertz-cylinders", "flat-punch", "hetenyi-beam",
     /// "hertz-ellipse".
     pub kind: String,
     /// Reference approach (length).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub approach: Option<f64>,
     /// Reference peak pressure (intensity unit).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_pressure: Option<f64>,
     /// Reference contact radius or half-width (length); of an ellipse,
     /// the radius of the circle of its area, `sqrt(a b)`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact_extent: Option<f64>,
     /// An elliptical reference's semi-axes `[a, b]`, a along the
     /// direction `angle` (length).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub semi_axes: Option<[f64; 2]>,
     /// The direction of an elliptical reference's major axis from x
     /// (degrees).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angle: Option<f64>,
     /// Reference load (force).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub load: Option<f64>,
     /// Where the reference's contact is centred, when off the origin (a
     /// Hertz contact translated to the load centre; length).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub load_centre: Option<XY>,
     /// The reference's rotations, when not zero (radians).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilt: Option<XY>,
     /// Relative errors.
     pub errors: Errors,
     /// What limits the comparison, where something does (Hetenyi's bonded
     /// beam against a tensionless foundation that lifted off; a moment or
     /// a tilt the closed form does not have).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
 }
 

@@ -223,6 +223,7 @@ impl ProblemResult {
 }
 
 /// What result.json holds (docs/results.md documents every field).
+#[serde_with::skip_serializing_none]
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunResult {
     /// The scene's name.
@@ -230,7 +231,6 @@ pub struct RunResult {
     /// The scene file.
     pub file: String,
     /// Its description.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
     /// Unit labels.
     pub units: Units,
@@ -246,16 +246,12 @@ pub struct RunResult {
     pub solution: SolutionJson,
     /// The discretization error estimate (`solver.error_estimate`, on by
     /// default).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub discretization: Option<DiscretizationJson>,
     /// The stresses below the surface (`outputs.subsurface = true`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub subsurface: Option<SubsurfaceJson>,
     /// The closed-form comparison, where one applies.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceJson>,
     /// The design stage, if the scene has one.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub design: Option<DesignJson>,
 }
 

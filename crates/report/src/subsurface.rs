@@ -34,31 +34,25 @@ impl From<Peak> for PeakJson {
 }
 
 /// One body's maxima below the surface, or why it has none.
+#[serde_with::skip_serializing_none]
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BodySubsurfaceJson {
     /// Whether the body is an elastic half-space with a field.
     pub applicable: bool,
     /// Why not (a rigid body, a beam, a foundation, no contact).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
     /// The range of validity, where the model limits it (the point-force
     /// model: a cell or more below the surface).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
     /// The body's Poisson's ratio.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub poissons_ratio: Option<f64>,
     /// The largest von Mises stress.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub von_mises: Option<PeakJson>,
     /// The largest shear stress (Tresca).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tresca: Option<PeakJson>,
     /// The orthogonal shear tau_xz of largest magnitude.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orthogonal_xz: Option<PeakJson>,
     /// The orthogonal shear tau_yz of largest magnitude (0 on a line).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orthogonal_yz: Option<PeakJson>,
 }
 

@@ -249,6 +249,30 @@ fn translated(
     }
 }
 
+/// The centre of a Hertz contact translated under `loading` (combined
+/// radius `r`), or `None` with the reason in the block's note.
+fn centre(loading: Loading, r: f64, json: &mut ReferenceJson) -> Option<(f64, f64)> {
+    hertz_centre(loading, r)
+        .map_err(|why| json.note = Some(why.into()))
+        .ok()
+}
+
+/// The closed form's peak pressure and contact extent with the run's
+/// errors against them, and the pressure's L2 error against `p`, the
+/// closed form at each point.
+fn peak_and_extent(
+    json: &mut ReferenceJson,
+    sol: &ContactSolution,
+    (peak, extent): (f64, f64),
+    p: &[f64],
+) {
+    json.max_pressure = Some(peak);
+    json.contact_extent = Some(extent);
+    json.errors.max_pressure = Some(rel(sol.max_pressure, peak));
+    json.errors.contact_extent = Some(rel(sol.contact_extent, extent));
+    json.errors.pressure_l2 = Some(l2(&sol.pressures, p));
+}
+
 /// Hertz spheres, translated to the load centre.
 fn spheres(
     h: HertzSpheres,
@@ -258,13 +282,7 @@ fn spheres(
     json: &mut ReferenceJson,
 ) -> Option<Vec<f64>> {
     let r = h.radius;
-    let (ex, ey) = match hertz_centre(loading, r) {
-        Ok(e) => e,
-        Err(why) => {
-            json.note = Some(why.into());
-            return None;
-        }
-    };
+    let (ex, ey) = centre(loading, r, json)?;
     let shift = (ex * ex + ey * ey) / (2.0 * r);
     // Under displacement control the Hertz contact is the one of approach
     // delta_H = alpha + |e|^2 / (2R): P = 4 E* a^3 / (3 R), a = sqrt(R delta_H).
@@ -279,11 +297,7 @@ fn spheres(
     let p: Vec<f64> = (0..points.len())
         .map(|k| h.pressure((points.x(k) - ex).hypot(points.y(k) - ey)))
         .collect();
-    json.max_pressure = Some(h.peak_pressure());
-    json.contact_extent = Some(h.contact_radius());
-    json.errors.max_pressure = Some(rel(sol.max_pressure, h.peak_pressure()));
-    json.errors.contact_extent = Some(rel(sol.contact_extent, h.contact_radius()));
-    json.errors.pressure_l2 = Some(l2(&sol.pressures, &p));
+    peak_and_extent(json, sol, (h.peak_pressure(), h.contact_radius()), &p);
     match loading.normal {
         Normal::Load(_) => {
             let approach = h.approach() - shift;
@@ -309,22 +323,12 @@ fn cylinders(
     json: &mut ReferenceJson,
 ) -> Option<Vec<f64>> {
     let r = hertz.radius;
-    let (ex, _) = match hertz_centre(loading, r) {
-        Ok(e) => e,
-        Err(why) => {
-            json.note = Some(why.into());
-            return None;
-        }
-    };
+    let (ex, _) = centre(loading, r, json)?;
     let points = problem.points();
     let p: Vec<f64> = (0..points.len())
         .map(|k| hertz.pressure(points.x(k) - ex))
         .collect();
-    json.max_pressure = Some(hertz.peak_pressure());
-    json.contact_extent = Some(hertz.half_width());
-    json.errors.max_pressure = Some(rel(sol.max_pressure, hertz.peak_pressure()));
-    json.errors.contact_extent = Some(rel(sol.contact_extent, hertz.half_width()));
-    json.errors.pressure_l2 = Some(l2(&sol.pressures, &p));
+    peak_and_extent(json, sol, (hertz.peak_pressure(), hertz.half_width()), &p);
     if let Some(d0) = datum
         && let Ok(a) = hertz.approach(d0)
     {
@@ -358,13 +362,9 @@ fn ellipse(
         .map(|k| h.pressure(points.x(k), points.y(k)))
         .collect();
     let (a, b) = (h.semi_major(), h.semi_minor());
-    json.max_pressure = Some(h.peak_pressure());
-    json.contact_extent = Some(h.equivalent_radius());
+    peak_and_extent(json, sol, (h.peak_pressure(), h.equivalent_radius()), &p);
     json.semi_axes = Some([a, b]);
     json.angle = Some(h.angle().to_degrees());
-    json.errors.max_pressure = Some(rel(sol.max_pressure, h.peak_pressure()));
-    json.errors.contact_extent = Some(rel(sol.contact_extent, h.equivalent_radius()));
-    json.errors.pressure_l2 = Some(l2(&sol.pressures, &p));
     if let Some(e) = sol.contact_ellipse {
         json.errors.semi_major = Some(rel(e.semi_major, a));
         json.errors.semi_minor = Some(rel(e.semi_minor, b));

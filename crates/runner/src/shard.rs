@@ -361,6 +361,11 @@ mod tests {
         }
     }
 
+    /// The message of the scheduler's variables `pairs`, which name no shard.
+    fn refused(pairs: &[(&str, &str)]) -> String {
+        Shard::from_scheduler(env(pairs)).unwrap_err().to_string()
+    }
+
     #[test]
     fn shards_partition_the_indices() {
         let total = 10;
@@ -410,16 +415,12 @@ mod tests {
             ("SLURM_ARRAY_TASK_STEP", "5"),
         ]));
         assert_eq!(s, Ok(Shard { index: 2, count: 3 }));
-        let e = Shard::from_scheduler(env(&[("SLURM_ARRAY_TASK_ID", "2")]))
-            .unwrap_err()
-            .to_string();
+        let e = refused(&[("SLURM_ARRAY_TASK_ID", "2")]);
         assert!(e.contains("SLURM_ARRAY_TASK_COUNT"), "{e}");
-        let e = Shard::from_scheduler(env(&[
+        let e = refused(&[
             ("SLURM_ARRAY_TASK_ID", "x"),
             ("SLURM_ARRAY_TASK_COUNT", "3"),
-        ]))
-        .unwrap_err()
-        .to_string();
+        ]);
         assert!(e.contains("not a whole number"), "{e}");
     }
 
@@ -453,24 +454,20 @@ mod tests {
         ]));
         assert_eq!(s, Ok(Shard { index: 3, count: 3 }));
         // An id off the range's step, and a zero step.
-        let e = Shard::from_scheduler(env(&[
+        let e = refused(&[
             ("SLURM_ARRAY_TASK_ID", "5"),
             ("SLURM_ARRAY_TASK_COUNT", "3"),
             ("SLURM_ARRAY_TASK_MIN", "1"),
             ("SLURM_ARRAY_TASK_MAX", "7"),
             ("SLURM_ARRAY_TASK_STEP", "3"),
-        ]))
-        .unwrap_err()
-        .to_string();
+        ]);
         assert!(e.contains("not in the array from 1 to 7 by 3"), "{e}");
-        let e = Shard::from_scheduler(env(&[
+        let e = refused(&[
             ("SLURM_ARRAY_TASK_ID", "1"),
             ("SLURM_ARRAY_TASK_MIN", "1"),
             ("SLURM_ARRAY_TASK_MAX", "7"),
             ("SLURM_ARRAY_TASK_STEP", "0"),
-        ]))
-        .unwrap_err()
-        .to_string();
+        ]);
         assert!(e.contains("SLURM_ARRAY_TASK_STEP=0"), "{e}");
     }
 
@@ -506,12 +503,10 @@ mod tests {
         ]))
         .unwrap();
         assert_eq!(s, Shard::new(1, u32::MAX as usize).unwrap());
-        let e = Shard::from_scheduler(env(&[
+        let e = refused(&[
             ("JOB_COMPLETION_INDEX", "18446744073709551615"),
             (SHARD_COUNT_VARIABLE, "3"),
-        ]))
-        .unwrap_err()
-        .to_string();
+        ]);
         assert!(
             e.starts_with("JOB_COMPLETION_INDEX=18446744073709551615: more"),
             "{e}"
@@ -520,13 +515,11 @@ mod tests {
 
     #[test]
     fn a_slurm_array_whose_min_exceeds_its_max_is_said_so() {
-        let e = Shard::from_scheduler(env(&[
+        let e = refused(&[
             ("SLURM_ARRAY_TASK_ID", "5"),
             ("SLURM_ARRAY_TASK_MIN", "7"),
             ("SLURM_ARRAY_TASK_MAX", "3"),
-        ]))
-        .unwrap_err()
-        .to_string();
+        ]);
         assert!(
             e.starts_with("SLURM_ARRAY_TASK_MIN=7 > SLURM_ARRAY_TASK_MAX=3"),
             "{e}"
@@ -565,18 +558,11 @@ mod tests {
             ("ELCON_SHARD_COUNT", "3"),
         ]));
         assert_eq!(s, Ok(Shard { index: 3, count: 3 }));
-        let e = Shard::from_scheduler(env(&[("JOB_COMPLETION_INDEX", "2")]))
-            .unwrap_err()
-            .to_string();
+        let e = refused(&[("JOB_COMPLETION_INDEX", "2")]);
         assert!(e.contains("ELCON_SHARD_COUNT"), "{e}");
-        let e = Shard::from_scheduler(env(&[
-            ("JOB_COMPLETION_INDEX", "3"),
-            ("ELCON_SHARD_COUNT", "3"),
-        ]))
-        .unwrap_err()
-        .to_string();
+        let e = refused(&[("JOB_COMPLETION_INDEX", "3"), ("ELCON_SHARD_COUNT", "3")]);
         assert!(e.contains("1 <= K <= N"), "{e}");
-        let e = Shard::from_scheduler(env(&[])).unwrap_err().to_string();
+        let e = refused(&[]);
         assert!(e.contains("none is set"), "{e}");
     }
 }
