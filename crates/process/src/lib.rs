@@ -31,6 +31,4 @@ pub use files::{
     DirLock, Staging, lock_dir, replace_dir, sync_dir, write_atomic, write_atomic_with,
 };
 pub use isolate::{install_panic_hook, interruptible, isolated};
-pub use memory::{
-    ADDRESS_SPACE_RESERVE, Ceiling, LIMIT_VARIABLE, Limit, MARGIN, gemm_reserve, human, parse_size,
-};
+pub use memory::{Ceiling, Limit, gemm_reserve, human, parse_size};

@@ -26,11 +26,11 @@ use std::path::{Path, PathBuf};
 use crate::error::ProcessError;
 
 /// The fraction of the lowest limit kept free.
-pub const MARGIN: f64 = 0.10;
+pub(crate) const MARGIN: f64 = 0.10;
 
 /// The environment variable that may lower the ceiling (a size, as
 /// [`parse_size`] reads it).
-pub const LIMIT_VARIABLE: &str = "ELCON_MEMORY_LIMIT";
+pub(crate) const LIMIT_VARIABLE: &str = "ELCON_MEMORY_LIMIT";
 
 /// Address space a run reserves beyond the memory it touches (malloc's
 /// per-thread arenas, thread stacks, the program's own mappings, buffers
@@ -38,7 +38,7 @@ pub const LIMIT_VARIABLE: &str = "ELCON_MEMORY_LIMIT";
 /// buffers ([`gemm_reserve`]), taken off an address-space limit: a run's
 /// peak address space exceeded its peak resident memory by 350 to 490 MiB
 /// (docs/reliability.md).
-pub const ADDRESS_SPACE_RESERVE: u64 = 512 << 20;
+pub(crate) const ADDRESS_SPACE_RESERVE: u64 = 512 << 20;
 
 /// The address space faer's matrix products reserve: each thread that
 /// multiplies keeps two buffers of the last-level cache's size (the L3 of
@@ -96,7 +96,7 @@ pub enum Limit {
     AddressSpace,
     /// The command line's `--memory-limit`.
     Option,
-    /// The environment's [`LIMIT_VARIABLE`].
+    /// The environment's `ELCON_MEMORY_LIMIT`.
     Variable,
 }
 
@@ -144,7 +144,7 @@ impl Ceiling {
     }
 
     /// The ceiling of this process on this machine, lowered by `option`
-    /// (`--memory-limit`) and by [`LIMIT_VARIABLE`] when set.
+    /// (`--memory-limit`) and by `ELCON_MEMORY_LIMIT` when set.
     ///
     /// # Errors
     /// [`ProcessError::Variable`] when the environment variable's value is

@@ -37,6 +37,6 @@ pub use design_keys::{DesignCaller, design_reason};
 pub use error::RunError;
 pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass, TimeFigure};
 pub use merge::merge;
-pub use prepare::{BatchCheck, CHECK_EVERY_RUN, Prepared, REPORTED_FAILURES, check_batch, prepare};
+pub use prepare::{BatchCheck, Prepared, check_batch, prepare};
 pub use run::run;
-pub use shard::{SHARD_COUNT_VARIABLE, Shard, ShardError, batch_dir};
+pub use shard::{Shard, ShardError, batch_dir};

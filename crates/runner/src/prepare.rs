@@ -18,7 +18,7 @@ use crate::estimate::Estimate;
 
 /// `elcon check` validates every run of a sweep up to this size; above it,
 /// a covering set of runs unless `--every-run` is given.
-pub const CHECK_EVERY_RUN: usize = 10_000;
+pub(crate) const CHECK_EVERY_RUN: usize = 10_000;
 
 /// A scene ready to solve.
 #[derive(Debug, Clone)]
@@ -43,7 +43,7 @@ pub fn prepare(scene: Scene, ceiling: &Ceiling) -> Result<Prepared, RunError> {
 }
 
 /// The failures `check_batch` keeps to report (the rest are counted).
-pub const REPORTED_FAILURES: usize = 20;
+pub(crate) const REPORTED_FAILURES: usize = 20;
 
 /// What `elcon check` found in a batch.
 #[derive(Debug, Clone, Default)]
@@ -56,7 +56,7 @@ pub struct BatchCheck {
     pub every_run: bool,
     /// Runs that failed.
     pub failed: usize,
-    /// The first [`REPORTED_FAILURES`] of them by index, with why.
+    /// The first `REPORTED_FAILURES` (20) of them by index, with why.
     pub failures: Vec<(BatchRun, RunError)>,
     /// The largest estimate among the valid runs checked.
     pub largest: Option<Estimate>,
@@ -115,7 +115,7 @@ impl BatchCheck {
 }
 
 /// Checks a batch's runs as `elcon batch` would before solving each: every
-/// run if `every_run` or the sweep has at most [`CHECK_EVERY_RUN`] runs,
+/// run if `every_run` or the sweep has at most `CHECK_EVERY_RUN` (10,000) runs,
 /// else [`Batch::covering_runs`]. Memory: the runs in flight and the
 /// failures reported, whatever the sweep's size.
 pub fn check_batch(batch: &Batch, ceiling: &Ceiling, every_run: bool) -> BatchCheck {

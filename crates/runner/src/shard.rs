@@ -26,7 +26,7 @@ pub struct Shard {
 
 /// The variable that gives N beside a Kubernetes indexed Job's
 /// `JOB_COMPLETION_INDEX` (set it to the Job's `completions`).
-pub const SHARD_COUNT_VARIABLE: &str = "ELCON_SHARD_COUNT";
+pub(crate) const SHARD_COUNT_VARIABLE: &str = "ELCON_SHARD_COUNT";
 
 /// The largest task id, count or step a scheduler's variable may hold:
 /// SLURM's array task ids are 32-bit (and its arrays far smaller), and so
@@ -326,7 +326,7 @@ impl Shard {
 
     /// The shard of a Kubernetes indexed Job's pod, if
     /// `JOB_COMPLETION_INDEX` is set: index i (from 0) of
-    /// [`SHARD_COUNT_VARIABLE`] completions is shard i + 1.
+    /// `ELCON_SHARD_COUNT` completions is shard i + 1.
     fn from_indexed_job(number: Number<'_>) -> Result<Option<Self>, ShardError> {
         let Some(index) = number("JOB_COMPLETION_INDEX")? else {
             return Ok(None);

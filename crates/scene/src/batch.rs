@@ -23,7 +23,7 @@ use crate::schema::{BatchFile, ErrorMetric};
 /// row per run, in memory while they are written and on disk (about half a
 /// kilobyte a row in results.json): a million rows is about 0.5 GB. A
 /// larger study is several batch files.
-pub const MAX_RUNS: usize = 1_000_000;
+pub(crate) const MAX_RUNS: usize = 1_000_000;
 
 /// A validated batch file.
 #[derive(Debug, Clone)]
@@ -76,7 +76,7 @@ impl BatchRun {
     }
 
     /// A directory-safe name: `007-points.across-41_solver.method-lemke`;
-    /// above [`MAX_SLUG`] bytes, its first part and a hash of the whole
+    /// above `MAX_SLUG` (120) bytes, its first part and a hash of the whole
     /// (`007-loading.load-...-h1a2b3c4d5e6f`), so every name fits a file
     /// system's limit (255 bytes) and two runs never share one.
     pub fn slug(&self) -> String {
@@ -124,7 +124,7 @@ impl Batch {
     /// # Errors
     /// As [`Scene::from_file`], for the batch file and the base scene; a
     /// sweep key that does not lead to a value, values that are not a
-    /// non-empty array, or a sweep of more than [`MAX_RUNS`] runs is
+    /// non-empty array, or a sweep of more than `MAX_RUNS` (1,000,000) runs is
     /// [`SceneError::Invalid`].
     pub fn from_file(path: &Path) -> Result<Self, SceneError> {
         Self::from_text(path, &read_text(path)?)

@@ -20,13 +20,13 @@ mod sanity;
 mod scene;
 mod schema;
 
-pub use batch::{Batch, BatchRun, MAX_RUNS, is_batch_text};
+pub use batch::{Batch, BatchRun, is_batch_text};
 pub use ctx::{MAX_INPUT_BYTES, read_text};
 pub use error::{Location, SceneError};
 pub use sanity::{MAX_ROTATION, MAX_STRAIN, MIN_POINTS_RESOLVED, StrainExtent, approach_strain};
 pub use scene::{
-    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, MAX_SLUG, MethodChoice, ModelKind,
-    Outputs, Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units, design_over,
-    problem_parts, scene_with_design,
+    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, MethodChoice, ModelKind, Outputs, Plot,
+    PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units, design_over, problem_parts,
+    scene_with_design,
 };
 pub use schema::ErrorMetric;

@@ -465,7 +465,7 @@ fn planner<'a>(
 /// batch run's directory (longer ones keep their first part and a hash of
 /// the whole), leaving room under NAME_MAX (255) for the lock's and the
 /// temporary sibling's additions.
-pub const MAX_SLUG: usize = 120;
+pub(crate) const MAX_SLUG: usize = 120;
 
 /// `scene.name` (default: the file's stem): it names an output directory.
 fn scene_name(ctx: &Ctx<'_>, raw: &SceneFile) -> Result<String, SceneError> {
