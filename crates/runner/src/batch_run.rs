@@ -7,7 +7,7 @@
 //! point resumes without running again what finished (the journal module);
 //! the tables are written at the end, or when the batch is interrupted.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::{Condvar, Mutex};
 
 use elcon_lcp::Cancel;
@@ -21,7 +21,7 @@ use crate::error::RunError;
 use crate::estimate::{BASELINE, Estimate};
 use crate::journal::Journal;
 use crate::run::run;
-use crate::shard::{Shard, batch_dir};
+use crate::shard::Shard;
 
 /// Reports a batch's progress (the command line draws a bar on a terminal
 /// and plain lines otherwise).
@@ -117,6 +117,15 @@ fn one_run(shared: &Shared<'_>, r: &BatchRun) -> Result<RunResult, RunError> {
     };
     shared.budget.give(share);
     outcome
+}
+
+/// The directory a batch (or one shard of it) writes under `out`:
+/// `out/<name>`, or `out/<name>-shard-K-of-N` for a shard.
+pub fn batch_dir(batch: &Batch, out: &Path, shard: Option<Shard>) -> PathBuf {
+    match shard {
+        Some(s) => out.join(format!("{}-shard-{}-of-{}", batch.name, s.index, s.count)),
+        None => out.join(&batch.name),
+    }
 }
 
 /// A batch that ran (or was interrupted): its table and what was kept.

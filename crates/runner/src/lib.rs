@@ -32,11 +32,11 @@ mod run;
 mod shard;
 mod subsurface;
 
-pub use batch_run::{BatchDone, BatchOptions, Progress, run_batch};
+pub use batch_run::{BatchDone, BatchOptions, Progress, batch_dir, run_batch};
 pub use design_keys::{DesignCaller, design_reason};
 pub use error::RunError;
 pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass, TimeFigure};
 pub use merge::merge;
 pub use prepare::{BatchCheck, Prepared, check_batch, prepare};
 pub use run::run;
-pub use shard::{Shard, ShardError, batch_dir};
+pub use shard::{Shard, ShardError};

@@ -11,10 +11,6 @@
 //! the Job's `completions`); when both are set they must agree.
 //! docs/scenes.md has a script for each.
 
-use std::path::{Path, PathBuf};
-
-use elcon_scene::Batch;
-
 /// The K-th of N slices of a sweep (1-based K).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Shard {
@@ -336,15 +332,6 @@ impl Shard {
         Self::new(index + 1, count)
             .map(Some)
             .map_err(|e| ShardError::given(task, e))
-    }
-}
-
-/// The directory a batch (or one shard of it) writes under `out`:
-/// `out/<name>`, or `out/<name>-shard-K-of-N` for a shard.
-pub fn batch_dir(batch: &Batch, out: &Path, shard: Option<Shard>) -> PathBuf {
-    match shard {
-        Some(s) => out.join(format!("{}-shard-{}-of-{}", batch.name, s.index, s.count)),
-        None => out.join(&batch.name),
     }
 }
 
