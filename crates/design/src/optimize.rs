@@ -206,29 +206,28 @@ fn setup<'a>(
             reason: "no load case given".into(),
         });
     }
-    if !(options.agreement.is_finite() && options.agreement > 0.0 && options.agreement < 1.0) {
-        return Err(DesignError::InvalidInput {
-            field: "agreement",
-            value: options.agreement,
-            reason: "must be in (0, 1)",
-        });
-    }
-    if let Some(c) = options.max_constant
-        && !(c.is_finite() && c > 0.0)
-    {
-        return Err(DesignError::InvalidInput {
-            field: "max_constant",
-            value: c,
-            reason: "must be finite and > 0",
-        });
-    }
-    if options.max_iterations == 0 {
-        return Err(DesignError::InvalidInput {
-            field: "max_iterations",
-            value: 0.0,
-            reason: "the descent needs at least one iteration",
-        });
-    }
+    let agreement = options.agreement;
+    let max_constant = options.max_constant;
+    elcon_num::check([
+        (
+            agreement.is_finite() && agreement > 0.0 && agreement < 1.0,
+            "agreement",
+            agreement,
+            "must be in (0, 1)",
+        ),
+        (
+            max_constant.is_none_or(|c| c.is_finite() && c > 0.0),
+            "max_constant",
+            max_constant.unwrap_or_default(),
+            "must be finite and > 0",
+        ),
+        (
+            options.max_iterations > 0,
+            "max_iterations",
+            0.0,
+            "the descent needs at least one iteration",
+        ),
+    ])?;
     let references = reference_intensities(options.reference_intensities.as_deref(), cases.len())?;
     let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), axis);
     let basis = Basis::new(family, &stations, options.knots.as_deref())?;

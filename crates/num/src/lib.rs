@@ -9,9 +9,14 @@
 //! Also how a name is read back from a message's words ([`UnknownName`],
 //! [`named!`], [`named_serde!`]): the enums of named choices of every crate above parse,
 //! show and serialize their names through it.
+//!
+//! And how an input is checked ([`check`]): the first of a table of
+//! conditions that does not hold, a [`Rejected`] that names the field.
 
+mod input;
 mod name;
 
+pub use input::{Check, Rejected, check};
 pub use name::UnknownName;
 
 /// A number as a message shows it, in its shortest round-trip form: as
