@@ -438,9 +438,9 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
     let mut reanalysed = 0.0f64;
     let mut worst_stress = None;
     for (l, (c, s)) in setup.prepared.iter().zip(&evaluation.solutions).enumerate() {
-        reanalysed = reanalysed.max(criterion.merit(l, c, s)?);
-        if let Criterion::Stress(stress) = &criterion {
-            let largest = stress.largest(l, c, s)?;
+        let (merit, largest) = criterion.merit(l, c, s)?;
+        reanalysed = reanalysed.max(merit);
+        if let Some(largest) = largest {
             worst_stress = Some(worst_stress.map_or(largest, |w: f64| w.max(largest)));
         }
     }
