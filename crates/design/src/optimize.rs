@@ -493,15 +493,10 @@ mod tests {
 
     #[test]
     fn a_case_solved_by_the_conjugate_gradient_is_held_to_the_iterative_agreement() {
-        use elcon_analysis::{Geometry, Loading, Surface};
-        use elcon_influence::{Body, Material, PointSet};
-        let steel = Material::new(210e3, 0.3).unwrap();
-        let points = PointSet::grid_rectangle(0.5, 5.0, 5, 12).unwrap();
-        let body = Body::uniform_patch(steel);
-        let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
-        let loading = Loading::load(5e3);
-        let dense = ContactProblem::new(points.clone(), &body, &body, &geometry, loading).unwrap();
-        let lattice = ContactProblem::lattice(points, &body, &body, &geometry, loading).unwrap();
+        use elcon_analysis::Storage;
+        use elcon_fixtures::design_cases::aligned_roller;
+        let roller = |storage| aligned_roller(5e3, (5, 12), storage).unwrap().0;
+        let (dense, lattice) = (roller(Storage::Dense), roller(Storage::Lattice));
         let options = DesignOptions {
             reanalysis: elcon_analysis::Method::ConjugateGradient,
             ..DesignOptions::default()
