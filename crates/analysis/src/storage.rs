@@ -102,13 +102,7 @@ mod tests {
     #[cfg(feature = "serde")]
     #[test]
     fn a_storage_deserializes_from_its_name() {
-        use serde::Deserialize;
-        use serde::de::IntoDeserializer;
-        use serde::de::value::{Error, StrDeserializer};
-        let read = |name: &'static str| {
-            let d: StrDeserializer<'_, Error> = name.into_deserializer();
-            Storage::deserialize(d)
-        };
+        let read = elcon_num::from_name::<Storage>;
         assert_eq!(read("lattice").unwrap(), Storage::Lattice);
         let e = read("matrix-free").unwrap_err().to_string();
         assert!(e.starts_with("unknown variant `matrix-free`"), "{e}");

@@ -58,13 +58,7 @@ fn an_unknown_name_lists_the_names_there_are() {
 #[cfg(feature = "serde")]
 #[test]
 fn each_choice_deserializes_from_its_name() {
-    use serde::Deserialize;
-    use serde::de::IntoDeserializer;
-    use serde::de::value::{Error, StrDeserializer};
-    fn read<'a, T: Deserialize<'a>>(name: &'a str) -> Result<T, Error> {
-        let d: StrDeserializer<'_, Error> = name.into_deserializer();
-        T::deserialize(d)
-    }
+    use elcon_num::from_name as read;
     assert_eq!(read::<Axis>("y").unwrap(), Axis::Y);
     assert_eq!(
         read::<DesignMethod>("descent").unwrap(),

@@ -462,21 +462,17 @@ mod tests {
     #[cfg(feature = "serde")]
     #[test]
     fn a_method_deserializes_from_its_name() {
-        use serde::Deserialize;
-        use serde::de::IntoDeserializer;
-        use serde::de::value::{Error, StrDeserializer};
-        let read = |name: &'static str| {
-            let d: StrDeserializer<'_, Error> = name.into_deserializer();
-            Method::deserialize(d)
-        };
+        let read = elcon_num::from_name::<Method>;
         assert_eq!(read("block-pivoting").unwrap(), Method::BlockPivoting);
         let e = read("cholesky").unwrap_err().to_string();
         assert!(
             e.starts_with("unknown variant `cholesky`, expected one of"),
             "{e}"
         );
-        let d: StrDeserializer<'_, Error> = "lu".into_deserializer();
-        assert_eq!(LinearMethod::deserialize(d).unwrap(), LinearMethod::Lu);
+        assert_eq!(
+            elcon_num::from_name::<LinearMethod>("lu").unwrap(),
+            LinearMethod::Lu
+        );
     }
 
     #[test]

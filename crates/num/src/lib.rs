@@ -7,7 +7,7 @@
 //! every crate above show a user's number the same way.
 //!
 //! Also how a name is read back from a message's words ([`UnknownName`],
-//! [`named!`], [`named_serde!`]): the enums of named choices of every crate above parse,
+//! [`named!`], [`named_serde!`] and, with the `serde` feature, `from_name`): the enums of named choices of every crate above parse,
 //! show and serialize their names through it.
 //!
 //! And how an input is checked ([`check`]): the first of a table of
@@ -18,6 +18,8 @@ mod name;
 
 pub use input::{Check, Rejected, check};
 pub use name::UnknownName;
+#[cfg(feature = "serde")]
+pub use name::from_name;
 
 /// A number as a message shows it, in its shortest round-trip form: as
 /// written for everyday magnitudes (`-30000000`, `0.5`), in scientific

@@ -161,6 +161,17 @@ macro_rules! named_serde {
     };
 }
 
+/// A named choice read back from its name as a deserializer reads it (a
+/// scene's TOML, a result's JSON): what [`named_serde!`](crate::named_serde)'s
+/// `Deserialize` gives, without a format; an unknown name is serde's
+/// "unknown variant" error. The `serde` feature.
+#[cfg(feature = "serde")]
+pub fn from_name<'a, T: serde::Deserialize<'a>>(
+    name: &'a str,
+) -> Result<T, serde::de::value::Error> {
+    T::deserialize(serde::de::value::StrDeserializer::new(name))
+}
+
 #[cfg(test)]
 mod tests {
     use super::UnknownName;
