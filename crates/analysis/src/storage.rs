@@ -88,9 +88,7 @@ mod tests {
 
     #[test]
     fn a_storage_parses_its_name_and_an_unknown_one_lists_them() {
-        for storage in Storage::ALL {
-            assert_eq!(storage.to_string().parse::<Storage>(), Ok(storage));
-        }
+        assert_eq!(elcon_num::unparsed(&Storage::ALL), None);
         let e = "sparse".parse::<Storage>().unwrap_err();
         assert_eq!(e.allowed, Storage::NAMES);
         assert_eq!(

@@ -17,9 +17,9 @@ mod input;
 mod name;
 
 pub use input::{Check, Rejected, check};
-pub use name::UnknownName;
 #[cfg(feature = "serde")]
 pub use name::from_name;
+pub use name::{UnknownName, unparsed};
 
 /// A number as a message shows it, in its shortest round-trip form: as
 /// written for everyday magnitudes (`-30000000`, `0.5`), in scientific
