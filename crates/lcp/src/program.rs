@@ -110,14 +110,7 @@ impl ProgramBuilder {
         block: MatRef<'_, f64>,
         bound: Bound,
     ) -> Result<Range<usize>, LcpError> {
-        if block.nrows() != self.rows {
-            return Err(LcpError::DimensionMismatch {
-                field: "dense_columns block",
-                expected: self.rows,
-                found: block.nrows(),
-                unit: "rows",
-            });
-        }
+        self.check_rows("dense_columns block", block.nrows(), "rows")?;
         check_finite_mat("dense_columns block", block)?;
         let start = self.columns.len();
         self.blocks.push((start, name.to_string()));
@@ -181,6 +174,25 @@ impl ProgramBuilder {
         self.cost.push(0.0);
     }
 
+    /// Checks that `found` (counted in `unit`) is the program's number of
+    /// rows.
+    fn check_rows(
+        &self,
+        field: &'static str,
+        found: usize,
+        unit: &'static str,
+    ) -> Result<(), LcpError> {
+        if found != self.rows {
+            return Err(LcpError::DimensionMismatch {
+                field,
+                expected: self.rows,
+                found,
+                unit,
+            });
+        }
+        Ok(())
+    }
+
     fn check_var(&self, field: &'static str, var: usize) -> Result<(), LcpError> {
         if var >= self.columns.len() {
             return Err(LcpError::DimensionMismatch {
@@ -197,25 +209,25 @@ impl ProgramBuilder {
     pub fn complementary(&mut self, i: usize, j: usize) -> Result<(), LcpError> {
         self.check_var("complementary", i)?;
         self.check_var("complementary", j)?;
-        if self.deferred[i] || self.deferred[j] {
+        let refused = [
+            (
+                self.deferred[i] || self.deferred[j],
+                "a deferred unknown cannot be complementary",
+            ),
+            (
+                i == j || self.complement[i].is_some() || self.complement[j].is_some(),
+                "an unknown has at most one complement, and not itself",
+            ),
+            (
+                self.bounds[i] != Bound::NonNegative || self.bounds[j] != Bound::NonNegative,
+                "complementary unknowns must be non-negative",
+            ),
+        ];
+        if let Some((_, reason)) = refused.into_iter().find(|(refuses, _)| *refuses) {
             return Err(LcpError::InvalidOption {
                 field: "complementary",
                 value: format!("({i}, {j})"),
-                reason: "a deferred unknown cannot be complementary",
-            });
-        }
-        if i == j || self.complement[i].is_some() || self.complement[j].is_some() {
-            return Err(LcpError::InvalidOption {
-                field: "complementary",
-                value: format!("({i}, {j})"),
-                reason: "an unknown has at most one complement, and not itself",
-            });
-        }
-        if self.bounds[i] != Bound::NonNegative || self.bounds[j] != Bound::NonNegative {
-            return Err(LcpError::InvalidOption {
-                field: "complementary",
-                value: format!("({i}, {j})"),
-                reason: "complementary unknowns must be non-negative",
+                reason,
             });
         }
         self.complement[i] = Some(j);
@@ -268,14 +280,7 @@ impl ProgramBuilder {
 
     /// Sets the right-hand side `b` (length `rows`).
     pub fn rhs(&mut self, b: ColRef<'_, f64>) -> Result<(), LcpError> {
-        if b.nrows() != self.rows {
-            return Err(LcpError::DimensionMismatch {
-                field: "rhs",
-                expected: self.rows,
-                found: b.nrows(),
-                unit: "entries",
-            });
-        }
+        self.check_rows("rhs", b.nrows(), "entries")?;
         check_finite_col("rhs", b)?;
         self.b = Some(b.to_owned());
         Ok(())
