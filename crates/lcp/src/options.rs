@@ -6,6 +6,7 @@
 use faer::Par;
 
 use crate::LcpError;
+use crate::problem::check_size;
 use crate::tolerance::Tolerances;
 use elcon_num::Num;
 
@@ -352,14 +353,7 @@ impl Options {
                 reason: "a covering vector applies to the general tableau only: set `tableau` to General",
             });
         }
-        if d.len() != split_size {
-            return Err(LcpError::DimensionMismatch {
-                field: "covering_vector",
-                expected: split_size,
-                found: d.len(),
-                unit: "entries",
-            });
-        }
+        check_size("covering_vector", d.len(), split_size, "entries")?;
         if let Some((index, &value)) = d
             .iter()
             .enumerate()

@@ -504,15 +504,25 @@ pub(crate) fn check_dims(
     er: usize,
     ec: usize,
 ) -> Result<(), LcpError> {
-    for (found, expected, unit) in [(rows, er, "rows"), (cols, ec, "columns")] {
-        if found != expected {
-            return Err(LcpError::DimensionMismatch {
-                field,
-                expected,
-                found,
-                unit,
-            });
-        }
+    check_size(field, rows, er, "rows")?;
+    check_size(field, cols, ec, "columns")
+}
+
+/// Checks that `field` has `expected` of `unit` (its rows, columns or
+/// entries), `found` given.
+pub(crate) fn check_size(
+    field: &'static str,
+    found: usize,
+    expected: usize,
+    unit: &'static str,
+) -> Result<(), LcpError> {
+    if found != expected {
+        return Err(LcpError::DimensionMismatch {
+            field,
+            expected,
+            found,
+            unit,
+        });
     }
     Ok(())
 }

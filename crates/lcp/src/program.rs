@@ -19,7 +19,7 @@ use faer::{Col, ColRef, Mat, MatRef};
 
 use crate::LcpError;
 use crate::certificate::Certificate;
-use crate::problem::{Bound, check_finite_col, check_finite_mat};
+use crate::problem::{Bound, check_finite_col, check_finite_mat, check_size};
 
 /// One column of a program's constraint matrix `A`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -110,7 +110,7 @@ impl ProgramBuilder {
         block: MatRef<'_, f64>,
         bound: Bound,
     ) -> Result<Range<usize>, LcpError> {
-        self.check_rows("dense_columns block", block.nrows(), "rows")?;
+        check_size("dense_columns block", block.nrows(), self.rows, "rows")?;
         check_finite_mat("dense_columns block", block)?;
         let start = self.columns.len();
         self.blocks.push((start, name.to_string()));
@@ -172,25 +172,6 @@ impl ProgramBuilder {
         self.bounds.push(bound);
         self.complement.push(None);
         self.cost.push(0.0);
-    }
-
-    /// Checks that `found` (counted in `unit`) is the program's number of
-    /// rows.
-    fn check_rows(
-        &self,
-        field: &'static str,
-        found: usize,
-        unit: &'static str,
-    ) -> Result<(), LcpError> {
-        if found != self.rows {
-            return Err(LcpError::DimensionMismatch {
-                field,
-                expected: self.rows,
-                found,
-                unit,
-            });
-        }
-        Ok(())
     }
 
     fn check_var(&self, field: &'static str, var: usize) -> Result<(), LcpError> {
@@ -280,7 +261,7 @@ impl ProgramBuilder {
 
     /// Sets the right-hand side `b` (length `rows`).
     pub fn rhs(&mut self, b: ColRef<'_, f64>) -> Result<(), LcpError> {
-        self.check_rows("rhs", b.nrows(), "entries")?;
+        check_size("rhs", b.nrows(), self.rows, "entries")?;
         check_finite_col("rhs", b)?;
         self.b = Some(b.to_owned());
         Ok(())
