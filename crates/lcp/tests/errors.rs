@@ -1,8 +1,9 @@
 //! One test per error variant of the engine, checking the message a caller sees.
 
 use elcon_lcp::{
-    BorderedLcp, Bound, Lcp, LcpError, LinearSystem, Method, MixedLcp, MixedLcpParts, OperatorLcp,
-    Options, PodStack, Preconditioner, ProgramBuilder, StackReq, Tableau, Tolerances,
+    BorderedLcp, Bound, Breakdown, Lcp, LcpError, LinearSystem, Method, MixedLcp, MixedLcpParts,
+    OperatorLcp, Options, Outcome, PodStack, Preconditioner, ProgramBuilder, Reason, StackReq,
+    Tableau, Tolerances,
 };
 use faer::{Col, Mat, col, mat};
 
@@ -184,6 +185,21 @@ fn an_explicit_tableau_that_cannot_finish_is_an_error() {
             "lemke on the symmetric tableau broke down after 1 pivot (size 2): a pivot a positive definite matrix would not give"
         ),
     );
+    // On the default tableau the general one answers, and the log shows
+    // each attempt and why it ran.
+    let sol = p.solve(Method::Lemke, &Options::default()).unwrap();
+    let log = &sol.statistics.attempts;
+    assert_eq!(log.len(), 2, "{log:?}");
+    assert_eq!(
+        (log[0].reason, log[1].reason),
+        (Reason::First, Reason::Fallback)
+    );
+    assert_eq!(
+        log[0].outcome,
+        Outcome::Breakdown(Breakdown::NotPositiveDefinite)
+    );
+    assert_eq!(log[1].outcome, Outcome::Returned);
+    assert_eq!(log[1].tableau, Some(Tableau::General));
     // A mixed form has no symmetric tableau at all.
     let mixed = one_pair(Bound::Free);
     let e = mixed.solve(Method::Lemke, &opts).unwrap_err();
