@@ -37,8 +37,9 @@
 use realfft::RealFftPlanner;
 
 use super::convolution::{Buffers, Convolution, columns_back, share};
-use super::grid::{C64, COLUMN_BATCH, Plans, RowBuffers, try_vec};
+use super::grid::{C64, COLUMN_BATCH, Plans, RowBuffers};
 use crate::error::InfluenceError;
+use crate::error::try_vec;
 
 /// The symbol's floor: a value of `Ŝ_Q` below `max Ŝ_Q / (SYMBOL_FLOOR
 /// max(Q1, Q2))` is raised to it. A half-space symbol falls like `1/|k|`,

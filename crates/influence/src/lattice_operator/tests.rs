@@ -4,10 +4,11 @@
 
 use faer::{Col, Mat};
 
-use super::grid::{padded_length, try_vec};
+use super::grid::padded_length;
 use super::{LatticeKernel, LatticeOperator, LatticeWorkspace};
 use crate::assembly::assemble;
 use crate::error::InfluenceError;
+use crate::error::try_vec;
 use crate::fixtures::{BEAM, scattered, sparse_pair, surface};
 use crate::material::Material;
 use crate::models::Body;
