@@ -89,6 +89,8 @@ pub enum AnalysisError {
     Engine(#[from] LcpError),
 }
 
+elcon_num::rejected_into_invalid_input!(AnalysisError);
+
 impl AnalysisError {
     /// A [`AnalysisError::Table`] error of the table `label`.
     pub(crate) fn table(label: &str, reason: impl Into<String>) -> Self {

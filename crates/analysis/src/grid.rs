@@ -24,27 +24,26 @@ use crate::AnalysisError;
 /// Checks `across` (at least 2) and `zone` (finite, at least 1) and the
 /// size (finite, > 0); the spacing `2 size / (across - 1)`.
 fn spacing(size: f64, across: usize, zone: f64) -> Result<f64, AnalysisError> {
-    if !(size.is_finite() && size > 0.0) {
-        return Err(AnalysisError::InvalidInput {
-            field: "contact size",
-            value: size,
-            reason: "the Hertz radius or half-width must be finite and > 0",
-        });
-    }
-    if across < 2 {
-        return Err(AnalysisError::InvalidInput {
-            field: "across",
-            value: across as f64,
-            reason: "at least 2 points across the contact",
-        });
-    }
-    if !(zone.is_finite() && zone >= 1.0) {
-        return Err(AnalysisError::InvalidInput {
-            field: "zone",
-            value: zone,
-            reason: "the candidate zone must be finite and at least the contact (zone >= 1)",
-        });
-    }
+    elcon_num::check([
+        (
+            size.is_finite() && size > 0.0,
+            "contact size",
+            size,
+            "the Hertz radius or half-width must be finite and > 0",
+        ),
+        (
+            across >= 2,
+            "across",
+            across as f64,
+            "at least 2 points across the contact",
+        ),
+        (
+            zone.is_finite() && zone >= 1.0,
+            "zone",
+            zone,
+            "the candidate zone must be finite and at least the contact (zone >= 1)",
+        ),
+    ])?;
     Ok(2.0 * size / (across - 1) as f64)
 }
 

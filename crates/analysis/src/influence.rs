@@ -92,29 +92,47 @@ impl Influence {
 }
 
 impl Influence {
-    /// `S_JJ X = R` on the unknowns `contact` (J), `rhs` R of `|J|` rows,
-    /// by the engine's certified linear solve (`elcon_lcp::LinearSystem`):
-    /// dense, a Cholesky factor of the block `S_JJ` (LU, logged as a
-    /// fallback, where it is not numerically positive definite);
-    /// matrix-free, the conjugate gradient on the products restricted to J.
-    pub fn restricted_solve(
+    /// S restricted to the unknowns `contact` (J): dense, the block `S_JJ`
+    /// copied out; matrix-free, the products restricted to J.
+    pub fn restricted<'a>(&'a self, contact: &'a [usize]) -> RestrictedInfluence<'a> {
+        match self {
+            Influence::Dense(s) => {
+                let nj = contact.len();
+                RestrictedInfluence::Dense(Mat::from_fn(nj, nj, |a, b| s[(contact[a], contact[b])]))
+            }
+            Influence::Lattice(kernel) => RestrictedInfluence::Lattice(Restricted {
+                products: LatticeProducts(kernel),
+                contact,
+            }),
+        }
+    }
+}
+
+/// `S_JJ`, S restricted to a set of unknowns J ([`Influence::restricted`]).
+pub(crate) enum RestrictedInfluence<'a> {
+    /// The block `S_JJ`.
+    Dense(Mat<f64>),
+    /// The products restricted to J.
+    Lattice(Restricted<'a>),
+}
+
+impl RestrictedInfluence<'_> {
+    /// `S_JJ X = R`, `rhs` R of `|J|` rows, by the engine's certified
+    /// linear solve (`elcon_lcp::LinearSystem`): dense, a Cholesky factor
+    /// of the block (LU, logged as a fallback, where it is not numerically
+    /// positive definite); matrix-free, the conjugate gradient on the
+    /// restricted products.
+    pub fn solve(
         &self,
-        contact: &[usize],
         rhs: MatRef<'_, f64>,
         options: &Options,
     ) -> Result<LinearSolution, AnalysisError> {
         Ok(match self {
-            Influence::Dense(s) => {
-                let nj = contact.len();
-                let block = Mat::from_fn(nj, nj, |a, b| s[(contact[a], contact[b])]);
+            RestrictedInfluence::Dense(block) => {
                 LinearSystem::dense(block.as_ref(), rhs)?.solve(options)?
             }
-            Influence::Lattice(kernel) => {
-                let restricted = Restricted {
-                    products: LatticeProducts(kernel),
-                    contact,
-                };
-                LinearSystem::operator(&restricted, rhs)?.solve(options)?
+            RestrictedInfluence::Lattice(restricted) => {
+                LinearSystem::operator(restricted, rhs)?.solve(options)?
             }
         })
     }
@@ -123,7 +141,7 @@ impl Influence {
 /// An operator's products restricted to the unknowns `contact`:
 /// `(S_JJ x) = (S [x on J, 0 elsewhere])_J`, through two vectors of n in
 /// the caller's scratch.
-struct Restricted<'a> {
+pub(crate) struct Restricted<'a> {
     products: LatticeProducts<'a>,
     contact: &'a [usize],
 }

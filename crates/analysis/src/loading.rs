@@ -74,6 +74,35 @@ impl Tilt {
     }
 }
 
+/// Loading's builders that set one tilt each: `$name(self, $value)` sets
+/// `$tilt` to `Tilt::$kind { $value }`.
+macro_rules! tilt_builders {
+    ($($(#[doc = $doc:literal])+ $name:ident: $tilt:ident = $kind:ident { $value:ident };)+) => {
+        impl Loading {
+            $(
+                $(#[doc = $doc])+
+                pub fn $name(self, $value: f64) -> Self {
+                    Self {
+                        $tilt: Tilt::$kind { $value },
+                        ..self
+                    }
+                }
+            )+
+        }
+    };
+}
+
+tilt_builders! {
+    /// The same with the moment `M_x` about the x axis (free `θ_x`).
+    with_moment_x: tilt_x = Free { moment };
+    /// The same with the moment `M_y` about the y axis (free `θ_y`).
+    with_moment_y: tilt_y = Free { moment };
+    /// The same with the rotation `θ_x` prescribed (radians).
+    with_tilt_x: tilt_x = Prescribed { angle };
+    /// The same with the rotation `θ_y` prescribed (radians).
+    with_tilt_y: tilt_y = Prescribed { angle };
+}
+
 /// How the bodies are pressed together (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Loading {
@@ -89,52 +118,21 @@ impl Loading {
     /// Load control with the load `P` applied at the load point (free tilts,
     /// zero moments).
     pub fn load(load: f64) -> Self {
-        Self {
-            normal: Normal::Load(load),
-            tilt_x: Tilt::default(),
-            tilt_y: Tilt::default(),
-        }
+        Self::pressed(Normal::Load(load))
     }
 
     /// Displacement control with the approach `alpha` (free tilts, zero
     /// moments).
     pub fn approach(approach: f64) -> Self {
+        Self::pressed(Normal::Approach(approach))
+    }
+
+    /// `normal` with free tilts and zero moments.
+    fn pressed(normal: Normal) -> Self {
         Self {
-            normal: Normal::Approach(approach),
+            normal,
             tilt_x: Tilt::default(),
             tilt_y: Tilt::default(),
-        }
-    }
-
-    /// The same with the moment `M_x` about the x axis (free `θ_x`).
-    pub fn with_moment_x(self, moment: f64) -> Self {
-        Self {
-            tilt_x: Tilt::Free { moment },
-            ..self
-        }
-    }
-
-    /// The same with the moment `M_y` about the y axis (free `θ_y`).
-    pub fn with_moment_y(self, moment: f64) -> Self {
-        Self {
-            tilt_y: Tilt::Free { moment },
-            ..self
-        }
-    }
-
-    /// The same with the rotation `θ_x` prescribed (radians).
-    pub fn with_tilt_x(self, angle: f64) -> Self {
-        Self {
-            tilt_x: Tilt::Prescribed { angle },
-            ..self
-        }
-    }
-
-    /// The same with the rotation `θ_y` prescribed (radians).
-    pub fn with_tilt_y(self, angle: f64) -> Self {
-        Self {
-            tilt_y: Tilt::Prescribed { angle },
-            ..self
         }
     }
 
@@ -155,39 +153,28 @@ impl Loading {
     /// Checks the numbers: a finite positive load or a finite approach,
     /// finite moments and angles.
     pub(crate) fn validate(&self) -> Result<(), AnalysisError> {
-        match self.normal {
-            Normal::Load(p) if !(p.is_finite() && p > 0.0) => {
-                return Err(AnalysisError::InvalidInput {
-                    field: "load",
-                    value: p,
-                    reason: "the normal load must be finite and > 0",
-                });
-            }
-            Normal::Approach(a) if !a.is_finite() => {
-                return Err(AnalysisError::InvalidInput {
-                    field: "approach",
-                    value: a,
-                    reason: "the approach must be finite",
-                });
-            }
-            _ => {}
-        }
-        for (tilt, moment, angle) in [
-            (self.tilt_x, "moment_x", "tilt_x"),
-            (self.tilt_y, "moment_y", "tilt_y"),
-        ] {
+        let normal = match self.normal {
+            Normal::Load(p) => (
+                p.is_finite() && p > 0.0,
+                "load",
+                p,
+                "the normal load must be finite and > 0",
+            ),
+            Normal::Approach(a) => (a.is_finite(), "approach", a, "the approach must be finite"),
+        };
+        // A tilt's moment when it is free, its angle when prescribed.
+        let tilt = |tilt: Tilt, moment, angle| {
             let (field, value) = match tilt {
                 Tilt::Free { moment: m } => (moment, m),
                 Tilt::Prescribed { angle: a } => (angle, a),
             };
-            if !value.is_finite() {
-                return Err(AnalysisError::InvalidInput {
-                    field,
-                    value,
-                    reason: "must be finite",
-                });
-            }
-        }
+            (value.is_finite(), field, value, "must be finite")
+        };
+        elcon_num::check([
+            normal,
+            tilt(self.tilt_x, "moment_x", "tilt_x"),
+            tilt(self.tilt_y, "moment_y", "tilt_y"),
+        ])?;
         Ok(())
     }
 }

@@ -137,27 +137,26 @@ pub fn crown_search(
 /// Checks the bracket `[low, high]` (finite, `0 < low < high`) and the
 /// samples (at least 3).
 fn check_bracket(low: f64, high: f64, samples: usize) -> Result<(), DesignError> {
-    if !(low.is_finite() && low > 0.0) {
-        return Err(DesignError::InvalidInput {
-            field: "low",
-            value: low,
-            reason: "must be finite and > 0",
-        });
-    }
-    if !(high.is_finite() && high > low) {
-        return Err(DesignError::InvalidInput {
-            field: "high",
-            value: high,
-            reason: "must be finite and > low",
-        });
-    }
-    if samples < 3 {
-        return Err(DesignError::InvalidInput {
-            field: "samples",
-            value: samples as f64,
-            reason: "at least 3 samples",
-        });
-    }
+    elcon_num::check([
+        (
+            low.is_finite() && low > 0.0,
+            "low",
+            low,
+            "must be finite and > 0",
+        ),
+        (
+            high.is_finite() && high > low,
+            "high",
+            high,
+            "must be finite and > low",
+        ),
+        (
+            samples >= 3,
+            "samples",
+            samples as f64,
+            "at least 3 samples",
+        ),
+    ])?;
     Ok(())
 }
 

@@ -126,7 +126,7 @@ fn analyse(
             &options.reanalysis_options,
             &format!("load case {l} in the design's descent"),
         )?;
-        objective = objective.max(criterion.merit(l, case, &solution)?);
+        objective = objective.max(criterion.merit(l, case, &solution)?.0);
         problems.push(problem);
         solutions.push(solution);
     }
@@ -493,7 +493,7 @@ fn objective_of(
 ) -> Result<f64, DesignError> {
     let mut worst = 0.0f64;
     for (l, (case, solution)) in cases.iter().zip(solutions).enumerate() {
-        worst = worst.max(criterion.merit(l, case, solution)?);
+        worst = worst.max(criterion.merit(l, case, solution)?.0);
     }
     Ok(worst)
 }

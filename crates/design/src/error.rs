@@ -98,6 +98,8 @@ fn listed(values: &[f64]) -> String {
     }
 }
 
+elcon_num::rejected_into_invalid_input!(DesignError);
+
 impl DesignError {
     /// An [`DesignError::Analysis`] for `stage`.
     pub(crate) fn analysis(stage: impl Into<String>) -> impl FnOnce(AnalysisError) -> Self {

@@ -206,29 +206,28 @@ fn setup<'a>(
             reason: "no load case given".into(),
         });
     }
-    if !(options.agreement.is_finite() && options.agreement > 0.0 && options.agreement < 1.0) {
-        return Err(DesignError::InvalidInput {
-            field: "agreement",
-            value: options.agreement,
-            reason: "must be in (0, 1)",
-        });
-    }
-    if let Some(c) = options.max_constant
-        && !(c.is_finite() && c > 0.0)
-    {
-        return Err(DesignError::InvalidInput {
-            field: "max_constant",
-            value: c,
-            reason: "must be finite and > 0",
-        });
-    }
-    if options.max_iterations == 0 {
-        return Err(DesignError::InvalidInput {
-            field: "max_iterations",
-            value: 0.0,
-            reason: "the descent needs at least one iteration",
-        });
-    }
+    let agreement = options.agreement;
+    let max_constant = options.max_constant;
+    elcon_num::check([
+        (
+            agreement.is_finite() && agreement > 0.0 && agreement < 1.0,
+            "agreement",
+            agreement,
+            "must be in (0, 1)",
+        ),
+        (
+            max_constant.is_none_or(|c| c.is_finite() && c > 0.0),
+            "max_constant",
+            max_constant.unwrap_or_default(),
+            "must be finite and > 0",
+        ),
+        (
+            options.max_iterations > 0,
+            "max_iterations",
+            0.0,
+            "the descent needs at least one iteration",
+        ),
+    ])?;
     let references = reference_intensities(options.reference_intensities.as_deref(), cases.len())?;
     let (stations, index) = axial_stations(cases.iter().map(ContactProblem::points), axis);
     let basis = Basis::new(family, &stations, options.knots.as_deref())?;
@@ -439,9 +438,9 @@ fn finish(setup: &Setup<'_>, found: Found, options: &DesignOptions) -> Result<De
     let mut reanalysed = 0.0f64;
     let mut worst_stress = None;
     for (l, (c, s)) in setup.prepared.iter().zip(&evaluation.solutions).enumerate() {
-        reanalysed = reanalysed.max(criterion.merit(l, c, s)?);
-        if let Criterion::Stress(stress) = &criterion {
-            let largest = stress.largest(l, c, s)?;
+        let (merit, largest) = criterion.merit(l, c, s)?;
+        reanalysed = reanalysed.max(merit);
+        if let Some(largest) = largest {
             worst_stress = Some(worst_stress.map_or(largest, |w: f64| w.max(largest)));
         }
     }
@@ -494,15 +493,10 @@ mod tests {
 
     #[test]
     fn a_case_solved_by_the_conjugate_gradient_is_held_to_the_iterative_agreement() {
-        use elcon_analysis::{Geometry, Loading, Surface};
-        use elcon_influence::{Body, Material, PointSet};
-        let steel = Material::new(210e3, 0.3).unwrap();
-        let points = PointSet::grid_rectangle(0.5, 5.0, 5, 12).unwrap();
-        let body = Body::uniform_patch(steel);
-        let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
-        let loading = Loading::load(5e3);
-        let dense = ContactProblem::new(points.clone(), &body, &body, &geometry, loading).unwrap();
-        let lattice = ContactProblem::lattice(points, &body, &body, &geometry, loading).unwrap();
+        use elcon_analysis::Storage;
+        use elcon_fixtures::design_cases::aligned_roller;
+        let roller = |storage| aligned_roller(5e3, (5, 12), storage).unwrap().0;
+        let (dense, lattice) = (roller(Storage::Dense), roller(Storage::Lattice));
         let options = DesignOptions {
             reanalysis: elcon_analysis::Method::ConjugateGradient,
             ..DesignOptions::default()

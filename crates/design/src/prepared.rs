@@ -319,7 +319,7 @@ pub enum Stop {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use elcon_analysis::{Geometry, Loading, Surface};
+    use elcon_analysis::{Geometry, Loading, Storage, Surface};
     use elcon_influence::{Body, Material};
 
     /// Two spheres on a disk: symmetric, so the analysis drops both
@@ -353,13 +353,9 @@ mod tests {
     /// across the axis or an interior point.
     #[test]
     fn the_cleared_points_are_the_body_edges_and_the_zones_open_sides() {
-        let steel = Material::new(210e3, 0.3).unwrap();
-        let points = PointSet::grid_rectangle(0.5, 5.0, 5, 12).unwrap();
-        let body = Body::uniform_patch(steel);
-        let geometry = Geometry::Surfaces(Surface::Cylinder { radius: 5.0 }, Surface::Plane);
-        let case = ContactProblem::new(points, &body, &body, &geometry, Loading::load(5e3))
-            .unwrap()
-            .with_body_edges(false, true);
+        // The roller's ends are the body's own edges.
+        let (case, _) =
+            elcon_fixtures::design_cases::aligned_roller(5e3, (5, 12), Storage::Dense).unwrap();
         let cleared = cleared_points(&case, Axis::Y);
         // The two rows of 5 points at the roller's ends.
         assert_eq!(cleared.len(), 10);

@@ -137,16 +137,23 @@ pub(crate) enum Criterion {
 }
 
 impl Criterion {
-    /// Case l's merit under the criterion.
+    /// Case l's merit under the criterion, with its largest stress measure
+    /// under a stress objective (over its grid of points and depths). A
+    /// stress merit is that largest stress over r_l, or a kept-clear
+    /// edge's weighted intensity over r_l if larger.
     pub(crate) fn merit(
         &self,
         l: usize,
         case: &Case<'_>,
         solution: &ContactSolution,
-    ) -> Result<f64, DesignError> {
+    ) -> Result<(f64, Option<f64>), DesignError> {
         match self {
-            Criterion::Pressure => Ok(case.merit(solution)),
-            Criterion::Stress(c) => c.merit(l, case, solution),
+            Criterion::Pressure => Ok((case.merit(solution), None)),
+            Criterion::Stress(c) => {
+                let largest = c.sweep(l, case, solution)?.largest;
+                let merit = (largest / case.reference).max(edge_merit(case, solution));
+                Ok((merit, Some(largest)))
+            }
         }
     }
 }
@@ -181,28 +188,6 @@ impl StressCriterion {
     /// The objective it measures.
     pub(crate) fn objective(&self) -> Objective {
         self.objective
-    }
-
-    /// The largest stress measure of case l's fields (stress), over its
-    /// grid of points and depths.
-    pub(crate) fn largest(
-        &self,
-        l: usize,
-        case: &Case<'_>,
-        solution: &ContactSolution,
-    ) -> Result<f64, DesignError> {
-        Ok(self.sweep(l, case, solution)?.largest)
-    }
-
-    /// Case l's merit: its largest stress over r_l, or a kept-clear edge's
-    /// weighted intensity over r_l if larger.
-    pub(crate) fn merit(
-        &self,
-        l: usize,
-        case: &Case<'_>,
-        solution: &ContactSolution,
-    ) -> Result<f64, DesignError> {
-        Ok((self.largest(l, case, solution)? / case.reference).max(edge_merit(case, solution)))
     }
 
     /// Every grid point at every depth of case l, each field: the largest

@@ -7,6 +7,7 @@ use elcon_design::{
     target_separation,
 };
 use elcon_fixtures::design_cases;
+use elcon_fixtures::errors::{assert_pivot_limit_passes_through, one_pivot};
 use elcon_lcp::LcpError;
 
 /// Example 2's beam on 12 points under `loading`.
@@ -119,14 +120,6 @@ fn incompatible_inputs_say_what_to_give() {
     );
 }
 
-/// Options that allow one pivot.
-fn one_pivot() -> Options {
-    Options {
-        max_pivots: Some(1),
-        ..Options::default()
-    }
-}
-
 /// The error of the quadratic design of the beam under 5e4 lb with `opts`.
 fn quadratic_design_error(opts: &DesignOptions) -> DesignError {
     design(
@@ -176,11 +169,7 @@ fn engine_failures_pass_through() {
         ),
         "{e:?}"
     );
-    assert!(
-        e.to_string()
-            .starts_with("the design program failed: pivot limit 1"),
-        "{e}"
-    );
+    assert_pivot_limit_passes_through(&e, "the design program failed: pivot limit 1");
 }
 
 // DesignError::Disagreement: a unit test in src/optimize.rs (a re-analysis

@@ -1,5 +1,6 @@
 //! The crate's one error type: every way a material, a point set or a body
-//! can be rejected, each message naming the field, the value and the reason.
+//! can be rejected, each message naming the field, the value and the reason;
+//! and the fallible allocation ([`try_vec`]) whose failure is one of them.
 //!
 //! No equation here; the checks enforce the ranges under which the influence
 //! coefficients a_kj of the other modules are defined (E > 0, -1 < nu < 0.5,
@@ -130,6 +131,23 @@ impl InfluenceError {
             reason: reason.into(),
         }
     }
+}
+
+/// A vector of `len` copies of `value`, or [`InfluenceError::AllocationFailed`]
+/// naming `what` when the memory cannot be reserved.
+pub(crate) fn try_vec<T: Clone>(
+    len: usize,
+    value: T,
+    what: &'static str,
+) -> Result<Vec<T>, InfluenceError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len)
+        .map_err(|_| InfluenceError::AllocationFailed {
+            what,
+            bytes: len.saturating_mul(std::mem::size_of::<T>()),
+        })?;
+    v.resize(len, value);
+    Ok(v)
 }
 
 #[cfg(test)]

@@ -1,5 +1,5 @@
-//! Point sets and beams shared by the crate's unit tests (no equation:
-//! inputs that several modules' tests build alike).
+//! Point sets, beams and thread pools shared by the crate's unit tests
+//! (no equation: inputs that several modules' tests build alike).
 
 use crate::models::Beam;
 use crate::points::{Cell, Dimension, PointSet};
@@ -7,6 +7,28 @@ use crate::points::{Cell, Dimension, PointSet};
 /// Points at `(xs[k], ys[k])` on square cells of side `h` (a surface set).
 pub(crate) fn surface(xs: Vec<f64>, ys: Vec<f64>, h: f64) -> PointSet {
     PointSet::from_points(Dimension::Surface, xs, ys, Cell::square(h)).unwrap()
+}
+
+/// A disk of unit cells, radius 40, in lattice-row order (a lattice
+/// operator writes its rows in parallel), and the same points reversed
+/// (their rows' values gathered on the caller's thread): what the tests
+/// of results the same to the bit on any number of threads run on.
+pub(crate) fn disk_and_reversed() -> [(&'static str, PointSet); 2] {
+    let disk = PointSet::grid_disk(1.0, 40.0).unwrap();
+    let (xs, ys): (Vec<f64>, Vec<f64>) = (0..disk.len())
+        .rev()
+        .map(|k| (disk.x(k), disk.y(k)))
+        .unzip();
+    let reversed = surface(xs, ys, 1.0);
+    [("disk", disk), ("reversed", reversed)]
+}
+
+/// A rayon pool of `threads` threads.
+pub(crate) fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
 }
 
 /// Three points on no lattice of their cells of side 0.1.

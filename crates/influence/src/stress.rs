@@ -160,31 +160,23 @@ pub fn love_rectangle_stress(x: f64, y: f64, z: f64, dx: f64, dy: f64, nu: f64) 
     let psi_zz = corners(x, y, half, |x, y| {
         x * y / r(x, y) * (1.0 / (x * x + z * z) + 1.0 / (y * y + z * z))
     });
-    let psi_xx = corners(x, y, half, |x, y| {
+    // The `yy` and `yz` functions are the `xx` and `xz` ones with x and y
+    // swapped (r is symmetric in them, to the last bit).
+    let over = |x: f64, y: f64, top: f64| {
         let rr = r(x, y);
-        x / (rr * (rr + y))
-    });
-    let psi_yy = corners(x, y, half, |x, y| {
-        let rr = r(x, y);
-        y / (rr * (rr + x))
-    });
-    let psi_xy = corners(x, y, half, |x, y| 1.0 / r(x, y));
-    let psi_xz = corners(x, y, half, |x, y| {
-        let rr = r(x, y);
-        z / (rr * (rr + y))
-    });
-    let psi_yz = corners(x, y, half, |x, y| {
-        let rr = r(x, y);
-        z / (rr * (rr + x))
-    });
-    let psi1_xx = corners(x, y, half, |x, y| {
+        top / (rr * (rr + y))
+    };
+    let angle = |x: f64, y: f64| {
         let rr = r(x, y);
         (x * y * (rr - z)).atan2(x * x * rr + z * y * y)
-    });
-    let psi1_yy = corners(x, y, half, |x, y| {
-        let rr = r(x, y);
-        (x * y * (rr - z)).atan2(y * y * rr + z * x * x)
-    });
+    };
+    let psi_xx = corners(x, y, half, |x, y| over(x, y, x));
+    let psi_yy = corners(x, y, half, |x, y| over(y, x, y));
+    let psi_xy = corners(x, y, half, |x, y| 1.0 / r(x, y));
+    let psi_xz = corners(x, y, half, |x, y| over(x, y, z));
+    let psi_yz = corners(x, y, half, |x, y| over(y, x, z));
+    let psi1_xx = corners(x, y, half, angle);
+    let psi1_yy = corners(x, y, half, |x, y| angle(y, x));
     let psi1_xy = corners(x, y, half, |x, y| (r(x, y) + z).ln());
     from_potentials(
         z,

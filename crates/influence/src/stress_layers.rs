@@ -25,7 +25,7 @@ use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
 
 use crate::dimension::Dimension;
-use crate::error::InfluenceError;
+use crate::error::{InfluenceError, try_vec};
 use crate::models::{Body, Model};
 use crate::points::PointSet;
 use crate::stress::{Stress, love_rectangle_stress, point_force, strip_stress};
@@ -152,7 +152,7 @@ impl StressLayers {
             forward_i: complex.plan_fft_forward(size.0),
             inverse_i: complex.plan_fft_inverse(size.0),
         };
-        let mut grid = zeroed(size.0 * layers.padded_j())?;
+        let mut grid = try_vec(size.0 * layers.padded_j(), 0.0, "a stress layer")?;
         for (&(i, j), &p) in layers.offsets.iter().zip(pressures) {
             grid[i * layers.padded_j() + j] = p;
         }
@@ -169,22 +169,13 @@ impl StressLayers {
     fn forward(&self, grid: &mut [f64]) -> Result<Vec<Complex<f64>>, InfluenceError> {
         let (ni, nj) = (self.size.0, self.padded_j());
         let half = nj / 2 + 1;
-        let mut spectrum = zeroed_complex(ni * half)?;
+        let mut spectrum = try_vec(ni * half, Complex::default(), "a stress layer's spectrum")?;
         for (row, out) in grid.chunks_mut(nj).zip(spectrum.chunks_mut(half)) {
             self.forward_j
                 .process(row, out)
                 .expect("the plan's own lengths");
         }
-        let mut column = vec![Complex::default(); ni];
-        for k in 0..half {
-            for i in 0..ni {
-                column[i] = spectrum[i * half + k];
-            }
-            self.forward_i.process(&mut column);
-            for i in 0..ni {
-                spectrum[i * half + k] = column[i];
-            }
-        }
+        along_i(&*self.forward_i, &mut spectrum, half);
         Ok(spectrum)
     }
 
@@ -192,17 +183,8 @@ impl StressLayers {
     fn inverse(&self, spectrum: &mut [Complex<f64>]) -> Result<Vec<f64>, InfluenceError> {
         let (ni, nj) = (self.size.0, self.padded_j());
         let half = nj / 2 + 1;
-        let mut column = vec![Complex::default(); ni];
-        for k in 0..half {
-            for i in 0..ni {
-                column[i] = spectrum[i * half + k];
-            }
-            self.inverse_i.process(&mut column);
-            for i in 0..ni {
-                spectrum[i * half + k] = column[i];
-            }
-        }
-        let mut grid = zeroed(ni * nj)?;
+        along_i(&*self.inverse_i, spectrum, half);
+        let mut grid = try_vec(ni * nj, 0.0, "a stress layer")?;
         for (row, input) in grid.chunks_mut(nj).zip(spectrum.chunks_mut(half)) {
             // The imaginary parts of the first and last bins are rounding.
             input[0].im = 0.0;
@@ -263,7 +245,7 @@ impl StressLayers {
             (1.0, -1.0),
         ];
         let mut out = vec![Stress::default(); self.offsets.len()];
-        let mut grid = zeroed(ni * nj)?;
+        let mut grid = try_vec(ni * nj, 0.0, "a stress layer")?;
         for (c, (component, (si, sj))) in components.iter().zip(parity).enumerate() {
             for i in 0..ni {
                 for j in 0..nj {
@@ -304,27 +286,20 @@ impl StressLayers {
     }
 }
 
-/// A vector of `n` zeros, or an allocation error.
-fn zeroed(n: usize) -> Result<Vec<f64>, InfluenceError> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(n)
-        .map_err(|_| InfluenceError::AllocationFailed {
-            what: "a stress layer",
-            bytes: 8 * n,
-        })?;
-    v.resize(n, 0.0);
-    Ok(v)
-}
-
-fn zeroed_complex(n: usize) -> Result<Vec<Complex<f64>>, InfluenceError> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(n)
-        .map_err(|_| InfluenceError::AllocationFailed {
-            what: "a stress layer's spectrum",
-            bytes: 16 * n,
-        })?;
-    v.resize(n, Complex::default());
-    Ok(v)
+/// `fft` of every column of `spectrum` (rows of `half` values), in place:
+/// the transform along i of the row spectra.
+fn along_i(fft: &dyn Fft<f64>, spectrum: &mut [Complex<f64>], half: usize) {
+    let ni = spectrum.len() / half;
+    let mut column = vec![Complex::default(); ni];
+    for k in 0..half {
+        for i in 0..ni {
+            column[i] = spectrum[i * half + k];
+        }
+        fft.process(&mut column);
+        for i in 0..ni {
+            spectrum[i * half + k] = column[i];
+        }
+    }
 }
 
 #[cfg(test)]

@@ -61,32 +61,8 @@ impl MixedRef<'_> {
             bounds,
         } = *self;
         let nonneg_u: Vec<bool> = bounds.iter().map(|b| *b == Bound::NonNegative).collect();
-        let n = z.nrows();
-        let mut w = matvec(m, z);
-        let mut w_terms = abs_matvec(m, z);
-        if u.nrows() > 0 {
-            w += matvec(b, u);
-            w_terms += abs_matvec(b, u);
-        }
-        for i in 0..n {
-            w[i] += q[i];
-            w_terms[i] += q[i].abs();
-        }
-        let (e, e_terms) = if c.nrows() > 0 {
-            let mut e = matvec(c, z);
-            let mut e_terms = abs_matvec(c, z);
-            if u.nrows() > 0 {
-                e += matvec(d, u);
-                e_terms += abs_matvec(d, u);
-            }
-            for i in 0..c.nrows() {
-                e[i] += r[i];
-                e_terms[i] += r[i].abs();
-            }
-            (e, e_terms)
-        } else {
-            (Col::zeros(0), Col::zeros(0))
-        };
+        let (w, w_terms) = with_terms((m, z), (b, u), q);
+        let (e, e_terms) = with_terms((c, z), (d, u), r);
         let cert = from_residuals(
             &Residuals {
                 z,
@@ -103,31 +79,53 @@ impl MixedRef<'_> {
     }
 }
 
-impl BorderedLcpRef<'_> {
-    /// The certificate of a candidate `(z, λ)` against this problem's data,
-    /// with `w = M z - B λ + q`.
-    pub fn certify(
-        &self,
-        z: ColRef<'_, f64>,
-        lambda: ColRef<'_, f64>,
-        tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
-        let parts = MixedBorder::of(self);
-        parts.view(self).certify(z, lambda, tolerance)
+/// `A x + E y + c` and the magnitude of its terms, `|A| |x| + |E| |y| + |c|`
+/// (no `E y` when `y` is empty): `w` of the mixed form, or its equality
+/// rows.
+fn with_terms(
+    (a, x): (MatRef<'_, f64>, ColRef<'_, f64>),
+    (e, y): (MatRef<'_, f64>, ColRef<'_, f64>),
+    c: ColRef<'_, f64>,
+) -> (Col<f64>, Col<f64>) {
+    let mut sum = matvec(a, x);
+    let mut terms = abs_matvec(a, x);
+    if y.nrows() > 0 {
+        sum += matvec(e, y);
+        terms += abs_matvec(e, y);
     }
+    for i in 0..c.nrows() {
+        sum[i] += c[i];
+        terms[i] += c[i].abs();
+    }
+    (sum, terms)
 }
 
-impl MixedLcp {
+/// The public `certify` of each problem type, through its mixed form
+/// (`$mixed`, from the problem `$p`).
+macro_rules! certify_by_mixed_form {
+    ($($(#[doc = $doc:literal])+ $ty:ty, $u:ident => |$p:ident| $mixed:expr;)+) => {$(
+        impl $ty {
+            $(#[doc = $doc])+
+            pub fn certify(
+                &self,
+                z: ColRef<'_, f64>,
+                $u: ColRef<'_, f64>,
+                tolerance: f64,
+            ) -> (Certificate, Col<f64>) {
+                let $p = self;
+                $mixed.certify(z, $u, tolerance)
+            }
+        }
+    )+};
+}
+
+certify_by_mixed_form! {
+    /// The certificate of a candidate `(z, λ)` against this problem's data,
+    /// with `w = M z - B λ + q`.
+    BorderedLcpRef<'_>, lambda => |p| MixedBorder::of(p).view(p);
     /// The certificate of a candidate `(z, u)` against this problem's data,
     /// with `w = M z + B u + q`.
-    pub fn certify(
-        &self,
-        z: ColRef<'_, f64>,
-        u: ColRef<'_, f64>,
-        tolerance: f64,
-    ) -> (Certificate, Col<f64>) {
-        self.view().certify(z, u, tolerance)
-    }
+    MixedLcp, u => |p| p.view();
 }
 
 impl OperatorLcp<'_> {
@@ -261,20 +259,17 @@ pub(crate) fn from_residuals(res: &Residuals<'_>, tolerance: f64) -> Certificate
     let z_scale = norm_inf(z);
     let w_scale = norm_inf(w_terms);
     let rel = |v: f64, s: f64| if s > 0.0 { v / s } else { 0.0 };
-    let min_z = rel(
-        z.iter()
-            .cloned()
-            .fold(f64::INFINITY, f64::min)
-            .min(f64::MAX),
-        z_scale,
-    );
-    let min_w = rel(
-        w.iter()
-            .cloned()
-            .fold(f64::INFINITY, f64::min)
-            .min(f64::MAX),
-        w_scale,
-    );
+    // The least entry relative to its scale (an infinite least kept finite).
+    let least = |v: ColRef<'_, f64>, s: f64| {
+        rel(
+            v.iter()
+                .cloned()
+                .fold(f64::INFINITY, f64::min)
+                .min(f64::MAX),
+            s,
+        )
+    };
+    let (min_z, min_w) = (least(z, z_scale), least(w, w_scale));
     let comp = (0..n).fold(0.0f64, |a, i| a.max((z[i] * w[i]).abs()));
     let complementarity = rel(comp, z_scale * w_scale);
     let u_scale = norm_inf(u);

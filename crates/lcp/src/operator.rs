@@ -19,7 +19,7 @@ use faer::{ColRef, MatRef};
 
 use crate::LcpError;
 use crate::linalg::AllocationFailed;
-use crate::problem::{Bordered, check_finite_col};
+use crate::problem::{Bordered, check_finite_col, check_size};
 
 /// A symmetric linear map `M` (n x n) applied without storing it, after
 /// faer's `LinOp`: the operator declares the scratch memory an
@@ -185,14 +185,7 @@ impl<'a> OperatorLcp<'a> {
     /// The LCP `w = M z + q` with no border yet; `operator` of the size of
     /// `q`, `q` finite.
     pub fn new(operator: &'a dyn Operator, q: ColRef<'a, f64>) -> Result<Self, LcpError> {
-        if operator.size() != q.nrows() {
-            return Err(LcpError::DimensionMismatch {
-                field: "q",
-                expected: operator.size(),
-                found: q.nrows(),
-                unit: "rows",
-            });
-        }
+        check_size("q", q.nrows(), operator.size(), "rows")?;
         if q.nrows() == 0 {
             return Err(LcpError::Empty { field: "q" });
         }
@@ -211,14 +204,7 @@ impl<'a> OperatorLcp<'a> {
         self,
         preconditioner: &'a dyn Preconditioner,
     ) -> Result<Self, LcpError> {
-        if preconditioner.size() != self.size() {
-            return Err(LcpError::DimensionMismatch {
-                field: "preconditioner",
-                expected: self.size(),
-                found: preconditioner.size(),
-                unit: "rows",
-            });
-        }
+        check_size("preconditioner", preconditioner.size(), self.size(), "rows")?;
         let m = MatrixFree {
             preconditioner: Some(preconditioner),
             ..self.m

@@ -6,8 +6,41 @@
 use faer::Par;
 
 use crate::LcpError;
+use crate::problem::check_size;
 use crate::tolerance::Tolerances;
 use elcon_num::Num;
+
+/// Each method's name (a scene's word: `name`, public, with `named!`'s
+/// traits and, with the `serde` feature, `named_serde!`'s) and how a
+/// message describes it (`described`), from one table.
+macro_rules! words {
+    (
+        $(#[doc = $doc:literal])+
+        $ty:ident, $kind:literal:
+        $($choice:ident => $name:literal, $described:literal;)+
+    ) => {
+        impl $ty {
+            $(#[doc = $doc])+
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $($ty::$choice => $name,)+
+                }
+            }
+
+            /// The method in an error message ("Lemke's method", "the LU
+            /// factorization").
+            pub(crate) fn described(self) -> &'static str {
+                match self {
+                    $($ty::$choice => $described,)+
+                }
+            }
+        }
+
+        elcon_num::named!($ty, $kind);
+        #[cfg(feature = "serde")]
+        elcon_num::named_serde!($ty);
+    };
+}
 
 /// A method of complementarity problems, the engine's four
 /// ([`Method::ALL`]). A linear system's are [`LinearMethod`]s; the
@@ -70,33 +103,18 @@ impl Method {
 
     /// The dense-tableau methods (they work for any matrix of their class).
     pub const TABLEAU: [Method; 2] = [Method::RestrictedSimplex, Method::Lemke];
+}
 
+words! {
     /// A short lower-case name, a scene's `solver.method`
     /// ("restricted-simplex", "lemke", "block-pivoting",
     /// "conjugate-gradient"); [`FromStr`](std::str::FromStr) reads it back.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Method::RestrictedSimplex => "restricted-simplex",
-            Method::Lemke => "lemke",
-            Method::BlockPivoting => "block-pivoting",
-            Method::ConjugateGradient => "conjugate-gradient",
-        }
-    }
-
-    /// The method in an error message ("Lemke's method").
-    pub(crate) fn described(self) -> &'static str {
-        match self {
-            Method::Lemke => "Lemke's method",
-            Method::RestrictedSimplex => "the restricted-entry simplex",
-            Method::BlockPivoting => "block principal pivoting",
-            Method::ConjugateGradient => "the conjugate gradient",
-        }
-    }
+    Method, "method":
+    RestrictedSimplex => "restricted-simplex", "the restricted-entry simplex";
+    Lemke => "lemke", "Lemke's method";
+    BlockPivoting => "block-pivoting", "block principal pivoting";
+    ConjugateGradient => "conjugate-gradient", "the conjugate gradient";
 }
-
-elcon_num::named!(Method, "method");
-#[cfg(feature = "serde")]
-elcon_num::named_serde!(Method);
 
 /// A method of a symmetric positive definite linear system
 /// ([`LinearSystem`](crate::LinearSystem), whose strategy chooses among
@@ -124,30 +142,16 @@ impl LinearMethod {
         LinearMethod::Lu,
         LinearMethod::ConjugateGradient,
     ];
-
-    /// A short lower-case name ("cholesky", "lu", "conjugate-gradient");
-    /// [`FromStr`](std::str::FromStr) reads it back.
-    pub const fn name(self) -> &'static str {
-        match self {
-            LinearMethod::Cholesky => "cholesky",
-            LinearMethod::Lu => "lu",
-            LinearMethod::ConjugateGradient => "conjugate-gradient",
-        }
-    }
-
-    /// The method in an error message ("the LU factorization").
-    pub(crate) fn described(self) -> &'static str {
-        match self {
-            LinearMethod::Cholesky => "the Cholesky factorization",
-            LinearMethod::Lu => "the LU factorization",
-            LinearMethod::ConjugateGradient => "the conjugate gradient",
-        }
-    }
 }
 
-elcon_num::named!(LinearMethod, "linear method");
-#[cfg(feature = "serde")]
-elcon_num::named_serde!(LinearMethod);
+words! {
+    /// A short lower-case name ("cholesky", "lu", "conjugate-gradient");
+    /// [`FromStr`](std::str::FromStr) reads it back.
+    LinearMethod, "linear method":
+    Cholesky => "cholesky", "the Cholesky factorization";
+    Lu => "lu", "the LU factorization";
+    ConjugateGradient => "conjugate-gradient", "the conjugate gradient";
+}
 
 /// The method of a solve or of one of its attempts, as the statistics' log
 /// records it ([`Statistics`](crate::Statistics)): a complementarity
@@ -349,14 +353,7 @@ impl Options {
                 reason: "a covering vector applies to the general tableau only: set `tableau` to General",
             });
         }
-        if d.len() != split_size {
-            return Err(LcpError::DimensionMismatch {
-                field: "covering_vector",
-                expected: split_size,
-                found: d.len(),
-                unit: "entries",
-            });
-        }
+        check_size("covering_vector", d.len(), split_size, "entries")?;
         if let Some((index, &value)) = d
             .iter()
             .enumerate()
@@ -422,13 +419,13 @@ mod tests {
 
     #[test]
     fn a_method_parses_its_name_and_an_attempt_compares_to_it() {
+        assert_eq!(elcon_num::unparsed(&Method::ALL), None);
+        assert_eq!(elcon_num::unparsed(&LinearMethod::ALL), None);
         for method in Method::ALL {
-            assert_eq!(method.to_string().parse::<Method>(), Ok(method));
             assert_eq!(AnyMethod::from(method), method);
             assert_eq!(AnyMethod::from(method).to_string(), method.name());
         }
         for method in LinearMethod::ALL {
-            assert_eq!(method.to_string().parse::<LinearMethod>(), Ok(method));
             assert_eq!(AnyMethod::from(method), method);
             assert_eq!(AnyMethod::from(method).name(), method.name());
         }
@@ -462,21 +459,17 @@ mod tests {
     #[cfg(feature = "serde")]
     #[test]
     fn a_method_deserializes_from_its_name() {
-        use serde::Deserialize;
-        use serde::de::IntoDeserializer;
-        use serde::de::value::{Error, StrDeserializer};
-        let read = |name: &'static str| {
-            let d: StrDeserializer<'_, Error> = name.into_deserializer();
-            Method::deserialize(d)
-        };
+        let read = elcon_num::from_name::<Method>;
         assert_eq!(read("block-pivoting").unwrap(), Method::BlockPivoting);
         let e = read("cholesky").unwrap_err().to_string();
         assert!(
             e.starts_with("unknown variant `cholesky`, expected one of"),
             "{e}"
         );
-        let d: StrDeserializer<'_, Error> = "lu".into_deserializer();
-        assert_eq!(LinearMethod::deserialize(d).unwrap(), LinearMethod::Lu);
+        assert_eq!(
+            elcon_num::from_name::<LinearMethod>("lu").unwrap(),
+            LinearMethod::Lu
+        );
     }
 
     #[test]

@@ -311,15 +311,21 @@ impl MixedLcp {
     }
 
     pub(crate) fn view(&self) -> MixedRef<'_> {
-        let p = &self.parts;
+        self.parts.view()
+    }
+}
+
+impl MixedLcpParts {
+    /// A borrowed view of the parts.
+    fn view(&self) -> MixedRef<'_> {
         MixedRef {
-            m: p.m.as_ref(),
-            b: p.b.as_ref(),
-            q: p.q.as_ref(),
-            c: p.c.as_ref(),
-            d: p.d.as_ref(),
-            r: p.r.as_ref(),
-            bounds: &p.bounds,
+            m: self.m.as_ref(),
+            b: self.b.as_ref(),
+            q: self.q.as_ref(),
+            c: self.c.as_ref(),
+            d: self.d.as_ref(),
+            r: self.r.as_ref(),
+            bounds: &self.bounds,
         }
     }
 }
@@ -355,36 +361,29 @@ impl MixedRef<'_> {
 }
 
 /// The mixed parts of a bordered problem: `-B`, `B^T`, `D = 0`, `r = -b`,
-/// every extra unknown free (n x k data, small beside `M`).
-pub(crate) struct MixedBorder {
-    b: Mat<f64>,
-    c: Mat<f64>,
-    d: Mat<f64>,
-    r: Col<f64>,
-    bounds: Vec<Bound>,
-}
+/// every extra unknown free (n x k data, small beside `M`); `M` and `q`
+/// are left empty, the bordered problem's own.
+pub(crate) struct MixedBorder(MixedLcpParts);
 
 impl MixedBorder {
     pub fn of(p: &BorderedLcpRef<'_>) -> Self {
         let k = p.border_size();
-        Self {
+        Self(MixedLcpParts {
+            m: Mat::zeros(0, 0),
             b: -p.border,
+            q: Col::zeros(0),
             c: p.border.transpose().to_owned(),
             d: Mat::zeros(k, k),
             r: -p.resultant,
             bounds: vec![Bound::Free; k],
-        }
+        })
     }
 
     pub fn view<'a>(&'a self, p: &BorderedLcpRef<'a>) -> MixedRef<'a> {
         MixedRef {
             m: p.m,
-            b: self.b.as_ref(),
             q: p.q,
-            c: self.c.as_ref(),
-            d: self.d.as_ref(),
-            r: self.r.as_ref(),
-            bounds: &self.bounds,
+            ..self.0.view()
         }
     }
 }
@@ -505,20 +504,24 @@ pub(crate) fn check_dims(
     er: usize,
     ec: usize,
 ) -> Result<(), LcpError> {
-    if rows != er {
+    check_size(field, rows, er, "rows")?;
+    check_size(field, cols, ec, "columns")
+}
+
+/// Checks that `field` has `expected` of `unit` (its rows, columns or
+/// entries), `found` given.
+pub(crate) fn check_size(
+    field: &'static str,
+    found: usize,
+    expected: usize,
+    unit: &'static str,
+) -> Result<(), LcpError> {
+    if found != expected {
         return Err(LcpError::DimensionMismatch {
             field,
-            expected: er,
-            found: rows,
-            unit: "rows",
-        });
-    }
-    if cols != ec {
-        return Err(LcpError::DimensionMismatch {
-            field,
-            expected: ec,
-            found: cols,
-            unit: "columns",
+            expected,
+            found,
+            unit,
         });
     }
     Ok(())

@@ -19,7 +19,7 @@ use faer::{Col, ColRef, Mat, MatRef};
 
 use crate::LcpError;
 use crate::certificate::Certificate;
-use crate::problem::{Bound, check_finite_col, check_finite_mat};
+use crate::problem::{Bound, check_finite_col, check_finite_mat, check_size};
 
 /// One column of a program's constraint matrix `A`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -110,14 +110,7 @@ impl ProgramBuilder {
         block: MatRef<'_, f64>,
         bound: Bound,
     ) -> Result<Range<usize>, LcpError> {
-        if block.nrows() != self.rows {
-            return Err(LcpError::DimensionMismatch {
-                field: "dense_columns block",
-                expected: self.rows,
-                found: block.nrows(),
-                unit: "rows",
-            });
-        }
+        check_size("dense_columns block", block.nrows(), self.rows, "rows")?;
         check_finite_mat("dense_columns block", block)?;
         let start = self.columns.len();
         self.blocks.push((start, name.to_string()));
@@ -197,25 +190,25 @@ impl ProgramBuilder {
     pub fn complementary(&mut self, i: usize, j: usize) -> Result<(), LcpError> {
         self.check_var("complementary", i)?;
         self.check_var("complementary", j)?;
-        if self.deferred[i] || self.deferred[j] {
+        let refused = [
+            (
+                self.deferred[i] || self.deferred[j],
+                "a deferred unknown cannot be complementary",
+            ),
+            (
+                i == j || self.complement[i].is_some() || self.complement[j].is_some(),
+                "an unknown has at most one complement, and not itself",
+            ),
+            (
+                self.bounds[i] != Bound::NonNegative || self.bounds[j] != Bound::NonNegative,
+                "complementary unknowns must be non-negative",
+            ),
+        ];
+        if let Some((_, reason)) = refused.into_iter().find(|(refuses, _)| *refuses) {
             return Err(LcpError::InvalidOption {
                 field: "complementary",
                 value: format!("({i}, {j})"),
-                reason: "a deferred unknown cannot be complementary",
-            });
-        }
-        if i == j || self.complement[i].is_some() || self.complement[j].is_some() {
-            return Err(LcpError::InvalidOption {
-                field: "complementary",
-                value: format!("({i}, {j})"),
-                reason: "an unknown has at most one complement, and not itself",
-            });
-        }
-        if self.bounds[i] != Bound::NonNegative || self.bounds[j] != Bound::NonNegative {
-            return Err(LcpError::InvalidOption {
-                field: "complementary",
-                value: format!("({i}, {j})"),
-                reason: "complementary unknowns must be non-negative",
+                reason,
             });
         }
         self.complement[i] = Some(j);
@@ -268,14 +261,7 @@ impl ProgramBuilder {
 
     /// Sets the right-hand side `b` (length `rows`).
     pub fn rhs(&mut self, b: ColRef<'_, f64>) -> Result<(), LcpError> {
-        if b.nrows() != self.rows {
-            return Err(LcpError::DimensionMismatch {
-                field: "rhs",
-                expected: self.rows,
-                found: b.nrows(),
-                unit: "entries",
-            });
-        }
+        check_size("rhs", b.nrows(), self.rows, "entries")?;
         check_finite_col("rhs", b)?;
         self.b = Some(b.to_owned());
         Ok(())

@@ -130,36 +130,61 @@ impl fmt::Display for Outcome {
     }
 }
 
-/// The counts of one attempt's work.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Work {
+/// Declares [`Work`], one `usize` count a field, and beside each count
+/// the accessor of [`Statistics`] that reads it from the log: `total`, the
+/// sum over every attempt, or `of_returned`, the returned attempt's (0
+/// when none was). One list, so that no count goes without its accessor.
+macro_rules! counts {
+    ($(
+        $(#[doc = $doc:literal])+
+        $name:ident => $how:ident $accessor:literal,
+    )+) => {
+        /// The counts of one attempt's work.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+        pub struct Work {
+            $($(#[doc = $doc])+ pub $name: usize,)+
+        }
+
+        impl Statistics {
+            $(
+                #[doc = $accessor]
+                pub fn $name(&self) -> usize {
+                    self.$how(|w| w.$name)
+                }
+            )+
+        }
+    };
+}
+
+counts! {
     /// Pivots (basis exchanges; index exchanges for block pivoting).
-    pub pivots: usize,
+    pivots => total "Pivots of every attempt.",
     /// Pivots whose step length was zero.
-    pub degenerate_pivots: usize,
+    degenerate_pivots => total "Degenerate pivots of every attempt.",
     /// Recomputations of the whole tableau from the original data.
-    pub refactorizations: usize,
+    refactorizations => total "Refactorizations of every attempt.",
     /// Iterative-refinement steps of the final basic solution.
-    pub refinement_steps: usize,
+    refinement_steps => total "Refinement steps of every attempt.",
     /// Iterations: block pivoting's blocks, the conjugate gradient's steps
     /// (of every right-hand side of a linear system).
-    pub iterations: usize,
+    iterations => total "Iterations of every attempt (blocks, conjugate-gradient steps).",
     /// Matrix factorizations (Cholesky factors of active blocks; 1 for a
     /// symmetric-tableau attempt, whose final solution is one Cholesky of
     /// the contact block; 0 for the general tableau; 1 for a linear
     /// system's Cholesky or LU).
-    pub factorizations: usize,
+    factorizations => total "Factorizations of every attempt.",
     /// Rows of the tableau pivoted on (0 for block pivoting).
-    pub tableau_rows: usize,
+    tableau_rows => of_returned "Rows of the tableau of the returned attempt (0 for block pivoting).",
     /// Columns of the tableau: non-basic unknowns plus the right-hand side.
-    pub tableau_columns: usize,
+    tableau_columns => of_returned "Columns of the tableau of the returned attempt.",
     /// Products `M x` of an operator (the conjugate gradient's, and its
     /// certificate's): the unit of a matrix-free solve's cost.
-    pub products: usize,
+    products => total "Products `M x` of an operator by every attempt and its certificate \
+        (0 for the methods that read `M`'s entries).",
     /// Applications of the operator's preconditioner (the preconditioned
     /// conjugate gradient's, one an iteration; each cheaper than a
     /// product: [`Preconditioner::precondition`](crate::Preconditioner::precondition)).
-    pub preconditionings: usize,
+    preconditionings => total "Applications of an operator's preconditioner by every attempt.",
 }
 
 /// One attempt of a solve.
@@ -203,49 +228,14 @@ impl Statistics {
         }
     }
 
+    /// The sum of a count over every attempt.
     fn total(&self, count: impl Fn(&Work) -> usize) -> usize {
         self.attempts.iter().map(|a| count(&a.work)).sum()
     }
 
-    /// Pivots of every attempt.
-    pub fn pivots(&self) -> usize {
-        self.total(|w| w.pivots)
-    }
-
-    /// Degenerate pivots of every attempt.
-    pub fn degenerate_pivots(&self) -> usize {
-        self.total(|w| w.degenerate_pivots)
-    }
-
-    /// Refactorizations of every attempt.
-    pub fn refactorizations(&self) -> usize {
-        self.total(|w| w.refactorizations)
-    }
-
-    /// Refinement steps of every attempt.
-    pub fn refinement_steps(&self) -> usize {
-        self.total(|w| w.refinement_steps)
-    }
-
-    /// Iterations of every attempt (blocks, conjugate-gradient steps).
-    pub fn iterations(&self) -> usize {
-        self.total(|w| w.iterations)
-    }
-
-    /// Factorizations of every attempt.
-    pub fn factorizations(&self) -> usize {
-        self.total(|w| w.factorizations)
-    }
-
-    /// Products `M x` of an operator by every attempt and its certificate
-    /// (0 for the methods that read `M`'s entries).
-    pub fn products(&self) -> usize {
-        self.total(|w| w.products)
-    }
-
-    /// Applications of an operator's preconditioner by every attempt.
-    pub fn preconditionings(&self) -> usize {
-        self.total(|w| w.preconditionings)
+    /// A count of the returned attempt (0 when none was).
+    fn of_returned(&self, count: impl Fn(&Work) -> usize) -> usize {
+        self.returned().map_or(0, |a| count(&a.work))
     }
 
     /// The attempt whose answer was returned.
@@ -272,16 +262,6 @@ impl Statistics {
     /// breakdown).
     pub fn retried(&self) -> bool {
         self.attempts.iter().any(|a| a.reason == Reason::Retry)
-    }
-
-    /// Rows of the tableau of the returned attempt (0 for block pivoting).
-    pub fn tableau_rows(&self) -> usize {
-        self.returned().map_or(0, |a| a.work.tableau_rows)
-    }
-
-    /// Columns of the tableau of the returned attempt.
-    pub fn tableau_columns(&self) -> usize {
-        self.returned().map_or(0, |a| a.work.tableau_columns)
     }
 }
 

@@ -1,13 +1,42 @@
 //! One test per error variant of the engine, checking the message a caller sees.
 
 use elcon_lcp::{
-    BorderedLcp, Bound, Lcp, LcpError, LinearSystem, Method, MixedLcp, MixedLcpParts, OperatorLcp,
-    Options, PodStack, Preconditioner, ProgramBuilder, StackReq, Tableau, Tolerances,
+    BorderedLcp, Bound, Breakdown, Lcp, LcpError, LinearSystem, Method, MixedLcp, MixedLcpParts,
+    OperatorLcp, Options, Outcome, PodStack, Preconditioner, ProgramBuilder, Reason, StackReq,
+    Tableau, Tolerances,
 };
 use faer::{Col, Mat, col, mat};
 
 fn message(e: LcpError) -> String {
     e.to_string()
+}
+
+/// Asserts that `e`'s message starts with `start` and ends with `end` (its
+/// advice).
+fn assert_message(e: LcpError, start: &str, end: &str) {
+    let text = message(e);
+    assert!(text.starts_with(start), "{text}");
+    assert!(text.ends_with(end), "{text}");
+}
+
+/// Adds to a one-row program `p` an unknown of column `[1]` and a slack
+/// of column `[coef]`, both non-negative, named `names`; returns their
+/// indices.
+fn unknown_and_slack(p: &mut ProgramBuilder, names: [&str; 2], coef: f64) -> (usize, usize) {
+    let x = p
+        .dense_column(names[0], col![1.0].as_ref(), Bound::NonNegative)
+        .unwrap();
+    let s = p.unit_columns(names[1], 0..1, coef, Bound::NonNegative);
+    (x, s.unwrap().start)
+}
+
+/// The default options with the pivots (the conjugate gradient's
+/// iterations) capped at `limit`.
+fn capped(limit: usize) -> Options {
+    Options {
+        max_pivots: Some(limit),
+        ..Options::default()
+    }
 }
 
 /// The mixed form `w = z - u`, `z = 1`, with `u` bounded by `bound`.
@@ -184,6 +213,21 @@ fn an_explicit_tableau_that_cannot_finish_is_an_error() {
             "lemke on the symmetric tableau broke down after 1 pivot (size 2): a pivot a positive definite matrix would not give"
         ),
     );
+    // On the default tableau the general one answers, and the log shows
+    // each attempt and why it ran.
+    let sol = p.solve(Method::Lemke, &Options::default()).unwrap();
+    let log = &sol.statistics.attempts;
+    assert_eq!(log.len(), 2, "{log:?}");
+    assert_eq!(
+        (log[0].reason, log[1].reason),
+        (Reason::First, Reason::Fallback)
+    );
+    assert_eq!(
+        log[0].outcome,
+        Outcome::Breakdown(Breakdown::NotPositiveDefinite)
+    );
+    assert_eq!(log[1].outcome, Outcome::Returned);
+    assert_eq!(log[1].tableau, Some(Tableau::General));
     // A mixed form has no symmetric tableau at all.
     let mixed = one_pair(Bound::Free);
     let e = mixed.solve(Method::Lemke, &opts).unwrap_err();
@@ -250,10 +294,7 @@ fn restricted_simplex_reports_infeasibility() {
 fn unbounded_objective() {
     // minimize -x subject to x - s = 1, x, s >= 0.
     let mut p = ProgramBuilder::new(1);
-    let x = p
-        .dense_column("x", col![1.0].as_ref(), Bound::NonNegative)
-        .unwrap();
-    p.unit_columns("s", 0..1, -1.0, Bound::NonNegative).unwrap();
+    let (x, _) = unknown_and_slack(&mut p, ["x", "s"], -1.0);
     p.cost(x, -1.0).unwrap();
     p.rhs(col![1.0].as_ref()).unwrap();
     let e = p.build().unwrap().solve(&Options::default()).unwrap_err();
@@ -266,12 +307,8 @@ fn pivot_limit() {
     let n = 6;
     let m = Mat::from_fn(n, n, |i, j| if i == j { 4.0 } else { 1.0 });
     let lcp = Lcp::new(m, Col::from_fn(n, |_| -1.0)).unwrap();
-    let opts = Options {
-        max_pivots: Some(2),
-        ..Options::default()
-    };
     for method in Method::TABLEAU {
-        let e = lcp.solve(method, &opts).unwrap_err();
+        let e = lcp.solve(method, &capped(2)).unwrap_err();
         assert_eq!(
             message(e),
             "pivot limit 2 reached (size 6); raise `max_pivots` or check the problem",
@@ -362,13 +399,7 @@ fn inaccurate_solutions_are_not_returned() {
 #[test]
 fn deferred_unknowns_cannot_be_complementary() {
     let mut p = ProgramBuilder::new(1);
-    let x = p
-        .dense_column("x", col![1.0].as_ref(), Bound::NonNegative)
-        .unwrap();
-    let y = p
-        .unit_columns("y", 0..1, 1.0, Bound::NonNegative)
-        .unwrap()
-        .start;
+    let (x, y) = unknown_and_slack(&mut p, ["x", "y"], 1.0);
     p.complementary(x, y).unwrap();
     let e = p.defer(x..x + 1).unwrap_err();
     assert!(matches!(e, LcpError::InvalidOption { field: "defer", .. }));
@@ -376,13 +407,7 @@ fn deferred_unknowns_cannot_be_complementary() {
         message(e),
         "option `defer` = 0: a complementary unknown cannot be deferred"
     );
-    let z = p
-        .dense_column("z", col![1.0].as_ref(), Bound::NonNegative)
-        .unwrap();
-    let w = p
-        .unit_columns("w", 0..1, 1.0, Bound::NonNegative)
-        .unwrap()
-        .start;
+    let (z, w) = unknown_and_slack(&mut p, ["z", "w"], 1.0);
     p.defer(z..z + 1).unwrap();
     let e = p.complementary(z, w).unwrap_err();
     assert!(message(e).ends_with("a deferred unknown cannot be complementary"));
@@ -493,13 +518,9 @@ fn iteration_limit_of_a_linear_system() {
     let m = decaying_spd(n);
     let r = Mat::from_fn(n, 1, |i, _| i as f64);
     let products = m.as_ref();
-    let opts = Options {
-        max_pivots: Some(1),
-        ..Options::default()
-    };
     let e = LinearSystem::operator(&products, r.as_ref())
         .unwrap()
-        .solve(&opts)
+        .solve(&capped(1))
         .unwrap_err();
     assert!(
         matches!(
@@ -513,14 +534,11 @@ fn iteration_limit_of_a_linear_system() {
         ),
         "{e}"
     );
-    let text = message(e);
-    assert!(
-        text.starts_with(
-            "the conjugate gradient reached its iteration limit 1 on right-hand side 0 (size 20) at a relative residual"
-        ),
-        "{text}"
+    assert_message(
+        e,
+        "the conjugate gradient reached its iteration limit 1 on right-hand side 0 (size 20) at a relative residual",
+        "raise `max_pivots` (its iteration cap) or give M densely (a factorization needs no iterations)",
     );
-    assert!(text.contains("raise `max_pivots`"), "{text}");
 }
 
 #[test]
@@ -539,10 +557,6 @@ fn iteration_limit_of_the_conjugate_gradient() {
         .statistics
         .iterations();
     assert!(needed >= 2, "{needed}");
-    let capped = |limit| Options {
-        max_pivots: Some(limit),
-        ..Options::default()
-    };
     // Its own count is enough; one fewer is the error.
     let sol = lcp.solve(method, &capped(needed)).unwrap();
     assert!(sol.certificate.holds());
@@ -575,15 +589,9 @@ fn iteration_limit_of_the_conjugate_gradient() {
         ),
         "{e}"
     );
-    let text = message(e);
-    assert!(
-        text.starts_with(
-            "iteration limit 1 of the conjugate gradient reached (size 20) at a worst relative residual"
-        ),
-        "{text}"
-    );
-    assert!(
-        text.ends_with("raise `max_pivots` (its iteration cap) or check the problem"),
-        "{text}"
+    assert_message(
+        e,
+        "iteration limit 1 of the conjugate gradient reached (size 20) at a worst relative residual",
+        "raise `max_pivots` (its iteration cap) or check the problem",
     );
 }

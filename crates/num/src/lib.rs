@@ -7,12 +7,19 @@
 //! every crate above show a user's number the same way.
 //!
 //! Also how a name is read back from a message's words ([`UnknownName`],
-//! [`named!`], [`named_serde!`]): the enums of named choices of every crate above parse,
+//! [`named!`], [`named_serde!`] and, with the `serde` feature, `from_name`): the enums of named choices of every crate above parse,
 //! show and serialize their names through it.
+//!
+//! And how an input is checked ([`check`]): the first of a table of
+//! conditions that does not hold, a [`Rejected`] that names the field.
 
+mod input;
 mod name;
 
-pub use name::UnknownName;
+pub use input::{Check, Rejected, check};
+#[cfg(feature = "serde")]
+pub use name::from_name;
+pub use name::{UnknownName, unparsed};
 
 /// A number as a message shows it, in its shortest round-trip form: as
 /// written for everyday magnitudes (`-30000000`, `0.5`), in scientific

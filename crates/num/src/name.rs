@@ -161,6 +161,30 @@ macro_rules! named_serde {
     };
 }
 
+/// The first of `all` (an enum's choices) whose name, as it shows
+/// ([`Display`](std::fmt::Display)), does not parse back to it; `None`
+/// when every one does, what the tests of each enum of named choices
+/// assert.
+pub fn unparsed<T>(all: &[T]) -> Option<T>
+where
+    T: Copy + PartialEq + std::fmt::Display + std::str::FromStr,
+{
+    all.iter()
+        .copied()
+        .find(|choice| choice.to_string().parse::<T>().ok() != Some(*choice))
+}
+
+/// A named choice read back from its name as a deserializer reads it (a
+/// scene's TOML, a result's JSON): what [`named_serde!`](crate::named_serde)'s
+/// `Deserialize` gives, without a format; an unknown name is serde's
+/// "unknown variant" error. The `serde` feature.
+#[cfg(feature = "serde")]
+pub fn from_name<'a, T: serde::Deserialize<'a>>(
+    name: &'a str,
+) -> Result<T, serde::de::value::Error> {
+    T::deserialize(serde::de::value::StrDeserializer::new(name))
+}
+
 #[cfg(test)]
 mod tests {
     use super::UnknownName;
@@ -188,9 +212,7 @@ mod tests {
     #[test]
     fn every_name_parses_back_and_an_unknown_one_lists_them() {
         assert_eq!(Fruit::NAMES, ["apple", "blood-orange"]);
-        for fruit in Fruit::ALL {
-            assert_eq!(fruit.to_string().parse::<Fruit>(), Ok(fruit));
-        }
+        assert_eq!(super::unparsed(&Fruit::ALL), None);
         let e = "pear".parse::<Fruit>().unwrap_err();
         assert_eq!(
             e,

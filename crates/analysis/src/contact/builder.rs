@@ -79,6 +79,41 @@ pub struct ProblemBuilder<'a> {
     body_edges: (bool, bool),
 }
 
+/// The storage's shorthands, each
+/// `ContactProblem::builder(..).storage(storage).build()`.
+macro_rules! stored {
+    ($($(#[doc = $doc:literal])+ $name:ident => $storage:ident;)+) => {
+        impl ContactProblem {
+            $(
+                $(#[doc = $doc])+
+                pub fn $name(
+                    points: PointSet,
+                    body1: &Body,
+                    body2: &Body,
+                    geometry: &Geometry,
+                    loading: Loading,
+                ) -> Result<Self, AnalysisError> {
+                    Self::builder(points, body1, body2, geometry, loading)
+                        .storage(Storage::$storage)
+                        .build()
+                }
+            )+
+        }
+    };
+}
+
+stored! {
+    /// The problem with S dense and unfolded:
+    /// `ContactProblem::builder(..).storage(Storage::Dense).build()`.
+    new => Dense;
+    /// The problem folded when it is mirror symmetric, dense otherwise:
+    /// `ContactProblem::builder(..).storage(Storage::Folded).build()`.
+    symmetric => Folded;
+    /// The problem with S matrix-free:
+    /// `ContactProblem::builder(..).storage(Storage::Lattice).build()`.
+    lattice => Lattice;
+}
+
 impl ContactProblem {
     /// A [`ProblemBuilder`] for the problem of `body1` and `body2` on
     /// `points`, with the initial separations of `geometry`, under
@@ -100,56 +135,6 @@ impl ContactProblem {
             fold: true,
             body_edges: (false, false),
         }
-    }
-
-    /// `ContactProblem::builder(..).storage(storage).build()`: the
-    /// storage's shorthands below.
-    fn stored(
-        storage: Storage,
-        points: PointSet,
-        [body1, body2]: [&Body; 2],
-        geometry: &Geometry,
-        loading: Loading,
-    ) -> Result<Self, AnalysisError> {
-        Self::builder(points, body1, body2, geometry, loading)
-            .storage(storage)
-            .build()
-    }
-
-    /// The problem with S dense and unfolded:
-    /// `ContactProblem::builder(..).storage(Storage::Dense).build()`.
-    pub fn new(
-        points: PointSet,
-        body1: &Body,
-        body2: &Body,
-        geometry: &Geometry,
-        loading: Loading,
-    ) -> Result<Self, AnalysisError> {
-        Self::stored(Storage::Dense, points, [body1, body2], geometry, loading)
-    }
-
-    /// The problem folded when it is mirror symmetric, dense otherwise:
-    /// `ContactProblem::builder(..).storage(Storage::Folded).build()`.
-    pub fn symmetric(
-        points: PointSet,
-        body1: &Body,
-        body2: &Body,
-        geometry: &Geometry,
-        loading: Loading,
-    ) -> Result<Self, AnalysisError> {
-        Self::stored(Storage::Folded, points, [body1, body2], geometry, loading)
-    }
-
-    /// The problem with S matrix-free:
-    /// `ContactProblem::builder(..).storage(Storage::Lattice).build()`.
-    pub fn lattice(
-        points: PointSet,
-        body1: &Body,
-        body2: &Body,
-        geometry: &Geometry,
-        loading: Loading,
-    ) -> Result<Self, AnalysisError> {
-        Self::stored(Storage::Lattice, points, [body1, body2], geometry, loading)
     }
 
     /// A problem from an influence matrix (N x N, length per force) and

@@ -185,7 +185,7 @@ impl ContactProblem {
                 reason: format!("point {k} is out of range (the problem has {n} points)"),
             });
         }
-        self.influence.restricted_solve(contact, rhs, options)
+        self.influence.restricted(contact).solve(rhs, options)
     }
 
     /// The initial separations eps (length).

@@ -196,17 +196,8 @@ pub struct ContactSolution {
 impl ContactProblem {
     /// The solution from the engine's answer at every point.
     pub(super) fn finish(&self, engine: Engine) -> ContactSolution {
-        let Engine {
-            forces,
-            gaps,
-            slack,
-            lambda,
-            certificate,
-            statistics,
-            solve_seconds,
-        } = engine;
-        let certificate = &certificate;
-        let slack = slack.as_deref().unwrap_or(&gaps);
+        let (forces, certificate) = (&engine.forces, &engine.certificate);
+        let slack = engine.slack.as_deref().unwrap_or(&engine.gaps);
         let n = self.points.len();
         let pressures: Vec<f64> = (0..n).map(|k| forces[k] / self.points.measure(k)).collect();
         let load: f64 = forces.iter().sum();
@@ -246,7 +237,7 @@ impl ContactProblem {
             warnings.push(Warning::UncertainContact { points: uncertain });
         }
         let max_pressure = pressures.iter().fold(0.0f64, |a, p| a.max(*p));
-        let value = |mode| self.rigid.value(mode, &lambda);
+        let value = |mode| self.rigid.value(mode, &engine.lambda);
         let (x0, y0) = self.rigid.load_point;
         // The points' coordinates walked once (a grid's by its runs), not
         // looked up point by point.
@@ -261,9 +252,9 @@ impl ContactProblem {
         let moment_y = -first_moment(&|(x, _)| x - x0);
         let centre = |moment: f64| if load > 0.0 { moment / load } else { 0.0 };
         ContactSolution {
-            forces,
+            forces: engine.forces,
             pressures,
-            gaps,
+            gaps: engine.gaps,
             approach: value(RigidMode::Approach),
             tilt_x: value(RigidMode::TiltX),
             tilt_y: value(RigidMode::TiltY),
@@ -277,9 +268,9 @@ impl ContactProblem {
             contact_extent,
             contact_ellipse,
             certificate: ContactCertificate::from_engine(certificate),
-            statistics,
+            statistics: engine.statistics,
             assembly_seconds: self.assembly_seconds,
-            solve_seconds,
+            solve_seconds: engine.solve_seconds,
             warnings,
         }
     }

@@ -16,9 +16,10 @@ use rayon::prelude::*;
 use realfft::RealFftPlanner;
 
 use super::gather::GatherOrder;
-use super::grid::{C64, COLUMN_BATCH, Grid, Plans, RowBuffers, try_vec, wave_len};
+use super::grid::{C64, COLUMN_BATCH, Grid, Plans, RowBuffers, wave_len};
 use super::spectrum::kernel_spectrum;
 use crate::error::InfluenceError;
+use crate::error::try_vec;
 use crate::points::{LatticeBox, PointSet};
 use crate::terms::Terms;
 

@@ -5,8 +5,8 @@
 
 use std::ops::Range;
 
-use super::grid::try_vec;
 use crate::error::InfluenceError;
+use crate::error::try_vec;
 use crate::points::{Lattice, LatticeBox, MAX_POINTS, PointSet};
 
 // Point indices, lattice columns and row starts are stored as u32: a box

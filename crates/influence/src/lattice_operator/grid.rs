@@ -6,8 +6,8 @@
 //! ```
 //!
 //! its bands of row frequencies, and the bytes an operator on it holds
-//! (the estimate made before anything is built), with the fallible
-//! allocation of its buffers.
+//! (the estimate made before anything is built); its buffers are
+//! allocated fallibly (`crate::error::try_vec`).
 
 use std::sync::Arc;
 
@@ -15,7 +15,6 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
-use crate::error::InfluenceError;
 use crate::points::LatticeBox;
 
 /// A complex value of the spectra.
@@ -131,23 +130,6 @@ pub(super) fn padded_length(n: usize) -> usize {
     (least..)
         .find(|&m| m.is_multiple_of(2) && smooth(m))
         .expect("a power of two >= least exists")
-}
-
-/// A vector of `len` copies of `value`, or [`InfluenceError::AllocationFailed`]
-/// naming `what` when the memory cannot be reserved.
-pub(super) fn try_vec<T: Clone>(
-    len: usize,
-    value: T,
-    what: &'static str,
-) -> Result<Vec<T>, InfluenceError> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(len)
-        .map_err(|_| InfluenceError::AllocationFailed {
-            what,
-            bytes: len.saturating_mul(std::mem::size_of::<T>()),
-        })?;
-    v.resize(len, value);
-    Ok(v)
 }
 
 /// Columns of a wave on `grid`: [`COLUMN_BATCH`] per thread of the

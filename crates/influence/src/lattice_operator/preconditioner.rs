@@ -37,8 +37,8 @@
 use realfft::RealFftPlanner;
 
 use super::convolution::{Buffers, Convolution, columns_back, share};
-use super::grid::{C64, COLUMN_BATCH, Plans, RowBuffers, try_vec};
-use crate::error::InfluenceError;
+use super::grid::{C64, COLUMN_BATCH, Plans, RowBuffers};
+use crate::error::{InfluenceError, try_vec};
 
 /// The symbol's floor: a value of `Ŝ_Q` below `max Ŝ_Q / (SYMBOL_FLOOR
 /// max(Q1, Q2))` is raised to it. A half-space symbol falls like `1/|k|`,
@@ -307,9 +307,10 @@ impl LatticePreconditioner {
 mod tests {
     use super::super::LatticeKernel;
     use crate::assembly::assemble;
+    use crate::fixtures::{disk_and_reversed, pool};
     use crate::material::Material;
     use crate::models::Body;
-    use crate::points::{Cell, Dimension, PointSet};
+    use crate::points::PointSet;
 
     fn steel() -> Material {
         Material::new(30e6, 0.3).unwrap()
@@ -437,25 +438,12 @@ mod tests {
     fn the_same_to_the_bit_on_any_number_of_threads() {
         // A disk in lattice-row order (rows written in parallel) and the
         // same points reversed (gathered on the caller's thread).
-        let disk = PointSet::grid_disk(1.0, 40.0).unwrap();
-        let (xs, ys): (Vec<f64>, Vec<f64>) = (0..disk.len())
-            .rev()
-            .map(|k| (disk.x(k), disk.y(k)))
-            .unzip();
-        let reversed =
-            PointSet::from_points(Dimension::Surface, xs, ys, Cell { dx: 1.0, dy: 1.0 }).unwrap();
         let bodies = [&Body::uniform_patch(steel()), &Body::point_force(steel())];
-        for (name, points) in [("disk", disk), ("reversed", reversed)] {
+        for (name, points) in disk_and_reversed() {
             let kernel = LatticeKernel::new(&points, &bodies).unwrap();
             let r: Vec<f64> = (0..points.len())
                 .map(|k| ((k * 7919) % 1000) as f64 - 500.0)
                 .collect();
-            let pool = |threads: usize| {
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .unwrap()
-            };
             // On `threads`, with a workspace made on `made_on` threads (its
             // wave of columns sized for them), `dirty` after a product.
             let on = |threads: usize, made_on: usize, dirty: bool| {

@@ -9,8 +9,9 @@
 
 use realfft::RealFftPlanner;
 
-use super::grid::{C64, Grid, try_vec};
+use super::grid::{C64, Grid};
 use crate::error::InfluenceError;
+use crate::error::try_vec;
 use crate::terms::Terms;
 
 /// The kernel table of the bodies on the lattice's offsets (the one

@@ -4,11 +4,12 @@
 
 use faer::{Col, Mat};
 
-use super::grid::{padded_length, try_vec};
+use super::grid::padded_length;
 use super::{LatticeKernel, LatticeOperator, LatticeWorkspace};
 use crate::assembly::assemble;
 use crate::error::InfluenceError;
-use crate::fixtures::{BEAM, scattered, sparse_pair, surface};
+use crate::error::try_vec;
+use crate::fixtures::{BEAM, disk_and_reversed, pool, scattered, sparse_pair, surface};
 use crate::material::Material;
 use crate::models::Body;
 use crate::points::{Cell, Dimension, PointSet};
@@ -251,19 +252,11 @@ fn memory_is_linear_in_the_points_and_estimated_before() {
     // points, a disk's 4/pi of them; padding to 5-smooth lengths adds up
     // to ~10 %. The bounds leave a few percent over the figures measured.
     // Each further thread adds a batch of columns (the workspace's wave).
-    let one = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
-    one.install(memory_on_one_thread);
+    pool(1).install(memory_on_one_thread);
     let points = PointSet::grid_disk(1.0, 64.0).unwrap();
     let bodies = [&Body::uniform_patch(steel()), &Body::uniform_patch(steel())];
     let held = |threads| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        pool(threads).install(|| {
             let op = LatticeOperator::new(&points, &bodies).unwrap();
             (op.memory_bytes(), op.fft_shape().unwrap().0)
         })
@@ -440,22 +433,10 @@ fn a_product_is_the_same_to_the_bit_on_any_number_of_threads() {
     // of y) and the same disk's points in reverse (the rows' values
     // gathered on the caller's thread), each with a workspace made on one
     // thread and on three (waves of one and of three column batches).
-    let disk = PointSet::grid_disk(1.0, 40.0).unwrap();
-    let (xs, ys): (Vec<f64>, Vec<f64>) = (0..disk.len())
-        .rev()
-        .map(|k| (disk.x(k), disk.y(k)))
-        .unzip();
-    let reversed = PointSet::from_points(Dimension::Surface, xs, ys, Cell { dx: 1.0, dy: 1.0 });
     let bodies = [&Body::uniform_patch(steel()), &Body::point_force(steel())];
-    for (name, points) in [("disk", disk.clone()), ("reversed", reversed.unwrap())] {
+    for (name, points) in disk_and_reversed() {
         let x = random_vector(points.len(), 11, -1.0);
         let product = |made_on: usize, applied_on: usize| {
-            let pool = |t| {
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(t)
-                    .build()
-                    .unwrap()
-            };
             let mut op = pool(made_on).install(|| LatticeOperator::new(&points, &bodies).unwrap());
             let mut y = vec![0.0; x.len()];
             pool(applied_on).install(|| op.apply(&x, &mut y));

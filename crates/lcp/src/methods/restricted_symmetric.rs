@@ -652,27 +652,6 @@ impl Rates<'_> {
             falling_steps(values, small, tie, rates, reach, near)
         }
     }
-
-    /// The rates and steps in two passes (the rates and their largest,
-    /// then the steps): what [`Rates::steps`] returns, by definition.
-    #[cfg(test)]
-    fn steps_in_two_passes(
-        &self,
-        values: &Values<'_>,
-        rates: &mut [f64],
-        reach: &mut [f64],
-        near: &mut Vec<usize>,
-    ) -> f64 {
-        let mut largest = [0.0f64; 2];
-        for (i, rate) in rates.iter_mut().enumerate() {
-            let kind = usize::from(!values.into[i]);
-            let r = self.unsigned(values, i);
-            *rate = if kind == 0 { -r } else { r };
-            largest[kind] = largest[kind].max(r.abs());
-        }
-        let small = largest.map(|v| self.tol.pivot * v);
-        falling_steps(values, small, self.tol.tie, rates, reach, near)
-    }
 }
 
 /// Each value's step to zero at `rates` (infinite unless its rate is below

@@ -210,17 +210,26 @@ mod tests {
     use super::*;
     use faer::{col, mat};
 
+    /// The first contact of `border` and `resultant` over `q`, at the
+    /// default tolerances.
+    fn start(
+        border: &Mat<f64>,
+        resultant: Col<f64>,
+        q: &Col<f64>,
+    ) -> Result<FirstContact, NoContact> {
+        first_contact(
+            border.as_ref(),
+            resultant.as_ref(),
+            q.as_ref(),
+            &Tolerances::default(),
+        )
+    }
+
     #[test]
     fn one_row_is_the_least_separation() {
         let border = mat![[1.0], [1.0], [1.0], [1.0]];
         let q = col![0.3, 0.1, 0.2, 0.5];
-        let first = first_contact(
-            border.as_ref(),
-            col![2.0].as_ref(),
-            q.as_ref(),
-            &Tolerances::default(),
-        )
-        .unwrap();
+        let first = start(&border, col![2.0], &q).unwrap();
         assert_eq!(first.basis, vec![1]);
         assert_eq!(first.lambda, vec![0.1]);
     }
@@ -235,26 +244,14 @@ mod tests {
         let xs = [-2.0, -1.0, 0.0, 1.0, 2.0];
         let border = Mat::from_fn(5, 2, |i, j| if j == 0 { 1.0 } else { xs[i] });
         let q = Col::from_fn(5, |i| xs[i] * xs[i] / 10.0);
-        let first = first_contact(
-            border.as_ref(),
-            col![1.0, 0.5].as_ref(),
-            q.as_ref(),
-            &Tolerances::default(),
-        )
-        .unwrap();
+        let first = start(&border, col![1.0, 0.5], &q).unwrap();
         let mut basis = first.basis.clone();
         basis.sort_unstable();
         assert_eq!(basis, vec![2, 3]);
         assert!(first.lambda[0].abs() <= 1e-16, "{first:?}");
         assert!((first.lambda[1] - 0.1).abs() <= 1e-16, "{first:?}");
         // The load outside the points' span [-2, 2] cannot be carried.
-        let e = first_contact(
-            border.as_ref(),
-            col![1.0, 3.0].as_ref(),
-            q.as_ref(),
-            &Tolerances::default(),
-        )
-        .unwrap_err();
+        let e = start(&border, col![1.0, 3.0], &q).unwrap_err();
         assert_eq!(e, NoContact::Unreachable);
     }
 
@@ -265,13 +262,7 @@ mod tests {
         // forces on both carry no moment, so the program is unbounded.
         let border = mat![[-1.0], [0.0], [1.0]];
         let q = col![-1.0, 0.5, -1.0];
-        let e = first_contact(
-            border.as_ref(),
-            col![0.0].as_ref(),
-            q.as_ref(),
-            &Tolerances::default(),
-        )
-        .unwrap_err();
+        let e = start(&border, col![0.0], &q).unwrap_err();
         assert_eq!(e, NoContact::Interference);
     }
 }

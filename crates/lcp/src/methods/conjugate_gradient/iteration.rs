@@ -28,6 +28,7 @@
 //! from a true product before it is read.
 
 use std::borrow::Cow;
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use faer::{ColRef, Mat, MatRef};
@@ -436,19 +437,9 @@ fn direction_by(
     lambda: &[f64],
     beta: Option<f64>,
 ) -> f64 {
-    let (columns, q) = (data.columns(), &*data.q);
-    let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
-    let shift = Shift::new(columns, lambda, q.len(), false);
-    let parts = map_parts(parts, |(c, t)| {
-        let base = c * CHUNK;
-        let len = t.len();
-        let (z, u, q) = (
-            &z[base..base + len],
-            &u[base..base + len],
-            &q[base..base + len],
-        );
-        let (s, _) = shift.chunk(base, len);
-        let s = &s[..];
+    let q = &*data.q;
+    direction_chunks(data, q.len(), t, lambda, |range, s, t| {
+        let (z, u, q) = (&z[range.clone()], &u[range.clone()], &q[range]);
         let rule = match beta {
             Some(beta) => Rule::Conjugate {
                 u,
@@ -460,6 +451,25 @@ fn direction_by(
             None => Rule::Chopped { u, c: scale, q, s },
         };
         direction_chunk(rule, z, t).value()
+    })
+}
+
+/// A direction over `t` chunk by chunk, `n` entries: each chunk's
+/// `chunk(range, s, t)`, `s` the shift `B ν` on its range (`ν` = `nu`);
+/// returns the sum of the chunks' values, in their order.
+fn direction_chunks(
+    data: &Data<'_>,
+    n: usize,
+    t: &mut [f64],
+    nu: &[f64],
+    chunk: impl Fn(Range<usize>, &[f64], &mut [f64]) -> f64 + Sync + Send,
+) -> f64 {
+    let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
+    let shift = Shift::new(data.columns(), nu, n, false);
+    let parts = map_parts(parts, |(c, t)| {
+        let base = c * CHUNK;
+        let (s, _) = shift.chunk(base, t.len());
+        chunk(base..base + t.len(), &s, t)
     });
     total(parts.into_iter())
 }
@@ -734,22 +744,11 @@ pub(super) fn preconditioned_direction_pass(
     mu: &[f64],
     beta: f64,
 ) -> f64 {
-    let columns = data.columns();
-    let parts: Vec<_> = t.chunks_mut(CHUNK).enumerate().collect();
-    let shift = Shift::new(columns, mu, z.len(), false);
-    let parts = map_parts(parts, |(c, t)| {
-        let base = c * CHUNK;
-        let len = t.len();
-        let (z, r, p) = (
-            &z[base..base + len],
-            &r[base..base + len],
-            &p[base..base + len],
-        );
-        let (s, _) = shift.chunk(base, len);
-        let rule = Rule::Preconditioned { p, s: &s, r, beta };
+    direction_chunks(data, z.len(), t, mu, |range, s, t| {
+        let (z, r, p) = (&z[range.clone()], &r[range.clone()], &p[range]);
+        let rule = Rule::Preconditioned { p, s, r, beta };
         direction_chunk(rule, z, t).value()
-    });
-    total(parts.into_iter())
+    })
 }
 
 /// The longest step `z_J - τ t_J` that keeps `z >= 0`: `min z_i / t_i`

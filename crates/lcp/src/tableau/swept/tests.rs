@@ -43,25 +43,41 @@ fn definite(n: usize) -> Mat<f64> {
     m
 }
 
-/// Asserts that column `j` read from the tableau is that of `expect`.
-fn assert_column(col: &Col<f64>, expect: &Mat<f64>, j: usize) {
+/// Asserts that column `j` read from the tableau is that of `expect`
+/// (`when`: after which pivot, for the message).
+fn assert_column(col: &Col<f64>, expect: &Mat<f64>, j: usize, when: &str) {
     for i in 0..expect.nrows() {
         assert!(
             (col[i] - expect[(i, j)]).abs() <= 1e-12 * expect.norm_max(),
-            "entry ({i}, {j}): {} against {}",
+            "entry ({i}, {j}){when}: {} against {}",
             col[i],
             expect[(i, j)]
         );
     }
 }
 
+/// A [`definite`] matrix of order `n`, its swept tableau gathered in its
+/// own order, blocks of 2 (flushes between pivots, and indices pivoted in
+/// one block and read in the next), and the empty set swept in.
+fn gathered(n: usize) -> (Mat<f64>, Swept, Vec<bool>) {
+    let m = definite(n);
+    let order: Vec<usize> = (0..n).collect();
+    let tab = Swept::gather(m.as_ref(), &order, &vec![1.0; n], 2, Par::Seq).unwrap();
+    (m, tab, vec![false; n])
+}
+
+/// Pivots `tab` on `p` with its column `c`: `p` joins the set `into` when
+/// out of it, and leaves it when in.
+fn toggle(tab: &mut Swept, into: &mut [bool], p: usize, c: &Col<f64>) {
+    let joins = !into[p];
+    tab.pivot(p, c, joins);
+    into[p] = joins;
+}
+
 #[test]
 fn a_path_in_order_skips_both_triangles_and_replays_them_when_read() {
     let n = 14;
-    let m = definite(n);
-    let order: Vec<usize> = (0..n).collect();
-    let mut tab = Swept::gather(m.as_ref(), &order, &vec![1.0; n], 2, Par::Seq).unwrap();
-    let mut into = vec![false; n];
+    let (m, mut tab, mut into) = gathered(n);
     // In order (the frontier advances and the leading triangle goes
     // stale), then releases before the frontier (a replay) and after
     // it, rejoins, and more in order; only the pivots' columns are read
@@ -69,10 +85,8 @@ fn a_path_in_order_skips_both_triangles_and_replays_them_when_read() {
     let (mut skipped, mut trailing) = (false, false);
     for &p in &[0, 1, 2, 3, 4, 5, 6, 7, 2, 8, 9, 2, 4, 10, 4, 11] {
         let c = tab.column(p);
-        assert_column(&c, &swept_explicitly(&m, &into), p);
-        let joins = !into[p];
-        tab.pivot(p, &c, joins);
-        into[p] = joins;
+        assert_column(&c, &swept_explicitly(&m, &into), p, "");
+        toggle(&mut tab, &mut into, p, &c);
         skipped |= !tab.stale.is_empty();
         trailing |= !tab.trail_lambda.is_empty() && tab.back < n;
     }
@@ -80,8 +94,7 @@ fn a_path_in_order_skips_both_triangles_and_replays_them_when_read() {
     assert!(trailing, "some block skipped the trailing triangle");
     let expect = swept_explicitly(&m, &into);
     for j in 0..n {
-        let c = tab.column(j);
-        assert_column(&c, &expect, j);
+        assert_column(&tab.column(j), &expect, j, "");
     }
     // The bound on the skipped blocks' memory holds throughout.
     assert!(tab.stale_len <= n * n / STALE_SHARE);
@@ -90,28 +103,13 @@ fn a_path_in_order_skips_both_triangles_and_replays_them_when_read() {
 #[test]
 fn delayed_sweeps_in_and_out_read_the_explicit_swept_matrix() {
     let n = 9;
-    let m = definite(n);
-    // Block 2: flushes between pivots, and indices pivoted in one block
-    // and read in the next.
-    let order: Vec<usize> = (0..n).collect();
-    let mut tab = Swept::gather(m.as_ref(), &order, &vec![1.0; n], 2, Par::Seq).unwrap();
-    let mut into = vec![false; n];
+    let (m, mut tab, mut into) = gathered(n);
     for &p in &[3, 0, 7, 3, 5, 1, 0, 8, 2, 5, 3, 4] {
         let c = tab.column(p);
-        let joins = !into[p];
-        tab.pivot(p, &c, joins);
-        into[p] = joins;
+        toggle(&mut tab, &mut into, p, &c);
         let expect = swept_explicitly(&m, &into);
         for j in 0..n {
-            let col = tab.column(j);
-            for i in 0..n {
-                assert!(
-                    (col[i] - expect[(i, j)]).abs() <= 1e-12 * expect.norm_max(),
-                    "entry ({i}, {j}) after pivot on {p}: {} against {}",
-                    col[i],
-                    expect[(i, j)]
-                );
-            }
+            assert_column(&tab.column(j), &expect, j, &format!(" after pivot on {p}"));
             assert!((tab.diagonal(j) - expect[(j, j)]).abs() <= 1e-12 * expect.norm_max());
         }
     }
