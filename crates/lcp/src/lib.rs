@@ -54,9 +54,7 @@
 //! certificate does not hold is not returned: the solve ends with
 //! [`LcpError::Inaccurate`].
 //!
-//! With the `serde` feature, [`Statistics`] and its [`Attempt`]s are
-//! `Serialize`: the totals, then each attempt by name (the shape of
-//! elcon-scene's result.json); [`Method`] and [`LinearMethod`] serialize
+//! With the `serde` feature, [`Method`] and [`LinearMethod`] serialize
 //! and deserialize as their names (`"lemke"`), which they also parse
 //! (`FromStr`, an [`UnknownName`] listing the names there are).
 //!

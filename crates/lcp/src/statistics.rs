@@ -279,50 +279,6 @@ impl fmt::Display for Attempt {
     }
 }
 
-/// `Serialize` (the `serde` feature), in the shape of result.json's
-/// `statistics` (docs/results.md): the totals derived from the log, then
-/// each attempt with its method, tableau (absent for the methods without one),
-/// reason, pivots, iterations, seconds and outcome by name. Written by hand
-/// because the totals are computed, not stored.
-#[cfg(feature = "serde")]
-mod serialize {
-    use serde::ser::{Serialize, SerializeStruct, Serializer};
-
-    use super::{Attempt, Statistics};
-
-    impl Serialize for Statistics {
-        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-            let mut s = serializer.serialize_struct("Statistics", 8)?;
-            s.serialize_field("pivots", &self.pivots())?;
-            s.serialize_field("degenerate_pivots", &self.degenerate_pivots())?;
-            s.serialize_field("refactorizations", &self.refactorizations())?;
-            s.serialize_field("refinement_steps", &self.refinement_steps())?;
-            s.serialize_field("iterations", &self.iterations())?;
-            s.serialize_field("factorizations", &self.factorizations())?;
-            s.serialize_field("symmetric_tableau", &self.symmetric_tableau())?;
-            s.serialize_field("attempts", &self.attempts)?;
-            s.end()
-        }
-    }
-
-    impl Serialize for Attempt {
-        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-            let mut s = serializer.serialize_struct("Attempt", 7)?;
-            s.serialize_field("method", self.method.name())?;
-            match self.tableau {
-                Some(t) => s.serialize_field("tableau", t.name())?,
-                None => s.skip_field("tableau")?,
-            }
-            s.serialize_field("reason", &self.reason.to_string())?;
-            s.serialize_field("pivots", &self.work.pivots)?;
-            s.serialize_field("iterations", &self.work.iterations)?;
-            s.serialize_field("seconds", &self.seconds)?;
-            s.serialize_field("outcome", &self.outcome.to_string())?;
-            s.end()
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

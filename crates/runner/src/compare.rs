@@ -150,14 +150,12 @@ fn hetenyi(
     loading: Loading,
     json: &mut ReferenceJson,
 ) -> Option<Vec<f64>> {
-    if !aligned(loading) {
-        json.note = Some(
-            "Hetenyi's solution is that of a central load alone: with a moment or a tilt the \
-             beam's errors are not computed"
-                .into(),
-        );
-        return None;
-    }
+    centred_only(
+        loading,
+        json,
+        "Hetenyi's solution is that of a central load alone: with a moment or a tilt the \
+         beam's errors are not computed",
+    )?;
     let points = problem.points();
     let p: Vec<f64> = (0..points.len())
         .map(|k| beam.load_intensity(points.x(k)))
@@ -177,6 +175,16 @@ fn hetenyi(
         ));
     }
     Some(p)
+}
+
+/// `Some(())` for a loading without moment or tilt; otherwise `None`, with
+/// `note` (why the closed form is not compared) on the reference.
+fn centred_only(loading: Loading, json: &mut ReferenceJson, note: &str) -> Option<()> {
+    if aligned(loading) {
+        return Some(());
+    }
+    json.note = Some(note.into());
+    None
 }
 
 /// Whether the loading has neither a moment nor a non-zero prescribed tilt.
@@ -349,14 +357,12 @@ fn ellipse(
     loading: Loading,
     json: &mut ReferenceJson,
 ) -> Option<Vec<f64>> {
-    if !aligned(loading) {
-        json.note = Some(
-            "the elliptical Hertz solution is compared centred only: with a moment or a tilt \
-             its errors are not computed"
-                .into(),
-        );
-        return None;
-    }
+    centred_only(
+        loading,
+        json,
+        "the elliptical Hertz solution is compared centred only: with a moment or a tilt \
+         its errors are not computed",
+    )?;
     let points = problem.points();
     let p: Vec<f64> = (0..points.len())
         .map(|k| h.pressure(points.x(k), points.y(k)))

@@ -110,31 +110,6 @@ impl std::fmt::Display for ContactCertificate {
     }
 }
 
-/// `Serialize` (the `serde` feature), in the shape of result.json's
-/// `certificate` (docs/results.md): the stored residuals with the worst of
-/// them and whether it holds, which are computed, between them. Written by
-/// hand for those two.
-#[cfg(feature = "serde")]
-mod serialize {
-    use serde::ser::{Serialize, SerializeStruct, Serializer};
-
-    use super::ContactCertificate;
-
-    impl Serialize for ContactCertificate {
-        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-            let mut s = serializer.serialize_struct("ContactCertificate", 7)?;
-            s.serialize_field("equilibrium", &self.equilibrium)?;
-            s.serialize_field("min_force", &self.min_force)?;
-            s.serialize_field("min_gap", &self.min_gap)?;
-            s.serialize_field("complementarity", &self.complementarity)?;
-            s.serialize_field("worst", &self.worst())?;
-            s.serialize_field("tolerance", &self.tolerance)?;
-            s.serialize_field("holds", &self.holds())?;
-            s.end()
-        }
-    }
-}
-
 /// A certified contact solution.
 #[derive(Debug, Clone)]
 pub struct ContactSolution {

@@ -163,8 +163,7 @@ fn a_matrix_free_scene_designs_by_the_descent_without_forming_s() {
 
 #[test]
 fn result_json_writes_the_statistics_totals_then_each_attempt() {
-    // elcon-lcp's `serde` feature writes Statistics in result.json's shape:
-    // the totals in this order, then the attempts; a block-pivoting
+    // result.json writes the statistics as the totals in this order, then the attempts; a block-pivoting
     // attempt has no tableau.
     let r = run(&spheres(11, r#"method = "block-pivoting""#)).unwrap();
     let text = serde_json::to_string(&r.result.header.statistics).unwrap();
@@ -210,12 +209,11 @@ fn result_json_writes_the_statistics_totals_then_each_attempt() {
 
 #[test]
 fn result_json_writes_the_certificate_with_its_worst_residual_and_verdict() {
-    // elcon-analysis's `serde` feature writes the contact certificate in
-    // result.json's shape: the stored residuals with the computed `worst`
-    // and `holds` between them.
+    // result.json writes the contact certificate as the stored residuals
+    // with the computed `worst` and `holds` between them.
     let r = run(&spheres(11, r#"method = "block-pivoting""#)).unwrap();
     let c = &r.solution.certificate;
-    let text = serde_json::to_string(c).unwrap();
+    let text = serde_json::to_string(&r.result.solution.certificate).unwrap();
     let keys = [
         "equilibrium",
         "min_force",
