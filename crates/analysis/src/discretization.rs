@@ -27,22 +27,31 @@
 //! (piecewise-constant pressure over cells, collocation at their centres),
 //! and an observed order above it is a cancellation of errors, not a rate
 //! to extrapolate with (the cap of Eça & Hoekstra's procedure, J. Comput.
-//! Phys. 262, 2014). For `s = -1` the error is at most `|e21| / 2` (the two
-//! grids' errors of opposite sign, the fine one the smaller).
+//! Phys. 262, 2014). Only `s = 1` is extrapolated (see the verdicts).
+//!
+//! When the run's own grid is not the finest solved (a finer grid, h/2,
+//! was added because the grid at 4h would not resolve the contact), the
+//! limit is the same and the run's own value's error is `|f_ext - f_h|`.
 //!
 //! The verdict:
 //!
 //! - `exact`: the values agree on every grid to `1e-9` of the quantity's
 //!   scale (a tilt that symmetry makes zero, a load under load control);
-//! - `not converging`: the changes do not shrink under refinement, an
-//!   observed order below 1/2 for monotone changes (a singular edge's peak
-//!   pressure grows like `h^(-1/2)`, p = -1/2; at p = 1/2 Richardson's
-//!   error is already 2.4 times the last change at r = 2) or at most 0 for
-//!   alternating ones, and not below -1 (changes growing faster than any
-//!   contact singularity makes them, `STEEPEST_GROWTH`, say the coarser
-//!   grids are outside the range where the error follows a power of h: not
-//!   estimated);
-//! - `converging`: the error above;
+//! - `converging`, with the error above, only when the three grids show
+//!   it: the changes have one sign (`s = 1`) and shrink at an observed
+//!   order within the discretization's range with a margin of 2 each way,
+//!   `LOWEST_ORDER = 1/2 <= p <= HIGHEST_ORDER = 4` (the contact's extent
+//!   converges at order 1, smooth quantities at 2);
+//! - `not resolved`, with the observed order and why: changes of
+//!   alternating sign (the coarser grids put a feature, a punch's rounded
+//!   rim, in one cell or the next), changes that do not shrink (`p < 1/2`:
+//!   a singular edge's peak grows like `h^(-1/2)`, a kinked surface's like
+//!   `ln h`), or changes that shrink faster than the method allows
+//!   (`p > 4`: a cancellation of errors, not a rate). Where the input
+//!   itself limits a quantity (a surface interpolated with slope kinks: a
+//!   pressure peak under each kink that every finer grid resolves higher)
+//!   the caller marks it not resolved whatever its changes, naming the
+//!   input;
 //! - `not estimated`: with the reason. Two grids give no observed order:
 //!   rather than assume one, the quantity is not estimated (its values on
 //!   both grids are reported).
@@ -56,16 +65,14 @@ pub const EXACT: f64 = 1e-9;
 /// error is extrapolated with.
 pub const FORMAL_ORDER: f64 = 2.0;
 
-/// The smallest observed order of monotone changes taken as converging.
-pub const SLOWEST_ORDER: f64 = 0.5;
+/// The lowest observed order taken as converging: the contact extent's
+/// order 1 (its edge moves by a fraction of a cell), over the margin 2.
+pub const LOWEST_ORDER: f64 = 0.5;
 
-/// The lowest observed order taken for a quantity that grows without
-/// bound: a contact pressure in linear elasticity is at most singular like
-/// `r^(-1/2)` (a rigid punch's rim), so a cell's mean grows at most like
-/// `h^(-1/2)`; changes growing faster (an order below twice that rate)
-/// come from coarse grids outside the range where the error follows a
-/// power of h, and are not estimated.
-pub const STEEPEST_GROWTH: f64 = -1.0;
+/// The highest observed order taken as converging: the formal order 2
+/// times the margin 2. Changes falling faster are errors cancelling
+/// between the grids (a value crossing its limit), not a rate.
+pub const HIGHEST_ORDER: f64 = 4.0;
 
 /// The fewest cells of a coarser grid the fine contact must span along
 /// each axis for that grid to be solved (about nine points across it).
@@ -73,17 +80,31 @@ pub const STEEPEST_GROWTH: f64 = -1.0;
 /// order: Example 1's spheres at 21 points across, whose grid at 4h puts
 /// 5 cells across the contact, show the peak pressure's changes growing
 /// from 4h to h (an observed order of -0.2, where the finer grids show 2).
+/// Where the grid at 4h would span fewer, a finer grid (h/2) is solved
+/// instead.
 pub const MIN_CELLS_ACROSS: f64 = 8.0;
+
+/// The most bytes a finer grid's solve may hold: the run's own solve's, or
+/// this floor (256 MiB) where that is less. The runner's estimate of a
+/// scene's peak counts a finer grid within it.
+pub const FINER_FLOOR_BYTES: f64 = 256.0 * 1024.0 * 1024.0;
+
+/// The bytes a finer grid's solve may hold when the run's own holds
+/// `own_bytes` (see [`FINER_FLOOR_BYTES`]).
+pub fn finer_allowance(own_bytes: f64) -> f64 {
+    own_bytes.max(FINER_FLOOR_BYTES)
+}
 
 /// What the estimate of one quantity concluded.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum Verdict {
-    /// The changes shrink with the grid at the observed order: the error
-    /// is Richardson's.
+    /// The changes have one sign and shrink at an order within the
+    /// method's range: the error is Richardson's.
     Converging,
-    /// The changes do not shrink (a singular edge's peak pressure).
-    NotConverging,
+    /// The grids do not show convergence, or the input limits the
+    /// quantity: why, with the observed order.
+    NotResolved(String),
     /// The same value on every grid.
     Exact,
     /// No estimate, and why.
@@ -91,20 +112,20 @@ pub enum Verdict {
 }
 
 impl Verdict {
-    /// `converging`, `not converging`, `exact` or `not estimated`.
+    /// `converging`, `not resolved`, `exact` or `not estimated`.
     pub fn name(&self) -> &'static str {
         match self {
             Verdict::Converging => "converging",
-            Verdict::NotConverging => "not converging",
+            Verdict::NotResolved(_) => "not resolved",
             Verdict::Exact => "exact",
             Verdict::NotEstimated(_) => "not estimated",
         }
     }
 
-    /// Why a quantity is not estimated.
+    /// Why a quantity is not resolved or not estimated.
     pub fn reason(&self) -> Option<&str> {
         match self {
-            Verdict::NotEstimated(r) => Some(r),
+            Verdict::NotResolved(r) | Verdict::NotEstimated(r) => Some(r),
             _ => None,
         }
     }
@@ -113,12 +134,15 @@ impl Verdict {
 /// The discretization error estimate of one quantity.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ErrorEstimate {
-    /// The value on each grid solved, the fine one first.
+    /// The value on each grid solved, the finest first.
     pub values: Vec<f64>,
+    /// The index in `values` of the run's own grid (0, or 1 when a finer
+    /// grid was solved).
+    pub own: usize,
     /// The limit `f_ext` (converging, or exact: the value).
     pub extrapolated: Option<f64>,
-    /// The fine value's estimated error `|f_ext - f1|` (the quantity's
-    /// unit; 0 when exact).
+    /// The run's own value's estimated error `|f_ext - f_h|` (the
+    /// quantity's unit; 0 when exact).
     pub error: Option<f64>,
     /// The observed order p (three grids, the changes not zero).
     pub order: Option<f64>,
@@ -127,9 +151,9 @@ pub struct ErrorEstimate {
 }
 
 impl ErrorEstimate {
-    /// The fine grid's value (NaN when there is none).
+    /// The run's own grid's value (NaN when there is none).
     pub fn value(&self) -> f64 {
-        self.values.first().copied().unwrap_or(f64::NAN)
+        self.values.get(self.own).copied().unwrap_or(f64::NAN)
     }
 
     /// The error over the value's magnitude, where both exist and the value
@@ -142,6 +166,7 @@ impl ErrorEstimate {
     fn not_estimated(values: &[f64], reason: impl Into<String>) -> Self {
         Self {
             values: values.to_vec(),
+            own: 0,
             extrapolated: None,
             error: None,
             order: None,
@@ -151,93 +176,120 @@ impl ErrorEstimate {
 }
 
 /// The estimate from a quantity's `values` on grids of `spacings` (the
-/// fine grid first, spacings growing; the first three are used), `scale`
-/// the quantity's magnitude the test of equal values is relative to (see
-/// the module documentation).
+/// finest first, spacings growing; the first three are used), `own` the
+/// index of the run's own grid among them (0 or 1), `scale` the quantity's
+/// magnitude the test of equal values is relative to (see the module
+/// documentation).
 ///
 /// ```
 /// use elcon_analysis::discretization::{Verdict, estimate};
 /// // f(h) = 1 + h^2 on h = 0.1, 0.2, 0.4.
 /// let f = |h: f64| 1.0 + h * h;
-/// let e = estimate(&[f(0.1), f(0.2), f(0.4)], &[0.1, 0.2, 0.4], 1.0);
+/// let e = estimate(&[f(0.1), f(0.2), f(0.4)], &[0.1, 0.2, 0.4], 0, 1.0);
 /// assert_eq!(e.verdict, Verdict::Converging);
 /// assert!((e.order.unwrap() - 2.0).abs() < 1e-9);
 /// assert!((e.error.unwrap() - 0.01).abs() < 1e-12);
 /// ```
-pub fn estimate(values: &[f64], spacings: &[f64], scale: f64) -> ErrorEstimate {
+pub fn estimate(values: &[f64], spacings: &[f64], own: usize, scale: f64) -> ErrorEstimate {
+    let mut estimate = ErrorEstimate::not_estimated(values, "");
+    estimate.own = own.min(values.len().saturating_sub(1));
+    match three_grids(values, spacings, scale) {
+        Err(verdict) => {
+            if verdict == Verdict::Exact {
+                estimate.extrapolated = Some(estimate.value());
+                estimate.error = Some(0.0);
+            }
+            estimate.verdict = verdict;
+        }
+        Ok(None) => {
+            estimate.verdict =
+                Verdict::NotEstimated("the observed order could not be computed".into())
+        }
+        Ok(Some(p)) => {
+            estimate.order = Some(p);
+            match unresolved(values, p) {
+                Some(why) => estimate.verdict = Verdict::NotResolved(why),
+                None => {
+                    let (e21, r21) = (values[1] - values[0], spacings[1] / spacings[0]);
+                    let limit = values[0] - e21 / (r21.powf(p.min(FORMAL_ORDER)) - 1.0);
+                    estimate.extrapolated = Some(limit);
+                    estimate.error = Some((limit - estimate.value()).abs());
+                    estimate.verdict = Verdict::Converging;
+                }
+            }
+        }
+    }
+    estimate
+}
+
+/// The observed order of three grids' `values` (`None` if it cannot be
+/// computed), or the verdict that needs none: exact, or not estimated and
+/// why (too few grids, a value not finite, two grids agreeing and the
+/// third not).
+fn three_grids(values: &[f64], spacings: &[f64], scale: f64) -> Result<Option<f64>, Verdict> {
+    let not = |why: &str| Err(Verdict::NotEstimated(why.into()));
     if values.len() != spacings.len() || values.is_empty() {
-        return ErrorEstimate::not_estimated(values, "no grid with a value");
+        return not("no grid with a value");
     }
     if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-        return ErrorEstimate::not_estimated(values, format!("a value is not finite ({v})"));
+        return Err(Verdict::NotEstimated(format!(
+            "a value is not finite ({v})"
+        )));
     }
     if !spacings.windows(2).all(|w| w[1] > w[0]) || !(spacings[0] > 0.0) {
-        return ErrorEstimate::not_estimated(values, "the spacings do not grow from the fine grid");
+        return not("the spacings do not grow from the fine grid");
     }
     let f1 = values[0];
     let magnitude = values.iter().fold(scale.abs(), |a, v| a.max(v.abs()));
     let tol = EXACT * magnitude;
-    let mut estimate = ErrorEstimate::not_estimated(values, "");
     if values.len() > 1 && values.iter().all(|v| (v - f1).abs() <= tol) {
-        estimate.extrapolated = Some(f1);
-        estimate.error = Some(0.0);
-        estimate.verdict = Verdict::Exact;
-        return estimate;
+        return Err(Verdict::Exact);
     }
     match values.len() {
-        1 => {
-            estimate.verdict = Verdict::NotEstimated("one grid: no coarser grid was solved".into());
-            return estimate;
-        }
-        2 => {
-            estimate.verdict = Verdict::NotEstimated(
-                "two grids: no order observed (the grid at four times the spacing was not solved)"
-                    .into(),
-            );
-            return estimate;
-        }
+        1 => return not("one grid: no other grid was solved"),
+        2 => return not("two grids: no order observed (a third grid was not solved)"),
         _ => {}
     }
     let (e21, e32) = (values[1] - f1, values[2] - values[1]);
-    let (r21, r32) = (spacings[1] / spacings[0], spacings[2] / spacings[1]);
     if e21.abs() <= tol {
-        estimate.verdict = Verdict::NotEstimated(
-            "the two finest grids agree to rounding and the coarsest does not: no order observed"
-                .into(),
+        return not(
+            "the two finest grids agree to rounding and the coarsest does not: no order observed",
         );
-        return estimate;
     }
     if e32.abs() <= tol {
-        estimate.verdict = Verdict::NotEstimated(
-            "the two coarser grids agree to rounding and the finest does not: no order observed"
-                .into(),
+        return not(
+            "the two coarser grids agree to rounding and the finest does not: no order observed",
         );
-        return estimate;
     }
-    let s = (e32 / e21).signum();
-    let Some(p) = observed_order(e21, e32, r21, r32, s) else {
-        estimate.verdict = Verdict::NotEstimated("the observed order could not be computed".into());
-        return estimate;
-    };
-    estimate.order = Some(p);
-    if p < STEEPEST_GROWTH {
-        estimate.verdict = Verdict::NotEstimated(format!(
-            "the changes grow faster than a contact singularity makes them (observed order \
-             {p:.2} below {STEEPEST_GROWTH}): the coarser grids are outside the range where the \
-             error follows a power of the spacing"
+    let (r21, r32) = (spacings[1] / spacings[0], spacings[2] / spacings[1]);
+    Ok(observed_order(e21, e32, r21, r32, (e32 / e21).signum()))
+}
+
+/// Why three grids' `values` of observed order `p` do not show
+/// convergence (see the module documentation), or `None` when they do.
+fn unresolved(values: &[f64], p: f64) -> Option<String> {
+    let (e21, e32) = (values[1] - values[0], values[2] - values[1]);
+    let changes = format!("changes {e32:+.2e} then {e21:+.2e} from the coarsest grid");
+    if e32 * e21 < 0.0 {
+        return Some(format!(
+            "the changes alternate in sign ({changes}): the coarser grids do not resolve a \
+             feature of the contact, and no order holds"
         ));
-        return estimate;
     }
-    let slowest = if s > 0.0 { SLOWEST_ORDER } else { 0.0 };
-    if !(p > slowest) {
-        estimate.verdict = Verdict::NotConverging;
-        return estimate;
+    if p < LOWEST_ORDER {
+        return Some(format!(
+            "the changes do not shrink as the method's do ({changes}, observed order {p:.2} \
+             below {LOWEST_ORDER}): a peak that finer grids resolve higher, as at a singular \
+             edge or a slope kink of the surface"
+        ));
     }
-    let denominator = r21.powf(p.min(FORMAL_ORDER)) - s;
-    estimate.extrapolated = Some(f1 - s * e21 / denominator);
-    estimate.error = Some(e21.abs() / denominator);
-    estimate.verdict = Verdict::Converging;
-    estimate
+    (p > HIGHEST_ORDER).then(|| {
+        format!(
+            "the changes shrink faster than the method's order allows ({changes}, observed \
+             order {p:.2} above {HIGHEST_ORDER}): errors cancelling between the grids, not a \
+             rate to extrapolate"
+        )
+    })
 }
 
 /// The fixed point of `p = (ln|e32 / e21| + q(p)) / ln r21` (see the
@@ -336,13 +388,53 @@ pub struct GridRun {
     pub failure: Option<String>,
 }
 
-/// A solution's discretization error: the grids solved (the fine one
+/// What in a scene's input limits a quantity whatever the grid: the
+/// quantity is then not a converged property of the scene.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum InputLimit {
+    /// A height map interpolated bilinearly: its slope kinks at every
+    /// node line.
+    KinkedMap {
+        /// The map's file (or key).
+        label: String,
+    },
+    /// An axial profile interpolated linearly: its slope kinks at every
+    /// row.
+    KinkedProfile {
+        /// The profile's file (or key).
+        label: String,
+    },
+}
+
+impl std::fmt::Display for InputLimit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (what, label, read) = match self {
+            InputLimit::KinkedMap { label } => ("height map", label, "bilinearly"),
+            InputLimit::KinkedProfile { label } => ("profile", label, "linearly"),
+        };
+        write!(
+            f,
+            "the {what} {label} is interpolated {read}: its slope kinks at the nodes put a \
+             pressure peak under each that every finer grid resolves higher, so the peak \
+             pressure is not a converged property of the scene (interpolation = \"cubic\" \
+             gives a surface with a continuous slope)"
+        )
+    }
+}
+
+/// A solution's discretization error: the grids solved (the finest
 /// first) and each quantity's estimate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Discretization {
-    /// The grids, the fine one first; the values come from those without a
+    /// The grids, the finest first; the values come from those without a
     /// failure.
     pub grids: Vec<GridRun>,
+    /// The index in `grids` of the run's own grid (0, or 1 or 2 where
+    /// finer grids were solved).
+    pub own: usize,
+    /// What in the input limits the quantities whatever the grid.
+    pub limits: Vec<InputLimit>,
     /// Each quantity's estimate, in the order of [`Quantity::ALL`].
     pub estimates: Vec<(Quantity, ErrorEstimate)>,
     /// What limited the estimate (a coarser grid not made, not resolving
@@ -359,9 +451,13 @@ impl Discretization {
             .map(|(_, e)| e)
     }
 
-    /// Seconds spent on the coarser grids (the estimate's cost).
-    pub fn coarse_seconds(&self) -> f64 {
-        self.grids.iter().skip(1).map(|g| g.seconds).sum()
+    /// Seconds spent on the grids other than the run's own (the
+    /// estimate's cost).
+    pub fn extra_seconds(&self) -> f64 {
+        let own = self.own;
+        (self.grids.iter().enumerate())
+            .filter(|&(i, _)| i != own)
+            .fold(0.0, |sum, (_, g)| sum + g.seconds)
     }
 
     /// Every quantity not estimated for `reason`, with its fine value from
@@ -378,6 +474,8 @@ impl Discretization {
                 .map(|&q| (q, ErrorEstimate::not_estimated(&[value(q)], reason)))
                 .collect(),
             note: Some(reason.to_string()),
+            own: 0,
+            limits: Vec::new(),
         }
     }
 }
@@ -391,7 +489,7 @@ mod tests {
         // f(h) = 3 - 0.7 h^1.5 on spacings in ratios 2.08 and 1.86.
         let f = |h: f64| 3.0 - 0.7 * h.powf(1.5);
         let h = [0.1, 0.208, 0.38688];
-        let e = estimate(&[f(h[0]), f(h[1]), f(h[2])], &h, 3.0);
+        let e = estimate(&[f(h[0]), f(h[1]), f(h[2])], &h, 0, 3.0);
         assert_eq!(e.verdict, Verdict::Converging);
         assert!((e.order.unwrap() - 1.5).abs() < 1e-9, "{e:?}");
         assert!((e.extrapolated.unwrap() - 3.0).abs() < 1e-12, "{e:?}");
@@ -400,58 +498,79 @@ mod tests {
     }
 
     #[test]
-    fn alternating_errors_follow_the_alternating_model() {
-        // f_i = 1 + (-1)^i 0.01 h_i^1 : signs alternate, |error| halves.
+    fn alternating_changes_are_not_resolved() {
+        // f_i = 1 + (-1)^i 0.01 h_i : the grids straddle the limit by turns.
         let h = [0.1, 0.2, 0.4];
         let f = [1.0 + 0.01 * 0.1, 1.0 - 0.01 * 0.2, 1.0 + 0.01 * 0.4];
-        let e = estimate(&f, &h, 1.0);
+        let e = estimate(&f, &h, 0, 1.0);
+        assert_eq!(e.verdict.name(), "not resolved");
+        assert!(e.verdict.reason().unwrap().contains("alternate"), "{e:?}");
+        assert_eq!(e.error, None);
+    }
+
+    #[test]
+    fn a_finer_grid_estimates_the_run_s_own_value() {
+        // f(h) = 1 + h^2 on h/2 = 0.05, h = 0.1, 2h = 0.2, the run's own
+        // grid the second: its error is h^2 = 0.01.
+        let f = |h: f64| 1.0 + h * h;
+        let e = estimate(&[f(0.05), f(0.1), f(0.2)], &[0.05, 0.1, 0.2], 1, 1.0);
         assert_eq!(e.verdict, Verdict::Converging);
-        assert!((e.order.unwrap() - 1.0).abs() < 1e-9, "{e:?}");
+        assert_eq!(e.value(), f(0.1));
+        assert!((e.error.unwrap() - 0.01).abs() < 1e-12, "{e:?}");
         assert!((e.extrapolated.unwrap() - 1.0).abs() < 1e-12, "{e:?}");
-        assert!((e.error.unwrap() - 0.001).abs() < 1e-12, "{e:?}");
     }
 
     #[test]
     fn an_order_above_the_formal_one_extrapolates_at_the_formal_one() {
         let f = |h: f64| 1.0 + h.powi(3);
         let h = [0.1, 0.2, 0.4];
-        let e = estimate(&[f(0.1), f(0.2), f(0.4)], &h, 1.0);
+        let e = estimate(&[f(0.1), f(0.2), f(0.4)], &h, 0, 1.0);
         assert!((e.order.unwrap() - 3.0).abs() < 1e-9);
         // |e21| / (2^2 - 1) = 0.007 / 3.
         assert!((e.error.unwrap() - 0.007 / 3.0).abs() < 1e-12, "{e:?}");
     }
 
     #[test]
-    fn a_value_growing_without_bound_is_not_converging() {
-        // A singular edge's peak: f = h^(-1/2), and a logarithm.
+    fn changes_that_do_not_shrink_or_shrink_too_fast_are_not_resolved() {
+        // A singular edge's peak: f = h^(-1/2), and a kink's logarithm.
         let h = [0.05, 0.1, 0.2];
         for f in [|h: f64| h.powf(-0.5), |h: f64| (1.0 / h).ln()] {
-            let e = estimate(&[f(h[0]), f(h[1]), f(h[2])], &h, 1.0);
-            assert_eq!(e.verdict, Verdict::NotConverging, "{e:?}");
+            let e = estimate(&[f(h[0]), f(h[1]), f(h[2])], &h, 0, 1.0);
+            assert!(
+                e.verdict.reason().unwrap().contains("do not shrink"),
+                "{e:?}"
+            );
             assert_eq!(e.error, None);
         }
-        // Alternating changes that grow.
-        let e = estimate(&[1.0, 1.1, 1.04], &h, 1.0);
-        assert_eq!(e.verdict, Verdict::NotConverging, "{e:?}");
-        // Changes growing faster than h^-1: erratic coarse grids.
-        let e = estimate(&[1.0, 1.1, 1.12], &h, 1.0);
-        assert!(e.verdict.reason().unwrap().contains("faster"), "{e:?}");
+        // Order 0.4, just below the lowest, and 4.5, above the highest.
+        for (p, says) in [(0.4, "do not shrink"), (4.5, "faster")] {
+            let f = |h: f64| 1.0 + h.powf(p);
+            let e = estimate(&[f(h[0]), f(h[1]), f(h[2])], &h, 0, 1.0);
+            assert!((e.order.unwrap() - p).abs() < 1e-9, "{e:?}");
+            assert!(e.verdict.reason().unwrap().contains(says), "{e:?}");
+        }
+        // Order 0.6 and 3.9, within the range with the margin, converge.
+        for p in [0.6, 3.9] {
+            let f = |h: f64| 1.0 + h.powf(p);
+            let e = estimate(&[f(h[0]), f(h[1]), f(h[2])], &h, 0, 1.0);
+            assert_eq!(e.verdict, Verdict::Converging, "{p}: {e:?}");
+        }
     }
 
     #[test]
     fn equal_values_are_exact_and_too_few_grids_are_said() {
         let h = [0.1, 0.2, 0.4];
-        let e = estimate(&[0.0, 1e-20, -1e-20], &h, 1e-3);
+        let e = estimate(&[0.0, 1e-20, -1e-20], &h, 0, 1e-3);
         assert_eq!(e.verdict, Verdict::Exact);
         assert_eq!(e.error, Some(0.0));
-        let e = estimate(&[1.0, 1.01], &h[..2], 1.0);
+        let e = estimate(&[1.0, 1.01], &h[..2], 0, 1.0);
         assert!(e.verdict.reason().unwrap().contains("two grids"), "{e:?}");
         assert_eq!(e.values, vec![1.0, 1.01]);
-        let e = estimate(&[1.0], &h[..1], 1.0);
+        let e = estimate(&[1.0], &h[..1], 0, 1.0);
         assert_eq!(e.verdict.name(), "not estimated");
-        let e = estimate(&[1.0, f64::NAN, 1.0], &h, 1.0);
+        let e = estimate(&[1.0, f64::NAN, 1.0], &h, 0, 1.0);
         assert!(e.verdict.reason().unwrap().contains("not finite"));
-        let e = estimate(&[1.0, 1.1, 1.2], &[0.2, 0.1, 0.4], 1.0);
+        let e = estimate(&[1.0, 1.1, 1.2], &[0.2, 0.1, 0.4], 0, 1.0);
         assert!(e.verdict.reason().unwrap().contains("spacings"));
     }
 }

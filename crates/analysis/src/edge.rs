@@ -70,8 +70,7 @@ impl EdgeLaw {
 
 /// A solution's pressures on its points, read for the contact's edge: the
 /// lattice's index built once (the measure and every boundary point's
-/// truncation test use it), and the outline found once (the measure and
-/// the ellipse read it).
+/// truncation test use it), and the outline found once.
 pub(crate) struct Edge<'a> {
     points: &'a PointSet,
     pressures: &'a [f64],
@@ -203,33 +202,7 @@ impl<'a> Edge<'a> {
                 .map(|k| self.reach(g, k, (1, 0), cell.dx) + self.reach(g, k, (-1, 0), cell.dx))
                 .sum();
         }
-        self.outline_once()
-            .map_or(cells, |edge| polygon_moments(edge).area)
-    }
-
-    /// The ellipse of the contact's outline on a surface: the ellipse with
-    /// the outline polygon's area centroid and second moments (for an
-    /// ellipse of semi-axes a, b the covariance of its area has the
-    /// eigenvalues `a^2 / 4`, `b^2 / 4`); `None` on a line or where the
-    /// edge cannot be resolved.
-    pub(crate) fn ellipse(&self) -> Option<ContactEllipse> {
-        if self.grid.is_none() || self.points.dimension() == Dimension::Line {
-            return None;
-        }
-        let m = polygon_moments(self.outline_once()?);
-        // The covariance [[sxx, sxy], [sxy, syy]] and its eigenvalues.
-        let mean = 0.5 * (m.sxx + m.syy);
-        let d = (0.5 * (m.sxx - m.syy)).hypot(m.sxy);
-        let angle = if d == 0.0 {
-            0.0
-        } else {
-            0.5 * (2.0 * m.sxy).atan2(m.sxx - m.syy)
-        };
-        Some(ContactEllipse {
-            semi_major: 2.0 * (mean + d).sqrt(),
-            semi_minor: 2.0 * (mean - d).max(0.0).sqrt(),
-            angle,
-        })
+        self.outline_once().map_or(cells, polygon_area)
     }
 
     /// On a surface: the edge points along every face that leaves the
@@ -289,7 +262,7 @@ impl<'a> Edge<'a> {
         }
         edge.sort_by(|a, b| a.0.total_cmp(&b.0));
         let edge: Vec<(f64, f64)> = edge.into_iter().map(|(_, x, y)| (x, y)).collect();
-        let polygon = polygon_moments(&edge).area;
+        let polygon = polygon_area(&edge);
         (!((polygon - cells).abs() > edge.len() as f64 * cell.dx * cell.dy)).then_some(edge)
     }
 }
@@ -358,54 +331,18 @@ impl PressedCells {
     }
 }
 
-/// The ellipse of a contact's outline: its semi-axes and the direction of
-/// the major one (`crate::ContactSolution::contact_ellipse`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactEllipse {
-    /// The major semi-axis (length).
-    pub semi_major: f64,
-    /// The minor semi-axis (length).
-    pub semi_minor: f64,
-    /// The direction of the major axis from the x axis (radians, in
-    /// [-pi/2, pi/2]).
-    pub angle: f64,
-}
-
-/// A polygon's area and the covariance of its area about its centroid.
-struct Moments {
-    area: f64,
-    sxx: f64,
-    syy: f64,
-    sxy: f64,
-}
-
-/// The area and central second moments of the polygon of `vertices` (in
-/// order, either sense), by the shoelace sums: with `c_i = x_i y_{i+1} -
-/// x_{i+1} y_i`, `A = sum c_i / 2`, `∫x dA = sum (x_i + x_{i+1}) c_i / 6`,
-/// `∫x^2 dA = sum (x_i^2 + x_i x_{i+1} + x_{i+1}^2) c_i / 12`,
-/// `∫x y dA = sum (x_i y_{i+1} + 2 x_i y_i + 2 x_{i+1} y_{i+1} + x_{i+1} y_i) c_i / 24`.
-fn polygon_moments(vertices: &[(f64, f64)]) -> Moments {
+/// The area of the polygon of `vertices` (in order, either sense), by the
+/// shoelace sum: with `c_i = x_i y_{i+1} - x_{i+1} y_i`, `A = |sum c_i| / 2`.
+fn polygon_area(vertices: &[(f64, f64)]) -> f64 {
     let m = vertices.len();
-    let (mut a, mut mx, mut my, mut ixx, mut iyy, mut ixy) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-    for i in 0..m {
-        let (x0, y0) = vertices[i];
-        let (x1, y1) = vertices[(i + 1) % m];
-        let c = x0 * y1 - x1 * y0;
-        a += c;
-        mx += (x0 + x1) * c;
-        my += (y0 + y1) * c;
-        ixx += (x0 * x0 + x0 * x1 + x1 * x1) * c;
-        iyy += (y0 * y0 + y0 * y1 + y1 * y1) * c;
-        ixy += (x0 * y1 + 2.0 * x0 * y0 + 2.0 * x1 * y1 + x1 * y0) * c;
-    }
-    let area = 0.5 * a;
-    let (cx, cy) = (mx / (6.0 * area), my / (6.0 * area));
-    Moments {
-        area: area.abs(),
-        sxx: ixx / (12.0 * area) - cx * cx,
-        syy: iyy / (12.0 * area) - cy * cy,
-        sxy: ixy / (24.0 * area) - cx * cy,
-    }
+    let twice: f64 = (0..m)
+        .map(|i| {
+            let (x0, y0) = vertices[i];
+            let (x1, y1) = vertices[(i + 1) % m];
+            x0 * y1 - x1 * y0
+        })
+        .sum();
+    0.5 * twice.abs()
 }
 
 #[cfg(test)]
@@ -478,43 +415,5 @@ mod tests {
             .collect();
         let cells = points.xs().iter().filter(|x| x.abs() < 1.0).count() as f64 * 0.1;
         assert!((Edge::new(&points, &q, EdgeLaw::SquareRoot).measure() - cells).abs() < 1e-12);
-    }
-
-    #[test]
-    fn a_hertz_ellipse_s_outline_gives_its_semi_axes_and_direction() {
-        // p = sqrt(1 - u^2/a^2 - v^2/b^2), a = 1, b = 0.3, on cells of
-        // 0.01 x 0.01, aligned and turned by 0.4 rad. The edge points lie on
-        // the ellipse to O(h^2) (p^2 is quadratic, not linear, along a grid
-        // line) and the chords between them cut it: errors of order
-        // (h / b)^2 = 1.1e-3 relative. The semi-axes within 2 (h / b)^2
-        // (measured: 1.6e-4 and 4.6e-4), the direction within 1e-3 rad
-        // (measured: 4e-5).
-        let points = PointSet::grid_rectangle(1.2, 1.2, 240, 240).unwrap();
-        for angle in [0.0f64, 0.4] {
-            let (s, c) = angle.sin_cos();
-            let p: Vec<f64> = (0..points.len())
-                .map(|k| {
-                    let (x, y) = (points.x(k), points.y(k));
-                    let (u, v) = (x * c + y * s, -x * s + y * c);
-                    (1.0 - u * u - (v / 0.3).powi(2)).max(0.0).sqrt()
-                })
-                .collect();
-            let e = Edge::new(&points, &p, EdgeLaw::SquareRoot)
-                .ellipse()
-                .unwrap();
-            let tolerance = 2.0 * (0.01f64 / 0.3).powi(2);
-            assert!((e.semi_major - 1.0).abs() < tolerance, "{angle}: {e:?}");
-            assert!(
-                (e.semi_minor / 0.3 - 1.0).abs() < tolerance,
-                "{angle}: {e:?}"
-            );
-            assert!((e.angle - angle).abs() < 1e-3, "{angle}: {e:?}");
-        }
-        let line = PointSet::line(-1.0, 1.0, 20).unwrap();
-        assert!(
-            Edge::new(&line, &[1.0; 20], EdgeLaw::SquareRoot)
-                .ellipse()
-                .is_none()
-        );
     }
 }

@@ -500,6 +500,48 @@ impl GridFamily {
             }
         }
     }
+    /// The same zone at half the spacing, the inverse of
+    /// [`GridFamily::coarser`]: its coarser grid is this one. Four times
+    /// the points on a surface, twice on a line.
+    pub fn finer(&self) -> GridFamily {
+        match *self {
+            GridFamily::Disk { spacing, radius } => GridFamily::Disk {
+                spacing: 0.5 * spacing,
+                radius,
+            },
+            GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx,
+                ny,
+            } => GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx: double_count(nx),
+                ny: double_count(ny),
+            },
+            GridFamily::Line { start, end, n } => GridFamily::Line {
+                start,
+                end,
+                n: double_count(n),
+            },
+            GridFamily::HertzLine {
+                half_width,
+                across,
+                zone,
+            } => GridFamily::HertzLine {
+                half_width,
+                across: 2 * across.max(2) - 1,
+                zone,
+            },
+        }
+    }
+}
+
+/// The count whose [`half_count`] is `n`: `2n - 1` for an odd `n` (a point
+/// stays at the centre), `2n` for an even one.
+fn double_count(n: usize) -> usize {
+    if n % 2 == 1 { 2 * n - 1 } else { 2 * n }
 }
 
 /// The integer nearest `n / 2` with the parity of `n` (the larger of two),
@@ -748,6 +790,37 @@ mod tests {
             radius: 0.5,
         };
         assert_eq!(small.coarser(), None);
+    }
+
+    #[test]
+    fn a_finer_grid_is_the_one_whose_coarser_grid_is_this() {
+        for n in [3, 5, 8, 21, 40, 121] {
+            assert_eq!(half_count(double_count(n)), Some(n), "{n}");
+        }
+        let families = [
+            GridFamily::Disk {
+                spacing: 0.1,
+                radius: 1.0,
+            },
+            GridFamily::Rectangle {
+                half_x: 1.0,
+                half_y: 2.0,
+                nx: 21,
+                ny: 40,
+            },
+            GridFamily::Line {
+                start: -1.0,
+                end: 1.0,
+                n: 27,
+            },
+            hertz_line_family(1.0, 21, 1.3).unwrap(),
+        ];
+        for family in families {
+            let finer = family.finer();
+            assert_eq!(finer.coarser(), Some(family), "{family:?}");
+            let ratio = family.spacing() / finer.spacing();
+            assert!((1.9..=2.1).contains(&ratio), "{family:?}: {ratio}");
+        }
     }
 
     #[test]

@@ -55,6 +55,7 @@
 pub mod contact;
 pub mod discretization;
 mod edge;
+mod ellipse;
 mod error;
 pub mod estimate;
 pub mod grid;
@@ -72,11 +73,11 @@ pub use contact::{
     Geometry, HeightMap, Layout, Plan, Principal, ProblemBuilder, ProfileAxis, Surface, Warning,
     separations,
 };
-pub use edge::ContactEllipse;
 pub use elcon_influence::{
     Body, Dimension, Material, Model, PointSet, combined_modulus, combined_modulus_of,
 };
 pub use elcon_lcp::{Method, Options};
+pub use ellipse::ContactEllipse;
 pub use error::{AnalysisError, Num};
 pub use estimate::{Estimate, Relief, Tableau};
 pub use grid::GridFamily;

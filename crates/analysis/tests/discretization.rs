@@ -3,16 +3,17 @@
 //! `cargo run --release --example discretization_validation`).
 //!
 //! What holds and is asserted: on Conry & Seireg's Example 1 spheres at 41
-//! and 81 points across, the estimates of the approach and of the peak
-//! pressure are within a factor 2 of their errors against Hertz; a rigid
-//! flat punch's peak pressure (singular at the rim) and a flat roller's
-//! (singular at its square ends) are `not converging`; a tilt symmetry
-//! makes zero is `exact`; Hertz cylinders in plane strain at 41 and 201
-//! across, whose coarser grids keep the contact's edge on a point, have
-//! the approach and the peak estimated within a factor 2 too; at 21
-//! points across the grid at 4h would put 5
-//! cells across the contact, so only two grids are solved and nothing is
-//! estimated, which the verdict says.
+//! and 81 points across, the estimate of the peak pressure is within a
+//! factor 2 of its error against Hertz, and so is the approach's at 81;
+//! at 41 the approach's changes alternate and it is `not resolved`; a
+//! rigid flat punch's peak pressure (singular at the rim) and a flat
+//! roller's (singular at its square ends) are `not resolved`; a tilt
+//! symmetry makes zero is `exact`; Hertz cylinders in plane strain at 41
+//! and 201 across, whose coarser grids keep the contact's edge on a point,
+//! have the approach and the peak estimated within a factor 2 too; at 21
+//! points across the grid at 4h would put 5 cells across the contact, so
+//! a finer grid (h/2) is solved instead, and the peak's estimate is within
+//! a factor 2 there too.
 
 use elcon_analysis::discretization::{Discretization, Quantity, Verdict};
 use elcon_analysis::references::{FlatPunch, HertzCylinders, HertzSpheres};
@@ -63,10 +64,15 @@ fn spheres(across: usize) -> (HertzSpheres, ContactSolution, Discretization) {
 }
 
 /// The estimate over the true relative error.
-fn ratio(d: &Discretization, quantity: Quantity, true_error: f64) -> f64 {
+/// The estimate over the true relative error, `None` where the quantity
+/// is not converging (its verdict then says why: asserted not resolved).
+fn ratio(d: &Discretization, quantity: Quantity, true_error: f64) -> Option<f64> {
     let e = d.get(quantity).unwrap();
-    assert_eq!(e.verdict, Verdict::Converging, "{quantity:?}: {e:?}");
-    e.relative_error().unwrap() / true_error.abs()
+    if e.verdict != Verdict::Converging {
+        assert_eq!(e.verdict.name(), "not resolved", "{quantity:?}: {e:?}");
+        return None;
+    }
+    Some(e.relative_error().unwrap() / true_error.abs())
 }
 
 #[test]
@@ -83,11 +89,18 @@ fn the_spheres_approach_and_peak_are_estimated_within_a_factor_2_at_41_and_81_ac
                 sol.max_pressure / hertz.peak_pressure() - 1.0,
             ),
         ] {
+            // At 41 across the approach's changes alternate (its grid at 4h,
+            // 11 across, happens to lie closer to Hertz than 2h's): not
+            // resolved, which is the truth of those three grids.
             let r = ratio(&d, quantity, truth);
-            assert!(
-                (0.5..=2.0).contains(&r),
-                "{across} across, {quantity:?}: {r}"
-            );
+            let converging = across == 81 || quantity == Quantity::MaxPressure;
+            assert_eq!(r.is_some(), converging, "{across} across, {quantity:?}");
+            if let Some(r) = r {
+                assert!(
+                    (0.5..=2.0).contains(&r),
+                    "{across} across, {quantity:?}: {r}"
+                );
+            }
         }
         // The load is given, and symmetry makes the tilts and the centre zero.
         for q in [
@@ -102,25 +115,28 @@ fn the_spheres_approach_and_peak_are_estimated_within_a_factor_2_at_41_and_81_ac
 }
 
 #[test]
-fn too_coarse_a_grid_at_4h_leaves_two_grids_and_no_estimate() {
-    let (_, _, d) = spheres(21);
-    assert_eq!(d.grids.len(), 2);
-    let note = d.note.as_deref().unwrap();
-    assert!(
-        note.contains("4 times the spacing") && note.contains("fewer than 8"),
-        "{note}"
+fn too_coarse_a_grid_at_4h_is_replaced_by_a_finer_one() {
+    // At 21 points across the grid at 4h would put 5 cells across the
+    // contact: the grids are h/2, h and 2h, the run's own the second.
+    let (hertz, sol, d) = spheres(21);
+    assert_eq!(d.grids.len(), 3, "{d:?}");
+    assert_eq!(d.own, 1);
+    assert!(d.grids[0].points > 3 * d.grids[1].points, "{d:?}");
+    assert_eq!(d.note, None);
+    // The peak's error is estimated within a factor 2 (measured: 1.04);
+    // the approach's changes alternate (as at 41 across): not resolved.
+    let truth = sol.max_pressure / hertz.peak_pressure() - 1.0;
+    let r = ratio(&d, Quantity::MaxPressure, truth).unwrap();
+    assert!((0.5..=2.0).contains(&r), "{r}");
+    assert_eq!(
+        d.get(Quantity::MaxPressure).unwrap().value(),
+        sol.max_pressure
     );
-    let e = d.get(Quantity::MaxPressure).unwrap();
-    assert!(
-        e.verdict.reason().unwrap().starts_with("two grids"),
-        "{e:?}"
-    );
-    assert_eq!(e.values.len(), 2);
-    assert_eq!(e.error, None);
+    assert_eq!(ratio(&d, Quantity::Approach, 1.0), None);
 }
 
 #[test]
-fn a_punch_rim_and_a_flat_rollers_ends_are_not_converging() {
+fn a_punch_rim_and_a_flat_rollers_ends_are_not_resolved() {
     let aluminium = Material::new(70e9, 0.33).unwrap();
     let (a, delta) = (0.01, 1e-5);
     let punch = FlatPunch::new(aluminium.plane_strain_modulus(), a).unwrap();
@@ -138,7 +154,10 @@ fn a_punch_rim_and_a_flat_rollers_ends_are_not_converging() {
         );
         // The rim cells' pressure grows like h^(-1/2): an order about -1/2.
         let e = d.get(Quantity::MaxPressure).unwrap();
-        assert_eq!(e.verdict, Verdict::NotConverging, "{cells}: {e:?}");
+        assert!(
+            e.verdict.reason().unwrap().contains("do not shrink"),
+            "{cells}: {e:?}"
+        );
         assert!(e.order.unwrap() < 0.0, "{e:?}");
         // The approach is prescribed.
         assert_eq!(d.get(Quantity::Approach).unwrap().verdict, Verdict::Exact);
@@ -158,7 +177,7 @@ fn a_punch_rim_and_a_flat_rollers_ends_are_not_converging() {
     };
     let (_, d) = solved(&family, [&body, &body], &roller, Loading::load(10_000.0));
     let e = d.get(Quantity::MaxPressure).unwrap();
-    assert_eq!(e.verdict, Verdict::NotConverging, "{e:?}");
+    assert_eq!(e.verdict.name(), "not resolved", "{e:?}");
 }
 
 #[test]
@@ -185,7 +204,7 @@ fn the_cylinders_approach_and_peak_are_estimated_within_a_factor_2_at_41_and_201
                 sol.max_pressure / hertz.peak_pressure() - 1.0,
             ),
         ] {
-            let r = ratio(&d, quantity, truth);
+            let r = ratio(&d, quantity, truth).expect("converging");
             assert!((0.5..=2.0).contains(&r), "{across} {quantity:?}: {r}");
         }
     }

@@ -1,6 +1,7 @@
 //! result.json's `discretization` block: the grids the scene was solved
-//! on again (`h -> 2h -> 4h`) and each quantity's error estimated by
-//! generalized Richardson extrapolation (`elcon_analysis::discretization`).
+//! on again (`h -> 2h -> 4h`, or `h/2 -> h -> 2h` where 4h would not
+//! resolve the contact) and each quantity's error estimated by generalized
+//! Richardson extrapolation (`elcon_analysis::discretization`).
 
 use elcon_analysis::discretization::{Discretization, ErrorEstimate, GridRun, Quantity, Verdict};
 use serde::{Deserialize, Serialize};
@@ -11,8 +12,9 @@ use serde::{Deserialize, Serialize};
 pub enum VerdictJson {
     /// The changes shrink with the grid at the observed order.
     Converging,
-    /// The changes do not shrink: no error is estimated.
-    NotConverging,
+    /// The grids do not show convergence, or the input limits the
+    /// quantity: no error is estimated (the reason says why).
+    NotResolved,
     /// Every grid gives the same value.
     Exact,
     /// Not enough grids were solved.
@@ -23,16 +25,16 @@ impl VerdictJson {
     /// Every verdict, in the order messages list them.
     pub const ALL: [VerdictJson; 4] = [
         VerdictJson::Converging,
-        VerdictJson::NotConverging,
+        VerdictJson::NotResolved,
         VerdictJson::Exact,
         VerdictJson::NotEstimated,
     ];
 
-    /// Its name: "converging", "not converging", "exact", "not estimated".
+    /// Its name: "converging", "not resolved", "exact", "not estimated".
     pub const fn name(self) -> &'static str {
         match self {
             VerdictJson::Converging => "converging",
-            VerdictJson::NotConverging => "not converging",
+            VerdictJson::NotResolved => "not resolved",
             VerdictJson::Exact => "exact",
             VerdictJson::NotEstimated => "not estimated",
         }
@@ -42,7 +44,7 @@ impl VerdictJson {
     pub fn of(v: &Verdict) -> Self {
         match v {
             Verdict::Converging => VerdictJson::Converging,
-            Verdict::NotConverging => VerdictJson::NotConverging,
+            Verdict::NotResolved(_) => VerdictJson::NotResolved,
             Verdict::Exact => VerdictJson::Exact,
             // `Verdict::NotEstimated`; a new verdict gets its own name here.
             _ => VerdictJson::NotEstimated,
@@ -50,12 +52,12 @@ impl VerdictJson {
     }
 
     /// An estimated relative error as a table shows it: `1.2e-3`, `exact`,
-    /// `n.c.` (not converging) or `-` (not estimated).
+    /// `n.r.` (not resolved) or `-` (not estimated).
     pub fn short(self, relative_error: Option<f64>) -> String {
         match self {
             VerdictJson::Converging => relative_error.map_or("-".into(), |e| format!("{e:.1e}")),
             VerdictJson::Exact => "exact".into(),
-            VerdictJson::NotConverging => "n.c.".into(),
+            VerdictJson::NotResolved => "n.r.".into(),
             VerdictJson::NotEstimated => "-".into(),
         }
     }
@@ -82,21 +84,22 @@ pub struct GridJson {
 /// One quantity's estimate.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct QuantityJson {
-    /// The fine grid's value (the run's).
+    /// The run's own grid's value.
     pub value: f64,
-    /// The value on each grid solved, the fine one first.
+    /// The value on each grid solved, the finest first (the run's own at
+    /// the block's `own_grid`).
     pub values: Vec<f64>,
     /// Richardson's limit (null unless converging or exact).
     pub extrapolated: Option<f64>,
-    /// The fine value's estimated error, the quantity's unit.
+    /// The run's value's estimated error, the quantity's unit.
     pub error: Option<f64>,
     /// The error over the value's magnitude.
     pub relative_error: Option<f64>,
     /// The observed order p (three grids).
     pub order: Option<f64>,
-    /// `converging`, `not converging`, `exact` or `not estimated`.
+    /// `converging`, `not resolved`, `exact` or `not estimated`.
     pub verdict: VerdictJson,
-    /// Why it is not estimated.
+    /// Why it is not resolved or not estimated.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
 }
@@ -115,8 +118,8 @@ impl QuantityJson {
         }
     }
 
-    /// The relative error as a table shows it: `1.2e-3`, `exact`, `n.c.`
-    /// (not converging) or `-` (not estimated).
+    /// The relative error as a table shows it: `1.2e-3`, `exact`, `n.r.`
+    /// (not resolved) or `-` (not estimated).
     pub fn short(&self) -> String {
         self.verdict.short(self.relative_error)
     }
@@ -145,18 +148,32 @@ pub struct QuantitiesJson {
     pub tilt_y: QuantityJson,
 }
 
-/// result.json's `discretization`: the grids solved (the run's first) and
-/// each quantity's estimate, with what limited it.
+/// result.json's `discretization`: the grids solved (the finest first)
+/// and each quantity's estimate, with what limited it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DiscretizationJson {
-    /// The grids, the run's first.
+    /// The grids, the finest first.
     pub grids: Vec<GridJson>,
+    /// The index in `grids` of the run's own grid (0 unless finer grids
+    /// were solved).
+    #[serde(default)]
+    pub own_grid: usize,
+    /// Seconds spent on the grids other than the run's own: the
+    /// estimate's cost (also `seconds.error_estimate`).
+    #[serde(default)]
+    pub extra_seconds: f64,
     /// Each quantity.
     pub quantities: QuantitiesJson,
     /// What limited the estimate (too few points for a coarser grid, a
-    /// coarse solve that failed, separations given per point).
+    /// finer grid over its memory allowance, a solve that failed,
+    /// separations given per point).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
+    /// What in the input limits a quantity whatever the grid (a surface
+    /// interpolated with slope kinks), each naming the input: the same
+    /// text is among the run's warnings.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub limits: Vec<String>,
 }
 
 impl DiscretizationJson {
@@ -168,6 +185,8 @@ impl DiscretizationJson {
         };
         Self {
             grids: d.grids.iter().map(grid).collect(),
+            own_grid: d.own,
+            extra_seconds: d.extra_seconds(),
             quantities: QuantitiesJson {
                 approach: q(Quantity::Approach),
                 max_pressure: q(Quantity::MaxPressure),
@@ -180,12 +199,8 @@ impl DiscretizationJson {
                 tilt_y: q(Quantity::TiltY),
             },
             note: d.note.clone(),
+            limits: d.limits.iter().map(ToString::to_string).collect(),
         }
-    }
-
-    /// Seconds spent on the coarser grids.
-    pub fn coarse_seconds(&self) -> f64 {
-        self.grids.iter().skip(1).map(|g| g.seconds).sum()
     }
 }
 
@@ -201,6 +216,7 @@ fn grid(g: &GridRun) -> GridJson {
 fn unknown() -> ErrorEstimate {
     ErrorEstimate {
         values: Vec::new(),
+        own: 0,
         extrapolated: None,
         error: None,
         order: None,
@@ -216,14 +232,14 @@ mod tests {
     fn each_verdict_keeps_elcon_analysis_s_name() {
         for v in [
             Verdict::Converging,
-            Verdict::NotConverging,
+            Verdict::NotResolved("alternating".into()),
             Verdict::Exact,
             Verdict::NotEstimated("one grid".into()),
         ] {
             assert_eq!(VerdictJson::of(&v).name(), v.name());
         }
         assert_eq!(VerdictJson::Converging.short(Some(1.23e-3)), "1.2e-3");
-        assert_eq!(VerdictJson::NotConverging.short(Some(1.0)), "n.c.");
+        assert_eq!(VerdictJson::NotResolved.short(Some(1.0)), "n.r.");
         assert_eq!(VerdictJson::NotEstimated.short(None), "-");
     }
 }

@@ -155,7 +155,7 @@ impl Row {
     }
 
     /// The estimated error as the Markdown table shows it: `1.2e-3`,
-    /// `exact`, `n.c.` (not converging), or empty.
+    /// `exact`, `n.r.` (not resolved), or empty.
     fn estimated_cell(error: Option<f64>, verdict: Option<VerdictJson>) -> String {
         match (verdict, error) {
             (Some(VerdictJson::Converging), None) | (Some(VerdictJson::NotEstimated) | None, _) => {

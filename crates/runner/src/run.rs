@@ -201,13 +201,11 @@ pub fn run(scene: &Scene) -> Result<Run, RunError> {
         seconds: Seconds {
             assembly: problem.assembly_seconds(),
             solve: solution.solve_seconds,
-            error_estimate: discretization
-                .as_ref()
-                .map_or(0.0, DiscretizationJson::coarse_seconds),
+            error_estimate: discretization.as_ref().map_or(0.0, |d| d.extra_seconds),
             subsurface: subsurface_json.as_ref().map_or(0.0, |s| s.seconds),
             total: start.elapsed().as_secs_f64(),
         },
-        solution: SolutionJson::of(&solution, scene.warnings()),
+        solution: SolutionJson::of(&solution, &warnings(scene, discretization.as_ref())),
         discretization,
         subsurface: subsurface_json,
         reference,
@@ -222,6 +220,13 @@ pub fn run(scene: &Scene) -> Result<Run, RunError> {
         subsurface: fields,
         result,
     })
+}
+
+/// The scene's warnings, then what in its input limits the estimate's
+/// quantities (a surface interpolated with slope kinks).
+fn warnings(scene: &Scene, discretization: Option<&DiscretizationJson>) -> Vec<String> {
+    let limits = discretization.map_or(&[][..], |d| &d.limits[..]);
+    scene.warnings().iter().chain(limits).cloned().collect()
 }
 
 #[cfg(test)]

@@ -1,18 +1,26 @@
 //! The discretization error of a solution: the same problem (bodies,
-//! geometry, loading, storage rule, method) solved on the coarser grids of
-//! its family, `h -> 2h` and `4h` (`crate::grid::GridFamily::coarser`: a
-//! quarter and a sixteenth of the points on a surface, a half and a quarter
-//! on a line), and each quantity's values put through the generalized
+//! geometry, loading, storage rule, method) solved on other grids of its
+//! family, and each quantity's values put through the generalized
 //! Richardson estimate of `crate::discretization`.
 //!
-//! A coarser grid is solved only while it resolves the contact: the fine
-//! contact spans at least [`MIN_CELLS_ACROSS`] of its cells along each
-//! axis. A coarse solve that fails, or is not certified, ends the sequence
-//! there (the quantities are then estimated from fewer grids, or not
-//! estimated, with the reason); it never fails the estimate. The coarse
-//! problems are built and dropped one at a time after the fine solve: each
-//! holds at most a quarter of the fine problem's S on a line and a
-//! sixteenth on a surface.
+//! The grids are the run's own h and its coarser `2h` and `4h`
+//! (`crate::grid::GridFamily::coarser`: a quarter and a sixteenth of the
+//! points on a surface, a half and a quarter on a line) while they resolve
+//! the contact: the fine contact spans at least [`MIN_CELLS_ACROSS`] of
+//! their cells along each axis. Where the grid at 4h would not, a finer
+//! grid `h/2` (`GridFamily::finer`) is solved instead, and the grids are
+//! `h/2, h, 2h`; where 2h would not either, `h/4, h/2, h`. A finer grid is
+//! solved only while its solve's memory ([`Plan`](super::builder::Plan))
+//! stays within [`finer_allowance`] of the run's own; otherwise the
+//! estimate says so. A solve that fails, or is not certified, ends the
+//! sequence (the quantities are then estimated from fewer grids, or not
+//! estimated, with the reason); it never fails the estimate. The other
+//! problems are built and dropped one at a time after the fine solve.
+//!
+//! A surface interpolated with slope kinks (a height map read bilinearly,
+//! a profile linearly) puts a pressure peak under each kink that every
+//! finer grid resolves higher: the peak pressure is then not resolved
+//! whatever its changes, the input named ([`InputLimit`]).
 
 use std::time::Instant;
 
@@ -22,26 +30,30 @@ use elcon_lcp::{Method, Options};
 use super::builder::ProblemBuilder;
 use super::geometry::Geometry;
 use super::solution::ContactSolution;
+use super::tabulated::Departure;
 use crate::AnalysisError;
-use crate::discretization::{Discretization, GridRun, MIN_CELLS_ACROSS, Quantity, estimate};
+use crate::discretization::{
+    Discretization, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity, Verdict, estimate,
+    finer_allowance,
+};
 use crate::grid::GridFamily;
 use crate::subsurface::contact_spans;
 
-/// The coarser grids solved beyond the fine one (2h and 4h).
-const COARSER_GRIDS: usize = 2;
+/// The grids an estimate solves besides the run's own.
+const OTHER_GRIDS: usize = 2;
 
 impl ProblemBuilder<'_> {
     /// The discretization error of `fine`, this builder's problem solved on
     /// `family`'s points by `method` with `options`: the same problem
-    /// solved on the family's coarser grids (see the module
-    /// documentation), each quantity of [`Quantity::ALL`] estimated. A
-    /// problem whose separations are given per point has no coarser
-    /// problem: every quantity is then not estimated, with that reason.
+    /// solved on other grids of the family (see the module documentation),
+    /// each quantity of [`Quantity::ALL`] estimated. A problem whose
+    /// separations are given per point has no other grid: every quantity
+    /// is then not estimated, with that reason.
     ///
     /// # Errors
     /// [`AnalysisError::Incompatible`] when `family` does not lay out this
     /// builder's number of points, [`AnalysisError::SizeMismatch`] when
-    /// `fine` is not a solution on them; the coarse grids' failures are
+    /// `fine` is not a solution on them; the other grids' failures are
     /// reported in the result, not as errors.
     pub fn discretization(
         &self,
@@ -65,129 +77,326 @@ impl ProblemBuilder<'_> {
                 found: fine.forces.len(),
             });
         }
-        let mut grids = vec![GridRun {
+        let own = GridRun {
             points: n,
             spacing: family.spacing(),
             seconds: fine.assembly_seconds + fine.solve_seconds,
             failure: None,
-        }];
+        };
         if let Geometry::Separation(_) = self.geometry() {
-            let reason = "the separations are given per point: a coarser grid has none";
+            let reason = "the separations are given per point: another grid has none";
             return Ok(Discretization::not_estimated(
-                grids,
+                vec![own],
                 |q| value(fine, q),
                 reason,
             ));
         }
-        let (solutions, stop) = self.coarser_solutions(family, fine, method, options, &mut grids);
-        let note = stop.map(|stop| stop.to_string());
-        let spacings: Vec<f64> = grids
-            .iter()
-            .filter(|g| g.failure.is_none())
-            .map(|g| g.spacing)
-            .collect();
-        let estimates = Quantity::ALL
-            .iter()
-            .map(|&q| {
-                let values: Vec<f64> = solutions.iter().map(|s| value(s, q)).collect();
-                let mut e = estimate(&values, &spacings, scale(&solutions, q));
-                if let (Some(reason), Some(why)) = (e.verdict.reason(), &note) {
-                    e.verdict = crate::discretization::Verdict::NotEstimated(format!(
-                        "{}: {why}",
-                        reason.split(':').next().unwrap_or(reason)
-                    ));
-                }
-                (q, e)
-            })
-            .collect();
+        let run = Solver {
+            builder: self,
+            fine,
+            method,
+            options,
+        };
+        let sequence = run.sequence(family, own);
+        let limits = input_limits(self.geometry());
+        let estimates = sequence.estimates(&limits);
         Ok(Discretization {
-            grids,
+            grids: sequence.grids,
             estimates,
-            note,
+            note: sequence.stop.map(|stop| stop.to_string()),
+            own: sequence.own,
+            limits,
         })
     }
+}
 
-    /// `fine` and its problem solved on the coarser grids of `family`, each
-    /// logged in `grids`, until one is not made, does not resolve the
-    /// contact or fails ([`Stop`], why the sequence ended early).
-    fn coarser_solutions(
-        &self,
-        family: &GridFamily,
-        fine: &ContactSolution,
-        method: Method,
-        options: &Options,
-        grids: &mut Vec<GridRun>,
-    ) -> (Vec<ContactSolution>, Option<Stop>) {
-        let mut solutions = vec![fine.clone()];
+/// The other grids' problems of a run, solved as the fine one was.
+struct Solver<'a, 'b> {
+    builder: &'a ProblemBuilder<'b>,
+    fine: &'a ContactSolution,
+    method: Method,
+    options: &'a Options,
+}
+
+/// The grids solved, the finest first, with the solutions of those that
+/// did not fail, the run's own grid's index among them, and why the
+/// sequence ended early, if it did.
+struct Sequence {
+    grids: Vec<GridRun>,
+    solutions: Vec<ContactSolution>,
+    own: usize,
+    stop: Option<Stop>,
+}
+
+impl Solver<'_, '_> {
+    /// The run's own grid `own` of `family` with the others: 2h and 4h
+    /// while they resolve the contact, finer grids in place of those that
+    /// do not (see the module documentation).
+    fn sequence(&self, family: &GridFamily, own: GridRun) -> Sequence {
+        let mut coarse = Vec::new();
+        let mut stop = None;
         let mut current = *family;
-        for level in 1..=COARSER_GRIDS {
-            let (coarse, points) = match self.coarse(&current, fine, level) {
-                Ok(grid) => grid,
-                Err(stop) => return (solutions, Some(stop)),
-            };
-            let start = Instant::now();
-            let solved = self
-                .on(points)
-                .build()
-                .and_then(|p| p.solve(method, options));
-            let seconds = start.elapsed().as_secs_f64();
-            let failure = match &solved {
-                Ok(s) if s.certificate.holds() => None,
-                Ok(s) => Some(format!("not certified ({})", s.certificate)),
-                Err(e) => Some(e.to_string()),
-            };
-            grids.push(GridRun {
-                points: solved.as_ref().map_or(0, |s| s.forces.len()),
-                spacing: coarse.spacing(),
-                seconds,
-                failure: failure.clone(),
-            });
-            if let Some(failure) = failure {
-                let times = 1 << level;
-                return (solutions, Some(Stop::Failed { times, failure }));
+        for level in 1..=OTHER_GRIDS {
+            match self.coarse(&current, level) {
+                Ok((grid, points)) => {
+                    coarse.push((grid, points));
+                    current = grid;
+                }
+                Err(why) => {
+                    stop = Some(why);
+                    break;
+                }
             }
-            solutions.extend(solved.ok());
-            current = coarse;
         }
-        (solutions, None)
+        let mut finer = Vec::new();
+        let mut current = *family;
+        for level in 1..=OTHER_GRIDS - coarse.len() {
+            match self.finer(&current, level) {
+                Ok((grid, points)) => {
+                    finer.push((grid, points));
+                    current = grid;
+                }
+                Err(why) => {
+                    stop = Some(why);
+                    break;
+                }
+            }
+        }
+        if finer.len() + coarse.len() == OTHER_GRIDS {
+            stop = None;
+        }
+        let mut sequence = Sequence {
+            grids: vec![own],
+            solutions: vec![self.fine.clone()],
+            own: 0,
+            stop,
+        };
+        for (level, (grid, points)) in finer.into_iter().enumerate() {
+            let times = 0.5f64.powi(level as i32 + 1);
+            if let Err(why) = sequence.push_finer(self.solve(&grid, points, times)) {
+                sequence.stop = Some(why);
+                break;
+            }
+        }
+        for (level, (grid, points)) in coarse.into_iter().enumerate() {
+            let times = 2.0f64.powi(level as i32 + 1);
+            if let Err(why) = sequence.push_coarser(self.solve(&grid, points, times)) {
+                sequence.stop = Some(why);
+                break;
+            }
+        }
+        sequence
+    }
+
+    /// `grid`'s problem on `points` solved, logged as the grid at `times`
+    /// the spacing; its solution if it is certified.
+    fn solve(&self, grid: &GridFamily, points: PointSet, times: f64) -> Solved {
+        let start = Instant::now();
+        let solved = self
+            .builder
+            .on(points)
+            .build()
+            .and_then(|p| p.solve(self.method, self.options));
+        let seconds = start.elapsed().as_secs_f64();
+        let failure = match &solved {
+            Ok(s) if s.certificate.holds() => None,
+            Ok(s) => Some(format!("not certified ({})", s.certificate)),
+            Err(e) => Some(e.to_string()),
+        };
+        let run = GridRun {
+            points: solved.as_ref().map_or(0, |s| s.forces.len()),
+            spacing: grid.spacing(),
+            seconds,
+            failure: failure.clone(),
+        };
+        Solved {
+            run,
+            times,
+            solution: solved.ok().filter(|_| failure.is_none()),
+            failure,
+        }
     }
 
     /// The grid coarser than `current` and its points, if it is made and
-    /// resolves `fine`'s contact; else why not. `level` 1 is 2h, 2 is 4h.
-    fn coarse(
-        &self,
-        current: &GridFamily,
-        fine: &ContactSolution,
-        level: usize,
-    ) -> Result<(GridFamily, PointSet), Stop> {
-        let times = 1 << level;
+    /// resolves the fine contact; else why not. `level` 1 is 2h, 2 is 4h.
+    fn coarse(&self, current: &GridFamily, level: usize) -> Result<(GridFamily, PointSet), Stop> {
+        let times = 2.0f64.powi(level as i32);
         let coarse = current.coarser().ok_or(Stop::TooFewPoints { times })?;
         let points = coarse
             .points()
             .map_err(|error| Stop::NoPoints { times, error })?;
-        let cells = cells_across(self.points(), &fine.contact, &points);
+        let cells = cells_across(self.builder.points(), &self.fine.contact, &points);
         if !(cells >= MIN_CELLS_ACROSS) {
             return Err(Stop::Unresolved { times, cells });
         }
         Ok((coarse, points))
     }
+
+    /// The grid finer than `current` and its points, if its solve fits the
+    /// allowance ([`finer_allowance`]); else why not. `level` 1 is h/2, 2
+    /// is h/4.
+    fn finer(&self, current: &GridFamily, level: usize) -> Result<(GridFamily, PointSet), Stop> {
+        let times = 0.5f64.powi(level as i32);
+        let finer = current.finer();
+        let points = finer
+            .points()
+            .map_err(|error| Stop::NoPoints { times, error })?;
+        let own = self.builder.plan().map(|p| p.estimate.solve_bytes);
+        let planned = self.builder.on(points.clone()).plan();
+        let (Ok(own), Ok(planned)) = (own, planned) else {
+            return Err(Stop::TooBig {
+                times,
+                bytes: f64::INFINITY,
+                allowance: f64::NAN,
+            });
+        };
+        let allowance = finer_allowance(own);
+        let bytes = planned.estimate.solve_bytes;
+        if !(bytes <= allowance) {
+            return Err(Stop::TooBig {
+                times,
+                bytes,
+                allowance,
+            });
+        }
+        Ok((finer, points))
+    }
 }
 
-/// Why the sequence of coarser grids ended before [`COARSER_GRIDS`]: the
-/// discretization's note, each grid named by its spacing's multiple
-/// `times` of the fine one (2 or 4).
+/// A grid solved: its log, its spacing's multiple of the run's, and its
+/// solution or why it failed.
+struct Solved {
+    run: GridRun,
+    times: f64,
+    solution: Option<ContactSolution>,
+    failure: Option<String>,
+}
+
+impl Sequence {
+    /// A finer grid, ahead of the others; why the sequence stops if it
+    /// failed.
+    fn push_finer(&mut self, solved: Solved) -> Result<(), Stop> {
+        self.grids.insert(0, solved.run);
+        match (solved.solution, solved.failure) {
+            (Some(s), _) => {
+                self.solutions.insert(0, s);
+                self.own += 1;
+                Ok(())
+            }
+            (None, failure) => Err(Stop::Failed {
+                times: solved.times,
+                failure: failure.unwrap_or_default(),
+            }),
+        }
+    }
+
+    /// A coarser grid, after the others; why the sequence stops if it
+    /// failed.
+    fn push_coarser(&mut self, solved: Solved) -> Result<(), Stop> {
+        self.grids.push(solved.run);
+        match (solved.solution, solved.failure) {
+            (Some(s), _) => {
+                self.solutions.push(s);
+                Ok(())
+            }
+            (None, failure) => Err(Stop::Failed {
+                times: solved.times,
+                failure: failure.unwrap_or_default(),
+            }),
+        }
+    }
+
+    /// Each quantity's estimate from the solutions, the stop's reason on
+    /// those not estimated, and `limits` making the peak pressure not
+    /// resolved.
+    fn estimates(
+        &self,
+        limits: &[InputLimit],
+    ) -> Vec<(Quantity, crate::discretization::ErrorEstimate)> {
+        let spacings: Vec<f64> = self
+            .grids
+            .iter()
+            .filter(|g| g.failure.is_none())
+            .map(|g| g.spacing)
+            .collect();
+        let note = self.stop.as_ref().map(Stop::to_string);
+        Quantity::ALL
+            .iter()
+            .map(|&q| {
+                let values: Vec<f64> = self.solutions.iter().map(|s| value(s, q)).collect();
+                let mut e = estimate(&values, &spacings, self.own, scale(&self.solutions, q));
+                if let (Verdict::NotEstimated(reason), Some(why)) = (&e.verdict, &note) {
+                    let first = reason.split(':').next().unwrap_or(reason);
+                    e.verdict = Verdict::NotEstimated(format!("{first}: {why}"));
+                }
+                if let (Quantity::MaxPressure, Some(limit)) = (q, limits.first())
+                    && e.verdict != Verdict::Exact
+                {
+                    e.verdict = Verdict::NotResolved(limit.to_string());
+                    e.error = None;
+                    e.extrapolated = None;
+                }
+                (q, e)
+            })
+            .collect()
+    }
+}
+
+/// What in `geometry` limits the quantities whatever the grid: each
+/// departure interpolated with slope kinks.
+fn input_limits(geometry: &Geometry) -> Vec<InputLimit> {
+    let Geometry::Tabulated { departures, .. } = geometry else {
+        return Vec::new();
+    };
+    departures.iter().filter_map(InputLimit::of).collect()
+}
+
+impl InputLimit {
+    /// The limit a departure sets, if it has slope kinks.
+    fn of(d: &Departure) -> Option<Self> {
+        Some(match d {
+            Departure::HeightMap(m) => InputLimit::KinkedMap {
+                label: m.label().to_string(),
+            },
+            Departure::Profile(p) => InputLimit::KinkedProfile {
+                label: p.label().to_string(),
+            },
+        })
+    }
+}
+
+/// Why the sequence of other grids ended early: the discretization's
+/// note, each grid named by its spacing's multiple `times` of the run's
+/// (1/4, 1/2, 2 or 4).
 #[derive(Debug)]
 enum Stop {
     /// The coarser grid would have fewer than
     /// [`MIN_COARSE_COUNT`](crate::grid::MIN_COARSE_COUNT) points along an
     /// axis.
-    TooFewPoints { times: usize },
+    TooFewPoints { times: f64 },
     /// Its points could not be laid out.
-    NoPoints { times: usize, error: AnalysisError },
+    NoPoints { times: f64, error: AnalysisError },
     /// The contact spans fewer than [`MIN_CELLS_ACROSS`] of its cells.
-    Unresolved { times: usize, cells: f64 },
+    Unresolved { times: f64, cells: f64 },
+    /// A finer grid's solve would hold more than its allowance.
+    TooBig {
+        times: f64,
+        bytes: f64,
+        allowance: f64,
+    },
     /// Its solve failed or was not certified.
-    Failed { times: usize, failure: String },
+    Failed { times: f64, failure: String },
+}
+
+/// "the grid at 4 times the spacing", "the grid at half the spacing".
+fn grid_at(times: f64) -> String {
+    if times == 0.5 {
+        "the grid at half the spacing".into()
+    } else if times == 0.25 {
+        "the grid at a quarter of the spacing".into()
+    } else {
+        format!("the grid at {times} times the spacing")
+    }
 }
 
 impl std::fmt::Display for Stop {
@@ -195,20 +404,31 @@ impl std::fmt::Display for Stop {
         match self {
             Stop::TooFewPoints { times } => write!(
                 f,
-                "the grid at {times} times the spacing would have fewer than {} points along an \
-                 axis",
+                "{} would have fewer than {} points along an axis",
+                grid_at(*times),
                 crate::grid::MIN_COARSE_COUNT
             ),
-            Stop::NoPoints { times, error } => {
-                write!(f, "the grid at {times} times the spacing: {error}")
-            }
+            Stop::NoPoints { times, error } => write!(f, "{}: {error}", grid_at(*times)),
             Stop::Unresolved { times, cells } => write!(
                 f,
-                "the contact spans {cells:.1} cells of the grid at {times} times the spacing, \
-                 fewer than {MIN_CELLS_ACROSS}: too few points to resolve it"
+                "the contact spans {cells:.1} cells of {}, fewer than {MIN_CELLS_ACROSS}: too \
+                 few points to resolve it",
+                grid_at(*times)
+            ),
+            Stop::TooBig {
+                times,
+                bytes,
+                allowance,
+            } => write!(
+                f,
+                "{}'s solve would hold {:.0} MiB, more than the {:.0} MiB a finer grid may \
+                 (the run's own solve's, at least 256 MiB)",
+                grid_at(*times),
+                bytes / 1048576.0,
+                allowance / 1048576.0
             ),
             Stop::Failed { times, failure } => {
-                write!(f, "the grid at {times} times the spacing failed: {failure}")
+                write!(f, "{} failed: {failure}", grid_at(*times))
             }
         }
     }
@@ -273,12 +493,12 @@ mod tests {
     fn each_stop_says_which_grid_and_why() {
         let stops = [
             (
-                Stop::TooFewPoints { times: 2 },
+                Stop::TooFewPoints { times: 2.0 },
                 "the grid at 2 times the spacing would have fewer than",
             ),
             (
                 Stop::NoPoints {
-                    times: 4,
+                    times: 4.0,
                     error: AnalysisError::Incompatible {
                         field: "family",
                         reason: "no points".into(),
@@ -288,17 +508,25 @@ mod tests {
             ),
             (
                 Stop::Unresolved {
-                    times: 2,
+                    times: 2.0,
                     cells: 3.04,
                 },
                 "the contact spans 3.0 cells of the grid at 2 times the spacing, fewer than",
             ),
             (
                 Stop::Failed {
-                    times: 4,
+                    times: 4.0,
                     failure: "not certified".into(),
                 },
                 "the grid at 4 times the spacing failed: not certified",
+            ),
+            (
+                Stop::TooBig {
+                    times: 0.5,
+                    bytes: 512.0 * 1048576.0,
+                    allowance: 256.0 * 1048576.0,
+                },
+                "the grid at half the spacing's solve would hold 512 MiB, more than the 256 MiB",
             ),
         ];
         for (stop, begins) in stops {

@@ -150,11 +150,11 @@ pub struct ContactSolution {
     /// Contact radius `sqrt(area / pi)` (3D) or half-width `length / 2` (2D)
     /// from [`ContactSolution::contact_measure`].
     pub contact_extent: f64,
-    /// The ellipse of the contact's outline on a surface (the edge points
-    /// of [`ContactSolution::contact_measure`] joined into a polygon, and
-    /// the ellipse of its area and second moments): its semi-axes and
-    /// their direction, as an elliptical Hertz contact's are compared;
-    /// `None` on a line, or where the edge is not resolved.
+    /// The contact ellipse on a surface, from the pressure field's second
+    /// moments (the ellipse of Hertz's pressure with the same moments,
+    /// `crate::ContactEllipse`): its semi-axes and their direction, as an
+    /// elliptical Hertz contact's are compared; `None` on a line, with
+    /// fewer than 3 points in contact, or where the edge law is not known.
     pub contact_ellipse: Option<crate::ContactEllipse>,
     /// Residuals from the original data.
     pub certificate: ContactCertificate,
@@ -180,7 +180,7 @@ impl ContactProblem {
         let contact: Vec<usize> = (0..n).filter(|&k| forces[k] > 0.0).collect();
         let edge_of_contact = crate::edge::Edge::new(&self.points, &pressures, self.edge);
         let contact_measure = edge_of_contact.measure();
-        let contact_ellipse = edge_of_contact.ellipse();
+        let contact_ellipse = crate::ellipse::pressure_ellipse(&self.points, &pressures, self.edge);
         let contact_extent = match self.points.dimension() {
             Dimension::Surface => (contact_measure / std::f64::consts::PI).sqrt(),
             Dimension::Line => contact_measure / 2.0,
