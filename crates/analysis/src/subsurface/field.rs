@@ -32,6 +32,12 @@ const MEASURES: [fn(&Stress) -> f64; 4] = [
     |s| s.yz.abs(),
 ];
 
+/// Intervals the two layer spacings around a maximum's layer are cut into
+/// when the compass search is skipped: the layers at the new depths are
+/// computed and the parabola taken through the finer column, so its
+/// vertex's error falls with the cube of the spacing (27 times for 3).
+const FINER_DEPTHS: usize = 6;
+
 /// Direct evaluations of the compass search, about, for a maximum.
 const REFINE_EVALUATIONS: usize = 300;
 
@@ -347,8 +353,9 @@ impl<'a> StressField<'a> {
     /// pressure (again along the row of the largest von Mises stress, when
     /// that is another), the profile below the peak pressure. Each maximum
     /// is refined by a parabola through the largest of its layer and of the
-    /// layers above and below it, then (where the direct sums are cheap,
-    /// [`DIRECT_BUDGET`]) by the compass search.
+    /// layers above and below it, then by the compass search where the
+    /// direct sums are cheap ([`DIRECT_BUDGET`]), else by finer layers
+    /// around it ([`FINER_DEPTHS`]).
     fn layered(
         &self,
         layers: &StressLayers,
@@ -358,17 +365,16 @@ impl<'a> StressField<'a> {
     ) -> Result<(Vec<Peak>, Section, Section), InfluenceError> {
         let y = self.points.y(peak);
         let (per_layer, mut section, profile) = self.sweep_layers(layers, depths, y, peak)?;
-        let peaks: Vec<Peak> = (0..MEASURES.len())
-            .map(|m| {
-                let column: Vec<Peak> = per_layer.iter().map(|layer| layer[m]).collect();
-                let p = parabolic(&column);
-                if self.loaded.len() * REFINE_EVALUATIONS <= DIRECT_BUDGET {
-                    self.refine(p, &MEASURES[m], scale)
-                } else {
-                    p
-                }
-            })
-            .collect();
+        let peaks: Vec<Peak> = if self.loaded.len() * REFINE_EVALUATIONS <= DIRECT_BUDGET {
+            (0..MEASURES.len())
+                .map(|m| {
+                    let column: Vec<Peak> = per_layer.iter().map(|layer| layer[m]).collect();
+                    self.refine(parabolic(&column), &MEASURES[m], scale)
+                })
+                .collect()
+        } else {
+            self.deepen(layers, &per_layer)?
+        };
         let largest = per_layer
             .iter()
             .map(|layer| layer[0])
@@ -385,6 +391,91 @@ impl<'a> StressField<'a> {
             section = self.sweep_layers(layers, depths, row_y, peak)?.1;
         }
         Ok((peaks, section, profile))
+    }
+
+    /// Each measure's largest refined in depth from `per_layer` (each
+    /// layer's largest of every measure, by depth): the layers between the
+    /// neighbours above and below its largest layer at [`FINER_DEPTHS`]
+    /// intervals (computed once for the measures whose largest is in the
+    /// same layer, the known layers reused), and the parabola through the
+    /// largest of that finer column and its neighbours. At the top or the
+    /// bottom of the column, the column's own parabola.
+    fn deepen(
+        &self,
+        layers: &StressLayers,
+        per_layer: &[[Peak; 4]],
+    ) -> Result<Vec<Peak>, InfluenceError> {
+        let largest = |m: usize| {
+            (0..per_layer.len())
+                .max_by(|&a, &b| per_layer[a][m].value.total_cmp(&per_layer[b][m].value))
+                .unwrap_or(0)
+        };
+        let mut finer: Vec<(usize, Vec<[Peak; 4]>)> = Vec::new();
+        let mut peaks = Vec::with_capacity(MEASURES.len());
+        for m in 0..MEASURES.len() {
+            let j = largest(m);
+            if j == 0 || j + 1 >= per_layer.len() {
+                let column: Vec<Peak> = per_layer.iter().map(|layer| layer[m]).collect();
+                peaks.push(parabolic(&column));
+                continue;
+            }
+            if !finer.iter().any(|(at, _)| *at == j) {
+                finer.push((j, self.finer_column(layers, per_layer, j)?));
+            }
+            let (_, column) = finer.iter().find(|(at, _)| *at == j).expect("just made");
+            let column: Vec<Peak> = column.iter().map(|layer| layer[m]).collect();
+            peaks.push(parabolic(&column));
+        }
+        Ok(peaks)
+    }
+
+    /// Each measure's largest on the layers from `per_layer`'s layer
+    /// `j - 1` to `j + 1` at [`FINER_DEPTHS`] intervals: the three known
+    /// layers reused, the others computed (in parallel).
+    fn finer_column(
+        &self,
+        layers: &StressLayers,
+        per_layer: &[[Peak; 4]],
+        j: usize,
+    ) -> Result<Vec<[Peak; 4]>, InfluenceError> {
+        let (lo, hi) = (per_layer[j - 1][0].z, per_layer[j + 1][0].z);
+        let half = FINER_DEPTHS / 2;
+        (0..=FINER_DEPTHS)
+            .into_par_iter()
+            .map(|i| match i {
+                0 => Ok(per_layer[j - 1]),
+                i if i == half => Ok(per_layer[j]),
+                i if i == FINER_DEPTHS => Ok(per_layer[j + 1]),
+                i => {
+                    let z = if i < half {
+                        lo + (per_layer[j][0].z - lo) * i as f64 / half as f64
+                    } else {
+                        per_layer[j][0].z
+                            + (hi - per_layer[j][0].z) * (i - half) as f64 / half as f64
+                    };
+                    Ok(self.layer_best(&layers.layer(z)?, z))
+                }
+            })
+            .collect()
+    }
+
+    /// Each measure's largest over `layer`, the stresses at depth `z`.
+    fn layer_best(&self, layer: &[Stress], z: f64) -> [Peak; 4] {
+        let mut best = [LOWEST; 4];
+        for (k, s) in layer.iter().enumerate() {
+            for (b, m) in best.iter_mut().zip(MEASURES) {
+                let v = m(s);
+                if v > b.value {
+                    *b = Peak {
+                        value: v,
+                        x: self.points.x(k),
+                        y: self.points.y(k),
+                        z,
+                    };
+                }
+            }
+        }
+        best
     }
 
     /// Each measure's largest in each layer, the section along the lattice
@@ -407,20 +498,7 @@ impl<'a> StressField<'a> {
             .par_iter()
             .map(|&z| {
                 let layer = layers.layer(z)?;
-                let mut best = [LOWEST; 4];
-                for (k, s) in layer.iter().enumerate() {
-                    for (b, m) in best.iter_mut().zip(MEASURES) {
-                        let v = m(s);
-                        if v > b.value {
-                            *b = Peak {
-                                value: v,
-                                x: self.points.x(k),
-                                y: self.points.y(k),
-                                z,
-                            };
-                        }
-                    }
-                }
+                let best = self.layer_best(&layer, z);
                 let on_row: Vec<Stress> = row.iter().map(|&k| layer[k]).collect();
                 Ok((best, on_row, layer[peak]))
             })
