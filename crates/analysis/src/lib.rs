@@ -69,8 +69,8 @@ pub mod zone;
 
 pub use contact::{
     AxialProfile, ContactCertificate, ContactProblem, ContactSolution, Curvature, Departure,
-    Geometry, HeightMap, Layout, Plan, Principal, ProblemBuilder, ProfileAxis, Surface, Warning,
-    separations,
+    Geometry, HeightMap, Interpolation, Layout, Plan, Principal, ProblemBuilder, ProfileAxis,
+    Surface, Warning, separations,
 };
 pub use edge::ContactEllipse;
 pub use elcon_influence::{
