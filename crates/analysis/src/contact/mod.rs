@@ -20,7 +20,7 @@
 //!
 //! | module | what it holds |
 //! |---|---|
-//! | `spline` | the cubic interpolants of the tables: the natural cubic spline, Keys's cubic convolution |
+//! | `spline` | the natural cubic spline of the tables: through a profile's rows, and as B-spline coefficients over a map |
 //! | `tabulated` | departures from the quadrics given as tables: height maps, axial profiles, interpolated linearly or cubically |
 //! | `geometry` | the surfaces (quadrics, their curvatures) and the initial separations eps they give |
 //! | `layout` | what a problem will be before its O(N^2) assembly: eps, the rigid unknowns, the mirror symmetry |

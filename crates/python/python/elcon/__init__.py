@@ -359,9 +359,9 @@ class ContactProblem:
         out), its spacing ``(dx, dy)`` (required) and origin ``(x0, y0)``
         (default: the map centred on the origin), interpolated to the
         points as ``height_map_interpolation`` says: ``"linear"`` (the
-        default: bilinearly) or ``"cubic"`` (Keys's bicubic convolution, a
-        slope continuous across the nodes, so that the peak pressure
-        converges as the points are refined; a scene's
+        default: bilinearly) or ``"cubic"`` (the natural bicubic spline, a
+        slope and curvature continuous across the nodes, so that the peak
+        pressure converges as the points are refined; a scene's
         ``interpolation``). Checked by elcon-analysis (a NaN, fewer than
         2 x 2 values, a map that does not cover the points raise
         ``InputError``).

@@ -6,7 +6,7 @@
 //!   (a 2-D array of float64 or float32, C order, `Z[j, i]` at
 //!   `(x0 + i dx, y0 + j dy)`) or CSV (one grid row along x per line, rows
 //!   in increasing y), interpolated to the candidate points bilinearly or
-//!   by bicubic convolution (`elcon_analysis::HeightMap`,
+//!   by the natural bicubic spline (`elcon_analysis::HeightMap`,
 //!   `elcon_analysis::Interpolation`) and added to the surfaces' heights;
 //!   `origin` defaults to the map centred on the first point of contact;
 //! - `profile = { file, axis = "y", interpolation = "linear" }`: an axial
@@ -221,7 +221,9 @@ fn pair(ctx: &Ctx<'_>, v: &Spanned<Vec<f64>>, field: &str) -> Result<(f64, f64),
 
 /// A table's `interpolation`, linear when left out.
 fn interpolation(given: &Option<Spanned<Interpolation>>) -> Interpolation {
-    given.as_ref().map_or(Interpolation::Linear, |i| *i.get_ref())
+    given
+        .as_ref()
+        .map_or(Interpolation::Linear, |i| *i.get_ref())
 }
 
 /// `geometry.height_map`: the map read and checked.
