@@ -70,8 +70,8 @@ pub mod zone;
 
 pub use contact::{
     AxialProfile, ContactCertificate, ContactProblem, ContactSolution, Curvature, Departure,
-    Geometry, HeightMap, Layout, Plan, Principal, ProblemBuilder, ProfileAxis, Surface, Warning,
-    separations,
+    Geometry, HeightMap, Interpolation, Layout, Plan, Principal, ProblemBuilder, ProfileAxis,
+    Surface, Warning, separations,
 };
 pub use elcon_influence::{
     Body, Dimension, Material, Model, PointSet, combined_modulus, combined_modulus_of,

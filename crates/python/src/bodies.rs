@@ -3,7 +3,7 @@
 //! checks are elcon-analysis's own (`HertzEllipse::new`, `HeightMap::new`).
 
 use elcon_analysis::references::HertzEllipse;
-use elcon_analysis::{Curvature, Departure, Geometry, HeightMap, Surface};
+use elcon_analysis::{Curvature, Departure, Geometry, HeightMap, Interpolation, Surface};
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -63,20 +63,33 @@ pub(crate) fn hertz_ellipse<'py>(
 
 /// `geometry` with the height map `z` (`z[j, i]` at `(x0 + i dx, y0 + j
 /// dy)`) added, when given: its spacing `(dx, dy)` required, its origin
-/// `(x0, y0)` by default the map centred on the origin.
+/// `(x0, y0)` by default the map centred on the origin, its
+/// interpolation by name (`"linear"` by default, or `"cubic"`:
+/// `elcon_analysis::Interpolation`).
 pub(crate) fn with_height_map(
     geometry: Geometry,
     z: Option<PyReadonlyArray2<'_, f64>>,
     spacing: Option<(f64, f64)>,
     origin: Option<(f64, f64)>,
+    interpolation: Option<&str>,
 ) -> PyResult<Geometry> {
     let Some(z) = z else {
-        if spacing.is_some() || origin.is_some() {
+        if spacing.is_some() || origin.is_some() || interpolation.is_some() {
             return Err(InputError::new_err(
-                "`height_map_spacing`, `height_map_origin`: they go with `height_map`",
+                "`height_map_spacing`, `height_map_origin`, `height_map_interpolation`: they go \
+                 with `height_map`",
             ));
         }
         return Ok(geometry);
+    };
+    let interpolation = match interpolation {
+        None => Interpolation::Linear,
+        Some(name) => name.parse::<Interpolation>().map_err(|_| {
+            InputError::new_err(format!(
+                "`height_map_interpolation` = \"{name}\": one of {}",
+                Interpolation::NAMES.join(", ")
+            ))
+        })?,
     };
     let z = z.as_array();
     let (ny, nx) = z.dim();
@@ -87,8 +100,9 @@ pub(crate) fn with_height_map(
         -0.5 * ny.saturating_sub(1) as f64 * spacing.1,
     ));
     let values: Vec<f64> = z.iter().copied().collect();
-    let map =
-        HeightMap::new("height_map", values, nx, ny, spacing, origin).map_err(analysis_error)?;
+    let map = HeightMap::new("height_map", values, nx, ny, spacing, origin)
+        .and_then(|m| m.with_interpolation(interpolation))
+        .map_err(analysis_error)?;
     let departure = Departure::HeightMap(std::sync::Arc::new(map));
     match geometry {
         Geometry::Surfaces(a, b) => Ok(Geometry::Tabulated {

@@ -247,7 +247,7 @@ impl PyContactProblem {
 impl PyContactProblem {
     /// See `elcon.ContactProblem` (python/elcon/__init__.py).
     #[new]
-    #[pyo3(signature = (x=None, separation=None, spacing=None, y=None, influence=None, body1=None, body2=None, load=None, approach=None, tilt_x=None, tilt_y=None, moment_x=0.0, moment_y=0.0, geometry=None, points=None, storage_name="auto", height_map=None, height_map_spacing=None, height_map_origin=None))]
+    #[pyo3(signature = (x=None, separation=None, spacing=None, y=None, influence=None, body1=None, body2=None, load=None, approach=None, tilt_x=None, tilt_y=None, moment_x=0.0, moment_y=0.0, geometry=None, points=None, storage_name="auto", height_map=None, height_map_spacing=None, height_map_origin=None, height_map_interpolation=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -270,6 +270,7 @@ impl PyContactProblem {
         height_map: Option<PyReadonlyArray2<'_, f64>>,
         height_map_spacing: Option<(f64, f64)>,
         height_map_origin: Option<(f64, f64)>,
+        height_map_interpolation: Option<&str>,
     ) -> PyResult<Self> {
         let storage = storage(storage_name)?;
         let loading = loading_section(py, load, approach, (tilt_x, tilt_y), (moment_x, moment_y))?;
@@ -293,6 +294,7 @@ impl PyContactProblem {
             height_map,
             height_map_spacing,
             height_map_origin,
+            height_map_interpolation,
         )?;
         let ceiling = ceiling()?;
         match (influence, parts.bodies) {

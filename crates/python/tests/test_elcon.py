@@ -641,6 +641,56 @@ def test_a_height_map_array_adds_to_the_surfaces_and_bad_maps_are_refused():
                              load=100.0, height_map=z)
 
 
+def test_a_height_map_array_is_interpolated_cubically_by_name(tmp_path):
+    steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
+    sphere = {"surface1": {"shape": "sphere", "radius": 1.0}}
+    points = {"grid": "disk", "spacing": 0.0025, "radius": 0.04}
+    plain = elcon.ContactProblem(body1=steel, body2=steel, geometry=sphere, points=points,
+                                 load=100.0)
+    # A quadratic map, 25 x 25 heights 0.01 apart: away from its natural
+    # edges (the disk lies 8 nodes in) the cubic spline reproduces it
+    # between the nodes, where the bilinear one does not.
+    xs = -0.12 + 0.01 * np.arange(25)
+    ys = -0.12 + 0.01 * np.arange(25)
+    gx, gy = np.meshgrid(xs, ys)
+    quadratic = lambda x, y: 0.05 * x * x - 0.03 * x * y + 0.02 * y * y
+    z = quadratic(gx, gy)
+    exact = plain.solve().separation
+    made = {}
+    for name in (None, "linear", "cubic"):
+        kwargs = {} if name is None else {"height_map_interpolation": name}
+        made[name] = elcon.ContactProblem(
+            body1=steel, body2=steel, geometry=sphere, points=points, load=100.0,
+            height_map=z, height_map_spacing=(0.01, 0.01), **kwargs).solve()
+    cubic = made["cubic"]
+    added = quadratic(np.asarray(cubic.x), np.asarray(cubic.y))
+    scale = np.abs(z).max()
+    assert np.allclose(cubic.separation, exact + added, rtol=0, atol=1e-6 * scale)
+    assert np.array_equal(made[None].separation, made["linear"].separation)
+    assert np.abs(made["linear"].separation - exact - added).max() > 1e-4 * scale
+    with pytest.raises(elcon.InputError, match=r"`height_map_interpolation` = \"spline\": one of linear, cubic"):
+        elcon.ContactProblem(body1=steel, body2=steel, geometry=sphere, points=points,
+                             load=100.0, height_map=z, height_map_spacing=(0.01, 0.01),
+                             height_map_interpolation="spline")
+    with pytest.raises(elcon.InputError, match="go with `height_map`"):
+        elcon.ContactProblem(body1=steel, body2=steel, geometry=sphere, points=points,
+                             load=100.0, height_map_interpolation="cubic")
+    # A profile file in `geometry`, read by the scene's parser.
+    crown = tmp_path / "crown.csv"
+    crown.write_text("".join(f"{float(y)!r}, {0.01 * float(y) ** 3!r}\n" for y in ys))
+    profiled = {}
+    for name in ("linear", "cubic"):
+        geometry = dict(sphere, profile={"file": str(crown), "interpolation": name})
+        profiled[name] = elcon.ContactProblem(body1=steel, body2=steel, geometry=geometry,
+                                              points=points, load=100.0).solve()
+    gap = np.abs(profiled["cubic"].separation - profiled["linear"].separation).max()
+    assert gap > 1e-3 * 0.01 * 0.06**3
+    with pytest.raises(elcon.InputError, match="geometry.profile.interpolation"):
+        elcon.ContactProblem(body1=steel, body2=steel, points=points, load=100.0,
+                             geometry=dict(sphere, profile={"file": str(crown),
+                                                            "interpolation": "spline"}))
+
+
 def test_ctrl_c_ends_a_long_solve_with_keyboard_interrupt():
     # Example 1 unfolded at 71 across by Lemke's method: 5089 points, about
     # 10 s of pivots. SIGINT a second into the pivots stops the solve at its

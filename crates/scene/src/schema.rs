@@ -5,7 +5,7 @@
 use serde::Deserialize;
 use toml::Spanned;
 
-use elcon_analysis::Method;
+use elcon_analysis::{Interpolation, Method};
 use elcon_design::{Axis, DesignMethod, FamilyKind, LogEnd, Objective};
 
 use crate::ctx::{Shown, keywords};
@@ -248,21 +248,24 @@ pub(crate) struct GeometryToml {
 }
 
 /// `geometry.height_map`: `{ file = "rough.npy", spacing = [dx, dy],
-/// origin = [x0, y0] }`.
+/// origin = [x0, y0], interpolation = "linear" }`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct HeightMapToml {
     pub file: Spanned<String>,
     pub spacing: Spanned<Vec<f64>>,
     pub origin: Option<Spanned<Vec<f64>>>,
+    pub interpolation: Option<Spanned<Interpolation>>,
 }
 
-/// `geometry.profile`: `{ file = "crown.csv", axis = "y" }`.
+/// `geometry.profile`: `{ file = "crown.csv", axis = "y", interpolation =
+/// "linear" }`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct ProfileToml {
     pub file: Spanned<String>,
     pub axis: Option<Spanned<String>>,
+    pub interpolation: Option<Spanned<Interpolation>>,
 }
 
 impl Shown for HeightMapToml {

@@ -328,6 +328,16 @@ impl Geometry {
         }
     }
 
+    /// The tabulated departures added to the quadrics (height maps, axial
+    /// profiles), in the order they are added: those of
+    /// [`Geometry::Tabulated`], none for the other geometries.
+    pub fn departures(&self) -> Vec<&Departure> {
+        match self {
+            Geometry::Tabulated { departures, .. } => departures.iter().collect(),
+            Geometry::Surfaces(..) | Geometry::Separation(_) => Vec::new(),
+        }
+    }
+
     /// The curvature of the gap of the two quadrics (departures left out),
     /// `None` for given separations.
     pub fn curvature(&self) -> Option<Curvature> {
@@ -445,6 +455,10 @@ mod tests {
             surfaces: (Surface::Cylinder { radius: 2.0 }, Surface::Plane),
             departures: vec![Departure::Profile(Arc::new(profile))],
         };
+        assert_eq!(geometry.departures().len(), 1);
+        assert_eq!(geometry.departures()[0].label(), "crown.csv");
+        let plain = Geometry::Surfaces(Surface::Plane, Surface::Plane);
+        assert!(plain.departures().is_empty());
         let eps = separations(&points, &geometry).unwrap();
         for (k, e) in eps.iter().enumerate() {
             let x = points.x(k);

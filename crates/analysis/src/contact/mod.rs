@@ -20,7 +20,8 @@
 //!
 //! | module | what it holds |
 //! |---|---|
-//! | `tabulated` | departures from the quadrics given as tables: height maps, axial profiles |
+//! | `spline` | the natural cubic spline of the tables: through a profile's rows, and as B-spline coefficients over a map |
+//! | `tabulated` | departures from the quadrics given as tables: height maps, axial profiles, interpolated linearly or cubically |
 //! | `geometry` | the surfaces (quadrics, their curvatures) and the initial separations eps they give |
 //! | `layout` | what a problem will be before its O(N^2) assembly: eps, the rigid unknowns, the mirror symmetry |
 //! | `problem` | [`ContactProblem`]: points, S as held, eps, loading; its variants under another loading or separation |
@@ -36,6 +37,7 @@ mod layout;
 mod problem;
 mod solution;
 mod solve;
+mod spline;
 mod tabulated;
 
 pub use builder::{Plan, ProblemBuilder};
@@ -43,4 +45,4 @@ pub use geometry::{Curvature, Geometry, Principal, Surface, separations};
 pub use layout::Layout;
 pub use problem::ContactProblem;
 pub use solution::{ContactCertificate, ContactSolution, Warning};
-pub use tabulated::{AxialProfile, Departure, HeightMap, ProfileAxis};
+pub use tabulated::{AxialProfile, Departure, HeightMap, Interpolation, ProfileAxis};

@@ -353,13 +353,18 @@ class ContactProblem:
         by keyword: ``{"shape": "quadric", "radius_x": Rx, "radius_y": Ry,
         "angle": degrees}`` (an omitted radius straight, a negative one
         concave).
-    height_map, height_map_spacing, height_map_origin:
+    height_map, height_map_spacing, height_map_origin, height_map_interpolation:
         Heights added to the surfaces: a 2-D array ``Z[j, i]`` at ``(x0 + i
         dx, y0 + j dy)`` (rows along x, as ``numpy.meshgrid`` lays them
         out), its spacing ``(dx, dy)`` (required) and origin ``(x0, y0)``
-        (default: the map centred on the origin), interpolated bilinearly
-        to the points. Checked by elcon-analysis (a NaN, fewer than 2 x 2
-        values, a map that does not cover the points raise ``InputError``).
+        (default: the map centred on the origin), interpolated to the
+        points as ``height_map_interpolation`` says: ``"linear"`` (the
+        default: bilinearly) or ``"cubic"`` (the natural bicubic spline, a
+        slope and curvature continuous across the nodes, so that the peak
+        pressure converges as the points are refined; a scene's
+        ``interpolation``). Checked by elcon-analysis (a NaN, fewer than
+        2 x 2 values, a map that does not cover the points raise
+        ``InputError``).
     load, approach:
         Load control (force) or displacement control (length): one of them.
     tilt_x, tilt_y, moment_x, moment_y:
@@ -400,6 +405,7 @@ class ContactProblem:
         height_map: Optional[npt.ArrayLike] = None,
         height_map_spacing: Optional[Sequence[float]] = None,
         height_map_origin: Optional[Sequence[float]] = None,
+        height_map_interpolation: Optional[str] = None,
     ):
         if spacing is not None and np.ndim(spacing) == 0:
             h = _number(spacing, "spacing")
@@ -426,6 +432,7 @@ class ContactProblem:
             height_map=_array(height_map, "height_map", 2, "must be a 2-D array z[j, i]"),
             height_map_spacing=_pair(height_map_spacing, "height_map_spacing"),
             height_map_origin=_pair(height_map_origin, "height_map_origin"),
+            height_map_interpolation=_name(height_map_interpolation, "height_map_interpolation"),
         )
 
     def __len__(self) -> int:

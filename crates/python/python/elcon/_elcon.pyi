@@ -66,6 +66,7 @@ class ContactProblem:
         height_map: Optional[npt.NDArray[np.float64]] = None,
         height_map_spacing: Optional[Tuple[float, float]] = None,
         height_map_origin: Optional[Tuple[float, float]] = None,
+        height_map_interpolation: Optional[str] = None,
     ) -> None: ...
     def __len__(self) -> int: ...
     @property

@@ -1,16 +1,18 @@
 //! Surfaces and separations from files named in `[geometry]`, read
 //! relative to the scene file, in the scene's units:
 //!
-//! - `height_map = { file, spacing = [dx, dy], origin = [x0, y0] }`: a
-//!   height map on a regular grid, `.npy` (a 2-D array of float64 or
-//!   float32, C order, `Z[j, i]` at `(x0 + i dx, y0 + j dy)`) or CSV (one
-//!   grid row along x per line, rows in increasing y), interpolated
-//!   bilinearly to the candidate points (`elcon_analysis::HeightMap`) and
-//!   added to the surfaces' heights; `origin` defaults to the map centred
-//!   on the first point of contact;
-//! - `profile = { file, axis = "y" }`: an axial profile, CSV rows
-//!   `position, drop` (a roller's crown along y, a beam's along x),
-//!   interpolated linearly (`elcon_analysis::AxialProfile`);
+//! - `height_map = { file, spacing = [dx, dy], origin = [x0, y0],
+//!   interpolation = "linear" }`: a height map on a regular grid, `.npy`
+//!   (a 2-D array of float64 or float32, C order, `Z[j, i]` at
+//!   `(x0 + i dx, y0 + j dy)`) or CSV (one grid row along x per line, rows
+//!   in increasing y), interpolated to the candidate points bilinearly or
+//!   by the natural bicubic spline (`elcon_analysis::HeightMap`,
+//!   `elcon_analysis::Interpolation`) and added to the surfaces' heights;
+//!   `origin` defaults to the map centred on the first point of contact;
+//! - `profile = { file, axis = "y", interpolation = "linear" }`: an axial
+//!   profile, CSV rows `position, drop` (a roller's crown along y, a
+//!   beam's along x), interpolated linearly or by the natural cubic spline
+//!   (`elcon_analysis::AxialProfile`);
 //! - `separation_file = "eps.csv"`: CSV rows `x, y, separation` (or
 //!   `x, separation` on a line), each candidate point taking the row at its
 //!   position (within `MATCH_TOLERANCE` of the grid's spacing).
@@ -24,7 +26,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use elcon_analysis::{AxialProfile, Departure, Geometry, HeightMap, ProfileAxis};
+use elcon_analysis::{AxialProfile, Departure, Geometry, HeightMap, Interpolation, ProfileAxis};
 use elcon_influence::PointSet;
 use toml::Spanned;
 
@@ -217,6 +219,13 @@ fn pair(ctx: &Ctx<'_>, v: &Spanned<Vec<f64>>, field: &str) -> Result<(f64, f64),
     }
 }
 
+/// A table's `interpolation`, linear when left out.
+fn interpolation(given: &Option<Spanned<Interpolation>>) -> Interpolation {
+    given
+        .as_ref()
+        .map_or(Interpolation::Linear, |i| *i.get_ref())
+}
+
 /// `geometry.height_map`: the map read and checked.
 pub(super) fn height_map(
     ctx: &Ctx<'_>,
@@ -257,6 +266,7 @@ pub(super) fn height_map(
         ),
     };
     let map = HeightMap::new(file.label(), values, nx, ny, spacing, origin)
+        .and_then(|m| m.with_interpolation(interpolation(&t.interpolation)))
         .map_err(|e| file.invalid(e.to_string()))?;
     Ok(Departure::HeightMap(Arc::new(map)))
 }
@@ -286,6 +296,7 @@ pub(super) fn profile(ctx: &Ctx<'_>, t: &Spanned<ProfileToml>) -> Result<Departu
     }
     let (positions, drops) = rows.iter().map(|(_, r)| (r[0], r[1])).unzip();
     let p = AxialProfile::new(file.label(), axis, positions, drops)
+        .and_then(|p| p.with_interpolation(interpolation(&t.interpolation)))
         .map_err(|e| file.invalid(e.to_string()))?;
     Ok(Departure::Profile(Arc::new(p)))
 }
