@@ -30,7 +30,7 @@ use elcon_lcp::{Method, Options};
 use super::builder::ProblemBuilder;
 use super::geometry::Geometry;
 use super::solution::ContactSolution;
-use super::tabulated::Departure;
+use super::tabulated::{Departure, Interpolation};
 use crate::AnalysisError;
 use crate::discretization::{
     Discretization, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity, Verdict, estimate,
@@ -352,8 +352,12 @@ fn input_limits(geometry: &Geometry) -> Vec<InputLimit> {
 }
 
 impl InputLimit {
-    /// The limit a departure sets, if it has slope kinks.
+    /// The limit a departure sets, if it has slope kinks (interpolated
+    /// linearly; a cubic table has a continuous slope).
     fn of(d: &Departure) -> Option<Self> {
+        if d.interpolation() == Interpolation::Cubic {
+            return None;
+        }
         Some(match d {
             Departure::HeightMap(m) => InputLimit::KinkedMap {
                 label: m.label().to_string(),

@@ -118,3 +118,34 @@ fn eccentric_spheres_are_compared_with_hertz_translated_to_the_load_centre() {
             .contains("displacement control")
     );
 }
+
+#[test]
+fn a_kinked_profile_leaves_the_peak_not_resolved_and_a_cubic_one_does_not() {
+    // The measured crown's profile, read linearly, kinks at every row: the
+    // peak pressure is not a converged property of the scene, whatever its
+    // three grids show, and the warning names the file; read as a cubic
+    // spline it is estimated as any other quantity.
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/scenes/measured-crown.toml");
+    let text = std::fs::read_to_string(&file).unwrap();
+    let linear = run(&elcon_scene::Scene::from_str(&file, &text).unwrap()).unwrap();
+    let d = linear.result.discretization.as_ref().unwrap();
+    let peak = &d.quantities.max_pressure;
+    assert_eq!(peak.verdict.name(), "not resolved");
+    let reason = peak.reason.as_deref().unwrap();
+    assert!(
+        reason.contains("measured-crown.csv") && reason.contains("linearly"),
+        "{reason}"
+    );
+    assert_eq!(d.limits.len(), 1);
+    assert!(linear.result.solution.warnings.contains(&d.limits[0]));
+    let cubic_text = text.replace(
+        "axis = \"y\" }",
+        "axis = \"y\", interpolation = \"cubic\" }",
+    );
+    assert_ne!(cubic_text, text);
+    let cubic = run(&elcon_scene::Scene::from_str(&file, &cubic_text).unwrap()).unwrap();
+    let d = cubic.result.discretization.as_ref().unwrap();
+    assert!(d.limits.is_empty());
+    assert_ne!(d.quantities.max_pressure.reason.as_deref(), Some(reason));
+}
