@@ -405,6 +405,30 @@ pub enum InputLimit {
         /// The profile's file (or key).
         label: String,
     },
+    /// A table whose nodes lie closer than the cells of the coarsest grid
+    /// solved: the grids sample different parts of the data, and their
+    /// changes are not the discretization's.
+    CoarserThanData {
+        /// The table's file (or key).
+        label: String,
+        /// Its nodes' spacing (length).
+        nodes: f64,
+        /// The coarsest grid's cell along the table's axes (length).
+        cell: f64,
+    },
+}
+
+impl InputLimit {
+    /// Whether it limits `quantity`: a kinked surface the peak pressure,
+    /// a table finer than the grids every quantity.
+    pub fn limits(&self, quantity: Quantity) -> bool {
+        match self {
+            InputLimit::KinkedMap { .. } | InputLimit::KinkedProfile { .. } => {
+                quantity == Quantity::MaxPressure
+            }
+            InputLimit::CoarserThanData { .. } => true,
+        }
+    }
 }
 
 impl std::fmt::Display for InputLimit {
@@ -412,6 +436,17 @@ impl std::fmt::Display for InputLimit {
         let (what, label, read) = match self {
             InputLimit::KinkedMap { label } => ("height map", label, "bilinearly"),
             InputLimit::KinkedProfile { label } => ("profile", label, "linearly"),
+            InputLimit::CoarserThanData { label, nodes, cell } => {
+                return write!(
+                    f,
+                    "the table {label}'s nodes are {} apart, closer than the {} cells of the \
+                     coarsest grid the error estimate solved: its grids sample the data \
+                     differently, so their changes do not measure the discretization error \
+                     (a finer grid, at most the nodes' spacing, resolves the data)",
+                    crate::Num(*nodes),
+                    crate::Num(*cell)
+                );
+            }
         };
         write!(
             f,

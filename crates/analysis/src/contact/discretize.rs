@@ -24,13 +24,13 @@
 
 use std::time::Instant;
 
-use elcon_influence::PointSet;
+use elcon_influence::{Cell, PointSet};
 use elcon_lcp::{Method, Options};
 
 use super::builder::ProblemBuilder;
 use super::geometry::Geometry;
 use super::solution::ContactSolution;
-use super::tabulated::{Departure, Interpolation};
+use super::tabulated::{Departure, Interpolation, ProfileAxis};
 use crate::AnalysisError;
 use crate::discretization::{
     Discretization, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity, Verdict, estimate,
@@ -98,7 +98,7 @@ impl ProblemBuilder<'_> {
             options,
         };
         let sequence = run.sequence(family, own);
-        let limits = input_limits(self.geometry());
+        let limits = input_limits(self.geometry(), sequence.coarsest);
         let estimates = sequence.estimates(&limits);
         Ok(Discretization {
             grids: sequence.grids,
@@ -122,6 +122,8 @@ struct Solver<'a, 'b> {
 /// did not fail, the run's own grid's index among them, and why the
 /// sequence ended early, if it did.
 struct Sequence {
+    /// The cell of the coarsest grid solved.
+    coarsest: Cell,
     grids: Vec<GridRun>,
     solutions: Vec<ContactSolution>,
     own: usize,
@@ -165,7 +167,11 @@ impl Solver<'_, '_> {
         if finer.len() + coarse.len() == OTHER_GRIDS {
             stop = None;
         }
+        let coarsest = coarse
+            .last()
+            .map_or(self.builder.points().cell(), |(_, points)| points.cell());
         let mut sequence = Sequence {
+            coarsest,
             grids: vec![own],
             solutions: vec![self.fine.clone()],
             own: 0,
@@ -329,7 +335,7 @@ impl Sequence {
                     let first = reason.split(':').next().unwrap_or(reason);
                     e.verdict = Verdict::NotEstimated(format!("{first}: {why}"));
                 }
-                if let (Quantity::MaxPressure, Some(limit)) = (q, limits.first())
+                if let Some(limit) = limits.iter().find(|l| l.limits(q))
                     && e.verdict != Verdict::Exact
                 {
                     e.verdict = Verdict::NotResolved(limit.to_string());
@@ -342,19 +348,24 @@ impl Sequence {
     }
 }
 
-/// What in `geometry` limits the quantities whatever the grid: each
-/// departure interpolated with slope kinks.
-fn input_limits(geometry: &Geometry) -> Vec<InputLimit> {
+/// What in `geometry` limits the quantities whatever the grid, the
+/// coarsest grid solved of cell `coarsest`: each departure interpolated
+/// with slope kinks, each whose nodes lie closer than that grid's cells.
+fn input_limits(geometry: &Geometry, coarsest: Cell) -> Vec<InputLimit> {
     let Geometry::Tabulated { departures, .. } = geometry else {
         return Vec::new();
     };
-    departures.iter().filter_map(InputLimit::of).collect()
+    let kinked = departures.iter().filter_map(InputLimit::kinked);
+    let sampled = departures
+        .iter()
+        .filter_map(|d| InputLimit::coarser_than(d, coarsest));
+    kinked.chain(sampled).collect()
 }
 
 impl InputLimit {
-    /// The limit a departure sets, if it has slope kinks (interpolated
+    /// The limit a departure sets if it has slope kinks (interpolated
     /// linearly; a cubic table has a continuous slope).
-    fn of(d: &Departure) -> Option<Self> {
+    fn kinked(d: &Departure) -> Option<Self> {
         if d.interpolation() == Interpolation::Cubic {
             return None;
         }
@@ -367,7 +378,30 @@ impl InputLimit {
             },
         })
     }
+
+    /// The limit a departure sets if its nodes lie closer than `cell`
+    /// along its axes (a profile's axis; a map's larger side of the cell,
+    /// against its nodes' smaller spacing).
+    fn coarser_than(d: &Departure, cell: Cell) -> Option<Self> {
+        let along = match d {
+            Departure::Profile(p) => match p.axis() {
+                ProfileAxis::X => cell.dx,
+                ProfileAxis::Y => cell.dy,
+            },
+            Departure::HeightMap(_) => cell.dx.max(cell.dy),
+        };
+        let nodes = d.node_spacing();
+        (along > nodes * (1.0 + MATCH)).then(|| InputLimit::CoarserThanData {
+            label: d.label().to_string(),
+            nodes,
+            cell: along,
+        })
+    }
 }
+
+/// A cell within this fraction of a table's node spacing counts as equal
+/// to it (the rounding of spacings computed two ways).
+const MATCH: f64 = 1e-9;
 
 /// Why the sequence of other grids ended early: the discretization's
 /// note, each grid named by its spacing's multiple `times` of the run's
