@@ -57,7 +57,8 @@ struct Tally {
     not_estimated: usize,
 }
 
-fn quantity<'a>(d: &'a DiscretizationJson, q: Quantity) -> &'a QuantityJson {
+/// The estimate of `q` in `d` (the contact extent's for any other).
+fn quantity(d: &DiscretizationJson, q: Quantity) -> &QuantityJson {
     let qs = &d.quantities;
     match q {
         Quantity::Approach => &qs.approach,
