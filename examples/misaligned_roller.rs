@@ -42,8 +42,8 @@
 //! parameters), then p_max at 10 kN against misalignment
 //! for every profile on the design grid, then the designed crown read
 //! straight between the rows of a table of it (its values at the design
-//! grid's stations, and profile.csv's samples) on a grid three times finer
-//! than the design's; writes that table as CSV and a
+//! grid's stations, and profile.csv's samples) on grids three and six
+//! times finer than the design's; writes that table as CSV and a
 //! plot of it under `--out` (default out/misaligned_roller). Its last line
 //! is `misalignment=<rad> pmax_none=<MPa> pmax_log=<MPa>
 //! pmax_designed=<MPa> grid=<nx>x<ny> verified=<p/p0>` at 1 mrad and 10 kN
@@ -555,11 +555,11 @@ struct Rows {
 /// grid) and p_max against misalignment at the largest load on the design
 /// grid.
 /// The designed crown as a workshop reads a table of it, straight between
-/// its rows, on a grid three times finer than the design's (the finer
-/// grid of docs/peers/verify_misaligned_roller.py): its values at the
-/// design grid's stations, and profile.csv's samples (`Sampling`, ten to a
-/// station), against the spline itself; each its worst p_max / p0 and its
-/// difference from the design's objective.
+/// its rows, on grids three and six times finer than the design's (three:
+/// the finer grid of docs/peers/verify_misaligned_roller.py): its values at
+/// the design grid's stations, and profile.csv's samples (`Sampling`, ten
+/// to a station), against the spline itself; each its worst p_max / p0
+/// and its difference from the design's objective.
 fn read_linearly(
     converged: &Converged,
     design: &Roller,
@@ -575,22 +575,24 @@ fn read_linearly(
     };
     let at_stations = linear(stations.clone())?;
     let sampled = linear(Sampling::new(&stations, None)?.positions())?;
-    let finer = Roller::new(3.0 * design_fineness)?;
     let objective = converged.levels.last().map_or(f64::NAN, |l| l.objective);
-    println!(
-        "\nthe designed crown read straight between rows, on {}x{} cells (design: {objective:.4}):",
-        finer.cells.0, finer.cells.1
-    );
-    for (name, profile) in [
-        ("the stations' values", &at_stations),
-        ("profile.csv's samples", &sampled),
-        ("the spline itself", spline),
-    ] {
-        let (worst, _) = finer.worst(profile, 0.0)?;
+    for factor in [3.0, 6.0] {
+        let finer = Roller::new(factor * design_fineness)?;
         println!(
-            "{name:<24} {worst:.4} ({:+.2} %)",
-            100.0 * (worst / objective - 1.0)
+            "\nthe designed crown read straight between rows, on {}x{} cells (design: {objective:.4}):",
+            finer.cells.0, finer.cells.1
         );
+        for (name, profile) in [
+            ("the stations' values", &at_stations),
+            ("profile.csv's samples", &sampled),
+            ("the spline itself", spline),
+        ] {
+            let (worst, _) = finer.worst(profile, 0.0)?;
+            println!(
+                "{name:<24} {worst:.4} ({:+.2} %)",
+                100.0 * (worst / objective - 1.0)
+            );
+        }
     }
     Ok(())
 }
