@@ -11,6 +11,9 @@ use pyo3::prelude::*;
 
 use crate::errors::{DesignError, InputError};
 
+/// A free profile's knots and their drops, as numpy arrays.
+type Knots<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
 /// A designed profile `y(s)`: the block it was read from and the profile
 /// it defines.
 #[pyclass(module = "elcon._elcon", name = "Profile", frozen)]
@@ -60,10 +63,7 @@ impl PyProfile {
     }
 
     /// A free profile's knots and their drops; `None` for a family.
-    fn knots<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> Option<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    fn knots<'py>(&self, py: Python<'py>) -> Option<Knots<'py>> {
         match &self.block {
             ProfileJson::Free { knots, drops, .. } => Some((
                 PyArray1::from_slice(py, knots),

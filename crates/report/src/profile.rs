@@ -98,9 +98,11 @@ impl CrownEnd {
 elcon_num::named!(CrownEnd, "crown end");
 elcon_num::named_serde!(CrownEnd);
 
-/// The designed profile `y(s)`, s the scene's coordinate along the
-/// design's axis, in its length unit (see the [module
-/// documentation](self)); serialized with its `family` as the tag.
+/// The designed profile `y(s)` as result.json's `design.profile` gives it,
+/// s the scene's coordinate along the design's axis, in its length unit:
+/// what defines it everywhere (docs/results.md); serialized with its
+/// `family` as the tag, read back into elcon-design's [`Profile`] by
+/// [`ProfileJson::profile`].
 #[serde_with::skip_serializing_none]
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "family", rename_all = "kebab-case")]
