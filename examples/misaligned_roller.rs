@@ -40,7 +40,10 @@
 //! largest von Mises stress below the surface over the cases on the design
 //! grid, its depth and the case it is in; and each profile's tuned
 //! parameters), then p_max at 10 kN against misalignment
-//! for every profile on the design grid; writes that table as CSV and a
+//! for every profile on the design grid, then the designed crown read
+//! straight between the rows of a table of it (its values at the design
+//! grid's stations, and profile.csv's samples) on grids three and six
+//! times finer than the design's; writes that table as CSV and a
 //! plot of it under `--out` (default out/misaligned_roller). Its last line
 //! is `misalignment=<rad> pmax_none=<MPa> pmax_log=<MPa>
 //! pmax_designed=<MPa> grid=<nx>x<ny> verified=<p/p0>` at 1 mrad and 10 kN
@@ -61,7 +64,7 @@ use elcon::analysis::subsurface::{Peak, Subsurface, SubsurfaceOptions};
 use elcon::analysis::{ContactProblem, Loading, Options, Storage};
 use elcon::design::{
     Analysis, Axis, Converged, DesignError, DesignFamily, DesignRequest, Evaluation, Family,
-    GridSequence, LogCrown, LogEnd, Objective, Profile, evaluate,
+    GridSequence, LogCrown, LogEnd, Objective, Profile, Sampling, axial_stations, evaluate,
 };
 use elcon::influence::combined_modulus;
 use elcon_fixtures::design_cases::{self, ROLLER_LENGTH, ROLLER_RADIUS};
@@ -503,6 +506,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         parameters: "free: the same knots, started from the pressure design".into(),
     });
     let rows = comparison(&named, &design, &finer)?;
+    read_linearly(&converged, &design, design_fineness)?;
     common::write_whole(&out.join("pmax.csv"), rows.csv)?;
     plot(&out.join("pmax.svg"), &rows.lines)?;
     if let Profile::Spline { positions, drops } = &converged.outcome.profile {
@@ -550,6 +554,49 @@ struct Rows {
 /// Prints the comparison over the 33 cases (design grid, verification
 /// grid) and p_max against misalignment at the largest load on the design
 /// grid.
+/// The designed crown as a workshop reads a table of it, straight between
+/// its rows, on grids three and six times finer than the design's (three:
+/// the finer grid of docs/peers/verify_misaligned_roller.py): its values at
+/// the design grid's stations, and profile.csv's samples (`Sampling`, ten
+/// to a station), against the spline itself; each its worst p_max / p0
+/// and its difference from the design's objective.
+fn read_linearly(
+    converged: &Converged,
+    design: &Roller,
+    design_fineness: f64,
+) -> Result<(), Box<dyn Error>> {
+    let spline = &converged.outcome.profile;
+    let points = design.bases.iter().map(ContactProblem::points);
+    let (stations, _) = axial_stations(points, Axis::Y);
+    let linear = |positions: Vec<f64>| -> Result<Profile, DesignError> {
+        let rows = spline.table(&positions)?;
+        let (positions, drops) = rows.into_iter().unzip();
+        Ok(Profile::Free { positions, drops })
+    };
+    let at_stations = linear(stations.clone())?;
+    let sampled = linear(Sampling::new(&stations, None)?.positions())?;
+    let objective = converged.levels.last().map_or(f64::NAN, |l| l.objective);
+    for factor in [3.0, 6.0] {
+        let finer = Roller::new(factor * design_fineness)?;
+        println!(
+            "\nthe designed crown read straight between rows, on {}x{} cells (design: {objective:.4}):",
+            finer.cells.0, finer.cells.1
+        );
+        for (name, profile) in [
+            ("the stations' values", &at_stations),
+            ("profile.csv's samples", &sampled),
+            ("the spline itself", spline),
+        ] {
+            let (worst, _) = finer.worst(profile, 0.0)?;
+            println!(
+                "{name:<24} {worst:.4} ({:+.2} %)",
+                100.0 * (worst / objective - 1.0)
+            );
+        }
+    }
+    Ok(())
+}
+
 fn comparison(named: &[Named], design: &Roller, finer: &Roller) -> Result<Rows, Box<dyn Error>> {
     println!(
         "\n{:<16} {:>12} {:>12} {:>10} {:>9} {:>13} {:>10} {:>9}  parameters (slope last, rad)",

@@ -16,7 +16,8 @@
 //! - [`target_separation`] / [`uniform_target`]: the correction that makes
 //!   the forces exactly a target distribution (the seed's Fig. 6 curve);
 //! - [`evaluate()`]: the certified analysis of any profile under every load
-//!   case; [`crown_search`]: the best parameter of a one-parameter crown;
+//!   case; [`Sampling`]: where a designed profile is sampled for the
+//!   workshop (profile.csv); [`crown_search`]: the best parameter of a one-parameter crown;
 //! - [`Objective`]: the worst intensity (the paper's), or the worst von
 //!   Mises or largest shear stress below the surface (`subsurface`),
 //!   minimized by the case-decomposed descent;
@@ -73,6 +74,7 @@ pub mod options;
 mod prepared;
 pub mod profile;
 pub mod request;
+pub mod sampling;
 pub mod sequence;
 pub mod subsurface;
 pub mod target;
@@ -88,5 +90,6 @@ pub use options::{DesignMethod, DesignOptions, Family, ITERATIVE_AGREEMENT, PROG
 pub use prepared::{EDGE_WEIGHT, Solver, Stop, axial_stations};
 pub use profile::{Axis, JOHNS_GOHAR, LogCrown, LogEnd, Profile};
 pub use request::{DesignFamily, DesignRequest, FamilyKind, Found, Outcome, Roller};
+pub use sampling::{MAX_PROFILE_SAMPLES, SAMPLES_PER_STATION, Sampling};
 pub use sequence::{Converged, GridSequence, Level};
 pub use target::{TargetSeparation, target_separation, uniform_target};

@@ -378,20 +378,6 @@ impl Profile {
         list.into_iter().collect()
     }
 
-    /// How the profile is defined between the stations it was designed at,
-    /// in words: its family's closed form, or a free profile's
-    /// interpolation.
-    pub fn interpolation(&self) -> String {
-        match self {
-            Profile::Spline { positions, .. } => format!(
-                "natural cubic spline through {} knots, its end slopes carried on beyond",
-                positions.len()
-            ),
-            Profile::Free { .. } => "linear between stations, constant beyond".into(),
-            _ => "the family's closed form".into(),
-        }
-    }
-
     /// A short name of the family ("quadratic", "circular crown", ...).
     pub fn family(&self) -> &'static str {
         match self {

@@ -77,9 +77,10 @@ pub struct Converged {
     pub cases: Vec<ContactProblem>,
     /// The design grids, coarse to fine, with the objective on each.
     pub levels: Vec<Level>,
-    /// The last design's profile evaluated on the next finer grid, within
-    /// the tolerance of its objective (`None` for a design made on one
-    /// grid and not verified).
+    /// The last design's profile (`outcome.profile`, exactly as it is
+    /// returned) evaluated on the next finer grid, within the tolerance of
+    /// its objective (`None` for a design made on one grid and not
+    /// verified).
     pub verification: Option<Level>,
 }
 
@@ -199,6 +200,14 @@ impl DesignRequest {
     }
 
     /// `profile` evaluated on `grid`: a verification [`Level`].
+    ///
+    /// `profile` is the design's own [`Profile`](crate::Profile), the one
+    /// the user is given (result.json's `design.profile`, Python's
+    /// `Design.profile`, sampled into profile.csv): a free profile's natural
+    /// cubic spline through its knots, evaluated at each point of the finer
+    /// grid by [`Profile::separations`](crate::Profile::separations), not
+    /// a table of its values at the design grid's stations read linearly
+    /// (a kink at every station, which a finer grid resolves into peaks).
     fn verify(
         &self,
         grid: &[ContactProblem],

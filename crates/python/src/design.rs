@@ -132,6 +132,7 @@ fn design_json(
         grids: std::slice::from_ref(&grid),
         verification: None,
         grid_tolerance: None,
+        profile_spacing: None,
         seconds: start.elapsed().as_secs_f64(),
     };
     let loads: Vec<f64> = cases

@@ -4,7 +4,9 @@
 //! (`run_scene`) or checked as `elcon check` checks it (`check_scene`), a batch (`run_batch`), a contact problem from numpy
 //! arrays or from a layout (`ContactProblem`: points, separations, and S
 //! given or assembled from body models) and a design over such problems or
-//! over a scene (`design_problems`, `design_scene`). Python's dicts become
+//! over a scene (`design_problems`, `design_scene`), and the designed
+//! profile read back from its result.json block and evaluated by
+//! elcon-design (`Profile`). Python's dicts become
 //! the TOML a scene holds and go through the scene crate's own parsers and
 //! checks (`elcon_scene::problem_parts`, `elcon_scene::design_over`,
 //! `elcon_scene::scene_with_design`), so a body, a surface or a design key
@@ -32,6 +34,7 @@ mod design;
 mod errors;
 mod memory;
 mod problem;
+mod profile;
 mod scene;
 mod signals;
 mod subsurface;
@@ -46,6 +49,7 @@ fn _elcon(m: &Bound<'_, PyModule>) -> PyResult<()> {
     elcon_process::install_panic_hook();
     errors::add_classes(m)?;
     m.add_class::<problem::PyContactProblem>()?;
+    m.add_class::<profile::PyProfile>()?;
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(scene::check_scene, m)?)?;

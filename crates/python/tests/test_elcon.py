@@ -156,8 +156,20 @@ def test_the_design_from_arrays_equals_the_scenes():
     d = elcon.design([problem], axis="x", family="quadratic")
     assert d.objective == pytest.approx(expected, rel=1e-12)
     assert d.certificates_hold
-    assert d.positions.shape == d.drops.shape == (len(scene.x),)
-    assert d.drops.min() == pytest.approx(0.0, abs=1e-15)
+    # The correction is a callable profile: at the points, an array of
+    # their shape, its smallest drop 0; at one position, a float.
+    drops = d.profile(scene.x)
+    assert drops.shape == (len(scene.x),) and drops.dtype == np.float64
+    assert drops.min() == pytest.approx(0.0, abs=1e-15)
+    assert d.profile.family == "quadratic" and d.profile.knots is None
+    block = d.to_dict()["profile"]
+    assert isinstance(d.profile(1.0), float)
+    assert d.profile(1.0) == pytest.approx(block["a"] + block["b"] + block["c"], rel=1e-14)
+    assert d.profile(scene.x.reshape(4, -1)).shape == (4, len(scene.x) // 4)
+    # A scene's run gives its designed profile too (none without [design]).
+    assert scene.profile.to_dict() == scene.to_dict()["design"]["profile"]
+    np.testing.assert_allclose(scene.profile(scene.x), drops, rtol=1e-9, atol=1e-12 * drops.max())
+    assert elcon.run(SCENES / "example1-spheres.toml").profile is None
 
 
 def test_bad_input_raises_its_class_with_the_field_named():
@@ -375,11 +387,11 @@ def cli_design(tmp_path, scene):
 
 def assert_as_written(design, written, *case_fields):
     """``design`` is the CLI's ``written`` design block (but for times): its
-    objective, parameters and table, and each case's ``case_fields``."""
+    objective, parameters and profile, and each case's ``case_fields``."""
     assert without_times(design.to_dict()) == without_times(written)
     assert design.objective == written["objective"]
     assert design.parameters == written["parameters"]
-    assert design.table == written["table"]
+    assert design.profile.to_dict() == written["profile"]
     for field in case_fields:
         assert [c[field] for c in design.cases] == [c[field] for c in written["cases"]], field
 
@@ -390,6 +402,18 @@ def test_design_over_the_crowned_roller_equals_the_clis_result_json(tmp_path):
     free = elcon.design(SCENES / "crowned-roller.toml")
     assert_as_written(free, written, "max_pressure_after")
     assert free.family == "free" and free.certificates_hold
+    # Its profile: the natural cubic spline through the 40 stations of the
+    # scene's grid, and profile.csv the same profile's values, to the bit.
+    assert free.profile.interpolation == "natural-cubic-spline"
+    assert free.profile.knots.shape == free.profile.drops.shape == (40,)
+    assert np.array_equal(free.profile(free.profile.knots), free.profile.drops)
+    csv = tmp_path / "out" / "crowned-roller" / "profile.csv"
+    assert csv.read_text().startswith("y_mm,drop_mm\n")
+    samples = np.loadtxt(csv, delimiter=",", skiprows=1)
+    assert (samples[0, 0], samples[-1, 0]) == (-5.0, 5.0)
+    assert len(samples) == 10 * 80 + 1   # ten to a station of its 18 x 80 design grid
+    assert np.array_equal(free.profile(samples[:, 0]), samples[:, 1])
+    assert written["profile_spacing"] == pytest.approx(10.0 / 800, rel=1e-15)
     # A logarithmic crown: the [design] keys as keywords, and the same keys
     # in the scene's file through the CLI.
     keys = dict(family="logarithmic-crown", loads=[1000.0, 5000.0, 10000.0],
@@ -417,7 +441,9 @@ def test_design_over_the_crowned_roller_equals_the_clis_result_json(tmp_path):
     references = [c["reference_intensity"] for c in written["cases"]]
     over = elcon.design(problems, family="logarithmic-crown", axis="y", end="lundberg",
                         reference_intensities=references)
-    assert over.parameters == written["parameters"] and over.table == written["table"]
+    assert over.parameters == written["parameters"]
+    assert over.profile.to_dict() == written["profile"]
+    assert over.profile_spacing is None   # no profile.csv over problems
     assert over.max_intensities == [c["max_pressure_after"] for c in written["cases"]]
     assert over.objective == written["objective"]
 
@@ -463,6 +489,17 @@ def test_every_family_from_problems_with_the_scenes_names_and_errors():
     # The problems are the cases: loads and relative_to belong to a scene.
     with pytest.raises(elcon.InputError, match=r"`design.loads`"):
         elcon.design([problem], family="free", loads=[1.0])
+    with pytest.raises(elcon.InputError, match=r"`design.profile_spacing`.*writes no file"):
+        elcon.design([problem], family="free", profile_spacing=0.1)
+    # A free profile from problems is linear between its stations, flat
+    # beyond them.
+    assert free.profile.interpolation == "linear"
+    knots, drops = free.profile.knots, free.profile.drops
+    assert free.profile(knots[0] - 1.0) == drops[0]
+    middle = 0.5 * (knots[3] + knots[4])
+    assert free.profile(middle) == pytest.approx(0.5 * (drops[3] + drops[4]), rel=1e-14)
+    with pytest.raises(elcon.InputError, match=r"`s`: positions must be finite"):
+        free.profile([0.0, float("nan")])
     # A design that fails names the scene's key, as `elcon run` does: a
     # crown radius below the beam's half-length (4.45 in).
     with pytest.raises(elcon.DesignError,

@@ -1,15 +1,16 @@
 //! result.json's `design` block: the family and its parameters, the
-//! objective before and after, each load case re-analysed, the grids the
-//! design went over and its verification on a finer one; and the design's
-//! data for its plot ([`DesignRun`]).
+//! profile itself ([`ProfileJson`]), the objective before and after, each
+//! load case re-analysed, the grids the design went over and its
+//! verification on a finer one; and the design's data for its plot and
+//! profile.csv ([`DesignRun`]).
 
 use elcon_analysis::ContactProblem;
 use elcon_design::{
     Axis, DesignError, DesignFamily, DesignMethod, Evaluation, Found, Objective, Outcome, Profile,
-    axial_stations,
 };
 use serde::{Deserialize, Serialize};
 
+use crate::profile::ProfileJson;
 use crate::subsurface::BodySubsurfaceJson;
 
 /// What each load case's p_max is divided by (its reference intensity
@@ -196,18 +197,18 @@ pub struct DesignJson {
     pub objective_before: f64,
     /// Per load case.
     pub cases: Vec<DesignCaseJson>,
-    /// The correction as a table: (axial position, drop), lengths.
-    pub table: Vec<(f64, f64)>,
+    /// The correction itself: a free profile's knots, drops and
+    /// interpolation, or a family's coefficients.
+    pub profile: ProfileJson,
+    /// The spacing of profile.csv's samples (length); none where no
+    /// profile.csv is written (Python's design over problems).
+    pub profile_spacing: Option<f64>,
     /// How the linear family's problem was solved: "program" or
     /// "descent" (`design.method`, "auto" resolved); "search" for a
     /// circular crown, "set" for a logarithmic one.
     pub method: FoundBy,
     /// How each start ended (linear families).
     pub starts: Vec<String>,
-    /// How the profile is defined between the stations it was designed
-    /// at: its family's closed form, or the natural cubic spline through a
-    /// free profile's knots.
-    pub interpolation: String,
     /// The grids the design went over, coarse to fine, the last its own:
     /// each with the worst objective of the design on it.
     pub grids: Vec<DesignGridJson>,
@@ -246,6 +247,8 @@ pub struct DesignOf<'a> {
     pub verification: Option<&'a DesignGridJson>,
     /// The agreement the verification is held to.
     pub grid_tolerance: Option<f64>,
+    /// The spacing of profile.csv's samples, when one is written.
+    pub profile_spacing: Option<f64>,
     /// Seconds of the design.
     pub seconds: f64,
 }
@@ -256,10 +259,9 @@ impl DesignJson {
     /// stresses below the surface).
     ///
     /// # Errors
-    /// The profile's when it cannot be tabulated at the cases' stations.
+    /// [`ProfileJson::of`]'s, for a profile result.json has no form for.
     pub fn of(d: DesignOf<'_>, rows: Vec<DesignCaseJson>) -> Result<Self, DesignError> {
         let outcome = d.outcome;
-        let (positions, _) = axial_stations(d.cases.iter().map(ContactProblem::points), d.axis);
         Ok(Self {
             family: d.family.describe(),
             axis: d.axis,
@@ -270,10 +272,10 @@ impl DesignJson {
             worst_stress: outcome.found.worst_stress(),
             objective_before: d.before.relative_worst(d.references),
             cases: rows,
-            table: outcome.profile.table(&positions)?,
+            profile: ProfileJson::of(&outcome.profile)?,
+            profile_spacing: d.profile_spacing,
             method: FoundBy::of(&outcome.found),
             starts: outcome.found.starts(),
-            interpolation: outcome.profile.interpolation(),
             grids: d.grids.to_vec(),
             verification: d.verification.cloned(),
             grid_tolerance: d.grid_tolerance,
@@ -310,11 +312,14 @@ pub struct DesignGridJson {
     pub seconds: f64,
 }
 
-/// The design stage's data for plots.
+/// The design stage's data for its plot and profile.csv.
 #[derive(Debug, Clone)]
 pub struct DesignRun {
     /// The correction.
     pub profile: Profile,
+    /// profile.csv's rows: the correction's (axial position, drop) at
+    /// each sample (`elcon_design::Sampling`), lengths.
+    pub samples: Vec<(f64, f64)>,
     /// Every case without correction.
     pub before: Evaluation,
     /// Every case with it.

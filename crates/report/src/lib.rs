@@ -2,12 +2,13 @@
 //!
 //! One typed schema for what a run gives: result.json (the header, the
 //! solution's fields, the discretization error estimate, the stresses below
-//! the surface, the closed-form comparison and the design), and a batch's
-//! table; the same types serialize the files, build the Python package's
-//! dicts, and read results back (a resumed batch, `elcon merge`). Its
-//! writers put them on disk whole or not at all: result.json,
-//! pressure.csv, the subsurface sections, SVG plots, and a batch's
-//! results.json, results.csv, results.md and error-time.svg.
+//! the surface, the closed-form comparison and the design, its profile
+//! typed), and a batch's table; the same types serialize the files, build
+//! the Python package's dicts, and read results back (a resumed batch,
+//! `elcon merge`). Its writers put them on disk whole or not at all:
+//! result.json, pressure.csv, a design's profile.csv, the subsurface
+//! sections, SVG plots, and a batch's results.json, results.csv,
+//! results.md and error-time.svg.
 //!
 //! docs/results.md documents every field.
 
@@ -17,6 +18,7 @@ mod error;
 mod output;
 mod plot;
 mod plot_subsurface;
+mod profile;
 mod reference;
 mod result;
 mod solve;
@@ -30,6 +32,7 @@ pub use discretization::{DiscretizationJson, GridJson, QuantitiesJson, QuantityJ
 pub use error::ReportError;
 pub use output::{write_run, write_run_files};
 pub use plot::error_time;
+pub use profile::{Beyond, CrownEnd, Interpolation, ProfileJson};
 pub use reference::{Errors, ReferenceJson, XY};
 pub use result::{Header, ProblemResult, Run, RunResult, Seconds, SolutionJson, SymmetryJson};
 pub use solve::{AttemptJson, CertificateJson, Holding, StatisticsJson};

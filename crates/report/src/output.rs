@@ -1,8 +1,9 @@
 //! Writing a run's outputs under `<out>/<scene>/`, the directory written
 //! whole (elcon-process's `Staging`): result.json (docs/results.md),
 //! pressure.csv (position, measure, force, pressure, gap, separation, and
-//! the closed form's pressure where one applies), the subsurface sections
-//! when asked for (`subsurface_body1.csv`, `subsurface_profile_body1.csv`,
+//! the closed form's pressure where one applies), a design's profile.csv
+//! (its correction sampled along the axis), the subsurface sections when
+//! asked for (`subsurface_body1.csv`, `subsurface_profile_body1.csv`,
 //! and body 2's), and the plots asked for.
 
 use std::io;
@@ -16,6 +17,7 @@ use elcon_scene::Plot;
 use crate::error::ReportError;
 use crate::plot;
 use crate::plot_subsurface;
+use crate::profile::profile_csv;
 use crate::result::Run;
 use crate::subsurface::section_csv;
 
@@ -31,7 +33,7 @@ pub fn write_run(run: &Run, out: &Path) -> Result<PathBuf, ReportError> {
 }
 
 /// Writes a run's files into `dir`: result.json, pressure.csv (unless
-/// switched off) and the plots asked for.
+/// switched off), a design's profile.csv and the plots asked for.
 ///
 /// # Errors
 /// [`ReportError`] for a file that could not be written.
@@ -44,6 +46,13 @@ pub fn write_run_files(run: &Run, dir: &Path) -> Result<(), ReportError> {
     faults::write_delay();
     if run.scene.outputs().pressure_csv() {
         write_atomic_with(&dir.join("pressure.csv"), |w| pressure_csv(run, w))?;
+        faults::write_delay();
+    }
+    if let (Some(design), Some(spec)) = (&run.design, run.scene.design()) {
+        let length = run.scene.units().length();
+        write_atomic_with(&dir.join("profile.csv"), |w| {
+            profile_csv(spec.axis().name(), length, &design.samples, w)
+        })?;
         faults::write_delay();
     }
     write_subsurface(run, dir)?;

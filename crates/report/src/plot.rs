@@ -296,13 +296,19 @@ pub(crate) fn design(run: &Run) -> Result<String, ReportError> {
     let u = run.scene.units();
     svg((SIZE.0, SIZE.1 + 300), |root| {
         let (top, bottom) = root.split_vertically(360);
-        let table = &run
-            .result
-            .design
-            .as_ref()
-            .ok_or_else(|| err("no design result"))?
-            .table;
-        let (s0, s1) = padded(table[0].0, table[table.len() - 1].0);
+        // The correction as profile.csv samples it, dense enough to draw
+        // its curve between the stations; where it is infinite (Lundberg's
+        // crown at the end of its length) it leaves the plot.
+        let table: Vec<(f64, f64)> = d
+            .samples
+            .iter()
+            .copied()
+            .filter(|r| r.1.is_finite())
+            .collect();
+        let (Some(first), Some(last)) = (table.first(), table.last()) else {
+            return Err(err("no finite sample of the correction"));
+        };
+        let (s0, s1) = padded(first.0, last.0);
         let ymax = table.iter().fold(0.0f64, |a, r| a.max(r.1));
         let caption = format!(
             "{}: correction ({})",

@@ -62,6 +62,7 @@ fn scene_design_key(field: &str) -> Option<DesignKey> {
         "family.degree" => key("design.degree", None),
         "max_constant" => key("design.max_constant", None),
         "grid_tolerance" => key("design.grid_tolerance", None),
+        "profile_spacing" => key("design.profile_spacing", None),
         "cases" => key(
             "design.loads",
             Some("the load cases, each load at each misalignment"),

@@ -2,12 +2,13 @@
 //! at each misalignment) built as the scene's problem is, analysed without
 //! the correction, then the correction elcon-design finds for the
 //! section's request (`elcon_design::DesignRequest`) with every case
-//! re-analysed and certified; result.json's `design` block.
+//! re-analysed and certified; result.json's `design` block, and the
+//! profile sampled for profile.csv.
 
 use std::time::Instant;
 
 use elcon_analysis::{ContactProblem, ContactSolution, Loading, Normal};
-use elcon_design::{Analysis, DesignError, Profile, evaluate};
+use elcon_design::{Analysis, DesignError, Profile, Sampling, axial_stations, evaluate};
 use elcon_num::Num;
 use elcon_report::{
     BodySubsurfaceJson, DesignCaseJson, DesignGridJson, DesignJson, DesignOf, DesignRun,
@@ -111,6 +112,7 @@ pub(crate) fn design_stage(
     let grids: Vec<DesignGridJson> = converged.levels.iter().map(grid).collect();
     let verification = converged.verification.as_ref().map(grid);
     let outcome = converged.outcome;
+    let (sampling, samples) = sampled(spec, &cases, &outcome.profile).map_err(fail)?;
     let of = DesignOf {
         family: spec.family(),
         axis: spec.axis(),
@@ -122,6 +124,7 @@ pub(crate) fn design_stage(
         grids: &grids,
         verification: verification.as_ref(),
         grid_tolerance: spec.sequence().map(|s| s.tolerance),
+        profile_spacing: Some(sampling.spacing),
         seconds: start.elapsed().as_secs_f64(),
     };
     let after = &outcome.evaluation;
@@ -141,11 +144,26 @@ pub(crate) fn design_stage(
         json,
         DesignRun {
             profile: outcome.profile,
+            samples,
             before,
             after: outcome.evaluation,
             cases,
         },
     ))
+}
+
+/// The design's profile sampled for profile.csv: over the cells of its
+/// own grid's stations, at `design.profile_spacing` or by default
+/// `elcon_design::SAMPLES_PER_STATION` samples to a station.
+fn sampled(
+    spec: &DesignSpec,
+    cases: &[ContactProblem],
+    profile: &Profile,
+) -> Result<(Sampling, Vec<(f64, f64)>), DesignError> {
+    let (stations, _) = axial_stations(cases.iter().map(ContactProblem::points), spec.axis());
+    let sampling = Sampling::new(&stations, spec.profile_spacing())?;
+    let samples = profile.table(&sampling.positions())?;
+    Ok((sampling, samples))
 }
 
 /// A design's failure as the scene's error: [`design_reason`] with the

@@ -360,6 +360,7 @@ pub(crate) struct DesignToml {
     pub grid_tolerance: Option<Spanned<f64>>,
     pub max_points: Option<Spanned<i64>>,
     pub refine: Option<Spanned<bool>>,
+    pub profile_spacing: Option<Spanned<f64>>,
 }
 
 /// `[outputs]`.

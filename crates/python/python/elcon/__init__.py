@@ -54,6 +54,7 @@ __all__ = [
     "ContactProblem",
     "Result",
     "Design",
+    "Profile",
     "methods",
     "storages",
     "hertz_ellipse",
@@ -103,7 +104,9 @@ class Result(_Fields):
     scene's pressure unit, tension positive).
 
     ``to_dict()`` is the run's result.json (for a scene) or the solution's
-    fields with the same names (for a ContactProblem).
+    fields with the same names (for a ContactProblem); ``profile`` a
+    scene's designed profile (a :class:`Profile`; None without
+    ``[design]``).
     """
 
     x: np.ndarray
@@ -140,6 +143,13 @@ class Result(_Fields):
     def to_dict(self) -> Dict[str, Any]:
         """The result as a dict: for a scene, equal to its result.json."""
         return json.loads(self._json)
+
+    @property
+    def profile(self) -> Optional["Profile"]:
+        """The designed profile of a scene with ``[design]`` (a
+        :class:`Profile`, callable on positions); None otherwise."""
+        block = self._dict.get("design")
+        return None if block is None else Profile(block["profile"])
 
     @property
     def approach(self) -> float:
@@ -457,22 +467,81 @@ class ContactProblem:
         return Result(self._inner.solve(_name(method, "method"), threads))
 
 
+class Profile:
+    """A designed profile ``y(s)``: the drop at the axial position ``s``
+    (the scene's coordinate along the design's axis, its length unit), as
+    result.json's ``design.profile`` defines it, evaluated by elcon-design
+    itself (the code that designed and verified it).
+
+    Call it on a number or an array of any shape: ``profile(0.0)`` is a
+    float, ``profile(s)`` an array of ``s``'s shape. ``family`` is
+    ``"free"``, ``"quadratic"``, ``"polynomial"``, ``"circular-crown"`` or
+    ``"logarithmic-crown"``; a free profile has ``knots`` and ``drops``
+    (float64 arrays) and ``interpolation`` (``"natural-cubic-spline"``,
+    carried on along its end slopes beyond the end knots, or
+    ``"linear"``, flat beyond them); a family has ``None`` there and its
+    coefficients in ``to_dict()``.
+    """
+
+    def __init__(self, block: Dict[str, Any]):
+        self._block = json.loads(json.dumps(block))
+        self._inner = _elcon.Profile(json.dumps(block))
+        knots = self._inner.knots()
+        self.knots: Optional[np.ndarray] = None if knots is None else knots[0]
+        self.drops: Optional[np.ndarray] = None if knots is None else knots[1]
+        for array in (self.knots, self.drops):
+            if array is not None:
+                array.setflags(write=False)
+
+    def __call__(self, s: npt.ArrayLike) -> Union[float, np.ndarray]:
+        if isinstance(s, (str, bytes, dict)) or np.iscomplexobj(s):
+            raise InputError(f"`s`: not a real number or array (got {type(s).__name__})")
+        try:
+            array = np.asarray(s, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise InputError(f"`s`: not a number or an array of numbers ({e})") from None
+        drops = self._inner.drops_at(np.ascontiguousarray(array.ravel()))
+        if array.ndim == 0:
+            return float(drops[0])
+        return drops.reshape(array.shape)
+
+    @property
+    def family(self) -> str:
+        """The family (the block's ``family``)."""
+        return self._inner.family
+
+    @property
+    def interpolation(self) -> Optional[str]:
+        """A free profile's interpolation between its knots; None for a family."""
+        return self._block.get("interpolation")
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The profile as a dict: result.json's ``design.profile``."""
+        return json.loads(json.dumps(self._block))
+
+    def __repr__(self) -> str:
+        if self.knots is not None:
+            return (f"Profile(family='free', interpolation='{self.interpolation}', "
+                    f"knots={len(self.knots)})")
+        return f"Profile(family='{self.family}')"
+
+
 class Design(_Fields):
     """A certified design, as result.json's ``design`` block: ``family``,
     ``axis``, ``relative_to``, ``parameters`` (the profile's, by name),
     ``objective`` (the worst p_max over the cases, over each case's
     reference intensity), ``objective_before``, ``cases`` (per case: load,
-    reference intensity, p_max before and after, certificate), ``table``,
+    reference intensity, p_max before and after, certificate),
     ``method`` ("program", "descent", "search" or "set"), ``starts``,
-    ``seconds``. Arrays: ``positions`` and ``drops`` (the correction at the
-    axial stations). Also ``max_intensities`` (p_max per case, corrected),
-    ``max_intensity`` (their largest) and ``certificates_hold``."""
+    ``seconds``. ``profile`` is the correction itself, a :class:`Profile`:
+    ``design.profile(s)`` is its drop at the axial positions ``s``, and
+    ``design.profile.knots`` a free profile's knots. Also
+    ``max_intensities`` (p_max per case, corrected), ``max_intensity``
+    (their largest) and ``certificates_hold``."""
 
     def __init__(self, raw: str):
         self._dict = json.loads(raw)
-        table = np.asarray(self._dict["table"], dtype=np.float64).reshape(-1, 2)
-        self.positions = table[:, 0].copy()
-        self.drops = table[:, 1].copy()
+        self.profile = Profile(self._dict["profile"])
 
     @property
     def max_intensities(self) -> List[float]:

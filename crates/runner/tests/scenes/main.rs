@@ -7,6 +7,7 @@ mod common;
 mod bodies;
 mod bounds;
 mod design_outcomes;
+mod design_profile;
 mod design_stage;
 mod error_estimate;
 mod errors;

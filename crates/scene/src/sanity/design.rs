@@ -2,7 +2,7 @@
 //! cases, the degree against the axial stations, the bound on the
 //! constant, and the lightest load a relative design can be verified at.
 
-use elcon_design::{Axis, Family, GridSequence, axial_stations};
+use elcon_design::{Axis, Family, GridSequence, Sampling, axial_stations};
 use elcon_influence::{Dimension, PointSet};
 use toml::Spanned;
 
@@ -52,6 +52,9 @@ pub(crate) struct DesignView {
     /// (`design.refine`, `design.max_points`); none on the scene's grid
     /// alone.
     pub sequence: Option<GridSequence>,
+    /// The spacing of profile.csv's samples, if given
+    /// (`design.profile_spacing`).
+    pub profile_spacing: Option<f64>,
 }
 
 /// The number of design cases (each load at each misalignment), before any
@@ -134,6 +137,7 @@ pub(crate) fn design(
         }
     }
     load_range(ctx, raw, spec, sets)?;
+    profile_samples(ctx, raw, spec, sets)?;
     if let (Some(c), Some(raw_c)) = (spec.max_constant, &t.max_constant) {
         let zone = sets.iter().map(zone_size).fold(0.0f64, f64::max);
         let bound = MAX_CONSTANT_OVER_ZONE * zone;
@@ -150,6 +154,29 @@ pub(crate) fn design(
         }
     }
     Ok(())
+}
+
+/// `design.profile_spacing` against the grids' extent along the axis: the
+/// samples of profile.csv at that spacing within
+/// `elcon_design::MAX_PROFILE_SAMPLES` (the extent is the same on every
+/// grid the design goes over: they refine the scene's).
+fn profile_samples(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<DesignToml>,
+    spec: &DesignView,
+    sets: &[PointSet],
+) -> Result<(), SceneError> {
+    let (Some(spacing), Some(given)) = (spec.profile_spacing, &raw.get_ref().profile_spacing)
+    else {
+        return Ok(());
+    };
+    let (stations, _) = axial_stations(sets.iter(), spec.axis);
+    match Sampling::new(&stations, Some(spacing)) {
+        Err(elcon_design::DesignError::InvalidInput { reason, .. }) => {
+            Err(ctx.invalid(given.span(), "design.profile_spacing", Num(spacing), reason))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// The lightest load a design relative to each load's own reference can

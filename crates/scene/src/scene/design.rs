@@ -36,6 +36,7 @@ pub struct DesignSpec {
     bodies: Vec<Body>,
     misalignments: Vec<f64>,
     sequence: Option<GridSequence>,
+    profile_spacing: Option<f64>,
 }
 
 impl DesignSpec {
@@ -87,6 +88,14 @@ impl DesignSpec {
         self.sequence.as_ref()
     }
 
+    /// The spacing of profile.csv's samples along the axis
+    /// (`design.profile_spacing`, length); `None`: the default,
+    /// `elcon_design::SAMPLES_PER_STATION` samples to a station of the
+    /// design's grid.
+    pub fn profile_spacing(&self) -> Option<f64> {
+        self.profile_spacing
+    }
+
     /// The request elcon-design runs: the family, axis, method and bound
     /// of this section, the cases measured against `references` (one per
     /// case; none: the worst p_max itself), analysed by `reanalysis` (none:
@@ -121,6 +130,7 @@ impl DesignSpec {
             loads: self.loads.clone(),
             relative: self.relative_to != RelativeTo::Absolute,
             sequence: self.sequence.clone(),
+            profile_spacing: self.profile_spacing,
         }
     }
 
@@ -209,6 +219,9 @@ pub(super) fn design(
     let (objective, bodies) = design_objective(ctx, t, (&family, method), scene)?;
     let misalignments = misalignments(ctx, t)?;
     let sequence = grid_sequence(ctx, t)?;
+    let profile_spacing = (t.profile_spacing.as_ref())
+        .map(|h| ctx.positive(h, "design.profile_spacing"))
+        .transpose()?;
     Ok(DesignSpec {
         family,
         axis,
@@ -220,6 +233,7 @@ pub(super) fn design(
         bodies,
         misalignments,
         sequence,
+        profile_spacing,
     })
 }
 

@@ -214,7 +214,8 @@ fn problem_layout(
 /// against the cases' dimension, the method, and the degree and bound
 /// against the cases' grids. The cases are the load cases, so the keys
 /// that make cases (`loads`, `misalignments`) and `relative_to` (the
-/// caller gives reference intensities instead) are refused. A logarithmic
+/// caller gives reference intensities instead) are refused, and so is
+/// `profile_spacing` (no profile.csv is written). A logarithmic
 /// crown's roller is `roller` when given, else derived as a scene derives
 /// it from `layout` (the bodies, surfaces and rectangle grid the cases
 /// were built from).
@@ -248,6 +249,12 @@ pub fn design_over(
         &t.relative_to,
         "design.relative_to",
         "the problems given are the load cases: give their reference intensities instead",
+    )?;
+    ctx.forbid(
+        &t.profile_spacing,
+        "design.profile_spacing",
+        "profile.csv is a scene's output: a design over problems writes no file (evaluate its \
+         profile where you need it)",
     )?;
     let dimensions: Vec<Dimension> = cases.iter().map(|c| c.points().dimension()).collect();
     let dimension = match dimensions.first() {
