@@ -158,10 +158,6 @@ pub struct DiscretizationJson {
     /// were solved).
     #[serde(default)]
     pub own_grid: usize,
-    /// Seconds spent on the grids other than the run's own: the
-    /// estimate's cost (also `seconds.error_estimate`).
-    #[serde(default)]
-    pub extra_seconds: f64,
     /// Each quantity.
     pub quantities: QuantitiesJson,
     /// What limited the estimate (too few points for a coarser grid, a
@@ -186,7 +182,6 @@ impl DiscretizationJson {
         Self {
             grids: d.grids.iter().map(grid).collect(),
             own_grid: d.own,
-            extra_seconds: d.extra_seconds(),
             quantities: QuantitiesJson {
                 approach: q(Quantity::Approach),
                 max_pressure: q(Quantity::MaxPressure),
@@ -201,6 +196,14 @@ impl DiscretizationJson {
             note: d.note.clone(),
             limits: d.limits.iter().map(ToString::to_string).collect(),
         }
+    }
+
+    /// Seconds spent on the grids other than the run's own: the
+    /// estimate's cost (result.json's `seconds.error_estimate`).
+    pub fn extra_seconds(&self) -> f64 {
+        (self.grids.iter().enumerate())
+            .filter(|&(i, _)| i != self.own_grid)
+            .fold(0.0, |sum, (_, g)| sum + g.seconds)
     }
 }
 

@@ -201,7 +201,9 @@ pub fn run(scene: &Scene) -> Result<Run, RunError> {
         seconds: Seconds {
             assembly: problem.assembly_seconds(),
             solve: solution.solve_seconds,
-            error_estimate: discretization.as_ref().map_or(0.0, |d| d.extra_seconds),
+            error_estimate: discretization
+                .as_ref()
+                .map_or(0.0, DiscretizationJson::extra_seconds),
             subsurface: subsurface_json.as_ref().map_or(0.0, |s| s.seconds),
             total: start.elapsed().as_secs_f64(),
         },

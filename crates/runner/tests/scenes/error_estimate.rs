@@ -37,7 +37,7 @@ fn every_run_estimates_its_discretization_error_unless_told_not_to() {
     let approach = &json["discretization"]["quantities"]["approach"];
     assert_eq!(approach["verdict"], "not resolved");
     assert!(approach["reason"].as_str().unwrap().contains("alternate"));
-    assert_eq!(r.result.seconds.error_estimate, d.extra_seconds);
+    assert_eq!(r.result.seconds.error_estimate, d.extra_seconds());
 
     let off = with_table(SPHERES, "solver", "error_estimate = false");
     let r = run(&scene(&off).unwrap()).unwrap();
