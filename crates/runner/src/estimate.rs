@@ -251,9 +251,11 @@ impl Estimate {
 /// `elcon_analysis::discretization::finer_allowance` of the scene's own
 /// solve), are solved one at a time while the scene's own S is held, so
 /// the stage's peak is the scene's S plus the largest of their solves'
-/// bytes; the seconds are all of theirs (the run solves the finer grids
-/// only where the grid at 4h would not resolve the contact: an upper
-/// bound). Nothing when the estimate is off or the layout has no family.
+/// bytes, finer grids included (the run solves them where the grid at 4h
+/// would not resolve the contact, which only the solve tells). The
+/// seconds are the coarser grids' (the run's usual path), or the finer
+/// ones' where the layout has no coarser grid at all. Nothing when the
+/// estimate is off or the layout has no family.
 fn discretization(scene: &Scene) -> (f64, f64) {
     let Some(family) = scene
         .error_estimate()
@@ -268,8 +270,11 @@ fn discretization(scene: &Scene) -> (f64, f64) {
         Some(plan.estimate)
     };
     let allowance = finer_allowance(scene.plan().estimate.solve_bytes);
-    let (mut bytes, mut seconds) = (0.0f64, 0.0);
-    for step in [GridFamily::coarser, |g: &GridFamily| Some(g.finer())] {
+    let mut paths = [(0.0f64, 0.0f64, 0usize); 2];
+    for (path, step) in paths
+        .iter_mut()
+        .zip([GridFamily::coarser, |g: &GridFamily| Some(g.finer())])
+    {
         let mut current = family;
         for _ in 0..2 {
             let Some((grid, e)) = step(&current).and_then(|g| Some((g, plan(&g)?))) else {
@@ -278,12 +283,20 @@ fn discretization(scene: &Scene) -> (f64, f64) {
             if grid.spacing() < current.spacing() && !(e.solve_bytes <= allowance) {
                 break;
             }
-            bytes = bytes.max(e.solve_bytes);
-            seconds += e.seconds;
+            *path = (path.0.max(e.solve_bytes), path.1 + e.seconds, path.2 + 1);
             current = grid;
         }
     }
-    (bytes, seconds)
+    let [
+        (coarse_bytes, coarse_seconds, coarse),
+        (finer_bytes, finer_seconds, _),
+    ] = paths;
+    let seconds = if coarse > 0 {
+        coarse_seconds
+    } else {
+        finer_seconds
+    };
+    (coarse_bytes.max(finer_bytes), seconds)
 }
 
 /// Each design load's problem on the grid of `fineness` (1: the scene's
