@@ -593,6 +593,33 @@ mod tests {
     }
 
     #[test]
+    fn a_kinked_table_limits_the_peak_and_a_fine_table_every_quantity() {
+        let kinked = InputLimit::KinkedProfile {
+            label: "crown.csv".into(),
+        };
+        let fine = InputLimit::CoarserThanData {
+            label: "map.npy".into(),
+            nodes: 0.005,
+            cell: 0.008,
+        };
+        for q in Quantity::ALL {
+            assert_eq!(kinked.limits(q), q == Quantity::MaxPressure, "{q:?}");
+            assert!(fine.limits(q), "{q:?}");
+        }
+        let text = kinked.to_string();
+        assert!(
+            text.contains("crown.csv") && text.contains("linearly"),
+            "{text}"
+        );
+        let text = fine.to_string();
+        assert!(text.contains("map.npy") && text.contains("0.005"), "{text}");
+        let map = InputLimit::KinkedMap {
+            label: "rough.npy".into(),
+        };
+        assert!(map.to_string().contains("bilinearly"));
+    }
+
+    #[test]
     fn equal_values_are_exact_and_too_few_grids_are_said() {
         let h = [0.1, 0.2, 0.4];
         let e = estimate(&[0.0, 1e-20, -1e-20], &h, 0, 1e-3);

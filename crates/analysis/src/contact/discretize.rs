@@ -7,7 +7,10 @@
 //! (`crate::grid::GridFamily::coarser`: a quarter and a sixteenth of the
 //! points on a surface, a half and a quarter on a line) while they resolve
 //! the contact: the fine contact spans at least [`MIN_CELLS_ACROSS`] of
-//! their cells along each axis. Where the grid at 4h would not, a finer
+//! their cells along each axis, and their cells are no coarser than the
+//! nodes of a table of the surface (a height map, a profile: coarser
+//! cells would sample the data differently, and their changes would not
+//! be the discretization's). Where the grid at 4h would not, a finer
 //! grid `h/2` (`GridFamily::finer`) is solved instead, and the grids are
 //! `h/2, h, 2h`; where 2h would not either, `h/4, h/2, h`. A finer grid is
 //! solved only while its solve's memory ([`Plan`](super::builder::Plan))
@@ -235,6 +238,13 @@ impl Solver<'_, '_> {
         if !(cells >= MIN_CELLS_ACROSS) {
             return Err(Stop::Unresolved { times, cells });
         }
+        if let Geometry::Tabulated { departures, .. } = self.builder.geometry()
+            && let Some(limit) = departures
+                .iter()
+                .find_map(|d| InputLimit::coarser_than(d, points.cell()))
+        {
+            return Err(Stop::CoarserThanData { times, limit });
+        }
         Ok((coarse, points))
     }
 
@@ -416,6 +426,8 @@ enum Stop {
     NoPoints { times: f64, error: AnalysisError },
     /// The contact spans fewer than [`MIN_CELLS_ACROSS`] of its cells.
     Unresolved { times: f64, cells: f64 },
+    /// Its cells are coarser than a table's nodes.
+    CoarserThanData { times: f64, limit: InputLimit },
     /// A finer grid's solve would hold more than its allowance.
     TooBig {
         times: f64,
@@ -467,6 +479,18 @@ impl std::fmt::Display for Stop {
             ),
             Stop::Failed { times, failure } => {
                 write!(f, "{} failed: {failure}", grid_at(*times))
+            }
+            Stop::CoarserThanData { times, limit } => {
+                let InputLimit::CoarserThanData { label, nodes, .. } = limit else {
+                    return write!(f, "{}: {limit}", grid_at(*times));
+                };
+                write!(
+                    f,
+                    "{}'s cells are coarser than the nodes of {label} ({} apart): it would \
+                     sample the data differently",
+                    grid_at(*times),
+                    crate::Num(*nodes)
+                )
             }
         }
     }
@@ -557,6 +581,18 @@ mod tests {
                     failure: "not certified".into(),
                 },
                 "the grid at 4 times the spacing failed: not certified",
+            ),
+            (
+                Stop::CoarserThanData {
+                    times: 2.0,
+                    limit: InputLimit::CoarserThanData {
+                        label: "map.npy".into(),
+                        nodes: 0.005,
+                        cell: 0.008,
+                    },
+                },
+                "the grid at 2 times the spacing's cells are coarser than the nodes of map.npy \
+                 (0.005 apart)",
             ),
             (
                 Stop::TooBig {
