@@ -219,6 +219,22 @@ pub fn hertz_ellipse_family(
     across: usize,
     zone: f64,
 ) -> Result<GridFamily, AnalysisError> {
+    let family = GridFamily::HertzEllipse {
+        extent,
+        across,
+        zone,
+    };
+    family.rectangle()?;
+    Ok(family)
+}
+
+/// The rectangle of cells an elliptical Hertz contact's grid lays out
+/// ([`hertz_ellipse_family`]).
+fn ellipse_rectangle(
+    extent: EllipseExtent,
+    across: usize,
+    zone: f64,
+) -> Result<GridFamily, AnalysisError> {
     let ((half_x, nx), (half_y, ny)) = if extent.is_turned() {
         let h = spacing(extent.semi_minor, across, zone)?;
         (
@@ -295,6 +311,19 @@ pub enum GridFamily {
         /// Number of cells.
         n: usize,
     },
+    /// `across` points over each axis of an elliptical Hertz contact, out
+    /// to `zone` times it ([`hertz_ellipse_family`]). Coarsened by
+    /// `across - 1` halved, as [`GridFamily::HertzLine`]: the spacing
+    /// doubles exactly and the ellipse's ends keep their place among the
+    /// cells.
+    HertzEllipse {
+        /// The ellipse's size.
+        extent: EllipseExtent,
+        /// Points across each axis.
+        across: usize,
+        /// The zone over the ellipse.
+        zone: f64,
+    },
     /// `across` points over a Hertz line contact's width `2 half_width`, a
     /// whole number of spacings out to about `zone * half_width` on each
     /// side ([`hertz_line`]). Coarsened by `across - 1` halved, so the
@@ -319,6 +348,10 @@ impl std::fmt::Display for GridFamily {
             }
             GridFamily::Rectangle { nx, ny, .. } => write!(f, "{nx} x {ny} cells"),
             GridFamily::Line { n, .. } => write!(f, "{n} cells"),
+            GridFamily::HertzEllipse { across, .. } => match self.rectangle() {
+                Ok(GridFamily::Rectangle { nx, ny, .. }) => write!(f, "{nx} x {ny} cells"),
+                _ => write!(f, "{across} points across an ellipse"),
+            },
             GridFamily::HertzLine { across, .. } => write!(f, "{across} points across"),
         }
     }
@@ -342,7 +375,25 @@ impl GridFamily {
             } => PointSet::grid_rectangle(half_x, half_y, nx, ny)?,
             GridFamily::Line { start, end, n } => PointSet::line(start, end, n)?,
             GridFamily::HertzLine { .. } => return self.line()?.points(),
+            GridFamily::HertzEllipse { .. } => return self.rectangle()?.points(),
         })
+    }
+
+    /// A [`GridFamily::HertzEllipse`] as the [`GridFamily::Rectangle`] it
+    /// lays out (any other family as it is).
+    ///
+    /// # Errors
+    /// [`AnalysisError::InvalidInput`] naming `across`, `zone` or the
+    /// contact size.
+    pub fn rectangle(&self) -> Result<GridFamily, AnalysisError> {
+        match *self {
+            GridFamily::HertzEllipse {
+                extent,
+                across,
+                zone,
+            } => ellipse_rectangle(extent, across, zone),
+            other => Ok(other),
+        }
     }
 
     /// A [`GridFamily::HertzLine`] as the [`GridFamily::Line`] it lays out
@@ -384,6 +435,7 @@ impl GridFamily {
             GridFamily::HertzLine {
                 half_width, across, ..
             } => 2.0 * half_width / (across.max(2) - 1) as f64,
+            GridFamily::HertzEllipse { .. } => self.rectangle().map_or(f64::NAN, |r| r.spacing()),
         }
     }
 
@@ -444,6 +496,15 @@ impl GridFamily {
                 across: count(across.max(2) - 1)? + 1,
                 zone,
             },
+            GridFamily::HertzEllipse {
+                extent,
+                across,
+                zone,
+            } => GridFamily::HertzEllipse {
+                extent,
+                across: count(across.max(2) - 1)? + 1,
+                zone,
+            },
         })
     }
 
@@ -498,6 +559,26 @@ impl GridFamily {
                     _ => None,
                 }
             }
+            GridFamily::HertzEllipse {
+                extent,
+                across,
+                zone,
+            } => {
+                let fewer = (across.max(2) - 1).div_ceil(2) + 1;
+                let coarse = GridFamily::HertzEllipse {
+                    extent,
+                    across: fewer,
+                    zone,
+                };
+                match coarse.rectangle().ok()? {
+                    GridFamily::Rectangle { nx, ny, .. }
+                        if nx.min(ny) >= MIN_COARSE_COUNT && fewer >= 3 =>
+                    {
+                        Some(coarse)
+                    }
+                    _ => None,
+                }
+            }
         }
     }
     /// The same zone at half the spacing, the inverse of
@@ -531,6 +612,15 @@ impl GridFamily {
                 zone,
             } => GridFamily::HertzLine {
                 half_width,
+                across: 2 * across.max(2) - 1,
+                zone,
+            },
+            GridFamily::HertzEllipse {
+                extent,
+                across,
+                zone,
+            } => GridFamily::HertzEllipse {
+                extent,
                 across: 2 * across.max(2) - 1,
                 zone,
             },
@@ -592,7 +682,9 @@ mod tests {
             half_y,
             nx,
             ny,
-        } = hertz_ellipse_family(turned, across, zone).unwrap()
+        } = hertz_ellipse_family(turned, across, zone)
+            .and_then(|f| f.rectangle())
+            .unwrap()
         else {
             panic!("a rectangle");
         };
@@ -617,7 +709,9 @@ mod tests {
         let minor = ellipse_minor_zone(b, across, zone).unwrap();
         // Aligned along x: the grid's extent along y is the zone across b.
         let GridFamily::Rectangle { half_y, .. } =
-            hertz_ellipse_family(extent_of(a, b, 0.0), across, zone).unwrap()
+            hertz_ellipse_family(extent_of(a, b, 0.0), across, zone)
+                .and_then(|f| f.rectangle())
+                .unwrap()
         else {
             panic!("a rectangle");
         };
@@ -625,7 +719,9 @@ mod tests {
         // Turned by 30 degrees the grid's extents are larger, the minor
         // axis the same; 2 m + 1 = 13 cells of 0.1 here.
         let GridFamily::Rectangle { half_x, half_y, .. } =
-            hertz_ellipse_family(extent_of(a, b, 30f64.to_radians()), across, zone).unwrap()
+            hertz_ellipse_family(extent_of(a, b, 30f64.to_radians()), across, zone)
+                .and_then(|f| f.rectangle())
+                .unwrap()
         else {
             panic!("a rectangle");
         };
@@ -635,12 +731,34 @@ mod tests {
     }
 
     #[test]
+    fn an_ellipse_family_coarsens_across_so_the_spacing_doubles_exactly() {
+        let (a, b, zone) = (4.0, 0.5, 1.2);
+        let family = hertz_ellipse_family(extent_of(a, b, 0.0), 41, zone).unwrap();
+        let coarse = family.coarser().unwrap();
+        assert!(
+            matches!(coarse, GridFamily::HertzEllipse { across: 21, .. }),
+            "{coarse:?}"
+        );
+        let ratio = coarse.spacing() / family.spacing();
+        assert!((ratio - 2.0).abs() < 1e-12, "{ratio}");
+        assert_eq!(coarse.finer(), family);
+        assert_eq!(family.points().unwrap().len(), {
+            let GridFamily::Rectangle { nx, ny, .. } = family.rectangle().unwrap() else {
+                panic!("a rectangle");
+            };
+            nx * ny
+        });
+    }
+
+    #[test]
     fn an_aligned_ellipse_keeps_across_points_over_each_axis() {
         let (a, b, across, zone) = (4.0, 0.5, 11, 1.2);
         for angle in [0.0, std::f64::consts::FRAC_PI_2] {
             let aligned = extent_of(a, b, angle);
             assert!(!aligned.is_turned(), "{angle}");
-            let family = hertz_ellipse_family(aligned, across, zone).unwrap();
+            let family = hertz_ellipse_family(aligned, across, zone)
+                .and_then(|f| f.rectangle())
+                .unwrap();
             let (hx, nx) = centred_cells(aligned.half_x, across, zone).unwrap();
             let (hy, ny) = centred_cells(aligned.half_y, across, zone).unwrap();
             assert_eq!(

@@ -390,7 +390,7 @@ fn turned_too_many(
     zone: f64,
     family: GridFamily,
 ) -> Result<GridFamily, SceneError> {
-    let GridFamily::Rectangle { nx, ny, .. } = family else {
+    let Ok(GridFamily::Rectangle { nx, ny, .. }) = family.rectangle() else {
         return Ok(family);
     };
     let count = nx as f64 * ny as f64;
