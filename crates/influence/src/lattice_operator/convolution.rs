@@ -16,7 +16,7 @@ use rayon::prelude::*;
 use realfft::RealFftPlanner;
 
 use super::gather::GatherOrder;
-use super::grid::{C64, COLUMN_BATCH, Grid, Plans, RowBuffers, wave_len};
+use super::grid::{C64, COLUMN_BATCH, Grid, Plans, RowBuffers};
 use super::spectrum::kernel_spectrum;
 use crate::error::InfluenceError;
 use crate::error::try_vec;
@@ -138,7 +138,7 @@ impl LatticeWorkspace {
         };
         let g = c.grid;
         let zero = C64::new(0.0, 0.0);
-        let (spectra, columns) = Buffers::lens(&g);
+        let (spectra, columns) = g.buffer_lens();
         Ok(Self {
             grid: Some(g),
             spectra: try_vec(spectra, zero, "lattice row spectra")?,
@@ -175,19 +175,10 @@ pub(super) struct Buffers<'a> {
 }
 
 impl Buffers<'_> {
-    /// The lengths of the row spectra and of the wave of columns on
-    /// `grid`, the wave for the current rayon pool's threads.
-    pub(super) fn lens(grid: &Grid) -> (usize, usize) {
-        (
-            grid.rows * grid.spectra_width(),
-            wave_len(grid) * grid.padded_rows,
-        )
-    }
-
     /// The scratch stack request of the buffers on `grid` (faer's idiom:
     /// a caller's `PodBuffer` of at least this many bytes).
     pub(super) fn scratch(grid: &Grid) -> StackReq {
-        let (spectra, columns) = Self::lens(grid);
+        let (spectra, columns) = grid.buffer_lens();
         StackReq::new::<C64>(spectra).and(StackReq::new::<C64>(columns))
     }
 
@@ -202,7 +193,7 @@ impl Buffers<'_> {
         stack: &mut PodStack,
         body: impl FnOnce(Buffers<'_>) -> R,
     ) -> R {
-        let (spectra, columns) = Self::lens(grid);
+        let (spectra, columns) = grid.buffer_lens();
         let (spectra, stack) = stack.make_raw::<C64>(spectra);
         let (columns, _) = stack.make_raw::<C64>(columns);
         body(Buffers { spectra, columns })

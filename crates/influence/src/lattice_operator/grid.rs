@@ -103,8 +103,18 @@ impl Grid {
     /// row spectra and the wave of columns
     /// ([`wave_len`] of them).
     fn workspace_bytes(&self) -> usize {
-        let (spectra, columns) = super::convolution::Buffers::lens(self);
+        let (spectra, columns) = self.buffer_lens();
         16 * (spectra + columns)
+    }
+
+    /// The lengths of a product's buffers on this grid: the row spectra
+    /// and the wave of columns, the wave for the current rayon pool's
+    /// threads.
+    pub(super) fn buffer_lens(&self) -> (usize, usize) {
+        (
+            self.rows * self.spectra_width(),
+            wave_len(self) * self.padded_rows,
+        )
     }
 
     /// Bytes held by an operator on this grid whose gather order takes
