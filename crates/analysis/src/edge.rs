@@ -345,6 +345,29 @@ fn polygon_area(vertices: &[(f64, f64)]) -> f64 {
     0.5 * twice.abs()
 }
 
+/// The extent of the points `contact` (indices into `points`) along x
+/// and, on a surface, along y: point to point plus a cell,
+/// `max x - min x + dx` (and the same in y). `None` for an empty contact.
+pub(crate) fn contact_spans(
+    points: &PointSet,
+    contact: impl Iterator<Item = usize> + Clone,
+) -> Option<(f64, Option<f64>)> {
+    let cell = points.cell();
+    let span = |of: &dyn Fn(usize) -> f64, size: f64| {
+        let (lo, hi) = contact
+            .clone()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), k| {
+                (lo.min(of(k)), hi.max(of(k)))
+            });
+        (lo <= hi).then_some(hi - lo + size)
+    };
+    let along_x = span(&|k| points.x(k), cell.dx)?;
+    Some(match points.dimension() {
+        Dimension::Line => (along_x, None),
+        Dimension::Surface => (along_x, span(&|k| points.y(k), cell.dy)),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -39,8 +39,8 @@ use crate::discretization::{
     Discretization, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity, Verdict, estimate,
     finer_allowance,
 };
+use crate::edge::contact_spans;
 use crate::grid::GridFamily;
-use crate::subsurface::contact_spans;
 
 /// The grids an estimate solves besides the run's own.
 const OTHER_GRIDS: usize = 2;

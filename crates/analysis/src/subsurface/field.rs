@@ -9,6 +9,7 @@ use elcon_influence::{
 use rayon::prelude::*;
 
 use crate::contact::ContactSolution;
+use crate::edge::contact_spans;
 
 /// Depths of the grid the maxima are first looked for on, down to
 /// [`DEPTH_SPAN`] contact half-widths (or radii).
@@ -74,29 +75,6 @@ pub fn depth_grid(points: &PointSet, extent: f64, point_force: bool, count: usiz
     (1..=count)
         .map(|j| shallowest + (DEPTH_SPAN * scale - shallowest) * j as f64 / count as f64)
         .collect()
-}
-
-/// The extent of the points `contact` (indices into `points`) along x
-/// and, on a surface, along y: point to point plus a cell,
-/// `max x - min x + dx` (and the same in y). `None` for an empty contact.
-pub(crate) fn contact_spans(
-    points: &PointSet,
-    contact: impl Iterator<Item = usize> + Clone,
-) -> Option<(f64, Option<f64>)> {
-    let cell = points.cell();
-    let span = |of: &dyn Fn(usize) -> f64, size: f64| {
-        let (lo, hi) = contact
-            .clone()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), k| {
-                (lo.min(of(k)), hi.max(of(k)))
-            });
-        (lo <= hi).then_some(hi - lo + size)
-    };
-    let along_x = span(&|k| points.x(k), cell.dx)?;
-    Some(match points.dimension() {
-        Dimension::Line => (along_x, None),
-        Dimension::Surface => (along_x, span(&|k| points.y(k), cell.dy)),
-    })
 }
 
 /// The half-width of a contact across its narrower direction: half the

@@ -26,7 +26,6 @@
 mod field;
 pub mod reference;
 
-pub(crate) use field::contact_spans;
 pub use field::{
     BodyStresses, DEPTH_SPAN, Peak, Section, StressField, Subsurface, SubsurfaceOptions,
     contact_half_width, depth_grid,
