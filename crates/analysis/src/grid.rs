@@ -374,8 +374,9 @@ impl GridFamily {
                 ny,
             } => PointSet::grid_rectangle(half_x, half_y, nx, ny)?,
             GridFamily::Line { start, end, n } => PointSet::line(start, end, n)?,
-            GridFamily::HertzLine { .. } => return self.line()?.points(),
-            GridFamily::HertzEllipse { .. } => return self.rectangle()?.points(),
+            GridFamily::HertzLine { .. } | GridFamily::HertzEllipse { .. } => {
+                return self.laid_out()?.points();
+            }
         })
     }
 
@@ -487,24 +488,9 @@ impl GridFamily {
                 end,
                 n: count(n)?,
             },
-            GridFamily::HertzLine {
-                half_width,
-                across,
-                zone,
-            } => GridFamily::HertzLine {
-                half_width,
-                across: count(across.max(2) - 1)? + 1,
-                zone,
-            },
-            GridFamily::HertzEllipse {
-                extent,
-                across,
-                zone,
-            } => GridFamily::HertzEllipse {
-                extent,
-                across: count(across.max(2) - 1)? + 1,
-                zone,
-            },
+            GridFamily::HertzLine { across, .. } | GridFamily::HertzEllipse { across, .. } => {
+                self.with_across(count(across.max(2) - 1)? + 1)
+            }
         })
     }
 
@@ -537,50 +523,51 @@ impl GridFamily {
                 end,
                 n: half_count(n)?,
             }),
-            GridFamily::HertzLine {
-                half_width,
-                across,
-                zone,
-            } => {
+            GridFamily::HertzLine { across, .. } | GridFamily::HertzEllipse { across, .. } => {
                 // Spacings across halved (rounded up when odd: an even
                 // `across` straddles the edge on every grid).
-                let coarse = GridFamily::HertzLine {
-                    half_width,
-                    across: (across.max(2) - 1).div_ceil(2) + 1,
-                    zone,
-                };
-                let GridFamily::HertzLine { across: fewer, .. } = coarse else {
-                    return None;
-                };
-                match coarse.line().ok()? {
-                    GridFamily::Line { n, .. } if n >= MIN_COARSE_COUNT && fewer >= 3 => {
-                        Some(coarse)
-                    }
-                    _ => None,
-                }
-            }
-            GridFamily::HertzEllipse {
-                extent,
-                across,
-                zone,
-            } => {
                 let fewer = (across.max(2) - 1).div_ceil(2) + 1;
-                let coarse = GridFamily::HertzEllipse {
-                    extent,
-                    across: fewer,
-                    zone,
+                let coarse = self.with_across(fewer);
+                let smallest = match coarse.laid_out().ok()? {
+                    GridFamily::Line { n, .. } => n,
+                    GridFamily::Rectangle { nx, ny, .. } => nx.min(ny),
+                    _ => return None,
                 };
-                match coarse.rectangle().ok()? {
-                    GridFamily::Rectangle { nx, ny, .. }
-                        if nx.min(ny) >= MIN_COARSE_COUNT && fewer >= 3 =>
-                    {
-                        Some(coarse)
-                    }
-                    _ => None,
-                }
+                (smallest >= MIN_COARSE_COUNT && fewer >= 3).then_some(coarse)
             }
         }
     }
+
+    /// A Hertz layout with `across` points across its contact (any other
+    /// family as it is).
+    fn with_across(self, across: usize) -> GridFamily {
+        match self {
+            GridFamily::HertzLine {
+                half_width, zone, ..
+            } => GridFamily::HertzLine {
+                half_width,
+                across,
+                zone,
+            },
+            GridFamily::HertzEllipse { extent, zone, .. } => GridFamily::HertzEllipse {
+                extent,
+                across,
+                zone,
+            },
+            other => other,
+        }
+    }
+
+    /// The line or rectangle a Hertz layout lays out (any other family as
+    /// it is).
+    fn laid_out(&self) -> Result<GridFamily, AnalysisError> {
+        match self {
+            GridFamily::HertzLine { .. } => self.line(),
+            GridFamily::HertzEllipse { .. } => self.rectangle(),
+            other => Ok(*other),
+        }
+    }
+
     /// The same zone at half the spacing, the inverse of
     /// [`GridFamily::coarser`]: its coarser grid is this one. Four times
     /// the points on a surface, twice on a line.
@@ -606,24 +593,9 @@ impl GridFamily {
                 end,
                 n: double_count(n),
             },
-            GridFamily::HertzLine {
-                half_width,
-                across,
-                zone,
-            } => GridFamily::HertzLine {
-                half_width,
-                across: 2 * across.max(2) - 1,
-                zone,
-            },
-            GridFamily::HertzEllipse {
-                extent,
-                across,
-                zone,
-            } => GridFamily::HertzEllipse {
-                extent,
-                across: 2 * across.max(2) - 1,
-                zone,
-            },
+            GridFamily::HertzLine { across, .. } | GridFamily::HertzEllipse { across, .. } => {
+                self.with_across(2 * across.max(2) - 1)
+            }
         }
     }
 }
