@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::checks::check;
+use common::checks::{check, force_scale, gap_scale};
 use elcon_analysis::references::{HertzSpheres, combined_radius};
 use elcon_analysis::{
     ContactProblem, ContactSolution, Geometry, Loading, Method, Options, Surface,
@@ -14,8 +14,12 @@ use elcon_analysis::{
 use elcon_influence::{Body, Material, PointSet, combined_modulus};
 use proptest::prelude::*;
 
-fn agree(a: &ContactSolution, b: &ContactSolution) -> Result<(), TestCaseError> {
-    let fmax = a.forces.iter().fold(0.0f64, |m, f| m.max(*f));
+fn agree(
+    problem: &ContactProblem,
+    a: &ContactSolution,
+    b: &ContactSolution,
+) -> Result<(), TestCaseError> {
+    let fmax = force_scale(problem, a, gap_scale(problem, a));
     for k in 0..a.forces.len() {
         prop_assert!(
             (a.forces[k] - b.forces[k]).abs() <= 1e-9 * fmax,
@@ -38,7 +42,7 @@ fn all_agree(
     for method in others {
         let sol = problem.solve(method, &Options::default()).unwrap();
         check(problem, &sol)?;
-        agree(&reference, &sol)?;
+        agree(problem, &reference, &sol)?;
     }
     Ok(())
 }

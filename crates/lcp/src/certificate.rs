@@ -26,7 +26,8 @@ pub struct Certificate {
     pub complementarity: f64,
     /// Largest equality-row residual, over the scale of its terms (0 when there is no equality row).
     pub equality: f64,
-    /// The scale of `z` used above, `‖z‖∞`.
+    /// The scale of `z` used above: `‖z‖∞`, floored by the `z` that alone
+    /// would move a `w` by `w_scale` (see the `certify` module).
     pub z_scale: f64,
     /// The scale of `w` used above: the largest `(|M| |z| + |B| |u| + |q|)_i`.
     pub w_scale: f64,

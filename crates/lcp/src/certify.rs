@@ -5,9 +5,10 @@
 //! For the mixed form `w = M z + B u + q`, `0 = C z + D u + r`:
 //!
 //! ```text
-//!     z_scale  = ‖z‖∞
 //!     w_scale  = max_i ( |M| |z| + |B| |u| + |q| )_i      (size of the terms summing to w)
-//!     eq_scale = max_i ( |C| |z| + |D| |u| + |r| )_i
+//!     z_floor  = w_scale / max_ij |M_ij|                  (the z that alone moves a w by w_scale)
+//!     z_scale  = max( ‖z‖∞, z_floor )
+//!     eq_scale = max( max_i ( |C| |z| + |D| |u| + |r| )_i,  ‖C‖∞ z_floor )
 //!     min_z = min_i z_i / z_scale          min_w = min_i w_i / w_scale
 //!     complementarity = max_i |z_i w_i| / (z_scale w_scale)
 //!     equality = ‖C z + D u + r‖∞ / eq_scale
@@ -20,6 +21,14 @@
 //! column's `‖R_c - M X_c‖∞ / ‖|M| |X_c| + |R_c|‖∞`. A solution
 //! is certified when `-min_z`, `-min_w`, `-min_u`, `complementarity` and
 //! `equality` are all at most the tolerance.
+//!
+//! The floor `z_floor` makes the scale of `z` the problem's own when every
+//! `z_i` is at rounding level: a contact whose bodies separate has `z = 0`,
+//! and a pivoting method returns it as the difference of two pivots'
+//! values, `1e-11` where the natural forces are `1e4`. Judged against
+//! `‖z‖∞` alone, that rounding would be a relative residual of 1. A problem
+//! given by its products, whose largest entry is not at hand, keeps
+//! `z_scale = ‖z‖∞`.
 
 use faer::dyn_stack::{PodBuffer, PodStack};
 use faer::{Col, ColRef, MatRef};
@@ -41,6 +50,10 @@ pub(crate) struct Residuals<'a> {
     pub w_terms: ColRef<'a, f64>,
     pub equality: ColRef<'a, f64>,
     pub equality_terms: ColRef<'a, f64>,
+    /// `max_ij |M_ij|` (0 where it is not at hand: no floor on `z_scale`).
+    pub m_largest: f64,
+    /// `‖C‖∞`, the equality rows' largest absolute row sum.
+    pub c_norm: f64,
 }
 
 impl MixedRef<'_> {
@@ -72,11 +85,20 @@ impl MixedRef<'_> {
                 w_terms: w_terms.as_ref(),
                 equality: e.as_ref(),
                 equality_terms: e_terms.as_ref(),
+                m_largest: m.norm_max(),
+                c_norm: row_sums_max(c),
             },
             tolerance,
         );
         (cert, w)
     }
+}
+
+/// `‖A‖∞`: the largest absolute row sum (0 for no rows).
+fn row_sums_max(a: MatRef<'_, f64>) -> f64 {
+    (0..a.nrows()).fold(0.0f64, |m, i| {
+        m.max(a.row(i).iter().map(|v| v.abs()).sum::<f64>())
+    })
 }
 
 /// `A x + E y + c` and the magnitude of its terms, `|A| |x| + |E| |y| + |c|`
@@ -188,6 +210,8 @@ impl OperatorLcp<'_> {
                 w_terms: w_terms.as_ref(),
                 equality: equality.as_ref(),
                 equality_terms: equality_terms.as_ref(),
+                m_largest: 0.0,
+                c_norm: 0.0,
             },
             tolerance,
         );
@@ -254,10 +278,17 @@ pub(crate) fn from_residuals(res: &Residuals<'_>, tolerance: f64) -> Certificate
         w_terms,
         equality,
         equality_terms,
+        m_largest,
+        c_norm,
     } = *res;
     let n = z.nrows();
-    let z_scale = norm_inf(z);
     let w_scale = norm_inf(w_terms);
+    let z_floor = if m_largest > 0.0 && m_largest.is_finite() {
+        w_scale / m_largest
+    } else {
+        0.0
+    };
+    let z_scale = norm_inf(z).max(z_floor);
     let rel = |v: f64, s: f64| if s > 0.0 { v / s } else { 0.0 };
     // The least entry relative to its scale (an infinite least kept finite).
     let least = |v: ColRef<'_, f64>, s: f64| {
@@ -276,7 +307,8 @@ pub(crate) fn from_residuals(res: &Residuals<'_>, tolerance: f64) -> Certificate
     let min_u = (0..u.nrows())
         .filter(|&j| nonneg_u[j])
         .fold(0.0f64, |a, j| a.min(rel(u[j], u_scale)));
-    let equality = rel(norm_inf(equality), norm_inf(equality_terms));
+    let eq_scale = norm_inf(equality_terms).max(c_norm * z_floor);
+    let equality = rel(norm_inf(equality), eq_scale);
     Certificate {
         min_z: if n == 0 { 0.0 } else { min_z },
         min_w: if n == 0 { 0.0 } else { min_w },
@@ -291,5 +323,43 @@ pub(crate) fn from_residuals(res: &Residuals<'_>, tolerance: f64) -> Certificate
             .chain(u.iter())
             .chain(w.iter())
             .all(|v| v.is_finite()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use faer::{Col, Mat, col, mat};
+
+    use crate::problem::{MixedLcp, MixedLcpParts};
+
+    /// Two bodies that separate (`q > 0`, answer `z = 0`) with a lever row
+    /// `sum x_i z_i = 0`, as a free tilt gives.
+    fn separated() -> MixedLcp {
+        MixedLcp::new(MixedLcpParts {
+            m: mat![[3e-10, 1e-10], [1e-10, 3e-10]],
+            b: Mat::zeros(2, 0),
+            q: col![1e-3, 2e-3],
+            c: mat![[-1.0, 1.0]],
+            d: Mat::zeros(1, 0),
+            r: Col::zeros(1),
+            bounds: vec![],
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn rounding_level_forces_are_judged_on_the_natural_force_scale() {
+        let lcp = separated();
+        let u = Col::<f64>::zeros(0);
+        // z = 0 returned as the difference of two pivots' values near the
+        // natural force scale w_scale / max|M| ~ 3e6 (one rounding unit of 1e5).
+        let (c, _) = lcp.certify(col![-1.5e-11, 0.0].as_ref(), u.as_ref(), 1e-12);
+        assert!(c.holds(), "{c}");
+        assert!(c.z_scale >= 1e-3 / 3e-10 * (1.0 - 1e-12), "{}", c.z_scale);
+        // A force that is wrong on that scale still fails: negative, and
+        // out of balance on the lever row.
+        let (c, _) = lcp.certify(col![-1.0, 0.0].as_ref(), u.as_ref(), 1e-12);
+        assert!(!c.holds(), "{c}");
+        assert!(c.min_z < -1e-7 && c.equality > 1e-8, "{c}");
     }
 }

@@ -32,7 +32,6 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
     let eps = problem.separation();
     let n = eps.len();
     prop_assert_eq!(sol.forces.len(), n);
-    let fmax = sol.forces.iter().fold(0.0f64, |a, f| a.max(*f));
     let (x0, y0) = problem.rigid().load_point;
     let points = problem.points();
     // The rigid motion toward body 2 at point k.
@@ -50,6 +49,7 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
         gaps[k] = sf + eps[k] - rigid(k);
         gap_scale = gap_scale.max(terms + eps[k].abs() + rigid(k).abs());
     }
+    let fmax = force_scale(problem, sol, gap_scale);
     for k in 0..n {
         prop_assert!(sol.forces[k] >= -TOL * fmax, "F[{k}] = {}", sol.forces[k]);
         prop_assert!(
@@ -82,9 +82,15 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
     });
     // The forces' moment on the lever arms `arm`, and the sum of its terms'
     // sizes.
+    // The terms' sizes are floored, as the engine's equality rows are, by
+    // the force scale on every lever: `fmax sum_k |arm(k)|`.
     let moment_on = |arm: &dyn Fn(usize) -> f64| {
         let terms = (0..n).map(|k| sol.forces[k] * arm(k));
-        (terms.clone().sum::<f64>(), terms.map(f64::abs).sum::<f64>())
+        let floor = fmax * (0..n).map(|k| arm(k).abs()).sum::<f64>();
+        (
+            terms.clone().sum::<f64>(),
+            terms.map(f64::abs).sum::<f64>().max(floor),
+        )
     };
     let (about_x, lever_x) = moment_on(&|k| points.y(k) - y0);
     let (about_y, lever_y) = moment_on(&|k| points.x(k) - x0);
@@ -106,6 +112,38 @@ pub fn check(problem: &ContactProblem, sol: &ContactSolution) -> Result<(), Test
     }
     prop_assert!(sol.certificate.holds(), "{}", sol.certificate);
     Ok(())
+}
+
+/// The scale forces are judged on: the largest force, floored (as the
+/// engine's certificate is) by the force that alone would move a gap by
+/// `gap_scale`, `gap_scale / max |S_kj|`. Bodies that separate have F = 0,
+/// and a pivoting method returns the zeros as differences of pivots:
+/// rounding of the natural forces, not of the largest (zero) one.
+pub fn force_scale(problem: &ContactProblem, sol: &ContactSolution, gap_scale: f64) -> f64 {
+    let s = problem.entries("the check").expect("a dense problem");
+    let largest = s.norm_max();
+    let fmax = sol.forces.iter().fold(0.0f64, |a, f| a.max(*f));
+    if largest > 0.0 {
+        fmax.max(gap_scale / largest)
+    } else {
+        fmax
+    }
+}
+
+/// The gap scale of [`check`]: the largest `|S| |F| + |eps| + |rigid|`.
+pub fn gap_scale(problem: &ContactProblem, sol: &ContactSolution) -> f64 {
+    let s = problem.entries("the check").expect("a dense problem");
+    let eps = problem.separation();
+    let (x0, y0) = problem.rigid().load_point;
+    let points = problem.points();
+    (0..eps.len()).fold(0.0f64, |g, k| {
+        let rigid =
+            sol.approach + sol.tilt_x * (points.y(k) - y0) - sol.tilt_y * (points.x(k) - x0);
+        let terms: f64 = (0..eps.len())
+            .map(|j| (s[(k, j)] * sol.forces[j]).abs())
+            .sum();
+        g.max(terms + eps[k].abs() + rigid.abs())
+    })
 }
 
 /// [`check`] outside a property test: panics with `label` and the failure.
