@@ -846,3 +846,119 @@ fn a_thread_count_beyond_the_cores_is_refused() {
     let o = elcon(&["check", s(&batch), "--threads", "2"]);
     exited(&o, 0, &[]);
 }
+
+/// A batch over a small measured-crown roller whose profile is
+/// `dir/crown.csv`: two loads, `dir/crown.toml`.
+fn crown_sweep(dir: &Path, drop_scale: f64) -> PathBuf {
+    write_crown(dir, drop_scale);
+    let scene = edited(
+        &example_scene("measured-crown"),
+        &[
+            ("file = \"data/measured-crown.csv\"", "file = \"crown.csv\""),
+            ("nx = 9", "nx = 5"),
+            ("ny = 40", "ny = 16"),
+            ("plots = [\"pressure\"]", "plots = []"),
+        ],
+    );
+    std::fs::write(dir.join("base.toml"), scene).unwrap();
+    let path = dir.join("crown.toml");
+    std::fs::write(
+        &path,
+        "[batch]\nname = \"crown\"\nscene = \"base.toml\"\n[[batch.group]]\n\
+         \"loading.load\" = [5000.0, 10000.0]\n",
+    )
+    .unwrap();
+    path
+}
+
+/// `dir/crown.csv`: the example's measured crown, its drops times `scale`.
+fn write_crown(dir: &Path, scale: f64) {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/data/measured-crown.csv"),
+    )
+    .unwrap();
+    let rows: Vec<String> = text
+        .lines()
+        .map(|l| match l.split_once(',') {
+            Some((y, d)) if !l.starts_with('#') => {
+                format!("{y}, {}", d.trim().parse::<f64>().unwrap() * scale)
+            }
+            _ => l.to_string(),
+        })
+        .collect();
+    std::fs::write(dir.join("crown.csv"), rows.join("\n")).unwrap();
+}
+
+#[test]
+fn an_edited_data_file_or_result_runs_again_and_merge_refuses_shards_across_the_edit() {
+    let dir = scratch("edited-inputs");
+    let (out, fresh) = (dir.join("out"), dir.join("fresh"));
+    let file = crown_sweep(&dir, 1.0);
+    exited(&batch(&file, &out, &[], &[]), 0, &[]);
+    let before = json(&out.join("crown/results.json"));
+    // The same files: both runs kept.
+    exited(
+        &batch(&file, &out, &[], &[]),
+        0,
+        &["2 finished runs kept, 0 to run"],
+    );
+    // The crown edited: both runs read it, both run again, and the rows
+    // are a fresh run's.
+    write_crown(&dir, 3.0);
+    let t = exited(&batch(&file, &out, &[], &[]), 0, &["[2/2]"]);
+    assert_eq!(t.matches("geometry.profile.file").count(), 2, "{t}");
+    assert_eq!(
+        t.matches("changed since it ran: it runs again").count(),
+        2,
+        "{t}"
+    );
+    exited(&batch(&file, &fresh, &[], &[]), 0, &[]);
+    let after = json(&out.join("crown/results.json"));
+    assert_eq!(
+        rows_without_times(&after),
+        rows_without_times(&json(&fresh.join("crown/results.json")))
+    );
+    assert_ne!(rows_without_times(&after), rows_without_times(&before));
+    // A result.json edited by hand is not the journal's: its run runs again.
+    let run = std::fs::read_dir(out.join("crown"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| p.join("result.json").exists())
+        .unwrap();
+    let result = run.join("result.json");
+    let text = std::fs::read_to_string(&result).unwrap();
+    std::fs::write(
+        &result,
+        text.replacen("\"approach\": ", "\"approach\": 1.0, \"was\": ", 1),
+    )
+    .unwrap();
+    let t = exited(
+        &batch(&file, &out, &[], &[]),
+        0,
+        &["1 finished runs kept, 1 to run"],
+    );
+    assert!(t.contains("not the one the journal recorded"), "{t}");
+    assert_eq!(
+        rows_without_times(&json(&out.join("crown/results.json"))),
+        rows_without_times(&after)
+    );
+    // Shards run before and after an edit of the crown do not merge.
+    let sharded = dir.join("sharded");
+    exited(&batch(&file, &sharded, &["--shard", "1/2"], &[]), 0, &[]);
+    write_crown(&dir, 1.0);
+    exited(&batch(&file, &sharded, &["--shard", "2/2"], &[]), 0, &[]);
+    let t = exited(
+        &merge(
+            &[
+                &sharded.join("crown-shard-1-of-2"),
+                &sharded.join("crown-shard-2-of-2"),
+            ],
+            &dir.join("merged"),
+        ),
+        1,
+        &["crown.csv", "changed between the runs"],
+    );
+    assert!(t.contains("geometry.profile.file"), "{t}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

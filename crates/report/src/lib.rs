@@ -34,7 +34,9 @@ pub use output::{write_run, write_run_files};
 pub use plot::error_time;
 pub use profile::{Beyond, CrownEnd, Interpolation, ProfileJson};
 pub use reference::{Errors, ReferenceJson, XY};
-pub use result::{Header, ProblemResult, Run, RunResult, Seconds, SolutionJson, SymmetryJson};
+pub use result::{
+    Header, InputsJson, ProblemResult, Run, RunResult, Seconds, SolutionJson, SymmetryJson,
+};
 pub use solve::{AttemptJson, CertificateJson, Holding, StatisticsJson};
 pub use subsurface::{BodySubsurfaceJson, PeakJson, SubsurfaceJson};
 pub use tables::{BatchOutcome, Row, write_tables};

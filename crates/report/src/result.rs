@@ -253,6 +253,31 @@ pub struct RunResult {
     pub reference: Option<ReferenceJson>,
     /// The design stage, if the scene has one.
     pub design: Option<DesignJson>,
+    /// What the run read: the elcon that ran it and the data files, each
+    /// with the SHA-256 of its bytes (a resumed batch runs again a run
+    /// whose files changed).
+    pub inputs: Option<InputsJson>,
+}
+
+/// result.json's `inputs`: the elcon version that ran the scene and the
+/// data files it read.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct InputsJson {
+    /// The elcon version.
+    pub elcon: String,
+    /// The data files read (height maps, profiles, separation files),
+    /// each with its key, resolved path, SHA-256 and size.
+    pub files: Vec<elcon_scene::DataInput>,
+}
+
+impl InputsJson {
+    /// The inputs of `scene`, run by this elcon.
+    pub fn of(scene: &elcon_scene::Scene) -> Self {
+        Self {
+            elcon: env!("CARGO_PKG_VERSION").to_string(),
+            files: scene.inputs().to_vec(),
+        }
+    }
 }
 
 impl std::ops::Deref for RunResult {
@@ -280,8 +305,17 @@ impl RunResult {
     /// [`ReportError::Json`] naming the file when it cannot be read or is
     /// not a result.json.
     pub fn read(path: &Path) -> Result<Self, ReportError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ReportError::json(path, e))?;
-        serde_json::from_str(&text).map_err(|e| ReportError::json(path, e))
+        let bytes = std::fs::read(path).map_err(|e| ReportError::json(path, e))?;
+        Self::from_bytes(&bytes, path)
+    }
+
+    /// A result.json's bytes, read (`path` names it in the error).
+    ///
+    /// # Errors
+    /// [`ReportError::Json`] naming `path` when the bytes are not a
+    /// result.json.
+    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self, ReportError> {
+        serde_json::from_slice(bytes).map_err(|e| ReportError::json(path, e))
     }
 }
 

@@ -15,7 +15,7 @@ use rayon::prelude::*;
 
 use elcon_process::{Ceiling, ProcessError, interruptible, isolated, lock_dir, replace_dir};
 use elcon_report::{BatchOutcome, Row, RunResult, write_run_files, write_tables};
-use elcon_scene::{Batch, BatchRun};
+use elcon_scene::{Batch, BatchRun, sha256_hex};
 
 use crate::error::RunError;
 use crate::estimate::{BASELINE, Estimate};
@@ -84,9 +84,16 @@ struct Shared<'a> {
     dir: &'a Path,
 }
 
+/// A run that finished: its result and the SHA-256 of its result.json as
+/// written (what the journal records, and a resume checks).
+struct Finished {
+    result: RunResult,
+    result_sha256: String,
+}
+
 /// One run, validated, estimated, admitted under the budget, solved,
 /// written into its directory (staged beside it and renamed into place).
-fn one_run(shared: &Shared<'_>, r: &BatchRun) -> Result<RunResult, RunError> {
+fn one_run(shared: &Shared<'_>, r: &BatchRun) -> Result<Finished, RunError> {
     let scene = shared.batch.scene(r)?;
     let estimate = Estimate::of(&scene)?;
     if !shared.ceiling.admits(estimate.peak_bytes) {
@@ -102,17 +109,26 @@ fn one_run(shared: &Shared<'_>, r: &BatchRun) -> Result<RunResult, RunError> {
             let tmp = shared
                 .dir
                 .join(format!(".{}.{}.tmp", r.slug(), std::process::id()));
+            let json = tmp.join("result.json");
             let written = std::fs::create_dir(&tmp)
                 .map_err(|e| RunError::io(&tmp, e))
                 .and_then(|()| write_run_files(&result, &tmp).map_err(RunError::from))
-                .and_then(|()| {
-                    replace_dir(&tmp, &shared.dir.join(r.slug())).map_err(RunError::from)
+                .and_then(|()| std::fs::read(&json).map_err(|e| RunError::io(&json, e)))
+                .and_then(|bytes| {
+                    replace_dir(&tmp, &shared.dir.join(r.slug()))
+                        .map(|()| sha256_hex(&bytes))
+                        .map_err(RunError::from)
                 });
-            if let Err(e) = written {
-                let _ = std::fs::remove_dir_all(&tmp);
-                return Err(e);
+            match written {
+                Ok(result_sha256) => Ok(Finished {
+                    result: result.result,
+                    result_sha256,
+                }),
+                Err(e) => {
+                    let _ = std::fs::remove_dir_all(&tmp);
+                    Err(e)
+                }
             }
-            Ok(result.result)
         })
     };
     shared.budget.give(share);
@@ -203,19 +219,22 @@ pub fn run_batch(
                 if outcome.as_ref().is_err_and(RunError::is_interrupted) {
                     return None;
                 }
-                progress.finished(&r, outcome.as_ref());
-                let row = match outcome {
-                    Ok(res) => Row::ok(r.index, r.label(), &res),
-                    Err(e) => Row::failed(r.index, r.label(), slug, &e),
+                progress.finished(&r, outcome.as_ref().map(|f| &f.result));
+                let (row, sha) = match outcome {
+                    Ok(f) => (
+                        Row::ok(r.index, r.label(), &f.result),
+                        Some(f.result_sha256),
+                    ),
+                    Err(e) => (Row::failed(r.index, r.label(), slug, &e), None),
                 };
-                if let Err(e) = journal.record(&row) {
+                if let Err(e) = journal.record(&row, sha) {
                     progress.notice(&format!("warning: {e}: run {i} will run again on a resume"));
                 }
                 Some(row)
             })
             .collect()
     });
-    let mut rows: Vec<Row> = journal.kept().values().cloned().collect();
+    let mut rows: Vec<Row> = journal.kept().values().map(|e| e.row.clone()).collect();
     rows.extend(fresh);
     rows.sort_by_key(|r| r.index);
     let pending = count - rows.len();

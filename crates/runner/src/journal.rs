@@ -2,16 +2,21 @@
 //!
 //! `journal.jsonl` in the batch's directory holds a header line (the
 //! batch's name, hash, shard and size) and then a line per finished run:
-//! its table row ([`Row`]), appended and fsynced as the run ends, after
-//! its directory was renamed into place whole. A batch killed at any point
+//! its table row ([`Row`]) and the SHA-256 of its result.json, appended and
+//! fsynced as the run ends, after its directory was renamed into place
+//! whole. A batch killed at any point
 //! (SIGKILL, a SLURM time limit, a preempted pod) leaves finished runs
 //! that are each in the journal and on disk, or not finished at all; at
 //! worst the journal's last line is torn, and is ignored.
 //!
 //! When the same batch (same hash, same shard) is run again into the same
 //! directory, [`Journal::open`] keeps every run the journal lists as
-//! finished whose directory holds its result.json: its row is rebuilt from
-//! that result.json, so the tables of a resumed batch are those of an
+//! finished whose directory holds its result.json, as the journal recorded
+//! it (the same SHA-256: a result.json edited since is run again), and
+//! whose data files (result.json's `inputs`: height maps, profiles,
+//! separation files) still hold the bytes the run read (an edited file's
+//! runs are run again, and the notice says which file). The row is rebuilt
+//! from that result.json, so the tables of a resumed batch are those of an
 //! unbroken one to the last digit. Failed runs are run again (the cause
 //! may have been fixed: a memory limit, a full disk). A directory of
 //! another version of the batch, or without a journal, is replaced.
@@ -26,7 +31,7 @@ use serde::{Deserialize, Serialize};
 
 use elcon_process::{faults, sync_dir, write_atomic};
 use elcon_report::{Row, RunResult};
-use elcon_scene::Batch;
+use elcon_scene::{Batch, BatchRun, DataInput, MAX_DATA_BYTES, file_sha256, sha256_hex};
 
 use crate::error::RunError;
 use crate::shard::Shard;
@@ -45,13 +50,23 @@ struct Header {
     runs: usize,
 }
 
+/// A finished run's line: its row and the SHA-256 of its result.json as
+/// written (absent in a failed run's line).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub(crate) struct Entry {
+    #[serde(flatten)]
+    pub row: Row,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub result_sha256: Option<String>,
+}
+
 /// The open journal of a batch directory.
 #[derive(Debug)]
 pub(crate) struct Journal {
     file: Mutex<(fs::File, usize)>,
     path: PathBuf,
     /// The finished runs kept from an earlier invocation, by index.
-    kept: BTreeMap<usize, Row>,
+    kept: BTreeMap<usize, Entry>,
 }
 
 impl Journal {
@@ -81,7 +96,7 @@ impl Journal {
         if dir.exists() {
             match fs::read_to_string(&path) {
                 Ok(text) if first_line_is(&text, &header) => {
-                    kept = finished_runs(&text, dir, batch, shard.unwrap_or(WHOLE));
+                    kept = finished_runs(&text, dir, batch, shard.unwrap_or(WHOLE), notice);
                 }
                 read => {
                     notice(&format!(
@@ -101,8 +116,8 @@ impl Journal {
         remove_staging(dir);
         let mut text = serde_json::to_string(&header).map_err(|e| RunError::io(&path, e))?;
         text.push('\n');
-        for row in kept.values() {
-            text.push_str(&serde_json::to_string(row).map_err(|e| RunError::io(&path, e))?);
+        for entry in kept.values() {
+            text.push_str(&serde_json::to_string(entry).map_err(|e| RunError::io(&path, e))?);
             text.push('\n');
         }
         write_atomic(&path, text.as_bytes())?;
@@ -119,16 +134,21 @@ impl Journal {
     }
 
     /// The finished runs kept, by index.
-    pub(crate) fn kept(&self) -> &BTreeMap<usize, Row> {
+    pub(crate) fn kept(&self) -> &BTreeMap<usize, Entry> {
         &self.kept
     }
 
-    /// Appends a finished run's row and makes it durable.
+    /// Appends a finished run's row (with its result.json's SHA-256, for
+    /// a run that wrote one) and makes it durable.
     ///
     /// # Errors
     /// [`RunError`] when the journal cannot be written.
-    pub(crate) fn record(&self, row: &Row) -> Result<(), RunError> {
-        let mut line = serde_json::to_string(row).map_err(|e| RunError::io(&self.path, e))?;
+    pub(crate) fn record(&self, row: &Row, result_sha256: Option<String>) -> Result<(), RunError> {
+        let entry = Entry {
+            row: row.clone(),
+            result_sha256,
+        };
+        let mut line = serde_json::to_string(&entry).map_err(|e| RunError::io(&self.path, e))?;
         line.push('\n');
         let mut guard = self.file.lock().unwrap_or_else(|e| e.into_inner());
         faults::before_record(guard.1 + 1);
@@ -153,37 +173,105 @@ fn first_line_is(text: &str, header: &Header) -> bool {
         .is_some_and(|h| h == *header)
 }
 
-/// The runs the journal lists as finished (ok) whose directory holds a
-/// result.json that reads as a row, each rebuilt from that file; a torn
-/// or foreign line ends nothing but itself.
-fn finished_runs(text: &str, dir: &Path, batch: &Batch, shard: Shard) -> BTreeMap<usize, Row> {
+/// The runs the journal lists as finished (ok) whose directory holds the
+/// result.json the journal recorded (its SHA-256) and whose data files
+/// still hold what the run read, each row rebuilt from that file; a torn
+/// or foreign line ends nothing but itself. `notice` hears why a finished
+/// run is run again.
+fn finished_runs(
+    text: &str,
+    dir: &Path,
+    batch: &Batch,
+    shard: Shard,
+    notice: &dyn Fn(&str),
+) -> BTreeMap<usize, Entry> {
     let mut kept = BTreeMap::new();
+    let mut current = Hashes::default();
     for line in text.lines().skip(1) {
-        let Ok(row) = serde_json::from_str::<Row>(line) else {
+        let Ok(entry) = serde_json::from_str::<Entry>(line) else {
             continue;
         };
-        if !row.is_ok() || !shard.contains(row.index) {
-            kept.remove(&row.index);
+        let index = entry.row.index;
+        kept.remove(&index);
+        if !entry.row.is_ok() || !shard.contains(index) {
             continue;
         }
-        let Some(run) = batch.run(row.index) else {
+        let Some(run) = batch.run(index) else {
             continue;
         };
-        let result = dir.join(run.slug()).join("result.json");
-        let rebuilt = RunResult::read(&result)
-            .ok()
-            .map(|r| Row::ok(run.index, run.label(), &r));
-        match rebuilt {
-            Some(r) if r.scene == run.slug() => {
-                kept.insert(run.index, r);
+        match kept_run(&run, dir, entry.result_sha256.as_deref(), &mut current) {
+            Ok(entry) => {
+                kept.insert(index, entry);
             }
-            _ => {
-                kept.remove(&row.index);
-            }
+            Err(why) => notice(&format!(
+                "run {index} ({}): {why}: it runs again",
+                run.slug()
+            )),
         }
     }
     kept
 }
+
+/// The SHA-256 of data files as they are now, each file read once.
+#[derive(Default)]
+struct Hashes(BTreeMap<PathBuf, Option<String>>);
+
+impl Hashes {
+    /// Why `input` no longer holds what its run read, if it does not.
+    fn changed(&mut self, input: &DataInput) -> Option<String> {
+        let now = self
+            .0
+            .entry(input.path.clone())
+            .or_insert_with(|| file_sha256(&input.path, MAX_DATA_BYTES));
+        match now {
+            Some(sha) if *sha == input.sha256 => None,
+            Some(_) => Some(format!(
+                "its {} ({}) changed since it ran",
+                input.field,
+                input.path.display()
+            )),
+            None => Some(format!(
+                "its {} ({}) cannot be read",
+                input.field,
+                input.path.display()
+            )),
+        }
+    }
+}
+
+/// A finished run kept, its row rebuilt from its result.json; or why not:
+/// the file is missing or unreadable, differs from the journal's record,
+/// or a data file it read changed.
+fn kept_run(
+    run: &BatchRun,
+    dir: &Path,
+    recorded: Option<&str>,
+    current: &mut Hashes,
+) -> Result<Entry, String> {
+    let path = dir.join(run.slug()).join(RESULT);
+    let bytes = fs::read(&path).map_err(|e| format!("its {RESULT} cannot be read ({e})"))?;
+    let sha = sha256_hex(&bytes);
+    if recorded != Some(sha.as_str()) {
+        return Err(format!(
+            "its {RESULT} is not the one the journal recorded (edited or replaced since)"
+        ));
+    }
+    let result = RunResult::from_bytes(&bytes, &path).map_err(|e| e.to_string())?;
+    if result.scene != run.slug() {
+        return Err(format!("its {RESULT} is another run's"));
+    }
+    let inputs = result.inputs.as_ref().map_or(&[][..], |i| &i.files[..]);
+    if let Some(why) = inputs.iter().find_map(|input| current.changed(input)) {
+        return Err(why);
+    }
+    Ok(Entry {
+        row: Row::ok(run.index, run.label(), &result),
+        result_sha256: Some(sha),
+    })
+}
+
+/// A run directory's result file.
+const RESULT: &str = "result.json";
 
 /// Removes the staging directories (`.<run>.<pid>.tmp`) of runs killed
 /// while writing (the caller holds the batch's lock).

@@ -7,15 +7,19 @@ use std::path::{Path, PathBuf};
 
 use elcon_process::Staging;
 use elcon_report::{BatchOutcome, Row, RunResult, write_tables};
+use elcon_scene::sha256_hex;
 
 use crate::error::RunError;
+use crate::journal::{Entry, JOURNAL};
 use crate::shard::Shard;
 
-/// One shard directory's table, read.
+/// One shard directory's table, read, and its journal's record of each
+/// finished run's result.json (SHA-256, by run index).
 struct Part {
     dir: PathBuf,
     table: BatchOutcome,
     shard: Option<(usize, usize)>,
+    recorded: BTreeMap<usize, String>,
 }
 
 fn merge_error(what: impl Into<String>) -> RunError {
@@ -56,7 +60,26 @@ fn read_part(dir: &Path) -> Result<Part, RunError> {
         dir: dir.to_path_buf(),
         table,
         shard,
+        recorded: recorded(dir),
     })
+}
+
+/// The SHA-256 of each finished run's result.json as `dir`'s journal
+/// recorded it (the last line of a run counts; none without a journal).
+fn recorded(dir: &Path) -> BTreeMap<usize, String> {
+    let text = std::fs::read_to_string(dir.join(JOURNAL)).unwrap_or_default();
+    let mut shas = BTreeMap::new();
+    for entry in text
+        .lines()
+        .skip(1)
+        .filter_map(|l| serde_json::from_str::<Entry>(l).ok())
+    {
+        match entry.result_sha256 {
+            Some(sha) if entry.row.is_ok() => shas.insert(entry.row.index, sha),
+            _ => shas.remove(&entry.row.index),
+        };
+    }
+    shas
 }
 
 /// Checks that `parts` are every shard of one batch, once each.
@@ -152,34 +175,75 @@ fn check_rows(parts: &[Part], runs: usize, count: usize) -> Result<(), RunError>
 }
 
 /// Checks that each finished row holds the values of its run's own
-/// result.json (in the run's directory beside the table): a table edited
-/// by hand, or of a run whose directory was replaced, is refused.
+/// result.json (in the run's directory beside the table), that the file is
+/// the one its shard's journal recorded (the same SHA-256), and that runs
+/// which read the same data file read the same bytes: a table or a
+/// result.json edited by hand, a run whose directory was replaced, or
+/// shards run before and after a data file was edited, are refused.
 fn check_values(parts: &[Part]) -> Result<(), RunError> {
+    let mut read: BTreeMap<PathBuf, (String, PathBuf)> = BTreeMap::new();
     for p in parts {
         for r in p.table.rows.iter().filter(|r| r.is_ok()) {
-            let plain =
-                !r.scene.is_empty() && !r.scene.starts_with('.') && !r.scene.contains(['/', '\\']);
-            let path = p.dir.join(&r.scene).join("result.json");
-            let rebuilt = match plain {
-                true => RunResult::read(&path).map_err(|e| format!("its run's {e}")),
-                false => Err(format!("its run's {} cannot be read", path.display())),
-            }
-            .map(|result| Row::ok(r.index, r.overrides.clone(), &result));
-            let differs = match rebuilt {
-                Ok(own) if own == *r => continue,
-                Ok(own) => differing(r, &own),
-                Err(e) => e,
+            let refuse = |why: String| {
+                merge_error(format!(
+                    "{}: row {} (scene `{}`) {why}; merge takes the shard directories as `elcon \
+                     batch` wrote them",
+                    p.dir.display(),
+                    r.index,
+                    r.scene
+                ))
             };
-            return Err(merge_error(format!(
-                "{}: row {} (scene `{}`) does not hold its run's values: {differs}; merge takes \
-                 the shard directories as `elcon batch` wrote them",
-                p.dir.display(),
-                r.index,
-                r.scene
-            )));
+            let result = own_result(p, r).map_err(&refuse)?;
+            let own = Row::ok(r.index, r.overrides.clone(), &result);
+            if own != *r {
+                return Err(refuse(format!(
+                    "does not hold its run's values: {}",
+                    differing(r, &own)
+                )));
+            }
+            for input in result.inputs.iter().flat_map(|i| &i.files) {
+                let first = read
+                    .entry(input.path.clone())
+                    .or_insert_with(|| (input.sha256.clone(), p.dir.join(&r.scene)));
+                if first.0 != input.sha256 {
+                    return Err(refuse(format!(
+                        "read {} ({}) with other contents than {} did: the file changed between \
+                         the runs; run the shards again from the same files",
+                        input.path.display(),
+                        input.field,
+                        first.1.display()
+                    )));
+                }
+            }
         }
     }
     Ok(())
+}
+
+/// Row `r`'s result.json in part `p`, if it is the one the journal
+/// recorded; else why not.
+fn own_result(p: &Part, r: &Row) -> Result<RunResult, String> {
+    let plain = !r.scene.is_empty() && !r.scene.starts_with('.') && !r.scene.contains(['/', '\\']);
+    let path = p.dir.join(&r.scene).join("result.json");
+    if !plain {
+        return Err(format!("its run's {} cannot be read", path.display()));
+    }
+    let bytes = std::fs::read(&path).map_err(|e| format!("its run's {}: {e}", path.display()))?;
+    match p.recorded.get(&r.index) {
+        Some(sha) if *sha == sha256_hex(&bytes) => {}
+        Some(_) => {
+            return Err(format!(
+                "its run's {} is not the one {JOURNAL} recorded (edited or replaced since)",
+                path.display()
+            ));
+        }
+        None => {
+            return Err(format!(
+                "has no record in {JOURNAL} of its run's result.json"
+            ));
+        }
+    }
+    RunResult::from_bytes(&bytes, &path).map_err(|e| format!("its run's {e}"))
 }
 
 /// The first field in which `row` differs from `own` (its run's), named.

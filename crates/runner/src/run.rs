@@ -14,7 +14,7 @@ use elcon_analysis::{AnalysisError, ContactSolution, Normal, Tilt};
 use elcon_lcp::LcpError;
 use elcon_num::{Num, rounded};
 use elcon_process::faults;
-use elcon_report::{DiscretizationJson, Header, Run, RunResult, Seconds, SolutionJson};
+use elcon_report::{DiscretizationJson, Header, InputsJson, Run, RunResult, Seconds, SolutionJson};
 use elcon_scene::{MAX_STRAIN, Scene, approach_strain};
 
 use crate::compare::compare;
@@ -212,6 +212,7 @@ pub fn run(scene: &Scene) -> Result<Run, RunError> {
         subsurface: subsurface_json,
         reference,
         design: design_json,
+        inputs: Some(InputsJson::of(scene)),
     };
     Ok(Run {
         scene: scene.clone(),

@@ -138,10 +138,7 @@ impl Batch {
     pub fn from_text(path: &Path, text: &str) -> Result<Self, SceneError> {
         let text = text.to_string();
         let raw: BatchFile = parse(path, &text)?;
-        let ctx = Ctx {
-            file: path,
-            text: &text,
-        };
+        let ctx = Ctx::new(path, &text);
         let b = raw.batch;
         let name = match &b.name {
             Some(n) => {

@@ -2,12 +2,14 @@
 //! name the file, the line and column, and the field; and the TOML parser
 //! with located errors.
 
+use std::cell::RefCell;
 use std::ops::Range;
 use std::path::Path;
 
 use toml::Spanned;
 
 use crate::error::{Location, SceneError};
+use crate::inputs::DataInput;
 
 /// The largest scene or batch file read, in bytes: a scene is a page of
 /// TOML (point sets and surfaces from files are read on their own), so a
@@ -40,13 +42,25 @@ pub fn read_text(path: &Path) -> Result<String, SceneError> {
     String::from_utf8(bytes).map_err(|e| SceneError::io(path, format!("not UTF-8 text: {e}")))
 }
 
-/// Validation context: the file and its text, for locations.
+/// Validation context: the file and its text, for locations, and the data
+/// files read while validating it.
 pub(crate) struct Ctx<'a> {
     pub file: &'a Path,
     pub text: &'a str,
+    /// The data files read so far, in the order they were read.
+    pub inputs: RefCell<Vec<DataInput>>,
 }
 
 impl<'a> Ctx<'a> {
+    /// The context of `file`'s `text`, no data file read yet.
+    pub(crate) fn new(file: &'a Path, text: &'a str) -> Self {
+        Self {
+            file,
+            text,
+            inputs: RefCell::new(Vec::new()),
+        }
+    }
+
     /// The directory files named in the scene are read relative to: the
     /// scene file's, or a batch run's base scene's (its label, `<base>
     /// [run k: ...]`, is not a path).

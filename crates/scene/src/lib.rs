@@ -16,6 +16,7 @@
 mod batch;
 mod ctx;
 mod error;
+mod inputs;
 mod sanity;
 mod scene;
 mod schema;
@@ -23,10 +24,11 @@ mod schema;
 pub use batch::{Batch, BatchRun, is_batch_text};
 pub use ctx::{MAX_INPUT_BYTES, read_text};
 pub use error::{Location, SceneError};
+pub use inputs::{DataInput, file_sha256, sha256_hex};
 pub use sanity::{MAX_ROTATION, MAX_STRAIN, MIN_POINTS_RESOLVED, StrainExtent, approach_strain};
 pub use scene::{
-    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, MethodChoice, ModelKind, Outputs, Plot,
-    PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units, design_over, problem_parts,
-    scene_with_design,
+    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, MAX_DATA_BYTES, MethodChoice, ModelKind,
+    Outputs, Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units, design_over,
+    problem_parts, scene_with_design,
 };
 pub use schema::ErrorMetric;

@@ -32,6 +32,7 @@ use toml::Spanned;
 
 use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
+use crate::inputs::DataInput;
 use crate::schema::{GeometryToml, HeightMapToml, ProfileToml};
 
 /// How far from a candidate point, in the grid's spacings, a row of a
@@ -98,6 +99,7 @@ impl<'c, 'a> DataFile<'c, 'a> {
                 MAX_DATA_BYTES >> 20
             )));
         }
+        (self.ctx.inputs.borrow_mut()).push(DataInput::of(self.field, &self.path, &bytes));
         Ok(bytes)
     }
 

@@ -37,6 +37,7 @@ pub use crate::schema::MethodChoice;
 pub use body::{BodySpec, ModelKind};
 use design::DesignContext;
 pub use design::{DesignFamily, DesignSpec, RelativeTo};
+pub use files::MAX_DATA_BYTES;
 pub use hertz::{DesignLayoutParts, Reference};
 use hertz::{Hertz, Layout};
 pub use outputs::{Outputs, Plot};
@@ -47,6 +48,7 @@ pub use units::Units;
 
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
+use crate::inputs::DataInput;
 use crate::sanity;
 use crate::schema::{BodyToml, Grid, LoadingToml, PointsToml, SceneFile};
 
@@ -73,6 +75,7 @@ pub struct Scene {
     reference: Option<Reference>,
     body_edges: (bool, bool),
     warnings: Vec<String>,
+    inputs: Vec<DataInput>,
 }
 
 impl Scene {
@@ -240,6 +243,12 @@ impl Scene {
         &self.warnings
     }
 
+    /// The data files it read (height maps, profiles, separation files),
+    /// with the SHA-256 of the bytes read.
+    pub fn inputs(&self) -> &[DataInput] {
+        &self.inputs
+    }
+
     /// The same scene under another name (a batch's run is named after
     /// its sweep values).
     pub fn renamed(mut self, name: String) -> Self {
@@ -265,7 +274,7 @@ impl Scene {
     /// As [`Scene::from_file`], without the I/O.
     pub fn from_str(file: &Path, text: &str) -> Result<Self, SceneError> {
         let raw: SceneFile = parse(file, text)?;
-        let ctx = Ctx { file, text };
+        let ctx = Ctx::new(file, text);
         validate(&ctx, raw)
     }
 
@@ -397,6 +406,7 @@ fn validate(ctx: &Ctx<'_>, raw: SceneFile) -> Result<Scene, SceneError> {
         reference,
         body_edges,
         warnings: Vec::new(),
+        inputs: ctx.inputs.take(),
     };
     scene.warnings = grids::whole_scene(ctx, &raw, &scene)?;
     scene.warnings.extend(note);

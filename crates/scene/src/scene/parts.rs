@@ -86,7 +86,7 @@ pub fn problem_parts(
     listed: Option<PointSet>,
 ) -> Result<ProblemParts, SceneError> {
     let raw: ProblemFile = parse(file, text)?;
-    let ctx = Ctx { file, text };
+    let ctx = Ctx::new(file, text);
     let loading = match &raw.loading {
         Some(l) => loading::loading(&ctx, l)?,
         None => {
@@ -232,7 +232,7 @@ pub fn design_over(
     roller: Option<Roller>,
 ) -> Result<DesignSpec, SceneError> {
     let raw: DesignFile = parse(file, text)?;
-    let ctx = Ctx { file, text };
+    let ctx = Ctx::new(file, text);
     let d = &raw.design;
     let t = d.get_ref();
     for (list, field) in [
