@@ -203,7 +203,7 @@ fn main() -> ExitCode {
             files,
             memory_limit,
             every_run,
-        } => ceiling(memory_limit).map(|c| check(&files, &c, every_run).into()),
+        } => ceiling(memory_limit).map(|c| check(&files, &c, every_run, &cancel)),
         Command::Merge { dirs, out } => Ok(merge_command(&dirs, &out).into()),
     };
     match outcome.unwrap_or_else(|e| e) {
@@ -423,7 +423,13 @@ fn check_scene(path: &Path, scene: Scene, ceiling: &Ceiling) -> bool {
     }
 }
 
-fn check_batch_file(path: &Path, text: &str, ceiling: &Ceiling, every_run: bool) -> bool {
+fn check_batch_file(
+    path: &Path,
+    text: &str,
+    ceiling: &Ceiling,
+    every_run: bool,
+    cancel: &Cancel,
+) -> bool {
     let batch = match Batch::from_text(path, text) {
         Ok(b) => b,
         Err(e) => {
@@ -431,7 +437,15 @@ fn check_batch_file(path: &Path, text: &str, ceiling: &Ceiling, every_run: bool)
             return false;
         }
     };
-    let c = check_batch(&batch, ceiling, every_run);
+    let c = check_batch(&batch, ceiling, every_run, cancel);
+    if c.interrupted {
+        eprintln!(
+            "{}: interrupted after {} of its runs were checked",
+            path.display(),
+            thousands(c.checked as u64)
+        );
+        return false;
+    }
     for (_, e) in &c.failures {
         eprintln!("error: {e}");
     }
@@ -472,10 +486,15 @@ fn check_batch_file(path: &Path, text: &str, ceiling: &Ceiling, every_run: bool)
     c.failed == 0
 }
 
-fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
+/// `elcon check`: each file validated and its memory estimated; an
+/// interrupt ends it (exit 130) before the next file or run.
+fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool, cancel: &Cancel) -> Outcome {
     let mut ok = true;
     let mut names: Vec<(String, &Path)> = Vec::new();
     for path in files {
+        if cancel.is_cancelled() {
+            return Outcome::Interrupted;
+        }
         let text = match read_text(path) {
             Ok(t) => t,
             Err(e) => {
@@ -486,7 +505,7 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
         };
         if is_batch_text(&text) {
             let checked = isolated::<_, RunError>(&path.display().to_string(), || {
-                Ok(check_batch_file(path, &text, ceiling, every_run))
+                Ok(check_batch_file(path, &text, ceiling, every_run, cancel))
             });
             ok &= checked.unwrap_or_else(|e| {
                 eprintln!("error: {e}");
@@ -521,7 +540,10 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool) -> bool {
             }
         }
     }
-    ok
+    match cancel.is_cancelled() {
+        true => Outcome::Interrupted,
+        false => ok.into(),
+    }
 }
 
 /// A progress bar on a terminal, plain lines otherwise.

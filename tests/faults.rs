@@ -962,3 +962,61 @@ fn an_edited_data_file_or_result_runs_again_and_merge_refuses_shards_across_the_
     assert!(t.contains("geometry.profile.file"), "{t}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// SIGTERM at any moment of a run with an error estimate and a subsurface
+/// stage (Example 1's spheres at 161 across: 26,000 points, about 2 s, of
+/// which the stresses below the surface take more than half): the run
+/// ends interrupted with nothing written, or it finished whole before the
+/// signal came. Never a result written after the signal from a stage cut
+/// short.
+#[test]
+fn sigterm_at_any_moment_of_a_run_ends_it_whole_or_interrupted() {
+    let dir = scratch("term-sweep");
+    let scene = dir.join("spheres.toml");
+    std::fs::write(
+        &scene,
+        edited(
+            &example_scene("example1-spheres"),
+            &[
+                ("across = 41", "across = 161"),
+                ("plots = [\"pressure\"]", "plots = []\nsubsurface = true"),
+            ],
+        ),
+    )
+    .unwrap();
+    let mut interrupted = 0;
+    for (k, delay) in [100u64, 400, 700, 1000, 1300].into_iter().enumerate() {
+        let out = dir.join(format!("out-{k}"));
+        let mut child = spawn(&["run", s(&scene), "--out", s(&out)], &[]);
+        std::thread::sleep(Duration::from_millis(delay));
+        // Signalled while it still runs, it must end interrupted; ended
+        // before, it must have finished whole.
+        let running = child.try_wait().unwrap().is_none();
+        if running {
+            let _ = std::process::Command::new("kill")
+                .args(["-TERM", &child.id().to_string()])
+                .status();
+        }
+        let o = child.wait_with_output().unwrap();
+        let t = text(&o);
+        let result = out.join("example1-spheres/result.json");
+        match o.status.code() {
+            Some(130) => {
+                interrupted += 1;
+                assert!(!result.exists(), "after {delay} ms: {t}");
+                assert!(litter(&out).is_empty(), "{:?}", litter(&out));
+            }
+            Some(0) if running => panic!("signalled after {delay} ms, it wrote a result: {t}"),
+            Some(0) => {
+                let r = json(&result);
+                assert!(r["subsurface"]["body1"].is_object(), "after {delay} ms");
+                let approach = &r["discretization"]["quantities"]["approach"]["verdict"];
+                assert_ne!(approach, "not estimated", "after {delay} ms: {t}");
+            }
+            code => panic!("after {delay} ms: exit {code:?}: {t}"),
+        }
+    }
+    // The signal came during the run at least once (the run takes ~2 s).
+    assert!(interrupted >= 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}

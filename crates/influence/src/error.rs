@@ -116,6 +116,13 @@ pub enum InfluenceError {
         /// The size asked for (saturated at usize::MAX on overflow).
         bytes: usize,
     },
+    /// The computation was cancelled (SIGINT, SIGTERM, Ctrl-C) before it
+    /// ended: nothing of it is kept.
+    #[error("cancelled (an interrupt) before the {what} were computed")]
+    Cancelled {
+        /// What was being computed.
+        what: &'static str,
+    },
 }
 
 impl InfluenceError {

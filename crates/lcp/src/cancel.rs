@@ -52,6 +52,23 @@ impl Cancel {
         self.flag.load(Ordering::Relaxed)
     }
 
+    /// The token the current thread watches, if any: to hand to work this
+    /// thread spreads over others (a pool's workers watch no token), which
+    /// polls [`Cancel::is_cancelled`] itself.
+    pub fn watched() -> Option<Cancel> {
+        WATCHED.with(|w| {
+            w.borrow()
+                .as_ref()
+                .map(|flag| Cancel::from_flag(Arc::clone(flag)))
+        })
+    }
+
+    /// Whether the token the current thread watches is cancelled (false
+    /// with no token watched): for stages between solves to poll.
+    pub fn requested() -> bool {
+        requested()
+    }
+
     /// Runs `f` with this token watched by the current thread: the solves
     /// `f` makes on this thread stop when the token is cancelled. The
     /// thread's previous token is restored afterwards, also when `f`

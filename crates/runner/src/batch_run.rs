@@ -211,6 +211,11 @@ pub fn run_batch(
     let fresh: Vec<Row> = pool.install(|| {
         todo.into_par_iter()
             .filter_map(|i| {
+                // After an interrupt the runs not started are left at once
+                // (a million of them in well under a second).
+                if shared.cancel.is_cancelled() {
+                    return None;
+                }
                 let r = batch.run(i)?;
                 let slug = r.slug();
                 let outcome = interruptible(shared.cancel, &slug, || {

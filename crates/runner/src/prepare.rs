@@ -8,6 +8,7 @@
 //! value of every key at least once), and says which it did; `batch`
 //! validates every run as it runs it.
 
+use elcon_lcp::Cancel;
 use rayon::prelude::*;
 
 use elcon_process::{Ceiling, isolated};
@@ -62,6 +63,9 @@ pub struct BatchCheck {
     pub largest: Option<Estimate>,
     /// The estimated seconds of the runs checked, summed.
     pub seconds: f64,
+    /// Whether an interrupt stopped the check before every run was
+    /// checked (`checked` counts those that were).
+    pub interrupted: bool,
 }
 
 impl BatchCheck {
@@ -117,8 +121,15 @@ impl BatchCheck {
 /// Checks a batch's runs as `elcon batch` would before solving each: every
 /// run if `every_run` or the sweep has at most `CHECK_EVERY_RUN` (10,000) runs,
 /// else [`Batch::covering_runs`]. Memory: the runs in flight and the
-/// failures reported, whatever the sweep's size.
-pub fn check_batch(batch: &Batch, ceiling: &Ceiling, every_run: bool) -> BatchCheck {
+/// failures reported, whatever the sweep's size. When `cancel` is
+/// cancelled (SIGINT, SIGTERM) no further run is checked: the check ends
+/// within the runs in flight, `interrupted`.
+pub fn check_batch(
+    batch: &Batch,
+    ceiling: &Ceiling,
+    every_run: bool,
+    cancel: &Cancel,
+) -> BatchCheck {
     let all = every_run || batch.len() <= CHECK_EVERY_RUN;
     let one = |r: BatchRun| {
         let outcome = isolated(&r.slug(), || {
@@ -134,6 +145,7 @@ pub fn check_batch(batch: &Batch, ceiling: &Ceiling, every_run: bool) -> BatchCh
     let mut check = if all {
         (0..batch.len())
             .into_par_iter()
+            .filter(|_| !cancel.is_cancelled())
             .filter_map(|i| batch.run(i))
             .map(one)
             .fold(fresh, BatchCheck::add)
@@ -142,12 +154,14 @@ pub fn check_batch(batch: &Batch, ceiling: &Ceiling, every_run: bool) -> BatchCh
         batch
             .covering_runs()
             .into_par_iter()
+            .filter(|_| !cancel.is_cancelled())
             .map(one)
             .fold(fresh, BatchCheck::add)
             .reduce(fresh, BatchCheck::join)
     };
     check.runs = batch.len();
     check.every_run = all;
+    check.interrupted = cancel.is_cancelled();
     check.failures.sort_by_key(|(r, _)| r.index);
     check
 }

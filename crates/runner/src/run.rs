@@ -11,9 +11,9 @@ use std::time::Instant;
 
 use elcon_analysis::zone::Zone;
 use elcon_analysis::{AnalysisError, ContactSolution, Normal, Tilt};
-use elcon_lcp::LcpError;
+use elcon_lcp::{Cancel, LcpError};
 use elcon_num::{Num, rounded};
-use elcon_process::faults;
+use elcon_process::{ProcessError, faults};
 use elcon_report::{DiscretizationJson, Header, InputsJson, Run, RunResult, Seconds, SolutionJson};
 use elcon_scene::{MAX_STRAIN, Scene, approach_strain};
 
@@ -179,7 +179,12 @@ pub fn run(scene: &Scene) -> Result<Run, RunError> {
         .error_estimate()
         .then(|| discretization(scene, &builder, &solution));
     drop(builder);
+    // A stage an interrupt cut short (a grid's solve cancelled reads as a
+    // failed grid; a cancelled subsurface sweep as no stresses) ends the
+    // run as interrupted, never as a result.
+    unless_interrupted(scene)?;
     let (fields, subsurface_json) = subsurface(scene, problem.points(), &solution).unzip();
+    unless_interrupted(scene)?;
     let (reference, reference_pressures) = match scene.reference() {
         Some(r) => {
             let (json, p) = compare(r, &problem, &solution, scene.loading());
@@ -192,6 +197,7 @@ pub fn run(scene: &Scene) -> Result<Run, RunError> {
         None => None,
     }
     .unzip();
+    unless_interrupted(scene)?;
     let result = RunResult {
         scene: scene.name().to_string(),
         file: scene.file().display().to_string(),
@@ -223,6 +229,19 @@ pub fn run(scene: &Scene) -> Result<Run, RunError> {
         subsurface: fields,
         result,
     })
+}
+
+/// [`ProcessError::Interrupted`] when the interrupt this thread watches
+/// was given (SIGINT, SIGTERM): between stages, which do not all return
+/// an error when cut short.
+fn unless_interrupted(scene: &Scene) -> Result<(), RunError> {
+    match Cancel::requested() {
+        true => Err(ProcessError::Interrupted {
+            scene: scene.name().to_string(),
+        }
+        .into()),
+        false => Ok(()),
+    }
 }
 
 /// The scene's warnings, then what in its input limits the estimate's

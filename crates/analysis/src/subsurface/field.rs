@@ -6,6 +6,7 @@ use elcon_influence::{
     Body, Dimension, InfluenceError, PointSet, Stress, StressKernel, StressLayers,
 };
 
+use elcon_lcp::Cancel;
 use rayon::prelude::*;
 
 use crate::contact::ContactSolution;
@@ -176,6 +177,10 @@ pub struct StressField<'a> {
     loaded: Vec<(usize, f64)>,
     kind: StressKernel,
     nu: f64,
+    /// The token of the thread that made the field: its layers, on the
+    /// pool's threads, poll it (an interrupt stops the stage within a
+    /// layer, a column or a section row).
+    cancel: Option<Cancel>,
 }
 
 impl<'a> StressField<'a> {
@@ -210,6 +215,22 @@ impl<'a> StressField<'a> {
             loaded,
             kind,
             nu,
+            cancel: Cancel::watched(),
+        }
+    }
+
+    /// Whether the interrupt this field's thread watches was given.
+    fn cancelled(&self) -> bool {
+        self.cancel.as_ref().is_some_and(Cancel::is_cancelled)
+    }
+
+    /// [`InfluenceError::Cancelled`] when the interrupt was given.
+    fn poll(&self) -> Result<(), InfluenceError> {
+        match self.cancelled() {
+            true => Err(InfluenceError::Cancelled {
+                what: "subsurface stresses",
+            }),
+            false => Ok(()),
         }
     }
 
@@ -232,7 +253,10 @@ impl<'a> StressField<'a> {
     /// be allocated.
     pub fn layers_at(&self, depths: &[f64]) -> Result<Vec<Vec<Stress>>, InfluenceError> {
         if let Some(layers) = self.layers()? {
-            return depths.iter().map(|&z| layers.layer(z)).collect();
+            return depths
+                .iter()
+                .map(|&z| self.poll().and_then(|()| layers.layer(z)))
+                .collect();
         }
         let points = self.points;
         Ok(depths
@@ -299,6 +323,9 @@ impl<'a> StressField<'a> {
                 (peaks, section, profile)
             }
         };
+        // The direct sums stop early on an interrupt: what they found is
+        // not the field's.
+        self.poll()?;
         let signed = |p: Peak, of: fn(&Stress) -> f64| Peak {
             value: of(&self.at(p.x, p.y, p.z)),
             ..p
@@ -431,6 +458,7 @@ impl<'a> StressField<'a> {
                         per_layer[j][0].z
                             + (hi - per_layer[j][0].z) * (i - half) as f64 / half as f64
                     };
+                    self.poll()?;
                     Ok(self.layer_best(&layers.layer(z)?, z))
                 }
             })
@@ -475,6 +503,7 @@ impl<'a> StressField<'a> {
         let per_depth: Vec<([Peak; 4], Vec<Stress>, Stress)> = depths
             .par_iter()
             .map(|&z| {
+                self.poll()?;
                 let layer = layers.layer(z)?;
                 let best = self.layer_best(&layer, z);
                 let on_row: Vec<Stress> = row.iter().map(|&k| layer[k]).collect();
@@ -511,6 +540,9 @@ impl<'a> StressField<'a> {
     fn sweep_direct(&self, depths: &[f64]) -> [Peak; 4] {
         let mut best = [LOWEST; 4];
         for (x, y) in self.columns() {
+            if self.cancelled() {
+                break;
+            }
             for &z in depths {
                 let s = self.at(x, y, z);
                 for (b, m) in best.iter_mut().zip(MEASURES) {
@@ -555,7 +587,7 @@ impl<'a> StressField<'a> {
         } else {
             1e-3 * scale
         };
-        while step > REFINED * scale {
+        while step > REFINED * scale && !self.cancelled() {
             let mut moved = false;
             for (ddx, ddy, ddz) in [
                 (1.0, 0.0, 0.0),
@@ -667,6 +699,9 @@ impl Subsurface {
         };
         match field.stresses(half_width, options) {
             Ok(stresses) => Subsurface::Stresses(Box::new(stresses)),
+            Err(InfluenceError::Cancelled { .. }) => {
+                Subsurface::NotApplicable("cancelled (an interrupt) before they were computed")
+            }
             Err(_) => Subsurface::NotApplicable(
                 "the stress layers' buffers could not be allocated: not enough memory",
             ),

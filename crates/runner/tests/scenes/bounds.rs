@@ -455,17 +455,43 @@ fn a_data_file_s_errors_name_its_key() {
         "geometry.height_map.file",
         &[],
     );
-    // A device read to the bound: the bound said as a user reads it.
+    // A file over the bound (sparse: it costs no disk), refused by its
+    // size before it is read: the bound said as a user reads it.
+    let big = std::env::temp_dir().join(format!("elcon-big-{}.csv", std::process::id()));
+    std::fs::File::create(&big)
+        .and_then(|f| f.set_len(257 << 20))
+        .unwrap();
     let e = refused_saying(
         example_with(
             "measured-crown.toml",
             "file = \"data/measured-crown.csv\"",
-            "file = \"/dev/zero\"",
+            &format!("file = {:?}", big.display().to_string()),
         ),
         "geometry.profile.file",
         &["the largest data file elcon reads"],
     );
+    let _ = std::fs::remove_file(&big);
     assert!(!e.contains("MAX_"), "{e}");
+    // A device or a pipe is refused before it is opened: a pipe without a
+    // writer would block the read, deaf to an interrupt.
+    let fifo = std::env::temp_dir().join(format!("elcon-fifo-{}", std::process::id()));
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    let mut specials = vec!["/dev/zero".to_string()];
+    if made.is_ok_and(|s| s.success()) {
+        specials.push(fifo.display().to_string());
+    }
+    for special in specials {
+        refused_saying(
+            example_with(
+                "measured-crown.toml",
+                "file = \"data/measured-crown.csv\"",
+                &format!("file = {special:?}"),
+            ),
+            "geometry.profile.file",
+            &["is not a regular file"],
+        );
+    }
+    let _ = std::fs::remove_file(&fifo);
 }
 
 #[test]

@@ -189,11 +189,11 @@ fn bad_files_are_refused_naming_the_file_and_the_row() {
         file,
         &["missing.csv", "cannot be read"],
     );
-    // A device that never ends: read up to the data files' bound, refused.
+    // A device that never ends: refused before it is opened.
     refused(
         scene_in(&d, &map("/dev/zero")),
         file,
-        &["larger than 256 MiB"],
+        &["not a regular file"],
     );
     // A hole (NaN) at row 1, column 2.
     refused(

@@ -79,25 +79,41 @@ impl<'c, 'a> DataFile<'c, 'a> {
         self.invalid(format!("{}: {reason}", self.path.display()))
     }
 
+    /// The file refused for its size.
+    fn too_large(&self) -> SceneError {
+        self.refuse(format!(
+            "is larger than {} MiB, the largest data file elcon reads",
+            MAX_DATA_BYTES >> 20
+        ))
+    }
+
     /// Its path, as the tables it becomes name it.
     fn label(&self) -> String {
         self.path.display().to_string()
     }
 
-    /// Its bytes, at most [`MAX_DATA_BYTES`].
+    /// Its bytes, at most [`MAX_DATA_BYTES`], from a regular file only.
     fn bytes(&self) -> Result<Vec<u8>, SceneError> {
         use std::io::Read;
         let unreadable = |e: std::io::Error| self.refuse(format!("cannot be read: {e}"));
+        // A pipe would block the read until its writer came (deaf to an
+        // interrupt), a device would stream: only regular files are read.
+        let meta = std::fs::metadata(&self.path).map_err(unreadable)?;
+        if !meta.is_file() {
+            return Err(self.refuse(
+                "is not a regular file (a pipe, a device or a directory): give a file on disk",
+            ));
+        }
+        if meta.len() > MAX_DATA_BYTES {
+            return Err(self.too_large());
+        }
         let file = std::fs::File::open(&self.path).map_err(unreadable)?;
         let mut bytes = Vec::new();
         file.take(MAX_DATA_BYTES + 1)
             .read_to_end(&mut bytes)
             .map_err(unreadable)?;
         if bytes.len() as u64 > MAX_DATA_BYTES {
-            return Err(self.refuse(format!(
-                "is larger than {} MiB, the largest data file elcon reads",
-                MAX_DATA_BYTES >> 20
-            )));
+            return Err(self.too_large());
         }
         (self.ctx.inputs.borrow_mut()).push(DataInput::of(self.field, &self.path, &bytes));
         Ok(bytes)
