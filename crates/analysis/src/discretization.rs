@@ -536,7 +536,9 @@ pub fn fitted(values: &[f64], spacings: &[f64], own: usize, scale: f64) -> Error
     let mut first = None;
     for fixed in [false, true] {
         for m in (FIT_GRIDS..=values.len()).rev() {
-            match fit_verdict(&values[..m], &spacings[..m], own_value, fixed) {
+            let own_spacing = spacings[estimate.own];
+            let subset = (&values[..m], &spacings[..m]);
+            match fit_verdict(subset, (own_value, own_spacing), fixed) {
                 Ok((fit, error)) => {
                     estimate.order = Some(fit.order);
                     estimate.scatter = Some(fit.sigma);
@@ -559,6 +561,22 @@ pub fn fitted(values: &[f64], spacings: &[f64], own: usize, scale: f64) -> Error
     estimate
 }
 
+/// The largest error at the spacing `own` that a trend `alpha h^p` of the
+/// lowest order ([`LOWEST_ORDER`]) spanning the range of `values` over
+/// `spacings` gives: `range (own / h_min)^p / ((h_max / h_min)^p - 1)`. A
+/// fit whose limit lies further extrapolates beyond what the grids show.
+fn reach(values: &[f64], spacings: &[f64], own: f64) -> f64 {
+    let (lo, hi) = values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let h_min = spacings[0];
+    let h_max = spacings[spacings.len() - 1];
+    let p = LOWEST_ORDER;
+    (hi - lo) * (own / h_min).powf(p) / ((h_max / h_min).powf(p) - 1.0)
+}
+
 /// Why a fit was not taken: the verdict, the fit's order and standard
 /// deviation where there is one.
 type Refusal = (Verdict, Option<f64>, Option<f64>);
@@ -569,9 +587,8 @@ type Refusal = (Verdict, Option<f64>, Option<f64>);
 /// mixed one. Else the verdict why not, with the fit's order and standard
 /// deviation where there is one.
 fn fit_verdict(
-    values: &[f64],
-    spacings: &[f64],
-    own_value: f64,
+    (values, spacings): (&[f64], &[f64]),
+    (own_value, own_spacing): (f64, f64),
     fixed: bool,
 ) -> Result<(Fit, f64), Refusal> {
     let n = values.len();
@@ -612,6 +629,19 @@ fn fit_verdict(
             .unwrap_or(free)
     };
     let error = (own_value - fit.limit).abs();
+    let reach = reach(values, spacings, own_spacing);
+    if error > reach {
+        return Err((
+            Verdict::NotResolved(format!(
+                "a least-squares fit over {n} grids ({}) puts the limit {error:.2e} from the \
+                 run's value, further than a trend of order {LOWEST_ORDER} through the grids' \
+                 values reaches ({reach:.2e}): an extrapolation the grids do not support",
+                fit.form
+            )),
+            Some(fit.order),
+            Some(fit.sigma),
+        ));
+    }
     let finest = (values[1] - values[0]).abs();
     let signal = error.min(finest);
     if fit.sigma <= FIT_SCATTER * signal && (fixed || free.order <= HIGHEST_ORDER) {
