@@ -27,7 +27,7 @@
 
 use std::error::Error;
 
-use elcon::analysis::discretization::{Discretization, Quantity};
+use elcon::analysis::discretization::{Discretization, ErrorEstimate, Quantity};
 use elcon::analysis::references::{BeamOnFoundation, FlatPunch, HertzCylinders, HetenyiBeam};
 use elcon::analysis::{
     AnalysisError, ContactProblem, ContactSolution, Geometry, GridFamily, Loading, Method, Options,
@@ -176,8 +176,17 @@ fn rows(
             truth.map_or("-".into(), |t| format!("{t:+.2e}")),
             show(estimated),
             e.order.map_or("-".into(), |p| format!("{p:.2}")),
-            e.verdict.name()
+            verdict(e)
         );
+    }
+}
+
+/// The verdict's name, `(fit)` after it where the estimate is the
+/// least-squares fit over the grids between the nested ones.
+fn verdict(e: &ErrorEstimate) -> String {
+    match e.scatter {
+        Some(_) if e.verdict.name() == "converging" => "converging (fit)".into(),
+        _ => e.verdict.name().into(),
     }
 }
 

@@ -110,8 +110,14 @@ fn study(case: &Case, tally: &mut Tally) -> Result<(), Box<dyn Error>> {
         let Some(true_error) = true_error else {
             continue;
         };
-        let verdict = e.verdict.name();
-        let (est, ratio) = match e.relative_error.filter(|_| verdict == "converging") {
+        let verdict = match (e.verdict.name(), e.scatter) {
+            ("converging", Some(_)) => "converging (fit)",
+            (name, _) => name,
+        };
+        let (est, ratio) = match e
+            .relative_error
+            .filter(|_| verdict.starts_with("converging"))
+        {
             Some(est) => {
                 tally.estimates += 1;
                 let ratio = est / true_error.abs();

@@ -144,8 +144,12 @@ pub struct ErrorEstimate {
     /// The run's own value's estimated error `|f_ext - f_h|` (the
     /// quantity's unit; 0 when exact).
     pub error: Option<f64>,
-    /// The observed order p (three grids, the changes not zero).
+    /// The observed order p (three grids, the changes not zero), or the
+    /// least-squares fit's.
     pub order: Option<f64>,
+    /// The standard deviation of the least-squares fit the estimate is
+    /// made with ([`fitted`]; the quantity's unit), if it is a fit.
+    pub scatter: Option<f64>,
     /// What the estimate concluded.
     pub verdict: Verdict,
 }
@@ -170,6 +174,7 @@ impl ErrorEstimate {
             extrapolated: None,
             error: None,
             order: None,
+            scatter: None,
             verdict: Verdict::NotEstimated(reason.into()),
         }
     }
@@ -227,24 +232,11 @@ pub fn estimate(values: &[f64], spacings: &[f64], own: usize, scale: f64) -> Err
 /// why (too few grids, a value not finite, two grids agreeing and the
 /// third not).
 fn three_grids(values: &[f64], spacings: &[f64], scale: f64) -> Result<Option<f64>, Verdict> {
+    checked(values, spacings, scale)?;
     let not = |why: &str| Err(Verdict::NotEstimated(why.into()));
-    if values.len() != spacings.len() || values.is_empty() {
-        return not("no grid with a value");
-    }
-    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-        return Err(Verdict::NotEstimated(format!(
-            "a value is not finite ({v})"
-        )));
-    }
-    if !spacings.windows(2).all(|w| w[1] > w[0]) || !(spacings[0] > 0.0) {
-        return not("the spacings do not grow from the fine grid");
-    }
     let f1 = values[0];
     let magnitude = values.iter().fold(scale.abs(), |a, v| a.max(v.abs()));
     let tol = EXACT * magnitude;
-    if values.len() > 1 && values.iter().all(|v| (v - f1).abs() <= tol) {
-        return Err(Verdict::Exact);
-    }
     match values.len() {
         1 => return not("one grid: no other grid was solved"),
         2 => return not("two grids: no order observed (a third grid was not solved)"),
@@ -263,6 +255,31 @@ fn three_grids(values: &[f64], spacings: &[f64], scale: f64) -> Result<Option<f6
     }
     let (r21, r32) = (spacings[1] / spacings[0], spacings[2] / spacings[1]);
     Ok(observed_order(e21, e32, r21, r32, (e32 / e21).signum()))
+}
+
+/// The verdict values need no order for: not estimated and why (no
+/// grid, a value not finite, spacings not growing), or exact (every grid
+/// agreeing to [`EXACT`] of `scale` or the values' magnitude).
+fn checked(values: &[f64], spacings: &[f64], scale: f64) -> Result<(), Verdict> {
+    let not = |why: &str| Err(Verdict::NotEstimated(why.into()));
+    if values.len() != spacings.len() || values.is_empty() {
+        return not("no grid with a value");
+    }
+    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+        return Err(Verdict::NotEstimated(format!(
+            "a value is not finite ({v})"
+        )));
+    }
+    if !spacings.windows(2).all(|w| w[1] > w[0]) || !(spacings[0] > 0.0) {
+        return not("the spacings do not grow from the fine grid");
+    }
+    let f1 = values[0];
+    let magnitude = values.iter().fold(scale.abs(), |a, v| a.max(v.abs()));
+    let tol = EXACT * magnitude;
+    if values.len() > 1 && values.iter().all(|v| (v - f1).abs() <= tol) {
+        return Err(Verdict::Exact);
+    }
+    Ok(())
 }
 
 /// Why three grids' `values` of observed order `p` do not show
@@ -316,6 +333,346 @@ fn observed_order(e21: f64, e32: f64, r21: f64, r32: f64, s: f64) -> Option<f64>
         }
     }
     Some(p)
+}
+
+/// The fewest grids a least-squares fit is made on (three parameters and
+/// at least one degree of freedom for its standard deviation).
+pub const FIT_GRIDS: usize = 4;
+
+/// The largest standard deviation of a least-squares fit, over the error
+/// it estimates, for the fit to be credible: a fit scattering by more
+/// than this fraction of the run's error does not tell the error from the
+/// noise (see the module documentation for how it was set).
+pub const FIT_SCATTER: f64 = 0.25;
+
+/// The orders the free fit searches: a fit's best order at the lower end
+/// is a quantity whose changes do not shrink.
+const FIT_ORDERS: (f64, f64) = (0.05, 8.0);
+
+/// The form of a least-squares fit `phi_i = phi_0 + ...` over the grids'
+/// spacings `h_i` (Eça & Hoekstra 2014).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum FitForm {
+    /// `alpha h^p`, the order p fitted.
+    Free,
+    /// `alpha h^p`, the order fixed (1 or 2).
+    Fixed(f64),
+    /// `alpha h + beta h^2`.
+    Mixed,
+}
+
+/// A least-squares fit of a quantity's values on four or more grids.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fit {
+    /// Its form.
+    pub form: FitForm,
+    /// The limit `phi_0` (the quantity's unit).
+    pub limit: f64,
+    /// The order p: fitted, fixed, or 1 for the mixed form.
+    pub order: f64,
+    /// The standard deviation `sqrt(S / (n - k))` of its `n` residuals,
+    /// `k` its parameters (the quantity's unit).
+    pub sigma: f64,
+    /// Its coefficients of `h^p` (or `h` and `h^2`), `h` over the largest
+    /// spacing.
+    coefficients: [f64; 2],
+    /// The largest spacing.
+    h_max: f64,
+}
+
+impl Fit {
+    /// The fit's value at the spacing `h`.
+    pub fn at(&self, h: f64) -> f64 {
+        let x = h / self.h_max;
+        match self.form {
+            FitForm::Mixed => self.limit + self.coefficients[0] * x + self.coefficients[1] * x * x,
+            _ => self.limit + self.coefficients[0] * x.powf(self.order),
+        }
+    }
+}
+
+/// The least-squares fit of `values` on `spacings` in `form`: `None` when
+/// there are no more values than parameters or the normal equations are
+/// singular. For the free form, `order` is the fixed order tried.
+fn fit_form(values: &[f64], spacings: &[f64], form: FitForm, order: f64) -> Option<Fit> {
+    let n = values.len();
+    let h_max = spacings.iter().fold(0.0, |a: f64, &h| a.max(h));
+    let k = match form {
+        FitForm::Mixed | FitForm::Free => 3,
+        FitForm::Fixed(_) => 2,
+    };
+    if n <= k || !(h_max > 0.0) {
+        return None;
+    }
+    let basis = |h: f64| -> [f64; 3] {
+        let x = h / h_max;
+        match form {
+            FitForm::Mixed => [1.0, x, x * x],
+            _ => [1.0, x.powf(order), 0.0],
+        }
+    };
+    let m = if form == FitForm::Mixed { 3 } else { 2 };
+    // Centred on the values' mean for the normal equations' conditioning.
+    let mean = values.iter().sum::<f64>() / n as f64;
+    let mut a = [[0.0; 4]; 3];
+    for (&v, &h) in values.iter().zip(spacings) {
+        let b = basis(h);
+        for i in 0..m {
+            for j in 0..m {
+                a[i][j] += b[i] * b[j];
+            }
+            a[i][3] += b[i] * (v - mean);
+        }
+    }
+    let c = solve_small(&mut a, m)?;
+    let residual: f64 = (values.iter().zip(spacings))
+        .map(|(&v, &h)| {
+            let b = basis(h);
+            let r = v - mean - (c[0] * b[0] + c[1] * b[1] + c[2] * b[2]);
+            r * r
+        })
+        .sum();
+    Some(Fit {
+        form,
+        limit: mean + c[0],
+        order: if form == FitForm::Mixed { 1.0 } else { order },
+        sigma: (residual / (n - k) as f64).sqrt(),
+        coefficients: [c[1], c[2]],
+        h_max,
+    })
+}
+
+/// Gaussian elimination with partial pivoting of the `m x m` system in
+/// `a` (its right-hand side the fourth column); `None` if singular.
+fn solve_small(a: &mut [[f64; 4]; 3], m: usize) -> Option<[f64; 3]> {
+    let scale = (0..m).fold(0.0, |s: f64, i| s.max(a[i][i].abs()));
+    for col in 0..m {
+        let pivot = (col..m).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+        a.swap(col, pivot);
+        if !(a[col][col].abs() > 1e-13 * scale) {
+            return None;
+        }
+        for row in col + 1..m {
+            let f = a[row][col] / a[col][col];
+            for k in col..4 {
+                a[row][k] -= f * a[col][k];
+            }
+        }
+    }
+    let mut x = [0.0; 3];
+    for row in (0..m).rev() {
+        let tail: f64 = (row + 1..m).map(|k| a[row][k] * x[k]).sum();
+        x[row] = (a[row][3] - tail) / a[row][row];
+    }
+    Some(x)
+}
+
+/// The free fit `phi_0 + alpha h^p` of least residual, p searched over
+/// [`FIT_ORDERS`] (a scan, then golden sections around its best).
+fn free_fit(values: &[f64], spacings: &[f64]) -> Option<Fit> {
+    let at = |p: f64| fit_form(values, spacings, FitForm::Free, p);
+    let sigma = |p: f64| at(p).map_or(f64::INFINITY, |f| f.sigma);
+    let (lo, hi) = FIT_ORDERS;
+    let steps = 200;
+    let p_of = |i: usize| lo * (hi / lo).powf(i as f64 / steps as f64);
+    let best = (0..=steps).min_by(|&i, &j| sigma(p_of(i)).total_cmp(&sigma(p_of(j))))?;
+    let (mut a, mut b) = (p_of(best.saturating_sub(1)), p_of((best + 1).min(steps)));
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..60 {
+        let (c, d) = (b - g * (b - a), a + g * (b - a));
+        if sigma(c) < sigma(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    at(0.5 * (a + b)).filter(|f| f.sigma.is_finite())
+}
+
+/// The least-squares estimate (Eça & Hoekstra, J. Comput. Phys. 262,
+/// 2014) from a quantity's `values` on four or more grids of `spacings`
+/// (the finest first, spacings growing), `own` the index of the run's own
+/// grid, `scale` the quantity's magnitude: `phi_i = phi_0 + alpha h_i^p`
+/// fitted with p free; where p falls outside [`LOWEST_ORDER`],
+/// [`HIGHEST_ORDER`], the fit of least standard deviation among p fixed
+/// at 1, at 2 and the mixed `alpha h + beta h^2`. The run's error is
+/// `|phi_own - phi_0|`; the verdict is converging only when the fit's
+/// standard deviation is at most [`FIT_SCATTER`] of that error (see the
+/// module documentation).
+///
+/// ```
+/// use elcon_analysis::discretization::{Verdict, fitted};
+/// let h = [0.1, 0.141, 0.2, 0.283, 0.4];
+/// let f: Vec<f64> = h.iter().map(|h| 1.0 + h * h).collect();
+/// let e = fitted(&f, &h, 0, 1.0);
+/// assert_eq!(e.verdict, Verdict::Converging);
+/// assert!((e.error.unwrap() - 0.01).abs() < 1e-9);
+/// ```
+pub fn fitted(values: &[f64], spacings: &[f64], own: usize, scale: f64) -> ErrorEstimate {
+    let mut estimate = ErrorEstimate::not_estimated(values, "");
+    estimate.own = own.min(values.len().saturating_sub(1));
+    if let Err(verdict) = checked(values, spacings, scale) {
+        if verdict == Verdict::Exact {
+            estimate.extrapolated = Some(estimate.value());
+            estimate.error = Some(0.0);
+        }
+        estimate.verdict = verdict;
+        return estimate;
+    }
+    if values.len() < FIT_GRIDS {
+        estimate.verdict = Verdict::NotEstimated(format!(
+            "{} grids: a least-squares fit needs {FIT_GRIDS}",
+            values.len()
+        ));
+        return estimate;
+    }
+    // The finest m grids, m from all down to FIT_GRIDS: the coarsest
+    // grids may lie outside the range where the error falls at a steady
+    // order (a contact edge in one cell or the next). The first credible
+    // fit with its order free is taken, else the first credible one with
+    // the order fixed, else the verdict of the fit over all.
+    let own_value = estimate.value();
+    let mut first = None;
+    for fixed in [false, true] {
+        for m in (FIT_GRIDS..=values.len()).rev() {
+            let own_spacing = spacings[estimate.own];
+            let subset = (&values[..m], &spacings[..m]);
+            match fit_verdict(subset, (own_value, own_spacing), fixed) {
+                Ok((fit, error)) => {
+                    estimate.order = Some(fit.order);
+                    estimate.scatter = Some(fit.sigma);
+                    estimate.extrapolated = Some(fit.limit);
+                    estimate.error = Some(error);
+                    estimate.verdict = Verdict::Converging;
+                    return estimate;
+                }
+                Err(refusal) => {
+                    first.get_or_insert(refusal);
+                }
+            }
+        }
+    }
+    if let Some((verdict, order, scatter)) = first {
+        estimate.verdict = verdict;
+        estimate.order = order;
+        estimate.scatter = scatter;
+    }
+    estimate
+}
+
+/// The largest error at the spacing `own` that a trend `alpha h^p` of the
+/// lowest order ([`LOWEST_ORDER`]) spanning the range of `values` over
+/// `spacings` gives: `range (own / h_min)^p / ((h_max / h_min)^p - 1)`. A
+/// fit whose limit lies further extrapolates beyond what the grids show.
+fn reach(values: &[f64], spacings: &[f64], own: f64) -> f64 {
+    let (lo, hi) = values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let h_min = spacings[0];
+    let h_max = spacings[spacings.len() - 1];
+    let p = LOWEST_ORDER;
+    (hi - lo) * (own / h_min).powf(p) / ((h_max / h_min).powf(p) - 1.0)
+}
+
+/// Why a fit was not taken: the verdict, the fit's order and standard
+/// deviation where there is one.
+type Refusal = (Verdict, Option<f64>, Option<f64>);
+
+/// The credible fit of `values` on `spacings` (see [`fitted`]) and the
+/// error `|own_value - phi_0|` it gives: with the order free, or, if
+/// `fixed`, the form of least standard deviation of p = 1, p = 2 and the
+/// mixed one. Else the verdict why not, with the fit's order and standard
+/// deviation where there is one.
+fn fit_verdict(
+    (values, spacings): (&[f64], &[f64]),
+    (own_value, own_spacing): (f64, f64),
+    fixed: bool,
+) -> Result<(Fit, f64), Refusal> {
+    let n = values.len();
+    let Some(free) = free_fit(values, spacings) else {
+        let why = "the least-squares fit is singular".to_string();
+        return Err((Verdict::NotEstimated(why), None, None));
+    };
+    if free.order < LOWEST_ORDER {
+        return Err((
+            Verdict::NotResolved(format!(
+                "the changes do not shrink as the method's do (a least-squares fit over {n} \
+                 grids has order {:.2}, below {LOWEST_ORDER}): a peak that finer grids resolve \
+                 higher, as at a singular edge or a slope kink of the surface",
+                free.order
+            )),
+            Some(free.order),
+            None,
+        ));
+    }
+    let fit = if !fixed {
+        free
+    } else if free.order <= HIGHEST_ORDER {
+        // The fixed orders stand in only for a free order above the
+        // method's range, not for a free fit that scatters.
+        return Err((
+            Verdict::NotResolved(String::new()),
+            Some(free.order),
+            Some(free.sigma),
+        ));
+    } else {
+        [FitForm::Fixed(1.0), FitForm::Fixed(2.0), FitForm::Mixed]
+            .into_iter()
+            .filter_map(|form| {
+                let p = if let FitForm::Fixed(p) = form { p } else { 1.0 };
+                fit_form(values, spacings, form, p)
+            })
+            .min_by(|a, b| a.sigma.total_cmp(&b.sigma))
+            .unwrap_or(free)
+    };
+    let error = (own_value - fit.limit).abs();
+    let reach = reach(values, spacings, own_spacing);
+    if error > reach {
+        return Err((
+            Verdict::NotResolved(format!(
+                "a least-squares fit over {n} grids ({}) puts the limit {error:.2e} from the \
+                 run's value, further than a trend of order {LOWEST_ORDER} through the grids' \
+                 values reaches ({reach:.2e}): an extrapolation the grids do not support",
+                fit.form
+            )),
+            Some(fit.order),
+            Some(fit.sigma),
+        ));
+    }
+    let finest = (values[1] - values[0]).abs();
+    let signal = error.min(finest);
+    if fit.sigma <= FIT_SCATTER * signal && (fixed || free.order <= HIGHEST_ORDER) {
+        return Ok((fit, error));
+    }
+    let why = if fit.sigma <= FIT_SCATTER * signal {
+        format!(
+            "a least-squares fit over {n} grids has order {:.2}, above {HIGHEST_ORDER}: \
+             errors cancelling between the grids, not a rate to extrapolate",
+            fit.order
+        )
+    } else {
+        format!(
+            "a least-squares fit over {n} grids ({}) scatters by {:.2e}, more than \
+             {FIT_SCATTER} of the smaller of the error it estimates ({error:.2e}) and the \
+             finest grids' change ({finest:.2e}): the grids' noise (a feature the coarser \
+             grids put in one cell or the next) is as large as the discretization's trend",
+            fit.form, fit.sigma
+        )
+    };
+    Err((Verdict::NotResolved(why), Some(fit.order), Some(fit.sigma)))
+}
+
+impl std::fmt::Display for FitForm {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FitForm::Free => write!(f, "order fitted"),
+            FitForm::Fixed(p) => write!(f, "order fixed at {p}"),
+            FitForm::Mixed => write!(f, "orders 1 and 2"),
+        }
+    }
 }
 
 /// A quantity of a solution whose discretization error is estimated.
@@ -617,6 +974,70 @@ mod tests {
             label: "rough.npy".into(),
         };
         assert!(map.to_string().contains("bilinearly"));
+    }
+
+    /// Spacings in ratios of about sqrt 2, as the fit's grids are.
+    const FIT_H: [f64; 5] = [0.1, 0.1414, 0.2, 0.2829, 0.4];
+
+    #[test]
+    fn a_fit_recovers_the_limit_of_a_noisy_second_order_sequence() {
+        // phi_0 = 3, a h^2 with a = 5, noise of 1 % of the trend's
+        // change at h, alternating.
+        let noise = [1.0, -1.0, 1.0, -1.0, 1.0];
+        let f: Vec<f64> = (FIT_H.iter().zip(noise))
+            .map(|(h, s)| 3.0 + 5.0 * h * h + s * 0.01 * 5.0 * 0.01)
+            .collect();
+        let e = fitted(&f, &FIT_H, 0, 3.0);
+        assert_eq!(e.verdict, Verdict::Converging, "{e:?}");
+        assert!((e.extrapolated.unwrap() - 3.0).abs() < 0.02 * 0.05, "{e:?}");
+        let truth = f[0] - 3.0;
+        assert!((e.error.unwrap() / truth - 1.0).abs() < 0.05, "{e:?}");
+        assert!((e.order.unwrap() - 2.0).abs() < 0.2, "{e:?}");
+        assert!(e.scatter.unwrap() < 0.02 * truth, "{e:?}");
+        // The run's own grid the second: its error is against the same limit.
+        let e = fitted(&f, &FIT_H, 1, 3.0);
+        assert!(
+            (e.error.unwrap() / (f[1] - 3.0) - 1.0).abs() < 0.05,
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn a_fit_of_an_order_above_the_highest_is_not_resolved() {
+        // Changes falling as h^6: no fixed order fits them within the
+        // scatter allowed, and the free order is a cancellation.
+        let f: Vec<f64> = FIT_H.iter().map(|h| 1.0 + h.powi(6)).collect();
+        let e = fitted(&f, &FIT_H, 0, 1.0);
+        assert_eq!(e.verdict.name(), "not resolved", "{e:?}");
+        assert!(e.verdict.reason().unwrap().contains("above 4"), "{e:?}");
+    }
+
+    #[test]
+    fn noise_larger_than_the_trend_is_not_resolved_by_the_fit() {
+        // A trend of 1e-4 h^2 under alternating noise of 1e-5.
+        let f: Vec<f64> = (FIT_H.iter().enumerate())
+            .map(|(i, h)| 1.0 + 1e-4 * h * h + if i % 2 == 0 { 1e-5 } else { -1e-5 })
+            .collect();
+        let e = fitted(&f, &FIT_H, 0, 1.0);
+        assert_eq!(e.verdict.name(), "not resolved", "{e:?}");
+        assert!(e.verdict.reason().unwrap().contains("scatters"), "{e:?}");
+        assert_eq!(e.error, None);
+    }
+
+    #[test]
+    fn a_fit_of_changes_that_do_not_shrink_is_not_resolved() {
+        for f in [|h: f64| h.powf(-0.5), |h: f64| (1.0 / h).ln()] {
+            let v: Vec<f64> = FIT_H.iter().map(|&h| f(h)).collect();
+            let e = fitted(&v, &FIT_H, 0, 1.0);
+            assert!(
+                e.verdict.reason().unwrap().contains("do not shrink"),
+                "{e:?}"
+            );
+        }
+        let e = fitted(&[1.0; 5], &FIT_H, 0, 1.0);
+        assert_eq!(e.verdict, Verdict::Exact);
+        let e = fitted(&[1.0, 1.1, 1.2], &FIT_H[..3], 0, 1.0);
+        assert_eq!(e.verdict.name(), "not estimated");
     }
 
     #[test]

@@ -538,6 +538,55 @@ impl GridFamily {
         }
     }
 
+    /// The same zone at about `sqrt 2` times the spacing, between this
+    /// grid and its [`GridFamily::coarser`] (the least-squares estimate's
+    /// grids, `crate::discretization::fitted`): a disk's spacing times
+    /// `sqrt 2`; each count the integer nearest `n / sqrt 2` with the
+    /// parity of n (the centre kept a point or a cell face); a Hertz
+    /// layout's `across - 1` likewise. `None` when it would have fewer
+    /// than [`MIN_COARSE_COUNT`] points along an axis.
+    pub fn intermediate(&self) -> Option<GridFamily> {
+        let count = |n: usize| {
+            let m = parity_nearest(n as f64 / std::f64::consts::SQRT_2, n);
+            (m >= MIN_COARSE_COUNT).then_some(m)
+        };
+        match *self {
+            GridFamily::Disk { spacing, radius } => {
+                let h = std::f64::consts::SQRT_2 * spacing;
+                let m = (radius / h * (1.0 + 1e-9)).floor();
+                (2.0 * m + 1.0 >= MIN_COARSE_COUNT as f64)
+                    .then_some(GridFamily::Disk { spacing: h, radius })
+            }
+            GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx,
+                ny,
+            } => Some(GridFamily::Rectangle {
+                half_x,
+                half_y,
+                nx: count(nx)?,
+                ny: count(ny)?,
+            }),
+            GridFamily::Line { start, end, n } => Some(GridFamily::Line {
+                start,
+                end,
+                n: count(n)?,
+            }),
+            GridFamily::HertzLine { across, .. } | GridFamily::HertzEllipse { across, .. } => {
+                let spans = across.max(2) - 1;
+                let fewer = parity_nearest(spans as f64 / std::f64::consts::SQRT_2, spans).max(2);
+                let grid = self.with_across(fewer + 1);
+                let smallest = match grid.laid_out().ok()? {
+                    GridFamily::Line { n, .. } => n,
+                    GridFamily::Rectangle { nx, ny, .. } => nx.min(ny),
+                    _ => return None,
+                };
+                (smallest >= MIN_COARSE_COUNT && fewer + 1 >= 3 && fewer < spans).then_some(grid)
+            }
+        }
+    }
+
     /// A Hertz layout with `across` points across its contact (any other
     /// family as it is).
     fn with_across(self, across: usize) -> GridFamily {
@@ -598,6 +647,12 @@ impl GridFamily {
             }
         }
     }
+}
+
+/// The integer nearest `t` with the parity of `n`.
+fn parity_nearest(t: f64, n: usize) -> usize {
+    let parity = (n % 2) as f64;
+    (2.0 * ((t - parity) / 2.0).round() + parity).max(parity) as usize
 }
 
 /// The count whose [`half_count`] is `n`: `2n - 1` for an odd `n` (a point
@@ -950,5 +1005,54 @@ mod tests {
                 })
             ));
         }
+    }
+
+    #[test]
+    fn an_intermediate_grid_lies_about_sqrt_2_coarser() {
+        let families = [
+            GridFamily::Rectangle {
+                half_x: 1.0,
+                half_y: 2.0,
+                nx: 41,
+                ny: 80,
+            },
+            GridFamily::Line {
+                start: -1.0,
+                end: 1.0,
+                n: 131,
+            },
+            GridFamily::Disk {
+                spacing: 0.1,
+                radius: 2.0,
+            },
+            hertz_line_family(1.0, 101, 1.3).unwrap(),
+            hertz_ellipse_family(
+                EllipseExtent {
+                    semi_minor: 1.0,
+                    half_x: 3.0,
+                    half_y: 1.0,
+                },
+                31,
+                1.2,
+            )
+            .unwrap(),
+        ];
+        for family in families {
+            let between = family.intermediate().unwrap();
+            let ratio = between.spacing() / family.spacing();
+            assert!(
+                (ratio / std::f64::consts::SQRT_2 - 1.0).abs() < 0.05,
+                "{family}: {ratio}"
+            );
+            assert!(
+                between.spacing() < family.coarser().unwrap().spacing(),
+                "{family}"
+            );
+        }
+        if let Some(GridFamily::Rectangle { nx, ny, .. }) = families[0].intermediate() {
+            assert_eq!((nx, ny), (29, 56));
+        }
+        assert_eq!(parity_nearest(2.2, 7), 3);
+        assert_eq!(parity_nearest(92.0, 130), 92);
     }
 }

@@ -95,8 +95,12 @@ pub struct QuantityJson {
     pub error: Option<f64>,
     /// The error over the value's magnitude.
     pub relative_error: Option<f64>,
-    /// The observed order p (three grids).
+    /// The observed order p (three grids), or the least-squares fit's.
     pub order: Option<f64>,
+    /// The least-squares fit's standard deviation, the quantity's unit
+    /// (where the estimate is a fit over more than three grids).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scatter: Option<f64>,
     /// `converging`, `not resolved`, `exact` or `not estimated`.
     pub verdict: VerdictJson,
     /// Why it is not resolved or not estimated.
@@ -113,6 +117,7 @@ impl QuantityJson {
             error: e.error,
             relative_error: e.relative_error(),
             order: e.order,
+            scatter: e.scatter,
             verdict: VerdictJson::of(&e.verdict),
             reason: e.verdict.reason().map(String::from),
         }
@@ -223,6 +228,7 @@ fn unknown() -> ErrorEstimate {
         extrapolated: None,
         error: None,
         order: None,
+        scatter: None,
         verdict: Verdict::NotEstimated("not computed".into()),
     }
 }

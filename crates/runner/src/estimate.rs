@@ -247,7 +247,9 @@ impl Estimate {
 
 /// The discretization error estimate's peak and time: the other grids'
 /// problems, planned as the run builds them (`elcon_analysis::GridFamily`:
-/// `coarser`, 2h then 4h, and `finer`, h/2 then h/4, while within
+/// `coarser`, 2h then 4h, and `finer`, h/2 then h/4, with the grids
+/// between each pair, `intermediate`, that the least-squares fit solves
+/// where the nested grids do not resolve a quantity, while within
 /// `elcon_analysis::discretization::finer_allowance` of the scene's own
 /// solve), are solved one at a time while the scene's own S is held, so
 /// the stage's peak is the scene's S plus the largest of their solves'
@@ -284,6 +286,19 @@ fn discretization(scene: &Scene) -> (f64, f64) {
                 break;
             }
             *path = (path.0.max(e.solve_bytes), path.1 + e.seconds, path.2 + 1);
+            // The grid between this pair (about sqrt 2 coarser than the
+            // finer of the two), solved where the nested grids do not
+            // resolve a quantity (which only the solve tells).
+            let finer = if grid.spacing() < current.spacing() {
+                grid
+            } else {
+                current
+            };
+            if let Some(e) = finer.intermediate().and_then(|g| plan(&g))
+                && e.solve_bytes <= allowance
+            {
+                *path = (path.0.max(e.solve_bytes), path.1 + e.seconds, path.2);
+            }
             current = grid;
         }
     }

@@ -36,8 +36,8 @@ use super::solution::ContactSolution;
 use super::tabulated::{Departure, Interpolation, ProfileAxis};
 use crate::AnalysisError;
 use crate::discretization::{
-    Discretization, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity, Verdict, estimate,
-    finer_allowance,
+    Discretization, ErrorEstimate, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity, Verdict,
+    estimate, finer_allowance, fitted,
 };
 use crate::edge::contact_spans;
 use crate::grid::GridFamily;
@@ -100,14 +100,18 @@ impl ProblemBuilder<'_> {
             method,
             options,
         };
-        let sequence = run.sequence(family, own);
+        let mut sequence = run.sequence(family, own);
         let limits = input_limits(self.geometry(), sequence.coarsest);
+        if sequence.needs_fit(&limits) {
+            run.intermediates(&mut sequence);
+        }
         let estimates = sequence.estimates(&limits);
+        let (grids, own) = sequence.all_grids();
         Ok(Discretization {
-            grids: sequence.grids,
+            grids,
             estimates,
             note: sequence.stop.map(|stop| stop.to_string()),
-            own: sequence.own,
+            own,
             limits,
         })
     }
@@ -128,9 +132,14 @@ struct Sequence {
     /// The cell of the coarsest grid solved.
     coarsest: Cell,
     grids: Vec<GridRun>,
+    /// The families of `grids`.
+    families: Vec<GridFamily>,
     solutions: Vec<ContactSolution>,
     own: usize,
     stop: Option<Stop>,
+    /// The grids between the nested ones (about `sqrt 2` apart) solved for
+    /// the least-squares fit, with their solutions if certified.
+    between: Vec<(GridRun, Option<ContactSolution>)>,
 }
 
 impl Solver<'_, '_> {
@@ -176,9 +185,11 @@ impl Solver<'_, '_> {
         let mut sequence = Sequence {
             coarsest,
             grids: vec![own],
+            families: vec![*family],
             solutions: vec![self.fine.clone()],
             own: 0,
             stop,
+            between: Vec::new(),
         };
         for (level, (grid, points)) in finer.into_iter().enumerate() {
             let times = 0.5f64.powi(level as i32 + 1);
@@ -220,6 +231,7 @@ impl Solver<'_, '_> {
         };
         Solved {
             run,
+            family: *grid,
             times,
             solution: solved.ok().filter(|_| failure.is_none()),
             failure,
@@ -257,6 +269,13 @@ impl Solver<'_, '_> {
         let points = finer
             .points()
             .map_err(|error| Stop::NoPoints { times, error })?;
+        self.within_allowance(&points, times)?;
+        Ok((finer, points))
+    }
+
+    /// Whether a finer grid's solve on `points` (at `times` the run's
+    /// spacing) fits the allowance ([`finer_allowance`]); why not if not.
+    fn within_allowance(&self, points: &PointSet, times: f64) -> Result<(), Stop> {
         let own = self.builder.plan().map(|p| p.estimate.solve_bytes);
         let planned = self.builder.on(points.clone()).plan();
         let (Ok(own), Ok(planned)) = (own, planned) else {
@@ -275,7 +294,55 @@ impl Solver<'_, '_> {
                 allowance,
             });
         }
-        Ok((finer, points))
+        Ok(())
+    }
+
+    /// The grids between `sequence`'s nested ones, each about `sqrt 2`
+    /// coarser than the finer of a pair ([`GridFamily::intermediate`]),
+    /// solved for the least-squares fit: those finer than the run's own
+    /// only within [`finer_allowance`]. A grid that cannot be made or
+    /// fails is logged (a failure) or noted, and the fit made on the
+    /// others.
+    fn intermediates(&self, sequence: &mut Sequence) {
+        let own = self.builder.points().len();
+        let h_own = sequence.grids[0..]
+            .iter()
+            .find(|g| g.points == own && g.failure.is_none());
+        let h_own = h_own.map_or(f64::NAN, |g| g.spacing);
+        let pairs: Vec<(GridFamily, f64)> = (sequence.grids.windows(2))
+            .zip(&sequence.families)
+            .filter(|(w, _)| w[0].failure.is_none() && w[1].failure.is_none())
+            .map(|(w, f)| (*f, w[1].spacing))
+            .collect();
+        for (fine, coarse_spacing) in pairs {
+            let Some(grid) = fine.intermediate() else {
+                continue;
+            };
+            let h = grid.spacing();
+            if !(h > fine.spacing() && h < coarse_spacing) {
+                continue;
+            }
+            let times = h / h_own;
+            let points = match grid.points() {
+                Ok(points) => points,
+                Err(error) => {
+                    sequence.stop.get_or_insert(Stop::NoPoints { times, error });
+                    continue;
+                }
+            };
+            if h < h_own
+                && let Err(why) = self.within_allowance(&points, times)
+            {
+                sequence.stop.get_or_insert(why);
+                continue;
+            }
+            let solved = self.solve(&grid, points, times);
+            if let Some(failure) = &solved.failure {
+                let failure = failure.clone();
+                sequence.stop.get_or_insert(Stop::Failed { times, failure });
+            }
+            sequence.between.push((solved.run, solved.solution));
+        }
     }
 }
 
@@ -283,6 +350,7 @@ impl Solver<'_, '_> {
 /// solution or why it failed.
 struct Solved {
     run: GridRun,
+    family: GridFamily,
     times: f64,
     solution: Option<ContactSolution>,
     failure: Option<String>,
@@ -293,6 +361,7 @@ impl Sequence {
     /// failed.
     fn push_finer(&mut self, solved: Solved) -> Result<(), Stop> {
         self.grids.insert(0, solved.run);
+        self.families.insert(0, solved.family);
         match (solved.solution, solved.failure) {
             (Some(s), _) => {
                 self.solutions.insert(0, s);
@@ -310,6 +379,7 @@ impl Sequence {
     /// failed.
     fn push_coarser(&mut self, solved: Solved) -> Result<(), Stop> {
         self.grids.push(solved.run);
+        self.families.push(solved.family);
         match (solved.solution, solved.failure) {
             (Some(s), _) => {
                 self.solutions.push(s);
@@ -322,30 +392,57 @@ impl Sequence {
         }
     }
 
-    /// Each quantity's estimate from the solutions, the stop's reason on
-    /// those not estimated, and `limits` making the peak pressure not
-    /// resolved.
-    fn estimates(
-        &self,
-        limits: &[InputLimit],
-    ) -> Vec<(Quantity, crate::discretization::ErrorEstimate)> {
+    /// Each quantity's estimate from the nested solutions (Richardson),
+    /// or, where their grids do not resolve it and the grids between them
+    /// were solved, the least-squares fit over all; the stop's reason on
+    /// those not estimated, and `limits` making the quantities they limit
+    /// not resolved. Each estimate's values are those of every grid
+    /// solved ([`Sequence::all_grids`]).
+    fn estimates(&self, limits: &[InputLimit]) -> Vec<(Quantity, ErrorEstimate)> {
         let spacings: Vec<f64> = self
             .grids
             .iter()
             .filter(|g| g.failure.is_none())
             .map(|g| g.spacing)
             .collect();
+        let all = self.all_solutions();
+        let all_spacings: Vec<f64> = all.iter().map(|(h, _)| *h).collect();
+        let own_value = self.own_value(&all);
         let note = self.stop.as_ref().map(Stop::to_string);
         Quantity::ALL
             .iter()
             .map(|&q| {
                 let values: Vec<f64> = self.solutions.iter().map(|s| value(s, q)).collect();
-                let mut e = estimate(&values, &spacings, self.own, scale(&self.solutions, q));
+                let scale = scale(&self.solutions, q);
+                let mut e = estimate(&values, &spacings, self.own, scale);
+                let limited = limits.iter().find(|l| l.limits(q));
+                let all_values: Vec<f64> = all.iter().map(|(_, s)| value(s, q)).collect();
+                if let Verdict::NotResolved(why) = &e.verdict
+                    && limited.is_none()
+                    && all.len() > values.len()
+                {
+                    let fit = fitted(&all_values, &all_spacings, own_value, scale);
+                    e = match fit.verdict {
+                        // The nested grids' order and reason, with the fit's.
+                        Verdict::NotResolved(fit_why) => ErrorEstimate {
+                            verdict: Verdict::NotResolved(format!(
+                                "{why}; over {} grids: {fit_why}",
+                                all.len()
+                            )),
+                            scatter: fit.scatter,
+                            ..e
+                        },
+                        Verdict::NotEstimated(_) => e,
+                        _ => fit,
+                    };
+                }
+                e.values = all_values;
+                e.own = own_value;
                 if let (Verdict::NotEstimated(reason), Some(why)) = (&e.verdict, &note) {
                     let first = reason.split(':').next().unwrap_or(reason);
                     e.verdict = Verdict::NotEstimated(format!("{first}: {why}"));
                 }
-                if let Some(limit) = limits.iter().find(|l| l.limits(q))
+                if let Some(limit) = limited
                     && e.verdict != Verdict::Exact
                 {
                     e.verdict = Verdict::NotResolved(limit.to_string());
@@ -355,6 +452,57 @@ impl Sequence {
                 (q, e)
             })
             .collect()
+    }
+
+    /// Whether a quantity the input does not limit is not resolved by the
+    /// nested grids (three of them solved): the grids between them are
+    /// then worth solving for the least-squares fit.
+    fn needs_fit(&self, limits: &[InputLimit]) -> bool {
+        self.solutions.len() == 3
+            && self.estimates(limits).iter().any(|(q, e)| {
+                matches!(e.verdict, Verdict::NotResolved(_)) && !limits.iter().any(|l| l.limits(*q))
+            })
+    }
+
+    /// The spacing and solution of every grid solved without failure,
+    /// nested and between, the finest first.
+    fn all_solutions(&self) -> Vec<(f64, &ContactSolution)> {
+        let nested = (self.grids.iter().filter(|g| g.failure.is_none()))
+            .map(|g| g.spacing)
+            .zip(&self.solutions);
+        let between = (self.between.iter()).filter_map(|(g, s)| s.as_ref().map(|s| (g.spacing, s)));
+        let mut all: Vec<(f64, &ContactSolution)> = nested.chain(between).collect();
+        all.sort_by(|a, b| a.0.total_cmp(&b.0));
+        all
+    }
+
+    /// The index among `all` of the run's own solution.
+    fn own_value(&self, all: &[(f64, &ContactSolution)]) -> usize {
+        let own = &self.solutions[self.own];
+        all.iter()
+            .position(|(_, s)| std::ptr::eq(*s, own))
+            .unwrap_or(0)
+    }
+
+    /// Every grid solved, nested and between, the finest first, and the
+    /// index of the run's own among them.
+    fn all_grids(&self) -> (Vec<GridRun>, usize) {
+        let own = self
+            .grids
+            .iter()
+            .filter(|g| g.failure.is_none())
+            .nth(self.own);
+        let own_spacing = own.map_or(f64::NAN, |g| g.spacing);
+        let mut grids: Vec<GridRun> = (self.grids.iter())
+            .chain(self.between.iter().map(|(g, _)| g))
+            .cloned()
+            .collect();
+        grids.sort_by(|a, b| a.spacing.total_cmp(&b.spacing));
+        let own = grids
+            .iter()
+            .position(|g| g.spacing == own_spacing && g.failure.is_none())
+            .unwrap_or(0);
+        (grids, own)
     }
 }
 
@@ -444,8 +592,10 @@ fn grid_at(times: f64) -> String {
         "the grid at half the spacing".into()
     } else if times == 0.25 {
         "the grid at a quarter of the spacing".into()
-    } else {
+    } else if times.fract() == 0.0 {
         format!("the grid at {times} times the spacing")
+    } else {
+        format!("the grid at {times:.2} times the spacing")
     }
 }
 
