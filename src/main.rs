@@ -38,7 +38,9 @@ use elcon_report::{RunResult, write_run_files};
 use elcon_runner::{
     BatchOptions, Progress, RunError, Shard, batch_dir, check_batch, merge, prepare, run, run_batch,
 };
-use elcon_scene::{Batch, BatchRun, Scene, SceneError, is_batch_text, read_text};
+use elcon_scene::{
+    Batch, BatchRun, Scene, SceneError, confine_data_files, is_batch_text, read_text,
+};
 
 #[derive(Parser)]
 #[command(
@@ -54,6 +56,12 @@ struct Cli {
     /// `--jobs` threads instead.
     #[arg(long, global = true)]
     threads: Option<usize>,
+    /// Read data files (height maps, profiles, separation files) only from
+    /// inside DIR, after resolving symbolic links and `..`: for a service
+    /// that runs scenes it did not write. Without it, any readable file is
+    /// read, and result.json records each one's resolved path.
+    #[arg(long, global = true, value_name = "DIR")]
+    confine: Option<PathBuf>,
 }
 
 /// `--shard`: K/N, or auto (from the scheduler's variables).
@@ -184,6 +192,12 @@ fn main() -> ExitCode {
         eprintln!("error: {message}");
         return ExitCode::from(2);
     }
+    if let Some(dir) = &cli.confine
+        && let Err(e) = confine_data_files(dir)
+    {
+        eprintln!("error: --confine: {e}");
+        return ExitCode::from(2);
+    }
     let cancel = interrupts();
     let outcome = match cli.command {
         Command::Run {
@@ -287,6 +301,9 @@ fn row(r: &RunResult) {
         r.units.force(),
         r.units.intensity()
     );
+    for input in r.inputs.iter().flat_map(|i| &i.files) {
+        println!("{:<28} read {}: {}", "", input.field, input.path.display());
+    }
     for w in &r.warnings {
         println!("{:<28} warning: {w}", "");
     }

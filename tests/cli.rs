@@ -558,3 +558,86 @@ fn a_negative_memory_limit_is_refused_as_a_size() {
     );
     assert!(!t.contains("unexpected argument"), "{t}");
 }
+
+/// `--confine DIR` (for services): a data file outside DIR, by an absolute
+/// path, by `..` or through a symbolic link, is refused naming the key and
+/// echoing none of the file; one inside is read. Without it the resolved
+/// path of each data file is printed and recorded in result.json.
+#[test]
+fn confine_refuses_data_files_outside_its_directory() {
+    let dir = scratch("confine");
+    let (inside, out) = (dir.join("inside"), dir.join("out"));
+    std::fs::create_dir_all(&inside).unwrap();
+    let crown =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/data/measured-crown.csv");
+    std::fs::copy(&crown, inside.join("crown.csv")).unwrap();
+    let scene_with = |name: &str, file: &str| {
+        let path = inside.join(format!("{name}.toml"));
+        let text = edited(
+            &example_scene("measured-crown"),
+            &[
+                (
+                    "file = \"data/measured-crown.csv\"",
+                    &format!("file = {file:?}"),
+                ),
+                ("nx = 9", "nx = 5"),
+                ("ny = 40", "ny = 16"),
+            ],
+        );
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let ok = scene_with("ok", "crown.csv");
+    let confine = inside.to_str().unwrap();
+    let t = exited(
+        &elcon(&["--confine", confine, "check", ok.to_str().unwrap()]),
+        0,
+        &[],
+    );
+    assert!(!t.contains("outside"), "{t}");
+    // Without --confine: the resolved path printed and recorded.
+    let t = exited(
+        &elcon(&["run", ok.to_str().unwrap(), "--out", out.to_str().unwrap()]),
+        0,
+        &[],
+    );
+    let real = std::fs::canonicalize(inside.join("crown.csv")).unwrap();
+    assert!(
+        t.contains(&format!("read geometry.profile.file: {}", real.display())),
+        "{t}"
+    );
+    let r = json(&out.join("measured-crown/result.json"));
+    assert_eq!(r["inputs"]["files"][0]["path"], real.display().to_string());
+    // Outside: an absolute path, `..`, a symbolic link inside to a file
+    // outside.
+    let mut outside = vec!["/etc/passwd".to_string(), "../outside.csv".to_string()];
+    std::fs::copy(&crown, dir.join("outside.csv")).unwrap();
+    #[cfg(unix)]
+    if std::os::unix::fs::symlink("/etc/passwd", inside.join("link.csv")).is_ok() {
+        outside.push("link.csv".into());
+    }
+    for (k, file) in outside.iter().enumerate() {
+        let scene = scene_with(&format!("out{k}"), file);
+        let t = exited(
+            &elcon(&["--confine", confine, "check", scene.to_str().unwrap()]),
+            1,
+            &[
+                "geometry.profile.file",
+                "outside the directory data files are confined to",
+            ],
+        );
+        assert!(!t.contains("root:"), "a line of the file is echoed: {t}");
+    }
+    // A directory that does not exist is a usage error.
+    exited(
+        &elcon(&[
+            "--confine",
+            dir.join("missing").to_str().unwrap(),
+            "check",
+            ok.to_str().unwrap(),
+        ]),
+        2,
+        &["--confine"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -4,9 +4,12 @@
 //! after a file was edited runs again the runs that read it.
 
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
+
+use crate::error::SceneError;
 
 /// A data file a scene read.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -45,6 +48,51 @@ pub fn file_sha256(path: &Path, limit: u64) -> Option<String> {
         .and_then(|f| f.take(limit + 1).read_to_end(&mut bytes))
         .ok()?;
     Some(sha256_hex(&bytes))
+}
+
+/// The directory data files must lie in, once confined (resolved).
+static CONFINED: OnceLock<PathBuf> = OnceLock::new();
+
+/// Confines the data files every scene of this process reads (height
+/// maps, profiles, separation files) to `dir`: a file whose resolved path
+/// (symbolic links followed, `..` removed) is outside it is refused,
+/// naming the key. For a service that runs scenes it did not write. Set
+/// once per process: the confinement cannot be widened or lifted later.
+///
+/// # Errors
+/// [`SceneError::Io`] when `dir` cannot be resolved or is not a directory,
+/// or the process is already confined to another directory.
+pub fn confine_data_files(dir: &Path) -> Result<(), SceneError> {
+    let resolved = std::fs::canonicalize(dir).map_err(|e| SceneError::io(dir, e))?;
+    if !resolved.is_dir() {
+        return Err(SceneError::io(dir, "is not a directory"));
+    }
+    let set = CONFINED.get_or_init(|| resolved.clone());
+    if *set != resolved {
+        return Err(SceneError::io(
+            dir,
+            format!(
+                "data files are already confined to {} in this process",
+                set.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Why `path` may not be read under the confinement, if it may not: its
+/// resolved path, outside the confining directory.
+pub(crate) fn outside_confinement(path: &Path) -> Option<String> {
+    let root = CONFINED.get()?;
+    match std::fs::canonicalize(path) {
+        Ok(real) if real.starts_with(root) => None,
+        Ok(real) => Some(format!(
+            "is outside the directory data files are confined to ({}): it resolves to {}",
+            root.display(),
+            real.display()
+        )),
+        Err(e) => Some(format!("cannot be resolved: {e}")),
+    }
 }
 
 /// SHA-256 of `bytes`, in hexadecimal.

@@ -24,7 +24,7 @@ mod schema;
 pub use batch::{Batch, BatchRun, is_batch_text};
 pub use ctx::{MAX_INPUT_BYTES, read_text};
 pub use error::{Location, SceneError};
-pub use inputs::{DataInput, file_sha256, sha256_hex};
+pub use inputs::{DataInput, confine_data_files, file_sha256, sha256_hex};
 pub use sanity::{MAX_ROTATION, MAX_STRAIN, MIN_POINTS_RESOLVED, StrainExtent, approach_strain};
 pub use scene::{
     BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, MAX_DATA_BYTES, MethodChoice, ModelKind,

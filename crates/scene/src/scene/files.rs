@@ -32,7 +32,7 @@ use toml::Spanned;
 
 use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
-use crate::inputs::DataInput;
+use crate::inputs::{DataInput, outside_confinement};
 use crate::schema::{GeometryToml, HeightMapToml, ProfileToml};
 
 /// How far from a candidate point, in the grid's spacings, a row of a
@@ -98,6 +98,9 @@ impl<'c, 'a> DataFile<'c, 'a> {
         let unreadable = |e: std::io::Error| self.refuse(format!("cannot be read: {e}"));
         // A pipe would block the read until its writer came (deaf to an
         // interrupt), a device would stream: only regular files are read.
+        if let Some(why) = outside_confinement(&self.path) {
+            return Err(self.refuse(why));
+        }
         let meta = std::fs::metadata(&self.path).map_err(unreadable)?;
         if !meta.is_file() {
             return Err(self.refuse(
