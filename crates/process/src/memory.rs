@@ -8,15 +8,16 @@
 //!
 //! ```text
 //!     ceiling = (1 - MARGIN) min(MemAvailable,
-//!                                cgroup memory.max - (memory.current - inactive_file),
+//!                                cgroup memory.max - (memory.current - page cache),
 //!                                RLIMIT_AS - VmSize - address-space reserve,
 //!                                --memory-limit, ELCON_MEMORY_LIMIT)
 //! ```
 //!
 //! read from /proc/meminfo, the current cgroup's memory controller (v2
 //! `memory.max`, or v1 `memory.limit_in_bytes`, every ancestor included;
-//! the usage less the reclaimable page cache, `inactive_file` of
-//! `memory.stat`, as the kubelet's working set counts it),
+//! the usage less the page cache the kernel reclaims before it refuses
+//! memory, `inactive_file` and `active_file` of `memory.stat`: active
+//! cache is demoted and reclaimed too),
 //! /proc/self/limits and /proc/self/status. A limit that cannot be read is
 //! left out (on a system without /proc only the option and the environment
 //! variable count, and without them the ceiling is unlimited).
@@ -301,9 +302,9 @@ fn address_space_limit(limits: &str) -> Option<u64> {
 /// What the memory controller leaves this process: over the cgroup and each
 /// ancestor with a limit, the least of `limit - working set`, the working
 /// set being the usage less the page cache the kernel reclaims before it
-/// refuses memory (`inactive_file` of `memory.stat`; v1's hierarchical
-/// `total_inactive_file`): a job that has written files is not refused for
-/// their cache. `proc_cgroup` is
+/// refuses memory (`inactive_file` and `active_file` of `memory.stat`;
+/// v1's hierarchical `total_` figures): a job that has read or written
+/// files is not refused for their cache. `proc_cgroup` is
 /// /proc/self/cgroup; `root` the cgroup file system's mount point.
 fn cgroup_available(proc_cgroup: &str, root: &Path) -> Option<u64> {
     let mut best: Option<u64> = None;
@@ -342,7 +343,7 @@ fn cgroup_available(proc_cgroup: &str, root: &Path) -> Option<u64> {
                 let usage = read(usage_file).unwrap_or(0);
                 let cache = std::fs::read_to_string(dir.join("memory.stat"))
                     .ok()
-                    .and_then(|stat| inactive_file(&stat))
+                    .and_then(|stat| page_cache(&stat))
                     .unwrap_or(0);
                 let left = limit.saturating_sub(usage.saturating_sub(cache));
                 best = Some(best.map_or(left, |b| b.min(left)));
@@ -352,16 +353,21 @@ fn cgroup_available(proc_cgroup: &str, root: &Path) -> Option<u64> {
     best
 }
 
-/// The reclaimable page cache of a cgroup's `memory.stat`: v1's
-/// hierarchical `total_inactive_file` when given, else `inactive_file`.
-fn inactive_file(stat: &str) -> Option<u64> {
+/// The reclaimable page cache of a cgroup's `memory.stat`: its inactive
+/// and active file pages (v1's hierarchical `total_` figures when given);
+/// `None` when neither can be read.
+fn page_cache(stat: &str) -> Option<u64> {
     let value = |key: &str| {
         stat.lines().find_map(|line| {
             let (k, v) = line.split_once(' ')?;
-            (k == key).then(|| v.trim().parse().ok()).flatten()
+            (k == key).then(|| v.trim().parse::<u64>().ok()).flatten()
         })
     };
-    value("total_inactive_file").or_else(|| value("inactive_file"))
+    let of = |name: &str| value(&format!("total_{name}")).or_else(|| value(name));
+    match (of("inactive_file"), of("active_file")) {
+        (None, None) => None,
+        (inactive, active) => Some(inactive.unwrap_or(0).saturating_add(active.unwrap_or(0))),
+    }
 }
 
 /// The directories of a cgroup `path` and of its ancestors under `base`
@@ -457,6 +463,15 @@ mod tests {
         let stat = format!(
             "anon 524288000\nfile 2952790016\ninactive_file {}\n",
             5u64 << 29
+        );
+        std::fs::write(step.join("memory.stat"), stat).unwrap();
+        assert_eq!(cgroup_available("0::/job/step\n", &root), Some(11 << 29));
+        // Active page cache is reclaimed too: 2 GiB inactive and 0.5 GiB
+        // active of 3 GiB used leave 5.5 GiB.
+        let stat = format!(
+            "anon 524288000\nactive_file {}\ninactive_file {}\n",
+            1u64 << 29,
+            1u64 << 31
         );
         std::fs::write(step.join("memory.stat"), stat).unwrap();
         assert_eq!(cgroup_available("0::/job/step\n", &root), Some(11 << 29));

@@ -65,6 +65,12 @@ const PLOT_BYTES_PER_POINT: f64 = 160.0;
 /// on a disk, docs/performance.md §7).
 const SUBSURFACE_BYTES_PER_POINT: f64 = 340.0;
 
+/// Bytes held per byte of a data file (height map, profile, separation
+/// file) at its peak: the file's bytes as read and the table parsed from
+/// them, both alive while it is parsed (a 5792 x 5792 float64 map of 268
+/// MB peaks near 530 MB).
+const DATA_BYTES_PER_FILE_BYTE: f64 = 2.0;
+
 /// What the process holds besides the matrices (code, threads, buffers),
 /// bytes: about what a run of a scene with a handful of points peaks at.
 pub const BASELINE: u64 = 32 << 20;
@@ -80,6 +86,9 @@ pub struct Estimate {
     pub matrices: f64,
     /// Bytes the contact solve holds at its peak.
     pub solve_bytes: u64,
+    /// Bytes the scene's data files take, read and parsed (held through
+    /// the run: the tables the surfaces are read from).
+    pub data_bytes: u64,
     /// The design stage, if the scene has one.
     pub design: Option<DesignEstimate>,
     /// The whole run's peak, bytes: the larger stage plus [`BASELINE`].
@@ -125,18 +134,22 @@ impl Estimate {
         } else {
             0.0
         };
+        let data: u64 = scene.inputs().iter().map(|i| i.bytes).sum();
+        let data_bytes = to_bytes(DATA_BYTES_PER_FILE_BYTE * data as f64);
         let stage = design
             .as_ref()
             .map_or(0, |d| d.bytes)
             .max(to_bytes(solve.solve_bytes))
             .max(to_bytes(solve.influence_bytes + coarse_bytes))
             .max(to_bytes(solve.influence_bytes + subsurface))
-            .saturating_add(to_bytes(plot));
+            .saturating_add(to_bytes(plot))
+            .saturating_add(data_bytes);
         Ok(Self {
             points: n,
             unknowns: solve.unknowns,
             matrices: solve.matrices,
             solve_bytes: to_bytes(solve.solve_bytes),
+            data_bytes,
             design,
             peak_bytes: stage.saturating_add(BASELINE),
             seconds,
