@@ -677,3 +677,32 @@ mod tests {
         );
     }
 }
+
+#[cfg(test)]
+mod data_tests {
+    use std::path::Path;
+
+    use super::*;
+
+    #[test]
+    fn data_files_count_twice_their_bytes() {
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/rough-sphere.toml");
+        let scene = Scene::from_file(&path).unwrap();
+        let map = path.parent().unwrap().join("data/rough-surface.npy");
+        let bytes = std::fs::metadata(map).unwrap().len();
+        let e = Estimate::of(&scene).unwrap();
+        assert_eq!(e.data_bytes, 2 * bytes);
+        let plain = Scene::from_str(
+            &path,
+            &std::fs::read_to_string(&path).unwrap().replace(
+                "height_map = { file = \"data/rough-surface.npy\", spacing = [0.005, 0.005] }",
+                "",
+            ),
+        )
+        .unwrap();
+        let p = Estimate::of(&plain).unwrap();
+        assert_eq!(p.data_bytes, 0);
+        assert!(e.peak_bytes >= 2 * bytes + e.solve_bytes + BASELINE);
+    }
+}
