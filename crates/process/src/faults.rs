@@ -1,4 +1,4 @@
-//! Fault injection for the reliability tests (tests/faults.rs), compiled
+//! Fault injection for the reliability tests (tests/command_line/faults.rs), compiled
 //! only with the `fault-injection` feature, which only the workspace's
 //! test build turns on (a dev-dependency of the root package): a released
 //! `elcon` has no such code. With it, the environment variable

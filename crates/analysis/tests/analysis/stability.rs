@@ -2,13 +2,13 @@
 //! `stability_cases`) solved by every method. For every case the
 //! certificate (equilibrium, feasibility, complementarity, from the
 //! original data) holds at 1e-12, and the contact conditions hold when
-//! recomputed here from S and eps (tests/common/checks.rs). The engine
+//! recomputed here from S and eps (tests/analysis/common/checks.rs). The engine
 //! refuses an answer that does not certify (an error, never a "solved" that
 //! does not hold), and a refusal fails these tests: on these ranges every
 //! method must certify. docs/stability.md tabulates the same cases at
 //! larger sizes.
 
-mod common;
+use crate::common;
 
 use common::checks::{assert_solves, check};
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options, Surface, Warning};

@@ -38,8 +38,8 @@ pub fn elcon(args: &[&str]) -> Output {
     elcon_with(args, &[])
 }
 
-/// A fresh directory for one test's files, named by the test target (`cli`,
-/// `faults`) so that targets running at once do not share one.
+/// A fresh directory for one test's files, named by the test target and
+/// `name` (unique among the binary's tests, which run at once).
 pub fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!(
         "elcon-{}-{}-{name}",

@@ -4,7 +4,7 @@
 //! broken run still writes the others; shards merge; and `run` agrees with
 //! the library bit for bit.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

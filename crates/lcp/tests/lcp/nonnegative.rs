@@ -4,7 +4,7 @@
 //! same problem, its operator not saying so, takes two products and gives
 //! the same certificate and answer to the bit.
 
-mod common;
+use crate::common;
 
 use common::Tridiagonal;
 use elcon_lcp::{LcpSolution, Method, Operator, OperatorLcp, Options};

@@ -4,7 +4,7 @@
 //! tolerance stops it sooner (it is not held to a tighter residual of its
 //! own).
 
-mod common;
+use crate::common;
 
 use common::Tridiagonal;
 use elcon_lcp::{LcpSolution, Method, Operator, OperatorLcp, Options, Tolerances};

@@ -12,7 +12,7 @@ use elcon_lcp::{
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side, mat};
 
-mod common;
+use crate::common;
 use common::rel_diff;
 
 /// M = A A^T / n + I (n x n), entries of A from a fixed sequence.

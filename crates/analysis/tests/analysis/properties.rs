@@ -2,9 +2,9 @@
 //! load, grid and model, every method returns forces with sum F = P, F >= 0,
 //! gaps Y = S F + eps - alpha e >= 0 and F_k Y_k = 0, checked from the
 //! problem's own S and eps (not from the engine's certificate; the check is
-//! tests/common/checks.rs), and the methods agree.
+//! tests/analysis/common/checks.rs), and the methods agree.
 
-mod common;
+use crate::common;
 
 use common::checks::{check, force_scale, gap_scale};
 use elcon_analysis::references::{HertzSpheres, combined_radius};

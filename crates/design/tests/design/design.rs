@@ -3,7 +3,7 @@
 //! separation gives p = P / L; designs do not depend on the units; several
 //! load cases at once.
 
-mod common;
+use crate::common;
 
 use elcon_analysis::{ContactProblem, Geometry, Loading, Method, Options};
 use elcon_design::{

@@ -10,7 +10,7 @@ use faer::linalg::solvers::Solve;
 use faer::{Col, Mat, Side};
 use proptest::prelude::*;
 
-mod common;
+use crate::common;
 use common::rel_diff;
 
 /// M = A A^T + shift I from the entries of A (n x n, row-major).

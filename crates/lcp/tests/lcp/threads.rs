@@ -5,7 +5,7 @@
 //! chunks) is solved in rayon pools of 1, 2 and 3 threads. It also counts
 //! the operator's products against the iterations.
 
-mod common;
+use crate::common;
 
 use common::Tridiagonal;
 use elcon_lcp::{LcpSolution, Method, Operator, OperatorLcp, Options};

@@ -9,7 +9,7 @@ use elcon_lcp::{BorderedLcp, LcpError, LcpSolution, Method, OperatorLcp, Options
 use faer::{Col, Mat};
 use proptest::prelude::*;
 
-mod common;
+use crate::common;
 use common::rel_diff;
 
 /// M = A A^T / n + shift I from the entries of A (n x n, row-major).

@@ -5,7 +5,7 @@
 //! (forces, gaps with the rigid motion, complementarity, the load and the
 //! moments of every free rotation: `common::checks`).
 
-mod common;
+use crate::common;
 
 use common::checks::assert_solves;
 use elcon_analysis::references::{

@@ -6,7 +6,7 @@
 //! discrete model converges to the closed form as the cell size h -> 0), with
 //! a margin of about 2x; each is stated where it is used.
 
-mod common;
+use crate::common;
 
 use common::checks::assert_solves;
 use elcon_analysis::references::{

@@ -7,7 +7,7 @@
 //! beam under one and several loads, off-centre loads, and a roller under
 //! loads x misalignments (each case a prescribed tilt).
 
-mod common;
+use crate::common;
 
 use elcon_analysis::references::HertzCylinders;
 use elcon_analysis::{ContactProblem, Geometry, Loading, Surface};

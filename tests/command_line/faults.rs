@@ -10,7 +10,7 @@
 //! dev-dependency turns on for the `elcon` the tests run), asked for
 //! through the `ELCON_FAULTS` variable.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Output, Stdio};
@@ -214,7 +214,7 @@ fn a_panicking_scene_is_reported_and_the_good_one_written() {
 
 #[test]
 fn two_scenes_of_one_name_are_refused_before_any_solve() {
-    let dir = scratch("names");
+    let dir = scratch("faults-names");
     let out = dir.join("out");
     let a = small_scene(&dir, "a", "same", &[]);
     let b = small_scene(&dir, "b", "same", &[("load = 100.0", "load = 200.0")]);
@@ -233,7 +233,7 @@ fn two_scenes_of_one_name_are_refused_before_any_solve() {
 
 #[test]
 fn a_batch_with_failing_runs_writes_its_tables() {
-    let dir = scratch("batch");
+    let dir = scratch("faults-batch");
     let base = small_scene(&dir, "base", "base", &[]);
     let _ = base;
     std::fs::write(
@@ -757,7 +757,7 @@ fn resumed_shards_merge_to_exactly_an_unbroken_run() {
 
 #[test]
 fn long_and_huge_override_values_name_short_directories() {
-    let dir = scratch("names");
+    let dir = scratch("faults-long-names");
     small_scene(&dir, "base", "base", &[]);
     let long = (0..40)
         .map(|i| format!("{}.0", 100 + i))
@@ -837,7 +837,7 @@ fn an_interrupt_ends_a_long_solve_at_once_and_writes_nothing_half() {
 /// is: 100,000 threads took minutes to start on a 149-point scene.
 #[test]
 fn a_thread_count_beyond_the_cores_is_refused() {
-    let dir = scratch("threads");
+    let dir = scratch("faults-threads");
     let batch = six_runs(&dir, "sweep", "50.0, 150.0");
     let o = elcon(&["check", s(&batch), "--threads", "100000"]);
     exited(&o, 2, &["threads per core"]);
