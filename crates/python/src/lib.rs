@@ -58,6 +58,7 @@ fn _elcon(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(problem::methods, m)?)?;
     m.add_function(wrap_pyfunction!(problem::storages, m)?)?;
     m.add_function(wrap_pyfunction!(scene::is_file, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::confine, m)?)?;
     m.add_function(wrap_pyfunction!(bodies::hertz_ellipse, m)?)?;
     Ok(())
 }

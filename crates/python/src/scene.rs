@@ -168,3 +168,12 @@ pub(crate) fn check_scene<'py>(
 pub(crate) fn is_file(path: &str) -> bool {
     Path::new(path).is_file()
 }
+
+/// Confines the data files every scene of this process reads (height
+/// maps, profiles, separation files) to `directory`, as `elcon --confine`
+/// does: a file whose resolved path leaves it is refused. Once per
+/// process; it cannot be widened or lifted.
+#[pyfunction]
+pub(crate) fn confine(directory: PathBuf) -> PyResult<()> {
+    elcon_scene::confine_data_files(&directory).map_err(|e| InputError::new_err(e.to_string()))
+}

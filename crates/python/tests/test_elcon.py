@@ -1012,3 +1012,36 @@ def test_fuzz_run_and_check_raise_only_elcons_errors():
     print(f"\nfuzz seed {seed}, {cases} cases: {dict(counts)}; {len(failures)} failures")
     print(f"solve errors: {dict(solve_errors)}")
     assert not failures, failures[:5]
+
+
+def test_confine_refuses_data_files_outside_its_directory(tmp_path):
+    # The confinement is the process's: tried in a child interpreter.
+    inside = tmp_path / "inside"
+    inside.mkdir()
+    crown = (SCENES / "data" / "measured-crown.csv").read_bytes()
+    (inside / "crown.csv").write_bytes(crown)
+    (tmp_path / "outside.csv").write_bytes(crown)
+    text = (SCENES / "measured-crown.toml").read_text()
+    for name, file in [("ok", "crown.csv"), ("out", "../outside.csv")]:
+        scene = text.replace('file = "data/measured-crown.csv"', f'file = "{file}"')
+        (inside / f"{name}.toml").write_text(scene)
+    script = f"""
+import sys, elcon
+elcon.confine({str(inside)!r})
+elcon.check({str(inside / 'ok.toml')!r})
+try:
+    elcon.check({str(inside / 'out.toml')!r})
+except elcon.SceneError as e:
+    assert 'geometry.profile.file' in str(e) and 'confined' in str(e), str(e)
+else:
+    sys.exit('a file outside the confinement was read')
+try:
+    elcon.confine({str(tmp_path)!r})
+except elcon.InputError as e:
+    assert 'already confined' in str(e), str(e)
+else:
+    sys.exit('the confinement was widened')
+"""
+    import sys
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr

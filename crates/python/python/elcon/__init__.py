@@ -58,6 +58,7 @@ __all__ = [
     "methods",
     "storages",
     "hertz_ellipse",
+    "confine",
     "ElconError",
     "SceneError",
     "InputError",
@@ -684,6 +685,20 @@ def hertz_ellipse(
     if "pressure" in d:
         d["pressure"] = np.asarray(d["pressure"], dtype=np.float64)
     return d
+
+
+def confine(directory: Union[str, os.PathLike]) -> None:
+    """Read data files (height maps, profiles, separation files) only from
+    inside ``directory``, for every scene this process runs afterwards: a
+    file whose resolved path (symbolic links followed, ``..`` removed) is
+    outside it is refused with a SceneError naming the key. For a service
+    that runs scenes it did not write; ``elcon --confine DIR`` on the
+    command line. Once per process: it cannot be widened or lifted.
+
+    Raises InputError when ``directory`` is not a directory, or the
+    process is already confined to another.
+    """
+    _elcon.confine(os.fspath(directory))
 
 
 def methods() -> List[str]:
