@@ -181,3 +181,47 @@ fn a_design_on_cells_far_longer_than_wide_is_refused() {
         &["times longer than wide", "points.half_y and points.ny"],
     );
 }
+
+/// A grid tolerance finer than the grids within `design.max_points`
+/// resolve is refused before the design runs (it would run through every
+/// grid of the sequence and fail: 3 minutes on this roller at 1e-4); more
+/// points allow a finer one on a surface.
+#[test]
+fn a_grid_tolerance_the_grids_cannot_resolve_is_refused_naming_it() {
+    let roller = |keys: &str| {
+        with_table(
+            &roller(ROLLER_GRID, "10000.0"),
+            "design",
+            &format!("family = \"free\"\nloads = [10000.0]\naxis = \"y\"\n{keys}"),
+        )
+    };
+    refused_saying(
+        &roller("grid_tolerance = 1e-9"),
+        &[
+            "`design.grid_tolerance`",
+            "at least 0.001",
+            "raise design.max_points",
+        ],
+    );
+    assert!(scene(&roller("grid_tolerance = 1e-3")).is_ok());
+    // Ten times the points: the surface's floor falls by sqrt(10).
+    refused_saying(
+        &roller("grid_tolerance = 1e-4\nmax_points = 200000"),
+        &["`design.grid_tolerance`", "at least 0.000316"],
+    );
+    assert!(scene(&roller("grid_tolerance = 4e-4\nmax_points = 200000")).is_ok());
+    // On a line the sequence's last grid, not max_points, ends it.
+    let beam = |keys: &str| {
+        with_table(
+            &example2_beam(80),
+            "design",
+            &format!("family = \"quadratic\"\n{keys}"),
+        )
+    };
+    refused_saying(&beam("grid_tolerance = 1e-5"), &["at least 0.001"]);
+    refused_saying(
+        &beam("grid_tolerance = 1e-4\nmax_points = 200000"),
+        &["at least 0.001", "16 times"],
+    );
+    assert!(scene(&beam("grid_tolerance = 1e-3")).is_ok());
+}
