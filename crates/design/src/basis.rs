@@ -14,7 +14,7 @@
 //!     Phi[st, i] = c_i(s_st),   c_i the natural cubic spline with c_i(t_j) = delta_ij, its end slopes carried on beyond
 //! ```
 
-use faer::linalg::solvers::SolveLstsq;
+use crate::dense;
 use faer::{Col, Mat};
 
 use crate::profile::{spline_at, spline_curvatures};
@@ -219,14 +219,18 @@ impl Basis {
             (None, None) => y.iter().map(|v| v.max(0.0)).collect(),
             (None, Some(_)) => {
                 let rhs = Col::from_fn(y.len(), |st| y[st]);
-                let theta: Vec<f64> = self.phi.qr().solve_lstsq(&rhs).iter().copied().collect();
+                let theta: Vec<f64> = dense::lstsq(self.phi.as_ref(), rhs.as_mat())
+                    .col(0)
+                    .iter()
+                    .copied()
+                    .collect();
                 let lowest = theta.iter().copied().fold(f64::INFINITY, f64::min);
                 theta.iter().map(|t| t - lowest.min(0.0)).collect()
             }
             (Some(c), _) => {
                 let rhs = Col::from_fn(y.len(), |st| y[st]);
-                let sol = self.phi.qr().solve_lstsq(&rhs);
-                let mut theta: Vec<f64> = sol.iter().copied().collect();
+                let sol = dense::lstsq(self.phi.as_ref(), rhs.as_mat());
+                let mut theta: Vec<f64> = sol.col(0).iter().copied().collect();
                 let lowest = self.drops(&theta).into_iter().fold(f64::INFINITY, f64::min);
                 theta[c] -= lowest.min(0.0);
                 theta

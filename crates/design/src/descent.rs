@@ -56,9 +56,9 @@
 //! largest shear stress below the surface) measures each case by
 //! `crate::subsurface` and takes its model rows from there, with the same X.
 
+use crate::dense;
 use elcon_analysis::{ContactProblem, ContactSolution};
 use elcon_lcp::{Bound, LcpError, ProgramBuilder};
-use faer::linalg::solvers::Solve;
 use faer::{Col, Mat};
 
 use crate::DesignError;
@@ -207,9 +207,12 @@ pub(crate) fn sensitivities(
     let x = if k == 0 {
         -v
     } else {
-        let reduced = levers.transpose() * u;
-        let lambda = reduced.partial_piv_lu().solve(levers.transpose() * v);
-        u * &lambda - v
+        let reduced = dense::product(levers.transpose(), u);
+        let lambda = dense::lu_solve(
+            reduced.as_ref(),
+            dense::product(levers.transpose(), v).as_ref(),
+        );
+        dense::product(u, lambda.as_ref()) - v
     };
     Ok(x)
 }
@@ -355,7 +358,8 @@ fn read_step(
     let entry = |r: usize, c: &Constraint| if r < m { c.a[r] } else { -c.t_coefficient };
     let basis = Mat::from_fn(rows, rows, |r, i| entry(r, columns[basic[i]]));
     let costs = Col::from_fn(rows, |i| columns[basic[i]].b);
-    let pi = basis.transpose().partial_piv_lu().solve(&costs);
+    let pi = dense::lu_solve(basis.transpose(), costs.as_mat());
+    let pi = pi.col(0);
     // The trust region's bounds are exact: the solve's rounding, relative
     // to the model rows' terms (intensities), can put d_i beyond a radius
     // that has shrunk to rounding's size of them. d is clamped to them, if

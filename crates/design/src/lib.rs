@@ -62,6 +62,7 @@
 mod basis;
 mod constraint;
 pub mod crown;
+mod dense;
 mod descent;
 mod error;
 pub mod estimate;

@@ -269,6 +269,29 @@ def test_body_dicts_are_parsed_and_checked_by_the_scenes_parser():
                              body2=foundation, load=5e4)
 
 
+def test_a_beams_x_is_a_line_grid_as_the_scene_lays_it_out():
+    # The scene's rule, by the scene's check: x increasing by the spacing.
+    # Uneven x with one spacing would give each point a cell of the wrong
+    # width (p_max +12 %); unsorted x is said to be unsorted.
+    x = beam_line()
+    n = len(x)
+    h = 8.9 / n
+    beam = {"model": "beam", "youngs_modulus": 30e6, "second_moment": 64.0 / 12.0}
+    foundation = {"model": "winkler", "modulus": 1e7}
+    uneven = np.sign(x) * np.abs(x) ** 1.3 / 4.45 ** 0.3
+    with pytest.raises(elcon.InputError, match=r"`points` = x\[1\] = .*not the spacing 0.11125.*a line grid"):
+        elcon.ContactProblem(uneven, np.zeros(n), h, body1=beam, body2=foundation, load=5e4)
+    swapped = x.copy()
+    swapped[[3, 4]] = swapped[[4, 3]]
+    with pytest.raises(elcon.InputError, match=r"x\[4\] = .*is not above x\[3\]"):
+        elcon.ContactProblem(swapped, np.zeros(n), h, body1=beam, body2=foundation, load=5e4)
+    with pytest.raises(elcon.InputError, match=r"is not above x\[0\]"):
+        elcon.ContactProblem(x[::-1], np.zeros(n), h, body1=beam, body2=foundation, load=5e4)
+    # The same points in order solve.
+    assert elcon.ContactProblem(x, np.zeros(n), h, body1=beam, body2=foundation,
+                                load=5e4).solve().certificate["holds"]
+
+
 def test_surfaces_and_a_layout_are_parsed_by_the_scenes_parsers():
     steel = {"model": "uniform-patch", "youngs_modulus": 30e6, "poissons_ratio": 0.3}
     spheres = {"surface1": {"shape": "sphere", "radius": 1.0},

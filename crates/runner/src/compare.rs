@@ -100,6 +100,19 @@ fn flat_punch(
     json: &mut ReferenceJson,
 ) -> Option<Vec<f64>> {
     json.contact_extent = Some(punch.radius);
+    let points = problem.points().len();
+    if !aligned(loading) && sol.contact.len() < points {
+        // Lifted off at an edge, the punch no longer presses its whole
+        // face: the superposition below does not hold.
+        json.note = Some(format!(
+            "the moment or tilt lifts the punch off at {} of its {points} points: the closed \
+             forms are those of a punch pressing its whole face (under a moment, its load and \
+             approach at the centre are a central punch's only while the face stays in \
+             contact), so they are not compared",
+            points - sol.contact.len()
+        ));
+        return None;
+    }
     // A uniform separation e0 (the punch's face e0 from the other
     // surface) offsets the approach: Boussinesq's indentation is
     // delta - e0.
@@ -130,10 +143,12 @@ fn flat_punch(
     if !aligned(loading) {
         // Superposed on the central load, a moment or a tilt turns the
         // punch about its centre and leaves the approach and the load there
-        // as they are; their closed forms stand.
+        // as they are while the whole face stays in contact (above); their
+        // closed forms stand.
         notes.push(
-            "a moment or a tilt turns the punch about its centre: the load and the approach at \
-             the centre are compared (they do not change), the tilt is not"
+            "a moment or a tilt turns the punch about its centre; its whole face stays in \
+             contact, so the load and the approach at the centre are those of the central \
+             punch and are compared, the tilt is not"
                 .into(),
         );
     }

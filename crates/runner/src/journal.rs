@@ -94,20 +94,18 @@ impl Journal {
         let path = dir.join(JOURNAL);
         let mut kept = BTreeMap::new();
         if dir.exists() {
-            match fs::read_to_string(&path) {
-                Ok(text) if first_line_is(&text, &header) => {
+            let read = fs::read_to_string(&path);
+            let unlike = match &read {
+                Ok(text) => unlike(text, &header),
+                Err(_) => Some("no journal (an older elcon's, or not a batch's)".to_string()),
+            };
+            match (read, unlike) {
+                (Ok(text), None) => {
                     kept = finished_runs(&text, dir, batch, shard.unwrap_or(WHOLE), notice);
                 }
-                read => {
-                    notice(&format!(
-                        "{} holds {}: replaced",
-                        dir.display(),
-                        if read.is_ok() {
-                            "another version of the batch (its files or elcon changed)"
-                        } else {
-                            "no journal (an older elcon's, or not a batch's)"
-                        }
-                    ));
+                (_, why) => {
+                    let why = why.unwrap_or_default();
+                    notice(&format!("{} holds {why}: replaced", dir.display()));
                     fs::remove_dir_all(dir).map_err(|e| RunError::io(dir, e))?;
                 }
             }
@@ -165,12 +163,44 @@ impl Journal {
 /// The whole sweep, as a shard.
 const WHOLE: Shard = Shard { index: 1, count: 1 };
 
-/// Whether the journal's first line is `header`.
-fn first_line_is(text: &str, header: &Header) -> bool {
-    text.lines()
-        .next()
-        .and_then(|l| serde_json::from_str::<Header>(l).ok())
-        .is_some_and(|h| h == *header)
+/// How the journal `text` differs from one of `header`'s batch, as a
+/// notice says it ("{dir} holds {this}: replaced"); `None` when its first
+/// line is `header`.
+fn unlike(text: &str, header: &Header) -> Option<String> {
+    let Some(first) = text.lines().next().filter(|l| !l.trim().is_empty()) else {
+        return Some("an empty journal (a batch stopped before it wrote its first line)".into());
+    };
+    let Ok(found) = serde_json::from_str::<Header>(first) else {
+        return Some(
+            "a journal whose first line is not a batch's header (torn, edited, or an older \
+             elcon's)"
+                .into(),
+        );
+    };
+    let why = if found == *header {
+        return None;
+    } else if found.journal != header.journal {
+        "the journal of an older or newer elcon".to_string()
+    } else if found.batch != header.batch {
+        format!("the journal of another batch ({:?})", short(&found.batch))
+    } else if found.shard != header.shard {
+        let name = |s: &Option<String>| s.clone().unwrap_or_else(|| "the whole sweep".into());
+        format!(
+            "the journal of {} of the batch, not {}",
+            name(&found.shard),
+            name(&header.shard)
+        )
+    } else {
+        "the journal of another version of the batch (its batch file, its base scene or elcon \
+         changed)"
+            .to_string()
+    };
+    Some(why)
+}
+
+/// A name as a notice quotes it: at most 40 characters.
+fn short(name: &str) -> String {
+    name.chars().take(40).collect()
 }
 
 /// The runs the journal lists as finished (ok) whose directory holds the

@@ -364,6 +364,16 @@ fn groups(
         let (mut runs, mut approx) = (Some(1usize), 1.0f64);
         for (key, values) in spanned.get_ref() {
             let field = format!("batch.group[{g}].\"{key}\"");
+            if key.split('.').any(|part| part.trim().is_empty()) {
+                return Err(ctx.invalid(
+                    spanned.span(),
+                    field,
+                    format!("{key:?}"),
+                    "a key path is a scene's section and key names joined by single dots \
+                     (\"points.across\", \"geometry.surface1.radius\"); this one has an empty \
+                     name (a doubled dot, or a dot at an end)",
+                ));
+            }
             let toml::Value::Array(values) = values else {
                 return Err(ctx.invalid(
                     spanned.span(),

@@ -136,7 +136,7 @@ fn count(field: &str, n: usize) -> Result<usize, InfluenceError> {
         Err(InfluenceError::points(
             field,
             n,
-            format!("more than MAX_POINTS = {MAX_POINTS} points"),
+            format!("is more than {MAX_POINTS} points, the most elcon lays out in one problem"),
         ))
     } else {
         Ok(n)
@@ -202,7 +202,11 @@ impl PointSet {
             return Err(InfluenceError::points(
                 "radius / spacing",
                 Num(radius / h),
-                format!("the disk would hold more than MAX_POINTS = {MAX_POINTS} points"),
+                format!(
+                    "the disk would hold about {} points, more than {MAX_POINTS}, the most elcon \
+                     lays out in one problem",
+                    Num((std::f64::consts::PI * m_f * m_f).round())
+                ),
             ));
         }
         let r2 = m_f * m_f;

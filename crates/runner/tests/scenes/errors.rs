@@ -558,3 +558,156 @@ fn a_certificate_tolerance_below_rounding_is_refused() {
     ))
     .unwrap();
 }
+
+#[test]
+fn a_radius_too_small_for_its_curvature_is_refused_as_such() {
+    let base = base();
+    assert!(base.contains("radius = 1.0 }"));
+    for (written, key) in [
+        ("radius = 5e-324 }", "`geometry.surface1.radius`"),
+        ("radius = -5e-324 }", "`geometry.surface1.radius`"),
+    ] {
+        let e = refusal(&base.replacen("radius = 1.0 }", written, 1));
+        assert!(e.contains(key), "{e}");
+        assert!(e.contains("is too small: its curvature 1 / radius"), "{e}");
+        assert!(!e.contains("NaN") && !e.contains("negative"), "{e}");
+    }
+    // A quadric's radius alike.
+    let quadric = base.replacen(
+        "shape = \"sphere\", radius = 1.0 }",
+        "shape = \"quadric\", radius_x = 1.0, radius_y = 5e-324 }",
+        1,
+    );
+    assert!(quadric.contains("5e-324"));
+    let e = refusal(&quadric);
+    assert!(e.contains("`geometry.surface1.radius_y`"), "{e}");
+    assert!(e.contains("is too small"), "{e}");
+}
+
+#[test]
+fn a_grid_beyond_the_largest_names_the_count_not_a_constant() {
+    let e = refusal(&common::roller(
+        "half_x = 0.2\nhalf_y = 5.0\nnx = 3000\nny = 3000",
+        "1000.0",
+    ));
+    assert!(e.contains("9000000"), "{e}");
+    assert!(e.contains("more than 4194304 points"), "{e}");
+    assert!(!e.contains("MAX_POINTS"), "{e}");
+    let e = refusal(&base().replace("across = 11\nzone = 1.3", "across = 20001\nzone = 1.3"));
+    assert!(!e.contains("MAX_POINTS"), "{e}");
+}
+
+#[test]
+fn a_batch_key_with_an_empty_name_says_so() {
+    let dir = std::env::temp_dir().join(format!("elcon-batch-dots-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("base.toml"), base()).unwrap();
+    for key in ["points..across", ".points.across", "points.across."] {
+        std::fs::write(
+            dir.join("b.toml"),
+            format!("[batch]\nscene = \"base.toml\"\n[[batch.group]]\n\"{key}\" = [11]\n"),
+        )
+        .unwrap();
+        let e = elcon_scene::Batch::from_file(&dir.join("b.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(&format!("\"{key}\"")), "{e}");
+        assert!(e.contains("has an empty name"), "{e}");
+        assert!(!e.contains("unknown field ``"), "{e}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Notices a batch gives, collected.
+#[derive(Default)]
+struct Notices(std::sync::Mutex<Vec<String>>);
+
+impl elcon_runner::Progress for Notices {
+    fn notice(&self, message: &str) {
+        self.0.lock().unwrap().push(message.to_string());
+    }
+}
+
+#[test]
+fn a_batch_directory_with_an_empty_or_foreign_journal_says_which() {
+    let dir = std::env::temp_dir().join(format!("elcon-batch-journal-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("base.toml"), base()).unwrap();
+    std::fs::write(
+        dir.join("b.toml"),
+        "[batch]\nname = \"j\"\nscene = \"base.toml\"\n[[batch.group]]\n\"loading.load\" = [100.0]\n",
+    )
+    .unwrap();
+    let batch = elcon_scene::Batch::from_file(&dir.join("b.toml")).unwrap();
+    let out = dir.join("out");
+    // Cancelled from the start: the journal is opened, no run is made.
+    let cancel = elcon_lcp::Cancel::new();
+    cancel.cancel();
+    let options = elcon_runner::BatchOptions {
+        jobs: Some(1),
+        shard: None,
+        ceiling: elcon_process::Ceiling::unlimited(),
+        cancel,
+    };
+    let notice = |journal: &str| {
+        std::fs::create_dir_all(out.join("j")).unwrap();
+        std::fs::write(out.join("j/journal.jsonl"), journal).unwrap();
+        let notices = Notices::default();
+        elcon_runner::run_batch(&batch, &out, &options, &notices).unwrap();
+        notices.0.into_inner().unwrap().join("\n")
+    };
+    for (journal, says) in [
+        ("", "an empty journal"),
+        ("\n", "an empty journal"),
+        ("{\"journal\": 1, \"bat", "not a batch's header"),
+        (
+            "{\"journal\":1,\"batch\":\"other\",\"batch_hash\":\"0\",\"shard\":null,\"runs\":1}\n",
+            "the journal of another batch (\"other\")",
+        ),
+        (
+            "{\"journal\":1,\"batch\":\"j\",\"batch_hash\":\"0\",\"shard\":null,\"runs\":1}\n",
+            "another version of the batch",
+        ),
+    ] {
+        let said = notice(journal);
+        assert!(said.contains(says), "{journal:?}: {said}");
+        assert!(said.contains(": replaced"), "{said}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_punch_lifted_off_by_a_moment_is_not_compared_with_the_central_punch() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/flat-punch.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains("approach = 1e-5") && text.contains("spacing = 0.0005"));
+    // 10 cells per punch radius; about 15 kN presses the punch 1e-5 m.
+    let with = |moment: &str| {
+        let t = text
+            .replacen("spacing = 0.0005", "spacing = 0.001", 1)
+            .replacen("approach = 1e-5", &format!("load = 15000.0\n{moment}"), 1);
+        run(&Scene::from_str(&path, &t).unwrap()).unwrap()
+    };
+    // A small moment tilts the punch with its whole face in contact: the
+    // approach at the centre is the central punch's.
+    let r = with("moment_x = 20.0");
+    let reference = r.result.reference.unwrap();
+    assert!(
+        reference.errors.approach.unwrap().abs() < 0.05,
+        "{reference:?}"
+    );
+    assert!(
+        reference
+            .note
+            .unwrap()
+            .contains("whole face stays in contact")
+    );
+    // A large one lifts an edge off: no error against the central punch.
+    let r = with("moment_x = 140.0");
+    let reference = r.result.reference.unwrap();
+    assert_eq!(reference.errors.approach, None, "{reference:?}");
+    let note = reference.note.unwrap();
+    assert!(note.contains("lifts the punch off at"), "{note}");
+    assert!(note.contains("not compared"), "{note}");
+}

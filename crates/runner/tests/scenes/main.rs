@@ -9,6 +9,7 @@ mod bounds;
 mod design_outcomes;
 mod design_profile;
 mod design_stage;
+mod design_threads;
 mod error_estimate;
 mod errors;
 mod fuzz;

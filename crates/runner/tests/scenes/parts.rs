@@ -165,3 +165,39 @@ fn a_scenes_design_is_replaced_whole() {
     let e = scene_with_design(&path, &text, "[design]\nfamily = \"cubic\"\n").unwrap_err();
     assert!(e.to_string().contains("unknown variant `cubic`"), "{e}");
 }
+
+#[test]
+fn a_beam_s_listed_points_are_a_line_grid_sorted_and_evenly_spaced() {
+    use elcon_influence::{Cell, Dimension};
+    let beam = "[body1]\nmodel = \"beam\"\nyoungs_modulus = 30e6\nsecond_moment = 5.0\n\
+                [body2]\nmodel = \"winkler\"\nmodulus = 1e7\n";
+    let h = 8.9 / 80.0;
+    let even: Vec<f64> = (0..80).map(|k| (k as f64 + 0.5) * h - 4.45).collect();
+    let listed = |xs: Vec<f64>| {
+        PointSet::from_points(Dimension::Line, xs, Vec::new(), Cell { dx: h, dy: 1.0 }).unwrap()
+    };
+    // Evenly spaced at the spacing, as grid = "line" lays them out.
+    problem_parts(file(), &loaded(beam), Some(listed(even.clone()))).unwrap();
+    // Uneven: the first step that is not the spacing is named.
+    let mut uneven = even.clone();
+    uneven[40] += 0.3 * h;
+    let e = problem_parts(file(), &loaded(beam), Some(listed(uneven)))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`points` = x[40]"), "{e}");
+    assert!(e.contains("not the spacing"), "{e}");
+    assert!(e.contains("a line grid"), "{e}");
+    // Unsorted: named as such, not as a loaded point off the beam.
+    let mut unsorted = even.clone();
+    unsorted.swap(3, 4);
+    let e = problem_parts(file(), &loaded(beam), Some(listed(unsorted)))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("x[4]") && e.contains("is not above x[3]"), "{e}");
+    assert!(!e.contains("loaded_point"), "{e}");
+    let reversed: Vec<f64> = even.iter().rev().copied().collect();
+    let e = problem_parts(file(), &loaded(beam), Some(listed(reversed)))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("is not above"), "{e}");
+}

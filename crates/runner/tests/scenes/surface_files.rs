@@ -77,8 +77,8 @@ fn a_separation_file_equal_to_the_inline_separations_is_bit_identical() {
     let row = |k: usize, separation: f64| {
         format!("{:?},{:?},{:?}\n", points.x(k), points.y(k), separation)
     };
-    // Shuffled rows (reversed) with a header: matched by position.
-    let mut csv = String::from("x,y,separation\n");
+    // Shuffled rows (reversed) under a `#` header: matched by position.
+    let mut csv = String::from("# x,y,separation\n");
     for k in (0..points.len()).rev() {
         csv += &row(k, eps[k]);
     }
@@ -227,11 +227,17 @@ fn bad_files_are_refused_naming_the_file_and_the_row() {
         file,
         &["ragged.csv", "line 2"],
     );
-    // Text where numbers belong, after the header line.
+    // Text where numbers belong, after a `#` header line.
     refused(
-        mapped("text.csv", "a,b,c\n0,0,0\n0,x,0\n"),
+        mapped("text.csv", "# a,b,c\n0,0,0\n0,x,0\n"),
         file,
-        &["text.csv", "line 3"],
+        &["text.csv", "line 3", "\"0,x,0\""],
+    );
+    // A header not declared by `#` is a bad row, not a header.
+    refused(
+        mapped("undeclared.csv", "a,b,c\n0,0,0\n0,0,0\n"),
+        file,
+        &["line 1 is not numbers", "a header line starts with #"],
     );
     // A map that does not cover the grid: x in [-0.25, 0.25] against
     // cell centres out to 0.32.
@@ -252,6 +258,54 @@ fn bad_files_are_refused_naming_the_file_and_the_row() {
         beside(&d, "line.npy", line, &map("line.npy")),
         file,
         &["1-D array"],
+    );
+}
+
+#[test]
+fn a_csv_is_read_exactly_its_first_row_never_taken_for_a_header() {
+    let d = dir("exact-csv");
+    let profile = |name: &str| {
+        base().replace(
+            CYLINDER,
+            &format!("{CYLINDER}\nprofile = {{ file = \"{name}\" }}"),
+        )
+    };
+    let crown = "-5.0, 0.002\n0.0, 0.0\n5.0, 0.002\n";
+    let plain = beside(&d, "plain.csv", crown, &profile("plain.csv")).unwrap();
+    let eps = |s: &Scene| elcon_analysis::separations(s.points(), s.geometry()).unwrap();
+    // A byte-order mark, and a `#` header line, leave the rows as they are.
+    let bom = [b"\xEF\xBB\xBF".as_slice(), crown.as_bytes()].concat();
+    let marked = beside(&d, "bom.csv", bom, &profile("bom.csv")).unwrap();
+    assert_eq!(eps(&marked), eps(&plain));
+    let with_header = format!("# y, drop\n{crown}");
+    let headed = beside(&d, "head.csv", with_header, &profile("head.csv")).unwrap();
+    assert_eq!(eps(&headed), eps(&plain));
+    // A typo in the first row is refused at its line, not taken as a header.
+    refused(
+        beside(
+            &d,
+            "typo.csv",
+            "-5.0, O.12\n0.0, 0.0\n5.0, 0.002\n",
+            &profile("typo.csv"),
+        ),
+        "geometry.profile.file",
+        &["typo.csv", "line 1 is not numbers", "\"-5.0, O.12\""],
+    );
+    // A long bad line is quoted by its first 40 characters, no more.
+    let secret = format!("{}SECRET", "x".repeat(40));
+    let (_, why) = reason(beside(
+        &d,
+        "long.csv",
+        format!("0.0, 0.0\n{secret}\n"),
+        &profile("long.csv"),
+    ));
+    assert!(why.contains(&format!("line 2 is not numbers: \"{}\"...", "x".repeat(40))));
+    assert!(!why.contains("SECRET"), "{why}");
+    // UTF-16 is named as such.
+    refused(
+        beside(&d, "wide.csv", b"\xFF\xFE0\x00", &profile("wide.csv")),
+        "geometry.profile.file",
+        &["UTF-16"],
     );
 }
 
@@ -277,6 +331,73 @@ fn a_npy_height_map_is_read_as_numpy_writes_it() {
     }
 }
 
+#[test]
+fn a_npy_header_is_read_as_a_python_literal() {
+    let d = dir("npy-header");
+    // A plane tilted along x and y on 3 x 3 nodes, so that a transposed
+    // map would give other separations.
+    let z = |j: usize, i: usize| 0.001 * (i as f64 - 1.0) + 0.0001 * (j as f64 - 1.0);
+    let c_order: Vec<f64> = (0..3).flat_map(|j| (0..3).map(move |i| z(j, i))).collect();
+    let f_order: Vec<f64> = (0..3).flat_map(|i| (0..3).map(move |j| z(j, i))).collect();
+    let map = |name: &str| {
+        base().replace(
+            CYLINDER,
+            &format!("{CYLINDER}\nheight_map = {{ file = \"{name}\", spacing = [0.5, 5.0] }}"),
+        )
+    };
+    let eps = |s: &Scene| elcon_analysis::separations(s.points(), s.geometry()).unwrap();
+    let c = npy(&[3, 3], &c_order);
+    let reference = eps(&beside(&d, "c.npy", c, &map("c.npy")).unwrap());
+    for (n, header) in [
+        "{'descr':'<f8','fortran_order':True,'shape':(3,3)}",
+        "{'fortran_order': True, 'shape': (3, 3,), 'descr': '<f8',}",
+        "{\"descr\": \"<f8\", \"fortran_order\": True, \"shape\": (3, 3)}",
+    ]
+    .iter()
+    .enumerate()
+    {
+        let name = format!("f{n}.npy");
+        let file = npy_raw(header, &f_order);
+        let s = beside(&d, &name, file, &map(&name)).unwrap();
+        assert_eq!(eps(&s), reference, "{header}");
+    }
+    // Big-endian values, as `>f8`.
+    let big = npy_raw_with(
+        "{'descr': '>f8', 'fortran_order': False, 'shape': (3, 3), }",
+        &c_order,
+        f64::to_be_bytes,
+    );
+    let s = beside(&d, "big.npy", big, &map("big.npy")).unwrap();
+    assert_eq!(eps(&s), reference);
+    let file = "geometry.height_map.file";
+    // A shape whose product is not the data's length.
+    let short = npy_raw(
+        "{'descr': '<f8', 'fortran_order': False, 'shape': (3, 4), }",
+        &c_order,
+    );
+    refused(
+        beside(&d, "short.npy", short, &map("short.npy")),
+        file,
+        &["short.npy", "72 bytes", "(3, 4)", "needs 96"],
+    );
+    // A header numpy would not write, and a type elcon does not read.
+    let broken = npy_raw("{'descr': '<f8', 'shape': (3, 3)}", &c_order);
+    refused(
+        beside(&d, "broken.npy", broken, &map("broken.npy")),
+        file,
+        &["no 'fortran_order'"],
+    );
+    let ints = npy_raw(
+        "{'descr': '<i8', 'fortran_order': False, 'shape': (3, 3)}",
+        &c_order,
+    );
+    refused(
+        beside(&d, "ints.npy", ints, &map("ints.npy")),
+        file,
+        &["\"<i8\"", "not float64"],
+    );
+}
+
 /// A version-1 `.npy` file of little-endian float64 values of `shape`.
 fn npy(shape: &[usize], values: &[f64]) -> Vec<u8> {
     let dims: Vec<String> = shape.iter().map(|d| d.to_string()).collect();
@@ -285,16 +406,31 @@ fn npy(shape: &[usize], values: &[f64]) -> Vec<u8> {
     } else {
         format!("({})", dims.join(", "))
     };
-    let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
-    while (10 + header.len() + 1) % 64 != 0 {
+    npy_raw(
+        &format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}"),
+        values,
+    )
+}
+
+/// A version-1 `.npy` file of the header dict `header` and little-endian
+/// float64 `values`.
+fn npy_raw(header: &str, values: &[f64]) -> Vec<u8> {
+    npy_raw_with(header, values, f64::to_le_bytes)
+}
+
+/// A version-1 `.npy` file of the header dict `header` and `values`, each
+/// written by `bytes`.
+fn npy_raw_with(header: &str, values: &[f64], bytes: fn(f64) -> [u8; 8]) -> Vec<u8> {
+    let mut header = header.to_string();
+    while !(10 + header.len() + 1).is_multiple_of(64) {
         header.push(' ');
     }
     header.push('\n');
     let mut out = b"\x93NUMPY\x01\x00".to_vec();
     out.extend((header.len() as u16).to_le_bytes());
     out.extend(header.as_bytes());
-    for v in values {
-        out.extend(v.to_le_bytes());
+    for &v in values {
+        out.extend(bytes(v));
     }
     out
 }

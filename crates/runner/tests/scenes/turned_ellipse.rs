@@ -132,3 +132,19 @@ fn a_circular_gap_on_an_ellipse_grid_is_hertz_s_spheres() {
         );
     }
 }
+
+#[test]
+fn a_turn_of_a_ten_thousandth_of_a_degree_is_named_as_such() {
+    // angle = 89.9999: the ellipse lies 1e-4 degrees off x, a turned grid
+    // of 9 times the aligned one's points; the turn that aligns it is
+    // shown, not rounded to 0.00.
+    let s = turned("angle = 89.9999").unwrap();
+    assert_warns(
+        &s,
+        &[
+            "turned by -0.00010 degrees",
+            "Turning both surfaces by 0.00010 degrees",
+            "lays the ellipse along x",
+        ],
+    );
+}

@@ -168,6 +168,54 @@ pub(crate) fn scale_out_of_range(scale: Option<f64>) -> bool {
     scale.is_some_and(|a| !(a.is_finite() && a > 0.0))
 }
 
+/// How far, relative to the spacing, a step between listed points of a
+/// line may differ from it (rounding of coordinates computed and written
+/// by the caller), besides the rounding of the coordinates themselves.
+const STEP_TOLERANCE: f64 = 1e-9;
+
+/// Points given as coordinates for line models (plane-strain, beam) must be
+/// what a scene's `grid = "line"` lays out: x increasing by the spacing from
+/// one point to the next. Each point stands for a cell of the spacing's
+/// width; points closer or farther apart would make cells that overlap or
+/// leave gaps, which the models' influence and the pressures would take
+/// for the spacing's. The first step that is not the spacing is named.
+pub(crate) fn listed_line(ctx: &Ctx<'_>, points: &PointSet) -> Result<(), SceneError> {
+    let dx = points.cell().dx;
+    let step_off = |k: usize| {
+        let (a, b) = (points.x(k - 1), points.x(k));
+        let tolerance = STEP_TOLERANCE * dx + 1e-12 * (a.abs() + b.abs());
+        !((b - a - dx).abs() <= tolerance)
+    };
+    // Order first: a swap reads as such, not as the uneven steps it makes.
+    let unsorted = (1..points.len()).find(|&k| !(points.x(k) > points.x(k - 1)));
+    if let Some(k) = unsorted.or_else(|| (1..points.len()).find(|&k| step_off(k))) {
+        let (a, b) = (points.x(k - 1), points.x(k));
+        let what = if unsorted.is_some() {
+            format!("is not above x[{}] = {}", k - 1, Num(a))
+        } else {
+            format!(
+                "is {} after x[{}] = {}, not the spacing {}",
+                Num(b - a),
+                k - 1,
+                Num(a),
+                Num(dx)
+            )
+        };
+        return Err(ctx.invalid(
+            0..0,
+            "points",
+            format!("x[{k}] = {}", Num(b)),
+            format!(
+                "{what}: the points of line models (plane-strain, beam) are a line grid, as \
+                 grid = \"line\" lays them out: x increasing by the spacing from one point to \
+                 the next (each point stands for a cell of the spacing's width); sort them, or \
+                 give the spacing they are laid out at"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The plane-strain datum must lie beyond every grid the scene solves on
 /// (its own and each design load's), and a beam's loaded point on the beam.
 pub(crate) fn bodies_on_grid(

@@ -34,7 +34,7 @@ pub(crate) use deformation::{
 pub(crate) use design::{DesignView, MAX_DESIGN_CELL_ASPECT, design, design_cases};
 pub use grid::MIN_POINTS_RESOLVED;
 pub(crate) use grid::{
-    MIN_POINTS_ACROSS, Unresolved, bodies_on_grid, coarse_grid, no_hertz_reason,
+    MIN_POINTS_ACROSS, Unresolved, bodies_on_grid, coarse_grid, listed_line, no_hertz_reason,
     scale_out_of_range, unresolved_grid,
 };
 pub use loading::MAX_ROTATION;

@@ -3,7 +3,8 @@
 //!
 //! - `height_map = { file, spacing = [dx, dy], origin = [x0, y0],
 //!   interpolation = "linear" }`: a height map on a regular grid, `.npy`
-//!   (a 2-D array of float64 or float32, C order, `Z[j, i]` at
+//!   (a 2-D array of float64 or float32, either byte order, C or Fortran
+//!   order, its header read as numpy reads it, `Z[j, i]` at
 //!   `(x0 + i dx, y0 + j dy)`) or CSV (one grid row along x per line, rows
 //!   in increasing y), interpolated to the candidate points bilinearly or
 //!   by the natural bicubic spline (`elcon_analysis::HeightMap`,
@@ -17,9 +18,10 @@
 //!   `x, separation` on a line), each candidate point taking the row at its
 //!   position (within `MATCH_TOLERANCE` of the grid's spacing).
 //!
-//! CSV: values separated by commas or blanks; blank lines and lines
-//! starting with `#` skipped; a first line that is not numbers is a
-//! header. The tables' own checks (a NaN, a hole, a wrong shape, a table
+//! CSV: UTF-8 (a byte-order mark ignored), values separated by commas or
+//! blanks; blank lines and lines starting with `#` (comments, a header)
+//! skipped; any other line that is not numbers refused, naming its number
+//! and quoting its first [`QUOTED_CHARS`] characters. The tables' own checks (a NaN, a hole, a wrong shape, a table
 //! that does not cover the points) are elcon-analysis's, their messages
 //! naming the file and the row.
 
@@ -30,6 +32,7 @@ use elcon_analysis::{AxialProfile, Departure, Geometry, HeightMap, Interpolation
 use elcon_influence::PointSet;
 use toml::Spanned;
 
+use super::npy;
 use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
 use crate::inputs::{DataInput, outside_confinement};
@@ -96,11 +99,11 @@ impl<'c, 'a> DataFile<'c, 'a> {
     fn bytes(&self) -> Result<Vec<u8>, SceneError> {
         use std::io::Read;
         let unreadable = |e: std::io::Error| self.refuse(format!("cannot be read: {e}"));
-        // A pipe would block the read until its writer came (deaf to an
-        // interrupt), a device would stream: only regular files are read.
         if let Some(why) = outside_confinement(&self.path) {
             return Err(self.refuse(why));
         }
+        // A pipe would block the read until its writer came (deaf to an
+        // interrupt), a device would stream: only regular files are read.
         let meta = std::fs::metadata(&self.path).map_err(unreadable)?;
         if !meta.is_file() {
             return Err(self.refuse(
@@ -123,10 +126,17 @@ impl<'c, 'a> DataFile<'c, 'a> {
     }
 
     /// Its numbers as CSV, a row per line (see the module documentation),
-    /// each with its line number (from 1).
+    /// each with its line number (from 1). A byte-order mark is no part of
+    /// the text; a line that is not numbers is refused, quoted by at most
+    /// [`QUOTED_CHARS`] characters.
     fn csv_rows(&self) -> Result<Vec<(usize, Vec<f64>)>, SceneError> {
-        let text = String::from_utf8(self.bytes()?)
+        let bytes = self.bytes()?;
+        if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
+            return Err(self.refuse("is UTF-16 text; save it as UTF-8 (or ASCII)"));
+        }
+        let text = String::from_utf8(bytes)
             .map_err(|_| self.refuse("cannot be read: it is not text (UTF-8)"))?;
+        let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
         let mut rows = Vec::new();
         for (i, line) in text.lines().enumerate() {
             let line = line.trim();
@@ -140,9 +150,17 @@ impl<'c, 'a> DataFile<'c, 'a> {
                 .collect();
             match values {
                 Ok(v) => rows.push((i + 1, v)),
-                Err(_) if rows.is_empty() && i == first_content_line(&text) => {}
                 Err(_) => {
-                    return Err(self.refuse(format!("line {}: {line:?} is not numbers", i + 1)));
+                    let header = if rows.is_empty() {
+                        " (a header line starts with #)"
+                    } else {
+                        ""
+                    };
+                    return Err(self.refuse(format!(
+                        "line {} is not numbers: {}{header}",
+                        i + 1,
+                        quoted(line)
+                    )));
                 }
             }
         }
@@ -152,8 +170,9 @@ impl<'c, 'a> DataFile<'c, 'a> {
         Ok(rows)
     }
 
-    /// Its 2-D `.npy` array of float64 or float32 in C order: its values
-    /// row by row and its shape `(rows, columns)`.
+    /// Its 2-D `.npy` array of float64 or float32, either byte order, C
+    /// or Fortran order: its values row by row (C order) and its shape
+    /// `(rows, columns)`.
     fn npy(&self) -> Result<(Vec<f64>, usize, usize), SceneError> {
         let bytes = self.bytes()?;
         if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
@@ -171,60 +190,66 @@ impl<'c, 'a> DataFile<'c, 'a> {
             .get(start..start + header_len)
             .and_then(|h| std::str::from_utf8(h).ok())
             .ok_or_else(|| self.refuse("has a truncated .npy header"))?;
-        if header.contains("'fortran_order': True") {
-            return Err(
-                self.refuse("is in Fortran order; save it in C order (np.ascontiguousarray)")
-            );
-        }
-        let width = if header.contains("'<f8'") {
-            8
-        } else if header.contains("'<f4'") {
-            4
-        } else {
-            return Err(self.refuse("holds no little-endian float64 or float32 ('<f8', '<f4')"));
+        let header = npy::parse_header(header)
+            .map_err(|e| self.refuse(format!("has a .npy header numpy would not write: {e}")))?;
+        let (width, big) = match header.descr.as_str() {
+            "<f8" => (8, false),
+            ">f8" => (8, true),
+            "<f4" => (4, false),
+            ">f4" => (4, true),
+            other => {
+                let shown: String = other.chars().take(12).collect();
+                return Err(self.refuse(format!(
+                    "holds values of type {shown:?}, not float64 or float32 ('<f8', '<f4')"
+                )));
+            }
         };
-        let shape = header
-            .split("'shape':")
-            .nth(1)
-            .and_then(|s| s.split(')').next())
-            .map(|s| s.trim().trim_start_matches('('))
-            .ok_or_else(|| self.refuse("has no shape in its header"))?;
-        let dims: Vec<usize> = shape
-            .split(',')
-            .map(str::trim)
-            .filter(|d| !d.is_empty())
-            .map(|d| d.parse::<usize>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| self.refuse(format!("has a shape ({shape}) that is not counts")))?;
-        let [ny, nx] = dims[..] else {
-            return Err(self.refuse(format!("holds a {}-D array, not a 2-D one", dims.len())));
+        let [ny, nx] = header.shape[..] else {
+            return Err(self.refuse(format!(
+                "holds a {}-D array, not a 2-D one",
+                header.shape.len()
+            )));
         };
         let data = &bytes[start + header_len..];
         let n = nx
             .checked_mul(ny)
             .ok_or_else(|| self.refuse("has a shape too large"))?;
-        if data.len() != n * width {
+        if data.len() as u128 != n as u128 * width as u128 {
             return Err(self.refuse(format!(
-                "holds {} bytes for {ny} x {nx} values of {width} bytes",
-                data.len()
+                "holds {} bytes after its header where its shape ({ny}, {nx}) of {width}-byte \
+                 values needs {}",
+                data.len(),
+                n as u128 * width as u128
             )));
         }
-        let values = data
-            .chunks_exact(width)
-            .map(|c| match width {
-                8 => f64::from_le_bytes(c.try_into().unwrap_or([0; 8])),
-                _ => f32::from_le_bytes(c.try_into().unwrap_or([0; 4])) as f64,
-            })
-            .collect();
+        let value = |c: &[u8]| match (width, big) {
+            (8, false) => f64::from_le_bytes(c.try_into().unwrap_or([0; 8])),
+            (8, true) => f64::from_be_bytes(c.try_into().unwrap_or([0; 8])),
+            (_, false) => f32::from_le_bytes(c.try_into().unwrap_or([0; 4])) as f64,
+            (_, true) => f32::from_be_bytes(c.try_into().unwrap_or([0; 4])) as f64,
+        };
+        let stored: Vec<f64> = data.chunks_exact(width).map(value).collect();
+        let values = if header.fortran_order {
+            // Column by column: Z[j, i] is the (i ny + j)-th value.
+            (0..n).map(|k| stored[(k % nx) * ny + k / nx]).collect()
+        } else {
+            stored
+        };
         Ok((values, ny, nx))
     }
 }
 
-/// The index of the first line that is neither blank nor a comment.
-fn first_content_line(text: &str) -> usize {
-    text.lines()
-        .position(|l| !(l.trim().is_empty() || l.trim().starts_with('#')))
-        .unwrap_or(0)
+/// The most characters of a data file's line that a refusal quotes: enough
+/// to find the line, too few to pass a file's contents on.
+const QUOTED_CHARS: usize = 40;
+
+/// `line` quoted, its first [`QUOTED_CHARS`] characters and `...` when it
+/// is longer.
+fn quoted(line: &str) -> String {
+    match line.char_indices().nth(QUOTED_CHARS) {
+        Some((end, _)) => format!("{:?}...", &line[..end]),
+        None => format!("{line:?}"),
+    }
 }
 
 /// Two finite numbers under `key` (`spacing`, `origin`).
@@ -395,9 +420,13 @@ fn separations(
     let mut table = Vec::with_capacity(rows.len());
     for (n, r) in &rows {
         if r.len() != width || r.iter().any(|v| !v.is_finite()) {
+            let what = if r.len() != width {
+                format!("has {} values", r.len())
+            } else {
+                "has a value that is not finite".to_string()
+            };
             return Err(file.refuse(format!(
-                "line {n}: {r:?} is not {} finite numbers ({})",
-                width,
+                "line {n} {what}: a row of a separation file is {width} finite numbers ({})",
                 if line {
                     "x, separation"
                 } else {

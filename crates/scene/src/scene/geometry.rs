@@ -9,7 +9,7 @@ use elcon_analysis::{Geometry, Surface};
 use elcon_influence::Dimension;
 use toml::Spanned;
 
-use crate::ctx::Ctx;
+use crate::ctx::{Ctx, Num};
 use crate::error::SceneError;
 use crate::schema::{GeometryToml, Shape, SurfaceToml};
 
@@ -49,7 +49,8 @@ fn surface(
         let r = ctx.required(&t.radius, s.span(), &key, "for a curved surface")?;
         let v = ctx.finite(r, &key)?;
         let why = "must be non-zero (negative for a concave surface)";
-        ctx.ensure(v, v != 0.0, r.span(), &key, why)
+        let v = ctx.ensure(v, v != 0.0, r.span(), &key, why)?;
+        curved(ctx, v, r, &key)
     };
     match shape {
         Shape::Plane => {
@@ -70,6 +71,23 @@ fn surface(
     }
 }
 
+/// A non-zero radius `v` (written at `r`, under `key`) whose curvature
+/// `1 / v` is a number: a radius below 1 / f64::MAX (5.6e-309) in
+/// magnitude has an infinite curvature, which no gap can be made of.
+fn curved(ctx: &Ctx<'_>, v: f64, r: &Spanned<f64>, key: &str) -> Result<f64, SceneError> {
+    ctx.ensure(
+        v,
+        (1.0 / v).is_finite(),
+        r.span(),
+        key,
+        format!(
+            "is too small: its curvature 1 / radius is beyond the largest number (a radius \
+             must be at least {} in magnitude; check the length unit)",
+            Num(1.0 / f64::MAX)
+        ),
+    )
+}
+
 /// A quadric: `radius_x`, `radius_y` (at least one; an omitted one is
 /// straight), `angle` in degrees (default 0), on a surface grid.
 fn quadric(ctx: &Ctx<'_>, s: &Spanned<SurfaceToml>, field: &str) -> Result<Surface, SceneError> {
@@ -87,13 +105,14 @@ fn quadric(ctx: &Ctx<'_>, s: &Spanned<SurfaceToml>, field: &str) -> Result<Surfa
             return Ok(f64::INFINITY);
         };
         let value = ctx.finite(r, &format!("{field}.{key}"))?;
-        ctx.ensure(
+        let value = ctx.ensure(
             value,
             value != 0.0,
             r.span(),
             &format!("{field}.{key}"),
             "must be non-zero (negative for a concave direction; omit it for a straight one)",
-        )
+        )?;
+        curved(ctx, value, r, &format!("{field}.{key}"))
     };
     let angle = match &t.angle {
         Some(a) => {

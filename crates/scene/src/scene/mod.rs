@@ -19,6 +19,7 @@ mod geometry;
 mod grids;
 mod hertz;
 mod loading;
+mod npy;
 mod outputs;
 mod parts;
 mod points;

@@ -127,6 +127,9 @@ pub fn problem_parts(
         (None, Some(l)) => l,
         (None, None) => return Err(no_points(&ctx)),
     };
+    if let (Some(((true, _), _)), None) = (&bodies, &raw.points) {
+        sanity::listed_line(&ctx, &points)?;
+    }
     if let (Some((_, b)), Some(b1), Some(b2)) = (&bodies, &raw.body1, &raw.body2) {
         sanity::bodies_on_grid(&ctx, [b1, b2], [b[0].body(), b[1].body()], &points, &[])?;
     }

@@ -409,9 +409,9 @@ fn turned_too_many(
 /// 31 points across its minor axis in every direction needs 11 x 13".
 fn turned_cells(shape: &EllipseShape, across: usize, (nx, ny): (usize, usize)) -> String {
     format!(
-        "the Hertz ellipse is turned by {:.2} degrees from x (its semi-axes {:.1} : 1): a grid \
+        "the Hertz ellipse is turned by {} degrees from x (its semi-axes {:.1} : 1): a grid \
          with {across} points across its minor axis in every direction needs {nx} x {ny}",
-        shape.angle.to_degrees(),
+        degrees(shape.angle.to_degrees()),
         1.0 / shape.semi_minor.powi(2),
     )
 }
@@ -438,14 +438,30 @@ pub(crate) fn aligning_turn(angle: f64) -> (f64, &'static str) {
     }
 }
 
+/// An angle in degrees as a message gives it: two decimals (`30.00`),
+/// and two significant digits for a turn below a hundredth of a degree
+/// (`0.00010`), which two decimals would show as no turn at all.
+fn degrees(d: f64) -> String {
+    // Rounded to two significant digits first, so that 9.99999e-5 is
+    // counted as the 1.0e-4 it shows as.
+    let rounded: f64 = format!("{d:.1e}").parse().unwrap_or(d);
+    let decimals = if !(d.abs() < 0.01) || rounded == 0.0 {
+        2
+    } else {
+        (1.0 - rounded.abs().log10().floor()).clamp(2.0, 20.0) as usize
+    };
+    format!("{d:.decimals$}")
+}
+
 /// What turning the surfaces to lay the ellipse along a grid axis does
 /// ([`aligning_turn`]).
 fn align_hint(shape: &EllipseShape, across: usize, zone: f64) -> String {
     let (turn, axis) = aligning_turn(shape.angle);
     format!(
-        "Turning both surfaces by {turn:.2} degrees (add it to each quadric's `angle`; a sphere \
+        "Turning both surfaces by {} degrees (add it to each quadric's `angle`; a sphere \
          needs none) lays the ellipse along {axis}, where the grid needs about (across zone)^2 = \
          {} points",
+        degrees(turn),
         Num((across as f64 * zone).powi(2).round())
     )
 }
@@ -486,19 +502,23 @@ pub const TURNED_NOTE_RATIO: f64 = 4.0;
 /// Builds the point set of the layout's family ([`PointsSpec::family`]);
 /// `scale` is the Hertz radius or half-width for the relative layouts.
 pub(crate) fn build_points(spec: &PointsSpec, scale: Option<f64>) -> Result<PointSet, SceneError> {
-    // elcon-influence names its bound by its constant; a user reads the
-    // number and what it is.
-    spec.family(scale)?.points().map_err(|e| {
-        SceneError::points(e.to_string().replace(
-            &format!("MAX_POINTS = {MAX_POINTS} points"),
-            &format!("{MAX_POINTS} points, the most elcon lays out"),
-        ))
-    })
+    spec.family(scale)?
+        .points()
+        .map_err(|e| SceneError::points(e.to_string()))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_turn_below_a_hundredth_of_a_degree_is_shown_as_a_turn() {
+        assert_eq!(degrees(30.0), "30.00");
+        assert_eq!(degrees(-0.0001), "-0.00010");
+        assert_eq!(degrees(0.0123), "0.01");
+        assert_eq!(degrees(0.00999), "0.010");
+        assert_eq!(degrees(0.0), "0.00");
+    }
 
     #[test]
     fn the_aligning_turn_is_the_smaller_of_the_turns_to_x_and_to_y() {
