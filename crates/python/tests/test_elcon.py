@@ -382,7 +382,7 @@ def test_a_problems_dict_is_result_jsons_serialization():
     # The same header, seconds and solution, by the same types: a problem's
     # keys are result.json's but for the scene's own blocks.
     scene_only = {"scene", "file", "description", "units", "discretization", "subsurface",
-                  "reference", "design"}
+                  "reference", "design", "inputs"}
     assert set(solved) == set(scene) - scene_only
     assert set(solved["seconds"]) == set(scene["seconds"])
     assert set(solved["statistics"]) == set(scene["statistics"])
