@@ -1,0 +1,143 @@
+//! A number as a person writes it on a plot or in a report's caption:
+//! `0`, `1487`, `0.101`, `-12.5`, and scientific notation (`2.5e-6`,
+//! `1.5e9`) only where the fixed form would need more than five digits
+//! before or after the point.
+
+/// The most digits the integer part of a fixed form holds (`12345`);
+/// beyond them, scientific notation (`1.23e5`).
+const INTEGER_DIGITS: i32 = 5;
+
+/// The most decimals a fixed form holds (`0.00123`); beyond them,
+/// scientific notation (`1.23e-4`).
+const DECIMALS: i32 = 5;
+
+/// A number shown to a chosen resolution: its digits down to the decade
+/// `10^place`, trailing zeros dropped, never `-0` or `0.0000e0`. Made by
+/// [`plain`] (three significant digits) or [`plain_to`] (an axis tick).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plain {
+    value: f64,
+    place: i32,
+}
+
+/// `v` to three significant digits, its integer part whole: `1487.4` is
+/// `1487`, `0.10134` is `0.101`, `2.5e-6` is `2.5e-6`, `1.5e9` is `1.5e9`.
+pub fn plain(v: f64) -> Plain {
+    let e = decade(v);
+    let place = if e < INTEGER_DIGITS {
+        (e - 2).min(0)
+    } else {
+        e - 2
+    };
+    Plain { value: v, place }
+}
+
+/// `v` shown to the decade below `resolution` (an axis's tick spacing,
+/// so that neighbouring ticks differ in their digits): `0.15000000000000002`
+/// with ticks 0.05 apart is `0.15`, `1500` with ticks 500 apart is `1500`.
+pub fn plain_to(v: f64, resolution: f64) -> Plain {
+    let r = resolution.abs();
+    let place = if r.is_finite() && r > 0.0 {
+        decade(r) - 1
+    } else {
+        plain(v).place
+    };
+    Plain { value: v, place }
+}
+
+/// The decade of `v`: `floor(log10 |v|)` (0 for 0 or a non-finite `v`).
+fn decade(v: f64) -> i32 {
+    let a = v.abs();
+    if a > 0.0 && a.is_finite() {
+        let d = a.log10().floor() as i32;
+        // log10 of an exact power of ten can land a hair below it.
+        if 10f64.powi(d + 1) <= a { d + 1 } else { d }
+    } else {
+        0
+    }
+}
+
+/// `text` without the trailing zeros of its fraction (and without a
+/// point left bare).
+fn trimmed(text: &str) -> &str {
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        text
+    }
+}
+
+impl std::fmt::Display for Plain {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.value;
+        if !v.is_finite() {
+            return write!(f, "{v}");
+        }
+        let step = 10f64.powi(self.place);
+        let rounded = (v / step).round() * step;
+        if rounded == 0.0 {
+            return write!(f, "0");
+        }
+        let e = decade(rounded);
+        let fixed = e < INTEGER_DIGITS && -self.place <= DECIMALS;
+        if fixed {
+            let decimals = (-self.place).max(0) as usize;
+            write!(f, "{}", trimmed(&format!("{rounded:.decimals$}")))
+        } else {
+            let mantissa = rounded / 10f64.powi(e);
+            let decimals = (e - self.place).clamp(0, 16) as usize;
+            let m = format!("{mantissa:.decimals$}");
+            write!(f, "{}e{e}", trimmed(&m))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_shown_as_people_write_them() {
+        for (v, shown) in [
+            (0.0, "0"),
+            (-0.0, "0"),
+            (1487.4, "1487"),
+            (1487.6, "1488"),
+            (0.1013, "0.101"),
+            (0.10134, "0.101"),
+            (2.5e-6, "2.5e-6"),
+            (1.5e9, "1.5e9"),
+            (-1.5e9, "-1.5e9"),
+            (-12.54, "-12.5"),
+            (-0.101, "-0.101"),
+            (12345.0, "12345"),
+            (123456.0, "1.23e5"),
+            (0.00123, "0.00123"),
+            (0.000123, "1.23e-4"),
+            (1.0, "1"),
+            (100.0, "100"),
+            (2.0e-3, "0.002"),
+            (f64::INFINITY, "inf"),
+        ] {
+            assert_eq!(plain(v).to_string(), shown, "{v}");
+        }
+    }
+
+    #[test]
+    fn ticks_are_shown_to_their_spacing() {
+        for (v, step, shown) in [
+            (0.15000000000000002, 0.05, "0.15"),
+            (-0.1, 0.05, "-0.1"),
+            (1e-17, 0.05, "0"),
+            (-1e-17, 0.05, "0"),
+            (1500.0, 500.0, "1500"),
+            (1000.2, 0.1, "1000.2"),
+            (0.30000000000000004, 0.1, "0.3"),
+            (2.5e-6, 5e-7, "2.5e-6"),
+            (1.5e9, 5e8, "1.5e9"),
+            (0.004, 0.001, "0.004"),
+        ] {
+            assert_eq!(plain_to(v, step).to_string(), shown, "{v} by {step}");
+        }
+    }
+}
