@@ -7,8 +7,8 @@
 /// beyond them, scientific notation (`1.23e5`).
 const INTEGER_DIGITS: i32 = 5;
 
-/// The most decimals a fixed form holds (`0.00123`); beyond them,
-/// scientific notation (`1.23e-4`).
+/// The most decimals a fixed form holds, trailing zeros dropped
+/// (`0.00123`, `0.0009`); beyond them, scientific notation (`1.23e-4`).
 const DECIMALS: i32 = 5;
 
 /// A number shown to a chosen resolution: its digits down to the decade
@@ -79,10 +79,12 @@ impl std::fmt::Display for Plain {
             return write!(f, "0");
         }
         let e = decade(rounded);
-        let fixed = e < INTEGER_DIGITS && -self.place <= DECIMALS;
-        if fixed {
-            let decimals = (-self.place).max(0) as usize;
-            write!(f, "{}", trimmed(&format!("{rounded:.decimals$}")))
+        let decimals = (-self.place).clamp(0, 300) as usize;
+        let fixed = format!("{rounded:.decimals$}");
+        let fixed = trimmed(&fixed);
+        let shown = fixed.split_once('.').map_or(0, |(_, d)| d.len());
+        if e < INTEGER_DIGITS && shown <= DECIMALS as usize {
+            write!(f, "{fixed}")
         } else {
             let mantissa = rounded / 10f64.powi(e);
             let decimals = (e - self.place).clamp(0, 16) as usize;
@@ -114,6 +116,9 @@ mod tests {
             (123456.0, "1.23e5"),
             (0.00123, "0.00123"),
             (0.000123, "1.23e-4"),
+            (0.0009, "0.0009"),
+            (0.00009, "0.00009"),
+            (0.000009, "9e-6"),
             (1.0, "1"),
             (100.0, "100"),
             (2.0e-3, "0.002"),
