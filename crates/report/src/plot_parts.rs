@@ -12,14 +12,15 @@ use plotters::style::colors::colormaps::ViridisRGB;
 use crate::error::ReportError;
 use crate::plot::err;
 
-/// The font of axis tick labels and colour-bar ticks (pixels).
-pub(crate) const TICK_FONT: u32 = 14;
+/// The font of axis tick labels and colour-bar ticks, in plotters' sizes
+/// (its SVG writes size s as `font-size` s / 1.24: 16 is about 13 px).
+pub(crate) const TICK_FONT: u32 = 16;
 /// The font of an axis's (or the colour bar's) description.
-pub(crate) const DESC_FONT: u32 = 15;
+pub(crate) const DESC_FONT: u32 = 17;
 /// The font of a legend's entries.
-pub(crate) const LEGEND_FONT: u32 = 14;
+pub(crate) const LEGEND_FONT: u32 = 16;
 /// The font of a map's title.
-pub(crate) const TITLE_FONT: u32 = 18;
+pub(crate) const TITLE_FONT: u32 = 20;
 
 /// The longest a map's plotting area may be against its shorter side: a
 /// contact more slender than this is drawn with its shorter axis
@@ -79,11 +80,62 @@ pub(crate) fn axis_name(name: &str, unit: &str, stretch: u32) -> String {
     }
 }
 
-/// The most tick labels an axis of `pixels` is offered, about `spacing`
-/// pixels apart (plotters draws at most that many, at round values, so
-/// usually fewer).
-fn tick_count(pixels: u32, spacing: u32) -> usize {
-    (pixels / spacing).clamp(3, 12) as usize
+/// An axis's ticks: how many key points plotters is asked for, and the
+/// labels it writes (as people write numbers, to the ticks' spacing).
+/// Plotters puts key points at multiples of 1, 2 or 5 times a power of
+/// ten, as many as fit the count; a narrow axis over an odd range would
+/// get one label (`0`) or five crowded ones, so it is asked for many and
+/// only every first, second, fifth or tenth is labelled, the labels at
+/// least `gap` pixels apart (a label's width along x, its height along
+/// y).
+pub(crate) fn ticks(
+    range: std::ops::Range<f64>,
+    pixels: u32,
+    gap: f64,
+) -> (usize, impl Fn(&f64) -> String) {
+    let asked = (pixels / 20).clamp(3, 40) as usize;
+    let span = (range.end - range.start).abs();
+    let points = RangedCoordf64::from(range).key_points(asked);
+    let step = match points.as_slice() {
+        [a, b, ..] => (b - a).abs(),
+        _ => span,
+    };
+    let apart = if span > 0.0 {
+        step / span * f64::from(pixels)
+    } else {
+        f64::INFINITY
+    };
+    let every = [1.0, 2.0, 5.0, 10.0, 20.0, 50.0]
+        .into_iter()
+        .find(|k| k * apart >= gap)
+        .unwrap_or(100.0);
+    let shown = every * step;
+    let format = move |v: &f64| {
+        let multiple = shown > 0.0 && ((v / shown).round() * shown - v).abs() <= 1e-6 * shown;
+        if multiple {
+            elcon_num::plain_to(*v, step).to_string()
+        } else {
+            String::new()
+        }
+    };
+    (asked, format)
+}
+
+/// The pixels a tick label takes across its axis: along x, its width
+/// (about 7 pixels a character of the longest, with a gap); along y, its
+/// height with a gap.
+fn label_gap(range: &std::ops::Range<f64>, along_x: bool) -> f64 {
+    if along_x {
+        let widest = [range.start, range.end]
+            .iter()
+            .map(|v| elcon_num::plain(*v).to_string().len())
+            .max()
+            .unwrap_or(4)
+            .max(3);
+        7.0 * widest as f64 + 12.0
+    } else {
+        40.0
+    }
 }
 
 /// Draws `chart`'s axes (and, with `grid`, a light grid): ticks written
@@ -98,12 +150,10 @@ where
     DB::ErrorType: 'static,
 {
     let (w, h) = chart.plotting_area().dim_in_pixel();
-    let (nx, ny) = (tick_count(w, 50), tick_count(h, 40));
     let (xr, yr) = (chart.x_range(), chart.y_range());
-    let x_step = (xr.end - xr.start).abs() / nx as f64;
-    let y_step = (yr.end - yr.start).abs() / ny as f64;
-    let x_fmt = move |v: &f64| elcon_num::plain_to(*v, x_step).to_string();
-    let y_fmt = move |v: &f64| elcon_num::plain_to(*v, y_step).to_string();
+    let (x_gap, y_gap) = (label_gap(&xr, true), label_gap(&yr, false));
+    let (nx, x_fmt) = ticks(xr, w, x_gap);
+    let (ny, y_fmt) = ticks(yr, h, y_gap);
     let mut mesh = chart.configure_mesh();
     if grid {
         mesh.light_line_style(TRANSPARENT)
@@ -264,9 +314,7 @@ where
         .build_cartesian_2d(0.0..1.0, 0.0..top)
         .map_err(err)?;
     let (_, h) = bar.plotting_area().dim_in_pixel();
-    let n = tick_count(h, 40);
-    let step = top / n as f64;
-    let fmt = move |v: &f64| elcon_num::plain_to(*v, step).to_string();
+    let (n, fmt) = ticks(0.0..top, h, 40.0);
     bar.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
@@ -369,6 +417,33 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The labels `ticks` writes over `range` on an axis of `pixels`.
+    fn labels(range: std::ops::Range<f64>, pixels: u32, gap: f64) -> Vec<String> {
+        let (n, format) = ticks(range.clone(), pixels, gap);
+        RangedCoordf64::from(range)
+            .key_points(n)
+            .iter()
+            .map(format)
+            .filter(|s| !s.is_empty())
+            .collect()
+    }
+
+    #[test]
+    fn a_narrow_axis_gets_a_few_round_labels() {
+        // The crowned roller's map across x, 125 pixels wide.
+        assert_eq!(labels(-0.41..0.41, 125, 52.0), ["-0.4", "0", "0.4"]);
+        assert_eq!(
+            labels(-0.41..0.41, 600, 52.0),
+            [
+                "-0.4", "-0.3", "-0.2", "-0.1", "0", "0.1", "0.2", "0.3", "0.4"
+            ]
+        );
+        assert_eq!(
+            labels(0.0..2603.0, 420, 40.0),
+            ["0", "400", "800", "1200", "1600", "2000", "2400"]
+        );
+    }
 
     #[test]
     fn a_round_contact_is_drawn_at_equal_scales() {
