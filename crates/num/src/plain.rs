@@ -1,11 +1,11 @@
 //! A number as a person writes it on a plot or in a report's caption:
-//! `0`, `1487`, `0.101`, `-12.5`, and scientific notation (`2.5e-6`,
-//! `1.5e9`) only where the fixed form would need more than five digits
-//! before or after the point.
+//! `0`, `1487`, `0.101`, `-12.5`, `115000`, and scientific notation
+//! (`2.5e-6`, `1.5e9`) only where the fixed form would need more than six
+//! digits before the point or five after it.
 
-/// The most digits the integer part of a fixed form holds (`12345`);
-/// beyond them, scientific notation (`1.23e5`).
-const INTEGER_DIGITS: i32 = 5;
+/// The most digits the integer part of a fixed form holds (`115000`);
+/// beyond them, scientific notation (`1.23e6`).
+const INTEGER_DIGITS: i32 = 6;
 
 /// The most decimals a fixed form holds, trailing zeros dropped
 /// (`0.00123`, `0.0009`); beyond them, scientific notation (`1.23e-4`).
@@ -18,6 +18,23 @@ const DECIMALS: i32 = 5;
 pub struct Plain {
     value: f64,
     place: i32,
+    scientific: bool,
+}
+
+impl Plain {
+    /// Whether it is written in fixed form (`0.101`, not `1.01e-1`).
+    pub fn is_fixed(&self) -> bool {
+        !self.scientific && !self.to_string().contains('e')
+    }
+
+    /// The same number in scientific notation whatever its size (`4e4`),
+    /// for the ticks of an axis whose largest needs it; 0 stays `0`.
+    pub fn scientific(self) -> Self {
+        Self {
+            scientific: true,
+            ..self
+        }
+    }
 }
 
 /// `v` to three significant digits, its integer part whole: `1487.4` is
@@ -29,7 +46,11 @@ pub fn plain(v: f64) -> Plain {
     } else {
         e - 2
     };
-    Plain { value: v, place }
+    Plain {
+        value: v,
+        place,
+        scientific: false,
+    }
 }
 
 /// `v` shown to the decade below `resolution` (an axis's tick spacing,
@@ -42,7 +63,11 @@ pub fn plain_to(v: f64, resolution: f64) -> Plain {
     } else {
         plain(v).place
     };
-    Plain { value: v, place }
+    Plain {
+        value: v,
+        place,
+        scientific: false,
+    }
 }
 
 /// The decade of `v`: `floor(log10 |v|)` (0 for 0 or a non-finite `v`).
@@ -83,7 +108,7 @@ impl std::fmt::Display for Plain {
         let fixed = format!("{rounded:.decimals$}");
         let fixed = trimmed(&fixed);
         let shown = fixed.split_once('.').map_or(0, |(_, d)| d.len());
-        if e < INTEGER_DIGITS && shown <= DECIMALS as usize {
+        if !self.scientific && e < INTEGER_DIGITS && shown <= DECIMALS as usize {
             write!(f, "{fixed}")
         } else {
             let mantissa = rounded / 10f64.powi(e);
@@ -113,7 +138,8 @@ mod tests {
             (-12.54, "-12.5"),
             (-0.101, "-0.101"),
             (12345.0, "12345"),
-            (123456.0, "1.23e5"),
+            (123456.0, "123456"),
+            (1234567.0, "1.23e6"),
             (0.00123, "0.00123"),
             (0.000123, "1.23e-4"),
             (0.0009, "0.0009"),
@@ -144,5 +170,11 @@ mod tests {
         ] {
             assert_eq!(plain_to(v, step).to_string(), shown, "{v} by {step}");
         }
+        // An axis whose largest tick needs scientific notation writes
+        // every tick so.
+        assert!(!plain_to(2e6, 2e5).is_fixed());
+        assert_eq!(plain_to(4e5, 2e5).scientific().to_string(), "4e5");
+        assert_eq!(plain_to(0.0, 2e5).scientific().to_string(), "0");
+        assert!(plain(1487.0).is_fixed());
     }
 }

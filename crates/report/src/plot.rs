@@ -1,9 +1,10 @@
 //! SVG plots (plotters): pressure against position with the closed form
 //! overlaid (lines, and surfaces whose pressure depends on the radius
-//! alone), a pressure map with the contact's boundary and a colour bar and
-//! the pressure along the principal axes (other surfaces); a design's
-//! separations and pressures before and after; a batch's error against run
-//! time (log-log, one series per method).
+//! alone), a pressure map at equal scales with the contact's boundary and
+//! a labelled colour bar and the pressure along the principal axes (other
+//! surfaces); a design's separations and pressures before and after; a
+//! batch's error against run time (log-log, one series per method). Their
+//! shared parts (axes, legends below the data, maps) are in `plot_parts`.
 
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
@@ -383,12 +384,16 @@ pub fn error_time(
                 (e0 / 1.5..e1 * 1.5).log_scale(),
             )
             .map_err(err)?;
-        // A log axis labels its 1, 2 and 5 of each decade; the other
-        // grid lines stay unlabelled, so that labels do not crowd.
-        let plain = |v: &f64| {
+        // A log axis labels its 1, 2 and 5 of each decade (and 3 over
+        // less than two decades); the other grid lines stay unlabelled,
+        // so that labels do not crowd.
+        let few = |lo: f64, hi: f64| (hi / lo).log10() < 2.0;
+        let (few_t, few_e) = (few(t0 / 1.5, t1 * 1.5), few(e0 / 1.5, e1 * 1.5));
+        let label = |v: &f64, three: bool| {
             let mantissa = *v / 10f64.powf(v.log10().floor());
             let round = [1.0, 2.0, 5.0, 10.0]
                 .iter()
+                .chain(three.then_some(&3.0))
                 .any(|m| (mantissa - m).abs() < 1e-6);
             if round {
                 elcon_num::plain(*v).to_string()
@@ -396,6 +401,7 @@ pub fn error_time(
                 String::new()
             }
         };
+        let (x_fmt, y_fmt) = (|v: &f64| label(v, few_t), |v: &f64| label(v, few_e));
         chart
             .configure_mesh()
             .light_line_style(TRANSPARENT)
@@ -406,8 +412,8 @@ pub fn error_time(
             .y_desc(format!("|relative error| of {error}"))
             .label_style(("sans-serif", crate::plot_parts::TICK_FONT))
             .axis_desc_style(("sans-serif", crate::plot_parts::DESC_FONT))
-            .x_label_formatter(&plain)
-            .y_label_formatter(&plain)
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&y_fmt)
             .draw()
             .map_err(err)?;
         for (i, (_, points)) in series.iter().enumerate() {

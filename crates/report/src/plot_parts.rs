@@ -110,15 +110,26 @@ pub(crate) fn ticks(
         .find(|k| k * apart >= gap)
         .unwrap_or(100.0);
     let shown = every * step;
+    // One form for every label of the axis: scientific throughout when
+    // its largest end or its step needs it.
+    let widest = range_end_magnitude(&points);
+    let scientific = !elcon_num::plain_to(widest, step).is_fixed()
+        || !elcon_num::plain_to(step, step).is_fixed();
     let format = move |v: &f64| {
         let multiple = shown > 0.0 && ((v / shown).round() * shown - v).abs() <= 1e-6 * shown;
-        if multiple {
-            elcon_num::plain_to(*v, step).to_string()
-        } else {
-            String::new()
+        let label = elcon_num::plain_to(*v, step);
+        match (multiple, scientific) {
+            (false, _) => String::new(),
+            (true, false) => label.to_string(),
+            (true, true) => label.scientific().to_string(),
         }
     };
     (asked, format)
+}
+
+/// The largest magnitude among an axis's key points (0 for none).
+fn range_end_magnitude(points: &[f64]) -> f64 {
+    points.iter().fold(0.0f64, |a, v| a.max(v.abs()))
 }
 
 /// The pixels a tick label takes across its axis: along x, its width

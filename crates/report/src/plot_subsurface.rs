@@ -191,7 +191,9 @@ where
         "below the peak pressure, x = {} {length}",
         elcon_num::plain_to(p.xs[0], deepest.abs() * 1e-3)
     );
+    // A right margin for the last stress tick's label.
     let mut chart = titled(&area, caption, 15, (50, 70))
+        .margin_right(28)
         .build_cartesian_2d(lo..hi, deepest..0.0)
         .map_err(err)?;
     let x_desc = format!("stress ({})", u.pressure());
