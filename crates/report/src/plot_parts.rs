@@ -85,14 +85,14 @@ pub(crate) fn axis_name(name: &str, unit: &str, stretch: u32) -> String {
 /// Plotters puts key points at multiples of 1, 2 or 5 times a power of
 /// ten, as many as fit the count; a narrow axis over an odd range would
 /// get one label (`0`) or five crowded ones, so it is asked for many and
-/// only every first, second, fifth or tenth is labelled, the labels at
-/// least `gap` pixels apart (a label's width along x, its height along
-/// y).
+/// only every first, second, fifth or tenth is labelled, the labels
+/// apart by more than their width (`along_x`) or height.
 pub(crate) fn ticks(
     range: std::ops::Range<f64>,
     pixels: u32,
-    gap: f64,
+    along_x: bool,
 ) -> (usize, impl Fn(&f64) -> String) {
+    let (start, end) = (range.start.min(range.end), range.start.max(range.end));
     let asked = (pixels / 20).clamp(3, 40) as usize;
     let span = (range.end - range.start).abs();
     let points = RangedCoordf64::from(range).key_points(asked);
@@ -107,7 +107,7 @@ pub(crate) fn ticks(
     };
     let every = [1.0, 2.0, 5.0, 10.0, 20.0, 50.0]
         .into_iter()
-        .find(|k| k * apart >= gap)
+        .find(|k| k * apart >= label_gap((start, end), k * step, step, along_x))
         .unwrap_or(100.0);
     let shown = every * step;
     // One form for every label of the axis: scientific throughout when
@@ -132,21 +132,24 @@ fn range_end_magnitude(points: &[f64]) -> f64 {
     points.iter().fold(0.0f64, |a, v| a.max(v.abs()))
 }
 
-/// The pixels a tick label takes across its axis: along x, its width
-/// (about 7 pixels a character of the longest, with a gap); along y, its
-/// height with a gap.
-fn label_gap(range: &std::ops::Range<f64>, along_x: bool) -> f64 {
-    if along_x {
-        let widest = [range.start, range.end]
-            .iter()
-            .map(|v| elcon_num::plain(*v).to_string().len())
-            .max()
-            .unwrap_or(4)
-            .max(3);
-        7.0 * widest as f64 + 12.0
-    } else {
-        40.0
+/// The pixels tick labels `shown` apart over `(start, end)` (written to
+/// `step`) need between their centres: along x, the widest's width
+/// (about 6 pixels a character, with a gap); along y, a label's height
+/// with a gap.
+fn label_gap((start, end): (f64, f64), shown: f64, step: f64, along_x: bool) -> f64 {
+    if !along_x || shown <= 0.0 {
+        return 40.0;
     }
+    let first = (start / shown).ceil() * shown;
+    let last = (end / shown).floor() * shown;
+    // The ends and their neighbours: a label's length grows with its
+    // magnitude and with the digits of its place among the multiples.
+    let widest = [first, first + shown, last - shown, last]
+        .iter()
+        .map(|v| elcon_num::plain_to(*v, step).to_string().len())
+        .max()
+        .unwrap_or(1);
+    6.0 * widest as f64 + 8.0
 }
 
 /// Draws `chart`'s axes (and, with `grid`, a light grid): ticks written
@@ -162,9 +165,8 @@ where
 {
     let (w, h) = chart.plotting_area().dim_in_pixel();
     let (xr, yr) = (chart.x_range(), chart.y_range());
-    let (x_gap, y_gap) = (label_gap(&xr, true), label_gap(&yr, false));
-    let (nx, x_fmt) = ticks(xr, w, x_gap);
-    let (ny, y_fmt) = ticks(yr, h, y_gap);
+    let (nx, x_fmt) = ticks(xr, w, true);
+    let (ny, y_fmt) = ticks(yr, h, false);
     let mut mesh = chart.configure_mesh();
     if grid {
         mesh.light_line_style(TRANSPARENT)
@@ -325,7 +327,7 @@ where
         .build_cartesian_2d(0.0..1.0, 0.0..top)
         .map_err(err)?;
     let (_, h) = bar.plotting_area().dim_in_pixel();
-    let (n, fmt) = ticks(0.0..top, h, 40.0);
+    let (n, fmt) = ticks(0.0..top, h, false);
     bar.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
@@ -430,8 +432,8 @@ mod tests {
     use super::*;
 
     /// The labels `ticks` writes over `range` on an axis of `pixels`.
-    fn labels(range: std::ops::Range<f64>, pixels: u32, gap: f64) -> Vec<String> {
-        let (n, format) = ticks(range.clone(), pixels, gap);
+    fn labels(range: std::ops::Range<f64>, pixels: u32, along_x: bool) -> Vec<String> {
+        let (n, format) = ticks(range.clone(), pixels, along_x);
         RangedCoordf64::from(range)
             .key_points(n)
             .iter()
@@ -442,16 +444,18 @@ mod tests {
 
     #[test]
     fn a_narrow_axis_gets_a_few_round_labels() {
-        // The crowned roller's map across x, 125 pixels wide.
-        assert_eq!(labels(-0.41..0.41, 125, 52.0), ["-0.4", "0", "0.4"]);
+        // The ball bearing's map across x, 134 pixels wide, and the
+        // crowned roller's, 125 (as drawn).
+        assert_eq!(labels(-0.19..0.19, 134, true), ["-0.1", "0", "0.1"]);
+        assert_eq!(labels(-0.41..0.41, 125, true), ["-0.4", "0", "0.4"]);
         assert_eq!(
-            labels(-0.41..0.41, 600, 52.0),
+            labels(-0.41..0.41, 600, true),
             [
                 "-0.4", "-0.3", "-0.2", "-0.1", "0", "0.1", "0.2", "0.3", "0.4"
             ]
         );
         assert_eq!(
-            labels(0.0..2603.0, 420, 40.0),
+            labels(0.0..2603.0, 420, false),
             ["0", "400", "800", "1200", "1600", "2000", "2400"]
         );
     }
