@@ -10,16 +10,21 @@
 //! [`named!`], [`named_serde!`] and, with the `serde` feature, `from_name`): the enums of named choices of every crate above parse,
 //! show and serialize their names through it.
 //!
+//! And how a number is written on a plot or in a caption ([`plain`],
+//! [`plain_to`]): `0`, `1487`, `0.101`, `2.5e-6`.
+//!
 //! And how an input is checked ([`check`]): the first of a table of
 //! conditions that does not hold, a [`Rejected`] that names the field.
 
 mod input;
 mod name;
+mod plain;
 
 pub use input::{Check, Rejected, check};
 #[cfg(feature = "serde")]
 pub use name::from_name;
 pub use name::{UnknownName, unparsed};
+pub use plain::{Plain, plain, plain_to};
 
 /// A number as a message shows it, in its shortest round-trip form: as
 /// written for everyday magnitudes (`-30000000`, `0.5`), in scientific

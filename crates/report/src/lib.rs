@@ -17,6 +17,7 @@ mod discretization;
 mod error;
 mod output;
 mod plot;
+mod plot_parts;
 mod plot_subsurface;
 mod profile;
 mod reference;

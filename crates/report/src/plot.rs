@@ -1,19 +1,20 @@
 //! SVG plots (plotters): pressure against position with the closed form
 //! overlaid (lines, and surfaces whose pressure depends on the radius
-//! alone), a pressure map with the contact's boundary and a colour bar and
-//! the pressure along the principal axes (other surfaces); a design's
-//! separations and pressures before and after; a batch's error against run
-//! time (log-log, one series per method).
+//! alone), a pressure map at equal scales with the contact's boundary and
+//! a labelled colour bar and the pressure along the principal axes (other
+//! surfaces); a design's separations and pressures before and after; a
+//! batch's error against run time (log-log, one series per method). Their
+//! shared parts (axes, legends below the data, maps) are in `plot_parts`.
 
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
-use plotters::style::colors::colormaps::ViridisRGB;
 
 use elcon_analysis::{Geometry, Surface};
 use elcon_influence::Dimension;
 
 use crate::error::ReportError;
+use crate::plot_parts::{Colours, Entries, Key, Map, axes, legend_below, map};
 use crate::result::Run;
 
 pub(crate) const SIZE: (u32, u32) = (900, 560);
@@ -63,26 +64,6 @@ pub(crate) fn titled<'a, 'b, DB: DrawingBackend>(
         .x_label_area_size(x_label)
         .y_label_area_size(y_label);
     builder
-}
-
-/// Draws the series' labels on `chart`, boxed on white.
-pub(crate) fn labels<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
-    chart: &mut ChartContext<'a, DB, CT>,
-) -> Result<(), ReportError>
-where
-    DB::ErrorType: 'static,
-{
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()
-        .map_err(err)
-}
-
-/// A legend's key of a line of `colour`, two pixels wide.
-pub(crate) fn line_key(colour: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
-    move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
 }
 
 /// `[lo, hi]` widened by 5 % (and made non-empty).
@@ -197,51 +178,52 @@ pub(crate) fn pressure(run: &Run) -> Result<String, ReportError> {
         .chain(&reference)
         .fold(0.0f64, |a, p| a.max(p.1));
     let (x0, x1) = padded(x0, x1);
+    let mut legend: Entries = vec![(
+        if binned {
+            format!(
+                "elcon, {} points, {} (largest and smallest of each of {MAX_MARKS} bins)",
+                points.len(),
+                run.scene.method()
+            )
+        } else {
+            format!("elcon, {} points, {}", points.len(), run.scene.method())
+        },
+        Key::Dot(COLORS[0]),
+    )];
+    if !reference.is_empty() {
+        let kind = run
+            .result
+            .reference
+            .as_ref()
+            .map_or("closed form".to_string(), |r| r.kind.clone());
+        legend.push((kind, Key::Line(COLORS[1])));
+    }
     svg(SIZE, |root| {
+        let area = legend_below(root, &legend)?;
         let mut chart = titled(
-            root,
+            &area,
             format!("{}: pressure", run.scene.name()),
             22,
-            (45, 80),
+            (50, 80),
         )
         .build_cartesian_2d(x0..x1, 0.0..ymax * 1.08 + f64::MIN_POSITIVE)
         .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc(if surface {
-                format!("radius ({})", u.length())
-            } else {
-                format!("x ({})", u.length())
-            })
-            .y_desc(format!("pressure ({})", u.intensity()))
-            .draw()
-            .map_err(err)?;
+        let x_desc = if surface {
+            format!("radius ({})", u.length())
+        } else {
+            format!("x ({})", u.length())
+        };
+        let y_desc = format!("pressure ({})", u.intensity());
+        axes(&mut chart, (&x_desc, &y_desc), true)?;
         chart
             .draw_series(data.iter().map(|&p| Circle::new(p, 2, COLORS[0].filled())))
-            .map_err(err)?
-            .label(if binned {
-                format!(
-                    "elcon, {} points, {} (largest and smallest of each of {MAX_MARKS} bins)",
-                    points.len(),
-                    run.scene.method()
-                )
-            } else {
-                format!("elcon, {} points, {}", points.len(), run.scene.method())
-            })
-            .legend(|(x, y)| Circle::new((x + 10, y), 3, COLORS[0].filled()));
+            .map_err(err)?;
         if !reference.is_empty() {
-            let kind = run
-                .result
-                .reference
-                .as_ref()
-                .map_or("closed form".to_string(), |r| r.kind.clone());
             chart
                 .draw_series(LineSeries::new(reference, COLORS[1].stroke_width(2)))
-                .map_err(err)?
-                .label(kind)
-                .legend(line_key(COLORS[1]));
+                .map_err(err)?;
         }
-        labels(&mut chart)
+        Ok(())
     })
 }
 
@@ -276,15 +258,11 @@ fn axial_chart<'a, DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
-    let mut chart = titled(area, caption, size, (40, 90))
+    let mut chart = titled(area, caption, size, (50, 90))
         .build_cartesian_2d(s0..s1, 0.0..max * 1.1 + f64::MIN_POSITIVE)
         .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_desc(format!("axial position ({length})"))
-        .y_desc(y_desc)
-        .draw()
-        .map_err(err)?;
+    let x_desc = format!("axial position ({length})");
+    axes(&mut chart, (&x_desc, &y_desc), true)?;
     Ok(chart)
 }
 
@@ -330,8 +308,13 @@ pub(crate) fn design(run: &Run) -> Result<String, ReportError> {
             let before = along(spec.axis(), case.points(), &d.before.solutions[l].pressures);
             let after = along(spec.axis(), case.points(), &d.after.solutions[l].pressures);
             let label = match misalignment {
-                Some(angle) => format!("load {load} {}, {angle:e} rad", u.force()),
-                None => format!("load {load} {}", u.force()),
+                Some(angle) => format!(
+                    "load {} {}, misaligned {} rad",
+                    elcon_num::plain(load),
+                    u.force(),
+                    elcon_num::plain(angle)
+                ),
+                None => format!("load {} {}", elcon_num::plain(load), u.force()),
             };
             series.push((label, before, after));
         }
@@ -342,19 +325,24 @@ pub(crate) fn design(run: &Run) -> Result<String, ReportError> {
         let caption =
             "pressure along the axis (largest across the width), before (dashed) and after";
         let y_desc = format!("pressure ({})", u.intensity());
+        let mut legend: Entries = Vec::new();
+        for (i, (label, ..)) in series.iter().enumerate() {
+            let color = COLORS[i % COLORS.len()];
+            legend.push((format!("{label}, after"), Key::Line(color)));
+            legend.push((format!("{label}, before"), Key::Dashed(color)));
+        }
+        let bottom = legend_below(&bottom, &legend)?;
         let mut chart = axial_chart(&bottom, (caption, 18), (s0, s1), pmax, u.length(), y_desc)?;
-        for (i, (label, before, after)) in series.into_iter().enumerate() {
+        for (i, (_, before, after)) in series.into_iter().enumerate() {
             let color = COLORS[i % COLORS.len()];
             chart
                 .draw_series(DashedLineSeries::new(before, 6, 4, color.stroke_width(1)))
                 .map_err(err)?;
             chart
                 .draw_series(LineSeries::new(after, color.stroke_width(2)))
-                .map_err(err)?
-                .label(label)
-                .legend(line_key(color));
+                .map_err(err)?;
         }
-        labels(&mut chart)
+        Ok(())
     })
 }
 
@@ -383,20 +371,52 @@ pub fn error_time(
     let (e0, e1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
         (a.min(p.1), b.max(p.1))
     });
+    let legend: Entries = series
+        .iter()
+        .enumerate()
+        .map(|(i, (method, _))| (method.clone(), Key::Line(COLORS[i % COLORS.len()])))
+        .collect();
     svg(SIZE, |root| {
-        let mut chart = titled(root, title, 22, (45, 80))
+        let area = legend_below(root, &legend)?;
+        let mut chart = titled(&area, title, 22, (50, 80))
             .build_cartesian_2d(
                 (t0 / 1.5..t1 * 1.5).log_scale(),
                 (e0 / 1.5..e1 * 1.5).log_scale(),
             )
             .map_err(err)?;
+        // A log axis labels its 1, 2 and 5 of each decade (and 3 over
+        // less than two decades); the other grid lines stay unlabelled,
+        // so that labels do not crowd.
+        let few = |lo: f64, hi: f64| (hi / lo).log10() < 2.0;
+        let (few_t, few_e) = (few(t0 / 1.5, t1 * 1.5), few(e0 / 1.5, e1 * 1.5));
+        let label = |v: &f64, three: bool| {
+            let mantissa = *v / 10f64.powf(v.log10().floor());
+            let round = [1.0, 2.0, 5.0, 10.0]
+                .iter()
+                .chain(three.then_some(&3.0))
+                .any(|m| (mantissa - m).abs() < 1e-6);
+            if round {
+                elcon_num::plain(*v).to_string()
+            } else {
+                String::new()
+            }
+        };
+        let (x_fmt, y_fmt) = (|v: &f64| label(v, few_t), |v: &f64| label(v, few_e));
         chart
             .configure_mesh()
+            .light_line_style(TRANSPARENT)
+            .bold_line_style(BLACK.mix(0.12))
+            .x_labels(12)
+            .y_labels(12)
             .x_desc("run time (s)")
             .y_desc(format!("|relative error| of {error}"))
+            .label_style(("sans-serif", crate::plot_parts::TICK_FONT))
+            .axis_desc_style(("sans-serif", crate::plot_parts::DESC_FONT))
+            .x_label_formatter(&x_fmt)
+            .y_label_formatter(&y_fmt)
             .draw()
             .map_err(err)?;
-        for (i, (method, points)) in series.iter().enumerate() {
+        for (i, (_, points)) in series.iter().enumerate() {
             let color = COLORS[i % COLORS.len()];
             let mut pts: Vec<(f64, f64)> = points
                 .iter()
@@ -406,9 +426,7 @@ pub fn error_time(
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             chart
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-                .map_err(err)?
-                .label(method.clone())
-                .legend(line_key(color));
+                .map_err(err)?;
             chart
                 .draw_series(
                     pts.into_iter()
@@ -416,17 +434,8 @@ pub fn error_time(
                 )
                 .map_err(err)?;
         }
-        labels(&mut chart)
+        Ok(())
     })
-}
-
-/// The colour of `p` over `[0, top]`; out of contact, a light grey.
-fn shade(p: f64, top: f64) -> RGBColor {
-    if p <= 0.0 {
-        RGBColor(235, 235, 235)
-    } else {
-        ViridisRGB::get_color_normalized(p, 0.0, top)
-    }
 }
 
 /// The most cells a pressure map draws along x or along y: a larger grid
@@ -580,8 +589,9 @@ fn principal_axes(
     ]
 }
 
-/// A surface run's pressure as a colour map over x, y (each cell in its
-/// colour, the contact's boundary drawn on the cells' faces, a colour bar),
+/// A surface run's pressure as a colour map over x, y at equal scales (or
+/// a stated stretch of the shorter axis; each cell in its colour, the
+/// contact's boundary drawn on the cells' faces, a labelled colour bar),
 /// and the pressure along the row and the column through the centre of
 /// pressure.
 pub(crate) fn pressure_map(run: &Run) -> Result<String, ReportError> {
@@ -603,53 +613,60 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, ReportError> {
         py.iter().fold(f64::INFINITY, |a, v| a.min(*v)) - hy,
         py.iter().fold(f64::NEG_INFINITY, |a, v| a.max(*v)) + hy,
     );
+    let blocks = Blocks::of(points, p);
+    let title = if blocks.side == 1 {
+        format!("{}: pressure map", run.scene.name())
+    } else {
+        format!(
+            "{}: pressure map ({} x {} blocks of {s} x {s} cells, each its largest)",
+            run.scene.name(),
+            blocks.columns,
+            blocks.rows,
+            s = blocks.side
+        )
+    };
+    // The boundary on a lattice's cells (or blocks); scattered points
+    // have no neighbours to tell it by.
+    let faces = if points.lattice().is_some() {
+        blocks.boundary()
+    } else {
+        Vec::new()
+    };
+    let legend = if faces.is_empty() {
+        Vec::new()
+    } else {
+        vec![("contact boundary".to_string(), Key::Line(BLACK))]
+    };
+    let spec = Map {
+        title,
+        x: xs,
+        y: ys,
+        names: ("x", "y"),
+        unit: u.length().to_string(),
+        colours: Colours {
+            label: format!("pressure ({})", u.intensity()),
+            top,
+        },
+        legend,
+    };
     svg((SIZE.0, SIZE.1 + 340), |root| {
         let (upper, lower) = root.split_vertically(SIZE.1);
-        let (map_area, bar_area) = upper.split_horizontally(SIZE.0 - 130);
-        let blocks = Blocks::of(points, p);
-        let caption = if blocks.side == 1 {
-            format!("{}: pressure map", run.scene.name())
-        } else {
-            format!(
-                "{}: pressure map ({} x {} blocks of {s} x {s} cells, each its largest)",
-                run.scene.name(),
-                blocks.columns,
-                blocks.rows,
-                s = blocks.side
-            )
-        };
-        let mut map = titled(&map_area, caption, 22, (45, 80))
-            .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)
-            .map_err(err)?;
-        map.configure_mesh()
-            .disable_mesh()
-            .x_desc(format!("x ({})", u.length()))
-            .y_desc(format!("y ({})", u.length()))
-            .draw()
-            .map_err(err)?;
-        map.draw_series(
-            blocks.cells.iter().flatten().map(|b| {
-                Rectangle::new([(b.x.0, b.y.0), (b.x.1, b.y.1)], shade(b.top, top).filled())
-            }),
-        )
-        .map_err(err)?;
-        // The boundary on a lattice's cells (or blocks); scattered points
-        // have no neighbours to tell it by.
-        let faces = if points.lattice().is_some() {
-            blocks.boundary()
-        } else {
-            Vec::new()
-        };
-        map.draw_series(
-            faces
-                .into_iter()
-                .map(|face| PathElement::new(face.to_vec(), BLACK.stroke_width(2))),
-        )
-        .map_err(err)?
-        .label("contact boundary")
-        .legend(line_key(BLACK));
-        labels(&mut map)?;
-        colour_bar(&bar_area, top, u.intensity())?;
+        map(&upper, &spec, |chart| {
+            chart
+                .draw_series(blocks.cells.iter().flatten().map(|b| {
+                    let colour = spec.colours.of(b.top);
+                    Rectangle::new([(b.x.0, b.y.0), (b.x.1, b.y.1)], colour.filled())
+                }))
+                .map_err(err)?;
+            chart
+                .draw_series(
+                    faces
+                        .iter()
+                        .map(|face| PathElement::new(face.to_vec(), BLACK.stroke_width(2))),
+                )
+                .map_err(err)?;
+            Ok(())
+        })?;
         let axes = principal_axes(points, p, run.solution.load_centre);
         sections(&lower, axes, (xs, ys), top, (u.length(), u.intensity()))
     })
@@ -670,16 +687,17 @@ where
     DB::ErrorType: 'static,
 {
     let (left, right) = area.split_horizontally(SIZE.0 / 2);
+    let at = |v: f64| elcon_num::plain_to(v, (xs.1 - xs.0).max(ys.1 - ys.0) * 1e-3);
     for (i, (area, label, range, series)) in [
         (
             &left,
-            format!("along x, at y = {:.4e}", along_x.at),
+            format!("along x, at y = {} {length}", at(along_x.at)),
             xs,
             along_x.values,
         ),
         (
             &right,
-            format!("along y, at x = {:.4e}", along_y.at),
+            format!("along y, at x = {} {length}", at(along_y.at)),
             ys,
             along_y.values,
         ),
@@ -688,50 +706,15 @@ where
     .enumerate()
     {
         let colour = COLORS[i];
-        let mut axes = titled(area, &label, 16, (40, 80))
+        let mut chart = titled(area, &label, 17, (50, 80))
             .build_cartesian_2d(range.0..range.1, 0.0..top * 1.08)
             .map_err(err)?;
-        axes.configure_mesh()
-            .x_desc(format!("{} ({length})", if i == 0 { "x" } else { "y" }))
-            .y_desc(format!("pressure ({intensity})"))
-            .draw()
-            .map_err(err)?;
-        axes.draw_series(LineSeries::new(series, colour.stroke_width(2)))
+        let x_desc = format!("{} ({length})", if i == 0 { "x" } else { "y" });
+        let y_desc = format!("pressure ({intensity})");
+        axes(&mut chart, (&x_desc, &y_desc), true)?;
+        chart
+            .draw_series(LineSeries::new(series, colour.stroke_width(2)))
             .map_err(err)?;
     }
-    Ok(())
-}
-
-/// A vertical colour bar of `[0, top]` labelled with the pressure's unit.
-fn colour_bar<DB: DrawingBackend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    top: f64,
-    unit: &str,
-) -> Result<(), ReportError>
-where
-    DB::ErrorType: 'static,
-{
-    let mut bar = ChartBuilder::on(area)
-        .margin_top(48)
-        .margin_bottom(57)
-        .margin_right(8)
-        .y_label_area_size(70)
-        .build_cartesian_2d(0.0..1.0, 0.0..top)
-        .map_err(err)?;
-    bar.configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .y_desc(format!("pressure ({unit})"))
-        .draw()
-        .map_err(err)?;
-    let steps = 100;
-    bar.draw_series((0..steps).map(|i| {
-        let (lo, hi) = (
-            top * i as f64 / steps as f64,
-            top * (i + 1) as f64 / steps as f64,
-        );
-        Rectangle::new([(0.0, lo), (1.0, hi)], shade(0.5 * (lo + hi), top).filled())
-    }))
-    .map_err(err)?;
     Ok(())
 }

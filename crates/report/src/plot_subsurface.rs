@@ -1,16 +1,17 @@
 //! The subsurface plot (`outputs.plots = ["subsurface"]`): for each body
 //! with a field, a colour map of the von Mises stress on the section
-//! (x against depth, depth downward) through its largest value, the
-//! maximum marked; and beside it the stresses along depth below the peak
-//! pressure (von Mises, Tresca, |tau_xz|).
+//! (x against depth, depth downward, at equal scales or a stated stretch,
+//! with a labelled colour bar) through its largest value, the maximum
+//! marked; and beside it the stresses along depth below the peak pressure
+//! (von Mises, Tresca, |tau_xz|).
 
 use plotters::prelude::*;
-use plotters::style::colors::colormaps::ViridisRGB;
 
 use elcon_analysis::subsurface::{BodyStresses, Subsurface};
 
 use crate::error::ReportError;
-use crate::plot::{COLORS, MAX_DRAWN, SIZE, err, labels, line_key, padded, svg, titled};
+use crate::plot::{COLORS, MAX_DRAWN, SIZE, err, padded, svg, titled};
+use crate::plot_parts::{Colours, Entries, Key, Map, axes, legend_below, map};
 use crate::result::Run;
 
 /// One stress measure of a tensor.
@@ -75,24 +76,48 @@ where
     } else {
         ""
     };
-    let caption = format!(
-        "{}: body {number}, von Mises at y = {:.3e} (max {:.4e} {} at depth {:.3e}{merged})",
+    let length = u.length();
+    let title = format!(
+        "{}, body {number}: von Mises stress at y = {} {length}, max {} {} at depth {} {length}{merged}",
         run.scene.name(),
-        s.y,
-        body.von_mises.value,
+        elcon_num::plain_to(s.y, (x1 - x0) * 1e-3),
+        elcon_num::plain(body.von_mises.value),
         u.pressure(),
-        body.von_mises.z
+        elcon_num::plain(body.von_mises.z),
     );
-    let mut chart = titled(area, caption, 15, (45, 80))
-        .build_cartesian_2d(x0..x1, deepest..0.0)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(format!("x ({})", u.length()))
-        .y_desc(format!("depth ({})", u.length()))
-        .draw()
-        .map_err(err)?;
+    let spec = Map {
+        title,
+        x: (x0, x1),
+        y: (deepest, 0.0),
+        names: ("x", "depth"),
+        unit: length.to_string(),
+        colours: Colours {
+            label: format!("von Mises stress ({})", u.pressure()),
+            top,
+        },
+        legend: vec![("largest von Mises stress".to_string(), Key::Cross(RED))],
+    };
+    map(area, &spec, |chart| {
+        chart
+            .draw_series(section_cells(body, &spec.colours))
+            .map_err(err)?;
+        chart
+            .draw_series(std::iter::once(Cross::new(
+                (body.von_mises.x, body.von_mises.z),
+                8,
+                RED.stroke_width(3),
+            )))
+            .map_err(err)?;
+        Ok(())
+    })?;
+    Ok(())
+}
+
+/// The section's cells as drawn: a long section (or many depths) in
+/// blocks of columns and depths, at most [`MAX_DRAWN`] each way, each in
+/// the colour of its largest von Mises stress.
+fn section_cells(body: &BodyStresses, colours: &Colours) -> Vec<Rectangle<(f64, f64)>> {
+    let s = &body.section;
     let rows = s.depths.len();
     let half = |v: &[f64], i: usize| {
         let lo = if i == 0 {
@@ -109,8 +134,6 @@ where
     };
     let mut depths = vec![0.0];
     depths.extend_from_slice(&s.depths);
-    // A long section (or many depths) is drawn in blocks of columns and
-    // depths, at most MAX_DRAWN each way, each its largest stress.
     let (gx, gz) = (
         s.xs.len().div_ceil(MAX_DRAWN).max(1),
         rows.div_ceil(MAX_DRAWN).max(1),
@@ -126,29 +149,16 @@ where
                 (half(&s.xs, i0).0, depths[j0]),
                 (half(&s.xs, i1).1, depths[j1 + 1]),
             ],
-            ViridisRGB::get_color_normalized(value, 0.0, top).filled(),
+            colours.of(value).filled(),
         )
     };
-    chart
-        .draw_series(
-            (0..s.xs.len().div_ceil(gx))
-                .flat_map(|bi| (0..rows.div_ceil(gz)).map(move |bj| (bi, bj)))
-                .map(|(bi, bj)| block(bi, bj)),
-        )
-        .map_err(err)?;
-    chart
-        .draw_series(std::iter::once(Cross::new(
-            (body.von_mises.x, body.von_mises.z),
-            8,
-            RED.stroke_width(3),
-        )))
-        .map_err(err)?
-        .label("largest von Mises stress")
-        .legend(|(x, y)| Cross::new((x + 10, y), 6, RED.stroke_width(3)));
-    labels(&mut chart)
+    (0..s.xs.len().div_ceil(gx))
+        .flat_map(|bi| (0..rows.div_ceil(gz)).map(move |bj| (bi, bj)))
+        .map(|(bi, bj)| block(bi, bj))
+        .collect()
 }
 
-/// The stresses along depth below the peak pressure.
+/// The stresses along depth below the peak pressure, their legend below.
 fn depth_profile<DB: DrawingBackend>(
     run: &Run,
     area: &DrawingArea<DB, plotters::coord::Shift>,
@@ -170,30 +180,32 @@ where
         .fold(0.0f64, |a, s| a.max(s.von_mises()).max(s.tresca()));
     let (lo, hi) = padded(0.0, top);
     let deepest = p.depths[p.depths.len() - 1];
-    let mut chart = titled(
-        area,
-        format!("below the peak pressure, x = {:.3e}", p.xs[0]),
-        14,
-        (45, 70),
-    )
-    .build_cartesian_2d(lo..hi, deepest..0.0)
-    .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_desc(format!("stress ({})", u.pressure()))
-        .y_desc(format!("depth ({})", u.length()))
-        .x_labels(4)
-        .draw()
+    let legend: Entries = measures
+        .iter()
+        .enumerate()
+        .map(|(i, (name, _))| (name.to_string(), Key::Line(COLORS[i])))
+        .collect();
+    let area = legend_below(area, &legend)?;
+    let length = u.length();
+    let caption = format!(
+        "below the peak pressure, x = {} {length}",
+        elcon_num::plain_to(p.xs[0], deepest.abs() * 1e-3)
+    );
+    // A right margin for the last stress tick's label.
+    let mut chart = titled(&area, caption, 15, (50, 70))
+        .margin_right(28)
+        .build_cartesian_2d(lo..hi, deepest..0.0)
         .map_err(err)?;
-    for (i, (name, of)) in measures.iter().enumerate() {
+    let x_desc = format!("stress ({})", u.pressure());
+    let y_desc = format!("depth ({length})");
+    axes(&mut chart, (&x_desc, &y_desc), true)?;
+    for (i, (_, of)) in measures.iter().enumerate() {
         chart
             .draw_series(LineSeries::new(
                 p.depths.iter().zip(&p.stresses).map(|(z, s)| (of(s), *z)),
                 COLORS[i].stroke_width(2),
             ))
-            .map_err(err)?
-            .label(*name)
-            .legend(line_key(COLORS[i]));
+            .map_err(err)?;
     }
-    labels(&mut chart)
+    Ok(())
 }
