@@ -431,7 +431,7 @@ def test_design_over_the_crowned_roller_equals_the_clis_result_json(tmp_path):
     assert free.profile.knots.shape == free.profile.drops.shape == (40,)
     assert np.array_equal(free.profile(free.profile.knots), free.profile.drops)
     csv = tmp_path / "out" / "crowned-roller" / "profile.csv"
-    assert csv.read_text().startswith("y_mm,drop_mm\n")
+    assert csv.read_text().startswith("# y_mm,drop_mm\n")
     samples = np.loadtxt(csv, delimiter=",", skiprows=1)
     assert (samples[0, 0], samples[-1, 0]) == (-5.0, 5.0)
     assert len(samples) == 10 * 80 + 1   # ten to a station of its 18 x 80 design grid

@@ -344,7 +344,8 @@ fn crown_end(end: CrownEnd, k1: Option<f64>, end_drop: Option<f64>) -> Result<Lo
     }
 }
 
-/// profile.csv: the header `<axis>_<length>,drop_<length>` (`y_mm,drop_mm`)
+/// profile.csv: the header `# <axis>_<length>,drop_<length>` (`# y_mm,drop_mm`,
+/// a comment, so that the file reads back as a scene's profile)
 /// and one row per sample, `(position, drop)`, written row by row.
 pub(crate) fn profile_csv(
     axis: &str,
@@ -352,7 +353,7 @@ pub(crate) fn profile_csv(
     rows: &[(f64, f64)],
     w: &mut dyn io::Write,
 ) -> io::Result<()> {
-    writeln!(w, "{axis}_{length},drop_{length}")?;
+    writeln!(w, "# {axis}_{length},drop_{length}")?;
     for (s, y) in rows {
         writeln!(w, "{s},{y}")?;
     }
@@ -471,7 +472,7 @@ mod tests {
         profile_csv("y", "mm", &[(-5.0, 0.01), (0.0, 0.0)], &mut out).unwrap();
         assert_eq!(
             String::from_utf8(out).unwrap(),
-            "y_mm,drop_mm\n-5,0.01\n0,0\n"
+            "# y_mm,drop_mm\n-5,0.01\n0,0\n"
         );
     }
 }

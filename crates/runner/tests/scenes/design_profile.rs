@@ -70,7 +70,18 @@ fn the_misaligned_rollers_profile_csv_read_linearly_holds_on_a_grid_six_times_fi
     let design = r.result.design.as_ref().unwrap();
     let written = write_run(&r, &scratch("roller")).unwrap();
     let (header, rows) = read_csv(&written.join("profile.csv"));
-    assert_eq!(header, "y_mm,drop_mm");
+    assert_eq!(header, "# y_mm,drop_mm");
+    // The file reads back, as written, as a scene's measured profile.
+    let back = roller("zone = 1.6\nhalf_y = 5.0\nnx = 9\nny = 16", "10000.0").replace(
+        "surface1 = { shape = \"cylinder\", radius = 5.0 }",
+        &format!(
+            "surface1 = {{ shape = \"cylinder\", radius = 5.0 }}\nprofile = {{ file = {:?}, axis = \"y\" }}",
+            written.join("profile.csv").display().to_string()
+        ),
+    );
+    assert!(back.contains("profile = "));
+    let read = crate::common::scene(&back);
+    assert!(read.is_ok(), "{:?}", read.err());
     // Ten rows to a station of the design's grid, over the roller's length.
     let own = design.grids.last().unwrap();
     let stations = (16.0 * own.fineness).round() as usize;
