@@ -14,7 +14,7 @@ use elcon_analysis::{Geometry, Surface};
 use elcon_influence::Dimension;
 
 use crate::error::ReportError;
-use crate::plot_parts::{Colours, Entries, Key, Map, axes, legend_below, map};
+use crate::plot_parts::{Colours, Entries, Key, Map, axes, err, legend_below, map};
 use crate::result::Run;
 
 pub(crate) const SIZE: (u32, u32) = (900, 560);
@@ -26,13 +26,6 @@ pub(crate) const COLORS: [RGBColor; 6] = [
     RGBColor(255, 127, 14),
     RGBColor(23, 190, 207),
 ];
-
-/// A drawing failure of plotters, as a report's error.
-pub(crate) fn err(e: impl std::fmt::Display) -> ReportError {
-    ReportError::Draw {
-        reason: e.to_string(),
-    }
-}
 
 /// An SVG of `size` on white, drawn by `draw` on its root area.
 pub(crate) fn svg(

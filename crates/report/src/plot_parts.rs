@@ -10,7 +10,13 @@ use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 
 use crate::error::ReportError;
-use crate::plot::err;
+
+/// A drawing failure of plotters, as a report's error.
+pub(crate) fn err(e: impl std::fmt::Display) -> ReportError {
+    ReportError::Draw {
+        reason: e.to_string(),
+    }
+}
 
 /// The font of axis tick labels and colour-bar ticks, in plotters' sizes
 /// (its SVG writes size s as `font-size` s / 1.24: 16 is about 13 px).

@@ -10,8 +10,8 @@ use plotters::prelude::*;
 use elcon_analysis::subsurface::{BodyStresses, Subsurface};
 
 use crate::error::ReportError;
-use crate::plot::{COLORS, MAX_DRAWN, SIZE, err, padded, svg, titled};
-use crate::plot_parts::{Colours, Entries, Key, Map, axes, legend_below, map};
+use crate::plot::{COLORS, MAX_DRAWN, SIZE, padded, svg, titled};
+use crate::plot_parts::{Colours, Entries, Key, Map, axes, err, legend_below, map};
 use crate::result::Run;
 
 /// One stress measure of a tensor.
