@@ -499,43 +499,9 @@ impl GridFamily {
     /// when it would have fewer than [`MIN_COARSE_COUNT`] points along an
     /// axis.
     pub fn coarser(&self) -> Option<GridFamily> {
-        match *self {
-            GridFamily::Disk { spacing, radius } => {
-                let h = 2.0 * spacing;
-                // The points of a diameter, as PointSet::grid_disk counts them.
-                let m = (radius / h * (1.0 + 1e-9)).floor();
-                (2.0 * m + 1.0 >= MIN_COARSE_COUNT as f64)
-                    .then_some(GridFamily::Disk { spacing: h, radius })
-            }
-            GridFamily::Rectangle {
-                half_x,
-                half_y,
-                nx,
-                ny,
-            } => Some(GridFamily::Rectangle {
-                half_x,
-                half_y,
-                nx: half_count(nx)?,
-                ny: half_count(ny)?,
-            }),
-            GridFamily::Line { start, end, n } => Some(GridFamily::Line {
-                start,
-                end,
-                n: half_count(n)?,
-            }),
-            GridFamily::HertzLine { across, .. } | GridFamily::HertzEllipse { across, .. } => {
-                // Spacings across halved (rounded up when odd: an even
-                // `across` straddles the edge on every grid).
-                let fewer = (across.max(2) - 1).div_ceil(2) + 1;
-                let coarse = self.with_across(fewer);
-                let smallest = match coarse.laid_out().ok()? {
-                    GridFamily::Line { n, .. } => n,
-                    GridFamily::Rectangle { nx, ny, .. } => nx.min(ny),
-                    _ => return None,
-                };
-                (smallest >= MIN_COARSE_COUNT && fewer >= 3).then_some(coarse)
-            }
-        }
+        // A Hertz layout's spacings across halved (rounded up when odd: an
+        // even `across` straddles the edge on every grid).
+        self.scaled(2.0, half_count, |spans| spans.div_ceil(2))
     }
 
     /// The same zone at about `sqrt 2` times the spacing, between this
@@ -546,13 +512,31 @@ impl GridFamily {
     /// layout's `across - 1` likewise. `None` when it would have fewer
     /// than [`MIN_COARSE_COUNT`] points along an axis.
     pub fn intermediate(&self) -> Option<GridFamily> {
+        let r = std::f64::consts::SQRT_2;
         let count = |n: usize| {
-            let m = parity_nearest(n as f64 / std::f64::consts::SQRT_2, n);
+            let m = parity_nearest(n as f64 / r, n);
             (m >= MIN_COARSE_COUNT).then_some(m)
         };
+        self.scaled(r, count, |spans| {
+            parity_nearest(spans as f64 / r, spans).max(2)
+        })
+    }
+
+    /// The same zone at `ratio` times the spacing: a disk's spacing times
+    /// `ratio`, each count of a rectangle or a line by `count`, a Hertz
+    /// layout's spacings across (`across - 1`) by `spans`; `None` when it
+    /// would have fewer than [`MIN_COARSE_COUNT`] points along an axis (or
+    /// a Hertz layout fewer than 3 across, or no fewer than its own).
+    fn scaled(
+        &self,
+        ratio: f64,
+        count: impl Fn(usize) -> Option<usize>,
+        spans: impl Fn(usize) -> usize,
+    ) -> Option<GridFamily> {
         match *self {
             GridFamily::Disk { spacing, radius } => {
-                let h = std::f64::consts::SQRT_2 * spacing;
+                let h = ratio * spacing;
+                // The points of a diameter, as PointSet::grid_disk counts them.
                 let m = (radius / h * (1.0 + 1e-9)).floor();
                 (2.0 * m + 1.0 >= MIN_COARSE_COUNT as f64)
                     .then_some(GridFamily::Disk { spacing: h, radius })
@@ -574,15 +558,15 @@ impl GridFamily {
                 n: count(n)?,
             }),
             GridFamily::HertzLine { across, .. } | GridFamily::HertzEllipse { across, .. } => {
-                let spans = across.max(2) - 1;
-                let fewer = parity_nearest(spans as f64 / std::f64::consts::SQRT_2, spans).max(2);
+                let own = across.max(2) - 1;
+                let fewer = spans(own);
                 let grid = self.with_across(fewer + 1);
                 let smallest = match grid.laid_out().ok()? {
                     GridFamily::Line { n, .. } => n,
                     GridFamily::Rectangle { nx, ny, .. } => nx.min(ny),
                     _ => return None,
                 };
-                (smallest >= MIN_COARSE_COUNT && fewer + 1 >= 3 && fewer < spans).then_some(grid)
+                (smallest >= MIN_COARSE_COUNT && fewer >= 2 && fewer < own).then_some(grid)
             }
         }
     }
