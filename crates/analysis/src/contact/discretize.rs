@@ -142,40 +142,35 @@ struct Sequence {
     between: Vec<(GridRun, Option<ContactSolution>)>,
 }
 
+/// Up to `levels` grids from `family`, each made from the last by `step`
+/// (its level from 1), and why the walk stopped short, if it did.
+fn walk(
+    family: &GridFamily,
+    levels: usize,
+    step: impl Fn(&GridFamily, usize) -> Result<(GridFamily, PointSet), Stop>,
+) -> (Vec<(GridFamily, PointSet)>, Option<Stop>) {
+    let mut grids: Vec<(GridFamily, PointSet)> = Vec::new();
+    for level in 1..=levels {
+        let current = grids.last().map_or(*family, |(grid, _)| *grid);
+        match step(&current, level) {
+            Ok(next) => grids.push(next),
+            Err(why) => return (grids, Some(why)),
+        }
+    }
+    (grids, None)
+}
+
 impl Solver<'_, '_> {
     /// The run's own grid `own` of `family` with the others: 2h and 4h
     /// while they resolve the contact, finer grids in place of those that
     /// do not (see the module documentation).
     fn sequence(&self, family: &GridFamily, own: GridRun) -> Sequence {
-        let mut coarse = Vec::new();
-        let mut stop = None;
-        let mut current = *family;
-        for level in 1..=OTHER_GRIDS {
-            match self.coarse(&current, level) {
-                Ok((grid, points)) => {
-                    coarse.push((grid, points));
-                    current = grid;
-                }
-                Err(why) => {
-                    stop = Some(why);
-                    break;
-                }
-            }
-        }
-        let mut finer = Vec::new();
-        let mut current = *family;
-        for level in 1..=OTHER_GRIDS - coarse.len() {
-            match self.finer(&current, level) {
-                Ok((grid, points)) => {
-                    finer.push((grid, points));
-                    current = grid;
-                }
-                Err(why) => {
-                    stop = Some(why);
-                    break;
-                }
-            }
-        }
+        let (coarse, coarse_stop) =
+            walk(family, OTHER_GRIDS, |grid, level| self.coarse(grid, level));
+        let (finer, finer_stop) = walk(family, OTHER_GRIDS - coarse.len(), |grid, level| {
+            self.finer(grid, level)
+        });
+        let mut stop = finer_stop.or(coarse_stop);
         if finer.len() + coarse.len() == OTHER_GRIDS {
             stop = None;
         }
