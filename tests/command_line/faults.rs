@@ -52,6 +52,13 @@ fn small_scene(dir: &Path, file: &str, name: &str, edits: &[(&str, &str)]) -> Pa
     path
 }
 
+/// examples/scenes/`example`.toml with `edits` applied, as `dir/<file>`.
+fn example_in(dir: &Path, file: &str, example: &str, edits: &[(&str, &str)]) -> PathBuf {
+    let path = dir.join(file);
+    std::fs::write(&path, edited(&example_scene(example), edits)).unwrap();
+    path
+}
+
 /// Asserts that the rows of the batch table `results` (a results.json)
 /// have the statuses `expected`, in order: `ok`, or a failure's status
 /// that says the words given.
@@ -794,21 +801,18 @@ fn an_interrupt_ends_a_long_solve_at_once_and_writes_nothing_half() {
     let out = dir.join("out");
     // Example 1 unfolded at 71 across by Lemke's method: 5089 points, about
     // 10 s of pivots on the reference machine.
-    let slow = dir.join("slow.toml");
-    std::fs::write(
-        &slow,
-        edited(
-            &example_scene("example1-spheres"),
-            &[
-                ("across = 41", "across = 71"),
-                (
-                    "method = \"block-pivoting\"",
-                    "method = \"lemke\"\nsymmetry = \"none\"",
-                ),
-            ],
-        ),
-    )
-    .unwrap();
+    let slow = example_in(
+        &dir,
+        "slow.toml",
+        "example1-spheres",
+        &[
+            ("across = 41", "across = 71"),
+            (
+                "method = \"block-pivoting\"",
+                "method = \"lemke\"\nsymmetry = \"none\"",
+            ),
+        ],
+    );
     for signal in ["INT", "TERM"] {
         let child = spawn(&["run", s(&slow), "--out", s(&out)], &[]);
         // Well into the pivots (the assembly takes a fraction of a second).
@@ -851,8 +855,10 @@ fn a_thread_count_beyond_the_cores_is_refused() {
 /// `dir/crown.csv`: two loads, `dir/crown.toml`.
 fn crown_sweep(dir: &Path, drop_scale: f64) -> PathBuf {
     write_crown(dir, drop_scale);
-    let scene = edited(
-        &example_scene("measured-crown"),
+    example_in(
+        dir,
+        "base.toml",
+        "measured-crown",
         &[
             ("file = \"data/measured-crown.csv\"", "file = \"crown.csv\""),
             ("nx = 9", "nx = 5"),
@@ -860,7 +866,6 @@ fn crown_sweep(dir: &Path, drop_scale: f64) -> PathBuf {
             ("plots = [\"pressure\"]", "plots = []"),
         ],
     );
-    std::fs::write(dir.join("base.toml"), scene).unwrap();
     let path = dir.join("crown.toml");
     std::fs::write(
         &path,
@@ -972,18 +977,15 @@ fn an_edited_data_file_or_result_runs_again_and_merge_refuses_shards_across_the_
 #[test]
 fn sigterm_at_any_moment_of_a_run_ends_it_whole_or_interrupted() {
     let dir = scratch("term-sweep");
-    let scene = dir.join("spheres.toml");
-    std::fs::write(
-        &scene,
-        edited(
-            &example_scene("example1-spheres"),
-            &[
-                ("across = 41", "across = 161"),
-                ("plots = [\"pressure\"]", "plots = []\nsubsurface = true"),
-            ],
-        ),
-    )
-    .unwrap();
+    let scene = example_in(
+        &dir,
+        "spheres.toml",
+        "example1-spheres",
+        &[
+            ("across = 41", "across = 161"),
+            ("plots = [\"pressure\"]", "plots = []\nsubsurface = true"),
+        ],
+    );
     let mut interrupted = 0;
     for (k, delay) in [100u64, 400, 700, 1000, 1300].into_iter().enumerate() {
         let out = dir.join(format!("out-{k}"));

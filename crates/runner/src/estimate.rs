@@ -676,13 +676,6 @@ mod tests {
             e.summary()
         );
     }
-}
-
-#[cfg(test)]
-mod data_tests {
-    use std::path::Path;
-
-    use super::*;
 
     #[test]
     fn data_files_count_twice_their_bytes() {
