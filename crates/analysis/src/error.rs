@@ -81,6 +81,39 @@ pub enum AnalysisError {
         /// What is wrong, and where (the row, the point).
         reason: String,
     },
+    /// A system of contacts that is not valid: `field` names the body or
+    /// zone (its index and name) and what of it.
+    #[error("`{field}`: {reason}")]
+    System {
+        /// The body or zone, and its field.
+        field: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A body of a system whose motion no contact zone can restrain: it
+    /// would move without bound under any load.
+    #[error(
+        "body `{body}`: its {motion} is restrained by no contact zone's candidate points; \
+         fix or prescribe it, or add a zone that holds it"
+    )]
+    Unrestrained {
+        /// The body's name.
+        body: String,
+        /// The motion (or the largest part of a combination) left free.
+        motion: &'static str,
+    },
+    /// The Newton steps of a system's solve stopped short of equilibrium.
+    #[error(
+        "the system's bodies did not reach equilibrium after {iterations} steps (residual {}); \
+         check that the loads can be carried by the zones' candidate points",
+        Num(*residual)
+    )]
+    SystemNotConverged {
+        /// The steps taken.
+        iterations: usize,
+        /// The largest relative equilibrium residual reached.
+        residual: f64,
+    },
     /// The influence models rejected the bodies or the points.
     #[error(transparent)]
     Influence(#[from] InfluenceError),

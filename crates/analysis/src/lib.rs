@@ -66,6 +66,7 @@ pub mod rigid;
 pub mod rotation;
 mod storage;
 pub mod subsurface;
+pub mod system;
 pub mod zone;
 
 pub use contact::{

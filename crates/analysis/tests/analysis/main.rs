@@ -11,3 +11,4 @@ mod properties;
 mod references;
 mod stability;
 mod subsurface;
+mod system;
