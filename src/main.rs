@@ -27,6 +27,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Mutex;
 
+mod bearing;
+
 use clap::{Parser, Subcommand};
 use elcon_lcp::Cancel;
 use elcon_num::thousands;
@@ -39,7 +41,8 @@ use elcon_runner::{
     BatchOptions, Progress, RunError, Shard, batch_dir, check_batch, merge, prepare, run, run_batch,
 };
 use elcon_scene::{
-    Batch, BatchRun, Scene, SceneError, confine_data_files, is_batch_text, read_text,
+    Batch, BatchRun, Scene, SceneError, confine_data_files, is_batch_text, is_bearing_text,
+    read_text,
 };
 
 #[derive(Parser)]
@@ -367,7 +370,21 @@ fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
 }
 
 fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling, cancel: &Cancel) -> Outcome {
-    let (scenes, mut ok) = validated(paths, out);
+    // Bearing scenes (a [bearing] table) run on their own path, first.
+    let (bearings, paths): (Vec<PathBuf>, Vec<PathBuf>) = paths
+        .iter()
+        .cloned()
+        .partition(|p| read_text(p).is_ok_and(|t| is_bearing_text(&t)));
+    let mut ok = true;
+    for path in &bearings {
+        match bearing::run_file(path, out, ceiling, cancel) {
+            Ok(()) => {}
+            Err(true) => return Outcome::Interrupted,
+            Err(false) => ok = false,
+        }
+    }
+    let (scenes, valid) = validated(&paths, out);
+    ok &= valid;
     let mut header_printed = false;
     for scene in scenes {
         let name = scene.name().to_string();
@@ -520,6 +537,10 @@ fn check(files: &[PathBuf], ceiling: &Ceiling, every_run: bool, cancel: &Cancel)
                 continue;
             }
         };
+        if is_bearing_text(&text) {
+            ok &= bearing::check_text(path, &text, ceiling);
+            continue;
+        }
         if is_batch_text(&text) {
             let checked = isolated::<_, RunError>(&path.display().to_string(), || {
                 Ok(check_batch_file(path, &text, ceiling, every_run, cancel))

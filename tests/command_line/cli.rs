@@ -641,3 +641,65 @@ fn confine_refuses_data_files_outside_its_directory() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_radial_ball_bearing_runs_checks_and_refuses_bad_data() {
+    let out = scratch("bearing");
+    let scene = "examples/scenes/ball-bearing-radial.toml";
+    let o = elcon(&["run", scene, "--out", &out.display().to_string()]);
+    exited(&o, 0, &["3 loaded", "Hertz springs", "L10", "holds"]);
+    let dir = out.join("ball-bearing-radial");
+    let r = json(&dir.join("result.json"));
+    let elements = r["elements"].as_array().expect("a row per ball");
+    assert_eq!(elements.len(), 9);
+    for field in ["angle", "load", "max_pressure_inner", "max_pressure_outer"] {
+        assert!(elements[0][field].is_f64(), "{field}");
+    }
+    // Ball 0 at the load's direction carries the most; the ring moves
+    // along the load only.
+    assert_eq!(elements[0]["angle"], 0.0);
+    let ring = &r["ring_displacement"];
+    assert!(ring["x"].as_f64().unwrap() > 0.0 && ring["y"].as_f64().unwrap().abs() < 1e-12);
+    assert_eq!(r["loaded"], 3);
+    assert_eq!(r["certificate"]["holds"], true);
+    // Within the 21-across grid's error of the Hertz springs.
+    let d = r["springs"]["max_load_difference"].as_f64().unwrap();
+    assert!(d.abs() < 3e-3, "{d}");
+    assert!(r["life"]["l10"].as_f64().unwrap() > 0.0);
+    for file in [
+        "elements.csv",
+        "load_distribution.svg",
+        "pressure_inner.svg",
+    ] {
+        assert!(dir.join(file).is_file(), "{file}");
+    }
+    let csv = std::fs::read_to_string(dir.join("elements.csv")).unwrap();
+    assert!(
+        csv.starts_with("# angle_deg,load_N,max_pressure_inner_MPa"),
+        "{csv}"
+    );
+    // check: valid, with its zones and memory; too big for 1 MiB.
+    exited(&elcon(&["check", scene]), 0, &["valid", "18 contact zones"]);
+    exited(
+        &elcon(&["check", scene, "--memory-limit", "1M"]),
+        1,
+        &["too big", "points.across"],
+    );
+    // A bad value names its key, line and column.
+    let bad = out.join("no-balls.toml");
+    std::fs::write(
+        &bad,
+        edited(
+            &example_scene("ball-bearing-radial"),
+            &[("balls = 9", "balls = 40")],
+        ),
+    )
+    .unwrap();
+    let bad = bad.display().to_string();
+    exited(&elcon(&["check", &bad]), 1, &["bearing.balls", ":37:"]);
+    exited(
+        &elcon(&["run", &bad, "--out", &out.display().to_string()]),
+        1,
+        &["bearing.balls"],
+    );
+}

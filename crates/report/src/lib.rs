@@ -12,6 +12,7 @@
 //!
 //! docs/results.md documents every field.
 
+mod bearing;
 mod design;
 mod discretization;
 mod error;
@@ -26,6 +27,10 @@ mod solve;
 mod subsurface;
 mod tables;
 
+pub use bearing::{
+    BearingGridJson, BearingResult, BearingRun, BearingSeconds, ElementJson, LifeJson, SpringsJson,
+    SystemCertificateJson, Xyz, write_bearing_files,
+};
 pub use design::{
     DesignCaseJson, DesignGridJson, DesignJson, DesignOf, DesignRun, FoundBy, RelativeTo,
 };

@@ -588,9 +588,37 @@ fn principal_axes(
 /// and the pressure along the row and the column through the centre of
 /// pressure.
 pub(crate) fn pressure_map(run: &Run) -> Result<String, ReportError> {
-    let points = run.problem.points();
-    let p = &run.solution.pressures;
     let u = run.scene.units();
+    pressure_map_of(&MapOf {
+        name: run.scene.name(),
+        points: run.problem.points(),
+        pressures: &run.solution.pressures,
+        centre: run.solution.load_centre,
+        length: u.length(),
+        intensity: u.intensity(),
+    })
+}
+
+/// What a pressure map draws: a contact's points and pressures, its centre
+/// of pressure, and the names and units it is labelled with.
+pub(crate) struct MapOf<'a> {
+    /// The name in the title (the scene's, or a zone's).
+    pub(crate) name: &'a str,
+    /// The candidate points.
+    pub(crate) points: &'a elcon_influence::PointSet,
+    /// The pressure at each point.
+    pub(crate) pressures: &'a [f64],
+    /// The centre of pressure, where the sections cross.
+    pub(crate) centre: (f64, f64),
+    /// The length unit.
+    pub(crate) length: &'a str,
+    /// The pressure unit.
+    pub(crate) intensity: &'a str,
+}
+
+/// The pressure map of [`pressure_map`] for any contact.
+pub(crate) fn pressure_map_of(of: &MapOf<'_>) -> Result<String, ReportError> {
+    let (points, p) = (of.points, of.pressures);
     let top = p
         .iter()
         .fold(0.0f64, |a, v| a.max(*v))
@@ -608,11 +636,11 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, ReportError> {
     );
     let blocks = Blocks::of(points, p);
     let title = if blocks.side == 1 {
-        format!("{}: pressure map", run.scene.name())
+        format!("{}: pressure map", of.name)
     } else {
         format!(
             "{}: pressure map ({} x {} blocks of {s} x {s} cells, each its largest)",
-            run.scene.name(),
+            of.name,
             blocks.columns,
             blocks.rows,
             s = blocks.side
@@ -635,9 +663,9 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, ReportError> {
         x: xs,
         y: ys,
         names: ("x", "y"),
-        unit: u.length().to_string(),
+        unit: of.length.to_string(),
         colours: Colours {
-            label: format!("pressure ({})", u.intensity()),
+            label: format!("pressure ({})", of.intensity),
             top,
         },
         legend,
@@ -660,8 +688,8 @@ pub(crate) fn pressure_map(run: &Run) -> Result<String, ReportError> {
                 .map_err(err)?;
             Ok(())
         })?;
-        let axes = principal_axes(points, p, run.solution.load_centre);
-        sections(&lower, axes, (xs, ys), top, (u.length(), u.intensity()))
+        let axes = principal_axes(points, p, of.centre);
+        sections(&lower, axes, (xs, ys), top, (of.length, of.intensity))
     })
 }
 

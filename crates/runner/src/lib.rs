@@ -10,6 +10,8 @@
 //!   the scene's method, certified; estimate the discretization error on
 //!   coarser grids; compare with the closed form that applies; the stresses
 //!   below the surface; the design stage;
+//! - [`run_bearing`]: a bearing scene built into a system of contacts and
+//!   solved, with its Hertz-spring reference and rating life;
 //! - [`run_batch`]: a batch's runs in parallel, each isolated and admitted
 //!   against the memory ceiling, written whole and journaled so a killed
 //!   batch resumes; shards of a sweep ([`Shard`]) and [`merge`], which joins
@@ -18,6 +20,7 @@
 //! The command line and the Python package both call it.
 
 mod batch_run;
+mod bearing;
 mod compare;
 mod design_keys;
 mod design_load;
@@ -33,6 +36,7 @@ mod shard;
 mod subsurface;
 
 pub use batch_run::{BatchDone, BatchOptions, Progress, batch_dir, run_batch};
+pub use bearing::{BearingEstimate, run_bearing};
 pub use design_keys::{DesignCaller, design_reason};
 pub use error::RunError;
 pub use estimate::{BASELINE, DesignEstimate, Estimate, TimeClass, TimeFigure};

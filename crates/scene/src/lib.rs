@@ -14,6 +14,7 @@
 //! and the behaviour under faults and limits in docs/reliability.md.
 
 mod batch;
+mod bearing;
 mod ctx;
 mod error;
 mod inputs;
@@ -22,6 +23,7 @@ mod scene;
 mod schema;
 
 pub use batch::{Batch, BatchRun, is_batch_text};
+pub use bearing::{BearingKind, BearingScene, is_bearing_text};
 pub use ctx::{MAX_INPUT_BYTES, read_text};
 pub use error::{Location, SceneError};
 pub use inputs::{DataInput, confine_data_files, file_sha256, sha256_hex};

@@ -29,7 +29,7 @@
 
 use std::time::Instant;
 
-use elcon_lcp::{Method, Options, Par};
+use elcon_lcp::{Cancel, LcpError, Method, Options, Par};
 use faer::{Mat, Side};
 use rayon::prelude::*;
 
@@ -148,7 +148,9 @@ impl System {
     /// # Errors
     /// [`AnalysisError::SystemNotConverged`] when the Newton steps stop
     /// short of equilibrium (with the residual reached), and the zones'
-    /// own errors ([`AnalysisError::Engine`]...).
+    /// own errors ([`AnalysisError::Engine`]...), among them an interrupt:
+    /// the calling thread's watched token (`elcon_lcp::Cancel::watch`) is
+    /// polled between steps and by every zone's solve.
     pub fn solve(&self, settings: &SystemSettings) -> Result<SystemSolution, AnalysisError> {
         let start = Instant::now();
         let d = self.free.len();
@@ -174,6 +176,9 @@ impl System {
                     iterations,
                     residual: state.equilibrium(),
                 });
+            }
+            if Cancel::requested() {
+                return Err(AnalysisError::Engine(LcpError::Cancelled));
             }
             iterations += 1;
             let hessian = self.stiffness(&state, settings)?;
@@ -204,17 +209,26 @@ impl System {
             options.parallelism = Some(Par::Seq);
         }
         let modes: Vec<[f64; 3]> = self.maps.iter().map(|m| m.modes(&lambda)).collect();
+        // The pool's threads watch the caller's token (an interrupt stops
+        // every zone's solve).
+        let token = Cancel::watched();
         let zones = (0..self.zones.len())
             .into_par_iter()
             .map(|z| {
-                let problem = &self.zones[z].problem;
-                let [alpha, tx, ty] = modes[z];
-                let loaded = problem
-                    .with_loading(Loading::approach(alpha).with_tilt_x(tx).with_tilt_y(ty))?;
-                let method = settings.method.unwrap_or_else(|| problem.default_method());
-                match previous {
-                    Some(p) => loaded.solve_from(&p[z], method, &options),
-                    None => loaded.solve(method, &options),
+                let solve = || {
+                    let problem = &self.zones[z].problem;
+                    let [alpha, tx, ty] = modes[z];
+                    let loaded = problem
+                        .with_loading(Loading::approach(alpha).with_tilt_x(tx).with_tilt_y(ty))?;
+                    let method = settings.method.unwrap_or_else(|| problem.default_method());
+                    match previous {
+                        Some(p) => loaded.solve_from(&p[z], method, &options),
+                        None => loaded.solve(method, &options),
+                    }
+                };
+                match &token {
+                    Some(t) => t.watch(solve),
+                    None => solve(),
                 }
             })
             .collect::<Result<Vec<_>, _>>()?;

@@ -47,6 +47,14 @@ pub use points::PointsSpec;
 use points::build_points;
 pub use units::Units;
 
+/// The units of a `[units]` table (a bearing scene's: no beam).
+pub(crate) fn units_of(
+    ctx: &crate::ctx::Ctx<'_>,
+    u: &crate::schema::UnitsToml,
+) -> Result<Units, SceneError> {
+    units::units(ctx, u, false)
+}
+
 use crate::ctx::{Ctx, parse};
 use crate::error::SceneError;
 use crate::inputs::DataInput;

@@ -1,0 +1,442 @@
+//! A bearing run's outputs: result.json (the balls' loads and peak
+//! pressures, the ring's displacement, the load zone, the rating life, the
+//! Hertz-spring model beside them, the certificate over every zone and
+//! body), elements.csv (a row per ball), and two plots: the load around
+//! the bearing (each ball's load drawn outward from the pitch circle, at
+//! equal scales) and the most loaded ball's inner contact pressure map.
+//! docs/results.md documents every field.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use elcon_elements::bearing::{BallBearing, BearingSolution};
+use elcon_elements::life::RatingLife;
+use elcon_elements::springs::SpringLoads;
+use elcon_process::{faults, write_atomic, write_atomic_with};
+use elcon_scene::{BearingScene, Units};
+
+use crate::error::ReportError;
+use crate::plot::{COLORS, MapOf, SIZE, padded, pressure_map_of, svg};
+use crate::plot_parts::{Colours, Key, Map, err, map};
+use crate::result::InputsJson;
+
+/// One ball's row of result.json's `elements`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ElementJson {
+    /// The ball's angle from the load's direction (degrees).
+    pub angle: f64,
+    /// Its load Q (force).
+    pub load: f64,
+    /// Its inner contact's largest pressure.
+    pub max_pressure_inner: f64,
+    /// Its outer contact's largest pressure.
+    pub max_pressure_outer: f64,
+    /// Its radial motion (length, outward).
+    pub displacement: f64,
+}
+
+/// A displacement in the bearing's axes (length).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Xyz {
+    /// Along the load (x).
+    pub x: f64,
+    /// Across it in the bearing's plane (y).
+    pub y: f64,
+    /// Along the bearing's axis (z).
+    pub z: f64,
+}
+
+/// The rating life in result.json.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LifeJson {
+    /// The bearing's basic rating life L10 (millions of revolutions).
+    pub l10: f64,
+    /// The inner raceway's life (millions of revolutions).
+    pub inner_life: f64,
+    /// The outer raceway's life (millions of revolutions).
+    pub outer_life: f64,
+    /// The inner raceway's capacity Q_ci (N).
+    pub inner_capacity: f64,
+    /// The outer raceway's capacity Q_co (N).
+    pub outer_capacity: f64,
+    /// The method and where it is written.
+    pub method: String,
+}
+
+/// The Hertz-spring model beside the system's answer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SpringsJson {
+    /// What it is.
+    pub model: String,
+    /// The ring's displacement along the load (length).
+    pub ring_displacement: f64,
+    /// The most loaded ball's load (force).
+    pub max_load: f64,
+    /// The balls that carry load.
+    pub loaded: usize,
+    /// `system / springs - 1` for the most loaded ball's load.
+    pub max_load_difference: f64,
+}
+
+/// The certificate over every zone and body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SystemCertificateJson {
+    /// The largest body equilibrium residual, relative.
+    pub equilibrium: f64,
+    /// The worst zone's worst residual, relative.
+    pub zones: f64,
+    /// That zone's name.
+    pub worst_zone: String,
+    /// Whether every part holds.
+    pub holds: bool,
+}
+
+/// The grid of every contact.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BearingGridJson {
+    /// Points over each axis of the Hertz ellipse of `5 F_r / Z`.
+    pub across: usize,
+    /// How far the grid reaches in those semi-axes.
+    pub zone: f64,
+    /// Candidate points per contact.
+    pub points: usize,
+    /// Contact zones (two per ball).
+    pub zones: usize,
+}
+
+/// The seconds of a bearing run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BearingSeconds {
+    /// Building the system (the two zone templates' S).
+    pub assembly: f64,
+    /// The system's solve.
+    pub solve: f64,
+    /// Everything.
+    pub total: f64,
+}
+
+/// What a bearing run's result.json holds.
+#[serde_with::skip_serializing_none]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BearingResult {
+    /// The scene's name.
+    pub scene: String,
+    /// The scene file.
+    pub file: String,
+    /// Its description.
+    pub description: Option<String>,
+    /// Unit labels.
+    pub units: Units,
+    /// The bearing's type ("ball").
+    pub bearing: String,
+    /// The diametral clearance used (length).
+    pub diametral_clearance: f64,
+    /// The radial load (force).
+    pub radial_load: f64,
+    /// Every contact's grid.
+    pub grid: BearingGridJson,
+    /// Ball by ball, from ball 0 at the load's direction.
+    pub elements: Vec<ElementJson>,
+    /// The inner ring's displacement.
+    pub ring_displacement: Xyz,
+    /// The balls that carry load.
+    pub loaded: usize,
+    /// The load zone's half angle: the largest angle of a loaded ball
+    /// (degrees).
+    pub load_zone: f64,
+    /// The most loaded ball's inner contact: its ellipse's semi-axes
+    /// (length), when resolved.
+    pub contact_ellipse_inner: Option<[f64; 2]>,
+    /// The basic rating life (mm and N only).
+    pub life: Option<LifeJson>,
+    /// The Hertz-spring model's answer.
+    pub springs: SpringsJson,
+    /// The certificate.
+    pub certificate: SystemCertificateJson,
+    /// Newton steps on the bodies' motions.
+    pub iterations: usize,
+    /// Zone solves made.
+    pub zone_solves: usize,
+    /// Seconds.
+    pub seconds: BearingSeconds,
+    /// What the run read.
+    pub inputs: InputsJson,
+}
+
+/// A bearing run: the scene, its solution and result.json's contents.
+#[derive(Debug, Clone)]
+pub struct BearingRun {
+    /// The scene.
+    pub scene: BearingScene,
+    /// The solution.
+    pub solution: BearingSolution,
+    /// The system's zone problems' points (ball j's inner zone is 2 j).
+    pub points: Vec<elcon_influence::PointSet>,
+    /// result.json.
+    pub result: BearingResult,
+}
+
+impl BearingResult {
+    /// result.json of `scene` solved into `solution`, with the life and the
+    /// springs' answer.
+    pub fn of(
+        scene: &BearingScene,
+        solution: &BearingSolution,
+        life: Option<&RatingLife>,
+        springs: &SpringLoads,
+        seconds: BearingSeconds,
+        points: usize,
+    ) -> Self {
+        let b: &BallBearing = scene.bearing();
+        let s = &solution.system;
+        let most = &solution.elements[0];
+        let spring_max = springs.loads.iter().fold(0.0f64, |a, q| a.max(*q));
+        let system_max = solution.elements.iter().fold(0.0f64, |a, e| a.max(e.load));
+        let load_zone = solution
+            .elements
+            .iter()
+            .filter(|e| e.load > 0.0)
+            .map(|e| {
+                if e.angle > 180.0 {
+                    360.0 - e.angle
+                } else {
+                    e.angle
+                }
+            })
+            .fold(0.0f64, f64::max);
+        let worst_zone = s.certificate.worst_zone;
+        Self {
+            scene: scene.name().to_string(),
+            file: scene.file().display().to_string(),
+            description: scene.description().map(String::from),
+            units: scene.units().clone(),
+            bearing: scene.kind().name().to_string(),
+            diametral_clearance: b.clearance(),
+            radial_load: b.radial_load,
+            grid: BearingGridJson {
+                across: scene.grid().across,
+                zone: scene.grid().zone,
+                points,
+                zones: s.zones.len(),
+            },
+            elements: solution
+                .elements
+                .iter()
+                .map(|e| ElementJson {
+                    angle: e.angle,
+                    load: e.load,
+                    max_pressure_inner: e.max_pressure_inner,
+                    max_pressure_outer: e.max_pressure_outer,
+                    displacement: e.displacement,
+                })
+                .collect(),
+            ring_displacement: Xyz {
+                x: solution.ring_displacement[0],
+                y: solution.ring_displacement[1],
+                z: solution.ring_displacement[2],
+            },
+            loaded: solution.loaded,
+            load_zone,
+            contact_ellipse_inner: s.zones[0]
+                .contact_ellipse
+                .as_ref()
+                .filter(|_| most.load > 0.0)
+                .map(|e| [e.semi_major, e.semi_minor]),
+            life: life.map(|l| LifeJson {
+                l10: l.l10,
+                inner_life: l.inner_life,
+                outer_life: l.outer_life,
+                inner_capacity: l.inner_capacity,
+                outer_capacity: l.outer_capacity,
+                method: "Lundberg-Palmgren raceway capacities (ISO 281's basis, as ISO/TS 16281 \
+                         applies them to element loads), without the life modification factor"
+                    .into(),
+            }),
+            springs: SpringsJson {
+                model: "discrete Hertz springs (Harris & Kotzalas, ch. 7)".into(),
+                ring_displacement: springs.ring_displacement,
+                max_load: spring_max,
+                loaded: springs.loaded(),
+                max_load_difference: system_max / spring_max - 1.0,
+            },
+            certificate: SystemCertificateJson {
+                equilibrium: s.certificate.equilibrium,
+                zones: s.certificate.zones,
+                worst_zone: format!("zone {worst_zone}"),
+                holds: s.certificate.holds(),
+            },
+            iterations: s.iterations,
+            zone_solves: s.zone_solves,
+            seconds,
+            inputs: InputsJson {
+                elcon: env!("CARGO_PKG_VERSION").to_string(),
+                files: Vec::new(),
+            },
+        }
+    }
+}
+
+/// Writes a bearing run's files into `dir`: result.json, elements.csv and,
+/// unless switched off, load_distribution.svg and pressure_inner.svg.
+///
+/// # Errors
+/// [`ReportError`] for a file that could not be written.
+pub fn write_bearing_files(run: &BearingRun, dir: &Path) -> Result<(), ReportError> {
+    let json = serde_json::to_string_pretty(&run.result).map_err(|e| ReportError::Json {
+        path: dir.join("result.json"),
+        reason: e.to_string(),
+    })?;
+    write_atomic(&dir.join("result.json"), json.as_bytes())?;
+    faults::write_delay();
+    write_atomic_with(&dir.join("elements.csv"), |w| elements_csv(run, w))?;
+    faults::write_delay();
+    if !run.scene.plots() {
+        return Ok(());
+    }
+    let u = run.scene.units();
+    let most = (0..run.solution.elements.len())
+        .max_by(|&a, &b| {
+            let e = &run.solution.elements;
+            e[a].load.total_cmp(&e[b].load)
+        })
+        .unwrap_or(0);
+    let zone = &run.solution.system.zones[2 * most];
+    let name = format!("{}: ball {most} inner contact", run.scene.name());
+    for (file, svg) in [
+        ("load_distribution.svg", load_distribution(run)),
+        (
+            "pressure_inner.svg",
+            pressure_map_of(&MapOf {
+                name: &name,
+                points: &run.points[2 * most],
+                pressures: &zone.pressures,
+                centre: zone.load_centre,
+                length: u.length(),
+                intensity: u.pressure(),
+            }),
+        ),
+    ] {
+        let svg = svg.map_err(|e| ReportError::Plot {
+            path: dir.join(file),
+            reason: e.to_string(),
+        })?;
+        write_atomic(&dir.join(file), svg.as_bytes())?;
+        faults::write_delay();
+    }
+    Ok(())
+}
+
+/// elements.csv: a row per ball.
+fn elements_csv(run: &BearingRun, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+    let u = run.scene.units();
+    writeln!(
+        w,
+        "# angle_deg,load_{f},max_pressure_inner_{p},max_pressure_outer_{p},displacement_{l}",
+        f = u.force(),
+        p = u.pressure(),
+        l = u.length()
+    )?;
+    for e in &run.result.elements {
+        writeln!(
+            w,
+            "{},{},{},{},{}",
+            e.angle, e.load, e.max_pressure_inner, e.max_pressure_outer, e.displacement
+        )?;
+    }
+    Ok(())
+}
+
+/// The load around the bearing at equal scales: the pitch circle, each
+/// ball at its angle, a bar outward from it as long as its load (the
+/// largest a third of the pitch radius), coloured by load, and the radial
+/// load's direction.
+fn load_distribution(run: &BearingRun) -> Result<String, ReportError> {
+    let b = run.scene.bearing();
+    let u = run.scene.units();
+    let pitch = 0.5 * b.pitch_diameter();
+    let elements = &run.solution.elements;
+    let top = elements
+        .iter()
+        .fold(0.0f64, |a, e| a.max(e.load))
+        .max(f64::MIN_POSITIVE);
+    let scale = pitch / 3.0 / top;
+    let reach = padded(
+        -(pitch + pitch / 3.0 + 0.1 * pitch),
+        pitch + pitch / 3.0 + 0.1 * pitch,
+    );
+    let spec = Map {
+        title: format!(
+            "{}: ball loads (largest {} {}; bars outward from the pitch circle)",
+            run.scene.name(),
+            elcon_num::plain(top),
+            u.force()
+        ),
+        x: reach,
+        y: reach,
+        names: ("x", "y"),
+        unit: u.length().to_string(),
+        colours: Colours {
+            label: format!("ball load ({})", u.force()),
+            top,
+        },
+        legend: vec![
+            ("pitch circle".to_string(), Key::Line(RGBColor(96, 96, 96))),
+            ("radial load's direction".to_string(), Key::Line(COLORS[1])),
+        ],
+    };
+    svg((SIZE.0, SIZE.1 + 120), |root| {
+        map(root, &spec, |chart| {
+            let circle: Vec<(f64, f64)> = (0..=360)
+                .map(|d| {
+                    let a = (d as f64).to_radians();
+                    (pitch * a.cos(), pitch * a.sin())
+                })
+                .collect();
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    circle,
+                    RGBColor(96, 96, 96).stroke_width(1),
+                )))
+                .map_err(err)?;
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(0.0, 0.0), (0.6 * pitch, 0.0)],
+                    COLORS[1].stroke_width(3),
+                )))
+                .map_err(err)?;
+            for e in elements {
+                let a = e.angle.to_radians();
+                let (c, s) = (a.cos(), a.sin());
+                let outer = pitch + e.load * scale;
+                let colour = spec.colours.of(e.load);
+                chart
+                    .draw_series(std::iter::once(PathElement::new(
+                        vec![(pitch * c, pitch * s), (outer * c, outer * s)],
+                        colour.stroke_width(8),
+                    )))
+                    .map_err(err)?;
+                chart
+                    .draw_series(std::iter::once(Circle::new(
+                        (pitch * c, pitch * s),
+                        5,
+                        BLACK.filled(),
+                    )))
+                    .map_err(err)?;
+                if e.load > 0.0 {
+                    let at = outer + 0.04 * pitch;
+                    chart
+                        .draw_series(std::iter::once(Text::new(
+                            format!("{} {}", elcon_num::plain(e.load), u.force()),
+                            (at * c, at * s),
+                            ("sans-serif", crate::plot_parts::TICK_FONT),
+                        )))
+                        .map_err(err)?;
+                }
+            }
+            Ok(())
+        })?;
+        Ok(())
+    })
+}

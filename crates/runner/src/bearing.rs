@@ -1,0 +1,139 @@
+//! A bearing scene's run: its memory estimated against the ceiling, the
+//! bearing built into a system of contacts (elcon-elements) and solved,
+//! certified over every zone and body, with the Hertz-spring model beside
+//! it and the rating life from the balls' loads.
+
+use std::time::Instant;
+
+use elcon_analysis::system::SystemSettings;
+use elcon_elements::life::RatingLife;
+use elcon_elements::springs::HertzSprings;
+use elcon_process::{Ceiling, faults, human};
+use elcon_report::{BearingResult, BearingRun, BearingSeconds};
+use elcon_scene::BearingScene;
+
+use crate::error::RunError;
+
+/// The memory a bearing scene needs and what `check` prints of it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BearingEstimate {
+    /// Candidate points per contact.
+    pub points: usize,
+    /// Contact zones.
+    pub zones: usize,
+    /// The peak memory (bytes).
+    pub peak_bytes: u64,
+}
+
+impl BearingEstimate {
+    /// The estimate of `scene` on this process's threads.
+    pub fn of(scene: &BearingScene) -> Self {
+        let (points, peak_bytes) = scene.memory(rayon::current_num_threads());
+        Self {
+            points,
+            zones: 2 * scene.bearing().balls,
+            peak_bytes,
+        }
+    }
+
+    /// One line for `check`.
+    pub fn summary(&self) -> String {
+        format!(
+            "{} contact zones of {} points each, peak memory about {}",
+            self.zones,
+            self.points,
+            human(self.peak_bytes)
+        )
+    }
+
+    /// Refuses a scene over `ceiling`, saying what helps.
+    ///
+    /// # Errors
+    /// [`RunError::TooBig`] when the estimate exceeds the ceiling.
+    pub fn admit(&self, scene: &BearingScene, ceiling: &Ceiling) -> Result<(), RunError> {
+        if ceiling.admits(self.peak_bytes) {
+            return Ok(());
+        }
+        Err(RunError::TooBig {
+            scene: scene.name().to_string(),
+            needed: format!(
+                "{} (two contact templates of {} points held dense, and a zone's solve per thread)",
+                human(self.peak_bytes),
+                self.points
+            ),
+            ceiling: ceiling.to_string(),
+            hints: "fewer points across each contact (points.across), or fewer threads \
+                    (--threads), or a machine with more memory"
+                .into(),
+        })
+    }
+}
+
+/// Runs a validated bearing scene within `ceiling`.
+///
+/// # Errors
+/// [`RunError::TooBig`] over the ceiling; [`RunError::Run`] naming the
+/// scene when the system cannot be built or solved; an interrupt as
+/// [`RunError::Process`].
+pub fn run_bearing(scene: &BearingScene, ceiling: &Ceiling) -> Result<BearingRun, RunError> {
+    let start = Instant::now();
+    faults::panic_point(scene.name());
+    BearingEstimate::of(scene).admit(scene, ceiling)?;
+    let failed = |e: &dyn std::fmt::Display| RunError::Run {
+        scene: scene.name().to_string(),
+        reason: e.to_string(),
+    };
+    let interrupted = |e: &elcon_elements::ElementsError| {
+        matches!(
+            e,
+            elcon_elements::ElementsError::Analysis(elcon_analysis::AnalysisError::Engine(
+                elcon_lcp::LcpError::Cancelled
+            ))
+        )
+    };
+    let bearing = scene.bearing();
+    let system = bearing.system(&scene.grid()).map_err(|e| failed(&e))?;
+    let assembly = start.elapsed().as_secs_f64();
+    let solution = system
+        .solve(&SystemSettings::default())
+        .map_err(|e| match interrupted(&e) {
+            true => RunError::Process(elcon_process::ProcessError::Interrupted {
+                scene: scene.name().to_string(),
+            }),
+            false => failed(&e),
+        })?;
+    let solve = start.elapsed().as_secs_f64() - assembly;
+    let springs = HertzSprings::of(bearing)
+        .and_then(|s| s.solve())
+        .map_err(|e| failed(&e))?;
+    let loads: Vec<f64> = solution.elements.iter().map(|e| e.load).collect();
+    let life = match scene.rates_life() {
+        true => Some(RatingLife::of(bearing, &loads).map_err(|e| failed(&e))?),
+        false => None,
+    };
+    let points: Vec<_> = system
+        .system
+        .zones()
+        .iter()
+        .map(|z| z.problem.points().clone())
+        .collect();
+    let seconds = BearingSeconds {
+        assembly,
+        solve,
+        total: start.elapsed().as_secs_f64(),
+    };
+    let result = BearingResult::of(
+        scene,
+        &solution,
+        life.as_ref(),
+        &springs,
+        seconds,
+        points[0].len(),
+    );
+    Ok(BearingRun {
+        scene: scene.clone(),
+        solution,
+        points,
+        result,
+    })
+}

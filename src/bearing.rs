@@ -1,0 +1,140 @@
+//! The command line's bearing scenes (a `[bearing]` table): `run` solves
+//! each into `<out>/<scene>/` (written whole) and prints a line per
+//! bearing; `check` validates one and prints its memory estimate.
+
+use std::path::Path;
+
+use elcon_lcp::Cancel;
+use elcon_num::plain;
+use elcon_process::{Ceiling, Staging, interruptible, isolated};
+use elcon_report::{BearingResult, write_bearing_files};
+use elcon_runner::{BearingEstimate, RunError, run_bearing};
+use elcon_scene::BearingScene;
+
+/// Runs the bearing scene in `path` into `out`; prints its summary. Returns
+/// `Err` with whether it was interrupted.
+pub(crate) fn run_file(
+    path: &Path,
+    out: &Path,
+    ceiling: &Ceiling,
+    cancel: &Cancel,
+) -> Result<(), bool> {
+    let label = path.display().to_string();
+    let outcome = interruptible::<_, RunError>(cancel, &label, || {
+        isolated(&label, || {
+            let scene = BearingScene::from_file(path)?;
+            let run = run_bearing(&scene, ceiling)?;
+            let staging = Staging::begin(&out.join(scene.name()), &|m| eprintln!("{m}"))?;
+            write_bearing_files(&run, staging.path())?;
+            Ok((run.result, staging.commit()?))
+        })
+    });
+    match outcome {
+        Ok((r, dir)) => {
+            print_result(&r);
+            println!("{:<28} wrote {}", "", dir.display());
+            Ok(())
+        }
+        Err(e) if e.is_interrupted() => {
+            eprintln!("{e}; the scenes after it did not run");
+            Err(true)
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            Err(false)
+        }
+    }
+}
+
+/// A bearing's lines: its load distribution, peak pressure, ring
+/// displacement, life and certificate.
+fn print_result(r: &BearingResult) {
+    let u = &r.units;
+    let most = r
+        .elements
+        .iter()
+        .fold(None::<&elcon_report::ElementJson>, |a, e| match a {
+            Some(m) if m.load >= e.load => Some(m),
+            _ => Some(e),
+        });
+    let (q, p) = most.map_or((0.0, 0.0), |e| {
+        (e.load, e.max_pressure_inner.max(e.max_pressure_outer))
+    });
+    println!(
+        "{:<28} {} bearing, {} elements ({} loaded, load zone +-{} deg), {} zones of {} points",
+        r.scene,
+        r.bearing,
+        r.elements.len(),
+        r.loaded,
+        plain(r.load_zone),
+        r.grid.zones,
+        r.grid.points
+    );
+    println!(
+        "{:<28} largest element load {} {}, peak pressure {} {}; ring displacement {} {}",
+        "",
+        plain(q),
+        u.force(),
+        plain(p),
+        u.pressure(),
+        plain(r.ring_displacement.x),
+        u.length()
+    );
+    println!(
+        "{:<28} Hertz springs: largest load {} {} ({:+.2} %), ring {} {}",
+        "",
+        plain(r.springs.max_load),
+        u.force(),
+        100.0 * r.springs.max_load_difference,
+        plain(r.springs.ring_displacement),
+        u.length()
+    );
+    if let Some(l) = &r.life {
+        println!(
+            "{:<28} basic rating life L10 {} million revolutions",
+            "",
+            plain(l.l10)
+        );
+    }
+    println!(
+        "{:<28} certificate: equilibrium {:.1e}, zones {:.1e} ({}); {} Newton steps, {} zone solves, {:.2} s",
+        "",
+        r.certificate.equilibrium,
+        r.certificate.zones,
+        if r.certificate.holds {
+            "holds"
+        } else {
+            "DOES NOT HOLD"
+        },
+        r.iterations,
+        r.zone_solves,
+        r.seconds.total
+    );
+}
+
+/// `check` of a bearing scene's text: valid, and its memory within the
+/// ceiling.
+pub(crate) fn check_text(path: &Path, text: &str, ceiling: &Ceiling) -> bool {
+    let checked = BearingScene::from_str(path, text)
+        .map_err(RunError::from)
+        .and_then(|scene| {
+            let estimate = BearingEstimate::of(&scene);
+            estimate.admit(&scene, ceiling)?;
+            Ok((scene, estimate))
+        });
+    match checked {
+        Ok((scene, estimate)) => {
+            println!(
+                "{}: bearing `{}`: valid; {}",
+                path.display(),
+                scene.name(),
+                estimate.summary()
+            );
+            true
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            false
+        }
+    }
+}
