@@ -83,44 +83,50 @@ impl Default for BearingGrid {
     }
 }
 
-/// One ball's answer.
+/// One rolling element's answer.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BallLoad {
-    /// The ball's angle from the load's direction (degrees).
+pub struct ElementLoad {
+    /// The element's angle from the load's direction (degrees).
     pub angle: f64,
-    /// The ball's load Q (force): its inner contact's, equal to its
+    /// The element's load Q (force): its inner contact's, equal to its
     /// outer's at equilibrium.
     pub load: f64,
     /// The inner contact's largest pressure (pressure).
     pub max_pressure_inner: f64,
     /// The outer contact's largest pressure (pressure).
     pub max_pressure_outer: f64,
-    /// The ball's radial motion (length, outward).
+    /// The element's radial motion (length, outward).
     pub displacement: f64,
+    /// The element's tilt in the bearing's axial plane (radians, about its
+    /// rolling direction; 0 for a ball).
+    pub tilt: f64,
 }
 
-/// A ball bearing's system, ready to solve.
+/// A bearing's system, ready to solve.
 #[derive(Debug, Clone)]
 pub struct BearingSystem {
-    /// The system: bodies "inner ring", "outer ring", "ball 0" ...; zones
-    /// "ball j inner", "ball j outer".
+    /// The system: bodies "inner ring", "outer ring", "ball 0" (or
+    /// "roller 0") ...; zones "ball j inner", "ball j outer".
     pub system: System,
-    /// The balls' angles (radians).
+    /// The elements' angles (radians).
     pub angles: Vec<f64>,
-    /// The Hertz-spring model's answer as the solve's start.
+    /// A spring model's answer as the solve's start.
     pub start: Vec<f64>,
+    /// The free motions of each element (1 for a ball: radial; 2 for a
+    /// roller: radial and tilt).
+    pub element_motions: usize,
 }
 
-/// A solved ball bearing.
+/// A solved bearing.
 #[derive(Debug, Clone)]
 pub struct BearingSolution {
-    /// Ball by ball, from ball 0 at the load's direction.
-    pub elements: Vec<BallLoad>,
+    /// Element by element, from element 0 at the load's direction.
+    pub elements: Vec<ElementLoad>,
     /// The inner ring's displacement (x, y, z; length).
     pub ring_displacement: [f64; 3],
-    /// The balls that carry load.
+    /// The elements that carry load.
     pub loaded: usize,
-    /// The system's solution: every zone's contact solution (ball j's
+    /// The system's solution: every zone's contact solution (element j's
     /// inner zone is `2 j`, its outer `2 j + 1`) and the certificate.
     pub system: SystemSolution,
 }
@@ -290,53 +296,23 @@ impl BallBearing {
             )
             .collect::<Result<Vec<_>, _>>()?;
         let angles = self.angles();
-        let pitch = 0.5 * self.pitch_diameter();
-        let mut bodies = vec![
-            RigidBody::free("inner ring", [0.0; 3], &[Motion::X, Motion::Y])
-                .with_load(Motion::X, self.radial_load),
-            RigidBody::fixed("outer ring"),
-        ];
-        let mut zones = Vec::with_capacity(2 * self.balls);
-        for (j, &psi) in angles.iter().enumerate() {
-            let (s, c) = psi.sin_cos();
-            let (radial, rolling, axial) = ([c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]);
-            bodies.push(
-                RigidBody::free(
-                    format!("ball {j}"),
-                    [pitch * c, pitch * s, 0.0],
-                    &[Motion::X],
-                )
-                .with_axes(radial, rolling),
-            );
-            let ball = bodies.len() - 1;
-            let at = |r: f64| Frame {
-                origin: [r * c, r * s, 0.0],
-                e1: rolling,
-                e2: axial,
-            };
-            zones.push(SystemZone {
-                name: format!("ball {j} inner"),
-                body_a: 0,
-                body_b: ball,
-                frame: at(0.5 * self.inner_raceway_diameter),
-                problem: templates[0].clone(),
-                clearance: 0.0,
-            });
-            zones.push(SystemZone {
-                name: format!("ball {j} outer"),
-                body_a: ball,
-                body_b: 1,
-                frame: at(0.5 * self.outer_raceway_diameter),
-                problem: templates[1].clone(),
-                clearance: 0.5 * self.clearance(),
-            });
+        let system = Ring {
+            element: "ball",
+            angles: &angles,
+            pitch_radius: 0.5 * self.pitch_diameter(),
+            inner_radius: 0.5 * self.inner_raceway_diameter,
+            outer_radius: 0.5 * self.outer_raceway_diameter,
+            radial_clearance: 0.5 * self.clearance(),
+            radial_load: self.radial_load,
+            misalignment: None,
         }
-        let system = System::new(bodies, zones)?;
+        .system(&templates)?;
         let start = self.start()?;
         Ok(BearingSystem {
             system,
             angles,
             start,
+            element_motions: 1,
         })
     }
 
@@ -362,8 +338,8 @@ impl BallBearing {
 }
 
 impl BearingSystem {
-    /// Solves the bearing, starting from the Hertz-spring model's answer
-    /// unless `settings` gives a start.
+    /// Solves the bearing, starting from its spring model's answer unless
+    /// `settings` gives a start.
     ///
     /// # Errors
     /// [`ElementsError::Analysis`] when the system's solve fails;
@@ -374,25 +350,27 @@ impl BearingSystem {
             settings.initial = Some(self.start.clone());
         }
         let system = self.system.solve(&settings)?;
-        let elements: Vec<BallLoad> = self
+        let elements: Vec<ElementLoad> = self
             .angles
             .iter()
             .enumerate()
             .map(|(j, psi)| {
                 let (inner, outer) = (&system.zones[2 * j], &system.zones[2 * j + 1]);
-                BallLoad {
+                let motion = system.displacements[2 + j];
+                ElementLoad {
                     angle: psi.to_degrees(),
                     load: inner.load,
                     max_pressure_inner: inner.max_pressure,
                     max_pressure_outer: outer.max_pressure,
-                    displacement: system.displacements[2 + j][0],
+                    displacement: motion[0],
+                    tilt: motion[4],
                 }
             })
             .collect();
         let loaded = elements.iter().filter(|e| e.load > 0.0).count();
         if loaded == 0 {
             return Err(ElementsError::NoEquilibrium(
-                "no ball carries the load: the rings part".into(),
+                "no rolling element carries the load: the rings part".into(),
             ));
         }
         let ring = system.displacements[0];
@@ -402,6 +380,78 @@ impl BearingSystem {
             loaded,
             system,
         })
+    }
+}
+
+/// The rings and elements of a radial bearing as a system: the inner ring
+/// free in its plane under the radial load along x (and turned about y by
+/// a prescribed misalignment, if any), the outer ring fixed, each element
+/// free along its radius (and, with a misalignment, in its tilt about its
+/// rolling direction), two zones per element on the two templates.
+pub(crate) struct Ring<'a> {
+    /// "ball" or "roller": names the bodies and zones.
+    pub(crate) element: &'a str,
+    /// The elements' angles (radians).
+    pub(crate) angles: &'a [f64],
+    /// The pitch radius, where the elements' centres are (length).
+    pub(crate) pitch_radius: f64,
+    /// The inner raceway's radius (length).
+    pub(crate) inner_radius: f64,
+    /// The outer raceway's radius (length).
+    pub(crate) outer_radius: f64,
+    /// Half the diametral clearance, each outer zone's clearance (length).
+    pub(crate) radial_clearance: f64,
+    /// The radial load on the inner ring (force).
+    pub(crate) radial_load: f64,
+    /// The inner ring's rotation about y (radians), for elements that tilt.
+    pub(crate) misalignment: Option<f64>,
+}
+
+impl Ring<'_> {
+    /// The system on the inner and outer zone templates.
+    pub(crate) fn system(&self, templates: &[ContactProblem]) -> Result<System, ElementsError> {
+        let mut inner = RigidBody::free("inner ring", [0.0; 3], &[Motion::X, Motion::Y])
+            .with_load(Motion::X, self.radial_load);
+        let mut element_motions = vec![Motion::X];
+        if let Some(angle) = self.misalignment {
+            inner = inner.with_prescribed(Motion::RotY, angle);
+            element_motions.push(Motion::RotY);
+        }
+        let mut bodies = vec![inner, RigidBody::fixed("outer ring")];
+        let mut zones = Vec::with_capacity(2 * self.angles.len());
+        for (j, &psi) in self.angles.iter().enumerate() {
+            let (s, c) = psi.sin_cos();
+            let (radial, rolling, axial) = ([c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]);
+            let r = self.pitch_radius;
+            bodies.push(
+                RigidBody::free(
+                    format!("{} {j}", self.element),
+                    [r * c, r * s, 0.0],
+                    &element_motions,
+                )
+                .with_axes(radial, rolling),
+            );
+            let body = bodies.len() - 1;
+            let at = |r: f64| Frame {
+                origin: [r * c, r * s, 0.0],
+                e1: rolling,
+                e2: axial,
+            };
+            for (side, body_a, body_b, radius, clearance) in [
+                ("inner", 0, body, self.inner_radius, 0.0),
+                ("outer", body, 1, self.outer_radius, self.radial_clearance),
+            ] {
+                zones.push(SystemZone {
+                    name: format!("{} {j} {side}", self.element),
+                    body_a,
+                    body_b,
+                    frame: at(radius),
+                    problem: templates[if side == "inner" { 0 } else { 1 }].clone(),
+                    clearance,
+                });
+            }
+        }
+        Ok(System::new(bodies, zones)?)
     }
 }
 

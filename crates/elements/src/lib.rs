@@ -42,6 +42,7 @@
 pub mod bearing;
 mod error;
 pub mod life;
+pub mod roller;
 pub mod springs;
 
 pub use error::ElementsError;

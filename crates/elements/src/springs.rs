@@ -28,6 +28,10 @@ pub struct HertzSprings {
     pub outer: f64,
     /// The two in series, `K_n`.
     pub series: f64,
+    /// The exponent n of `Q = K delta^n`: 3/2 for Hertz's point contacts
+    /// (10/9, Palmgren's, for the line contacts of a roller bearing's
+    /// start).
+    pub exponent: f64,
     /// The balls' angles (radians).
     pub angles: Vec<f64>,
     /// The diametral clearance (length).
@@ -61,22 +65,45 @@ impl HertzSprings {
     pub fn of(bearing: &BallBearing) -> Result<Self, ElementsError> {
         bearing.validate()?;
         let [inner, outer] = bearing.hertz(1.0)?;
-        let constant = |delta: f64| 1.0 / delta.powf(1.5);
-        let (inner, outer) = (constant(inner.approach()), constant(outer.approach()));
-        let series = (inner.powf(-2.0 / 3.0) + outer.powf(-2.0 / 3.0)).powf(-1.5);
-        Ok(Self {
+        Ok(Self::of_contacts(
+            [1.0, 1.0],
+            [inner.approach(), outer.approach()],
+            1.5,
+            (bearing.angles(), bearing.clearance(), bearing.radial_load),
+        ))
+    }
+
+    /// The model whose inner and outer contacts carry `loads` at the
+    /// approaches `approaches` and go as `Q = K delta^exponent`, on
+    /// elements at `angles` with the diametral `clearance` under the
+    /// `radial_load`.
+    pub fn of_contacts(
+        loads: [f64; 2],
+        approaches: [f64; 2],
+        exponent: f64,
+        (angles, clearance, radial_load): (Vec<f64>, f64, f64),
+    ) -> Self {
+        let constant = |q: f64, delta: f64| q / delta.powf(exponent);
+        let (inner, outer) = (
+            constant(loads[0], approaches[0]),
+            constant(loads[1], approaches[1]),
+        );
+        let series = (inner.powf(-1.0 / exponent) + outer.powf(-1.0 / exponent)).powf(-exponent);
+        Self {
             inner,
             outer,
             series,
-            angles: bearing.angles(),
-            clearance: bearing.clearance(),
-            radial_load: bearing.radial_load,
-        })
+            exponent,
+            angles,
+            clearance,
+            radial_load,
+        }
     }
 
-    /// The inner contact's approach under a ball load `q`: `(q / K_i)^(2/3)`.
+    /// The inner contact's approach under an element load `q`:
+    /// `(q / K_i)^(1/n)`.
     pub fn inner_approach(&self, q: f64) -> f64 {
-        (q / self.inner).powf(2.0 / 3.0)
+        (q / self.inner).powf(1.0 / self.exponent)
     }
 
     /// The ring's load at a displacement `delta_r`, and each ball's.
@@ -87,7 +114,7 @@ impl HertzSprings {
             .map(|psi| {
                 let squeeze = delta * psi.cos() - 0.5 * self.clearance;
                 if squeeze > 0.0 {
-                    self.series * squeeze.powf(1.5)
+                    self.series * squeeze.powf(self.exponent)
                 } else {
                     0.0
                 }

@@ -227,6 +227,10 @@ pub struct System {
     /// A stiffness per free motion to scale the Newton step's damping by
     /// ([`System::reference_stiffness`]).
     reference: Vec<f64>,
+    /// Each free motion's lever, the largest root-mean-square over the
+    /// zones' points (1 for a translation along a zone's normal; an arm
+    /// for a rotation): what a force becomes in its equilibrium row.
+    levers: Vec<f64>,
 }
 
 /// A zone's modes from the bodies' motions: `m = T λ + t`.
@@ -285,9 +289,11 @@ impl System {
             free,
             maps,
             reference: Vec::new(),
+            levers: Vec::new(),
         };
         system.check_restraint()?;
         system.reference = system.reference_stiffness()?;
+        system.levers = system.lever_scales();
         Ok(system)
     }
 
@@ -377,6 +383,22 @@ impl System {
             }
         }
         Ok(reference)
+    }
+}
+
+impl System {
+    /// Each free motion's root-mean-square lever, the largest over the
+    /// zones: `sqrt((T^T L^T L T)_jj / n_z)`.
+    fn lever_scales(&self) -> Vec<f64> {
+        let mut levers = vec![0.0f64; self.free.len()];
+        for (zone, map) in self.zones.iter().zip(&self.maps) {
+            let n = zone.problem.points().len() as f64;
+            let k = map.t.transpose() * lever_gram(&zone.problem) * &map.t;
+            for (j, l) in levers.iter_mut().enumerate() {
+                *l = l.max((k[(j, j)] / n).sqrt());
+            }
+        }
+        levers
     }
 }
 

@@ -124,7 +124,10 @@ struct State {
     zones: Vec<ContactSolution>,
     /// `sum_z T_z^T R_z - b`.
     residual: Vec<f64>,
-    /// The scale of each residual's terms.
+    /// The scale of each residual's terms, floored by the system's force
+    /// (the largest load, applied or carried by a zone) times the motion's
+    /// lever: a motion whose terms are all rounding (an unloaded roller's
+    /// tilt) is measured on the system's scale, not its own.
     scale: Vec<f64>,
     /// `g(λ)`.
     value: f64,
@@ -257,6 +260,14 @@ impl System {
                 .map(|(f, e)| f * e)
                 .sum();
             energy += work - initial;
+        }
+        let force = zones
+            .iter()
+            .map(|z| z.load)
+            .chain(self.free.iter().map(|f| f.load.abs()))
+            .fold(0.0f64, f64::max);
+        for (s, lever) in scale.iter_mut().zip(&self.levers) {
+            *s = s.max(force * lever);
         }
         let value = lambda
             .iter()

@@ -165,3 +165,160 @@ fn the_life_from_the_system_and_the_refusals() {
         );
     }
 }
+
+mod rollers {
+    use super::*;
+    use elcon_elements::roller::{Crown, RollerBearing, RollerGrid, Slicing};
+
+    /// The bearing of examples/scenes/roller-bearing-misaligned.toml.
+    fn bearing(crown: Crown, misalignment: f64) -> RollerBearing {
+        RollerBearing {
+            roller_diameter: 9.0,
+            roller_length: 9.0,
+            crown,
+            inner_raceway_diameter: 57.0,
+            outer_raceway_diameter: 75.03,
+            rollers: 20,
+            diametral_clearance: None,
+            material: Material::new(210e3, 0.3).unwrap(),
+            radial_load: 8000.0,
+            misalignment,
+        }
+    }
+
+    const CROWN: Crown = Crown::Circular {
+        drop: 0.008,
+        flat: 4.5,
+    };
+
+    #[test]
+    fn the_rollers_share_the_load_and_tilt_half_the_misalignment() {
+        let b = bearing(CROWN, 1e-3);
+        let s = b
+            .system(&RollerGrid::default())
+            .unwrap()
+            .solve(&SystemSettings::default())
+            .unwrap();
+        assert!(s.system.certificate.holds(), "{:?}", s.system.certificate);
+        let total: f64 = s
+            .elements
+            .iter()
+            .map(|e| e.load * e.angle.to_radians().cos())
+            .sum();
+        assert!((total / 8000.0 - 1.0).abs() < 1e-9);
+        // Each loaded roller turns by about half the ring's misalignment
+        // where it stands (its two contacts nearly alike); the ring moves
+        // along the load only.
+        for e in s.elements.iter().filter(|e| e.load > 0.0) {
+            let ring = 1e-3 * e.angle.to_radians().cos();
+            assert!(
+                (e.tilt / ring - 0.5).abs() < 0.1,
+                "{}: {} vs {ring}",
+                e.angle,
+                e.tilt
+            );
+        }
+        assert!(s.ring_displacement[1].abs() < 1e-9 * s.ring_displacement[0]);
+        // The slicing model shares the load among as many rollers, its
+        // largest within 15 % (its Palmgren slices are stiffer than the
+        // half-space's contacts: docs/validation.md §6b).
+        let slicing = Slicing {
+            bearing: b.clone(),
+            slices: 60,
+        }
+        .solve()
+        .unwrap();
+        let loaded = slicing.loads.iter().filter(|q| **q > 0.0).count();
+        assert_eq!(loaded, s.loaded);
+        assert!((s.elements[0].load / slicing.loads[0] - 1.0).abs() < 0.15);
+        let life =
+            RatingLife::of_rollers(&b, &s.elements.iter().map(|e| e.load).collect::<Vec<_>>())
+                .unwrap();
+        assert!(life.l10 > 0.0 && life.l10 < life.inner_life);
+    }
+
+    #[test]
+    fn a_straight_misaligned_roller_peaks_at_its_end_and_a_crown_takes_the_peak_away() {
+        let grid = RollerGrid::default();
+        let solve = |crown| {
+            bearing(crown, 1e-3)
+                .system(&grid)
+                .unwrap()
+                .solve(&SystemSettings::default())
+                .unwrap()
+        };
+        let (straight, crowned) = (solve(Crown::Straight), solve(CROWN));
+        let end_ratio = |s: &elcon_elements::bearing::BearingSolution| {
+            let zone = &s.system.zones[0];
+            let n = grid.along;
+            let p = &zone.pressures;
+            let end = (0..p.len() / n)
+                .flat_map(|i| [p[i * n], p[i * n + n - 1]])
+                .fold(0.0f64, f64::max);
+            end / zone.max_pressure
+        };
+        // The straight roller's largest pressure is at its end cell, far
+        // above what its slices carry; the crown brings it inside.
+        assert_eq!(end_ratio(&straight), 1.0);
+        assert!(end_ratio(&crowned) < 0.5);
+        let slicing = Slicing {
+            bearing: bearing(Crown::Straight, 1e-3),
+            slices: grid.along,
+        }
+        .solve()
+        .unwrap();
+        assert!(straight.elements[0].max_pressure_inner > 1.3 * slicing.max_pressures[0]);
+        assert!(crowned.elements[0].max_pressure_inner < straight.elements[0].max_pressure_inner);
+    }
+
+    #[test]
+    fn bad_roller_data_is_named() {
+        for (b, field) in [
+            (
+                RollerBearing {
+                    rollers: 0,
+                    ..bearing(CROWN, 0.0)
+                },
+                "rollers",
+            ),
+            (bearing(CROWN, 0.05), "misalignment"),
+            (
+                bearing(
+                    Crown::Circular {
+                        drop: -1.0,
+                        flat: 0.0,
+                    },
+                    0.0,
+                ),
+                "crown.drop",
+            ),
+            (
+                bearing(
+                    Crown::Circular {
+                        drop: 0.01,
+                        flat: 9.0,
+                    },
+                    0.0,
+                ),
+                "crown.flat",
+            ),
+            (
+                RollerBearing {
+                    roller_length: 0.0,
+                    ..bearing(CROWN, 0.0)
+                },
+                "roller_length",
+            ),
+        ] {
+            let e = b.system(&RollerGrid::default()).unwrap_err();
+            assert!(e.to_string().contains(field), "{field}: {e}");
+        }
+        let e = bearing(CROWN, 0.0)
+            .system(&RollerGrid {
+                across: 10,
+                ..RollerGrid::default()
+            })
+            .unwrap_err();
+        assert!(e.to_string().contains("across"), "{e}");
+    }
+}
