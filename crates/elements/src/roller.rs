@@ -254,7 +254,7 @@ impl RollerBearing {
             .map(|radius| {
                 let b =
                     HertzCylinders::new(modulus, radius, design / self.roller_length)?.half_width();
-                if grid.across < 3 || grid.across % 2 == 0 {
+                if grid.across < 3 || grid.across.is_multiple_of(2) {
                     return Err(ElementsError::invalid(
                         "across",
                         grid.across as f64,

@@ -216,7 +216,7 @@ impl BearingScene {
                 let n = ctx.count(a, "points.across", 3)?;
                 ctx.ensure(
                     n,
-                    n % 2 == 1,
+                    !n.is_multiple_of(2),
                     a.span(),
                     "points.across",
                     "must be odd (the centre is a point)",
