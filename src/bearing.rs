@@ -80,15 +80,31 @@ fn print_result(r: &BearingResult) {
         plain(r.ring_displacement.x),
         u.length()
     );
+    let reference = &r.reference;
     println!(
-        "{:<28} Hertz springs: largest load {} {} ({:+.2} %), ring {} {}",
+        "{:<28} {}: largest load {} {} (elcon {:+.2} %), ring {} {}{}",
         "",
-        plain(r.springs.max_load),
+        reference.model,
+        plain(reference.max_load),
         u.force(),
-        100.0 * r.springs.max_load_difference,
-        plain(r.springs.ring_displacement),
-        u.length()
+        100.0 * reference.max_load_difference,
+        plain(reference.ring_displacement),
+        u.length(),
+        reference.max_pressure.map_or(String::new(), |p| format!(
+            ", largest slice pressure {} {}",
+            plain(p),
+            u.pressure()
+        ))
     );
+    if let Some(e) = most.filter(|e| e.end_pressure_inner.is_some_and(|p| p > 0.0)) {
+        println!(
+            "{:<28} most loaded roller's end pressure {} {} ({} % of its peak)",
+            "",
+            plain(e.end_pressure_inner.unwrap_or(0.0)),
+            u.pressure(),
+            plain(100.0 * e.end_pressure_inner.unwrap_or(0.0) / e.max_pressure_inner)
+        );
+    }
     if let Some(l) = &r.life {
         println!(
             "{:<28} basic rating life L10 {} million revolutions",

@@ -663,7 +663,7 @@ fn the_radial_ball_bearing_runs_checks_and_refuses_bad_data() {
     assert_eq!(r["loaded"], 3);
     assert_eq!(r["certificate"]["holds"], true);
     // Within the 21-across grid's error of the Hertz springs.
-    let d = r["springs"]["max_load_difference"].as_f64().unwrap();
+    let d = r["reference"]["max_load_difference"].as_f64().unwrap();
     assert!(d.abs() < 3e-3, "{d}");
     assert!(r["life"]["l10"].as_f64().unwrap() > 0.0);
     for file in [
@@ -702,4 +702,64 @@ fn the_radial_ball_bearing_runs_checks_and_refuses_bad_data() {
         1,
         &["bearing.balls"],
     );
+}
+
+#[test]
+fn the_misaligned_roller_bearing_shows_what_the_slicing_model_misses() {
+    let out = scratch("roller-bearing");
+    let scene = "examples/scenes/roller-bearing-misaligned.toml";
+    exited(
+        &elcon(&["run", scene, "--out", &out.display().to_string()]),
+        0,
+        &["7 loaded", "slicing", "end pressure", "holds"],
+    );
+    let r = json(&out.join("roller-bearing-misaligned/result.json"));
+    assert_eq!(r["bearing"], "roller");
+    assert_eq!(r["misalignment"], 0.001);
+    assert_eq!(r["grid"]["along"], 120);
+    let first = &r["elements"][0];
+    // The most loaded roller tilts (about half the ring's 1 mrad), and
+    // its crown keeps its end pressure well below its peak.
+    let tilt = first["tilt"].as_f64().unwrap();
+    assert!(tilt > 3e-4 && tilt < 7e-4, "{tilt}");
+    let end = first["end_pressure_inner"].as_f64().unwrap();
+    assert!(end > 0.0 && end < 0.5 * first["max_pressure_inner"].as_f64().unwrap());
+    assert!(r["reference"]["max_pressure"].as_f64().unwrap() > 0.0);
+    // A straight roller under the same misalignment peaks at its end,
+    // beyond the slicing model's largest slice pressure.
+    let straight = out.join("straight.toml");
+    std::fs::write(
+        &straight,
+        edited(
+            &example_scene("roller-bearing-misaligned"),
+            &[
+                (
+                    "crown = { shape = \"circular\", drop = 0.008, flat = 4.5 }",
+                    "crown = { shape = \"straight\" }",
+                ),
+                (
+                    "name = \"roller-bearing-misaligned\"",
+                    "name = \"straight\"",
+                ),
+                ("along = 120", "along = 60"),
+                ("across = 19", "across = 11"),
+            ],
+        ),
+    )
+    .unwrap();
+    exited(
+        &elcon(&[
+            "run",
+            &straight.display().to_string(),
+            "--out",
+            &out.display().to_string(),
+        ]),
+        0,
+        &[],
+    );
+    let r = json(&out.join("straight/result.json"));
+    let first = &r["elements"][0];
+    let peak = first["max_pressure_inner"].as_f64().unwrap();
+    assert_eq!(first["end_pressure_inner"].as_f64().unwrap(), peak);
+    assert!(peak > 1.3 * r["reference"]["max_pressure"].as_f64().unwrap());
 }

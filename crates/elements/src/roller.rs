@@ -371,6 +371,16 @@ fn storage(n: usize) -> Storage {
 /// The largest roller contact held dense (points).
 pub const DENSE_ROLLER_POINTS: usize = 1500;
 
+/// The largest pressure in the end cells of a roller contact of `along`
+/// cells along the roller (its points ordered by x, then y): the edge
+/// pressure.
+pub fn end_pressure(pressures: &[f64], along: usize) -> f64 {
+    pressures
+        .chunks(along.max(1))
+        .flat_map(|row| [row[0], row[row.len() - 1]])
+        .fold(0.0f64, f64::max)
+}
+
 /// The slicing model's answer.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SlicingLoads {

@@ -11,11 +11,10 @@ use std::path::Path;
 use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use elcon_elements::bearing::{BallBearing, BearingSolution};
+use elcon_elements::bearing::BearingSolution;
 use elcon_elements::life::RatingLife;
-use elcon_elements::springs::SpringLoads;
 use elcon_process::{faults, write_atomic, write_atomic_with};
-use elcon_scene::{BearingScene, Units};
+use elcon_scene::{BearingScene, BearingSpec, Units};
 
 use crate::error::ReportError;
 use crate::plot::{COLORS, MapOf, SIZE, padded, pressure_map_of, svg};
@@ -35,6 +34,12 @@ pub struct ElementJson {
     pub max_pressure_outer: f64,
     /// Its radial motion (length, outward).
     pub displacement: f64,
+    /// Its tilt about its rolling direction (radians; 0 for a ball).
+    pub tilt: f64,
+    /// A roller's largest pressure in the end cells of its inner contact:
+    /// the edge pressure a slicing model does not see.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub end_pressure_inner: Option<f64>,
 }
 
 /// A displacement in the bearing's axes (length).
@@ -65,9 +70,11 @@ pub struct LifeJson {
     pub method: String,
 }
 
-/// The Hertz-spring model beside the system's answer.
+/// The reference model beside the system's answer: the Hertz springs of a
+/// ball bearing, the slicing model of a roller bearing.
+#[serde_with::skip_serializing_none]
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SpringsJson {
+pub struct ReferenceModelJson {
     /// What it is.
     pub model: String,
     /// The ring's displacement along the load (length).
@@ -76,8 +83,24 @@ pub struct SpringsJson {
     pub max_load: f64,
     /// The balls that carry load.
     pub loaded: usize,
-    /// `system / springs - 1` for the most loaded ball's load.
+    /// `system / reference - 1` for the most loaded element's load.
     pub max_load_difference: f64,
+    /// The slicing model's largest slice pressure (Hertz's line contact on
+    /// each slice; a roller bearing's).
+    pub max_pressure: Option<f64>,
+}
+
+/// A reference model's answer as the report takes it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReferenceModel {
+    /// What it is.
+    pub model: String,
+    /// The ring's displacement (length).
+    pub ring_displacement: f64,
+    /// Each element's load (force).
+    pub loads: Vec<f64>,
+    /// Its largest pressure, where it has one.
+    pub max_pressure: Option<f64>,
 }
 
 /// The certificate over every zone and body.
@@ -96,8 +119,11 @@ pub struct SystemCertificateJson {
 /// The grid of every contact.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BearingGridJson {
-    /// Points over each axis of the Hertz ellipse of `5 F_r / Z`.
+    /// Points over each axis of the Hertz contact of `5 F_r / Z`.
     pub across: usize,
+    /// Cells along a roller (a roller bearing's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub along: Option<usize>,
     /// How far the grid reaches in those semi-axes.
     pub zone: f64,
     /// Candidate points per contact.
@@ -129,8 +155,10 @@ pub struct BearingResult {
     pub description: Option<String>,
     /// Unit labels.
     pub units: Units,
-    /// The bearing's type ("ball").
+    /// The bearing's type ("ball", "roller").
     pub bearing: String,
+    /// The inner ring's misalignment (radians; a roller bearing's).
+    pub misalignment: Option<f64>,
     /// The diametral clearance used (length).
     pub diametral_clearance: f64,
     /// The radial load (force).
@@ -151,8 +179,8 @@ pub struct BearingResult {
     pub contact_ellipse_inner: Option<[f64; 2]>,
     /// The basic rating life (mm and N only).
     pub life: Option<LifeJson>,
-    /// The Hertz-spring model's answer.
-    pub springs: SpringsJson,
+    /// The reference model's answer.
+    pub reference: ReferenceModelJson,
     /// The certificate.
     pub certificate: SystemCertificateJson,
     /// Newton steps on the bodies' motions.
@@ -185,14 +213,23 @@ impl BearingResult {
         scene: &BearingScene,
         solution: &BearingSolution,
         life: Option<&RatingLife>,
-        springs: &SpringLoads,
+        reference: &ReferenceModel,
         seconds: BearingSeconds,
         points: usize,
     ) -> Self {
-        let b: &BallBearing = scene.bearing();
+        let spec = scene.spec();
         let s = &solution.system;
         let most = &solution.elements[0];
-        let spring_max = springs.loads.iter().fold(0.0f64, |a, q| a.max(*q));
+        let spring_max = reference.loads.iter().fold(0.0f64, |a, q| a.max(*q));
+        let (across, zone, along, misalignment) = match spec {
+            BearingSpec::Ball { grid, .. } => (grid.across, grid.zone, None, None),
+            BearingSpec::Roller { grid, bearing } => (
+                grid.across,
+                grid.zone,
+                Some(grid.along),
+                Some(bearing.misalignment),
+            ),
+        };
         let system_max = solution.elements.iter().fold(0.0f64, |a, e| a.max(e.load));
         let load_zone = solution
             .elements
@@ -213,23 +250,30 @@ impl BearingResult {
             description: scene.description().map(String::from),
             units: scene.units().clone(),
             bearing: scene.kind().name().to_string(),
-            diametral_clearance: b.clearance(),
-            radial_load: b.radial_load,
+            misalignment,
+            diametral_clearance: spec.clearance(),
+            radial_load: spec.radial_load(),
             grid: BearingGridJson {
-                across: scene.grid().across,
-                zone: scene.grid().zone,
+                across,
+                along,
+                zone,
                 points,
                 zones: s.zones.len(),
             },
             elements: solution
                 .elements
                 .iter()
-                .map(|e| ElementJson {
+                .enumerate()
+                .map(|(j, e)| ElementJson {
                     angle: e.angle,
                     load: e.load,
                     max_pressure_inner: e.max_pressure_inner,
                     max_pressure_outer: e.max_pressure_outer,
                     displacement: e.displacement,
+                    tilt: e.tilt,
+                    end_pressure_inner: along.map(|n| {
+                        elcon_elements::roller::end_pressure(&s.zones[2 * j].pressures, n)
+                    }),
                 })
                 .collect(),
             ring_displacement: Xyz {
@@ -254,12 +298,13 @@ impl BearingResult {
                          applies them to element loads), without the life modification factor"
                     .into(),
             }),
-            springs: SpringsJson {
-                model: "discrete Hertz springs (Harris & Kotzalas, ch. 7)".into(),
-                ring_displacement: springs.ring_displacement,
+            reference: ReferenceModelJson {
+                model: reference.model.clone(),
+                ring_displacement: reference.ring_displacement,
                 max_load: spring_max,
-                loaded: springs.loaded(),
+                loaded: reference.loads.iter().filter(|q| **q > 0.0).count(),
                 max_load_difference: system_max / spring_max - 1.0,
+                max_pressure: reference.max_pressure,
             },
             certificate: SystemCertificateJson {
                 equilibrium: s.certificate.equilibrium,
@@ -303,7 +348,11 @@ pub fn write_bearing_files(run: &BearingRun, dir: &Path) -> Result<(), ReportErr
         })
         .unwrap_or(0);
     let zone = &run.solution.system.zones[2 * most];
-    let name = format!("{}: ball {most} inner contact", run.scene.name());
+    let name = format!(
+        "{}: {} {most} inner contact",
+        run.scene.name(),
+        run.scene.kind().name()
+    );
     for (file, svg) in [
         ("load_distribution.svg", load_distribution(run)),
         (
@@ -353,9 +402,8 @@ fn elements_csv(run: &BearingRun, w: &mut dyn std::io::Write) -> std::io::Result
 /// largest a third of the pitch radius), coloured by load, and the radial
 /// load's direction.
 fn load_distribution(run: &BearingRun) -> Result<String, ReportError> {
-    let b = run.scene.bearing();
     let u = run.scene.units();
-    let pitch = 0.5 * b.pitch_diameter();
+    let pitch = 0.5 * run.scene.spec().pitch_diameter();
     let elements = &run.solution.elements;
     let top = elements
         .iter()
@@ -368,8 +416,9 @@ fn load_distribution(run: &BearingRun) -> Result<String, ReportError> {
     );
     let spec = Map {
         title: format!(
-            "{}: ball loads (largest {} {}; bars outward from the pitch circle)",
+            "{}: {} loads (largest {} {}; bars outward from the pitch circle)",
             run.scene.name(),
+            run.scene.kind().name(),
             elcon_num::plain(top),
             u.force()
         ),
@@ -378,7 +427,7 @@ fn load_distribution(run: &BearingRun) -> Result<String, ReportError> {
         names: ("x", "y"),
         unit: u.length().to_string(),
         colours: Colours {
-            label: format!("ball load ({})", u.force()),
+            label: format!("element load ({})", u.force()),
             top,
         },
         legend: vec![

@@ -6,11 +6,14 @@
 use std::time::Instant;
 
 use elcon_analysis::system::SystemSettings;
+use elcon_elements::ElementsError;
+use elcon_elements::bearing::BearingSystem;
 use elcon_elements::life::RatingLife;
+use elcon_elements::roller::Slicing;
 use elcon_elements::springs::HertzSprings;
 use elcon_process::{Ceiling, faults, human};
-use elcon_report::{BearingResult, BearingRun, BearingSeconds};
-use elcon_scene::BearingScene;
+use elcon_report::{BearingResult, BearingRun, BearingSeconds, ReferenceModel};
+use elcon_scene::{BearingScene, BearingSpec};
 
 use crate::error::RunError;
 
@@ -31,7 +34,7 @@ impl BearingEstimate {
         let (points, peak_bytes) = scene.memory(rayon::current_num_threads());
         Self {
             points,
-            zones: 2 * scene.bearing().balls,
+            zones: 2 * scene.spec().elements(),
             peak_bytes,
         }
     }
@@ -62,8 +65,8 @@ impl BearingEstimate {
                 self.points
             ),
             ceiling: ceiling.to_string(),
-            hints: "fewer points across each contact (points.across), or fewer threads \
-                    (--threads), or a machine with more memory"
+            hints: "fewer points across each contact (points.across, points.along), or \
+                    fewer threads (--threads), or a machine with more memory"
                 .into(),
         })
     }
@@ -91,8 +94,7 @@ pub fn run_bearing(scene: &BearingScene, ceiling: &Ceiling) -> Result<BearingRun
             ))
         )
     };
-    let bearing = scene.bearing();
-    let system = bearing.system(&scene.grid()).map_err(|e| failed(&e))?;
+    let system = system_of(scene.spec()).map_err(|e| failed(&e))?;
     let assembly = start.elapsed().as_secs_f64();
     let solution = system
         .solve(&SystemSettings::default())
@@ -103,14 +105,8 @@ pub fn run_bearing(scene: &BearingScene, ceiling: &Ceiling) -> Result<BearingRun
             false => failed(&e),
         })?;
     let solve = start.elapsed().as_secs_f64() - assembly;
-    let springs = HertzSprings::of(bearing)
-        .and_then(|s| s.solve())
-        .map_err(|e| failed(&e))?;
     let loads: Vec<f64> = solution.elements.iter().map(|e| e.load).collect();
-    let life = match scene.rates_life() {
-        true => Some(RatingLife::of(bearing, &loads).map_err(|e| failed(&e))?),
-        false => None,
-    };
+    let (reference, life) = references(scene, &loads).map_err(|e| failed(&e))?;
     let points: Vec<_> = system
         .system
         .zones()
@@ -126,7 +122,7 @@ pub fn run_bearing(scene: &BearingScene, ceiling: &Ceiling) -> Result<BearingRun
         scene,
         &solution,
         life.as_ref(),
-        &springs,
+        &reference,
         seconds,
         points[0].len(),
     );
@@ -135,5 +131,53 @@ pub fn run_bearing(scene: &BearingScene, ceiling: &Ceiling) -> Result<BearingRun
         solution,
         points,
         result,
+    })
+}
+
+/// The bearing's system of contacts.
+fn system_of(spec: &BearingSpec) -> Result<BearingSystem, ElementsError> {
+    match spec {
+        BearingSpec::Ball { bearing, grid } => bearing.system(grid),
+        BearingSpec::Roller { bearing, grid } => bearing.system(grid),
+    }
+}
+
+/// The reference model beside the system (the Hertz springs of a ball
+/// bearing, the slicing model of a roller bearing: mm and N only) and the
+/// rating life from the elements' `loads` (mm and N only).
+fn references(
+    scene: &BearingScene,
+    loads: &[f64],
+) -> Result<(ReferenceModel, Option<RatingLife>), ElementsError> {
+    let rated = scene.rates_life();
+    Ok(match scene.spec() {
+        BearingSpec::Ball { bearing, .. } => {
+            let springs = HertzSprings::of(bearing)?.solve()?;
+            let reference = ReferenceModel {
+                model: "discrete Hertz springs (Harris & Kotzalas, ch. 7)".into(),
+                ring_displacement: springs.ring_displacement,
+                loads: springs.loads,
+                max_pressure: None,
+            };
+            let life = rated.then(|| RatingLife::of(bearing, loads)).transpose()?;
+            (reference, life)
+        }
+        BearingSpec::Roller { bearing, grid } => {
+            let slicing = Slicing {
+                bearing: bearing.clone(),
+                slices: grid.along,
+            }
+            .solve()?;
+            let reference = ReferenceModel {
+                model: "ISO/TS 16281 slicing with Palmgren's line-contact stiffness (mm, N)".into(),
+                ring_displacement: slicing.ring_displacement,
+                max_pressure: Some(slicing.max_pressures.iter().fold(0.0f64, |a, p| a.max(*p))),
+                loads: slicing.loads,
+            };
+            let life = rated
+                .then(|| RatingLife::of_rollers(bearing, loads))
+                .transpose()?;
+            (reference, life)
+        }
     })
 }
