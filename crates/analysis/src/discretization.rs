@@ -30,8 +30,9 @@
 //! Phys. 262, 2014). Only `s = 1` is extrapolated (see the verdicts).
 //!
 //! When the run's own grid is not the finest solved (a finer grid, h/2,
-//! was added because the grid at 4h would not resolve the contact), the
-//! limit is the same and the run's own value's error is `|f_ext - f_h|`.
+//! was added because the grid at 4h would not resolve the contact, or
+//! because h, 2h and 4h left a quantity not resolved), the limit is the
+//! same and the run's own value's error is `|f_ext - f_h|`.
 //!
 //! The verdict:
 //!

@@ -20,10 +20,20 @@
 //! estimated, with the reason); it never fails the estimate. The other
 //! problems are built and dropped one at a time after the fine solve.
 //!
+//! Where the run's own grid is the finest of h, 2h, 4h and those (with the
+//! grids between them, `GridFamily::intermediate`) still leave a quantity
+//! the input does not limit not resolved, the finer grid h/2 and the grid
+//! between it and h are solved too, within the memory allowance and
+//! [`refine_seconds_allowance`]: 2h and 4h may lie outside the range where
+//! the error falls at a steady order. Quantities h, 2h, 4h resolved keep
+//! their estimate.
+//!
 //! A surface interpolated with slope kinks (a height map read bilinearly,
 //! a profile linearly) puts a pressure peak under each kink that every
 //! finer grid resolves higher: the peak pressure is then not resolved
-//! whatever its changes, the input named ([`InputLimit`]).
+//! whatever its changes, the input named ([`InputLimit`]); so are the peak
+//! and the contact's extent where the peak lies on the bodies' own edge
+//! (a punch's rim, a roller's end), where the pressure is singular.
 
 use std::time::Instant;
 
@@ -36,8 +46,9 @@ use super::solution::ContactSolution;
 use super::tabulated::{Departure, Interpolation, ProfileAxis};
 use crate::AnalysisError;
 use crate::discretization::{
-    Discretization, ErrorEstimate, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity, Verdict,
-    changes, estimate, finer_allowance, fitted, refine_seconds_allowance,
+    Discretization, ErrorEstimate, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity,
+    REFINE_FLOOR_SECONDS, REFINE_TIMES, Verdict, changes, estimate, finer_allowance, fitted,
+    refine_seconds_allowance,
 };
 use crate::edge::contact_spans;
 use crate::grid::GridFamily;
@@ -779,8 +790,8 @@ impl std::fmt::Display for Stop {
             } => write!(
                 f,
                 "{}'s solve would take about {seconds:.2e} s, more than the {allowance:.2e} s a \
-                 finer grid added for an unresolved quantity may (16 times the run's own \
-                 solve, at least 10 s)",
+                 finer grid added for an unresolved quantity may ({REFINE_TIMES} times the \
+                 run's own solve, at least {REFINE_FLOOR_SECONDS} s)",
                 grid_at(*times)
             ),
             Stop::Failed { times, failure } => {
