@@ -18,7 +18,10 @@
 //! - the rough sphere (rough-sphere.toml), its map read bilinearly and as a
 //!   bicubic spline;
 //! - Example 2's beam without its design (example2-beam-design.toml);
-//! - the flat punch (flat-punch.toml), its rim singular.
+//! - the flat punch (flat-punch.toml), its rim singular;
+//! - Example 1 on the paper's point-force model (example1-paper-model.toml,
+//!   11 across, its estimate on finer grids);
+//! - the Hertz cylinders (hertz-cylinders.toml, against Hertz).
 //!
 //! Run: `cargo run --release --example estimate_validation` (a few minutes
 //! on two cores: the finest grids are up to 64 times the scene's points).
@@ -219,6 +222,18 @@ fn cases() -> Vec<Case> {
         file: "flat-punch.toml",
         edit: Box::new(|t| t.to_string()),
         refine: 2,
+    });
+    cases.push(Case {
+        label: "Example 1, paper's model".into(),
+        file: "example1-paper-model.toml",
+        edit: Box::new(|t| t.to_string()),
+        refine: 3,
+    });
+    cases.push(Case {
+        label: "Hertz cylinders".into(),
+        file: "hertz-cylinders.toml",
+        edit: Box::new(|t| t.to_string()),
+        refine: 0,
     });
     cases
 }

@@ -30,8 +30,9 @@
 //! Phys. 262, 2014). Only `s = 1` is extrapolated (see the verdicts).
 //!
 //! When the run's own grid is not the finest solved (a finer grid, h/2,
-//! was added because the grid at 4h would not resolve the contact), the
-//! limit is the same and the run's own value's error is `|f_ext - f_h|`.
+//! was added because the grid at 4h would not resolve the contact, or
+//! because h, 2h and 4h left a quantity not resolved), the limit is the
+//! same and the run's own value's error is `|f_ext - f_h|`.
 //!
 //! The verdict:
 //!
@@ -93,6 +94,27 @@ pub const FINER_FLOOR_BYTES: f64 = 256.0 * 1024.0 * 1024.0;
 /// `own_bytes` (see [`FINER_FLOOR_BYTES`]).
 pub fn finer_allowance(own_bytes: f64) -> f64 {
     own_bytes.max(FINER_FLOOR_BYTES)
+}
+
+/// The most seconds a finer grid added for a quantity the coarser grids
+/// leave unresolved may take, as a multiple of the run's own planned
+/// solve ([`refine_seconds_allowance`]): a grid at h/2 on a surface has four
+/// times the points, matrix-free about four times the seconds and dense
+/// up to 64 times (every point in contact).
+pub const REFINE_TIMES: f64 = 16.0;
+
+/// The floor of [`refine_seconds_allowance`], seconds: what a run of a few
+/// thousand points may spend on its estimate whatever its own solve took.
+pub const REFINE_FLOOR_SECONDS: f64 = 10.0;
+
+/// The planned seconds a finer grid added for an unresolved quantity may
+/// take when the run's own planned solve takes `own_seconds`:
+/// [`REFINE_TIMES`] times it, at least [`REFINE_FLOOR_SECONDS`]. The grids
+/// at h/2 and h/4 solved where the grid at 4h would not resolve the contact
+/// have only the memory allowance ([`finer_allowance`]): without them
+/// there is no estimate at all.
+pub fn refine_seconds_allowance(own_seconds: f64) -> f64 {
+    (REFINE_TIMES * own_seconds).max(REFINE_FLOOR_SECONDS)
 }
 
 /// What the estimate of one quantity concluded.
@@ -286,7 +308,7 @@ fn checked(values: &[f64], spacings: &[f64], scale: f64) -> Result<(), Verdict> 
 /// convergence (see the module documentation), or `None` when they do.
 fn unresolved(values: &[f64], p: f64) -> Option<String> {
     let (e21, e32) = (values[1] - values[0], values[2] - values[1]);
-    let changes = format!("changes {e32:+.2e} then {e21:+.2e} from the coarsest grid");
+    let changes = changes(values)?;
     if e32 * e21 < 0.0 {
         return Some(format!(
             "the changes alternate in sign ({changes}): the coarser grids do not resolve a \
@@ -307,6 +329,19 @@ fn unresolved(values: &[f64], p: f64) -> Option<String> {
              rate to extrapolate"
         )
     })
+}
+
+/// The changes of three grids' `values` (the finest first) as messages
+/// give them: "changes +1.2e-3 then +3.0e-4 from the coarsest grid";
+/// `None` with fewer than three.
+pub fn changes(values: &[f64]) -> Option<String> {
+    let [f1, f2, f3, ..] = values else {
+        return None;
+    };
+    let (e21, e32) = (f2 - f1, f3 - f2);
+    Some(format!(
+        "changes {e32:+.2e} then {e21:+.2e} from the coarsest grid"
+    ))
 }
 
 /// The fixed point of `p = (ln|e32 / e21| + q(p)) / ln r21` (see the
@@ -762,6 +797,13 @@ pub enum InputLimit {
         /// The profile's file (or key).
         label: String,
     },
+    /// The contact reaches the bodies' own edge (a punch's rim, a roller's
+    /// end) where an elastic half-space's pressure is singular, and its
+    /// peak pressure is there: it grows without bound as the grid refines.
+    SingularEdge {
+        /// The run's points in contact on that edge.
+        points: usize,
+    },
     /// A table whose nodes lie closer than the cells of the coarsest grid
     /// solved: the grids sample different parts of the data, and their
     /// changes are not the discretization's.
@@ -776,13 +818,19 @@ pub enum InputLimit {
 }
 
 impl InputLimit {
-    /// Whether it limits `quantity`: a kinked surface the peak pressure,
-    /// a table finer than the grids every quantity.
+    /// Whether it limits `quantity`: a kinked surface the peak pressure, a
+    /// singular edge the peak and the contact's extent and measure (its
+    /// outline there is the bodies' edge, as the grid lays it out), a table
+    /// finer than the grids every quantity.
     pub fn limits(&self, quantity: Quantity) -> bool {
         match self {
             InputLimit::KinkedMap { .. } | InputLimit::KinkedProfile { .. } => {
                 quantity == Quantity::MaxPressure
             }
+            InputLimit::SingularEdge { .. } => matches!(
+                quantity,
+                Quantity::MaxPressure | Quantity::ContactExtent | Quantity::ContactMeasure
+            ),
             InputLimit::CoarserThanData { .. } => true,
         }
     }
@@ -793,6 +841,19 @@ impl std::fmt::Display for InputLimit {
         let (what, label, read) = match self {
             InputLimit::KinkedMap { label } => ("height map", label, "bilinearly"),
             InputLimit::KinkedProfile { label } => ("profile", label, "linearly"),
+            InputLimit::SingularEdge { points } => {
+                return write!(
+                    f,
+                    "the contact reaches the bodies' own edge (a punch's rim, a roller's end) \
+                     at {points} point(s) and its peak pressure is there, where an elastic \
+                     half-space's pressure is singular: the peak grows without bound as the \
+                     grid refines, and the \
+                     contact's outline there is the edge as the grid's cells lay it out, so \
+                     neither the peak nor the contact's extent is a converged property of the \
+                     scene (a rounded rim or a crowned end keeps the contact off the edge and \
+                     the peak finite)"
+                );
+            }
             InputLimit::CoarserThanData { label, nodes, cell } => {
                 return write!(
                     f,
@@ -974,6 +1035,36 @@ mod tests {
             label: "rough.npy".into(),
         };
         assert!(map.to_string().contains("bilinearly"));
+    }
+
+    #[test]
+    fn a_singular_edge_limits_the_peak_and_the_extent_and_says_why() {
+        let edge = InputLimit::SingularEdge { points: 112 };
+        for q in Quantity::ALL {
+            let limited = matches!(
+                q,
+                Quantity::MaxPressure | Quantity::ContactExtent | Quantity::ContactMeasure
+            );
+            assert_eq!(edge.limits(q), limited, "{q:?}");
+        }
+        let text = edge.to_string();
+        for says in ["112 point(s)", "singular", "is a converged property"] {
+            assert!(text.contains(says), "{says}: {text}");
+        }
+    }
+
+    #[test]
+    fn a_finer_grid_for_an_unresolved_quantity_may_take_16_times_the_run_or_10_s() {
+        assert_eq!(refine_seconds_allowance(0.001), REFINE_FLOOR_SECONDS);
+        assert_eq!(refine_seconds_allowance(2.0), 32.0);
+        assert!(!(refine_seconds_allowance(f64::NAN) < 10.0));
+    }
+
+    #[test]
+    fn three_grids_changes_are_written_from_the_coarsest() {
+        let text = changes(&[1.0, 1.5, 3.5]).unwrap();
+        assert_eq!(text, "changes +2.00e0 then +5.00e-1 from the coarsest grid");
+        assert_eq!(changes(&[1.0, 2.0]), None);
     }
 
     /// Spacings in ratios of about sqrt 2, as the fit's grids are.

@@ -68,6 +68,28 @@ impl EdgeLaw {
     }
 }
 
+/// The points of `points` on the bodies' own edges (`body_edges`: the
+/// zone's extent along x, resp. y, is the bodies', see
+/// `ContactProblem::with_body_edges`) where the pressure of an elastic
+/// half-space (`law` [`EdgeLaw::SquareRoot`]) is singular if the contact
+/// reaches them: a roller's ends, a punch's rim. None under any other law
+/// (a foundation's or a beam's pressure is bounded at an edge).
+pub(crate) fn singular_edge_points(
+    points: &PointSet,
+    (along_x, along_y): (bool, bool),
+    law: EdgeLaw,
+) -> Vec<usize> {
+    if law != EdgeLaw::SquareRoot || !(along_x || along_y) {
+        return Vec::new();
+    }
+    (0..points.len())
+        .filter(|&k| {
+            let (x, y) = points.open_sides(k);
+            (x && along_x) || (y && along_y)
+        })
+        .collect()
+}
+
 /// A solution's pressures on its points, read for the contact's edge: the
 /// lattice's index built once (the measure and every boundary point's
 /// truncation test use it), and the outline found once.

@@ -76,6 +76,11 @@ pub struct GridJson {
     pub spacing: f64,
     /// Seconds to build and solve it (the fine grid: assembly and solve).
     pub seconds: f64,
+    /// Its spacing over the run's own: 1 the run's own grid, 0.5 the finer
+    /// grid h/2, 2 the coarser 2h, about 1.41 a grid between (absent in
+    /// files written before it was added).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ratio: Option<f64>,
     /// Why its solve failed, if it did.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub failure: Option<String>,
@@ -163,6 +168,13 @@ pub struct DiscretizationJson {
     /// were solved).
     #[serde(default)]
     pub own_grid: usize,
+    /// The estimate's cost: seconds spent on the grids other than the run's
+    /// own, finer ones included (result.json's `seconds.error_estimate`).
+    #[serde(default)]
+    pub seconds: f64,
+    /// Points of the grids other than the run's own, together.
+    #[serde(default)]
+    pub points: usize,
     /// Each quantity.
     pub quantities: QuantitiesJson,
     /// What limited the estimate (too few points for a coarser grid, a
@@ -184,9 +196,15 @@ impl DiscretizationJson {
             d.get(quantity)
                 .map_or_else(|| QuantityJson::of(&unknown()), QuantityJson::of)
         };
+        let own = d.grids.get(d.own).map_or(f64::NAN, |g| g.spacing);
         Self {
-            grids: d.grids.iter().map(grid).collect(),
+            grids: d.grids.iter().map(|g| grid(g, own)).collect(),
             own_grid: d.own,
+            seconds: d.extra_seconds(),
+            points: (d.grids.iter().enumerate())
+                .filter(|&(i, _)| i != d.own)
+                .map(|(_, g)| g.points)
+                .sum(),
             quantities: QuantitiesJson {
                 approach: q(Quantity::Approach),
                 max_pressure: q(Quantity::MaxPressure),
@@ -212,11 +230,14 @@ impl DiscretizationJson {
     }
 }
 
-fn grid(g: &GridRun) -> GridJson {
+/// A grid's block, `own` the run's own grid's spacing.
+fn grid(g: &GridRun, own: f64) -> GridJson {
+    let ratio = g.spacing / own;
     GridJson {
         points: g.points,
         spacing: g.spacing,
         seconds: g.seconds,
+        ratio: ratio.is_finite().then_some(ratio),
         failure: g.failure.clone(),
     }
 }

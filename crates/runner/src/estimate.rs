@@ -36,7 +36,7 @@
 //! digits in seconds, minutes or hours, with its class ([`TimeFigure`],
 //! [`TimeClass`]).
 
-use elcon_analysis::discretization::finer_allowance;
+use elcon_analysis::discretization::{finer_allowance, refine_seconds_allowance};
 use elcon_analysis::{GridFamily, Relief};
 pub use elcon_design::DesignEstimate;
 use elcon_influence::PointSet;
@@ -89,6 +89,10 @@ pub struct Estimate {
     /// Bytes the scene's data files take, read and parsed (held through
     /// the run: the tables the surfaces are read from).
     pub data_bytes: u64,
+    /// Bytes the discretization error estimate's stage holds: the scene's
+    /// S and the largest of its other grids' solves (finer grids
+    /// included; 0 when the estimate is off).
+    pub error_estimate_bytes: u64,
     /// The design stage, if the scene has one.
     pub design: Option<DesignEstimate>,
     /// The whole run's peak, bytes: the larger stage plus [`BASELINE`].
@@ -136,11 +140,16 @@ impl Estimate {
         };
         let data: u64 = scene.inputs().iter().map(|i| i.bytes).sum();
         let data_bytes = to_bytes(DATA_BYTES_PER_FILE_BYTE * data as f64);
+        let error_estimate_bytes = if coarse_bytes > 0.0 {
+            to_bytes(solve.influence_bytes + coarse_bytes)
+        } else {
+            0
+        };
         let stage = design
             .as_ref()
             .map_or(0, |d| d.bytes)
             .max(to_bytes(solve.solve_bytes))
-            .max(to_bytes(solve.influence_bytes + coarse_bytes))
+            .max(error_estimate_bytes)
             .max(to_bytes(solve.influence_bytes + subsurface))
             .saturating_add(to_bytes(plot))
             .saturating_add(data_bytes);
@@ -149,6 +158,7 @@ impl Estimate {
             unknowns: solve.unknowns,
             matrices: solve.matrices,
             solve_bytes: to_bytes(solve.solve_bytes),
+            error_estimate_bytes,
             data_bytes,
             design,
             peak_bytes: stage.saturating_add(BASELINE),
@@ -215,8 +225,22 @@ impl Estimate {
                 ),
             );
         }
+        let estimate_dominates = !design_dominates && self.error_estimate_bytes > self.solve_bytes;
+        if estimate_dominates {
+            let _ = std::fmt::Write::write_fmt(
+                &mut what,
+                format_args!(
+                    "; the discretization error estimate's other grids (coarser, or finer where \
+                     the coarser would not resolve a quantity) hold up to {} beside S",
+                    human(self.error_estimate_bytes)
+                ),
+            );
+        }
         what.push(')');
         let mut hints = Vec::new();
+        if estimate_dominates {
+            hints.push("solver.error_estimate = false (no discretization error estimate)");
+        }
         if design_dominates {
             hints.push("fewer design cases (design.loads, design.misalignments)");
             hints.push("a coarser grid");
@@ -320,11 +344,35 @@ fn discretization(scene: &Scene) -> (f64, f64) {
         (finer_bytes, finer_seconds, _),
     ] = paths;
     let seconds = if coarse > 0 {
-        coarse_seconds
+        coarse_seconds + refine_seconds(scene, &family, plan, allowance)
     } else {
         finer_seconds
     };
     (coarse_bytes.max(finer_bytes), seconds)
+}
+
+/// The seconds of the finer grid h/2 and the grid between it and h that
+/// the run adds where its coarser grids leave a quantity not resolved
+/// (which only the solve tells: counted whenever they would be solved),
+/// each within the memory `allowance` and
+/// `elcon_analysis::discretization::refine_seconds_allowance` of the
+/// scene's own solve; 0 when h/2 is not.
+fn refine_seconds(
+    scene: &Scene,
+    family: &GridFamily,
+    plan: impl Fn(&GridFamily) -> Option<elcon_analysis::Estimate>,
+    allowance: f64,
+) -> f64 {
+    let time = refine_seconds_allowance(scene.plan().estimate.seconds);
+    let within = |e: &elcon_analysis::Estimate| e.solve_bytes <= allowance && e.seconds <= time;
+    let finer = family.finer();
+    let Some(half) = plan(&finer).filter(within) else {
+        return 0.0;
+    };
+    let between = (finer.intermediate().and_then(|g| plan(&g)))
+        .filter(within)
+        .map_or(0.0, |e| e.seconds);
+    half.seconds + between
 }
 
 /// Each design load's problem on the grid of `fineness` (1: the scene's

@@ -244,6 +244,13 @@ impl<'a> ProblemBuilder<'a> {
         }
     }
 
+    /// The points on the bodies' own edges where the pressure is singular
+    /// if the contact reaches them, as the built problem's
+    /// [`ContactProblem::singular_edge_points`].
+    pub(super) fn singular_edge_points(&self) -> Vec<usize> {
+        crate::edge::singular_edge_points(&self.points, self.body_edges, EdgeLaw::of(self.bodies))
+    }
+
     /// The geometry the separations come from.
     pub(super) fn geometry(&self) -> &Geometry {
         self.geometry

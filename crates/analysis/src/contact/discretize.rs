@@ -20,10 +20,20 @@
 //! estimated, with the reason); it never fails the estimate. The other
 //! problems are built and dropped one at a time after the fine solve.
 //!
+//! Where the run's own grid is the finest of h, 2h, 4h and those (with the
+//! grids between them, `GridFamily::intermediate`) still leave a quantity
+//! the input does not limit not resolved, the finer grid h/2 and the grid
+//! between it and h are solved too, within the memory allowance and
+//! [`refine_seconds_allowance`]: 2h and 4h may lie outside the range where
+//! the error falls at a steady order. Quantities h, 2h, 4h resolved keep
+//! their estimate.
+//!
 //! A surface interpolated with slope kinks (a height map read bilinearly,
 //! a profile linearly) puts a pressure peak under each kink that every
 //! finer grid resolves higher: the peak pressure is then not resolved
-//! whatever its changes, the input named ([`InputLimit`]).
+//! whatever its changes, the input named ([`InputLimit`]); so are the peak
+//! and the contact's extent where the peak lies on the bodies' own edge
+//! (a punch's rim, a roller's end), where the pressure is singular.
 
 use std::time::Instant;
 
@@ -36,8 +46,9 @@ use super::solution::ContactSolution;
 use super::tabulated::{Departure, Interpolation, ProfileAxis};
 use crate::AnalysisError;
 use crate::discretization::{
-    Discretization, ErrorEstimate, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity, Verdict,
-    estimate, finer_allowance, fitted,
+    Discretization, ErrorEstimate, GridRun, InputLimit, MIN_CELLS_ACROSS, Quantity,
+    REFINE_FLOOR_SECONDS, REFINE_TIMES, Verdict, changes, estimate, finer_allowance, fitted,
+    refine_seconds_allowance,
 };
 use crate::edge::contact_spans;
 use crate::grid::GridFamily;
@@ -101,11 +112,17 @@ impl ProblemBuilder<'_> {
             options,
         };
         let mut sequence = run.sequence(family, own);
-        let limits = input_limits(self.geometry(), sequence.coarsest);
+        // The tables first: a quantity limited by both is named by its data.
+        let mut limits = input_limits(self.geometry(), sequence.coarsest);
+        limits.extend(singular_edge(self, fine));
         if sequence.needs_fit(&limits) {
             run.intermediates(&mut sequence);
         }
-        let estimates = sequence.estimates(&limits);
+        let mut estimates = sequence.estimates(&limits);
+        if sequence.needs_finer(&estimates, &limits) {
+            run.refine(family, &mut sequence);
+            estimates = keep_resolved(estimates, sequence.estimates(&limits));
+        }
         let (grids, own) = sequence.all_grids();
         Ok(Discretization {
             grids,
@@ -203,15 +220,19 @@ impl Solver<'_, '_> {
         sequence
     }
 
+    /// The run's problem on other `points`, planned and held for the run's
+    /// method (where the storage is left to the plan, a grid of more points
+    /// would otherwise be held matrix-free, which a pivoting method cannot
+    /// solve).
+    fn on(&self, points: PointSet) -> ProblemBuilder<'_> {
+        self.builder.on(points).method(self.method)
+    }
+
     /// `grid`'s problem on `points` solved, logged as the grid at `times`
     /// the spacing; its solution if it is certified.
     fn solve(&self, grid: &GridFamily, points: PointSet, times: f64) -> Solved {
         let start = Instant::now();
-        let solved = self
-            .builder
-            .on(points)
-            .build()
-            .and_then(|p| p.solve(self.method, self.options));
+        let solved = (self.on(points).build()).and_then(|p| p.solve(self.method, self.options));
         let seconds = start.elapsed().as_secs_f64();
         let failure = match &solved {
             Ok(s) if s.certificate.holds() => None,
@@ -272,7 +293,7 @@ impl Solver<'_, '_> {
     /// spacing) fits the allowance ([`finer_allowance`]); why not if not.
     fn within_allowance(&self, points: &PointSet, times: f64) -> Result<(), Stop> {
         let own = self.builder.plan().map(|p| p.estimate.solve_bytes);
-        let planned = self.builder.on(points.clone()).plan();
+        let planned = self.on(points.clone()).plan();
         let (Ok(own), Ok(planned)) = (own, planned) else {
             return Err(Stop::TooBig {
                 times,
@@ -310,34 +331,103 @@ impl Solver<'_, '_> {
             .map(|(w, f)| (*f, w[1].spacing))
             .collect();
         for (fine, coarse_spacing) in pairs {
-            let Some(grid) = fine.intermediate() else {
-                continue;
-            };
-            let h = grid.spacing();
-            if !(h > fine.spacing() && h < coarse_spacing) {
-                continue;
-            }
-            let times = h / h_own;
-            let points = match grid.points() {
-                Ok(points) => points,
-                Err(error) => {
-                    sequence.stop.get_or_insert(Stop::NoPoints { times, error });
-                    continue;
-                }
-            };
-            if h < h_own
-                && let Err(why) = self.within_allowance(&points, times)
-            {
-                sequence.stop.get_or_insert(why);
-                continue;
-            }
-            let solved = self.solve(&grid, points, times);
-            if let Some(failure) = &solved.failure {
-                let failure = failure.clone();
-                sequence.stop.get_or_insert(Stop::Failed { times, failure });
-            }
-            sequence.between.push((solved.run, solved.solution));
+            self.between(&fine, coarse_spacing, h_own, sequence);
         }
+    }
+
+    /// The grid between `fine` and the grid of `coarse_spacing` next
+    /// coarser ([`GridFamily::intermediate`]), solved for the
+    /// least-squares fit into `sequence` (`h_own` the run's own spacing): a
+    /// grid finer than the run's own only within [`finer_allowance`]. A grid
+    /// that cannot be made or fails is logged (a failure) or noted.
+    fn between(&self, fine: &GridFamily, coarse_spacing: f64, h_own: f64, sequence: &mut Sequence) {
+        let Some(grid) = fine.intermediate() else {
+            return;
+        };
+        let h = grid.spacing();
+        if !(h > fine.spacing() && h < coarse_spacing) {
+            return;
+        }
+        let times = h / h_own;
+        let points = match grid.points() {
+            Ok(points) => points,
+            Err(error) => {
+                sequence.stop.get_or_insert(Stop::NoPoints { times, error });
+                return;
+            }
+        };
+        if h < h_own
+            && let Err(why) = self.within_allowance(&points, times)
+        {
+            sequence.stop.get_or_insert(why);
+            return;
+        }
+        let solved = self.solve(&grid, points, times);
+        if let Some(failure) = &solved.failure {
+            let failure = failure.clone();
+            sequence.stop.get_or_insert(Stop::Failed { times, failure });
+        }
+        sequence.between.push((solved.run, solved.solution));
+    }
+
+    /// The finer grid h/2 and the grid between it and the run's own `family`,
+    /// solved where the run's own grid is the finest and the coarser grids
+    /// (with those between them) leave a quantity the input does not limit
+    /// unresolved: the grids at 2h and 4h then lie outside the range where
+    /// the error falls at a steady order (a contact edge in one cell or the
+    /// next), and the finer ones may not. Only within the memory allowance
+    /// ([`finer_allowance`]) and the time allowance
+    /// ([`refine_seconds_allowance`]); whatever stops it is noted.
+    fn refine(&self, family: &GridFamily, sequence: &mut Sequence) {
+        let finer = self
+            .finer(family, 1)
+            .and_then(|(grid, points)| self.within_time(&points, 0.5).map(|()| (grid, points)));
+        let (grid, points) = match finer {
+            Ok(finer) => finer,
+            Err(why) => {
+                sequence.stop.get_or_insert(why);
+                return;
+            }
+        };
+        if let Err(why) = sequence.push_finer(self.solve(&grid, points, 0.5)) {
+            sequence.stop.get_or_insert(why);
+            return;
+        }
+        let h_own = family.spacing();
+        if let Some(between) = grid.intermediate()
+            && let Ok(points) = between.points()
+            && let Err(why) = self.within_time(&points, between.spacing() / h_own)
+        {
+            sequence.stop.get_or_insert(why);
+            return;
+        }
+        self.between(&grid, h_own, h_own, sequence);
+    }
+
+    /// Whether the solve of a finer grid added by [`Solver::refine`] on
+    /// `points` (at `times` the run's spacing) fits the time allowance
+    /// ([`refine_seconds_allowance`] of the run's own planned solve); why
+    /// not if not.
+    fn within_time(&self, points: &PointSet, times: f64) -> Result<(), Stop> {
+        let own = self.builder.plan().map(|p| p.estimate.seconds);
+        let planned = self.on(points.clone()).plan();
+        let (Ok(own), Ok(planned)) = (own, planned) else {
+            return Err(Stop::TooLong {
+                times,
+                seconds: f64::INFINITY,
+                allowance: f64::NAN,
+            });
+        };
+        let allowance = refine_seconds_allowance(own);
+        let seconds = planned.estimate.seconds;
+        if !(seconds <= allowance) {
+            return Err(Stop::TooLong {
+                times,
+                seconds,
+                allowance,
+            });
+        }
+        Ok(())
     }
 }
 
@@ -440,7 +530,13 @@ impl Sequence {
                 if let Some(limit) = limited
                     && e.verdict != Verdict::Exact
                 {
-                    e.verdict = Verdict::NotResolved(limit.to_string());
+                    // The cause, then what the nested grids showed.
+                    let observed = match (changes(&values), e.order) {
+                        (Some(c), Some(p)) => format!(" (the grids show {c}, order {p:.2})"),
+                        (Some(c), None) => format!(" (the grids show {c})"),
+                        _ => String::new(),
+                    };
+                    e.verdict = Verdict::NotResolved(format!("{limit}{observed}"));
                     e.error = None;
                     e.extrapolated = None;
                 }
@@ -453,10 +549,15 @@ impl Sequence {
     /// nested grids (three of them solved): the grids between them are
     /// then worth solving for the least-squares fit.
     fn needs_fit(&self, limits: &[InputLimit]) -> bool {
-        self.solutions.len() == 3
-            && self.estimates(limits).iter().any(|(q, e)| {
-                matches!(e.verdict, Verdict::NotResolved(_)) && !limits.iter().any(|l| l.limits(*q))
-            })
+        self.solutions.len() == 3 && unresolved(&self.estimates(limits), limits)
+    }
+
+    /// Whether the run's own grid is the finest of three nested grids
+    /// solved and a quantity the input does not limit is still not
+    /// resolved in `estimates` (the grids between them included): a finer
+    /// grid is then worth solving ([`Solver::refine`]).
+    fn needs_finer(&self, estimates: &[(Quantity, ErrorEstimate)], limits: &[InputLimit]) -> bool {
+        self.own == 0 && self.solutions.len() == 3 && unresolved(estimates, limits)
     }
 
     /// The spacing and solution of every grid solved without failure,
@@ -500,6 +601,59 @@ impl Sequence {
         (grids, own)
     }
 }
+
+/// Whether a quantity the input does not limit is not resolved in
+/// `estimates`.
+fn unresolved(estimates: &[(Quantity, ErrorEstimate)], limits: &[InputLimit]) -> bool {
+    estimates.iter().any(|(q, e)| {
+        matches!(e.verdict, Verdict::NotResolved(_)) && !limits.iter().any(|l| l.limits(*q))
+    })
+}
+
+/// The estimates after a finer grid was added ([`Solver::refine`]):
+/// `refined`'s, except where the coarser grids already resolved a quantity
+/// (`coarse` converging or exact), whose estimate stands, with every grid's
+/// values. The finer grids are solved for the quantities the coarser ones
+/// leave unresolved; a quantity they resolved keeps the estimate its own
+/// grids showed.
+fn keep_resolved(
+    coarse: Vec<(Quantity, ErrorEstimate)>,
+    refined: Vec<(Quantity, ErrorEstimate)>,
+) -> Vec<(Quantity, ErrorEstimate)> {
+    (coarse.into_iter().zip(refined))
+        .map(|((q, before), (_, after))| match before.verdict {
+            Verdict::Converging | Verdict::Exact => (
+                q,
+                ErrorEstimate {
+                    values: after.values,
+                    own: after.own,
+                    ..before
+                },
+            ),
+            _ => (q, after),
+        })
+        .collect()
+}
+
+/// The limit a singular edge sets where `fine`, the solution of
+/// `builder`'s problem, has its peak pressure on the bodies' own edges
+/// ([`ProblemBuilder::singular_edge_points`]; to [`PEAK_MATCH`] of it). A
+/// contact that only touches the edge with a lower pressure there (a
+/// crowned roller's ends) leaves the peak where the grids resolve it.
+fn singular_edge(builder: &ProblemBuilder<'_>, fine: &ContactSolution) -> Option<InputLimit> {
+    let edge = builder.singular_edge_points();
+    let pressure = |k: usize| fine.pressures.get(k).copied().unwrap_or(0.0);
+    let peak = edge.iter().map(|&k| pressure(k)).fold(0.0, f64::max);
+    if !(peak > 0.0 && peak >= fine.max_pressure * (1.0 - PEAK_MATCH)) {
+        return None;
+    }
+    let points = edge.iter().filter(|&&k| pressure(k) > 0.0).count();
+    Some(InputLimit::SingularEdge { points })
+}
+
+/// A pressure within this fraction of the peak is the peak (the same
+/// value on mirror-image points, to rounding).
+const PEAK_MATCH: f64 = 1e-9;
 
 /// What in `geometry` limits the quantities whatever the grid, the
 /// coarsest grid solved of cell `coarsest`: each departure interpolated
@@ -577,6 +731,13 @@ enum Stop {
         bytes: f64,
         allowance: f64,
     },
+    /// A finer grid added for an unresolved quantity would take longer
+    /// than its allowance.
+    TooLong {
+        times: f64,
+        seconds: f64,
+        allowance: f64,
+    },
     /// Its solve failed or was not certified.
     Failed { times: f64, failure: String },
 }
@@ -621,6 +782,17 @@ impl std::fmt::Display for Stop {
                 grid_at(*times),
                 bytes / 1048576.0,
                 allowance / 1048576.0
+            ),
+            Stop::TooLong {
+                times,
+                seconds,
+                allowance,
+            } => write!(
+                f,
+                "{}'s solve would take about {seconds:.2e} s, more than the {allowance:.2e} s a \
+                 finer grid added for an unresolved quantity may ({REFINE_TIMES} times the \
+                 run's own solve, at least {REFINE_FLOOR_SECONDS} s)",
+                grid_at(*times)
             ),
             Stop::Failed { times, failure } => {
                 write!(f, "{} failed: {failure}", grid_at(*times))
@@ -740,6 +912,15 @@ mod tests {
                  (0.005 apart)",
             ),
             (
+                Stop::TooLong {
+                    times: 0.5,
+                    seconds: 40.0,
+                    allowance: 10.0,
+                },
+                "the grid at half the spacing's solve would take about 4.00e1 s, more than the \
+                 1.00e1 s",
+            ),
+            (
                 Stop::TooBig {
                     times: 0.5,
                     bytes: 512.0 * 1048576.0,
@@ -752,6 +933,58 @@ mod tests {
             let text = stop.to_string();
             assert!(text.starts_with(begins), "{text}");
         }
+    }
+
+    fn estimated(verdict: Verdict, values: &[f64], own: usize) -> ErrorEstimate {
+        ErrorEstimate {
+            values: values.to_vec(),
+            own,
+            extrapolated: Some(1.0),
+            error: Some(0.1),
+            order: Some(2.0),
+            scatter: None,
+            verdict,
+        }
+    }
+
+    #[test]
+    fn a_finer_grid_leaves_the_estimates_the_coarser_ones_resolved() {
+        let coarse = vec![
+            (
+                Quantity::Approach,
+                estimated(
+                    Verdict::NotResolved("alternate".into()),
+                    &[1.1, 1.2, 1.0],
+                    0,
+                ),
+            ),
+            (
+                Quantity::MaxPressure,
+                estimated(Verdict::Converging, &[2.1, 2.4, 3.6], 0),
+            ),
+        ];
+        let mut refined_approach = estimated(Verdict::Converging, &[1.05, 1.1, 1.2, 1.0], 1);
+        refined_approach.error = Some(0.05);
+        let refined = vec![
+            (Quantity::Approach, refined_approach.clone()),
+            (
+                Quantity::MaxPressure,
+                estimated(
+                    Verdict::NotResolved("faster".into()),
+                    &[2.0, 2.1, 2.4, 3.6],
+                    1,
+                ),
+            ),
+        ];
+        let kept = keep_resolved(coarse, refined);
+        // The approach, unresolved by the coarser grids, takes the finer
+        // ones' estimate; the peak keeps its own, with every grid's values.
+        assert_eq!(kept[0].1, refined_approach);
+        let peak = &kept[1].1;
+        assert_eq!(peak.verdict, Verdict::Converging);
+        assert_eq!(peak.values, vec![2.0, 2.1, 2.4, 3.6]);
+        assert_eq!(peak.value(), 2.1);
+        assert_eq!(peak.error, Some(0.1));
     }
 
     #[test]

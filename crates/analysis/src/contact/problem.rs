@@ -285,16 +285,7 @@ impl ContactProblem {
     /// that must hold on any grid keeps them out of contact. None on a
     /// foundation or a beam (their pressure is bounded at an edge).
     pub fn singular_edge_points(&self) -> Vec<usize> {
-        let (along_x, along_y) = self.body_edges;
-        if self.edge != EdgeLaw::SquareRoot || !(along_x || along_y) {
-            return Vec::new();
-        }
-        (0..self.points.len())
-            .filter(|&k| {
-                let (x, y) = self.points.open_sides(k);
-                (x && along_x) || (y && along_y)
-            })
-            .collect()
+        crate::edge::singular_edge_points(&self.points, self.body_edges, self.edge)
     }
 
     /// The edges declared by [`ContactProblem::with_body_edges`].
