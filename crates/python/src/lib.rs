@@ -28,6 +28,7 @@
 //! token, which the calling thread sets when Python's signal check says so
 //! (the `signals` module).
 
+mod bearing;
 mod bodies;
 mod convert;
 mod design;

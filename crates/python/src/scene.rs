@@ -64,7 +64,8 @@ pub(crate) fn run_prepared(
 }
 
 /// Runs a scene (a file, or a dict with a scene's keys) on `threads`
-/// threads (default: the global pool); returns
+/// threads (default: the global pool); a bearing scene (a `[bearing]`
+/// table) as `crate::bearing::run` does; otherwise returns
 /// `{"json": result.json's text, "x": ..., "y": ..., "force": ...,
 /// "pressure": ..., "gap": ..., "separation": ...}`, and `"subsurface"`
 /// (each body's section and profile arrays) when the scene asks for the
@@ -79,6 +80,9 @@ pub(crate) fn run_scene<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let threads = crate::threads::threads(threads.as_ref())?;
     let (file, text) = scene_text(path, scene.as_ref())?;
+    if elcon_scene::is_bearing_text(&text) {
+        return crate::bearing::run(py, &file, &text, threads);
+    }
     let scene = guarded("scene", || {
         Scene::from_str(&file, &text).map_err(scene_error)
     })?;
@@ -145,6 +149,9 @@ pub(crate) fn check_scene<'py>(
     scene: Option<Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (file, text) = scene_text(path, scene.as_ref())?;
+    if elcon_scene::is_bearing_text(&text) {
+        return crate::bearing::check(py, &file, &text);
+    }
     let ceiling = ceiling()?;
     let prepared = guarded("scene", || {
         let scene = Scene::from_str(&file, &text).map_err(scene_error)?;

@@ -1068,3 +1068,33 @@ else:
     import sys
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
     assert done.returncode == 0, done.stdout + done.stderr
+
+
+def test_a_bearing_scene_runs_as_the_cli_runs_it_with_its_elements_as_arrays(tmp_path):
+    scene = SCENES / "ball-bearing-radial.toml"
+    r = elcon.run(scene)
+    assert isinstance(r, elcon.BearingResult)
+    assert r.load.shape == (9,) and r.load.dtype == np.float64
+    assert r.angle[0] == 0.0 and r.load[0] == r.load.max()
+    assert r.certificate["holds"] and r.loaded == 3
+    # The same answer as the command line's result.json.
+    subprocess.run([cli(), "run", scene, "--out", tmp_path], check=True, capture_output=True)
+    cli_json = json.loads((tmp_path / "ball-bearing-radial" / "result.json").read_text())
+    assert without_times(r.to_dict()) == without_times(cli_json)
+    # A dict with the same keys, and the core's own messages for bad data.
+    d = {
+        "units": {"length": "mm", "force": "N", "pressure": "MPa"},
+        "material": {"youngs_modulus": 210e3, "poissons_ratio": 0.3},
+        "bearing": {
+            "type": "roller", "roller_diameter": 9.0, "roller_length": 9.0,
+            "crown": {"shape": "circular", "drop": 0.008, "flat": 4.5},
+            "inner_raceway_diameter": 57.0, "outer_raceway_diameter": 75.03,
+            "rollers": 20, "radial_load": 8000.0, "misalignment": 0.001,
+        },
+    }
+    roller = elcon.run(d)
+    assert roller.tilt.shape == (20,) and roller.tilt[0] > 0.0
+    assert elcon.check(d)["zones"] == 40
+    d["bearing"]["rollers"] = 0
+    with pytest.raises(elcon.SceneError, match="bearing.rollers"):
+        elcon.run(d)

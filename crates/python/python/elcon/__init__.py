@@ -4,7 +4,9 @@ Conry & Seireg's (1971) contact analysis and design, from Python, with
 numpy arrays in and out:
 
 - ``elcon.run(path_or_dict)`` runs a scene (a TOML file, or a dict with the
-  same keys and the same validation) and returns a :class:`Result`;
+  same keys and the same validation) and returns a :class:`Result`; a
+  bearing scene (a ``[bearing]`` table: a radial ball or cylindrical roller
+  bearing as a system of contacts) returns a :class:`BearingResult`;
   ``elcon.check(path_or_dict)`` validates and estimates it without solving;
 - ``elcon.ContactProblem(...)`` builds a problem from arrays or a layout
   (points, separations or surfaces, and S given or assembled from body
@@ -53,6 +55,7 @@ __all__ = [
     "design",
     "ContactProblem",
     "Result",
+    "BearingResult",
     "Design",
     "Profile",
     "methods",
@@ -200,7 +203,60 @@ class Result(_Fields):
         )
 
 
-def run(scene: Union[str, os.PathLike, Dict[str, Any]], threads: Optional[int] = None) -> Result:
+_ELEMENT_ARRAYS = ("angle", "load", "max_pressure_inner", "max_pressure_outer", "displacement", "tilt")
+
+
+class BearingResult(_Fields):
+    """A certified bearing solution: every contact of every rolling element
+    solved as one system (docs/results.md, "Bearing results").
+
+    Arrays (numpy float64, one value per rolling element, element 0 at the
+    load's direction): ``angle`` (degrees), ``load``, ``max_pressure_inner``,
+    ``max_pressure_outer``, ``displacement`` (radial, outward) and ``tilt``
+    (radians; 0 for balls).
+
+    Fields of result.json as attributes: ``ring_displacement`` (a dict
+    ``x``, ``y``, ``z``), ``loaded``, ``load_zone``, ``life`` (a dict, or
+    None outside mm and N), ``reference`` (the Hertz springs or the slicing
+    model), ``certificate``, ``grid``, ``seconds``...; ``to_dict()`` is the
+    whole result.json.
+    """
+
+    angle: np.ndarray
+    load: np.ndarray
+    max_pressure_inner: np.ndarray
+    max_pressure_outer: np.ndarray
+    displacement: np.ndarray
+    tilt: np.ndarray
+
+    def __init__(self, raw: Dict[str, Any]):
+        self._json: str = raw["json"]
+        self._dict: Dict[str, Any] = json.loads(self._json)
+        for name in _ELEMENT_ARRAYS:
+            array = np.asarray(raw[name], dtype=np.float64)
+            array.setflags(write=False)
+            setattr(self, name, array)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The result as a dict, equal to its result.json."""
+        return json.loads(self._json)
+
+    def __repr__(self) -> str:
+        return (
+            f"BearingResult({self._dict['bearing']}, elements={len(self.load)}, "
+            f"loaded={self._dict['loaded']}, max_load={float(self.load.max()):.6e}, "
+            f"certificate_holds={self._dict['certificate']['holds']})"
+        )
+
+
+def _result(raw: Dict[str, Any]) -> Union[Result, BearingResult]:
+    """A run's answer as its class: a bearing's or a contact's."""
+    return BearingResult(raw) if "bearing" in raw else Result(raw)
+
+
+def run(
+    scene: Union[str, os.PathLike, Dict[str, Any]], threads: Optional[int] = None
+) -> Union[Result, BearingResult]:
     """Runs a scene: a TOML file's path, or a dict with the same keys, on
     ``threads`` threads (default: the cores this process may use; the
     answer does not depend on the count).
@@ -217,9 +273,9 @@ def run(scene: Union[str, os.PathLike, Dict[str, Any]], threads: Optional[int] =
     solve that failed or a scene too big for the memory available.
     """
     if isinstance(scene, dict):
-        return Result(_elcon.run_scene(scene=scene, threads=threads))
+        return _result(_elcon.run_scene(scene=scene, threads=threads))
     if isinstance(scene, (str, os.PathLike)):
-        return Result(_elcon.run_scene(path=os.fspath(scene), threads=threads))
+        return _result(_elcon.run_scene(path=os.fspath(scene), threads=threads))
     raise InputError("run() takes a scene's path (a .toml file) or a dict of its keys")
 
 
