@@ -11,6 +11,9 @@
 //!   (1971) and the closed-form references it is checked against;
 //! - [`design`] (`elcon-design`): profile corrections, min-max load
 //!   intensity designs and target-pressure separations;
+//! - [`elements`] (`elcon-elements`): machine elements as systems of
+//!   contacts: radial ball and cylindrical roller bearings, with their
+//!   reference models and rating life;
 //! - with the default `cli` feature, the application behind the `elcon`
 //!   command line: `scene` (`elcon-scene`: TOML scenes and batch files, read
 //!   and validated), `runner` (`elcon-runner`: runs, design stages, error
@@ -20,6 +23,7 @@
 
 pub use elcon_analysis as analysis;
 pub use elcon_design as design;
+pub use elcon_elements as elements;
 pub use elcon_influence as influence;
 pub use elcon_lcp as lcp;
 /// Process plumbing: memory ceiling, isolation, files, threads (with the

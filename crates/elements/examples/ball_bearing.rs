@@ -45,7 +45,7 @@ fn main() {
             let s = system.solve(&SystemSettings::default()).expect("solved");
             assert!(s.system.certificate.holds());
             println!(
-                "| {} | {across} | {} | {:.1} | {:.1} | {:.3} | {:.3} | {:.0} | {:.3} | {} | {} | {:.2} |",
+                "| {:.3} | {across} | {} | {:.1} | {:.1} | {:.3} | {:.3} | {:.0} | {:.3} | {} | {} | {:.2} |",
                 bearing.clearance(),
                 s.loaded,
                 s.elements[0].load,

@@ -511,6 +511,7 @@ fn validate(bodies: &[RigidBody], zones: &[SystemZone]) -> Result<(), AnalysisEr
             }
         }
     }
+    overlaps(zones)?;
     for (i, z) in zones.iter().enumerate() {
         let field = |what: &str| format!("zones[{i}] ({}).{what}", z.name);
         for (what, body) in [("body_a", z.body_a), ("body_b", z.body_b)] {
@@ -546,6 +547,42 @@ fn validate(bodies: &[RigidBody], zones: &[SystemZone]) -> Result<(), AnalysisEr
                 "build a system's zone unfolded (ProblemBuilder::fold(false)): its bodies' \
                  motions need not respect the zone's symmetry",
             ));
+        }
+    }
+    Ok(())
+}
+
+/// Refuses two zones between the same two bodies, facing the same way,
+/// whose candidate zones overlap (their origins nearer than the larger of
+/// their half-diagonals): one contact counted twice.
+fn overlaps(zones: &[SystemZone]) -> Result<(), AnalysisError> {
+    let reach = |z: &SystemZone| {
+        let (mut lo, mut hi) = (
+            (f64::INFINITY, f64::INFINITY),
+            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        z.problem.points().positions().for_each(|(x, y)| {
+            lo = (lo.0.min(x), lo.1.min(y));
+            hi = (hi.0.max(x), hi.1.max(y));
+        });
+        0.5 * (hi.0 - lo.0).hypot(hi.1 - lo.1)
+    };
+    let pair = |z: &SystemZone| (z.body_a.min(z.body_b), z.body_a.max(z.body_b));
+    for (i, a) in zones.iter().enumerate() {
+        for (j, b) in zones.iter().enumerate().skip(i + 1) {
+            let d = sub(a.frame.origin, b.frame.origin);
+            let facing = dot(a.frame.normal(), b.frame.normal()).abs() > 0.99;
+            if pair(a) == pair(b) && facing && dot(d, d).sqrt() < reach(a).max(reach(b)) {
+                return Err(AnalysisError::System {
+                    field: format!("zones[{j}] ({})", b.name),
+                    reason: format!(
+                        "overlaps zones[{i}] ({}): both are between the same two bodies, facing \
+                         the same way, their candidate points over the same place (one contact \
+                         counted twice)",
+                        a.name
+                    ),
+                });
+            }
         }
     }
     Ok(())
