@@ -36,6 +36,10 @@ pub enum DesignError {
         /// The analysis error.
         source: AnalysisError,
     },
+    /// A machine element's system (a bearing designed over its own
+    /// elements' loads) could not be built or solved.
+    #[error("the bearing's analysis failed: {0}")]
+    Element(#[from] elcon_elements::ElementsError),
     /// The design program could not be built or solved by the engine.
     #[error(
         "the design program failed: {0}; the descent solves the same problem by analyses \

@@ -21,6 +21,8 @@
 //! - [`Objective`]: the worst intensity (the paper's), or the worst von
 //!   Mises or largest shear stress below the surface (`subsurface`),
 //!   minimized by the case-decomposed descent;
+//! - [`bearing::roller_crown`]: a roller bearing's crown designed over its
+//!   own rollers' loads and tilts, and the bearing re-solved with it;
 //! - [`DesignRequest`]: a design as a scene or Python asks for it (any
 //!   family, linear or a crown), routed to the one of the above that finds
 //!   it.
@@ -60,6 +62,7 @@
 //! ```
 
 mod basis;
+pub mod bearing;
 mod constraint;
 pub mod crown;
 mod dense;

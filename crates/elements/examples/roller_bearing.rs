@@ -50,7 +50,7 @@ fn main() {
                 },
             ] {
                 let bearing = RollerBearing {
-                    crown,
+                    crown: crown.clone(),
                     misalignment,
                     ..base.clone()
                 };

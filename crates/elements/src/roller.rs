@@ -39,7 +39,7 @@ use crate::springs::HertzSprings;
 
 /// A roller's crown: how far its surface falls from the straight line at
 /// each point along it (length).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Crown {
     /// Straight: the ends cut the contact sharply.
     Straight,
@@ -58,6 +58,10 @@ pub enum Crown {
         /// The load it is designed for (force).
         load: f64,
     },
+    /// A table of `(position along the roller, drop)` (lengths, positions
+    /// increasing), read linearly between its rows and held at its end
+    /// rows beyond them: a designed crown, or a measured one.
+    Table(std::sync::Arc<Vec<(f64, f64)>>),
 }
 
 impl Crown {
@@ -76,6 +80,21 @@ impl Crown {
                 let u = (2.0 * y / length).min(1.0 - 1e-12);
                 2.0 * load / (PI * length * modulus) * (1.0 / (1.0 - u * u)).ln()
             }
+            Crown::Table(ref rows) => linear(rows, y),
+        }
+    }
+}
+
+/// The table `rows` read linearly at `y`, held at its end rows beyond them.
+fn linear(rows: &[(f64, f64)], y: f64) -> f64 {
+    let i = rows.partition_point(|&(s, _)| s < y);
+    match (i, rows.len()) {
+        (_, 0) => 0.0,
+        (0, _) => rows[0].1,
+        (i, n) if i == n => rows[n - 1].1,
+        (i, _) => {
+            let ((s0, d0), (s1, d1)) = (rows[i - 1], rows[i]);
+            d0 + (d1 - d0) * (y - s0) / (s1 - s0)
         }
     }
 }
@@ -213,6 +232,19 @@ impl RollerBearing {
         }
         match self.crown {
             Crown::Straight => {}
+            Crown::Table(ref rows) => {
+                let ordered = rows.windows(2).all(|w| w[1].0 > w[0].0);
+                let finite = rows
+                    .iter()
+                    .all(|(s, d)| s.is_finite() && d.is_finite() && *d >= 0.0);
+                if rows.is_empty() || !ordered || !finite {
+                    return Err(ElementsError::invalid(
+                        "crown",
+                        rows.len() as f64,
+                        "a crown's table needs rows of increasing positions and finite drops >= 0",
+                    ));
+                }
+            }
             Crown::Circular { drop, flat } => {
                 if !(drop.is_finite() && drop >= 0.0) {
                     return Err(ElementsError::invalid(
@@ -242,10 +274,16 @@ impl RollerBearing {
         Ok(())
     }
 
-    /// The inner and outer contacts' points and problems on `grid`,
-    /// unfolded (dense or matrix-free by their size, [`storage`]), the
-    /// roller's ends the bodies' edges.
-    fn templates(&self, grid: &RollerGrid) -> Result<Vec<ContactProblem>, ElementsError> {
+    /// The inner and outer contacts' points and problems on `grid` (in the
+    /// zones' frames: x across the roller, y along it), unfolded (dense or
+    /// matrix-free by their size, [`storage`]), the roller's ends the
+    /// bodies' edges, under no load (give them one with
+    /// `ContactProblem::with_loading`).
+    ///
+    /// # Errors
+    /// [`ElementsError::InvalidInput`] naming `across` for an even or too
+    /// small count; [`ElementsError::Analysis`] when a grid is refused.
+    pub fn templates(&self, grid: &RollerGrid) -> Result<Vec<ContactProblem>, ElementsError> {
         let modulus = combined_modulus(&self.material, &self.material);
         let design = 5.0 * self.radial_load / self.rollers as f64;
         let body = Body::uniform_patch(self.material);
