@@ -105,6 +105,19 @@ fn print_result(r: &BearingResult) {
             plain(100.0 * e.end_pressure_inner.unwrap_or(0.0) / e.max_pressure_inner)
         );
     }
+    if let Some(d) = &r.crown_design {
+        println!(
+            "{:<28} crown designed ({}) over {} rollers in {} rounds: peak {} -> {} {} (objective {}); profile.csv",
+            "",
+            d.family,
+            d.cases.len(),
+            d.rounds,
+            plain(d.max_pressure_before),
+            plain(d.max_pressure_after),
+            u.pressure(),
+            plain(d.objective)
+        );
+    }
     if let Some(l) = &r.life {
         println!(
             "{:<28} basic rating life L10 {} million revolutions",

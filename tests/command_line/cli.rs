@@ -763,3 +763,60 @@ fn the_misaligned_roller_bearing_shows_what_the_slicing_model_misses() {
     assert_eq!(first["end_pressure_inner"].as_f64().unwrap(), peak);
     assert!(peak > 1.3 * r["reference"]["max_pressure"].as_f64().unwrap());
 }
+
+#[test]
+fn a_roller_crown_is_designed_over_the_bearing_s_own_rollers() {
+    let out = scratch("bearing-crown");
+    let scene = out.join("designed.toml");
+    std::fs::write(
+        &scene,
+        edited(
+            &example_scene("roller-bearing-misaligned"),
+            &[
+                (
+                    "crown = { shape = \"circular\", drop = 0.008, flat = 4.5 }",
+                    "crown = { shape = \"straight\" }",
+                ),
+                ("along = 120", "along = 30"),
+                ("across = 19", "across = 7"),
+                ("[outputs]", "[design]\nfamily = \"free\"\n\n[outputs]"),
+            ],
+        ),
+    )
+    .unwrap();
+    exited(
+        &elcon(&[
+            "run",
+            &scene.display().to_string(),
+            "--out",
+            &out.display().to_string(),
+        ]),
+        0,
+        &["crown designed (free)", "profile.csv"],
+    );
+    let dir = out.join("roller-bearing-misaligned");
+    let d = &json(&dir.join("result.json"))["crown_design"];
+    let (before, after) = (
+        d["max_pressure_before"].as_f64().unwrap(),
+        d["max_pressure_after"].as_f64().unwrap(),
+    );
+    assert!(after < 0.8 * before, "{after} vs {before}");
+    assert!((after / d["objective"].as_f64().unwrap() - 1.0).abs() < 0.03);
+    let csv = std::fs::read_to_string(dir.join("profile.csv")).unwrap();
+    assert!(csv.starts_with("# y_mm,drop_mm"), "{csv}");
+    // A ball bearing's [design] is refused, naming it.
+    let ball = out.join("ball.toml");
+    std::fs::write(
+        &ball,
+        format!(
+            "{}\n[design]\nfamily = \"free\"\n",
+            example_scene("ball-bearing-radial")
+        ),
+    )
+    .unwrap();
+    exited(
+        &elcon(&["check", &ball.display().to_string()]),
+        1,
+        &["design", "roller"],
+    );
+}

@@ -103,6 +103,39 @@ pub struct ReferenceModel {
     pub max_pressure: Option<f64>,
 }
 
+/// A roller crown designed over the bearing's own rollers.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CrownDesignJson {
+    /// The family (`"free"`, `"quadratic"`).
+    pub family: String,
+    /// Rounds of design and re-solve.
+    pub rounds: usize,
+    /// The last round's cases: each loaded roller's `load` and `tilt`.
+    pub cases: Vec<CrownCaseJson>,
+    /// The design's objective: its worst peak pressure over the cases.
+    pub objective: f64,
+    /// The largest inner-contact pressure of the bearing with its crown as
+    /// given.
+    pub max_pressure_before: f64,
+    /// The same with the designed crown (the elements' rows are this
+    /// bearing's).
+    pub max_pressure_after: f64,
+    /// The crown made: `(position along the roller, drop)` at the design's
+    /// stations, read linearly between them (also profile.csv).
+    pub crown: Vec<[f64; 2]>,
+}
+
+/// One case of a crown design.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CrownCaseJson {
+    /// The roller.
+    pub roller: usize,
+    /// Its load (force).
+    pub load: f64,
+    /// Its inner contact's tilt (radians).
+    pub tilt: f64,
+}
+
 /// The certificate over every zone and body.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SystemCertificateJson {
@@ -179,6 +212,8 @@ pub struct BearingResult {
     pub contact_ellipse_inner: Option<[f64; 2]>,
     /// The basic rating life (mm and N only).
     pub life: Option<LifeJson>,
+    /// The crown designed over the bearing's rollers (`[design]`).
+    pub crown_design: Option<CrownDesignJson>,
     /// The reference model's answer.
     pub reference: ReferenceModelJson,
     /// The certificate.
@@ -319,6 +354,7 @@ impl BearingResult {
                 elcon: env!("CARGO_PKG_VERSION").to_string(),
                 files: Vec::new(),
             },
+            crown_design: None,
         }
     }
 }
@@ -337,6 +373,13 @@ pub fn write_bearing_files(run: &BearingRun, dir: &Path) -> Result<(), ReportErr
     faults::write_delay();
     write_atomic_with(&dir.join("elements.csv"), |w| elements_csv(run, w))?;
     faults::write_delay();
+    if let Some(d) = &run.result.crown_design {
+        let rows: Vec<(f64, f64)> = d.crown.iter().map(|r| (r[0], r[1])).collect();
+        write_atomic_with(&dir.join("profile.csv"), |w| {
+            crate::profile::profile_csv("y", run.scene.units().length(), &rows, w)
+        })?;
+        faults::write_delay();
+    }
     if !run.scene.plots() {
         return Ok(());
     }

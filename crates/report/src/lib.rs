@@ -28,8 +28,9 @@ mod subsurface;
 mod tables;
 
 pub use bearing::{
-    BearingGridJson, BearingResult, BearingRun, BearingSeconds, ElementJson, LifeJson,
-    ReferenceModel, ReferenceModelJson, SystemCertificateJson, Xyz, write_bearing_files,
+    BearingGridJson, BearingResult, BearingRun, BearingSeconds, CrownCaseJson, CrownDesignJson,
+    ElementJson, LifeJson, ReferenceModel, ReferenceModelJson, SystemCertificateJson, Xyz,
+    write_bearing_files,
 };
 pub use design::{
     DesignCaseJson, DesignGridJson, DesignJson, DesignOf, DesignRun, FoundBy, RelativeTo,

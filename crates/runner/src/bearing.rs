@@ -6,14 +6,20 @@
 use std::time::Instant;
 
 use elcon_analysis::system::SystemSettings;
+use elcon_design::bearing::roller_crown;
+use elcon_design::{DesignOptions, Family};
 use elcon_elements::ElementsError;
+use elcon_elements::bearing::BearingSolution;
 use elcon_elements::bearing::BearingSystem;
 use elcon_elements::life::RatingLife;
+use elcon_elements::roller::RollerBearing;
 use elcon_elements::roller::Slicing;
 use elcon_elements::springs::HertzSprings;
 use elcon_process::{Ceiling, faults, human};
-use elcon_report::{BearingResult, BearingRun, BearingSeconds, ReferenceModel};
-use elcon_scene::{BearingScene, BearingSpec};
+use elcon_report::{
+    BearingResult, BearingRun, BearingSeconds, CrownCaseJson, CrownDesignJson, ReferenceModel,
+};
+use elcon_scene::{BearingScene, BearingSpec, CrownFamily};
 
 use crate::error::RunError;
 
@@ -94,19 +100,35 @@ pub fn run_bearing(scene: &BearingScene, ceiling: &Ceiling) -> Result<BearingRun
             ))
         )
     };
-    let system = system_of(scene.spec()).map_err(|e| failed(&e))?;
+    let mut system = system_of(scene.spec()).map_err(|e| failed(&e))?;
     let assembly = start.elapsed().as_secs_f64();
-    let solution = system
-        .solve(&SystemSettings::default())
-        .map_err(|e| match interrupted(&e) {
-            true => RunError::Process(elcon_process::ProcessError::Interrupted {
-                scene: scene.name().to_string(),
-            }),
-            false => failed(&e),
-        })?;
+    let cancelled = |e: ElementsError| match interrupted(&e) {
+        true => RunError::Process(elcon_process::ProcessError::Interrupted {
+            scene: scene.name().to_string(),
+        }),
+        false => failed(&e),
+    };
+    let (spec, solution, design) = match (scene.spec(), scene.crown_design()) {
+        (BearingSpec::Roller { bearing, grid }, Some(family)) => {
+            let (crowned, solution, json) =
+                crown_design(bearing, grid, family).map_err(|e| failed(&e))?;
+            let spec = BearingSpec::Roller {
+                bearing: crowned,
+                grid: *grid,
+            };
+            system = system_of(&spec).map_err(|e| failed(&e))?;
+            (spec, solution, Some(json))
+        }
+        (spec, _) => {
+            let solution = system
+                .solve(&SystemSettings::default())
+                .map_err(cancelled)?;
+            (spec.clone(), solution, None)
+        }
+    };
     let solve = start.elapsed().as_secs_f64() - assembly;
     let loads: Vec<f64> = solution.elements.iter().map(|e| e.load).collect();
-    let (reference, life) = references(scene, &loads).map_err(|e| failed(&e))?;
+    let (reference, life) = references(scene, &spec, &loads).map_err(|e| failed(&e))?;
     let points: Vec<_> = system
         .system
         .zones()
@@ -118,7 +140,7 @@ pub fn run_bearing(scene: &BearingScene, ceiling: &Ceiling) -> Result<BearingRun
         solve,
         total: start.elapsed().as_secs_f64(),
     };
-    let result = BearingResult::of(
+    let mut result = BearingResult::of(
         scene,
         &solution,
         life.as_ref(),
@@ -126,6 +148,7 @@ pub fn run_bearing(scene: &BearingScene, ceiling: &Ceiling) -> Result<BearingRun
         seconds,
         points[0].len(),
     );
+    result.crown_design = design;
     Ok(BearingRun {
         scene: scene.clone(),
         solution,
@@ -147,10 +170,11 @@ fn system_of(spec: &BearingSpec) -> Result<BearingSystem, ElementsError> {
 /// rating life from the elements' `loads` (mm and N only).
 fn references(
     scene: &BearingScene,
+    spec: &BearingSpec,
     loads: &[f64],
 ) -> Result<(ReferenceModel, Option<RatingLife>), ElementsError> {
     let rated = scene.rates_life();
-    Ok(match scene.spec() {
+    Ok(match spec {
         BearingSpec::Ball { bearing, .. } => {
             let springs = HertzSprings::of(bearing)?.solve()?;
             let reference = ReferenceModel {
@@ -180,4 +204,45 @@ fn references(
             (reference, life)
         }
     })
+}
+
+/// The rollers' crown designed over the bearing's own loaded rollers: the
+/// crowned bearing, its solution and result.json's block.
+fn crown_design(
+    bearing: &RollerBearing,
+    grid: &elcon_elements::roller::RollerGrid,
+    family: CrownFamily,
+) -> Result<(RollerBearing, BearingSolution, CrownDesignJson), elcon_design::DesignError> {
+    let family_of = match family {
+        CrownFamily::Free => Family::Free,
+        CrownFamily::Quadratic => Family::Quadratic,
+    };
+    let c = roller_crown(bearing, grid, family_of, &DesignOptions::default())?;
+    let (before, after) = c.max_pressures();
+    let rows = match &c.crown {
+        elcon_elements::roller::Crown::Table(rows) => rows.iter().map(|&(s, d)| [s, d]).collect(),
+        _ => Vec::new(),
+    };
+    let json = CrownDesignJson {
+        family: family.name().to_string(),
+        rounds: c.rounds,
+        cases: c
+            .cases
+            .iter()
+            .map(|k| CrownCaseJson {
+                roller: k.roller,
+                load: k.load,
+                tilt: k.tilt,
+            })
+            .collect(),
+        objective: c.design.objective,
+        max_pressure_before: before,
+        max_pressure_after: after,
+        crown: rows,
+    };
+    let crowned = RollerBearing {
+        crown: c.crown.clone(),
+        ..bearing.clone()
+    };
+    Ok((crowned, c.after, json))
 }

@@ -76,7 +76,24 @@ struct BearingFileToml {
     material: MaterialToml,
     bearing: BearingToml,
     points: Option<BearingPointsToml>,
+    design: Option<Spanned<BearingDesignToml>>,
     outputs: Option<BearingOutputsToml>,
+}
+
+keywords! {
+    /// A bearing crown design's `family`.
+    pub enum CrownFamily {
+        /// `"free"`: one drop per station along the roller.
+        Free = "free",
+        /// `"quadratic"`: the paper's `a s^2 + b s + c`.
+        Quadratic = "quadratic",
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BearingDesignToml {
+    family: Spanned<CrownFamily>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -203,6 +220,7 @@ pub struct BearingScene {
     description: Option<String>,
     units: Units,
     spec: BearingSpec,
+    crown_design: Option<CrownFamily>,
     plots: bool,
 }
 
@@ -239,6 +257,12 @@ impl BearingScene {
     /// The bearing and its grid.
     pub fn spec(&self) -> &BearingSpec {
         &self.spec
+    }
+
+    /// The crown design asked for (`[design] family`, roller bearings):
+    /// the rollers' crown designed over the bearing's own loaded rollers.
+    pub fn crown_design(&self) -> Option<CrownFamily> {
+        self.crown_design
     }
 
     /// Whether the plots are drawn (`[outputs] plots`, default true).
@@ -296,6 +320,19 @@ impl BearingScene {
             BearingKind::Ball => ball(&ctx, &toml, material)?,
             BearingKind::Roller => roller(&ctx, &toml, material)?,
         };
+        let crown_design = match (&toml.design, &spec) {
+            (None, _) => None,
+            (Some(d), BearingSpec::Roller { .. }) => Some(*d.get_ref().family.get_ref()),
+            (Some(d), BearingSpec::Ball { .. }) => {
+                return Err(ctx.invalid(
+                    d.span(),
+                    "design",
+                    "(given)",
+                    "a ball bearing's raceways are not designed here: [design] designs a roller \
+                     bearing's crown",
+                ));
+            }
+        };
         let meta = toml.scene.as_ref();
         let name = meta
             .and_then(|s| s.name.as_ref())
@@ -310,6 +347,7 @@ impl BearingScene {
             description: meta.and_then(|s| s.description.clone()),
             units,
             spec,
+            crown_design,
             plots: toml.outputs.as_ref().and_then(|o| o.plots).unwrap_or(true),
         })
     }

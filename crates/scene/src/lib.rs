@@ -23,7 +23,7 @@ mod scene;
 mod schema;
 
 pub use batch::{Batch, BatchRun, is_batch_text};
-pub use bearing::{BearingKind, BearingScene, BearingSpec, is_bearing_text};
+pub use bearing::{BearingKind, BearingScene, BearingSpec, CrownFamily, is_bearing_text};
 pub use ctx::{MAX_INPUT_BYTES, read_text};
 pub use error::{Location, SceneError};
 pub use inputs::{DataInput, confine_data_files, file_sha256, sha256_hex};
