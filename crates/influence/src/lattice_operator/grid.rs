@@ -119,9 +119,12 @@ impl Grid {
 
     /// Bytes held by an operator on this grid whose gather order takes
     /// `gather_bytes`, its workspace included (the gather order, the
-    /// spectrum, the plans, the workspace).
+    /// spectrum, the kernel table, the plans, the workspace).
     pub(super) fn operator_bytes(&self, gather_bytes: usize) -> usize {
-        gather_bytes + 8 * self.spectrum_len() + self.plan_bytes() + self.workspace_bytes()
+        gather_bytes
+            + 8 * (self.spectrum_len() + self.rows * self.columns)
+            + self.plan_bytes()
+            + self.workspace_bytes()
     }
 }
 
