@@ -130,7 +130,7 @@ impl Grid {
 
 /// The smallest even 5-smooth number `>= 2 n - 1` (at least 2): a padded
 /// length without wrap-around and fast for the FFT.
-pub(super) fn padded_length(n: usize) -> usize {
+pub(crate) fn padded_length(n: usize) -> usize {
     let smooth = |mut m: usize| {
         for p in [2, 3, 5] {
             while m.is_multiple_of(p) {

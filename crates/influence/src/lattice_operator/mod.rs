@@ -100,5 +100,6 @@ mod spectrum;
 mod tests;
 
 pub use convolution::LatticeWorkspace;
+pub(crate) use grid::padded_length;
 pub use operator::{LatticeKernel, LatticeOperator};
 pub use preconditioner::{LatticePreconditioner, SYMBOL_FLOOR};
