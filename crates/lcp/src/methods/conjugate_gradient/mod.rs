@@ -44,11 +44,17 @@
 //! besides the product.
 //!
 //! Where a step clipped a point or let one enter, or several rows had to be
-//! restored, `u` is recomputed from a true product `M z` (a second product
-//! in that iteration: while the contact set settles; on Hertz's problem at
-//! 87,013 points, 26 in 137 iterations). So the method costs about one
-//! product per iteration, as Polonsky & Keer's, where computing `g` afresh
-//! would cost two.
+//! restored, `u` is no longer `M z`. With one row or none, and an operator
+//! whose columns are cheap ([`Operator::add_columns`](crate::Operator::add_columns):
+//! the lattice kernel shifted to a point), the step's departure from the
+//! step along the direction, `d = z - (c z_old - τ t)` on the points clipped
+//! or let in, is added by columns, `u += M d`, where they are at most a
+//! product's worth ([`Operator::columns_per_product`](crate::Operator::columns_per_product)),
+//! at most [`MAX_CORRECTIONS`] times between true products. Otherwise `u`
+//! is recomputed from a true product `M z` (a second product in that
+//! iteration: while the contact set settles, when thousands of points
+//! leave a step). So the method costs about one product per iteration, as
+//! Polonsky & Keer's, where computing `g` afresh would cost two.
 //!
 //! Points enter by Polonsky & Keer's rule, `z_i = -τ w_i` with the step `τ`
 //! of the direction on `J`. Where that overshoots and the iteration makes
