@@ -9,7 +9,7 @@
 //! cargo bench --bench systems        # about a minute
 //! ```
 //!
-//! docs/performance.md §8 has the table.
+//! docs/performance.md §9 has the table.
 
 use std::time::Duration;
 

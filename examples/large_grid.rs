@@ -176,8 +176,9 @@ fn one_size(cells: f64, repeat: usize) {
     let n = sol.forces.len();
     let products = sol.statistics.products();
     let preconditionings = sol.statistics.preconditionings();
+    let (corrections, columns) = (sol.statistics.corrections(), sol.statistics.columns());
     println!(
-        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1} products={products} floor_seconds={floor:.4} threads={} cpu_seconds={cpu:.2} iterations={} preconditioner_applications={preconditionings} preconditioner_products={:.3} repeat={} times_floor={times_floor:.3}",
+        "n={n} method={} seconds={seconds:.4} err_delta={:+.3e} certificate={:.1e} peak_rss_mb={:.1} products={products} corrections={corrections} columns={columns} floor_seconds={floor:.4} threads={} cpu_seconds={cpu:.2} iterations={} preconditioner_applications={preconditionings} preconditioner_products={:.3} repeat={} times_floor={times_floor:.3}",
         method.name(),
         sol.approach / hertz.approach() - 1.0,
         sol.certificate.worst(),

@@ -211,6 +211,17 @@ impl Operator for LatticeProducts<'_> {
     fn entries_nonnegative(&self) -> bool {
         true
     }
+
+    /// The kernel table shifted to each column's point
+    /// (`elcon_influence::LatticeKernel::add_columns`).
+    fn columns_per_product(&self) -> usize {
+        self.0.columns_per_product()
+    }
+
+    fn add_columns(&self, columns: &[(usize, f64)], y: &mut [f64]) -> bool {
+        self.0.add_columns(columns, y);
+        true
+    }
 }
 
 /// The lattice operator's preconditioner for the conjugate gradient
@@ -286,5 +297,13 @@ impl Operator for Products<'_> {
 
     fn entries_nonnegative(&self) -> bool {
         self.operator().entries_nonnegative()
+    }
+
+    fn columns_per_product(&self) -> usize {
+        self.operator().columns_per_product()
+    }
+
+    fn add_columns(&self, columns: &[(usize, f64)], y: &mut [f64]) -> bool {
+        self.operator().add_columns(columns, y)
     }
 }

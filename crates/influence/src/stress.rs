@@ -142,24 +142,54 @@ fn rotate(a: &mut [[f64; 3]; 3], p: usize, q: usize) {
     }
 }
 
-/// The corner functions' sum of `g` over the rectangle's corners.
-fn corners(x: f64, y: f64, (a, b): (f64, f64), g: impl Fn(f64, f64) -> f64) -> f64 {
-    let (x1, x2) = (x + a, x - a);
-    let (y1, y2) = (y + b, y - b);
-    g(x1, y1) - g(x1, y2) - g(x2, y1) + g(x2, y2)
-}
-
 /// The stresses at `(x, y, z)`, z > 0, of a unit uniform pressure on the
 /// rectangle `[-dx/2, dx/2] x [-dy/2, dy/2]` of the surface of a
 /// half-space of Poisson's ratio `nu` (Love 1929; see the [module
 /// documentation](self)).
 pub fn love_rectangle_stress(x: f64, y: f64, z: f64, dx: f64, dy: f64, nu: f64) -> Stress {
-    let half = (0.5 * dx, 0.5 * dy);
+    let (a, b) = (0.5 * dx, 0.5 * dy);
+    let (x1, x2) = (x + a, x - a);
+    let (y1, y2) = (y + b, y - b);
+    let at = |x, y| corner_functions(x, y, z);
+    rectangle_from_corners([at(x1, y1), at(x1, y2), at(x2, y1), at(x2, y2)], z, nu)
+}
+
+/// Love's stresses at depth `z` of a unit pressure on the cell at every
+/// lattice offset `(di dx, dj dy)`, `di < ni`, `dj < nj`, in `out` (row
+/// `di` at `di nj`): [`love_rectangle_stress`] at each offset to rounding
+/// (its corners at `(k - 1/2) dx` instead of `k dx ± dx/2`), each corner's
+/// functions computed once for the four cells that share it, a row of
+/// corners at a time.
+pub(crate) fn love_rectangle_table(
+    (ni, nj): (usize, usize),
+    z: f64,
+    (dx, dy): (f64, f64),
+    nu: f64,
+    out: &mut Vec<Stress>,
+) {
+    let corner_row = |k: usize| -> Vec<[f64; 10]> {
+        let x = (k as f64 - 0.5) * dx;
+        (0..=nj)
+            .map(|l| corner_functions(x, (l as f64 - 0.5) * dy, z))
+            .collect()
+    };
+    let mut low = corner_row(0);
+    for di in 0..ni {
+        let high = corner_row(di + 1);
+        for dj in 0..nj {
+            let c = [high[dj + 1], high[dj], low[dj + 1], low[dj]];
+            out.push(rectangle_from_corners(c, z, nu));
+        }
+        low = high;
+    }
+}
+
+/// The ten corner functions of Love's rectangle at corner `(x, y)`, depth
+/// `z`: the potentials' derivatives `psi_z, psi_zz, psi_xx, psi_yy,
+/// psi_xy, psi_xz, psi_yz, psi1_xx, psi1_yy, psi1_xy` before the sum over
+/// the corners.
+fn corner_functions(x: f64, y: f64, z: f64) -> [f64; 10] {
     let r = |x: f64, y: f64| (x * x + y * y + z * z).sqrt();
-    let psi_z = corners(x, y, half, |x, y| -(x * y / (z * r(x, y))).atan());
-    let psi_zz = corners(x, y, half, |x, y| {
-        x * y / r(x, y) * (1.0 / (x * x + z * z) + 1.0 / (y * y + z * z))
-    });
     // The `yy` and `yz` functions are the `xx` and `xz` ones with x and y
     // swapped (r is symmetric in them, to the last bit).
     let over = |x: f64, y: f64, top: f64| {
@@ -170,19 +200,29 @@ pub fn love_rectangle_stress(x: f64, y: f64, z: f64, dx: f64, dy: f64, nu: f64) 
         let rr = r(x, y);
         (x * y * (rr - z)).atan2(x * x * rr + z * y * y)
     };
-    let psi_xx = corners(x, y, half, |x, y| over(x, y, x));
-    let psi_yy = corners(x, y, half, |x, y| over(y, x, y));
-    let psi_xy = corners(x, y, half, |x, y| 1.0 / r(x, y));
-    let psi_xz = corners(x, y, half, |x, y| over(x, y, z));
-    let psi_yz = corners(x, y, half, |x, y| over(y, x, z));
-    let psi1_xx = corners(x, y, half, angle);
-    let psi1_yy = corners(x, y, half, |x, y| angle(y, x));
-    let psi1_xy = corners(x, y, half, |x, y| (r(x, y) + z).ln());
+    [
+        -(x * y / (z * r(x, y))).atan(),
+        x * y / r(x, y) * (1.0 / (x * x + z * z) + 1.0 / (y * y + z * z)),
+        over(x, y, x),
+        over(y, x, y),
+        1.0 / r(x, y),
+        over(x, y, z),
+        over(y, x, z),
+        angle(x, y),
+        angle(y, x),
+        (r(x, y) + z).ln(),
+    ]
+}
+
+/// The rectangle's stresses from its corners' functions, in the order
+/// `(x + a, y + b), (x + a, y - b), (x - a, y + b), (x - a, y - b)`.
+fn rectangle_from_corners(c: [[f64; 10]; 4], z: f64, nu: f64) -> Stress {
+    let psi = |f: usize| c[0][f] - c[1][f] - c[2][f] + c[3][f];
     from_potentials(
         z,
         nu,
-        [psi_z, psi_zz, psi_xx, psi_yy, psi_xy, psi_xz, psi_yz],
-        [psi1_xx, psi1_yy, psi1_xy],
+        [psi(0), psi(1), psi(2), psi(3), psi(4), psi(5), psi(6)],
+        [psi(7), psi(8), psi(9)],
     )
 }
 
@@ -255,6 +295,43 @@ pub fn strip_stress(x: f64, z: f64, h: f64, nu: f64) -> Stress {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The table of a layer's offsets, from shared corners, is Love's
+    /// rectangle at each offset to rounding (relative to the largest
+    /// component of the offset's stress and of the cell's own).
+    #[test]
+    fn the_layer_table_is_the_rectangle_at_each_offset() {
+        let (dx, dy, nu) = (0.3, 0.2, 0.28);
+        for z in [0.05, 0.4, 2.0] {
+            let mut table = Vec::new();
+            love_rectangle_table((7, 5), z, (dx, dy), nu, &mut table);
+            assert_eq!(table.len(), 35);
+            let own = love_rectangle_stress(0.0, 0.0, z, dx, dy, nu);
+            let scale = [own.xx, own.yy, own.zz]
+                .iter()
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            for di in 0..7 {
+                for dj in 0..5 {
+                    let (x, y) = (di as f64 * dx, dj as f64 * dy);
+                    let e = love_rectangle_stress(x, y, z, dx, dy, nu);
+                    let t = table[di * 5 + dj];
+                    for (a, b) in [
+                        (t.xx, e.xx),
+                        (t.yy, e.yy),
+                        (t.zz, e.zz),
+                        (t.xy, e.xy),
+                        (t.xz, e.xz),
+                        (t.yz, e.yz),
+                    ] {
+                        assert!(
+                            (a - b).abs() <= 1e-13 * scale,
+                            "z {z} ({di}, {dj}): {a} vs {b}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 
     /// Gauss-Legendre nodes and weights on [-1, 1] (16 points).
     fn gauss16() -> Vec<(f64, f64)> {

@@ -8,8 +8,9 @@
 //!     sigma_c(i, j; z) = sum_(i', j') p(i', j') T_c((i - i') dx, (j - j') dy, z)
 //! ```
 //!
-//! computed as the pointwise product of the spectra on a box of twice the
-//! lattice's extent (no wrap-around), `O(N log N)` a component, instead of
+//! computed as the pointwise product of the spectra on a box of at least
+//! twice the lattice's extent less one (no wrap-around; the smallest even
+//! 5-smooth length, fast for the FFT), `O(N log N)` a component, instead of
 //! the direct sum's `O(N N_contact)`. T is Love's uniform pressure on the
 //! cell ([`love_rectangle_stress`]) or a point force's
 //! ([`point_force`], times the cell's area); on a line, the strip's
@@ -26,9 +27,12 @@ use std::sync::Arc;
 
 use crate::dimension::Dimension;
 use crate::error::{InfluenceError, try_vec};
+use crate::lattice_operator::padded_length;
 use crate::models::{Body, Model};
 use crate::points::PointSet;
-use crate::stress::{Stress, love_rectangle_stress, point_force, strip_stress};
+use crate::stress::{
+    Stress, love_rectangle_stress, love_rectangle_table, point_force, strip_stress,
+};
 
 /// Which stress influence coefficient a layer is computed with.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -91,6 +95,9 @@ impl StressKernel {
 pub struct StressLayers {
     /// The points' offsets in the box, `(i - i0, j - j0)`.
     offsets: Vec<(usize, usize)>,
+    /// Rows of the padded grid that hold points (the lattice's extent
+    /// along i): the inverse transform writes only these.
+    rows: usize,
     /// The box: padded sizes along i (x) and j (y).
     size: (usize, usize),
     cell: (f64, f64),
@@ -132,7 +139,10 @@ impl StressLayers {
             .fold((i64::MIN, i64::MIN), |(a, b), &(i, j)| (a.max(i), b.max(j)));
         let extent = ((i1 - i0 + 1) as usize, (j1 - j0 + 1) as usize);
         let line = points.dimension() == Dimension::Line;
-        let size = (2 * extent.0, if line { 1 } else { 2 * extent.1 });
+        let size = (
+            padded_length(extent.0),
+            if line { 1 } else { padded_length(extent.1) },
+        );
         let offsets: Vec<(usize, usize)> = indices
             .iter()
             .map(|&(i, j)| ((i - i0) as usize, (j - j0) as usize))
@@ -142,6 +152,7 @@ impl StressLayers {
         let mut complex = FftPlanner::<f64>::new();
         let mut layers = Self {
             offsets,
+            rows: extent.0,
             size,
             cell: (cell.dx, cell.dy),
             nu,
@@ -156,8 +167,19 @@ impl StressLayers {
         for (&(i, j), &p) in layers.offsets.iter().zip(pressures) {
             grid[i * layers.padded_j() + j] = p;
         }
-        layers.spectrum = layers.forward(&mut grid)?;
+        let mut spectrum = try_vec(
+            layers.spectrum_len(),
+            Complex::default(),
+            "a stress layer's spectrum",
+        )?;
+        layers.forward(&mut grid, &mut spectrum);
+        layers.spectrum = spectrum;
         Ok(layers)
+    }
+
+    /// The values of a spectrum: `P_i (P_j / 2 + 1)`.
+    fn spectrum_len(&self) -> usize {
+        self.size.0 * (self.padded_j() / 2 + 1)
     }
 
     /// The real length along j (at least 2, as realfft needs).
@@ -165,27 +187,28 @@ impl StressLayers {
         self.size.1.max(2)
     }
 
-    /// The spectrum of the real `grid` (rows of `padded_j` along j).
-    fn forward(&self, grid: &mut [f64]) -> Result<Vec<Complex<f64>>, InfluenceError> {
-        let (ni, nj) = (self.size.0, self.padded_j());
+    /// The spectrum of the real `grid` (rows of `padded_j` along j; used
+    /// as scratch) into `spectrum`.
+    fn forward(&self, grid: &mut [f64], spectrum: &mut [Complex<f64>]) {
+        let nj = self.padded_j();
         let half = nj / 2 + 1;
-        let mut spectrum = try_vec(ni * half, Complex::default(), "a stress layer's spectrum")?;
         for (row, out) in grid.chunks_mut(nj).zip(spectrum.chunks_mut(half)) {
             self.forward_j
                 .process(row, out)
                 .expect("the plan's own lengths");
         }
-        along_i(&*self.forward_i, &mut spectrum, half);
-        Ok(spectrum)
+        along_i(&*self.forward_i, spectrum, half);
     }
 
-    /// The real grid of a spectrum (scaled by the FFT lengths).
-    fn inverse(&self, spectrum: &mut [Complex<f64>]) -> Result<Vec<f64>, InfluenceError> {
+    /// The real grid of a spectrum (scaled by the FFT lengths) into `grid`,
+    /// on the rows that hold points (the others are left as they are);
+    /// the spectrum is scratch.
+    fn inverse(&self, spectrum: &mut [Complex<f64>], grid: &mut [f64]) {
         let (ni, nj) = (self.size.0, self.padded_j());
         let half = nj / 2 + 1;
         along_i(&*self.inverse_i, spectrum, half);
-        let mut grid = try_vec(ni * nj, 0.0, "a stress layer")?;
-        for (row, input) in grid.chunks_mut(nj).zip(spectrum.chunks_mut(half)) {
+        let rows = grid.chunks_mut(nj).zip(spectrum.chunks_mut(half));
+        for (row, input) in rows.take(self.rows) {
             // The imaginary parts of the first and last bins are rounding.
             input[0].im = 0.0;
             if nj % 2 == 0 {
@@ -196,8 +219,7 @@ impl StressLayers {
                 .expect("the plan's own lengths");
         }
         let scale = 1.0 / (ni * nj) as f64;
-        grid.iter_mut().for_each(|v| *v *= scale);
-        Ok(grid)
+        grid[..self.rows * nj].iter_mut().for_each(|v| *v *= scale);
     }
 
     /// The kernel's stress at the lattice offset `(di, dj)` and depth `z`.
@@ -228,9 +250,16 @@ impl StressLayers {
                 what: "a stress layer's coefficients",
                 bytes: qi * qj * std::mem::size_of::<Stress>(),
             })?;
-        for di in 0..qi {
-            for dj in 0..qj {
-                quarter.push(self.coefficient(di as i64, dj as i64, z));
+        match self.kernel {
+            StressKernel::Rectangle => {
+                love_rectangle_table((qi, qj), z, self.cell, self.nu, &mut quarter);
+            }
+            _ => {
+                for di in 0..qi {
+                    for dj in 0..qj {
+                        quarter.push(self.coefficient(di as i64, dj as i64, z));
+                    }
+                }
             }
         }
         let components: [fn(&Stress) -> f64; 6] =
@@ -246,40 +275,51 @@ impl StressLayers {
         ];
         let mut out = vec![Stress::default(); self.offsets.len()];
         let mut grid = try_vec(ni * nj, 0.0, "a stress layer")?;
+        let mut values = try_vec(ni * nj, 0.0, "a stress layer")?;
+        let mut product = try_vec(
+            self.spectrum_len(),
+            Complex::default(),
+            "a stress layer's spectrum",
+        )?;
+        let mut row = vec![0.0; qj];
         for (c, (component, (si, sj))) in components.iter().zip(parity).enumerate() {
-            for i in 0..ni {
-                for j in 0..nj {
-                    // The offsets of box cell (i, j), wrapped.
-                    let (di, fi) = if i < qi { (i, 1.0) } else { (ni - i, si) };
-                    let (dj, fj) = if line || j < qj {
-                        (j, 1.0)
-                    } else {
-                        (nj - j, sj)
-                    };
-                    let inside = di < qi && dj < qj && !(line && j > 0);
-                    grid[i * nj + j] = if inside {
-                        fi * fj * component(&quarter[di * qj + dj])
-                    } else {
-                        0.0
-                    };
+            for (i, cells) in grid.chunks_exact_mut(nj).enumerate() {
+                // The offsets of box row i, wrapped: row di of the quarter
+                // with the sign of negative offsets along i.
+                let (di, fi) = if i < qi { (i, 1.0) } else { (ni - i, si) };
+                cells.fill(0.0);
+                if di >= qi {
+                    continue;
+                }
+                for (v, s) in row.iter_mut().zip(&quarter[di * qj..(di + 1) * qj]) {
+                    *v = fi * component(s);
+                }
+                if line {
+                    cells[0] = row[0];
+                    continue;
+                }
+                cells[..qj].copy_from_slice(&row);
+                // Negative offsets along j: cell nj - dj holds offset -dj.
+                for dj in 1..qj.min(nj - qj + 1) {
+                    cells[nj - dj] = sj * row[dj];
                 }
             }
-            let mut product = self.forward(&mut grid)?;
+            self.forward(&mut grid, &mut product);
             product
                 .iter_mut()
                 .zip(&self.spectrum)
                 .for_each(|(a, b)| *a *= b);
-            let values = self.inverse(&mut product)?;
+            self.inverse(&mut product, &mut values);
+            let set: fn(&mut Stress, f64) = match c {
+                0 => |s, v| s.xx = v,
+                1 => |s, v| s.yy = v,
+                2 => |s, v| s.zz = v,
+                3 => |s, v| s.xy = v,
+                4 => |s, v| s.xz = v,
+                _ => |s, v| s.yz = v,
+            };
             for (s, &(i, j)) in out.iter_mut().zip(&self.offsets) {
-                let v = values[i * nj + j];
-                match c {
-                    0 => s.xx = v,
-                    1 => s.yy = v,
-                    2 => s.zz = v,
-                    3 => s.xy = v,
-                    4 => s.xz = v,
-                    _ => s.yz = v,
-                }
+                set(s, values[i * nj + j]);
             }
         }
         Ok(out)
@@ -287,20 +327,34 @@ impl StressLayers {
 }
 
 /// `fft` of every column of `spectrum` (rows of `half` values), in place:
-/// the transform along i of the row spectra.
+/// the transform along i of the row spectra, [`COLUMN_BATCH`] columns at
+/// a time (each row's values of a batch read at once, the batch's columns
+/// transformed by one call).
 fn along_i(fft: &dyn Fft<f64>, spectrum: &mut [Complex<f64>], half: usize) {
     let ni = spectrum.len() / half;
-    let mut column = vec![Complex::default(); ni];
-    for k in 0..half {
+    let mut batch = vec![Complex::default(); ni * COLUMN_BATCH];
+    let mut scratch = vec![Complex::default(); fft.get_inplace_scratch_len()];
+    for first in (0..half).step_by(COLUMN_BATCH) {
+        let width = COLUMN_BATCH.min(half - first);
+        let batch = &mut batch[..ni * width];
         for i in 0..ni {
-            column[i] = spectrum[i * half + k];
+            let row = &spectrum[i * half + first..i * half + first + width];
+            for (t, &v) in row.iter().enumerate() {
+                batch[t * ni + i] = v;
+            }
         }
-        fft.process(&mut column);
+        fft.process_with_scratch(batch, &mut scratch);
         for i in 0..ni {
-            spectrum[i * half + k] = column[i];
+            let row = &mut spectrum[i * half + first..i * half + first + width];
+            for (t, v) in row.iter_mut().enumerate() {
+                *v = batch[t * ni + i];
+            }
         }
     }
 }
+
+/// Columns of the spectra transformed together along i.
+const COLUMN_BATCH: usize = 16;
 
 #[cfg(test)]
 mod tests {

@@ -31,11 +31,11 @@
 //! `z_scale = ‖z‖∞`.
 
 use faer::dyn_stack::{PodBuffer, PodStack};
-use faer::{Col, ColRef, MatRef};
+use faer::{Col, ColRef, Mat, MatRef};
 
 use crate::certificate::Certificate;
 use crate::linalg::{self, abs_matvec, matvec, norm_inf};
-use crate::linear::LinearSystem;
+use crate::linear::{LinearSystem, Matrix};
 use crate::operator::OperatorLcp;
 use crate::problem::{BorderedLcpRef, Bound, MixedBorder, MixedLcp, MixedRef};
 
@@ -226,30 +226,21 @@ impl LinearSystem<'_> {
     /// certificate's equality residual (no complementarity: its other
     /// residuals are 0).
     pub(crate) fn certify(&self, x: MatRef<'_, f64>, tolerance: f64) -> Certificate {
-        let (n, operator) = (self.size(), self.matrix.operator());
-        let (mut x_c, mut magnitude) = (vec![0.0; n], vec![0.0; n]);
-        let (mut product, mut terms) = (vec![0.0; n], vec![0.0; n]);
+        let (products, terms) = self.products(x);
         let (mut worst, mut finite) = (0.0f64, true);
-        let mut scratch = PodBuffer::new(operator.apply_scratch());
-        let stack = PodStack::new(&mut scratch);
         for c in 0..self.columns() {
-            for (i, v) in x.col(c).iter().enumerate() {
-                x_c[i] = *v;
-                magnitude[i] = v.abs();
-            }
-            operator.apply(&x_c, &mut product, stack);
-            operator.apply_abs(&magnitude, &mut terms, stack);
-            let r = self.rhs.col(c);
+            let (r, product, terms) = (self.rhs.col(c), products.col(c), terms.col(c));
             let (mut residual, mut scale) = (0.0f64, 0.0f64);
-            for i in 0..n {
+            for i in 0..self.size() {
                 residual = residual.max((r[i] - product[i]).abs());
                 scale = scale.max(terms[i] + r[i].abs());
             }
             // A NaN is left out by max: the finite flag keeps it.
-            finite &= x_c
+            finite &= x
+                .col(c)
                 .iter()
-                .chain(&product)
-                .chain(&terms)
+                .chain(product.iter())
+                .chain(terms.iter())
                 .all(|v| v.is_finite());
             worst = worst.max(if scale > 0.0 { residual / scale } else { 0.0 });
         }
@@ -264,6 +255,44 @@ impl LinearSystem<'_> {
             tolerance,
             finite,
         }
+    }
+
+    /// `M X` and `|M| |X|`, column by column. A dense `M` takes them as
+    /// two matrix products (each reads `M` once for all the columns, where
+    /// products column by column read it once a column), `|M|` read from
+    /// `M` itself where its entries are non-negative, else from a copy of
+    /// their magnitudes; an operator by two products a column.
+    fn products(&self, x: MatRef<'_, f64>) -> (Mat<f64>, Mat<f64>) {
+        let (n, columns) = (self.size(), self.columns());
+        let magnitude = Mat::from_fn(n, columns, |i, c| x[(i, c)].abs());
+        if let Matrix::Dense(m) = self.matrix {
+            let product = linalg::matmul_seq(m, x);
+            let nonnegative = (0..n).all(|j| m.col(j).iter().all(|v| *v >= 0.0));
+            let terms = if nonnegative {
+                linalg::matmul_seq(m, magnitude.as_ref())
+            } else {
+                let abs = Mat::from_fn(n, n, |i, j| m[(i, j)].abs());
+                linalg::matmul_seq(abs.as_ref(), magnitude.as_ref())
+            };
+            return (product, terms);
+        }
+        let operator = self.matrix.operator();
+        let (mut product, mut terms) = (Mat::zeros(n, columns), Mat::zeros(n, columns));
+        let (mut x_c, mut magnitude_c) = (vec![0.0; n], vec![0.0; n]);
+        let (mut product_c, mut terms_c) = (vec![0.0; n], vec![0.0; n]);
+        let mut scratch = PodBuffer::new(operator.apply_scratch());
+        let stack = PodStack::new(&mut scratch);
+        for c in 0..columns {
+            for i in 0..n {
+                (x_c[i], magnitude_c[i]) = (x[(i, c)], magnitude[(i, c)]);
+            }
+            operator.apply(&x_c, &mut product_c, stack);
+            operator.apply_abs(&magnitude_c, &mut terms_c, stack);
+            for i in 0..n {
+                (product[(i, c)], terms[(i, c)]) = (product_c[i], terms_c[i]);
+            }
+        }
+        (product, terms)
     }
 }
 

@@ -154,17 +154,34 @@ pub(crate) fn abs_matvec(a: MatRef<'_, f64>, x: ColRef<'_, f64>) -> Col<f64> {
 
 /// `y += |a| |x|` (see [`abs_matvec`]), in place.
 pub(crate) fn add_abs_matvec(mut y: ColMut<'_, f64>, a: MatRef<'_, f64>, x: ColRef<'_, f64>) {
-    // Column by column, without forming |a| (an N x N copy).
+    // Column by column, without forming |a| (an N x N copy); over
+    // slices where both are contiguous (a loop the compiler vectorizes),
+    // the same operations in the same order.
     for j in 0..a.ncols() {
         let xj = x[j].abs();
         if xj == 0.0 {
             continue;
         }
         let col = a.col(j);
-        for i in 0..a.nrows() {
-            y[i] += col[i].abs() * xj;
+        match (y.as_mut().try_as_col_major_mut(), col.try_as_col_major()) {
+            (Some(y), Some(col)) => {
+                let (y, col) = (y.as_slice_mut(), col.as_slice());
+                y.iter_mut().zip(col).for_each(|(y, c)| *y += c.abs() * xj);
+            }
+            _ => {
+                for i in 0..a.nrows() {
+                    y[i] += col[i].abs() * xj;
+                }
+            }
         }
     }
+}
+
+/// `a b`, on the calling thread (the same bits on any thread count).
+pub(crate) fn matmul_seq(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> Mat<f64> {
+    let mut c = Mat::zeros(a.nrows(), b.ncols());
+    matmul(c.as_mut(), Accum::Replace, a, b, 1.0, Par::Seq);
+    c
 }
 
 /// `y -= a x`, in place (faer's product, accumulated).

@@ -185,6 +185,13 @@ counts! {
     /// conjugate gradient's, one an iteration; each cheaper than a
     /// product: [`Preconditioner::precondition`](crate::Preconditioner::precondition)).
     preconditionings => total "Applications of an operator's preconditioner by every attempt.",
+    /// Steps of the conjugate gradient after which `M z` was kept by
+    /// adding columns of `M` ([`Operator::add_columns`](crate::Operator::add_columns):
+    /// the points the step let in or clipped) instead of a product.
+    corrections => total "Steps of every attempt whose `M z` was kept by columns instead of a product.",
+    /// Columns of `M` added by those steps (each about
+    /// `1 / Operator::columns_per_product` of a product's work).
+    columns => total "Columns of `M` added by every attempt's corrections.",
 }
 
 /// One attempt of a solve.

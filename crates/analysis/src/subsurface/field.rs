@@ -25,6 +25,11 @@ const SECTION_POINTS: usize = 161;
 /// contact's half-width.
 const REFINED: f64 = 1e-4;
 
+/// Tresca's shear is at most the von Mises stress times `1 / sqrt(3)`;
+/// this factor holds that bound with a margin of 1e-9 for the rounding of
+/// either.
+const TRESCA_BOUND: f64 = 0.577_350_269_189_625_8 * (1.0 + 1e-9);
+
 /// The measures looked for, in [`BodyStresses`]' order: von Mises, Tresca,
 /// `|tau_xz|`, `|tau_yz|`.
 const MEASURES: [fn(&Stress) -> f64; 4] = [
@@ -466,19 +471,40 @@ impl<'a> StressField<'a> {
     }
 
     /// Each measure's largest over `layer`, the stresses at depth `z`.
+    /// Tresca's shear (principal stresses by Jacobi rotations, the
+    /// costliest measure) is taken only where it could reach its value at
+    /// the largest von Mises stress: it is at most the von Mises stress
+    /// over sqrt(3) (equal principal spreads), a bound kept with a margin
+    /// for rounding, so the largest found, and the first point that holds
+    /// it, are those of a sweep over every point.
     fn layer_best(&self, layer: &[Stress], z: f64) -> [Peak; 4] {
+        let peak = |value, k: usize| Peak {
+            value,
+            x: self.points.x(k),
+            y: self.points.y(k),
+            z,
+        };
         let mut best = [LOWEST; 4];
+        let mut largest = None;
         for (k, s) in layer.iter().enumerate() {
-            for (b, m) in best.iter_mut().zip(MEASURES) {
-                let v = m(s);
-                if v > b.value {
-                    *b = Peak {
-                        value: v,
-                        x: self.points.x(k),
-                        y: self.points.y(k),
-                        z,
-                    };
+            for m in [0, 2, 3] {
+                let v = MEASURES[m](s);
+                if v > best[m].value {
+                    best[m] = peak(v, k);
+                    if m == 0 {
+                        largest = Some(k);
+                    }
                 }
+            }
+        }
+        let floor = largest.map_or(f64::NEG_INFINITY, |k| layer[k].tresca());
+        for (k, s) in layer.iter().enumerate() {
+            if s.von_mises() * TRESCA_BOUND < floor {
+                continue;
+            }
+            let v = MEASURES[1](s);
+            if v > best[1].value {
+                best[1] = peak(v, k);
             }
         }
         best

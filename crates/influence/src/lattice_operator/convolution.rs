@@ -87,6 +87,11 @@ pub(super) struct Convolution {
     /// `DFT(Kc) / (P1 P2)` at frequency `(m1, m2)`, `m1 <= P1/2`,
     /// `m2 <= P2/2`, at `m2 (P1/2 + 1) + m1` (real: Kc is even).
     pub(super) spectrum: Vec<f64>,
+    /// The kernel table K on the box's offsets, `(di, dj)` at `di n2 + dj`
+    /// (`di < n1`, `dj < n2`; K is even in both): a column of S is this
+    /// table shifted to the column's point
+    /// ([`add_columns`](Self::add_columns)).
+    pub(super) table: Vec<f64>,
     /// The FFT plans of its grid.
     plans: Plans,
 }
@@ -211,12 +216,13 @@ impl Convolution {
         let grid = Grid::new(bounds);
         let gather = GatherOrder::new(points, bounds)?;
         let mut real_planner = RealFftPlanner::<f64>::new();
-        let (spectrum, self_term) = kernel_spectrum(terms, &grid, &mut real_planner)?;
+        let (spectrum, table, self_term) = kernel_spectrum(terms, &grid, &mut real_planner)?;
         let plans = Plans::new(&mut real_planner, grid.padded_rows, grid.padded_columns);
         let convolution = Self {
             grid,
             gather,
             spectrum,
+            table,
             plans,
         };
         Ok((convolution, self_term))
@@ -224,7 +230,9 @@ impl Convolution {
 
     /// Bytes held (without a workspace).
     pub(super) fn bytes(&self) -> usize {
-        self.gather.bytes() + 8 * self.spectrum.capacity() + self.grid.plan_bytes()
+        self.gather.bytes()
+            + 8 * (self.spectrum.capacity() + self.table.capacity())
+            + self.grid.plan_bytes()
     }
 
     /// `y` = the half-space part of `S x`, band by band of the row

@@ -119,15 +119,18 @@ impl Grid {
 
     /// Bytes held by an operator on this grid whose gather order takes
     /// `gather_bytes`, its workspace included (the gather order, the
-    /// spectrum, the plans, the workspace).
+    /// spectrum, the kernel table, the plans, the workspace).
     pub(super) fn operator_bytes(&self, gather_bytes: usize) -> usize {
-        gather_bytes + 8 * self.spectrum_len() + self.plan_bytes() + self.workspace_bytes()
+        gather_bytes
+            + 8 * (self.spectrum_len() + self.rows * self.columns)
+            + self.plan_bytes()
+            + self.workspace_bytes()
     }
 }
 
 /// The smallest even 5-smooth number `>= 2 n - 1` (at least 2): a padded
 /// length without wrap-around and fast for the FFT.
-pub(super) fn padded_length(n: usize) -> usize {
+pub(crate) fn padded_length(n: usize) -> usize {
     let smooth = |mut m: usize| {
         for p in [2, 3, 5] {
             while m.is_multiple_of(p) {

@@ -75,12 +75,21 @@
 //! diverge, so it needs a different kernel (the spectral `2 / (E* |q|)` with
 //! the mean load set apart), not a different padding.
 //!
+//! A column of S is the kernel table shifted to its point
+//! ([`LatticeKernel::add_columns`]): `y += S d` for a `d` with a few
+//! non-zero entries in O(N) a column, what the conjugate gradient takes in
+//! place of a product where a step changed the contact set at a few
+//! points. The table (`n1 x n2` values, 8 bytes a cell of the box) is kept
+//! for them.
+//!
 //! The module's parts: the operator and its kernel (`operator`), the
-//! convolution's banded transforms and their workspace (`convolution`), the
+//! convolution's banded transforms and their workspace (`convolution`),
+//! the columns from the table (`columns`), the
 //! kernel's spectrum (`spectrum`), an approximate inverse for a
 //! preconditioned conjugate gradient (`preconditioner`), the gather order of the points on the
 //! box (`gather`), and the padded grid with its byte counts (`grid`).
 
+mod columns;
 mod convolution;
 mod gather;
 mod grid;
@@ -91,5 +100,6 @@ mod spectrum;
 mod tests;
 
 pub use convolution::LatticeWorkspace;
+pub(crate) use grid::padded_length;
 pub use operator::{LatticeKernel, LatticeOperator};
 pub use preconditioner::{LatticePreconditioner, SYMBOL_FLOOR};

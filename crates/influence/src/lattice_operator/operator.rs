@@ -44,9 +44,9 @@ use crate::terms::Terms;
 /// let dense: f64 = (0..points.len()).map(|j| s[(k, j)] * forces[j]).sum();
 /// assert!((deflection[k] / dense - 1.0).abs() < 1e-12);
 /// assert_eq!(op.diagonal(), s[(k, k)]);
-/// // O(N): 54 bytes per point here on one thread, 62 on two (a batch of
-/// // columns per thread), ~20 on large grids (a dense S: 8 N per point).
-/// assert!(op.memory_bytes() < 70 * points.len());
+/// // O(N): 64 bytes per point here on one thread, 72 on two (a batch of
+/// // columns per thread), ~30 on large grids (a dense S: 8 N per point).
+/// assert!(op.memory_bytes() < 80 * points.len());
 /// ```
 #[derive(Debug)]
 pub struct LatticeOperator {
@@ -374,6 +374,51 @@ impl LatticeKernel {
             None => y.fill(0.0),
         }
         self.add_winkler(x, y);
+    }
+
+    /// `y += S d` for `d = Σ_t v_t e_{p_t}`, the `columns` `(p_t, v_t)`:
+    /// each column of S is the kernel table shifted to its point (plus the
+    /// Winkler diagonal), added in O(N) without a transform; the same
+    /// entries as [`apply_with`](Self::apply_with)'s product to its FFT's
+    /// rounding. Cheaper than a product for up to about
+    /// [`columns_per_product`](Self::columns_per_product) columns. Each
+    /// entry of `y` adds its terms in the order of `columns`, on any
+    /// number of threads.
+    ///
+    /// # Panics
+    /// If `y` does not have [`len`](Self::len) entries or a `p_t` is not
+    /// below it.
+    pub fn add_columns(&self, columns: &[(usize, f64)], y: &mut [f64]) {
+        assert_eq!(
+            y.len(),
+            self.len,
+            "y has {} entries for {} points",
+            y.len(),
+            self.len
+        );
+        assert!(
+            columns.iter().all(|&(p, _)| p < self.len),
+            "a column index is not below {}",
+            self.len
+        );
+        if let Some(c) = &self.convolution {
+            c.add_columns(columns, y);
+        }
+        if self.winkler != 0.0 {
+            for &(p, v) in columns {
+                y[p] += self.winkler * v;
+            }
+        }
+    }
+
+    /// How many columns [`add_columns`](Self::add_columns) adds in about
+    /// the time of one product (an estimate from the grid's size: a column
+    /// costs N multiply-adds, a product `O(P1 P2 log(P1 P2))` on the
+    /// padded grid); at least 1.
+    pub fn columns_per_product(&self) -> usize {
+        self.convolution
+            .as_ref()
+            .map_or(self.len, |c| c.columns_per_product(self.len))
     }
 
     /// The convolution a preconditioner applies on; panics unless `r` and

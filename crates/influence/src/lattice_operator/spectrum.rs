@@ -23,12 +23,15 @@ use crate::terms::Terms;
 /// The row stage writes its spectra into the result, transposed (frequency
 /// m2's values over i where the column stage reads them, `n1 <= P1/2 + 1`),
 /// and the column stage transforms them in place: nothing of the box's
-/// size is allocated but the result, which first holds the table.
+/// size is allocated but the result, which first holds the table, and the
+/// table's copy kept for the operator's columns
+/// ([`Convolution::add_columns`](super::convolution::Convolution::add_columns):
+/// `n1 x n2` values, offset `(di, dj)` at `di n2 + dj`).
 pub(super) fn kernel_spectrum(
     terms: &Terms,
     grid: &Grid,
     planner: &mut RealFftPlanner<f64>,
-) -> Result<(Vec<f64>, f64), InfluenceError> {
+) -> Result<(Vec<f64>, Vec<f64>, f64), InfluenceError> {
     let (n1, n2) = (grid.rows, grid.columns);
     let half_rows = grid.half_rows();
     let row_fft = planner.plan_fft_forward(grid.padded_columns);
@@ -42,6 +45,12 @@ pub(super) fn kernel_spectrum(
     // values over the same di.
     terms.fill_table(n1, n2, &mut spectrum, (1, half_rows));
     let self_term = spectrum[0];
+    let mut table = try_vec(n1 * n2, 0.0, "kernel table")?;
+    for (di, row) in table.chunks_exact_mut(n2).enumerate() {
+        for (dj, v) in row.iter_mut().enumerate() {
+            *v = spectrum[dj * half_rows + di];
+        }
+    }
     // Rows: the even extension of each offset row di, transformed along j.
     let mut values = vec![0.0; n2];
     let mut row = vec![0.0; grid.padded_columns];
@@ -73,7 +82,7 @@ pub(super) fn kernel_spectrum(
             *o = z.re * scale;
         }
     }
-    Ok((spectrum, self_term))
+    Ok((spectrum, table, self_term))
 }
 
 /// `out` (length `P >= 2 n - 1`) = the even periodic extension of the

@@ -491,8 +491,13 @@ pub(super) struct Update {
     /// changed.
     pub rows: Vec<f64>,
     /// `None` where a point left or entered: the contact set changed and
-    /// `u` is recomputed from a true product, with the fit's sums.
+    /// `u` is recomputed from a true product, with the fit's sums (or kept
+    /// by [`Changes`]' columns).
     pub sums: Option<UpdateSums>,
+    /// Where the step collected them ([`update_pass`]'s `collect`) and the
+    /// contact set changed: what `z` differs by from the step along the
+    /// direction.
+    pub changes: Option<Changes>,
 }
 
 /// The rows' magnitudes `|B|^T z` after a step that kept the contact
@@ -503,18 +508,32 @@ pub(super) struct UpdateSums {
     pub bu: Vec<f64>,
 }
 
+/// A step that changed the contact set at a few points: `z = c z_old - τ
+/// t + d`, `d = Σ v_p e_p` over the `columns` `(p, v_p)` (the points
+/// clipped or let in, in the order of their index), while `u` took the
+/// recurrence everywhere, `u = c u_old - τ r`: `u + M d` is `M z` again.
+/// With the rows' magnitudes `|B|^T z` (one row at most).
+pub(super) struct Changes {
+    pub columns: Vec<(usize, f64)>,
+    pub rows_terms: Vec<f64>,
+}
+
 struct UpdateParts {
     clipped: usize,
     entered: usize,
     rows: Vec<Compensated>,
     rows_terms: Vec<Lanes>,
     bu: Vec<Compensated>,
+    /// The chunk's entries of `d` ([`Changes`]) where collected and at
+    /// most the limit.
+    columns: Option<Vec<(usize, f64)>>,
 }
 
 impl UpdateParts {
     /// The chunks' parts merged into the step's [`Update`] (the sums in
-    /// the chunks' order), over `k` rows.
-    fn merge(parts: &[UpdateParts], k: usize) -> Update {
+    /// the chunks' order), over `k` rows, the changes where `collect`
+    /// (their limit) was given and they are no more.
+    fn merge(parts: &[UpdateParts], k: usize, collect: Option<usize>) -> Update {
         let clipped: usize = parts.iter().map(|p| p.clipped).sum();
         let entered: usize = parts.iter().map(|p| p.entered).sum();
         let mut rows = vec![Compensated::default(); k];
@@ -523,7 +542,24 @@ impl UpdateParts {
                 rows[j].merge(&p.rows[j]);
             }
         }
-        let sums = (clipped + entered == 0).then(|| {
+        let rows_terms = || -> Vec<f64> {
+            (0..k)
+                .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
+                .collect()
+        };
+        let moved = parts
+            .iter()
+            .any(|p| p.columns.as_ref().is_none_or(|c| !c.is_empty()));
+        let changed = clipped + entered > 0 || (collect.is_some() && moved);
+        let changes = collect.filter(|_| changed).and_then(|limit| {
+            let columns: Option<Vec<_>> = parts.iter().map(|p| p.columns.as_deref()).collect();
+            let columns = columns?.concat();
+            (columns.len() <= limit).then(|| Changes {
+                columns,
+                rows_terms: rows_terms(),
+            })
+        });
+        let sums = (!changed).then(|| {
             let mut bu = vec![Compensated::default(); k];
             for p in parts {
                 for j in 0..k {
@@ -531,9 +567,7 @@ impl UpdateParts {
                 }
             }
             UpdateSums {
-                rows_terms: (0..k)
-                    .map(|j| total(parts.iter().map(|p| p.rows_terms[j].value())))
-                    .collect(),
+                rows_terms: rows_terms(),
                 bu: bu.iter().map(Compensated::value).collect(),
             }
         });
@@ -541,14 +575,16 @@ impl UpdateParts {
             entered,
             rows: rows.iter().map(Compensated::value).collect(),
             sums,
+            changes,
         }
     }
 }
 
 /// What every chunk of a step reads: the data, the border's shift `B λ`,
 /// the direction `t` and its product `r`, the pending scale, the step
-/// length and whether points may enter; and whether a chunk taken before
-/// has changed the contact set.
+/// length and whether points may enter; whether a chunk taken before
+/// has changed the contact set; and whether the step collects its
+/// [`Changes`] (their limit).
 struct Stepping<'a, 'c> {
     data: &'a Data<'a>,
     shift: &'a Shift<'c, 'a>,
@@ -558,6 +594,7 @@ struct Stepping<'a, 'c> {
     tau: f64,
     enter: bool,
     changed: &'a AtomicBool,
+    collect: Option<usize>,
 }
 
 impl Stepping<'_, '_> {
@@ -573,11 +610,13 @@ impl Stepping<'_, '_> {
             rows: vec![Compensated::default(); k],
             rows_terms: vec![Lanes::default(); k],
             bu: vec![Compensated::default(); k],
+            columns: None,
         };
         let (s, _) = self.shift.chunk(base, len);
+        let t = &self.t[base..base + len];
         let step = Step {
             c: self.scale,
-            t: &self.t[base..base + len],
+            t,
             r: &self.r[base..base + len],
             q: &self.data.q[base..base + len],
             s: &s,
@@ -586,10 +625,16 @@ impl Stepping<'_, '_> {
         };
         // One column's sums in the step's own loop; several, a loop each.
         let row = (k == 1).then(|| columns[0].part(base, len));
-        let recur = !self.changed.load(Ordering::Relaxed);
+        // Collecting, every chunk takes the recurrence: the columns then
+        // complete it.
+        let recur = self.collect.is_some() || !self.changed.load(Ordering::Relaxed);
+        let before = self.collect.map(|_| z.to_vec());
         let stepped = update_chunk(step, (z, u), row, recur);
         if stepped.clipped + stepped.entered > 0 {
             self.changed.store(true, Ordering::Relaxed);
+        }
+        if let (Some(limit), Some(before)) = (self.collect, before) {
+            p.columns = departures(z, &before, t, (self.scale, self.tau), base, limit);
         }
         (p.clipped, p.entered) = (stepped.clipped, stepped.entered);
         if k == 1 {
@@ -613,6 +658,32 @@ impl Stepping<'_, '_> {
     }
 }
 
+/// The entries where the step's `z` departs from the step along the
+/// direction, `d_i = z_i - (c before_i - τ t_i)` (the same operations as
+/// the step's, so 0 to the bit where it moved a point along `t`): the
+/// points clipped at 0 or let in, at index `base + i`; `None` where there
+/// are more than `limit`.
+fn departures(
+    z: &[f64],
+    before: &[f64],
+    t: &[f64],
+    (c, tau): (f64, f64),
+    base: usize,
+    limit: usize,
+) -> Option<Vec<(usize, f64)>> {
+    let mut out = Vec::new();
+    for i in 0..z.len() {
+        let along = c * before[i] - tau * t[i];
+        if z[i] != along {
+            if out.len() == limit {
+                return None;
+            }
+            out.push((base + i, z[i] - along));
+        }
+    }
+    Some(out)
+}
+
 /// The step `z_J = c z_J - τ t_J` from `z` and `u` at their pending scale
 /// `c` (stored at scale 1 after it), clipped at 0; a point off `J` with
 /// `w_i < 0` (interference) enters with `z_i = -τ w_i` (`-w_i` when `τ =
@@ -620,7 +691,10 @@ impl Stepping<'_, '_> {
 /// recurrence, `u = c u - τ r`. A chunk where a point left or entered
 /// skips the sums (the step's are then not read), and the chunks after it
 /// skip `u`'s recurrence too: where the contact set changed, `u` is
-/// recomputed from a true product before it is read again.
+/// recomputed from a true product before it is read again. Where
+/// `collect` gives a limit (one row at most), every chunk takes the
+/// recurrence and the step's [`Changes`] are returned where they are at
+/// most the limit: `u` is then `M z` once their columns are added.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn update_pass(
     data: &Data<'_>,
@@ -629,9 +703,13 @@ pub(super) fn update_pass(
     r: &[f64],
     lambda: &[f64],
     tau: f64,
-    enter: bool,
+    (enter, collect): (bool, Option<usize>),
 ) -> Update {
     let k = data.columns().len();
+    debug_assert!(
+        collect.is_none() || k <= 1,
+        "changes are collected for one row at most"
+    );
     let parts: Vec<_> = z
         .chunks_mut(CHUNK)
         .zip(u.chunks_mut(CHUNK))
@@ -652,9 +730,10 @@ pub(super) fn update_pass(
         tau,
         enter,
         changed: &changed,
+        collect,
     };
     let parts = map_parts(parts, |(c, (z, u))| stepping.chunk(c * CHUNK, z, u));
-    UpdateParts::merge(&parts, k)
+    UpdateParts::merge(&parts, k, collect)
 }
 
 /// `r = w` on `J`, 0 off it: the residual the preconditioner is applied to

@@ -1,6 +1,7 @@
 //! Tests of `iteration` (the parent module).
 
 use super::*;
+use crate::operator::Operator;
 
 #[test]
 fn a_step_cut_at_the_boundary_lets_the_first_point_leave() {
@@ -124,7 +125,15 @@ fn a_step_that_keeps_the_contact_set_updates_the_fit_as_a_fresh_fit_pass() {
         let t: Vec<f64> = z.iter().map(|&v| 0.01 * v).collect();
         let lambda = &[-1e3, 0.0][..k];
         let (mut z1, mut u1) = (z.clone(), u.clone());
-        let update = update_pass(&data, (&mut z1, &mut u1, 1.0), &t, &r, lambda, 0.5, true);
+        let update = update_pass(
+            &data,
+            (&mut z1, &mut u1, 1.0),
+            &t,
+            &r,
+            lambda,
+            0.5,
+            (true, None),
+        );
         let rows = update.rows;
         let sums = update.sums.expect("no point left or entered");
         let after = fit_pass(&data, &z1, &u1);
@@ -136,7 +145,95 @@ fn a_step_that_keeps_the_contact_set_updates_the_fit_as_a_fresh_fit_pass() {
         // A full step clips the points in contact: no sums.
         let t: Vec<f64> = z.iter().map(|&v| 2.0 * v).collect();
         let (mut z2, mut u2) = (z, u);
-        let update = update_pass(&data, (&mut z2, &mut u2, 1.0), &t, &r, lambda, 1.0, true);
+        let update = update_pass(
+            &data,
+            (&mut z2, &mut u2, 1.0),
+            &t,
+            &r,
+            lambda,
+            1.0,
+            (true, None),
+        );
         assert!(update.sums.is_none());
     }
+}
+
+/// A step that clips and lets in points, with its changes collected: `u`
+/// (the recurrence everywhere) plus `M d` by the columns is `M z` of the
+/// new iterate, to rounding relative to the terms of `M z` (`|M| |z|`);
+/// a pending scale and a limit below the changes' count included.
+#[test]
+fn collected_changes_by_columns_equal_the_full_product() {
+    let n = 2 * CHUNK + 29;
+    let Sample { q, z, t, .. } = sample(n);
+    let m = faer::Mat::from_fn(n, n, |i, j| {
+        let d = i.abs_diff(j) as f64;
+        1.0 / (1.0 + d) + if i == j { 1.0 } else { 0.0 }
+    });
+    let product = |x: &[f64]| {
+        let mut y = vec![0.0; n];
+        faer::MatRef::apply(
+            &m.as_ref(),
+            x,
+            &mut y,
+            faer::dyn_stack::PodStack::new(&mut []),
+        );
+        y
+    };
+    let ones = faer::Mat::from_fn(n, 1, |_, _| 1.0);
+    let data = Data::new(q.as_ref(), ones.as_ref());
+    let c = 1.25;
+    // u = M z (at scale 1: the pending scale applies to both), r = M t.
+    let (u, r) = (product(&z), product(&t));
+    let lambda = [0.05];
+    // A step of 200 clips about a third of the points in contact.
+    let (mut z1, mut u1) = (z.clone(), u.clone());
+    let update = update_pass(
+        &data,
+        (&mut z1, &mut u1, c),
+        &t,
+        &r,
+        &lambda,
+        200.0,
+        (true, Some(n)),
+    );
+    let changes = update
+        .changes
+        .expect("the contact set changed, within the limit");
+    assert!(update.sums.is_none());
+    let moved = changes.columns.len();
+    assert!(moved > 100, "{moved} points clipped or let in");
+    assert!(changes.columns.windows(2).all(|w| w[0].0 < w[1].0));
+    assert!(faer::MatRef::add_columns(
+        &m.as_ref(),
+        &changes.columns,
+        &mut u1
+    ));
+    let exact = product(&z1);
+    let terms = product(&z1.iter().map(|v| v.abs()).collect::<Vec<_>>());
+    let scale = terms.iter().fold(0.0f64, |a, v| a.max(*v))
+        + u.iter().fold(0.0f64, |a, v| a.max(c * v.abs()));
+    for i in 0..n {
+        assert!(
+            (u1[i] - exact[i]).abs() <= 1e-13 * scale,
+            "{i}: {} vs {}",
+            u1[i],
+            exact[i]
+        );
+    }
+    let measured = measure_pass(&data, (&z1, &u1), None, 1.0, &lambda);
+    assert_eq!(bits(&changes.rows_terms), bits(&measured.rows_terms));
+    // Over the limit: no changes, and the fit is left to a true product.
+    let (mut z2, mut u2) = (z, u);
+    let update = update_pass(
+        &data,
+        (&mut z2, &mut u2, c),
+        &t,
+        &r,
+        &lambda,
+        200.0,
+        (true, Some(moved - 1)),
+    );
+    assert!(update.changes.is_none() && update.sums.is_none());
+    assert_eq!(bits(&z2), bits(&z1));
 }
