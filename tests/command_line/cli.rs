@@ -678,6 +678,42 @@ fn the_radial_ball_bearing_runs_checks_and_refuses_bad_data() {
         csv.starts_with("# angle_deg,load_N,max_pressure_inner_MPa"),
         "{csv}"
     );
+    // The stresses below each loaded ball's contacts: the largest shear
+    // of a slender Hertz ellipse (b / a = 0.11), about 0.31 p0 at about
+    // 0.76 b (Johnson §4.2; docs/validation.md §5 for the grids' error).
+    let deep = out.join("subsurface.toml");
+    std::fs::write(
+        &deep,
+        edited(
+            &example_scene("ball-bearing-radial"),
+            &[
+                ("name = \"ball-bearing-radial\"", "name = \"deep\""),
+                ("plots = true", "plots = false\nsubsurface = true"),
+            ],
+        ),
+    )
+    .unwrap();
+    let o = elcon(&[
+        "run",
+        &deep.display().to_string(),
+        "--out",
+        &out.display().to_string(),
+    ]);
+    exited(&o, 0, &[]);
+    let d = json(&out.join("deep/result.json"));
+    let (ball, b) = (
+        &d["elements"][0],
+        d["contact_ellipse_inner"][1].as_f64().unwrap(),
+    );
+    let peaks = &ball["subsurface_inner"];
+    let ratio = peaks["tresca"].as_f64().unwrap() / ball["max_pressure_inner"].as_f64().unwrap();
+    let depth = peaks["tresca_depth"].as_f64().unwrap() / b;
+    assert!(
+        (0.29..0.33).contains(&ratio) && (0.7..0.85).contains(&depth),
+        "{ratio} {depth}"
+    );
+    assert!(ball["subsurface_outer"]["von_mises"].as_f64().unwrap() > 0.0);
+    assert!(d["elements"][4].get("subsurface_inner").is_none());
     // check: valid, with its zones and memory; too big for 1 MiB.
     exited(&elcon(&["check", scene]), 0, &["valid", "18 contact zones"]);
     exited(

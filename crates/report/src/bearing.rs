@@ -40,6 +40,27 @@ pub struct ElementJson {
     /// the edge pressure a slicing model does not see.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub end_pressure_inner: Option<f64>,
+    /// The stresses below its inner contact (`[outputs] subsurface`, loaded
+    /// elements).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subsurface_inner: Option<StressPeaksJson>,
+    /// The stresses below its outer contact.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subsurface_outer: Option<StressPeaksJson>,
+}
+
+/// The largest stresses below a contact (the scene's pressure unit) and
+/// their depths (its length unit).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StressPeaksJson {
+    /// The largest von Mises stress.
+    pub von_mises: f64,
+    /// Its depth.
+    pub von_mises_depth: f64,
+    /// The largest shear (Tresca).
+    pub tresca: f64,
+    /// Its depth.
+    pub tresca_depth: f64,
 }
 
 /// A displacement in the bearing's axes (length).
@@ -309,6 +330,8 @@ impl BearingResult {
                     end_pressure_inner: along.map(|n| {
                         elcon_elements::roller::end_pressure(&s.zones[2 * j].pressures, n)
                     }),
+                    subsurface_inner: None,
+                    subsurface_outer: None,
                 })
                 .collect(),
             ring_displacement: Xyz {

@@ -29,8 +29,8 @@ mod tables;
 
 pub use bearing::{
     BearingGridJson, BearingResult, BearingRun, BearingSeconds, CrownCaseJson, CrownDesignJson,
-    ElementJson, LifeJson, ReferenceModel, ReferenceModelJson, SystemCertificateJson, Xyz,
-    write_bearing_files,
+    ElementJson, LifeJson, ReferenceModel, ReferenceModelJson, StressPeaksJson,
+    SystemCertificateJson, Xyz, write_bearing_files,
 };
 pub use design::{
     DesignCaseJson, DesignGridJson, DesignJson, DesignOf, DesignRun, FoundBy, RelativeTo,

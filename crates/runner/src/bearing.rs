@@ -149,6 +149,9 @@ pub fn run_bearing(scene: &BearingScene, ceiling: &Ceiling) -> Result<BearingRun
         points[0].len(),
     );
     result.crown_design = design;
+    if scene.subsurface() {
+        stresses_below(&spec, &solution, &points, &mut result);
+    }
     Ok(BearingRun {
         scene: scene.clone(),
         solution,
@@ -245,4 +248,37 @@ fn crown_design(
         ..bearing.clone()
     };
     Ok((crowned, c.after, json))
+}
+
+/// The stresses below each loaded element's two contacts, into its row:
+/// rings and elements are one material, so one field per contact.
+fn stresses_below(
+    spec: &BearingSpec,
+    solution: &BearingSolution,
+    points: &[elcon_influence::PointSet],
+    result: &mut BearingResult,
+) {
+    use elcon_analysis::subsurface::{Subsurface, SubsurfaceOptions};
+    let material = match spec {
+        BearingSpec::Ball { bearing, .. } => bearing.material,
+        BearingSpec::Roller { bearing, .. } => bearing.material,
+    };
+    let body = elcon_analysis::Body::uniform_patch(material);
+    let options = SubsurfaceOptions::default();
+    let peaks =
+        |z: usize| match Subsurface::of(&points[z], &solution.system.zones[z], &body, &options) {
+            Subsurface::Stresses(s) => Some(elcon_report::StressPeaksJson {
+                von_mises: s.von_mises.value,
+                von_mises_depth: s.von_mises.z,
+                tresca: s.tresca.value,
+                tresca_depth: s.tresca.z,
+            }),
+            Subsurface::NotApplicable(_) => None,
+        };
+    for (j, row) in result.elements.iter_mut().enumerate() {
+        if row.load > 0.0 {
+            row.subsurface_inner = peaks(2 * j);
+            row.subsurface_outer = peaks(2 * j + 1);
+        }
+    }
 }

@@ -144,6 +144,7 @@ struct BearingPointsToml {
 #[serde(deny_unknown_fields)]
 struct BearingOutputsToml {
     plots: Option<bool>,
+    subsurface: Option<bool>,
 }
 
 /// The bearing of a scene and its contacts' grid.
@@ -222,6 +223,7 @@ pub struct BearingScene {
     spec: BearingSpec,
     crown_design: Option<CrownFamily>,
     plots: bool,
+    subsurface: bool,
 }
 
 impl BearingScene {
@@ -263,6 +265,12 @@ impl BearingScene {
     /// the rollers' crown designed over the bearing's own loaded rollers.
     pub fn crown_design(&self) -> Option<CrownFamily> {
         self.crown_design
+    }
+
+    /// Whether the stresses below each loaded element's contacts are
+    /// computed (`[outputs] subsurface`, default false).
+    pub fn subsurface(&self) -> bool {
+        self.subsurface
     }
 
     /// Whether the plots are drawn (`[outputs] plots`, default true).
@@ -349,6 +357,11 @@ impl BearingScene {
             spec,
             crown_design,
             plots: toml.outputs.as_ref().and_then(|o| o.plots).unwrap_or(true),
+            subsurface: toml
+                .outputs
+                .as_ref()
+                .and_then(|o| o.subsurface)
+                .unwrap_or(false),
         })
     }
 
