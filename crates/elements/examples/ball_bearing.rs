@@ -9,7 +9,6 @@
 use elcon_analysis::Material;
 use elcon_analysis::system::SystemSettings;
 use elcon_elements::bearing::{BallBearing, BearingGrid};
-use elcon_elements::springs::HertzSprings;
 
 fn main() {
     let base = BallBearing {
@@ -32,10 +31,7 @@ fn main() {
             diametral_clearance: clearance,
             ..base.clone()
         };
-        let springs = HertzSprings::of(&bearing)
-            .expect("valid")
-            .solve()
-            .expect("springs");
+        let springs = bearing.springs().expect("valid").solve().expect("springs");
         for across in [15, 21, 31] {
             let grid = BearingGrid {
                 across,

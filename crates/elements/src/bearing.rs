@@ -187,6 +187,23 @@ impl BallBearing {
         Ok([ellipse(&inner)?, ellipse(&outer)?])
     }
 
+    /// The discrete Hertz-spring model of this bearing (its contacts'
+    /// Hertz constants from their curvatures and material, independently
+    /// of any grid).
+    ///
+    /// # Errors
+    /// As [`BallBearing::validate`].
+    pub fn springs(&self) -> Result<HertzSprings, ElementsError> {
+        self.validate()?;
+        let [inner, outer] = self.hertz(1.0)?;
+        Ok(HertzSprings::of_contacts(
+            [1.0, 1.0],
+            [inner.approach(), outer.approach()],
+            1.5,
+            (self.angles(), self.clearance(), self.radial_load),
+        ))
+    }
+
     /// Checks the data, naming the field.
     ///
     /// # Errors
@@ -321,7 +338,7 @@ impl BallBearing {
     /// inner contact's Hertz approach puts it, an unloaded one halfway
     /// between its raceways).
     fn start(&self) -> Result<Vec<f64>, ElementsError> {
-        let springs = HertzSprings::of(self)?;
+        let springs = self.springs()?;
         let answer = springs.solve()?;
         let mut start = vec![answer.ring_displacement, 0.0];
         let half = 0.5 * self.clearance();
@@ -499,5 +516,39 @@ mod tests {
         }
         assert!(bearing().validate().is_ok());
         assert!((bearing().clearance() - 0.024).abs() < 1e-12);
+    }
+
+    fn with(balls: usize, clearance: f64) -> BallBearing {
+        BallBearing {
+            balls,
+            diametral_clearance: Some(clearance),
+            ..bearing()
+        }
+    }
+
+    #[test]
+    fn the_ring_is_in_equilibrium_and_stribeck_holds_at_zero_clearance() {
+        for (balls, clearance) in [(9, 0.0), (9, 0.024), (15, 0.0), (9, -0.005)] {
+            let b = with(balls, clearance);
+            let s = b.springs().unwrap();
+            let a = s.solve().unwrap();
+            let total: f64 = a
+                .loads
+                .iter()
+                .zip(&s.angles)
+                .map(|(q, p)| q * p.cos())
+                .sum();
+            assert!((total / 2000.0 - 1.0).abs() < 1e-12, "{total}");
+            if clearance == 0.0 {
+                // Stribeck: Z Q_max / F_r = 4.37 for many balls; 9 balls
+                // give 4.36, 15 balls 4.37 (the integral's limit is 4.37).
+                let ratio = balls as f64 * a.loads[0] / 2000.0;
+                assert!((ratio - 4.37).abs() < 0.03, "{balls}: {ratio}");
+            }
+        }
+        // Clearance narrows the load zone.
+        let tight = with(9, 0.0).springs().unwrap().solve().unwrap();
+        let loose = with(9, 0.05).springs().unwrap().solve().unwrap();
+        assert!(loose.loaded() < tight.loaded() && loose.loads[0] > tight.loads[0]);
     }
 }

@@ -14,7 +14,6 @@
 //!
 //! ```
 //! use elcon_elements::bearing::{BallBearing, BearingGrid};
-//! use elcon_elements::springs::HertzSprings;
 //! use elcon_analysis::Material;
 //! use elcon_analysis::system::SystemSettings;
 //!
@@ -34,7 +33,7 @@
 //! let grid = BearingGrid { across: 15, ..BearingGrid::default() };
 //! let solution = bearing.system(&grid).unwrap().solve(&SystemSettings::default()).unwrap();
 //! assert!(solution.system.certificate.holds());
-//! let springs = HertzSprings::of(&bearing).unwrap().solve().unwrap();
+//! let springs = bearing.springs().unwrap().solve().unwrap();
 //! let most = solution.elements[0].load;
 //! assert!((most / springs.loads[0] - 1.0).abs() < 0.02);
 //! ```

@@ -17,7 +17,6 @@
 //! clearance Stribeck's `Z Q_max / F_r` is close to 4.37.
 
 use crate::ElementsError;
-use crate::bearing::BallBearing;
 
 /// The Hertz-spring model of a ball bearing.
 #[derive(Debug, Clone, PartialEq)]
@@ -57,22 +56,6 @@ impl SpringLoads {
 }
 
 impl HertzSprings {
-    /// The model of `bearing` (its contacts' Hertz constants from their
-    /// curvatures and material, independently of any grid).
-    ///
-    /// # Errors
-    /// As [`BallBearing::validate`].
-    pub fn of(bearing: &BallBearing) -> Result<Self, ElementsError> {
-        bearing.validate()?;
-        let [inner, outer] = bearing.hertz(1.0)?;
-        Ok(Self::of_contacts(
-            [1.0, 1.0],
-            [inner.approach(), outer.approach()],
-            1.5,
-            (bearing.angles(), bearing.clearance(), bearing.radial_load),
-        ))
-    }
-
     /// The model whose inner and outer contacts carry `loads` at the
     /// approaches `approaches` and go as `Q = K delta^exponent`, on
     /// elements at `angles` with the diametral `clearance` under the
@@ -167,54 +150,5 @@ impl HertzSprings {
             ring_displacement: delta,
             loads: self.loads(delta).1,
         })
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use elcon_analysis::Material;
-
-    fn bearing(balls: usize, clearance: f64) -> BallBearing {
-        BallBearing {
-            ball_diameter: 7.938,
-            inner_raceway_diameter: 31.0,
-            outer_raceway_diameter: 46.9,
-            inner_groove_radius: 0.52 * 7.938,
-            outer_groove_radius: 0.53 * 7.938,
-            balls,
-            diametral_clearance: Some(clearance),
-            material: Material::new(210e3, 0.3).unwrap(),
-            radial_load: 2000.0,
-        }
-    }
-
-    #[test]
-    fn the_ring_is_in_equilibrium_and_stribeck_holds_at_zero_clearance() {
-        for (balls, clearance) in [(9, 0.0), (9, 0.024), (15, 0.0), (9, -0.005)] {
-            let b = bearing(balls, clearance);
-            let s = HertzSprings::of(&b).unwrap();
-            let a = s.solve().unwrap();
-            let total: f64 = a
-                .loads
-                .iter()
-                .zip(&s.angles)
-                .map(|(q, p)| q * p.cos())
-                .sum();
-            assert!((total / 2000.0 - 1.0).abs() < 1e-12, "{total}");
-            if clearance == 0.0 {
-                // Stribeck: Z Q_max / F_r = 4.37 for many balls; 9 balls
-                // give 4.36, 15 balls 4.37 (the integral's limit is 4.37).
-                let ratio = balls as f64 * a.loads[0] / 2000.0;
-                assert!((ratio - 4.37).abs() < 0.03, "{balls}: {ratio}");
-            }
-        }
-        // Clearance narrows the load zone.
-        let tight = HertzSprings::of(&bearing(9, 0.0)).unwrap().solve().unwrap();
-        let loose = HertzSprings::of(&bearing(9, 0.05))
-            .unwrap()
-            .solve()
-            .unwrap();
-        assert!(loose.loaded() < tight.loaded() && loose.loads[0] > tight.loads[0]);
     }
 }

@@ -14,7 +14,6 @@ use elcon_elements::bearing::BearingSystem;
 use elcon_elements::life::RatingLife;
 use elcon_elements::roller::RollerBearing;
 use elcon_elements::roller::Slicing;
-use elcon_elements::springs::HertzSprings;
 use elcon_process::{Ceiling, faults, human};
 use elcon_report::{
     BearingResult, BearingRun, BearingSeconds, CrownCaseJson, CrownDesignJson, ReferenceModel,
@@ -179,7 +178,7 @@ fn references(
     let rated = scene.rates_life();
     Ok(match spec {
         BearingSpec::Ball { bearing, .. } => {
-            let springs = HertzSprings::of(bearing)?.solve()?;
+            let springs = bearing.springs()?.solve()?;
             let reference = ReferenceModel {
                 model: "discrete Hertz springs (Harris & Kotzalas, ch. 7)".into(),
                 ring_displacement: springs.ring_displacement,

@@ -6,7 +6,6 @@ use elcon_analysis::system::SystemSettings;
 use elcon_elements::ElementsError;
 use elcon_elements::bearing::{BallBearing, BearingGrid};
 use elcon_elements::life::RatingLife;
-use elcon_elements::springs::HertzSprings;
 
 /// The bearing of examples/scenes/ball-bearing-radial.toml.
 fn bearing(clearance: Option<f64>) -> BallBearing {
@@ -33,7 +32,7 @@ const GRID: f64 = 3e-3;
 fn the_ball_loads_and_the_ring_displacement_are_the_hertz_springs() {
     for clearance in [None, Some(0.0), Some(0.05)] {
         let b = bearing(clearance);
-        let springs = HertzSprings::of(&b).unwrap().solve().unwrap();
+        let springs = b.springs().unwrap().solve().unwrap();
         let s = b
             .system(&BearingGrid::default())
             .unwrap()
