@@ -11,10 +11,11 @@ use elcon_report::{BearingResult, write_bearing_files};
 use elcon_runner::{BearingEstimate, RunError, run_bearing};
 use elcon_scene::BearingScene;
 
-/// Runs the bearing scene in `path` into `out`; prints its summary. Returns
-/// `Err` with whether it was interrupted.
+/// Runs the bearing scene `text` (read from `path`) into `out`; prints its
+/// summary. Returns `Err` with whether it was interrupted.
 pub(crate) fn run_file(
     path: &Path,
+    text: &str,
     out: &Path,
     ceiling: &Ceiling,
     cancel: &Cancel,
@@ -22,7 +23,7 @@ pub(crate) fn run_file(
     let label = path.display().to_string();
     let outcome = interruptible::<_, RunError>(cancel, &label, || {
         isolated(&label, || {
-            let scene = BearingScene::from_file(path)?;
+            let scene = BearingScene::from_str(path, text)?;
             let run = run_bearing(&scene, ceiling)?;
             let staging = Staging::begin(&out.join(scene.name()), &|m| eprintln!("{m}"))?;
             write_bearing_files(&run, staging.path())?;

@@ -334,11 +334,12 @@ fn row(r: &RunResult) {
 
 /// The scenes of the files, validated; a file that fails, or two scenes of
 /// one name (they would write one directory), is reported and left out.
-fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
+fn validated(files: &[(PathBuf, Result<String, SceneError>)], out: &Path) -> (Vec<Scene>, bool) {
     let mut ok = true;
     let mut scenes: Vec<Scene> = Vec::new();
-    for path in paths {
-        match isolated(&path.display().to_string(), || scene_file(path)) {
+    for (path, text) in files {
+        let read = || scene_file(path, text.clone()?);
+        match isolated(&path.display().to_string(), read) {
             Ok(s) => scenes.push(s),
             Err(e) => {
                 eprintln!("error: {e}");
@@ -370,20 +371,22 @@ fn validated(paths: &[PathBuf], out: &Path) -> (Vec<Scene>, bool) {
 }
 
 fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling, cancel: &Cancel) -> Outcome {
-    // Bearing scenes (a [bearing] table) run on their own path, first.
-    let (bearings, paths): (Vec<PathBuf>, Vec<PathBuf>) = paths
+    // Each file read once (a pipe reads once); bearing scenes (a
+    // [bearing] table) run on their own path, first.
+    let (bearings, files): (Vec<_>, Vec<_>) = paths
         .iter()
-        .cloned()
-        .partition(|p| read_text(p).is_ok_and(|t| is_bearing_text(&t)));
+        .map(|p| (p.clone(), read_text(p)))
+        .partition(|(_, t)| t.as_ref().is_ok_and(|t| is_bearing_text(t)));
     let mut ok = true;
-    for path in &bearings {
-        match bearing::run_file(path, out, ceiling, cancel) {
+    for (path, text) in &bearings {
+        let text = text.as_deref().unwrap_or_default();
+        match bearing::run_file(path, text, out, ceiling, cancel) {
             Ok(()) => {}
             Err(true) => return Outcome::Interrupted,
             Err(false) => ok = false,
         }
     }
-    let (scenes, valid) = validated(&paths, out);
+    let (scenes, valid) = validated(&files, out);
     ok &= valid;
     let mut header_printed = false;
     for scene in scenes {
@@ -421,8 +424,7 @@ fn run_scenes(paths: &[PathBuf], out: &Path, ceiling: &Ceiling, cancel: &Cancel)
 
 /// A scene file, read once (as `check` reads it); a batch file is refused
 /// with the command that runs it.
-fn scene_file(path: &Path) -> Result<Scene, RunError> {
-    let text = read_text(path)?;
+fn scene_file(path: &Path, text: String) -> Result<Scene, RunError> {
     if is_batch_text(&text) {
         return Err(SceneError::Io {
             path: path.to_path_buf(),
