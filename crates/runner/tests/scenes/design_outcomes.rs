@@ -360,3 +360,22 @@ fn a_design_over_a_profile_read_linearly_is_refused_naming_its_interpolation() {
     let unrefined = measured("").replace("axis = \"y\"\n", "axis = \"y\"\nrefine = false\n");
     assert!(scene(&unrefined).is_ok(), "{:?}", scene(&unrefined).err());
 }
+
+/// A polynomial of degree 0 is a constant drop, which under a load only
+/// moves the approach: refused naming the degree (the roller's uncrowned
+/// ends grew from 1.60 to 3.34 times p0 over five grids).
+#[test]
+fn a_constant_profile_is_refused_naming_the_degree() {
+    let roller = crowned_roller(ROLLER_GRID, "[1000.0, 5000.0, 10000.0]")
+        .replace("family = \"free\"", "family = \"polynomial\"\ndegree = 0");
+    refused_saying(
+        &roller,
+        &["`design.degree` = 0", "only moves the", "at least 1"],
+    );
+    let beam = with_table(
+        &example2_beam(80),
+        "design",
+        "family = \"polynomial\"\ndegree = 1",
+    );
+    assert!(scene(&beam).is_ok());
+}

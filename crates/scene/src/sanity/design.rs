@@ -130,6 +130,17 @@ pub(crate) fn design(
             ),
             _ => ("design.family", t.family.span()),
         };
+        if *family == (Family::Polynomial { degree: 0 }) {
+            return Err(ctx.invalid(
+                span,
+                field,
+                degree,
+                "a polynomial of degree 0 is a constant drop, which under a load only moves the \
+                 approach: it changes no pressure, so nothing is designed (a roller's uncrowned \
+                 ends keep their peaks, which grow with every finer grid); give a degree of at \
+                 least 1 (2 or more for a crown)",
+            ));
+        }
         if degree > MAX_DEGREE {
             return Err(ctx.invalid(
                 span,
