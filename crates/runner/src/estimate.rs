@@ -419,26 +419,38 @@ const REFINED_ANALYSES: f64 = 4.0;
 
 /// The design stage's estimate; `own` the bytes of the scene's own S,
 /// alive through the stage. Its memory is the largest the grids of its
-/// path hold at once: the design on the scene's grid; the design on the
-/// second grid beside the first grid's cases (kept until the second
-/// grid's design replaces them); the third grid's cases, verifying,
-/// beside the second's, with one analysis's work. Its seconds those of the shortest path over the grid sequence
-/// (`design.refine`, the default): the design on the scene's grid, the
-/// design on the second grid within `design.max_points` a case (its full
-/// estimate, or [`REFINED_ANALYSES`] of each case, whichever is less), and
-/// each case analysed once on the third, where a design holds at the
-/// earliest (Example 2: designed on 80 and 160 cells, verified on 240; the
-/// crowned roller on 9 x 40 and 18 x 80, verified on 27 x 120); at least
-/// [`GRID_SECONDS`] a grid. A dense solve grows as the cube of its points,
-/// so the finer grids dominate: the scene's grid alone was 10 times short
-/// of the crowned roller's measured seconds.
+/// path hold at once: the design on the scene's grid; the design on each
+/// finer grid beside the coarser grid's cases (kept until the finer
+/// grid's design replaces them); the verifying grid's cases beside the
+/// last design grid's, with one analysis's work. Its seconds those of the
+/// shortest path over the grid sequence (`design.refine`, the default):
+/// the design on the scene's grid, the design on each finer grid the
+/// request is estimated to design on within `design.max_points` a case
+/// (`DesignRequest::finer_designs`: the second grid; the third too for
+/// the largest shear; none for a crown) and each case
+/// analysed once on the next, where a
+/// design holds at the earliest (Example 2: designed on 80 and 160 cells,
+/// verified on 240; the crowned roller on 9 x 40 and 18 x 80, verified on
+/// 27 x 120); at least [`GRID_SECONDS`] a grid. A finer grid's design
+/// starts from the coarser grid's profile: a pressure design's is its full
+/// estimate or [`REFINED_ANALYSES`] of each case, whichever is less, the
+/// analyses times the square root of a misaligned roller's end lift over
+/// its lightest load's approach (`Scene::end_lift`, at least 1): the
+/// first grid resolves the tilted contact, about `sqrt(approach / lift)`
+/// of the length, on that many times fewer stations, and the finer grid's
+/// design moves further from it (the crowned roller took 3.9, 12 and 15 s
+/// at lifts of 1.7, 8.4 and 17 approaches); a stress design's a full
+/// descent (`DesignRequest::refines_by_descent`).
+/// A dense solve grows as the cube of its points, so the finer grids
+/// dominate: the scene's grid alone was 10 times short of the crowned
+/// roller's measured seconds.
 fn design(scene: &Scene, spec: &DesignSpec, own: f64) -> Result<DesignEstimate, RunError> {
     let angles = spec.misalignments().len().max(1) as f64;
+    let request = spec.request(None, Some(scene.method()), scene.options());
     let at = |loads: &[(PointSet, elcon_analysis::Estimate)]| {
         let loads: Vec<(&PointSet, elcon_analysis::Estimate)> =
             loads.iter().map(|(p, e)| (p, *e)).collect();
-        spec.request(None, Some(scene.method()), scene.options())
-            .estimate(&loads, angles as usize, own)
+        request.estimate(&loads, angles as usize, own)
     };
     // Every case's analysis on a grid.
     let analyses = |loads: &[(PointSet, elcon_analysis::Estimate)]| {
@@ -468,18 +480,28 @@ fn design(scene: &Scene, spec: &DesignSpec, own: f64) -> Result<DesignEstimate, 
         })
     };
     let mut levels = sequence.fineness.iter().copied().filter(|&f| f != 1.0);
-    if let Some(loads) = levels.next().and_then(within) {
+    let polish = REFINED_ANALYSES * scene.end_lift().map_or(1.0, |l| l.ratio().max(1.0).sqrt());
+    let mut coarser = first;
+    for _ in 0..request.finer_designs() {
+        let Some(loads) = levels.next().and_then(within) else {
+            return Ok(estimate);
+        };
         let designed = at(&loads);
         estimate.bytes = estimate
             .bytes
-            .max(designed.bytes.saturating_add(to_bytes(held(&first))));
-        let second = designed.seconds.min(REFINED_ANALYSES * analyses(&loads));
-        estimate.seconds += second.max(GRID_SECONDS);
-        if let Some(third) = levels.next().and_then(within) {
-            let verifying = own + held(&loads) + held(&third) + work(&third);
-            estimate.bytes = estimate.bytes.max(to_bytes(verifying));
-            estimate.seconds += analyses(&third).max(GRID_SECONDS);
-        }
+            .max(designed.bytes.saturating_add(to_bytes(held(&coarser))));
+        let seconds = if request.refines_by_descent() {
+            designed.seconds
+        } else {
+            designed.seconds.min(polish * analyses(&loads))
+        };
+        estimate.seconds += seconds.max(GRID_SECONDS);
+        coarser = loads;
+    }
+    if let Some(next) = levels.next().and_then(within) {
+        let verifying = own + held(&coarser) + held(&next) + work(&next);
+        estimate.bytes = estimate.bytes.max(to_bytes(verifying));
+        estimate.seconds += analyses(&next).max(GRID_SECONDS);
     }
     Ok(estimate)
 }
@@ -745,5 +767,44 @@ mod tests {
         let p = Estimate::of(&plain).unwrap();
         assert_eq!(p.data_bytes, 0);
         assert!(e.peak_bytes >= 2 * bytes + e.solve_bytes + BASELINE);
+    }
+
+    /// examples/scenes/crowned-roller.toml with `lines` added to its
+    /// `[design]` table.
+    fn crowned_roller(lines: &str) -> Scene {
+        let text = include_str!("../../../examples/scenes/crowned-roller.toml")
+            .replace("axis = \"y\"", &format!("axis = \"y\"\n{lines}"));
+        scene(&text)
+    }
+
+    #[test]
+    fn a_stress_design_counts_a_descent_over_the_subsurface_on_each_finer_grid() {
+        // Measured (docs/reliability.md): 2.6 to 2.9 s for the pressure
+        // design, 13 s for von Mises (designed on 9 x 40 and 18 x 80
+        // cells), 69 to 72 s for the largest shear (on 27 x 120 too).
+        let seconds = |lines: &str| {
+            let e = Estimate::of(&crowned_roller(lines)).unwrap();
+            e.design.unwrap().seconds
+        };
+        let pressure = seconds("");
+        let von_mises = seconds("objective = \"von-mises\"");
+        let shear = seconds("objective = \"max-shear\"");
+        assert!((1.2..5.4).contains(&pressure), "{pressure}");
+        assert!((6.5..26.0).contains(&von_mises), "{von_mises}");
+        assert!((36.0..140.0).contains(&shear), "{shear}");
+    }
+
+    #[test]
+    fn a_misaligned_roller_s_finer_grid_counts_its_end_lift() {
+        // Measured: 3.8 to 3.9 s at +-0.001 rad (a lift of 1.7 approaches
+        // at 1 kN), 15 s at +-0.01 (17).
+        let seconds = |m: f64| {
+            let lines = format!("misalignments = [-{m}, {m}]");
+            let e = Estimate::of(&crowned_roller(&lines)).unwrap();
+            e.design.unwrap().seconds
+        };
+        let (small, large) = (seconds(0.001), seconds(0.01));
+        assert!((2.1..8.4).contains(&small), "{small}");
+        assert!((7.5..30.0).contains(&large), "{large}");
     }
 }

@@ -27,10 +27,13 @@ pub use bearing::{BearingKind, BearingScene, BearingSpec, CrownFamily, is_bearin
 pub use ctx::{MAX_INPUT_BYTES, read_text};
 pub use error::{Location, SceneError};
 pub use inputs::{DataInput, confine_data_files, file_sha256, sha256_hex};
-pub use sanity::{MAX_ROTATION, MAX_STRAIN, MIN_POINTS_RESOLVED, StrainExtent, approach_strain};
+pub use sanity::{
+    MAX_BEAM_REACH, MAX_END_LIFT, MAX_ROTATION, MAX_STRAIN, MIN_POINTS_RESOLVED, StrainExtent,
+    approach_strain,
+};
 pub use scene::{
-    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, MAX_DATA_BYTES, MethodChoice, ModelKind,
-    Outputs, Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units, design_over,
-    problem_parts, scene_with_design,
+    BodySpec, DesignFamily, DesignLayoutParts, DesignSpec, EndLift, MAX_DATA_BYTES, MethodChoice,
+    ModelKind, Outputs, Plot, PointsSpec, ProblemParts, Reference, RelativeTo, Scene, Units,
+    design_over, problem_parts, scene_with_design,
 };
 pub use schema::ErrorMetric;

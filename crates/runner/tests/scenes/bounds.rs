@@ -139,9 +139,26 @@ fn a_resolvability_refusal_names_the_input_out_of_scale_with_its_range() {
     // The range: the foundation's small strain (mean compression 0.1 of
     // the beam's 8.9 in) below, the solve's product above.
     assert!(e.contains("give a modulus from 6319 to 1.589e96"), "{e}");
+    // The range is the analysis's: the scene without its design takes
+    // both ends. A design also keeps the beam within 40 of its
+    // characteristic lengths (4 E I / k)^(1/4), which the stiff end is
+    // far past, and names the foundation's modulus for it.
+    let analysis = |k: &str| {
+        let path = example("example2-beam-design.toml");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let text = text.replacen("modulus = 1e7", k, 1);
+        let text = &text[..text.find("[design]").unwrap()];
+        Scene::from_str(&path, text)
+    };
     for k in ["modulus = 6320", "modulus = 1.589e96"] {
-        foundation(k).unwrap_or_else(|e| panic!("{k}: {e}"));
+        analysis(k).unwrap_or_else(|e| panic!("{k}: {e}"));
     }
+    foundation("modulus = 6320").unwrap_or_else(|e| panic!("{e}"));
+    refused_saying(
+        foundation("modulus = 1.589e96"),
+        "body2.modulus",
+        &["characteristic length"],
+    );
     // A sphere of radius 1e301 on a rigid plane, on its Hertz grid: a cell
     // of 1e97 in, whose compliance times the squared residuals is 1e-312;
     // the radius, not the moduli, is out of scale.

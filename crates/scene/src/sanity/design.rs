@@ -23,11 +23,38 @@ pub const MAX_DESIGN_CASES: usize = 1000;
 pub const MAX_DEGREE: usize = 12;
 
 /// The most a design's cells may be longer than wide (on a surface grid):
-/// a roller 131 km long on 40 cells, each 4.5e6 times longer than wide,
-/// designs on its first grids and then fails the certificate of an
-/// analysis on a finer one; the crowned roller of docs/design.md has
-/// cells about 10 times longer than wide.
-pub const MAX_DESIGN_CELL_ASPECT: f64 = 1e4;
+/// on such cells the influence coefficients resolve too few digits for the
+/// certified analyses a design makes on finer and finer grids. The crowned
+/// roller of docs/design.md (cells about 10 times longer than wide) with
+/// half_y = 250 and 359.9999 mm (cells 3300 and 5800 times longer than
+/// wide at 1 kN) failed an analysis's conjugate gradient on 27 x 120 cells
+/// (its residual stalled at 6.3e-13 and 6.6e-13, above the stopping
+/// target of 5e-13, until the iteration limit); with 100, 200 and 300 mm
+/// (850, 2400 and 4400) it designed and held; 131 km (4.5e6) failed a
+/// certificate.
+pub const MAX_DESIGN_CELL_ASPECT: f64 = 2500.0;
+
+/// The most a design's misalignment may lift the roller's end, in the
+/// lightest design load's approach: `|misalignment| x half the length`
+/// against the Hertz line contact's approach at that load (measured a
+/// roller's radius from the contact). The crowned roller of
+/// docs/reliability.md (5 mm long a side, 1, 5 and 10 kN, approach 0.0030
+/// mm at 1 kN) designs and holds with misalignments of +-0.001 to +-0.01
+/// rad (lifts of 1.7 to 17 approaches, 4 to 20 s); at +-0.02 (34
+/// approaches) its first finer grid took 137 descent iterations and the run
+/// did not end in 400 s; at +-0.1 (168) not in 300 s.
+pub const MAX_END_LIFT: f64 = 20.0;
+
+/// The longest a beam on a Winkler foundation may be for a design, in its
+/// characteristic lengths `1 / beta = (4 E I / k)^(1/4)`: a load bends the
+/// beam over a few of them beside it and the rest carries nothing, so a
+/// design over the whole beam cannot spread the load. Example 2's beam
+/// (L beta = 3.1) designs and holds at lengths up to L beta = 37 (100 in);
+/// at 55, 90 and 110 (150, 250 and 300 in) its peak grew as the grid on
+/// every finer grid, at 143 (400 in) the program and its re-analysis
+/// disagreed beyond rounding, and on a foundation of 1e20 lbf/in^2 (L beta
+/// = 5600) the peak grew as the grid.
+pub const MAX_BEAM_REACH: f64 = 40.0;
 
 /// `design.max_constant` is at most this many times the candidate zone's
 /// size: a uniform drop a million times the zone is no profile of these
@@ -103,6 +130,17 @@ pub(crate) fn design(
             ),
             _ => ("design.family", t.family.span()),
         };
+        if *family == (Family::Polynomial { degree: 0 }) {
+            return Err(ctx.invalid(
+                span,
+                field,
+                degree,
+                "a polynomial of degree 0 is a constant drop, which under a load only moves the \
+                 approach: it changes no pressure, so nothing is designed (a roller's uncrowned \
+                 ends keep their peaks, which grow with every finer grid); give a degree of at \
+                 least 1 (2 or more for a crown)",
+            ));
+        }
         if degree > MAX_DEGREE {
             return Err(ctx.invalid(
                 span,

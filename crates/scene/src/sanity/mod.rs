@@ -32,6 +32,7 @@ pub(crate) use deformation::{
     unresolved,
 };
 pub(crate) use design::{DesignView, MAX_DESIGN_CELL_ASPECT, design, design_cases};
+pub use design::{MAX_BEAM_REACH, MAX_DEGREE, MAX_END_LIFT};
 pub use grid::MIN_POINTS_RESOLVED;
 pub(crate) use grid::{
     MIN_POINTS_ACROSS, Unresolved, bodies_on_grid, coarse_grid, listed_line, no_hertz_reason,

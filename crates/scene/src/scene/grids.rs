@@ -13,7 +13,7 @@ use super::design::{DesignFamily, DesignSpec};
 use super::hertz::{Hertz, Layout, Reference};
 use super::points::{self, PointsSpec, build_points};
 use super::{Scene, bounds};
-use crate::ctx::{Ctx, Num, rounded};
+use crate::ctx::{Ctx, Num, at_most, rounded};
 use crate::error::SceneError;
 use crate::sanity;
 use crate::schema::{DesignToml, Grid, PointsToml, SceneFile};
@@ -157,6 +157,11 @@ fn design_grids(
     }
     design_loads_small(ctx, raw_design, spec, scene, &sets)?;
     log_crown_resolved(ctx, raw_design, spec, scene)?;
+    misalignments_on_the_roller(ctx, raw_design, scene)?;
+    beam_reach(ctx, raw, scene)?;
+    crown_keeps_the_end_clear(ctx, raw_design, spec, scene)?;
+    free_profile_on_a_line_contact(ctx, raw_design, spec, scene)?;
+    tables_without_kinks(ctx, raw, spec)?;
     design_grids_resolve(ctx, raw, spec, scene, &sets)?;
     design_grids_fit(ctx, raw_design, spec, scene)?;
     sanity::design(ctx, raw_design, &spec.view(), &sets)?;
@@ -283,6 +288,277 @@ fn log_crown_resolved(
     Err(ctx.invalid(span, "design.design_load", Num(*design_load), reason))
 }
 
+/// A roller's misalignments against its lightest design load
+/// ([`Scene::end_lift`]): beyond [`sanity::MAX_END_LIFT`] times the
+/// approach of the lightest load's Hertz line contact the tilted roller
+/// bears on a short part of its length at one end (about
+/// `sqrt(approach / lift)` of it), and a crown deep enough to relieve
+/// that end at the heaviest load leaves the lightest load's contact too
+/// short for the design's grids to agree on.
+fn misalignments_on_the_roller(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<DesignToml>,
+    scene: &Scene,
+) -> Result<(), SceneError> {
+    let (Some(lift), Some(raw_list)) = (scene.end_lift(), &raw.get_ref().misalignments) else {
+        return Ok(());
+    };
+    if !(lift.ratio() > sanity::MAX_END_LIFT) {
+        return Ok(());
+    }
+    let span = raw_list
+        .get_ref()
+        .iter()
+        .find(|m| *m.get_ref() == lift.misalignment)
+        .map_or(raw_list.span(), |m| m.span());
+    let length = scene.units.length();
+    Err(ctx.invalid(
+        span,
+        "design.misalignments",
+        Num(lift.misalignment),
+        format!(
+            "lifts the roller's end by {} {length} (the misalignment times half the roller's \
+             length, {} {length}), {:.0} times the contact's approach at the lightest design \
+             load ({} {length} at {} {}, the Hertz line contact's, measured a roller's radius \
+             away): beyond {} times it the tilted roller bears only near one end, a crown that \
+             relieves that end leaves the lightest load's contact too short for the design's \
+             grids to agree, and the design runs on without converging; give misalignments of \
+             at most {} rad, or a heavier lightest load (design.loads)",
+            rounded(lift.lift()),
+            rounded(lift.half_length),
+            lift.ratio(),
+            rounded(lift.approach),
+            Num(lift.load),
+            scene.units.force(),
+            sanity::MAX_END_LIFT,
+            at_most(sanity::MAX_END_LIFT * lift.approach / lift.half_length),
+        ),
+    ))
+}
+
+/// A circular crown searched up to radii that leave the heaviest load's
+/// contact on the roller's end is refused, naming `design.radius_range`:
+/// the end's pressure there is singular and grows with every finer grid,
+/// and the search, which compares a coarse grid's cell averages, may
+/// choose such a radius (the crowned roller searched over 50 to 5000 mm
+/// did not hold on five grids, its worst p_max / p0 1.35 to 1.62; over 50
+/// to 500 mm it holds on 18 x 80 cells). The largest radius must drop
+/// the end, `R - sqrt(R^2 - t^2)` at `t` = half the length less half the
+/// flat, by at least the heaviest load's approach (as
+/// [`Scene::end_lift`] measures it).
+fn crown_keeps_the_end_clear(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<DesignToml>,
+    spec: &DesignSpec,
+    scene: &Scene,
+) -> Result<(), SceneError> {
+    let DesignFamily::CircularCrown {
+        radius_range: (_, largest),
+        flat_length,
+    } = *spec.family()
+    else {
+        return Ok(());
+    };
+    let Some(load) = spec.loads().iter().copied().reduce(f64::max) else {
+        return Ok(());
+    };
+    let Some((hertz, half_length)) = scene.roller_contact(load) else {
+        return Ok(());
+    };
+    let t = half_length - 0.5 * flat_length;
+    let Ok(approach) = hertz.approach(hertz.radius) else {
+        return Ok(());
+    };
+    if !(t > 0.0 && largest > t) {
+        return Ok(());
+    }
+    let drop = largest - (largest * largest - t * t).sqrt();
+    if drop >= approach {
+        return Ok(());
+    }
+    let span = raw.get_ref().radius_range.as_ref().map_or(raw.span(), |r| {
+        r.get_ref().last().map_or(r.span(), |v| v.span())
+    });
+    let length = scene.units.length();
+    Err(ctx.invalid(
+        span,
+        "design.radius_range",
+        Num(largest),
+        format!(
+            "a crown of this radius drops the roller's end by {} {length}, less than the \
+             contact's approach at the heaviest design load ({} {length} at {} {}): it leaves \
+             the contact on the roller's end, where the pressure is singular and grows with \
+             every finer grid, and the search, comparing a coarse grid's cell averages, may \
+             choose it, so the design never holds; give a largest radius of at most {} {length}",
+            rounded(drop),
+            rounded(approach),
+            Num(load),
+            scene.units.force(),
+            at_most((t * t + approach * approach) / (2.0 * approach)),
+        ),
+    ))
+}
+
+/// A free profile on a point contact (a Hertz contact of spheres or an
+/// ellipse) is refused, naming `design.family`: its contact ends inside
+/// the grid along the axis, so the drops at the stations beyond it bear
+/// no load in any case and the design leaves them free, and the spline
+/// through them swings into the contact on a finer grid. Measured: the
+/// ball bearing's worst p_max went 2093, 81,979 and 137,228 MPa over three
+/// grids; Example 1's spheres ended at a step program with no feasible
+/// basis. A polynomial (design.degree, up to 12) designs both.
+fn free_profile_on_a_line_contact(
+    ctx: &Ctx<'_>,
+    raw: &Spanned<DesignToml>,
+    spec: &DesignSpec,
+    scene: &Scene,
+) -> Result<(), SceneError> {
+    if *spec.family() != DesignFamily::Linear(elcon_design::Family::Free) {
+        return Ok(());
+    }
+    let point = spec
+        .loads()
+        .iter()
+        .find_map(|&load| match scene.hertz(load) {
+            Some(Hertz::Spheres(_)) => Some("spheres"),
+            Some(Hertz::Ellipse(_)) => Some("an elliptical contact"),
+            _ => None,
+        });
+    let Some(what) = point else {
+        return Ok(());
+    };
+    Err(ctx.invalid(
+        raw.get_ref().family.span(),
+        "design.family",
+        "\"free\"",
+        format!(
+            "a free profile (a drop per axial station) needs a contact along the whole axis, a \
+             roller's or a beam's; this is a point contact ({what}), which ends inside the grid \
+             along the axis: the drops at the stations beyond it bear no load, the design leaves \
+             them free, and the profile through them swings into the contact on a finer grid, so \
+             the design never holds. Use family = \"polynomial\" (with design.degree, up to {})",
+            sanity::MAX_DEGREE
+        ),
+    ))
+}
+
+/// A design carried over finer grids needs a profile or height map
+/// interpolated without kinks: linearly between its rows (the default)
+/// its slope jumps at every row, and each kink puts a logarithmic peak of
+/// pressure under it that every finer grid resolves higher, so no grid
+/// verifies the design (examples/scenes/measured-crown.toml with a free
+/// profile designed for 1 and 5 kN ran through four grids and on past
+/// 300 s; with `interpolation = "cubic"` it holds).
+fn tables_without_kinks(
+    ctx: &Ctx<'_>,
+    raw: &SceneFile,
+    spec: &DesignSpec,
+) -> Result<(), SceneError> {
+    let Some(geometry) = raw.geometry.as_ref().map(Spanned::get_ref) else {
+        return Ok(());
+    };
+    if spec.sequence().is_none() {
+        return Ok(());
+    }
+    let tables = [
+        (
+            "geometry.profile.interpolation",
+            geometry
+                .profile
+                .as_ref()
+                .map(|p| (p.span(), &p.get_ref().interpolation)),
+            "row",
+        ),
+        (
+            "geometry.height_map.interpolation",
+            geometry
+                .height_map
+                .as_ref()
+                .map(|m| (m.span(), &m.get_ref().interpolation)),
+            "node",
+        ),
+    ];
+    for (field, table, node) in tables {
+        let Some((span, interpolation)) = table else {
+            continue;
+        };
+        let linear = interpolation
+            .as_ref()
+            .is_none_or(|i| *i.get_ref() == elcon_analysis::Interpolation::Linear);
+        if !linear {
+            continue;
+        }
+        let span = interpolation.as_ref().map_or(span, |i| i.span());
+        return Err(ctx.invalid(
+            span,
+            field,
+            "\"linear\"",
+            format!(
+                "a design compares its peak pressure over finer and finer grids, and a table \
+                 interpolated linearly kinks at every {node}: each kink puts a peak of pressure \
+                 under it that every finer grid resolves higher, so no grid verifies the design. \
+                 Give interpolation = \"cubic\" (the natural cubic spline through the table), \
+                 or design on the scene's grid alone (design.refine = false)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A designed beam on a Winkler foundation no longer than
+/// [`sanity::MAX_BEAM_REACH`] of its characteristic lengths
+/// `(4 E I / k)^(1/4)`, named by the foundation's modulus.
+fn beam_reach(ctx: &Ctx<'_>, raw: &SceneFile, scene: &Scene) -> Result<(), SceneError> {
+    let bodies = [scene.bodies[0].body(), scene.bodies[1].body()];
+    let beam = bodies.iter().find_map(|b| match *b.model() {
+        elcon_influence::Model::Beam {
+            flexural_rigidity, ..
+        } => Some(flexural_rigidity),
+        _ => None,
+    });
+    let foundation = (0..2).find_map(|i| match *bodies[i].model() {
+        elcon_influence::Model::Winkler { modulus } => Some((i, modulus)),
+        _ => None,
+    });
+    let (Some(ei), Some((i, k))) = (beam, foundation) else {
+        return Ok(());
+    };
+    let points = &scene.points;
+    let h = points.cell().dx;
+    let length = points.x(points.len() - 1) - points.x(0) + h;
+    let reach = (4.0 * ei / k).powf(0.25);
+    if !(length / reach > sanity::MAX_BEAM_REACH) {
+        return Ok(());
+    }
+    let raw_body = if i == 0 { &raw.body1 } else { &raw.body2 };
+    let span = raw_body
+        .get_ref()
+        .modulus
+        .as_ref()
+        .map_or(raw_body.span(), |m| m.span());
+    let (units, length_unit) = (&scene.units, scene.units.length());
+    Err(ctx.invalid(
+        span,
+        format!("body{}.modulus", i + 1),
+        Num(k),
+        format!(
+            "the beam (E I = {} {} {length_unit}^2) bends on this foundation over a \
+             characteristic length (4 E I / k)^(1/4) = {} {length_unit}, and the beam is {:.0} \
+             of them long ({} {length_unit}), more than {}: a load bends it over a few of them \
+             beside it and the rest carries nothing, so a design over the whole beam cannot \
+             spread the load (its peak grows with every finer grid). Give a softer foundation, \
+             a stiffer beam, or a beam at most {} {length_unit} long (points.start, points.end)",
+            rounded(ei),
+            units.force(),
+            rounded(reach),
+            length / reach,
+            rounded(length),
+            sanity::MAX_BEAM_REACH,
+            at_most(sanity::MAX_BEAM_REACH * reach),
+        ),
+    ))
+}
+
 /// `design.max_points` admits every load case on the sequence's second
 /// grid: a design made on the first holds only once verified on a finer
 /// one, and a case beyond `max_points` ends the sequence before that.
@@ -344,8 +620,8 @@ fn design_grids_resolve(
                 "points",
                 "",
                 format!(
-                    "the design load {} has cells {aspect:.1e} times longer than wide ({:.4e} by \
-                     {:.4e}), more than {:.0e}: the influence coefficients of such cells resolve \
+                    "the design load {} has cells {aspect:.0} times longer than wide ({:.4e} by \
+                     {:.4e}), more than {}: the influence coefficients of such cells resolve \
                      too few digits for the certified analyses a design makes on finer and finer \
                      grids. Give cells closer to square (points.half_y and points.ny against the \
                      contact's width and points.nx)",
