@@ -608,6 +608,12 @@ fn every_example_scene_passes_check() {
                     panic!("{}: run {i}: {e}", path.display());
                 }
             }
+        } else if elcon_scene::is_bearing_text(&text) {
+            // A bearing scene: its own reader and estimate.
+            let bearing = elcon_scene::BearingScene::from_file(&path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let estimate = elcon_runner::BearingEstimate::of(&bearing);
+            assert!(estimate.peak_bytes > 0 && estimate.zones > 0);
         } else if let Err(e) = elcon_scene::Scene::from_file(&path) {
             panic!("{e}");
         }
