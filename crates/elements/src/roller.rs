@@ -276,7 +276,7 @@ impl RollerBearing {
 
     /// The inner and outer contacts' points and problems on `grid` (in the
     /// zones' frames: x across the roller, y along it), unfolded (dense or
-    /// matrix-free by their size, [`storage`]), the roller's ends the
+    /// matrix-free above [`DENSE_ROLLER_POINTS`]), the roller's ends the
     /// bodies' edges, under no load (give them one with
     /// `ContactProblem::with_loading`).
     ///
