@@ -840,6 +840,46 @@ fn a_roller_crown_is_designed_over_the_bearing_s_own_rollers() {
     assert!((after / d["objective"].as_f64().unwrap() - 1.0).abs() < 0.03);
     let csv = std::fs::read_to_string(dir.join("profile.csv")).unwrap();
     assert!(csv.starts_with("# y_mm,drop_mm"), "{csv}");
+    // The crown as made, read back from profile.csv as a table crown,
+    // gives the designed bearing again.
+    let made = out.join("made.toml");
+    std::fs::write(
+        &made,
+        edited(
+            &std::fs::read_to_string(&scene).unwrap(),
+            &[
+                (
+                    "crown = { shape = \"straight\" }\ninner_raceway",
+                    &format!(
+                        "crown = {{ shape = \"table\", file = {:?} }}\ninner_raceway",
+                        dir.join("profile.csv").display().to_string()
+                    ),
+                ),
+                ("[design]\nfamily = \"free\"\n", ""),
+                ("name = \"roller-bearing-misaligned\"", "name = \"made\""),
+            ],
+        ),
+    )
+    .unwrap();
+    exited(
+        &elcon(&[
+            "run",
+            &made.display().to_string(),
+            "--out",
+            &out.display().to_string(),
+        ]),
+        0,
+        &[],
+    );
+    let m = json(&out.join("made/result.json"));
+    let peak = m["elements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["max_pressure_inner"].as_f64().unwrap())
+        .fold(0.0f64, f64::max);
+    assert!((peak / after - 1.0).abs() < 1e-9, "{peak} vs {after}");
+    assert_eq!(m["inputs"]["files"].as_array().unwrap().len(), 1);
     // A ball bearing's [design] is refused, naming it.
     let ball = out.join("ball.toml");
     std::fs::write(

@@ -375,7 +375,7 @@ impl BearingResult {
             seconds,
             inputs: InputsJson {
                 elcon: env!("CARGO_PKG_VERSION").to_string(),
-                files: Vec::new(),
+                files: scene.inputs().to_vec(),
             },
             crown_design: None,
         }

@@ -65,6 +65,8 @@ keywords! {
         Circular = "circular",
         /// `"logarithmic"`: Lundberg's profile for `load`.
         Logarithmic = "logarithmic",
+        /// `"table"`: `(position, drop)` rows from a CSV `file`.
+        Table = "table",
     }
 }
 
@@ -130,6 +132,7 @@ struct CrownToml {
     drop: Option<Spanned<f64>>,
     flat: Option<Spanned<f64>>,
     load: Option<Spanned<f64>>,
+    file: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -224,6 +227,7 @@ pub struct BearingScene {
     crown_design: Option<CrownFamily>,
     plots: bool,
     subsurface: bool,
+    inputs: Vec<crate::DataInput>,
 }
 
 impl BearingScene {
@@ -265,6 +269,11 @@ impl BearingScene {
     /// the rollers' crown designed over the bearing's own loaded rollers.
     pub fn crown_design(&self) -> Option<CrownFamily> {
         self.crown_design
+    }
+
+    /// The data files it read (a crown's table), with their hashes.
+    pub fn inputs(&self) -> &[crate::DataInput] {
+        &self.inputs
     }
 
     /// Whether the stresses below each loaded element's contacts are
@@ -362,6 +371,7 @@ impl BearingScene {
                 .as_ref()
                 .and_then(|o| o.subsurface)
                 .unwrap_or(false),
+            inputs: ctx.inputs.take(),
         })
     }
 
@@ -572,10 +582,21 @@ fn crown(ctx: &Ctx<'_>, c: &Spanned<CrownToml>) -> Result<Crown, SceneError> {
     let shape = *t.shape.get_ref();
     let keys = [("drop", &t.drop), ("flat", &t.flat), ("load", &t.load)];
     let takes: &[&str] = match shape {
-        CrownShape::Straight => &[],
+        CrownShape::Straight | CrownShape::Table => &[],
         CrownShape::Circular => &["drop", "flat"],
         CrownShape::Logarithmic => &["load"],
     };
+    if let Some(f) = t.file.as_ref().filter(|_| shape != CrownShape::Table) {
+        return Err(ctx.invalid(
+            f.span(),
+            "bearing.crown.file",
+            format!("{:?}", f.get_ref()),
+            format!(
+                "is not a key of a {} crown (a \"table\" crown reads a file)",
+                shape.name()
+            ),
+        ));
+    }
     for (key, value) in keys {
         if let Some(v) = value.as_ref().filter(|_| !takes.contains(&key)) {
             return Err(ctx.invalid(
@@ -605,6 +626,18 @@ fn crown(ctx: &Ctx<'_>, c: &Spanned<CrownToml>) -> Result<Crown, SceneError> {
         CrownShape::Logarithmic => Crown::Logarithmic {
             load: value(&t.load, "load")?,
         },
+        CrownShape::Table => {
+            let file = t.file.as_ref().ok_or_else(|| {
+                ctx.invalid(
+                    c.span(),
+                    "bearing.crown.file",
+                    "(missing)",
+                    "is required for a table crown: a CSV of (position along the roller, drop)",
+                )
+            })?;
+            let rows = crate::scene::drop_rows(ctx, "bearing.crown.file", file)?;
+            Crown::Table(std::sync::Arc::new(rows))
+        }
     })
 }
 

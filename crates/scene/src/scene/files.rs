@@ -347,6 +347,24 @@ pub(super) fn profile(ctx: &Ctx<'_>, t: &Spanned<ProfileToml>) -> Result<Departu
     Ok(Departure::Profile(Arc::new(p)))
 }
 
+/// A table of `(position, drop)` rows read from the CSV file `name` under
+/// `field` (a bearing's roller crown): two numbers a row.
+pub(crate) fn drop_rows(
+    ctx: &Ctx<'_>,
+    field: &'static str,
+    name: &Spanned<String>,
+) -> Result<Vec<(f64, f64)>, SceneError> {
+    let file = DataFile::new(ctx, field, name);
+    let rows = file.csv_rows()?;
+    if let Some((line, r)) = rows.iter().find(|(_, r)| r.len() != 2) {
+        return Err(file.refuse(format!(
+            "line {line} has {} values: a crown's rows are (position, drop)",
+            r.len()
+        )));
+    }
+    Ok(rows.iter().map(|(_, r)| (r[0], r[1])).collect())
+}
+
 /// The geometry on the laid-out `points`: a `separation_file`'s rows
 /// matched to them, or tables checked to cover them (said at validation,
 /// not at the run); any other geometry as it is.

@@ -48,6 +48,8 @@ pub use points::PointsSpec;
 use points::build_points;
 pub use units::Units;
 
+pub(crate) use files::drop_rows;
+
 /// The units of a `[units]` table (a bearing scene's: no beam).
 pub(crate) fn units_of(
     ctx: &crate::ctx::Ctx<'_>,
