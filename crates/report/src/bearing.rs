@@ -276,7 +276,6 @@ impl BearingResult {
         let spec = scene.spec();
         let s = &solution.system;
         let most = &solution.elements[0];
-        let spring_max = reference.loads.iter().fold(0.0f64, |a, q| a.max(*q));
         let (across, zone, along, misalignment) = match spec {
             BearingSpec::Ball { grid, .. } => (grid.across, grid.zone, None, None),
             BearingSpec::Roller { grid, bearing } => (
@@ -286,19 +285,6 @@ impl BearingResult {
                 Some(bearing.misalignment),
             ),
         };
-        let system_max = solution.elements.iter().fold(0.0f64, |a, e| a.max(e.load));
-        let load_zone = solution
-            .elements
-            .iter()
-            .filter(|e| e.load > 0.0)
-            .map(|e| {
-                if e.angle > 180.0 {
-                    360.0 - e.angle
-                } else {
-                    e.angle
-                }
-            })
-            .fold(0.0f64, f64::max);
         let worst_zone = s.certificate.worst_zone;
         Self {
             scene: scene.name().to_string(),
@@ -316,54 +302,21 @@ impl BearingResult {
                 points,
                 zones: s.zones.len(),
             },
-            elements: solution
-                .elements
-                .iter()
-                .enumerate()
-                .map(|(j, e)| ElementJson {
-                    angle: e.angle,
-                    load: e.load,
-                    max_pressure_inner: e.max_pressure_inner,
-                    max_pressure_outer: e.max_pressure_outer,
-                    displacement: e.displacement,
-                    tilt: e.tilt,
-                    end_pressure_inner: along.map(|n| {
-                        elcon_elements::roller::end_pressure(&s.zones[2 * j].pressures, n)
-                    }),
-                    subsurface_inner: None,
-                    subsurface_outer: None,
-                })
-                .collect(),
+            elements: ElementJson::rows(solution, along),
             ring_displacement: Xyz {
                 x: solution.ring_displacement[0],
                 y: solution.ring_displacement[1],
                 z: solution.ring_displacement[2],
             },
             loaded: solution.loaded,
-            load_zone,
+            load_zone: load_zone(solution),
             contact_ellipse_inner: s.zones[0]
                 .contact_ellipse
                 .as_ref()
                 .filter(|_| most.load > 0.0)
                 .map(|e| [e.semi_major, e.semi_minor]),
-            life: life.map(|l| LifeJson {
-                l10: l.l10,
-                inner_life: l.inner_life,
-                outer_life: l.outer_life,
-                inner_capacity: l.inner_capacity,
-                outer_capacity: l.outer_capacity,
-                method: "Lundberg-Palmgren raceway capacities (ISO 281's basis, as ISO/TS 16281 \
-                         applies them to element loads), without the life modification factor"
-                    .into(),
-            }),
-            reference: ReferenceModelJson {
-                model: reference.model.clone(),
-                ring_displacement: reference.ring_displacement,
-                max_load: spring_max,
-                loaded: reference.loads.iter().filter(|q| **q > 0.0).count(),
-                max_load_difference: system_max / spring_max - 1.0,
-                max_pressure: reference.max_pressure,
-            },
+            life: life.map(LifeJson::of),
+            reference: ReferenceModelJson::of(reference, solution),
             certificate: SystemCertificateJson {
                 equilibrium: s.certificate.equilibrium,
                 zones: s.certificate.zones,
@@ -380,6 +333,81 @@ impl BearingResult {
             crown_design: None,
         }
     }
+}
+
+impl ElementJson {
+    /// A row per element of `solution`; a roller's end pressure where its
+    /// contacts have `along` cells along it.
+    fn rows(solution: &BearingSolution, along: Option<usize>) -> Vec<Self> {
+        let zones = &solution.system.zones;
+        solution
+            .elements
+            .iter()
+            .enumerate()
+            .map(|(j, e)| ElementJson {
+                angle: e.angle,
+                load: e.load,
+                max_pressure_inner: e.max_pressure_inner,
+                max_pressure_outer: e.max_pressure_outer,
+                displacement: e.displacement,
+                tilt: e.tilt,
+                end_pressure_inner: along
+                    .map(|n| elcon_elements::roller::end_pressure(&zones[2 * j].pressures, n)),
+                subsurface_inner: None,
+                subsurface_outer: None,
+            })
+            .collect()
+    }
+}
+
+impl LifeJson {
+    /// The block of a rating life.
+    fn of(l: &RatingLife) -> Self {
+        Self {
+            l10: l.l10,
+            inner_life: l.inner_life,
+            outer_life: l.outer_life,
+            inner_capacity: l.inner_capacity,
+            outer_capacity: l.outer_capacity,
+            method: "Lundberg-Palmgren raceway capacities (ISO 281's basis, as ISO/TS 16281 \
+                     applies them to element loads), without the life modification factor"
+                .into(),
+        }
+    }
+}
+
+impl ReferenceModelJson {
+    /// The block of `reference` beside the system's `solution`.
+    fn of(reference: &ReferenceModel, solution: &BearingSolution) -> Self {
+        let largest = |loads: &mut dyn Iterator<Item = f64>| loads.fold(0.0f64, f64::max);
+        let max_load = largest(&mut reference.loads.iter().copied());
+        let system = largest(&mut solution.elements.iter().map(|e| e.load));
+        Self {
+            model: reference.model.clone(),
+            ring_displacement: reference.ring_displacement,
+            max_load,
+            loaded: reference.loads.iter().filter(|q| **q > 0.0).count(),
+            max_load_difference: system / max_load - 1.0,
+            max_pressure: reference.max_pressure,
+        }
+    }
+}
+
+/// The load zone's half angle: the largest angle from the load's
+/// direction of a loaded element (degrees).
+fn load_zone(solution: &BearingSolution) -> f64 {
+    solution
+        .elements
+        .iter()
+        .filter(|e| e.load > 0.0)
+        .map(|e| {
+            if e.angle > 180.0 {
+                360.0 - e.angle
+            } else {
+                e.angle
+            }
+        })
+        .fold(0.0f64, f64::max)
 }
 
 /// Writes a bearing run's files into `dir`: result.json, elements.csv and,
