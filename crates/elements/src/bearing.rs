@@ -134,21 +134,30 @@ pub struct BearingSolution {
 impl BallBearing {
     /// The diametral clearance: as given, or the raceways' own.
     pub fn clearance(&self) -> f64 {
-        self.diametral_clearance.unwrap_or(
-            self.outer_raceway_diameter - self.inner_raceway_diameter - 2.0 * self.ball_diameter,
-        )
+        self.rings().clearance()
     }
 
     /// The pitch diameter `(d_i + d_o) / 2` (length).
     pub fn pitch_diameter(&self) -> f64 {
-        0.5 * (self.inner_raceway_diameter + self.outer_raceway_diameter)
+        self.rings().pitch_diameter()
     }
 
     /// The balls' angles `2 pi j / Z` (radians).
     pub fn angles(&self) -> Vec<f64> {
-        (0..self.balls)
-            .map(|j| 2.0 * PI * j as f64 / self.balls as f64)
-            .collect()
+        self.rings().angles()
+    }
+
+    /// The rings and balls as every radial bearing has them.
+    fn rings(&self) -> RingSizes {
+        RingSizes {
+            element: "ball",
+            count_field: "balls",
+            diameter: self.ball_diameter,
+            count: self.balls,
+            inner: self.inner_raceway_diameter,
+            outer: self.outer_raceway_diameter,
+            clearance: self.diametral_clearance,
+        }
     }
 
     /// The inner and outer contacts' surfaces (in their zones' frames).
@@ -245,33 +254,7 @@ impl BallBearing {
                 ));
             }
         }
-        if !(self.outer_raceway_diameter > self.inner_raceway_diameter + d) {
-            return Err(ElementsError::invalid(
-                "outer_raceway_diameter",
-                self.outer_raceway_diameter,
-                "must exceed the inner raceway's diameter by about two balls' diameters",
-            ));
-        }
-        let clearance = self.clearance();
-        if !(clearance.is_finite() && clearance > -0.1 * d) {
-            return Err(ElementsError::invalid(
-                "diametral_clearance",
-                clearance,
-                format!(
-                    "a preload deeper than a tenth of the ball's diameter ({}) is not a rolling contact",
-                    0.1 * d
-                ),
-            ));
-        }
-        let fit = (PI * self.pitch_diameter() / d).floor();
-        if self.balls == 0 || self.balls as f64 > fit {
-            return Err(ElementsError::invalid(
-                "balls",
-                self.balls as f64,
-                format!("between 1 and {fit} balls of this diameter fit on the pitch circle"),
-            ));
-        }
-        Ok(())
+        self.rings().check()
     }
 
     /// The bearing as a system (module documentation), each contact on
@@ -397,6 +380,81 @@ impl BearingSystem {
             loaded,
             system,
         })
+    }
+}
+
+/// What every radial bearing's rings and elements have: the raceways'
+/// diameters, the elements' diameter and number, the clearance; and the
+/// checks they share.
+pub(crate) struct RingSizes {
+    /// "ball" or "roller", for messages.
+    pub(crate) element: &'static str,
+    /// The key of the elements' number ("balls", "rollers").
+    pub(crate) count_field: &'static str,
+    /// The elements' diameter (length).
+    pub(crate) diameter: f64,
+    /// The elements' number.
+    pub(crate) count: usize,
+    /// The inner raceway's diameter (length).
+    pub(crate) inner: f64,
+    /// The outer raceway's diameter (length).
+    pub(crate) outer: f64,
+    /// The diametral clearance given, if any (length).
+    pub(crate) clearance: Option<f64>,
+}
+
+impl RingSizes {
+    /// The diametral clearance: as given, or the raceways' own,
+    /// `d_o - d_i - 2 D`.
+    pub(crate) fn clearance(&self) -> f64 {
+        self.clearance
+            .unwrap_or(self.outer - self.inner - 2.0 * self.diameter)
+    }
+
+    /// The pitch diameter `(d_i + d_o) / 2`.
+    pub(crate) fn pitch_diameter(&self) -> f64 {
+        0.5 * (self.inner + self.outer)
+    }
+
+    /// The elements' angles `2 pi j / Z` (radians).
+    pub(crate) fn angles(&self) -> Vec<f64> {
+        (0..self.count)
+            .map(|j| 2.0 * PI * j as f64 / self.count as f64)
+            .collect()
+    }
+
+    /// Raceways that hold the elements, a preload at most a tenth of an
+    /// element's diameter, and between 1 and as many elements as fit on
+    /// the pitch circle; the field named.
+    pub(crate) fn check(&self) -> Result<(), ElementsError> {
+        let (d, e) = (self.diameter, self.element);
+        if !(self.outer > self.inner + d) {
+            return Err(ElementsError::invalid(
+                "outer_raceway_diameter",
+                self.outer,
+                format!("must exceed the inner raceway's diameter by about two {e}s' diameters"),
+            ));
+        }
+        let clearance = self.clearance();
+        if !(clearance.is_finite() && clearance > -0.1 * d) {
+            return Err(ElementsError::invalid(
+                "diametral_clearance",
+                clearance,
+                format!(
+                    "a preload deeper than a tenth of the {e}'s diameter ({}) is not a rolling contact",
+                    0.1 * d
+                ),
+            ));
+        }
+        let fit = (PI * self.pitch_diameter() / d).floor();
+        if self.count == 0 || self.count as f64 > fit {
+            return Err(ElementsError::invalid(
+                self.count_field,
+                self.count as f64,
+                format!("between 1 and {fit} {e}s of this diameter fit on the pitch circle"),
+            ));
+        }
+        Ok(())
     }
 }
 

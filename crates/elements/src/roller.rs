@@ -34,7 +34,7 @@ use elcon_analysis::{
 };
 
 use crate::ElementsError;
-use crate::bearing::{BearingSystem, Ring};
+use crate::bearing::{BearingSystem, Ring, RingSizes};
 use crate::springs::HertzSprings;
 
 /// A roller's crown: how far its surface falls from the straight line at
@@ -149,21 +149,30 @@ impl Default for RollerGrid {
 impl RollerBearing {
     /// The diametral clearance: as given, or the raceways' own.
     pub fn clearance(&self) -> f64 {
-        self.diametral_clearance.unwrap_or(
-            self.outer_raceway_diameter - self.inner_raceway_diameter - 2.0 * self.roller_diameter,
-        )
+        self.rings().clearance()
     }
 
     /// The pitch diameter (length).
     pub fn pitch_diameter(&self) -> f64 {
-        0.5 * (self.inner_raceway_diameter + self.outer_raceway_diameter)
+        self.rings().pitch_diameter()
     }
 
     /// The rollers' angles (radians).
     pub fn angles(&self) -> Vec<f64> {
-        (0..self.rollers)
-            .map(|j| 2.0 * PI * j as f64 / self.rollers as f64)
-            .collect()
+        self.rings().angles()
+    }
+
+    /// The rings and rollers as every radial bearing has them.
+    fn rings(&self) -> RingSizes {
+        RingSizes {
+            element: "roller",
+            count_field: "rollers",
+            diameter: self.roller_diameter,
+            count: self.rollers,
+            inner: self.inner_raceway_diameter,
+            outer: self.outer_raceway_diameter,
+            clearance: self.diametral_clearance,
+        }
     }
 
     /// The combined radii of the inner and outer contacts across the roller.
@@ -200,29 +209,7 @@ impl RollerBearing {
                 ));
             }
         }
-        if !(self.outer_raceway_diameter > self.inner_raceway_diameter + d) {
-            return Err(ElementsError::invalid(
-                "outer_raceway_diameter",
-                self.outer_raceway_diameter,
-                "must exceed the inner raceway's diameter by about two rollers' diameters",
-            ));
-        }
-        let fit = (PI * self.pitch_diameter() / d).floor();
-        if self.rollers == 0 || self.rollers as f64 > fit {
-            return Err(ElementsError::invalid(
-                "rollers",
-                self.rollers as f64,
-                format!("between 1 and {fit} rollers of this diameter fit on the pitch circle"),
-            ));
-        }
-        let clearance = self.clearance();
-        if !(clearance.is_finite() && clearance > -0.1 * d) {
-            return Err(ElementsError::invalid(
-                "diametral_clearance",
-                clearance,
-                "a preload deeper than a tenth of the roller's diameter is not a rolling contact",
-            ));
-        }
+        self.rings().check()?;
         if !(self.misalignment.is_finite() && self.misalignment.abs() <= 0.01) {
             return Err(ElementsError::invalid(
                 "misalignment",
