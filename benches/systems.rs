@@ -14,42 +14,9 @@
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use elcon::analysis::Material;
 use elcon::analysis::system::SystemSettings;
-use elcon::elements::bearing::{BallBearing, BearingGrid};
-use elcon::elements::roller::{Crown, RollerBearing, RollerGrid};
-
-fn ball() -> BallBearing {
-    BallBearing {
-        ball_diameter: 7.938,
-        inner_raceway_diameter: 31.0,
-        outer_raceway_diameter: 46.9,
-        inner_groove_radius: 0.52 * 7.938,
-        outer_groove_radius: 0.53 * 7.938,
-        balls: 9,
-        diametral_clearance: None,
-        material: Material::new(210e3, 0.3).expect("steel"),
-        radial_load: 2000.0,
-    }
-}
-
-fn roller() -> RollerBearing {
-    RollerBearing {
-        roller_diameter: 9.0,
-        roller_length: 9.0,
-        crown: Crown::Circular {
-            drop: 0.008,
-            flat: 4.5,
-        },
-        inner_raceway_diameter: 57.0,
-        outer_raceway_diameter: 75.03,
-        rollers: 20,
-        diametral_clearance: None,
-        material: Material::new(210e3, 0.3).expect("steel"),
-        radial_load: 8000.0,
-        misalignment: 1e-3,
-    }
-}
+use elcon::elements::bearing::BearingGrid;
+use elcon_fixtures::bearings;
 
 fn systems(c: &mut Criterion) {
     let one = rayon::ThreadPoolBuilder::new()
@@ -64,7 +31,7 @@ fn systems(c: &mut Criterion) {
     group.bench_function("ball-bearing-9-balls-21-across", |b| {
         b.iter(|| {
             one.install(|| {
-                let s = ball()
+                let s = bearings::ball(None)
                     .system(&BearingGrid::default())
                     .expect("valid")
                     .solve(&settings)
@@ -74,15 +41,11 @@ fn systems(c: &mut Criterion) {
             })
         })
     });
-    let grid = RollerGrid {
-        across: 19,
-        along: 120,
-        zone: 1.4,
-    };
+    let grid = bearings::ROLLER_GRID;
     group.bench_function("roller-bearing-20-rollers-27x120", |b| {
         b.iter(|| {
             one.install(|| {
-                let s = roller()
+                let s = bearings::roller(bearings::CROWN, 1e-3)
                     .system(&grid)
                     .expect("valid")
                     .solve(&settings)

@@ -7,10 +7,10 @@
 //!
 //! Run: `cargo run --release --example bearing_crown`
 
-use elcon::analysis::Material;
 use elcon::design::bearing::roller_crown;
 use elcon::design::{DesignOptions, Family};
-use elcon::elements::roller::{Crown, RollerBearing, RollerGrid};
+use elcon::elements::roller::{Crown, RollerGrid};
+use elcon_fixtures::bearings;
 
 fn main() {
     println!(
@@ -26,18 +26,7 @@ fn main() {
                 zone: 1.5,
             },
         ] {
-            let bearing = RollerBearing {
-                roller_diameter: 9.0,
-                roller_length: 9.0,
-                crown: Crown::Straight,
-                inner_raceway_diameter: 57.0,
-                outer_raceway_diameter: 75.03,
-                rollers: 20,
-                diametral_clearance: None,
-                material: Material::new(210e3, 0.3).expect("steel"),
-                radial_load: 8000.0,
-                misalignment,
-            };
+            let bearing = bearings::roller(Crown::Straight, misalignment);
             let start = std::time::Instant::now();
             let c = roller_crown(&bearing, &grid, Family::Free, &DesignOptions::default())
                 .expect("designed");

@@ -160,22 +160,10 @@ fn cases_of(solution: &BearingSolution) -> Vec<CrownCase> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use elcon_analysis::Material;
 
     #[test]
     fn a_crown_designed_over_the_bearing_takes_the_edge_peak_away() {
-        let bearing = RollerBearing {
-            roller_diameter: 9.0,
-            roller_length: 9.0,
-            crown: Crown::Straight,
-            inner_raceway_diameter: 57.0,
-            outer_raceway_diameter: 75.03,
-            rollers: 20,
-            diametral_clearance: None,
-            material: Material::new(210e3, 0.3).unwrap(),
-            radial_load: 8000.0,
-            misalignment: 1e-3,
-        };
+        let bearing = elcon_fixtures::bearings::roller(Crown::Straight, 1e-3);
         let grid = RollerGrid {
             across: 7,
             along: 30,

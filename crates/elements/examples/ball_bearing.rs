@@ -6,22 +6,12 @@
 //!
 //! Run: `cargo run --release -p elcon-elements --example ball_bearing`
 
-use elcon_analysis::Material;
 use elcon_analysis::system::SystemSettings;
 use elcon_elements::bearing::{BallBearing, BearingGrid};
+use elcon_fixtures::bearings;
 
 fn main() {
-    let base = BallBearing {
-        ball_diameter: 7.938,
-        inner_raceway_diameter: 31.0,
-        outer_raceway_diameter: 46.9,
-        inner_groove_radius: 0.52 * 7.938,
-        outer_groove_radius: 0.53 * 7.938,
-        balls: 9,
-        diametral_clearance: None,
-        material: Material::new(210e3, 0.3).expect("steel"),
-        radial_load: 2000.0,
-    };
+    let base = bearings::ball(None);
     println!(
         "| clearance (mm) | across | loaded | Q_max (N) | springs Q_max | ring x (um) | springs (um) | p_max inner (MPa) | Z Q_max / F_r | steps | zone solves | seconds |"
     );

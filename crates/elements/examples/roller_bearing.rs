@@ -6,26 +6,12 @@
 //!
 //! Run: `cargo run --release -p elcon-elements --example roller_bearing`
 
-use elcon_analysis::Material;
 use elcon_analysis::system::SystemSettings;
 use elcon_elements::roller::{Crown, RollerBearing, RollerGrid, Slicing};
+use elcon_fixtures::bearings;
 
 fn main() {
-    let base = RollerBearing {
-        roller_diameter: 9.0,
-        roller_length: 9.0,
-        crown: Crown::Circular {
-            drop: 0.008,
-            flat: 4.5,
-        },
-        inner_raceway_diameter: 57.0,
-        outer_raceway_diameter: 75.03,
-        rollers: 20,
-        diametral_clearance: None,
-        material: Material::new(210e3, 0.3).expect("steel"),
-        radial_load: 8000.0,
-        misalignment: 1e-3,
-    };
+    let base = bearings::roller(bearings::CROWN, 1e-3);
     println!(
         "| crown | misalignment (mrad) | grid | loaded | Q_max (N) | slicing Q_max | p_max inner (MPa) | slicing p_max | p at the end cell / p_max | steps | zone solves | seconds |"
     );
@@ -41,14 +27,7 @@ fn main() {
         ),
     ] {
         for misalignment in [0.0, 1e-3] {
-            for grid in [
-                RollerGrid::default(),
-                RollerGrid {
-                    across: 19,
-                    along: 120,
-                    zone: 1.4,
-                },
-            ] {
+            for grid in [RollerGrid::default(), bearings::ROLLER_GRID] {
                 let bearing = RollerBearing {
                     crown: crown.clone(),
                     misalignment,

@@ -1,7 +1,6 @@
 //! The rolling bearing as a system of contacts against the discrete
 //! Hertz-spring model (Harris & Kotzalas, ch. 7) and Stribeck's ratio.
 
-use elcon_analysis::Material;
 use elcon_analysis::system::SystemSettings;
 use elcon_elements::ElementsError;
 use elcon_elements::bearing::{BallBearing, BearingGrid};
@@ -9,17 +8,7 @@ use elcon_elements::life::RatingLife;
 
 /// The bearing of examples/scenes/ball-bearing-radial.toml.
 fn bearing(clearance: Option<f64>) -> BallBearing {
-    BallBearing {
-        ball_diameter: 7.938,
-        inner_raceway_diameter: 31.0,
-        outer_raceway_diameter: 46.9,
-        inner_groove_radius: 0.52 * 7.938,
-        outer_groove_radius: 0.53 * 7.938,
-        balls: 9,
-        diametral_clearance: clearance,
-        material: Material::new(210e3, 0.3).unwrap(),
-        radial_load: 2000.0,
-    }
+    elcon_fixtures::bearings::ball(clearance)
 }
 
 /// The tolerance against the Hertz springs: the 21-across grid's own
@@ -171,24 +160,10 @@ mod rollers {
 
     /// The bearing of examples/scenes/roller-bearing-misaligned.toml.
     fn bearing(crown: Crown, misalignment: f64) -> RollerBearing {
-        RollerBearing {
-            roller_diameter: 9.0,
-            roller_length: 9.0,
-            crown,
-            inner_raceway_diameter: 57.0,
-            outer_raceway_diameter: 75.03,
-            rollers: 20,
-            diametral_clearance: None,
-            material: Material::new(210e3, 0.3).unwrap(),
-            radial_load: 8000.0,
-            misalignment,
-        }
+        elcon_fixtures::bearings::roller(crown, misalignment)
     }
 
-    const CROWN: Crown = Crown::Circular {
-        drop: 0.008,
-        flat: 4.5,
-    };
+    const CROWN: Crown = elcon_fixtures::bearings::CROWN;
 
     #[test]
     fn the_rollers_share_the_load_and_tilt_half_the_misalignment() {
